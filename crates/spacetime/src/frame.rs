@@ -1,0 +1,89 @@
+//! Local frames: the static observer's frame by Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
+//! (DESIGN.md), and Lorentz boosts of a frame to an observer moving with a given velocity.
+
+use crate::metric::MetricTensor;
+use crate::vectors::{FourVector, Tetrad};
+
+/// A velocity given in an observer's local frame: speed 0 ≤ v < 1 along a unit direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalVelocity {
+    pub speed: f64,
+    /// Unit vector in the frame's spatial axes (e1, e2, e3).
+    pub direction: [f64; 3],
+}
+
+impl LocalVelocity {
+    pub const REST: LocalVelocity = LocalVelocity { speed: 0.0, direction: [1.0, 0.0, 0.0] };
+
+    /// Velocity from a speed and any non-zero direction (normalized here).
+    /// Returns `None` for a zero or non-finite direction or a speed outside [0, 1).
+    pub fn new(speed: f64, direction: [f64; 3]) -> Option<Self> {
+        let n = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
+        if !(speed.is_finite() && (0.0..1.0).contains(&speed) && n.is_finite() && n > 0.0) {
+            return None;
+        }
+        Some(LocalVelocity { speed, direction: [direction[0] / n, direction[1] / n, direction[2] / n] })
+    }
+
+    /// Lorentz factor γ = 1/√(1 − v²).
+    pub fn gamma(&self) -> f64 {
+        1.0 / (1.0 - self.speed * self.speed).sqrt()
+    }
+}
+
+fn g(metric: &MetricTensor, u: FourVector, v: FourVector) -> f64 {
+    let (u, v) = (u.to_array(), v.to_array());
+    let mut s = 0.0;
+    for m in 0..4 {
+        for n in 0..4 {
+            s += metric[m][n] * u[m] * v[n];
+        }
+    }
+    s
+}
+
+/// Gram–Schmidt orthonormalization of (∂t, ∂x, ∂y, ∂z) in that order with respect to
+/// `metric` (signature −+++). Requires ∂t timelike, as in Gödel (g_tt = −1) and Minkowski.
+pub fn gram_schmidt_static_frame(metric: &MetricTensor) -> Tetrad {
+    let basis = [
+        FourVector::new(1.0, 0.0, 0.0, 0.0),
+        FourVector::new(0.0, 1.0, 0.0, 0.0),
+        FourVector::new(0.0, 0.0, 1.0, 0.0),
+        FourVector::new(0.0, 0.0, 0.0, 1.0),
+    ];
+    let mut e = basis;
+    let norm = (-g(metric, e[0], e[0])).sqrt();
+    e[0] = (1.0 / norm) * e[0];
+    for i in 1..4 {
+        let mut v = basis[i];
+        // Projections use the signs η_aa: + for e0 (since g(e0,e0) = −1), − for spatial.
+        let c0 = g(metric, v, e[0]);
+        v = v + c0 * e[0];
+        for j in 1..i {
+            let cj = g(metric, v, e[j]);
+            v = v - cj * e[j];
+        }
+        let n = g(metric, v, v).sqrt();
+        e[i] = (1.0 / n) * v;
+    }
+    Tetrad { e }
+}
+
+/// The frame of an observer moving with `velocity` relative to `frame`: the standard boost
+/// Λ with Λ⁰₀ = γ, Λ⁰ᵢ = Λⁱ₀ = γ v nᵢ, Λⁱⱼ = δᵢⱼ + (γ − 1) nᵢ nⱼ. Spatial axes stay
+/// aligned with the original ones as seen in the boost direction's orthogonal plane.
+pub fn boost(frame: &Tetrad, velocity: LocalVelocity) -> Tetrad {
+    let gamma = velocity.gamma();
+    let v = velocity.speed;
+    let n = velocity.direction;
+    let mut out = frame.e;
+    out[0] = frame.vector([gamma, gamma * v * n[0], gamma * v * n[1], gamma * v * n[2]]);
+    for i in 0..3 {
+        let mut comps = [gamma * v * n[i], 0.0, 0.0, 0.0];
+        for j in 0..3 {
+            comps[j + 1] = if i == j { 1.0 } else { 0.0 } + (gamma - 1.0) * n[i] * n[j];
+        }
+        out[i + 1] = frame.vector(comps);
+    }
+    Tetrad { e: out }
+}

@@ -1,0 +1,135 @@
+//! Gödel's rotating universe (Gödel, Rev. Mod. Phys. 21, 447 (1949)) in pseudo-Cartesian
+//! coordinates x = r cos φ, y = r sin φ, smooth on the axis.
+//!
+//! Line element (DESIGN.md), written as ds² = −(dt + α)² + h with
+//! α = (x dy − y dx)/(√2 a) and the static observers' spatial metric
+//! h = dr²/(1+s²) + r²(1+s²) dφ² + dz², s = r/2a. In these coordinates
+//!
+//!   g_tt = −1,  g_tx = y/(√2 a),  g_ty = −x/(√2 a),
+//!   g_ij = δ_ij − k J_i J_j − m X_i X_j   (i, j ∈ {x, y}),  g_zz = 1,
+//!
+//! with k = 1/4a², m = 1/(4a² + r²), X = (x, y), J = (−y, x). The inverse follows from the
+//! dual frame (∂t, ∂_i − α_i ∂t): with c = 1/(1 + k r²),
+//!
+//!   g^tt = 1 − 2c,  g^tx = c y/(√2 a),  g^ty = −c x/(√2 a),
+//!   g^ij = c δ_ij + k(1 + c) X_i X_j,  g^zz = 1,
+//!
+//! which is the cylindrical inverse g^tt = −(1−s²)/(1+s²), g^tφ = −1/(√2 a(1+s²)), … of the
+//! formulary rewritten. The Hamiltonian used by the integrator is then
+//!   2H = (1 − 2c) p_t² − (√2/a) c p_t L + c(p_x² + p_y²) + k(1 + c)(x p_x + y p_y)² + p_z²,
+//! L = x p_y − y p_x = p_φ.
+
+use crate::metric::{MetricTensor, Spacetime};
+use crate::vectors::{Covector, Event, FourVector};
+use std::f64::consts::SQRT_2;
+
+/// The Gödel metric with parameter `a` > 0 (optical horizon at r = 2a).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Godel {
+    pub a: f64,
+}
+
+impl Godel {
+    /// The Gödel metric; `a` must be positive and finite (checked by callers that parse input).
+    pub fn new(a: f64) -> Self {
+        debug_assert!(a > 0.0 && a.is_finite());
+        Godel { a }
+    }
+    /// Radius of the optical horizon, r_G = 2a.
+    pub fn horizon_radius(&self) -> f64 {
+        2.0 * self.a
+    }
+}
+
+impl Spacetime for Godel {
+    fn metric(&self, e: Event) -> MetricTensor {
+        let (x, y, a) = (e.x, e.y, self.a);
+        let k = 0.25 / (a * a);
+        let m = 1.0 / (4.0 * a * a + x * x + y * y);
+        let gtx = y / (SQRT_2 * a);
+        let gty = -x / (SQRT_2 * a);
+        let gxx = 1.0 - k * y * y - m * x * x;
+        let gxy = (k - m) * x * y;
+        let gyy = 1.0 - k * x * x - m * y * y;
+        [
+            [-1.0, gtx, gty, 0.0],
+            [gtx, gxx, gxy, 0.0],
+            [gty, gxy, gyy, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]
+    }
+
+    fn inverse_metric(&self, e: Event) -> MetricTensor {
+        let (x, y, a) = (e.x, e.y, self.a);
+        let k = 0.25 / (a * a);
+        let c = 1.0 / (1.0 + k * (x * x + y * y));
+        let q = k * (1.0 + c);
+        let gtx = c * y / (SQRT_2 * a);
+        let gty = -c * x / (SQRT_2 * a);
+        [
+            [1.0 - 2.0 * c, gtx, gty, 0.0],
+            [gtx, c + q * x * x, q * x * y, 0.0],
+            [gty, q * x * y, c + q * y * y, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]
+    }
+
+    fn metric_derivatives(&self, e: Event) -> [MetricTensor; 4] {
+        let (x, y, a) = (e.x, e.y, self.a);
+        let k = 0.25 / (a * a);
+        let m = 1.0 / (4.0 * a * a + x * x + y * y);
+        let m2 = m * m;
+        let w = 1.0 / (SQRT_2 * a);
+        // ∂_x and ∂_y of g_xx = 1 − k y² − m x², g_xy = (k − m) x y, g_yy = 1 − k x² − m y²,
+        // using ∂_l m = −2 m² X_l.
+        let dx_xx = 2.0 * m2 * x * x * x - 2.0 * m * x;
+        let dy_xx = -2.0 * k * y + 2.0 * m2 * y * x * x;
+        let dx_xy = (k - m) * y + 2.0 * m2 * x * x * y;
+        let dy_xy = (k - m) * x + 2.0 * m2 * x * y * y;
+        let dx_yy = -2.0 * k * x + 2.0 * m2 * x * y * y;
+        let dy_yy = 2.0 * m2 * y * y * y - 2.0 * m * y;
+        let zero = [[0.0; 4]; 4];
+        let dx = [
+            [0.0, 0.0, -w, 0.0],
+            [0.0, dx_xx, dx_xy, 0.0],
+            [-w, dx_xy, dx_yy, 0.0],
+            [0.0; 4],
+        ];
+        let dy = [
+            [0.0, w, 0.0, 0.0],
+            [w, dy_xx, dy_xy, 0.0],
+            [0.0, dy_xy, dy_yy, 0.0],
+            [0.0; 4],
+        ];
+        [zero, dx, dy, zero]
+    }
+
+    #[inline]
+    fn hamilton(&self, e: Event, p: Covector) -> (FourVector, Covector) {
+        let (x, y, a) = (e.x, e.y, self.a);
+        let k = 0.25 / (a * a);
+        let b = SQRT_2 / a;
+        let c = 1.0 / (1.0 + k * (x * x + y * y));
+        let pt = p.t;
+        let l = x * p.y - y * p.x;
+        let rho = x * p.x + y * p.y;
+        let q = k * (1.0 + c) * rho;
+        let half_bcp = 0.5 * b * c * pt;
+        let xdot = FourVector::new(
+            (1.0 - 2.0 * c) * pt - 0.5 * b * c * l,
+            half_bcp * y + c * p.x + q * x,
+            -half_bcp * x + c * p.y + q * y,
+            p.z,
+        );
+        // ṗ_i = −½ ∂_i(2H); ∂_i c = −2k c² X_i.
+        let big_q = -2.0 * pt * pt - b * pt * l + (p.x * p.x + p.y * p.y) + k * rho * rho;
+        let kc2q = k * c * c * big_q;
+        let pdot = Covector::new(
+            0.0,
+            kc2q * x + half_bcp * p.y - q * p.x,
+            kc2q * y - half_bcp * p.x - q * p.y,
+            0.0,
+        );
+        (xdot, pdot)
+    }
+}

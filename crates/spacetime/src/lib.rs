@@ -1,0 +1,37 @@
+//! Spacetimes for the Gödel ray tracer: metrics, local frames, geodesics.
+//!
+//! Main types:
+//! - [`Event`], [`FourVector`], [`Covector`], [`Tetrad`]: points, tangent vectors,
+//!   one-forms and orthonormal frames, all in pseudo-Cartesian coordinates (t, x, y, z).
+//! - [`Spacetime`]: the metric interface (metric, inverse, Christoffel symbols,
+//!   Hamiltonian geodesic equations, natural static frame, boosts), implemented by
+//!   [`Minkowski`] and [`Godel`], dispatched as the closed set [`Metric`].
+//! - [`Dop853`]: an adaptive embedded Runge–Kutta 8(5,3) integrator with dense output.
+//! - [`Geodesic`], [`trace`]: a geodesic launched from a local direction, integrated with
+//!   stop conditions, sampled evenly from the dense output.
+//! - [`ConstantsOfMotion`]: E = −p_t, L = p_φ, p_z and the normalization, with drift reports.
+//!
+//! Conventions (DESIGN.md): c = 1, signature (−,+,+,+), Gödel parameter `a`, optical horizon
+//! at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
+//! pseudo-Cartesian x = r cos φ, y = r sin φ.
+
+mod constants;
+mod dop853;
+mod frame;
+mod geodesic;
+mod godel;
+mod metric;
+mod minkowski;
+mod vectors;
+
+pub use constants::{ConstantsOfMotion, Drift};
+pub use dop853::{Dop853, DenseStep, OdeSystem, StepOutcome, Tolerances};
+pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};
+pub use geodesic::{
+    trace, Geodesic, GeodesicKind, GeodesicState, StopReason, TraceLimits, TracedGeodesic,
+    TimeDirection,
+};
+pub use godel::Godel;
+pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};
+pub use minkowski::Minkowski;
+pub use vectors::{Cylindrical, Covector, Event, FourVector, Tetrad};

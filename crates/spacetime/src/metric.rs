@@ -1,0 +1,141 @@
+//! The `Spacetime` interface and the closed set of metrics the tracer knows.
+//!
+//! Geodesics are integrated in Hamiltonian form, H = ½ g^{μν} p_μ p_ν:
+//! ẋ^μ = ∂H/∂p_μ = g^{μν} p_ν,  ṗ_μ = −∂H/∂x^μ (Misner, Thorne & Wheeler, eq. 25.24).
+//! For metrics independent of t and z (both here) p_t and p_z are then conserved exactly.
+//! Christoffel symbols Γ^μ_αβ = ½ g^{μν}(∂_α g_νβ + ∂_β g_να − ∂_ν g_αβ) come from the
+//! closed-form metric derivatives each metric supplies.
+
+use crate::frame::gram_schmidt_static_frame;
+use crate::vectors::{Covector, Event, FourVector, Tetrad};
+use crate::{Godel, Minkowski};
+
+/// Components g_μν (or g^μν) in the pseudo-Cartesian coordinate basis.
+pub type MetricTensor = [[f64; 4]; 4];
+/// Components Γ^μ_αβ, indexed `[mu][alpha][beta]`.
+pub type Christoffel = [[[f64; 4]; 4]; 4];
+
+/// A spacetime metric in pseudo-Cartesian coordinates (t, x, y, z).
+///
+/// Implementations are pure and immutable, so one value is shared by all threads.
+pub trait Spacetime {
+    /// g_μν at `x`.
+    fn metric(&self, x: Event) -> MetricTensor;
+    /// g^μν at `x`.
+    fn inverse_metric(&self, x: Event) -> MetricTensor;
+    /// ∂_λ g_μν at `x`, indexed `[lambda][mu][nu]`, in closed form.
+    fn metric_derivatives(&self, x: Event) -> [MetricTensor; 4];
+    /// Hamilton's equations for H = ½ g^{μν} p_μ p_ν: returns (ẋ^μ, ṗ_μ).
+    fn hamilton(&self, x: Event, p: Covector) -> (FourVector, Covector);
+
+    /// Christoffel symbols of the second kind at `x`.
+    fn christoffel(&self, x: Event) -> Christoffel {
+        let gi = self.inverse_metric(x);
+        let dg = self.metric_derivatives(x);
+        let mut out = [[[0.0; 4]; 4]; 4];
+        for (mu, out_mu) in out.iter_mut().enumerate() {
+            for a in 0..4 {
+                for b in a..4 {
+                    let mut s = 0.0;
+                    for (nu, gi_nu) in gi[mu].iter().enumerate() {
+                        s += gi_nu * (dg[a][nu][b] + dg[b][nu][a] - dg[nu][a][b]);
+                    }
+                    out_mu[a][b] = 0.5 * s;
+                    out_mu[b][a] = 0.5 * s;
+                }
+            }
+        }
+        out
+    }
+
+    /// g(u, v) at `x`.
+    fn dot(&self, x: Event, u: FourVector, v: FourVector) -> f64 {
+        let g = self.metric(x);
+        let (u, v) = (u.to_array(), v.to_array());
+        let mut s = 0.0;
+        for m in 0..4 {
+            for n in 0..4 {
+                s += g[m][n] * u[m] * v[n];
+            }
+        }
+        s
+    }
+
+    /// Lowers an index: p_μ = g_μν v^ν.
+    fn lower(&self, x: Event, v: FourVector) -> Covector {
+        let g = self.metric(x);
+        let v = v.to_array();
+        let mut p = [0.0; 4];
+        for m in 0..4 {
+            p[m] = (0..4).map(|n| g[m][n] * v[n]).sum();
+        }
+        Covector::from_array(p)
+    }
+
+    /// Raises an index: v^μ = g^μν p_ν.
+    fn raise(&self, x: Event, p: Covector) -> FourVector {
+        let g = self.inverse_metric(x);
+        let p = p.to_array();
+        let mut v = [0.0; 4];
+        for m in 0..4 {
+            v[m] = (0..4).map(|n| g[m][n] * p[n]).sum();
+        }
+        FourVector::from_array(v)
+    }
+
+    /// The static observer's orthonormal frame: Gram–Schmidt of (∂t, ∂x, ∂y, ∂z) (DESIGN.md).
+    fn static_frame(&self, x: Event) -> Tetrad {
+        gram_schmidt_static_frame(&self.metric(x))
+    }
+}
+
+/// The metrics the tracer knows, as one closed type (cheap to copy, shared by all rays).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Metric {
+    Minkowski(Minkowski),
+    Godel(Godel),
+}
+
+impl Metric {
+    /// Gödel's parameter `a`, if this is the Gödel metric.
+    pub fn godel_a(&self) -> Option<f64> {
+        match self {
+            Metric::Godel(g) => Some(g.a),
+            Metric::Minkowski(_) => None,
+        }
+    }
+    /// Short name as used in scene files and on the command line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Metric::Godel(_) => "godel",
+            Metric::Minkowski(_) => "minkowski",
+        }
+    }
+}
+
+macro_rules! dispatch {
+    ($self:ident, $m:ident => $e:expr) => {
+        match $self {
+            Metric::Minkowski($m) => $e,
+            Metric::Godel($m) => $e,
+        }
+    };
+}
+
+impl Spacetime for Metric {
+    fn metric(&self, x: Event) -> MetricTensor {
+        dispatch!(self, m => m.metric(x))
+    }
+    fn inverse_metric(&self, x: Event) -> MetricTensor {
+        dispatch!(self, m => m.inverse_metric(x))
+    }
+    fn metric_derivatives(&self, x: Event) -> [MetricTensor; 4] {
+        dispatch!(self, m => m.metric_derivatives(x))
+    }
+    fn hamilton(&self, x: Event, p: Covector) -> (FourVector, Covector) {
+        dispatch!(self, m => m.hamilton(x, p))
+    }
+    fn static_frame(&self, x: Event) -> Tetrad {
+        dispatch!(self, m => m.static_frame(x))
+    }
+}
