@@ -1,0 +1,288 @@
+//! Cameras: which direction each pixel looks along, exactly as fixed in DESIGN.md
+//! ("Cameras"), so that every tool reads pixels the same way.
+//!
+//! Directions are returned in the *camera basis*: components along (forward, right, up),
+//! with right = forward × up. [`crate::Observer::pixel_direction`] turns them into the
+//! observer's local-frame components. Pixel (col, row) has its centre at (col + ½, row + ½);
+//! row 0 is the top row.
+
+/// The closed set of cameras. Field-of-view angles are in degrees; values are validated
+/// when a scene is read (pinhole fov in (0, 180), panorama h_fov in (0, 360] and v_fov in
+/// (0, 180], fisheye fov in (0, 360], sizes ≥ 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Camera {
+    /// Image plane at unit distance, horizontal field of view `fov_deg`, square pixels.
+    Pinhole {
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    },
+    /// Equirectangular: azimuth linear in column, elevation linear in row.
+    Panorama {
+        h_fov_deg: f64,
+        v_fov_deg: f64,
+        width: u32,
+        height: u32,
+    },
+    /// The full sphere: a 360°×180° panorama.
+    Sphere { width: u32, height: u32 },
+    /// Equidistant fisheye (dome master) on a square `size`×`size` image; the inscribed
+    /// circle spans `fov_deg`.
+    Fisheye { fov_deg: f64, size: u32 },
+}
+
+impl Camera {
+    pub fn width(&self) -> u32 {
+        match *self {
+            Camera::Pinhole { width, .. }
+            | Camera::Panorama { width, .. }
+            | Camera::Sphere { width, .. } => width,
+            Camera::Fisheye { size, .. } => size,
+        }
+    }
+
+    pub fn height(&self) -> u32 {
+        match *self {
+            Camera::Pinhole { height, .. }
+            | Camera::Panorama { height, .. }
+            | Camera::Sphere { height, .. } => height,
+            Camera::Fisheye { size, .. } => size,
+        }
+    }
+
+    /// The kind as written in scene files.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Camera::Pinhole { .. } => "pinhole",
+            Camera::Panorama { .. } => "panorama",
+            Camera::Sphere { .. } => "sphere",
+            Camera::Fisheye { .. } => "fisheye",
+        }
+    }
+
+    /// A one-line description, e.g. `panorama 220°×25°, 880×100`.
+    pub fn describe(&self) -> String {
+        let (w, h) = (self.width(), self.height());
+        match *self {
+            Camera::Pinhole { fov_deg, .. } => format!("pinhole {fov_deg}°, {w}×{h}"),
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                ..
+            } => format!("panorama {h_fov_deg}°×{v_fov_deg}°, {w}×{h}"),
+            Camera::Sphere { .. } => format!("sphere 360°×180°, {w}×{h}"),
+            Camera::Fisheye { fov_deg, .. } => format!("fisheye {fov_deg}°, {w}×{h}"),
+        }
+    }
+
+    /// Unit direction in the camera basis (forward, right, up) for pixel (col, row);
+    /// `None` outside the image or, for the fisheye, outside the inscribed circle.
+    pub fn pixel_direction(&self, col: u32, row: u32) -> Option<[f64; 3]> {
+        let (w, h) = (self.width(), self.height());
+        if col >= w || row >= h {
+            return None;
+        }
+        let (w, h) = (w as f64, h as f64);
+        let (cx, cy) = (col as f64 + 0.5, row as f64 + 0.5);
+        match *self {
+            Camera::Pinhole { fov_deg, .. } => {
+                let t = (0.5 * fov_deg).to_radians().tan();
+                let x = t * (2.0 * cx / w - 1.0);
+                let y = t * (h / w) * (1.0 - 2.0 * cy / h);
+                let n = (1.0 + x * x + y * y).sqrt();
+                Some([1.0 / n, x / n, y / n])
+            }
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                ..
+            } => Some(panorama(h_fov_deg, v_fov_deg, cx / w, cy / h)),
+            Camera::Sphere { .. } => Some(panorama(360.0, 180.0, cx / w, cy / h)),
+            Camera::Fisheye { fov_deg, .. } => {
+                // Offsets from the centre in units of the circle's radius: right and up.
+                let dx = 2.0 * cx / w - 1.0;
+                let dy = 1.0 - 2.0 * cy / h;
+                let rho = dx.hypot(dy);
+                if rho > 1.0 {
+                    return None;
+                }
+                let theta = rho * (0.5 * fov_deg).to_radians();
+                // Position angle ψ from up, increasing toward right: (sin ψ, cos ψ) = (dx, dy)/ρ.
+                let (sin_psi, cos_psi) = if rho > 0.0 {
+                    (dx / rho, dy / rho)
+                } else {
+                    (0.0, 1.0)
+                };
+                let (s, c) = theta.sin_cos();
+                Some([c, s * sin_psi, s * cos_psi])
+            }
+        }
+    }
+}
+
+/// Panorama direction at fractional image position (u, v) ∈ (0, 1)², v = 0 at the top.
+fn panorama(h_fov_deg: f64, v_fov_deg: f64, u: f64, v: f64) -> [f64; 3] {
+    let alpha = h_fov_deg.to_radians() * (u - 0.5);
+    let beta = v_fov_deg.to_radians() * (0.5 - v);
+    let (sa, ca) = alpha.sin_cos();
+    let (sb, cb) = beta.sin_cos();
+    [cb * ca, cb * sa, sb]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+        (0..3).all(|i| (a[i] - b[i]).abs() < 1e-12)
+    }
+    fn norm(d: [f64; 3]) -> f64 {
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    }
+
+    fn cameras() -> Vec<Camera> {
+        vec![
+            Camera::Pinhole {
+                fov_deg: 90.0,
+                width: 101,
+                height: 51,
+            },
+            Camera::Panorama {
+                h_fov_deg: 220.0,
+                v_fov_deg: 25.0,
+                width: 881,
+                height: 101,
+            },
+            Camera::Sphere {
+                width: 361,
+                height: 181,
+            },
+            Camera::Fisheye {
+                fov_deg: 180.0,
+                size: 101,
+            },
+        ]
+    }
+
+    #[test]
+    fn centre_pixel_looks_forward() {
+        for c in cameras() {
+            let d = c.pixel_direction(c.width() / 2, c.height() / 2).unwrap();
+            assert!(close(d, [1.0, 0.0, 0.0]), "{c:?}: {d:?}");
+        }
+    }
+
+    #[test]
+    fn left_right_and_up_down_are_mirror_images() {
+        for c in cameras() {
+            let (w, h) = (c.width(), c.height());
+            for (col, row) in [(0, 0), (3, 7), (w / 4, h / 3), (w - 1, h / 2)] {
+                let (Some(d), Some(m)) = (
+                    c.pixel_direction(col, row),
+                    c.pixel_direction(w - 1 - col, row),
+                ) else {
+                    continue;
+                };
+                assert!(close(d, [m[0], -m[1], m[2]]), "{c:?} lr {col},{row}");
+                let m = c.pixel_direction(col, h - 1 - row).unwrap();
+                assert!(close(d, [m[0], m[1], -m[2]]), "{c:?} ud {col},{row}");
+            }
+        }
+    }
+
+    #[test]
+    fn right_is_right_and_top_is_up() {
+        for c in cameras() {
+            let (w, h) = (c.width(), c.height());
+            assert!(c.pixel_direction(w - 1, h / 2).unwrap()[1] > 0.0);
+            assert!(c.pixel_direction(w / 2, 0).unwrap()[2] > 0.0);
+        }
+    }
+
+    #[test]
+    fn directions_are_unit() {
+        for c in cameras() {
+            for row in (0..c.height()).step_by(7) {
+                for col in (0..c.width()).step_by(5) {
+                    if let Some(d) = c.pixel_direction(col, row) {
+                        assert!((norm(d) - 1.0).abs() < 1e-12);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn panorama_edge_azimuths() {
+        let (w, h) = (880, 100);
+        let c = Camera::Panorama {
+            h_fov_deg: 220.0,
+            v_fov_deg: 25.0,
+            width: w,
+            height: h,
+        };
+        let half_pixel = 220.0 / w as f64 / 2.0;
+        let az = |d: [f64; 3]| d[1].atan2(d[0]).to_degrees();
+        let el = |d: [f64; 3]| d[2].asin().to_degrees();
+        let left = c.pixel_direction(0, h / 2).unwrap();
+        let right = c.pixel_direction(w - 1, h / 2).unwrap();
+        assert!((az(left) - (-110.0 + half_pixel)).abs() < 1e-9);
+        assert!((az(right) - (110.0 - half_pixel)).abs() < 1e-9);
+        let top = c.pixel_direction(w / 2, 0).unwrap();
+        assert!((el(top) - (12.5 - 25.0 / h as f64 / 2.0)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn pinhole_edges_match_tangent_plane() {
+        let c = Camera::Pinhole {
+            fov_deg: 90.0,
+            width: 100,
+            height: 50,
+        };
+        let d = c.pixel_direction(99, 25).unwrap();
+        // x = tan 45°·(2·99.5/100 − 1) = 0.99, y = 0.5·(1 − 2·25.5/50) = −0.01.
+        assert!((d[1] / d[0] - 0.99).abs() < 1e-12);
+        assert!((d[2] / d[0] + 0.01).abs() < 1e-12);
+    }
+
+    #[test]
+    fn fisheye_radius_is_proportional_to_angle() {
+        let n = 200;
+        let c = Camera::Fisheye {
+            fov_deg: 180.0,
+            size: n,
+        };
+        for col in [100, 120, 150, 180, 199] {
+            let d = c.pixel_direction(col, 100).unwrap();
+            // Pixel centre's distance from the image centre, in units of the radius.
+            let rho = ((col as f64 + 0.5 - 100.0).powi(2) + 0.25).sqrt() / 100.0;
+            let angle = d[0].clamp(-1.0, 1.0).acos();
+            assert!((angle - rho * 90f64.to_radians()).abs() < 1e-12);
+        }
+        // Corners lie outside the inscribed circle.
+        assert!(c.pixel_direction(0, 0).is_none());
+        assert!(c.pixel_direction(n - 1, n - 1).is_none());
+        // Position angle: straight up at the top, straight right at the right edge.
+        let up = c.pixel_direction(100, 0).unwrap();
+        assert!(up[2] > 0.99 * (89f64).to_radians().sin() && up[1].abs() < 0.01);
+    }
+
+    #[test]
+    fn outside_the_image_is_none() {
+        for c in cameras() {
+            assert!(c.pixel_direction(c.width(), 0).is_none());
+            assert!(c.pixel_direction(0, c.height()).is_none());
+        }
+    }
+
+    #[test]
+    fn describe_names_the_kind() {
+        let c = Camera::Panorama {
+            h_fov_deg: 220.0,
+            v_fov_deg: 25.0,
+            width: 880,
+            height: 100,
+        };
+        assert_eq!(c.describe(), "panorama 220°×25°, 880×100");
+    }
+}

@@ -1,0 +1,268 @@
+//! Located scene-file errors: [`SceneError`] names the file, line, column and field path,
+//! e.g. `scenes/x.toml:12:10: object[1].radius: must be positive, got -1`.
+//!
+//! Positions come from the spanned TOML tree ([`Locator`]): serde errors carry a byte span
+//! that is mapped back to a field path, and validation errors carry a field path that is
+//! mapped forward to the byte span of that value (or of its nearest existing ancestor, when
+//! the field itself is missing).
+
+use std::fmt;
+use toml::de::{DeTable, DeValue};
+use toml::Spanned;
+
+/// A 1-based line and column (columns count characters, not bytes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Location {
+    pub line: usize,
+    pub column: usize,
+}
+
+/// A scene-file error: where it is and what is wrong.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneError {
+    /// The file as given by the caller (a path, or a name such as `<builtin>`).
+    pub file: String,
+    /// Line and column, when the error has a place in the text (not for unreadable files).
+    pub location: Option<Location>,
+    /// Field path such as `object[1].radius` (objects and lights counted from 0); empty for
+    /// errors about the document as a whole (syntax errors at top level, unreadable file).
+    pub field: String,
+    pub message: String,
+}
+
+impl SceneError {
+    /// Line number (1-based), if located.
+    pub fn line(&self) -> Option<usize> {
+        self.location.map(|l| l.line)
+    }
+    /// Column number (1-based), if located.
+    pub fn column(&self) -> Option<usize> {
+        self.location.map(|l| l.column)
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some(l) = self.location {
+            write!(f, ":{}:{}", l.line, l.column)?;
+        }
+        if !self.field.is_empty() {
+            write!(f, ": {}", self.field)?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// Converts a byte offset into a 1-based line and column. Offsets past the end (or inside a
+/// multi-byte character) are clamped, so any offset is safe.
+pub fn line_column(text: &str, offset: usize) -> Location {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let column = text[line_start..offset].chars().count() + 1;
+    Location { line, column }
+}
+
+/// One step of a field path.
+#[derive(Clone, Debug, PartialEq)]
+enum Segment {
+    Key(String),
+    Index(usize),
+}
+
+/// Splits `object[1].texture.path` into segments. Keys in our schema never contain `.` or `[`.
+fn parse_path(path: &str) -> Vec<Segment> {
+    let mut out = Vec::new();
+    for part in path.split('.').filter(|p| !p.is_empty()) {
+        let mut pieces = part.split('[');
+        if let Some(key) = pieces.next() {
+            if !key.is_empty() {
+                out.push(Segment::Key(key.to_string()));
+            }
+        }
+        for idx in pieces {
+            if let Ok(i) = idx.trim_end_matches(']').parse() {
+                out.push(Segment::Index(i));
+            }
+        }
+    }
+    out
+}
+
+fn format_path(segments: &[Segment]) -> String {
+    let mut s = String::new();
+    for seg in segments {
+        match seg {
+            Segment::Key(k) => {
+                if !s.is_empty() {
+                    s.push('.');
+                }
+                s.push_str(k);
+            }
+            Segment::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    s
+}
+
+/// Maps between field paths and places in one scene text, using its spanned TOML tree.
+pub struct Locator<'a> {
+    file: &'a str,
+    text: &'a str,
+    root: Option<&'a Spanned<DeTable<'a>>>,
+}
+
+impl<'a> Locator<'a> {
+    pub fn new(file: &'a str, text: &'a str, root: Option<&'a Spanned<DeTable<'a>>>) -> Self {
+        Locator { file, text, root }
+    }
+
+    /// An error at a byte span; the field path is recovered from the tree.
+    pub fn at_span(
+        &self,
+        span: Option<std::ops::Range<usize>>,
+        message: impl Into<String>,
+    ) -> SceneError {
+        let field = match (&span, self.root) {
+            (Some(s), Some(root)) => format_path(&path_of_offset(root.get_ref(), s.start)),
+            _ => String::new(),
+        };
+        SceneError {
+            file: self.file.to_string(),
+            location: span.map(|s| line_column(self.text, s.start)),
+            field,
+            message: message.into(),
+        }
+    }
+
+    /// An error about the value at `path` (located at that value, or at its nearest existing
+    /// ancestor when the value itself is absent, e.g. a missing required field).
+    pub fn at_path(&self, path: &str, message: impl Into<String>) -> SceneError {
+        let span = self.root.map(|root| span_of_path(root, &parse_path(path)));
+        SceneError {
+            file: self.file.to_string(),
+            location: span.map(|s| line_column(self.text, s.start)),
+            field: path.to_string(),
+            message: message.into(),
+        }
+    }
+}
+
+fn span_of_path(root: &Spanned<DeTable<'_>>, path: &[Segment]) -> std::ops::Range<usize> {
+    let mut span = root.span();
+    // The document root's span starts at 0; a missing top-level table is best reported at
+    // the start of the file, which it already is.
+    let mut node: Option<&DeValue<'_>> = None;
+    let mut table: Option<&DeTable<'_>> = Some(root.get_ref());
+    for seg in path {
+        let next = match (seg, table, node) {
+            (Segment::Key(k), Some(t), _) => {
+                t.iter().find(|(key, _)| key.get_ref() == k).map(|(_, v)| v)
+            }
+            (Segment::Index(i), None, Some(DeValue::Array(a))) => a.get(*i),
+            _ => None,
+        };
+        let Some(v) = next else { break };
+        span = v.span();
+        node = Some(v.get_ref());
+        table = match v.get_ref() {
+            DeValue::Table(t) => Some(t),
+            _ => None,
+        };
+    }
+    span
+}
+
+fn contains(span: std::ops::Range<usize>, offset: usize) -> bool {
+    span.start <= offset && offset < span.end.max(span.start + 1)
+}
+
+/// The deepest field whose key or value contains `offset`. Table values span only their
+/// header, so the whole tree is searched (with an explicit stack: input nesting is unbounded).
+fn path_of_offset(root: &DeTable<'_>, offset: usize) -> Vec<Segment> {
+    let mut best: Vec<Segment> = Vec::new();
+    let mut stack: Vec<(Vec<Segment>, &DeValue<'_>)> = Vec::new();
+    let mut visit =
+        |path: Vec<Segment>, hit: bool, v: &'_ Spanned<DeValue<'_>>, best: &mut Vec<Segment>| {
+            if (hit || contains(v.span(), offset)) && path.len() > best.len() {
+                *best = path.clone();
+            }
+            path
+        };
+    for (k, v) in root.iter() {
+        let path = visit(
+            vec![Segment::Key(k.get_ref().to_string())],
+            contains(k.span(), offset),
+            v,
+            &mut best,
+        );
+        stack.push((path, v.get_ref()));
+    }
+    while let Some((path, value)) = stack.pop() {
+        match value {
+            DeValue::Table(t) => {
+                for (k, v) in t.iter() {
+                    let mut p = path.clone();
+                    p.push(Segment::Key(k.get_ref().to_string()));
+                    let p = visit(p, contains(k.span(), offset), v, &mut best);
+                    stack.push((p, v.get_ref()));
+                }
+            }
+            DeValue::Array(a) => {
+                for (i, v) in a.iter().enumerate() {
+                    let mut p = path.clone();
+                    p.push(Segment::Index(i));
+                    let p = visit(p, false, v, &mut best);
+                    stack.push((p, v.get_ref()));
+                }
+            }
+            _ => {}
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_column_counts_from_one() {
+        let t = "ab\ncdé\nf";
+        assert_eq!(line_column(t, 0), Location { line: 1, column: 1 });
+        assert_eq!(line_column(t, 3), Location { line: 2, column: 1 });
+        assert_eq!(line_column(t, 8), Location { line: 3, column: 1 });
+        assert_eq!(line_column(t, 1000), Location { line: 3, column: 2 });
+        // Inside the two-byte é: clamped back to its start.
+        assert_eq!(line_column(t, 6), Location { line: 2, column: 3 });
+    }
+
+    #[test]
+    fn paths_round_trip() {
+        let p = parse_path("object[1].texture.path");
+        assert_eq!(format_path(&p), "object[1].texture.path");
+    }
+
+    #[test]
+    fn locates_path_and_offset() {
+        let text =
+            "name = \"x\"\n[[object]]\nname = \"a\"\n[[object]]\nname = \"b\"\nradius = -1\n";
+        let root = DeTable::parse(text).unwrap();
+        let loc = Locator::new("f.toml", text, Some(&root));
+        let e = loc.at_path("object[1].radius", "must be positive, got -1");
+        assert_eq!(
+            e.to_string(),
+            "f.toml:6:10: object[1].radius: must be positive, got -1"
+        );
+        let off = text.find("-1").unwrap();
+        let e = loc.at_span(Some(off..off + 2), "bad");
+        assert_eq!(e.field, "object[1].radius");
+    }
+}

@@ -1,0 +1,557 @@
+//! Validation: turns the raw scene-file records (`raw.rs`) into the runtime types
+//! (`model.rs`), checking every number and every combination of fields, each failure a
+//! [`SceneError`] located at the offending value.
+//!
+//! Defaults where DESIGN.md is silent: a missing `[spacetime]` is Gödel with a = 1; a
+//! missing `[observer]` is at rest at the origin at t = 0 looking along e1 with e3 up;
+//! position components left out are 0; a missing velocity direction is [1, 0, 0]; a missing
+//! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
+//! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
+
+use crate::camera::Camera;
+use crate::error::{Locator, SceneError};
+use crate::model::*;
+use crate::raw::*;
+use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski};
+use std::collections::HashMap;
+use std::path::Path;
+
+type Result<T> = std::result::Result<T, SceneError>;
+
+/// Largest image side, and largest pixel count: guards against typos that would allocate
+/// gigabytes.
+const MAX_SIDE: u32 = 20_000;
+const MAX_PIXELS: u64 = 50_000_000;
+/// forward and up count as orthogonal when |cos| ≤ this.
+const ORTHOGONALITY: f64 = 1e-6;
+
+/// Everything of a [`Scene`] that comes from the file's contents.
+pub(crate) struct Parts {
+    pub name: String,
+    pub metric: Metric,
+    pub observer: Observer,
+    pub camera: Camera,
+    pub trace: TraceSettings,
+    pub objects: Vec<Object>,
+    pub lights: Vec<Light>,
+}
+
+struct Checker<'a> {
+    loc: &'a Locator<'a>,
+}
+
+impl Checker<'_> {
+    fn err<T>(&self, path: &str, message: impl Into<String>) -> Result<T> {
+        Err(self.loc.at_path(path, message))
+    }
+
+    fn finite(&self, path: &str, v: f64) -> Result<f64> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            self.err(path, format!("must be a finite number, got {v}"))
+        }
+    }
+
+    fn positive(&self, path: &str, v: f64) -> Result<f64> {
+        let v = self.finite(path, v)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            self.err(path, format!("must be positive, got {v}"))
+        }
+    }
+
+    fn non_negative(&self, path: &str, v: f64) -> Result<f64> {
+        let v = self.finite(path, v)?;
+        if v >= 0.0 {
+            Ok(v)
+        } else {
+            self.err(path, format!("must not be negative, got {v}"))
+        }
+    }
+
+    fn color(&self, path: &str, c: [f64; 3]) -> Result<[f64; 3]> {
+        for (i, v) in c.iter().enumerate() {
+            self.non_negative(&format!("{path}[{i}]"), *v)?;
+        }
+        Ok(c)
+    }
+
+    /// A non-zero finite vector, normalized.
+    fn direction(&self, path: &str, v: [f64; 3]) -> Result<[f64; 3]> {
+        for (i, c) in v.iter().enumerate() {
+            self.finite(&format!("{path}[{i}]"), *c)?;
+        }
+        let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if !(n > 0.0 && n.is_finite()) {
+            return self.err(path, format!("must be a non-zero direction, got {v:?}"));
+        }
+        Ok([v[0] / n, v[1] / n, v[2] / n])
+    }
+
+    fn velocity(
+        &self,
+        path: &str,
+        speed: f64,
+        direction: Option<[f64; 3]>,
+    ) -> Result<LocalVelocity> {
+        let speed_path = format!("{path}.speed");
+        let speed = self.finite(&speed_path, speed)?;
+        if !(0.0..1.0).contains(&speed) {
+            return self.err(
+                &speed_path,
+                format!("must be in [0, 1) (a fraction of light speed), got {speed}"),
+            );
+        }
+        let dir = self.direction(
+            &format!("{path}.direction"),
+            direction.unwrap_or([1.0, 0.0, 0.0]),
+        )?;
+        match LocalVelocity::new(speed, dir) {
+            Some(v) => Ok(v),
+            None => self.err(path, "is not a valid velocity"),
+        }
+    }
+
+    fn position(&self, path: &str, p: RawPosition, t: f64) -> Result<Event> {
+        let cyl = p.r.is_some() || p.phi.is_some();
+        let cart = p.x.is_some() || p.y.is_some();
+        if cyl && cart {
+            return self.err(path, "give either { r, phi, z } (cylindrical) or { x, y, z } (pseudo-Cartesian), not both");
+        }
+        let z = self.finite(&format!("{path}.z"), p.z.unwrap_or(0.0))?;
+        if cyl {
+            let r = self.non_negative(&format!("{path}.r"), p.r.unwrap_or(0.0))?;
+            let phi = self.finite(&format!("{path}.phi"), p.phi.unwrap_or(0.0))?;
+            Ok(Event::new(t, r * phi.cos(), r * phi.sin(), z))
+        } else {
+            let x = self.finite(&format!("{path}.x"), p.x.unwrap_or(0.0))?;
+            let y = self.finite(&format!("{path}.y"), p.y.unwrap_or(0.0))?;
+            Ok(Event::new(t, x, y, z))
+        }
+    }
+
+    fn name(&self, path: &str, name: &str) -> Result<()> {
+        if name.trim().is_empty() {
+            return self.err(path, "must not be empty");
+        }
+        if name.chars().any(|c| c.is_control()) {
+            return self.err(path, "must not contain control characters");
+        }
+        Ok(())
+    }
+
+    /// Reports a field given where it has no meaning.
+    fn unused<T>(&self, path: &str, v: &Option<T>, why: &str) -> Result<()> {
+        match v {
+            Some(_) => self.err(path, format!("not used {why}")),
+            None => Ok(()),
+        }
+    }
+
+    fn required<T: Copy>(&self, path: &str, v: Option<T>, why: &str) -> Result<T> {
+        match v {
+            Some(v) => Ok(v),
+            None => self.err(path, format!("missing, required {why}")),
+        }
+    }
+}
+
+pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Parts> {
+    let c = Checker { loc };
+    c.name("name", &raw.name)?;
+    if raw.name.contains(['/', '\\']) {
+        return c.err(
+            "name",
+            "is used as an output file name and must not contain '/' or '\\'",
+        );
+    }
+    let metric = spacetime(&c, raw.spacetime)?;
+    let observer = observer(&c, raw.observer)?;
+    let camera = camera(&c, raw.camera)?;
+    let trace = trace(&c, raw.trace)?;
+    let mut objects = Vec::with_capacity(raw.object.len());
+    let mut seen: HashMap<String, usize> = HashMap::new();
+    for (i, o) in raw.object.into_iter().enumerate() {
+        let path = format!("object[{i}]");
+        if let Some(first) = seen.insert(o.name.clone(), i) {
+            return c.err(
+                &format!("{path}.name"),
+                format!("duplicate object name {:?} (also object[{first}])", o.name),
+            );
+        }
+        objects.push(object(&c, &path, o, base_dir)?);
+    }
+    let mut lights = Vec::with_capacity(raw.light.len());
+    for (i, l) in raw.light.into_iter().enumerate() {
+        let path = format!("light[{i}]");
+        lights.push(Light {
+            position: c.position(&format!("{path}.position"), l.position, 0.0)?,
+            color: c.color(&format!("{path}.color"), l.color.unwrap_or([1.0; 3]))?,
+            power: c.non_negative(&format!("{path}.power"), l.power.unwrap_or(1.0))?,
+        });
+    }
+    Ok(Parts {
+        name: raw.name,
+        metric,
+        observer,
+        camera,
+        trace,
+        objects,
+        lights,
+    })
+}
+
+fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
+    let Some(s) = raw else {
+        return Ok(Metric::Godel(Godel::new(1.0)));
+    };
+    match s.metric.unwrap_or(MetricName::Godel) {
+        MetricName::Godel => Ok(Metric::Godel(Godel::new(
+            c.positive("spacetime.a", s.a.unwrap_or(1.0))?,
+        ))),
+        MetricName::Minkowski => {
+            c.unused("spacetime.a", &s.a, "by the Minkowski metric")?;
+            Ok(Metric::Minkowski(Minkowski))
+        }
+    }
+}
+
+fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
+    let Some(o) = raw else {
+        return Ok(Observer {
+            event: Event::default(),
+            velocity: LocalVelocity::REST,
+            forward: [1.0, 0.0, 0.0],
+            up: [0.0, 0.0, 1.0],
+        });
+    };
+    let t = c.finite("observer.time", o.time.unwrap_or(0.0))?;
+    let event = c.position("observer.position", o.position.unwrap_or_default(), t)?;
+    let velocity = match o.velocity {
+        Some(v) => c.velocity("observer.velocity", v.speed, v.direction)?,
+        None => LocalVelocity::REST,
+    };
+    let forward = c.direction("observer.forward", o.forward.unwrap_or([1.0, 0.0, 0.0]))?;
+    let up = c.direction("observer.up", o.up.unwrap_or([0.0, 0.0, 1.0]))?;
+    let cos = forward[0] * up[0] + forward[1] * up[1] + forward[2] * up[2];
+    if cos.abs() > ORTHOGONALITY {
+        return c.err(
+            "observer.up",
+            format!("must be orthogonal to forward (cos of their angle is {cos:.3e})"),
+        );
+    }
+    Ok(Observer {
+        event,
+        velocity,
+        forward,
+        up,
+    })
+}
+
+fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
+    for (field, v) in [("width", r.width), ("height", r.height)] {
+        if v == 0 || v > MAX_SIDE {
+            return c.err(
+                &format!("camera.{field}"),
+                format!("must be in 1..={MAX_SIDE}, got {v}"),
+            );
+        }
+    }
+    let pixels = r.width as u64 * r.height as u64;
+    if pixels > MAX_PIXELS {
+        return c.err(
+            "camera.height",
+            format!("image has {pixels} pixels, more than the limit of {MAX_PIXELS}"),
+        );
+    }
+    let (width, height) = (r.width, r.height);
+    let angle = |path: &str, v: f64, max: f64, max_inclusive: bool| -> Result<f64> {
+        let v = c.finite(path, v)?;
+        let ok = v > 0.0 && if max_inclusive { v <= max } else { v < max };
+        if ok {
+            Ok(v)
+        } else {
+            let close = if max_inclusive { "]" } else { ")" };
+            c.err(
+                path,
+                format!("must be in (0, {max}{close} degrees, got {v}"),
+            )
+        }
+    };
+    match r.kind {
+        CameraKind::Pinhole => {
+            c.unused(
+                "camera.h_fov_deg",
+                &r.h_fov_deg,
+                "by a pinhole camera (use fov_deg)",
+            )?;
+            c.unused(
+                "camera.v_fov_deg",
+                &r.v_fov_deg,
+                "by a pinhole camera (its vertical fov follows from the aspect ratio)",
+            )?;
+            let fov = c.required("camera.fov_deg", r.fov_deg, "for a pinhole camera")?;
+            Ok(Camera::Pinhole {
+                fov_deg: angle("camera.fov_deg", fov, 180.0, false)?,
+                width,
+                height,
+            })
+        }
+        CameraKind::Panorama => {
+            c.unused(
+                "camera.fov_deg",
+                &r.fov_deg,
+                "by a panorama (use h_fov_deg and v_fov_deg)",
+            )?;
+            let h = c.required("camera.h_fov_deg", r.h_fov_deg, "for a panorama")?;
+            let v = c.required("camera.v_fov_deg", r.v_fov_deg, "for a panorama")?;
+            Ok(Camera::Panorama {
+                h_fov_deg: angle("camera.h_fov_deg", h, 360.0, true)?,
+                v_fov_deg: angle("camera.v_fov_deg", v, 180.0, true)?,
+                width,
+                height,
+            })
+        }
+        CameraKind::Sphere => {
+            let why = "by a sphere camera (always 360°×180°)";
+            c.unused("camera.fov_deg", &r.fov_deg, why)?;
+            c.unused("camera.h_fov_deg", &r.h_fov_deg, why)?;
+            c.unused("camera.v_fov_deg", &r.v_fov_deg, why)?;
+            Ok(Camera::Sphere { width, height })
+        }
+        CameraKind::Fisheye => {
+            c.unused(
+                "camera.h_fov_deg",
+                &r.h_fov_deg,
+                "by a fisheye (use fov_deg)",
+            )?;
+            c.unused(
+                "camera.v_fov_deg",
+                &r.v_fov_deg,
+                "by a fisheye (use fov_deg)",
+            )?;
+            if width != height {
+                return c.err("camera.height", format!("a fisheye image is square: height must equal width ({width}), got {height}"));
+            }
+            let fov = angle("camera.fov_deg", r.fov_deg.unwrap_or(180.0), 360.0, true)?;
+            Ok(Camera::Fisheye {
+                fov_deg: fov,
+                size: width,
+            })
+        }
+    }
+}
+
+fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
+    let d = TraceSettings::default();
+    let Some(t) = raw else { return Ok(d) };
+    let max_steps = t.max_steps.unwrap_or(d.max_steps);
+    if max_steps == 0 {
+        return c.err("trace.max_steps", "must be at least 1");
+    }
+    Ok(TraceSettings {
+        method: match t.method.unwrap_or(MethodName::Numeric) {
+            MethodName::Numeric => TraceMethod::Numeric,
+            MethodName::Exact => TraceMethod::Exact,
+        },
+        max_past: c.positive("trace.max_past", t.max_past.unwrap_or(d.max_past))?,
+        tolerance: c.positive("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?,
+        max_steps,
+    })
+}
+
+fn object(c: &Checker, path: &str, o: RawObject, base_dir: &Path) -> Result<Object> {
+    let p = |f: &str| format!("{path}.{f}");
+    c.name(&p("name"), &o.name)?;
+    let frame = match o.frame.unwrap_or(FrameName::Local) {
+        FrameName::Local => ObjectFrame::Local,
+        FrameName::Coordinates => ObjectFrame::Coordinates,
+    };
+    let (shape, motion) = match frame {
+        ObjectFrame::Local => {
+            let why = "by a local object (only for frame = \"coordinates\")";
+            if o.shape == Some(ShapeName::Plane) {
+                return c.err(
+                    &p("shape"),
+                    "a local object must be a sphere; planes need frame = \"coordinates\"",
+                );
+            }
+            c.unused(
+                &p("center"),
+                &o.center,
+                "by a local object (give its position in `motion`)",
+            )?;
+            c.unused(&p("height"), &o.height, why)?;
+            c.unused(&p("extent"), &o.extent, why)?;
+            let radius = c.required(
+                &p("radius"),
+                o.radius,
+                "for a local sphere (its proper radius)",
+            )?;
+            let radius = c.positive(&p("radius"), radius)?;
+            let Some(m) = o.motion else {
+                return c.err(
+                    &p("motion"),
+                    "missing, required for a local object (kind = \"rest\" or \"geodesic\")",
+                );
+            };
+            (Shape::Sphere { radius }, motion(c, &p("motion"), m)?)
+        }
+        ObjectFrame::Coordinates => {
+            c.unused(
+                &p("motion"),
+                &o.motion,
+                "by a coordinate object (it is fixed in coordinates)",
+            )?;
+            let shape = c.required(
+                &p("shape"),
+                o.shape,
+                "for a coordinate object (\"sphere\" or \"plane\")",
+            )?;
+            match shape {
+                ShapeName::Sphere => {
+                    let why = "by a coordinate sphere (only for planes)";
+                    c.unused(&p("height"), &o.height, why)?;
+                    c.unused(&p("extent"), &o.extent, why)?;
+                    let radius = c.required(&p("radius"), o.radius, "for a coordinate sphere")?;
+                    let radius = c.positive(&p("radius"), radius)?;
+                    let center = c.required(&p("center"), o.center, "for a coordinate sphere")?;
+                    let e = c.position(&p("center"), center, 0.0)?;
+                    (
+                        Shape::CoordinateSphere {
+                            center: [e.x, e.y, e.z],
+                            radius,
+                        },
+                        Motion::Rest { position: e },
+                    )
+                }
+                ShapeName::Plane => {
+                    c.unused(&p("radius"), &o.radius, "by a plane")?;
+                    c.unused(&p("center"), &o.center, "by a plane (it is z = height)")?;
+                    let height =
+                        c.required(&p("height"), o.height, "for a plane (it is z = height)")?;
+                    let height = c.finite(&p("height"), height)?;
+                    let extent = match o.extent {
+                        Some(e) => Some(c.positive(&p("extent"), e)?),
+                        None => None,
+                    };
+                    (
+                        Shape::Plane { height, extent },
+                        Motion::Rest {
+                            position: Event::new(0.0, 0.0, 0.0, height),
+                        },
+                    )
+                }
+            }
+        }
+    };
+    let texture = match o.texture {
+        Some(t) => texture(c, &p("texture"), t, base_dir)?,
+        None => TextureSpec::default(),
+    };
+    let temperature = c.positive(&p("temperature"), o.temperature.unwrap_or(5800.0))?;
+    Ok(Object {
+        name: o.name,
+        frame,
+        shape,
+        texture,
+        temperature,
+        motion,
+    })
+}
+
+fn motion(c: &Checker, path: &str, m: RawMotion) -> Result<Motion> {
+    let p = |f: &str| format!("{path}.{f}");
+    let position = c.required(&p("position"), m.position, "for a motion")?;
+    match m.kind {
+        MotionKind::Rest => {
+            let why = "by kind = \"rest\" (only for \"geodesic\")";
+            c.unused(&p("time"), &m.time, why)?;
+            c.unused(&p("speed"), &m.speed, why)?;
+            c.unused(&p("direction"), &m.direction, why)?;
+            Ok(Motion::Rest {
+                position: c.position(&p("position"), position, 0.0)?,
+            })
+        }
+        MotionKind::Geodesic => {
+            let t = c.finite(&p("time"), m.time.unwrap_or(0.0))?;
+            let start = c.position(&p("position"), position, t)?;
+            let speed = c.required(&p("speed"), m.speed, "for kind = \"geodesic\"")?;
+            let velocity = c.velocity(path, speed, m.direction)?;
+            Ok(Motion::Geodesic { start, velocity })
+        }
+    }
+}
+
+fn texture(c: &Checker, path: &str, t: RawTexture, base_dir: &Path) -> Result<TextureSpec> {
+    let p = |f: &str| format!("{path}.{f}");
+    let kind = match t.kind {
+        TextureKind::Checker => "checker",
+        TextureKind::Image => "image",
+        TextureKind::Gradient => "gradient",
+        TextureKind::Uniform => "uniform",
+    };
+    let why = format!("by kind = \"{kind}\"");
+    if t.kind != TextureKind::Checker {
+        c.unused(&p("rows"), &t.rows, &why)?;
+        c.unused(&p("cols"), &t.cols, &why)?;
+    }
+    if t.kind != TextureKind::Image {
+        c.unused(&p("path"), &t.path, &why)?;
+        c.unused(&p("builtin"), &t.builtin, &why)?;
+    }
+    if t.kind != TextureKind::Uniform {
+        c.unused(&p("color"), &t.color, &why)?;
+    }
+    match t.kind {
+        TextureKind::Checker => {
+            let rows = t.rows.unwrap_or(8);
+            let cols = t.cols.unwrap_or(16);
+            for (f, v) in [("rows", rows), ("cols", cols)] {
+                if v == 0 {
+                    return c.err(&p(f), "must be at least 1");
+                }
+            }
+            Ok(TextureSpec::Checker { rows, cols })
+        }
+        TextureKind::Gradient => Ok(TextureSpec::Gradient),
+        TextureKind::Uniform => {
+            let color = c.required(&p("color"), t.color, "for kind = \"uniform\"")?;
+            Ok(TextureSpec::Uniform {
+                color: c.color(&p("color"), color)?,
+            })
+        }
+        TextureKind::Image => match (t.path, t.builtin) {
+            (Some(_), Some(_)) => c.err(&p("builtin"), "give either `path` or `builtin`, not both"),
+            (None, None) => c.err(
+                path,
+                "an image texture needs `path = \"...\"` or `builtin = \"earth\"`",
+            ),
+            (None, Some(b)) => match b.as_str() {
+                "earth" => Ok(TextureSpec::Image(ImageSource::Builtin(
+                    BuiltinImage::Earth,
+                ))),
+                other => c.err(
+                    &p("builtin"),
+                    format!("unknown built-in image {other:?}, expected \"earth\""),
+                ),
+            },
+            (Some(file), None) => {
+                if file.is_empty() {
+                    return c.err(&p("path"), "must not be empty");
+                }
+                let full = base_dir.join(&file);
+                if full.is_file() {
+                    Ok(TextureSpec::Image(ImageSource::File(full)))
+                } else {
+                    c.err(
+                        &p("path"),
+                        format!("image file {} not found", full.display()),
+                    )
+                }
+            }
+        },
+    }
+}
