@@ -39,7 +39,10 @@ pub struct Drift {
 
 impl Drift {
     pub fn max(&self) -> f64 {
-        self.energy.max(self.angular_momentum).max(self.pz).max(self.normalization)
+        self.energy
+            .max(self.angular_momentum)
+            .max(self.pz)
+            .max(self.normalization)
     }
 
     /// Drift over the start, every step end, every step's dense midpoint, and the end.
@@ -52,13 +55,19 @@ impl Drift {
         let mut visit = |s: &GeodesicState| {
             let c = ConstantsOfMotion::of(metric, s);
             d.energy = d.energy.max((c.energy - c0.energy).abs() / e);
-            d.angular_momentum = d.angular_momentum.max((c.angular_momentum - c0.angular_momentum).abs() / sl);
+            d.angular_momentum = d
+                .angular_momentum
+                .max((c.angular_momentum - c0.angular_momentum).abs() / sl);
             d.pz = d.pz.max((c.pz - c0.pz).abs() / sz);
-            d.normalization = d.normalization.max((c.normalization - c0.normalization).abs() / (e * e));
+            d.normalization = d
+                .normalization
+                .max((c.normalization - c0.normalization).abs() / (e * e));
         };
         for st in &g.steps {
             visit(&GeodesicState::from_array(&st.y1));
-            visit(&GeodesicState::from_array(&st.eval(st.lambda0 + 0.5 * st.h)));
+            visit(&GeodesicState::from_array(
+                &st.eval(st.lambda0 + 0.5 * st.h),
+            ));
         }
         visit(&g.end);
         d

@@ -28,7 +28,12 @@ pub struct Tolerances {
 impl Default for Tolerances {
     /// The default: tight enough that constants of motion drift by < 1e-9 over a loop.
     fn default() -> Self {
-        Tolerances { rtol: 1e-11, atol: 1e-11, h_max: f64::INFINITY, h_min: 1e-12 }
+        Tolerances {
+            rtol: 1e-11,
+            atol: 1e-11,
+            h_max: f64::INFINITY,
+            h_min: 1e-12,
+        }
     }
 }
 
@@ -61,13 +66,18 @@ impl<const N: usize> DenseStep<N> {
     /// The interpolated state at `lambda` (7th order; exact at both ends).
     pub fn eval(&self, lambda: f64) -> [f64; N] {
         let s = (lambda - self.lambda0) / self.h;
+        if lambda == self.lambda1() || s == 1.0 {
+            return self.y1; // exact (the polynomial would be off by rounding)
+        }
         let s1 = 1.0 - s;
         let mut y = [0.0; N];
         for i in 0..N {
             // Horner-like scheme of Hairer's CONTD8: alternating factors s and (1 − s).
             let f = &self.f;
             let v = f[0][i]
-                + s1 * (f[1][i] + s * (f[2][i] + s1 * (f[3][i] + s * (f[4][i] + s1 * (f[5][i] + s * f[6][i])))));
+                + s1 * (f[1][i]
+                    + s * (f[2][i]
+                        + s1 * (f[3][i] + s * (f[4][i] + s1 * (f[5][i] + s * f[6][i])))));
             y[i] = self.y0[i] + s * v;
         }
         y
@@ -164,7 +174,11 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
             d1 += (self.f[i] / sc[i]).powi(2);
         }
         let (d0, d1) = ((d0 / N as f64).sqrt(), (d1 / N as f64).sqrt());
-        let h0 = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 } else { 0.01 * d0 / d1 };
+        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
         let mut y1 = [0.0; N];
         for i in 0..N {
             y1[i] = self.y[i] + h0 * self.f[i];
@@ -246,7 +260,11 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 continue;
             }
             if err <= 1.0 {
-                let factor = if err == 0.0 { 10.0 } else { (0.9 * err.powf(-1.0 / 8.0)).clamp(0.2, 10.0) };
+                let factor = if err == 0.0 {
+                    10.0
+                } else {
+                    (0.9 * err.powf(-1.0 / 8.0)).clamp(0.2, 10.0)
+                };
                 self.last_lambda = self.lambda;
                 self.last_h = h;
                 self.last_y = self.y;
@@ -294,7 +312,13 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 f[3 + row][i] = h * s;
             }
         }
-        DenseStep { lambda0: self.last_lambda, h, y0: self.last_y, y1: self.y, f }
+        DenseStep {
+            lambda0: self.last_lambda,
+            h,
+            y0: self.last_y,
+            y1: self.y,
+            f,
+        }
     }
 }
 

@@ -13,7 +13,10 @@ pub struct LocalVelocity {
 }
 
 impl LocalVelocity {
-    pub const REST: LocalVelocity = LocalVelocity { speed: 0.0, direction: [1.0, 0.0, 0.0] };
+    pub const REST: LocalVelocity = LocalVelocity {
+        speed: 0.0,
+        direction: [1.0, 0.0, 0.0],
+    };
 
     /// Velocity from a speed and any non-zero direction (normalized here).
     /// Returns `None` for a zero or non-finite direction or a speed outside [0, 1).
@@ -22,7 +25,10 @@ impl LocalVelocity {
         if !(speed.is_finite() && (0.0..1.0).contains(&speed) && n.is_finite() && n > 0.0) {
             return None;
         }
-        Some(LocalVelocity { speed, direction: [direction[0] / n, direction[1] / n, direction[2] / n] })
+        Some(LocalVelocity {
+            speed,
+            direction: [direction[0] / n, direction[1] / n, direction[2] / n],
+        })
     }
 
     /// Lorentz factor γ = 1/√(1 − v²).

@@ -42,7 +42,10 @@ impl GeodesicState {
         [x.t, x.x, x.y, x.z, p.t, p.x, p.y, p.z]
     }
     pub fn from_array(s: &[f64; 8]) -> Self {
-        GeodesicState { x: Event::new(s[0], s[1], s[2], s[3]), p: Covector::new(s[4], s[5], s[6], s[7]) }
+        GeodesicState {
+            x: Event::new(s[0], s[1], s[2], s[3]),
+            p: Covector::new(s[4], s[5], s[6], s[7]),
+        }
     }
     /// The tangent ẋ^μ = g^{μν} p_ν.
     pub fn tangent<M: Spacetime>(&self, metric: &M) -> FourVector {
@@ -81,17 +84,42 @@ impl Geodesic {
             let v = LocalVelocity::new(speed, direction)?;
             let g = v.gamma();
             let n = v.direction;
-            (GeodesicKind::Timelike, frame.vector([sign * g, g * speed * n[0], g * speed * n[1], g * speed * n[2]]))
+            (
+                GeodesicKind::Timelike,
+                frame.vector([
+                    sign * g,
+                    g * speed * n[0],
+                    g * speed * n[1],
+                    g * speed * n[2],
+                ]),
+            )
         };
         if !at.is_finite() {
             return None;
         }
-        Some(Geodesic { kind, start: GeodesicState { x: at, p: metric.lower(at, tangent) } })
+        Some(Geodesic {
+            kind,
+            start: GeodesicState {
+                x: at,
+                p: metric.lower(at, tangent),
+            },
+        })
     }
 
     /// A geodesic from an event and a coordinate tangent vector.
-    pub fn from_tangent<M: Spacetime>(metric: &M, kind: GeodesicKind, at: Event, tangent: FourVector) -> Geodesic {
-        Geodesic { kind, start: GeodesicState { x: at, p: metric.lower(at, tangent) } }
+    pub fn from_tangent<M: Spacetime>(
+        metric: &M,
+        kind: GeodesicKind,
+        at: Event,
+        tangent: FourVector,
+    ) -> Geodesic {
+        Geodesic {
+            kind,
+            start: GeodesicState {
+                x: at,
+                p: metric.lower(at, tangent),
+            },
+        }
     }
 }
 
@@ -141,7 +169,11 @@ impl TraceLimits {
     /// starting axis, bounded by 2√2πa of coordinate time, longer than any return time
     /// (formulary §2: T_ret ≤ √2πa for light, < 2√2πa for particles).
     pub fn one_loop(a: f64) -> Self {
-        TraceLimits { until_time: Some(2.0 * SQRT_2 * PI * a), stop_at_axis_return: true, ..Default::default() }
+        TraceLimits {
+            until_time: Some(2.0 * SQRT_2 * PI * a),
+            stop_at_axis_return: true,
+            ..Default::default()
+        }
     }
 }
 
@@ -160,7 +192,10 @@ pub enum StopReason {
 
 impl StopReason {
     pub fn is_failure(self) -> bool {
-        matches!(self, StopReason::StepBudget | StopReason::Stalled | StopReason::NonFinite)
+        matches!(
+            self,
+            StopReason::StepBudget | StopReason::Stalled | StopReason::NonFinite
+        )
     }
     pub fn describe(self) -> &'static str {
         match self {
@@ -198,7 +233,10 @@ impl TracedGeodesic {
         if lambda >= self.lambda_end {
             return self.end;
         }
-        let i = self.steps.partition_point(|s| s.lambda1() < lambda).min(self.steps.len() - 1);
+        let i = self
+            .steps
+            .partition_point(|s| s.lambda1() < lambda)
+            .min(self.steps.len() - 1);
         GeodesicState::from_array(&self.steps[i].eval(lambda))
     }
 
@@ -222,10 +260,20 @@ impl TracedGeodesic {
 
 /// Finds a root of `f` in [lo, hi] given opposite signs at the ends (Illinois variant of
 /// regula falsi; converges superlinearly, never leaves the bracket).
-pub(crate) fn refine_root(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, mut flo: f64, mut fhi: f64) -> f64 {
+pub(crate) fn refine_root(
+    f: impl Fn(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    mut flo: f64,
+    mut fhi: f64,
+) -> f64 {
     let mut side = 0;
     for _ in 0..100 {
-        let m = if fhi != flo { (lo * fhi - hi * flo) / (fhi - flo) } else { 0.5 * (lo + hi) };
+        let m = if fhi != flo {
+            (lo * fhi - hi * flo) / (fhi - flo)
+        } else {
+            0.5 * (lo + hi)
+        };
         let m = if m > lo && m < hi { m } else { 0.5 * (lo + hi) };
         let fm = f(m);
         if fm == 0.0 || (hi - lo) <= 4.0 * f64::EPSILON * hi.abs().max(lo.abs()).max(1e-300) {
@@ -251,7 +299,11 @@ pub(crate) fn refine_root(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, mut 
 }
 
 /// Integrates `geodesic` in `metric` until one of `limits` stops it.
-pub fn trace<M: Spacetime + Copy>(metric: M, geodesic: &Geodesic, limits: &TraceLimits) -> TracedGeodesic {
+pub fn trace<M: Spacetime + Copy>(
+    metric: M,
+    geodesic: &Geodesic,
+    limits: &TraceLimits,
+) -> TracedGeodesic {
     let start = geodesic.start;
     let s0 = start.to_array();
     let sys = GeodesicSystem { metric };
@@ -262,7 +314,11 @@ pub fn trace<M: Spacetime + Copy>(metric: M, geodesic: &Geodesic, limits: &Trace
     // distance; armed once the curve has moved away by more than `arm`.
     let axis_g = |s: &[f64; 8], d: &[f64; 8]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
     let mut max_d2: f64 = 0.0;
-    let finish = |steps: Vec<DenseStep<8>>, l: f64, end: [f64; 8], stop, ode: &Dop853<8, GeodesicSystem<M>>| TracedGeodesic {
+    let finish = |steps: Vec<DenseStep<8>>,
+                  l: f64,
+                  end: [f64; 8],
+                  stop,
+                  ode: &Dop853<8, GeodesicSystem<M>>| TracedGeodesic {
         kind: geodesic.kind,
         start,
         steps,
@@ -298,7 +354,13 @@ pub fn trace<M: Spacetime + Copy>(metric: M, geodesic: &Geodesic, limits: &Trace
             let f = |st: &[f64; 8]| (st[0] - t0).abs() - dt;
             if f(&s1) >= 0.0 {
                 let lo = dense.lambda0;
-                let l = refine_root(|l| f(&dense.eval(l)), lo, dense.lambda1(), f(&dense.y0), f(&s1));
+                let l = refine_root(
+                    |l| f(&dense.eval(l)),
+                    lo,
+                    dense.lambda1(),
+                    f(&dense.y0),
+                    f(&s1),
+                );
                 let mut end = dense.eval(l);
                 end[0] = t0 + (end[0] - t0).signum() * dt; // exactly on the bound
                 return finish(steps, l, end, StopReason::TimeReached, &ode);

@@ -25,13 +25,13 @@ mod minkowski;
 mod vectors;
 
 pub use constants::{ConstantsOfMotion, Drift};
-pub use dop853::{Dop853, DenseStep, OdeSystem, StepOutcome, Tolerances};
+pub use dop853::{DenseStep, Dop853, OdeSystem, StepOutcome, Tolerances};
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};
 pub use geodesic::{
-    trace, Geodesic, GeodesicKind, GeodesicState, StopReason, TraceLimits, TracedGeodesic,
-    TimeDirection,
+    trace, Geodesic, GeodesicKind, GeodesicState, GeodesicSystem, StopReason, TimeDirection,
+    TraceLimits, TracedGeodesic,
 };
 pub use godel::Godel;
 pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};
 pub use minkowski::Minkowski;
-pub use vectors::{Cylindrical, Covector, Event, FourVector, Tetrad};
+pub use vectors::{Covector, Cylindrical, Event, FourVector, Tetrad};

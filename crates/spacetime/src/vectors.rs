@@ -98,7 +98,12 @@ four_components!(Covector);
 impl Event {
     /// The event displaced by `s·v` in coordinates (used for finite differences and sampling).
     pub fn offset(self, v: FourVector, s: f64) -> Event {
-        Event::new(self.t + s * v.t, self.x + s * v.x, self.y + s * v.y, self.z + s * v.z)
+        Event::new(
+            self.t + s * v.t,
+            self.x + s * v.x,
+            self.y + s * v.y,
+            self.z + s * v.z,
+        )
     }
     /// Distance from the rotation axis, r = √(x² + y²).
     pub fn r(self) -> f64 {
@@ -109,7 +114,12 @@ impl Event {
         self.y.atan2(self.x)
     }
     pub fn to_cylindrical(self) -> Cylindrical {
-        Cylindrical { t: self.t, r: self.r(), phi: self.phi(), z: self.z }
+        Cylindrical {
+            t: self.t,
+            r: self.r(),
+            phi: self.phi(),
+            z: self.z,
+        }
     }
 }
 

@@ -1,0 +1,50 @@
+//! Shared helpers for the spacetime tests: a tiny deterministic random generator and
+//! random events/directions (no external crates needed).
+
+#![allow(dead_code)]
+
+use spacetime::Event;
+
+/// xorshift64*: deterministic, good enough to spread test points.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+    /// A random event with r < r_max.
+    pub fn event(&mut self, r_max: f64) -> Event {
+        let r = self.uniform(0.0, r_max);
+        let phi = self.uniform(-std::f64::consts::PI, std::f64::consts::PI);
+        Event::new(
+            self.uniform(-5.0, 5.0),
+            r * phi.cos(),
+            r * phi.sin(),
+            self.uniform(-3.0, 3.0),
+        )
+    }
+    /// A random unit vector.
+    pub fn direction(&mut self) -> [f64; 3] {
+        loop {
+            let v = [
+                self.uniform(-1.0, 1.0),
+                self.uniform(-1.0, 1.0),
+                self.uniform(-1.0, 1.0),
+            ];
+            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            if n > 0.1 && n <= 1.0 {
+                return [v[0] / n, v[1] / n, v[2] / n];
+            }
+        }
+    }
+}
