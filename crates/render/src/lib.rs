@@ -1,1 +1,9 @@
-//! placeholder
+//! `render`: tracing a scene into per-pixel records, and storing them.
+//!
+//! - [`record`]: [`record::PixelRecord`], what one pixel's ray found.
+//! - [`datafile`]: [`datafile::DataFile`], the per-pixel data file (OpenEXR).
+//! - [`atomic`]: write-to-temporary-then-rename for every output file.
+
+pub mod atomic;
+pub mod datafile;
+pub mod record;

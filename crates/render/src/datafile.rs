@@ -1,0 +1,584 @@
+//! The per-pixel data file: one OpenEXR file per traced image (DESIGN.md,
+//! "Data file"), read back by the post-render shaders without re-tracing.
+//!
+//! # Format (format version 1)
+//!
+//! A single-part, scan-line OpenEXR image, ZIP compressed (lossless, so a
+//! round trip is exact), one channel per field of [`PixelRecord`]:
+//!
+//! | channel | type | content |
+//! | --- | --- | --- |
+//! | `object` | f32 | object index as an exact integer; −1 where nothing was hit |
+//! | `status` | u32 | [`RayStatus::code`] |
+//! | `u`, `v`, `g`, `t_emit`, `x`, `y`, `z`, `lambda`, `cos_i` | f32 | the field of the same name |
+//! | `dir_x`, `dir_y`, `dir_z` | f32 | `dir[0]`, `dir[1]`, `dir[2]` |
+//! | `light_0`, `light_1`, … | f32 | [`DataFile::lights`]`[k]` |
+//!
+//! `object` is f32, not u32, so that −1 is representable; object indices are
+//! therefore limited to [`MAX_OBJECT`] (2^24), below which f32 holds every
+//! integer exactly. Channels not listed here are ignored on reading.
+//!
+//! Pixel order: the data window starts at (0, 0); row 0 is the top row of the
+//! image and column 0 its left column; samples are stored row-major, so pixel
+//! (col, row) is element `row * width + col` of every plane (see
+//! [`DataFile::index`]).
+//!
+//! Header: text attributes `godel.format_version`, `godel.scene_name`,
+//! `godel.scene` (the whole scene file), `godel.camera`, `godel.observer_time`,
+//! `godel.metric`, `godel.a`, `godel.method`, `godel.objects` (object names
+//! joined by `\n`). Text is UTF-8; numbers are Rust's shortest round-trip
+//! decimal form (`{:?}`), so f64 values survive exactly.
+//!
+//! Output is deterministic: the exr crate keeps custom attributes in a
+//! `HashMap` and writes them in random order, so after encoding the header's
+//! attributes are sorted by name (same total length: no offset moves).
+
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+use exr::prelude::{
+    AnyChannel, AnyChannels, AttributeValue, Blocks, Compression, Encoding, FlatSamples, Image,
+    Layer, LayerAttributes, LineOrder, ReadChannels, ReadLayers, SmallVec, Text, WritableImage,
+};
+
+use crate::atomic::write_atomically;
+use crate::record::{PixelRecord, RayStatus};
+
+/// The format version this code writes and reads.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Largest object index that the f32 `object` channel stores exactly.
+pub const MAX_OBJECT: i32 = 1 << 24;
+
+/// Names of the header attributes.
+pub mod attr {
+    pub const FORMAT_VERSION: &str = "godel.format_version";
+    pub const SCENE_NAME: &str = "godel.scene_name";
+    pub const SCENE: &str = "godel.scene";
+    pub const CAMERA: &str = "godel.camera";
+    pub const OBSERVER_TIME: &str = "godel.observer_time";
+    pub const METRIC: &str = "godel.metric";
+    pub const A: &str = "godel.a";
+    pub const METHOD: &str = "godel.method";
+    pub const OBJECTS: &str = "godel.objects";
+}
+
+/// Reading a record field as f32.
+type Get = fn(&PixelRecord) -> f32;
+/// Writing a record field from f32.
+type Set = fn(&mut PixelRecord, f32);
+
+/// The f32 channels other than `object`, with their record fields.
+const FLOAT_CHANNELS: [(&str, Get, Set); 12] = [
+    ("u", |r| r.u, |r, s| r.u = s),
+    ("v", |r| r.v, |r, s| r.v = s),
+    ("g", |r| r.g, |r, s| r.g = s),
+    ("t_emit", |r| r.t_emit, |r, s| r.t_emit = s),
+    ("x", |r| r.x, |r, s| r.x = s),
+    ("y", |r| r.y, |r, s| r.y = s),
+    ("z", |r| r.z, |r, s| r.z = s),
+    ("lambda", |r| r.lambda, |r, s| r.lambda = s),
+    ("dir_x", |r| r.dir[0], |r, s| r.dir[0] = s),
+    ("dir_y", |r| r.dir[1], |r, s| r.dir[1] = s),
+    ("dir_z", |r| r.dir[2], |r, s| r.dir[2] = s),
+    ("cos_i", |r| r.cos_i, |r, s| r.cos_i = s),
+];
+
+/// Name of the channel holding light plane `k`.
+pub fn light_channel_name(k: usize) -> String {
+    format!("light_{k}")
+}
+
+/// Self-description of a data file: the scene and camera it was traced from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DataHeader {
+    /// Always [`FORMAT_VERSION`] for files this code writes.
+    pub format_version: u32,
+    /// The scene's `name`.
+    pub scene_name: String,
+    /// The full scene file text.
+    pub scene_text: String,
+    /// Camera description.
+    pub camera: String,
+    /// Coordinate time of the observer; `t_emit` is relative to it.
+    pub observer_time: f64,
+    /// `"godel"` or `"minkowski"`.
+    pub metric: String,
+    /// The Gödel scale parameter `a`.
+    pub godel_a: f64,
+    /// Tracing method (`"numeric"` or `"exact"`).
+    pub method: String,
+    /// Object names in scene-file order; `object` ids index this list.
+    /// Names must be non-empty and contain no newline.
+    pub object_names: Vec<String>,
+}
+
+/// A traced image's per-pixel data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DataFile {
+    pub header: DataHeader,
+    pub width: usize,
+    pub height: usize,
+    /// One record per pixel, row-major, row 0 at the top.
+    pub records: Vec<PixelRecord>,
+    /// One plane per light source, `width * height` values each, same order as
+    /// `records`; may be empty.
+    pub lights: Vec<Vec<f32>>,
+}
+
+/// What went wrong with a data file, and which file.
+#[derive(Debug, thiserror::Error)]
+#[error("data file {}: {kind}", path.display())]
+pub struct DataFileError {
+    pub path: PathBuf,
+    pub kind: DataFileErrorKind,
+}
+
+/// What went wrong, without the file name.
+#[derive(Debug, thiserror::Error)]
+pub enum DataFileErrorKind {
+    #[error("input/output error: {0}")]
+    Io(std::io::Error),
+    #[error("not an OpenEXR file (wrong magic number)")]
+    NotExr,
+    #[error("damaged or truncated OpenEXR file: {0}")]
+    Exr(String),
+    #[error("unsupported image layout: {0}")]
+    Layout(String),
+    #[error("missing channel `{0}`")]
+    MissingChannel(String),
+    #[error("channel `{channel}` has sample type {found}, expected {expected}")]
+    ChannelType {
+        channel: String,
+        expected: &'static str,
+        found: &'static str,
+    },
+    #[error("missing header attribute `{0}`")]
+    MissingAttribute(&'static str),
+    #[error("header attribute `{name}`: {problem}")]
+    BadAttribute { name: &'static str, problem: String },
+    #[error("unsupported format version {0} (this program reads version {FORMAT_VERSION})")]
+    UnsupportedVersion(u32),
+    #[error("inconsistent sizes: {0}")]
+    Inconsistent(String),
+    #[error("channel `{channel}` at column {col}, row {row}: {problem}")]
+    BadValue {
+        channel: &'static str,
+        col: usize,
+        row: usize,
+        problem: String,
+    },
+}
+
+impl DataFile {
+    /// Index of pixel (`col`, `row`) in `records` and in each light plane.
+    pub fn index(&self, col: usize, row: usize) -> usize {
+        row * self.width + col
+    }
+
+    /// The record of pixel (`col`, `row`); panics if out of range.
+    pub fn record(&self, col: usize, row: usize) -> &PixelRecord {
+        assert!(
+            col < self.width && row < self.height,
+            "pixel ({col}, {row}) out of range"
+        );
+        &self.records[self.index(col, row)]
+    }
+
+    /// Writes the data file to `path` atomically (temporary file, then
+    /// rename): on error nothing is left at `path`.
+    pub fn write(&self, path: &Path) -> Result<(), DataFileError> {
+        let at = |kind| DataFileError {
+            path: path.to_path_buf(),
+            kind,
+        };
+        let bytes = self.to_bytes().map_err(at)?;
+        write_atomically(path, |file| std::io::Write::write_all(file, &bytes))
+            .map_err(|e| at(DataFileErrorKind::Io(e)))
+    }
+
+    /// Reads and checks a data file.
+    pub fn read(path: &Path) -> Result<DataFile, DataFileError> {
+        let at = |kind| DataFileError {
+            path: path.to_path_buf(),
+            kind,
+        };
+        let bytes = std::fs::read(path).map_err(|e| at(DataFileErrorKind::Io(e)))?;
+        DataFile::from_bytes(&bytes).map_err(at)
+    }
+
+    /// Checks that sizes, ids and header fields can be stored and read back.
+    pub fn validate(&self) -> Result<(), DataFileErrorKind> {
+        let h = &self.header;
+        if h.format_version != FORMAT_VERSION {
+            return Err(DataFileErrorKind::UnsupportedVersion(h.format_version));
+        }
+        let pixels = self.width.checked_mul(self.height).unwrap_or(usize::MAX);
+        if self.width == 0 || self.height == 0 || self.width > i32::MAX as usize / 2 {
+            return inconsistent(format!("image size {}×{}", self.width, self.height));
+        }
+        if self.records.len() != pixels {
+            return inconsistent(format!(
+                "{} records for {}×{} pixels",
+                self.records.len(),
+                self.width,
+                self.height
+            ));
+        }
+        for (k, plane) in self.lights.iter().enumerate() {
+            if plane.len() != pixels {
+                return inconsistent(format!("light plane {k} has {} values", plane.len()));
+            }
+        }
+        for name in &h.object_names {
+            if name.is_empty() || name.contains('\n') {
+                return Err(DataFileErrorKind::BadAttribute {
+                    name: attr::OBJECTS,
+                    problem: format!("object name {name:?} is empty or contains a newline"),
+                });
+            }
+        }
+        check_finite(attr::OBSERVER_TIME, h.observer_time)?;
+        check_finite(attr::A, h.godel_a)?;
+        for (i, r) in self.records.iter().enumerate() {
+            let (col, row) = (i % self.width, i / self.width);
+            check_object(r.object, h.object_names.len(), col, row)?;
+        }
+        Ok(())
+    }
+
+    /// Encodes the data file as OpenEXR bytes (deterministic).
+    pub fn to_bytes(&self) -> Result<Vec<u8>, DataFileErrorKind> {
+        self.validate()?;
+        let h = &self.header;
+        let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
+
+        let mut channels: Vec<AnyChannel<FlatSamples>> = Vec::new();
+        let objects = plane(&|r| r.object as f32);
+        channels.push(AnyChannel::new("object", FlatSamples::F32(objects)));
+        let status = self.records.iter().map(|r| r.status.code()).collect();
+        channels.push(AnyChannel::new("status", FlatSamples::U32(status)));
+        for (name, get, _) in FLOAT_CHANNELS {
+            channels.push(AnyChannel::new(name, FlatSamples::F32(plane(&get))));
+        }
+        for (k, values) in self.lights.iter().enumerate() {
+            let name = Text::new_or_panic(light_channel_name(k)); // ASCII
+            channels.push(AnyChannel::new(name, FlatSamples::F32(values.clone())));
+        }
+
+        let mut attributes = LayerAttributes::default();
+        let texts = [
+            (attr::FORMAT_VERSION, h.format_version.to_string()),
+            (attr::SCENE_NAME, h.scene_name.clone()),
+            (attr::SCENE, h.scene_text.clone()),
+            (attr::CAMERA, h.camera.clone()),
+            (attr::OBSERVER_TIME, format!("{:?}", h.observer_time)),
+            (attr::METRIC, h.metric.clone()),
+            (attr::A, format!("{:?}", h.godel_a)),
+            (attr::METHOD, h.method.clone()),
+            (attr::OBJECTS, h.object_names.join("\n")),
+        ];
+        for (name, value) in texts {
+            // exr's Text is a byte string; store UTF-8 bytes unchanged.
+            let text = Text::from_bytes_unchecked(SmallVec::from_vec(value.into_bytes()));
+            attributes
+                .other
+                .insert(Text::new_or_panic(name), AttributeValue::Text(text));
+        }
+
+        let encoding = Encoding {
+            compression: Compression::ZIP16,
+            blocks: Blocks::ScanLines,
+            // Increasing order makes the (parallel) writer emit blocks in a
+            // fixed order.
+            line_order: LineOrder::Increasing,
+        };
+        let layer = Layer::new(
+            (self.width, self.height),
+            attributes,
+            encoding,
+            AnyChannels::sort(channels.into()),
+        );
+        let mut bytes = Vec::new();
+        Image::from_layer(layer)
+            .write()
+            .to_buffered(Cursor::new(&mut bytes))
+            .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
+        sort_header_attributes(&mut bytes).map_err(DataFileErrorKind::Exr)?;
+        Ok(bytes)
+    }
+
+    /// Decodes and checks OpenEXR bytes. Never panics.
+    pub fn from_bytes(bytes: &[u8]) -> Result<DataFile, DataFileErrorKind> {
+        if bytes.len() < 4 || bytes[..4] != [0x76, 0x2f, 0x31, 0x01] {
+            return Err(DataFileErrorKind::NotExr);
+        }
+        check_layout(bytes)?;
+        let image = exr::prelude::read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .pedantic()
+            .from_buffered(Cursor::new(bytes))
+            .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
+        let layer = &image.layer_data;
+        let (width, height) = (layer.size.x(), layer.size.y());
+        let pixels = width * height; // checked in check_layout
+
+        let text = |name: &'static str| -> Result<String, DataFileErrorKind> {
+            let value = layer
+                .attributes
+                .other
+                .get(&Text::new_or_panic(name))
+                .or_else(|| image.attributes.other.get(&Text::new_or_panic(name)))
+                .ok_or(DataFileErrorKind::MissingAttribute(name))?;
+            let bad = |problem: &str| DataFileErrorKind::BadAttribute {
+                name,
+                problem: problem.to_string(),
+            };
+            match value {
+                AttributeValue::Text(t) => {
+                    String::from_utf8(t.bytes().to_vec()).map_err(|_| bad("not valid UTF-8"))
+                }
+                _ => Err(bad("not a text attribute")),
+            }
+        };
+        let number = |name: &'static str| -> Result<f64, DataFileErrorKind> {
+            let value: f64 =
+                text(name)?
+                    .trim()
+                    .parse()
+                    .map_err(|_| DataFileErrorKind::BadAttribute {
+                        name,
+                        problem: "not a number".into(),
+                    })?;
+            check_finite(name, value)?;
+            Ok(value)
+        };
+
+        let version_text = text(attr::FORMAT_VERSION)?;
+        let format_version: u32 =
+            version_text
+                .trim()
+                .parse()
+                .map_err(|_| DataFileErrorKind::BadAttribute {
+                    name: attr::FORMAT_VERSION,
+                    problem: format!("{version_text:?} is not a version number"),
+                })?;
+        if format_version != FORMAT_VERSION {
+            return Err(DataFileErrorKind::UnsupportedVersion(format_version));
+        }
+        let objects = text(attr::OBJECTS)?;
+        let object_names = if objects.is_empty() {
+            Vec::new()
+        } else {
+            objects.split('\n').map(str::to_string).collect()
+        };
+        let header = DataHeader {
+            format_version,
+            scene_name: text(attr::SCENE_NAME)?,
+            scene_text: text(attr::SCENE)?,
+            camera: text(attr::CAMERA)?,
+            observer_time: number(attr::OBSERVER_TIME)?,
+            metric: text(attr::METRIC)?,
+            godel_a: number(attr::A)?,
+            method: text(attr::METHOD)?,
+            object_names,
+        };
+
+        let channel = |name: &str| -> Result<&FlatSamples, DataFileErrorKind> {
+            let found = layer.channel_data.list.iter().find(|c| c.name.eq(name));
+            let samples = &found.ok_or_else(|| DataFileErrorKind::MissingChannel(name.into()))?;
+            if samples.sample_data.len() != pixels {
+                return inconsistent(format!(
+                    "channel `{name}` has {} samples for {width}×{height} pixels (subsampled?)",
+                    samples.sample_data.len()
+                ));
+            }
+            Ok(&samples.sample_data)
+        };
+        let f32_channel = |name: &str| -> Result<&[f32], DataFileErrorKind> {
+            match channel(name)? {
+                FlatSamples::F32(values) => Ok(values),
+                other => Err(wrong_type(name, "f32", other)),
+            }
+        };
+
+        let mut records = vec![PixelRecord::MISS; pixels];
+        let objects = f32_channel("object")?;
+        let status = match channel("status")? {
+            FlatSamples::U32(values) => values,
+            other => return Err(wrong_type("status", "u32", other)),
+        };
+        for (i, record) in records.iter_mut().enumerate() {
+            let (col, row) = (i % width, i / width);
+            let object = objects[i];
+            if object.fract() != 0.0 || !(-1.0..=MAX_OBJECT as f32).contains(&object) {
+                return Err(DataFileErrorKind::BadValue {
+                    channel: "object",
+                    col,
+                    row,
+                    problem: format!("{object} is not an object index"),
+                });
+            }
+            record.object = object as i32;
+            check_object(record.object, header.object_names.len(), col, row)?;
+            record.status =
+                RayStatus::from_code(status[i]).ok_or_else(|| DataFileErrorKind::BadValue {
+                    channel: "status",
+                    col,
+                    row,
+                    problem: format!("unknown status code {}", status[i]),
+                })?;
+        }
+        for (name, _, set) in FLOAT_CHANNELS {
+            for (record, &value) in records.iter_mut().zip(f32_channel(name)?) {
+                set(record, value);
+            }
+        }
+
+        let mut lights = Vec::new();
+        while let Ok(values) = f32_channel(&light_channel_name(lights.len())) {
+            lights.push(values.to_vec());
+        }
+        // A light channel that is present but unreadable is an error, not the end.
+        f32_channel(&light_channel_name(lights.len()))
+            .map(|_| ())
+            .or_else(|e| match e {
+                DataFileErrorKind::MissingChannel(_) => Ok(()),
+                e => Err(e),
+            })?;
+
+        Ok(DataFile {
+            header,
+            width,
+            height,
+            records,
+            lights,
+        })
+    }
+}
+
+fn inconsistent<T>(problem: String) -> Result<T, DataFileErrorKind> {
+    Err(DataFileErrorKind::Inconsistent(problem))
+}
+
+fn wrong_type(channel: &str, expected: &'static str, found: &FlatSamples) -> DataFileErrorKind {
+    let found = match found {
+        FlatSamples::F16(_) => "f16",
+        FlatSamples::F32(_) => "f32",
+        FlatSamples::U32(_) => "u32",
+    };
+    DataFileErrorKind::ChannelType {
+        channel: channel.to_string(),
+        expected,
+        found,
+    }
+}
+
+fn check_finite(name: &'static str, value: f64) -> Result<(), DataFileErrorKind> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(DataFileErrorKind::BadAttribute {
+            name,
+            problem: format!("{value} is not finite"),
+        })
+    }
+}
+
+/// An object id must be −1 or index one of the `count` named objects.
+fn check_object(
+    object: i32,
+    count: usize,
+    col: usize,
+    row: usize,
+) -> Result<(), DataFileErrorKind> {
+    if object == PixelRecord::NO_OBJECT || (object >= 0 && (object as usize) < count) {
+        return Ok(());
+    }
+    Err(DataFileErrorKind::BadValue {
+        channel: "object",
+        col,
+        row,
+        problem: format!("object {object} is not −1 or an index of the {count} objects"),
+    })
+}
+
+/// Checks the header before exr decodes pixels: one flat layer, and a pixel
+/// size that the file could plausibly hold, so that a damaged size field
+/// cannot make the decoder allocate gigabytes. ZIP (deflate) expands data at
+/// most about 1032-fold; 4096 leaves room for the other compressions.
+fn check_layout(bytes: &[u8]) -> Result<(), DataFileErrorKind> {
+    let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), true)
+        .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
+    let [header] = meta.headers.as_slice() else {
+        return Err(DataFileErrorKind::Layout(format!(
+            "{} layers, expected exactly one",
+            meta.headers.len()
+        )));
+    };
+    if header.deep {
+        return Err(DataFileErrorKind::Layout("deep data".into()));
+    }
+    let (width, height) = (header.layer_size.x(), header.layer_size.y());
+    let decoded = width
+        .checked_mul(height)
+        .and_then(|pixels| pixels.checked_mul(header.channels.bytes_per_pixel.max(1)));
+    let budget = bytes.len().saturating_mul(4096).saturating_add(1 << 20);
+    match decoded {
+        Some(size) if size <= budget => Ok(()),
+        _ => Err(DataFileErrorKind::Layout(format!(
+            "{width}×{height} pixels of {} bytes cannot come from a {}-byte file",
+            header.channels.bytes_per_pixel,
+            bytes.len()
+        ))),
+    }
+}
+
+/// Sorts the attributes of a single-part EXR header by name, in place.
+///
+/// Header layout: magic (4 bytes), version (4), then attributes
+/// `name\0 type\0 size:i32 value[size]`, ended by a single `\0`. Reordering
+/// keeps the header's length, so the offset table stays valid.
+fn sort_header_attributes(bytes: &mut [u8]) -> Result<(), String> {
+    let malformed = || "encoder produced an unexpected header".to_string();
+    let flags = bytes.get(4..8).ok_or_else(malformed)?;
+    if flags[1] & 0x10 != 0 {
+        return Err("encoder produced a multi-part file".into()); // not from us
+    }
+    let start = 8;
+    let mut pos = start;
+    let mut attributes: Vec<(usize, usize, usize)> = Vec::new(); // start, name end, end
+    while *bytes.get(pos).ok_or_else(malformed)? != 0 {
+        let nul = |from: usize| {
+            bytes
+                .get(from..)?
+                .iter()
+                .position(|&b| b == 0)
+                .map(|n| from + n)
+        };
+        let name_end = nul(pos).ok_or_else(malformed)?;
+        let type_end = nul(name_end + 1).ok_or_else(malformed)?;
+        let size = bytes
+            .get(type_end + 1..type_end + 5)
+            .ok_or_else(malformed)?;
+        let size = i32::from_le_bytes([size[0], size[1], size[2], size[3]]);
+        let size = usize::try_from(size).map_err(|_| malformed())?;
+        let end = type_end + 5 + size;
+        if end > bytes.len() {
+            return Err(malformed());
+        }
+        attributes.push((pos, name_end, end));
+        pos = end;
+    }
+    attributes.sort_by(|a, b| bytes[a.0..a.1].cmp(&bytes[b.0..b.1]));
+    let sorted: Vec<u8> = attributes
+        .iter()
+        .flat_map(|a| bytes[a.0..a.2].iter().copied())
+        .collect();
+    bytes[start..pos].copy_from_slice(&sorted);
+    Ok(())
+}
