@@ -1,1 +1,61 @@
-fn main() {}
+//! The `godel` command-line tool: parses the command line with clap and dispatches each
+//! subcommand to its own module (`cmd_*.rs`). `main` returns the exit code: 0 on success,
+//! 2 for usage errors (from clap, or an invalid value found by validation, see
+//! [`args::UsageError`]), 1 for any other failure; errors print as one line `error: ...`
+//! with their whole cause chain.
+
+mod args;
+mod cmd_geodesic;
+mod cmd_plot;
+mod output;
+mod svg;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// See the Gödel universe from inside: a general-relativistic ray tracer.
+#[derive(Parser, Debug)]
+#[command(name = "godel", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The subcommands, one module each.
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
+    Geodesic(cmd_geodesic::GeodesicArgs),
+    /// Draw figures (SVG or PNG).
+    Plot(cmd_plot::PlotArgs),
+}
+
+fn run(command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Geodesic(args) => cmd_geodesic::run(args),
+        Command::Plot(args) => cmd_plot::run(args),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Help and version go to stdout with code 0; usage errors to stderr with code 2.
+            let _ = e.print();
+            return ExitCode::from(e.exit_code().clamp(0, 255) as u8);
+        }
+    };
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            let chain: Vec<String> = err.chain().map(|c| c.to_string()).collect();
+            eprintln!("error: {}", chain.join(": "));
+            if err.chain().any(|c| c.is::<args::UsageError>()) {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+    }
+}

@@ -1,0 +1,92 @@
+//! Validation of raw command-line values shared by the subcommands: comma-separated vectors,
+//! finite and bounded numbers. Every failure is a [`UsageError`] naming the flag, which
+//! `main` turns into exit code 2.
+
+use std::fmt;
+
+/// An invalid command-line value: `--flag: what is wrong`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UsageError {
+    pub flag: String,
+    pub message: String,
+}
+
+impl fmt::Display for UsageError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.flag, self.message)
+    }
+}
+
+impl std::error::Error for UsageError {}
+
+/// A [`UsageError`] for `flag` as an `anyhow::Error`.
+pub fn usage(flag: &str, message: impl Into<String>) -> anyhow::Error {
+    UsageError {
+        flag: flag.to_string(),
+        message: message.into(),
+    }
+    .into()
+}
+
+/// Parses `N` comma-separated finite numbers, e.g. `--at 0,1.5,0,0`.
+pub fn parse_vector<const N: usize>(flag: &str, text: &str) -> anyhow::Result<[f64; N]> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != N {
+        return Err(usage(
+            flag,
+            format!(
+                "expected {N} comma-separated numbers, got {} in '{text}'",
+                parts.len()
+            ),
+        ));
+    }
+    let mut out = [0.0; N];
+    for (i, part) in parts.iter().enumerate() {
+        let v: f64 = part
+            .parse()
+            .map_err(|_| usage(flag, format!("'{part}' is not a number")))?;
+        if !v.is_finite() {
+            return Err(usage(
+                flag,
+                format!("component {} must be finite, got {part}", i + 1),
+            ));
+        }
+        out[i] = v;
+    }
+    Ok(out)
+}
+
+/// Checks that `v` is finite and strictly positive.
+pub fn positive(flag: &str, v: f64) -> anyhow::Result<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(usage(flag, format!("must be positive and finite, got {v}")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vectors_parse_and_reject_bad_input() {
+        assert_eq!(
+            parse_vector::<3>("--dir", "1, -2,3e-1").unwrap(),
+            [1.0, -2.0, 0.3]
+        );
+        for bad in ["1,2", "1,2,3,4", "1,x,3", "1,NaN,3", "inf,0,0", ""] {
+            let e = parse_vector::<3>("--dir", bad).unwrap_err();
+            assert!(e.to_string().starts_with("--dir: "), "{e}");
+            assert!(e.is::<UsageError>());
+        }
+    }
+
+    #[test]
+    fn positive_rejects_zero_negative_and_nan() {
+        assert_eq!(positive("--a", 2.0).unwrap(), 2.0);
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(positive("--a", bad).is_err());
+        }
+    }
+}
