@@ -131,7 +131,9 @@ impl<'a> Locator<'a> {
         message: impl Into<String>,
     ) -> SceneError {
         let field = match (&span, self.root) {
-            (Some(s), Some(root)) => format_path(&path_of_offset(root.get_ref(), s.start)),
+            (Some(s), Some(root)) => {
+                format_path(&path_of_offset(self.text, root.get_ref(), s.start))
+            }
             _ => String::new(),
         };
         SceneError {
@@ -184,49 +186,56 @@ fn contains(span: std::ops::Range<usize>, offset: usize) -> bool {
     span.start <= offset && offset < span.end.max(span.start + 1)
 }
 
-/// The deepest field whose key or value contains `offset`. Table values span only their
-/// header, so the whole tree is searched (with an explicit stack: input nesting is unbounded).
-fn path_of_offset(root: &DeTable<'_>, offset: usize) -> Vec<Segment> {
+/// The deepest field whose key or value contains `offset`; failing that (an error between
+/// fields, such as a duplicate key), the `[table]` or `[[array]]` header above it.
+/// Header tables span only their header, so the whole tree is searched, with an explicit
+/// stack because input nesting is unbounded.
+fn path_of_offset(text: &str, root: &DeTable<'_>, offset: usize) -> Vec<Segment> {
     let mut best: Vec<Segment> = Vec::new();
-    let mut stack: Vec<(Vec<Segment>, &DeValue<'_>)> = Vec::new();
-    let mut visit =
-        |path: Vec<Segment>, hit: bool, v: &'_ Spanned<DeValue<'_>>, best: &mut Vec<Segment>| {
-            if (hit || contains(v.span(), offset)) && path.len() > best.len() {
-                *best = path.clone();
+    let mut header: (usize, Vec<Segment>) = (0, Vec::new());
+    let mut stack: Vec<(Vec<Segment>, &DeTable<'_>)> = vec![(Vec::new(), root)];
+    let mut arrays: Vec<(Vec<Segment>, &[Spanned<DeValue<'_>>])> = Vec::new();
+    loop {
+        // Children of one table or array: (path, whether its key holds the offset, value).
+        let mut children: Vec<(Vec<Segment>, bool, &Spanned<DeValue<'_>>)> = Vec::new();
+        if let Some((path, table)) = stack.pop() {
+            for (k, v) in table.iter() {
+                let mut p = path.clone();
+                p.push(Segment::Key(k.get_ref().to_string()));
+                children.push((p, contains(k.span(), offset), v));
             }
-            path
-        };
-    for (k, v) in root.iter() {
-        let path = visit(
-            vec![Segment::Key(k.get_ref().to_string())],
-            contains(k.span(), offset),
-            v,
-            &mut best,
-        );
-        stack.push((path, v.get_ref()));
-    }
-    while let Some((path, value)) = stack.pop() {
-        match value {
-            DeValue::Table(t) => {
-                for (k, v) in t.iter() {
-                    let mut p = path.clone();
-                    p.push(Segment::Key(k.get_ref().to_string()));
-                    let p = visit(p, contains(k.span(), offset), v, &mut best);
-                    stack.push((p, v.get_ref()));
+        } else if let Some((path, items)) = arrays.pop() {
+            for (i, v) in items.iter().enumerate() {
+                let mut p = path.clone();
+                p.push(Segment::Index(i));
+                children.push((p, false, v));
+            }
+        } else {
+            break;
+        }
+        for (path, key_hit, v) in children {
+            let span = v.span();
+            if (key_hit || contains(span.clone(), offset)) && path.len() > best.len() {
+                best = path.clone();
+            }
+            match v.get_ref() {
+                DeValue::Table(t) => {
+                    let is_header = text.get(span.start..).is_some_and(|s| s.starts_with('['));
+                    if is_header && span.start <= offset && span.start >= header.0 {
+                        header = (span.start, path.clone());
+                    }
+                    stack.push((path, t));
                 }
+                DeValue::Array(a) => arrays.push((path, a)),
+                _ => {}
             }
-            DeValue::Array(a) => {
-                for (i, v) in a.iter().enumerate() {
-                    let mut p = path.clone();
-                    p.push(Segment::Index(i));
-                    let p = visit(p, false, v, &mut best);
-                    stack.push((p, v.get_ref()));
-                }
-            }
-            _ => {}
         }
     }
-    best
+    if best.is_empty() {
+        header.1
+    } else {
+        best
+    }
 }
 
 #[cfg(test)]

@@ -64,9 +64,8 @@ impl Scene {
 
     /// The built-in reference scene ([`BUILTIN_SCENE_TEXT`]).
     pub fn builtin() -> Scene {
-        // The embedded text is tested to be valid; still, never panic in library code paths
-        // users reach: fall back is impossible to express, so this is the one documented
-        // expect, guarded by the test `builtin_scene_is_valid`.
+        // The embedded text is fixed at compile time and tested (`builtin_scene_is_valid`),
+        // so this cannot fail at run time.
         parse(BUILTIN_SCENE_TEXT, BUILTIN_SCENE_NAME, Path::new(""))
             .expect("the built-in scene is valid")
     }
@@ -76,7 +75,21 @@ fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
     let root = match toml::de::DeTable::parse(text) {
         Ok(root) => root,
         Err(e) => {
-            return Err(Locator::new(file, text, None).at_span(e.span(), e.message().to_string()))
+            // The best-effort tree of a broken document still names the field near the error.
+            let (partial, _) = toml::de::DeTable::parse_recoverable(text);
+            let loc = Locator::new(file, text, Some(&partial));
+            let mut message = e.message().to_string();
+            // toml does not say which key is duplicated; its span does.
+            if let Some(key) = e
+                .span()
+                .and_then(|s| text.get(s))
+                .filter(|k| !k.contains('\n'))
+            {
+                if message == "duplicate key" {
+                    message = format!("duplicate key `{key}`");
+                }
+            }
+            return Err(loc.at_span(e.span(), message));
         }
     };
     let loc = Locator::new(file, text, Some(&root));
