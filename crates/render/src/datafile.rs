@@ -43,6 +43,9 @@ use exr::prelude::{
 
 use crate::atomic::write_atomically;
 use crate::record::{PixelRecord, RayStatus};
+use exr_header::{check_layout, sort_header_attributes};
+
+mod exr_header;
 
 /// The format version this code writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -213,7 +216,7 @@ impl DataFile {
         if h.format_version != FORMAT_VERSION {
             return Err(DataFileErrorKind::UnsupportedVersion(h.format_version));
         }
-        let pixels = self.width.checked_mul(self.height).unwrap_or(usize::MAX);
+        let pixels = self.width.saturating_mul(self.height);
         if self.width == 0 || self.height == 0 || self.width > i32::MAX as usize / 2 {
             return inconsistent(format!("image size {}×{}", self.width, self.height));
         }
@@ -505,80 +508,4 @@ fn check_object(
         row,
         problem: format!("object {object} is not −1 or an index of the {count} objects"),
     })
-}
-
-/// Checks the header before exr decodes pixels: one flat layer, and a pixel
-/// size that the file could plausibly hold, so that a damaged size field
-/// cannot make the decoder allocate gigabytes. ZIP (deflate) expands data at
-/// most about 1032-fold; 4096 leaves room for the other compressions.
-fn check_layout(bytes: &[u8]) -> Result<(), DataFileErrorKind> {
-    let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), true)
-        .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
-    let [header] = meta.headers.as_slice() else {
-        return Err(DataFileErrorKind::Layout(format!(
-            "{} layers, expected exactly one",
-            meta.headers.len()
-        )));
-    };
-    if header.deep {
-        return Err(DataFileErrorKind::Layout("deep data".into()));
-    }
-    let (width, height) = (header.layer_size.x(), header.layer_size.y());
-    let decoded = width
-        .checked_mul(height)
-        .and_then(|pixels| pixels.checked_mul(header.channels.bytes_per_pixel.max(1)));
-    let budget = bytes.len().saturating_mul(4096).saturating_add(1 << 20);
-    match decoded {
-        Some(size) if size <= budget => Ok(()),
-        _ => Err(DataFileErrorKind::Layout(format!(
-            "{width}×{height} pixels of {} bytes cannot come from a {}-byte file",
-            header.channels.bytes_per_pixel,
-            bytes.len()
-        ))),
-    }
-}
-
-/// Sorts the attributes of a single-part EXR header by name, in place.
-///
-/// Header layout: magic (4 bytes), version (4), then attributes
-/// `name\0 type\0 size:i32 value[size]`, ended by a single `\0`. Reordering
-/// keeps the header's length, so the offset table stays valid.
-fn sort_header_attributes(bytes: &mut [u8]) -> Result<(), String> {
-    let malformed = || "encoder produced an unexpected header".to_string();
-    let flags = bytes.get(4..8).ok_or_else(malformed)?;
-    if flags[1] & 0x10 != 0 {
-        return Err("encoder produced a multi-part file".into()); // not from us
-    }
-    let start = 8;
-    let mut pos = start;
-    let mut attributes: Vec<(usize, usize, usize)> = Vec::new(); // start, name end, end
-    while *bytes.get(pos).ok_or_else(malformed)? != 0 {
-        let nul = |from: usize| {
-            bytes
-                .get(from..)?
-                .iter()
-                .position(|&b| b == 0)
-                .map(|n| from + n)
-        };
-        let name_end = nul(pos).ok_or_else(malformed)?;
-        let type_end = nul(name_end + 1).ok_or_else(malformed)?;
-        let size = bytes
-            .get(type_end + 1..type_end + 5)
-            .ok_or_else(malformed)?;
-        let size = i32::from_le_bytes([size[0], size[1], size[2], size[3]]);
-        let size = usize::try_from(size).map_err(|_| malformed())?;
-        let end = type_end + 5 + size;
-        if end > bytes.len() {
-            return Err(malformed());
-        }
-        attributes.push((pos, name_end, end));
-        pos = end;
-    }
-    attributes.sort_by(|a, b| bytes[a.0..a.1].cmp(&bytes[b.0..b.1]));
-    let sorted: Vec<u8> = attributes
-        .iter()
-        .flat_map(|a| bytes[a.0..a.2].iter().copied())
-        .collect();
-    bytes[start..pos].copy_from_slice(&sorted);
-    Ok(())
 }
