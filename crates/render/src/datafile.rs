@@ -328,7 +328,7 @@ impl DataFile {
             .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
         let layer = &image.layer_data;
         let (width, height) = (layer.size.x(), layer.size.y());
-        let pixels = width * height; // checked in check_layout
+        let pixels = width.saturating_mul(height); // bounded by check_layout
 
         let text = |name: &'static str| -> Result<String, DataFileErrorKind> {
             let value = layer
