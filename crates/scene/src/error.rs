@@ -131,8 +131,10 @@ impl<'a> Locator<'a> {
         message: impl Into<String>,
     ) -> SceneError {
         let field = match (&span, self.root) {
+            // Missing-field errors span the whole table that lacks the field: name the table.
+            (Some(s), Some(root)) if root.span() == *s => String::new(),
             (Some(s), Some(root)) => {
-                format_path(&path_of_offset(self.text, root.get_ref(), s.start))
+                format_path(&path_of_span(self.text, root.get_ref(), s.clone()))
             }
             _ => String::new(),
         };
@@ -186,11 +188,14 @@ fn contains(span: std::ops::Range<usize>, offset: usize) -> bool {
     span.start <= offset && offset < span.end.max(span.start + 1)
 }
 
-/// The deepest field whose key or value contains `offset`; failing that (an error between
+/// The field whose value spans exactly `span` (a table lacking a field), else the deepest
+/// field whose key or value contains its start; failing that (an error between
 /// fields, such as a duplicate key), the `[table]` or `[[array]]` header above it.
 /// Header tables span only their header, so the whole tree is searched, with an explicit
 /// stack because input nesting is unbounded.
-fn path_of_offset(text: &str, root: &DeTable<'_>, offset: usize) -> Vec<Segment> {
+fn path_of_span(text: &str, root: &DeTable<'_>, target: std::ops::Range<usize>) -> Vec<Segment> {
+    let offset = target.start;
+    let mut exact: Option<Vec<Segment>> = None;
     let mut best: Vec<Segment> = Vec::new();
     let mut header: (usize, Vec<Segment>) = (0, Vec::new());
     let mut stack: Vec<(Vec<Segment>, &DeTable<'_>)> = vec![(Vec::new(), root)];
@@ -215,6 +220,9 @@ fn path_of_offset(text: &str, root: &DeTable<'_>, offset: usize) -> Vec<Segment>
         }
         for (path, key_hit, v) in children {
             let span = v.span();
+            if span == target && exact.as_ref().is_none_or(|e| path.len() > e.len()) {
+                exact = Some(path.clone());
+            }
             if (key_hit || contains(span.clone(), offset)) && path.len() > best.len() {
                 best = path.clone();
             }
@@ -231,7 +239,9 @@ fn path_of_offset(text: &str, root: &DeTable<'_>, offset: usize) -> Vec<Segment>
             }
         }
     }
-    if best.is_empty() {
+    if let Some(p) = exact {
+        p
+    } else if best.is_empty() {
         header.1
     } else {
         best

@@ -1,0 +1,244 @@
+//! Semantics of valid scenes: defaults, conversions (cylindrical → pseudo-Cartesian,
+//! normalization), the field combinations each kind accepts, and pixel directions in the
+//! observer's frame.
+
+use scene::*;
+
+const MINIMAL: &str = "name = \"m\"\n[camera]\nkind = \"sphere\"\nwidth = 8\nheight = 4\n";
+
+fn scene(extra: &str) -> Result<Scene, SceneError> {
+    Scene::from_str(&format!("{MINIMAL}{extra}"), "test.toml")
+}
+
+fn err(extra: &str) -> SceneError {
+    scene(extra).unwrap_err()
+}
+
+#[test]
+fn defaults() {
+    let s = scene("").unwrap();
+    assert_eq!(s.metric.godel_a(), Some(1.0));
+    assert_eq!(s.observer.event, spacetime::Event::default());
+    assert_eq!(s.observer.velocity, spacetime::LocalVelocity::REST);
+    assert_eq!(
+        (s.observer.forward, s.observer.up),
+        ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    );
+    assert_eq!(
+        s.trace,
+        TraceSettings {
+            method: TraceMethod::Numeric,
+            max_past: 30.0,
+            tolerance: 1e-11,
+            max_steps: 100_000
+        }
+    );
+    assert!(s.objects.is_empty() && s.lights.is_empty());
+    assert_eq!(s.source_text, MINIMAL);
+    assert!(s.source_path.is_none());
+}
+
+#[test]
+fn object_defaults_and_cylindrical_positions() {
+    let s = scene("[[object]]\nname = \"b\"\nradius = 0.5\nmotion = { kind = \"rest\", position = { r = 2.0, phi = 1.5707963267948966 } }\n").unwrap();
+    let o = &s.objects[0];
+    assert_eq!(o.frame, ObjectFrame::Local);
+    assert_eq!(o.texture, TextureSpec::Checker { rows: 8, cols: 16 });
+    assert_eq!(o.temperature, 5800.0);
+    let Motion::Rest { position } = o.motion else {
+        panic!()
+    };
+    assert!(position.x.abs() < 1e-15 && (position.y - 2.0).abs() < 1e-15 && position.z == 0.0);
+}
+
+#[test]
+fn geodesic_motion_normalizes_direction() {
+    let s = scene("[[object]]\nname = \"b\"\nradius = 0.1\nmotion = { kind = \"geodesic\", time = -2, position = { x = 1, y = 0, z = 0 }, speed = 0.5, direction = [0, 3, 4] }\n").unwrap();
+    let Motion::Geodesic { start, velocity } = s.objects[0].motion else {
+        panic!()
+    };
+    assert_eq!(start.t, -2.0);
+    assert_eq!(velocity.speed, 0.5);
+    assert!(
+        (velocity.direction[1] - 0.6).abs() < 1e-15 && (velocity.direction[2] - 0.8).abs() < 1e-15
+    );
+}
+
+#[test]
+fn coordinate_objects() {
+    let s = scene(
+        "[[object]]\nname = \"s\"\nframe = \"coordinates\"\nshape = \"sphere\"\nradius = 1\ncenter = { x = 1, y = 2, z = 3 }\n\
+         [[object]]\nname = \"p\"\nframe = \"coordinates\"\nshape = \"plane\"\nheight = -1\ntexture = { kind = \"gradient\" }\n",
+    )
+    .unwrap();
+    assert_eq!(
+        s.objects[0].shape,
+        Shape::CoordinateSphere {
+            center: [1.0, 2.0, 3.0],
+            radius: 1.0
+        }
+    );
+    assert_eq!(
+        s.objects[1].shape,
+        Shape::Plane {
+            height: -1.0,
+            extent: None
+        }
+    );
+    assert_eq!(err("[[object]]\nname = \"p\"\nframe = \"coordinates\"\nshape = \"plane\"\nheight = 0\nmotion = { kind = \"rest\" }\n").field, "object[0].motion");
+    assert_eq!(
+        err("[[object]]\nname = \"p\"\nframe = \"coordinates\"\nradius = 1\n").field,
+        "object[0].shape"
+    );
+    assert_eq!(
+        err("[[object]]\nname = \"p\"\nshape = \"plane\"\nheight = 1\n").field,
+        "object[0].shape"
+    );
+}
+
+#[test]
+fn minkowski_and_a() {
+    let s = scene("[spacetime]\nmetric = \"minkowski\"\n").unwrap();
+    assert_eq!(s.metric.name(), "minkowski");
+    assert_eq!(
+        err("[spacetime]\nmetric = \"minkowski\"\na = 2\n").field,
+        "spacetime.a"
+    );
+    assert_eq!(err("[spacetime]\na = nan\n").field, "spacetime.a");
+    assert_eq!(err("[spacetime]\na = -1\n").field, "spacetime.a");
+}
+
+#[test]
+fn camera_kinds() {
+    let fisheye = Scene::from_str(
+        "name = \"f\"\n[camera]\nkind = \"fisheye\"\nwidth = 64\nheight = 64\n",
+        "f",
+    )
+    .unwrap();
+    assert_eq!(
+        fisheye.camera,
+        Camera::Fisheye {
+            fov_deg: 180.0,
+            size: 64
+        }
+    );
+    let big = Scene::from_str(
+        "name = \"f\"\n[camera]\nkind = \"sphere\"\nwidth = 20000\nheight = 20000\n",
+        "f",
+    )
+    .unwrap_err();
+    assert_eq!(big.field, "camera.height");
+    let sphere_fov = Scene::from_str(
+        "name = \"f\"\n[camera]\nkind = \"sphere\"\nfov_deg = 90\nwidth = 2\nheight = 2\n",
+        "f",
+    )
+    .unwrap_err();
+    assert_eq!(sphere_fov.field, "camera.fov_deg");
+    let pano = Scene::from_str("name = \"f\"\n[camera]\nkind = \"panorama\"\nh_fov_deg = 360.5\nv_fov_deg = 10\nwidth = 2\nheight = 2\n", "f").unwrap_err();
+    assert_eq!(pano.field, "camera.h_fov_deg");
+    let missing = Scene::from_str("name = \"f\"\n", "f").unwrap_err();
+    assert!(missing.message.contains("camera"), "{missing}");
+}
+
+#[test]
+fn lights_and_trace() {
+    let s = scene("[[light]]\nposition = { r = 1 }\n[trace]\nmethod = \"exact\"\nmax_steps = 5\n")
+        .unwrap();
+    assert_eq!(s.lights[0].color, [1.0; 3]);
+    assert_eq!(s.lights[0].power, 1.0);
+    assert_eq!(s.trace.method, TraceMethod::Exact);
+    assert_eq!(s.trace.max_steps, 5);
+    assert_eq!(
+        err("[[light]]\nposition = { r = 1 }\npower = -1\n").field,
+        "light[0].power"
+    );
+    assert_eq!(err("[trace]\nmax_past = 0\n").field, "trace.max_past");
+    assert_eq!(err("[trace]\ntolerance = -1e-9\n").field, "trace.tolerance");
+    assert_eq!(err("[trace]\nmax_steps = 0\n").field, "trace.max_steps");
+}
+
+#[test]
+fn observer_checks() {
+    assert_eq!(
+        err("[observer]\nforward = [0, 0, 0]\n").field,
+        "observer.forward"
+    );
+    assert_eq!(
+        err("[observer]\nposition = { r = -1 }\n").field,
+        "observer.position.r"
+    );
+    assert_eq!(
+        err("[observer]\nvelocity = { speed = -0.1 }\n").field,
+        "observer.velocity.speed"
+    );
+    assert_eq!(
+        err("[observer]\nvelocity = { speed = 1 }\n").field,
+        "observer.velocity.speed"
+    );
+    assert_eq!(
+        err("[observer]\nup = [1, 0, inf]\n").field,
+        "observer.up[2]"
+    );
+    assert_eq!(err("name2 = 1\n").field, "camera.name2");
+    // Names become file names.
+    assert_eq!(
+        Scene::from_str(
+            "name = \"a/b\"\n[camera]\nkind = \"sphere\"\nwidth = 2\nheight = 2\n",
+            "f"
+        )
+        .unwrap_err()
+        .field,
+        "name"
+    );
+}
+
+#[test]
+fn observer_pixel_directions_use_forward_right_up() {
+    let s = Scene::from_str(
+        "name = \"o\"\n[observer]\nforward = [0, 2, 0]\nup = [0, 0, 1]\n[camera]\nkind = \"panorama\"\nh_fov_deg = 180\nv_fov_deg = 90\nwidth = 2\nheight = 2\n",
+        "o",
+    )
+    .unwrap();
+    let o = s.observer;
+    assert_eq!(o.forward, [0.0, 1.0, 0.0]);
+    assert_eq!(o.right(), [1.0, 0.0, 0.0]);
+    // Column 1 of 2 looks 45° right of forward, row 0 looks 22.5° up.
+    let d = o.pixel_direction(&s.camera, 1, 0).unwrap();
+    let (c45, c225) = (45f64.to_radians().cos(), 22.5f64.to_radians().cos());
+    assert!((d[0] - c225 * c45).abs() < 1e-12 && (d[1] - c225 * c45).abs() < 1e-12 && d[2] > 0.0);
+    assert!(o.pixel_direction(&s.camera, 2, 0).is_none());
+}
+
+#[test]
+fn image_textures() {
+    let t = |tex: &str| {
+        scene(&format!("[[object]]\nname = \"b\"\nradius = 1\ntexture = {tex}\nmotion = {{ kind = \"rest\", position = {{ r = 1 }} }}\n"))
+    };
+    assert_eq!(
+        t("{ kind = \"image\", builtin = \"earth\" }")
+            .unwrap()
+            .objects[0]
+            .texture,
+        TextureSpec::Image(ImageSource::Builtin(BuiltinImage::Earth))
+    );
+    assert_eq!(
+        t("{ kind = \"image\", builtin = \"mars\" }")
+            .unwrap_err()
+            .field,
+        "object[0].texture.builtin"
+    );
+    assert_eq!(
+        t("{ kind = \"image\" }").unwrap_err().field,
+        "object[0].texture"
+    );
+    assert_eq!(
+        t("{ kind = \"checker\", color = [1, 1, 1] }")
+            .unwrap_err()
+            .field,
+        "object[0].texture.color"
+    );
+    assert_eq!(
+        t("{ kind = \"uniform\" }").unwrap_err().field,
+        "object[0].texture.color"
+    );
+}
