@@ -16,6 +16,7 @@
 mod camera;
 mod error;
 mod model;
+mod objects;
 mod raw;
 mod validate;
 

@@ -7,6 +7,7 @@
 //! position components left out are 0; a missing velocity direction is [1, 0, 0]; a missing
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
 //! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
+//! Objects, motions and textures are checked in `objects.rs`.
 
 use crate::camera::Camera;
 use crate::error::{Locator, SceneError};
@@ -16,7 +17,7 @@ use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
 use std::path::Path;
 
-type Result<T> = std::result::Result<T, SceneError>;
+pub(crate) type Result<T> = std::result::Result<T, SceneError>;
 
 /// Largest image side, and largest pixel count: guards against typos that would allocate
 /// gigabytes.
@@ -36,16 +37,16 @@ pub(crate) struct Parts {
     pub lights: Vec<Light>,
 }
 
-struct Checker<'a> {
-    loc: &'a Locator<'a>,
+pub(crate) struct Checker<'a> {
+    pub loc: &'a Locator<'a>,
 }
 
 impl Checker<'_> {
-    fn err<T>(&self, path: &str, message: impl Into<String>) -> Result<T> {
+    pub(crate) fn err<T>(&self, path: &str, message: impl Into<String>) -> Result<T> {
         Err(self.loc.at_path(path, message))
     }
 
-    fn finite(&self, path: &str, v: f64) -> Result<f64> {
+    pub(crate) fn finite(&self, path: &str, v: f64) -> Result<f64> {
         if v.is_finite() {
             Ok(v)
         } else {
@@ -53,7 +54,7 @@ impl Checker<'_> {
         }
     }
 
-    fn positive(&self, path: &str, v: f64) -> Result<f64> {
+    pub(crate) fn positive(&self, path: &str, v: f64) -> Result<f64> {
         let v = self.finite(path, v)?;
         if v > 0.0 {
             Ok(v)
@@ -62,7 +63,7 @@ impl Checker<'_> {
         }
     }
 
-    fn non_negative(&self, path: &str, v: f64) -> Result<f64> {
+    pub(crate) fn non_negative(&self, path: &str, v: f64) -> Result<f64> {
         let v = self.finite(path, v)?;
         if v >= 0.0 {
             Ok(v)
@@ -71,7 +72,7 @@ impl Checker<'_> {
         }
     }
 
-    fn color(&self, path: &str, c: [f64; 3]) -> Result<[f64; 3]> {
+    pub(crate) fn color(&self, path: &str, c: [f64; 3]) -> Result<[f64; 3]> {
         for (i, v) in c.iter().enumerate() {
             self.non_negative(&format!("{path}[{i}]"), *v)?;
         }
@@ -79,7 +80,7 @@ impl Checker<'_> {
     }
 
     /// A non-zero finite vector, normalized.
-    fn direction(&self, path: &str, v: [f64; 3]) -> Result<[f64; 3]> {
+    pub(crate) fn direction(&self, path: &str, v: [f64; 3]) -> Result<[f64; 3]> {
         for (i, c) in v.iter().enumerate() {
             self.finite(&format!("{path}[{i}]"), *c)?;
         }
@@ -90,7 +91,7 @@ impl Checker<'_> {
         Ok([v[0] / n, v[1] / n, v[2] / n])
     }
 
-    fn velocity(
+    pub(crate) fn velocity(
         &self,
         path: &str,
         speed: f64,
@@ -114,7 +115,7 @@ impl Checker<'_> {
         }
     }
 
-    fn position(&self, path: &str, p: RawPosition, t: f64) -> Result<Event> {
+    pub(crate) fn position(&self, path: &str, p: RawPosition, t: f64) -> Result<Event> {
         let cyl = p.r.is_some() || p.phi.is_some();
         let cart = p.x.is_some() || p.y.is_some();
         if cyl && cart {
@@ -132,7 +133,7 @@ impl Checker<'_> {
         }
     }
 
-    fn name(&self, path: &str, name: &str) -> Result<()> {
+    pub(crate) fn name(&self, path: &str, name: &str) -> Result<()> {
         if name.trim().is_empty() {
             return self.err(path, "must not be empty");
         }
@@ -143,14 +144,14 @@ impl Checker<'_> {
     }
 
     /// Reports a field given where it has no meaning.
-    fn unused<T>(&self, path: &str, v: &Option<T>, why: &str) -> Result<()> {
+    pub(crate) fn unused<T>(&self, path: &str, v: &Option<T>, why: &str) -> Result<()> {
         match v {
             Some(_) => self.err(path, format!("not used {why}")),
             None => Ok(()),
         }
     }
 
-    fn required<T: Copy>(&self, path: &str, v: Option<T>, why: &str) -> Result<T> {
+    pub(crate) fn required<T: Copy>(&self, path: &str, v: Option<T>, why: &str) -> Result<T> {
         match v {
             Some(v) => Ok(v),
             None => self.err(path, format!("missing, required {why}")),
@@ -181,7 +182,7 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
                 format!("duplicate object name {:?} (also object[{first}])", o.name),
             );
         }
-        objects.push(object(&c, &path, o, base_dir)?);
+        objects.push(crate::objects::object(&c, &path, o, base_dir)?);
     }
     let mut lights = Vec::with_capacity(raw.light.len());
     for (i, l) in raw.light.into_iter().enumerate() {
@@ -360,198 +361,4 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
         tolerance: c.positive("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?,
         max_steps,
     })
-}
-
-fn object(c: &Checker, path: &str, o: RawObject, base_dir: &Path) -> Result<Object> {
-    let p = |f: &str| format!("{path}.{f}");
-    c.name(&p("name"), &o.name)?;
-    let frame = match o.frame.unwrap_or(FrameName::Local) {
-        FrameName::Local => ObjectFrame::Local,
-        FrameName::Coordinates => ObjectFrame::Coordinates,
-    };
-    let (shape, motion) = match frame {
-        ObjectFrame::Local => {
-            let why = "by a local object (only for frame = \"coordinates\")";
-            if o.shape == Some(ShapeName::Plane) {
-                return c.err(
-                    &p("shape"),
-                    "a local object must be a sphere; planes need frame = \"coordinates\"",
-                );
-            }
-            c.unused(
-                &p("center"),
-                &o.center,
-                "by a local object (give its position in `motion`)",
-            )?;
-            c.unused(&p("height"), &o.height, why)?;
-            c.unused(&p("extent"), &o.extent, why)?;
-            let radius = c.required(
-                &p("radius"),
-                o.radius,
-                "for a local sphere (its proper radius)",
-            )?;
-            let radius = c.positive(&p("radius"), radius)?;
-            let Some(m) = o.motion else {
-                return c.err(
-                    &p("motion"),
-                    "missing, required for a local object (kind = \"rest\" or \"geodesic\")",
-                );
-            };
-            (Shape::Sphere { radius }, motion(c, &p("motion"), m)?)
-        }
-        ObjectFrame::Coordinates => {
-            c.unused(
-                &p("motion"),
-                &o.motion,
-                "by a coordinate object (it is fixed in coordinates)",
-            )?;
-            let shape = c.required(
-                &p("shape"),
-                o.shape,
-                "for a coordinate object (\"sphere\" or \"plane\")",
-            )?;
-            match shape {
-                ShapeName::Sphere => {
-                    let why = "by a coordinate sphere (only for planes)";
-                    c.unused(&p("height"), &o.height, why)?;
-                    c.unused(&p("extent"), &o.extent, why)?;
-                    let radius = c.required(&p("radius"), o.radius, "for a coordinate sphere")?;
-                    let radius = c.positive(&p("radius"), radius)?;
-                    let center = c.required(&p("center"), o.center, "for a coordinate sphere")?;
-                    let e = c.position(&p("center"), center, 0.0)?;
-                    (
-                        Shape::CoordinateSphere {
-                            center: [e.x, e.y, e.z],
-                            radius,
-                        },
-                        Motion::Rest { position: e },
-                    )
-                }
-                ShapeName::Plane => {
-                    c.unused(&p("radius"), &o.radius, "by a plane")?;
-                    c.unused(&p("center"), &o.center, "by a plane (it is z = height)")?;
-                    let height =
-                        c.required(&p("height"), o.height, "for a plane (it is z = height)")?;
-                    let height = c.finite(&p("height"), height)?;
-                    let extent = match o.extent {
-                        Some(e) => Some(c.positive(&p("extent"), e)?),
-                        None => None,
-                    };
-                    (
-                        Shape::Plane { height, extent },
-                        Motion::Rest {
-                            position: Event::new(0.0, 0.0, 0.0, height),
-                        },
-                    )
-                }
-            }
-        }
-    };
-    let texture = match o.texture {
-        Some(t) => texture(c, &p("texture"), t, base_dir)?,
-        None => TextureSpec::default(),
-    };
-    let temperature = c.positive(&p("temperature"), o.temperature.unwrap_or(5800.0))?;
-    Ok(Object {
-        name: o.name,
-        frame,
-        shape,
-        texture,
-        temperature,
-        motion,
-    })
-}
-
-fn motion(c: &Checker, path: &str, m: RawMotion) -> Result<Motion> {
-    let p = |f: &str| format!("{path}.{f}");
-    let position = c.required(&p("position"), m.position, "for a motion")?;
-    match m.kind {
-        MotionKind::Rest => {
-            let why = "by kind = \"rest\" (only for \"geodesic\")";
-            c.unused(&p("time"), &m.time, why)?;
-            c.unused(&p("speed"), &m.speed, why)?;
-            c.unused(&p("direction"), &m.direction, why)?;
-            Ok(Motion::Rest {
-                position: c.position(&p("position"), position, 0.0)?,
-            })
-        }
-        MotionKind::Geodesic => {
-            let t = c.finite(&p("time"), m.time.unwrap_or(0.0))?;
-            let start = c.position(&p("position"), position, t)?;
-            let speed = c.required(&p("speed"), m.speed, "for kind = \"geodesic\"")?;
-            let velocity = c.velocity(path, speed, m.direction)?;
-            Ok(Motion::Geodesic { start, velocity })
-        }
-    }
-}
-
-fn texture(c: &Checker, path: &str, t: RawTexture, base_dir: &Path) -> Result<TextureSpec> {
-    let p = |f: &str| format!("{path}.{f}");
-    let kind = match t.kind {
-        TextureKind::Checker => "checker",
-        TextureKind::Image => "image",
-        TextureKind::Gradient => "gradient",
-        TextureKind::Uniform => "uniform",
-    };
-    let why = format!("by kind = \"{kind}\"");
-    if t.kind != TextureKind::Checker {
-        c.unused(&p("rows"), &t.rows, &why)?;
-        c.unused(&p("cols"), &t.cols, &why)?;
-    }
-    if t.kind != TextureKind::Image {
-        c.unused(&p("path"), &t.path, &why)?;
-        c.unused(&p("builtin"), &t.builtin, &why)?;
-    }
-    if t.kind != TextureKind::Uniform {
-        c.unused(&p("color"), &t.color, &why)?;
-    }
-    match t.kind {
-        TextureKind::Checker => {
-            let rows = t.rows.unwrap_or(8);
-            let cols = t.cols.unwrap_or(16);
-            for (f, v) in [("rows", rows), ("cols", cols)] {
-                if v == 0 {
-                    return c.err(&p(f), "must be at least 1");
-                }
-            }
-            Ok(TextureSpec::Checker { rows, cols })
-        }
-        TextureKind::Gradient => Ok(TextureSpec::Gradient),
-        TextureKind::Uniform => {
-            let color = c.required(&p("color"), t.color, "for kind = \"uniform\"")?;
-            Ok(TextureSpec::Uniform {
-                color: c.color(&p("color"), color)?,
-            })
-        }
-        TextureKind::Image => match (t.path, t.builtin) {
-            (Some(_), Some(_)) => c.err(&p("builtin"), "give either `path` or `builtin`, not both"),
-            (None, None) => c.err(
-                path,
-                "an image texture needs `path = \"...\"` or `builtin = \"earth\"`",
-            ),
-            (None, Some(b)) => match b.as_str() {
-                "earth" => Ok(TextureSpec::Image(ImageSource::Builtin(
-                    BuiltinImage::Earth,
-                ))),
-                other => c.err(
-                    &p("builtin"),
-                    format!("unknown built-in image {other:?}, expected \"earth\""),
-                ),
-            },
-            (Some(file), None) => {
-                if file.is_empty() {
-                    return c.err(&p("path"), "must not be empty");
-                }
-                let full = base_dir.join(&file);
-                if full.is_file() {
-                    Ok(TextureSpec::Image(ImageSource::File(full)))
-                } else {
-                    c.err(
-                        &p("path"),
-                        format!("image file {} not found", full.display()),
-                    )
-                }
-            }
-        },
-    }
 }
