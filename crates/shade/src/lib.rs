@@ -1,1 +1,23 @@
-//! placeholder
+//! `shade`: the post-render stage — shading per-pixel data files into pictures without
+//! re-tracing (DESIGN.md, "The pipeline").
+//!
+//! Main types and functions:
+//! - [`Texture`]: a runtime texture (checker, gradient, uniform, equirectangular image such as
+//!   the built-in earth) built from a scene's `TextureSpec` with [`Texture::load`], sampled at
+//!   body coordinates (u, v) in linear RGB.
+//! - [`shade_textures`] / [`preview`]: the texture shader, a [`render::datafile::DataFile`] to
+//!   an 8-bit sRGB image; [`write_png`] writes it atomically.
+//! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
+//! - [`ShadeError`]: every error, naming the file concerned.
+
+pub mod colour;
+mod error;
+pub mod texture;
+pub mod texture_shader;
+
+pub use error::ShadeError;
+pub use texture::{ImageTexture, Texture};
+pub use texture_shader::{
+    pixel_colour, preview, shade_textures, shading_factor, textures_for_scene, write_png,
+    BACKGROUND,
+};

@@ -1,0 +1,55 @@
+//! Colour encoding: linear RGB ↔ sRGB with the standard piecewise sRGB transfer function
+//! (IEC 61966-2-1), and conversion to 8-bit with rounding. Values are clamped to [0, 1]
+//! before encoding; NaN counts as 0.
+
+/// Encodes one linear component as sRGB in [0, 1] (clamped; NaN → 0).
+///
+/// `12.92·x` for x ≤ 0.0031308, else `1.055·x^(1/2.4) − 0.055`.
+pub fn linear_to_srgb(x: f32) -> f32 {
+    let x = clamp01(x);
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Decodes one sRGB component in [0, 1] to linear (clamped; NaN → 0).
+///
+/// `s/12.92` for s ≤ 0.04045, else `((s + 0.055)/1.055)^2.4`.
+pub fn srgb_to_linear(s: f32) -> f32 {
+    let s = clamp01(s);
+    if s <= 0.040_45 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// One linear component as an 8-bit sRGB value, rounded to nearest.
+pub fn linear_to_srgb8(x: f32) -> u8 {
+    (linear_to_srgb(x) * 255.0).round() as u8
+}
+
+/// A linear RGB colour as 8-bit sRGB.
+pub fn rgb_to_srgb8(c: [f32; 3]) -> [u8; 3] {
+    [
+        linear_to_srgb8(c[0]),
+        linear_to_srgb8(c[1]),
+        linear_to_srgb8(c[2]),
+    ]
+}
+
+/// An 8-bit sRGB value decoded to linear.
+pub fn srgb8_to_linear(s: u8) -> f32 {
+    srgb_to_linear(f32::from(s) / 255.0)
+}
+
+/// Clamps to [0, 1]; NaN → 0.
+pub fn clamp01(x: f32) -> f32 {
+    if x.is_nan() {
+        0.0
+    } else {
+        x.clamp(0.0, 1.0)
+    }
+}

@@ -1,0 +1,238 @@
+//! Runtime textures: [`Texture`] built from a scene's [`TextureSpec`], sampled at an object's
+//! body coordinates (u, v) ∈ [0, 1]², returning *linear* RGB.
+//!
+//! The procedural textures are designed so that a picture shows the object's orientation,
+//! and a mirrored picture is recognisable as mirrored:
+//!
+//! - checker: `rows` bands in v, `cols` in u; light cells 0.9 grey tinted by a hue that
+//!   runs once around the colour wheel as u goes from 0 to 1 (red → yellow → green → blue →
+//!   magenta), dark cells 0.15 grey, except in the quadrant u < ½, v ≥ ½ where the dark
+//!   cells are dark red;
+//! - gradient: red grows with u, blue with v (green fixed at 0.2), with a thin white line
+//!   along the seam u = 0 (= u = 1);
+//! - uniform: one colour;
+//! - image: an equirectangular map, u = longitude from −180° (u = 0, the image's left
+//!   edge) to +180° (u = 1), v = latitude from −90° (v = 0, bottom row) to +90° (v = 1,
+//!   top row); sRGB pixels decoded to linear, sampled bilinearly, wrapping in u and
+//!   clamping in v.
+//!
+//! Out-of-range u wraps and v clamps for every texture; NaN counts as 0.
+
+use std::path::Path;
+
+use scene::{BuiltinImage, ImageSource, TextureSpec};
+
+use crate::colour::srgb8_to_linear;
+use crate::error::ShadeError;
+
+/// The built-in earth map (Natural Earth, public domain; see assets/NOTICE.md).
+const EARTH_PNG: &[u8] = include_bytes!("../../../assets/earth-natural-earth-720x360.png");
+
+/// Light checker cells: 0.9 grey, mixed this much with the hue of u.
+const CHECKER_LIGHT: f32 = 0.9;
+const CHECKER_TINT: f32 = 0.5;
+/// Dark checker cells.
+const CHECKER_DARK: [f32; 3] = [0.15, 0.15, 0.15];
+/// Dark cells in the marked quadrant u < ½, v ≥ ½.
+const CHECKER_MARK: [f32; 3] = [0.35, 0.03, 0.03];
+/// Half-width (in u) of the gradient's seam marker line.
+const GRADIENT_MARKER: f64 = 0.01;
+
+/// A texture ready to sample.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Texture {
+    /// Checkerboard: `rows` bands in v, `cols` in u (both ≥ 1).
+    Checker { rows: u32, cols: u32 },
+    /// Orientation ramp over (u, v).
+    Gradient,
+    /// One linear RGB colour.
+    Uniform([f32; 3]),
+    /// An equirectangular image.
+    Image(ImageTexture),
+}
+
+/// A decoded image in linear RGB, row 0 at the top (v = 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImageTexture {
+    width: usize,
+    height: usize,
+    /// Row-major linear RGB.
+    pixels: Vec<[f32; 3]>,
+}
+
+impl Texture {
+    /// Builds the runtime texture for a scene's texture spec; image files are read and
+    /// decoded here. Errors name the image file.
+    pub fn load(spec: &TextureSpec) -> Result<Texture, ShadeError> {
+        Ok(match spec {
+            TextureSpec::Checker { rows, cols } => Texture::Checker {
+                rows: (*rows).max(1),
+                cols: (*cols).max(1),
+            },
+            TextureSpec::Gradient => Texture::Gradient,
+            TextureSpec::Uniform { color } => {
+                Texture::Uniform([color[0] as f32, color[1] as f32, color[2] as f32])
+            }
+            TextureSpec::Image(ImageSource::File(path)) => {
+                Texture::Image(ImageTexture::from_file(path)?)
+            }
+            TextureSpec::Image(ImageSource::Builtin(BuiltinImage::Earth)) => {
+                Texture::Image(ImageTexture::earth()?)
+            }
+        })
+    }
+
+    /// Linear RGB at body coordinates (u, v).
+    pub fn sample(&self, u: f64, v: f64) -> [f32; 3] {
+        let (u, v) = (wrap01(u), clamp01(v));
+        match self {
+            Texture::Checker { rows, cols } => checker(*rows, *cols, u, v),
+            Texture::Gradient => gradient(u, v),
+            Texture::Uniform(c) => *c,
+            Texture::Image(image) => image.sample(u, v),
+        }
+    }
+}
+
+impl ImageTexture {
+    /// Reads and decodes an image file (any format the `image` crate was built with: PNG).
+    pub fn from_file(path: &Path) -> Result<ImageTexture, ShadeError> {
+        let error = |source| ShadeError::ImageRead {
+            path: path.to_path_buf(),
+            source,
+        };
+        let decoded = image::ImageReader::open(path)
+            .map_err(|e| error(image::ImageError::IoError(e)))?
+            .with_guessed_format()
+            .map_err(|e| error(image::ImageError::IoError(e)))?
+            .decode()
+            .map_err(error)?;
+        let rgb = decoded.to_rgb8();
+        if rgb.width() == 0 || rgb.height() == 0 {
+            return Err(ShadeError::EmptyImage {
+                path: path.to_path_buf(),
+                width: rgb.width(),
+                height: rgb.height(),
+            });
+        }
+        Ok(ImageTexture::from_rgb8(&rgb))
+    }
+
+    /// The built-in earth map, 720×360.
+    pub fn earth() -> Result<ImageTexture, ShadeError> {
+        let decoded = image::load_from_memory_with_format(EARTH_PNG, image::ImageFormat::Png)
+            .map_err(|source| ShadeError::Builtin {
+                name: "earth",
+                source,
+            })?;
+        Ok(ImageTexture::from_rgb8(&decoded.to_rgb8()))
+    }
+
+    /// Decodes 8-bit sRGB pixels to linear.
+    pub fn from_rgb8(rgb: &image::RgbImage) -> ImageTexture {
+        let lut: Vec<f32> = (0..=255u8).map(srgb8_to_linear).collect();
+        let pixels = rgb
+            .pixels()
+            .map(|p| [lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize]])
+            .collect();
+        ImageTexture {
+            width: rgb.width() as usize,
+            height: rgb.height() as usize,
+            pixels,
+        }
+    }
+
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Linear RGB of pixel (col, row), row 0 at the top.
+    pub fn pixel(&self, col: usize, row: usize) -> [f32; 3] {
+        self.pixels[row * self.width + col]
+    }
+
+    /// Bilinear sample at (u, v) (u already in [0, 1), v in [0, 1]); wraps in u, clamps in v.
+    fn sample(&self, u: f64, v: f64) -> [f32; 3] {
+        if self.pixels.is_empty() {
+            return [0.0; 3];
+        }
+        // Continuous pixel coordinates with pixel centres at integers.
+        let x = u * self.width as f64 - 0.5;
+        let y = (1.0 - v) * self.height as f64 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
+        let w = self.width as i64;
+        let h = self.height as i64;
+        let col = |i: i64| i.rem_euclid(w) as usize;
+        let row = |j: i64| j.clamp(0, h - 1) as usize;
+        let (c0, c1) = (col(x0 as i64), col(x0 as i64 + 1));
+        let (r0, r1) = (row(y0 as i64), row(y0 as i64 + 1));
+        let top = lerp3(self.pixel(c0, r0), self.pixel(c1, r0), fx);
+        let bottom = lerp3(self.pixel(c0, r1), self.pixel(c1, r1), fx);
+        lerp3(top, bottom, fy)
+    }
+}
+
+fn checker(rows: u32, cols: u32, u: f64, v: f64) -> [f32; 3] {
+    let i = ((u * cols as f64) as u32).min(cols - 1);
+    let j = ((v * rows as f64) as u32).min(rows - 1);
+    if (i + j).is_multiple_of(2) {
+        let tint = hue(u as f32);
+        let grey = [CHECKER_LIGHT; 3];
+        lerp3(grey, tint.map(|c| c * CHECKER_LIGHT), CHECKER_TINT)
+    } else if u < 0.5 && v >= 0.5 {
+        CHECKER_MARK
+    } else {
+        CHECKER_DARK
+    }
+}
+
+fn gradient(u: f64, v: f64) -> [f32; 3] {
+    if !(GRADIENT_MARKER..=1.0 - GRADIENT_MARKER).contains(&u) {
+        return [1.0, 1.0, 1.0];
+    }
+    [u as f32, 0.2, v as f32]
+}
+
+/// Fully saturated colour of hue `h` ∈ [0, 1] (0 red, ⅓ green, ⅔ blue).
+fn hue(h: f32) -> [f32; 3] {
+    let channel = |n: f32| {
+        let k = (n + h * 6.0).rem_euclid(6.0);
+        1.0 - k.min(4.0 - k).clamp(0.0, 1.0)
+    };
+    [channel(5.0), channel(3.0), channel(1.0)]
+}
+
+fn lerp3(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+    [
+        a[0] + (b[0] - a[0]) * t,
+        a[1] + (b[1] - a[1]) * t,
+        a[2] + (b[2] - a[2]) * t,
+    ]
+}
+
+/// u wrapped into [0, 1); NaN and infinities → 0.
+fn wrap01(u: f64) -> f64 {
+    if !u.is_finite() {
+        return 0.0;
+    }
+    let w = u.rem_euclid(1.0);
+    if w >= 1.0 {
+        0.0
+    } else {
+        w
+    }
+}
+
+/// v clamped into [0, 1]; NaN → 0.
+fn clamp01(v: f64) -> f64 {
+    if v.is_nan() {
+        0.0
+    } else {
+        v.clamp(0.0, 1.0)
+    }
+}

@@ -1,0 +1,141 @@
+//! The texture shader: turns a traced image's per-pixel data into a picture of the objects'
+//! textures. This is the preview PNG that `godel render` writes next to the data file.
+//!
+//! Per pixel, by [`RayStatus`] first, then by object:
+//!
+//! | pixel | colour (linear RGB) |
+//! | --- | --- |
+//! | hit object k | texture k at (u, v) × (0.25 + 0.75·max(cos_i, 0)) |
+//! | nothing hit (escaped) | the `background` argument ([`BACKGROUND`] for the preview) |
+//! | integration failed | [`FAILED`], magenta |
+//! | step budget spent | [`STEP_BUDGET`], dark magenta |
+//! | not traced (outside a fisheye circle) | [`NOT_TRACED`], black |
+//! | object with no texture (data and textures disagree) | [`FAILED`] |
+//!
+//! The shading factor is a plain Lambert term with an ambient floor, not physics: `cos_i` is
+//! the cosine between the surface normal and the emitted photon, so a sphere gets darker
+//! toward its limb and looks round, while the floor of 0.25 keeps grazing parts visible.
+//! Colours are encoded as 8-bit sRGB. Rows are shaded in parallel; the result does not
+//! depend on the thread count.
+
+use std::path::Path;
+
+use image::RgbImage;
+use rayon::prelude::*;
+use render::atomic::write_atomically;
+use render::datafile::DataFile;
+use render::record::{PixelRecord, RayStatus};
+use scene::Scene;
+
+use crate::colour::rgb_to_srgb8;
+use crate::error::ShadeError;
+use crate::texture::Texture;
+
+/// Preview background where nothing was hit: blue-black.
+pub const BACKGROUND: [f32; 3] = [0.004, 0.006, 0.02];
+/// Integration failed: conspicuous magenta.
+pub const FAILED: [f32; 3] = [1.0, 0.0, 1.0];
+/// Step budget spent: dark magenta.
+pub const STEP_BUDGET: [f32; 3] = [0.15, 0.0, 0.15];
+/// Not traced: black.
+pub const NOT_TRACED: [f32; 3] = [0.0, 0.0, 0.0];
+
+/// Ambient floor of the shading factor.
+const AMBIENT: f32 = 0.25;
+
+/// Shades every pixel of `data` with the objects' textures (`textures[k]` for object k).
+/// Never panics on inconsistent data: missing records and textures show as [`FAILED`].
+pub fn shade_textures(data: &DataFile, textures: &[Texture], background: [f32; 3]) -> RgbImage {
+    let (Ok(width), Ok(height)) = (u32::try_from(data.width), u32::try_from(data.height)) else {
+        return RgbImage::new(0, 0);
+    };
+    if width == 0 || height == 0 {
+        return RgbImage::new(0, 0);
+    }
+    let row_bytes = data.width * 3;
+    let mut bytes = vec![0u8; row_bytes * data.height];
+    bytes
+        .par_chunks_mut(row_bytes)
+        .enumerate()
+        .for_each(|(row, out)| {
+            for (col, px) in out.chunks_exact_mut(3).enumerate() {
+                let colour = match data.records.get(data.index(col, row)) {
+                    Some(record) => pixel_colour(record, textures, background),
+                    None => FAILED,
+                };
+                px.copy_from_slice(&rgb_to_srgb8(colour));
+            }
+        });
+    RgbImage::from_raw(width, height, bytes).expect("buffer has width × height × 3 bytes")
+}
+
+/// Linear RGB of one pixel (see the table in the module documentation).
+pub fn pixel_colour(record: &PixelRecord, textures: &[Texture], background: [f32; 3]) -> [f32; 3] {
+    match record.status {
+        RayStatus::Failed => return FAILED,
+        RayStatus::StepBudget => return STEP_BUDGET,
+        RayStatus::NotTraced => return NOT_TRACED,
+        RayStatus::Hit | RayStatus::Escaped => {}
+    }
+    if record.object < 0 {
+        return background;
+    }
+    let Some(texture) = textures.get(record.object as usize) else {
+        return FAILED;
+    };
+    let colour = texture.sample(f64::from(record.u), f64::from(record.v));
+    let factor = shading_factor(record.cos_i);
+    colour.map(|c| c * factor)
+}
+
+/// 0.25 + 0.75·max(cos_i, 0); NaN counts as 0.
+pub fn shading_factor(cos_i: f32) -> f32 {
+    let c = if cos_i.is_nan() {
+        0.0
+    } else {
+        cos_i.clamp(0.0, 1.0)
+    };
+    AMBIENT + (1.0 - AMBIENT) * c
+}
+
+/// The runtime textures of a scene's objects, in scene-file order (the data file's object ids).
+pub fn textures_for_scene(scene: &Scene) -> Result<Vec<Texture>, ShadeError> {
+    scene
+        .objects
+        .iter()
+        .map(|object| Texture::load(&object.texture))
+        .collect()
+}
+
+/// The preview picture of a render: [`shade_textures`] with the scene's textures on the
+/// [`BACKGROUND`]. Errs if the data file's objects are not the scene's.
+pub fn preview(data: &DataFile, scene: &Scene) -> Result<RgbImage, ShadeError> {
+    let scene_names: Vec<String> = scene.objects.iter().map(|o| o.name.clone()).collect();
+    if data.header.object_names != scene_names {
+        return Err(ShadeError::ObjectMismatch {
+            data: data.header.object_names.clone(),
+            scene: scene_names,
+        });
+    }
+    let textures = textures_for_scene(scene)?;
+    Ok(shade_textures(data, &textures, BACKGROUND))
+}
+
+/// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
+pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
+    let mut bytes = Vec::new();
+    img.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    )
+    .map_err(|source| ShadeError::Encode {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    write_atomically(path, |file| std::io::Write::write_all(file, &bytes)).map_err(|source| {
+        ShadeError::Write {
+            path: path.to_path_buf(),
+            source,
+        }
+    })
+}
