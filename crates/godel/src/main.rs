@@ -7,6 +7,7 @@
 mod args;
 mod cmd_geodesic;
 mod cmd_plot;
+mod cmd_render;
 mod output;
 mod svg;
 
@@ -28,12 +29,15 @@ enum Command {
     Geodesic(cmd_geodesic::GeodesicArgs),
     /// Draw figures (SVG or PNG).
     Plot(cmd_plot::PlotArgs),
+    /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
+    Render(cmd_render::RenderArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
     match command {
         Command::Geodesic(args) => cmd_geodesic::run(args),
         Command::Plot(args) => cmd_plot::run(args),
+        Command::Render(args) => cmd_render::run(args),
     }
 }
 
@@ -51,7 +55,11 @@ fn main() -> ExitCode {
         Err(err) => {
             let chain: Vec<String> = err.chain().map(|c| c.to_string()).collect();
             eprintln!("error: {}", chain.join(": "));
-            if err.chain().any(|c| c.is::<args::UsageError>()) {
+            // Bad input (flags, scene files) exits 2, other failures 1.
+            if err
+                .chain()
+                .any(|c| c.is::<args::UsageError>() || c.is::<scene::SceneError>())
+            {
                 ExitCode::from(2)
             } else {
                 ExitCode::FAILURE

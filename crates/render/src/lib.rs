@@ -6,4 +6,8 @@
 
 pub mod atomic;
 pub mod datafile;
+pub mod driver;
 pub mod record;
+pub mod target;
+pub mod tracer;
+pub mod worldline;

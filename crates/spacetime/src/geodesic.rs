@@ -260,7 +260,7 @@ impl TracedGeodesic {
 
 /// Finds a root of `f` in [lo, hi] given opposite signs at the ends (Illinois variant of
 /// regula falsi; converges superlinearly, never leaves the bracket).
-pub(crate) fn refine_root(
+pub fn refine_root(
     f: impl Fn(f64) -> f64,
     mut lo: f64,
     mut hi: f64,

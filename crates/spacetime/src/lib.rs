@@ -28,8 +28,8 @@ pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepOutcome, Tolerances};
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};
 pub use geodesic::{
-    trace, Geodesic, GeodesicKind, GeodesicState, GeodesicSystem, StopReason, TimeDirection,
-    TraceLimits, TracedGeodesic,
+    refine_root, trace, Geodesic, GeodesicKind, GeodesicState, GeodesicSystem, StopReason,
+    TimeDirection, TraceLimits, TracedGeodesic,
 };
 pub use godel::Godel;
 pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};

@@ -1,0 +1,228 @@
+//! The parallel render driver: builds the tracer from a scene, traces all pixels in tiles
+//! with rayon, reports progress to a consumer, and assembles the data file.
+//!
+//! Determinism: every pixel is traced independently from the same shared, immutable
+//! tracer, so the records (and the files written from them) are identical whatever the
+//! number of threads or the order in which tiles finish.
+
+use crate::datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use crate::record::{PixelRecord, RayStatus};
+use crate::target::Target;
+use crate::tracer::Tracer;
+use rayon::prelude::*;
+use scene::{Scene, TraceMethod};
+use spacetime::{boost, Spacetime};
+use std::time::{Duration, Instant};
+
+/// Tile edge in pixels: small enough to balance rays of very different cost.
+const TILE: u32 = 16;
+
+/// Receives progress from the driver (the tracer never learns about terminals or MPI).
+pub trait Progress: Sync {
+    /// `pixels` more pixels are done.
+    fn advance(&self, pixels: u64);
+}
+
+/// A progress consumer that ignores everything.
+pub struct NoProgress;
+impl Progress for NoProgress {
+    fn advance(&self, _pixels: u64) {}
+}
+
+/// Counts of how the rays ended, and timing.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    pub pixels: u64,
+    pub traced: u64,
+    pub hits: u64,
+    pub escaped: u64,
+    pub step_budget: u64,
+    pub failed: u64,
+    pub wall: Duration,
+}
+
+impl RenderStats {
+    pub fn rays_per_second(&self) -> f64 {
+        self.traced as f64 / self.wall.as_secs_f64().max(1e-9)
+    }
+    /// One line for the end of a render.
+    pub fn summary(&self) -> String {
+        format!(
+            "{} pixels, {} traced, {} hit, {} escaped, {} failed (step budget {}, integration {}), {:.2} s, {:.0} rays/s",
+            self.pixels,
+            self.traced,
+            self.hits,
+            self.escaped,
+            self.step_budget + self.failed,
+            self.step_budget,
+            self.failed,
+            self.wall.as_secs_f64(),
+            self.rays_per_second()
+        )
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error("object {name:?}: {source}")]
+    Worldline {
+        name: String,
+        source: crate::worldline::WorldlineError,
+    },
+    #[error("trace.method = \"exact\" is not available yet; use method = \"numeric\"")]
+    ExactUnavailable,
+}
+
+/// Builds the shared tracer of a scene.
+pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
+    if scene.trace.method == TraceMethod::Exact {
+        return Err(RenderError::ExactUnavailable);
+    }
+    let m = scene.metric;
+    let obs = scene.observer;
+    let frame = boost(&m.static_frame(obs.event), obs.velocity);
+    // Worldlines cover the traced time range plus a margin for the objects' own size.
+    let (t_min, t_max) = (obs.event.t - scene.trace.max_past - 1.0, obs.event.t + 1.0);
+    let targets = scene
+        .objects
+        .iter()
+        .map(|o| {
+            Target::new(m, o, t_min, t_max).map_err(|source| RenderError::Worldline {
+                name: o.name.clone(),
+                source,
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Tracer::new(
+        m,
+        obs.event,
+        frame,
+        targets,
+        scene.trace.max_past,
+        scene.trace.tolerance,
+        scene.trace.max_steps,
+    ))
+}
+
+/// The header a data file of this scene carries.
+pub fn header(scene: &Scene) -> DataHeader {
+    DataHeader {
+        format_version: FORMAT_VERSION,
+        scene_name: scene.name.clone(),
+        scene_text: scene.source_text.clone(),
+        camera: scene.camera.describe(),
+        observer_time: scene.observer.event.t,
+        metric: scene.metric.name().to_string(),
+        godel_a: scene.metric.godel_a().unwrap_or(0.0),
+        method: match scene.trace.method {
+            TraceMethod::Numeric => "numeric".into(),
+            TraceMethod::Exact => "exact".into(),
+        },
+        object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
+    }
+}
+
+/// The rectangle of pixels of one tile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tile {
+    pub col0: u32,
+    pub row0: u32,
+    pub cols: u32,
+    pub rows: u32,
+}
+
+/// All tiles of a width × height image, in row-major order.
+pub fn tiles(width: u32, height: u32) -> Vec<Tile> {
+    let mut out = Vec::new();
+    for row0 in (0..height).step_by(TILE as usize) {
+        for col0 in (0..width).step_by(TILE as usize) {
+            out.push(Tile {
+                col0,
+                row0,
+                cols: TILE.min(width - col0),
+                rows: TILE.min(height - row0),
+            });
+        }
+    }
+    out
+}
+
+/// Traces the pixels of `tile` (row-major within the tile).
+pub fn trace_tile(
+    scene: &Scene,
+    tracer: &Tracer,
+    tile: Tile,
+    scratch: &mut crate::tracer::Scratch,
+) -> Vec<PixelRecord> {
+    let mut out = Vec::with_capacity((tile.cols * tile.rows) as usize);
+    for row in tile.row0..tile.row0 + tile.rows {
+        for col in tile.col0..tile.col0 + tile.cols {
+            out.push(
+                match scene.observer.pixel_direction(&scene.camera, col, row) {
+                    Some(n) => tracer.trace(n, scratch),
+                    None => PixelRecord::miss(RayStatus::NotTraced),
+                },
+            );
+        }
+    }
+    out
+}
+
+/// Renders the whole scene on rayon's thread pool.
+pub fn render(
+    scene: &Scene,
+    progress: &dyn Progress,
+) -> Result<(DataFile, RenderStats), RenderError> {
+    let started = Instant::now();
+    let tracer = build_tracer(scene)?;
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    let tiles = tiles(w, h);
+    let done: Vec<Vec<PixelRecord>> = tiles
+        .par_iter()
+        .map_init(
+            || tracer.scratch(),
+            |scratch, &tile| {
+                let r = trace_tile(scene, &tracer, tile, scratch);
+                progress.advance(r.len() as u64);
+                r
+            },
+        )
+        .collect();
+    let mut records = vec![PixelRecord::MISS; (w * h) as usize];
+    for (tile, recs) in tiles.iter().zip(done) {
+        for (i, r) in recs.into_iter().enumerate() {
+            let (c, rr) = (
+                tile.col0 + i as u32 % tile.cols,
+                tile.row0 + i as u32 / tile.cols,
+            );
+            records[(rr * w + c) as usize] = r;
+        }
+    }
+    let mut stats = RenderStats {
+        pixels: records.len() as u64,
+        ..Default::default()
+    };
+    for r in &records {
+        match r.status {
+            RayStatus::Hit => stats.hits += 1,
+            RayStatus::Escaped => stats.escaped += 1,
+            RayStatus::StepBudget => stats.step_budget += 1,
+            RayStatus::Failed => stats.failed += 1,
+            RayStatus::NotTraced => {}
+        }
+    }
+    stats.traced = stats.pixels
+        - records
+            .iter()
+            .filter(|r| r.status == RayStatus::NotTraced)
+            .count() as u64;
+    stats.wall = started.elapsed();
+    let data = DataFile {
+        header: header(scene),
+        width: w as usize,
+        height: h as usize,
+        records,
+        lights: vec![],
+    };
+    Ok((data, stats))
+}

@@ -1,0 +1,326 @@
+//! The numeric tracer: one backward light ray per pixel, integrated with DOP853 from the
+//! observer into the past, tested against every object in space and time.
+//!
+//! Pixel → ray (formulary §4): a pixel looking along the local unit direction n starts the
+//! past-directed null ray k = −e0 + nⁱ eᵢ of the observer's (boosted) frame.
+//!
+//! Gödel loops: every light ray through an event returns to that event's axis (its x, y)
+//! after a finite affine length and then retraces the same loop, shifted in t and z only
+//! (formulary §2; ∂t and ∂z are Killing and the isometries of §3 commute with them). So the
+//! first loop is integrated once, checked to close (position and momentum), and its dense
+//! steps are reused for the later loops with the shift (Δt, Δz, Δλ): the intersection test
+//! still runs against each object at each loop's times. This bounds the integration error
+//! to one loop, however far into the past a ray is followed.
+//!
+//! Frequency shift g = (p·u_obs)/(p·u_emit) (DESIGN.md), from the photon's covariant
+//! momentum at both ends.
+
+use crate::record::{PixelRecord, RayStatus};
+use crate::target::{Probe, Target};
+use spacetime::{
+    refine_root, DenseStep, Dop853, Event, GeodesicState, GeodesicSystem, Metric, OdeSystem,
+    Spacetime, StepOutcome, Tetrad, Tolerances,
+};
+
+/// Everything a ray needs, built once per render and shared by all threads.
+pub struct Tracer {
+    metric: Metric,
+    observer: Event,
+    frame: Tetrad,
+    targets: Vec<Target>,
+    /// Rays stop at coordinate time observer.t − max_past.
+    t_bound: f64,
+    tol: Tolerances,
+    max_steps: u64,
+    /// Reuse the first loop (Gödel only).
+    periodic: bool,
+}
+
+/// Per-thread buffers, reused from ray to ray (no allocation per ray).
+#[derive(Default)]
+pub struct Scratch {
+    steps: Vec<DenseStep<8>>,
+    start: Vec<Probe>,
+    end: Vec<Probe>,
+}
+
+/// A shift of a stored loop: later loops are the first one moved in t, z and λ.
+#[derive(Clone, Copy, Default)]
+struct Shift {
+    dt: f64,
+    dz: f64,
+    dl: f64,
+}
+
+impl Shift {
+    fn times(self, k: f64) -> Shift {
+        Shift {
+            dt: k * self.dt,
+            dz: k * self.dz,
+            dl: k * self.dl,
+        }
+    }
+    fn state(self, s: [f64; 8]) -> GeodesicState {
+        let mut st = GeodesicState::from_array(&s);
+        st.x.t += self.dt;
+        st.x.z += self.dz;
+        st
+    }
+}
+
+struct Hit {
+    target: usize,
+    lambda: f64,
+    tau: f64,
+}
+
+impl Tracer {
+    pub fn new(
+        metric: Metric,
+        observer: Event,
+        frame: Tetrad,
+        targets: Vec<Target>,
+        max_past: f64,
+        tolerance: f64,
+        max_steps: u64,
+    ) -> Tracer {
+        Tracer {
+            metric,
+            observer,
+            frame,
+            targets,
+            t_bound: observer.t - max_past,
+            tol: Tolerances {
+                rtol: tolerance,
+                atol: tolerance,
+                ..Tolerances::default()
+            },
+            max_steps,
+            periodic: matches!(metric, Metric::Godel(_)),
+        }
+    }
+
+    pub fn scratch(&self) -> Scratch {
+        Scratch {
+            steps: Vec::new(),
+            start: vec![
+                Probe {
+                    f: 0.0,
+                    rate: 0.0,
+                    tau: f64::NAN
+                };
+                self.targets.len()
+            ],
+            end: vec![
+                Probe {
+                    f: 0.0,
+                    rate: 0.0,
+                    tau: f64::NAN
+                };
+                self.targets.len()
+            ],
+        }
+    }
+
+    /// Traces the pixel looking along the local unit direction `n`.
+    pub fn trace(&self, n: [f64; 3], scratch: &mut Scratch) -> PixelRecord {
+        let k = self.frame.vector([-1.0, n[0], n[1], n[2]]);
+        let start = GeodesicState {
+            x: self.observer,
+            p: self.metric.lower(self.observer, k),
+        };
+        let s0 = start.to_array();
+        let sys = GeodesicSystem {
+            metric: self.metric,
+        };
+        let mut ode = Dop853::new(sys, 0.0, s0, self.tol, None);
+        scratch.steps.clear();
+        self.probe_all(&start, &mut scratch.start);
+        let (x0, y0) = (s0[1], s0[2]);
+        let axis_g = |s: &[f64; 8], d: &[f64; 8]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
+        let mut max_d2: f64 = 0.0;
+        let mut periodic = self.periodic;
+        let period = loop {
+            if ode.accepted >= self.max_steps {
+                return PixelRecord::miss(RayStatus::StepBudget);
+            }
+            let g_prev = axis_g(ode.state(), ode.derivative());
+            match ode.step() {
+                StepOutcome::Accepted => {}
+                StepOutcome::Stalled | StepOutcome::NonFinite => {
+                    return PixelRecord::miss(RayStatus::Failed)
+                }
+            }
+            let d = ode.dense();
+            let mut hi = d.lambda1();
+            let mut closed = None;
+            if periodic {
+                let s1 = d.y1;
+                let g1 = axis_g(&s1, ode.derivative());
+                if max_d2 > 0.0 && g_prev < 0.0 && g1 >= 0.0 {
+                    let gl = |l: f64| {
+                        let st = d.eval(l);
+                        axis_g(&st, &sys.rhs(&st))
+                    };
+                    let l = refine_root(gl, d.lambda0, d.lambda1(), g_prev, g1);
+                    let e = d.eval(l);
+                    let dmin2 = (e[1] - x0).powi(2) + (e[2] - y0).powi(2);
+                    let dp = (e[5] - s0[5]).abs() + (e[6] - s0[6]).abs();
+                    let pscale = s0[4].abs() + s0[5].abs() + s0[6].abs() + s0[7].abs();
+                    if dmin2 <= 1e-14 * max_d2 && dp <= 1e-7 * pscale {
+                        hi = l;
+                        closed = Some(Shift {
+                            dt: e[0] - s0[0],
+                            dz: e[3] - s0[3],
+                            dl: l,
+                        });
+                    } else if dmin2 <= 1e-6 * max_d2 {
+                        periodic = false; // did not close well enough: integrate on
+                    }
+                }
+                max_d2 = max_d2.max((s1[1] - x0).powi(2) + (s1[2] - y0).powi(2));
+            }
+            if let Some(h) = self.scan(&d, Shift::default(), d.lambda0, hi, scratch) {
+                return self.record(&start, &d, Shift::default(), h);
+            }
+            if d.eval(hi)[0] < self.t_bound || !d.y1.iter().all(|v| v.is_finite()) {
+                return PixelRecord::miss(if d.y1[0] < self.t_bound {
+                    RayStatus::Escaped
+                } else {
+                    RayStatus::Failed
+                });
+            }
+            if periodic {
+                scratch.steps.push(d);
+            }
+            std::mem::swap(&mut scratch.start, &mut scratch.end);
+            if let Some(p) = closed {
+                break p;
+            }
+        };
+        // Later loops: the stored first loop, shifted.
+        if !(period.dt < 0.0) {
+            return PixelRecord::miss(RayStatus::Failed); // a backward ray must go to the past
+        }
+        let steps = std::mem::take(&mut scratch.steps);
+        let mut result = None;
+        'copies: for k in 1.. {
+            let shift = period.times(k as f64);
+            let first = shift.state(steps[0].y0);
+            self.probe_all(&first, &mut scratch.start);
+            for (i, d) in steps.iter().enumerate() {
+                let hi = if i + 1 == steps.len() {
+                    period.dl
+                } else {
+                    d.lambda1()
+                };
+                if let Some(h) = self.scan(d, shift, d.lambda0, hi, scratch) {
+                    result = Some(self.record(&start, d, shift, h));
+                    break 'copies;
+                }
+                if d.y1[0] + shift.dt < self.t_bound {
+                    break 'copies;
+                }
+                std::mem::swap(&mut scratch.start, &mut scratch.end);
+            }
+        }
+        scratch.steps = steps;
+        result.unwrap_or(PixelRecord::miss(RayStatus::Escaped))
+    }
+
+    fn probe_all(&self, s: &GeodesicState, out: &mut [Probe]) {
+        for (t, o) in self.targets.iter().zip(out.iter_mut()) {
+            *o = t.probe(&self.metric, s, f64::NAN);
+        }
+    }
+
+    /// The earliest-λ entry into any object within [lo, hi] of step `d` (moved by `shift`).
+    /// Fills `scratch.end` with the probes at `hi`.
+    fn scan(
+        &self,
+        d: &DenseStep<8>,
+        shift: Shift,
+        lo: f64,
+        hi: f64,
+        scratch: &mut Scratch,
+    ) -> Option<Hit> {
+        let s_hi = shift.state(d.eval(hi));
+        let mut best: Option<Hit> = None;
+        for (i, t) in self.targets.iter().enumerate() {
+            let pa = scratch.start[i];
+            let pb = t.probe(&self.metric, &s_hi, pa.tau);
+            scratch.end[i] = pb;
+            let limit = best.as_ref().map_or(hi, |b| b.lambda);
+            if let Some((l, tau)) = self.search(t, d, shift, lo, limit.min(hi), pa, pb, 0) {
+                if best.as_ref().map_or(true, |b| l < b.lambda) {
+                    best = Some(Hit {
+                        target: i,
+                        lambda: l,
+                        tau,
+                    });
+                }
+            }
+        }
+        best
+    }
+
+    /// Bisection search for the first entry into `t` on [a, b].
+    #[allow(clippy::too_many_arguments)]
+    fn search(
+        &self,
+        t: &Target,
+        d: &DenseStep<8>,
+        shift: Shift,
+        a: f64,
+        b: f64,
+        pa: Probe,
+        pb: Probe,
+        depth: u32,
+    ) -> Option<(f64, f64)> {
+        if !(pa.f.is_finite() && pb.f.is_finite()) || b <= a {
+            return None;
+        }
+        if t.entered(pa.f, pb.f) {
+            let f = |l: f64| t.probe(&self.metric, &shift.state(d.eval(l)), pa.tau).f;
+            let l = refine_root(f, a, b, pa.f, pb.f);
+            let s = shift.state(d.eval(l));
+            // Land just inside so that the surface point is on the object.
+            return t
+                .accepts(&s)
+                .then_some((l, t.probe(&self.metric, &s, pa.tau).tau));
+        }
+        let rate = pa.rate.max(pb.rate);
+        if t.excluded(pa.f, pb.f, rate, b - a) || depth >= 30 {
+            return None;
+        }
+        let m = 0.5 * (a + b);
+        let pm = t.probe(&self.metric, &shift.state(d.eval(m)), pa.tau);
+        self.search(t, d, shift, a, m, pa, pm, depth + 1)
+            .or_else(|| self.search(t, d, shift, m, b, pm, pb, depth + 1))
+    }
+
+    fn record(&self, start: &GeodesicState, d: &DenseStep<8>, shift: Shift, h: Hit) -> PixelRecord {
+        let s = shift.state(d.eval(h.lambda));
+        if s.x.t < self.t_bound {
+            return PixelRecord::miss(RayStatus::Escaped);
+        }
+        let Some(surf) = self.targets[h.target].surface(&self.metric, &s, h.tau) else {
+            return PixelRecord::miss(RayStatus::Failed);
+        };
+        let g = self.frame.e[0].contract(start.p) / surf.emitter_velocity.contract(s.p);
+        PixelRecord {
+            object: h.target as i32,
+            status: RayStatus::Hit,
+            u: surf.u as f32,
+            v: surf.v as f32,
+            g: g as f32,
+            t_emit: (s.x.t - self.observer.t) as f32,
+            x: s.x.x as f32,
+            y: s.x.y as f32,
+            z: s.x.z as f32,
+            lambda: (h.lambda + shift.dl) as f32,
+            dir: surf.dir.map(|c| c as f32),
+            cos_i: surf.cos_i as f32,
+        }
+    }
+}

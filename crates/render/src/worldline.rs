@@ -1,0 +1,347 @@
+//! Object worldlines and their transported body frames, computed once per render and
+//! shared by all rays.
+//!
+//! - At rest: constant (x, y, z); four-velocity ∂t (proper time = coordinate time, since
+//!   g_tt = −1); body frame = the static frame there (Lie-transported along ∂t).
+//! - Free fall: the timelike geodesic through a start event, integrated forward and backward
+//!   in proper time with DOP853 dense output, together with the parallel transport of the
+//!   body frame, de^μ/dτ = −Γ^μ_αβ u^α e^β (for a geodesic, Fermi–Walker = parallel).
+//!
+//! A ray point X is matched to the worldline point P(τ) that is simultaneous with it in the
+//! object's rest frame: g(u(τ), ξ) = 0, ξ the displacement X − P in Riemann normal
+//! coordinates at P to second order, ξ^μ = Δx^μ + ½ Γ^μ_αβ Δx^α Δx^β. Newton's method
+//! converges in a few iterations since dξ⁰/dτ = −1 along a geodesic.
+
+use scene::Motion;
+use spacetime::{
+    boost, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Metric,
+    OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
+};
+
+/// A worldline point: event, four-velocity and body frame (e[0] = u).
+#[derive(Clone, Copy, Debug)]
+pub struct WorldPoint {
+    pub tau: f64,
+    pub event: Event,
+    pub frame: Tetrad,
+}
+
+/// A ray point expressed in an object's rest frame.
+#[derive(Clone, Copy, Debug)]
+pub struct LocalPoint {
+    /// The matched worldline point.
+    pub at: WorldPoint,
+    /// Spatial rest-frame coordinates of the ray point relative to the object's centre.
+    pub xi: [f64; 3],
+}
+
+/// Worldline of a local object.
+#[derive(Clone, Debug)]
+pub enum Worldline {
+    Rest {
+        position: Event,
+        frame: Tetrad,
+        gamma: Christoffel,
+        metric: [[f64; 4]; 4],
+    },
+    Free(FreeFall),
+}
+
+/// A free-fall worldline: dense output forward (τ ≥ 0) and backward (τ ≤ 0) from its start.
+#[derive(Clone, Debug)]
+pub struct FreeFall {
+    forward: Vec<DenseStep<20>>,
+    backward: Vec<DenseStep<20>>,
+    start: [f64; 20],
+    /// (t, τ) at step ends, sorted by τ, to seed the matching.
+    table: Vec<(f64, f64)>,
+    tau_min: f64,
+    tau_max: f64,
+}
+
+/// Geodesic + parallel transport of three vectors: state (x, p, e1, e2, e3), dimension 20.
+#[derive(Clone, Copy)]
+struct Transport {
+    metric: Metric,
+    sign: f64,
+}
+
+impl OdeSystem<20> for Transport {
+    fn rhs(&self, s: &[f64; 20]) -> [f64; 20] {
+        let st = GeodesicState::from_array(&[s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7]]);
+        let (v, f) = self.metric.hamilton(st.x, st.p);
+        let gam = self.metric.christoffel(st.x);
+        let u = v.to_array();
+        let mut out = [0.0; 20];
+        let head = [v.t, v.x, v.y, v.z, f.t, f.x, f.y, f.z];
+        for i in 0..8 {
+            out[i] = self.sign * head[i];
+        }
+        for k in 0..3 {
+            let e = &s[8 + 4 * k..12 + 4 * k];
+            for mu in 0..4 {
+                let mut d = 0.0;
+                for a in 0..4 {
+                    for b in 0..4 {
+                        d -= gam[mu][a][b] * u[a] * e[b];
+                    }
+                }
+                out[8 + 4 * k + mu] = self.sign * d;
+            }
+        }
+        out
+    }
+}
+
+/// Why a worldline could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum WorldlineError {
+    #[error("the free-fall worldline could not be integrated ({0})")]
+    Integration(&'static str),
+}
+
+impl Worldline {
+    /// Builds the worldline covering coordinate times [t_min, t_max] (as far as it reaches).
+    pub fn new(
+        metric: Metric,
+        motion: &Motion,
+        t_min: f64,
+        t_max: f64,
+    ) -> Result<Worldline, WorldlineError> {
+        match *motion {
+            Motion::Rest { position } => {
+                let p = Event::new(0.0, position.x, position.y, position.z);
+                Ok(Worldline::Rest {
+                    position: p,
+                    frame: metric.static_frame(p),
+                    gamma: metric.christoffel(p),
+                    metric: metric.metric(p),
+                })
+            }
+            Motion::Geodesic { start, velocity } => {
+                let frame = boost(&metric.static_frame(start), velocity);
+                let g = Geodesic::from_tangent(
+                    &metric,
+                    spacetime::GeodesicKind::Timelike,
+                    start,
+                    frame.e[0],
+                );
+                let mut s0 = [0.0; 20];
+                s0[..8].copy_from_slice(&g.start.to_array());
+                for k in 0..3 {
+                    s0[8 + 4 * k..12 + 4 * k].copy_from_slice(&frame.e[k + 1].to_array());
+                }
+                let fwd = integrate(metric, s0, 1.0, |t| t > t_max)?;
+                let bwd = integrate(metric, s0, -1.0, |t| t < t_min)?;
+                let mut table: Vec<(f64, f64)> =
+                    bwd.iter().rev().map(|s| (s.y1[0], -s.lambda1())).collect();
+                table.push((s0[0], 0.0));
+                table.extend(fwd.iter().map(|s| (s.y1[0], s.lambda1())));
+                let tau_min = -bwd.last().map_or(0.0, |s| s.lambda1());
+                let tau_max = fwd.last().map_or(0.0, |s| s.lambda1());
+                Ok(Worldline::Free(FreeFall {
+                    forward: fwd,
+                    backward: bwd,
+                    start: s0,
+                    table,
+                    tau_min,
+                    tau_max,
+                }))
+            }
+        }
+    }
+
+    /// The worldline point at proper time τ (None outside the integrated range).
+    pub fn at(&self, metric: &Metric, tau: f64) -> Option<WorldPoint> {
+        match self {
+            Worldline::Rest {
+                position, frame, ..
+            } => Some(WorldPoint {
+                tau,
+                event: Event::new(tau, position.x, position.y, position.z),
+                frame: *frame,
+            }),
+            Worldline::Free(f) => {
+                let s = f.state(tau)?;
+                let x = Event::new(s[0], s[1], s[2], s[3]);
+                let u = metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
+                let e = |k: usize| {
+                    FourVector::new(s[8 + 4 * k], s[9 + 4 * k], s[10 + 4 * k], s[11 + 4 * k])
+                };
+                Some(WorldPoint {
+                    tau,
+                    event: x,
+                    frame: Tetrad {
+                        e: [u, e(0), e(1), e(2)],
+                    },
+                })
+            }
+        }
+    }
+
+    /// A first guess of the proper time at which the worldline has coordinate time `t`.
+    pub fn tau_guess(&self, t: f64) -> f64 {
+        match self {
+            Worldline::Rest { .. } => t,
+            Worldline::Free(f) => {
+                let i = f.table.partition_point(|&(ti, _)| ti < t);
+                if i == 0 {
+                    f.table[0].1
+                } else if i >= f.table.len() {
+                    f.table[f.table.len() - 1].1
+                } else {
+                    let ((t0, u0), (t1, u1)) = (f.table[i - 1], f.table[i]);
+                    if t1 > t0 {
+                        u0 + (u1 - u0) * (t - t0) / (t1 - t0)
+                    } else {
+                        u0
+                    }
+                }
+            }
+        }
+    }
+
+    /// Expresses the ray point `x` in the rest frame of the worldline point simultaneous
+    /// with it, starting the search at `tau_guess`. None if the match leaves the worldline.
+    pub fn localize(&self, metric: &Metric, x: Event, tau_guess: f64) -> Option<LocalPoint> {
+        match self {
+            Worldline::Rest {
+                position,
+                frame,
+                gamma,
+                metric: g,
+            } => {
+                // Static: u = ∂t, g and Γ do not depend on t; iterate the same condition.
+                let mut t = tau_guess;
+                let mut xi = [0.0; 4];
+                for _ in 0..3 {
+                    let p = Event::new(t, position.x, position.y, position.z);
+                    xi = local_coords(g, gamma, frame, p, x);
+                    t += xi[0];
+                }
+                let at = WorldPoint {
+                    tau: t,
+                    event: Event::new(t, position.x, position.y, position.z),
+                    frame: *frame,
+                };
+                Some(LocalPoint {
+                    at,
+                    xi: [xi[1], xi[2], xi[3]],
+                })
+            }
+            Worldline::Free(_) => {
+                let mut tau = tau_guess;
+                for _ in 0..4 {
+                    let p = self.at(metric, tau)?;
+                    let xi = local_coords(
+                        &metric.metric(p.event),
+                        &metric.christoffel(p.event),
+                        &p.frame,
+                        p.event,
+                        x,
+                    );
+                    if xi[0].abs() < 1e-13 {
+                        return Some(LocalPoint {
+                            at: p,
+                            xi: [xi[1], xi[2], xi[3]],
+                        });
+                    }
+                    tau += xi[0];
+                }
+                let p = self.at(metric, tau)?;
+                let xi = local_coords(
+                    &metric.metric(p.event),
+                    &metric.christoffel(p.event),
+                    &p.frame,
+                    p.event,
+                    x,
+                );
+                Some(LocalPoint {
+                    at: p,
+                    xi: [xi[1], xi[2], xi[3]],
+                })
+            }
+        }
+    }
+}
+
+/// Rest-frame components (ξ⁰, ξ¹, ξ², ξ³) of the displacement from `p` to `x`, in Riemann
+/// normal coordinates to second order, projected on the orthonormal `frame` at `p`.
+fn local_coords(
+    g: &[[f64; 4]; 4],
+    gamma: &Christoffel,
+    frame: &Tetrad,
+    p: Event,
+    x: Event,
+) -> [f64; 4] {
+    let d = (x - p).to_array();
+    let mut xi = d;
+    for mu in 0..4 {
+        let mut c = 0.0;
+        for a in 0..4 {
+            for b in 0..4 {
+                c += gamma[mu][a][b] * d[a] * d[b];
+            }
+        }
+        xi[mu] += 0.5 * c;
+    }
+    let mut out = [0.0; 4];
+    for (k, e) in frame.e.iter().enumerate() {
+        let e = e.to_array();
+        let mut s = 0.0;
+        for m in 0..4 {
+            for n in 0..4 {
+                s += g[m][n] * e[m] * xi[n];
+            }
+        }
+        out[k] = if k == 0 { -s } else { s };
+    }
+    out
+}
+
+/// Integrates the transported geodesic in the direction `sign` of proper time until `done(t)`.
+fn integrate(
+    metric: Metric,
+    s0: [f64; 20],
+    sign: f64,
+    done: impl Fn(f64) -> bool,
+) -> Result<Vec<DenseStep<20>>, WorldlineError> {
+    let tol = Tolerances {
+        rtol: 1e-11,
+        atol: 1e-11,
+        h_max: 0.25,
+        h_min: 1e-12,
+    };
+    let mut ode = Dop853::new(Transport { metric, sign }, 0.0, s0, tol, None);
+    let mut steps = Vec::new();
+    // A bound for worldlines whose coordinate time never reaches the range (e.g. beyond the
+    // horizon): they are simply not visible outside the range they cover.
+    while !done(ode.state()[0]) && steps.len() < 200_000 {
+        match ode.step() {
+            StepOutcome::Accepted => steps.push(ode.dense()),
+            StepOutcome::Stalled => return Err(WorldlineError::Integration("step size collapsed")),
+            StepOutcome::NonFinite => return Err(WorldlineError::Integration("non-finite values")),
+        }
+    }
+    Ok(steps)
+}
+
+impl FreeFall {
+    fn state(&self, tau: f64) -> Option<[f64; 20]> {
+        if !(tau >= self.tau_min && tau <= self.tau_max) {
+            return None;
+        }
+        if tau == 0.0 {
+            return Some(self.start);
+        }
+        let (steps, s) = if tau > 0.0 {
+            (&self.forward, tau)
+        } else {
+            (&self.backward, -tau)
+        };
+        let i = steps
+            .partition_point(|st| st.lambda1() < s)
+            .min(steps.len().checked_sub(1)?);
+        Some(steps[i].eval(s))
+    }
+}
