@@ -19,6 +19,13 @@ use std::f64::consts::PI;
 /// of the frame within one step.
 const RATE_MARGIN: f64 = 1.5;
 
+/// Beyond this first-order rest-frame distance (in units of a, plus radii) a local object
+/// is "far": its distance is only estimated, divided by FAR_SLACK to stay a lower bound
+/// (the second-order terms change distances below ~1 by well under 30 %).
+const FAR_DISTANCE: f64 = 0.5;
+const FAR_RADII: f64 = 3.0;
+const FAR_SLACK: f64 = 1.3;
+
 /// A runtime object ready for intersection.
 #[derive(Clone, Debug)]
 pub enum Target {
@@ -87,15 +94,21 @@ impl Target {
                 } else {
                     worldline.tau_guess(s.x.t)
                 };
-                match worldline.localize(metric, s.x, seed) {
+                let far = FAR_DISTANCE * metric.godel_a().unwrap_or(1.0) + FAR_RADII * radius;
+                match worldline.localize(metric, s.x, seed, far) {
                     Some(lp) => {
-                        let d = norm3(lp.xi);
+                        let d = if lp.exact {
+                            norm3(lp.xi)
+                        } else {
+                            norm3(lp.xi) / FAR_SLACK
+                        };
                         // Local photon energy −k·u: the ray's speed in the rest frame.
                         let eps = lp.at.frame.e[0].contract(s.p).abs();
                         Probe {
                             f: d - radius,
                             rate: RATE_MARGIN * eps,
-                            tau: lp.at.tau,
+                            // A far match is not simultaneous: the next probe re-seeds from t.
+                            tau: if lp.exact { lp.at.tau } else { f64::NAN },
                         }
                     }
                     None => Probe::FAR,
@@ -157,7 +170,7 @@ impl Target {
                 } else {
                     worldline.tau_guess(s.x.t)
                 };
-                let lp = worldline.localize(metric, s.x, seed)?;
+                let lp = worldline.localize(metric, s.x, seed, f64::INFINITY)?;
                 let (u_emit, kl) = rest_frame_photon(metric, worldline, &lp.at, s.x, k);
                 let (u, v) = lon_lat(lp.xi);
                 let dir = normalize3([-kl[1], -kl[2], -kl[3]]);

@@ -33,6 +33,8 @@ pub struct LocalPoint {
     pub at: WorldPoint,
     /// Spatial rest-frame coordinates of the ray point relative to the object's centre.
     pub xi: [f64; 3],
+    /// Second-order (near) or only first-order (far) coordinates.
+    pub exact: bool,
 }
 
 /// Worldline of a local object.
@@ -203,7 +205,17 @@ impl Worldline {
 
     /// Expresses the ray point `x` in the rest frame of the worldline point simultaneous
     /// with it, starting the search at `tau_guess`. None if the match leaves the worldline.
-    pub fn localize(&self, metric: &Metric, x: Event, tau_guess: f64) -> Option<LocalPoint> {
+    ///
+    /// Points whose first-order rest-frame distance exceeds `far` are returned with that
+    /// first-order distance only (`exact = false`): the second-order terms matter only near
+    /// the object, and the caller treats far distances as estimates.
+    pub fn localize(
+        &self,
+        metric: &Metric,
+        x: Event,
+        tau_guess: f64,
+        far: f64,
+    ) -> Option<LocalPoint> {
         match self {
             Worldline::Rest {
                 position,
@@ -211,13 +223,30 @@ impl Worldline {
                 gamma,
                 metric: g,
             } => {
-                // Static: u = ∂t, g and Γ do not depend on t; iterate the same condition.
-                let mut t = tau_guess;
-                let mut xi = [0.0; 4];
-                for _ in 0..3 {
-                    let p = Event::new(t, position.x, position.y, position.z);
-                    xi = local_coords(g, gamma, frame, p, x);
-                    t += xi[0];
+                // Static: u = ∂t; g(u, Δ) = 0 fixes Δt = g_ti Δ^i at first order.
+                let dx = [x.x - position.x, x.y - position.y, x.z - position.z];
+                let dt = g[0][1] * dx[0] + g[0][2] * dx[1] + g[0][3] * dx[2];
+                let mut t = x.t - dt;
+                let first = local_coords(
+                    g,
+                    None,
+                    frame,
+                    Event::new(t, position.x, position.y, position.z),
+                    x,
+                );
+                let mut xi = first;
+                let exact = norm3(&first) <= far;
+                if exact {
+                    for _ in 0..2 {
+                        xi = local_coords(
+                            g,
+                            Some(gamma),
+                            frame,
+                            Event::new(t, position.x, position.y, position.z),
+                            x,
+                        );
+                        t += xi[0];
+                    }
                 }
                 let at = WorldPoint {
                     tau: t,
@@ -227,63 +256,79 @@ impl Worldline {
                 Some(LocalPoint {
                     at,
                     xi: [xi[1], xi[2], xi[3]],
+                    exact,
                 })
             }
             Worldline::Free(_) => {
+                // The first-order spatial distance |ξ| from the worldline does not depend on
+                // which nearby worldline point is used (moving along u changes ξ⁰ only), so a
+                // far point needs one evaluation.
                 let mut tau = tau_guess;
-                for _ in 0..4 {
-                    let p = self.at(metric, tau)?;
-                    let xi = local_coords(
-                        &metric.metric(p.event),
-                        &metric.christoffel(p.event),
-                        &p.frame,
-                        p.event,
-                        x,
-                    );
-                    if xi[0].abs() < 1e-13 {
-                        return Some(LocalPoint {
-                            at: p,
-                            xi: [xi[1], xi[2], xi[3]],
-                        });
-                    }
-                    tau += xi[0];
+                let mut p = self.at(metric, tau)?;
+                let mut g = metric.metric(p.event);
+                let first = local_coords(&g, None, &p.frame, p.event, x);
+                if norm3(&first) > far {
+                    return Some(LocalPoint {
+                        at: p,
+                        xi: [first[1], first[2], first[3]],
+                        exact: false,
+                    });
                 }
+                // Near: Newton on the first-order simultaneity g(u, Δ) = 0 (dξ⁰/dτ ≈ −1).
+                let mut xi0 = first[0];
+                for _ in 0..8 {
+                    tau += xi0;
+                    p = self.at(metric, tau)?;
+                    g = metric.metric(p.event);
+                    let last = xi0;
+                    xi0 = local_coords(&g, None, &p.frame, p.event, x)[0];
+                    if last.abs() < 1e-12 {
+                        break;
+                    }
+                }
+                // Second order near the object: one more Newton step on the full ξ⁰.
+                let gamma = metric.christoffel(p.event);
+                let xi = local_coords(&g, Some(&gamma), &p.frame, p.event, x);
+                tau += xi[0];
                 let p = self.at(metric, tau)?;
-                let xi = local_coords(
-                    &metric.metric(p.event),
-                    &metric.christoffel(p.event),
-                    &p.frame,
-                    p.event,
-                    x,
-                );
+                let g = metric.metric(p.event);
+                let xi = local_coords(&g, Some(&gamma), &p.frame, p.event, x);
                 Some(LocalPoint {
                     at: p,
                     xi: [xi[1], xi[2], xi[3]],
+                    exact: true,
                 })
             }
         }
     }
 }
 
+fn norm3(xi: &[f64; 4]) -> f64 {
+    (xi[1] * xi[1] + xi[2] * xi[2] + xi[3] * xi[3]).sqrt()
+}
+
 /// Rest-frame components (ξ⁰, ξ¹, ξ², ξ³) of the displacement from `p` to `x`, in Riemann
-/// normal coordinates to second order, projected on the orthonormal `frame` at `p`.
+/// normal coordinates to second order when `gamma` (Γ at `p`) is given, else to first
+/// order, projected on the orthonormal `frame` at `p`.
 fn local_coords(
     g: &[[f64; 4]; 4],
-    gamma: &Christoffel,
+    gamma: Option<&Christoffel>,
     frame: &Tetrad,
     p: Event,
     x: Event,
 ) -> [f64; 4] {
     let d = (x - p).to_array();
     let mut xi = d;
-    for mu in 0..4 {
-        let mut c = 0.0;
-        for a in 0..4 {
-            for b in 0..4 {
-                c += gamma[mu][a][b] * d[a] * d[b];
+    if let Some(gamma) = gamma {
+        for mu in 0..4 {
+            let mut c = 0.0;
+            for a in 0..4 {
+                for b in 0..4 {
+                    c += gamma[mu][a][b] * d[a] * d[b];
+                }
             }
+            xi[mu] += 0.5 * c;
         }
-        xi[mu] += 0.5 * c;
     }
     let mut out = [0.0; 4];
     for (k, e) in frame.e.iter().enumerate() {
