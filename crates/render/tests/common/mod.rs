@@ -1,0 +1,230 @@
+//! Helpers shared by the renderer's integration tests: scenes from TOML text, rendering,
+//! connected groups of hit pixels, the panorama's pixel geometry (DESIGN.md "Cameras"),
+//! and an independent numeric shoot-and-solve for the light rays connecting the observer
+//! on the Gödel axis with a static point (built on `spacetime::trace` only, not on the
+//! renderer).
+#![allow(dead_code)]
+
+use render::datafile::DataFile;
+use render::driver::{render, NoProgress, RenderStats};
+use scene::Scene;
+use spacetime::{
+    trace, Event, Geodesic, Godel, Metric, Spacetime, TimeDirection, TraceLimits, TracedGeodesic,
+};
+use std::f64::consts::{PI, TAU};
+
+/// A validated scene from TOML text (panics with the located error otherwise).
+pub fn scene(text: &str) -> Scene {
+    Scene::from_str(text, "test.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// Renders on the current rayon pool.
+pub fn render_scene(s: &Scene) -> (DataFile, RenderStats) {
+    render(s, &NoProgress).expect("render")
+}
+
+/// Connected groups of hit pixels (8-connectivity). With `wrap`, column 0 and column
+/// W − 1 are neighbours (a 360° panorama). Each group is a list of (col, row).
+pub fn groups(d: &DataFile, wrap: bool) -> Vec<Vec<(usize, usize)>> {
+    let (w, h) = (d.width, d.height);
+    let mut label = vec![usize::MAX; w * h];
+    let mut out = Vec::new();
+    for start in 0..w * h {
+        if !d.records[start].is_hit() || label[start] != usize::MAX {
+            continue;
+        }
+        let id = out.len();
+        let mut group = Vec::new();
+        let mut stack = vec![start];
+        label[start] = id;
+        while let Some(i) = stack.pop() {
+            let (c, r) = (i % w, i / w);
+            group.push((c, r));
+            for dr in -1i64..=1 {
+                for dc in -1i64..=1 {
+                    let rr = r as i64 + dr;
+                    let mut cc = c as i64 + dc;
+                    if rr < 0 || rr >= h as i64 {
+                        continue;
+                    }
+                    if cc < 0 || cc >= w as i64 {
+                        if !wrap {
+                            continue;
+                        }
+                        cc = cc.rem_euclid(w as i64);
+                    }
+                    let j = rr as usize * w + cc as usize;
+                    if d.records[j].is_hit() && label[j] == usize::MAX {
+                        label[j] = id;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        out.push(group);
+    }
+    out
+}
+
+/// Wraps an angle into [−π, π).
+pub fn wrap_pi(a: f64) -> f64 {
+    (a + PI).rem_euclid(TAU) - PI
+}
+
+/// Fractional column of the panorama direction with camera azimuth `alpha` (radians,
+/// positive to the right): the pixel containing it is `floor`, its centre is at `+ 0.5`
+/// (DESIGN.md: α = h_fov·((col + ½)/W − ½)).
+pub fn panorama_col(alpha: f64, h_fov: f64, width: usize) -> f64 {
+    width as f64 * (alpha / h_fov + 0.5)
+}
+
+/// Fractional row of elevation `beta` (β = v_fov·(½ − (row + ½)/H)).
+pub fn panorama_row(beta: f64, v_fov: f64, height: usize) -> f64 {
+    height as f64 * (0.5 - beta / v_fov)
+}
+
+/// Circular distance between two columns of a 360° panorama.
+pub fn col_dist_wrapped(a: f64, b: f64, width: usize) -> f64 {
+    let w = width as f64;
+    let d = (a - b).rem_euclid(w);
+    d.min(w - d)
+}
+
+/// Circular mean of the pixel-centre columns of a group (360° panorama).
+pub fn circular_mean_col(group: &[(usize, usize)], width: usize) -> f64 {
+    let (mut s, mut c) = (0.0, 0.0);
+    for &(col, _) in group {
+        let a = TAU * (col as f64 + 0.5) / width as f64;
+        s += a.sin();
+        c += a.cos();
+    }
+    (s.atan2(c).rem_euclid(TAU)) * width as f64 / TAU
+}
+
+/// The Gödel metric with parameter a.
+pub fn godel(a: f64) -> Metric {
+    Metric::Godel(Godel::new(a))
+}
+
+/// The backward (past-directed) light ray leaving the origin event along the in-plane local
+/// direction with azimuth `az` (counter-clockwise from e_x), integrated for one loop.
+pub fn backward_ray(metric: Metric, a: f64, az: f64) -> TracedGeodesic {
+    let o = Event::new(0.0, 0.0, 0.0, 0.0);
+    let frame = metric.static_frame(o);
+    let g = Geodesic::launch(
+        &metric,
+        o,
+        &frame,
+        [az.cos(), az.sin(), 0.0],
+        1.0,
+        TimeDirection::Past,
+    )
+    .unwrap();
+    let t = trace(metric, &g, &TraceLimits::one_loop(a));
+    assert!(!t.stop.is_failure(), "{:?}", t.stop);
+    t
+}
+
+/// Closest approach of a ray to the point (cx, cy, 0), on the outbound (`first_half`) or
+/// inbound half of the loop (split at the largest r): (signed distance, λ there). The sign
+/// is that of the z component of (X − C) × Ẋ, so it changes sign as the ray sweeps across C.
+pub fn closest_approach(
+    metric: Metric,
+    ray: &TracedGeodesic,
+    c: [f64; 2],
+    first_half: bool,
+) -> (f64, f64) {
+    let n = 800;
+    let samples = ray.samples(n);
+    let imax = (0..n)
+        .max_by(|&i, &j| {
+            let ri = samples[i].1.x.r();
+            let rj = samples[j].1.x.r();
+            ri.total_cmp(&rj)
+        })
+        .unwrap();
+    let range = if first_half { 0..imax + 1 } else { imax..n };
+    let d2 = |l: f64| {
+        let s = ray.state_at(l).x;
+        (s.x - c[0]).powi(2) + (s.y - c[1]).powi(2)
+    };
+    let best = range
+        .clone()
+        .min_by(|&i, &j| d2(samples[i].0).total_cmp(&d2(samples[j].0)))
+        .unwrap();
+    // Golden-section refinement between the neighbouring samples.
+    let mut lo = samples[best.saturating_sub(1)].0;
+    let mut hi = samples[(best + 1).min(n - 1)].0;
+    let gr = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..200 {
+        let m1 = hi - gr * (hi - lo);
+        let m2 = lo + gr * (hi - lo);
+        if d2(m1) < d2(m2) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    let l = 0.5 * (lo + hi);
+    let s = ray.state_at(l);
+    let v = metric.raise(s.x, s.p);
+    let cross = (s.x.x - c[0]) * v.y - (s.x.y - c[1]) * v.x;
+    let dist = d2(l).sqrt();
+    (dist * cross.signum(), l)
+}
+
+/// All in-plane azimuths (in [0, 2π)) whose backward ray from the origin passes through
+/// (cx, cy, 0) on the given half of its first loop: a scan in azimuth for sign changes of
+/// the signed closest approach, each refined by bisection and kept if the distance
+/// vanishes. Returns (azimuth, coordinate time at the crossing).
+pub fn connecting_rays(a: f64, c: [f64; 2], first_half: bool) -> Vec<(f64, f64)> {
+    let m = godel(a);
+    let f = |az: f64| closest_approach(m, &backward_ray(m, a, az), c, first_half).0;
+    let n = 72;
+    let azs: Vec<f64> = (0..=n).map(|i| TAU * i as f64 / n as f64).collect();
+    let fs: Vec<f64> = azs.iter().map(|&az| f(az)).collect();
+    let mut out = Vec::new();
+    for i in 0..n {
+        if (fs[i] > 0.0) == (fs[i + 1] > 0.0) {
+            continue;
+        }
+        let (mut lo, mut hi, flo) = (azs[i], azs[i + 1], fs[i]);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if (f(mid) > 0.0) == (flo > 0.0) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let az = 0.5 * (lo + hi);
+        let ray = backward_ray(m, a, az);
+        let (d, l) = closest_approach(m, &ray, c, first_half);
+        if d.abs() < 1e-7 {
+            out.push((az.rem_euclid(TAU), ray.state_at(l).x.t));
+        }
+    }
+    out
+}
+
+/// Formulary §2/§5: Φ(θ) = arctan(q tan θ), continuous in θ.
+pub fn big_phi(q: f64, theta: f64) -> f64 {
+    let (s, c) = theta.sin_cos();
+    theta + ((q - 1.0) * s * c).atan2(c * c + q * s * s)
+}
+
+/// Formulary §5 closed form: image azimuths (counter-clockwise from e_x) and delays of a
+/// static point at (ρ, φ_c, 0) seen from the origin: [(az_1, Δt_1), (az_2, Δt_2)].
+pub fn closed_form_images(a: f64, rho: f64, phi_c: f64) -> [(f64, f64); 2] {
+    let th1 = (rho / (2.0 * a)).asin();
+    let th2 = PI - th1;
+    let q = 2f64.sqrt();
+    let img = |th: f64| {
+        let p = big_phi(q, th);
+        (
+            (phi_c + p).rem_euclid(TAU),
+            2.0 * 2f64.sqrt() * a * p - 2.0 * a * th,
+        )
+    };
+    [img(th1), img(th2)]
+}
