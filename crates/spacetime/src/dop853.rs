@@ -206,25 +206,117 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 return StepOutcome::Stalled;
             }
             self.k[0] = self.f;
-            for s in 1..12 {
-                let mut ys = self.y;
-                for (j, a) in A[s].iter().enumerate().take(s) {
-                    if *a != 0.0 {
-                        for i in 0..N {
-                            ys[i] += h * a * self.k[j][i];
-                        }
-                    }
-                }
-                self.k[s] = self.sys.rhs(&ys);
-            }
-            let mut y_new = self.y;
-            for (j, b) in B.iter().enumerate() {
-                if *b != 0.0 {
-                    for i in 0..N {
-                        y_new[i] += h * b * self.k[j][i];
-                    }
-                }
-            }
+            // Stages with their non-zero coefficients only, as straight-line code.
+            self.k[1] = self.sys.rhs(&lincomb(&self.y, h, [(0, A[1][0])], &self.k));
+            self.k[2] = self
+                .sys
+                .rhs(&lincomb(&self.y, h, [(0, A[2][0]), (1, A[2][1])], &self.k));
+            self.k[3] = self
+                .sys
+                .rhs(&lincomb(&self.y, h, [(0, A[3][0]), (2, A[3][2])], &self.k));
+            self.k[4] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [(0, A[4][0]), (2, A[4][2]), (3, A[4][3])],
+                &self.k,
+            ));
+            self.k[5] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [(0, A[5][0]), (3, A[5][3]), (4, A[5][4])],
+                &self.k,
+            ));
+            self.k[6] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [(0, A[6][0]), (3, A[6][3]), (4, A[6][4]), (5, A[6][5])],
+                &self.k,
+            ));
+            self.k[7] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [
+                    (0, A[7][0]),
+                    (3, A[7][3]),
+                    (4, A[7][4]),
+                    (5, A[7][5]),
+                    (6, A[7][6]),
+                ],
+                &self.k,
+            ));
+            self.k[8] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [
+                    (0, A[8][0]),
+                    (3, A[8][3]),
+                    (4, A[8][4]),
+                    (5, A[8][5]),
+                    (6, A[8][6]),
+                    (7, A[8][7]),
+                ],
+                &self.k,
+            ));
+            self.k[9] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [
+                    (0, A[9][0]),
+                    (3, A[9][3]),
+                    (4, A[9][4]),
+                    (5, A[9][5]),
+                    (6, A[9][6]),
+                    (7, A[9][7]),
+                    (8, A[9][8]),
+                ],
+                &self.k,
+            ));
+            self.k[10] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [
+                    (0, A[10][0]),
+                    (3, A[10][3]),
+                    (4, A[10][4]),
+                    (5, A[10][5]),
+                    (6, A[10][6]),
+                    (7, A[10][7]),
+                    (8, A[10][8]),
+                    (9, A[10][9]),
+                ],
+                &self.k,
+            ));
+            self.k[11] = self.sys.rhs(&lincomb(
+                &self.y,
+                h,
+                [
+                    (0, A[11][0]),
+                    (3, A[11][3]),
+                    (4, A[11][4]),
+                    (5, A[11][5]),
+                    (6, A[11][6]),
+                    (7, A[11][7]),
+                    (8, A[11][8]),
+                    (9, A[11][9]),
+                    (10, A[11][10]),
+                ],
+                &self.k,
+            ));
+            let y_new = lincomb(
+                &self.y,
+                h,
+                [
+                    (0, B[0]),
+                    (5, B[5]),
+                    (6, B[6]),
+                    (7, B[7]),
+                    (8, B[8]),
+                    (9, B[9]),
+                    (10, B[10]),
+                    (11, B[11]),
+                ],
+                &self.k,
+            );
             self.evaluations += 11;
             if !y_new.iter().all(|v| v.is_finite()) {
                 // Retry smaller: a step into a region the RHS cannot handle is not yet fatal.
@@ -285,17 +377,51 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
         let h = self.last_h;
         let mut k = [[0.0; N]; 16];
         k[..13].copy_from_slice(&self.k);
-        for s in 13..16 {
-            let mut ys = self.last_y;
-            for (j, a) in A[s].iter().enumerate().take(s) {
-                if *a != 0.0 {
-                    for i in 0..N {
-                        ys[i] += h * a * k[j][i];
-                    }
-                }
-            }
-            k[s] = self.sys.rhs(&ys);
-        }
+        k[13] = self.sys.rhs(&lincomb(
+            &self.last_y,
+            h,
+            [
+                (0, A[13][0]),
+                (6, A[13][6]),
+                (7, A[13][7]),
+                (8, A[13][8]),
+                (9, A[13][9]),
+                (10, A[13][10]),
+                (11, A[13][11]),
+                (12, A[13][12]),
+            ],
+            &k,
+        ));
+        k[14] = self.sys.rhs(&lincomb(
+            &self.last_y,
+            h,
+            [
+                (0, A[14][0]),
+                (5, A[14][5]),
+                (6, A[14][6]),
+                (7, A[14][7]),
+                (10, A[14][10]),
+                (11, A[14][11]),
+                (12, A[14][12]),
+                (13, A[14][13]),
+            ],
+            &k,
+        ));
+        k[15] = self.sys.rhs(&lincomb(
+            &self.last_y,
+            h,
+            [
+                (0, A[15][0]),
+                (5, A[15][5]),
+                (6, A[15][6]),
+                (7, A[15][7]),
+                (8, A[15][8]),
+                (12, A[15][12]),
+                (13, A[15][13]),
+                (14, A[15][14]),
+            ],
+            &k,
+        ));
         self.evaluations += 3;
         let mut f = [[0.0; N]; 7];
         for i in 0..N {
@@ -320,6 +446,28 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
             f,
         }
     }
+}
+
+/// y + h Σ c_j k_j over the listed (j, c_j): a fixed-size list per stage, so the compiler
+/// unrolls and vectorizes it.
+#[inline(always)]
+fn lincomb<const N: usize, const M: usize, const K: usize>(
+    y: &[f64; N],
+    h: f64,
+    terms: [(usize, f64); M],
+    k: &[[f64; N]; K],
+) -> [f64; N] {
+    let mut acc = [0.0; N];
+    for (j, c) in terms {
+        for i in 0..N {
+            acc[i] += c * k[j][i];
+        }
+    }
+    let mut out = *y;
+    for i in 0..N {
+        out[i] += h * acc[i];
+    }
+    out
 }
 
 // Butcher tableau of DOP853 (rows 12..=15: the FSAL stage and the three dense-output stages).

@@ -123,18 +123,23 @@ macro_rules! dispatch {
 }
 
 impl Spacetime for Metric {
+    #[inline]
     fn metric(&self, x: Event) -> MetricTensor {
         dispatch!(self, m => m.metric(x))
     }
+    #[inline]
     fn inverse_metric(&self, x: Event) -> MetricTensor {
         dispatch!(self, m => m.inverse_metric(x))
     }
+    #[inline]
     fn metric_derivatives(&self, x: Event) -> [MetricTensor; 4] {
         dispatch!(self, m => m.metric_derivatives(x))
     }
+    #[inline]
     fn hamilton(&self, x: Event, p: Covector) -> (FourVector, Covector) {
         dispatch!(self, m => m.hamilton(x, p))
     }
+    #[inline]
     fn static_frame(&self, x: Event) -> Tetrad {
         dispatch!(self, m => m.static_frame(x))
     }
