@@ -256,3 +256,115 @@ fn moving_sphere_is_blue_when_approaching_and_red_when_receding() {
         assert!(data.records.iter().all(|r| !r.is_hit() || r.g > 0.0));
     }
 }
+
+/// Smallest proper distance, in the static frame at the sphere's centre C, between C and the
+/// backward ray with azimuth `az` on one half of its loop: h(Δ, Δ) with the static
+/// observer's spatial metric h_ij = g_ij + g_ti g_tj at C (g_tt = −1), Δ = X − C in
+/// (x, y, z). This is the local sphere's rest-frame distance to first order in Δ (the
+/// renderer's second-order terms change it by O(Γ R²) ≈ 0.005 at R = 0.1).
+fn proper_closest(az: f64, first_half: bool) -> f64 {
+    let m = godel(A);
+    let c = centre();
+    let g = m.metric(spacetime::Event::new(0.0, c[0], c[1], 0.0));
+    let h = |i: usize, j: usize| g[i][j] + g[0][i] * g[0][j];
+    let ray = backward_ray(m, A, az);
+    let n = 800;
+    let samples = ray.samples(n);
+    let imax = (0..n)
+        .max_by(|&i, &j| samples[i].1.x.r().total_cmp(&samples[j].1.x.r()))
+        .unwrap();
+    let d2 = |l: f64| {
+        let x = ray.state_at(l).x;
+        let dx = [x.x - c[0], x.y - c[1], x.z];
+        let mut s = 0.0;
+        for i in 0..3 {
+            for j in 0..3 {
+                s += h(i + 1, j + 1) * dx[i] * dx[j];
+            }
+        }
+        s
+    };
+    let range = if first_half { 0..imax + 1 } else { imax..n };
+    let best = range
+        .min_by(|&i, &j| d2(samples[i].0).total_cmp(&d2(samples[j].0)))
+        .unwrap();
+    let (mut lo, mut hi) = (
+        samples[best.saturating_sub(1)].0,
+        samples[(best + 1).min(n - 1)].0,
+    );
+    let gr = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..100 {
+        let (m1, m2) = (hi - gr * (hi - lo), lo + gr * (hi - lo));
+        if d2(m1) < d2(m2) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    d2(0.5 * (lo + hi)).sqrt()
+}
+
+/// The azimuth between `inside` (distance < R) and `outside` where the distance is R.
+fn edge(inside: f64, outside: f64, first_half: bool) -> f64 {
+    let (mut a, mut b) = (inside, outside);
+    for _ in 0..40 {
+        let m = 0.5 * (a + b);
+        if proper_closest(m, first_half) < RADIUS {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+#[test]
+fn static_sphere_images_have_the_width_of_a_ball_of_proper_radius_r() {
+    let images = solved_images();
+    let s = panorama_scene(
+        "static-edges",
+        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
+        4.0,
+    );
+    let (d, _) = render_scene(&s);
+    for (k, &(az, _)) in images.iter().enumerate() {
+        let first_half = k == 0;
+        // Step outward from the centre ray in 0.5° steps until the ray misses, then bisect.
+        let mut edges = [0.0; 2];
+        for (e, sign) in [(0, -1.0), (1, 1.0)] {
+            let step = sign * 0.5f64.to_radians();
+            let mut inside = az;
+            while proper_closest(inside + step, first_half) < RADIUS {
+                inside += step;
+            }
+            edges[e] = edge(inside, inside + step, first_half);
+        }
+        // Columns of the edges (α = −az reverses the order).
+        let (c_lo, c_hi) = (col_of(edges[1]), col_of(edges[0]));
+        let c_lo = c_lo.min(c_hi + if c_hi < c_lo { W as f64 } else { 0.0 });
+        let width = (edges[1] - edges[0]).to_degrees();
+        eprintln!(
+            "image {k}: predicted columns {c_lo:.3} .. {:.3} ({width:.3}°)",
+            c_lo + width
+        );
+        // Each middle-row pixel whose centre is clearly inside (outside) is hit (missed).
+        for i in -25i64..25 {
+            let col = (c_lo.floor() as i64 + i).rem_euclid(W as i64) as usize;
+            let mut centre = col as f64 + 0.5;
+            if centre < c_lo - W as f64 / 2.0 {
+                centre += W as f64;
+            }
+            let (to_lo, to_hi) = (centre - c_lo, c_lo + width - centre);
+            if to_lo.abs() < 0.3 || to_hi.abs() < 0.3 {
+                continue; // within 0.3 px of an edge: either way
+            }
+            let expected = to_lo > 0.0 && to_hi > 0.0;
+            assert_eq!(
+                d.record(col, MID_ROW).is_hit(),
+                expected,
+                "image {k}, column {col} (edges at {c_lo:.3}, {:.3})",
+                c_lo + width
+            );
+        }
+    }
+}
