@@ -259,11 +259,13 @@ impl Worldline {
                     exact,
                 })
             }
-            Worldline::Free(_) => {
+            Worldline::Free(ff) => {
                 // The first-order spatial distance |ξ| from the worldline does not depend on
                 // which nearby worldline point is used (moving along u changes ξ⁰ only), so a
                 // far point needs one evaluation.
-                let mut tau = tau_guess;
+                // Start inside the integrated range: far points (whose rest-frame "now" may
+                // lie beyond it) still get a finite distance, so no step is skipped.
+                let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
                 let mut p = self.at(metric, tau)?;
                 let mut g = metric.metric(p.event);
                 let first = local_coords(&g, None, &p.frame, p.event, x);

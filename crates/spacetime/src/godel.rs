@@ -27,13 +27,21 @@ use std::f64::consts::SQRT_2;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Godel {
     pub a: f64,
+    /// k = 1/4a² and b = √2/a, precomputed: the integrator's right-hand side then needs
+    /// a single division.
+    k: f64,
+    b: f64,
 }
 
 impl Godel {
     /// The Gödel metric; `a` must be positive and finite (checked by callers that parse input).
     pub fn new(a: f64) -> Self {
         debug_assert!(a > 0.0 && a.is_finite());
-        Godel { a }
+        Godel {
+            a,
+            k: 0.25 / (a * a),
+            b: SQRT_2 / a,
+        }
     }
     /// Radius of the optical horizon, r_G = 2a.
     pub fn horizon_radius(&self) -> f64 {
@@ -106,9 +114,7 @@ impl Spacetime for Godel {
 
     #[inline]
     fn hamilton(&self, e: Event, p: Covector) -> (FourVector, Covector) {
-        let (x, y, a) = (e.x, e.y, self.a);
-        let k = 0.25 / (a * a);
-        let b = SQRT_2 / a;
+        let (x, y, k, b) = (e.x, e.y, self.k, self.b);
         let c = 1.0 / (1.0 + k * (x * x + y * y));
         let pt = p.t;
         let l = x * p.y - y * p.x;

@@ -1,0 +1,64 @@
+//! Renderer speed on the benchmark scenes of the renderer issue:
+//! (1) `scenes/bench-static.toml`: 440×50 panorama (220°×25°) of a sphere of radius 0.2 at
+//!     rest at (1, 0, 0), observer at rest at the origin looking along +y, rays followed
+//!     10 time units into the past; the whole render plus encoding the data file.
+//! (2) the reference scene at a reduced 440×50 (its full 2200×250 wall time is measured
+//!     with the CLI, see BENCHMARKS.md).
+//! Run: cargo bench -p render --bench render
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use render::driver::{render, NoProgress};
+use scene::Scene;
+use std::path::Path;
+
+fn scene(path: &str, width: u32, height: u32) -> Scene {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path);
+    let text = std::fs::read_to_string(&p).expect("scene file");
+    let text = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("width") {
+                format!("width = {width}")
+            } else if l.starts_with("height") {
+                format!("height = {height}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    Scene::from_str(&text, path).expect("valid scene")
+}
+
+fn bench(c: &mut Criterion) {
+    let threads = [1usize, 2];
+    for (label, path) in [
+        ("bench_static_440x50", "scenes/bench-static.toml"),
+        ("reference_440x50", "scenes/reference.toml"),
+    ] {
+        let sc = scene(path, 440, 50);
+        let mut group = c.benchmark_group(label);
+        group.sample_size(10);
+        group.throughput(Throughput::Elements(440 * 50));
+        for &n in &threads {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap();
+            group.bench_function(format!("numeric_{n}_threads_with_datafile"), |b| {
+                b.iter(|| {
+                    pool.install(|| {
+                        let (data, _) = render(&sc, &NoProgress).unwrap();
+                        data.to_bytes().unwrap().len()
+                    })
+                })
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
