@@ -5,6 +5,7 @@
 //! - [`atomic`]: write-to-temporary-then-rename for every output file.
 
 pub mod atomic;
+pub mod bounds;
 pub mod datafile;
 pub mod driver;
 pub mod record;

@@ -10,6 +10,7 @@
 //! cannot reach the surface and come back out within the step); otherwise the step's dense
 //! output is bisected. So no hit is missed between integration steps, however thin.
 
+use crate::bounds::Aabb;
 use crate::worldline::{WorldPoint, Worldline, WorldlineError};
 use scene::{Object, Shape};
 use spacetime::{Covector, Event, FourVector, GeodesicState, Metric, Spacetime};
@@ -83,6 +84,33 @@ impl Target {
             }
             Shape::Plane { height, extent } => Target::Plane { height, extent },
         })
+    }
+
+    /// A coordinate box that holds every point of the object at coordinate times in
+    /// [t0, t1]. Generous on purpose: it only decides which loops of a ray to skip.
+    pub fn bounds(&self, metric: &Metric, t0: f64, t1: f64) -> Aabb {
+        match self {
+            Target::LocalSphere { radius, worldline } => {
+                // The rest frame's "now" differs from coordinate time across the ball.
+                let dt = 4.0 * radius + 0.1;
+                let b = worldline.bounds(t0 - dt, t1 + dt);
+                // A proper length along r spans √(1 + (r/2a)²) in coordinates (formulary §4).
+                let s2 = metric.godel_a().map_or(0.0, |a| {
+                    ((b.max_radius() + 2.0 * radius) / (2.0 * a)).powi(2)
+                });
+                b.grown(2.0 * radius * (1.0 + s2).sqrt() + 0.05)
+            }
+            Target::CoordinateSphere { center, radius } => {
+                Aabb::point(*center).grown(radius * (1.0 + 1e-9))
+            }
+            Target::Plane { height, extent } => {
+                let e = extent.unwrap_or(f64::INFINITY);
+                Aabb {
+                    min: [-e, -e, *height],
+                    max: [e, e, *height],
+                }
+            }
+        }
     }
 
     /// Probe at ray state `s`; `tau_seed` is the previous match on this ray (NaN if none).

@@ -15,6 +15,7 @@
 //! Frequency shift g = (p·u_obs)/(p·u_emit) (DESIGN.md), from the photon's covariant
 //! momentum at both ends.
 
+use crate::bounds::Aabb;
 use crate::record::{PixelRecord, RayStatus};
 use crate::target::{Probe, Target};
 use spacetime::{
@@ -203,9 +204,23 @@ impl Tracer {
             return PixelRecord::miss(RayStatus::Failed); // a backward ray must go to the past
         }
         let steps = std::mem::take(&mut scratch.steps);
+        let loop_box = loop_bounds(&steps);
         let mut result = None;
         'copies: for k in 1.. {
             let shift = period.times(k as f64);
+            // Skip a loop that comes near no object (boxes in coordinates, at its times).
+            let (t_hi, t_lo) = (s0[0] + shift.dt, s0[0] + shift.dt + period.dt);
+            if t_hi < self.t_bound {
+                break;
+            }
+            let here = loop_box.shifted_z(shift.dz);
+            if !self
+                .targets
+                .iter()
+                .any(|t| t.bounds(&self.metric, t_lo, t_hi).intersects(&here))
+            {
+                continue;
+            }
             let first = shift.state(steps[0].y0);
             self.probe_all(&first, &mut scratch.start);
             for (i, d) in steps.iter().enumerate() {
@@ -323,4 +338,23 @@ impl Tracer {
             cos_i: surf.cos_i as f32,
         }
     }
+}
+
+/// A coordinate box around a stored loop: step ends and midpoints, grown by a quarter of
+/// the longest chord (an arc of one step departs from its samples far less).
+fn loop_bounds(steps: &[DenseStep<8>]) -> Aabb {
+    let mut b = Aabb::EMPTY;
+    let mut grow: f64 = 0.0;
+    for st in steps {
+        let mid = st.eval(st.lambda0 + 0.5 * st.h);
+        b.add([st.y0[1], st.y0[2], st.y0[3]]);
+        b.add([st.y1[1], st.y1[2], st.y1[3]]);
+        b.add([mid[1], mid[2], mid[3]]);
+        let chord = ((st.y1[1] - st.y0[1]).powi(2)
+            + (st.y1[2] - st.y0[2]).powi(2)
+            + (st.y1[3] - st.y0[3]).powi(2))
+        .sqrt();
+        grow = grow.max(0.25 * chord);
+    }
+    b.grown(grow)
 }

@@ -12,6 +12,7 @@
 //! coordinates at P to second order, ξ^μ = Δx^μ + ½ Γ^μ_αβ Δx^α Δx^β. Newton's method
 //! converges in a few iterations since dξ⁰/dτ = −1 along a geodesic.
 
+use crate::bounds::Aabb;
 use scene::Motion;
 use spacetime::{
     boost, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Metric,
@@ -59,6 +60,8 @@ pub struct FreeFall {
     table: Vec<(f64, f64)>,
     tau_min: f64,
     tau_max: f64,
+    /// Per step: its coordinate-time range and a box around its positions.
+    boxes: Vec<(f64, f64, Aabb)>,
 }
 
 /// Geodesic + parallel transport of three vectors: state (x, p, e1, e2, e3), dimension 20.
@@ -141,6 +144,7 @@ impl Worldline {
                 table.extend(fwd.iter().map(|s| (s.y1[0], s.lambda1())));
                 let tau_min = -bwd.last().map_or(0.0, |s| s.lambda1());
                 let tau_max = fwd.last().map_or(0.0, |s| s.lambda1());
+                let boxes = fwd.iter().chain(bwd.iter()).map(step_box).collect();
                 Ok(Worldline::Free(FreeFall {
                     forward: fwd,
                     backward: bwd,
@@ -148,6 +152,7 @@ impl Worldline {
                     table,
                     tau_min,
                     tau_max,
+                    boxes,
                 }))
             }
         }
@@ -177,6 +182,22 @@ impl Worldline {
                         e: [u, e(0), e(1), e(2)],
                     },
                 })
+            }
+        }
+    }
+
+    /// A coordinate box around the worldline's positions at coordinate times in [t0, t1].
+    pub fn bounds(&self, t0: f64, t1: f64) -> Aabb {
+        match self {
+            Worldline::Rest { position, .. } => Aabb::point([position.x, position.y, position.z]),
+            Worldline::Free(f) => {
+                let mut b = Aabb::EMPTY;
+                for (lo, hi, bx) in &f.boxes {
+                    if *lo <= t1 && t0 <= *hi {
+                        b.union(bx);
+                    }
+                }
+                b
             }
         }
     }
@@ -371,6 +392,21 @@ fn integrate(
         }
     }
     Ok(steps)
+}
+
+/// Time range and position box of one worldline step: its ends and midpoint, grown by a
+/// quarter of the chord (far more than an arc of one short step departs from its samples).
+fn step_box(st: &DenseStep<20>) -> (f64, f64, Aabb) {
+    let mid = st.eval(st.lambda0 + 0.5 * st.h);
+    let mut b = Aabb::point([st.y0[1], st.y0[2], st.y0[3]]);
+    b.add([st.y1[1], st.y1[2], st.y1[3]]);
+    b.add([mid[1], mid[2], mid[3]]);
+    let chord = ((st.y1[1] - st.y0[1]).powi(2)
+        + (st.y1[2] - st.y0[2]).powi(2)
+        + (st.y1[3] - st.y0[3]).powi(2))
+    .sqrt();
+    let (t0, t1) = (st.y0[0].min(st.y1[0]), st.y0[0].max(st.y1[0]));
+    (t0, t1, b.grown(0.25 * chord))
 }
 
 impl FreeFall {
