@@ -20,8 +20,9 @@ use crate::record::{PixelRecord, RayStatus};
 use crate::target::{Probe, Target};
 use spacetime::{
     refine_root, DenseStep, Dop853, Event, GeodesicState, GeodesicSystem, Metric, OdeSystem,
-    Spacetime, StepOutcome, Tetrad, Tolerances,
+    Spacetime, StepData, StepOutcome, Tetrad, Tolerances,
 };
+use std::cell::OnceCell;
 
 /// Everything a ray needs, built once per render and shared by all threads.
 pub struct Tracer {
@@ -40,9 +41,44 @@ pub struct Tracer {
 /// Per-thread buffers, reused from ray to ray (no allocation per ray).
 #[derive(Default)]
 pub struct Scratch {
-    steps: Vec<DenseStep<8>>,
+    steps: Vec<LazyStep>,
     start: Vec<Probe>,
     end: Vec<Probe>,
+}
+
+/// A stored step whose dense output is made on first use (most steps never need it).
+pub struct LazyStep {
+    data: StepData<8>,
+    sys: GeodesicSystem<Metric>,
+    dense: OnceCell<DenseStep<8>>,
+}
+
+impl LazyStep {
+    fn new(data: StepData<8>, sys: GeodesicSystem<Metric>) -> Self {
+        LazyStep {
+            data,
+            sys,
+            dense: OnceCell::new(),
+        }
+    }
+    fn eval(&self, l: f64) -> [f64; 8] {
+        if l == self.data.lambda1() {
+            self.data.y1
+        } else if l == self.data.lambda0 {
+            self.data.y0
+        } else {
+            self.dense
+                .get_or_init(|| self.data.dense(&self.sys))
+                .eval(l)
+        }
+    }
+}
+
+impl std::ops::Deref for LazyStep {
+    type Target = StepData<8>;
+    fn deref(&self) -> &StepData<8> {
+        &self.data
+    }
 }
 
 /// A shift of a stored loop: later loops are the first one moved in t, z and λ.
@@ -152,7 +188,7 @@ impl Tracer {
                     return PixelRecord::miss(RayStatus::Failed)
                 }
             }
-            let d = ode.dense();
+            let d = LazyStep::new(ode.last_step(), sys);
             let mut hi = d.lambda1();
             let mut closed = None;
             if periodic {
@@ -253,7 +289,7 @@ impl Tracer {
     /// Fills `scratch.end` with the probes at `hi`.
     fn scan(
         &self,
-        d: &DenseStep<8>,
+        d: &LazyStep,
         shift: Shift,
         lo: f64,
         hi: f64,
@@ -284,7 +320,7 @@ impl Tracer {
     fn search(
         &self,
         t: &Target,
-        d: &DenseStep<8>,
+        d: &LazyStep,
         shift: Shift,
         a: f64,
         b: f64,
@@ -314,7 +350,7 @@ impl Tracer {
             .or_else(|| self.search(t, d, shift, m, b, pm, pb, depth + 1))
     }
 
-    fn record(&self, start: &GeodesicState, d: &DenseStep<8>, shift: Shift, h: Hit) -> PixelRecord {
+    fn record(&self, start: &GeodesicState, d: &LazyStep, shift: Shift, h: Hit) -> PixelRecord {
         let s = shift.state(d.eval(h.lambda));
         if s.x.t < self.t_bound {
             return PixelRecord::miss(RayStatus::Escaped);
@@ -340,16 +376,15 @@ impl Tracer {
     }
 }
 
-/// A coordinate box around a stored loop: step ends and midpoints, grown by a quarter of
-/// the longest chord (an arc of one step departs from its samples far less).
-fn loop_bounds(steps: &[DenseStep<8>]) -> Aabb {
+/// A coordinate box around a stored loop: step ends, grown by a quarter of the longest
+/// chord (an arc of one step, turning by well under a radian, departs from its chord by
+/// at most about an eighth of it).
+fn loop_bounds(steps: &[LazyStep]) -> Aabb {
     let mut b = Aabb::EMPTY;
     let mut grow: f64 = 0.0;
     for st in steps {
-        let mid = st.eval(st.lambda0 + 0.5 * st.h);
         b.add([st.y0[1], st.y0[2], st.y0[3]]);
         b.add([st.y1[1], st.y1[2], st.y1[3]]);
-        b.add([mid[1], mid[2], mid[3]]);
         let chord = ((st.y1[1] - st.y0[1]).powi(2)
             + (st.y1[2] - st.y0[2]).powi(2)
             + (st.y1[3] - st.y0[3]).powi(2))

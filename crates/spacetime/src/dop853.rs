@@ -84,6 +84,98 @@ impl<const N: usize> DenseStep<N> {
     }
 }
 
+/// One accepted step with its stages, from which the dense output can be made on demand
+/// ([`StepData::dense`]); keeping this instead of the interpolant saves its cost for the
+/// many steps that never need it.
+#[derive(Clone, Copy, Debug)]
+pub struct StepData<const N: usize> {
+    pub lambda0: f64,
+    pub h: f64,
+    pub y0: [f64; N],
+    pub y1: [f64; N],
+    k: [[f64; N]; 13],
+}
+
+impl<const N: usize> StepData<N> {
+    pub fn lambda1(&self) -> f64 {
+        self.lambda0 + self.h
+    }
+
+    /// The dense-output polynomial of this step (three evaluations of `sys`).
+    pub fn dense<S: OdeSystem<N>>(&self, sys: &S) -> DenseStep<N> {
+        let h = self.h;
+        let mut k = [[0.0; N]; 16];
+        k[..13].copy_from_slice(&self.k);
+        k[13] = sys.rhs(&lincomb(
+            &self.y0,
+            h,
+            [
+                (0, A[13][0]),
+                (6, A[13][6]),
+                (7, A[13][7]),
+                (8, A[13][8]),
+                (9, A[13][9]),
+                (10, A[13][10]),
+                (11, A[13][11]),
+                (12, A[13][12]),
+            ],
+            &k,
+        ));
+        k[14] = sys.rhs(&lincomb(
+            &self.y0,
+            h,
+            [
+                (0, A[14][0]),
+                (5, A[14][5]),
+                (6, A[14][6]),
+                (7, A[14][7]),
+                (10, A[14][10]),
+                (11, A[14][11]),
+                (12, A[14][12]),
+                (13, A[14][13]),
+            ],
+            &k,
+        ));
+        k[15] = sys.rhs(&lincomb(
+            &self.y0,
+            h,
+            [
+                (0, A[15][0]),
+                (5, A[15][5]),
+                (6, A[15][6]),
+                (7, A[15][7]),
+                (8, A[15][8]),
+                (12, A[15][12]),
+                (13, A[15][13]),
+                (14, A[15][14]),
+            ],
+            &k,
+        ));
+        let mut f = [[0.0; N]; 7];
+        for i in 0..N {
+            let dy = self.y1[i] - self.y0[i];
+            let bspl = h * k[0][i] - dy;
+            f[0][i] = dy;
+            f[1][i] = bspl;
+            f[2][i] = dy - h * k[12][i] - bspl;
+            for (row, d) in D.iter().enumerate() {
+                let mut s = 0.0;
+                for j in 0..16 {
+                    s += d[j] * k[j][i];
+                }
+                f[3 + row][i] = h * s;
+            }
+        }
+        DenseStep {
+            lambda0: self.lambda0,
+            h,
+            y0: self.y0,
+            y1: self.y1,
+            f,
+        }
+    }
+}
+
 /// The DOP853 integrator over a system `S` with state dimension `N`.
 pub struct Dop853<const N: usize, S: OdeSystem<N>> {
     sys: S,
@@ -372,79 +464,21 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
         }
     }
 
-    /// Dense output of the last accepted step (three extra evaluations).
-    pub fn dense(&mut self) -> DenseStep<N> {
-        let h = self.last_h;
-        let mut k = [[0.0; N]; 16];
-        k[..13].copy_from_slice(&self.k);
-        k[13] = self.sys.rhs(&lincomb(
-            &self.last_y,
-            h,
-            [
-                (0, A[13][0]),
-                (6, A[13][6]),
-                (7, A[13][7]),
-                (8, A[13][8]),
-                (9, A[13][9]),
-                (10, A[13][10]),
-                (11, A[13][11]),
-                (12, A[13][12]),
-            ],
-            &k,
-        ));
-        k[14] = self.sys.rhs(&lincomb(
-            &self.last_y,
-            h,
-            [
-                (0, A[14][0]),
-                (5, A[14][5]),
-                (6, A[14][6]),
-                (7, A[14][7]),
-                (10, A[14][10]),
-                (11, A[14][11]),
-                (12, A[14][12]),
-                (13, A[14][13]),
-            ],
-            &k,
-        ));
-        k[15] = self.sys.rhs(&lincomb(
-            &self.last_y,
-            h,
-            [
-                (0, A[15][0]),
-                (5, A[15][5]),
-                (6, A[15][6]),
-                (7, A[15][7]),
-                (8, A[15][8]),
-                (12, A[15][12]),
-                (13, A[15][13]),
-                (14, A[15][14]),
-            ],
-            &k,
-        ));
-        self.evaluations += 3;
-        let mut f = [[0.0; N]; 7];
-        for i in 0..N {
-            let dy = self.y[i] - self.last_y[i];
-            let bspl = h * k[0][i] - dy;
-            f[0][i] = dy;
-            f[1][i] = bspl;
-            f[2][i] = dy - h * k[12][i] - bspl;
-            for (row, d) in D.iter().enumerate() {
-                let mut s = 0.0;
-                for j in 0..16 {
-                    s += d[j] * k[j][i];
-                }
-                f[3 + row][i] = h * s;
-            }
-        }
-        DenseStep {
+    /// The last accepted step, with its stages: its dense output can be made later.
+    pub fn last_step(&self) -> StepData<N> {
+        StepData {
             lambda0: self.last_lambda,
-            h,
+            h: self.last_h,
             y0: self.last_y,
             y1: self.y,
-            f,
+            k: self.k,
         }
+    }
+
+    /// Dense output of the last accepted step (three extra evaluations).
+    pub fn dense(&mut self) -> DenseStep<N> {
+        self.evaluations += 3;
+        self.last_step().dense(&self.sys)
     }
 }
 

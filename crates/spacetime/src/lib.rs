@@ -25,7 +25,7 @@ mod minkowski;
 mod vectors;
 
 pub use constants::{ConstantsOfMotion, Drift};
-pub use dop853::{DenseStep, Dop853, OdeSystem, StepOutcome, Tolerances};
+pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};
 pub use geodesic::{
     refine_root, trace, Geodesic, GeodesicKind, GeodesicState, GeodesicSystem, StopReason,
