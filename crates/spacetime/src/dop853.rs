@@ -447,7 +447,7 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 let factor = if err == 0.0 {
                     10.0
                 } else {
-                    (0.9 * err.powf(-1.0 / 8.0)).clamp(0.2, 10.0)
+                    (0.9 * inv_eighth_root(err)).clamp(0.2, 10.0)
                 };
                 self.last_lambda = self.lambda;
                 self.last_h = h;
@@ -460,7 +460,7 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 return StepOutcome::Accepted;
             }
             self.rejected += 1;
-            self.h = h * (0.9 * err.powf(-1.0 / 8.0)).clamp(0.2, 1.0);
+            self.h = h * (0.9 * inv_eighth_root(err)).clamp(0.2, 1.0);
         }
     }
 
@@ -652,3 +652,10 @@ const D: [[f64; 16]; 4] = [
      -0.43533456590011143754432175058e2, 0.96324553959188282948394950600e2, -0.39177261675615439165231486172e2,
      -0.14972683625798562581422125276e3],
 ];
+
+/// x^(−1/8) by three square roots: the step-size controller's factor (Hairer et al.,
+/// eq. II.4.13 with order 8), several times cheaper than `powf`.
+#[inline]
+fn inv_eighth_root(x: f64) -> f64 {
+    1.0 / x.sqrt().sqrt().sqrt()
+}
