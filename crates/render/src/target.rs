@@ -20,11 +20,17 @@ use std::f64::consts::PI;
 /// of the frame within one step.
 const RATE_MARGIN: f64 = 1.5;
 
-/// Beyond this first-order rest-frame distance (in units of a, plus radii) a local object
-/// is "far": its distance is only estimated, divided by FAR_SLACK to stay a lower bound
-/// (the second-order terms change distances below ~1 by well under 30 %).
-const FAR_DISTANCE: f64 = 0.5;
-const FAR_RADII: f64 = 3.0;
+/// Margin on the global bound E·γ(1 + v) of a local object's rate (which is exact in the
+/// object's local frame; the margin covers the first-order distance far from it).
+const GLOBAL_RATE_MARGIN: f64 = 1.2;
+
+/// Beyond this first-order rest-frame distance (in units of a, plus the radius) a local
+/// object is "far": its distance is the first-order estimate divided by FAR_SLACK. The
+/// second-order (normal-coordinate) distance is used only nearer: it is accurate at the
+/// surface, but at separations of order a the expansion fails (it overshoots by factors
+/// and then changes faster than the rate bound allows).
+const FAR_DISTANCE: f64 = 0.25;
+const FAR_RADII: f64 = 1.0;
 const FAR_SLACK: f64 = 1.3;
 
 /// A runtime object ready for intersection.
@@ -130,11 +136,13 @@ impl Target {
                         } else {
                             norm3(lp.xi) / FAR_SLACK
                         };
-                        // Local photon energy −k·u: the ray's speed in the rest frame.
-                        let eps = lp.at.frame.e[0].contract(s.p).abs();
+                        // The ray's speed in the rest frame is its energy there, −p·u, which
+                        // is at most E·γ(1 + v) everywhere on the ray (see Worldline::
+                        // speed_factor): a bound valid over any span, not just one step.
+                        let eps_max = s.p.t.abs() * worldline.speed_factor();
                         Probe {
                             f: d - radius,
-                            rate: RATE_MARGIN * eps,
+                            rate: GLOBAL_RATE_MARGIN * eps_max,
                             // A far match is not simultaneous: the next probe re-seeds from t.
                             tau: if lp.exact { lp.at.tau } else { f64::NAN },
                         }
@@ -176,6 +184,12 @@ impl Target {
             Target::Plane { .. } => (fa > 0.0) == (fb > 0.0) && fa.abs() + fb.abs() > rate * h,
             _ => fa + fb > rate * h,
         }
+    }
+
+    /// Whether the probes' rate bounds |df/dλ| along the whole ray (local objects), so that
+    /// a probe may vouch for a span of several steps.
+    pub fn has_global_rate(&self) -> bool {
+        matches!(self, Target::LocalSphere { .. })
     }
 
     /// Whether a plane crossing at `s` lies inside the plane's extent (always true otherwise).

@@ -42,9 +42,21 @@ pub struct Tracer {
 #[derive(Default)]
 pub struct Scratch {
     steps: Vec<LazyStep>,
-    start: Vec<Probe>,
-    end: Vec<Probe>,
+    start: Vec<Measured>,
+    end: Vec<Measured>,
 }
+
+/// A probe and the ray parameter (absolute: loop shifts included) where it was taken.
+#[derive(Clone, Copy, Debug)]
+struct Measured {
+    probe: Probe,
+    at: f64,
+}
+
+/// Conservative advancement: since |df/dλ| ≤ rate, a probe showing clearance f proves that
+/// the ray meets nothing of that object before λ + f/rate, so no probe is needed until
+/// then. Capped, because the rate bound is made for spans of a few steps.
+const MAX_SKIP: f64 = 1.0;
 
 /// A stored step whose dense output is made on first use (most steps never need it).
 pub struct LazyStep {
@@ -138,24 +150,18 @@ impl Tracer {
     }
 
     pub fn scratch(&self) -> Scratch {
+        let none = Measured {
+            probe: Probe {
+                f: 0.0,
+                rate: 0.0,
+                tau: f64::NAN,
+            },
+            at: 0.0,
+        };
         Scratch {
             steps: Vec::new(),
-            start: vec![
-                Probe {
-                    f: 0.0,
-                    rate: 0.0,
-                    tau: f64::NAN
-                };
-                self.targets.len()
-            ],
-            end: vec![
-                Probe {
-                    f: 0.0,
-                    rate: 0.0,
-                    tau: f64::NAN
-                };
-                self.targets.len()
-            ],
+            start: vec![none; self.targets.len()],
+            end: vec![none; self.targets.len()],
         }
     }
 
@@ -171,8 +177,13 @@ impl Tracer {
             metric: self.metric,
         };
         let mut ode = Dop853::new(sys, 0.0, s0, self.tol, None);
-        scratch.steps.clear();
-        self.probe_all(&start, &mut scratch.start);
+        let Scratch {
+            steps,
+            start: probes_a,
+            end: probes_b,
+        } = scratch;
+        steps.clear();
+        self.probe_all(&start, 0.0, probes_a);
         let (x0, y0) = (s0[1], s0[2]);
         let axis_g = |s: &[f64; 8], d: &[f64; 8]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
         let mut max_d2: f64 = 0.0;
@@ -188,7 +199,12 @@ impl Tracer {
                     return PixelRecord::miss(RayStatus::Failed)
                 }
             }
-            let d = LazyStep::new(ode.last_step(), sys);
+            // Kept in place (a step record is large): only the first loop is stored for reuse.
+            if !periodic {
+                steps.clear();
+            }
+            steps.push(LazyStep::new(ode.last_step(), sys));
+            let d = steps.last().expect("just pushed");
             let mut hi = d.lambda1();
             let mut closed = None;
             if periodic {
@@ -217,8 +233,8 @@ impl Tracer {
                 }
                 max_d2 = max_d2.max((s1[1] - x0).powi(2) + (s1[2] - y0).powi(2));
             }
-            if let Some(h) = self.scan(&d, Shift::default(), d.lambda0, hi, scratch) {
-                return self.record(&start, &d, Shift::default(), h);
+            if let Some(h) = self.scan(d, Shift::default(), d.lambda0, hi, probes_a, probes_b) {
+                return self.record(&start, d, Shift::default(), h);
             }
             if d.eval(hi)[0] < self.t_bound || !d.y1.iter().all(|v| v.is_finite()) {
                 return PixelRecord::miss(if d.y1[0] < self.t_bound {
@@ -227,10 +243,7 @@ impl Tracer {
                     RayStatus::Failed
                 });
             }
-            if periodic {
-                scratch.steps.push(d);
-            }
-            std::mem::swap(&mut scratch.start, &mut scratch.end);
+            std::mem::swap(probes_a, probes_b);
             if let Some(p) = closed {
                 break p;
             }
@@ -239,8 +252,7 @@ impl Tracer {
         if !(period.dt < 0.0) {
             return PixelRecord::miss(RayStatus::Failed); // a backward ray must go to the past
         }
-        let steps = std::mem::take(&mut scratch.steps);
-        let loop_box = loop_bounds(&steps);
+        let loop_box = loop_bounds(steps);
         let mut result = None;
         'copies: for k in 1.. {
             let shift = period.times(k as f64);
@@ -258,49 +270,76 @@ impl Tracer {
                 continue;
             }
             let first = shift.state(steps[0].y0);
-            self.probe_all(&first, &mut scratch.start);
+            self.probe_all(&first, shift.dl, probes_a);
             for (i, d) in steps.iter().enumerate() {
                 let hi = if i + 1 == steps.len() {
                     period.dl
                 } else {
                     d.lambda1()
                 };
-                if let Some(h) = self.scan(d, shift, d.lambda0, hi, scratch) {
+                if let Some(h) = self.scan(d, shift, d.lambda0, hi, probes_a, probes_b) {
                     result = Some(self.record(&start, d, shift, h));
                     break 'copies;
                 }
                 if d.y1[0] + shift.dt < self.t_bound {
                     break 'copies;
                 }
-                std::mem::swap(&mut scratch.start, &mut scratch.end);
+                std::mem::swap(probes_a, probes_b);
             }
         }
-        scratch.steps = steps;
         result.unwrap_or(PixelRecord::miss(RayStatus::Escaped))
     }
 
-    fn probe_all(&self, s: &GeodesicState, out: &mut [Probe]) {
+    fn probe_all(&self, s: &GeodesicState, at: f64, out: &mut [Measured]) {
         for (t, o) in self.targets.iter().zip(out.iter_mut()) {
-            *o = t.probe(&self.metric, s, f64::NAN);
+            *o = Measured {
+                probe: t.probe(&self.metric, s, f64::NAN),
+                at,
+            };
         }
     }
 
     /// The earliest-λ entry into any object within [lo, hi] of step `d` (moved by `shift`).
-    /// Fills `scratch.end` with the probes at `hi`.
+    /// Fills `end` with the probes at `hi`; `start` holds those at `lo`.
     fn scan(
         &self,
         d: &LazyStep,
         shift: Shift,
         lo: f64,
         hi: f64,
-        scratch: &mut Scratch,
+        start: &[Measured],
+        end: &mut [Measured],
     ) -> Option<Hit> {
-        let s_hi = shift.state(d.eval(hi));
+        let (lo_abs, hi_abs) = (lo + shift.dl, hi + shift.dl);
+        let mut s_hi = None;
         let mut best: Option<Hit> = None;
         for (i, t) in self.targets.iter().enumerate() {
-            let pa = scratch.start[i];
+            let m = start[i];
+            let p = m.probe;
+            // Clearance: distance for spheres, |z − h| for planes (either side).
+            let clear = if matches!(t, Target::Plane { .. }) {
+                p.f.abs()
+            } else {
+                p.f
+            };
+            if t.has_global_rate()
+                && clear.is_finite()
+                && hi_abs < m.at + (clear / p.rate).min(MAX_SKIP)
+            {
+                end[i] = m; // provably nothing of this object within [lo, hi]
+                continue;
+            }
+            // A probe taken before lo still bounds f at lo from below (same sign).
+            let pa = Probe {
+                f: p.f - p.f.signum() * p.rate * (lo_abs - m.at),
+                ..p
+            };
+            let s_hi = *s_hi.get_or_insert_with(|| shift.state(d.eval(hi)));
             let pb = t.probe(&self.metric, &s_hi, pa.tau);
-            scratch.end[i] = pb;
+            end[i] = Measured {
+                probe: pb,
+                at: hi_abs,
+            };
             let limit = best.as_ref().map_or(hi, |b| b.lambda);
             if let Some((l, tau)) = self.search(t, d, shift, lo, limit.min(hi), pa, pb, 0) {
                 if best.as_ref().map_or(true, |b| l < b.lambda) {

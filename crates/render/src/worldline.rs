@@ -45,7 +45,8 @@ pub enum Worldline {
         position: Event,
         frame: Tetrad,
         gamma: Christoffel,
-        metric: [[f64; 4]; 4],
+        /// The frame's dual basis, constant for an object at rest.
+        dual: Dual,
     },
     Free(FreeFall),
 }
@@ -116,11 +117,12 @@ impl Worldline {
         match *motion {
             Motion::Rest { position } => {
                 let p = Event::new(0.0, position.x, position.y, position.z);
+                let frame = metric.static_frame(p);
                 Ok(Worldline::Rest {
                     position: p,
-                    frame: metric.static_frame(p),
+                    frame,
                     gamma: metric.christoffel(p),
-                    metric: metric.metric(p),
+                    dual: dual_frame(&metric.metric(p), &frame),
                 })
             }
             Motion::Geodesic { start, velocity } => {
@@ -186,6 +188,19 @@ impl Worldline {
         }
     }
 
+    /// γ(1 + v) of the object relative to the static observers, constant along the worldline:
+    /// a photon of energy E = −p_t (static frame, g_tt = −1) has energy at most E·γ(1 + v) in
+    /// the object's frame. At rest 1; in free fall γ = −u_t is conserved (∂t is Killing).
+    pub fn speed_factor(&self) -> f64 {
+        match self {
+            Worldline::Rest { .. } => 1.0,
+            Worldline::Free(f) => {
+                let gamma = (-f.start[4]).max(1.0);
+                gamma + (gamma * gamma - 1.0).sqrt()
+            }
+        }
+    }
+
     /// A coordinate box around the worldline's positions at coordinate times in [t0, t1].
     pub fn bounds(&self, t0: f64, t1: f64) -> Aabb {
         match self {
@@ -242,16 +257,16 @@ impl Worldline {
                 position,
                 frame,
                 gamma,
-                metric: g,
+                dual,
             } => {
-                // Static: u = ∂t; g(u, Δ) = 0 fixes Δt = g_ti Δ^i at first order.
+                // Static: u = ∂t; g(u, Δ) = 0 fixes Δt = g_ti Δ^i at first order, and the
+                // dual row of e0 = ∂t is −g_tμ.
                 let dx = [x.x - position.x, x.y - position.y, x.z - position.z];
-                let dt = g[0][1] * dx[0] + g[0][2] * dx[1] + g[0][3] * dx[2];
+                let dt = -(dual[0][1] * dx[0] + dual[0][2] * dx[1] + dual[0][3] * dx[2]);
                 let mut t = x.t - dt;
                 let first = local_coords(
-                    g,
+                    dual,
                     None,
-                    frame,
                     Event::new(t, position.x, position.y, position.z),
                     x,
                 );
@@ -260,9 +275,8 @@ impl Worldline {
                 if exact {
                     for _ in 0..2 {
                         xi = local_coords(
-                            g,
+                            dual,
                             Some(gamma),
-                            frame,
                             Event::new(t, position.x, position.y, position.z),
                             x,
                         );
@@ -281,21 +295,27 @@ impl Worldline {
                 })
             }
             Worldline::Free(ff) => {
-                // The first-order spatial distance |ξ| from the worldline does not depend on
-                // which nearby worldline point is used (moving along u changes ξ⁰ only), so a
-                // far point needs one evaluation.
                 // Start inside the integrated range: far points (whose rest-frame "now" may
                 // lie beyond it) still get a finite distance, so no step is skipped.
                 let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
                 let mut p = self.at(metric, tau)?;
                 let mut g = metric.metric(p.event);
-                let first = local_coords(&g, None, &p.frame, p.event, x);
+                let mut first = local_coords(&dual_frame(&g, &p.frame), None, p.event, x);
                 if norm3(&first) > far {
-                    return Some(LocalPoint {
-                        at: p,
-                        xi: [first[1], first[2], first[3]],
-                        exact: false,
-                    });
+                    // Far: the worldline curves over the time between the coordinate-time
+                    // seed and the rest frame's "now", so take one Newton step toward
+                    // simultaneity (g(u, Δ) = 0) before estimating the distance.
+                    tau = (tau + first[0]).clamp(ff.tau_min, ff.tau_max);
+                    p = self.at(metric, tau)?;
+                    g = metric.metric(p.event);
+                    first = local_coords(&dual_frame(&g, &p.frame), None, p.event, x);
+                    if norm3(&first) > far {
+                        return Some(LocalPoint {
+                            at: p,
+                            xi: [first[1], first[2], first[3]],
+                            exact: false,
+                        });
+                    }
                 }
                 // Near: Newton on the first-order simultaneity g(u, Δ) = 0 (dξ⁰/dτ ≈ −1).
                 let mut xi0 = first[0];
@@ -304,18 +324,18 @@ impl Worldline {
                     p = self.at(metric, tau)?;
                     g = metric.metric(p.event);
                     let last = xi0;
-                    xi0 = local_coords(&g, None, &p.frame, p.event, x)[0];
+                    xi0 = local_coords(&dual_frame(&g, &p.frame), None, p.event, x)[0];
                     if last.abs() < 1e-12 {
                         break;
                     }
                 }
                 // Second order near the object: one more Newton step on the full ξ⁰.
                 let gamma = metric.christoffel(p.event);
-                let xi = local_coords(&g, Some(&gamma), &p.frame, p.event, x);
+                let xi = local_coords(&dual_frame(&g, &p.frame), Some(&gamma), p.event, x);
                 tau += xi[0];
                 let p = self.at(metric, tau)?;
                 let g = metric.metric(p.event);
-                let xi = local_coords(&g, Some(&gamma), &p.frame, p.event, x);
+                let xi = local_coords(&dual_frame(&g, &p.frame), Some(&gamma), p.event, x);
                 Some(LocalPoint {
                     at: p,
                     xi: [xi[1], xi[2], xi[3]],
@@ -330,16 +350,26 @@ fn norm3(xi: &[f64; 4]) -> f64 {
     (xi[1] * xi[1] + xi[2] * xi[2] + xi[3] * xi[3]).sqrt()
 }
 
+/// The dual basis of an orthonormal frame: row a is the covector η_aa g(e_a, ·), so that
+/// the frame components of a vector v are ξ^a = Σ_n row_a[n] v^n.
+pub type Dual = [[f64; 4]; 4];
+
+fn dual_frame(g: &[[f64; 4]; 4], frame: &Tetrad) -> Dual {
+    let mut out = [[0.0; 4]; 4];
+    for (a, e) in frame.e.iter().enumerate() {
+        let e = e.to_array();
+        let sign = if a == 0 { -1.0 } else { 1.0 };
+        for n in 0..4 {
+            out[a][n] = sign * (0..4).map(|m| g[m][n] * e[m]).sum::<f64>();
+        }
+    }
+    out
+}
+
 /// Rest-frame components (ξ⁰, ξ¹, ξ², ξ³) of the displacement from `p` to `x`, in Riemann
 /// normal coordinates to second order when `gamma` (Γ at `p`) is given, else to first
-/// order, projected on the orthonormal `frame` at `p`.
-fn local_coords(
-    g: &[[f64; 4]; 4],
-    gamma: Option<&Christoffel>,
-    frame: &Tetrad,
-    p: Event,
-    x: Event,
-) -> [f64; 4] {
+/// order, projected with the `dual` basis of the orthonormal frame at `p`.
+fn local_coords(dual: &Dual, gamma: Option<&Christoffel>, p: Event, x: Event) -> [f64; 4] {
     let d = (x - p).to_array();
     let mut xi = d;
     if let Some(gamma) = gamma {
@@ -354,15 +384,8 @@ fn local_coords(
         }
     }
     let mut out = [0.0; 4];
-    for (k, e) in frame.e.iter().enumerate() {
-        let e = e.to_array();
-        let mut s = 0.0;
-        for m in 0..4 {
-            for n in 0..4 {
-                s += g[m][n] * e[m] * xi[n];
-            }
-        }
-        out[k] = if k == 0 { -s } else { s };
+    for a in 0..4 {
+        out[a] = (0..4).map(|n| dual[a][n] * xi[n]).sum();
     }
     out
 }

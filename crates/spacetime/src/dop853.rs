@@ -84,16 +84,15 @@ impl<const N: usize> DenseStep<N> {
     }
 }
 
-/// One accepted step with its stages, from which the dense output can be made on demand
-/// ([`StepData::dense`]); keeping this instead of the interpolant saves its cost for the
-/// many steps that never need it.
+/// One accepted step: its ends only. Its dense output is made on demand by recomputing the
+/// step's stages from `y0` ([`StepData::dense`]), which gives bit-identical values: the
+/// many steps that never need an interpolant then cost nothing to keep.
 #[derive(Clone, Copy, Debug)]
 pub struct StepData<const N: usize> {
     pub lambda0: f64,
     pub h: f64,
     pub y0: [f64; N],
     pub y1: [f64; N],
-    k: [[f64; N]; 13],
 }
 
 impl<const N: usize> StepData<N> {
@@ -101,78 +100,99 @@ impl<const N: usize> StepData<N> {
         self.lambda0 + self.h
     }
 
-    /// The dense-output polynomial of this step (three evaluations of `sys`).
+    /// The dense-output polynomial of this step: its 12 stages are recomputed from `y0`
+    /// (16 evaluations of `sys` in all, only for the steps that need it).
     pub fn dense<S: OdeSystem<N>>(&self, sys: &S) -> DenseStep<N> {
-        let h = self.h;
-        let mut k = [[0.0; N]; 16];
-        k[..13].copy_from_slice(&self.k);
-        k[13] = sys.rhs(&lincomb(
-            &self.y0,
-            h,
-            [
-                (0, A[13][0]),
-                (6, A[13][6]),
-                (7, A[13][7]),
-                (8, A[13][8]),
-                (9, A[13][9]),
-                (10, A[13][10]),
-                (11, A[13][11]),
-                (12, A[13][12]),
-            ],
-            &k,
-        ));
-        k[14] = sys.rhs(&lincomb(
-            &self.y0,
-            h,
-            [
-                (0, A[14][0]),
-                (5, A[14][5]),
-                (6, A[14][6]),
-                (7, A[14][7]),
-                (10, A[14][10]),
-                (11, A[14][11]),
-                (12, A[14][12]),
-                (13, A[14][13]),
-            ],
-            &k,
-        ));
-        k[15] = sys.rhs(&lincomb(
-            &self.y0,
-            h,
-            [
-                (0, A[15][0]),
-                (5, A[15][5]),
-                (6, A[15][6]),
-                (7, A[15][7]),
-                (8, A[15][8]),
-                (12, A[15][12]),
-                (13, A[15][13]),
-                (14, A[15][14]),
-            ],
-            &k,
-        ));
-        let mut f = [[0.0; N]; 7];
-        for i in 0..N {
-            let dy = self.y1[i] - self.y0[i];
-            let bspl = h * k[0][i] - dy;
-            f[0][i] = dy;
-            f[1][i] = bspl;
-            f[2][i] = dy - h * k[12][i] - bspl;
-            for (row, d) in D.iter().enumerate() {
-                let mut s = 0.0;
-                for j in 0..16 {
-                    s += d[j] * k[j][i];
-                }
-                f[3 + row][i] = h * s;
+        let mut k = [[0.0; N]; 13];
+        k[0] = sys.rhs(&self.y0);
+        let y_end = stages(sys, &self.y0, self.h, &mut k);
+        debug_assert_eq!(
+            y_end, self.y1,
+            "a recomputed step must repeat itself exactly"
+        );
+        k[12] = sys.rhs(&self.y1);
+        dense_poly(sys, self.lambda0, self.h, &self.y0, &self.y1, &k)
+    }
+}
+
+/// Hairer's dense output of DOP853 for a step with stages `k13` (k[12] = f at its end):
+/// three more stages, then the coefficients of the 7th-degree interpolant (CONTD8).
+fn dense_poly<const N: usize, S: OdeSystem<N>>(
+    sys: &S,
+    lambda0: f64,
+    h: f64,
+    y0: &[f64; N],
+    y1: &[f64; N],
+    k13: &[[f64; N]; 13],
+) -> DenseStep<N> {
+    let mut k = [[0.0; N]; 16];
+    k[..13].copy_from_slice(k13);
+    k[13] = sys.rhs(&lincomb(
+        y0,
+        h,
+        [
+            (0, A[13][0]),
+            (6, A[13][6]),
+            (7, A[13][7]),
+            (8, A[13][8]),
+            (9, A[13][9]),
+            (10, A[13][10]),
+            (11, A[13][11]),
+            (12, A[13][12]),
+        ],
+        &k,
+    ));
+    k[14] = sys.rhs(&lincomb(
+        y0,
+        h,
+        [
+            (0, A[14][0]),
+            (5, A[14][5]),
+            (6, A[14][6]),
+            (7, A[14][7]),
+            (10, A[14][10]),
+            (11, A[14][11]),
+            (12, A[14][12]),
+            (13, A[14][13]),
+        ],
+        &k,
+    ));
+    k[15] = sys.rhs(&lincomb(
+        y0,
+        h,
+        [
+            (0, A[15][0]),
+            (5, A[15][5]),
+            (6, A[15][6]),
+            (7, A[15][7]),
+            (8, A[15][8]),
+            (12, A[15][12]),
+            (13, A[15][13]),
+            (14, A[15][14]),
+        ],
+        &k,
+    ));
+    let mut f = [[0.0; N]; 7];
+    for i in 0..N {
+        let dy = y1[i] - y0[i];
+        let bspl = h * k[0][i] - dy;
+        f[0][i] = dy;
+        f[1][i] = bspl;
+        f[2][i] = dy - h * k[12][i] - bspl;
+        for (row, d) in D.iter().enumerate() {
+            let mut s = 0.0;
+            for j in 0..16 {
+                s += d[j] * k[j][i];
             }
+            f[3 + row][i] = h * s;
         }
-        DenseStep {
-            lambda0: self.lambda0,
-            h,
-            y0: self.y0,
-            y1: self.y1,
-            f,
-        }
+    }
+    DenseStep {
+        lambda0,
+        h,
+        y0: *y0,
+        y1: *y1,
+        f,
     }
 }
 
@@ -298,117 +318,7 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 return StepOutcome::Stalled;
             }
             self.k[0] = self.f;
-            // Stages with their non-zero coefficients only, as straight-line code.
-            self.k[1] = self.sys.rhs(&lincomb(&self.y, h, [(0, A[1][0])], &self.k));
-            self.k[2] = self
-                .sys
-                .rhs(&lincomb(&self.y, h, [(0, A[2][0]), (1, A[2][1])], &self.k));
-            self.k[3] = self
-                .sys
-                .rhs(&lincomb(&self.y, h, [(0, A[3][0]), (2, A[3][2])], &self.k));
-            self.k[4] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [(0, A[4][0]), (2, A[4][2]), (3, A[4][3])],
-                &self.k,
-            ));
-            self.k[5] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [(0, A[5][0]), (3, A[5][3]), (4, A[5][4])],
-                &self.k,
-            ));
-            self.k[6] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [(0, A[6][0]), (3, A[6][3]), (4, A[6][4]), (5, A[6][5])],
-                &self.k,
-            ));
-            self.k[7] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [
-                    (0, A[7][0]),
-                    (3, A[7][3]),
-                    (4, A[7][4]),
-                    (5, A[7][5]),
-                    (6, A[7][6]),
-                ],
-                &self.k,
-            ));
-            self.k[8] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [
-                    (0, A[8][0]),
-                    (3, A[8][3]),
-                    (4, A[8][4]),
-                    (5, A[8][5]),
-                    (6, A[8][6]),
-                    (7, A[8][7]),
-                ],
-                &self.k,
-            ));
-            self.k[9] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [
-                    (0, A[9][0]),
-                    (3, A[9][3]),
-                    (4, A[9][4]),
-                    (5, A[9][5]),
-                    (6, A[9][6]),
-                    (7, A[9][7]),
-                    (8, A[9][8]),
-                ],
-                &self.k,
-            ));
-            self.k[10] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [
-                    (0, A[10][0]),
-                    (3, A[10][3]),
-                    (4, A[10][4]),
-                    (5, A[10][5]),
-                    (6, A[10][6]),
-                    (7, A[10][7]),
-                    (8, A[10][8]),
-                    (9, A[10][9]),
-                ],
-                &self.k,
-            ));
-            self.k[11] = self.sys.rhs(&lincomb(
-                &self.y,
-                h,
-                [
-                    (0, A[11][0]),
-                    (3, A[11][3]),
-                    (4, A[11][4]),
-                    (5, A[11][5]),
-                    (6, A[11][6]),
-                    (7, A[11][7]),
-                    (8, A[11][8]),
-                    (9, A[11][9]),
-                    (10, A[11][10]),
-                ],
-                &self.k,
-            ));
-            let y_new = lincomb(
-                &self.y,
-                h,
-                [
-                    (0, B[0]),
-                    (5, B[5]),
-                    (6, B[6]),
-                    (7, B[7]),
-                    (8, B[8]),
-                    (9, B[9]),
-                    (10, B[10]),
-                    (11, B[11]),
-                ],
-                &self.k,
-            );
+            let y_new = stages(&self.sys, &self.y, h, &mut self.k);
             self.evaluations += 11;
             if !y_new.iter().all(|v| v.is_finite()) {
                 // Retry smaller: a step into a region the RHS cannot handle is not yet fatal.
@@ -423,15 +333,41 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
             self.evaluations += 1;
             self.k[12] = f_new;
             let sc = self.scale(&self.y, &y_new);
+            // Both error estimates use stages 0 and 5..=11 only (Hairer's ER and BHH weights).
+            let s5 = lincomb(
+                &[0.0; N],
+                1.0,
+                [
+                    (0, E5[0]),
+                    (5, E5[5]),
+                    (6, E5[6]),
+                    (7, E5[7]),
+                    (8, E5[8]),
+                    (9, E5[9]),
+                    (10, E5[10]),
+                    (11, E5[11]),
+                ],
+                &self.k,
+            );
+            let s3 = lincomb(
+                &[0.0; N],
+                1.0,
+                [
+                    (0, E3[0]),
+                    (5, E3[5]),
+                    (6, E3[6]),
+                    (7, E3[7]),
+                    (8, E3[8]),
+                    (9, E3[9]),
+                    (10, E3[10]),
+                    (11, E3[11]),
+                ],
+                &self.k,
+            );
             let (mut e5, mut e3) = (0.0, 0.0);
             for i in 0..N {
-                let (mut s5, mut s3) = (0.0, 0.0);
-                for j in 0..13 {
-                    s5 += E5[j] * self.k[j][i];
-                    s3 += E3[j] * self.k[j][i];
-                }
-                e5 += (s5 / sc[i]).powi(2);
-                e3 += (s3 / sc[i]).powi(2);
+                e5 += (s5[i] / sc[i]).powi(2);
+                e3 += (s3[i] / sc[i]).powi(2);
             }
             let err = if e5 == 0.0 && e3 == 0.0 {
                 0.0
@@ -464,22 +400,147 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
         }
     }
 
-    /// The last accepted step, with its stages: its dense output can be made later.
+    /// The last accepted step (its ends): its dense output can be made later.
     pub fn last_step(&self) -> StepData<N> {
         StepData {
             lambda0: self.last_lambda,
             h: self.last_h,
             y0: self.last_y,
             y1: self.y,
-            k: self.k,
         }
     }
 
     /// Dense output of the last accepted step (three extra evaluations).
     pub fn dense(&mut self) -> DenseStep<N> {
         self.evaluations += 3;
-        self.last_step().dense(&self.sys)
+        dense_poly(
+            &self.sys,
+            self.last_lambda,
+            self.last_h,
+            &self.last_y,
+            &self.y,
+            &self.k,
+        )
     }
+}
+
+/// The stages k[1..=11] of one DOP853 step of size `h` from `y` (k[0] = f(y) given), with
+/// their non-zero coefficients only, as straight-line code; returns the 8th-order solution
+/// at the end of the step. Shared by [`Dop853::step`] and [`StepData::dense`], so that a
+/// step recomputed later gives bit-identical stages.
+#[inline(always)]
+fn stages<const N: usize, S: OdeSystem<N>>(
+    sys: &S,
+    y: &[f64; N],
+    h: f64,
+    k: &mut [[f64; N]; 13],
+) -> [f64; N] {
+    k[1] = sys.rhs(&lincomb(y, h, [(0, A[1][0])], k));
+    k[2] = sys.rhs(&lincomb(y, h, [(0, A[2][0]), (1, A[2][1])], k));
+    k[3] = sys.rhs(&lincomb(y, h, [(0, A[3][0]), (2, A[3][2])], k));
+    k[4] = sys.rhs(&lincomb(
+        y,
+        h,
+        [(0, A[4][0]), (2, A[4][2]), (3, A[4][3])],
+        k,
+    ));
+    k[5] = sys.rhs(&lincomb(
+        y,
+        h,
+        [(0, A[5][0]), (3, A[5][3]), (4, A[5][4])],
+        k,
+    ));
+    k[6] = sys.rhs(&lincomb(
+        y,
+        h,
+        [(0, A[6][0]), (3, A[6][3]), (4, A[6][4]), (5, A[6][5])],
+        k,
+    ));
+    k[7] = sys.rhs(&lincomb(
+        y,
+        h,
+        [
+            (0, A[7][0]),
+            (3, A[7][3]),
+            (4, A[7][4]),
+            (5, A[7][5]),
+            (6, A[7][6]),
+        ],
+        k,
+    ));
+    k[8] = sys.rhs(&lincomb(
+        y,
+        h,
+        [
+            (0, A[8][0]),
+            (3, A[8][3]),
+            (4, A[8][4]),
+            (5, A[8][5]),
+            (6, A[8][6]),
+            (7, A[8][7]),
+        ],
+        k,
+    ));
+    k[9] = sys.rhs(&lincomb(
+        y,
+        h,
+        [
+            (0, A[9][0]),
+            (3, A[9][3]),
+            (4, A[9][4]),
+            (5, A[9][5]),
+            (6, A[9][6]),
+            (7, A[9][7]),
+            (8, A[9][8]),
+        ],
+        k,
+    ));
+    k[10] = sys.rhs(&lincomb(
+        y,
+        h,
+        [
+            (0, A[10][0]),
+            (3, A[10][3]),
+            (4, A[10][4]),
+            (5, A[10][5]),
+            (6, A[10][6]),
+            (7, A[10][7]),
+            (8, A[10][8]),
+            (9, A[10][9]),
+        ],
+        k,
+    ));
+    k[11] = sys.rhs(&lincomb(
+        y,
+        h,
+        [
+            (0, A[11][0]),
+            (3, A[11][3]),
+            (4, A[11][4]),
+            (5, A[11][5]),
+            (6, A[11][6]),
+            (7, A[11][7]),
+            (8, A[11][8]),
+            (9, A[11][9]),
+            (10, A[11][10]),
+        ],
+        k,
+    ));
+    lincomb(
+        y,
+        h,
+        [
+            (0, B[0]),
+            (5, B[5]),
+            (6, B[6]),
+            (7, B[7]),
+            (8, B[8]),
+            (9, B[9]),
+            (10, B[10]),
+            (11, B[11]),
+        ],
+        k,
+    )
 }
 
 /// y + h Σ c_j k_j over the listed (j, c_j): a fixed-size list per stage, so the compiler
@@ -616,6 +677,17 @@ const E3: [f64; 13] = {
     e[8] -= 0.733846688281611857341361741547;
     e[11] -= 0.220588235294117647058823529412e-1;
     e
+};
+
+// The error estimate above skips stages 1..=4 and 12: their weights must be zero.
+const _: () = {
+    let mut j = 1;
+    while j < 13 {
+        if j < 5 || j == 12 {
+            assert!(E3[j] == 0.0 && E5[j] == 0.0);
+        }
+        j += 1;
+    }
 };
 
 /// Weights of the 8th − 5th order error estimate.
