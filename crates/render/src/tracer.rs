@@ -322,7 +322,7 @@ impl Tracer {
             } else {
                 p.f
             };
-            if t.has_global_rate()
+            if t.vouches_for_spans()
                 && clear.is_finite()
                 && hi_abs < m.at + (clear / p.rate).min(MAX_SKIP)
             {

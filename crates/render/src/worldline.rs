@@ -300,22 +300,15 @@ impl Worldline {
                 let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
                 let mut p = self.at(metric, tau)?;
                 let mut g = metric.metric(p.event);
-                let mut first = local_coords(&dual_frame(&g, &p.frame), None, p.event, x);
+                let first = local_coords(&dual_frame(&g, &p.frame), None, p.event, x);
                 if norm3(&first) > far {
-                    // Far: the worldline curves over the time between the coordinate-time
-                    // seed and the rest frame's "now", so take one Newton step toward
-                    // simultaneity (g(u, Δ) = 0) before estimating the distance.
-                    tau = (tau + first[0]).clamp(ff.tau_min, ff.tau_max);
-                    p = self.at(metric, tau)?;
-                    g = metric.metric(p.event);
-                    first = local_coords(&dual_frame(&g, &p.frame), None, p.event, x);
-                    if norm3(&first) > far {
-                        return Some(LocalPoint {
-                            at: p,
-                            xi: [first[1], first[2], first[3]],
-                            exact: false,
-                        });
-                    }
+                    // Far: an estimate only (the tracer never lets it vouch for more than
+                    // one step: with the worldline looping, "now" is ambiguous far away).
+                    return Some(LocalPoint {
+                        at: p,
+                        xi: [first[1], first[2], first[3]],
+                        exact: false,
+                    });
                 }
                 // Near: Newton on the first-order simultaneity g(u, Δ) = 0 (dξ⁰/dτ ≈ −1).
                 let mut xi0 = first[0];
