@@ -20,7 +20,7 @@ use crate::record::{PixelRecord, RayStatus};
 use crate::target::{Probe, Target};
 use spacetime::{
     refine_root, DenseStep, Dop853, Event, GeodesicState, GeodesicSystem, Metric, OdeSystem,
-    Spacetime, StepData, StepOutcome, Tetrad, Tolerances,
+    Spacetime, StepData, StepOutcome, Tetrad, Tolerances, STATE,
 };
 use std::cell::OnceCell;
 
@@ -60,20 +60,20 @@ const MAX_SKIP: f64 = 1.0;
 
 /// A stored step whose dense output is made on first use (most steps never need it).
 pub struct LazyStep {
-    data: StepData<8>,
+    data: StepData<STATE>,
     sys: GeodesicSystem<Metric>,
-    dense: OnceCell<DenseStep<8>>,
+    dense: OnceCell<DenseStep<STATE>>,
 }
 
 impl LazyStep {
-    fn new(data: StepData<8>, sys: GeodesicSystem<Metric>) -> Self {
+    fn new(data: StepData<STATE>, sys: GeodesicSystem<Metric>) -> Self {
         LazyStep {
             data,
             sys,
             dense: OnceCell::new(),
         }
     }
-    fn eval(&self, l: f64) -> [f64; 8] {
+    fn eval(&self, l: f64) -> [f64; STATE] {
         if l == self.data.lambda1() {
             self.data.y1
         } else if l == self.data.lambda0 {
@@ -86,9 +86,16 @@ impl LazyStep {
     }
 }
 
+impl LazyStep {
+    /// The phase-space point at `l`.
+    fn state_at(&self, l: f64) -> GeodesicState {
+        self.sys.state(&self.eval(l))
+    }
+}
+
 impl std::ops::Deref for LazyStep {
-    type Target = StepData<8>;
-    fn deref(&self) -> &StepData<8> {
+    type Target = StepData<STATE>;
+    fn deref(&self) -> &StepData<STATE> {
         &self.data
     }
 }
@@ -109,8 +116,7 @@ impl Shift {
             dl: k * self.dl,
         }
     }
-    fn state(self, s: [f64; 8]) -> GeodesicState {
-        let mut st = GeodesicState::from_array(&s);
+    fn apply(self, mut st: GeodesicState) -> GeodesicState {
         st.x.t += self.dt;
         st.x.z += self.dz;
         st
@@ -172,10 +178,7 @@ impl Tracer {
             x: self.observer,
             p: self.metric.lower(self.observer, k),
         };
-        let s0 = start.to_array();
-        let sys = GeodesicSystem {
-            metric: self.metric,
-        };
+        let (sys, s0) = GeodesicSystem::new(self.metric, &start);
         let mut ode = Dop853::new(sys, 0.0, s0, self.tol, None);
         let Scratch {
             steps,
@@ -185,7 +188,7 @@ impl Tracer {
         steps.clear();
         self.probe_all(&start, 0.0, probes_a);
         let (x0, y0) = (s0[1], s0[2]);
-        let axis_g = |s: &[f64; 8], d: &[f64; 8]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
+        let axis_g = |s: &[f64; STATE], d: &[f64; STATE]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
         let mut max_d2: f64 = 0.0;
         let mut periodic = self.periodic;
         let period = loop {
@@ -218,8 +221,9 @@ impl Tracer {
                     let l = refine_root(gl, d.lambda0, d.lambda1(), g_prev, g1);
                     let e = d.eval(l);
                     let dmin2 = (e[1] - x0).powi(2) + (e[2] - y0).powi(2);
-                    let dp = (e[5] - s0[5]).abs() + (e[6] - s0[6]).abs();
-                    let pscale = s0[4].abs() + s0[5].abs() + s0[6].abs() + s0[7].abs();
+                    let dp = (e[4] - s0[4]).abs() + (e[5] - s0[5]).abs();
+                    let p = start.p;
+                    let pscale = p.t.abs() + p.x.abs() + p.y.abs() + p.z.abs();
                     if dmin2 <= 1e-14 * max_d2 && dp <= 1e-7 * pscale {
                         hi = l;
                         closed = Some(Shift {
@@ -269,7 +273,7 @@ impl Tracer {
             {
                 continue;
             }
-            let first = shift.state(steps[0].y0);
+            let first = shift.apply(steps[0].state_at(steps[0].lambda0));
             self.probe_all(&first, shift.dl, probes_a);
             for (i, d) in steps.iter().enumerate() {
                 let hi = if i + 1 == steps.len() {
@@ -334,7 +338,7 @@ impl Tracer {
                 f: p.f - p.f.signum() * p.rate * (lo_abs - m.at),
                 ..p
             };
-            let s_hi = *s_hi.get_or_insert_with(|| shift.state(d.eval(hi)));
+            let s_hi = *s_hi.get_or_insert_with(|| shift.apply(d.state_at(hi)));
             let pb = t.probe(&self.metric, &s_hi, pa.tau);
             end[i] = Measured {
                 probe: pb,
@@ -371,9 +375,9 @@ impl Tracer {
             return None;
         }
         if t.entered(pa.f, pb.f) {
-            let f = |l: f64| t.probe(&self.metric, &shift.state(d.eval(l)), pa.tau).f;
+            let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
             let l = refine_root(f, a, b, pa.f, pb.f);
-            let s = shift.state(d.eval(l));
+            let s = shift.apply(d.state_at(l));
             // Land just inside so that the surface point is on the object.
             return t
                 .accepts(&s)
@@ -384,13 +388,13 @@ impl Tracer {
             return None;
         }
         let m = 0.5 * (a + b);
-        let pm = t.probe(&self.metric, &shift.state(d.eval(m)), pa.tau);
+        let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), pa.tau);
         self.search(t, d, shift, a, m, pa, pm, depth + 1)
             .or_else(|| self.search(t, d, shift, m, b, pm, pb, depth + 1))
     }
 
     fn record(&self, start: &GeodesicState, d: &LazyStep, shift: Shift, h: Hit) -> PixelRecord {
-        let s = shift.state(d.eval(h.lambda));
+        let s = shift.apply(d.state_at(h.lambda));
         if s.x.t < self.t_bound {
             return PixelRecord::miss(RayStatus::Escaped);
         }

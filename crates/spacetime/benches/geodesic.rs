@@ -30,14 +30,8 @@ fn bench(c: &mut Criterion) {
     // Bare stepping: the integrator alone over the same loop, no dense output, no events.
     group.bench_function("step_one_loop_bare", |b| {
         b.iter(|| {
-            let sys = geodesic_system(m);
-            let mut ode = Dop853::new(
-                sys,
-                0.0,
-                black_box(g.start.to_array()),
-                Tolerances::default(),
-                None,
-            );
+            let (sys, y0) = GeodesicSystem::new(m, black_box(&g.start));
+            let mut ode = Dop853::new(sys, 0.0, y0, Tolerances::default(), None);
             while ode.lambda() < probe.lambda_end {
                 ode.step();
             }
@@ -50,14 +44,8 @@ fn bench(c: &mut Criterion) {
     group.throughput(Throughput::Elements(steps));
     group.bench_function("accepted_steps", |b| {
         b.iter(|| {
-            let sys = geodesic_system(m);
-            let mut ode = Dop853::new(
-                sys,
-                0.0,
-                black_box(g.start.to_array()),
-                Tolerances::default(),
-                None,
-            );
+            let (sys, y0) = GeodesicSystem::new(m, black_box(&g.start));
+            let mut ode = Dop853::new(sys, 0.0, y0, Tolerances::default(), None);
             for _ in 0..steps {
                 ode.step();
             }
@@ -65,10 +53,6 @@ fn bench(c: &mut Criterion) {
         })
     });
     group.finish();
-}
-
-fn geodesic_system(m: Metric) -> GeodesicSystem<Metric> {
-    GeodesicSystem { metric: m }
 }
 
 criterion_group!(benches, bench);

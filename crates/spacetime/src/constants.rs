@@ -64,10 +64,8 @@ impl Drift {
                 .max((c.normalization - c0.normalization).abs() / (e * e));
         };
         for st in &g.steps {
-            visit(&GeodesicState::from_array(&st.y1));
-            visit(&GeodesicState::from_array(
-                &st.eval(st.lambda0 + 0.5 * st.h),
-            ));
+            visit(&g.system.state(&st.y1));
+            visit(&g.system.state(&st.eval(st.lambda0 + 0.5 * st.h)));
         }
         visit(&g.end);
         d

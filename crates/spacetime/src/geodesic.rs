@@ -11,7 +11,7 @@
 
 use crate::dop853::{DenseStep, Dop853, OdeSystem, StepOutcome, Tolerances};
 use crate::frame::LocalVelocity;
-use crate::metric::Spacetime;
+use crate::metric::{Metric, Spacetime};
 use crate::vectors::{Covector, Event, FourVector, Tetrad};
 use std::f64::consts::{PI, SQRT_2};
 
@@ -123,18 +123,49 @@ impl Geodesic {
     }
 }
 
-/// Hamilton's equations as an ODE system for the integrator.
+/// Hamilton's equations as an ODE system for the integrator, reduced by the two constants
+/// of motion every metric here has: both are independent of t and z (∂t and ∂z are Killing),
+/// so ṗ_t = ṗ_z = 0 identically and p_t, p_z are parameters. The integrated state is
+/// (t, x, y, z, p_x, p_y): a quarter less work per step than carrying all eight.
 #[derive(Clone, Copy, Debug)]
 pub struct GeodesicSystem<M> {
     pub metric: M,
+    pub pt: f64,
+    pub pz: f64,
 }
 
-impl<M: Spacetime> OdeSystem<8> for GeodesicSystem<M> {
+/// Dimension of the integrated state.
+pub const STATE: usize = 6;
+
+impl<M: Spacetime> GeodesicSystem<M> {
+    /// The system of the geodesic through `start`, and its initial integrated state.
+    pub fn new(metric: M, start: &GeodesicState) -> (Self, [f64; STATE]) {
+        let (x, p) = (start.x, start.p);
+        (
+            GeodesicSystem {
+                metric,
+                pt: p.t,
+                pz: p.z,
+            },
+            [x.t, x.x, x.y, x.z, p.x, p.y],
+        )
+    }
+    /// The phase-space point of an integrated state.
     #[inline]
-    fn rhs(&self, s: &[f64; 8]) -> [f64; 8] {
-        let st = GeodesicState::from_array(s);
+    pub fn state(&self, y: &[f64; STATE]) -> GeodesicState {
+        GeodesicState {
+            x: Event::new(y[0], y[1], y[2], y[3]),
+            p: Covector::new(self.pt, y[4], y[5], self.pz),
+        }
+    }
+}
+
+impl<M: Spacetime> OdeSystem<STATE> for GeodesicSystem<M> {
+    #[inline]
+    fn rhs(&self, y: &[f64; STATE]) -> [f64; STATE] {
+        let st = self.state(y);
         let (v, f) = self.metric.hamilton(st.x, st.p);
-        [v.t, v.x, v.y, v.z, f.t, f.x, f.y, f.z]
+        [v.t, v.x, v.y, v.z, f.x, f.y]
     }
 }
 
@@ -214,8 +245,11 @@ impl StopReason {
 pub struct TracedGeodesic {
     pub kind: GeodesicKind,
     pub start: GeodesicState,
-    /// Accepted steps with their interpolants, in order.
-    pub steps: Vec<DenseStep<8>>,
+    /// The reduced system (it turns integrated states into phase-space points).
+    pub system: GeodesicSystem<Metric>,
+    /// Accepted steps with their interpolants, in order (integrated states, see
+    /// [`GeodesicSystem::state`]).
+    pub steps: Vec<DenseStep<STATE>>,
     /// The parameter where the integration stopped (inside or at the end of the last step).
     pub lambda_end: f64,
     pub end: GeodesicState,
@@ -237,7 +271,7 @@ impl TracedGeodesic {
             .steps
             .partition_point(|s| s.lambda1() < lambda)
             .min(self.steps.len() - 1);
-        GeodesicState::from_array(&self.steps[i].eval(lambda))
+        self.system.state(&self.steps[i].eval(lambda))
     }
 
     /// `n` samples evenly spaced in the parameter: the first at the start, the last at the stop.
@@ -299,31 +333,27 @@ pub fn refine_root(
 }
 
 /// Integrates `geodesic` in `metric` until one of `limits` stops it.
-pub fn trace<M: Spacetime + Copy>(
-    metric: M,
-    geodesic: &Geodesic,
-    limits: &TraceLimits,
-) -> TracedGeodesic {
+pub fn trace(metric: Metric, geodesic: &Geodesic, limits: &TraceLimits) -> TracedGeodesic {
     let start = geodesic.start;
-    let s0 = start.to_array();
-    let sys = GeodesicSystem { metric };
+    let (sys, s0) = GeodesicSystem::new(metric, &start);
     let mut ode = Dop853::new(sys, 0.0, s0, limits.tolerances, None);
     let mut steps = Vec::new();
     let (x0, y0, t0) = (s0[1], s0[2], s0[0]);
     // Axis return: g = (X − X0)·Ẋ in the x–y plane changes sign from − to + at the minimum
     // distance; armed once the curve has moved away by more than `arm`.
-    let axis_g = |s: &[f64; 8], d: &[f64; 8]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
+    let axis_g = |s: &[f64; STATE], d: &[f64; STATE]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
     let mut max_d2: f64 = 0.0;
-    let finish = |steps: Vec<DenseStep<8>>,
+    let finish = |steps: Vec<DenseStep<STATE>>,
                   l: f64,
-                  end: [f64; 8],
+                  end: [f64; STATE],
                   stop,
-                  ode: &Dop853<8, GeodesicSystem<M>>| TracedGeodesic {
+                  ode: &Dop853<STATE, GeodesicSystem<Metric>>| TracedGeodesic {
         kind: geodesic.kind,
         start,
+        system: sys,
         steps,
         lambda_end: l,
-        end: GeodesicState::from_array(&end),
+        end: sys.state(&end),
         stop,
         rejected_steps: ode.rejected,
         evaluations: ode.evaluations,
@@ -351,7 +381,7 @@ pub fn trace<M: Spacetime + Copy>(
         let s1 = *ode.state();
         // Coordinate-time bound.
         if let Some(dt) = limits.until_time {
-            let f = |st: &[f64; 8]| (st[0] - t0).abs() - dt;
+            let f = |st: &[f64; STATE]| (st[0] - t0).abs() - dt;
             if f(&s1) >= 0.0 {
                 let lo = dense.lambda0;
                 let l = refine_root(

@@ -29,7 +29,7 @@ pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};
 pub use geodesic::{
     refine_root, trace, Geodesic, GeodesicKind, GeodesicState, GeodesicSystem, StopReason,
-    TimeDirection, TraceLimits, TracedGeodesic,
+    TimeDirection, TraceLimits, TracedGeodesic, STATE,
 };
 pub use godel::Godel;
 pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};
