@@ -12,7 +12,7 @@ fn main() {
     let (l0, l1): (f64, f64) = (a[3].parse().unwrap(), a[4].parse().unwrap());
     let m = scene.metric;
     let obs = scene.observer;
-    let frame = boost(&m.static_frame(obs.event), obs.velocity);
+    let frame = m.observer_frame(obs.event, obs.velocity);
     let n = obs.pixel_direction(&scene.camera, col, row).unwrap();
     let g = Geodesic::from_tangent(
         &m,

@@ -11,7 +11,7 @@ use crate::target::Target;
 use crate::tracer::Tracer;
 use rayon::prelude::*;
 use scene::{Scene, TraceMethod};
-use spacetime::{boost, Spacetime};
+use spacetime::Spacetime;
 use std::time::{Duration, Instant};
 
 /// Tile edge in pixels: small enough to balance rays of very different cost.
@@ -80,7 +80,7 @@ pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
     }
     let m = scene.metric;
     let obs = scene.observer;
-    let frame = boost(&m.static_frame(obs.event), obs.velocity);
+    let frame = m.observer_frame(obs.event, obs.velocity);
     // Worldlines cover the traced time range plus a margin for the objects' own size.
     let (t_min, t_max) = (obs.event.t - scene.trace.max_past - 1.0, obs.event.t + 1.0);
     let targets = scene

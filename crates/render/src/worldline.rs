@@ -15,8 +15,8 @@
 use crate::bounds::Aabb;
 use scene::Motion;
 use spacetime::{
-    boost, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Metric,
-    OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
+    Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Metric, OdeSystem,
+    Spacetime, StepOutcome, Tetrad, Tolerances,
 };
 
 /// A worldline point: event, four-velocity and body frame (e[0] = u).
@@ -126,7 +126,7 @@ impl Worldline {
                 })
             }
             Motion::Geodesic { start, velocity } => {
-                let frame = boost(&metric.static_frame(start), velocity);
+                let frame = metric.observer_frame(start, velocity);
                 let g = Geodesic::from_tangent(
                     &metric,
                     spacetime::GeodesicKind::Timelike,

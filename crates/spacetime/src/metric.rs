@@ -6,7 +6,7 @@
 //! Christoffel symbols Γ^μ_αβ = ½ g^{μν}(∂_α g_νβ + ∂_β g_να − ∂_ν g_αβ) come from the
 //! closed-form metric derivatives each metric supplies.
 
-use crate::frame::gram_schmidt_static_frame;
+use crate::frame::{boost, gram_schmidt_static_frame, LocalVelocity};
 use crate::vectors::{Covector, Event, FourVector, Tetrad};
 use crate::{Godel, Minkowski};
 
@@ -86,6 +86,12 @@ pub trait Spacetime {
     /// The static observer's orthonormal frame: Gram–Schmidt of (∂t, ∂x, ∂y, ∂z) (DESIGN.md).
     fn static_frame(&self, x: Event) -> Tetrad {
         gram_schmidt_static_frame(&self.metric(x))
+    }
+
+    /// The frame of an observer at `x` moving with `velocity` relative to the static one:
+    /// the static frame boosted (see [`boost`]).
+    fn observer_frame(&self, x: Event, velocity: LocalVelocity) -> Tetrad {
+        boost(&self.static_frame(x), velocity)
     }
 }
 
