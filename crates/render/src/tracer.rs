@@ -84,9 +84,7 @@ impl LazyStep {
                 .eval(l)
         }
     }
-}
 
-impl LazyStep {
     /// The phase-space point at `l`.
     fn state_at(&self, l: f64) -> GeodesicState {
         self.sys.state(&self.eval(l))
