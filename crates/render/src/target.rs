@@ -13,7 +13,7 @@
 use crate::bounds::Aabb;
 use crate::worldline::{WorldPoint, Worldline, WorldlineError};
 use scene::{Object, Shape};
-use spacetime::{Covector, Event, FourVector, GeodesicState, Metric, Spacetime};
+use spacetime::{Event, FourVector, GeodesicState, Metric, Spacetime};
 use std::f64::consts::PI;
 
 /// Safety factor on the rate bound: covers the variation of the local photon energy and
@@ -256,14 +256,12 @@ impl Target {
                     cos_i: dot3(n, normalize3([-k.x, -k.y, -k.z])),
                 })
             }
-            Target::Plane { extent, height } => {
+            Target::Plane { extent, .. } => {
                 let (u, v) = match extent {
                     Some(e) => (0.5 + s.x.x / (2.0 * e), 0.5 + s.x.y / (2.0 * e)),
                     None => (s.x.x.rem_euclid(1.0), s.x.y.rem_euclid(1.0)),
                 };
                 let dir = static_direction(metric, s.x, k);
-                let side = if s.x.z >= *height { 1.0 } else { -1.0 };
-                let _ = side;
                 let kn = normalize3([-k.x, -k.y, -k.z]);
                 Some(Surface {
                     u,
@@ -355,9 +353,4 @@ fn normalize3(a: [f64; 3]) -> [f64; 3] {
     } else {
         [0.0; 3]
     }
-}
-
-/// p_μ u^μ, the scalar product of a momentum with a four-velocity.
-pub fn energy(p: Covector, u: FourVector) -> f64 {
-    u.contract(p)
 }
