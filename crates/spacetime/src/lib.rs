@@ -20,6 +20,7 @@ mod dop853;
 mod frame;
 mod geodesic;
 mod godel;
+pub mod killing;
 mod metric;
 mod minkowski;
 mod vectors;
@@ -32,6 +33,7 @@ pub use geodesic::{
     TimeDirection, TraceLimits, TracedGeodesic, STATE,
 };
 pub use godel::Godel;
+pub use killing::KillingField;
 pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};
 pub use minkowski::Minkowski;
 pub use vectors::{Covector, Cylindrical, Event, FourVector, Tetrad};
