@@ -20,6 +20,7 @@ mod dop853;
 mod frame;
 mod geodesic;
 mod godel;
+pub mod isometry;
 pub mod killing;
 mod metric;
 mod minkowski;
@@ -33,6 +34,7 @@ pub use geodesic::{
     TimeDirection, TraceLimits, TracedGeodesic, STATE,
 };
 pub use godel::Godel;
+pub use isometry::{Complex, Isometry};
 pub use killing::KillingField;
 pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};
 pub use minkowski::Minkowski;

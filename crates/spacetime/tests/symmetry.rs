@@ -137,3 +137,147 @@ fn killing_fields_close_under_the_bracket_as_stated() {
     }
     eprintln!("commutators: worst deviation {worst:e}");
 }
+
+fn max_abs(v: [f64; 4]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+fn random_vector(rng: &mut Rng) -> FourVector {
+    FourVector::new(
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-1.0, 1.0),
+    )
+}
+
+/// Random isometries: maps to the origin from events inside and beyond the horizon,
+/// some followed by a rotation, and inverses of such maps.
+fn random_isometries(rng: &mut Rng, a: f64, n: usize) -> Vec<Isometry> {
+    (0..n)
+        .map(|i| {
+            let p0 = rng.event(6.0 * a);
+            let t = Isometry::to_origin(a, p0);
+            match i % 3 {
+                0 => t,
+                1 => t.then_rotate(rng.uniform(-4.0, 4.0)),
+                _ => t.then_rotate(rng.uniform(-4.0, 4.0)).inverse(),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn the_map_to_the_origin_sends_its_event_to_the_origin_and_the_inverse_undoes_it() {
+    let mut rng = Rng::new(201);
+    let mut worst: f64 = 0.0;
+    for a in [1.0, 0.5, 2.0] {
+        for _ in 0..100 {
+            let p0 = rng.event(6.0 * a);
+            let alpha = rng.uniform(-4.0, 4.0);
+            let t = Isometry::to_origin(a, p0).then_rotate(alpha);
+            let o = t.apply(p0);
+            assert!(max_abs(o.to_array()) <= 1e-15 * a, "T(P0) = {o:?}");
+            let back = t.inverse().apply(Event::default());
+            let d0 = max_abs((back - p0).to_array()) / (1.0 + max_abs(p0.to_array()));
+            assert!(d0 < 1e-12, "T⁻¹(origin) = {back:?} vs {p0:?}");
+            for _ in 0..5 {
+                let x = rng.event(6.0 * a);
+                let y = t.inverse().apply(t.apply(x));
+                let z = t.apply(t.inverse().apply(x));
+                let d = max_abs((y - x).to_array()).max(max_abs((z - x).to_array()))
+                    / (1.0 + max_abs(x.to_array()));
+                worst = worst.max(d).max(d0);
+                assert!(d < 1e-12, "T⁻¹∘T({x:?}) = {y:?}, T∘T⁻¹ = {z:?}");
+            }
+        }
+    }
+    eprintln!("isometry round trips: worst relative error {worst:e}");
+}
+
+#[test]
+fn the_differential_matches_finite_differences_and_keeps_static_observers_static() {
+    let mut rng = Rng::new(202);
+    let mut worst: f64 = 0.0;
+    for a in [1.0, 0.7] {
+        for t in random_isometries(&mut rng, a, 60) {
+            let x = rng.event(6.0 * a);
+            let v = random_vector(&mut rng);
+            let h = 1e-5;
+            let fd = (1.0 / (2.0 * h)) * (t.apply(x.offset(v, h)) - t.apply(x.offset(v, -h)));
+            let fd = FourVector::from_array(fd.to_array());
+            let pushed = t.push(x, v);
+            let d = max_abs((pushed - fd).to_array()) / (1.0 + max_abs(pushed.to_array()));
+            worst = worst.max(d);
+            assert!(d < 1e-6, "T_* v = {pushed:?}, FD {fd:?}");
+            let dt = t.push(x, FourVector::new(1.0, 0.0, 0.0, 0.0));
+            assert_eq!(dt, FourVector::new(1.0, 0.0, 0.0, 0.0), "∂t ↦ {dt:?}");
+        }
+    }
+    eprintln!("differential vs finite differences: worst {worst:e}");
+}
+
+#[test]
+fn isometries_preserve_the_metric() {
+    let mut rng = Rng::new(203);
+    let mut worst: f64 = 0.0;
+    for a in [1.0, 0.5, 3.0] {
+        let m = Godel::new(a);
+        for t in random_isometries(&mut rng, a, 100) {
+            let x = rng.event(6.0 * a);
+            let (u, v) = (random_vector(&mut rng), random_vector(&mut rng));
+            let before = m.dot(x, u, v);
+            let after = m.dot(t.apply(x), t.push(x, u), t.push(x, v));
+            // Scale: the largest term of the contraction (cancellations beyond the horizon).
+            let g = m.metric(x);
+            let (ua, va) = (u.to_array(), v.to_array());
+            let scale = (0..16)
+                .map(|i| (g[i / 4][i % 4] * ua[i / 4] * va[i % 4]).abs())
+                .fold(0.0, f64::max);
+            let d = (after - before).abs() / scale;
+            worst = worst.max(d);
+            assert!(d < 1e-12, "g(T_*u, T_*v) = {after} vs g(u, v) = {before}");
+        }
+    }
+    eprintln!("metric preserved: worst relative error {worst:e}");
+}
+
+#[test]
+fn isometries_map_integrated_geodesics_onto_integrated_geodesics() {
+    let mut rng = Rng::new(204);
+    let mut worst: f64 = 0.0;
+    for a in [1.0, 0.8] {
+        let m = Metric::Godel(Godel::new(a));
+        for (i, t) in random_isometries(&mut rng, a, 12).into_iter().enumerate() {
+            let x = rng.event(3.0 * a);
+            let speed = if i % 2 == 0 { 1.0 } else { 0.5 };
+            let time = if i % 4 < 2 {
+                TimeDirection::Future
+            } else {
+                TimeDirection::Past
+            };
+            let g1 =
+                Geodesic::launch(&m, x, &m.static_frame(x), rng.direction(), speed, time).unwrap();
+            let k = g1.start.tangent(&m);
+            let g2 = Geodesic::from_tangent(&m, g1.kind, t.apply(x), t.push(x, k));
+            // A full loop of the image: λ ≤ 2πa covers the return for E = 1 light and for
+            // particles (τ_ret < 2πa/√2).
+            let limits = TraceLimits {
+                max_affine: 2.0 * std::f64::consts::PI * a,
+                ..Default::default()
+            };
+            let (tr1, tr2) = (trace(m, &g1, &limits), trace(m, &g2, &limits));
+            assert_eq!(tr1.stop, StopReason::AffineLimit);
+            assert_eq!(tr2.stop, StopReason::AffineLimit);
+            for (l, s1) in tr1.samples(200) {
+                let mapped = t.apply(s1.x);
+                let s2 = tr2.state_at(l);
+                // Relative to the coordinates' size: images of far events have large t.
+                let d = max_abs((mapped - s2.x).to_array()) / (1.0 + max_abs(s2.x.to_array()));
+                worst = worst.max(d);
+                assert!(d < 1e-8, "λ={l}: T(γ1) = {mapped:?}, γ2 = {:?}", s2.x);
+            }
+        }
+    }
+    eprintln!("mapped geodesics: worst deviation {worst:e}");
+}

@@ -1,0 +1,212 @@
+//! Finite isometries of Gödel's universe: the map sending any event to the origin, rotations
+//! about the axis, their inverses, and their differentials on tangent vectors.
+//!
+//! Gödel's spacetime is homogeneous (Gödel, Rev. Mod. Phys. 21, 447 (1949)); with the
+//! complex disc coordinate w = (x + i y)/√(x² + y² + 4a²) = tanh R e^{iφ} (|w| < 1; Gödel's
+//! r = 2a sinh R) the line element reads
+//!
+//!   ds² = −(dt + 2√2 a β)² + 4a² |dw|²/(1 − |w|²)² + dz²,  β = Im(w̄ dw)/(1 − |w|²),
+//!
+//! a Poincaré disc with a U(1) fibre (cf. Kundt, Z. Phys. 145, 611 (1956); Buser, Kajari &
+//! Schleich, New J. Phys. 15, 013063 (2013), Sec. 2). A disc automorphism
+//! w ↦ (w − w0)/(1 − w̄0 w) changes β by d arg(1 − w̄0 w), which the time shift
+//!
+//!   t' = t − t0 − 2√2 a arg(1 − w̄0 w),  z' = z − z0
+//!
+//! compensates: this is T_{P0}, sending P0 = (t0, w0, z0) to the origin. Rotations
+//! w ↦ e^{iα} w leave t, z alone. An [`Isometry`] is R_α ∘ T_{P0}; the set is closed under
+//! inversion: (R_α ∘ T_{P0})⁻¹ = R_{−α} ∘ T_{P1} with P1 = (−t0, −e^{iα} w0, −z0).
+//!
+//! arg is the principal branch: |w̄0 w| < 1 keeps 1 − w̄0 w in the right half-plane, so it
+//! is smooth everywhere.
+
+use crate::vectors::{Event, FourVector};
+use std::f64::consts::SQRT_2;
+use std::ops::{Add, Div, Mul, Sub};
+
+/// A minimal complex number for the disc coordinate.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Complex {
+    pub re: f64,
+    pub im: f64,
+}
+
+impl Complex {
+    pub const fn new(re: f64, im: f64) -> Self {
+        Complex { re, im }
+    }
+    pub fn conj(self) -> Self {
+        Complex::new(self.re, -self.im)
+    }
+    pub fn norm_sqr(self) -> f64 {
+        self.re * self.re + self.im * self.im
+    }
+    pub fn arg(self) -> f64 {
+        self.im.atan2(self.re)
+    }
+    /// e^{iα}.
+    pub fn cis(alpha: f64) -> Self {
+        let (s, c) = alpha.sin_cos();
+        Complex::new(c, s)
+    }
+    pub fn scale(self, s: f64) -> Self {
+        Complex::new(s * self.re, s * self.im)
+    }
+}
+
+impl Add for Complex {
+    type Output = Complex;
+    fn add(self, o: Complex) -> Complex {
+        Complex::new(self.re + o.re, self.im + o.im)
+    }
+}
+impl Sub for Complex {
+    type Output = Complex;
+    fn sub(self, o: Complex) -> Complex {
+        Complex::new(self.re - o.re, self.im - o.im)
+    }
+}
+impl Mul for Complex {
+    type Output = Complex;
+    fn mul(self, o: Complex) -> Complex {
+        Complex::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+}
+impl Div for Complex {
+    type Output = Complex;
+    fn div(self, o: Complex) -> Complex {
+        let n = o.norm_sqr();
+        Complex::new(
+            (self.re * o.re + self.im * o.im) / n,
+            (self.im * o.re - self.re * o.im) / n,
+        )
+    }
+}
+
+/// The disc coordinate w = (x + i y)/√(x² + y² + 4a²) of a point.
+pub fn disc(a: f64, x: f64, y: f64) -> Complex {
+    let s = (x * x + y * y + 4.0 * a * a).sqrt();
+    Complex::new(x / s, y / s)
+}
+
+/// The inverse of [`disc`]: x + i y = 2a w/√(1 − |w|²).
+pub fn from_disc(a: f64, w: Complex) -> (f64, f64) {
+    let f = 2.0 * a / (1.0 - w.norm_sqr()).sqrt();
+    (f * w.re, f * w.im)
+}
+
+/// dw for a displacement (dx, dy) at (x, y): dw = (dx + i dy)/S − (x + i y)(x dx + y dy)/S³,
+/// S = √(x² + y² + 4a²).
+fn disc_differential(a: f64, x: f64, y: f64, dx: f64, dy: f64) -> Complex {
+    let s2 = x * x + y * y + 4.0 * a * a;
+    let s = s2.sqrt();
+    let rad = (x * dx + y * dy) / (s2 * s);
+    Complex::new(dx / s - x * rad, dy / s - y * rad)
+}
+
+/// d(x + i y) for a displacement dw at w: 2a dw/√(1−|w|²) + 2a w Re(w̄ dw)/(1−|w|²)^{3/2}.
+fn from_disc_differential(a: f64, w: Complex, dw: Complex) -> (f64, f64) {
+    let n = 1.0 - w.norm_sqr();
+    let f = 2.0 * a / n.sqrt();
+    let g = f * (w.conj() * dw).re / n;
+    (f * dw.re + g * w.re, f * dw.im + g * w.im)
+}
+
+/// The isometry X ↦ R_rotation(T_{P0}(X)) of the Gödel metric with parameter `a`, where
+/// T_{P0} sends P0 = (t0, w0, z0) to the origin and R_α rotates by α about the axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Isometry {
+    pub a: f64,
+    pub t0: f64,
+    /// Disc coordinate of the event sent to the origin (|w0| < 1).
+    pub w0: Complex,
+    pub z0: f64,
+    /// Rotation applied after the map to the origin (radians, counter-clockwise).
+    pub rotation: f64,
+}
+
+impl Isometry {
+    /// The identity.
+    pub fn identity(a: f64) -> Self {
+        Isometry {
+            a,
+            t0: 0.0,
+            w0: Complex::default(),
+            z0: 0.0,
+            rotation: 0.0,
+        }
+    }
+
+    /// T_{P0}: sends `p0` to the origin (no rotation).
+    pub fn to_origin(a: f64, p0: Event) -> Self {
+        Isometry {
+            a,
+            t0: p0.t,
+            w0: disc(a, p0.x, p0.y),
+            z0: p0.z,
+            rotation: 0.0,
+        }
+    }
+
+    /// The rotation by `alpha` about the axis r = 0.
+    pub fn rotation(a: f64, alpha: f64) -> Self {
+        Isometry {
+            rotation: alpha,
+            ..Isometry::identity(a)
+        }
+    }
+
+    /// This map followed by a further rotation by `alpha`.
+    pub fn then_rotate(self, alpha: f64) -> Self {
+        Isometry {
+            rotation: self.rotation + alpha,
+            ..self
+        }
+    }
+
+    /// The inverse map: (R_α ∘ T_{P0})⁻¹ = R_{−α} ∘ T_{P1}, P1 = (−t0, −e^{iα} w0, −z0)
+    /// (expand (e^{−iα}w + w0)/(1 + w̄0 e^{−iα} w) to see it).
+    pub fn inverse(&self) -> Self {
+        Isometry {
+            a: self.a,
+            t0: -self.t0,
+            w0: (Complex::cis(self.rotation) * self.w0).scale(-1.0),
+            z0: -self.z0,
+            rotation: -self.rotation,
+        }
+    }
+
+    /// The image of an event.
+    pub fn apply(&self, e: Event) -> Event {
+        let a = self.a;
+        let w = disc(a, e.x, e.y);
+        let den = Complex::new(1.0, 0.0) - self.w0.conj() * w;
+        let w1 = Complex::cis(self.rotation) * ((w - self.w0) / den);
+        let (x, y) = from_disc(a, w1);
+        Event::new(
+            e.t - self.t0 - 2.0 * SQRT_2 * a * den.arg(),
+            x,
+            y,
+            e.z - self.z0,
+        )
+    }
+
+    /// The differential: the image at `apply(at)` of the tangent vector `v` at `at`.
+    pub fn push(&self, at: Event, v: FourVector) -> FourVector {
+        let a = self.a;
+        let w = disc(a, at.x, at.y);
+        let dw = disc_differential(a, at.x, at.y, v.x, v.y);
+        let den = Complex::new(1.0, 0.0) - self.w0.conj() * w;
+        let rot = Complex::cis(self.rotation);
+        let w1 = rot * ((w - self.w0) / den);
+        // d[(w − w0)/(1 − w̄0 w)] = (1 − |w0|²) dw/(1 − w̄0 w)².
+        let dw1 = rot * (dw.scale(1.0 - self.w0.norm_sqr()) / (den * den));
+        let (dx, dy) = from_disc_differential(a, w1, dw1);
+        // dt' = dt − 2√2 a d arg(1 − w̄0 w) = dt + 2√2 a Im(w̄0 dw/(1 − w̄0 w)).
+        let dt = v.t + 2.0 * SQRT_2 * a * (self.w0.conj() * dw / den).im;
+        FourVector::new(dt, dx, dy, v.z)
+    }
+}
