@@ -7,9 +7,12 @@
 //!   body coordinates (u, v) in linear RGB.
 //! - [`shade_textures`] / [`preview`]: the texture shader, a [`render::datafile::DataFile`] to
 //!   an 8-bit sRGB image; [`write_png`] writes it atomically.
+//! - [`blackbody`]: Planck's law, CIE 1931 XYZ, XYZ → linear sRGB, and the black-body
+//!   colour table in temperature used by the frequency shader.
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
 //! - [`ShadeError`]: every error, naming the file concerned.
 
+pub mod blackbody;
 pub mod colour;
 mod error;
 pub mod texture;
