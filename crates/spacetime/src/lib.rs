@@ -15,6 +15,7 @@
 //! at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
 //! pseudo-Cartesian x = r cos φ, y = r sin φ.
 
+pub mod closed_form;
 mod constants;
 mod dop853;
 mod frame;
@@ -26,6 +27,7 @@ mod metric;
 mod minkowski;
 mod vectors;
 
+pub use closed_form::{ExactGeodesic, OriginGeodesic};
 pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};
