@@ -9,16 +9,20 @@
 //!   an 8-bit sRGB image; [`write_png`] writes it atomically.
 //! - [`blackbody`]: Planck's law, CIE 1931 XYZ, XYZ → linear sRGB, and the black-body
 //!   colour table in temperature used by the frequency shader.
+//! - [`shade_frequency`]: the frequency shader, objects as black bodies at g·T with
+//!   [`Brightness`] normalized or physical, and reference squares of the unshifted colours.
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
 //! - [`ShadeError`]: every error, naming the file concerned.
 
 pub mod blackbody;
 pub mod colour;
 mod error;
+pub mod frequency_shader;
 pub mod texture;
 pub mod texture_shader;
 
 pub use error::ShadeError;
+pub use frequency_shader::{shade_frequency, Brightness};
 pub use texture::{ImageTexture, Texture};
 pub use texture_shader::{
     pixel_colour, preview, shade_textures, shading_factor, textures_for_scene, write_png,

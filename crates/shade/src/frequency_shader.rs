@@ -1,0 +1,147 @@
+//! The frequency shader: shows each object as a black body of its own temperature T_k seen
+//! with the pixel's frequency shift g, without re-tracing (DESIGN.md, "The pipeline").
+//!
+//! A black body at T seen with shift g = ν_obs/ν_emit is a black body at g·T (Planck's law
+//! with the invariance of I_ν/ν³; see [`crate::blackbody`]), so a hit pixel of object k shows
+//! the CIE 1931 colour of a black body at g·T_k, converted to sRGB (IEC 61966-2-1), read from
+//! the lookup table [`crate::blackbody::table`]. A black body is a Lambertian emitter (its
+//! radiance does not depend on direction), so there is no `cos_i` shading.
+//!
+//! | pixel | colour (linear sRGB) |
+//! | --- | --- |
+//! | hit object k, [`Brightness::Normalized`] | colour of g·T_k with its largest component 1 |
+//! | hit object k, [`Brightness::Physical`] | `exposure · Y(g·T_k)/Y(T_k)` times the colour of g·T_k at luminance 1, tone-clamped |
+//! | nothing hit | [`BACKGROUND`] |
+//! | failed, step budget, not traced | as the texture shader ([`FAILED`], [`STEP_BUDGET`], [`NOT_TRACED`]) |
+//! | object without a temperature, T ≤ 0, or g not finite and positive | [`FAILED`] |
+//!
+//! Physical brightness is relative to each object's own unshifted luminance: an object seen
+//! with g = 1 has luminance `exposure`, and a shifted part is brighter or darker by the
+//! physical ratio of the luminances Y(gT)/Y(T) (the visible-band part of the g⁴ law for the
+//! bolometric radiance). The tone clamp keeps the hue: a colour whose largest component
+//! exceeds 1 is divided by it.
+//!
+//! Reference squares: in the top-left corner, one square for each of the first two objects
+//! shows its unshifted colour (g = 1) in the same brightness mode, as in the frequency-shift
+//! figures of the Gödel-universe visualizations; see [`reference_square`] for the layout.
+//! Rows are shaded in parallel; the result does not depend on the thread count.
+
+use image::RgbImage;
+use rayon::prelude::*;
+use render::datafile::DataFile;
+use render::record::{PixelRecord, RayStatus};
+
+use crate::blackbody::table;
+use crate::colour::rgb_to_srgb8;
+use crate::texture_shader::{BACKGROUND, FAILED, NOT_TRACED, STEP_BUDGET};
+
+/// How bright a black-body pixel is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Brightness {
+    /// Colour only: largest linear component 1, whatever the shift.
+    Normalized,
+    /// Physical luminance relative to the object's unshifted luminance, times `exposure`.
+    Physical { exposure: f64 },
+}
+
+/// How many objects get a reference square.
+pub const REFERENCE_SQUARES: usize = 2;
+
+/// Shades every pixel of `data` as black bodies at `temperatures[k]` (K) for object k, seen
+/// with the pixel's shift g, and draws the reference squares. Never panics on inconsistent
+/// data: missing records and temperatures show as [`FAILED`].
+pub fn shade_frequency(data: &DataFile, temperatures: &[f64], brightness: Brightness) -> RgbImage {
+    let (Ok(width), Ok(height)) = (u32::try_from(data.width), u32::try_from(data.height)) else {
+        return RgbImage::new(0, 0);
+    };
+    if width == 0 || height == 0 {
+        return RgbImage::new(0, 0);
+    }
+    let row_bytes = data.width * 3;
+    let mut bytes = vec![0u8; row_bytes * data.height];
+    bytes
+        .par_chunks_mut(row_bytes)
+        .enumerate()
+        .for_each(|(row, out)| {
+            for (col, px) in out.chunks_exact_mut(3).enumerate() {
+                let colour = match data.records.get(data.index(col, row)) {
+                    Some(record) => frequency_colour(record, temperatures, brightness),
+                    None => FAILED,
+                };
+                px.copy_from_slice(&rgb_to_srgb8(colour));
+            }
+        });
+    let mut img = RgbImage::from_raw(width, height, bytes).expect("width × height × 3 bytes");
+    for (k, &t) in temperatures.iter().take(REFERENCE_SQUARES).enumerate() {
+        let Some((x0, y0, side)) = reference_square(k, data.width, data.height) else {
+            continue;
+        };
+        let colour = rgb_to_srgb8(blackbody_colour(1.0, t, brightness).unwrap_or(FAILED));
+        for y in y0..y0 + side {
+            for x in x0..x0 + side {
+                img.put_pixel(x as u32, y as u32, image::Rgb(colour));
+            }
+        }
+    }
+    img
+}
+
+/// Linear sRGB of one pixel (see the table in the module documentation).
+pub fn frequency_colour(
+    record: &PixelRecord,
+    temperatures: &[f64],
+    brightness: Brightness,
+) -> [f32; 3] {
+    match record.status {
+        RayStatus::Failed => return FAILED,
+        RayStatus::StepBudget => return STEP_BUDGET,
+        RayStatus::NotTraced => return NOT_TRACED,
+        RayStatus::Hit | RayStatus::Escaped => {}
+    }
+    if record.object < 0 {
+        return BACKGROUND;
+    }
+    let Some(&t) = temperatures.get(record.object as usize) else {
+        return FAILED;
+    };
+    blackbody_colour(f64::from(record.g), t, brightness).unwrap_or(FAILED)
+}
+
+/// Linear sRGB of a black body at temperature `t` (K) seen with shift `g`; `None` unless both
+/// are finite and positive (and, in physical mode, the exposure is finite and ≥ 0).
+pub fn blackbody_colour(g: f64, t: f64, brightness: Brightness) -> Option<[f32; 3]> {
+    let valid = |v: f64| v.is_finite() && v > 0.0;
+    if !valid(g) || !valid(t) {
+        return None;
+    }
+    let tab = table();
+    let shifted = g * t;
+    let rgb = match brightness {
+        Brightness::Normalized => tab.colour(shifted),
+        Brightness::Physical { exposure } => {
+            if !(exposure.is_finite() && exposure >= 0.0) {
+                return None;
+            }
+            let scale = exposure * tab.luminance(shifted) / tab.luminance(t);
+            let rgb = tab.unit_colour(shifted).map(|c| c * scale);
+            let max = rgb[0].max(rgb[1]).max(rgb[2]);
+            if max > 1.0 {
+                rgb.map(|c| c / max)
+            } else {
+                rgb
+            }
+        }
+    };
+    Some(rgb.map(|c| c as f32))
+}
+
+/// Where reference square `k` lies in a `width` × `height` image: `(x0, y0, side)` in pixels,
+/// top-left corner, or `None` if it does not fit. The side is min(width, height)/8 clamped to
+/// 8..=16 px; the squares sit side/4 from the top and left edges and side/4 apart.
+pub fn reference_square(k: usize, width: usize, height: usize) -> Option<(usize, usize, usize)> {
+    let side = (width.min(height) / 8).clamp(8, 16);
+    let gap = side / 4;
+    let x0 = gap + k * (side + gap);
+    let y0 = gap;
+    (x0 + side <= width && y0 + side <= height).then_some((x0, y0, side))
+}
