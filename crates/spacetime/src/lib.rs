@@ -16,6 +16,7 @@
 //! pseudo-Cartesian x = r cos φ, y = r sin φ.
 
 pub mod closed_form;
+pub mod connect;
 mod constants;
 mod dop853;
 mod frame;
@@ -28,6 +29,7 @@ mod minkowski;
 mod vectors;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
+pub use connect::{shadow_rays, shadow_rays_from_axis, Branch, ShadowRay};
 pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};

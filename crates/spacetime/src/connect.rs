@@ -1,0 +1,145 @@
+//! Light rays connecting a light source at rest with an event ("shadow rays"): all
+//! future-directed null geodesics from the source's worldline to a target event, up to a
+//! given number of windings.
+//!
+//! For a source on the axis (worldline r = 0, z = 0) every such ray is a closed form through
+//! the axis (Novello, Soares & Tiomno, PRD 27, 779 (1983), Sec. III; Grave et al., PRD 80,
+//! 103002 (2009), Sec. III; see [`crate::closed_form`]). A photon with E = 1 leaving at
+//! angle ψ to the z axis (c = cos ψ) has ω = √(1+c²)/(2a), r_max = 2a √((1−c²)/(1+c²)),
+//! q = √(2/(1+c²)), and r = r_max sin(ωλ), z = cλ. It meets the target at cylindrical
+//! (ρ, φ_P, z_P) when, for a winding n ≥ 0 and branch b,
+//!
+//!   θ = nπ + θ0,  θ0 = arcsin(ρ/r_max) (outbound) or π − arcsin(ρ/r_max) (inbound),
+//!   F(c) = 2a c θ(c)/√(1+c²) − z_P = 0,  sign c = sign z_P,  c² ≤ (1 − s²)/(1 + s²),
+//!
+//! s = ρ/2a, so rays exist only for ρ < 2a (ρ = 2a tangentially). Then λ = θ/ω, the
+//! emission azimuth is χ = φ_P − Φ(θ) + nπ and the emission time t_P − (2√2 a Φ(θ) − λ).
+//! F is solved per (n, b) by bracketing on a grid in |c| and refining; for z_P = 0 the
+//! only root is c = 0 (in-plane rays, exactly two per winding).
+//!
+//! A source at rest elsewhere is reduced to this case by the isometry T_S sending it to the
+//! origin ([`crate::isometry`]): its worldline goes to the axis worldline with t unchanged.
+
+use crate::geodesic::refine_root;
+use crate::isometry::{disc, Isometry};
+use crate::vectors::{Event, FourVector};
+use std::f64::consts::{PI, SQRT_2};
+
+/// Which half of the loop meets the target: on the way out to r_max or back in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Branch {
+    Outbound,
+    Inbound,
+}
+
+/// One light ray from the source to the target.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowRay {
+    /// The emission event on the source's worldline.
+    pub emission: Event,
+    /// The future-directed null tangent at emission, normalized to E = −k_t = 1.
+    pub tangent: FourVector,
+    /// Affine parameter from emission to the target.
+    pub lambda: f64,
+    /// Completed returns to the source's axis before reaching the target.
+    pub winding: u32,
+    pub branch: Branch,
+}
+
+/// Grid cells per (winding, branch) used to bracket the roots of F.
+const GRID: usize = 256;
+
+/// Φ(θ) = arctan(q tan θ), continuous in θ.
+fn big_phi(q: f64, th: f64) -> f64 {
+    let (s, c) = th.sin_cos();
+    th + ((q - 1.0) * s * c).atan2(c * c + q * s * s)
+}
+
+/// θ(c) of a winding and branch for a target at distance `rho` (needs |c| ≤ c_max).
+fn theta(a: f64, rho: f64, c: f64, n: u32, b: Branch) -> f64 {
+    let r_max = 2.0 * a * ((1.0 - c * c) / (1.0 + c * c)).sqrt();
+    let th0 = (rho / r_max).min(1.0).asin();
+    n as f64 * PI
+        + match b {
+            Branch::Outbound => th0,
+            Branch::Inbound => PI - th0,
+        }
+}
+
+/// The ray for emission angle cosine `c` (signed), winding and branch.
+fn ray(a: f64, target: Event, c: f64, n: u32, b: Branch) -> ShadowRay {
+    let rho = target.r();
+    let th = theta(a, rho, c, n, b);
+    let w1 = 1.0 + c * c;
+    let omega = w1.sqrt() / (2.0 * a);
+    let q = (2.0 / w1).sqrt();
+    let big = big_phi(q, th);
+    let lambda = th / omega;
+    let chi = target.phi() - big + n as f64 * PI;
+    let sin_psi = (1.0 - c * c).max(0.0).sqrt();
+    ShadowRay {
+        emission: Event::new(target.t - (2.0 * SQRT_2 * a * big - lambda), 0.0, 0.0, 0.0),
+        tangent: FourVector::new(1.0, sin_psi * chi.cos(), sin_psi * chi.sin(), c),
+        lambda,
+        winding: n,
+        branch: b,
+    }
+}
+
+/// All light rays from the source at rest on the axis (r = 0, z = 0) of the Gödel metric
+/// with parameter `a` to `target`, with windings 0..=`max_winding`, latest emission first.
+/// Empty when the target lies at or beyond the horizon distance ρ ≥ 2a.
+pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<ShadowRay> {
+    let rho = target.r();
+    let s2 = (rho / (2.0 * a)).powi(2);
+    if !target.is_finite() || s2 >= 1.0 {
+        return Vec::new();
+    }
+    let c_max = ((1.0 - s2) / (1.0 + s2)).sqrt();
+    let zp = target.z;
+    let mut out = Vec::new();
+    for n in 0..=max_winding {
+        for b in [Branch::Outbound, Branch::Inbound] {
+            if zp == 0.0 {
+                out.push(ray(a, target, 0.0, n, b));
+                continue;
+            }
+            // G(u) = 2a u θ(u)/√(1+u²) − |z_P| for u = |c| ∈ (0, c_max]; G(0) < 0.
+            let g = |u: f64| 2.0 * a * u * theta(a, rho, u, n, b) / (1.0 + u * u).sqrt() - zp.abs();
+            let mut u0 = 0.0;
+            let mut g0 = g(0.0);
+            for i in 1..=GRID {
+                let u1 = c_max * i as f64 / GRID as f64;
+                let g1 = g(u1);
+                // A root exactly at c_max belongs to both branches: count it once.
+                let at_join = i == GRID && b == Branch::Inbound;
+                if g1 == 0.0 && !at_join {
+                    out.push(ray(a, target, zp.signum() * u1, n, b));
+                } else if g0 < 0.0 && g1 > 0.0 || g0 > 0.0 && g1 < 0.0 {
+                    let u = refine_root(g, u0, u1, g0, g1);
+                    out.push(ray(a, target, zp.signum() * u, n, b));
+                }
+                (u0, g0) = (u1, g1);
+            }
+        }
+    }
+    out.sort_by(|p, q| q.emission.t.total_cmp(&p.emission.t));
+    out
+}
+
+/// All light rays from a source at rest at `source` (its x, y, z; t ignored) to `target`:
+/// the axis case after mapping the source to the origin, mapped back.
+pub fn shadow_rays(a: f64, source: Event, target: Event, max_winding: u32) -> Vec<ShadowRay> {
+    let to = Isometry::to_origin(a, Event::new(0.0, source.x, source.y, source.z));
+    // T_S keeps t on the source worldline: arg(1 − |w_S|²) = 0.
+    debug_assert!(disc(a, source.x, source.y).norm_sqr() < 1.0);
+    let back = to.inverse();
+    shadow_rays_from_axis(a, to.apply(target), max_winding)
+        .into_iter()
+        .map(|r| ShadowRay {
+            emission: back.apply(r.emission),
+            tangent: back.push(r.emission, r.tangent),
+            ..r
+        })
+        .collect()
+}
