@@ -10,6 +10,9 @@
 //! - [`Geodesic`], [`trace`]: a geodesic launched from a local direction, integrated with
 //!   stop conditions, sampled evenly from the dense output.
 //! - [`ConstantsOfMotion`]: E = −p_t, L = p_φ, p_z and the normalization, with drift reports.
+//! - Gödel's symmetries: [`KillingField`] (the five Killing fields), [`Isometry`] (finite
+//!   isometries and their differentials), [`ExactGeodesic`] (closed-form geodesics through
+//!   any event), [`shadow_rays`] (light rays from a source at rest to an event).
 //!
 //! Conventions (DESIGN.md): c = 1, signature (−,+,+,+), Gödel parameter `a`, optical horizon
 //! at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
