@@ -552,15 +552,18 @@ fn lincomb<const N: usize, const M: usize, const K: usize>(
     terms: [(usize, f64); M],
     k: &[[f64; N]; K],
 ) -> [f64; N] {
-    let mut acc = [0.0; N];
-    for (j, c) in terms {
+    // Two interleaved sums: a step is latency-bound (each stage waits for the previous),
+    // and one running sum would chain all M additions.
+    let (mut even, mut odd) = ([0.0; N], [0.0; N]);
+    for (n, (j, c)) in terms.into_iter().enumerate() {
+        let acc = if n % 2 == 0 { &mut even } else { &mut odd };
         for i in 0..N {
             acc[i] += c * k[j][i];
         }
     }
     let mut out = *y;
     for i in 0..N {
-        out[i] += h * acc[i];
+        out[i] += h * (even[i] + odd[i]);
     }
     out
 }
