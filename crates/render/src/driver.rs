@@ -69,14 +69,14 @@ pub enum RenderError {
         name: String,
         source: crate::worldline::WorldlineError,
     },
-    #[error("trace.method = \"exact\" is not available yet; use method = \"numeric\"")]
-    ExactUnavailable,
+    #[error("trace.method = \"exact\" uses the Gödel closed forms: it needs metric = \"godel\"")]
+    ExactNeedsGodel,
 }
 
 /// Builds the shared tracer of a scene.
 pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
-    if scene.trace.method == TraceMethod::Exact {
-        return Err(RenderError::ExactUnavailable);
+    if scene.trace.method == TraceMethod::Exact && scene.metric.godel_a().is_none() {
+        return Err(RenderError::ExactNeedsGodel);
     }
     let m = scene.metric;
     let obs = scene.observer;
@@ -101,6 +101,7 @@ pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
         scene.trace.max_past,
         scene.trace.tolerance,
         scene.trace.max_steps,
+        scene.trace.method == TraceMethod::Exact,
     ))
 }
 

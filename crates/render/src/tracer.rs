@@ -19,8 +19,8 @@ use crate::bounds::Aabb;
 use crate::record::{PixelRecord, RayStatus};
 use crate::target::{Probe, Target};
 use spacetime::{
-    refine_root, DenseStep, Dop853, Event, GeodesicState, GeodesicSystem, Metric, OdeSystem,
-    Spacetime, StepData, StepOutcome, Tetrad, Tolerances, STATE,
+    refine_root, DenseStep, Dop853, Event, ExactGeodesic, GeodesicState, GeodesicSystem, Metric,
+    OdeSystem, Spacetime, StepData, StepOutcome, Tetrad, Tolerances, STATE,
 };
 use std::cell::OnceCell;
 
@@ -36,7 +36,13 @@ pub struct Tracer {
     max_steps: u64,
     /// Reuse the first loop (Gödel only).
     periodic: bool,
+    /// Use the closed-form geodesics instead of the integrator (Gödel only).
+    exact: bool,
 }
+
+/// Segments per loop for the exact tracer: short enough for the exclusion test to be
+/// effective, like the integrator's steps (~32 per loop at the default tolerance).
+const EXACT_SEGMENTS: usize = 32;
 
 /// Per-thread buffers, reused from ray to ray (no allocation per ray).
 #[derive(Default)]
@@ -58,11 +64,13 @@ struct Measured {
 /// then. Capped, because the rate bound is made for spans of a few steps.
 const MAX_SKIP: f64 = 1.0;
 
-/// A stored step whose dense output is made on first use (most steps never need it).
+/// A stored step whose dense output is made on first use (most steps never need it), or a
+/// segment of a closed-form geodesic (the exact tracer), evaluated directly.
 pub struct LazyStep {
     data: StepData<STATE>,
     sys: GeodesicSystem<Metric>,
     dense: OnceCell<DenseStep<STATE>>,
+    exact: Option<ExactGeodesic>,
 }
 
 impl LazyStep {
@@ -71,6 +79,22 @@ impl LazyStep {
             data,
             sys,
             dense: OnceCell::new(),
+            exact: None,
+        }
+    }
+    /// The segment [l0, l1] of a closed-form geodesic.
+    fn exact(geo: ExactGeodesic, sys: GeodesicSystem<Metric>, l0: f64, l1: f64) -> Self {
+        let data = StepData {
+            lambda0: l0,
+            h: l1 - l0,
+            y0: exact_state(&geo, &sys, l0),
+            y1: exact_state(&geo, &sys, l1),
+        };
+        LazyStep {
+            data,
+            sys,
+            dense: OnceCell::new(),
+            exact: Some(geo),
         }
     }
     fn eval(&self, l: f64) -> [f64; STATE] {
@@ -78,6 +102,8 @@ impl LazyStep {
             self.data.y1
         } else if l == self.data.lambda0 {
             self.data.y0
+        } else if let Some(geo) = &self.exact {
+            exact_state(geo, &self.sys, l)
         } else {
             self.dense
                 .get_or_init(|| self.data.dense(&self.sys))
@@ -96,6 +122,13 @@ impl std::ops::Deref for LazyStep {
     fn deref(&self) -> &StepData<STATE> {
         &self.data
     }
+}
+
+/// The integrated-state form (t, x, y, z, p_x, p_y) of a closed-form geodesic at `l`.
+fn exact_state(geo: &ExactGeodesic, sys: &GeodesicSystem<Metric>, l: f64) -> [f64; STATE] {
+    let (x, k) = geo.at(l);
+    let p = sys.metric.lower(x, k);
+    [x.t, x.x, x.y, x.z, p.x, p.y]
 }
 
 /// A shift of a stored loop: later loops are the first one moved in t, z and λ.
@@ -136,6 +169,7 @@ impl Tracer {
         max_past: f64,
         tolerance: f64,
         max_steps: u64,
+        exact: bool,
     ) -> Tracer {
         Tracer {
             metric,
@@ -150,6 +184,7 @@ impl Tracer {
             },
             max_steps,
             periodic: matches!(metric, Metric::Godel(_)),
+            exact: exact && matches!(metric, Metric::Godel(_)),
         }
     }
 
@@ -177,7 +212,6 @@ impl Tracer {
             p: self.metric.lower(self.observer, k),
         };
         let (sys, s0) = GeodesicSystem::new(self.metric, &start);
-        let mut ode = Dop853::new(sys, 0.0, s0, self.tol, None);
         let Scratch {
             steps,
             start: probes_a,
@@ -185,6 +219,10 @@ impl Tracer {
         } = scratch;
         steps.clear();
         self.probe_all(&start, 0.0, probes_a);
+        if self.exact {
+            return self.trace_exact(&start, k, sys, s0, steps, probes_a, probes_b);
+        }
+        let mut ode = Dop853::new(sys, 0.0, s0, self.tol, None);
         let (x0, y0) = (s0[1], s0[2]);
         let axis_g = |s: &[f64; STATE], d: &[f64; STATE]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
         let mut max_d2: f64 = 0.0;
@@ -250,7 +288,64 @@ impl Tracer {
                 break p;
             }
         };
-        // Later loops: the stored first loop, shifted.
+        self.later_loops(&start, s0, period, steps, probes_a, probes_b)
+    }
+
+    /// The exact tracer's first loop: closed-form segments (Kajari et al. 2009; formulary §2
+    /// carried by the isometries of §3), then the same loop reuse as the numeric tracer,
+    /// with the period known exactly.
+    #[allow(clippy::too_many_arguments)]
+    fn trace_exact(
+        &self,
+        start: &GeodesicState,
+        k: spacetime::FourVector,
+        sys: GeodesicSystem<Metric>,
+        s0: [f64; STATE],
+        steps: &mut Vec<LazyStep>,
+        probes_a: &mut Vec<Measured>,
+        probes_b: &mut Vec<Measured>,
+    ) -> PixelRecord {
+        let Some(a) = self.metric.godel_a() else {
+            return PixelRecord::miss(RayStatus::Failed);
+        };
+        let Some(geo) = ExactGeodesic::new(a, self.observer, k) else {
+            return PixelRecord::miss(RayStatus::Failed);
+        };
+        let l_ret = geo.origin.return_parameter();
+        for i in 0..EXACT_SEGMENTS {
+            let (l0, l1) = (
+                l_ret * i as f64 / EXACT_SEGMENTS as f64,
+                l_ret * (i + 1) as f64 / EXACT_SEGMENTS as f64,
+            );
+            steps.push(LazyStep::exact(geo, sys, l0, l1));
+            let d = steps.last().expect("just pushed");
+            if let Some(h) = self.scan(d, Shift::default(), l0, l1, probes_a, probes_b) {
+                return self.record(start, d, Shift::default(), h);
+            }
+            if d.y1[0] < self.t_bound {
+                return PixelRecord::miss(RayStatus::Escaped);
+            }
+            std::mem::swap(probes_a, probes_b);
+        }
+        let end = steps.last().expect("segments").y1;
+        let period = Shift {
+            dt: end[0] - s0[0],
+            dz: end[3] - s0[3],
+            dl: l_ret,
+        };
+        self.later_loops(start, s0, period, steps, probes_a, probes_b)
+    }
+
+    /// Later loops: the stored first loop, shifted by whole periods.
+    fn later_loops(
+        &self,
+        start: &GeodesicState,
+        s0: [f64; STATE],
+        period: Shift,
+        steps: &[LazyStep],
+        probes_a: &mut Vec<Measured>,
+        probes_b: &mut Vec<Measured>,
+    ) -> PixelRecord {
         if !(period.dt < 0.0) {
             return PixelRecord::miss(RayStatus::Failed); // a backward ray must go to the past
         }
@@ -280,7 +375,7 @@ impl Tracer {
                     d.lambda1()
                 };
                 if let Some(h) = self.scan(d, shift, d.lambda0, hi, probes_a, probes_b) {
-                    result = Some(self.record(&start, d, shift, h));
+                    result = Some(self.record(start, d, shift, h));
                     break 'copies;
                 }
                 if d.y1[0] + shift.dt < self.t_bound {

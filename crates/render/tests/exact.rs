@@ -1,0 +1,77 @@
+//! The exact tracer (closed-form Gödel geodesics carried by isometries) against the numeric
+//! tracer (DOP853 integration): two independent computations of the same images must agree
+//! on every pixel but silhouettes, and on g and t_emit where both hit.
+
+mod common;
+use common::{render_scene, scene};
+use render::driver::{build_tracer, RenderError};
+use std::path::Path;
+
+fn scene_file(name: &str, method: &str, width: u32, height: u32) -> scene::Scene {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(name);
+    let text = std::fs::read_to_string(p).unwrap();
+    let text: String = text
+        .lines()
+        .map(|l| match l.split('=').next().map(str::trim) {
+            Some("width") => format!("width = {width}"),
+            Some("height") => format!("height = {height}"),
+            Some("method") => String::new(),
+            _ => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        .replace("[trace]", &format!("[trace]\nmethod = \"{method}\""));
+    scene(&text)
+}
+
+#[test]
+fn exact_and_numeric_tracers_agree_pixel_by_pixel() {
+    for (name, w, h) in [
+        ("static-sphere.toml", 360, 60),
+        ("reference.toml", 440, 50),
+        ("bench-static.toml", 220, 25),
+    ] {
+        let (num, _) = render_scene(&scene_file(name, "numeric", w, h));
+        let (exa, _) = render_scene(&scene_file(name, "exact", w, h));
+        let mut differ = 0;
+        let mut both = 0;
+        for (a, b) in num.records.iter().zip(&exa.records) {
+            if a.object != b.object || a.status != b.status {
+                differ += 1;
+            } else if a.is_hit() {
+                both += 1;
+                assert!(
+                    (a.g - b.g).abs() <= 1e-6 * a.g.abs().max(1.0),
+                    "{name}: g {} vs {}",
+                    a.g,
+                    b.g
+                );
+                assert!(
+                    (a.t_emit - b.t_emit).abs() <= 1e-6 * a.t_emit.abs().max(1.0),
+                    "{name}: t_emit {} vs {}",
+                    a.t_emit,
+                    b.t_emit
+                );
+            }
+        }
+        assert!(both > 100, "{name}: only {both} hits");
+        // Silhouette pixels may go either way: at most 0.1 % of the image.
+        assert!(
+            differ * 1000 <= num.records.len(),
+            "{name}: {differ} pixels differ"
+        );
+    }
+}
+
+#[test]
+fn exact_method_needs_the_godel_metric() {
+    let s = scene(
+        "name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n[camera]\nkind = \"pinhole\"\nfov_deg = 60.0\nwidth = 8\nheight = 8\n[trace]\nmethod = \"exact\"\n",
+    );
+    assert!(matches!(
+        build_tracer(&s),
+        Err(RenderError::ExactNeedsGodel)
+    ));
+}
