@@ -4,6 +4,7 @@
 //!     10 time units into the past; the whole render plus encoding the data file.
 //! (2) the reference scene at a reduced 440×50 (its full 2200×250 wall time is measured
 //!     with the CLI, see BENCHMARKS.md).
+//! Each with the numeric tracer on 1 and 2 threads, and the exact tracer on 1.
 //! Run: cargo bench -p render --bench render
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -11,7 +12,7 @@ use render::driver::{render, NoProgress};
 use scene::Scene;
 use std::path::Path;
 
-fn scene(path: &str, width: u32, height: u32) -> Scene {
+fn scene(path: &str, width: u32, height: u32, method: &str) -> Scene {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .join(path);
@@ -23,6 +24,8 @@ fn scene(path: &str, width: u32, height: u32) -> Scene {
                 format!("width = {width}")
             } else if l.starts_with("height") {
                 format!("height = {height}")
+            } else if l.starts_with("method") {
+                format!("method = \"{method}\"")
             } else {
                 l.to_string()
             }
@@ -38,10 +41,27 @@ fn bench(c: &mut Criterion) {
         ("bench_static_440x50", "scenes/bench-static.toml"),
         ("reference_440x50", "scenes/reference.toml"),
     ] {
-        let sc = scene(path, 440, 50);
+        let sc = scene(path, 440, 50, "numeric");
         let mut group = c.benchmark_group(label);
         group.sample_size(10);
         group.throughput(Throughput::Elements(440 * 50));
+        let exact = scene(path, 440, 50, "exact");
+        group.bench_function("exact_1_thread_with_datafile", |b| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(1)
+                .build()
+                .unwrap();
+            b.iter(|| {
+                pool.install(|| {
+                    render(&exact, &NoProgress)
+                        .unwrap()
+                        .0
+                        .to_bytes()
+                        .unwrap()
+                        .len()
+                })
+            })
+        });
         for &n in &threads {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

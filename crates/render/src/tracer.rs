@@ -82,12 +82,18 @@ impl LazyStep {
             exact: None,
         }
     }
-    /// The segment [l0, l1] of a closed-form geodesic.
-    fn exact(geo: ExactGeodesic, sys: GeodesicSystem<Metric>, l0: f64, l1: f64) -> Self {
+    /// The segment [l0, l1] of a closed-form geodesic whose state at l0 is `y0`.
+    fn exact(
+        geo: ExactGeodesic,
+        sys: GeodesicSystem<Metric>,
+        l0: f64,
+        y0: [f64; STATE],
+        l1: f64,
+    ) -> Self {
         let data = StepData {
             lambda0: l0,
             h: l1 - l0,
-            y0: exact_state(&geo, &sys, l0),
+            y0,
             y1: exact_state(&geo, &sys, l1),
         };
         LazyStep {
@@ -317,7 +323,8 @@ impl Tracer {
                 l_ret * i as f64 / EXACT_SEGMENTS as f64,
                 l_ret * (i + 1) as f64 / EXACT_SEGMENTS as f64,
             );
-            steps.push(LazyStep::exact(geo, sys, l0, l1));
+            let y0 = steps.last().map_or(s0, |d| d.y1);
+            steps.push(LazyStep::exact(geo, sys, l0, y0, l1));
             let d = steps.last().expect("just pushed");
             if let Some(h) = self.scan(d, Shift::default(), l0, l1, probes_a, probes_b) {
                 return self.record(start, d, Shift::default(), h);
