@@ -27,13 +27,12 @@
 //! Rows are shaded in parallel; the result does not depend on the thread count.
 
 use image::RgbImage;
-use rayon::prelude::*;
 use render::datafile::DataFile;
 use render::record::{PixelRecord, RayStatus};
 
 use crate::blackbody::table;
 use crate::colour::rgb_to_srgb8;
-use crate::texture_shader::{BACKGROUND, FAILED, NOT_TRACED, STEP_BUDGET};
+use crate::texture_shader::{shade_pixels, BACKGROUND, FAILED, NOT_TRACED, STEP_BUDGET};
 
 /// How bright a black-body pixel is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,27 +50,9 @@ pub const REFERENCE_SQUARES: usize = 2;
 /// with the pixel's shift g, and draws the reference squares. Never panics on inconsistent
 /// data: missing records and temperatures show as [`FAILED`].
 pub fn shade_frequency(data: &DataFile, temperatures: &[f64], brightness: Brightness) -> RgbImage {
-    let (Ok(width), Ok(height)) = (u32::try_from(data.width), u32::try_from(data.height)) else {
-        return RgbImage::new(0, 0);
-    };
-    if width == 0 || height == 0 {
-        return RgbImage::new(0, 0);
-    }
-    let row_bytes = data.width * 3;
-    let mut bytes = vec![0u8; row_bytes * data.height];
-    bytes
-        .par_chunks_mut(row_bytes)
-        .enumerate()
-        .for_each(|(row, out)| {
-            for (col, px) in out.chunks_exact_mut(3).enumerate() {
-                let colour = match data.records.get(data.index(col, row)) {
-                    Some(record) => frequency_colour(record, temperatures, brightness),
-                    None => FAILED,
-                };
-                px.copy_from_slice(&rgb_to_srgb8(colour));
-            }
-        });
-    let mut img = RgbImage::from_raw(width, height, bytes).expect("width × height × 3 bytes");
+    let mut img = shade_pixels(data, |record| {
+        frequency_colour(record, temperatures, brightness)
+    });
     for (k, &t) in temperatures.iter().take(REFERENCE_SQUARES).enumerate() {
         let Some((x0, y0, side)) = reference_square(k, data.width, data.height) else {
             continue;

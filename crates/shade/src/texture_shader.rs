@@ -46,6 +46,13 @@ const AMBIENT: f32 = 0.25;
 /// Shades every pixel of `data` with the objects' textures (`textures[k]` for object k).
 /// Never panics on inconsistent data: missing records and textures show as [`FAILED`].
 pub fn shade_textures(data: &DataFile, textures: &[Texture], background: [f32; 3]) -> RgbImage {
+    shade_pixels(data, |record| pixel_colour(record, textures, background))
+}
+
+/// Shades every pixel of `data` with `colour` (linear RGB of one record), rows in parallel;
+/// the loop every shader shares. Records missing from an inconsistent file show as
+/// [`FAILED`]; a zero or oversized image gives an empty one.
+pub fn shade_pixels(data: &DataFile, colour: impl Fn(&PixelRecord) -> [f32; 3] + Sync) -> RgbImage {
     let (Ok(width), Ok(height)) = (u32::try_from(data.width), u32::try_from(data.height)) else {
         return RgbImage::new(0, 0);
     };
@@ -59,11 +66,11 @@ pub fn shade_textures(data: &DataFile, textures: &[Texture], background: [f32; 3
         .enumerate()
         .for_each(|(row, out)| {
             for (col, px) in out.chunks_exact_mut(3).enumerate() {
-                let colour = match data.records.get(data.index(col, row)) {
-                    Some(record) => pixel_colour(record, textures, background),
-                    None => FAILED,
-                };
-                px.copy_from_slice(&rgb_to_srgb8(colour));
+                let c = data
+                    .records
+                    .get(data.index(col, row))
+                    .map_or(FAILED, &colour);
+                px.copy_from_slice(&rgb_to_srgb8(c));
             }
         });
     RgbImage::from_raw(width, height, bytes).expect("buffer has width × height × 3 bytes")
