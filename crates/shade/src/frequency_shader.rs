@@ -28,11 +28,11 @@
 
 use image::RgbImage;
 use render::datafile::DataFile;
-use render::record::{PixelRecord, RayStatus};
+use render::record::PixelRecord;
 
 use crate::blackbody::table;
 use crate::colour::rgb_to_srgb8;
-use crate::texture_shader::{shade_pixels, BACKGROUND, FAILED, NOT_TRACED, STEP_BUDGET};
+use crate::texture_shader::{shade_pixels, status_colour, BACKGROUND, FAILED};
 
 /// How bright a black-body pixel is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,14 +73,8 @@ pub fn frequency_colour(
     temperatures: &[f64],
     brightness: Brightness,
 ) -> [f32; 3] {
-    match record.status {
-        RayStatus::Failed => return FAILED,
-        RayStatus::StepBudget => return STEP_BUDGET,
-        RayStatus::NotTraced => return NOT_TRACED,
-        RayStatus::Hit | RayStatus::Escaped => {}
-    }
-    if record.object < 0 {
-        return BACKGROUND;
+    if let Some(c) = status_colour(record, BACKGROUND) {
+        return c;
     }
     let Some(&t) = temperatures.get(record.object as usize) else {
         return FAILED;

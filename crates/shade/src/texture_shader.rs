@@ -76,16 +76,21 @@ pub fn shade_pixels(data: &DataFile, colour: impl Fn(&PixelRecord) -> [f32; 3] +
     RgbImage::from_raw(width, height, bytes).expect("buffer has width × height × 3 bytes")
 }
 
+/// What a record shows whatever the shader: the failure colours, and `background` where
+/// no object was hit; `None` for a hit, which the shader colours.
+pub fn status_colour(record: &PixelRecord, background: [f32; 3]) -> Option<[f32; 3]> {
+    match record.status {
+        RayStatus::Failed => Some(FAILED),
+        RayStatus::StepBudget => Some(STEP_BUDGET),
+        RayStatus::NotTraced => Some(NOT_TRACED),
+        RayStatus::Hit | RayStatus::Escaped => (record.object < 0).then_some(background),
+    }
+}
+
 /// Linear RGB of one pixel (see the table in the module documentation).
 pub fn pixel_colour(record: &PixelRecord, textures: &[Texture], background: [f32; 3]) -> [f32; 3] {
-    match record.status {
-        RayStatus::Failed => return FAILED,
-        RayStatus::StepBudget => return STEP_BUDGET,
-        RayStatus::NotTraced => return NOT_TRACED,
-        RayStatus::Hit | RayStatus::Escaped => {}
-    }
-    if record.object < 0 {
-        return background;
+    if let Some(c) = status_colour(record, background) {
+        return c;
     }
     let Some(texture) = textures.get(record.object as usize) else {
         return FAILED;
