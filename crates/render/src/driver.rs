@@ -156,6 +156,9 @@ pub fn trace_tile(
     scratch: &mut crate::tracer::Scratch,
 ) -> Vec<PixelRecord> {
     let mut out = Vec::with_capacity((tile.cols * tile.rows) as usize);
+    // Each tile starts afresh (see `Scratch::first_step`), so that the records do not depend
+    // on which thread traced which tiles before.
+    scratch.reset_first_step();
     for row in tile.row0..tile.row0 + tile.rows {
         for col in tile.col0..tile.col0 + tile.cols {
             out.push(

@@ -50,6 +50,17 @@ pub struct Scratch {
     steps: Vec<LazyStep>,
     start: Vec<Measured>,
     end: Vec<Measured>,
+    /// The first step size the previous ray's integrator settled on: neighbouring pixels
+    /// take nearly the same steps, so the next ray starts there instead of with the
+    /// initial-step heuristic (two evaluations and a short first step). Reset per tile.
+    first_step: Option<f64>,
+}
+
+impl Scratch {
+    /// Forget the previous ray's step size (at the start of a tile).
+    pub fn reset_first_step(&mut self) {
+        self.first_step = None;
+    }
 }
 
 /// A probe and the ray parameter (absolute: loop shifts included) where it was taken.
@@ -207,6 +218,7 @@ impl Tracer {
             steps: Vec::new(),
             start: vec![none; self.targets.len()],
             end: vec![none; self.targets.len()],
+            first_step: None,
         }
     }
 
@@ -222,13 +234,14 @@ impl Tracer {
             steps,
             start: probes_a,
             end: probes_b,
+            first_step,
         } = scratch;
         steps.clear();
         self.probe_all(&start, 0.0, probes_a);
         if self.exact {
             return self.trace_exact(&start, k, sys, s0, steps, probes_a, probes_b);
         }
-        let mut ode = Dop853::new(sys, 0.0, s0, self.tol, None);
+        let mut ode = Dop853::new(sys, 0.0, s0, self.tol, *first_step);
         let (x0, y0) = (s0[1], s0[2]);
         let axis_g = |s: &[f64; STATE], d: &[f64; STATE]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
         let mut max_d2: f64 = 0.0;
@@ -243,6 +256,11 @@ impl Tracer {
                 StepOutcome::Stalled | StepOutcome::NonFinite => {
                     return PixelRecord::miss(RayStatus::Failed)
                 }
+            }
+            if ode.accepted == 1 {
+                // Bounded by the ray's extent: where the error estimate vanishes (flat
+                // spacetime) the proposal grows tenfold per ray and would overflow.
+                *first_step = Some(ode.next_step_size().min(self.observer.t - self.t_bound));
             }
             // Kept in place (a step record is large): only the first loop is stored for reuse.
             if !periodic {
