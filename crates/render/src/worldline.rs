@@ -61,8 +61,63 @@ pub struct FreeFall {
     table: Vec<(f64, f64)>,
     tau_min: f64,
     tau_max: f64,
-    /// Per step: its coordinate-time range and a box around its positions.
-    boxes: Vec<(f64, f64, Aabb)>,
+    /// Position boxes on a grid in coordinate time (see [`TimeBoxes`]).
+    boxes: TimeBoxes,
+}
+
+/// Boxes around a worldline's positions, one per cell of a uniform grid in coordinate
+/// time: a cell holds every step that overlaps it in time, so that the box of any time
+/// window is a union of a few cells, not a scan of all steps (this runs per loop of every
+/// ray). Steps need not be monotonic in t.
+#[derive(Clone, Debug)]
+struct TimeBoxes {
+    t0: f64,
+    cells: Vec<Aabb>,
+}
+
+/// Cell width of [`TimeBoxes`], in coordinate time.
+const BOX_CELL: f64 = 0.25;
+
+impl TimeBoxes {
+    fn new(steps: impl Iterator<Item = (f64, f64, Aabb)> + Clone) -> Self {
+        let (lo, hi) = steps
+            .clone()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (l, h, _)| {
+                (a.min(l), b.max(h))
+            });
+        if !(lo <= hi) {
+            return TimeBoxes {
+                t0: 0.0,
+                cells: Vec::new(),
+            };
+        }
+        let n = ((hi - lo) / BOX_CELL).floor() as usize + 1;
+        let mut cells = vec![Aabb::EMPTY; n];
+        for (l, h, b) in steps {
+            for c in &mut cells[Self::cell(lo, n, l)..=Self::cell(lo, n, h)] {
+                c.union(&b);
+            }
+        }
+        TimeBoxes { t0: lo, cells }
+    }
+
+    fn cell(t0: f64, n: usize, t: f64) -> usize {
+        (((t - t0) / BOX_CELL).floor().max(0.0) as usize).min(n - 1)
+    }
+
+    /// A box around the positions at times in [t0, t1] (empty outside the worldline).
+    fn bounds(&self, t0: f64, t1: f64) -> Aabb {
+        let n = self.cells.len();
+        let mut b = Aabb::EMPTY;
+        let end = self.t0 + n as f64 * BOX_CELL;
+        if n == 0 || t1 < self.t0 || t0 > end {
+            return b;
+        }
+        for c in &self.cells[Self::cell(self.t0, n, t0)..=Self::cell(self.t0, n, t1)] {
+            b.union(c);
+        }
+        b
+    }
 }
 
 /// Geodesic + parallel transport of three vectors: state (x, p, e1, e2, e3), dimension 20.
@@ -146,7 +201,7 @@ impl Worldline {
                 table.extend(fwd.iter().map(|s| (s.y1[0], s.lambda1())));
                 let tau_min = -bwd.last().map_or(0.0, |s| s.lambda1());
                 let tau_max = fwd.last().map_or(0.0, |s| s.lambda1());
-                let boxes = fwd.iter().chain(bwd.iter()).map(step_box).collect();
+                let boxes = TimeBoxes::new(fwd.iter().chain(bwd.iter()).map(step_box));
                 Ok(Worldline::Free(FreeFall {
                     forward: fwd,
                     backward: bwd,
@@ -205,15 +260,7 @@ impl Worldline {
     pub fn bounds(&self, t0: f64, t1: f64) -> Aabb {
         match self {
             Worldline::Rest { position, .. } => Aabb::point([position.x, position.y, position.z]),
-            Worldline::Free(f) => {
-                let mut b = Aabb::EMPTY;
-                for (lo, hi, bx) in &f.boxes {
-                    if *lo <= t1 && t0 <= *hi {
-                        b.union(bx);
-                    }
-                }
-                b
-            }
+            Worldline::Free(f) => f.boxes.bounds(t0, t1),
         }
     }
 
