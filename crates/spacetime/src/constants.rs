@@ -47,13 +47,30 @@ impl Drift {
 
     /// Drift over the start, every step end, every step's dense midpoint, and the end.
     pub fn along<M: Spacetime>(metric: &M, g: &TracedGeodesic, length_scale: f64) -> Drift {
-        let c0 = ConstantsOfMotion::of(metric, &g.start);
+        let states = g.steps.iter().flat_map(|st| {
+            [
+                g.system.state(&st.y1),
+                g.system.state(&st.eval(st.lambda0 + 0.5 * st.h)),
+            ]
+        });
+        Drift::over(metric, &g.start, states.chain([g.end]), length_scale)
+    }
+
+    /// Drift of the constants at each of `states` relative to those at `start` (for curves
+    /// not produced by the integrator, e.g. closed forms sampled at given parameters).
+    pub fn over<M: Spacetime>(
+        metric: &M,
+        start: &GeodesicState,
+        states: impl IntoIterator<Item = GeodesicState>,
+        length_scale: f64,
+    ) -> Drift {
+        let c0 = ConstantsOfMotion::of(metric, start);
         let e = c0.energy.abs().max(f64::MIN_POSITIVE);
         let sl = c0.angular_momentum.abs().max(e * length_scale);
         let sz = c0.pz.abs().max(e);
         let mut d = Drift::default();
-        let mut visit = |s: &GeodesicState| {
-            let c = ConstantsOfMotion::of(metric, s);
+        for s in states {
+            let c = ConstantsOfMotion::of(metric, &s);
             d.energy = d.energy.max((c.energy - c0.energy).abs() / e);
             d.angular_momentum = d
                 .angular_momentum
@@ -62,12 +79,7 @@ impl Drift {
             d.normalization = d
                 .normalization
                 .max((c.normalization - c0.normalization).abs() / (e * e));
-        };
-        for st in &g.steps {
-            visit(&g.system.state(&st.y1));
-            visit(&g.system.state(&st.eval(st.lambda0 + 0.5 * st.h)));
         }
-        visit(&g.end);
         d
     }
 }

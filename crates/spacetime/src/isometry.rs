@@ -20,6 +20,7 @@
 //! arg is the principal branch: |w̄0 w| < 1 keeps 1 − w̄0 w in the right half-plane, so it
 //! is smooth everywhere.
 
+use crate::killing::KillingField;
 use crate::vectors::{Event, FourVector};
 use std::f64::consts::SQRT_2;
 use std::ops::{Add, Div, Mul, Sub};
@@ -156,6 +157,24 @@ impl Isometry {
         Isometry {
             rotation: alpha,
             ..Isometry::identity(a)
+        }
+    }
+
+    /// The flow of a Killing field for parameter `s`: the one-parameter group exp(s ξ).
+    /// ∂t, ∂z, ∂φ shift t, z, φ by s. K_x and K_y are hyperbolic translations of the disc
+    /// along its real and imaginary axes: on the x axis K_x = D ∂x with D = √(1 + x²/4a²)
+    /// and no ∂t part, so the origin flows to x = 2a sinh(s/2a) with t = 0, and the flow is
+    /// T_P⁻¹ with P that event (w ↦ (w + tanh(s/2a))/(1 + tanh(s/2a) w)). Checked against
+    /// integrating dX/ds = ξ(X) in `tests/symmetry.rs`.
+    pub fn flow(a: f64, field: KillingField, s: f64) -> Self {
+        let id = Isometry::identity(a);
+        let shift = 2.0 * a * (s / (2.0 * a)).sinh();
+        match field {
+            KillingField::T => Isometry { t0: -s, ..id },
+            KillingField::Z => Isometry { z0: -s, ..id },
+            KillingField::Phi => Isometry::rotation(a, s),
+            KillingField::Kx => Isometry::to_origin(a, Event::new(0.0, shift, 0.0, 0.0)).inverse(),
+            KillingField::Ky => Isometry::to_origin(a, Event::new(0.0, 0.0, shift, 0.0)).inverse(),
         }
     }
 
