@@ -3,6 +3,14 @@
 //! observer's local frame there, and prints evenly spaced samples of it as CSV or JSON
 //! (JSON adds the constants of motion E, L, p_z, the normalization and their drift).
 //!
+//! Two methods give the same curve: `numeric` integrates the geodesic equations (DOP853 in
+//! pseudo-Cartesian coordinates, `spacetime::trace`); `exact` evaluates the closed form
+//! through the origin carried to the start by an isometry (`spacetime::ExactGeodesic`;
+//! Grave et al., PRD 80, 103002 (2009), Sec. III), with its stops solved on the closed form:
+//! the axis return at λ = π/ω, the time limit by root finding (t is monotonic along causal
+//! curves since ∂t is timelike everywhere). In Minkowski spacetime the exact curve is the
+//! straight line.
+//!
 //! Physics: Gödel, Rev. Mod. Phys. 21, 447 (1949); constants of motion from the Killing fields
 //! ∂t, ∂φ, ∂z; integration in pseudo-Cartesian coordinates by the `spacetime` crate.
 
@@ -11,8 +19,9 @@ use anyhow::Context;
 use clap::ValueEnum;
 use serde_json::json;
 use spacetime::{
-    trace, ConstantsOfMotion, Cylindrical, Drift, Geodesic, GeodesicKind, Godel, Metric, Minkowski,
-    Spacetime, StopReason, TimeDirection, TraceLimits, TracedGeodesic,
+    refine_root, trace, ConstantsOfMotion, Cylindrical, Drift, Event, ExactGeodesic, FourVector,
+    Geodesic, GeodesicKind, GeodesicState, Godel, Metric, Minkowski, Spacetime, StopReason,
+    TimeDirection, TraceLimits,
 };
 use std::f64::consts::PI;
 use std::io::Write;
@@ -25,6 +34,15 @@ pub const MINKOWSKI_DEFAULT_UNTIL: f64 = 10.0;
 pub enum MetricName {
     Godel,
     Minkowski,
+}
+
+/// How the geodesic is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Integrate the geodesic equations (DOP853).
+    Numeric,
+    /// Evaluate the closed form (isometry ∘ closed form through the origin ∘ inverse).
+    Exact,
 }
 
 /// Output formats.
@@ -49,6 +67,9 @@ pub struct GeodesicArgs {
     /// Spacetime metric.
     #[arg(long, value_enum, default_value_t = MetricName::Godel)]
     pub metric: MetricName,
+    /// Integrate numerically, or evaluate the closed form.
+    #[arg(long, value_enum, default_value_t = Method::Numeric)]
+    pub method: Method,
     /// Gödel parameter a > 0 (optical horizon at r = 2a).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub a: f64,
@@ -80,6 +101,7 @@ pub struct GeodesicArgs {
 #[derive(Clone, Debug)]
 pub struct Request {
     pub metric: Metric,
+    pub method: Method,
     pub start: Cylindrical,
     pub direction: [f64; 3],
     /// 1 for light.
@@ -133,6 +155,7 @@ impl Request {
         }
         Ok(Request {
             metric,
+            method: args.method,
             start: Cylindrical { t, r, phi, z },
             direction,
             speed,
@@ -160,32 +183,180 @@ pub struct Row {
     pub y: f64,
 }
 
-/// Launches and traces the requested geodesic; a failed integration is an error.
-pub fn trace_request(req: &Request) -> anyhow::Result<TracedGeodesic> {
+/// A computed geodesic, by either method: samples and how it ended.
+#[derive(Clone, Debug)]
+pub struct Curve {
+    pub kind: GeodesicKind,
+    pub start: GeodesicState,
+    /// `n` samples evenly spaced in the parameter, first at the start, last at the stop.
+    pub samples: Vec<(f64, GeodesicState)>,
+    pub stop: StopReason,
+    pub lambda_end: f64,
+    /// Drift of the constants of motion along the curve.
+    pub drift: Drift,
+    /// Integrator counts (accepted steps, rejected steps, evaluations); numeric only.
+    pub integration: Option<(usize, u64, u64)>,
+}
+
+/// Computes the requested geodesic by its method; a failed integration is an error.
+pub fn compute(req: &Request) -> anyhow::Result<Curve> {
     let at = req.start.to_event();
     let frame = req.metric.static_frame(at);
     let geodesic = Geodesic::launch(&req.metric, at, &frame, req.direction, req.speed, req.time)
         .ok_or_else(|| usage("--dir", "cannot launch a geodesic along this direction"))?;
-    let traced = trace(req.metric, &geodesic, &req.limits);
-    if traced.stop.is_failure() {
-        anyhow::bail!(
-            "integration failed: {} after {} steps at lambda = {}",
-            traced.stop.describe(),
-            traced.steps.len(),
-            traced.lambda_end
-        );
+    let scale = req.metric.godel_a().unwrap_or(1.0);
+    match req.method {
+        Method::Numeric => {
+            let traced = trace(req.metric, &geodesic, &req.limits);
+            if traced.stop.is_failure() {
+                anyhow::bail!(
+                    "integration failed: {} after {} steps at lambda = {}",
+                    traced.stop.describe(),
+                    traced.steps.len(),
+                    traced.lambda_end
+                );
+            }
+            Ok(Curve {
+                kind: traced.kind,
+                start: traced.start,
+                samples: traced.samples(req.samples),
+                stop: traced.stop,
+                lambda_end: traced.lambda_end,
+                drift: Drift::along(&req.metric, &traced, scale),
+                integration: Some((
+                    traced.steps.len(),
+                    traced.rejected_steps,
+                    traced.evaluations,
+                )),
+            })
+        }
+        Method::Exact => {
+            let tangent = geodesic.start.tangent(&req.metric);
+            let curve = ExactCurve::new(req.metric, at, tangent)
+                .ok_or_else(|| usage("--dir", "no closed form for this direction"))?;
+            let (lambda_end, stop) = curve.stop(&req.limits)?;
+            let n = req.samples;
+            let samples: Vec<(f64, GeodesicState)> = (0..n)
+                .map(|i| {
+                    let lambda = if i == n - 1 {
+                        lambda_end
+                    } else {
+                        lambda_end * i as f64 / (n - 1) as f64
+                    };
+                    (lambda, curve.state(lambda))
+                })
+                .collect();
+            let drift = Drift::over(
+                &req.metric,
+                &geodesic.start,
+                samples.iter().map(|(_, s)| *s),
+                scale,
+            );
+            Ok(Curve {
+                kind: geodesic.kind,
+                start: geodesic.start,
+                samples,
+                stop,
+                lambda_end,
+                drift,
+                integration: None,
+            })
+        }
     }
-    Ok(traced)
+}
+
+/// The closed-form curve of either metric: Gödel's through an isometry, Minkowski's a line.
+enum ExactCurve {
+    Godel {
+        metric: Metric,
+        a: f64,
+        g: ExactGeodesic,
+    },
+    Line {
+        metric: Metric,
+        at: Event,
+        k: FourVector,
+    },
+}
+
+impl ExactCurve {
+    fn new(metric: Metric, at: Event, k: FourVector) -> Option<ExactCurve> {
+        match metric.godel_a() {
+            Some(a) => Some(ExactCurve::Godel {
+                metric,
+                a,
+                g: ExactGeodesic::new(a, at, k)?,
+            }),
+            None => Some(ExactCurve::Line { metric, at, k }),
+        }
+    }
+
+    fn event_and_tangent(&self, lambda: f64) -> (Event, FourVector) {
+        match self {
+            ExactCurve::Godel { g, .. } => g.at(lambda),
+            ExactCurve::Line { at, k, .. } => (
+                Event::new(
+                    at.t + lambda * k.t,
+                    at.x + lambda * k.x,
+                    at.y + lambda * k.y,
+                    at.z + lambda * k.z,
+                ),
+                *k,
+            ),
+        }
+    }
+
+    fn state(&self, lambda: f64) -> GeodesicState {
+        let metric = match self {
+            ExactCurve::Godel { metric, .. } | ExactCurve::Line { metric, .. } => metric,
+        };
+        let (x, k) = self.event_and_tangent(lambda);
+        GeodesicState {
+            x,
+            p: metric.lower(x, k),
+        }
+    }
+
+    /// The parameter where the curve stops under `limits`, and why: the first of the
+    /// return to the starting axis (λ = π/ω, Gödel only, not for curves along the axis)
+    /// and |t − t_start| = until_time.
+    fn stop(&self, limits: &TraceLimits) -> anyhow::Result<(f64, StopReason)> {
+        let axis = match self {
+            ExactCurve::Godel { a, g, .. }
+                if limits.stop_at_axis_return && g.origin.r_max() > 1e-12 * a =>
+            {
+                Some(g.origin.return_parameter())
+            }
+            _ => None,
+        };
+        let time = limits.until_time.map(|dt| self.parameter_at_time(dt));
+        match (axis, time) {
+            (Some(la), Some(lt)) if lt < la => Ok((lt, StopReason::TimeReached)),
+            (Some(la), _) => Ok((la, StopReason::AxisReturn)),
+            (None, Some(lt)) => Ok((lt, StopReason::TimeReached)),
+            (None, None) => anyhow::bail!("the exact method needs --until-time here"),
+        }
+    }
+
+    /// The parameter λ > 0 with |t(λ) − t(0)| = dt: bracketed by doubling, then refined.
+    fn parameter_at_time(&self, dt: f64) -> f64 {
+        let t0 = self.event_and_tangent(0.0).0.t;
+        let f = |lambda: f64| (self.event_and_tangent(lambda).0.t - t0).abs() - dt;
+        let mut hi = dt;
+        while f(hi) < 0.0 && hi < 1e12 {
+            hi *= 2.0;
+        }
+        refine_root(f, 0.0, hi, -dt, f(hi))
+    }
 }
 
 /// `n` evenly spaced samples with φ unwrapped continuously from the start's φ. On the axis
 /// (r below 1e-9 of the largest r) φ is that of the direction the curve arrives from.
-pub fn rows(metric: &Metric, traced: &TracedGeodesic, start_phi: f64, n: usize) -> Vec<Row> {
-    let samples = traced.samples(n);
+pub fn rows(metric: &Metric, samples: &[(f64, GeodesicState)], start_phi: f64) -> Vec<Row> {
     let r_scale = samples.iter().fold(0.0_f64, |m, (_, s)| m.max(s.x.r()));
     let mut prev_phi = start_phi;
     let mut out = Vec::with_capacity(samples.len());
-    for (i, (lambda, s)) in samples.into_iter().enumerate() {
+    for (i, &(lambda, s)) in samples.iter().enumerate() {
         let e = s.x;
         let phi = if i == 0 {
             start_phi
@@ -245,10 +416,13 @@ fn write_csv(out: &mut impl Write, rows: &[Row]) -> std::io::Result<()> {
     Ok(())
 }
 
-fn json_document(req: &Request, traced: &TracedGeodesic, rows: &[Row]) -> serde_json::Value {
-    let c = ConstantsOfMotion::of(&req.metric, &traced.start);
-    let scale = req.metric.godel_a().unwrap_or(1.0);
-    let d = Drift::along(&req.metric, traced, scale);
+fn json_document(req: &Request, curve: &Curve, rows: &[Row]) -> serde_json::Value {
+    let c = ConstantsOfMotion::of(&req.metric, &curve.start);
+    let d = curve.drift;
+    let (steps, rejected, evaluations) = match curve.integration {
+        Some((s, r, e)) => (json!(s), json!(r), json!(e)),
+        None => (json!(null), json!(null), json!(null)),
+    };
     let samples: Vec<_> = rows
         .iter()
         .map(|r| json!({"lambda": r.lambda, "t": r.t, "r": r.r, "phi": r.phi, "z": r.z, "x": r.x, "y": r.y}))
@@ -256,34 +430,35 @@ fn json_document(req: &Request, traced: &TracedGeodesic, rows: &[Row]) -> serde_
     json!({
         "metric": req.metric.name(),
         "a": req.metric.godel_a(),
-        "kind": match traced.kind { GeodesicKind::Null => "null", GeodesicKind::Timelike => "timelike" },
+        "method": match req.method { Method::Numeric => "numeric", Method::Exact => "exact" },
+        "kind": match curve.kind { GeodesicKind::Null => "null", GeodesicKind::Timelike => "timelike" },
         "speed": req.speed,
         "time_direction": match req.time { TimeDirection::Future => "future", TimeDirection::Past => "past" },
         "start": {"t": req.start.t, "r": req.start.r, "phi": req.start.phi, "z": req.start.z},
         "direction": req.direction,
-        "stop": stop_name(traced.stop),
-        "stop_description": traced.stop.describe(),
-        "lambda_end": traced.lambda_end,
+        "stop": stop_name(curve.stop),
+        "stop_description": curve.stop.describe(),
+        "lambda_end": curve.lambda_end,
         "samples": samples,
         "constants": {"E": c.energy, "L": c.angular_momentum, "p_z": c.pz, "normalization": c.normalization},
         "drift": {"E": d.energy, "L": d.angular_momentum, "p_z": d.pz, "normalization": d.normalization, "max": d.max()},
-        "steps": traced.steps.len(),
-        "rejected_steps": traced.rejected_steps,
-        "evaluations": traced.evaluations,
+        "steps": steps,
+        "rejected_steps": rejected,
+        "evaluations": evaluations,
     })
 }
 
 /// Runs `godel geodesic`, printing to standard output.
 pub fn run(args: GeodesicArgs) -> anyhow::Result<()> {
     let req = Request::from_args(&args)?;
-    let traced = trace_request(&req)?;
-    let rows = rows(&req.metric, &traced, req.start.phi, req.samples);
+    let curve = compute(&req)?;
+    let rows = rows(&req.metric, &curve.samples, req.start.phi);
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     match req.format {
         Format::Csv => write_csv(&mut out, &rows),
         Format::Json => {
-            let doc = json_document(&req, &traced, &rows);
+            let doc = json_document(&req, &curve, &rows);
             serde_json::to_writer_pretty(&mut out, &doc)
                 .map_err(std::io::Error::from)
                 .and_then(|_| writeln!(out))
