@@ -5,7 +5,10 @@
 //! with their whole cause chain.
 
 mod args;
+#[cfg(feature = "mpi")]
+mod cluster;
 mod cmd_geodesic;
+mod cmd_merge;
 mod cmd_plot;
 mod cmd_render;
 mod output;
@@ -27,6 +30,8 @@ struct Cli {
 enum Command {
     /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
     Geodesic(cmd_geodesic::GeodesicArgs),
+    /// Join the part files of `render --part i/N` into the files a single run writes.
+    Merge(cmd_merge::MergeArgs),
     /// Draw figures (SVG or PNG).
     Plot(cmd_plot::PlotArgs),
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
@@ -36,6 +41,7 @@ enum Command {
 fn run(command: Command) -> anyhow::Result<()> {
     match command {
         Command::Geodesic(args) => cmd_geodesic::run(args),
+        Command::Merge(args) => cmd_merge::run(args),
         Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
     }

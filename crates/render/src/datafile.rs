@@ -252,6 +252,12 @@ impl DataFile {
 
     /// Encodes the data file as OpenEXR bytes (deterministic).
     pub fn to_bytes(&self) -> Result<Vec<u8>, DataFileErrorKind> {
+        self.to_bytes_with(&[])
+    }
+
+    /// [`DataFile::to_bytes`] with extra text attributes in the header (the part
+    /// files of a split render carry theirs this way, see `crate::part`).
+    pub fn to_bytes_with(&self, extra: &[(&str, String)]) -> Result<Vec<u8>, DataFileErrorKind> {
         self.validate()?;
         let h = &self.header;
         let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
@@ -281,7 +287,8 @@ impl DataFile {
             (attr::METHOD, h.method.clone()),
             (attr::OBJECTS, h.object_names.join("\n")),
         ];
-        for (name, value) in texts {
+        let extra = extra.iter().map(|(n, v)| (*n, v.clone()));
+        for (name, value) in texts.into_iter().chain(extra) {
             // exr's Text is a byte string; store UTF-8 bytes unchanged.
             let text = Text::from_bytes_unchecked(SmallVec::from_vec(value.into_bytes()));
             attributes
