@@ -159,7 +159,12 @@ fn render_part(
     }
     let stats = RenderStats {
         wall: started.elapsed(),
-        ..count(&traced.iter().flat_map(|t| t.records.iter().copied()).collect::<Vec<_>>())
+        ..count(
+            &traced
+                .iter()
+                .flat_map(|t| t.records.iter().copied())
+                .collect::<Vec<_>>(),
+        )
     };
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create {}", args.output.display()))?;
