@@ -57,7 +57,7 @@ pub struct Plan {
 impl Plan {
     /// Reads the script and its source and checks every keyframe's settings.
     pub fn new(path: &Path) -> anyhow::Result<Plan> {
-        let script = Script::from_file(path).map_err(|e| settings_error("script", e))?;
+        let script = Script::from_file(path).map_err(|e| settings_error("sequence", e))?;
         let (source, probe) = match &script.source {
             FrameSource::Data(p) => {
                 let data = DataFile::read(p)?;
@@ -87,12 +87,12 @@ impl Plan {
         };
         let timeline = script
             .timeline(&ShadeSettings::defaults_for(&probe))
-            .map_err(|e| settings_error("script", e))?;
+            .map_err(|e| settings_error("sequence", e))?;
         // Every keyframe's settings must prepare (names, values, textures) before frame 0.
         let keyframe_frames: Vec<u32> = script.keyframes.iter().map(|k| k.frame).collect();
         for f in keyframe_frames.into_iter().chain([0]) {
             Shading::new(&probe, &timeline.settings_at(f))
-                .map_err(|e| settings_error("script", e))
+                .map_err(|e| settings_error("sequence", e))
                 .with_context(|| format!("{}: settings of frame {f}", script.file))?;
         }
         Ok(Plan {

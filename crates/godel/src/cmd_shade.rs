@@ -232,9 +232,10 @@ fn apply_flags(args: &ShadeArgs, names: &[String], s: &mut ShadeSettings) -> any
 /// Settings errors are the user's input: exit code 2, like other usage errors.
 pub fn settings_error(flag: &str, e: ShadeError) -> anyhow::Error {
     match e {
-        ShadeError::Invalid { .. } | ShadeError::Settings { .. } | ShadeError::NoLightChannels => {
-            usage(flag, e.to_string())
-        }
+        ShadeError::Invalid { .. }
+        | ShadeError::Settings { .. }
+        | ShadeError::Script { .. }
+        | ShadeError::NoLightChannels => usage(flag, e.to_string()),
         other => other.into(),
     }
 }
