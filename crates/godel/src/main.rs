@@ -11,6 +11,8 @@ mod cmd_geodesic;
 mod cmd_merge;
 mod cmd_plot;
 mod cmd_render;
+mod cmd_sequence;
+mod cmd_shade;
 mod output;
 mod svg;
 
@@ -36,6 +38,10 @@ enum Command {
     Plot(cmd_plot::PlotArgs),
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
+    /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
+    Shade(cmd_shade::ShadeArgs),
+    /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
+    Sequence(cmd_sequence::SequenceArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
@@ -44,6 +50,8 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Merge(args) => cmd_merge::run(args),
         Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
+        Command::Shade(args) => cmd_shade::run(args),
+        Command::Sequence(args) => cmd_sequence::run(args),
     }
 }
 
