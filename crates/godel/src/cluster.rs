@@ -3,21 +3,24 @@
 //! [`run_jobs`] is the one distribution pattern: jobs `0..n` handed out by a dynamic
 //! work queue on rank 0 to whichever rank asks next (rays near the horizon cost more than
 //! others, so static stripes would leave ranks idle), results sent back to rank 0, which
-//! alone assembles and writes. Rank 0 traces too, on a thread of its own, while its main
-//! thread serves the queue (only that thread calls MPI: `Threading::Funneled`).
-//! [`render`] runs `godel render` with tile batches as jobs.
+//! alone assembles and writes. Rank 0 works too, on a thread of its own, while its main
+//! thread serves the queue (only that thread calls MPI: `Threading::Funneled`); with
+//! `GODEL_MPI_ROOT_WORKS=0` it only serves (e.g. when rank 0 sits on a service node).
+//! [`render`] runs `godel render` with tile batches as jobs, [`sequence`] runs
+//! `godel sequence` with frames as jobs.
 //!
 //! Failure: a rank whose scene, work or fingerprint fails prints `godel: rank R: <error>`
 //! and calls `MPI_Abort`, so the whole job exits non-zero and rank 0 never writes a partial
 //! image; a rank that dies is caught by the MPI launcher, which ends the job the same way.
 
 use crate::cmd_render::{load_scene, progress_bar, thread_pool, write_outputs, RenderArgs};
+use crate::cmd_sequence::{finish, start as start_sequence, Plan, SequenceArgs};
 use anyhow::Context;
 use mpi::environment::Threading;
 use mpi::topology::{Communicator, SimpleCommunicator};
 use mpi::traits::{Destination, Source};
 use render::driver::{NoProgress, RenderStats};
-use render::part::fingerprint;
+use render::part::{fingerprint, fingerprint_of};
 use render::tiles::{count, insert, TileData, TileRenderer};
 use std::sync::mpsc;
 use std::sync::Mutex;
@@ -29,7 +32,7 @@ const TAG_ASK: i32 = 1;
 /// Rank 0 → worker: the next job number, or [`STOP`].
 const TAG_JOB: i32 = 2;
 const STOP: u64 = u64::MAX;
-/// Tiles per job: enough to keep a rank's threads busy, few enough to balance.
+/// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
 const TILES_PER_JOB: usize = 8;
 
 /// Whether an MPI launcher (OpenMPI's mpirun, Hydra, SLURM's srun with PMI/PMIx) started
@@ -81,9 +84,13 @@ pub fn run_jobs(
         })
     };
     let (to_main, results) = mpsc::channel::<(usize, anyhow::Result<Vec<u8>>)>();
+    let root_works = std::env::var("GODEL_MPI_ROOT_WORKS").map_or(true, |v| v != "0");
     std::thread::scope(|s| {
-        // Rank 0's own tracer: takes jobs from the same queue, never calls MPI.
+        // Rank 0's own worker: takes jobs from the same queue, never calls MPI.
         s.spawn(|| {
+            if !root_works {
+                return;
+            }
             while let Some(job) = take() {
                 let failed = {
                     let r = work(job);
@@ -202,9 +209,11 @@ pub fn render(args: RenderArgs) -> anyhow::Result<()> {
         TileRenderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
     let started = Instant::now();
     let tiles = renderer.tiles();
+    // Small images still get a few jobs per rank.
+    let per_job = (tiles.len() / (4 * world.size() as usize)).clamp(1, TILES_PER_JOB);
     let jobs: Vec<Vec<usize>> = (0..tiles.len())
         .collect::<Vec<_>>()
-        .chunks(TILES_PER_JOB)
+        .chunks(per_job)
         .map(<[usize]>::to_vec)
         .collect();
     let work = |job: usize| -> anyhow::Result<Vec<u8>> {
@@ -241,10 +250,63 @@ pub fn render(args: RenderArgs) -> anyhow::Result<()> {
     write_outputs(&scene, &data, &args.output).unwrap_or_else(|e| abort(&world, &e));
     let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
     eprintln!(
-        "{} ({} ranks; jobs of {TILES_PER_JOB} tiles per rank: {})",
+        "{} ({} ranks; jobs of {per_job} tiles per rank: {})",
         stats.summary(),
         world.size(),
         shares.join(", ")
     );
+    Ok(())
+}
+
+/// `godel sequence` under MPI: frames as jobs (each traced and shaded whole on one rank,
+/// sent to rank 0 as raw RGB), written by rank 0 as they arrive; the MP4 at the end.
+pub fn sequence(args: SequenceArgs) -> anyhow::Result<()> {
+    let universe = start()?;
+    let world = universe.world();
+    let rank0 = world.rank() == 0;
+    let set_up = || -> anyhow::Result<_> {
+        let text = std::fs::read_to_string(&args.script)
+            .with_context(|| format!("cannot read {}", args.script.display()))?;
+        Ok((Plan::new(&args.script)?, fingerprint_of(&[&text])))
+    };
+    let (plan, key) = set_up().unwrap_or_else(|e| abort(&world, &e));
+    let bar = if rank0 {
+        start_sequence(&plan, &args).unwrap_or_else(|e| abort(&world, &e))
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let work = |job: usize| -> anyhow::Result<Vec<u8>> {
+        let image = plan
+            .frame(job as u32)
+            .with_context(|| format!("frame {job}"))?;
+        let mut bytes = image.width().to_le_bytes().to_vec();
+        bytes.extend_from_slice(&image.height().to_le_bytes());
+        bytes.extend_from_slice(image.as_raw());
+        Ok(bytes)
+    };
+    let mut failure = None;
+    let mut done = |job: usize, bytes: Vec<u8>| {
+        let size = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+        let image = (bytes.len() >= 8)
+            .then(|| image::RgbImage::from_raw(size(0), size(4), bytes[8..].to_vec()))
+            .flatten();
+        let written = match image {
+            Some(image) => {
+                shade::write_png(&image, &plan.frame_path(job as u32)).map_err(anyhow::Error::from)
+            }
+            None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
+        };
+        match written {
+            Ok(()) => bar.inc(1),
+            Err(e) => failure = Some(e),
+        }
+    };
+    run_jobs(&world, plan.frames() as usize, &key, &work, &mut done);
+    if let Some(e) = failure {
+        abort(&world, &e);
+    }
+    if rank0 {
+        finish(&plan, &args, &bar).unwrap_or_else(|e| abort(&world, &e));
+    }
     Ok(())
 }

@@ -124,6 +124,11 @@ impl Plan {
         }
     }
 
+    /// The folder the frames go to.
+    pub fn output_dir(&self) -> &Path {
+        &self.script.output
+    }
+
     /// Where frame `i` is written.
     pub fn frame_path(&self, i: u32) -> PathBuf {
         self.script.output.join(format!("frame_{i:04}.png"))
@@ -201,14 +206,31 @@ fn encode_mp4(dir: &Path, fps: f64) -> anyhow::Result<PathBuf> {
 }
 
 pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
+    // Under mpirun/srun the frames are spread over the ranks (cluster.rs).
+    #[cfg(feature = "mpi")]
+    if crate::cluster::launched_by_mpi() {
+        return crate::cluster::sequence(args);
+    }
     let plan = Plan::new(&args.script)?;
     let n = plan.frames();
-    let dir = plan.script.output.clone();
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let bar = start(&plan, &args)?;
+    // The one place that writes: frames in order, each atomically.
+    for i in 0..n {
+        let image = plan.frame(i).with_context(|| format!("frame {i}"))?;
+        shade::write_png(&image, &plan.frame_path(i))?;
+        bar.inc(1);
+    }
+    finish(&plan, &args, &bar)
+}
+
+/// Creates the output folder; the progress bar over the frames.
+pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
+    let dir = plan.output_dir();
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
-        ProgressBar::new(u64::from(n))
+        ProgressBar::new(u64::from(plan.frames()))
     };
     bar.set_style(
         ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} frames, ETA {eta}")
@@ -216,12 +238,12 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
             .progress_chars("=> "),
     );
     bar.set_prefix("sequence");
-    // The one place that writes: frames in order, each atomically.
-    for i in 0..n {
-        let image = plan.frame(i).with_context(|| format!("frame {i}"))?;
-        shade::write_png(&image, &plan.frame_path(i))?;
-        bar.inc(1);
-    }
+    Ok(bar)
+}
+
+/// After every frame is written: the summary line and the MP4.
+pub fn finish(plan: &Plan, args: &SequenceArgs, bar: &ProgressBar) -> anyhow::Result<()> {
+    let (n, dir) = (plan.frames(), plan.output_dir());
     bar.finish_and_clear();
     eprintln!(
         "wrote {n} frames {}/frame_0000.png … frame_{:04}.png",
@@ -230,7 +252,7 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
     );
     if plan.script.mp4 && !args.no_mp4 {
         if have_ffmpeg() {
-            let mp4 = encode_mp4(&dir, plan.script.fps)?;
+            let mp4 = encode_mp4(dir, plan.script.fps)?;
             eprintln!("wrote {}", mp4.display());
         } else {
             eprintln!(

@@ -1,6 +1,7 @@
 //! `godel render` under `mpirun` (cargo feature `mpi`; needs OpenMPI, which
 //! scripts/test.sh installs when missing): 2 ranks write the very bytes of a
-//! single-process run, and a rank that fails ends the job non-zero with its rank named.
+//! single-process run (a render and a 3-frame sequence), and a rank that fails ends the
+//! job non-zero with its rank named.
 #![cfg(feature = "mpi")]
 
 use std::path::Path;
@@ -67,23 +68,36 @@ fn two_ranks_write_the_bytes_of_one_process() {
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
 
-    let two = tmp.path().join("two");
-    let out = mpirun(&[
-        "-n",
-        "2",
-        GODEL,
-        "render",
-        &scene,
-        "-q",
-        "-o",
-        two.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    assert!(stderr(&out).contains("(2 ranks)"), "{}", stderr(&out));
-    for file in ["ranks.exr", "ranks.png"] {
-        let a = std::fs::read(single.join(file)).unwrap();
-        let b = std::fs::read(two.join(file)).unwrap();
-        assert!(a == b, "{file} differs between 1 process and 2 ranks");
+    // With rank 0 working too (the default), and with rank 0 only serving the queue, so
+    // that every tile surely travels from rank 1.
+    for (root_works, dir) in [("1", "two"), ("0", "two-remote")] {
+        let two = tmp.path().join(dir);
+        let out = mpirun(&[
+            "-x",
+            &format!("GODEL_MPI_ROOT_WORKS={root_works}"),
+            "-n",
+            "2",
+            GODEL,
+            "render",
+            &scene,
+            "-q",
+            "-o",
+            two.to_str().unwrap(),
+        ]);
+        let err = stderr(&out);
+        assert!(out.status.success(), "{err}");
+        assert!(err.contains("(2 ranks;"), "{err}");
+        if root_works == "0" {
+            assert!(err.contains("per rank: 0, "), "rank 0 traced: {err}");
+        }
+        for file in ["ranks.exr", "ranks.png"] {
+            let a = std::fs::read(single.join(file)).unwrap();
+            let b = std::fs::read(two.join(file)).unwrap();
+            assert!(
+                a == b,
+                "{file} differs between 1 process and 2 ranks ({dir})"
+            );
+        }
     }
 }
 
@@ -125,4 +139,44 @@ fn a_rank_with_another_scene_fails_the_job_and_is_named() {
     assert!(!out.status.success(), "the job succeeded: {err}");
     assert!(err.contains("rank 1 read a different scene"), "{err}");
     assert!(!dir.join("ranks.exr").exists());
+}
+
+#[test]
+fn two_ranks_write_the_frames_of_one_process() {
+    let tmp = tempfile::tempdir().unwrap();
+    write_scene(tmp.path(), "fall.toml", &scene_text(6.0));
+    // The same 3 frames (observer time advancing, so each frame is traced) into two folders.
+    let script = |out: &str| {
+        let text = format!(
+            "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\nobserver_time = [0.0, 1.5]\n"
+        );
+        write_scene(tmp.path(), &format!("{out}.toml"), &text)
+    };
+    let (one, two) = (script("one"), script("two"));
+    let out = Command::new(GODEL)
+        .args(["sequence", &one, "-q"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Rank 0 only serves the queue here: every frame comes from rank 1.
+    let out = mpirun(&[
+        "-x",
+        "GODEL_MPI_ROOT_WORKS=0",
+        "-n",
+        "2",
+        GODEL,
+        "sequence",
+        &two,
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    for i in 0..3 {
+        let f = format!("frame_{i:04}.png");
+        let a = std::fs::read(tmp.path().join("one").join(&f)).unwrap();
+        let b = std::fs::read(tmp.path().join("two").join(&f)).unwrap();
+        assert!(a == b, "{f} differs between 1 process and 2 ranks");
+    }
+    // The frames differ from each other: the ball moved, so each frame was really made.
+    let frame = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.png"))).unwrap();
+    assert!(frame(0) != frame(2));
 }

@@ -78,13 +78,21 @@ impl Part {
 /// Hex SHA-256 of everything that decides a render's pixels: the scene text (camera and
 /// trace settings included), the camera as understood, the program and format versions.
 pub fn fingerprint(scene: &Scene) -> String {
+    fingerprint_of(&[&scene.source_text, &scene.camera.describe()])
+}
+
+/// Hex SHA-256 of `fields` (each length-prefixed) and the program and format versions.
+pub fn fingerprint_of(fields: &[&str]) -> String {
     let mut hash = Sha256::new();
-    for field in [
-        scene.source_text.as_str(),
-        &scene.camera.describe(),
-        env!("CARGO_PKG_VERSION"),
-        &FORMAT_VERSION.to_string(),
-    ] {
+    let versions = [
+        env!("CARGO_PKG_VERSION").to_string(),
+        FORMAT_VERSION.to_string(),
+    ];
+    for field in fields
+        .iter()
+        .copied()
+        .chain(versions.iter().map(String::as_str))
+    {
         hash.update((field.len() as u64).to_le_bytes());
         hash.update(field.as_bytes());
     }
