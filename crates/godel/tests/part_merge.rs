@@ -83,11 +83,17 @@ fn three_parts_merged_in_any_order_equal_the_single_run_byte_for_byte() {
     render_ok(&["render", &scene, "-o", single.to_str().unwrap(), "-q"]);
     let p = parts(&scene, &tmp.path().join("parts"));
 
-    // Each part alone is incomplete: it traced about a third of the pixels.
+    // Each part alone is incomplete: it traced about a third of the pixels, and reading
+    // it as a whole data file (as `godel shade` would) is refused.
     let whole = DataFile::read(&single.join("split.exr")).unwrap();
     assert!(whole.records.iter().any(|r| r.is_hit()));
     for path in &p {
-        let part = DataFile::read(Path::new(path)).unwrap();
+        let err = DataFile::read(Path::new(path)).unwrap_err().to_string();
+        assert!(
+            err.contains("godel merge") && err.contains(path.as_str()),
+            "{err}"
+        );
+        let part = read_part(Path::new(path)).unwrap().data;
         let traced = part.records.iter().filter(|r| r.status.code() != 4).count();
         assert!(
             traced > 0 && traced < whole.records.len() / 2,

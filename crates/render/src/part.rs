@@ -176,7 +176,7 @@ pub fn read_part(path: &Path) -> Result<PartFile, MergeError> {
         path: path.to_path_buf(),
         kind: DataFileErrorKind::Io(e),
     })?;
-    let data = DataFile::from_bytes(&bytes).map_err(|kind| DataFileError {
+    let data = DataFile::decode(&bytes, true).map_err(|kind| DataFileError {
         path: path.to_path_buf(),
         kind,
     })?;
