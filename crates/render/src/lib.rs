@@ -8,6 +8,7 @@ pub mod atomic;
 pub mod bounds;
 pub mod datafile;
 pub mod driver;
+pub mod lighting;
 pub mod record;
 pub mod target;
 pub mod tracer;
