@@ -25,6 +25,11 @@
 //!   ([`spacetime::source_area_distance_sq`]); it vanishes at caustics (the focus on the
 //!   source's axis), where E grows without bound, as it physically does for a point source.
 //!
+//! The window matters: off the source's plane the rays of winding n have D² growing about
+//! linearly in n (the bundle stays bounded across the loop and spreads along z), so
+//! unoccluded windings add terms falling like 1/n and the sum grows slowly with the window.
+//! Read `max_past` as how long the light has been shining before each hit.
+//!
 //! E is bolometric: the spectral change of the light by g is not modelled (colour is the
 //! light's `color`, applied by the shaders). Occlusion: the ray is tested with the tracer's
 //! own intersection search (bracketing with rate bounds, so thin occluders are not missed)
