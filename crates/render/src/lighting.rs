@@ -26,7 +26,7 @@
 //!   source's axis), where E grows without bound, as it physically does for a point source.
 //!
 //! The window matters: the rays of winding n have D² growing about linearly in n (e.g.
-//! 1.2, 4.8, 7.2, 10.8 for the first four rays from (1, 1, 0) to (1, 0, 0), a = 1), so
+//! 1.1, 4.7, 6.9, 10.6 for the first four rays from (1, 1, 0) to (1, 0, 0), a = 1), so
 //! unoccluded windings add terms falling like 1/n and the sum grows slowly with the window.
 //! Read `max_past` as how long the light has been shining before each hit.
 //!
