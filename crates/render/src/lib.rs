@@ -10,6 +10,7 @@ pub mod atomic;
 pub mod bounds;
 pub mod datafile;
 pub mod driver;
+pub mod lighting;
 pub mod part;
 pub mod record;
 pub mod target;
