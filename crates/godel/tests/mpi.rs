@@ -22,7 +22,8 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A small scene with a falling, textured ball: images of varied cost, 6×3 tiles.
+/// A small scene with a falling, textured ball lit by a point light (a `light_0`
+/// channel): images of varied cost, 6×3 tiles.
 fn scene_text(max_past: f64) -> String {
     format!(
         r#"
@@ -47,6 +48,10 @@ name = "ball"
 radius = 0.25
 texture = {{ kind = "checker", rows = 4, cols = 8 }}
 motion = {{ kind = "geodesic", time = -1.0, position = {{ x = -0.8, y = 0.2, z = 0.0 }}, speed = 0.6, direction = [0, 1, 0] }}
+[[light]]
+position = {{ x = 1.0, y = 1.0, z = 0.0 }}
+color = [1.0, 1.0, 1.0]
+power = 12.0
 "#
     )
 }

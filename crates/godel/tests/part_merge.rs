@@ -21,8 +21,9 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A small scene with a falling, textured ball (several images, varied records), 6×3
-/// tiles of 16 pixels with ragged edges. `max_past` tells two scenes apart.
+/// A small scene with a falling, textured ball (several images, varied records) lit by a
+/// point light (a `light_0` channel), 6×3 tiles of 16 pixels with ragged edges.
+/// `max_past` tells two scenes apart.
 fn scene_text(max_past: f64) -> String {
     format!(
         r#"
@@ -47,6 +48,10 @@ name = "ball"
 radius = 0.25
 texture = {{ kind = "checker", rows = 4, cols = 8 }}
 motion = {{ kind = "geodesic", time = -1.0, position = {{ x = -0.8, y = 0.2, z = 0.0 }}, speed = 0.6, direction = [0, 1, 0] }}
+[[light]]
+position = {{ x = 1.0, y = 1.0, z = 0.0 }}
+color = [1.0, 1.0, 1.0]
+power = 12.0
 "#
     )
 }
@@ -87,6 +92,8 @@ fn three_parts_merged_in_any_order_equal_the_single_run_byte_for_byte() {
     // it as a whole data file (as `godel shade` would) is refused.
     let whole = DataFile::read(&single.join("split.exr")).unwrap();
     assert!(whole.records.iter().any(|r| r.is_hit()));
+    assert_eq!(whole.lights.len(), 1);
+    assert!(whole.lights[0].iter().any(|&l| l > 0.0), "the light lit nothing");
     for path in &p {
         let err = DataFile::read(Path::new(path)).unwrap_err().to_string();
         assert!(

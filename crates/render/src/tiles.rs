@@ -7,7 +7,9 @@
 //! travel with each tile, so parts, merges and MPI runs carry them generically.
 
 use crate::datafile::DataFile;
-use crate::driver::{build_tracer, header, tiles, trace_tile, Progress, RenderError, RenderStats};
+use crate::driver::{
+    build_tracer, header, tiles, trace_tile_lit, Progress, RenderError, RenderStats,
+};
 use crate::record::{PixelRecord, RayStatus};
 use crate::tracer::Tracer;
 use rayon::prelude::*;
@@ -53,14 +55,18 @@ impl<'a> TileRenderer<'a> {
             .map_init(
                 || self.tracer.scratch(),
                 |scratch, &index| {
-                    let records = trace_tile(self.scene, &self.tracer, self.tiles[index], scratch);
+                    let tile = self.tiles[index];
+                    let (records, lit) = trace_tile_lit(self.scene, &self.tracer, tile, scratch);
                     progress.advance(records.len() as u64);
-                    // The tracer fills no light planes yet; when shadow rays land, each
-                    // tile's `light_k` values go here, and every split run carries them.
+                    // Pixel-major light values (one per source) into one plane per source.
+                    let n = self.scene.lights.len();
+                    let lights = (0..n)
+                        .map(|k| (0..records.len()).map(|i| lit[i * n + k]).collect())
+                        .collect();
                     TileData {
                         index,
                         records,
-                        lights: vec![],
+                        lights,
                     }
                 },
             )
