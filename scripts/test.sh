@@ -7,3 +7,13 @@ cd "$(dirname "$0")/.."
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet
 cargo test --workspace --no-fail-fast
+
+# --- MPI (issue 6): the `mpi` feature needs OpenMPI, and libclang for rsmpi's bindgen.
+# The default build above needs neither; this block installs them when missing and runs
+# the tests that start `mpirun -n 2` (crates/godel/tests/mpi.rs).
+if ! command -v mpirun >/dev/null \
+    || ! dpkg -s openmpi-bin libopenmpi-dev libclang-dev >/dev/null 2>&1; then
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq openmpi-bin libopenmpi-dev libclang-dev >/dev/null
+fi
+cargo test -p godel --features mpi --test mpi --no-fail-fast

@@ -5,9 +5,14 @@
 //! with their whole cause chain.
 
 mod args;
+#[cfg(feature = "mpi")]
+mod cluster;
 mod cmd_geodesic;
+mod cmd_merge;
 mod cmd_plot;
 mod cmd_render;
+mod cmd_sequence;
+mod cmd_shade;
 mod output;
 mod svg;
 
@@ -27,17 +32,26 @@ struct Cli {
 enum Command {
     /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
     Geodesic(cmd_geodesic::GeodesicArgs),
+    /// Join the part files of `render --part i/N` into the files a single run writes.
+    Merge(cmd_merge::MergeArgs),
     /// Draw figures (SVG or PNG).
     Plot(cmd_plot::PlotArgs),
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
+    /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
+    Shade(cmd_shade::ShadeArgs),
+    /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
+    Sequence(cmd_sequence::SequenceArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
     match command {
         Command::Geodesic(args) => cmd_geodesic::run(args),
+        Command::Merge(args) => cmd_merge::run(args),
         Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
+        Command::Shade(args) => cmd_shade::run(args),
+        Command::Sequence(args) => cmd_sequence::run(args),
     }
 }
 

@@ -29,6 +29,9 @@
 //! joined by `\n`). Text is UTF-8; numbers are Rust's shortest round-trip
 //! decimal form (`{:?}`), so f64 values survive exactly.
 //!
+//! Part files of a split render (`crate::part`) carry `godel.part` too; reading
+//! one as a whole data file is refused.
+//!
 //! Output is deterministic: the exr crate keeps custom attributes in a
 //! `HashMap` and writes them in random order, so after encoding the header's
 //! attributes are sorted by name (same total length: no offset moves).
@@ -162,6 +165,8 @@ pub enum DataFileErrorKind {
     BadAttribute { name: &'static str, problem: String },
     #[error("unsupported format version {0} (this program reads version {FORMAT_VERSION})")]
     UnsupportedVersion(u32),
+    #[error("part {0} of a split render (`godel render --part`), not a whole image: join the parts with `godel merge` first")]
+    PartFile(String),
     #[error("inconsistent sizes: {0}")]
     Inconsistent(String),
     #[error("channel `{channel}` at column {col}, row {row}: {problem}")]
@@ -252,6 +257,12 @@ impl DataFile {
 
     /// Encodes the data file as OpenEXR bytes (deterministic).
     pub fn to_bytes(&self) -> Result<Vec<u8>, DataFileErrorKind> {
+        self.to_bytes_with(&[])
+    }
+
+    /// [`DataFile::to_bytes`] with extra text attributes in the header (the part
+    /// files of a split render carry theirs this way, see `crate::part`).
+    pub fn to_bytes_with(&self, extra: &[(&str, String)]) -> Result<Vec<u8>, DataFileErrorKind> {
         self.validate()?;
         let h = &self.header;
         let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
@@ -281,7 +292,8 @@ impl DataFile {
             (attr::METHOD, h.method.clone()),
             (attr::OBJECTS, h.object_names.join("\n")),
         ];
-        for (name, value) in texts {
+        let extra = extra.iter().map(|(n, v)| (*n, v.clone()));
+        for (name, value) in texts.into_iter().chain(extra) {
             // exr's Text is a byte string; store UTF-8 bytes unchanged.
             let text = Text::from_bytes_unchecked(SmallVec::from_vec(value.into_bytes()));
             attributes
@@ -311,8 +323,14 @@ impl DataFile {
         Ok(bytes)
     }
 
-    /// Decodes and checks OpenEXR bytes. Never panics.
+    /// Decodes and checks OpenEXR bytes. Never panics. Refuses the part files of a split
+    /// render (see `crate::part`), which are not whole images.
     pub fn from_bytes(bytes: &[u8]) -> Result<DataFile, DataFileErrorKind> {
+        Self::decode(bytes, false)
+    }
+
+    /// [`DataFile::from_bytes`], also reading part files when `allow_part`.
+    pub(crate) fn decode(bytes: &[u8], allow_part: bool) -> Result<DataFile, DataFileErrorKind> {
         if bytes.len() < 4 || bytes[..4] != [0x76, 0x2f, 0x31, 0x01] {
             return Err(DataFileErrorKind::NotExr);
         }
@@ -327,6 +345,14 @@ impl DataFile {
             .from_buffered(Cursor::new(bytes))
             .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
         let layer = &image.layer_data;
+        let part = Text::new_or_panic(crate::part::attr::PART);
+        if let (false, Some(value)) = (allow_part, layer.attributes.other.get(&part)) {
+            let text = match value {
+                AttributeValue::Text(t) => String::from_utf8_lossy(t.bytes()).into_owned(),
+                _ => "?".into(),
+            };
+            return Err(DataFileErrorKind::PartFile(text));
+        }
         let (width, height) = (layer.size.x(), layer.size.y());
         let pixels = width.saturating_mul(height); // bounded by check_layout
 

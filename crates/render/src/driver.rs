@@ -6,6 +6,7 @@
 //! number of threads or the order in which tiles finish.
 
 use crate::datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use crate::lighting::LightSource;
 use crate::record::{PixelRecord, RayStatus};
 use crate::target::Target;
 use crate::tracer::Tracer;
@@ -71,6 +72,8 @@ pub enum RenderError {
     },
     #[error("trace.method = \"exact\" uses the Gödel closed forms: it needs metric = \"godel\"")]
     ExactNeedsGodel,
+    #[error("[[light]] sources are traced with the Gödel closed forms (shadow rays): they need metric = \"godel\"")]
+    LightsNeedGodel,
 }
 
 /// Builds the shared tracer of a scene.
@@ -78,11 +81,19 @@ pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
     if scene.trace.method == TraceMethod::Exact && scene.metric.godel_a().is_none() {
         return Err(RenderError::ExactNeedsGodel);
     }
+    if !scene.lights.is_empty() && scene.metric.godel_a().is_none() {
+        return Err(RenderError::LightsNeedGodel);
+    }
     let m = scene.metric;
     let obs = scene.observer;
     let frame = m.observer_frame(obs.event, obs.velocity);
-    // Worldlines cover the traced time range plus a margin for the objects' own size.
-    let (t_min, t_max) = (obs.event.t - scene.trace.max_past - 1.0, obs.event.t + 1.0);
+    // Worldlines cover the traced time range plus a margin for the objects' own size, and
+    // with lights the range of their shadow rays (emitted up to max_past before a hit).
+    let reach = if scene.lights.is_empty() { 1.0 } else { 2.0 };
+    let (t_min, t_max) = (
+        obs.event.t - reach * scene.trace.max_past - 1.0,
+        obs.event.t + 1.0,
+    );
     let targets = scene
         .objects
         .iter()
@@ -102,7 +113,8 @@ pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
         scene.trace.tolerance,
         scene.trace.max_steps,
         scene.trace.method == TraceMethod::Exact,
-    ))
+    )
+    .with_lights(scene.lights.iter().map(LightSource::from_scene).collect()))
 }
 
 /// The header a data file of this scene carries.
@@ -172,6 +184,40 @@ pub fn trace_tile(
     out
 }
 
+/// Traces the pixels of `tile` with direct illumination: the records, and the light
+/// values pixel-major (`scene.lights.len()` per pixel, in the records' order).
+pub fn trace_tile_lit(
+    scene: &Scene,
+    tracer: &Tracer,
+    tile: Tile,
+    scratch: &mut crate::tracer::Scratch,
+) -> (Vec<PixelRecord>, Vec<f32>) {
+    let n = scene.lights.len();
+    if n == 0 {
+        return (trace_tile(scene, tracer, tile, scratch), Vec::new());
+    }
+    let pixels = (tile.cols * tile.rows) as usize;
+    let (mut records, mut lights) = (Vec::with_capacity(pixels), vec![0.0; pixels * n]);
+    scratch.reset_first_step();
+    let mut i = 0;
+    for row in tile.row0..tile.row0 + tile.rows {
+        for col in tile.col0..tile.col0 + tile.cols {
+            records.push(
+                match scene.observer.pixel_direction(&scene.camera, col, row) {
+                    Some(dir) => {
+                        let r = tracer.trace(dir, scratch);
+                        tracer.illuminate(scratch, &mut lights[i * n..(i + 1) * n]);
+                        r
+                    }
+                    None => PixelRecord::miss(RayStatus::NotTraced),
+                },
+            );
+            i += 1;
+        }
+    }
+    (records, lights)
+}
+
 /// Renders the whole scene on rayon's thread pool.
 pub fn render(
     scene: &Scene,
@@ -181,25 +227,31 @@ pub fn render(
     let tracer = build_tracer(scene)?;
     let (w, h) = (scene.camera.width(), scene.camera.height());
     let tiles = tiles(w, h);
-    let done: Vec<Vec<PixelRecord>> = tiles
+    let done: Vec<(Vec<PixelRecord>, Vec<f32>)> = tiles
         .par_iter()
         .map_init(
             || tracer.scratch(),
             |scratch, &tile| {
-                let r = trace_tile(scene, &tracer, tile, scratch);
-                progress.advance(r.len() as u64);
+                let r = trace_tile_lit(scene, &tracer, tile, scratch);
+                progress.advance(r.0.len() as u64);
                 r
             },
         )
         .collect();
     let mut records = vec![PixelRecord::MISS; (w * h) as usize];
-    for (tile, recs) in tiles.iter().zip(done) {
+    let n = scene.lights.len();
+    let mut lights = vec![vec![0.0f32; (w * h) as usize]; n];
+    for (tile, (recs, lit)) in tiles.iter().zip(done) {
         for (i, r) in recs.into_iter().enumerate() {
             let (c, rr) = (
                 tile.col0 + i as u32 % tile.cols,
                 tile.row0 + i as u32 / tile.cols,
             );
-            records[(rr * w + c) as usize] = r;
+            let at = (rr * w + c) as usize;
+            records[at] = r;
+            for (k, plane) in lights.iter_mut().enumerate() {
+                plane[at] = lit[i * n + k];
+            }
         }
     }
     let mut stats = RenderStats {
@@ -226,7 +278,7 @@ pub fn render(
         width: w as usize,
         height: h as usize,
         records,
-        lights: vec![],
+        lights,
     };
     Ok((data, stats))
 }

@@ -9,7 +9,7 @@
 
 /// How a pixel's ray ended. The numeric codes are those stored in the data
 /// file's `status` channel and never change.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[repr(u32)]
 pub enum RayStatus {
     /// The ray hit an object (`object` ≥ 0).
@@ -54,7 +54,7 @@ impl RayStatus {
 
 /// What one pixel's ray found. All quantities are those of the first hit;
 /// for a ray that hit nothing see [`PixelRecord::miss`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PixelRecord {
     /// Index of the object in scene-file order; [`PixelRecord::NO_OBJECT`]
     /// (−1) where nothing was hit.

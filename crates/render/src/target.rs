@@ -275,6 +275,66 @@ impl Target {
     }
 }
 
+/// How light arriving at a surface point meets the surface (for direct illumination).
+#[derive(Clone, Copy, Debug)]
+pub struct Incidence {
+    /// Cosine between the outward normal (for planes: the normal on the viewer's side) and
+    /// the direction the light comes from, in the object's rest frame; negative when the
+    /// light arrives from behind the surface.
+    pub cos: f64,
+    /// The light's energy −k·u in the object's rest frame (for k normalized to energy 1 at
+    /// a static source, the source→object frequency ratio).
+    pub energy: f64,
+}
+
+impl Target {
+    /// Incidence of light with future-directed tangent `k_light` at the surface point `x`
+    /// (a hit found with matched proper time `tau`); `view` is the backward ray's tangent
+    /// there (it decides which side of a plane the viewer sees).
+    pub fn incidence(
+        &self,
+        metric: &Metric,
+        x: Event,
+        tau: f64,
+        view: FourVector,
+        k_light: FourVector,
+    ) -> Option<Incidence> {
+        match self {
+            Target::LocalSphere { worldline, .. } => {
+                let seed = if tau.is_finite() {
+                    tau
+                } else {
+                    worldline.tau_guess(x.t)
+                };
+                let lp = worldline.localize(metric, x, seed, f64::INFINITY)?;
+                let (_, kl) = rest_frame_photon(metric, worldline, &lp.at, x, k_light);
+                let d = normalize3([kl[1], kl[2], kl[3]]);
+                Some(Incidence {
+                    cos: -dot3(normalize3(lp.xi), d),
+                    energy: kl[0],
+                })
+            }
+            Target::CoordinateSphere { center, .. } => {
+                // Coordinate normal and direction, as for `cos_i` of these orientation aids.
+                let n = normalize3([x.x - center[0], x.y - center[1], x.z - center[2]]);
+                Some(Incidence {
+                    cos: -dot3(n, normalize3([k_light.x, k_light.y, k_light.z])),
+                    energy: -metric.lower(x, k_light).t,
+                })
+            }
+            Target::Plane { .. } => {
+                // The viewer's photon leaves along −view: its z sign picks the lit side.
+                let side = if view.z < 0.0 { 1.0 } else { -1.0 };
+                let d = normalize3([k_light.x, k_light.y, k_light.z]);
+                Some(Incidence {
+                    cos: -side * d[2],
+                    energy: -metric.lower(x, k_light).t,
+                })
+            }
+        }
+    }
+}
+
 /// The emitter velocity at the hit point and the photon's rest-frame components (k⁰, k¹, k², k³).
 /// For objects at rest the surface point is static (u = ∂t exactly); for free fall the
 /// centre's velocity and frame are carried to the hit point to first order with Γ at the centre.

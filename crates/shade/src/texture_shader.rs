@@ -15,6 +15,9 @@
 //! The shading factor is a plain Lambert term with an ambient floor, not physics: `cos_i` is
 //! the cosine between the surface normal and the emitted photon, so a sphere gets darker
 //! toward its limb and looks round, while the floor of 0.25 keeps grazing parts visible.
+//! A scene with `[[light]]` sources is previewed lit instead: texture × (0.06 + Σ_k colour_k ·
+//! light_k), light_k the direct irradiance the renderer stores per light (see
+//! `render::lighting`); [`direct_light`] is that sum for any shader.
 //! Colours are encoded as 8-bit sRGB. Rows are shaded in parallel; the result does not
 //! depend on the thread count.
 
@@ -53,6 +56,14 @@ pub fn shade_textures(data: &DataFile, textures: &[Texture], background: [f32; 3
 /// the loop every shader shares. Records missing from an inconsistent file show as
 /// [`FAILED`]; a zero or oversized image gives an empty one.
 pub fn shade_pixels(data: &DataFile, colour: impl Fn(&PixelRecord) -> [f32; 3] + Sync) -> RgbImage {
+    shade_pixels_at(data, |_, record| colour(record))
+}
+
+/// [`shade_pixels`] with the pixel's index (into `records` and the light planes) as well.
+pub fn shade_pixels_at(
+    data: &DataFile,
+    colour: impl Fn(usize, &PixelRecord) -> [f32; 3] + Sync,
+) -> RgbImage {
     let (Ok(width), Ok(height)) = (u32::try_from(data.width), u32::try_from(data.height)) else {
         return RgbImage::new(0, 0);
     };
@@ -66,10 +77,8 @@ pub fn shade_pixels(data: &DataFile, colour: impl Fn(&PixelRecord) -> [f32; 3] +
         .enumerate()
         .for_each(|(row, out)| {
             for (col, px) in out.chunks_exact_mut(3).enumerate() {
-                let c = data
-                    .records
-                    .get(data.index(col, row))
-                    .map_or(FAILED, &colour);
+                let i = data.index(col, row);
+                let c = data.records.get(i).map_or(FAILED, |r| colour(i, r));
                 px.copy_from_slice(&rgb_to_srgb8(c));
             }
         });
@@ -110,6 +119,45 @@ pub fn shading_factor(cos_i: f32) -> f32 {
     AMBIENT + (1.0 - AMBIENT) * c
 }
 
+/// Ambient floor of the preview of a scene with lights: what unlit surfaces keep.
+pub const LIT_AMBIENT: f32 = 0.06;
+
+/// Direct light at pixel `index`: Σ_k colour_k · light_k (the data file's `light_k`
+/// irradiance times the light's linear-RGB colour); zero where a plane is missing or NaN.
+pub fn direct_light(data: &DataFile, index: usize, colours: &[[f32; 3]]) -> [f32; 3] {
+    let mut sum = [0.0f32; 3];
+    for (plane, c) in data.lights.iter().zip(colours) {
+        let l = plane.get(index).copied().unwrap_or(0.0);
+        if l.is_finite() && l > 0.0 {
+            for (s, c) in sum.iter_mut().zip(c) {
+                *s += c * l;
+            }
+        }
+    }
+    sum
+}
+
+/// A lit preview: texture × ([`LIT_AMBIENT`] + [`direct_light`]) on hit pixels, the
+/// status colours elsewhere.
+pub fn shade_lit(
+    data: &DataFile,
+    textures: &[Texture],
+    colours: &[[f32; 3]],
+    background: [f32; 3],
+) -> RgbImage {
+    shade_pixels_at(data, |i, record| {
+        if let Some(c) = status_colour(record, background) {
+            return c;
+        }
+        let Some(texture) = textures.get(record.object as usize) else {
+            return FAILED;
+        };
+        let light = direct_light(data, i, colours);
+        let colour = texture.sample(f64::from(record.u), f64::from(record.v));
+        [0, 1, 2].map(|k| colour[k] * (LIT_AMBIENT + light[k]))
+    })
+}
+
 /// The runtime textures of a scene's objects, in scene-file order (the data file's object ids).
 pub fn textures_for_scene(scene: &Scene) -> Result<Vec<Texture>, ShadeError> {
     scene
@@ -120,7 +168,7 @@ pub fn textures_for_scene(scene: &Scene) -> Result<Vec<Texture>, ShadeError> {
 }
 
 /// The preview picture of a render: [`shade_textures`] with the scene's textures on the
-/// [`BACKGROUND`]. Errs if the data file's objects are not the scene's.
+/// [`BACKGROUND`]; for a scene with lights, [`shade_lit`] with their colours. Errs if the data file's objects are not the scene's.
 pub fn preview(data: &DataFile, scene: &Scene) -> Result<RgbImage, ShadeError> {
     let scene_names: Vec<String> = scene.objects.iter().map(|o| o.name.clone()).collect();
     if data.header.object_names != scene_names {
@@ -130,7 +178,15 @@ pub fn preview(data: &DataFile, scene: &Scene) -> Result<RgbImage, ShadeError> {
         });
     }
     let textures = textures_for_scene(scene)?;
-    Ok(shade_textures(data, &textures, BACKGROUND))
+    if scene.lights.is_empty() {
+        return Ok(shade_textures(data, &textures, BACKGROUND));
+    }
+    let colours: Vec<[f32; 3]> = scene
+        .lights
+        .iter()
+        .map(|l| l.color.map(|c| c as f32))
+        .collect();
+    Ok(shade_lit(data, &textures, &colours, BACKGROUND))
 }
 
 /// Writes `img` as a PNG file atomically: on error nothing is left at `path`.

@@ -32,7 +32,7 @@ mod minkowski;
 mod vectors;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
-pub use connect::{shadow_rays, shadow_rays_from_axis, Branch, ShadowRay};
+pub use connect::{shadow_rays, shadow_rays_from_axis, source_area_distance_sq, Branch, ShadowRay};
 pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use frame::{boost, gram_schmidt_static_frame, LocalVelocity};

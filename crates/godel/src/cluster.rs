@@ -1,0 +1,312 @@
+//! Scale-out under `mpirun`/`srun` (cargo feature `mpi`, the system's MPI through rsmpi).
+//!
+//! [`run_jobs`] is the one distribution pattern: jobs `0..n` handed out by a dynamic
+//! work queue on rank 0 to whichever rank asks next (rays near the horizon cost more than
+//! others, so static stripes would leave ranks idle), results sent back to rank 0, which
+//! alone assembles and writes. Rank 0 works too, on a thread of its own, while its main
+//! thread serves the queue (only that thread calls MPI: `Threading::Funneled`); with
+//! `GODEL_MPI_ROOT_WORKS=0` it only serves (e.g. when rank 0 sits on a service node).
+//! [`render`] runs `godel render` with tile batches as jobs, [`sequence`] runs
+//! `godel sequence` with frames as jobs.
+//!
+//! Failure: a rank whose scene, work or fingerprint fails prints `godel: rank R: <error>`
+//! and calls `MPI_Abort`, so the whole job exits non-zero and rank 0 never writes a partial
+//! image; a rank that dies is caught by the MPI launcher, which ends the job the same way.
+
+use crate::cmd_render::{load_scene, progress_bar, thread_pool, write_outputs, RenderArgs};
+use crate::cmd_sequence::{finish, start as start_sequence, Plan, SequenceArgs};
+use anyhow::Context;
+use mpi::environment::Threading;
+use mpi::topology::{Communicator, SimpleCommunicator};
+use mpi::traits::{Destination, Source};
+use render::driver::{NoProgress, RenderStats};
+use render::part::{fingerprint, fingerprint_of};
+use render::tiles::{count, insert, TileData, TileRenderer};
+use std::sync::mpsc;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// Worker → rank 0: "give me a job"; payload: the worker's fingerprint (first time) or
+/// the result of its last job (8-byte job number, then the bytes).
+const TAG_ASK: i32 = 1;
+/// Rank 0 → worker: the next job number, or [`STOP`].
+const TAG_JOB: i32 = 2;
+const STOP: u64 = u64::MAX;
+/// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
+const TILES_PER_JOB: usize = 8;
+
+/// Whether an MPI launcher (OpenMPI's mpirun, Hydra, SLURM's srun with PMI/PMIx) started
+/// this process; a plain `godel render` then stays a single, MPI-free process.
+pub fn launched_by_mpi() -> bool {
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some())
+}
+
+/// Prints `godel: rank R: <error chain>` and aborts the whole MPI job with main's exit
+/// code convention (2 for bad input, 1 otherwise).
+fn abort(world: &SimpleCommunicator, err: &anyhow::Error) -> ! {
+    let chain: Vec<String> = err.chain().map(|c| c.to_string()).collect();
+    eprintln!("godel: rank {}: {}", world.rank(), chain.join(": "));
+    let code = if err
+        .chain()
+        .any(|c| c.is::<crate::args::UsageError>() || c.is::<scene::SceneError>())
+    {
+        2
+    } else {
+        1
+    };
+    world.abort(code)
+}
+
+/// Runs jobs `0..n` over all ranks of `world`. `work` runs on any rank; `done` runs on rank
+/// 0 only, once per job, in the order results arrive. `key` must be equal on all ranks (a
+/// fingerprint of the input): a rank with another key aborts the job. Errors abort too.
+/// Returns, on rank 0, how many jobs each rank ran (empty on the others).
+pub fn run_jobs(
+    world: &SimpleCommunicator,
+    n: usize,
+    key: &str,
+    work: &(dyn Fn(usize) -> anyhow::Result<Vec<u8>> + Sync),
+    done: &mut dyn FnMut(usize, Vec<u8>),
+) -> Vec<usize> {
+    if world.rank() != 0 {
+        worker(world, key, work);
+        return vec![];
+    }
+    let mut per_rank = vec![0; world.size() as usize];
+    let next = Mutex::new(0usize);
+    let take = || {
+        let mut next = next.lock().unwrap_or_else(|e| e.into_inner());
+        (*next < n).then(|| {
+            *next += 1;
+            *next - 1
+        })
+    };
+    let (to_main, results) = mpsc::channel::<(usize, anyhow::Result<Vec<u8>>)>();
+    let root_works = std::env::var("GODEL_MPI_ROOT_WORKS").map_or(true, |v| v != "0");
+    std::thread::scope(|s| {
+        // Rank 0's own worker: takes jobs from the same queue, never calls MPI.
+        s.spawn(|| {
+            if !root_works {
+                return;
+            }
+            while let Some(job) = take() {
+                let failed = {
+                    let r = work(job);
+                    let failed = r.is_err();
+                    let _ = to_main.send((job, r));
+                    failed
+                };
+                if failed {
+                    break;
+                }
+            }
+        });
+        let mut received = 0;
+        let mut workers = world.size() as usize - 1;
+        while received < n || workers > 0 {
+            let mut idle = true;
+            while let Ok((job, result)) = results.try_recv() {
+                idle = false;
+                match result {
+                    Ok(bytes) => {
+                        done(job, bytes);
+                        per_rank[0] += 1;
+                    }
+                    Err(e) => abort(world, &e.context(format!("job {job}"))),
+                }
+                received += 1;
+            }
+            // Polled, not blocking: a blocking receive spins a core in most MPIs.
+            if let Some(status) = world.any_process().immediate_probe_with_tag(TAG_ASK) {
+                idle = false;
+                let rank = status.source_rank();
+                let (msg, _) = world
+                    .process_at_rank(rank)
+                    .receive_vec_with_tag::<u8>(TAG_ASK);
+                match msg
+                    .get(..8)
+                    .map(|b| u64::from_le_bytes(b.try_into().unwrap()))
+                {
+                    Some(job) if job != STOP => {
+                        done(job as usize, msg[8..].to_vec());
+                        received += 1;
+                        per_rank[rank as usize] += 1;
+                    }
+                    _ => {
+                        let theirs = String::from_utf8_lossy(msg.get(8..).unwrap_or(&[]));
+                        if theirs != key {
+                            let e = anyhow::anyhow!(
+                                "rank {rank} read a different scene or program version than rank 0 (fingerprint {theirs} ≠ {key})"
+                            );
+                            abort(world, &e);
+                        }
+                    }
+                }
+                let job = take().map_or(STOP, |j| j as u64);
+                if job == STOP {
+                    workers -= 1;
+                }
+                world.process_at_rank(rank).send_with_tag(&job, TAG_JOB);
+            }
+            if idle {
+                std::thread::sleep(Duration::from_micros(200));
+            }
+        }
+    });
+    per_rank
+}
+
+/// A worker rank: asks for jobs until told to stop, sending each result with the next ask.
+fn worker(
+    world: &SimpleCommunicator,
+    key: &str,
+    work: &(dyn Fn(usize) -> anyhow::Result<Vec<u8>> + Sync),
+) {
+    let root = world.process_at_rank(0);
+    let mut msg = STOP.to_le_bytes().to_vec();
+    msg.extend_from_slice(key.as_bytes());
+    loop {
+        root.send_with_tag(&msg[..], TAG_ASK);
+        let (job, _) = root.receive_with_tag::<u64>(TAG_JOB);
+        if job == STOP {
+            return;
+        }
+        match work(job as usize) {
+            Ok(bytes) => {
+                msg = job.to_le_bytes().to_vec();
+                msg.extend_from_slice(&bytes);
+            }
+            Err(e) => abort(world, &e.context(format!("job {job}"))),
+        }
+    }
+}
+
+/// Starts MPI (funneled: only the main thread calls it).
+fn start() -> anyhow::Result<mpi::environment::Universe> {
+    let (universe, _) = mpi::initialize_with_threading(Threading::Funneled)
+        .context("cannot start MPI (already started?)")?;
+    Ok(universe)
+}
+
+/// `godel render` under MPI: tile batches as jobs; rank 0 writes the same files as a
+/// single-process run.
+pub fn render(args: RenderArgs) -> anyhow::Result<()> {
+    let universe = start()?;
+    let world = universe.world();
+    let rank0 = world.rank() == 0;
+    let set_up = || -> anyhow::Result<_> {
+        let pool = thread_pool(args.threads)?;
+        let scene = load_scene(&args.scene)?;
+        if rank0 {
+            shade::textures_for_scene(&scene)?; // fail before tracing
+        }
+        Ok((pool, scene))
+    };
+    let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
+    let renderer =
+        TileRenderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
+    let started = Instant::now();
+    let tiles = renderer.tiles();
+    // Small images still get a few jobs per rank.
+    let per_job = (tiles.len() / (4 * world.size() as usize)).clamp(1, TILES_PER_JOB);
+    let jobs: Vec<Vec<usize>> = (0..tiles.len())
+        .collect::<Vec<_>>()
+        .chunks(per_job)
+        .map(<[usize]>::to_vec)
+        .collect();
+    let work = |job: usize| -> anyhow::Result<Vec<u8>> {
+        let traced = pool.install(|| renderer.trace(&jobs[job], &NoProgress));
+        Ok(postcard::to_stdvec(&traced)?)
+    };
+    let pixels = scene.camera.width() as u64 * scene.camera.height() as u64;
+    let bar = progress_bar(&scene, pixels, args.quiet || !rank0);
+    let mut data = renderer.blank();
+    let mut failure = None;
+    let mut done = |job: usize, bytes: Vec<u8>| match postcard::from_bytes::<Vec<TileData>>(&bytes)
+    {
+        Ok(traced) if traced.iter().map(|t| t.index).eq(jobs[job].iter().copied()) => {
+            for t in &traced {
+                insert(&mut data, tiles[t.index], t);
+                bar.inc(t.records.len() as u64);
+            }
+        }
+        _ => failure = Some(job),
+    };
+    let per_rank = run_jobs(&world, jobs.len(), &fingerprint(&scene), &work, &mut done);
+    bar.finish_and_clear();
+    if !rank0 {
+        return Ok(());
+    }
+    if let Some(job) = failure {
+        let e = anyhow::anyhow!("the result of job {job} arrived damaged");
+        abort(&world, &e);
+    }
+    let stats = RenderStats {
+        wall: started.elapsed(),
+        ..count(&data.records)
+    };
+    write_outputs(&scene, &data, &args.output).unwrap_or_else(|e| abort(&world, &e));
+    let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
+    eprintln!(
+        "{} ({} ranks; jobs of {per_job} tiles per rank: {})",
+        stats.summary(),
+        world.size(),
+        shares.join(", ")
+    );
+    Ok(())
+}
+
+/// `godel sequence` under MPI: frames as jobs (each traced and shaded whole on one rank,
+/// sent to rank 0 as raw RGB), written by rank 0 as they arrive; the MP4 at the end.
+pub fn sequence(args: SequenceArgs) -> anyhow::Result<()> {
+    let universe = start()?;
+    let world = universe.world();
+    let rank0 = world.rank() == 0;
+    let set_up = || -> anyhow::Result<_> {
+        let text = std::fs::read_to_string(&args.script)
+            .with_context(|| format!("cannot read {}", args.script.display()))?;
+        Ok((Plan::new(&args.script)?, fingerprint_of(&[&text])))
+    };
+    let (plan, key) = set_up().unwrap_or_else(|e| abort(&world, &e));
+    let bar = if rank0 {
+        start_sequence(&plan, &args).unwrap_or_else(|e| abort(&world, &e))
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let work = |job: usize| -> anyhow::Result<Vec<u8>> {
+        let image = plan
+            .frame(job as u32)
+            .with_context(|| format!("frame {job}"))?;
+        let mut bytes = image.width().to_le_bytes().to_vec();
+        bytes.extend_from_slice(&image.height().to_le_bytes());
+        bytes.extend_from_slice(image.as_raw());
+        Ok(bytes)
+    };
+    let mut failure = None;
+    let mut done = |job: usize, bytes: Vec<u8>| {
+        let size = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+        let image = (bytes.len() >= 8)
+            .then(|| image::RgbImage::from_raw(size(0), size(4), bytes[8..].to_vec()))
+            .flatten();
+        let written = match image {
+            Some(image) => {
+                shade::write_png(&image, &plan.frame_path(job as u32)).map_err(anyhow::Error::from)
+            }
+            None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
+        };
+        match written {
+            Ok(()) => bar.inc(1),
+            Err(e) => failure = Some(e),
+        }
+    };
+    run_jobs(&world, plan.frames() as usize, &key, &work, &mut done);
+    if let Some(e) = failure {
+        abort(&world, &e);
+    }
+    if rank0 {
+        finish(&plan, &args, &bar).unwrap_or_else(|e| abort(&world, &e));
+    }
+    Ok(())
+}

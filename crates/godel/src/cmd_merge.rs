@@ -1,0 +1,38 @@
+//! `godel merge PART… -o DIR`: joins the part files of `godel render --part i/N` into
+//! `DIR/<name>.exr` and `DIR/<name>.png`, the very files a single run writes. Parts of
+//! different renders, a missing or repeated part, or overlapping parts are refused
+//! (`render::part::merge`), and nothing is written then.
+
+use crate::cmd_render::write_outputs;
+use clap::Args;
+use render::part::{merge, read_part};
+use scene::Scene;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// The part files (`<name>.part-i-of-N.exr`), all N of them, in any order.
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// Output folder (created if missing).
+    #[arg(short, long, default_value = "out")]
+    pub output: PathBuf,
+}
+
+pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    let parts = args
+        .parts
+        .iter()
+        .map(|p| read_part(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let data = merge(&parts)?;
+    // The preview needs the scene's textures: the scene text travels in the data file,
+    // its path (for relative image paths) in the part attributes.
+    let first = &parts[0];
+    let scene = if first.scene_path.is_empty() {
+        Scene::builtin()
+    } else {
+        Scene::from_str(&data.header.scene_text, &first.scene_path)?
+    };
+    write_outputs(&scene, &data, &args.output)
+}

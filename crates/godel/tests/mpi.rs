@@ -1,0 +1,187 @@
+//! `godel render` under `mpirun` (cargo feature `mpi`; needs OpenMPI, which
+//! scripts/test.sh installs when missing): 2 ranks write the very bytes of a
+//! single-process run (a render and a 3-frame sequence), and a rank that fails ends the
+//! job non-zero with its rank named.
+#![cfg(feature = "mpi")]
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+const GODEL: &str = env!("CARGO_BIN_EXE_godel");
+
+/// `mpirun` with the flags a test machine needs (root in CI, fewer cores than ranks).
+fn mpirun(args: &[&str]) -> Output {
+    Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe"])
+        .args(args)
+        .output()
+        .expect("run mpirun (is OpenMPI installed? scripts/test.sh installs it)")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A small scene with a falling, textured ball lit by a point light (a `light_0`
+/// channel): images of varied cost, 6×3 tiles.
+fn scene_text(max_past: f64) -> String {
+    format!(
+        r#"
+name = "ranks"
+[spacetime]
+metric = "godel"
+a = 1.0
+[observer]
+position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
+forward = [1, 0, 0]
+up = [0, 0, 1]
+[camera]
+kind = "panorama"
+h_fov_deg = 360.0
+v_fov_deg = 40.0
+width = 90
+height = 37
+[trace]
+max_past = {max_past:?}
+[[object]]
+name = "ball"
+radius = 0.25
+texture = {{ kind = "checker", rows = 4, cols = 8 }}
+motion = {{ kind = "geodesic", time = -1.0, position = {{ x = -0.8, y = 0.2, z = 0.0 }}, speed = 0.6, direction = [0, 1, 0] }}
+[[light]]
+position = {{ x = 1.0, y = 1.0, z = 0.0 }}
+color = [1.0, 1.0, 1.0]
+power = 12.0
+"#
+    )
+}
+
+fn write_scene(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn two_ranks_write_the_bytes_of_one_process() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = write_scene(tmp.path(), "ranks.toml", &scene_text(8.0));
+    let single = tmp.path().join("single");
+    let out = Command::new(GODEL)
+        .args(["render", &scene, "-q", "-o", single.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+
+    // With rank 0 working too (the default), and with rank 0 only serving the queue, so
+    // that every tile surely travels from rank 1.
+    for (root_works, dir) in [("1", "two"), ("0", "two-remote")] {
+        let two = tmp.path().join(dir);
+        let out = mpirun(&[
+            "-x",
+            &format!("GODEL_MPI_ROOT_WORKS={root_works}"),
+            "-n",
+            "2",
+            GODEL,
+            "render",
+            &scene,
+            "-q",
+            "-o",
+            two.to_str().unwrap(),
+        ]);
+        let err = stderr(&out);
+        assert!(out.status.success(), "{err}");
+        assert!(err.contains("(2 ranks;"), "{err}");
+        if root_works == "0" {
+            assert!(err.contains("per rank: 0, "), "rank 0 traced: {err}");
+        }
+        for file in ["ranks.exr", "ranks.png"] {
+            let a = std::fs::read(single.join(file)).unwrap();
+            let b = std::fs::read(two.join(file)).unwrap();
+            assert!(
+                a == b,
+                "{file} differs between 1 process and 2 ranks ({dir})"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_rank_with_a_bad_scene_fails_the_job_and_is_named() {
+    let tmp = tempfile::tempdir().unwrap();
+    let good = write_scene(tmp.path(), "good.toml", &scene_text(8.0));
+    let bad = write_scene(
+        tmp.path(),
+        "bad.toml",
+        "name = \"ranks\"\n[camera]\nwidth = -3\n",
+    );
+    let dir = tmp.path().join("out");
+    let o = dir.to_str().unwrap();
+    // Rank 0 reads a good scene, rank 1 a bad one (as if its node saw another file).
+    let out = mpirun(&[
+        "-n", "1", GODEL, "render", &good, "-q", "-o", o, ":", "-n", "1", GODEL, "render", &bad,
+        "-q", "-o", o,
+    ]);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "the job succeeded: {err}");
+    assert!(err.contains("godel: rank 1: "), "{err}");
+    assert!(err.contains("bad.toml"), "{err}");
+    assert!(!dir.join("ranks.exr").exists() && !dir.join("ranks.png").exists());
+}
+
+#[test]
+fn a_rank_with_another_scene_fails_the_job_and_is_named() {
+    let tmp = tempfile::tempdir().unwrap();
+    let a = write_scene(tmp.path(), "a.toml", &scene_text(8.0));
+    let b = write_scene(tmp.path(), "b.toml", &scene_text(7.0));
+    let dir = tmp.path().join("out");
+    let o = dir.to_str().unwrap();
+    let out = mpirun(&[
+        "-n", "1", GODEL, "render", &a, "-q", "-o", o, ":", "-n", "1", GODEL, "render", &b, "-q",
+        "-o", o,
+    ]);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "the job succeeded: {err}");
+    assert!(err.contains("rank 1 read a different scene"), "{err}");
+    assert!(!dir.join("ranks.exr").exists());
+}
+
+#[test]
+fn two_ranks_write_the_frames_of_one_process() {
+    let tmp = tempfile::tempdir().unwrap();
+    write_scene(tmp.path(), "fall.toml", &scene_text(6.0));
+    // The same 3 frames (observer time advancing, so each frame is traced) into two folders.
+    let script = |out: &str| {
+        let text = format!(
+            "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\nobserver_time = [0.0, 1.5]\n"
+        );
+        write_scene(tmp.path(), &format!("{out}.toml"), &text)
+    };
+    let (one, two) = (script("one"), script("two"));
+    let out = Command::new(GODEL)
+        .args(["sequence", &one, "-q"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Rank 0 only serves the queue here: every frame comes from rank 1.
+    let out = mpirun(&[
+        "-x",
+        "GODEL_MPI_ROOT_WORKS=0",
+        "-n",
+        "2",
+        GODEL,
+        "sequence",
+        &two,
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    for i in 0..3 {
+        let f = format!("frame_{i:04}.png");
+        let a = std::fs::read(tmp.path().join("one").join(&f)).unwrap();
+        let b = std::fs::read(tmp.path().join("two").join(&f)).unwrap();
+        assert!(a == b, "{f} differs between 1 process and 2 ranks");
+    }
+    // The frames differ from each other: the ball moved, so each frame was really made.
+    let frame = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.png"))).unwrap();
+    assert!(frame(0) != frame(2));
+}

@@ -1,0 +1,223 @@
+//! Direct illumination (shadow rays): a light beyond the observer's horizon is never seen
+//! yet lights the ball, also on its averted side; an occluder's shadow falls where an
+//! independent numeric integration of the connecting rays says it must; the light planes
+//! survive the data file.
+
+mod common;
+use common::{render_scene, scene};
+use render::datafile::DataFile;
+use spacetime::{
+    shadow_rays, trace, Event, Geodesic, GeodesicKind, Godel, Metric, Spacetime, TraceLimits,
+};
+use std::path::Path;
+
+fn scene_text(name: &str, width: u32, height: u32) -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(name);
+    std::fs::read_to_string(p)
+        .unwrap()
+        .lines()
+        .map(|l| match l.split('=').next().map(str::trim) {
+            Some("width") => format!("width = {width}"),
+            Some("height") => format!("height = {height}"),
+            _ => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Unit outward normal in the ball's static frame from the record's body longitude and
+/// latitude (inverse of the texture mapping u = (atan2(n2, n1) + π)/2π, v = ½ + asin(n3)/π).
+fn normal_from_uv(u: f32, v: f32) -> [f64; 3] {
+    let lon = 2.0 * std::f64::consts::PI * f64::from(u) - std::f64::consts::PI;
+    let lat = std::f64::consts::PI * (f64::from(v) - 0.5);
+    [lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin()]
+}
+
+#[test]
+fn a_light_beyond_the_observers_horizon_is_in_no_pixel_yet_lights_the_ball() {
+    let a = 1.0;
+    let text = scene_text("lit-beyond-horizon.toml", 360, 40);
+    let s = scene(&text);
+    let light = s.lights[0].position;
+    assert!(light.r() > 2.0 * a, "the light must be beyond the horizon");
+    // No light ray from it ever reaches the observer (any winding).
+    assert!(shadow_rays(a, light, s.observer.event, 20).is_empty());
+    // A small marker ball at the light's position shows in no pixel (lights are not drawn,
+    // so this is how "in no pixel" is checked)...
+    let marker = text.split("[[light]]").next().unwrap().to_string()
+        + &format!(
+            "\n[[object]]\nname = \"marker\"\nradius = 0.1\ntexture = {{ kind = \"uniform\", color = [1.0, 1.0, 1.0] }}\nmotion = {{ kind = \"rest\", position = {{ x = {:?}, y = {:?}, z = {:?} }} }}\n",
+            light.x, light.y, light.z
+        );
+    let (m, _) = render_scene(&scene(&marker));
+    assert!(m.records.iter().any(|r| r.object == 0), "the ball is seen");
+    assert!(
+        !m.records.iter().any(|r| r.object == 1),
+        "the marker is seen"
+    );
+    // ...yet the ball is lit, and partly on its side averted from the light (normal
+    // pointing away from it: the light is at +x of the ball, so n1 < 0 in the static frame,
+    // whose e1 is the radial direction there).
+    let (d, _) = render_scene(&s);
+    assert_eq!(d.lights.len(), 1);
+    let ball: Vec<usize> = (0..d.records.len())
+        .filter(|&i| d.records[i].object == 0)
+        .collect();
+    let lit: Vec<usize> = ball
+        .iter()
+        .copied()
+        .filter(|&i| d.lights[0][i] > 0.0)
+        .collect();
+    assert!(
+        ball.len() > 100 && lit.len() * 2 > ball.len(),
+        "{} of {}",
+        lit.len(),
+        ball.len()
+    );
+    let averted = lit
+        .iter()
+        .filter(|&&i| normal_from_uv(d.records[i].u, d.records[i].v)[0] < -0.3)
+        .count();
+    assert!(
+        averted > 20,
+        "only {averted} lit pixels on the averted side"
+    );
+    // Nothing else carries light.
+    for (r, l) in d.records.iter().zip(&d.lights[0]) {
+        assert!(l.is_finite() && *l >= 0.0);
+        if !r.is_hit() {
+            assert_eq!(*l, 0.0);
+        }
+    }
+}
+
+/// Static observers' spatial distance between nearby points around `c`:
+/// h_ij = g_ij + g_ti g_tj at c (g_tt = −1), first order.
+fn static_distance(m: &Metric, c: Event, x: Event) -> f64 {
+    let g = m.metric(c);
+    let d = [0.0, x.x - c.x, x.y - c.y, x.z - c.z];
+    let mut s = 0.0;
+    for i in 1..4 {
+        for j in 1..4 {
+            s += (g[i][j] + g[0][i] * g[0][j]) * d[i] * d[j];
+        }
+    }
+    s.sqrt()
+}
+
+/// For one connecting ray, integrated numerically from its emission (independent of the
+/// renderer): its closest approach to the blocker, to the lit ball before its last 2 %,
+/// and the cosine of incidence at the end (first order, static frame at the ball).
+fn ray_facts(
+    m: &Metric,
+    ray: &spacetime::ShadowRay,
+    ball: Event,
+    blocker: Event,
+) -> (f64, f64, f64) {
+    let g = Geodesic::from_tangent(m, GeodesicKind::Null, ray.emission, ray.tangent);
+    let limits = TraceLimits {
+        max_affine: ray.lambda,
+        ..Default::default()
+    };
+    let tr = trace(*m, &g, &limits);
+    let (mut to_blocker, mut to_ball) = (f64::INFINITY, f64::INFINITY);
+    for (l, st) in tr.samples(3000) {
+        to_blocker = to_blocker.min(static_distance(m, blocker, st.x));
+        if l < 0.98 * ray.lambda {
+            to_ball = to_ball.min(static_distance(m, ball, st.x));
+        }
+    }
+    let end = tr.end.x;
+    let k = m.raise(end, tr.end.p);
+    let gm = m.metric(ball);
+    let h = |u: [f64; 4], v: [f64; 4]| {
+        let mut s = 0.0;
+        for i in 1..4 {
+            for j in 1..4 {
+                s += (gm[i][j] + gm[0][i] * gm[0][j]) * u[i] * v[j];
+            }
+        }
+        s
+    };
+    let n = [0.0, end.x - ball.x, end.y - ball.y, end.z - ball.z];
+    let kv = k.to_array();
+    let cos = -h(n, kv) / (h(n, n) * h(kv, kv)).sqrt();
+    (to_blocker, to_ball, cos)
+}
+
+#[test]
+fn the_shadow_falls_where_the_connecting_rays_cross_the_occluder() {
+    let a = 1.0;
+    let m = Metric::Godel(Godel::new(a));
+    let shadow = scene(&scene_text("lit-shadow.toml", 360, 40));
+    let (with, _) = render_scene(&shadow);
+    let (without, _) = render_scene(&scene(&scene_text("lit-side.toml", 360, 40)));
+    let ball = Event::new(0.0, 1.0, 0.0, 0.0);
+    let blocker = Event::new(0.0, 0.686, 0.444, 0.0);
+    let (r_ball, r_blocker) = (0.2, 0.08);
+    let light = shadow.lights[0].position;
+    let window = shadow.trace.max_past;
+    let (mut dark, mut predicted, mut checked) = (0, 0, 0);
+    for i in 0..with.records.len() {
+        let (r, q) = (&with.records[i], &without.records[i]);
+        if r.object != 0 || q.object != 0 || without.lights[0][i] <= 0.0 {
+            continue;
+        }
+        checked += 1;
+        let is_dark = with.lights[0][i] < 0.999 * without.lights[0][i];
+        let x = Event::new(
+            f64::from(r.t_emit) + shadow.observer.event.t,
+            f64::from(r.x),
+            f64::from(r.y),
+            f64::from(r.z),
+        );
+        let (mut surely, mut maybe) = (false, false);
+        for ray in shadow_rays(a, light, x, 8) {
+            if ray.emission.t < x.t - window {
+                continue;
+            }
+            let (b, s, cos) = ray_facts(&m, &ray, ball, blocker);
+            // A ray that counts: arrives on the outside and did not cross the ball before.
+            let counts = cos > 0.05 && s > 1.05 * r_ball;
+            let could = cos > -0.05 && s > 0.95 * r_ball;
+            surely |= counts && b < 0.9 * r_blocker;
+            maybe |= could && b < 1.1 * r_blocker;
+        }
+        assert!(
+            !surely || is_dark,
+            "pixel {i}: a contributing ray crosses the blocker, yet not dark"
+        );
+        assert!(
+            !is_dark || maybe,
+            "pixel {i}: dark, yet no ray comes near the blocker"
+        );
+        dark += is_dark as usize;
+        predicted += surely as usize;
+    }
+    assert!(
+        checked > 200 && dark >= 10 && predicted >= 10,
+        "{checked} checked, {dark} dark, {predicted} predicted"
+    );
+    eprintln!("{checked} lit ball pixels, {dark} in shadow, {predicted} surely predicted");
+}
+
+#[test]
+fn light_planes_round_trip_through_the_data_file() {
+    let (d, _) = render_scene(&scene(&scene_text("lit-side.toml", 120, 14)));
+    assert_eq!(d.lights.len(), 1);
+    assert!(d.lights[0].iter().any(|&l| l > 0.0));
+    let back = DataFile::from_bytes(&d.to_bytes().unwrap()).unwrap();
+    assert_eq!(back.lights, d.lights);
+    assert_eq!(back.records, d.records);
+}
+
+#[test]
+fn lights_need_the_godel_metric() {
+    let s = scene("name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n[camera]\nkind = \"pinhole\"\nfov_deg = 60.0\nwidth = 8\nheight = 8\n[[light]]\nposition = { x = 1.0, y = 0.0, z = 0.0 }\n");
+    assert!(matches!(
+        render::driver::build_tracer(&s),
+        Err(render::driver::RenderError::LightsNeedGodel)
+    ));
+}
