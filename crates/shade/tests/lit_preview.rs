@@ -62,3 +62,24 @@ fn lit_preview_multiplies_the_texture_by_ambient_plus_light() {
     assert_eq!(px(3), [0, 0, 255]);
     assert!(px(0)[0] > px(1)[0]);
 }
+
+#[test]
+fn the_preview_of_a_scene_with_lights_is_lit() {
+    let text = "name = \"lit\"\n[camera]\nkind = \"pinhole\"\nfov_deg = 60.0\nwidth = 4\nheight = 1\n[[object]]\nname = \"ball\"\nradius = 0.2\ntexture = { kind = \"uniform\", color = [0.8, 0.4, 0.2] }\nmotion = { kind = \"rest\", position = { r = 1.0, phi = 0.0, z = 0.0 } }\n";
+    let unlit = scene::Scene::from_str(text, "unlit.toml").unwrap();
+    let lit = scene::Scene::from_str(
+        &format!("{text}[[light]]\nposition = {{ r = 1.5, phi = 0.0, z = 0.0 }}\ncolor = [1.0, 1.0, 1.0]\n"),
+        "lit.toml",
+    )
+    .unwrap();
+    let tex = [Texture::Uniform([0.8, 0.4, 0.2])];
+    let d = data(vec![vec![0.5, 0.0, 2.0, 7.0]]);
+    let a = shade::texture_shader::preview_with_textures(&d, &tex, &lit);
+    assert_eq!(
+        a,
+        shade_lit(&d, &tex, &[[1.0, 1.0, 1.0]], shade::BACKGROUND)
+    );
+    let b = shade::texture_shader::preview_with_textures(&d, &tex, &unlit);
+    assert_eq!(b, shade::shade_textures(&d, &tex, shade::BACKGROUND));
+    assert_ne!(a, b);
+}
