@@ -178,15 +178,21 @@ pub fn preview(data: &DataFile, scene: &Scene) -> Result<RgbImage, ShadeError> {
         });
     }
     let textures = textures_for_scene(scene)?;
+    Ok(preview_with_textures(data, &textures, scene))
+}
+
+/// The preview with textures already loaded: [`shade_textures`] on the [`BACKGROUND`], or
+/// [`shade_lit`] with the lights' colours when the scene has `[[light]]` sources.
+pub fn preview_with_textures(data: &DataFile, textures: &[Texture], scene: &Scene) -> RgbImage {
     if scene.lights.is_empty() {
-        return Ok(shade_textures(data, &textures, BACKGROUND));
+        return shade_textures(data, textures, BACKGROUND);
     }
     let colours: Vec<[f32; 3]> = scene
         .lights
         .iter()
         .map(|l| l.color.map(|c| c as f32))
         .collect();
-    Ok(shade_lit(data, &textures, &colours, BACKGROUND))
+    shade_lit(data, textures, &colours, BACKGROUND)
 }
 
 /// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
