@@ -8,6 +8,7 @@ mod args;
 mod cmd_geodesic;
 mod cmd_plot;
 mod cmd_render;
+mod cmd_view;
 mod output;
 mod svg;
 
@@ -31,6 +32,8 @@ enum Command {
     Plot(cmd_plot::PlotArgs),
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
+    /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
+    View(cmd_view::ViewArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
@@ -38,6 +41,7 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Geodesic(args) => cmd_geodesic::run(args),
         Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
+        Command::View(args) => cmd_view::run(args),
     }
 }
 
