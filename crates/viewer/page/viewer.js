@@ -188,6 +188,9 @@ function parseServerTiming(header) {
   return out;
 }
 
+// No picture request in flight or waiting (for tests and scripts).
+viewer.idle = () => !viewer.busy && dirtySince === null && !frameQueued;
+
 // Sends `text` as the settings, as the page does: for checking how errors show.
 viewer.sendRaw = (text) => requestPicture(text, performance.now());
 
@@ -281,6 +284,13 @@ async function saveKeyframe() {
 
 // ---- start
 
+// As wide as the page, but at most 60% of the window high, keeping the aspect ratio.
+function fitCanvas() {
+  const canvas = $('image');
+  const byHeight = window.innerHeight * 0.6 * canvas.width / canvas.height;
+  canvas.style.width = `${Math.min($('picture').clientWidth, byHeight)}px`;
+}
+
 async function start() {
   try {
     const response = await fetch('/api/info');
@@ -297,6 +307,8 @@ async function start() {
   canvas.width = viewer.info.width;
   canvas.height = viewer.info.height;
   buildControls(describeControls(viewer.info));
+  fitCanvas();
+  window.addEventListener('resize', fitCanvas);
   canvas.addEventListener('mousemove', (event) => {
     hoverWanted = pixelUnder(event);
     fetchHover();
