@@ -181,7 +181,7 @@ fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
 async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
     let settings = parse_settings(&state, &body)?;
     let disposition = attachment(&state, "png");
-    let bytes = blocking(move || encode::png(&state.shade(&settings), false))
+    let bytes = blocking(move || encode::png(&state.shade(&settings)))
         .await?
         .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))?;
     let headers = [
