@@ -8,6 +8,8 @@ mod args;
 mod cmd_geodesic;
 mod cmd_plot;
 mod cmd_render;
+mod cmd_sequence;
+mod cmd_shade;
 mod cmd_view;
 mod output;
 mod svg;
@@ -34,6 +36,10 @@ enum Command {
     Render(cmd_render::RenderArgs),
     /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
     View(cmd_view::ViewArgs),
+    /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
+    Shade(cmd_shade::ShadeArgs),
+    /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
+    Sequence(cmd_sequence::SequenceArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
@@ -42,6 +48,8 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
         Command::View(args) => cmd_view::run(args),
+        Command::Shade(args) => cmd_shade::run(args),
+        Command::Sequence(args) => cmd_sequence::run(args),
     }
 }
 

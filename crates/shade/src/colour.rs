@@ -53,3 +53,22 @@ pub fn clamp01(x: f32) -> f32 {
         x.clamp(0.0, 1.0)
     }
 }
+
+/// The linear values at which 8-bit sRGB steps from k to k + 1: the sRGB decoding of
+/// (k + ½)/255, k = 0..254.
+fn srgb8_thresholds() -> &'static [f32; 255] {
+    static TABLE: std::sync::OnceLock<[f32; 255]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|k| srgb_to_linear((k as f32 + 0.5) / 255.0)))
+}
+
+/// [`linear_to_srgb8`] without a power function: the number of step thresholds at or below
+/// `x` (a binary search in a 255-entry table). Agrees with it except, at most by one step,
+/// for values within float rounding of a step; NaN → 0.
+pub fn linear_to_srgb8_fast(x: f32) -> u8 {
+    srgb8_thresholds().partition_point(|&t| t <= x) as u8
+}
+
+/// A linear RGB colour as 8-bit sRGB through [`linear_to_srgb8_fast`].
+pub fn rgb_to_srgb8_fast(c: [f32; 3]) -> [u8; 3] {
+    c.map(linear_to_srgb8_fast)
+}

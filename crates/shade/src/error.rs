@@ -47,4 +47,48 @@ pub enum ShadeError {
         #[source]
         source: std::io::Error,
     },
+    /// A settings value is invalid (field path such as `objects.ball.temperature`).
+    #[error("shade settings: {field}: {message}")]
+    Invalid { field: String, message: String },
+    /// A settings file is malformed or names unknown fields.
+    #[error("{file}{}{}: {message}", line_suffix(*line), field_suffix(field))]
+    Settings {
+        file: String,
+        /// 1-based; 0 when unknown.
+        line: usize,
+        field: String,
+        message: String,
+    },
+    /// A sequence script is malformed, names unknown fields, or has keyframes out of order.
+    #[error("{file}{}{}: {message}", line_suffix(*line), field_suffix(field))]
+    Script {
+        file: String,
+        /// 1-based; 0 when unknown.
+        line: usize,
+        field: String,
+        message: String,
+    },
+    /// The light shader was asked for, but the data file carries no `light_k` channels.
+    #[error("the light shader needs light channels (light_0, light_1, …), and this data file has none: render a scene with [[light]] sources")]
+    NoLightChannels,
+    /// The scene embedded in the data file does not validate here (e.g. an image texture
+    /// path that does not resolve from the current directory).
+    #[error("the scene embedded in the data file: {0} (choose another texture for that object)")]
+    EmbeddedScene(scene::SceneError),
+}
+
+fn line_suffix(line: usize) -> String {
+    if line > 0 {
+        format!(":{line}")
+    } else {
+        String::new()
+    }
+}
+
+fn field_suffix(field: &str) -> String {
+    if field.is_empty() {
+        String::new()
+    } else {
+        format!(": {field}")
+    }
 }

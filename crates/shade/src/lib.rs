@@ -2,6 +2,12 @@
 //! re-tracing (DESIGN.md, "The pipeline").
 //!
 //! Main types and functions:
+//! - [`ShadeSettings`]: every shader parameter (serde; TOML files, keyframes, the viewer),
+//!   with [`ShadeSettings::defaults_for`] a data file.
+//! - [`Shading`]: settings checked against a data file with textures loaded;
+//!   [`Shading::image`] / [`Shading::image_into`] shade it (texture, frequency, time and light
+//!   layers, combined by multiplication; see [`shading`]).
+//! - [`Script`], [`Timeline`], [`keyframe_toml`]: sequence scripts with keyframed settings.
 //! - [`Texture`]: a runtime texture (checker, gradient, uniform, equirectangular image such as
 //!   the built-in earth) built from a scene's `TextureSpec` with [`Texture::load`], sampled at
 //!   body coordinates (u, v) in linear RGB.
@@ -12,17 +18,29 @@
 //! - [`shade_frequency`]: the frequency shader, objects as black bodies at g·T with
 //!   [`Brightness`] normalized or physical, and reference squares of the unshifted colours.
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
-//! - [`ShadeError`]: every error, naming the file concerned.
+//! - [`ShadeError`]: every error, naming the file or field concerned.
 
 pub mod blackbody;
 pub mod colour;
 mod error;
 pub mod frequency_shader;
+pub mod gt_table;
+pub mod legend;
+pub mod script;
+pub mod settings;
+pub mod shading;
 pub mod texture;
 pub mod texture_shader;
+mod tree;
 
 pub use error::ShadeError;
 pub use frequency_shader::{shade_frequency, Brightness};
+pub use script::{keyframe_toml, FrameSource, Interpolation, Keyframe, Script, Timeline};
+pub use settings::{
+    BrightnessMode, Lamp, LightSettings, LightSource, ObjectSettings, ShadeSettings, ShaderKind,
+    TextureChoice, TimeMode, TimeSettings,
+};
+pub use shading::Shading;
 pub use texture::{ImageTexture, Texture};
 pub use texture_shader::{
     pixel_colour, preview, shade_textures, shading_factor, textures_for_scene, write_png,

@@ -1,0 +1,272 @@
+//! `godel shade DATA.exr --shader texture|frequency|time|light … -o out.png`: re-colours a
+//! traced data file without tracing again (DESIGN.md, "The pipeline"). The settings start
+//! from the data file's defaults ([`shade::ShadeSettings::defaults_for`]), then a settings
+//! file (`--settings`), then the convenience flags, in that order; the picture is written
+//! atomically, so a failed run leaves nothing at the output path.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use render::datafile::DataFile;
+use shade::{
+    BrightnessMode, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TimeMode,
+};
+
+use crate::args::{parse_vector, usage};
+
+#[derive(Args, Debug)]
+pub struct ShadeArgs {
+    /// The data file written by `godel render` (.exr).
+    pub data: PathBuf,
+    /// Output picture (.png).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Shader layers, multiplied: texture, frequency, time, light (comma-separated or repeated,
+    /// e.g. `frequency,time`).
+    #[arg(long, value_delimiter = ',', value_parser = parse_shader)]
+    pub shader: Vec<ShaderKind>,
+    /// A settings file (TOML; any subset of the settings fields).
+    #[arg(long)]
+    pub settings: Option<PathBuf>,
+    /// Black-body temperature in K: `5000` for every object, or `NAME=5000` (repeatable).
+    #[arg(long)]
+    pub temperature: Vec<String>,
+    /// Texture: `SPEC` for every object or `NAME=SPEC`; SPEC is scene, checker:ROWSxCOLS,
+    /// gradient, uniform:R,G,B, image:PATH or earth (repeatable).
+    #[arg(long)]
+    pub texture: Vec<String>,
+    /// Texture inside the time window, same forms as --texture.
+    #[arg(long)]
+    pub window_texture: Vec<String>,
+    /// Time window T0,DT of emission time t_emit (relative to the observer): the time shader
+    /// shows the window texture where T0 ≤ t_emit ≤ T0 + DT.
+    #[arg(long, allow_hyphen_values = true)]
+    pub window: Option<String>,
+    /// False colour by light travel time over MIN,MAX (switches the time shader to it).
+    #[arg(long)]
+    pub travel: Option<String>,
+    /// Physical brightness (radiance ratio Y(gT)/Y(T)) with this exposure.
+    #[arg(long)]
+    pub exposure: Option<f64>,
+    /// Turn the body: `DEG` for every object or `NAME=DEG` (repeatable).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rotate: Vec<String>,
+    /// Move the texture: `U,V` for every object or `NAME=U,V` (repeatable).
+    #[arg(long, allow_hyphen_values = true)]
+    pub offset: Vec<String>,
+    /// Ambient light of the light shader.
+    #[arg(long)]
+    pub ambient: Option<f64>,
+    /// Light source K: `K=off`, `K=on` or `K=INTENSITY` (repeatable).
+    #[arg(long)]
+    pub light: Vec<String>,
+    /// No reference squares (frequency shader).
+    #[arg(long)]
+    pub no_reference: bool,
+    /// No legend (travel-time false colour).
+    #[arg(long)]
+    pub no_legend: bool,
+}
+
+fn parse_shader(s: &str) -> Result<ShaderKind, String> {
+    s.parse()
+}
+
+/// Splits `NAME=VALUE` (or a bare `VALUE` meaning every object) and checks the name.
+fn per_object<'a>(
+    flag: &str,
+    item: &'a str,
+    names: &[String],
+) -> anyhow::Result<(Vec<String>, &'a str)> {
+    match item.split_once('=') {
+        Some((name, value)) => {
+            let name = name.trim();
+            if !names.iter().any(|n| n == name) {
+                return Err(usage(
+                    flag,
+                    format!(
+                        "unknown object '{name}' (the data file's objects: {})",
+                        names.join(", ")
+                    ),
+                ));
+            }
+            Ok((vec![name.to_string()], value))
+        }
+        None => Ok((names.to_vec(), item)),
+    }
+}
+
+/// Applies the convenience flags to `s`.
+fn apply_flags(args: &ShadeArgs, names: &[String], s: &mut ShadeSettings) -> anyhow::Result<()> {
+    if !args.shader.is_empty() {
+        s.shaders = args.shader.clone();
+    }
+    for item in &args.temperature {
+        let (targets, v) = per_object("--temperature", item, names)?;
+        let t: f64 = v
+            .trim()
+            .parse()
+            .map_err(|_| usage("--temperature", format!("'{v}' is not a number")))?;
+        crate::args::positive("--temperature", t)?;
+        for n in targets {
+            if let Some(o) = s.objects.get_mut(&n) {
+                o.temperature = t;
+            }
+        }
+    }
+    for (flag, items, second) in [
+        ("--texture", &args.texture, false),
+        ("--window-texture", &args.window_texture, true),
+    ] {
+        for item in items {
+            let (targets, v) = per_object(flag, item, names)?;
+            let choice: TextureChoice = v.parse().map_err(|e: String| usage(flag, e))?;
+            for n in targets {
+                if let Some(o) = s.objects.get_mut(&n) {
+                    if second {
+                        o.window_texture = choice.clone();
+                    } else {
+                        o.texture = choice.clone();
+                    }
+                }
+            }
+        }
+    }
+    for item in &args.rotate {
+        let (targets, v) = per_object("--rotate", item, names)?;
+        let [deg] = parse_vector::<1>("--rotate", v)?;
+        for n in targets {
+            if let Some(o) = s.objects.get_mut(&n) {
+                o.rotation_deg = deg;
+            }
+        }
+    }
+    for item in &args.offset {
+        let (targets, v) = per_object("--offset", item, names)?;
+        let [u, w] = parse_vector::<2>("--offset", v)?;
+        for n in targets {
+            if let Some(o) = s.objects.get_mut(&n) {
+                o.offset_u = u;
+                o.offset_v = w;
+            }
+        }
+    }
+    if let Some(w) = &args.window {
+        let [t0, dt] = parse_vector::<2>("--window", w)?;
+        crate::args::positive("--window (DT)", dt)?;
+        s.time.mode = TimeMode::Window;
+        s.time.t0 = t0;
+        s.time.dt = dt;
+    }
+    if let Some(r) = &args.travel {
+        let [lo, hi] = parse_vector::<2>("--travel", r)?;
+        if hi <= lo {
+            return Err(usage("--travel", format!("MAX must exceed MIN, got {r}")));
+        }
+        s.time.mode = TimeMode::Travel;
+        s.time.travel_min = lo;
+        s.time.travel_max = hi;
+    }
+    if let Some(e) = args.exposure {
+        if !(e.is_finite() && e >= 0.0) {
+            return Err(usage(
+                "--exposure",
+                format!("must be finite and ≥ 0, got {e}"),
+            ));
+        }
+        s.brightness = BrightnessMode::Physical;
+        s.exposure = e;
+    }
+    if let Some(a) = args.ambient {
+        if !(a.is_finite() && a >= 0.0) {
+            return Err(usage(
+                "--ambient",
+                format!("must be finite and ≥ 0, got {a}"),
+            ));
+        }
+        s.light.ambient = a;
+    }
+    for item in &args.light {
+        let (k, v) = item.split_once('=').ok_or_else(|| {
+            usage(
+                "--light",
+                format!("expected K=on|off|INTENSITY, got '{item}'"),
+            )
+        })?;
+        let k: usize = k
+            .trim()
+            .parse()
+            .map_err(|_| usage("--light", format!("'{k}' is not a light index")))?;
+        let n = s.light.sources.len();
+        let source = s.light.sources.get_mut(k).ok_or_else(|| {
+            usage(
+                "--light",
+                format!("light {k} does not exist (the data file has {n} light channel(s))"),
+            )
+        })?;
+        match v.trim() {
+            "on" => source.on = true,
+            "off" => source.on = false,
+            x => {
+                let i: f64 = x
+                    .parse()
+                    .map_err(|_| usage("--light", format!("'{x}' is not on, off or a number")))?;
+                if !(i.is_finite() && i >= 0.0) {
+                    return Err(usage("--light", format!("intensity must be ≥ 0, got {x}")));
+                }
+                source.on = true;
+                source.intensity = i;
+            }
+        }
+    }
+    if args.no_reference {
+        s.reference_squares = false;
+    }
+    if args.no_legend {
+        s.time.legend = false;
+    }
+    Ok(())
+}
+
+/// Settings errors are the user's input: exit code 2, like other usage errors.
+pub fn settings_error(flag: &str, e: ShadeError) -> anyhow::Error {
+    match e {
+        ShadeError::Invalid { .. }
+        | ShadeError::Settings { .. }
+        | ShadeError::Script { .. }
+        | ShadeError::NoLightChannels => usage(flag, e.to_string()),
+        other => other.into(),
+    }
+}
+
+pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
+    let data = DataFile::read(&args.data)?;
+    let mut settings = ShadeSettings::defaults_for(&data);
+    if let Some(path) = &args.settings {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read the settings file {}", path.display()))?;
+        settings = settings
+            .overlay_toml(&text, &path.display().to_string())
+            .map_err(|e| settings_error("--settings", e))?;
+    }
+    apply_flags(&args, &data.header.object_names, &mut settings)?;
+    let shading = Shading::new(&data, &settings).map_err(|e| settings_error("--shader", e))?;
+    let image = shading.image(&data);
+    shade::write_png(&image, &args.output)?;
+    let names: Vec<&str> = settings.shaders.iter().map(|k| k.name()).collect();
+    eprintln!(
+        "wrote {} ({}×{}, shader {})",
+        args.output.display(),
+        image.width(),
+        image.height(),
+        names.join(" × ")
+    );
+    if settings.shaders.contains(&ShaderKind::Time) && settings.time.mode == TimeMode::Travel {
+        eprintln!(
+            "travel time {}..{} (violet: shortest, yellow: longest)",
+            settings.time.travel_min, settings.time.travel_max
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,395 @@
+//! End-to-end tests of `godel shade`: the texture shader reproduces the render's preview, the
+//! convenience flags reach the shaders (6504 K near white, time window by t_emit, light
+//! switches), and bad input (truncated data file, not EXR, missing channel, unknown shader,
+//! object or settings field, light shader without light channels) is a clear error with a
+//! non-zero exit and no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use render::record::{PixelRecord, RayStatus};
+
+fn godel(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_godel"))
+        .args(args)
+        .output()
+        .expect("run godel")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+const SCENE: &str = r#"
+name = "small"
+[observer]
+position = { r = 0.0, phi = 0.0, z = 0.0 }
+forward = [1, 0, 0]
+up = [0, 0, 1]
+[camera]
+kind = "panorama"
+h_fov_deg = 360.0
+v_fov_deg = 40.0
+width = 96
+height = 12
+[trace]
+max_past = 6.0
+[[object]]
+name = "ball"
+radius = 0.3
+temperature = 4000.0
+texture = { kind = "checker", rows = 4, cols = 8 }
+motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
+"#;
+
+/// A synthetic data file: 16 pixels of object "ball", g = 1, t_emit = −i/2, with `lights`
+/// light planes of value 1.
+fn synthetic(dir: &Path, lights: usize) -> PathBuf {
+    let n = 16;
+    let data = DataFile {
+        header: DataHeader {
+            format_version: FORMAT_VERSION,
+            scene_name: "syn".into(),
+            scene_text: SCENE.into(),
+            camera: "panorama".into(),
+            observer_time: 0.0,
+            metric: "godel".into(),
+            godel_a: 1.0,
+            method: "numeric".into(),
+            object_names: vec!["ball".into()],
+        },
+        width: n,
+        height: 1,
+        records: (0..n)
+            .map(|i| PixelRecord {
+                object: 0,
+                status: RayStatus::Hit,
+                u: 0.3,
+                v: 0.3,
+                g: 1.0,
+                t_emit: -(i as f32) / 2.0,
+                cos_i: 1.0,
+                ..PixelRecord::MISS
+            })
+            .collect(),
+        lights: vec![vec![1.0; n]; lights],
+    };
+    let path = dir.join(format!("syn{lights}.exr"));
+    data.write(&path).unwrap();
+    path
+}
+
+fn png(path: &Path) -> image::RgbImage {
+    image::open(path).unwrap().to_rgb8()
+}
+
+#[test]
+fn texture_shader_reproduces_the_render_preview() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("small.toml");
+    std::fs::write(&scene, SCENE).unwrap();
+    let o = godel(&["render", s(&scene), "-o", s(dir.path()), "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = dir.path().join("tex.png");
+    let o = godel(&[
+        "shade",
+        s(&dir.path().join("small.exr")),
+        "--shader",
+        "texture",
+        "-o",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (a, b) = (png(&out), png(&dir.path().join("small.png")));
+    assert_eq!(a.dimensions(), b.dimensions());
+    let mut hits = 0;
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        for k in 0..3 {
+            assert!(p[k].abs_diff(q[k]) <= 1, "{p:?} vs {q:?}");
+        }
+        hits += usize::from(p[0] > 40);
+    }
+    assert!(hits > 10, "the ball is in the picture");
+    // The checker turned by one column (45°) changes the picture; the frequency shader too.
+    let turned = dir.path().join("turned.png");
+    let o = godel(&[
+        "shade",
+        s(&dir.path().join("small.exr")),
+        "--rotate",
+        "ball=45",
+        "-o",
+        s(&turned),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(png(&turned), a);
+}
+
+#[test]
+fn frequency_flag_at_6504_kelvin_gives_near_white() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = synthetic(dir.path(), 0);
+    let out = dir.path().join("f.png");
+    let o = godel(&[
+        "shade",
+        s(&data),
+        "--shader",
+        "frequency",
+        "--temperature",
+        "6504",
+        "--no-reference",
+        "-o",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for p in png(&out).pixels() {
+        assert!(p.0.iter().all(|&c| c >= 240), "{p:?}");
+    }
+    // 2000 K is red.
+    let o = godel(&[
+        "shade",
+        s(&data),
+        "--shader",
+        "frequency",
+        "--temperature",
+        "ball=2000",
+        "--no-reference",
+        "-o",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let p = *png(&out).get_pixel(5, 0);
+    assert!(p[0] > p[1] && p[1] > p[2], "{p:?}");
+}
+
+#[test]
+fn window_flag_switches_texture_by_t_emit() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = synthetic(dir.path(), 0);
+    let out = dir.path().join("w.png");
+    let o = godel(&[
+        "shade",
+        s(&data),
+        "--shader",
+        "time",
+        "--window=-4,2",
+        "--texture",
+        "uniform:0,0,1",
+        "--window-texture",
+        "ball=uniform:1,0,0",
+        "-o",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = png(&out);
+    for i in 0..16u32 {
+        let t = -(i as f64) / 2.0;
+        let inside = (-4.0..=-2.0).contains(&t);
+        let p = img.get_pixel(i, 0);
+        assert_eq!(
+            p.0,
+            if inside { [255, 0, 0] } else { [0, 0, 255] },
+            "t_emit = {t}"
+        );
+    }
+}
+
+#[test]
+fn light_flags_switch_sources() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = synthetic(dir.path(), 2);
+    let (on, off) = (dir.path().join("on.png"), dir.path().join("off.png"));
+    let base = [
+        "shade",
+        s(&data),
+        "--shader",
+        "light",
+        "--texture",
+        "uniform:0.2,0.2,0.2",
+        "--ambient",
+        "0",
+    ];
+    let o = godel(&[&base[..], &["-o", s(&on)]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = godel(
+        &[
+            &base[..],
+            &["--light", "1=off", "--light", "0=0.5", "-o", s(&off)],
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // 0.2 × (1 + 1) = 0.4 linear, then 0.2 × 0.5 = 0.1 linear.
+    let srgb = |x: f64| (255.0 * (1.055 * x.powf(1.0 / 2.4) - 0.055)).round() as u8;
+    assert_eq!(png(&on).get_pixel(3, 0)[1], srgb(0.4));
+    assert_eq!(png(&off).get_pixel(3, 0)[1], srgb(0.1));
+    let o = godel(&[&base[..], &["--light", "2=off", "-o", s(&off)]].concat());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("light 2 does not exist"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// Runs `godel shade` on bad input: non-zero exit `code`, stderr contains every needle, no
+/// output file.
+fn refused(args: &[&str], out: &Path, code: i32, needles: &[&str]) {
+    let o = godel(args);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(code), "{args:?}: {e}");
+    assert!(e.starts_with("error: "), "{e}");
+    // The message is its first line (clap adds a hint line after it).
+    let first = e.lines().next().unwrap_or("");
+    for n in needles {
+        assert!(first.contains(n), "{args:?}: expected {n:?} in {e}");
+    }
+    assert!(!out.exists(), "{args:?} left {}", out.display());
+    let leftovers: Vec<_> = std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".png") || n.contains("tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+#[test]
+fn bad_data_files_are_clear_errors_with_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = synthetic(dir.path(), 0);
+    let out = dir.path().join("out.png");
+    // Truncated.
+    let bytes = std::fs::read(&good).unwrap();
+    let truncated = dir.path().join("truncated.exr");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    refused(
+        &["shade", s(&truncated), "-o", s(&out)],
+        &out,
+        1,
+        &["truncated.exr"],
+    );
+    // Not EXR.
+    let text = dir.path().join("notes.exr");
+    std::fs::write(&text, "this is not an image\n").unwrap();
+    refused(
+        &["shade", s(&text), "-o", s(&out)],
+        &out,
+        1,
+        &["notes.exr", "not an OpenEXR file"],
+    );
+    // An EXR without the data channels.
+    let rgb = dir.path().join("photo.exr");
+    exr::prelude::write_rgb_file(&rgb, 4, 4, |_, _| (0.5f32, 0.5f32, 0.5f32)).unwrap();
+    refused(
+        &["shade", s(&rgb), "-o", s(&out)],
+        &out,
+        1,
+        &["photo.exr", "godel."],
+    );
+    // A data file lacking one channel: `t_emit` renamed in the header (same length, so the
+    // file stays a valid EXR).
+    let mut renamed = bytes.clone();
+    let at = renamed
+        .windows(7)
+        .position(|w| w == b"t_emit\0")
+        .expect("channel name in the header");
+    renamed[at + 5] = b'q';
+    let lacking = dir.path().join("lacking.exr");
+    std::fs::write(&lacking, &renamed).unwrap();
+    refused(
+        &["shade", s(&lacking), "-o", s(&out)],
+        &out,
+        1,
+        &["lacking.exr", "t_emit"],
+    );
+    // Missing file.
+    refused(
+        &["shade", s(&dir.path().join("none.exr")), "-o", s(&out)],
+        &out,
+        1,
+        &["none.exr"],
+    );
+}
+
+#[test]
+fn bad_settings_are_usage_errors_with_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = synthetic(dir.path(), 0);
+    let out = dir.path().join("out.png");
+    refused(
+        &["shade", s(&data), "--shader", "sepia", "-o", s(&out)],
+        &out,
+        2,
+        &["sepia"],
+    );
+    refused(
+        &[
+            "shade",
+            s(&data),
+            "--texture",
+            "sun=checker:2x2",
+            "-o",
+            s(&out),
+        ],
+        &out,
+        2,
+        &["--texture", "unknown object 'sun'"],
+    );
+    refused(
+        &["shade", s(&data), "--temperature", "ball=-3", "-o", s(&out)],
+        &out,
+        2,
+        &["--temperature", "positive"],
+    );
+    refused(
+        &["shade", s(&data), "--texture", "checker:0x2", "-o", s(&out)],
+        &out,
+        2,
+        &["objects.ball.texture"],
+    );
+    refused(
+        &["shade", s(&data), "--shader", "light", "-o", s(&out)],
+        &out,
+        2,
+        &["light channels"],
+    );
+    let settings = dir.path().join("look.toml");
+    std::fs::write(
+        &settings,
+        "exposure = 2.0\n\n[objects.ball]\ntemprature = 3.0\n",
+    )
+    .unwrap();
+    refused(
+        &["shade", s(&data), "--settings", s(&settings), "-o", s(&out)],
+        &out,
+        2,
+        &["look.toml:4", "objects.ball.temprature", "unknown field"],
+    );
+    std::fs::write(&settings, "[objects.sun]\ntemperature = 3.0\n").unwrap();
+    refused(
+        &["shade", s(&data), "--settings", s(&settings), "-o", s(&out)],
+        &out,
+        2,
+        &["look.toml:1", "unknown object 'sun'"],
+    );
+}
+
+#[test]
+fn a_settings_file_sets_any_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = synthetic(dir.path(), 0);
+    let settings = dir.path().join("look.toml");
+    std::fs::write(
+        &settings,
+        "shaders = [\"texture\"]\n[objects.ball]\ntexture = { kind = \"uniform\", color = [0, 1, 0] }\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out.png");
+    let o = godel(&["shade", s(&data), "--settings", s(&settings), "-o", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(png(&out).get_pixel(0, 0).0, [0, 255, 0]);
+}

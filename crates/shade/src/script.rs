@@ -1,0 +1,366 @@
+//! Sequence scripts: image sequences from one data file (or from a scene traced at several
+//! observer times) with shader parameters keyframed over the frames.
+//!
+//! ```toml
+//! data = "../out/reference.exr"      # a data file (paths relative to the script), or:
+//! # [trace]                          # trace a scene per frame, the observer time advancing
+//! # scene = "../scenes/static-sphere.toml"
+//! # observer_time = [0.0, 2.0]       # first and last frame, linear in between
+//! output = "frames"                  # folder for frame_0000.png, … and sequence.mp4
+//! frames = 48
+//! fps = 24.0
+//! interpolation = "smooth"           # default for every keyframe: "linear" | "smooth"
+//! mp4 = true                         # also encode an MP4 when ffmpeg is on PATH
+//!
+//! [settings]                         # base settings (any ShadeSettings fields)
+//! shaders = ["frequency"]
+//!
+//! [[keyframe]]
+//! frame = 0                          # or time = 0.0 (seconds; frame = round(time·fps))
+//! [keyframe.settings]
+//! objects.earth.temperature = 3000.0
+//!
+//! [[keyframe]]
+//! frame = 47
+//! interpolation = "linear"           # how this keyframe goes on to the next (default: the script's)
+//! [keyframe.settings]
+//! objects.earth.temperature = 9000.0
+//! ```
+//!
+//! Keyframe k's settings are the data file's defaults, overlaid with `[settings]`, then with
+//! keyframes 0..=k in turn (a field keeps its value until a keyframe changes it). Between
+//! keyframes k and k+1 at frames f_k < f_{k+1}, frame f takes s = (f − f_k)/(f_{k+1} − f_k),
+//! eased by keyframe k's interpolation (linear: s; smooth: 3s² − 2s³), and every float field
+//! is a + e(s)·(b − a); other fields (names, switches, integers) hold keyframe k's value.
+//! Before the first keyframe and after the last, their settings hold.
+//!
+//! [`keyframe_toml`] writes one keyframe from complete settings: its text pastes into a script.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::ShadeError;
+use crate::settings::ShadeSettings;
+use crate::tree::{lerp, line_of_path, merge};
+
+/// How a keyframe goes on to the next.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Interpolation {
+    /// s.
+    Linear,
+    /// 3s² − 2s³: starts and ends at rest.
+    #[default]
+    Smooth,
+}
+
+impl Interpolation {
+    /// The eased fraction for `s` ∈ [0, 1] (clamped).
+    pub fn ease(self, s: f64) -> f64 {
+        let s = s.clamp(0.0, 1.0);
+        match self {
+            Interpolation::Linear => s,
+            Interpolation::Smooth => s * s * (3.0 - 2.0 * s),
+        }
+    }
+}
+
+/// Where frames get their per-pixel data.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FrameSource {
+    /// Every frame shades this data file.
+    Data(PathBuf),
+    /// Every frame traces this scene; with `observer_time` the observer's time goes linearly
+    /// from the first value (frame 0) to the second (last frame).
+    Trace {
+        scene: PathBuf,
+        observer_time: Option<[f64; 2]>,
+    },
+}
+
+/// A keyframe as written: its frame, interpolation, and the fields it sets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Keyframe {
+    pub frame: u32,
+    pub interpolation: Interpolation,
+    /// A partial settings table.
+    pub settings: toml::Table,
+}
+
+/// A parsed, checked sequence script.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Script {
+    /// The script file (for messages).
+    pub file: String,
+    /// Its text (to locate errors found later).
+    text: String,
+    pub source: FrameSource,
+    /// Output folder.
+    pub output: PathBuf,
+    /// Number of frames (≥ 1).
+    pub frames: u32,
+    /// Frames per second (> 0).
+    pub fps: f64,
+    /// Encode an MP4 when ffmpeg is available.
+    pub mp4: bool,
+    /// The base settings fields.
+    pub settings: toml::Table,
+    /// In increasing frame order.
+    pub keyframes: Vec<Keyframe>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScript {
+    data: Option<PathBuf>,
+    trace: Option<RawTrace>,
+    output: Option<PathBuf>,
+    frames: u32,
+    #[serde(default = "default_fps")]
+    fps: f64,
+    #[serde(default)]
+    interpolation: Interpolation,
+    #[serde(default = "yes")]
+    mp4: bool,
+    #[serde(default)]
+    settings: toml::Table,
+    #[serde(default)]
+    keyframe: Vec<RawKeyframe>,
+}
+
+fn default_fps() -> f64 {
+    24.0
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTrace {
+    scene: PathBuf,
+    observer_time: Option<[f64; 2]>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawKeyframe {
+    frame: Option<u32>,
+    time: Option<f64>,
+    interpolation: Option<Interpolation>,
+    #[serde(default)]
+    settings: toml::Table,
+}
+
+/// The keyframe block that [`keyframe_toml`] writes.
+#[derive(Serialize)]
+struct KeyframeOut<'a> {
+    keyframe: [KeyframeEntry<'a>; 1],
+}
+
+#[derive(Serialize)]
+struct KeyframeEntry<'a> {
+    frame: u32,
+    settings: &'a ShadeSettings,
+}
+
+/// One keyframe at `frame` holding all of `settings`, as TOML text that pastes into a script
+/// (append it after the keyframes with smaller frames).
+pub fn keyframe_toml(frame: u32, settings: &ShadeSettings) -> String {
+    toml::to_string(&KeyframeOut {
+        keyframe: [KeyframeEntry { frame, settings }],
+    })
+    .expect("settings always serialize to TOML")
+}
+
+impl Script {
+    /// Reads and checks a script file.
+    pub fn from_file(path: &Path) -> Result<Script, ShadeError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ShadeError::Script {
+            file: path.display().to_string(),
+            line: 0,
+            field: String::new(),
+            message: format!("cannot read the script: {e}"),
+        })?;
+        Script::parse(&text, path)
+    }
+
+    /// Parses script text read from `path` (relative paths in it are resolved against the
+    /// path's folder). Checks the layout, the source, the frame count, and that keyframes are
+    /// in increasing frame order within the sequence; settings fields are checked against a
+    /// data file by [`Script::timeline`].
+    pub fn parse(text: &str, path: &Path) -> Result<Script, ShadeError> {
+        let file = path.display().to_string();
+        let error = |field: &str, message: String| ShadeError::Script {
+            file: file.clone(),
+            line: line_of_path(text, field).unwrap_or(0),
+            field: field.to_string(),
+            message,
+        };
+        let raw: RawScript = toml::from_str(text).map_err(|e| ShadeError::Script {
+            file: file.clone(),
+            line: e
+                .span()
+                .map(|s| scene::line_column(text, s.start).line)
+                .unwrap_or(0),
+            field: String::new(),
+            message: e.message().trim().to_string(),
+        })?;
+        let base = path.parent().unwrap_or(Path::new(""));
+        let source =
+            match (raw.data, raw.trace) {
+                (Some(d), None) => FrameSource::Data(base.join(d)),
+                (None, Some(t)) => {
+                    if let Some(ot) = t.observer_time {
+                        if !ot.iter().all(|v| v.is_finite()) {
+                            return Err(error(
+                                "trace.observer_time",
+                                format!("must be finite, got {ot:?}"),
+                            ));
+                        }
+                    }
+                    FrameSource::Trace {
+                        scene: base.join(t.scene),
+                        observer_time: t.observer_time,
+                    }
+                }
+                _ => return Err(error(
+                    "data",
+                    "give either `data = \"FILE.exr\"` or a [trace] table with `scene`, not both"
+                        .into(),
+                )),
+            };
+        if raw.frames == 0 {
+            return Err(error("frames", "must be at least 1".into()));
+        }
+        if !(raw.fps.is_finite() && raw.fps > 0.0) {
+            return Err(error(
+                "fps",
+                format!("must be positive and finite, got {}", raw.fps),
+            ));
+        }
+        let mut keyframes: Vec<Keyframe> = Vec::new();
+        for (i, k) in raw.keyframe.into_iter().enumerate() {
+            let field = format!("keyframe[{i}]");
+            let frame = match (k.frame, k.time) {
+                (Some(f), None) => f,
+                (None, Some(t)) if t.is_finite() && t >= 0.0 => (t * raw.fps).round() as u32,
+                (None, Some(t)) => {
+                    return Err(error(
+                        &format!("{field}.time"),
+                        format!("must be finite and ≥ 0, got {t}"),
+                    ))
+                }
+                _ => {
+                    return Err(error(
+                        &field,
+                        "give either `frame` or `time` (seconds), not both".into(),
+                    ))
+                }
+            };
+            let at = if k.frame.is_some() { "frame" } else { "time" };
+            if frame >= raw.frames {
+                return Err(error(
+                    &format!("{field}.{at}"),
+                    format!(
+                        "frame {frame} is past the sequence's last frame {}",
+                        raw.frames - 1
+                    ),
+                ));
+            }
+            if let Some(prev) = keyframes.last() {
+                if frame <= prev.frame {
+                    return Err(error(
+                        &format!("{field}.{at}"),
+                        format!(
+                            "keyframes out of order: keyframe {i} is at frame {frame}, \
+                             keyframe {} at frame {}; list keyframes in increasing frame order",
+                            i - 1,
+                            prev.frame
+                        ),
+                    ));
+                }
+            }
+            keyframes.push(Keyframe {
+                frame,
+                interpolation: k.interpolation.unwrap_or(raw.interpolation),
+                settings: k.settings,
+            });
+        }
+        Ok(Script {
+            file,
+            text: text.to_string(),
+            source,
+            output: base.join(raw.output.unwrap_or_else(|| PathBuf::from("frames"))),
+            frames: raw.frames,
+            fps: raw.fps,
+            mp4: raw.mp4,
+            settings: raw.settings,
+            keyframes,
+        })
+    }
+
+    /// The complete settings at each keyframe, starting from `defaults` (those of the data
+    /// file); errors name the script line and field of an unknown field or object, or of a
+    /// value of the wrong type.
+    pub fn timeline(&self, defaults: &ShadeSettings) -> Result<Timeline, ShadeError> {
+        let error = |field: String, message: String| ShadeError::Script {
+            file: self.file.clone(),
+            line: line_of_path(&self.text, &field).unwrap_or(0),
+            field,
+            message,
+        };
+        let start = toml::Table::try_from(defaults).expect("settings serialize to a table");
+        let mut current = merge(&start, &self.settings, "")
+            .map_err(|(f, m)| error(format!("settings.{f}"), m))?;
+        let check = |table: &toml::Table, field: &str| {
+            ShadeSettings::deserialize(table.clone())
+                .map_err(|e| error(field.to_string(), e.message().to_string()))
+        };
+        let base = check(&current, "settings")?;
+        let mut keys = Vec::new();
+        for (i, k) in self.keyframes.iter().enumerate() {
+            let field = format!("keyframe[{i}].settings");
+            current = merge(&current, &k.settings, "")
+                .map_err(|(f, m)| error(format!("{field}.{f}"), m))?;
+            check(&current, &field)?;
+            keys.push((
+                k.frame,
+                k.interpolation,
+                toml::Value::Table(current.clone()),
+            ));
+        }
+        Ok(Timeline { base, keys })
+    }
+}
+
+/// Complete settings at every keyframe, ready to interpolate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Timeline {
+    /// Used when there are no keyframes.
+    base: ShadeSettings,
+    /// (frame, interpolation to the next, complete settings tree), frames increasing.
+    keys: Vec<(u32, Interpolation, toml::Value)>,
+}
+
+impl Timeline {
+    /// The settings of frame `frame` (module docs give the rule).
+    pub fn settings_at(&self, frame: u32) -> ShadeSettings {
+        let tree = match self.keys.iter().position(|k| k.0 > frame) {
+            _ if self.keys.is_empty() => return self.base.clone(),
+            Some(0) => self.keys[0].2.clone(),
+            None => self.keys[self.keys.len() - 1].2.clone(),
+            Some(j) => {
+                let (fa, interp, a) = &self.keys[j - 1];
+                let (fb, _, b) = &self.keys[j];
+                let s = f64::from(frame - fa) / f64::from(fb - fa);
+                lerp(a, b, interp.ease(s))
+            }
+        };
+        // Both ends deserialized when the timeline was built, and interpolation keeps every
+        // leaf's type, so this cannot fail; the base is the safe answer if it ever did.
+        ShadeSettings::deserialize(tree).unwrap_or_else(|_| self.base.clone())
+    }
+}

@@ -1,0 +1,539 @@
+//! [`Shading`]: a prepared shader — [`ShadeSettings`] checked against one data file, textures
+//! loaded once — and the per-pixel rule that every front end (CLI, sequences, viewer) uses.
+//!
+//! A hit pixel of object k is the product of its layers' colours (linear RGB):
+//!
+//! | layer | colour |
+//! | --- | --- |
+//! | texture | object k's first texture at the moved coordinates (u_tex, v_tex), lamps included |
+//! | time, window | the window texture where t0 ≤ t_emit ≤ t0 + Δt, else the first texture (t_emit alone decides) |
+//! | time, travel | false colour of the travel time −t_emit over [travel_min, travel_max] ([`crate::legend`]) |
+//! | frequency | black body at g·T_k ([`crate::frequency_shader`]: normalized or physical Y(gT)/Y(T)·exposure), through the 1-D table in g·T ([`crate::gt_table`]) |
+//! | light | ambient + Σ_k on_k·intensity_k·color_k·light_k (the data file's light planes) |
+//!
+//! With the light layer and no other layer, the albedo is the first texture. Without the light
+//! layer, pixels painted by a texture (texture or time-window layer) get the preview's Lambert
+//! factor 0.25 + 0.75·max(cos_i, 0), so the texture layer alone with the scene's textures is
+//! exactly the render's preview; black bodies and false colours are not Lambert-shaded.
+//! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
+//!
+//! Texture coordinates: u_tex = scale_u·u + offset_u − rotation_deg/360 (the body turned about
+//! its axis: u is the longitude), v_tex = scale_v·v + offset_v. A lamp covers the disc of
+//! angular radius `radius_deg` around its centre on the unit sphere (longitude 2π·u_tex,
+//! latitude π(v_tex − ½)) and is on when ((t − phase)/period) mod 1 < duty, t being the
+//! coordinate time of emission (observer time + t_emit); off it shows a tenth of its colour.
+
+use image::RgbImage;
+use rayon::prelude::*;
+use render::datafile::DataFile;
+use render::record::PixelRecord;
+use scene::Scene;
+
+use crate::blackbody::table;
+use crate::colour::rgb_to_srgb8_fast;
+use crate::error::ShadeError;
+use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
+use crate::gt_table::gt_table;
+use crate::legend::{draw_legend, false_colour};
+use crate::settings::{
+    BrightnessMode, Lamp, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
+};
+use crate::texture::{ImageTexture, Texture};
+use crate::texture_shader::{shading_factor, status_colour, BACKGROUND, FAILED};
+
+/// Brightness of an off lamp relative to on.
+const LAMP_OFF: f32 = 0.1;
+
+/// A lamp ready to test pixels against.
+#[derive(Clone, Debug)]
+struct PreparedLamp {
+    sin_lat: f64,
+    cos_lat: f64,
+    lon: f64,
+    cos_radius: f64,
+    period: f64,
+    phase: f64,
+    duty: f64,
+    on: [f32; 3],
+    off: [f32; 3],
+}
+
+/// One object's runtime shading data.
+#[derive(Clone, Debug)]
+struct PreparedObject {
+    first: Texture,
+    second: Texture,
+    scale: [f64; 2],
+    offset: [f64; 2],
+    temperature: f64,
+    /// Y(T) of the unshifted black body, for physical brightness.
+    luminance: f64,
+    lamps: Vec<PreparedLamp>,
+}
+
+/// Settings checked against a data file, textures loaded: ready to shade it (or other data
+/// files with the same objects and lights) any number of times.
+#[derive(Clone, Debug)]
+pub struct Shading {
+    texture: bool,
+    frequency: bool,
+    time: bool,
+    light: bool,
+    objects: Vec<PreparedObject>,
+    brightness: Brightness,
+    time_mode: TimeMode,
+    window: (f64, f64),
+    travel: (f64, f64),
+    legend: bool,
+    reference_squares: bool,
+    ambient: f32,
+    /// on·intensity·color per light plane.
+    lights: Vec<[f32; 3]>,
+    observer_time: f64,
+}
+
+/// An invalid settings value.
+fn invalid(field: impl Into<String>, message: impl Into<String>) -> ShadeError {
+    ShadeError::Invalid {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+fn finite(field: &str, v: f64) -> Result<f64, ShadeError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(invalid(field, format!("must be finite, got {v}")))
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<f64, ShadeError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(
+            field,
+            format!("must be positive and finite, got {v}"),
+        ))
+    }
+}
+
+fn non_negative(field: &str, v: f64) -> Result<f64, ShadeError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(field, format!("must be finite and ≥ 0, got {v}")))
+    }
+}
+
+fn colour(field: &str, c: [f64; 3]) -> Result<[f32; 3], ShadeError> {
+    for (i, v) in c.iter().enumerate() {
+        non_negative(&format!("{field}[{i}]"), *v)?;
+    }
+    Ok(c.map(|v| v as f32))
+}
+
+impl Shading {
+    /// Checks `settings` against `data` and loads the textures. Errors name the settings
+    /// field (e.g. `objects.ball.temperature`), the unknown object, the image file, or the
+    /// missing light channels.
+    pub fn new(data: &DataFile, settings: &ShadeSettings) -> Result<Shading, ShadeError> {
+        if settings.shaders.is_empty() {
+            return Err(invalid("shaders", "name at least one shader"));
+        }
+        for (i, s) in settings.shaders.iter().enumerate() {
+            if settings.shaders[..i].contains(s) {
+                return Err(invalid("shaders", format!("'{}' is named twice", s.name())));
+            }
+        }
+        let has = |k: ShaderKind| settings.shaders.contains(&k);
+        let names = &data.header.object_names;
+        for name in settings.objects.keys() {
+            if !names.contains(name) {
+                return Err(invalid(
+                    format!("objects.{name}"),
+                    format!(
+                        "unknown object '{name}' (the data file's objects: {})",
+                        names.join(", ")
+                    ),
+                ));
+            }
+        }
+        let exposure = non_negative("exposure", settings.exposure)?;
+        let brightness = match settings.brightness {
+            BrightnessMode::Normalized => Brightness::Normalized,
+            BrightnessMode::Physical => Brightness::Physical { exposure },
+        };
+        let time = &settings.time;
+        let t0 = finite("time.t0", time.t0)?;
+        let dt = positive("time.dt", time.dt)?;
+        let tmin = finite("time.travel_min", time.travel_min)?;
+        let tmax = finite("time.travel_max", time.travel_max)?;
+        if tmax <= tmin {
+            return Err(invalid(
+                "time.travel_max",
+                format!("must exceed travel_min ({tmin}), got {tmax}"),
+            ));
+        }
+        let ambient = non_negative("light.ambient", settings.light.ambient)? as f32;
+        let sources = &settings.light.sources;
+        if has(ShaderKind::Light) && data.lights.is_empty() {
+            return Err(ShadeError::NoLightChannels);
+        }
+        if sources.len() > data.lights.len() {
+            return Err(invalid(
+                format!("light.sources[{}]", data.lights.len()),
+                format!(
+                    "the data file has {} light channel(s), the settings {} source(s)",
+                    data.lights.len(),
+                    sources.len()
+                ),
+            ));
+        }
+        let mut lights = Vec::new();
+        for k in 0..data.lights.len() {
+            let w = match sources.get(k) {
+                Some(s) => {
+                    let field = format!("light.sources[{k}]");
+                    let i = non_negative(&format!("{field}.intensity"), s.intensity)? as f32;
+                    let c = colour(&format!("{field}.color"), s.color)?;
+                    if s.on {
+                        c.map(|c| c * i)
+                    } else {
+                        [0.0; 3]
+                    }
+                }
+                None => [1.0; 3],
+            };
+            lights.push(w);
+        }
+
+        // The scene's own textures, only when a layer paints textures.
+        let paints = has(ShaderKind::Texture) || has(ShaderKind::Time) || has(ShaderKind::Light);
+        let defaults = ShadeSettings::defaults_for(data);
+        let mut scene_textures: Option<Vec<Texture>> = None;
+        let mut earth: Option<Texture> = None;
+        let mut objects = Vec::with_capacity(names.len());
+        for (k, name) in names.iter().enumerate() {
+            let o = settings
+                .objects
+                .get(name)
+                .or_else(|| defaults.objects.get(name))
+                .cloned()
+                .unwrap_or_else(|| ObjectSettings::new(crate::settings::DEFAULT_TEMPERATURE));
+            let field = format!("objects.{name}");
+            let temperature = positive(&format!("{field}.temperature"), o.temperature)?;
+            let scale = [
+                nonzero(&format!("{field}.scale_u"), o.scale_u)?,
+                nonzero(&format!("{field}.scale_v"), o.scale_v)?,
+            ];
+            let rotation = finite(&format!("{field}.rotation_deg"), o.rotation_deg)?;
+            let offset = [
+                finite(&format!("{field}.offset_u"), o.offset_u)? - rotation / 360.0,
+                finite(&format!("{field}.offset_v"), o.offset_v)?,
+            ];
+            let lamps = o
+                .lamps
+                .iter()
+                .enumerate()
+                .map(|(i, l)| prepare_lamp(&format!("{field}.lamps[{i}]"), l))
+                .collect::<Result<Vec<_>, _>>()?;
+            let mut load = |choice: &TextureChoice, which: &str| -> Result<Texture, ShadeError> {
+                let f = format!("{field}.{which}");
+                if !paints {
+                    return Ok(Texture::Uniform([1.0; 3]));
+                }
+                Ok(match choice {
+                    TextureChoice::Scene => {
+                        if scene_textures.is_none() {
+                            scene_textures = Some(load_scene_textures(data)?);
+                        }
+                        scene_textures
+                            .as_ref()
+                            .and_then(|t| t.get(k))
+                            .cloned()
+                            .ok_or_else(|| invalid(f, "the embedded scene has no such object"))?
+                    }
+                    TextureChoice::Checker { rows, cols } => {
+                        if *rows == 0 || *cols == 0 {
+                            return Err(invalid(f, "checker rows and cols must be at least 1"));
+                        }
+                        Texture::Checker {
+                            rows: *rows,
+                            cols: *cols,
+                        }
+                    }
+                    TextureChoice::Gradient => Texture::Gradient,
+                    TextureChoice::Uniform { color } => {
+                        Texture::Uniform(colour(&format!("{f}.color"), *color)?)
+                    }
+                    TextureChoice::Image { path } => Texture::Image(ImageTexture::from_file(path)?),
+                    TextureChoice::Earth => {
+                        if earth.is_none() {
+                            earth = Some(Texture::Image(ImageTexture::earth()?));
+                        }
+                        earth.clone().expect("just loaded")
+                    }
+                })
+            };
+            let first = load(&o.texture, "texture")?;
+            let second = if has(ShaderKind::Time) {
+                load(&o.window_texture, "window_texture")?
+            } else {
+                Texture::Uniform([1.0; 3])
+            };
+            objects.push(PreparedObject {
+                first,
+                second,
+                scale,
+                offset,
+                temperature,
+                luminance: table().luminance(temperature),
+                lamps,
+            });
+        }
+        Ok(Shading {
+            texture: has(ShaderKind::Texture),
+            frequency: has(ShaderKind::Frequency),
+            time: has(ShaderKind::Time),
+            light: has(ShaderKind::Light),
+            objects,
+            brightness,
+            time_mode: time.mode,
+            window: (t0, t0 + dt),
+            travel: (tmin, tmax),
+            legend: time.legend,
+            reference_squares: settings.reference_squares,
+            ambient,
+            lights,
+            observer_time: data.header.observer_time,
+        })
+    }
+
+    /// Shades `data` into a new 8-bit sRGB image (rows in parallel; the result does not depend
+    /// on the thread count).
+    pub fn image(&self, data: &DataFile) -> RgbImage {
+        let mut bytes = Vec::new();
+        self.image_into(data, &mut bytes);
+        match (u32::try_from(data.width), u32::try_from(data.height)) {
+            (Ok(w), Ok(h)) if !bytes.is_empty() => {
+                RgbImage::from_raw(w, h, bytes).unwrap_or_else(|| RgbImage::new(0, 0))
+            }
+            _ => RgbImage::new(0, 0),
+        }
+    }
+
+    /// Shades `data` into `bytes` (resized to width × height × 3, RGB8 row-major, row 0 at the
+    /// top), reusing the caller's buffer: the viewer's path. Overlays (reference squares,
+    /// legend) included.
+    pub fn image_into(&self, data: &DataFile, bytes: &mut Vec<u8>) {
+        let (w, h) = (data.width, data.height);
+        bytes.clear();
+        if w == 0 || h == 0 || data.records.len() < w * h {
+            return;
+        }
+        bytes.resize(w * h * 3, 0);
+        bytes
+            .par_chunks_mut(w * 3)
+            .enumerate()
+            .for_each(|(row, out)| {
+                for (col, px) in out.chunks_exact_mut(3).enumerate() {
+                    let i = row * w + col;
+                    px.copy_from_slice(&rgb_to_srgb8_fast(self.pixel(data, i)));
+                }
+            });
+        self.overlays(w, h, bytes);
+    }
+
+    /// Linear RGB of pixel `i` (row-major index) of `data`.
+    pub fn pixel(&self, data: &DataFile, i: usize) -> [f32; 3] {
+        let Some(rec) = data.records.get(i) else {
+            return FAILED;
+        };
+        if let Some(c) = status_colour(rec, BACKGROUND) {
+            return c;
+        }
+        let Some(obj) = self.objects.get(rec.object as usize) else {
+            return FAILED;
+        };
+        let t_emit = f64::from(rec.t_emit);
+        let t = self.observer_time + t_emit;
+        let mut c = [1.0f32; 3];
+        let mut painted = false;
+        let mut coloured = false;
+        if self.texture {
+            c = mul(c, obj.sample(&obj.first, rec, t));
+            painted = true;
+        }
+        if self.time {
+            match self.time_mode {
+                TimeMode::Window => {
+                    let inside = t_emit >= self.window.0 && t_emit <= self.window.1;
+                    let tex = if inside { &obj.second } else { &obj.first };
+                    c = mul(c, obj.sample(tex, rec, t));
+                    painted = true;
+                }
+                TimeMode::Travel => {
+                    let (lo, hi) = self.travel;
+                    c = mul(c, false_colour((-t_emit - lo) / (hi - lo)));
+                    coloured = true;
+                }
+            }
+        }
+        if self.frequency {
+            match self.blackbody(f64::from(rec.g), obj) {
+                Some(b) => c = mul(c, b),
+                None => return FAILED,
+            }
+            coloured = true;
+        }
+        if self.light {
+            if !painted && !coloured {
+                c = obj.sample(&obj.first, rec, t);
+            }
+            let mut l = [self.ambient; 3];
+            for (k, w) in self.lights.iter().enumerate() {
+                let x = data
+                    .lights
+                    .get(k)
+                    .and_then(|p| p.get(i))
+                    .copied()
+                    .unwrap_or(0.0);
+                let x = if x.is_finite() { x.max(0.0) } else { 0.0 };
+                for (lc, wc) in l.iter_mut().zip(w) {
+                    *lc += wc * x;
+                }
+            }
+            c = mul(c, l);
+        } else if painted {
+            let f = shading_factor(rec.cos_i);
+            c = c.map(|v| v * f);
+        }
+        c
+    }
+
+    /// Linear sRGB of object `obj`'s black body seen with shift `g`; `None` for g not finite
+    /// and positive.
+    fn blackbody(&self, g: f64, obj: &PreparedObject) -> Option<[f32; 3]> {
+        if !(g.is_finite() && g > 0.0) {
+            return None;
+        }
+        let gt = g * obj.temperature;
+        let Some(e) = gt_table().get(gt) else {
+            return blackbody_colour(g, obj.temperature, self.brightness);
+        };
+        Some(match self.brightness {
+            Brightness::Normalized => e.normalized,
+            Brightness::Physical { exposure } => {
+                let scale = (exposure * e.luminance / obj.luminance) as f32;
+                let rgb = e.unit.map(|c| c * scale);
+                let max = rgb[0].max(rgb[1]).max(rgb[2]);
+                if max > 1.0 {
+                    rgb.map(|c| c / max)
+                } else {
+                    rgb
+                }
+            }
+        })
+    }
+
+    /// Reference squares (frequency layer) and the travel-time legend.
+    fn overlays(&self, w: usize, h: usize, bytes: &mut [u8]) {
+        if self.frequency && self.reference_squares {
+            for (k, obj) in self.objects.iter().take(REFERENCE_SQUARES).enumerate() {
+                let Some((x0, y0, side)) = reference_square(k, w, h) else {
+                    continue;
+                };
+                let c = blackbody_colour(1.0, obj.temperature, self.brightness).unwrap_or(FAILED);
+                let c = crate::colour::rgb_to_srgb8(c);
+                for y in y0..y0 + side {
+                    for x in x0..x0 + side {
+                        bytes[(y * w + x) * 3..][..3].copy_from_slice(&c);
+                    }
+                }
+            }
+        }
+        if self.time && self.time_mode == TimeMode::Travel && self.legend {
+            if let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) {
+                let mut img = RgbImage::from_raw(wu, hu, bytes.to_vec())
+                    .expect("buffer has width × height × 3 bytes");
+                draw_legend(&mut img, self.travel.0, self.travel.1);
+                bytes.copy_from_slice(img.as_raw());
+            }
+        }
+    }
+}
+
+impl PreparedObject {
+    /// Texture `tex` (or a lamp) at the pixel's moved texture coordinates, emission time `t`.
+    fn sample(&self, tex: &Texture, rec: &PixelRecord, t: f64) -> [f32; 3] {
+        let u = self.scale[0] * f64::from(rec.u) + self.offset[0];
+        let v = self.scale[1] * f64::from(rec.v) + self.offset[1];
+        if !self.lamps.is_empty() {
+            let lon = std::f64::consts::TAU * u;
+            let lat = std::f64::consts::PI * (v.clamp(0.0, 1.0) - 0.5);
+            let (sin_lat, cos_lat) = lat.sin_cos();
+            for lamp in &self.lamps {
+                let cos_d =
+                    sin_lat * lamp.sin_lat + cos_lat * lamp.cos_lat * (lon - lamp.lon).cos();
+                if cos_d >= lamp.cos_radius {
+                    let on = ((t - lamp.phase) / lamp.period).rem_euclid(1.0) < lamp.duty;
+                    return if on { lamp.on } else { lamp.off };
+                }
+            }
+        }
+        tex.sample(u, v)
+    }
+}
+
+fn nonzero(field: &str, v: f64) -> Result<f64, ShadeError> {
+    if v.is_finite() && v != 0.0 {
+        Ok(v)
+    } else {
+        Err(invalid(
+            field,
+            format!("must be finite and non-zero, got {v}"),
+        ))
+    }
+}
+
+fn prepare_lamp(field: &str, l: &Lamp) -> Result<PreparedLamp, ShadeError> {
+    let u = finite(&format!("{field}.u"), l.u)?;
+    let v = finite(&format!("{field}.v"), l.v)?;
+    let radius = positive(&format!("{field}.radius_deg"), l.radius_deg)?;
+    let period = positive(&format!("{field}.period"), l.period)?;
+    let phase = finite(&format!("{field}.phase"), l.phase)?;
+    let duty = l.duty;
+    if !(0.0..=1.0).contains(&duty) {
+        return Err(invalid(
+            format!("{field}.duty"),
+            format!("must be in [0, 1], got {duty}"),
+        ));
+    }
+    let on = colour(&format!("{field}.color"), l.color)?;
+    let lat = std::f64::consts::PI * (v.clamp(0.0, 1.0) - 0.5);
+    Ok(PreparedLamp {
+        sin_lat: lat.sin(),
+        cos_lat: lat.cos(),
+        lon: std::f64::consts::TAU * u,
+        cos_radius: radius.min(180.0).to_radians().cos(),
+        period,
+        phase,
+        duty,
+        on,
+        off: on.map(|c| c * LAMP_OFF),
+    })
+}
+
+/// The scene's own textures, from the scene text embedded in the data file (relative image
+/// paths resolve against the current directory).
+fn load_scene_textures(data: &DataFile) -> Result<Vec<Texture>, ShadeError> {
+    let scene = Scene::from_str(&data.header.scene_text, "<scene embedded in the data file>")
+        .map_err(ShadeError::EmbeddedScene)?;
+    crate::texture_shader::textures_for_scene(&scene)
+}
+
+fn mul(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+}

@@ -1,0 +1,133 @@
+//! Operations on TOML value trees that settings files and sequence scripts need: overlaying a
+//! partial table on complete settings (unknown keys are errors), interpolating two complete
+//! settings trees leaf by leaf, and finding the line of a field path in a TOML text.
+
+use toml::de::{DeTable, DeValue};
+use toml::{Table, Value};
+
+/// `base` with every key of `partial` replaced. Tables merge recursively, except texture
+/// tables (they carry `kind`) and arrays, which are replaced whole. A key that `base` lacks
+/// is an error `(field path, message)`; an integer over a float becomes a float.
+pub fn merge(base: &Table, partial: &Table, prefix: &str) -> Result<Table, (String, String)> {
+    let mut out = base.clone();
+    for (key, value) in partial {
+        let path = join(prefix, key);
+        let Some(old) = base.get(key) else {
+            let message = if prefix == "objects" {
+                let names: Vec<&str> = base.keys().map(String::as_str).collect();
+                format!(
+                    "unknown object '{key}' (the data file's objects: {})",
+                    names.join(", ")
+                )
+            } else {
+                let known: Vec<&str> = base.keys().map(String::as_str).collect();
+                format!(
+                    "unknown field '{key}' (expected one of: {})",
+                    known.join(", ")
+                )
+            };
+            return Err((path, message));
+        };
+        let new = match (old, value) {
+            (Value::Table(o), Value::Table(p)) if !p.contains_key("kind") => {
+                Value::Table(merge(o, p, &path)?)
+            }
+            (Value::Float(_), Value::Integer(i)) => Value::Float(*i as f64),
+            _ => value.clone(),
+        };
+        out.insert(key.clone(), new);
+    }
+    Ok(out)
+}
+
+fn join(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}
+
+/// Interpolates two trees of the same shape at fraction `s` ∈ [0, 1]: floats linearly
+/// (`a + s·(b − a)`), everything else (integers, strings, booleans, arrays of other lengths)
+/// held at `a` until `s` reaches 1, then `b`.
+pub fn lerp(a: &Value, b: &Value, s: f64) -> Value {
+    match (a, b) {
+        (Value::Float(x), Value::Float(y)) => Value::Float(x + s * (y - x)),
+        (Value::Float(x), Value::Integer(y)) => Value::Float(x + s * (*y as f64 - x)),
+        (Value::Integer(x), Value::Float(y)) => Value::Float(*x as f64 + s * (y - *x as f64)),
+        (Value::Table(x), Value::Table(y))
+            if x.get("kind") == y.get("kind") && x.len() == y.len() =>
+        {
+            let mut out = Table::new();
+            for (k, va) in x {
+                let v = match y.get(k) {
+                    Some(vb) => lerp(va, vb, s),
+                    None => hold(va, va, s),
+                };
+                out.insert(k.clone(), v);
+            }
+            Value::Table(out)
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            Value::Array(x.iter().zip(y).map(|(p, q)| lerp(p, q, s)).collect())
+        }
+        _ => hold(a, b, s),
+    }
+}
+
+fn hold(a: &Value, b: &Value, s: f64) -> Value {
+    if s >= 1.0 {
+        b.clone()
+    } else {
+        a.clone()
+    }
+}
+
+/// One step of a field path such as `keyframe[2].settings.exposure`.
+enum Segment<'a> {
+    Key(&'a str),
+    Index(usize),
+}
+
+fn segments(path: &str) -> Vec<Segment<'_>> {
+    let mut out = Vec::new();
+    for part in path.split('.').filter(|p| !p.is_empty()) {
+        let mut pieces = part.split('[');
+        if let Some(key) = pieces.next().filter(|k| !k.is_empty()) {
+            out.push(Segment::Key(key));
+        }
+        for idx in pieces {
+            if let Ok(i) = idx.trim_end_matches(']').parse() {
+                out.push(Segment::Index(i));
+            }
+        }
+    }
+    out
+}
+
+/// The 1-based line of the value at `path` in `text` (or of its nearest existing ancestor);
+/// `None` if the text does not parse.
+pub fn line_of_path(text: &str, path: &str) -> Option<usize> {
+    let root = DeTable::parse(text).ok()?;
+    let mut span = root.span();
+    let mut table: Option<&DeTable<'_>> = Some(root.get_ref());
+    let mut node: Option<&DeValue<'_>> = None;
+    for seg in segments(path) {
+        let next = match (seg, table, node) {
+            (Segment::Key(k), Some(t), _) => {
+                t.iter().find(|(key, _)| key.get_ref() == k).map(|(_, v)| v)
+            }
+            (Segment::Index(i), _, Some(DeValue::Array(a))) => a.get(i),
+            _ => None,
+        };
+        let Some(v) = next else { break };
+        span = v.span();
+        node = Some(v.get_ref());
+        table = match v.get_ref() {
+            DeValue::Table(t) => Some(t),
+            _ => None,
+        };
+    }
+    Some(scene::line_column(text, span.start).line)
+}

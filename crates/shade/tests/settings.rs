@@ -1,0 +1,132 @@
+//! Tests of the settings API: defaults from a data file, TOML round trips, overlays with
+//! located errors, and keyframe text that pastes into a script.
+
+use std::path::Path;
+
+use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use render::record::{PixelRecord, RayStatus};
+use shade::{
+    keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
+};
+
+const SCENE: &str = r#"name = "two"
+[camera]
+kind = "panorama"
+[[object]]
+name = "ball"
+radius = 0.1
+temperature = 4000
+texture = { kind = "checker", rows = 4, cols = 8 }
+motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
+[[object]]
+name = "moon"
+radius = 0.1
+motion = { kind = "rest", position = { r = 1.0, phi = 1.0, z = 0.0 } }
+[[light]]
+position = { r = 1.5, phi = 0.0, z = 0.0 }
+color = [1.0, 0.5, 0.25]
+"#;
+
+fn data(lights: usize) -> DataFile {
+    let (w, h) = (8, 2);
+    let records = (0..w * h)
+        .map(|i| PixelRecord {
+            object: (i % 2) as i32,
+            status: RayStatus::Hit,
+            u: 0.3,
+            v: 0.6,
+            g: 1.0,
+            t_emit: -2.5 - i as f32 * 0.5,
+            cos_i: 1.0,
+            ..PixelRecord::MISS
+        })
+        .collect();
+    DataFile {
+        header: DataHeader {
+            format_version: FORMAT_VERSION,
+            scene_name: "two".into(),
+            scene_text: SCENE.into(),
+            camera: "panorama".into(),
+            observer_time: 0.0,
+            metric: "godel".into(),
+            godel_a: 1.0,
+            method: "numeric".into(),
+            object_names: vec!["ball".into(), "moon".into()],
+        },
+        width: w,
+        height: h,
+        records,
+        lights: vec![vec![0.5; w * h]; lights],
+    }
+}
+
+#[test]
+fn defaults_come_from_the_embedded_scene() {
+    let s = ShadeSettings::defaults_for(&data(1));
+    assert_eq!(s.shaders, vec![ShaderKind::Texture]);
+    assert_eq!(s.objects["ball"].temperature, 4000.0);
+    assert_eq!(s.objects["moon"].temperature, 5800.0);
+    assert_eq!(s.objects["ball"].texture, TextureChoice::Scene);
+    assert_eq!(s.light.sources.len(), 1);
+    assert_eq!(s.light.sources[0].color, [1.0, 0.5, 0.25]);
+    // Travel times seen are 2.5 .. 10: the range is rounded out to whole units.
+    assert_eq!((s.time.travel_min, s.time.travel_max), (2.0, 10.0));
+}
+
+#[test]
+fn settings_round_trip_through_toml() {
+    let mut s = ShadeSettings::defaults_for(&data(1));
+    s.shaders = vec![ShaderKind::Frequency, ShaderKind::Time];
+    s.time.mode = TimeMode::Travel;
+    s.objects.get_mut("ball").unwrap().texture = "checker:3x5".parse().unwrap();
+    let text = s.to_toml();
+    let back: ShadeSettings = toml::from_str(&text).unwrap();
+    assert_eq!(back, s);
+}
+
+#[test]
+fn overlay_replaces_given_fields_and_names_unknown_ones() {
+    let s = ShadeSettings::defaults_for(&data(0));
+    let text = "exposure = 2\nshaders = [\"frequency\"]\n[objects.ball]\ntemperature = 3000\ntexture = { kind = \"gradient\" }\n";
+    let o = s.overlay_toml(text, "s.toml").unwrap();
+    assert_eq!(o.exposure, 2.0);
+    assert_eq!(o.objects["ball"].temperature, 3000.0);
+    assert_eq!(o.objects["ball"].texture, TextureChoice::Gradient);
+    assert_eq!(o.objects["moon"], s.objects["moon"]);
+
+    let e = s
+        .overlay_toml(
+            "exposure = 1.0\n[objects.ball]\ntempreature = 3\n",
+            "s.toml",
+        )
+        .unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.starts_with("s.toml:3: objects.ball.tempreature: unknown field"),
+        "{m}"
+    );
+    let e = s
+        .overlay_toml("[objects.sun]\ntemperature = 3\n", "s.toml")
+        .unwrap_err();
+    assert!(e.to_string().contains("unknown object 'sun'"), "{e}");
+    let e = s
+        .overlay_toml("shaders = [\"sepia\"]\n", "s.toml")
+        .unwrap_err();
+    assert!(matches!(e, ShadeError::Settings { .. }), "{e}");
+    assert!(e.to_string().contains("sepia"), "{e}");
+}
+
+#[test]
+fn a_saved_keyframe_pastes_into_a_script() {
+    let d = data(1);
+    let mut s = ShadeSettings::defaults_for(&d);
+    s.objects.get_mut("moon").unwrap().temperature = 7777.0;
+    s.exposure = 0.5;
+    let script = format!("data = \"x.exr\"\nframes = 10\n\n{}", keyframe_toml(4, &s));
+    let parsed = Script::parse(&script, Path::new("seq.toml")).unwrap();
+    assert_eq!(parsed.keyframes.len(), 1);
+    assert_eq!(parsed.keyframes[0].frame, 4);
+    let timeline = parsed.timeline(&ShadeSettings::defaults_for(&d)).unwrap();
+    assert_eq!(timeline.settings_at(0), s);
+    assert_eq!(timeline.settings_at(9), s);
+}
