@@ -66,9 +66,10 @@ try {
     return [c.width, c.height];
   });
 
-  // The temperature matters to the frequency shader: choose it first.
-  await page.selectOption('#shader', 'frequency');
-  await page.waitForFunction(() => window.godelViewer.settings.shader === 'frequency');
+  // The temperature matters to the frequency layer: switch to it alone first.
+  await page.check('#layer-frequency');
+  await page.uncheck('#layer-texture');
+  await page.waitForFunction(() => window.godelViewer.settings.shaders.join() === 'frequency');
   await idle();
   const before = await pixels();
   const temperatureBefore = await page.inputValue('#temperature-0');
@@ -117,11 +118,12 @@ try {
   };
   result.png_name = await save('#save-png', 'saved.png');
   result.keyframe_name = await save('#save-keyframe', 'keyframe.toml');
+  result.settings = await page.evaluate(() => window.godelViewer.settings);
 
   await page.screenshot({ path: join(outDir, 'screenshot.png'), fullPage: true });
 
   // Bad settings, sent the way the page sends them: the server's message shows on the page.
-  await page.evaluate(() => window.godelViewer.sendRaw('{"shader": "sepia"}'));
+  await page.evaluate(() => window.godelViewer.sendRaw('{"shaders": ["sepia"]}'));
   result.error_shown = await page.isVisible('#error');
   result.error_text = await page.textContent('#error');
   result.console_errors = consoleErrors;

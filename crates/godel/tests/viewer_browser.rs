@@ -13,6 +13,7 @@ use std::time::Duration;
 
 use render::datafile::DataFile;
 use render::record::RayStatus;
+use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A 96×48 pinhole view of a checkered ball at rest inside the horizon.
 const SCENE: &str = r#"
@@ -216,20 +217,30 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     }
     assert!(expected.t_emit < 0.0);
 
-    // "Save PNG" downloads the server's shading of the current settings: the frequency
-    // shader at the slider's temperature, as the shade crate makes it.
+    // The page's settings are the file's defaults with the frequency layer alone at the
+    // slider's temperature.
+    let mut want_settings = ShadeSettings::defaults_for(&data);
+    want_settings.shaders = vec![ShaderKind::Frequency];
+    want_settings.objects.get_mut("ball").unwrap().temperature = t_after;
+    let settings: ShadeSettings = serde_json::from_value(seen["settings"].clone()).unwrap();
+    assert_eq!(settings, want_settings);
+
+    // "Save PNG" downloads the server's shading of those settings, as the shade crate
+    // (and so `godel shade`) makes it.
     assert_eq!(seen["png_name"], "viewer-test.png");
     let saved = image::open(out.join("saved.png")).unwrap().to_rgb8();
-    let want = shade::shade_frequency(&data, &[t_after], shade::Brightness::Normalized);
+    let want = Shading::new(&data, &want_settings).unwrap().image(&data);
     assert!(saved == want, "the saved PNG is not the shaded view");
 
-    // "Save keyframe" downloads TOML holding the current settings.
+    // "Save keyframe" downloads a sequence-script keyframe holding those settings.
     assert_eq!(seen["keyframe_name"], "viewer-test.keyframe.toml");
     let keyframe: toml::Value =
         toml::from_str(&std::fs::read_to_string(out.join("keyframe.toml")).unwrap()).unwrap();
-    let text = keyframe.to_string();
-    assert!(text.contains("frequency"), "{text}");
-    assert!(text.contains(&format!("{t_after:?}")), "{text}");
+    let saved_settings: ShadeSettings = keyframe["keyframe"][0]["settings"]
+        .clone()
+        .try_into()
+        .unwrap();
+    assert_eq!(saved_settings, want_settings);
 
     // Bad settings from the page: the server's 400 message is shown on the page.
     assert_eq!(seen["error_shown"], true);

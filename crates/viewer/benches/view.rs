@@ -8,7 +8,7 @@ use std::path::Path;
 use criterion::{criterion_group, criterion_main, Criterion};
 use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use render::record::{PixelRecord, RayStatus};
-use viewer::settings::{Brightness, Shader, ViewSettings};
+use shade::ShaderKind;
 use viewer::{encode, ViewerState};
 
 const SCENE: &str = r#"
@@ -80,25 +80,36 @@ fn data(width: usize, height: usize) -> DataFile {
 
 fn bench(c: &mut Criterion) {
     let state = ViewerState::new(Path::new("bench.exr"), data(2200, 250)).unwrap();
-    let mut settings = state.info().defaults;
+    let defaults = state.info().defaults;
     let mut group = c.benchmark_group("view 2200x250");
     group.sample_size(30);
-    for (name, shader) in [
-        ("texture", Shader::Texture),
-        ("frequency", Shader::Frequency),
+    for layers in [
+        vec![ShaderKind::Texture],
+        vec![ShaderKind::Frequency],
+        vec![ShaderKind::Frequency, ShaderKind::Time],
     ] {
-        settings.shader = shader;
-        settings.brightness = Brightness::Normalized;
-        group.bench_function(format!("{name}: shade + RGBA"), |b| {
-            b.iter(|| encode::rgba(&state.shade(&settings)))
+        let mut settings = defaults.clone();
+        let name: Vec<&str> = layers.iter().map(|k| k.name()).collect();
+        settings.shaders = layers;
+        // What one /api/image request does after parsing: prepare, shade, RGBA.
+        group.bench_function(format!("{}: prepare + shade + RGBA", name.join("+")), |b| {
+            let mut rgb = Vec::new();
+            b.iter(|| {
+                let shading = state.prepare(&settings).unwrap();
+                state.shade_rgb(&shading, &mut rgb);
+                encode::rgba_from_rgb(&rgb)
+            })
         });
     }
-    settings = ViewSettings {
-        shader: Shader::Frequency,
-        ..settings
-    };
-    let img = state.shade(&settings);
-    group.bench_function("RGBA encoding alone", |b| b.iter(|| encode::rgba(&img)));
+    let mut settings = defaults.clone();
+    settings.shaders = vec![ShaderKind::Frequency];
+    let shading = state.prepare(&settings).unwrap();
+    let mut rgb = Vec::new();
+    state.shade_rgb(&shading, &mut rgb);
+    group.bench_function("RGBA encoding alone", |b| {
+        b.iter(|| encode::rgba_from_rgb(&rgb))
+    });
+    let img = state.shade(&shading);
     group.bench_function("PNG for Save PNG", |b| b.iter(|| encode::png(&img)));
     group.finish();
 }

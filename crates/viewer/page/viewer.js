@@ -39,43 +39,144 @@ async function errorText(response) {
   }
 }
 
-// ---- settings paths: "objects.0.temperature" → settings.objects[0].temperature
+// ---- settings paths: ['objects', 'ball', 'temperature'] → settings.objects.ball.temperature
+// (arrays of keys, since object names may contain dots)
 
 function getPath(object, path) {
-  return path.split('.').reduce((o, key) => (o == null ? undefined : o[key]), object);
+  return path.reduce((o, key) => (o == null ? undefined : o[key]), object);
 }
 
 function setPath(object, path, value) {
-  const keys = path.split('.');
-  const last = keys.pop();
-  const parent = keys.reduce((o, key) => o[key], object);
-  parent[last] = value;
+  const parent = getPath(object, path.slice(0, -1));
+  parent[path[path.length - 1]] = value;
 }
 
-// ---- the controls: one description per control, built from the file's info
+// ---- the controls: one description per control, built from the file's info.
+// Kinds: 'range' and 'select' set a value; 'check' a boolean; 'layer' adds or removes a
+// shader in settings.shaders; 'texture' picks a texture choice (an object with a kind).
+
+const LAYERS = ['texture', 'frequency', 'time', 'light'];
+
+// A texture choice of each kind, as the shade crate reads it.
+const TEXTURES = {
+  scene: { kind: 'scene' },
+  checker: { kind: 'checker', rows: 8, cols: 16 },
+  gradient: { kind: 'gradient' },
+  uniform: { kind: 'uniform', color: [0.8, 0.8, 0.8] },
+  earth: { kind: 'earth' },
+};
 
 function describeControls(info) {
+  const d = info.defaults;
+  const tMax = Math.max(d.time.travel_max, 1);
   const groups = [{
-    title: 'Shader',
+    title: 'Shader layers (multiplied)',
+    controls: LAYERS.map((layer) => ({
+      id: `layer-${layer}`, label: layer, kind: 'layer', layer,
+      disabled: layer === 'light' && info.lights === 0,
+    })),
+  }, {
+    title: 'Frequency',
     controls: [
-      { id: 'shader', label: 'shader', path: 'shader', kind: 'select',
-        options: ['texture', 'frequency'] },
-      { id: 'brightness', label: 'brightness', path: 'brightness', kind: 'select',
+      { id: 'brightness', label: 'brightness', path: ['brightness'], kind: 'select',
         options: ['normalized', 'physical'] },
-      { id: 'exposure', label: 'exposure', path: 'exposure', kind: 'range',
+      { id: 'exposure', label: 'exposure', path: ['exposure'], kind: 'range',
         min: 0, max: 4, step: 0.01 },
+      { id: 'reference-squares', label: 'reference squares', path: ['reference_squares'],
+        kind: 'check' },
+    ],
+  }, {
+    title: 'Time',
+    controls: [
+      { id: 'time-mode', label: 'mode', path: ['time', 'mode'], kind: 'select',
+        options: ['window', 'travel'] },
+      { id: 'time-t0', label: 'window start t0', path: ['time', 't0'], kind: 'range',
+        min: -Math.ceil(tMax * 1.1), max: 0, step: 0.01 },
+      { id: 'time-dt', label: 'window length Δt', path: ['time', 'dt'], kind: 'range',
+        min: 0.01, max: Math.ceil(tMax), step: 0.01 },
+      { id: 'time-legend', label: 'legend', path: ['time', 'legend'], kind: 'check' },
     ],
   }];
+  if (info.lights > 0) {
+    const controls = [{ id: 'light-ambient', label: 'ambient', path: ['light', 'ambient'],
+      kind: 'range', min: 0, max: 1, step: 0.01 }];
+    for (let k = 0; k < info.lights; k += 1) {
+      controls.push(
+        { id: `light-${k}-on`, label: `light ${k} on`, path: ['light', 'sources', k, 'on'],
+          kind: 'check' },
+        { id: `light-${k}-intensity`, label: `light ${k} intensity`,
+          path: ['light', 'sources', k, 'intensity'], kind: 'range', min: 0, max: 5, step: 0.01 },
+      );
+    }
+    groups.push({ title: 'Light', controls });
+  }
   info.objects.forEach((name, k) => {
+    const path = (field) => ['objects', name, field];
     groups.push({
       title: `Object ${name}`,
       controls: [
-        { id: `temperature-${k}`, label: 'temperature (K)', path: `objects.${k}.temperature`,
+        { id: `texture-${k}`, label: 'texture', path: path('texture'), kind: 'texture' },
+        { id: `window-texture-${k}`, label: 'texture in window', path: path('window_texture'),
+          kind: 'texture' },
+        { id: `offset-u-${k}`, label: 'u offset', path: path('offset_u'), kind: 'range',
+          min: -1, max: 1, step: 0.001 },
+        { id: `offset-v-${k}`, label: 'v offset', path: path('offset_v'), kind: 'range',
+          min: -1, max: 1, step: 0.001 },
+        { id: `rotation-${k}`, label: 'rotation (°)', path: path('rotation_deg'), kind: 'range',
+          min: -180, max: 180, step: 0.5 },
+        { id: `temperature-${k}`, label: 'temperature (K)', path: path('temperature'),
           kind: 'range', min: 1000, max: 20000, step: 10 },
       ],
     });
   });
   return groups;
+}
+
+function inputFor(c) {
+  let input;
+  if (c.kind === 'select' || c.kind === 'texture') {
+    input = document.createElement('select');
+    const options = c.kind === 'texture' ? Object.keys(TEXTURES) : c.options;
+    for (const option of options) input.append(new Option(option, option));
+    const current = getPath(viewer.settings, c.path);
+    if (c.kind === 'texture' && !(current.kind in TEXTURES)) {
+      // A choice the page cannot make (an image file) stays selectable as it is.
+      TEXTURES[current.kind] = current;
+      input.append(new Option(current.kind, current.kind));
+    }
+    input.value = c.kind === 'texture' ? current.kind : current;
+  } else if (c.kind === 'check' || c.kind === 'layer') {
+    input = document.createElement('input');
+    input.type = 'checkbox';
+    input.checked = c.kind === 'layer'
+      ? viewer.settings.shaders.includes(c.layer)
+      : getPath(viewer.settings, c.path);
+  } else {
+    input = document.createElement('input');
+    input.type = c.kind;
+    for (const key of ['min', 'max', 'step']) input[key] = c[key];
+    input.value = getPath(viewer.settings, c.path);
+  }
+  input.id = c.id;
+  input.disabled = Boolean(c.disabled);
+  return input;
+}
+
+// Reads a control into the settings.
+function apply(c, input) {
+  if (c.kind === 'layer') {
+    const on = new Set(viewer.settings.shaders);
+    if (input.checked) on.add(c.layer); else on.delete(c.layer);
+    viewer.settings.shaders = LAYERS.filter((layer) => on.has(layer));
+  } else if (c.kind === 'check') {
+    setPath(viewer.settings, c.path, input.checked);
+  } else if (c.kind === 'texture') {
+    setPath(viewer.settings, c.path, structuredClone(TEXTURES[input.value]));
+  } else if (c.kind === 'select') {
+    setPath(viewer.settings, c.path, input.value);
+  } else {
+    setPath(viewer.settings, c.path, Number(input.value));
+  }
 }
 
 function buildControls(groups) {
@@ -90,30 +191,13 @@ function buildControls(groups) {
       const label = document.createElement('label');
       label.htmlFor = c.id;
       label.textContent = c.label;
-      let input;
-      if (c.kind === 'select') {
-        input = document.createElement('select');
-        for (const option of c.options) {
-          input.append(new Option(option, option));
-        }
-      } else {
-        input = document.createElement('input');
-        input.type = c.kind;
-        for (const key of ['min', 'max', 'step']) {
-          if (c[key] !== undefined) input[key] = c[key];
-        }
-      }
-      input.id = c.id;
-      input.dataset.path = c.path;
-      const current = getPath(viewer.settings, c.path);
-      input.value = current;
+      const input = inputFor(c);
       const output = document.createElement('output');
       output.htmlFor = c.id;
-      output.value = c.kind === 'select' ? '' : current;
-      input.addEventListener('input', () => {
-        const value = c.kind === 'select' ? input.value : Number(input.value);
-        setPath(viewer.settings, c.path, value);
-        if (c.kind !== 'select') output.value = input.value;
+      output.value = c.kind === 'range' ? input.value : '';
+      input.addEventListener(c.kind === 'range' ? 'input' : 'change', () => {
+        apply(c, input);
+        if (c.kind === 'range') output.value = input.value;
         changed();
       });
       form.append(label, input, output);

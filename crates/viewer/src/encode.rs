@@ -4,10 +4,10 @@
 use image::codecs::png::PngEncoder;
 use image::{ImageEncoder, RgbImage};
 
-/// The picture as RGBA bytes, row 0 first, alpha 255.
-pub fn rgba(img: &RgbImage) -> Vec<u8> {
-    let mut out = Vec::with_capacity(img.as_raw().len() / 3 * 4);
-    for px in img.as_raw().chunks_exact(3) {
+/// RGB8 bytes as RGBA bytes, alpha 255.
+pub fn rgba_from_rgb(rgb: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(rgb.len() / 3 * 4);
+    for px in rgb.chunks_exact(3) {
         out.extend_from_slice(&[px[0], px[1], px[2], 255]);
     }
     out

@@ -5,12 +5,11 @@
 //!
 //! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes.
 //! - [`router`]: the routes (see [`routes`] for the table), [`serve`]: runs them.
-//! - [`settings::ViewSettings`]: the settings the page sends.
+//! - The settings the page sends are `shade::ShadeSettings` as JSON.
 
 mod assets;
 pub mod encode;
 pub mod routes;
-pub mod settings;
 pub mod state;
 
 use std::sync::Arc;

@@ -6,7 +6,7 @@
 //! | `GET /api/info` | file, size, objects, light count, default settings (JSON) |
 //! | `POST /api/image` (settings JSON) | the shaded picture as raw RGBA; `X-Image-Width`, `X-Image-Height`, `Server-Timing` |
 //! | `POST /api/png` (settings JSON) | the shaded picture as a PNG download |
-//! | `POST /api/keyframe` (settings JSON) | a sequence-script keyframe (TOML) download |
+//! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
 //!
 //! Bad requests (malformed or unknown settings, pixel outside the image) get 400 with
@@ -27,8 +27,8 @@ use axum::{Json, Router};
 use serde::Deserialize;
 
 use crate::encode;
-use crate::settings::ViewSettings;
 use crate::state::ViewerState;
+use shade::{ShadeSettings, Shading};
 
 /// The server's routes over one loaded data file.
 pub fn router(state: Arc<ViewerState>) -> Router {
@@ -83,10 +83,14 @@ fn no_store() -> [(HeaderName, &'static str); 1] {
     [(header::CACHE_CONTROL, "no-store")]
 }
 
-/// Parses and checks the settings JSON sent by the page; the message names the field.
-pub fn parse_settings(state: &ViewerState, body: &[u8]) -> Result<ViewSettings, ApiError> {
+/// Parses the settings JSON sent by the page and prepares them with the `shade` crate
+/// (which checks every value and loads the textures); the message names the field.
+pub fn parse_settings(
+    state: &ViewerState,
+    body: &[u8],
+) -> Result<(ShadeSettings, Shading), ApiError> {
     let mut json = serde_json::Deserializer::from_slice(body);
-    let settings: ViewSettings = serde_path_to_error::deserialize(&mut json).map_err(|e| {
+    let settings: ShadeSettings = serde_path_to_error::deserialize(&mut json).map_err(|e| {
         let path = e.path().to_string();
         if path == "." {
             ApiError::bad_request(format!("settings: {}", e.inner()))
@@ -96,10 +100,10 @@ pub fn parse_settings(state: &ViewerState, body: &[u8]) -> Result<ViewSettings, 
     })?;
     json.end()
         .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
-    state
-        .check(&settings)
-        .map_err(|m| ApiError::bad_request(format!("settings: {m}")))?;
-    Ok(settings)
+    let shading = state
+        .prepare(&settings)
+        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+    Ok((settings, shading))
 }
 
 /// Runs `job` on a blocking thread; a panic there (a bug, never input) becomes a 500.
@@ -116,22 +120,24 @@ async fn info(State(state): State<Arc<ViewerState>>) -> impl IntoResponse {
 }
 
 async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
-    let settings = parse_settings(&state, &body)?;
     let (bytes, width, height, shade_ms, encode_ms) = blocking(move || {
+        // Preparing (checking settings, loading textures) counts as shading.
         let started = Instant::now();
-        let img = state.shade(&settings);
+        let (_, shading) = parse_settings(&state, &body)?;
+        let mut rgb = Vec::new();
+        state.shade_rgb(&shading, &mut rgb);
         let shaded = Instant::now();
-        let bytes = encode::rgba(&img);
+        let bytes = encode::rgba_from_rgb(&rgb);
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-        (
+        Ok::<_, ApiError>((
             bytes,
-            img.width(),
-            img.height(),
+            state.data.width as u32,
+            state.data.height as u32,
             ms(shaded - started),
             ms(shaded.elapsed()),
-        )
+        ))
     })
-    .await?;
+    .await??;
     let timing = format!("shade;dur={shade_ms:.2}, encode;dur={encode_ms:.2}");
     let headers = [
         (
@@ -179,11 +185,13 @@ fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
 }
 
 async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
-    let settings = parse_settings(&state, &body)?;
     let disposition = attachment(&state, "png");
-    let bytes = blocking(move || encode::png(&state.shade(&settings)))
-        .await?
-        .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))?;
+    let bytes = blocking(move || {
+        let (_, shading) = parse_settings(&state, &body)?;
+        encode::png(&state.shade(&shading))
+            .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
+    })
+    .await??;
     let headers = [
         (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
         (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
@@ -192,12 +200,26 @@ async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Respo
     Ok((headers, bytes).into_response())
 }
 
+/// `?frame=N` (default 0).
+#[derive(Deserialize)]
+struct KeyframeQuery {
+    #[serde(default)]
+    frame: u32,
+}
+
 async fn keyframe(
     State(state): State<Arc<ViewerState>>,
+    query: Result<Query<KeyframeQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let settings = parse_settings(&state, &body)?;
-    let text = state.keyframe(&settings).map_err(ApiError::internal)?;
+    let Query(q) =
+        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let (settings, state) = blocking(move || {
+        let prepared = parse_settings(&state, &body);
+        prepared.map(|(settings, _)| (settings, state))
+    })
+    .await??;
+    let text = state.keyframe(q.frame, &settings);
     let headers = [
         (
             header::CONTENT_TYPE,

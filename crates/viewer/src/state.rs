@@ -1,6 +1,7 @@
-//! What the server holds while it runs: the data file in memory, the textures of its
-//! scene, and the operations the routes need (shade with settings, one pixel's record,
-//! a keyframe). Immutable after loading, so every request shares it without locks.
+//! What the server holds while it runs: the data file in memory, its default settings, and
+//! the operations the routes need (prepare and shade settings, one pixel's record, a
+//! keyframe), the shading all done by the `shade` crate. Immutable after loading, so every
+//! request shares it without locks.
 
 use std::path::{Path, PathBuf};
 
@@ -8,32 +9,19 @@ use image::RgbImage;
 use render::datafile::DataFile;
 use render::record::RayStatus;
 use serde::Serialize;
-use shade::Texture;
+use shade::{ShadeSettings, Shading};
 
-use crate::settings::{Brightness, Shader, ViewSettings};
-
-/// Why a data file cannot be viewed.
+/// Why a data file cannot be viewed: it cannot be read, or its default settings (the
+/// scene's own textures) cannot be prepared.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
     #[error(transparent)]
     Data(#[from] render::datafile::DataFileError),
-    #[error("data file {}: the scene stored in its header: {source}", path.display())]
-    Scene {
-        path: PathBuf,
-        #[source]
-        source: scene::SceneError,
-    },
     #[error("data file {}: {source}", path.display())]
-    Textures {
+    Shade {
         path: PathBuf,
         #[source]
         source: shade::ShadeError,
-    },
-    #[error("data file {}: its objects {data:?} are not its scene's objects {scene:?}", path.display())]
-    Objects {
-        path: PathBuf,
-        data: Vec<String>,
-        scene: Vec<String>,
     },
 }
 
@@ -42,8 +30,7 @@ pub struct ViewerState {
     /// The file as named on the command line.
     pub path: PathBuf,
     pub data: DataFile,
-    textures: Vec<Texture>,
-    defaults: ViewSettings,
+    defaults: ShadeSettings,
 }
 
 /// One pixel's record as the page shows it.
@@ -81,42 +68,29 @@ pub struct Info {
     pub objects: Vec<String>,
     pub lights: usize,
     pub observer_time: f64,
-    pub defaults: ViewSettings,
+    pub defaults: ShadeSettings,
 }
 
 impl ViewerState {
-    /// Reads `path` and prepares its scene's textures; errors name the file.
+    /// Reads `path` and checks that its default settings shade; errors name the file.
     pub fn load(path: &Path) -> Result<ViewerState, LoadError> {
         let data = DataFile::read(path)?;
         ViewerState::new(path, data)
     }
 
-    /// Prepares an already-read data file (`path` names it in messages).
+    /// Prepares an already-read data file (`path` names it in messages). The default
+    /// settings are shaded once here, so a file whose scene textures cannot be loaded is
+    /// refused before anything is served.
     pub fn new(path: &Path, data: DataFile) -> Result<ViewerState, LoadError> {
-        let path = path.to_path_buf();
-        let scene = scene::Scene::from_str(&data.header.scene_text, &path.display().to_string())
-            .map_err(|source| LoadError::Scene {
-                path: path.clone(),
-                source,
-            })?;
-        let scene_names: Vec<String> = scene.objects.iter().map(|o| o.name.clone()).collect();
-        if scene_names != data.header.object_names {
-            return Err(LoadError::Objects {
-                path,
-                data: data.header.object_names.clone(),
-                scene: scene_names,
-            });
-        }
-        let textures = shade::textures_for_scene(&scene).map_err(|source| LoadError::Textures {
-            path: path.clone(),
+        let defaults = ShadeSettings::defaults_for(&data);
+        Shading::new(&data, &defaults).map_err(|source| LoadError::Shade {
+            path: path.to_path_buf(),
             source,
         })?;
-        let temperatures: Vec<f64> = scene.objects.iter().map(|o| o.temperature).collect();
         Ok(ViewerState {
-            path,
+            path: path.to_path_buf(),
             data,
-            textures,
-            defaults: ViewSettings::defaults(&temperatures),
+            defaults,
         })
     }
 
@@ -134,27 +108,20 @@ impl ViewerState {
         }
     }
 
-    /// Checks settings sent by the page against this file.
-    pub fn check(&self, settings: &ViewSettings) -> Result<(), String> {
-        settings.validate(self.data.header.object_names.len())
+    /// Checks settings sent by the page against this file and prepares them (the `shade`
+    /// crate loads the textures and names the bad field).
+    pub fn prepare(&self, settings: &ShadeSettings) -> Result<Shading, shade::ShadeError> {
+        Shading::new(&self.data, settings)
     }
 
-    /// The picture for `settings` (checked with [`ViewerState::check`]); rows in parallel.
-    pub fn shade(&self, settings: &ViewSettings) -> RgbImage {
-        match settings.shader {
-            Shader::Texture => shade::shade_textures(&self.data, &self.textures, shade::BACKGROUND),
-            Shader::Frequency => {
-                let temperatures: Vec<f64> =
-                    settings.objects.iter().map(|o| o.temperature).collect();
-                let brightness = match settings.brightness {
-                    Brightness::Normalized => shade::Brightness::Normalized,
-                    Brightness::Physical => shade::Brightness::Physical {
-                        exposure: settings.exposure,
-                    },
-                };
-                shade::shade_frequency(&self.data, &temperatures, brightness)
-            }
-        }
+    /// The picture for prepared settings as RGB8 bytes, row 0 first; rows in parallel.
+    pub fn shade_rgb(&self, shading: &Shading, bytes: &mut Vec<u8>) {
+        shading.image_into(&self.data, bytes);
+    }
+
+    /// The picture for prepared settings.
+    pub fn shade(&self, shading: &Shading) -> RgbImage {
+        shading.image(&self.data)
     }
 
     /// The record of pixel (`col`, `row`), or `None` outside the image.
@@ -185,9 +152,9 @@ impl ViewerState {
         })
     }
 
-    /// A sequence-script keyframe (TOML) holding `settings`.
-    pub fn keyframe(&self, settings: &ViewSettings) -> Result<String, String> {
-        settings.keyframe_toml(0.0)
+    /// A sequence-script keyframe (TOML) at `frame` holding `settings`.
+    pub fn keyframe(&self, frame: u32, settings: &ShadeSettings) -> String {
+        shade::keyframe_toml(frame, settings)
     }
 }
 

@@ -9,6 +9,7 @@ use axum::http::{Request, StatusCode};
 use http_body_util::BodyExt;
 use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use render::record::{PixelRecord, RayStatus};
+use shade::{ShadeSettings, ShaderKind, Shading};
 use tower::ServiceExt;
 use viewer::ViewerState;
 
@@ -112,10 +113,21 @@ fn get(path: &str) -> Request<Body> {
     Request::get(path).body(Body::empty()).unwrap()
 }
 
+/// The data file's default settings with only the frequency layer at `temperature`.
+fn frequency_settings(temperature: f64) -> ShadeSettings {
+    let mut settings = ShadeSettings::defaults_for(&data());
+    settings.shaders = vec![ShaderKind::Frequency];
+    settings.objects.get_mut("ball").unwrap().temperature = temperature;
+    settings
+}
+
 fn frequency(temperature: f64) -> String {
-    format!(
-        r#"{{"shader":"frequency","brightness":"normalized","exposure":1.0,"objects":[{{"temperature":{temperature}}}]}}"#
-    )
+    serde_json::to_string(&frequency_settings(temperature)).unwrap()
+}
+
+/// The picture the shade crate makes of `data()` for `settings`.
+fn shaded(settings: &ShadeSettings) -> image::RgbImage {
+    Shading::new(&data(), settings).unwrap().image(&data())
 }
 
 fn error_of(body: &[u8]) -> String {
@@ -145,7 +157,8 @@ async fn info_describes_the_file_and_its_defaults() {
     assert_eq!(info["width"], WIDTH);
     assert_eq!(info["height"], HEIGHT);
     assert_eq!(info["objects"], serde_json::json!(["ball"]));
-    assert_eq!(info["defaults"]["objects"][0]["temperature"], 5800.0);
+    assert_eq!(info["defaults"]["objects"]["ball"]["temperature"], 5800.0);
+    assert_eq!(info["defaults"]["shaders"], serde_json::json!(["texture"]));
 }
 
 #[tokio::test]
@@ -158,7 +171,7 @@ async fn image_is_the_shade_crates_picture_as_rgba() {
         .to_str()
         .unwrap()
         .contains("shade;dur="));
-    let want = shade::shade_frequency(&data(), &[3000.0], shade::Brightness::Normalized);
+    let want = shaded(&frequency_settings(3000.0));
     assert_eq!(body.len(), WIDTH * HEIGHT * 4);
     for (rgba, rgb) in body.chunks_exact(4).zip(want.pixels()) {
         assert_eq!(&rgba[..3], &rgb.0);
@@ -187,12 +200,14 @@ async fn png_download_decodes_to_the_same_picture() {
 
 #[tokio::test]
 async fn keyframe_is_toml_with_the_settings() {
-    let (status, _, body) = send(post("/api/keyframe", &frequency(4321.0))).await;
+    let (status, _, body) = send(post("/api/keyframe?frame=12", &frequency(4321.0))).await;
     assert_eq!(status, StatusCode::OK);
-    let v: toml::Value = toml::from_str(std::str::from_utf8(&body).unwrap()).unwrap();
+    let text = std::str::from_utf8(&body).unwrap();
+    let v: toml::Value = toml::from_str(text).unwrap();
     let frame = &v["keyframe"][0];
-    assert_eq!(frame["shader"].as_str(), Some("frequency"));
-    assert_eq!(frame["objects"][0]["temperature"].as_float(), Some(4321.0));
+    assert_eq!(frame["frame"].as_integer(), Some(12), "{text}");
+    let settings: ShadeSettings = frame["settings"].clone().try_into().unwrap();
+    assert_eq!(settings, frequency_settings(4321.0));
 }
 
 #[tokio::test]
@@ -215,31 +230,48 @@ async fn pixel_record_comes_from_the_data_in_memory() {
     assert_eq!(r["status"], "escaped");
 }
 
+/// `frequency_settings(5000)` as JSON with `change` applied.
+fn altered(change: impl FnOnce(&mut serde_json::Value)) -> String {
+    let mut v = serde_json::to_value(frequency_settings(5000.0)).unwrap();
+    change(&mut v);
+    v.to_string()
+}
+
 #[tokio::test]
 async fn bad_settings_get_400_naming_the_field() {
     let cases = [
-        ("{not json", "settings"),
+        ("{not json".to_string(), "settings"),
+        (String::new(), "settings"),
         (
-            r#"{"shader":"sepia","brightness":"normalized","exposure":1,"objects":[]}"#,
+            altered(|v| v["shaders"] = serde_json::json!(["sepia"])),
             "sepia",
         ),
+        (altered(|v| v["extra"] = 1.into()), "extra"),
+        (altered(|v| v["exposure"] = "x".into()), "exposure"),
         (
-            r#"{"shader":"texture","brightness":"normalized","exposure":1,"objects":[{"temperature":5000}],"extra":1}"#,
-            "extra",
-        ),
-        (&frequency(-5.0), "objects[0].temperature"),
-        (
-            r#"{"shader":"texture","brightness":"normalized","exposure":1,"objects":[]}"#,
-            "1 objects",
+            altered(|v| v["objects"]["ball"]["temperature"] = (-5.0).into()),
+            "objects.ball.temperature",
         ),
         (
-            r#"{"shader":"texture","brightness":"normalized","exposure":"x","objects":[{"temperature":5000}]}"#,
-            "exposure",
+            altered(|v| v["objects"]["moon"] = v["objects"]["ball"].clone()),
+            "moon",
         ),
-        ("", "settings"),
+        (altered(|v| v["shaders"] = serde_json::json!([])), "shaders"),
+        (
+            altered(|v| v["shaders"] = serde_json::json!(["light"])),
+            "light",
+        ),
+        (
+            altered(|v| {
+                v["shaders"] = serde_json::json!(["texture"]);
+                v["objects"]["ball"]["texture"] =
+                    serde_json::json!({"kind": "image", "path": "/nonexistent/map.png"})
+            }),
+            "/nonexistent/map.png",
+        ),
     ];
     for route in ["/api/image", "/api/png", "/api/keyframe"] {
-        for (body, needle) in cases {
+        for (body, needle) in &cases {
             let (status, _, answer) = send(post(route, body)).await;
             assert_eq!(status, StatusCode::BAD_REQUEST, "{route} {body}");
             let message = error_of(&answer);
@@ -265,9 +297,14 @@ async fn bad_pixel_queries_get_400() {
 }
 
 #[test]
-fn a_data_file_whose_scene_has_other_objects_is_refused() {
+fn a_data_file_whose_scene_texture_cannot_load_is_refused() {
     let mut d = data();
-    d.header.object_names = vec!["other".into()];
+    d.header.scene_text = SCENE.replace(
+        r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
+        r#"{ kind = "image", path = "/nonexistent/texture.png" }"#,
+    );
     let err = ViewerState::new(Path::new("x.exr"), d).err().unwrap();
-    assert!(err.to_string().contains("x.exr"), "{err}");
+    let message = err.to_string();
+    assert!(message.contains("x.exr"), "{message}");
+    assert!(message.contains("/nonexistent/texture.png"), "{message}");
 }
