@@ -199,6 +199,7 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
 
     // The record shown on hover is the data file's.
     let shown = &seen["record_shown"];
+    // Shown larger than its size, the picture puts the mouse on exactly the pixel aimed at.
     assert_eq!(shown["pixel"], format!("{col}, {row}"));
     assert_eq!(shown["object"], "ball");
     assert_eq!(shown["status"], "hit");

@@ -101,7 +101,12 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    // Preparing alone: checks the settings and loads the textures (the earth map is decoded).
     let mut settings = defaults.clone();
+    settings.shaders = vec![ShaderKind::Texture];
+    group.bench_function("texture: prepare alone", |b| {
+        b.iter(|| state.prepare(&settings).unwrap())
+    });
     settings.shaders = vec![ShaderKind::Frequency];
     let shading = state.prepare(&settings).unwrap();
     let mut rgb = Vec::new();
