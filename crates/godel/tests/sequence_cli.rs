@@ -190,3 +190,19 @@ fn bad_scripts_are_refused_before_any_frame() {
         &["bad.toml:3", "speed"],
     );
 }
+
+#[test]
+fn example_scripts_parse() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sequences");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let script = shade::Script::from_file(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            assert!(script.frames > 0);
+            n += 1;
+        }
+    }
+    assert!(n >= 2, "the examples are in sequences/");
+}

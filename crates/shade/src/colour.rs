@@ -61,11 +61,54 @@ fn srgb8_thresholds() -> &'static [f32; 255] {
     TABLE.get_or_init(|| std::array::from_fn(|k| srgb_to_linear((k as f32 + 0.5) / 255.0)))
 }
 
-/// [`linear_to_srgb8`] without a power function: the number of step thresholds at or below
-/// `x` (a binary search in a 255-entry table). Agrees with it except, at most by one step,
-/// for values within float rounding of a step; NaN → 0.
+/// Smallest value the fast encoder looks up; below it every value encodes to 0 (the first
+/// step is at 1.5e-4).
+const FAST_MIN: f32 = 1.0 / 8192.0;
+/// Bits of the f32 pattern dropped to form a bin: 9 mantissa bits remain, 512 bins per
+/// octave, each 0.2 % wide, narrower than the gap between two step thresholds.
+const FAST_SHIFT: u32 = 14;
+
+/// Per bin of the f32 bit pattern over [FAST_MIN, 1): the 8-bit value at the bin's low end
+/// and the threshold inside the bin where it steps up by one (∞ if none), so that the lookup
+/// is exact with respect to [`srgb8_thresholds`].
+fn srgb8_bins() -> &'static [(u8, f32)] {
+    static TABLE: std::sync::OnceLock<Vec<(u8, f32)>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let th = srgb8_thresholds();
+        let first = FAST_MIN.to_bits() >> FAST_SHIFT;
+        let last = 1.0f32.to_bits() >> FAST_SHIFT;
+        (first..last)
+            .map(|bin| {
+                let lo = f32::from_bits(bin << FAST_SHIFT);
+                let hi = f32::from_bits((bin + 1) << FAST_SHIFT);
+                let k = th.partition_point(|&t| t <= lo);
+                let step = th
+                    .get(k)
+                    .copied()
+                    .filter(|&t| t < hi)
+                    .unwrap_or(f32::INFINITY);
+                (k as u8, step)
+            })
+            .collect()
+    })
+}
+
+/// [`linear_to_srgb8`] without a power function or a search: a table over the f32 bit
+/// pattern whose bins each hold at most one step threshold. Exact with respect to the step
+/// thresholds (the sRGB decoding of (k + ½)/255), so it agrees with [`linear_to_srgb8`]
+/// except, at most by one step, for values within float rounding of a threshold; NaN → 0.
 pub fn linear_to_srgb8_fast(x: f32) -> u8 {
-    srgb8_thresholds().partition_point(|&t| t <= x) as u8
+    if x >= 1.0 {
+        return 255;
+    }
+    if !(x >= FAST_MIN) {
+        return 0;
+    }
+    let bin = ((x.to_bits() >> FAST_SHIFT) - (FAST_MIN.to_bits() >> FAST_SHIFT)) as usize;
+    match srgb8_bins().get(bin) {
+        Some(&(k, step)) => k + u8::from(x >= step),
+        None => 255,
+    }
 }
 
 /// A linear RGB colour as 8-bit sRGB through [`linear_to_srgb8_fast`].

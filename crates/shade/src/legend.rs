@@ -24,11 +24,15 @@ pub fn false_colour(s: f64) -> [f32; 3] {
     let x = s * (STOPS.len() - 1) as f32;
     let i = (x.floor() as usize).min(STOPS.len() - 2);
     let f = x - i as f32;
-    let (a, b) = (
-        STOPS[i].map(srgb8_to_linear),
-        STOPS[i + 1].map(srgb8_to_linear),
-    );
+    let stops = linear_stops();
+    let (a, b) = (stops[i], stops[i + 1]);
     [0, 1, 2].map(|k| a[k] + f * (b[k] - a[k]))
+}
+
+/// The stops in linear RGB, decoded once.
+fn linear_stops() -> &'static [[f32; 3]; 5] {
+    static TABLE: std::sync::OnceLock<[[f32; 3]; 5]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| STOPS.map(|s| s.map(srgb8_to_linear)))
 }
 
 /// Glyphs 3 wide, 5 high, rows top to bottom, bit 2 = left column.

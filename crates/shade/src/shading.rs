@@ -181,7 +181,8 @@ impl Shading {
         if has(ShaderKind::Light) && data.lights.is_empty() {
             return Err(ShadeError::NoLightChannels);
         }
-        if sources.len() > data.lights.len() {
+        // Extra sources only matter when the light layer would use them.
+        if has(ShaderKind::Light) && sources.len() > data.lights.len() {
             return Err(invalid(
                 format!("light.sources[{}]", data.lights.len()),
                 format!(

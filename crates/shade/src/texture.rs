@@ -167,7 +167,16 @@ impl ImageTexture {
         let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
         let w = self.width as i64;
         let h = self.height as i64;
-        let col = |i: i64| i.rem_euclid(w) as usize;
+        // x0 ∈ [−1, w − 1] since u ∈ [0, 1): one comparison instead of a division.
+        let col = |i: i64| {
+            if i < 0 {
+                (i + w) as usize
+            } else if i >= w {
+                (i - w) as usize
+            } else {
+                i as usize
+            }
+        };
         let row = |j: i64| j.clamp(0, h - 1) as usize;
         let (c0, c1) = (col(x0 as i64), col(x0 as i64 + 1));
         let (r0, r1) = (row(y0 as i64), row(y0 as i64 + 1));
@@ -201,7 +210,9 @@ fn gradient(u: f64, v: f64) -> [f32; 3] {
 /// Fully saturated colour of hue `h` ∈ [0, 1] (0 red, ⅓ green, ⅔ blue).
 fn hue(h: f32) -> [f32; 3] {
     let channel = |n: f32| {
-        let k = (n + h * 6.0).rem_euclid(6.0);
+        // n + 6h ∈ [0, 12) for h ∈ [0, 1): one exact subtraction instead of fmod.
+        let k = n + h * 6.0;
+        let k = if k >= 6.0 { k - 6.0 } else { k };
         1.0 - k.min(4.0 - k).clamp(0.0, 1.0)
     };
     [channel(5.0), channel(3.0), channel(1.0)]
@@ -220,7 +231,8 @@ fn wrap01(u: f64) -> f64 {
     if !u.is_finite() {
         return 0.0;
     }
-    let w = u.rem_euclid(1.0);
+    // u − ⌊u⌋ rather than rem_euclid: no fmod call per sample.
+    let w = u - u.floor();
     if w >= 1.0 {
         0.0
     } else {

@@ -327,3 +327,22 @@ fn write_png_into_missing_directory_fails_and_leaves_nothing() {
     assert!(!path.exists() && !missing.exists());
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+#[test]
+fn fast_srgb_encoding_agrees_with_the_transfer_function() {
+    use shade::colour::linear_to_srgb8_fast;
+    // Dense sweep over [0, 1.2]: at most one step apart, and equal away from step edges.
+    let mut differ = 0;
+    for i in 0..=1_200_000 {
+        let x = i as f32 / 1_000_000.0;
+        let (a, b) = (linear_to_srgb8_fast(x), linear_to_srgb8(x));
+        assert!(a.abs_diff(b) <= 1, "{x}: {a} vs {b}");
+        differ += usize::from(a != b);
+    }
+    assert!(differ < 20, "{differ} values differ");
+    assert_eq!(linear_to_srgb8_fast(f32::NAN), 0);
+    assert_eq!(linear_to_srgb8_fast(-3.0), 0);
+    assert_eq!(linear_to_srgb8_fast(1.0), 255);
+    assert_eq!(linear_to_srgb8_fast(f32::INFINITY), 255);
+    assert_eq!(linear_to_srgb8_fast(0.5), 188);
+}
