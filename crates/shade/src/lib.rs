@@ -21,6 +21,8 @@
 //! - [`ShadeError`]: every error, naming the file or field concerned.
 
 pub mod blackbody;
+mod body;
+mod checks;
 pub mod colour;
 mod error;
 pub mod frequency_shader;

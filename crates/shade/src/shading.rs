@@ -26,50 +26,21 @@
 use image::RgbImage;
 use rayon::prelude::*;
 use render::datafile::DataFile;
-use render::record::PixelRecord;
 use scene::Scene;
 
 use crate::blackbody::table;
+use crate::body::{prepare_lamp, PreparedObject};
+use crate::checks::{colour, finite, invalid, non_negative, nonzero, positive};
 use crate::colour::rgb_to_srgb8_fast;
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
 use crate::legend::{draw_legend, false_colour};
 use crate::settings::{
-    BrightnessMode, Lamp, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
+    BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
 };
 use crate::texture::{ImageTexture, Texture};
 use crate::texture_shader::{shading_factor, status_colour, BACKGROUND, FAILED};
-
-/// Brightness of an off lamp relative to on.
-const LAMP_OFF: f32 = 0.1;
-
-/// A lamp ready to test pixels against.
-#[derive(Clone, Debug)]
-struct PreparedLamp {
-    sin_lat: f64,
-    cos_lat: f64,
-    lon: f64,
-    cos_radius: f64,
-    period: f64,
-    phase: f64,
-    duty: f64,
-    on: [f32; 3],
-    off: [f32; 3],
-}
-
-/// One object's runtime shading data.
-#[derive(Clone, Debug)]
-struct PreparedObject {
-    first: Texture,
-    second: Texture,
-    scale: [f64; 2],
-    offset: [f64; 2],
-    temperature: f64,
-    /// Y(T) of the unshifted black body, for physical brightness.
-    luminance: f64,
-    lamps: Vec<PreparedLamp>,
-}
 
 /// Settings checked against a data file, textures loaded: ready to shade it (or other data
 /// files with the same objects and lights) any number of times.
@@ -90,48 +61,6 @@ pub struct Shading {
     /// on·intensity·color per light plane.
     lights: Vec<[f32; 3]>,
     observer_time: f64,
-}
-
-/// An invalid settings value.
-fn invalid(field: impl Into<String>, message: impl Into<String>) -> ShadeError {
-    ShadeError::Invalid {
-        field: field.into(),
-        message: message.into(),
-    }
-}
-
-fn finite(field: &str, v: f64) -> Result<f64, ShadeError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(invalid(field, format!("must be finite, got {v}")))
-    }
-}
-
-fn positive(field: &str, v: f64) -> Result<f64, ShadeError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(
-            field,
-            format!("must be positive and finite, got {v}"),
-        ))
-    }
-}
-
-fn non_negative(field: &str, v: f64) -> Result<f64, ShadeError> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(field, format!("must be finite and ≥ 0, got {v}")))
-    }
-}
-
-fn colour(field: &str, c: [f64; 3]) -> Result<[f32; 3], ShadeError> {
-    for (i, v) in c.iter().enumerate() {
-        non_negative(&format!("{field}[{i}]"), *v)?;
-    }
-    Ok(c.map(|v| v as f32))
 }
 
 impl Shading {
@@ -464,67 +393,6 @@ impl Shading {
             }
         }
     }
-}
-
-impl PreparedObject {
-    /// Texture `tex` (or a lamp) at the pixel's moved texture coordinates, emission time `t`.
-    fn sample(&self, tex: &Texture, rec: &PixelRecord, t: f64) -> [f32; 3] {
-        let u = self.scale[0] * f64::from(rec.u) + self.offset[0];
-        let v = self.scale[1] * f64::from(rec.v) + self.offset[1];
-        if !self.lamps.is_empty() {
-            let lon = std::f64::consts::TAU * u;
-            let lat = std::f64::consts::PI * (v.clamp(0.0, 1.0) - 0.5);
-            let (sin_lat, cos_lat) = lat.sin_cos();
-            for lamp in &self.lamps {
-                let cos_d =
-                    sin_lat * lamp.sin_lat + cos_lat * lamp.cos_lat * (lon - lamp.lon).cos();
-                if cos_d >= lamp.cos_radius {
-                    let on = ((t - lamp.phase) / lamp.period).rem_euclid(1.0) < lamp.duty;
-                    return if on { lamp.on } else { lamp.off };
-                }
-            }
-        }
-        tex.sample(u, v)
-    }
-}
-
-fn nonzero(field: &str, v: f64) -> Result<f64, ShadeError> {
-    if v.is_finite() && v != 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(
-            field,
-            format!("must be finite and non-zero, got {v}"),
-        ))
-    }
-}
-
-fn prepare_lamp(field: &str, l: &Lamp) -> Result<PreparedLamp, ShadeError> {
-    let u = finite(&format!("{field}.u"), l.u)?;
-    let v = finite(&format!("{field}.v"), l.v)?;
-    let radius = positive(&format!("{field}.radius_deg"), l.radius_deg)?;
-    let period = positive(&format!("{field}.period"), l.period)?;
-    let phase = finite(&format!("{field}.phase"), l.phase)?;
-    let duty = l.duty;
-    if !(0.0..=1.0).contains(&duty) {
-        return Err(invalid(
-            format!("{field}.duty"),
-            format!("must be in [0, 1], got {duty}"),
-        ));
-    }
-    let on = colour(&format!("{field}.color"), l.color)?;
-    let lat = std::f64::consts::PI * (v.clamp(0.0, 1.0) - 0.5);
-    Ok(PreparedLamp {
-        sin_lat: lat.sin(),
-        cos_lat: lat.cos(),
-        lon: std::f64::consts::TAU * u,
-        cos_radius: radius.min(180.0).to_radians().cos(),
-        period,
-        phase,
-        duty,
-        on,
-        off: on.map(|c| c * LAMP_OFF),
-    })
 }
 
 /// The scene's own textures, from the scene text embedded in the data file (relative image
