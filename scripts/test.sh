@@ -4,6 +4,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# The viewer's browser test (crates/godel/tests/viewer_browser.rs) drives Debian's chromium
+# through playwright-core; playwright's own browser download cannot work here, and is not used.
+command -v chromium >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
+command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null; }
+[ -d tests/browser/node_modules/playwright-core ] || (cd tests/browser && npm ci --silent --no-audit --no-fund)
+
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet
 cargo test --workspace --no-fail-fast

@@ -85,11 +85,12 @@ pub fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> 
         .context("cannot start worker threads")
 }
 
-/// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures):
+/// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures,
+/// lit where the scene has lights):
 /// exactly the files of a single run, whoever traced the pixels.
 pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
     let textures = shade::textures_for_scene(scene)?;
-    let image = shade::shade_textures(data, &textures, shade::BACKGROUND);
+    let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let exr = dir.join(format!("{}.exr", scene.name));
     let png = dir.join(format!("{}.png", scene.name));

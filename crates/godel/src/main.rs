@@ -13,6 +13,7 @@ mod cmd_plot;
 mod cmd_render;
 mod cmd_sequence;
 mod cmd_shade;
+mod cmd_view;
 mod output;
 mod svg;
 
@@ -38,6 +39,8 @@ enum Command {
     Plot(cmd_plot::PlotArgs),
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
+    /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
+    View(cmd_view::ViewArgs),
     /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
     Shade(cmd_shade::ShadeArgs),
     /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
@@ -50,6 +53,7 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Merge(args) => cmd_merge::run(args),
         Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
+        Command::View(args) => cmd_view::run(args),
         Command::Shade(args) => cmd_shade::run(args),
         Command::Sequence(args) => cmd_sequence::run(args),
     }

@@ -1,0 +1,57 @@
+//! `godel view DATA.exr [--port P] [--host H]`: the live web viewer. Loads the data file
+//! (errors before anything is served), binds the port (0: any free port), prints
+//! `godel view: serving http://HOST:PORT/` on stdout and serves until Ctrl-C; the server
+//! and the page live in the `viewer` crate.
+
+use std::io::Write;
+use std::net::{IpAddr, SocketAddr, TcpListener};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::Context;
+use clap::Args;
+
+use crate::args::usage;
+
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Data file (.exr) written by `godel render`.
+    pub data: PathBuf,
+    /// Port to serve on; 0 picks a free one.
+    #[arg(long, default_value_t = 8737)]
+    pub port: u16,
+    /// Address to listen on (the default serves this machine only).
+    #[arg(long, default_value = "127.0.0.1")]
+    pub host: String,
+}
+
+pub fn run(args: ViewArgs) -> anyhow::Result<()> {
+    let ip: IpAddr = args.host.parse().map_err(|_| {
+        usage(
+            "--host",
+            format!("'{}' is not an IP address (e.g. 127.0.0.1)", args.host),
+        )
+    })?;
+    let state = viewer::ViewerState::load(&args.data)?;
+    let wanted = SocketAddr::new(ip, args.port);
+    let listener = TcpListener::bind(wanted).map_err(|e| match e.kind() {
+        std::io::ErrorKind::AddrInUse => usage(
+            "--port",
+            format!("{wanted} is already in use; choose another port, or 0 for any free one"),
+        ),
+        _ => anyhow::Error::new(e).context(format!("cannot listen on {wanted}")),
+    })?;
+    let addr = listener
+        .local_addr()
+        .context("cannot read the bound address")?;
+    let mut stdout = std::io::stdout();
+    writeln!(stdout, "godel view: serving http://{addr}/")?;
+    stdout.flush()?;
+    eprintln!(
+        "{} ({}×{}); press Ctrl-C to stop",
+        args.data.display(),
+        state.data.width,
+        state.data.height
+    );
+    viewer::run(listener, Arc::new(state)).context("the viewer's server failed")
+}

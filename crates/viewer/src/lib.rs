@@ -1,0 +1,65 @@
+//! `viewer`: the live web viewer behind `godel view` (DESIGN.md, "The pipeline"). A local
+//! axum server holds one data file in memory and shades it on request with the `shade`
+//! crate, so the page (embedded in the binary) only sends settings and shows what the
+//! server shaded: one shading implementation serves the command line and the viewer.
+//!
+//! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes.
+//! - [`router`]: the routes (see [`routes`] for the table), [`serve`]: runs them.
+//! - The settings the page sends are `shade::ShadeSettings` as JSON.
+
+mod assets;
+pub mod encode;
+pub mod routes;
+pub mod state;
+
+use std::sync::Arc;
+
+pub use routes::router;
+pub use state::{LoadError, PixelInfo, ViewerState};
+
+/// Serves the viewer on `listener` until Ctrl-C (or SIGTERM).
+pub async fn serve(
+    listener: tokio::net::TcpListener,
+    state: Arc<ViewerState>,
+) -> std::io::Result<()> {
+    axum::serve(listener, router(state))
+        .with_graceful_shutdown(shutdown())
+        .await
+}
+
+/// Resolves on Ctrl-C or SIGTERM.
+async fn shutdown() {
+    let ctrl_c = async {
+        let _ = tokio::signal::ctrl_c().await;
+    };
+    #[cfg(unix)]
+    let term = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut s) => {
+                s.recv().await;
+            }
+            Err(_) => std::future::pending::<()>().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let term = std::future::pending::<()>();
+    tokio::select! {
+        _ = ctrl_c => {}
+        _ = term => {}
+    }
+}
+
+/// Serves the viewer on an already bound `listener` on a new tokio runtime, blocking until
+/// Ctrl-C or SIGTERM: the command line needs no async code of its own.
+pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io::Result<()> {
+    listener.set_nonblocking(true)?;
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        // Few I/O threads: shading runs on rayon's pool and tokio's blocking threads.
+        .worker_threads(2)
+        .enable_all()
+        .build()?;
+    runtime.block_on(async move {
+        let listener = tokio::net::TcpListener::from_std(listener)?;
+        serve(listener, state).await
+    })
+}

@@ -1,0 +1,256 @@
+//! The HTTP interface: the page's files, and a small JSON/binary API over [`ViewerState`].
+//!
+//! | route | answer |
+//! | --- | --- |
+//! | `GET /`, `/viewer.js`, `/viewer.css` | the page ([`crate::assets`]) |
+//! | `GET /api/info` | file, size, objects, light count, default settings (JSON) |
+//! | `POST /api/image` (settings JSON) | the shaded picture as raw RGBA; `X-Image-Width`, `X-Image-Height`, `Server-Timing` |
+//! | `POST /api/png` (settings JSON) | the shaded picture as a PNG download |
+//! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
+//! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
+//!
+//! Bad requests (malformed or unknown settings, pixel outside the image) get 400 with
+//! `{"error": "..."}` naming the field; nothing a client sends can panic the server.
+//! Shading runs on tokio's blocking threads, and within it on rayon's pool, so slow
+//! shading never stalls the hover requests.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use axum::body::Bytes;
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{Query, State};
+use axum::http::{header, HeaderName, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use serde::Deserialize;
+
+use crate::encode;
+use crate::state::ViewerState;
+use shade::{ShadeSettings, Shading};
+
+/// The server's routes over one loaded data file.
+pub fn router(state: Arc<ViewerState>) -> Router {
+    let mut router = Router::new();
+    for (path, content_type, body) in crate::assets::FILES {
+        router = router.route(
+            path,
+            get(move || async move { ([(header::CONTENT_TYPE, content_type)], body) }),
+        );
+    }
+    router
+        .route("/api/info", get(info))
+        .route("/api/image", post(image))
+        .route("/api/png", post(png))
+        .route("/api/keyframe", post(keyframe))
+        .route("/api/pixel", get(pixel))
+        .with_state(state)
+}
+
+/// An error answer: a status and a message for the page.
+#[derive(Debug)]
+pub struct ApiError {
+    pub status: StatusCode,
+    pub message: String,
+}
+
+impl ApiError {
+    fn bad_request(message: impl Into<String>) -> ApiError {
+        ApiError {
+            status: StatusCode::BAD_REQUEST,
+            message: message.into(),
+        }
+    }
+
+    fn internal(message: impl Into<String>) -> ApiError {
+        ApiError {
+            status: StatusCode::INTERNAL_SERVER_ERROR,
+            message: message.into(),
+        }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let body = Json(serde_json::json!({ "error": self.message }));
+        (self.status, no_store(), body).into_response()
+    }
+}
+
+/// API answers change with every request: never cache them.
+fn no_store() -> [(HeaderName, &'static str); 1] {
+    [(header::CACHE_CONTROL, "no-store")]
+}
+
+/// Parses the settings JSON sent by the page and prepares them with the `shade` crate
+/// (which checks every value and loads the textures); the message names the field.
+pub fn parse_settings(
+    state: &ViewerState,
+    body: &[u8],
+) -> Result<(ShadeSettings, Shading), ApiError> {
+    let mut json = serde_json::Deserializer::from_slice(body);
+    let settings: ShadeSettings = serde_path_to_error::deserialize(&mut json).map_err(|e| {
+        let path = e.path().to_string();
+        if path == "." {
+            ApiError::bad_request(format!("settings: {}", e.inner()))
+        } else {
+            ApiError::bad_request(format!("settings: {path}: {}", e.inner()))
+        }
+    })?;
+    json.end()
+        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+    let shading = state
+        .prepare(&settings)
+        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+    Ok((settings, shading))
+}
+
+/// Runs `job` on a blocking thread; a panic there (a bug, never input) becomes a 500.
+async fn blocking<T: Send + 'static>(
+    job: impl FnOnce() -> T + Send + 'static,
+) -> Result<T, ApiError> {
+    tokio::task::spawn_blocking(job)
+        .await
+        .map_err(|e| ApiError::internal(format!("shading failed: {e}")))
+}
+
+async fn info(State(state): State<Arc<ViewerState>>) -> impl IntoResponse {
+    (no_store(), Json(state.info()))
+}
+
+async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
+    let (bytes, width, height, shade_ms, encode_ms) = blocking(move || {
+        // Preparing (checking settings, loading textures) counts as shading.
+        let started = Instant::now();
+        let (_, shading) = parse_settings(&state, &body)?;
+        let mut rgb = Vec::new();
+        state.shade_rgb(&shading, &mut rgb);
+        let shaded = Instant::now();
+        let bytes = encode::rgba_from_rgb(&rgb);
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        Ok::<_, ApiError>((
+            bytes,
+            state.data.width as u32,
+            state.data.height as u32,
+            ms(shaded - started),
+            ms(shaded.elapsed()),
+        ))
+    })
+    .await??;
+    let timing = format!("shade;dur={shade_ms:.2}, encode;dur={encode_ms:.2}");
+    let headers = [
+        (
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/octet-stream"),
+        ),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (
+            HeaderName::from_static("x-image-width"),
+            HeaderValue::from(width),
+        ),
+        (
+            HeaderName::from_static("x-image-height"),
+            HeaderValue::from(height),
+        ),
+        (
+            HeaderName::from_static("server-timing"),
+            HeaderValue::from_str(&timing).expect("ASCII"),
+        ),
+    ];
+    Ok((headers, bytes).into_response())
+}
+
+/// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
+fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
+    let stem: String = state
+        .data
+        .header
+        .scene_name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let stem = if stem.is_empty() {
+        "view".to_string()
+    } else {
+        stem
+    };
+    HeaderValue::from_str(&format!("attachment; filename=\"{stem}.{extension}\"")).expect("ASCII")
+}
+
+async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
+    let disposition = attachment(&state, "png");
+    let bytes = blocking(move || {
+        let (_, shading) = parse_settings(&state, &body)?;
+        encode::png(&state.shade(&shading))
+            .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
+    })
+    .await??;
+    let headers = [
+        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (header::CONTENT_DISPOSITION, disposition),
+    ];
+    Ok((headers, bytes).into_response())
+}
+
+/// `?frame=N` (default 0).
+#[derive(Deserialize)]
+struct KeyframeQuery {
+    #[serde(default)]
+    frame: u32,
+}
+
+async fn keyframe(
+    State(state): State<Arc<ViewerState>>,
+    query: Result<Query<KeyframeQuery>, QueryRejection>,
+    body: Bytes,
+) -> Result<Response, ApiError> {
+    let Query(q) =
+        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let (settings, state) = blocking(move || {
+        let prepared = parse_settings(&state, &body);
+        prepared.map(|(settings, _)| (settings, state))
+    })
+    .await??;
+    let text = state.keyframe(q.frame, &settings);
+    let headers = [
+        (
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/toml; charset=utf-8"),
+        ),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (
+            header::CONTENT_DISPOSITION,
+            attachment(&state, "keyframe.toml"),
+        ),
+    ];
+    Ok((headers, text).into_response())
+}
+
+/// `?col=C&row=R`.
+#[derive(Deserialize)]
+struct PixelQuery {
+    col: usize,
+    row: usize,
+}
+
+async fn pixel(
+    State(state): State<Arc<ViewerState>>,
+    query: Result<Query<PixelQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("pixel: {}", e.body_text())))?;
+    let record = state.pixel(q.col, q.row).ok_or_else(|| {
+        ApiError::bad_request(format!(
+            "pixel ({}, {}) is outside the {}×{} image",
+            q.col, q.row, state.data.width, state.data.height
+        ))
+    })?;
+    Ok((no_store(), Json(record)).into_response())
+}
