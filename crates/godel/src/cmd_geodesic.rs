@@ -346,7 +346,11 @@ impl ExactCurve {
         while f(hi) < 0.0 && hi < 1e12 {
             hi *= 2.0;
         }
-        refine_root(f, 0.0, hi, -dt, f(hi))
+        let f_hi = f(hi);
+        if f_hi == 0.0 {
+            return hi;
+        }
+        refine_root(f, 0.0, hi, -dt, f_hi)
     }
 }
 

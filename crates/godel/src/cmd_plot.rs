@@ -26,6 +26,8 @@ pub struct PlotArgs {
 pub enum Figure {
     /// Light rays through the origin in the x–y plane, with the optical horizon r = 2a.
     Geodesics(GeodesicsPlotArgs),
+    /// One light ray and its images under the flow of a Killing field, with the field.
+    Isometry(crate::plot_isometry::IsometryPlotArgs),
 }
 
 /// Arguments of `godel plot geodesics`.
@@ -46,7 +48,7 @@ pub struct GeodesicsPlotArgs {
 }
 
 /// Colour-blind-safe palette (Okabe & Ito 2008, without yellow and black).
-const PALETTE: [&str; 6] = [
+pub const PALETTE: [&str; 6] = [
     "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
 ];
 const TILTED_COLOUR: &str = "#9A9A9A";
@@ -64,8 +66,9 @@ struct Ray {
     colour: &'static str,
 }
 
-/// Traces a future-directed light ray from the origin along the local direction `dir`.
-fn trace_ray(metric: Metric, a: f64, dir: [f64; 3]) -> anyhow::Result<(Vec<(f64, f64)>, f64)> {
+/// Traces a future-directed light ray from the origin along the local direction `dir`:
+/// its events at [`SAMPLES`] evenly spaced parameters, and the time at its end.
+pub fn trace_ray(metric: Metric, a: f64, dir: [f64; 3]) -> anyhow::Result<(Vec<Event>, f64)> {
     let origin = Event::new(0.0, 0.0, 0.0, 0.0);
     let frame = metric.static_frame(origin);
     let g = Geodesic::launch(&metric, origin, &frame, dir, 1.0, TimeDirection::Future)
@@ -77,12 +80,13 @@ fn trace_ray(metric: Metric, a: f64, dir: [f64; 3]) -> anyhow::Result<(Vec<(f64,
             traced.stop.describe()
         );
     }
-    let pts = traced
-        .samples(SAMPLES)
-        .iter()
-        .map(|(_, s)| (s.x.x / a, s.x.y / a))
-        .collect();
-    Ok((pts, traced.end.x.t))
+    let events = traced.samples(SAMPLES).iter().map(|(_, s)| s.x).collect();
+    Ok((events, traced.end.x.t))
+}
+
+/// Points of `events` in the x–y plane, in units of a.
+fn projected(events: &[Event], a: f64) -> Vec<(f64, f64)> {
+    events.iter().map(|e| (e.x / a, e.y / a)).collect()
 }
 
 fn trace_fan(a: f64, n_plane: usize, n_tilted: usize) -> anyhow::Result<Vec<Ray>> {
@@ -91,9 +95,9 @@ fn trace_fan(a: f64, n_plane: usize, n_tilted: usize) -> anyhow::Result<Vec<Ray>
     for k in 0..n_tilted {
         let chi = 2.0 * PI * (k as f64 + 0.5) / n_tilted as f64;
         let dir = [TILT.cos() * chi.cos(), TILT.cos() * chi.sin(), TILT.sin()];
-        let (points, t_end) = trace_ray(metric, a, dir)?;
+        let (events, t_end) = trace_ray(metric, a, dir)?;
         rays.push(Ray {
-            points,
+            points: projected(&events, a),
             t_end,
             tilted: true,
             colour: TILTED_COLOUR,
@@ -101,9 +105,9 @@ fn trace_fan(a: f64, n_plane: usize, n_tilted: usize) -> anyhow::Result<Vec<Ray>
     }
     for k in 0..n_plane {
         let chi = 2.0 * PI * k as f64 / n_plane as f64;
-        let (points, t_end) = trace_ray(metric, a, [chi.cos(), chi.sin(), 0.0])?;
+        let (events, t_end) = trace_ray(metric, a, [chi.cos(), chi.sin(), 0.0])?;
         rays.push(Ray {
-            points,
+            points: projected(&events, a),
             t_end,
             tilted: false,
             colour: PALETTE[k % PALETTE.len()],
@@ -113,7 +117,7 @@ fn trace_fan(a: f64, n_plane: usize, n_tilted: usize) -> anyhow::Result<Vec<Ray>
 }
 
 /// Unicode minus for negative tick labels.
-fn tick_label(v: f64) -> String {
+pub fn tick_label(v: f64) -> String {
     let s = f(v);
     match s.strip_prefix('-') {
         Some(rest) => format!("\u{2212}{rest}"),
@@ -122,7 +126,7 @@ fn tick_label(v: f64) -> String {
 }
 
 /// A small filled arrowhead (data units) with its tip at `p`, pointing along `d`.
-fn arrowhead(p: (f64, f64), d: (f64, f64), len: f64) -> [(f64, f64); 3] {
+pub fn arrowhead(p: (f64, f64), d: (f64, f64), len: f64) -> [(f64, f64); 3] {
     let n = d.0.hypot(d.1).max(f64::MIN_POSITIVE);
     let (ux, uy) = (d.0 / n, d.1 / n);
     let (bx, by) = (p.0 - len * ux, p.1 - len * uy);
@@ -389,6 +393,7 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
 pub fn run(args: PlotArgs) -> anyhow::Result<()> {
     match args.figure {
         Figure::Geodesics(g) => plot_geodesics(g),
+        Figure::Isometry(i) => crate::plot_isometry::plot_isometry(i),
     }
 }
 
@@ -406,21 +411,7 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
             format!("must be between 0 and 360, got {}", args.tilted),
         ));
     }
-    let ext = args
-        .output
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let png = match ext.as_deref() {
-        Some("svg") => false,
-        Some("png") => true,
-        _ => {
-            return Err(usage(
-                "--output",
-                format!("must end in .svg or .png, got {}", args.output.display()),
-            ))
-        }
-    };
+    let png = output_is_png(&args.output)?;
     let rays = trace_fan(a, args.rays, args.tilted)?;
     let svg = figure(a, &rays, args.rays, args.tilted);
     let bytes = if png {
@@ -429,4 +420,20 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
         svg.into_bytes()
     };
     write_atomic(&args.output, &bytes)
+}
+
+/// Whether a figure goes to PNG (`.png`) or SVG (`.svg`); any other name is an error.
+pub fn output_is_png(output: &std::path::Path) -> anyhow::Result<bool> {
+    let ext = output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg") => Ok(false),
+        Some("png") => Ok(true),
+        _ => Err(usage(
+            "--output",
+            format!("must end in .svg or .png, got {}", output.display()),
+        )),
+    }
 }

@@ -7,6 +7,7 @@
 mod args;
 #[cfg(feature = "mpi")]
 mod cluster;
+mod cmd_connect;
 mod cmd_geodesic;
 mod cmd_merge;
 mod cmd_plot;
@@ -15,6 +16,7 @@ mod cmd_sequence;
 mod cmd_shade;
 mod cmd_view;
 mod output;
+mod plot_isometry;
 mod svg;
 
 use clap::{Parser, Subcommand};
@@ -28,34 +30,37 @@ struct Cli {
     command: Command,
 }
 
-/// The subcommands, one module each.
+/// The subcommands, one module each, in the order of a user's work.
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
-    Geodesic(cmd_geodesic::GeodesicArgs),
-    /// Join the part files of `render --part i/N` into the files a single run writes.
-    Merge(cmd_merge::MergeArgs),
-    /// Draw figures (SVG or PNG).
-    Plot(cmd_plot::PlotArgs),
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
-    /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
-    View(cmd_view::ViewArgs),
     /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
     Shade(cmd_shade::ShadeArgs),
     /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
     Sequence(cmd_sequence::SequenceArgs),
+    /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
+    View(cmd_view::ViewArgs),
+    /// Join the part files of `render --part i/N` into the files a single run writes.
+    Merge(cmd_merge::MergeArgs),
+    /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
+    Geodesic(cmd_geodesic::GeodesicArgs),
+    /// Every light ray from a source at rest to an event, with emission times.
+    Connect(cmd_connect::ConnectArgs),
+    /// Draw figures (SVG or PNG).
+    Plot(cmd_plot::PlotArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
     match command {
-        Command::Geodesic(args) => cmd_geodesic::run(args),
-        Command::Merge(args) => cmd_merge::run(args),
-        Command::Plot(args) => cmd_plot::run(args),
         Command::Render(args) => cmd_render::run(args),
-        Command::View(args) => cmd_view::run(args),
         Command::Shade(args) => cmd_shade::run(args),
         Command::Sequence(args) => cmd_sequence::run(args),
+        Command::View(args) => cmd_view::run(args),
+        Command::Merge(args) => cmd_merge::run(args),
+        Command::Geodesic(args) => cmd_geodesic::run(args),
+        Command::Connect(args) => cmd_connect::run(args),
+        Command::Plot(args) => cmd_plot::run(args),
     }
 }
 
