@@ -35,7 +35,9 @@ pub struct OriginGeodesic {
     pub pz: f64,
     /// κ = −g(k, k): 0 for light, 1 for a particle parametrized by proper time.
     pub kappa: f64,
-    chi: f64,
+    /// (cos χ, sin χ) of the initial direction χ, so that e^{iφ} needs no sincos per
+    /// evaluation.
+    cis_chi: (f64, f64),
     omega: f64,
     r_max: f64,
     q: f64,
@@ -58,7 +60,10 @@ impl OriginGeodesic {
             energy: e,
             pz: k.z,
             kappa,
-            chi: k.y.atan2(k.x),
+            cis_chi: {
+                let (s, c) = k.y.atan2(k.x).sin_cos();
+                (c, s)
+            },
             omega,
             r_max: kperp2.sqrt() / omega,
             q: e.abs() / (SQRT_2 * a * omega),
@@ -76,14 +81,19 @@ impl OriginGeodesic {
         PI / self.omega
     }
 
-    /// Φ(θ) = arctan(q tan θ), continued through θ = π/2 + nπ, and Φ'(θ).
-    fn big_phi(&self, th: f64) -> (f64, f64) {
-        let (s, c) = th.sin_cos();
+    /// Φ(θ) = arctan(q tan θ), continued through θ = π/2 + nπ, Φ'(θ) and (cos Φ, sin Φ),
+    /// given (sin θ, cos θ) (computed once by the caller: libm's sincos and atan2 are a
+    /// large share of an evaluation). With A = cos²θ + q sin²θ > 0 and B = (q − 1) sin θ
+    /// cos θ, Φ = θ + atan2(B, A), so e^{iΦ} = e^{iθ} (A + iB)/|A + iB| without a sincos.
+    fn big_phi(&self, th: f64, s: f64, c: f64) -> (f64, f64, (f64, f64)) {
         let q = self.q;
         let den = c * c + q * s * s;
-        let phi = th + ((q - 1.0) * s * c).atan2(den);
+        let b = (q - 1.0) * s * c;
+        let phi = th + b.atan2(den);
         let dphi = q / (c * c + q * q * s * s);
-        (phi, dphi)
+        let n = (den * den + b * b).sqrt();
+        let cis = ((c * den - s * b) / n, (s * den + c * b) / n);
+        (phi, dphi, cis)
     }
 
     /// Event and tangent at parameter `lambda`.
@@ -91,10 +101,12 @@ impl OriginGeodesic {
         let (a, e, w) = (self.a, self.energy, self.omega);
         let sg = e.signum();
         let th = w * lambda;
-        let (big, dbig) = self.big_phi(th);
         let (s, c) = th.sin_cos();
-        let phi = self.chi + sg * big;
-        let (sp, cp) = phi.sin_cos();
+        let (big, dbig, (cb, sb)) = self.big_phi(th, s, c);
+        // e^{iφ} = e^{iχ} e^{i sgn(E) Φ}, φ = χ + sgn(E) Φ.
+        let (cc, sc) = self.cis_chi;
+        let sb = sg * sb;
+        let (cp, sp) = (cc * cb - sc * sb, sc * cb + cc * sb);
         let r = self.r_max * s;
         let event = Event::new(
             sg * 2.0 * SQRT_2 * a * big - e * lambda,
@@ -137,6 +149,6 @@ impl ExactGeodesic {
     /// Event and tangent at parameter `lambda` (λ = 0 at the starting event).
     pub fn at(&self, lambda: f64) -> (Event, FourVector) {
         let (e, k) = self.origin.at(lambda);
-        (self.back.apply(e), self.back.push(e, k))
+        self.back.apply_push(e, k)
     }
 }

@@ -198,6 +198,39 @@ impl Isometry {
         }
     }
 
+    /// Whether the map only shifts t and z (w0 = 0, no rotation): then it is
+    /// (t, x, y, z) ↦ (t − t0, x, y, z − z0) and its differential is the identity, with no
+    /// disc round trip (the formulas below reduce to exactly this, up to rounding).
+    fn is_translation(&self) -> bool {
+        self.w0.re == 0.0 && self.w0.im == 0.0 && self.rotation == 0.0
+    }
+
+    /// The image of an event and the image there of the tangent vector `v` at it: the same
+    /// as (`apply`, `push`) with the disc coordinate, denominator and rotation computed once
+    /// (the exact tracer's inner loop).
+    pub fn apply_push(&self, at: Event, v: FourVector) -> (Event, FourVector) {
+        if self.is_translation() {
+            return (Event::new(at.t - self.t0, at.x, at.y, at.z - self.z0), v);
+        }
+        let a = self.a;
+        let w = disc(a, at.x, at.y);
+        let dw = disc_differential(a, at.x, at.y, v.x, v.y);
+        let den = Complex::new(1.0, 0.0) - self.w0.conj() * w;
+        let rot = Complex::cis(self.rotation);
+        let w1 = rot * ((w - self.w0) / den);
+        let (x, y) = from_disc(a, w1);
+        let event = Event::new(
+            at.t - self.t0 - 2.0 * SQRT_2 * a * den.arg(),
+            x,
+            y,
+            at.z - self.z0,
+        );
+        let dw1 = rot * (dw.scale(1.0 - self.w0.norm_sqr()) / (den * den));
+        let (dx, dy) = from_disc_differential(a, w1, dw1);
+        let dt = v.t + 2.0 * SQRT_2 * a * (self.w0.conj() * dw / den).im;
+        (event, FourVector::new(dt, dx, dy, v.z))
+    }
+
     /// The image of an event.
     pub fn apply(&self, e: Event) -> Event {
         let a = self.a;

@@ -195,6 +195,31 @@ fn the_map_to_the_origin_sends_its_event_to_the_origin_and_the_inverse_undoes_it
     eprintln!("isometry round trips: worst relative error {worst:e}");
 }
 
+/// `apply_push` (the exact tracer's combined map, with a shortcut for pure t/z shifts) is
+/// `apply` and `push` together, for general isometries and for translations.
+#[test]
+fn apply_push_is_apply_and_push() {
+    let mut rng = Rng::new(207);
+    for a in [1.0, 0.7] {
+        let mut maps = random_isometries(&mut rng, a, 40);
+        maps.push(Isometry::to_origin(a, Event::new(1.5, 0.0, 0.0, -0.4)));
+        maps.push(Isometry::to_origin(a, Event::new(1.5, 0.0, 0.0, -0.4)).inverse());
+        maps.push(Isometry::identity(a));
+        for t in maps {
+            let x = rng.event(6.0 * a);
+            let v = random_vector(&mut rng);
+            let (e, k) = t.apply_push(x, v);
+            let (e1, k1) = (t.apply(x), t.push(x, v));
+            let de = max_abs((e - e1).to_array()) / (1.0 + max_abs(e1.to_array()));
+            let dk = max_abs((k - k1).to_array()) / (1.0 + max_abs(k1.to_array()));
+            assert!(
+                de < 1e-13 && dk < 1e-13,
+                "{t:?}: {e:?} vs {e1:?}, {k:?} vs {k1:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn the_differential_matches_finite_differences_and_keeps_static_observers_static() {
     let mut rng = Rng::new(202);
