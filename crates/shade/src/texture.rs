@@ -19,6 +19,7 @@
 //! Out-of-range u wraps and v clamps for every texture; NaN counts as 0.
 
 use std::path::Path;
+use std::sync::{Arc, OnceLock};
 
 use scene::{BuiltinImage, ImageSource, TextureSpec};
 
@@ -56,8 +57,10 @@ pub enum Texture {
 pub struct ImageTexture {
     width: usize,
     height: usize,
-    /// Row-major linear RGB.
-    pixels: Vec<[f32; 3]>,
+    /// Row-major 8-bit sRGB, decoded to linear through [`linear_lut`] when sampled: a quarter
+    /// of the cache footprint of linear f32 texels, the same values. Shared: clones (one per
+    /// object and per prepared shading) do not copy the pixels.
+    pixels: Arc<[[u8; 3]]>,
 }
 
 impl Texture {
@@ -118,8 +121,18 @@ impl ImageTexture {
         Ok(ImageTexture::from_rgb8(&rgb))
     }
 
-    /// The built-in earth map, 720×360.
+    /// The built-in earth map, 720×360, decoded on first use and shared afterwards (the
+    /// viewer prepares settings on every slider step; decoding takes ~10 ms).
     pub fn earth() -> Result<ImageTexture, ShadeError> {
+        static EARTH: OnceLock<ImageTexture> = OnceLock::new();
+        if let Some(t) = EARTH.get() {
+            return Ok(t.clone());
+        }
+        let t = ImageTexture::decode_earth()?;
+        Ok(EARTH.get_or_init(|| t).clone())
+    }
+
+    fn decode_earth() -> Result<ImageTexture, ShadeError> {
         let decoded = image::load_from_memory_with_format(EARTH_PNG, image::ImageFormat::Png)
             .map_err(|source| ShadeError::Builtin {
                 name: "earth",
@@ -130,11 +143,7 @@ impl ImageTexture {
 
     /// Decodes 8-bit sRGB pixels to linear.
     pub fn from_rgb8(rgb: &image::RgbImage) -> ImageTexture {
-        let lut: Vec<f32> = (0..=255u8).map(srgb8_to_linear).collect();
-        let pixels = rgb
-            .pixels()
-            .map(|p| [lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize]])
-            .collect();
+        let pixels = rgb.pixels().map(|p| p.0).collect();
         ImageTexture {
             width: rgb.width() as usize,
             height: rgb.height() as usize,
@@ -152,7 +161,8 @@ impl ImageTexture {
 
     /// Linear RGB of pixel (col, row), row 0 at the top.
     pub fn pixel(&self, col: usize, row: usize) -> [f32; 3] {
-        self.pixels[row * self.width + col]
+        let lut = linear_lut();
+        self.pixels[row * self.width + col].map(|c| lut[c as usize])
     }
 
     /// Bilinear sample at (u, v) (u already in [0, 1), v in [0, 1]); wraps in u, clamps in v.
@@ -163,7 +173,7 @@ impl ImageTexture {
         // Continuous pixel coordinates with pixel centres at integers.
         let x = u * self.width as f64 - 0.5;
         let y = (1.0 - v) * self.height as f64 - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor(x), floor(y));
         let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
         let w = self.width as i64;
         let h = self.height as i64;
@@ -180,10 +190,18 @@ impl ImageTexture {
         let row = |j: i64| j.clamp(0, h - 1) as usize;
         let (c0, c1) = (col(x0 as i64), col(x0 as i64 + 1));
         let (r0, r1) = (row(y0 as i64), row(y0 as i64 + 1));
-        let top = lerp3(self.pixel(c0, r0), self.pixel(c1, r0), fx);
-        let bottom = lerp3(self.pixel(c0, r1), self.pixel(c1, r1), fx);
+        let lut = linear_lut();
+        let texel = |c: usize, r: usize| self.pixels[r * self.width + c].map(|b| lut[b as usize]);
+        let top = lerp3(texel(c0, r0), texel(c1, r0), fx);
+        let bottom = lerp3(texel(c0, r1), texel(c1, r1), fx);
         lerp3(top, bottom, fy)
     }
+}
+
+/// 8-bit sRGB → linear, all 256 values.
+fn linear_lut() -> &'static [f32; 256] {
+    static LUT: OnceLock<[f32; 256]> = OnceLock::new();
+    LUT.get_or_init(|| std::array::from_fn(|k| srgb8_to_linear(k as u8)))
 }
 
 fn checker(rows: u32, cols: u32, u: f64, v: f64) -> [f32; 3] {
@@ -232,7 +250,7 @@ fn wrap01(u: f64) -> f64 {
         return 0.0;
     }
     // u − ⌊u⌋ rather than rem_euclid: no fmod call per sample.
-    let w = u - u.floor();
+    let w = u - floor(u);
     if w >= 1.0 {
         0.0
     } else {
@@ -246,5 +264,69 @@ fn clamp01(v: f64) -> f64 {
         0.0
     } else {
         v.clamp(0.0, 1.0)
+    }
+}
+
+/// ⌊x⌋, bit-identical to `f64::floor`, without the libm call that `floor` compiles to on the
+/// baseline x86-64 target (no SSE4.1 rounding instruction): truncation through i64 where that
+/// is exact (|x| < 2^52, where every float with a fraction lies), `f64::floor` elsewhere.
+#[inline]
+fn floor(x: f64) -> f64 {
+    if x.abs() < 4_503_599_627_370_496.0 {
+        let t = x as i64 as f64;
+        // −0.0 and negative fractions: floor(−0.0) = −0.0, floor(−0.5) = −1.
+        if t > x {
+            t - 1.0
+        } else if t == 0.0 {
+            // Keep the sign of zero as f64::floor does (x ∈ (−1, 1) truncates to +0).
+            if x.is_sign_negative() && x == 0.0 {
+                -0.0
+            } else {
+                0.0
+            }
+        } else {
+            t
+        }
+    } else {
+        x.floor()
+    }
+}
+
+#[cfg(test)]
+mod floor_tests {
+    #[test]
+    fn fast_floor_matches_f64_floor() {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            0.999_999_999,
+            -0.999_999_999,
+            719.5,
+            -1e-300,
+            1e-300,
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            1e20,
+            -1e20,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for k in 0..10_000 {
+            let x = (f64::from(k) - 5000.0) * 0.123_456_7;
+            xs.push(x);
+            if x != 0.0 {
+                // The floats on either side (away from and towards zero).
+                xs.push(f64::from_bits(x.to_bits() + 1));
+                xs.push(f64::from_bits(x.to_bits() - 1));
+            }
+        }
+        for x in xs {
+            assert_eq!(super::floor(x).to_bits(), x.floor().to_bits(), "{x}");
+        }
+        assert!(super::floor(f64::NAN).is_nan());
     }
 }
