@@ -93,7 +93,10 @@ fn three_parts_merged_in_any_order_equal_the_single_run_byte_for_byte() {
     let whole = DataFile::read(&single.join("split.exr")).unwrap();
     assert!(whole.records.iter().any(|r| r.is_hit()));
     assert_eq!(whole.lights.len(), 1);
-    assert!(whole.lights[0].iter().any(|&l| l > 0.0), "the light lit nothing");
+    assert!(
+        whole.lights[0].iter().any(|&l| l > 0.0),
+        "the light lit nothing"
+    );
     for path in &p {
         let err = DataFile::read(Path::new(path)).unwrap_err().to_string();
         assert!(
