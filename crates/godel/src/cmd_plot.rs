@@ -193,36 +193,7 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
             );
         }
     }
-    s.text(
-        (cx, top + side + 48.0),
-        17.0,
-        "middle",
-        r##"fill="#222""##,
-        "x / a",
-    );
-    s.raw(&format!(
-        r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
-        f(left - 52.0),
-        f(cy),
-        crate::svg::FONT_FAMILY
-    ));
-
-    // Data layer: units of a, y up, clipped to the frame.
-    s.raw(&format!(
-        r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
-        f(left),
-        f(top),
-        f(side),
-        f(side)
-    ));
-    s.group(r#"clip-path="url(#frame)""#);
-    s.group(&format!(
-        r#"id="data" transform="translate({},{}) scale({},{})""#,
-        f(cx),
-        f(cy),
-        f(scale),
-        f(-scale)
-    ));
+    open_data_layer(&mut s, left, top, side, scale);
     s.circle(
         (0.0, 0.0),
         2.0,
@@ -436,4 +407,41 @@ pub fn output_is_png(output: &std::path::Path) -> anyhow::Result<bool> {
             format!("must end in .svg or .png, got {}", output.display()),
         )),
     }
+}
+
+/// The axis titles x / a and y / a of a square frame at (`left`, `top`) with side `side`,
+/// then opens the data layer: clipped to the frame, in units of a with y up and the origin
+/// at the centre. The caller closes it with two [`Svg::end_group`].
+pub fn open_data_layer(s: &mut Svg, left: f64, top: f64, side: f64, scale: f64) {
+    let (cx, cy) = (left + side / 2.0, top + side / 2.0);
+    s.text(
+        (cx, top + side + 48.0),
+        17.0,
+        "middle",
+        r##"fill="#222""##,
+        "x / a",
+    );
+    s.raw(&format!(
+        r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
+        f(left - 52.0),
+        f(cy),
+        crate::svg::FONT_FAMILY
+    ));
+
+    // Data layer: units of a, y up, clipped to the frame.
+    s.raw(&format!(
+        r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
+        f(left),
+        f(top),
+        f(side),
+        f(side)
+    ));
+    s.group(r#"clip-path="url(#frame)""#);
+    s.group(&format!(
+        r#"id="data" transform="translate({},{}) scale({},{})""#,
+        f(cx),
+        f(cy),
+        f(scale),
+        f(-scale)
+    ));
 }

@@ -11,7 +11,7 @@
 //! ∂φ rotates the loop about the origin.
 
 use crate::args::{positive, usage};
-use crate::cmd_plot::{arrowhead, output_is_png, tick_label, trace_ray, PALETTE};
+use crate::cmd_plot::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
 use crate::output::write_atomic;
 use crate::svg::{f, to_png, Svg};
 use clap::ValueEnum;
@@ -144,35 +144,7 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
             &tick_label(v),
         );
     }
-    s.text(
-        (cx, top + side + 48.0),
-        17.0,
-        "middle",
-        r##"fill="#222""##,
-        "x / a",
-    );
-    s.raw(&format!(
-        r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
-        f(left - 52.0),
-        f(cy),
-        crate::svg::FONT_FAMILY
-    ));
-
-    s.raw(&format!(
-        r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
-        f(left),
-        f(top),
-        f(side),
-        f(side)
-    ));
-    s.group(r#"clip-path="url(#frame)""#);
-    s.group(&format!(
-        r#"id="data" transform="translate({},{}) scale({},{})""#,
-        f(cx),
-        f(cy),
-        f(scale),
-        f(-scale)
-    ));
+    open_data_layer(&mut s, left, top, side, scale);
 
     // The field's arrows: direction of its x–y part on a grid (length fixed; the field
     // grows like r/2a far out).
