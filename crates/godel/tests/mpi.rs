@@ -4,8 +4,10 @@
 //! job non-zero with its rank named.
 #![cfg(feature = "mpi")]
 
-use std::path::Path;
 use std::process::{Command, Output};
+
+mod common;
+use common::{stderr, write_scene};
 
 const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 
@@ -18,48 +20,9 @@ fn mpirun(args: &[&str]) -> Output {
         .expect("run mpirun (is OpenMPI installed? scripts/test.sh installs it)")
 }
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A small scene with a falling, textured ball lit by a point light (a `light_0`
-/// channel): images of varied cost, 6×3 tiles.
+/// The shared lit test scene, named "ranks".
 fn scene_text(max_past: f64) -> String {
-    format!(
-        r#"
-name = "ranks"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 40.0
-width = 90
-height = 37
-[trace]
-max_past = {max_past:?}
-[[object]]
-name = "ball"
-radius = 0.25
-texture = {{ kind = "checker", rows = 4, cols = 8 }}
-motion = {{ kind = "geodesic", time = -1.0, position = {{ x = -0.8, y = 0.2, z = 0.0 }}, speed = 0.6, direction = [0, 1, 0] }}
-[[light]]
-position = {{ x = 1.0, y = 1.0, z = 0.0 }}
-color = [1.0, 1.0, 1.0]
-power = 12.0
-"#
-    )
-}
-
-fn write_scene(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
+    common::lit_scene_text("ranks", max_past)
 }
 
 #[test]

@@ -1,0 +1,114 @@
+//! The synthetic 1920×1080 data file and the shader cases shared by the shading benchmark
+//! (`benches/shade.rs`) and the CPU-time example (`examples/shade_cpu.rs`).
+
+use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use render::record::{PixelRecord, RayStatus};
+use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
+
+const SCENE: &str = r#"name = "bench"
+[camera]
+kind = "pinhole"
+fov_deg = 90.0
+width = 1920
+height = 1080
+[[object]]
+name = "earth"
+radius = 0.2
+texture = { kind = "image", builtin = "earth" }
+temperature = 5800.0
+motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
+[[object]]
+name = "ball"
+radius = 0.2
+texture = { kind = "checker", rows = 8, cols = 16 }
+temperature = 4000.0
+motion = { kind = "rest", position = { r = 1.0, phi = 2.0, z = 0.0 } }
+"#;
+
+/// 1920×1080: two thirds of the pixels hit one of two objects with varied u, v, g, t_emit
+/// and cos_i; two light planes.
+pub fn data() -> DataFile {
+    let (w, h) = (1920usize, 1080usize);
+    let mut lights = vec![Vec::with_capacity(w * h); 2];
+    let records = (0..w * h)
+        .map(|i| {
+            let (c, r) = ((i % w) as f32, (i / w) as f32);
+            lights[0].push(c / w as f32);
+            lights[1].push(r / h as f32);
+            if i % 3 == 2 {
+                return PixelRecord::MISS;
+            }
+            PixelRecord {
+                object: (i % 2) as i32,
+                status: RayStatus::Hit,
+                u: (c / 97.0).fract(),
+                v: (r / 61.0).fract(),
+                g: 0.3 + 3.0 * c / w as f32,
+                t_emit: -30.0 * r / h as f32,
+                cos_i: (c / 50.0).sin(),
+                ..PixelRecord::MISS
+            }
+        })
+        .collect();
+    DataFile {
+        header: DataHeader {
+            format_version: FORMAT_VERSION,
+            scene_name: "bench".into(),
+            scene_text: SCENE.into(),
+            camera: "pinhole".into(),
+            observer_time: 0.0,
+            metric: "godel".into(),
+            godel_a: 1.0,
+            method: "numeric".into(),
+            object_names: vec!["earth".into(), "ball".into()],
+        },
+        width: w,
+        height: h,
+        records,
+        lights,
+    }
+}
+
+/// The benchmarked cases: (short name for the example, description, settings).
+pub fn cases(data: &DataFile) -> Vec<(&'static str, &'static str, ShadeSettings)> {
+    let mut base = ShadeSettings::defaults_for(data);
+    if let Some(earth) = base.objects.get_mut("earth") {
+        earth.texture = TextureChoice::Earth;
+    }
+    let with = |shaders: Vec<ShaderKind>, edit: fn(&mut ShadeSettings)| {
+        let mut s = base.clone();
+        s.shaders = shaders;
+        edit(&mut s);
+        s
+    };
+    use ShaderKind::{Frequency, Light, Texture, Time};
+    vec![
+        (
+            "texture",
+            "texture (earth image + checker)",
+            with(vec![Texture], |_| {}),
+        ),
+        (
+            "frequency",
+            "frequency normalized",
+            with(vec![Frequency], |_| {}),
+        ),
+        (
+            "physical",
+            "frequency physical",
+            with(vec![Frequency], |s| s.brightness = BrightnessMode::Physical),
+        ),
+        ("window", "time window", with(vec![Time], |_| {})),
+        (
+            "travel",
+            "time travel false colour",
+            with(vec![Time], |s| s.time.mode = TimeMode::Travel),
+        ),
+        ("light", "light (2 sources)", with(vec![Light], |_| {})),
+        (
+            "frequency-time",
+            "frequency × time window",
+            with(vec![Frequency, Time], |_| {}),
+        ),
+    ]
+}
