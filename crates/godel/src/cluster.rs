@@ -21,7 +21,7 @@ use mpi::topology::{Communicator, SimpleCommunicator};
 use mpi::traits::{Destination, Source};
 use render::driver::{NoProgress, RenderStats};
 use render::part::{fingerprint, fingerprint_of};
-use render::tiles::{count, insert, TileData, TileRenderer};
+use render::tiles::{insert, TileData, TileRenderer};
 use std::sync::mpsc;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -245,7 +245,7 @@ pub fn render(args: RenderArgs) -> anyhow::Result<()> {
     }
     let stats = RenderStats {
         wall: started.elapsed(),
-        ..count(&data.records)
+        ..RenderStats::count(&data.records)
     };
     write_outputs(&scene, &data, &args.output).unwrap_or_else(|e| abort(&world, &e));
     let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();

@@ -15,7 +15,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use render::datafile::DataFile;
 use render::driver::{render, Progress, RenderStats};
 use render::part::{fingerprint, write_part, Part};
-use render::tiles::{count, insert, TileRenderer};
+use render::tiles::{insert, TileRenderer};
 use scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -160,7 +160,7 @@ fn render_part(
     }
     let stats = RenderStats {
         wall: started.elapsed(),
-        ..count(
+        ..RenderStats::count(
             &traced
                 .iter()
                 .flat_map(|t| t.records.iter().copied())

@@ -38,24 +38,47 @@ pub struct RenderStats {
     pub hits: u64,
     pub escaped: u64,
     pub step_budget: u64,
+    /// Rays whose bounded intersection search or loop copies ran out (status `WorkLimit`).
+    pub work_limit: u64,
     pub failed: u64,
     pub wall: Duration,
 }
 
 impl RenderStats {
+    /// How the rays of these records ended (`wall` left zero).
+    pub fn count(records: &[PixelRecord]) -> RenderStats {
+        let mut stats = RenderStats {
+            pixels: records.len() as u64,
+            ..Default::default()
+        };
+        for r in records {
+            match r.status {
+                RayStatus::Hit => stats.hits += 1,
+                RayStatus::Escaped => stats.escaped += 1,
+                RayStatus::StepBudget => stats.step_budget += 1,
+                RayStatus::WorkLimit => stats.work_limit += 1,
+                RayStatus::Failed => stats.failed += 1,
+                RayStatus::NotTraced => continue,
+            }
+            stats.traced += 1;
+        }
+        stats
+    }
+
     pub fn rays_per_second(&self) -> f64 {
         self.traced as f64 / self.wall.as_secs_f64().max(1e-9)
     }
     /// One line for the end of a render.
     pub fn summary(&self) -> String {
         format!(
-            "{} pixels, {} traced, {} hit, {} escaped, {} failed (step budget {}, integration {}), {:.2} s, {:.0} rays/s",
+            "{} pixels, {} traced, {} hit, {} escaped, {} failed (step budget {}, work limit {}, integration {}), {:.2} s, {:.0} rays/s",
             self.pixels,
             self.traced,
             self.hits,
             self.escaped,
-            self.step_budget + self.failed,
+            self.step_budget + self.work_limit + self.failed,
             self.step_budget,
+            self.work_limit,
             self.failed,
             self.wall.as_secs_f64(),
             self.rays_per_second()
@@ -254,24 +277,7 @@ pub fn render(
             }
         }
     }
-    let mut stats = RenderStats {
-        pixels: records.len() as u64,
-        ..Default::default()
-    };
-    for r in &records {
-        match r.status {
-            RayStatus::Hit => stats.hits += 1,
-            RayStatus::Escaped => stats.escaped += 1,
-            RayStatus::StepBudget => stats.step_budget += 1,
-            RayStatus::Failed => stats.failed += 1,
-            RayStatus::NotTraced => {}
-        }
-    }
-    stats.traced = stats.pixels
-        - records
-            .iter()
-            .filter(|r| r.status == RayStatus::NotTraced)
-            .count() as u64;
+    let mut stats = RenderStats::count(&records);
     stats.wall = started.elapsed();
     let data = DataFile {
         header: header(scene),

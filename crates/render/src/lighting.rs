@@ -38,7 +38,7 @@
 //! through the object earlier (self-shadowing, e.g. of later windings).
 
 use crate::target::Target;
-use crate::tracer::{LazyStep, Scratch, Shift, Tracer, EXACT_SEGMENTS};
+use crate::tracer::{LazyStep, OutOfWork, Scratch, Shift, Tracer, EXACT_SEGMENTS};
 use spacetime::{
     shadow_rays, source_area_distance_sq, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
     ShadowRay, Spacetime,
@@ -81,25 +81,29 @@ pub struct HitPoint {
 
 impl Tracer {
     /// Direct light from each source at the last traced ray's hit (see the module
-    /// documentation), into `out[k]` for light k; zeros where the ray hit nothing.
+    /// documentation), into `out[k]` for light k; zeros where the ray hit nothing, NaN
+    /// where a connecting ray's occlusion search ran out of work (unknown light).
     pub fn illuminate(&self, scratch: &mut Scratch, out: &mut [f32]) {
         out.fill(0.0);
         let (Some(hit), Some(a)) = (scratch.hit, self.metric.godel_a()) else {
             return;
         };
         for (o, light) in out.iter_mut().zip(&self.lights) {
-            *o = self.irradiance(a, light, &hit, scratch) as f32;
+            *o = self
+                .irradiance(a, light, &hit, scratch)
+                .map_or(f32::NAN, |e| e as f32);
         }
     }
 
-    /// The irradiance E = Σ P g² cos θ/(4π D²) over the unoccluded connecting rays.
+    /// The irradiance E = Σ P g² cos θ/(4π D²) over the unoccluded connecting rays; `None`
+    /// when the occlusion search of one of them ran out of work.
     pub fn irradiance(
         &self,
         a: f64,
         light: &LightSource,
         hit: &HitPoint,
         scratch: &mut Scratch,
-    ) -> f64 {
+    ) -> Option<f64> {
         let x = hit.state.x;
         let view = self.metric.raise(x, hit.state.p);
         let target: &Target = &self.targets[hit.target];
@@ -119,12 +123,12 @@ impl Tracer {
             if !(d2 > 0.0 && d2.is_finite()) {
                 continue;
             }
-            if self.occluded(geo, &ray, scratch) {
+            if self.occluded(geo, &ray, scratch).ok()? {
                 continue;
             }
             sum += light.power * inc.energy * inc.energy * inc.cos / (4.0 * PI * d2);
         }
-        sum
+        Some(sum)
     }
 
     /// The light rays from `light` to `x` emitted at most `max_past` before it.
@@ -132,7 +136,7 @@ impl Tracer {
         let window = self.max_past();
         // Each winding takes at least T_ret = 2πa(√2 − 1) of the source's time; the
         // isometry to the source's axis shifts the target's time by at most 2√2 a·π.
-        let t_ret = 2.0 * PI * a * (SQRT_2 - 1.0);
+        let t_ret = spacetime::Godel::new(a).shortest_loop_time();
         let windings = ((window + 2.0 * SQRT_2 * PI * a) / t_ret).ceil().min(1e4) as u32 + 1;
         let mut rays = shadow_rays(a, light.position, x, windings);
         rays.retain(|r| r.emission.t >= x.t - window);
@@ -140,8 +144,14 @@ impl Tracer {
     }
 
     /// Whether any object blocks `ray` (future-directed from its emission) before it
-    /// reaches its end, cut short by [`END_CUT`].
-    fn occluded(&self, geo: ExactGeodesic, ray: &ShadowRay, scratch: &mut Scratch) -> bool {
+    /// reaches its end, cut short by [`END_CUT`]. A surface crossing blocks, so a light
+    /// inside a ball reaches only the ball's inner surface.
+    fn occluded(
+        &self,
+        geo: ExactGeodesic,
+        ray: &ShadowRay,
+        scratch: &mut Scratch,
+    ) -> Result<bool, OutOfWork> {
         let start = GeodesicState {
             x: ray.emission,
             p: self.metric.lower(ray.emission, ray.tangent),
@@ -156,12 +166,12 @@ impl Tracer {
         for i in 0..n {
             let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
             let d = LazyStep::exact(geo, sys, l0, y0, l1);
-            if self.scan(&d, Shift::default(), l0, l1, pa, pb).is_some() {
-                return true;
+            if self.scan(&d, Shift::default(), l0, l1, pa, pb)?.is_some() {
+                return Ok(true);
             }
             y0 = d.y1;
             std::mem::swap(pa, pb);
         }
-        false
+        Ok(false)
     }
 }

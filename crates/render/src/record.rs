@@ -22,16 +22,21 @@ pub enum RayStatus {
     Failed = 3,
     /// The pixel was not traced (fisheye pixels outside the image circle).
     NotTraced = 4,
+    /// A bounded search ran out of work before the ray was resolved: the intersection
+    /// search's probe budget, or the limit on loop copies (every loop of the tracer has a
+    /// limit fixed in advance, so a pixel is marked instead of hanging).
+    WorkLimit = 5,
 }
 
 impl RayStatus {
     /// All statuses, in code order.
-    pub const ALL: [RayStatus; 5] = [
+    pub const ALL: [RayStatus; 6] = [
         RayStatus::Hit,
         RayStatus::Escaped,
         RayStatus::StepBudget,
         RayStatus::Failed,
         RayStatus::NotTraced,
+        RayStatus::WorkLimit,
     ];
 
     /// The code stored in the data file.
@@ -47,6 +52,7 @@ impl RayStatus {
             2 => Some(RayStatus::StepBudget),
             3 => Some(RayStatus::Failed),
             4 => Some(RayStatus::NotTraced),
+            5 => Some(RayStatus::WorkLimit),
             _ => None,
         }
     }

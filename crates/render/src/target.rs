@@ -6,9 +6,12 @@
 //! - coordinate spheres |X − c| ≤ R and planes z = h in pseudo-Cartesian (x, y, z), static.
 //!
 //! Each target reports a signed distance f (negative inside) and a bound on |df/dλ| at a
-//! ray state. A hit inside a step is excluded when f(λa) + f(λb) > rate·(λb − λa) (the ray
-//! cannot reach the surface and come back out within the step); otherwise the step's dense
-//! output is bisected. So no hit is missed between integration steps, however thin.
+//! ray state. A hit is a crossing of the surface (a change of the side of f, on the surface
+//! counting as inside), so a ray that starts inside an object sees its inner surface. A
+//! crossing inside a step is excluded when both ends are on one side and
+//! |f(λa)| + |f(λb)| > rate·(λb − λa) (the ray cannot reach the surface and come back
+//! within the step); otherwise the step's dense output is bisected. So no hit is missed
+//! between integration steps, however thin.
 
 use crate::bounds::Aabb;
 use crate::worldline::{WorldPoint, Worldline, WorldlineError};
@@ -70,7 +73,8 @@ pub struct Surface {
     pub emitter_velocity: FourVector,
     /// Unit photon direction (of propagation, toward the observer) in the object's frame.
     pub dir: [f64; 3],
-    /// Cosine between the outward surface normal and `dir`.
+    /// Cosine between the surface normal on the side the photon leaves (outward, or
+    /// inward for an inner surface seen from inside) and `dir`; ≥ 0.
     pub cos_i: f64,
 }
 
@@ -180,20 +184,21 @@ impl Target {
         }
     }
 
-    /// Whether the sign pattern (fa, fb) shows the ray entering the object.
-    pub fn entered(&self, fa: f64, fb: f64) -> bool {
-        match self {
-            Target::Plane { .. } => (fa > 0.0) != (fb > 0.0),
-            _ => fa > 0.0 && fb <= 0.0,
-        }
+    /// Whether the ray crosses the surface between two probes with values fa, fb: a change
+    /// of side, with f ≤ 0 counting as inside (on the surface is inside). Any crossing is a
+    /// hit: for a ray that starts outside the first crossing is its entry; for a ray that
+    /// starts inside (or on the surface) it is the exit, so it sees the inner surface
+    /// (a large coordinate sphere around the observer becomes the scene's surroundings).
+    /// For planes, z ≤ height counts as the "inside" side.
+    pub fn crossed(fa: f64, fb: f64) -> bool {
+        (fa > 0.0) != (fb > 0.0)
     }
 
-    /// Whether a hit inside a step with end values fa, fb is impossible.
-    pub fn excluded(&self, fa: f64, fb: f64, rate: f64, h: f64) -> bool {
-        match self {
-            Target::Plane { .. } => (fa > 0.0) == (fb > 0.0) && fa.abs() + fb.abs() > rate * h,
-            _ => fa + fb > rate * h,
-        }
+    /// Whether a crossing inside a span of length `h` with end values fa, fb is impossible:
+    /// both ends on one side, and the ray cannot reach the surface and come back within the
+    /// span, since |df/dλ| ≤ rate (`rate == 0`: f is constant, e.g. a ray lying in a plane).
+    pub fn excluded(fa: f64, fb: f64, rate: f64, h: f64) -> bool {
+        !Self::crossed(fa, fb) && (fa.abs() + fb.abs() > rate * h || rate == 0.0)
     }
 
     /// Whether a probe may vouch for a span of several steps: its distance is a lower bound
@@ -241,7 +246,8 @@ impl Target {
                     v,
                     emitter_velocity: u_emit,
                     dir,
-                    cos_i: dot3(n, dir),
+                    // The normal on the side the photon leaves (inward for an inner surface).
+                    cos_i: dot3(n, dir).abs(),
                 })
             }
             Target::CoordinateSphere { center, .. } => {
@@ -253,7 +259,7 @@ impl Target {
                     v,
                     emitter_velocity: FourVector::new(1.0, 0.0, 0.0, 0.0),
                     dir,
-                    cos_i: dot3(n, normalize3([-k.x, -k.y, -k.z])),
+                    cos_i: dot3(n, normalize3([-k.x, -k.y, -k.z])).abs(),
                 })
             }
             Target::Plane { extent, .. } => {
@@ -278,9 +284,10 @@ impl Target {
 /// How light arriving at a surface point meets the surface (for direct illumination).
 #[derive(Clone, Copy, Debug)]
 pub struct Incidence {
-    /// Cosine between the outward normal (for planes: the normal on the viewer's side) and
-    /// the direction the light comes from, in the object's rest frame; negative when the
-    /// light arrives from behind the surface.
+    /// Cosine between the normal on the viewer's side (outward, or inward where the viewer
+    /// sees an inner surface from inside; for planes the side the viewer is on) and the
+    /// direction the light comes from, in the object's rest frame; negative when the light
+    /// arrives from behind the surface the viewer sees.
     pub cos: f64,
     /// The light's energy −k·u in the object's rest frame (for k normalized to energy 1 at
     /// a static source, the source→object frequency ratio).
@@ -308,17 +315,22 @@ impl Target {
                 };
                 let lp = worldline.localize(metric, x, seed, f64::INFINITY)?;
                 let (_, kl) = rest_frame_photon(metric, worldline, &lp.at, x, k_light);
+                let (_, kv) = rest_frame_photon(metric, worldline, &lp.at, x, view);
+                let n = normalize3(lp.xi);
+                // The viewer's photon leaves along −view: outside when it moves outward.
+                let side = viewer_side(n, [-kv[1], -kv[2], -kv[3]]);
                 let d = normalize3([kl[1], kl[2], kl[3]]);
                 Some(Incidence {
-                    cos: -dot3(normalize3(lp.xi), d),
+                    cos: -side * dot3(n, d),
                     energy: kl[0],
                 })
             }
             Target::CoordinateSphere { center, .. } => {
                 // Coordinate normal and direction, as for `cos_i` of these orientation aids.
                 let n = normalize3([x.x - center[0], x.y - center[1], x.z - center[2]]);
+                let side = viewer_side(n, [-view.x, -view.y, -view.z]);
                 Some(Incidence {
-                    cos: -dot3(n, normalize3([k_light.x, k_light.y, k_light.z])),
+                    cos: -side * dot3(n, normalize3([k_light.x, k_light.y, k_light.z])),
                     energy: -metric.lower(x, k_light).t,
                 })
             }
@@ -382,6 +394,16 @@ fn rest_frame_photon(
         }
     };
     (u_emit, kl)
+}
+
+/// +1 when the viewer's photon, leaving the surface along `photon`, is on the side of the
+/// outward normal `n` (an outer surface), −1 for an inner surface seen from inside.
+fn viewer_side(n: [f64; 3], photon: [f64; 3]) -> f64 {
+    if dot3(n, photon) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
 }
 
 /// Unit direction of propagation of the photon (−k) in the static frame at `x`.

@@ -7,9 +7,7 @@
 //! travel with each tile, so parts, merges and MPI runs carry them generically.
 
 use crate::datafile::DataFile;
-use crate::driver::{
-    build_tracer, header, tiles, trace_tile_lit, Progress, RenderError, RenderStats,
-};
+use crate::driver::{build_tracer, header, tiles, trace_tile_lit, Progress, RenderError};
 use crate::record::{PixelRecord, RayStatus};
 use crate::tracer::Tracer;
 use rayon::prelude::*;
@@ -132,23 +130,4 @@ pub fn extract(data: &DataFile, tile: Tile, index: usize) -> TileData {
             .map(|plane| at.iter().map(|&i| plane[i]).collect())
             .collect(),
     }
-}
-
-/// How the rays of these records ended (`wall` left zero).
-pub fn count(records: &[PixelRecord]) -> RenderStats {
-    let mut stats = RenderStats {
-        pixels: records.len() as u64,
-        ..Default::default()
-    };
-    for r in records {
-        match r.status {
-            RayStatus::Hit => stats.hits += 1,
-            RayStatus::Escaped => stats.escaped += 1,
-            RayStatus::StepBudget => stats.step_budget += 1,
-            RayStatus::Failed => stats.failed += 1,
-            RayStatus::NotTraced => continue,
-        }
-        stats.traced += 1;
-    }
-    stats
 }

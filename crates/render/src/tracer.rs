@@ -78,10 +78,23 @@ pub(crate) struct Measured {
     at: f64,
 }
 
-/// Conservative advancement: since |df/dλ| ≤ rate, a probe showing clearance f proves that
-/// the ray meets nothing of that object before λ + f/rate, so no probe is needed until
-/// then. Capped, because the rate bound is made for spans of a few steps.
+/// Conservative advancement: since |df/dλ| ≤ rate, a probe showing clearance |f| proves
+/// that the ray crosses no surface of that object before λ + |f|/rate, so no probe is
+/// needed until then. Capped, because the rate bound is made for spans of a few steps.
 const MAX_SKIP: f64 = 1.0;
+
+/// Halvings of a span before the bisection accepts it as a graze without a crossing (a
+/// span ~1e-9 of a step): a resolution limit, not a failure.
+const SEARCH_DEPTH: u32 = 30;
+
+/// Probes one bisection may spend on one object over one span. A grazing ray needs about
+/// three per halving, so ~100 at [`SEARCH_DEPTH`]; beyond this bound the pixel is marked
+/// [`RayStatus::WorkLimit`] instead of searching on.
+const SEARCH_PROBES: u32 = 1024;
+
+/// A bounded search ran out of work: the ray is marked, never followed on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct OutOfWork;
 
 /// A stored step whose dense output is made on first use (most steps never need it), or a
 /// segment of a closed-form geodesic (the exact tracer), evaluated directly.
@@ -319,8 +332,10 @@ impl Tracer {
                 }
                 max_d2 = max_d2.max((s1[1] - x0).powi(2) + (s1[2] - y0).powi(2));
             }
-            if let Some(h) = self.scan(d, Shift::default(), d.lambda0, hi, probes_a, probes_b) {
-                return self.record(&start, d, Shift::default(), h, hit);
+            match self.scan(d, Shift::default(), d.lambda0, hi, probes_a, probes_b) {
+                Ok(Some(h)) => return self.record(&start, d, Shift::default(), h, hit),
+                Ok(None) => {}
+                Err(OutOfWork) => return PixelRecord::miss(RayStatus::WorkLimit),
             }
             if d.eval(hi)[0] < self.t_bound || !d.y1.iter().all(|v| v.is_finite()) {
                 return PixelRecord::miss(if d.y1[0] < self.t_bound {
@@ -367,8 +382,10 @@ impl Tracer {
             let y0 = steps.last().map_or(s0, |d| d.y1);
             steps.push(LazyStep::exact(geo, sys, l0, y0, l1));
             let d = steps.last().expect("just pushed");
-            if let Some(h) = self.scan(d, Shift::default(), l0, l1, probes_a, probes_b) {
-                return self.record(start, d, Shift::default(), h, hit);
+            match self.scan(d, Shift::default(), l0, l1, probes_a, probes_b) {
+                Ok(Some(h)) => return self.record(start, d, Shift::default(), h, hit),
+                Ok(None) => {}
+                Err(OutOfWork) => return PixelRecord::miss(RayStatus::WorkLimit),
             }
             if d.y1[0] < self.t_bound {
                 return PixelRecord::miss(RayStatus::Escaped);
@@ -400,13 +417,14 @@ impl Tracer {
             return PixelRecord::miss(RayStatus::Failed); // a backward ray must go to the past
         }
         let loop_box = loop_bounds(steps);
-        let mut result = None;
-        'copies: for k in 1.. {
+        // Scene validation keeps max_past within MAX_RAY_LOOPS loops of the shortest period;
+        // the bound here holds whatever the period of this ray turned out to be.
+        for k in 1..=scene::MAX_RAY_LOOPS {
             let shift = period.times(k as f64);
             // Skip a loop that comes near no object (boxes in coordinates, at its times).
             let (t_hi, t_lo) = (s0[0] + shift.dt, s0[0] + shift.dt + period.dt);
             if t_hi < self.t_bound {
-                break;
+                return PixelRecord::miss(RayStatus::Escaped);
             }
             let here = loop_box.shifted_z(shift.dz);
             if !self
@@ -424,17 +442,18 @@ impl Tracer {
                 } else {
                     d.lambda1()
                 };
-                if let Some(h) = self.scan(d, shift, d.lambda0, hi, probes_a, probes_b) {
-                    result = Some(self.record(start, d, shift, h, hit));
-                    break 'copies;
+                match self.scan(d, shift, d.lambda0, hi, probes_a, probes_b) {
+                    Ok(Some(h)) => return self.record(start, d, shift, h, hit),
+                    Ok(None) => {}
+                    Err(OutOfWork) => return PixelRecord::miss(RayStatus::WorkLimit),
                 }
                 if d.y1[0] + shift.dt < self.t_bound {
-                    break 'copies;
+                    return PixelRecord::miss(RayStatus::Escaped);
                 }
                 std::mem::swap(probes_a, probes_b);
             }
         }
-        result.unwrap_or(PixelRecord::miss(RayStatus::Escaped))
+        PixelRecord::miss(RayStatus::WorkLimit)
     }
 
     pub(crate) fn probe_all(&self, s: &GeodesicState, at: f64, out: &mut [Measured]) {
@@ -446,8 +465,9 @@ impl Tracer {
         }
     }
 
-    /// The earliest-λ entry into any object within [lo, hi] of step `d` (moved by `shift`).
-    /// Fills `end` with the probes at `hi`; `start` holds those at `lo`.
+    /// The earliest-λ surface crossing of any object within [lo, hi] of step `d` (moved by
+    /// `shift`): an entry, or the exit of a ray that started inside (see
+    /// [`Target::crossed`]). Fills `end` with the probes at `hi`; `start` holds those at `lo`.
     pub(crate) fn scan(
         &self,
         d: &LazyStep,
@@ -456,27 +476,23 @@ impl Tracer {
         hi: f64,
         start: &[Measured],
         end: &mut [Measured],
-    ) -> Option<Hit> {
+    ) -> Result<Option<Hit>, OutOfWork> {
         let (lo_abs, hi_abs) = (lo + shift.dl, hi + shift.dl);
         let mut s_hi = None;
         let mut best: Option<Hit> = None;
         for (i, t) in self.targets.iter().enumerate() {
             let m = start[i];
             let p = m.probe;
-            // Clearance: distance for spheres, |z − h| for planes (either side).
-            let clear = if matches!(t, Target::Plane { .. }) {
-                p.f.abs()
-            } else {
-                p.f
-            };
+            // Clearance from the surface, on either side of it.
+            let clear = p.f.abs();
             if t.vouches_for_spans()
                 && clear.is_finite()
                 && hi_abs < m.at + (clear / p.rate).min(MAX_SKIP)
             {
-                end[i] = m; // provably nothing of this object within [lo, hi]
+                end[i] = m; // provably no crossing of this object within [lo, hi]
                 continue;
             }
-            // A probe taken before lo still bounds f at lo from below (same sign).
+            // A probe taken before lo still bounds |f| at lo from below (same side).
             let pa = Probe {
                 f: p.f - p.f.signum() * p.rate * (lo_abs - m.at),
                 ..p
@@ -488,7 +504,7 @@ impl Tracer {
                 at: hi_abs,
             };
             let limit = best.as_ref().map_or(hi, |b| b.lambda);
-            if let Some((l, tau)) = self.search(t, d, shift, lo, limit.min(hi), pa, pb, 0) {
+            if let Some((l, tau)) = self.search(t, d, shift, lo, limit.min(hi), pa, pb)? {
                 if best.as_ref().map_or(true, |b| l < b.lambda) {
                     best = Some(Hit {
                         target: i,
@@ -498,10 +514,12 @@ impl Tracer {
                 }
             }
         }
-        best
+        Ok(best)
     }
 
-    /// Bisection search for the first entry into `t` on [a, b].
+    /// Bisection for the first surface crossing of `t` on [a, b]: depth first, the earlier
+    /// half first, spans excluded by the rate bound dropped. At most [`SEARCH_PROBES`]
+    /// probes (else [`OutOfWork`]) and [`SEARCH_DEPTH`] halvings.
     #[allow(clippy::too_many_arguments)]
     fn search(
         &self,
@@ -512,28 +530,41 @@ impl Tracer {
         b: f64,
         pa: Probe,
         pb: Probe,
-        depth: u32,
-    ) -> Option<(f64, f64)> {
-        if !(pa.f.is_finite() && pb.f.is_finite()) || b <= a {
-            return None;
+    ) -> Result<Option<(f64, f64)>, OutOfWork> {
+        // Each halving pops one span and pushes two, so at most SEARCH_DEPTH + 1 are open.
+        let mut open = [(a, b, pa, pb, 0u32); SEARCH_DEPTH as usize + 2];
+        let mut len = 1;
+        let mut probes = 0;
+        while len > 0 {
+            len -= 1;
+            let (a, b, pa, pb, depth) = open[len];
+            if !(pa.f.is_finite() && pb.f.is_finite()) || b <= a {
+                continue;
+            }
+            if Target::crossed(pa.f, pb.f) {
+                let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
+                let l = refine_root(f, a, b, pa.f, pb.f);
+                let s = shift.apply(d.state_at(l));
+                if t.accepts(&s) {
+                    return Ok(Some((l, t.probe(&self.metric, &s, pa.tau).tau)));
+                }
+                continue;
+            }
+            let rate = pa.rate.max(pb.rate);
+            if Target::excluded(pa.f, pb.f, rate, b - a) || depth >= SEARCH_DEPTH {
+                continue;
+            }
+            if probes == SEARCH_PROBES {
+                return Err(OutOfWork);
+            }
+            probes += 1;
+            let m = 0.5 * (a + b);
+            let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), pa.tau);
+            open[len] = (m, b, pm, pb, depth + 1);
+            open[len + 1] = (a, m, pa, pm, depth + 1);
+            len += 2;
         }
-        if t.entered(pa.f, pb.f) {
-            let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
-            let l = refine_root(f, a, b, pa.f, pb.f);
-            let s = shift.apply(d.state_at(l));
-            // Land just inside so that the surface point is on the object.
-            return t
-                .accepts(&s)
-                .then_some((l, t.probe(&self.metric, &s, pa.tau).tau));
-        }
-        let rate = pa.rate.max(pb.rate);
-        if t.excluded(pa.f, pb.f, rate, b - a) || depth >= 30 {
-            return None;
-        }
-        let m = 0.5 * (a + b);
-        let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), pa.tau);
-        self.search(t, d, shift, a, m, pa, pm, depth + 1)
-            .or_else(|| self.search(t, d, shift, m, b, pm, pb, depth + 1))
+        Ok(None)
     }
 
     fn record(

@@ -25,6 +25,13 @@ const MAX_SIDE: u32 = 20_000;
 const MAX_PIXELS: u64 = 50_000_000;
 /// forward and up count as orthogonal when |cos| ≤ this.
 const ORTHOGONALITY: f64 = 1e-6;
+/// Most loops a Gödel light ray may make within `max_past` (the tracer's bound on loop
+/// copies; a scene that would need more is refused up front).
+pub const MAX_RAY_LOOPS: u64 = 100_000;
+/// Largest proper radius of a local sphere in units of a: a local object is described in
+/// its rest frame to second order in its size (Riemann normal coordinates), which needs it
+/// small against the curvature scale a.
+pub const MAX_LOCAL_RADIUS_PER_A: f64 = 0.5;
 
 /// Everything of a [`Scene`] that comes from the file's contents.
 pub(crate) struct Parts {
@@ -193,6 +200,7 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
             power: c.non_negative(&format!("{path}.power"), l.power.unwrap_or(1.0))?,
         });
     }
+    godel_scales(&c, &metric, &trace, &objects)?;
     Ok(Parts {
         name: raw.name,
         metric,
@@ -361,4 +369,39 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
         tolerance: c.positive("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?,
         max_steps,
     })
+}
+
+/// Checks that need both the metric and the rest: in Gödel's universe, rays loop with a
+/// period of at least [`Godel::shortest_loop_time`], so `max_past` bounds the number of
+/// loops a ray makes ([`MAX_RAY_LOOPS`]); and a local sphere must be small against a.
+fn godel_scales(c: &Checker, metric: &Metric, trace: &TraceSettings, objects: &[Object]) -> Result<()> {
+    let Metric::Godel(godel) = metric else {
+        return Ok(());
+    };
+    let a = godel.a;
+    let loops = trace.max_past / godel.shortest_loop_time();
+    if loops > MAX_RAY_LOOPS as f64 {
+        return c.err(
+            "trace.max_past",
+            format!(
+                "{} is {loops:.3e} loops of a light ray (one loop takes at least 2πa(√2 − 1) = {:.4} with a = {a}); at most {MAX_RAY_LOOPS} are followed: reduce max_past or raise spacetime.a",
+                trace.max_past,
+                godel.shortest_loop_time()
+            ),
+        );
+    }
+    for (i, o) in objects.iter().enumerate() {
+        if let Shape::Sphere { radius } = o.shape {
+            if radius > MAX_LOCAL_RADIUS_PER_A * a {
+                return c.err(
+                    &format!("object[{i}].radius"),
+                    format!(
+                        "{radius} is too large for a local sphere with a = {a}: a local object is described in its rest frame to second order in its size, which needs radius ≤ {MAX_LOCAL_RADIUS_PER_A}·a = {}; use frame = \"coordinates\" for a large object",
+                        MAX_LOCAL_RADIUS_PER_A * a
+                    ),
+                );
+            }
+        }
+    }
+    Ok(())
 }

@@ -8,7 +8,7 @@
 //! | hit object k | texture k at (u, v) × (0.25 + 0.75·max(cos_i, 0)) |
 //! | nothing hit (escaped) | the `background` argument ([`BACKGROUND`] for the preview) |
 //! | integration failed | [`FAILED`], magenta |
-//! | step budget spent | [`STEP_BUDGET`], dark magenta |
+//! | step budget or work limit spent | [`STEP_BUDGET`], dark magenta |
 //! | not traced (outside a fisheye circle) | [`NOT_TRACED`], black |
 //! | object with no texture (data and textures disagree) | [`FAILED`] |
 //!
@@ -90,7 +90,7 @@ pub fn shade_pixels_at(
 pub fn status_colour(record: &PixelRecord, background: [f32; 3]) -> Option<[f32; 3]> {
     match record.status {
         RayStatus::Failed => Some(FAILED),
-        RayStatus::StepBudget => Some(STEP_BUDGET),
+        RayStatus::StepBudget | RayStatus::WorkLimit => Some(STEP_BUDGET),
         RayStatus::NotTraced => Some(NOT_TRACED),
         RayStatus::Hit | RayStatus::Escaped => (record.object < 0).then_some(background),
     }

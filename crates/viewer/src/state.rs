@@ -42,7 +42,7 @@ pub struct PixelInfo {
     pub object: i32,
     /// Its name, or `null`.
     pub object_name: Option<String>,
-    /// `hit`, `escaped`, `step budget`, `failed`, `not traced`.
+    /// `hit`, `escaped`, `step budget`, `failed`, `not traced`, `work limit`.
     pub status: &'static str,
     pub u: f32,
     pub v: f32,
@@ -166,5 +166,6 @@ pub fn status_name(status: RayStatus) -> &'static str {
         RayStatus::StepBudget => "step budget",
         RayStatus::Failed => "failed",
         RayStatus::NotTraced => "not traced",
+        RayStatus::WorkLimit => "work limit",
     }
 }
