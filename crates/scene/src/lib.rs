@@ -22,11 +22,11 @@ mod validate;
 
 pub use camera::Camera;
 pub use error::{line_column, Location, SceneError};
-pub use validate::{MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings,
 };
+pub use validate::{MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;
 use serde::Deserialize;

@@ -374,7 +374,12 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
 /// Checks that need both the metric and the rest: in Gödel's universe, rays loop with a
 /// period of at least [`Godel::shortest_loop_time`], so `max_past` bounds the number of
 /// loops a ray makes ([`MAX_RAY_LOOPS`]); and a local sphere must be small against a.
-fn godel_scales(c: &Checker, metric: &Metric, trace: &TraceSettings, objects: &[Object]) -> Result<()> {
+fn godel_scales(
+    c: &Checker,
+    metric: &Metric,
+    trace: &TraceSettings,
+    objects: &[Object],
+) -> Result<()> {
     let Metric::Godel(godel) = metric else {
         return Ok(());
     };
