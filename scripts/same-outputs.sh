@@ -28,7 +28,7 @@ for scene in scenes/*.toml; do
         # The same scene (every example sets `method`) with this method, its own name and,
         # with --scale, a smaller image.
         sed -e "s/^method *=.*/method = \"$method\"/" -e "0,/^name *=.*/s//name = \"$base-$method\"/" \
-            -e "s/^\(width\|height\) *= *\([0-9]*\)/echo \"\1 = \$(( \2 \/ $scale > 4 ? \2 \/ $scale : 4 ))\"/e" \
+            -e "s/^\(width\|height\) *= *\([0-9][0-9]*\) *$/echo \"\1 = \$(( \2 \/ $scale > 4 ? \2 \/ $scale : 4 ))\"/e" \
             "$scene" > "$s"
         "$old" render "$s" -o "$work/old" -q 2>/dev/null
         "$new" render "$s" -o "$work/new" -q 2>/dev/null

@@ -19,9 +19,10 @@ use anyhow::Context;
 use mpi::environment::Threading;
 use mpi::topology::{Communicator, SimpleCommunicator};
 use mpi::traits::{Destination, Source};
+use render::driver::Renderer;
 use render::driver::{NoProgress, RenderStats};
 use render::part::{fingerprint, fingerprint_of};
-use render::tiles::{insert, TileData, TileRenderer};
+use render::tiles::{insert, TileData};
 use std::sync::mpsc;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -205,8 +206,7 @@ pub fn render(args: RenderArgs) -> anyhow::Result<()> {
         Ok((pool, scene))
     };
     let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
-    let renderer =
-        TileRenderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
+    let renderer = Renderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
     let started = Instant::now();
     let tiles = renderer.tiles();
     // Small images still get a few jobs per rank.

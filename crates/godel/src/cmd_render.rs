@@ -13,9 +13,10 @@ use anyhow::Context;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use render::datafile::DataFile;
+use render::driver::Renderer;
 use render::driver::{render, Progress, RenderStats};
 use render::part::{fingerprint, write_part, Part};
-use render::tiles::{insert, TileRenderer};
+use render::tiles::insert;
 use scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -145,7 +146,7 @@ fn render_part(
     pool: &rayon::ThreadPool,
 ) -> anyhow::Result<()> {
     let started = Instant::now();
-    let renderer = TileRenderer::new(scene)?;
+    let renderer = Renderer::new(scene)?;
     let mine = part.tiles(renderer.tiles().len());
     let pixels: u64 = mine
         .iter()

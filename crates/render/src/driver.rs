@@ -1,18 +1,26 @@
-//! The parallel render driver: builds the tracer from a scene, traces all pixels in tiles
-//! with rayon, reports progress to a consumer, and assembles the data file.
+//! The parallel render driver: one pipeline for whole renders, parts, MPI batches and
+//! sequences. A [`Renderer`] (the scene's tracer and lights, built once) traces the tiles a
+//! caller names on rayon's pool and hands each finished [`TileData`] to a [`Sink`]: the
+//! data-file assembler (`crate::tiles::Assembler`), a part writer, an MPI sender. Progress
+//! goes to a [`Progress`] consumer; statistics are counted once, here. The tracer never
+//! learns about files, terminals or MPI.
 //!
 //! Determinism: every pixel is traced independently from the same shared, immutable
-//! tracer, so the records (and the files written from them) are identical whatever the
-//! number of threads or the order in which tiles finish.
+//! tracer (each tile starts with fresh per-thread state), so the records (and the files
+//! written from them) are identical whatever the number of threads or ranks, or the order
+//! in which tiles finish.
 
 use crate::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use crate::lighting::LightSource;
+use crate::intersect::Intersector;
+use crate::lighting::{LightSource, Lighting};
 use crate::record::{PixelRecord, RayStatus};
 use crate::target::Target;
-use crate::tracer::Tracer;
+use crate::tiles::{Assembler, TileData};
+use crate::tracer::{Scratch, TraceOptions, Tracer};
 use rayon::prelude::*;
 use scene::{Scene, TraceMethod};
 use spacetime::Spacetime;
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 /// Tile edge in pixels: small enough to balance rays of very different cost.
@@ -45,6 +53,17 @@ pub struct RenderStats {
 }
 
 impl RenderStats {
+    /// Adds the counts of `other` (wall time left as it is).
+    pub fn add(&mut self, other: &RenderStats) {
+        self.pixels += other.pixels;
+        self.traced += other.traced;
+        self.hits += other.hits;
+        self.escaped += other.escaped;
+        self.step_budget += other.step_budget;
+        self.work_limit += other.work_limit;
+        self.failed += other.failed;
+    }
+
     /// How the rays of these records ended (`wall` left zero).
     pub fn count(records: &[PixelRecord]) -> RenderStats {
         let mut stats = RenderStats {
@@ -99,45 +118,164 @@ pub enum RenderError {
     LightsNeedGodel,
 }
 
-/// Builds the shared tracer of a scene.
-pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
-    if scene.trace.method == TraceMethod::Exact && scene.metric.godel_a().is_none() {
-        return Err(RenderError::ExactNeedsGodel);
-    }
-    if !scene.lights.is_empty() && scene.metric.godel_a().is_none() {
-        return Err(RenderError::LightsNeedGodel);
-    }
-    let m = scene.metric;
-    let obs = scene.observer;
-    let frame = m.observer_frame(obs.event, obs.velocity);
-    // Worldlines cover the traced time range plus a margin for the objects' own size, and
-    // with lights the range of their shadow rays (emitted up to max_past before a hit).
-    let reach = if scene.lights.is_empty() { 1.0 } else { 2.0 };
-    let (t_min, t_max) = (
-        obs.event.t - reach * scene.trace.max_past - 1.0,
-        obs.event.t + 1.0,
-    );
-    let targets = scene
-        .objects
-        .iter()
-        .map(|o| {
-            Target::new(m, o, t_min, t_max).map_err(|source| RenderError::Worldline {
-                name: o.name.clone(),
-                source,
+/// A scene ready to trace: its tracer and lights, built once and shared by all threads.
+pub struct Renderer<'a> {
+    scene: &'a Scene,
+    tracer: Tracer,
+    lighting: Lighting,
+    tiles: Vec<Tile>,
+}
+
+/// Receives finished tiles, in any order (one at a time).
+pub trait Sink {
+    fn accept(&mut self, tile: TileData);
+}
+
+impl<'a> Renderer<'a> {
+    /// Builds the tracer (objects with their worldlines) and the lights of `scene`.
+    pub fn new(scene: &'a Scene) -> Result<Renderer<'a>, RenderError> {
+        if scene.trace.method == TraceMethod::Exact && scene.metric.godel_a().is_none() {
+            return Err(RenderError::ExactNeedsGodel);
+        }
+        if !scene.lights.is_empty() && scene.metric.godel_a().is_none() {
+            return Err(RenderError::LightsNeedGodel);
+        }
+        let m = scene.metric;
+        let obs = scene.observer;
+        let frame = m.observer_frame(obs.event, obs.velocity);
+        // Worldlines cover the traced time range plus a margin for the objects' own size,
+        // and with lights the range of their shadow rays (emitted up to max_past before a
+        // hit).
+        let reach = if scene.lights.is_empty() { 1.0 } else { 2.0 };
+        let (t_min, t_max) = (
+            obs.event.t - reach * scene.trace.max_past - 1.0,
+            obs.event.t + 1.0,
+        );
+        let targets = scene
+            .objects
+            .iter()
+            .map(|o| {
+                Target::new(m, o, t_min, t_max).map_err(|source| RenderError::Worldline {
+                    name: o.name.clone(),
+                    source,
+                })
             })
+            .collect::<Result<Vec<_>, _>>()?;
+        let options = TraceOptions {
+            max_past: scene.trace.max_past,
+            tolerance: scene.trace.tolerance,
+            max_steps: scene.trace.max_steps,
+            exact: scene.trace.method == TraceMethod::Exact,
+        };
+        let objects = Intersector { metric: m, targets };
+        let tracer = Tracer::new(objects, obs.event, frame, options);
+        let lighting = Lighting::new(
+            scene.lights.iter().map(LightSource::from_scene).collect(),
+            tracer.max_past(),
+        );
+        Ok(Renderer {
+            scene,
+            tracer,
+            lighting,
+            tiles: tiles(scene.camera.width(), scene.camera.height()),
         })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Tracer::new(
-        m,
-        obs.event,
-        frame,
-        targets,
-        scene.trace.max_past,
-        scene.trace.tolerance,
-        scene.trace.max_steps,
-        scene.trace.method == TraceMethod::Exact,
-    )
-    .with_lights(scene.lights.iter().map(LightSource::from_scene).collect()))
+    }
+
+    pub fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    /// All tiles of the image, row-major.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// The scene's data file with no pixel traced yet (status "not traced", no light
+    /// planes): what an [`Assembler`] starts from.
+    pub fn blank(&self) -> DataFile {
+        let (w, h) = (
+            self.scene.camera.width() as usize,
+            self.scene.camera.height() as usize,
+        );
+        DataFile {
+            header: header(self.scene),
+            width: w,
+            height: h,
+            records: vec![PixelRecord::miss(RayStatus::NotTraced); w * h],
+            lights: vec![],
+        }
+    }
+
+    /// Per-thread buffers.
+    pub fn scratch(&self) -> Scratch {
+        self.tracer.scratch()
+    }
+
+    /// Traces tile `index`: its records (row-major within the tile) and one plane of direct
+    /// light per light source.
+    pub fn trace_tile(&self, index: usize, scratch: &mut Scratch) -> TileData {
+        let tile = self.tiles[index];
+        let (scene, n) = (self.scene, self.lighting.lights.len());
+        let pixels = (tile.cols * tile.rows) as usize;
+        let mut records = Vec::with_capacity(pixels);
+        let mut lights = vec![vec![0.0f32; pixels]; n];
+        let mut lit = vec![0.0f32; n];
+        // Each tile starts afresh (see `Scratch::reset_first_step`), so that the records do
+        // not depend on which thread traced which tiles before.
+        scratch.reset_first_step();
+        for row in tile.row0..tile.row0 + tile.rows {
+            for col in tile.col0..tile.col0 + tile.cols {
+                let record = match scene.observer.pixel_direction(&scene.camera, col, row) {
+                    Some(dir) => {
+                        let traced = self.tracer.trace(dir, scratch);
+                        if n > 0 {
+                            let objects = &self.tracer.objects;
+                            let hit = traced.hit.as_ref();
+                            self.lighting
+                                .illuminate(objects, hit, &mut scratch.probes, &mut lit);
+                            for (plane, &v) in lights.iter_mut().zip(&lit) {
+                                plane[records.len()] = v;
+                            }
+                        }
+                        traced.record
+                    }
+                    None => PixelRecord::miss(RayStatus::NotTraced),
+                };
+                records.push(record);
+            }
+        }
+        TileData {
+            index,
+            records,
+            lights,
+        }
+    }
+
+    /// Traces the tiles with these indices on rayon's current pool, handing each to `sink`
+    /// as it is done; returns what the rays did (wall time included).
+    pub fn run(
+        &self,
+        indices: &[usize],
+        sink: &mut (dyn Sink + Send),
+        progress: &dyn Progress,
+    ) -> RenderStats {
+        let started = Instant::now();
+        let shared = Mutex::new((sink, RenderStats::default()));
+        indices.par_iter().for_each_init(
+            || self.scratch(),
+            |scratch, &index| {
+                let tile = self.trace_tile(index, scratch);
+                let stats = RenderStats::count(&tile.records);
+                progress.advance(tile.records.len() as u64);
+                let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
+                guard.1.add(&stats);
+                guard.0.accept(tile);
+            },
+        );
+        let (_, mut stats) = shared.into_inner().unwrap_or_else(|e| e.into_inner());
+        stats.wall = started.elapsed();
+        stats
+    }
 }
 
 /// The header a data file of this scene carries.
@@ -183,108 +321,16 @@ pub fn tiles(width: u32, height: u32) -> Vec<Tile> {
     out
 }
 
-/// Traces the pixels of `tile` (row-major within the tile).
-pub fn trace_tile(
-    scene: &Scene,
-    tracer: &Tracer,
-    tile: Tile,
-    scratch: &mut crate::tracer::Scratch,
-) -> Vec<PixelRecord> {
-    let mut out = Vec::with_capacity((tile.cols * tile.rows) as usize);
-    // Each tile starts afresh (see `Scratch::first_step`), so that the records do not depend
-    // on which thread traced which tiles before.
-    scratch.reset_first_step();
-    for row in tile.row0..tile.row0 + tile.rows {
-        for col in tile.col0..tile.col0 + tile.cols {
-            out.push(
-                match scene.observer.pixel_direction(&scene.camera, col, row) {
-                    Some(n) => tracer.trace(n, scratch),
-                    None => PixelRecord::miss(RayStatus::NotTraced),
-                },
-            );
-        }
-    }
-    out
-}
-
-/// Traces the pixels of `tile` with direct illumination: the records, and the light
-/// values pixel-major (`scene.lights.len()` per pixel, in the records' order).
-pub fn trace_tile_lit(
-    scene: &Scene,
-    tracer: &Tracer,
-    tile: Tile,
-    scratch: &mut crate::tracer::Scratch,
-) -> (Vec<PixelRecord>, Vec<f32>) {
-    let n = scene.lights.len();
-    if n == 0 {
-        return (trace_tile(scene, tracer, tile, scratch), Vec::new());
-    }
-    let pixels = (tile.cols * tile.rows) as usize;
-    let (mut records, mut lights) = (Vec::with_capacity(pixels), vec![0.0; pixels * n]);
-    scratch.reset_first_step();
-    let mut i = 0;
-    for row in tile.row0..tile.row0 + tile.rows {
-        for col in tile.col0..tile.col0 + tile.cols {
-            records.push(
-                match scene.observer.pixel_direction(&scene.camera, col, row) {
-                    Some(dir) => {
-                        let r = tracer.trace(dir, scratch);
-                        tracer.illuminate(scratch, &mut lights[i * n..(i + 1) * n]);
-                        r
-                    }
-                    None => PixelRecord::miss(RayStatus::NotTraced),
-                },
-            );
-            i += 1;
-        }
-    }
-    (records, lights)
-}
-
 /// Renders the whole scene on rayon's thread pool.
 pub fn render(
     scene: &Scene,
     progress: &dyn Progress,
 ) -> Result<(DataFile, RenderStats), RenderError> {
     let started = Instant::now();
-    let tracer = build_tracer(scene)?;
-    let (w, h) = (scene.camera.width(), scene.camera.height());
-    let tiles = tiles(w, h);
-    let done: Vec<(Vec<PixelRecord>, Vec<f32>)> = tiles
-        .par_iter()
-        .map_init(
-            || tracer.scratch(),
-            |scratch, &tile| {
-                let r = trace_tile_lit(scene, &tracer, tile, scratch);
-                progress.advance(r.0.len() as u64);
-                r
-            },
-        )
-        .collect();
-    let mut records = vec![PixelRecord::MISS; (w * h) as usize];
-    let n = scene.lights.len();
-    let mut lights = vec![vec![0.0f32; (w * h) as usize]; n];
-    for (tile, (recs, lit)) in tiles.iter().zip(done) {
-        for (i, r) in recs.into_iter().enumerate() {
-            let (c, rr) = (
-                tile.col0 + i as u32 % tile.cols,
-                tile.row0 + i as u32 / tile.cols,
-            );
-            let at = (rr * w + c) as usize;
-            records[at] = r;
-            for (k, plane) in lights.iter_mut().enumerate() {
-                plane[at] = lit[i * n + k];
-            }
-        }
-    }
-    let mut stats = RenderStats::count(&records);
+    let renderer = Renderer::new(scene)?;
+    let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
+    let all: Vec<usize> = (0..renderer.tiles().len()).collect();
+    let mut stats = renderer.run(&all, &mut assembler, progress);
     stats.wall = started.elapsed();
-    let data = DataFile {
-        header: header(scene),
-        width: w as usize,
-        height: h as usize,
-        records,
-        lights,
-    };
-    Ok((data, stats))
+    Ok((assembler.finish(), stats))
 }

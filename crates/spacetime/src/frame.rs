@@ -1,8 +1,7 @@
 //! Local frames: the static observer's frame by Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
 //! (DESIGN.md), and Lorentz boosts of a frame to an observer moving with a given velocity.
 
-use crate::metric::MetricTensor;
-use crate::vectors::{FourVector, Tetrad};
+use crate::vectors::{FourVector, MetricTensor, Tetrad};
 
 /// A velocity given in an observer's local frame: speed 0 ≤ v < 1 along a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -19,7 +19,8 @@
 //!   2H = (1 − 2c) p_t² − (√2/a) c p_t L + c(p_x² + p_y²) + k(1 + c)(x p_x + y p_y)² + p_z²,
 //! L = x p_y − y p_x = p_φ.
 
-use crate::metric::{MetricTensor, Spacetime};
+use crate::metric::Spacetime;
+use crate::vectors::MetricTensor;
 use crate::vectors::{Covector, Event, FourVector};
 use std::f64::consts::SQRT_2;
 
