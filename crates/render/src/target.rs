@@ -16,7 +16,8 @@
 use crate::bounds::Aabb;
 use crate::worldline::{WorldPoint, Worldline, WorldlineError};
 use scene::{Object, Shape};
-use spacetime::{Event, FourVector, GeodesicState, Metric, Spacetime};
+use spacetime::measure::{covector_components, vector_components};
+use spacetime::{normal, Event, FourVector, GeodesicState, Metric, Spacetime};
 use std::f64::consts::PI;
 
 /// Safety factor on the rate bound: covers the variation of the local photon energy and
@@ -360,37 +361,13 @@ fn rest_frame_photon(
     let gam = metric.christoffel(at.event);
     let g = metric.metric(at.event);
     let d = (x - at.event).to_array();
-    let ka = k.to_array();
-    // k in normal coordinates at the centre: k + Γ Δx k.
-    let mut kn = ka;
-    for mu in 0..4 {
-        for a in 0..4 {
-            for b in 0..4 {
-                kn[mu] += gam[mu][a][b] * d[a] * ka[b];
-            }
-        }
-    }
-    let mut kl = [0.0; 4];
-    for (i, e) in at.frame.e.iter().enumerate() {
-        let e = e.to_array();
-        let s: f64 = (0..4)
-            .map(|m| (0..4).map(|n| g[m][n] * e[m] * kn[n]).sum::<f64>())
-            .sum();
-        kl[i] = if i == 0 { -s } else { s };
-    }
+    // k carried from the hit point to the centre, then measured in the body frame.
+    let kn = normal::transport(&gam, (at.event - x).to_array(), k.to_array());
+    let kl = vector_components(&g, &at.frame, FourVector::from_array(kn));
     let u_emit = match wl {
         Worldline::Rest { .. } => FourVector::new(1.0, 0.0, 0.0, 0.0),
         Worldline::Free(_) => {
-            let u = at.frame.e[0].to_array();
-            let mut ux = u;
-            for mu in 0..4 {
-                for a in 0..4 {
-                    for b in 0..4 {
-                        ux[mu] -= gam[mu][a][b] * d[a] * u[b];
-                    }
-                }
-            }
-            FourVector::from_array(ux)
+            FourVector::from_array(normal::transport(&gam, d, at.frame.e[0].to_array()))
         }
     };
     (u_emit, kl)
@@ -408,9 +385,8 @@ fn viewer_side(n: [f64; 3], photon: [f64; 3]) -> f64 {
 
 /// Unit direction of propagation of the photon (−k) in the static frame at `x`.
 fn static_direction(metric: &Metric, x: Event, k: FourVector) -> [f64; 3] {
-    let f = metric.static_frame(x);
-    let p = metric.lower(x, -1.0 * k);
-    normalize3([f.e[1].contract(p), f.e[2].contract(p), f.e[3].contract(p)])
+    let c = covector_components(&metric.static_frame(x), metric.lower(x, -1.0 * k));
+    normalize3([c[1], c[2], c[3]])
 }
 
 /// Body longitude/latitude as texture coordinates: u = (φ + π)/2π from e1 toward e2,
