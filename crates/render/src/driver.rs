@@ -112,10 +112,6 @@ pub enum RenderError {
         name: String,
         source: crate::worldline::WorldlineError,
     },
-    #[error("trace.method = \"exact\" uses the Gödel closed forms: it needs metric = \"godel\"")]
-    ExactNeedsGodel,
-    #[error("[[light]] sources are traced with the Gödel closed forms (shadow rays): they need metric = \"godel\"")]
-    LightsNeedGodel,
 }
 
 /// A scene ready to trace: its tracer and lights, built once and shared by all threads.
@@ -134,12 +130,6 @@ pub trait Sink {
 impl<'a> Renderer<'a> {
     /// Builds the tracer (objects with their worldlines) and the lights of `scene`.
     pub fn new(scene: &'a Scene) -> Result<Renderer<'a>, RenderError> {
-        if scene.trace.method == TraceMethod::Exact && scene.metric.godel_a().is_none() {
-            return Err(RenderError::ExactNeedsGodel);
-        }
-        if !scene.lights.is_empty() && scene.metric.godel_a().is_none() {
-            return Err(RenderError::LightsNeedGodel);
-        }
         let m = scene.metric;
         let obs = scene.observer;
         let frame = m.observer_frame(obs.event, obs.velocity);

@@ -200,7 +200,7 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
             power: c.non_negative(&format!("{path}.power"), l.power.unwrap_or(1.0))?,
         });
     }
-    godel_scales(&c, &metric, &trace, &objects)?;
+    godel_rules(&c, &metric, &trace, &objects, &lights)?;
     Ok(Parts {
         name: raw.name,
         metric,
@@ -371,16 +371,30 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     })
 }
 
-/// Checks that need both the metric and the rest: in Gödel's universe, rays loop with a
+/// Checks that need both the metric and the rest. The exact tracer and the lights use
+/// Gödel's closed forms, so they need that metric. In Gödel's universe, rays loop with a
 /// period of at least [`Godel::shortest_loop_time`], so `max_past` bounds the number of
 /// loops a ray makes ([`MAX_RAY_LOOPS`]); and a local sphere must be small against a.
-fn godel_scales(
+fn godel_rules(
     c: &Checker,
     metric: &Metric,
     trace: &TraceSettings,
     objects: &[Object],
+    lights: &[Light],
 ) -> Result<()> {
     let Metric::Godel(godel) = metric else {
+        if trace.method == TraceMethod::Exact {
+            return c.err(
+                "trace.method",
+                "\"exact\" uses the Gödel closed forms: it needs spacetime.metric = \"godel\"",
+            );
+        }
+        if !lights.is_empty() {
+            return c.err(
+                "light[0]",
+                "lights are traced with the Gödel closed forms (shadow rays): they need spacetime.metric = \"godel\"",
+            );
+        }
         return Ok(());
     };
     let a = godel.a;
