@@ -15,6 +15,10 @@ use std::path::Path;
 /// The cap on text inputs: scene files, shade settings files, sequence scripts.
 pub const MAX_TEXT_BYTES: u64 = 16 << 20;
 
+/// The cap on data files (`.exr`): a render at the largest image a scene allows
+/// (5·10⁷ pixels) with 17 channels and a dozen light channels, uncompressed, stays below it.
+pub const MAX_DATA_BYTES: u64 = 8 << 30;
+
 /// The contents of the regular file `path`, refused when larger than `max_bytes`.
 pub fn read_bounded(path: &Path, max_bytes: u64) -> io::Result<Vec<u8>> {
     check(&std::fs::metadata(path)?, max_bytes)?;
