@@ -7,6 +7,8 @@
 //! position components left out are 0; a missing velocity direction is [1, 0, 0]; a missing
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
 //! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
+//! Bounds: tolerance in [1e-14, 1e-3], max_steps ≤ 10⁷, the name at most 100 bytes and
+//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels.
 //! Objects, motions and textures are checked in `objects.rs`.
 
 use crate::camera::Camera;
@@ -23,6 +25,15 @@ pub(crate) type Result<T> = std::result::Result<T, SceneError>;
 /// gigabytes.
 const MAX_SIDE: u32 = 20_000;
 const MAX_PIXELS: u64 = 50_000_000;
+/// The integrator tolerance's range: below 1e-14 the steps drown in rounding (f64 carries
+/// ~16 digits) and every ray fails; above 1e-3 the rays are not worth tracing.
+const MIN_TOLERANCE: f64 = 1e-14;
+const MAX_TOLERANCE: f64 = 1e-3;
+/// Most integrator steps per ray (the default is 100000).
+const MAX_STEPS: u64 = 10_000_000;
+/// Longest scene name in bytes: it becomes file names such as
+/// `.NAME.part-12-of-64.exr.godel-PID-HOST.XXXXXX.tmp`, which must stay within 255 bytes.
+const MAX_NAME_BYTES: usize = 100;
 /// forward and up count as orthogonal when |cos| ≤ this.
 const ORTHOGONALITY: f64 = 1e-6;
 /// Most loops a Gödel light ray may make within `max_past` (the tracer's bound on loop
@@ -168,13 +179,7 @@ impl Checker<'_> {
 
 pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Parts> {
     let c = Checker { loc };
-    c.name("name", &raw.name)?;
-    if raw.name.contains(['/', '\\']) {
-        return c.err(
-            "name",
-            "is used as an output file name and must not contain '/' or '\\'",
-        );
-    }
+    output_name(&c, &raw.name)?;
     let metric = spacetime(&c, raw.spacetime)?;
     let observer = observer(&c, raw.observer)?;
     let camera = camera(&c, raw.camera)?;
@@ -210,6 +215,45 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
         objects,
         lights,
     })
+}
+
+/// The scene name becomes the output files' names: nothing that would make hidden files
+/// (`.`, `..`, a leading dot), look like a flag (leading `-`), hide in blanks, leave the
+/// folder, or not fit a file name with its temporary suffix.
+fn output_name(c: &Checker, name: &str) -> Result<()> {
+    c.name("name", name)?;
+    let why = "is used as the output files' name and";
+    if name.contains(['/', '\\']) {
+        return c.err("name", format!("{why} must not contain '/' or '\\'"));
+    }
+    if name.starts_with('.') {
+        return c.err(
+            "name",
+            format!("{why} must not start with '.' (hidden files), got {name:?}"),
+        );
+    }
+    if name.starts_with('-') {
+        return c.err(
+            "name",
+            format!("{why} must not start with '-', got {name:?}"),
+        );
+    }
+    if name.trim() != name {
+        return c.err(
+            "name",
+            format!("{why} must not start or end with blanks, got {name:?}"),
+        );
+    }
+    if name.len() > MAX_NAME_BYTES {
+        return c.err(
+            "name",
+            format!(
+                "{why} must be at most {MAX_NAME_BYTES} bytes long, got {}",
+                name.len()
+            ),
+        );
+    }
+    Ok(())
 }
 
 fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
@@ -357,8 +401,18 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     let d = TraceSettings::default();
     let Some(t) = raw else { return Ok(d) };
     let max_steps = t.max_steps.unwrap_or(d.max_steps);
-    if max_steps == 0 {
-        return c.err("trace.max_steps", "must be at least 1");
+    if !(1..=MAX_STEPS).contains(&max_steps) {
+        return c.err(
+            "trace.max_steps",
+            format!("must be in 1..={MAX_STEPS}, got {max_steps}"),
+        );
+    }
+    let tolerance = c.finite("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?;
+    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&tolerance) {
+        return c.err(
+            "trace.tolerance",
+            format!("must be in [{MIN_TOLERANCE:e}, {MAX_TOLERANCE}], got {tolerance:e}"),
+        );
     }
     Ok(TraceSettings {
         method: match t.method.unwrap_or(MethodName::Numeric) {
@@ -366,7 +420,7 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
             MethodName::Exact => TraceMethod::Exact,
         },
         max_past: c.positive("trace.max_past", t.max_past.unwrap_or(d.max_past))?,
-        tolerance: c.positive("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?,
+        tolerance,
         max_steps,
     })
 }

@@ -45,6 +45,6 @@ pub use settings::{
 pub use shading::Shading;
 pub use texture::{ImageTexture, Texture};
 pub use texture_shader::{
-    pixel_colour, preview, shade_textures, shading_factor, textures_for_scene, write_png,
-    BACKGROUND,
+    encode_png, pixel_colour, preview, shade_textures, shading_factor, textures_for_scene,
+    write_png, BACKGROUND,
 };
