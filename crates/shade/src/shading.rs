@@ -30,7 +30,7 @@ use scene::Scene;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
-use crate::checks::{colour, finite, invalid, non_negative, nonzero, positive};
+use crate::checks::{colour, finite, first_unknown, invalid, non_negative, nonzero, positive};
 use crate::colour::rgb_to_srgb8_fast;
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
@@ -78,16 +78,14 @@ impl Shading {
         }
         let has = |k: ShaderKind| settings.shaders.contains(&k);
         let names = &data.header.object_names;
-        for name in settings.objects.keys() {
-            if !names.contains(name) {
-                return Err(invalid(
-                    format!("objects.{name}"),
-                    format!(
-                        "unknown object '{name}' (the data file's objects: {})",
-                        names.join(", ")
-                    ),
-                ));
-            }
+        if let Some(name) = first_unknown(names, settings.objects.keys()) {
+            return Err(invalid(
+                format!("objects.{name}"),
+                format!(
+                    "unknown object '{name}' (the data file's objects: {})",
+                    name_list(names)
+                ),
+            ));
         }
         let exposure = non_negative("exposure", settings.exposure)?;
         let brightness = match settings.brightness {
@@ -141,7 +139,10 @@ impl Shading {
 
         // The scene's own textures, only when a layer paints textures.
         let paints = has(ShaderKind::Texture) || has(ShaderKind::Time) || has(ShaderKind::Light);
-        let defaults = ShadeSettings::defaults_for(data);
+        // The data file's defaults only for objects the settings leave out (reading them
+        // parses the embedded scene: the page sends every object, and skips that).
+        let defaults =
+            (settings.objects.len() < names.len()).then(|| ShadeSettings::defaults_for(data));
         let mut scene_textures: Option<Vec<Texture>> = None;
         let mut earth: Option<Texture> = None;
         let mut objects = Vec::with_capacity(names.len());
@@ -149,7 +150,7 @@ impl Shading {
             let o = settings
                 .objects
                 .get(name)
-                .or_else(|| defaults.objects.get(name))
+                .or_else(|| defaults.as_ref().and_then(|d| d.objects.get(name)))
                 .cloned()
                 .unwrap_or_else(|| ObjectSettings::new(crate::settings::DEFAULT_TEMPERATURE));
             let field = format!("objects.{name}");
@@ -401,6 +402,16 @@ fn load_scene_textures(data: &DataFile) -> Result<Vec<Texture>, ShadeError> {
     let scene = Scene::from_str(&data.header.scene_text, "<scene embedded in the data file>")
         .map_err(ShadeError::EmbeddedScene)?;
     crate::texture_shader::textures_for_scene(&scene)
+}
+
+/// The data file's object names for a message: all of them, or the first few and the count.
+fn name_list(names: &[String]) -> String {
+    const SHOWN: usize = 10;
+    if names.len() <= SHOWN {
+        names.join(", ")
+    } else {
+        format!("{}, … ({} in all)", names[..SHOWN].join(", "), names.len())
+    }
 }
 
 fn mul(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
