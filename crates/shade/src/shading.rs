@@ -23,10 +23,11 @@
 //! latitude π(v_tex − ½)) and is on when ((t − phase)/period) mod 1 < duty, t being the
 //! coordinate time of emission (observer time + t_emit); off it shows a tenth of its colour.
 
+use std::collections::HashMap;
+
 use image::RgbImage;
 use rayon::prelude::*;
 use render::datafile::DataFile;
-use scene::Scene;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
@@ -41,6 +42,7 @@ use crate::settings::{
 };
 use crate::texture::{ImageTexture, Texture};
 use crate::texture_shader::{shading_factor, status_colour, BACKGROUND, FAILED};
+use crate::texture_source::TextureSource;
 
 /// Settings checked against a data file, textures loaded: ready to shade it (or other data
 /// files with the same objects and lights) any number of times.
@@ -64,10 +66,21 @@ pub struct Shading {
 }
 
 impl Shading {
-    /// Checks `settings` against `data` and loads the textures. Errors name the settings
-    /// field (e.g. `objects.ball.temperature`), the unknown object, the image file, or the
-    /// missing light channels.
+    /// Checks `settings` against `data` and loads the textures, image files from anywhere
+    /// ([`TextureSource::any`]: the command line). Errors name the settings field (e.g.
+    /// `objects.ball.temperature`), the unknown object, the image file, or the missing light
+    /// channels.
     pub fn new(data: &DataFile, settings: &ShadeSettings) -> Result<Shading, ShadeError> {
+        Shading::with_textures(data, settings, &TextureSource::any())
+    }
+
+    /// [`Shading::new`] with image textures, and the embedded scene's textures, from `textures`
+    /// (the viewer restricts them to a few folders).
+    pub fn with_textures(
+        data: &DataFile,
+        settings: &ShadeSettings,
+        textures: &TextureSource,
+    ) -> Result<Shading, ShadeError> {
         if settings.shaders.is_empty() {
             return Err(invalid("shaders", "name at least one shader"));
         }
@@ -145,6 +158,8 @@ impl Shading {
             (settings.objects.len() < names.len()).then(|| ShadeSettings::defaults_for(data));
         let mut scene_textures: Option<Vec<Texture>> = None;
         let mut earth: Option<Texture> = None;
+        // Each image file decoded once, however many objects show it.
+        let mut images = HashMap::new();
         let mut objects = Vec::with_capacity(names.len());
         for (k, name) in names.iter().enumerate() {
             let o = settings
@@ -178,7 +193,7 @@ impl Shading {
                 Ok(match choice {
                     TextureChoice::Scene => {
                         if scene_textures.is_none() {
-                            scene_textures = Some(load_scene_textures(data)?);
+                            scene_textures = Some(textures.scene_textures(data)?);
                         }
                         scene_textures
                             .as_ref()
@@ -199,7 +214,9 @@ impl Shading {
                     TextureChoice::Uniform { color } => {
                         Texture::Uniform(colour(&format!("{f}.color"), *color)?)
                     }
-                    TextureChoice::Image { path } => Texture::Image(ImageTexture::from_file(path)?),
+                    TextureChoice::Image { path } => {
+                        Texture::Image(textures.image_cached(path, &mut images)?)
+                    }
                     TextureChoice::Earth => {
                         if earth.is_none() {
                             earth = Some(Texture::Image(ImageTexture::earth()?));
@@ -394,14 +411,6 @@ impl Shading {
             }
         }
     }
-}
-
-/// The scene's own textures, from the scene text embedded in the data file (relative image
-/// paths resolve against the current directory).
-fn load_scene_textures(data: &DataFile) -> Result<Vec<Texture>, ShadeError> {
-    let scene = Scene::from_str(&data.header.scene_text, "<scene embedded in the data file>")
-        .map_err(ShadeError::EmbeddedScene)?;
-    crate::texture_shader::textures_for_scene(&scene)
 }
 
 /// The data file's object names for a message: all of them, or the first few and the count.
