@@ -44,7 +44,7 @@ pub use frequency_shader::{shade_frequency, Brightness};
 pub use script::{keyframe_toml, FrameSource, Interpolation, Keyframe, Script, Timeline};
 pub use settings::{
     BrightnessMode, Lamp, LightSettings, LightSource, ObjectSettings, ShadeSettings, ShaderKind,
-    TextureChoice, TimeMode, TimeSettings,
+    TextureChoice, TimeMode, TimeSettings, MAX_LAMPS, MAX_LIGHT_SOURCES,
 };
 pub use shading::Shading;
 pub use texture::{ImageTexture, Texture, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE};

@@ -17,6 +17,10 @@
 //! exactly the render's preview; black bodies and false colours are not Lambert-shaded.
 //! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
 //!
+//! Caps, checked with the other settings so that every front end gets them: at most
+//! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
+//! light count, if larger); image files as [`crate::texture`] caps them.
+//!
 //! Texture coordinates: u_tex = scale_u·u + offset_u − rotation_deg/360 (the body turned about
 //! its axis: u is the longitude), v_tex = scale_v·v + offset_v. A lamp covers the disc of
 //! angular radius `radius_deg` around its centre on the unit sphere (longitude 2π·u_tex,
@@ -38,7 +42,8 @@ use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, RE
 use crate::gt_table::gt_table;
 use crate::legend::{draw_legend, false_colour};
 use crate::settings::{
-    BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
+    BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
+    MAX_LIGHT_SOURCES,
 };
 use crate::texture::{ImageTexture, Texture};
 use crate::texture_shader::{shading_factor, status_colour, BACKGROUND, FAILED};
@@ -132,6 +137,17 @@ impl Shading {
                 ),
             ));
         }
+        let most = MAX_LIGHT_SOURCES.max(data.lights.len());
+        if sources.len() > most {
+            return Err(invalid(
+                "light.sources",
+                format!(
+                    "at most {most} sources (the data file has {} light channel(s)), got {}",
+                    data.lights.len(),
+                    sources.len()
+                ),
+            ));
+        }
         let mut lights = Vec::new();
         for k in 0..data.lights.len() {
             let w = match sources.get(k) {
@@ -179,6 +195,15 @@ impl Shading {
                 finite(&format!("{field}.offset_u"), o.offset_u)? - rotation / 360.0,
                 finite(&format!("{field}.offset_v"), o.offset_v)?,
             ];
+            if o.lamps.len() > MAX_LAMPS {
+                return Err(invalid(
+                    format!("{field}.lamps"),
+                    format!(
+                        "at most {MAX_LAMPS} lamps per object, got {}",
+                        o.lamps.len()
+                    ),
+                ));
+            }
             let lamps = o
                 .lamps
                 .iter()
