@@ -13,6 +13,21 @@ pub enum ShadeError {
         #[source]
         source: image::ImageError,
     },
+    /// An image texture path names something other than a regular file (a folder, a FIFO,
+    /// a device).
+    #[error("image texture {}: not a regular file", path.display())]
+    ImageNotFile { path: PathBuf },
+    /// An image texture file or image is larger than the caps.
+    #[error("image texture {}: {what}", path.display())]
+    ImageTooLarge { path: PathBuf, what: String },
+    /// An image texture path that the texture source does not allow: missing, outside its
+    /// folders (symbolic links resolved), or not a regular file. The message says no more, so
+    /// that it reveals nothing about files elsewhere.
+    #[error("image texture {}: no image file of that name in the folders textures may come from", path.display())]
+    ImageRefused { path: PathBuf },
+    /// A folder given as a place textures may come from cannot be used.
+    #[error("texture folder {}: {message}", path.display())]
+    TextureFolder { path: PathBuf, message: String },
     /// A built-in image failed to decode (a broken build, never user input).
     #[error("built-in image {name}: {source}")]
     Builtin {
