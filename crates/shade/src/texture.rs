@@ -269,7 +269,8 @@ fn linear_lut() -> &'static [f32; 256] {
 fn checker(rows: u32, cols: u32, u: f64, v: f64) -> [f32; 3] {
     let i = ((u * cols as f64) as u32).min(cols - 1);
     let j = ((v * rows as f64) as u32).min(rows - 1);
-    if (i + j).is_multiple_of(2) {
+    // The parity of i + j, without the sum (rows and cols go up to u32::MAX).
+    if (i ^ j) & 1 == 0 {
         let tint = hue(u as f32);
         let grey = [CHECKER_LIGHT; 3];
         lerp3(grey, tint.map(|c| c * CHECKER_LIGHT), CHECKER_TINT)
