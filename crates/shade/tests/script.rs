@@ -92,6 +92,45 @@ fn linear_and_smooth_interpolation_at_known_fractions() {
     assert_eq!(tl.settings_at(15).shaders, vec![ShaderKind::Frequency]);
 }
 
+/// Fuzzing found frame 0 of a script with `offset_u` going from −1e308 to 1e308 with
+/// offset_u = NaN: the interpolation computed x + s·(y − x), and y − x overflows. Every
+/// frame between two finite keyframe values is finite, between them, and exact at the
+/// keyframes.
+#[test]
+fn regression_fuzz_interpolation_between_extreme_values_stays_finite() {
+    let s = script(
+        r#"data = "d.exr"
+frames = 5
+interpolation = "linear"
+[[keyframe]]
+frame = 0
+[keyframe.settings]
+objects.ball.offset_u = -1e308
+objects.ball.offset_v = 1.7976931348623157e308
+[[keyframe]]
+frame = 4
+[keyframe.settings]
+objects.ball.offset_u = 1e308
+objects.ball.offset_v = 1.7976931348623157e308
+"#,
+    )
+    .unwrap();
+    let tl = s.timeline(&ShadeSettings::defaults_for(&data())).unwrap();
+    let at = |f: u32| {
+        let o = &tl.settings_at(f).objects["ball"];
+        (o.offset_u, o.offset_v)
+    };
+    assert_eq!(at(0), (-1e308, f64::MAX));
+    assert_eq!(at(4), (1e308, f64::MAX));
+    assert_eq!(at(2).0, 0.0);
+    for f in 0..5 {
+        let (u, v) = at(f);
+        assert!((-1e308..=1e308).contains(&u), "frame {f}: offset_u = {u}");
+        assert_eq!(v, f64::MAX, "frame {f}");
+    }
+    assert!(at(1).0 < at(2).0 && at(2).0 < at(3).0);
+}
+
 #[test]
 fn keyframes_out_of_order_are_refused_with_file_line_and_field() {
     let text =
