@@ -386,7 +386,7 @@ impl ExactCurve {
             hi = (2.0 * hi).min(max);
         }
         let f_hi = f(hi);
-        if !(f_hi >= 0.0) {
+        if f_hi.is_nan() || f_hi < 0.0 {
             return None; // not reached by λ = max (or not finite there)
         }
         if f_hi == 0.0 {

@@ -22,6 +22,16 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits, checked before any tracing (exit code 2, naming the flag or file:line:field): \
+--threads at most 8 per core; the scene a regular file of at most 16 MiB; its name at most \
+100 bytes, no leading '.' or '-'; image sides at most 20000 and 5·10⁷ pixels; \
+[trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
+writable.
+
+Writing: both files go to hidden temporaries `.NAME.godel-PID-HOST.XXXXXX.tmp` and are \
+renamed together at the end. Ctrl-C or SIGTERM removes the temporaries (exit 130 or 143); \
+temporaries that a killed run left are removed by the next run writing to that folder.")]
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,

@@ -27,6 +27,14 @@ use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};
 use crate::cmd_shade::settings_error;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits, checked before the first frame (exit code 2, naming file:line:field): the script a \
+regular file of at most 16 MiB; frames 1 to 100000; fps at most 1000; the output folder \
+creatable and writable.
+
+The output folder holds this run's frames only: numbered frames beyond this run's count and \
+an earlier sequence.mp4 are removed first (a note lists them); ffmpeg encodes exactly this \
+run's frames.")]
 pub struct SequenceArgs {
     /// The sequence script (TOML).
     pub script: PathBuf,

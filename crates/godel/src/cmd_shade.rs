@@ -15,6 +15,9 @@ use shade::{
 use crate::args::{parse_vector, usage};
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits: the data file a regular file of at most 8 GiB; the settings file a regular file of \
+at most 16 MiB. A bad value names the flag that set it (or --settings).")]
 pub struct ShadeArgs {
     /// The data file written by `godel render` (.exr).
     pub data: PathBuf,

@@ -135,3 +135,35 @@ fn an_unwritable_output_is_found_before_tracing() {
     assert_eq!(files_in(&taken), ["slow.exr"]);
     assert!(files_in(&taken.join("slow.exr")).is_empty());
 }
+
+#[test]
+fn help_states_the_limits() {
+    for (cmd, needles) in [
+        (
+            "render",
+            &[
+                "at most 8 per core",
+                "16 MiB",
+                "1e-14, 1e-3",
+                "exit 130 or 143",
+            ][..],
+        ),
+        (
+            "sequence",
+            &[
+                "frames 1 to 100000",
+                "fps at most 1000",
+                "are removed first",
+            ][..],
+        ),
+        ("shade", &["8 GiB", "16 MiB"][..]),
+        ("geodesic", &["--samples at most 1000000", "λ = 10⁶"][..]),
+    ] {
+        let o = godel(&[cmd, "--help"]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success());
+        for n in needles {
+            assert!(text.contains(n), "godel {cmd} --help lacks {n:?}: {text}");
+        }
+    }
+}

@@ -250,33 +250,35 @@ pub fn render(
     let tracer = build_tracer(scene)?;
     let (w, h) = (scene.camera.width(), scene.camera.height());
     let tiles = tiles(w, h);
-    let done: Vec<(Vec<PixelRecord>, Vec<f32>)> = tiles
-        .par_iter()
-        .map_init(
-            || tracer.scratch(),
-            |scratch, &tile| {
-                let r = trace_tile_lit(scene, &tracer, tile, scratch);
-                progress.advance(r.0.len() as u64);
-                r
-            },
-        )
-        .collect();
-    let mut records = vec![PixelRecord::MISS; (w * h) as usize];
     let n = scene.lights.len();
-    let mut lights = vec![vec![0.0f32; (w * h) as usize]; n];
-    for (tile, (recs, lit)) in tiles.iter().zip(done) {
-        for (i, r) in recs.into_iter().enumerate() {
-            let (c, rr) = (
-                tile.col0 + i as u32 % tile.cols,
-                tile.row0 + i as u32 / tile.cols,
-            );
-            let at = (rr * w + c) as usize;
-            records[at] = r;
-            for (k, plane) in lights.iter_mut().enumerate() {
-                plane[at] = lit[i * n + k];
+    // Each tile goes into the image as soon as it is traced, so that its buffers are
+    // reused by the next tile: collecting every tile first held a second copy of all
+    // records (kept by the allocator after it was freed), ~56 bytes a pixel.
+    let image = std::sync::Mutex::new((
+        vec![PixelRecord::MISS; (w * h) as usize],
+        vec![vec![0.0f32; (w * h) as usize]; n],
+    ));
+    tiles.par_iter().for_each_init(
+        || tracer.scratch(),
+        |scratch, &tile| {
+            let (recs, lit) = trace_tile_lit(scene, &tracer, tile, scratch);
+            progress.advance(recs.len() as u64);
+            let mut guard = image.lock().unwrap_or_else(|e| e.into_inner());
+            let (records, lights) = &mut *guard;
+            for (i, r) in recs.into_iter().enumerate() {
+                let (c, rr) = (
+                    tile.col0 + i as u32 % tile.cols,
+                    tile.row0 + i as u32 / tile.cols,
+                );
+                let at = (rr * w + c) as usize;
+                records[at] = r;
+                for (k, plane) in lights.iter_mut().enumerate() {
+                    plane[at] = lit[i * n + k];
+                }
             }
-        }
-    }
+        },
+    );
+    let (records, lights) = image.into_inner().unwrap_or_else(|e| e.into_inner());
     let mut stats = RenderStats::count(&records);
     stats.wall = started.elapsed();
     let data = DataFile {

@@ -47,7 +47,7 @@ pub fn read_text(path: &Path, max_bytes: u64) -> io::Result<String> {
 /// `16 MiB`, `8 GiB`, `1000 bytes`: a cap as people write it.
 pub fn size_text(bytes: u64) -> String {
     for (unit, name) in [(1u64 << 30, "GiB"), (1 << 20, "MiB"), (1 << 10, "KiB")] {
-        if bytes >= unit && bytes % unit == 0 {
+        if bytes >= unit && bytes.is_multiple_of(unit) {
             return format!("{} {name}", bytes / unit);
         }
     }
