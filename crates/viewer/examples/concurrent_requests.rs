@@ -1,7 +1,7 @@
 //! Many picture requests at once against the viewer's routes (in-process, no sockets): how
 //! many are answered or turned away (503), and the process's peak memory. Without a bound on
 //! concurrent shading every request held its own picture buffers at once.
-//! `cargo run --release -p viewer --example concurrent_requests -- 4000 2000 200 [WORKERS]`
+//! `cargo run -p viewer --example concurrent_requests -- 4000 2000 200 [WORKERS]`
 //! (width, height of the synthetic data file, number of simultaneous requests; WORKERS
 //! replaces the default bound, one per core, by that many workers and no waiting places:
 //! 200 shows the unbounded server).
