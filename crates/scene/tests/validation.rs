@@ -212,7 +212,7 @@ fn observer_pixel_directions_use_forward_right_up() {
 #[test]
 fn image_textures() {
     let t = |tex: &str| {
-        scene(&format!("[[object]]\nname = \"b\"\nradius = 1\ntexture = {tex}\nmotion = {{ kind = \"rest\", position = {{ r = 1 }} }}\n"))
+        scene(&format!("[[object]]\nname = \"b\"\nradius = 0.2\ntexture = {tex}\nmotion = {{ kind = \"rest\", position = {{ r = 1 }} }}\n"))
     };
     assert_eq!(
         t("{ kind = \"image\", builtin = \"earth\" }")
