@@ -45,31 +45,29 @@ impl fmt::Display for SceneError {
     /// One line, whatever the input: control characters that come from the file (a key or a
     /// value quoted in a message, an odd file name) are written escaped, e.g. `\n`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", OneLine(&self.file))?;
+        write!(f, "{}", one_line(&self.file))?;
         if let Some(l) = self.location {
             write!(f, ":{}:{}", l.line, l.column)?;
         }
         if !self.field.is_empty() {
-            write!(f, ": {}", OneLine(&self.field))?;
+            write!(f, ": {}", one_line(&self.field))?;
         }
-        write!(f, ": {}", OneLine(&self.message))
+        write!(f, ": {}", one_line(&self.message))
     }
 }
 
-/// Text with its control characters escaped.
-struct OneLine<'a>(&'a str);
-
-impl fmt::Display for OneLine<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for c in self.0.chars() {
-            if c.is_control() {
-                write!(f, "{}", c.escape_default())?;
-            } else {
-                fmt::Write::write_char(f, c)?;
-            }
+/// `text` with its control characters escaped (a line break becomes `\n`), for messages
+/// that quote what a user wrote and must stay one line.
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
         }
-        Ok(())
     }
+    out
 }
 
 impl std::error::Error for SceneError {}

@@ -337,8 +337,14 @@ impl Script {
         let mut current = merge(&start, &self.settings, "")
             .map_err(|(f, m)| error(format!("settings.{f}"), m))?;
         let check = |table: &toml::Table, field: &str| {
-            ShadeSettings::deserialize(table.clone())
-                .map_err(|e| error(field.to_string(), e.message().to_string()))
+            ShadeSettings::from_table(table.clone()).map_err(|(path, message)| {
+                let at = if path.is_empty() {
+                    field.to_string()
+                } else {
+                    format!("{field}.{path}")
+                };
+                error(at, message)
+            })
         };
         let base = check(&current, "settings")?;
         let mut keys = Vec::new();

@@ -427,7 +427,17 @@ impl ShadeSettings {
     pub fn overlay(&self, partial: &toml::Table) -> Result<ShadeSettings, (String, String)> {
         let base = toml::Table::try_from(self).expect("settings serialize to a TOML table");
         let merged = crate::tree::merge(&base, partial, "")?;
-        ShadeSettings::deserialize(merged).map_err(|e| (String::new(), e.message().to_string()))
+        ShadeSettings::from_table(merged)
+    }
+
+    /// Complete settings from a TOML table; on error, the path of the field at fault (e.g.
+    /// `objects.ball.texture` for a checker without `rows`) and what is wrong.
+    pub(crate) fn from_table(table: toml::Table) -> Result<ShadeSettings, (String, String)> {
+        serde_path_to_error::deserialize(table).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." { String::new() } else { path };
+            (path, e.inner().message().to_string())
+        })
     }
 }
 

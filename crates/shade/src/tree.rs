@@ -76,9 +76,13 @@ pub fn lerp(a: &Value, b: &Value, s: f64) -> Value {
     }
 }
 
-/// `x + s·(y − x)`; where y − x overflows (two finite values of opposite sign near the
-/// largest float), the same point as `(1 − s)·x + s·y`, kept between x and y.
+/// `x + s·(y − x)`, exactly x at s = 0 (a keyframe's own value, −0.0 included); where
+/// y − x overflows (finite values of opposite sign near the largest float), the same point
+/// as `(1 − s)·x + s·y`, kept between x and y.
 fn mix(x: f64, y: f64, s: f64) -> f64 {
+    if s == 0.0 {
+        return x;
+    }
     let v = x + s * (y - x);
     if v.is_finite() || !(x.is_finite() && y.is_finite()) {
         v
