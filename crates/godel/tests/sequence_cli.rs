@@ -214,11 +214,11 @@ fn bad_scripts_are_refused_before_any_frame() {
 fn frame_counts_and_rates_are_bounded() {
     refused(
         "data = \"syn.exr\"\nframes = 1000000000\n",
-        &["bad.toml:2", "frames", "1..=100000"],
+        &["bad.toml:2", "frames", "at most 100000"],
     );
     refused(
         "data = \"syn.exr\"\nframes = 100001\n",
-        &["bad.toml:2", "frames", "1..=100000"],
+        &["bad.toml:2", "frames", "at most 100000"],
     );
     refused(
         "data = \"syn.exr\"\nframes = 9\nfps = 1e300\n",

@@ -243,7 +243,10 @@ impl Script {
         if !(1..=MAX_FRAMES).contains(&raw.frames) {
             return Err(error(
                 "frames",
-                format!("must be in 1..={MAX_FRAMES}, got {}", raw.frames),
+                format!(
+                    "must be at least 1 and at most {MAX_FRAMES}, got {}",
+                    raw.frames
+                ),
             ));
         }
         if !(raw.fps.is_finite() && raw.fps > 0.0 && raw.fps <= MAX_FPS) {
