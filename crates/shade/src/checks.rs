@@ -48,17 +48,6 @@ pub(crate) fn colour(field: &str, c: [f64; 3]) -> Result<[f32; 3], ShadeError> {
     Ok(c.map(|v| v as f32))
 }
 
-pub(crate) fn nonzero(field: &str, v: f64) -> Result<f64, ShadeError> {
-    if v.is_finite() && v != 0.0 {
-        Ok(v)
-    } else {
-        Err(invalid(
-            field,
-            format!("must be finite and non-zero, got {v}"),
-        ))
-    }
-}
-
 /// The first of `keys` that is not among `known`, or `None`: one pass over each through a
 /// hash set, so that the settings of 100,000 objects are checked in linear time (a search of
 /// the name list per key was quadratic).

@@ -218,7 +218,7 @@ pub struct ObjectSettings {
     /// Texture coordinates: u_tex = scale_u·u + offset_u − rotation_deg/360, v_tex = scale_v·v + offset_v.
     pub offset_u: f64,
     pub offset_v: f64,
-    /// Non-zero.
+    /// Finite; 0 spreads one texel over the whole body (a keyframed flip passes through it).
     pub scale_u: f64,
     pub scale_v: f64,
     /// The body turned about its axis by this angle (u is the longitude).

@@ -35,7 +35,7 @@ use render::datafile::DataFile;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
-use crate::checks::{colour, finite, first_unknown, invalid, non_negative, nonzero, positive};
+use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
 use crate::colour::rgb_to_srgb8_fast;
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
@@ -187,8 +187,8 @@ impl Shading {
             let field = format!("objects.{name}");
             let temperature = positive(&format!("{field}.temperature"), o.temperature)?;
             let scale = [
-                nonzero(&format!("{field}.scale_u"), o.scale_u)?,
-                nonzero(&format!("{field}.scale_v"), o.scale_v)?,
+                finite(&format!("{field}.scale_u"), o.scale_u)?,
+                finite(&format!("{field}.scale_v"), o.scale_v)?,
             ];
             let rotation = finite(&format!("{field}.rotation_deg"), o.rotation_deg)?;
             let offset = [

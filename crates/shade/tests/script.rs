@@ -131,6 +131,35 @@ objects.ball.offset_v = 1.7976931348623157e308
     assert!(at(1).0 < at(2).0 && at(2).0 < at(3).0);
 }
 
+/// Fuzzing found a sequence that stops half-way: a texture flipped by keyframes
+/// (scale_u from −1 to 1) passes through scale 0 at an in-between frame, which the settings
+/// refused after earlier frames were written. A zero scale is a valid picture (one texel over
+/// the whole body): every frame of the flip prepares.
+#[test]
+fn regression_fuzz_a_flip_through_zero_scale_shades_every_frame() {
+    let s = script(
+        r#"data = "d.exr"
+frames = 3
+interpolation = "linear"
+[[keyframe]]
+frame = 0
+[keyframe.settings]
+objects.ball.scale_u = -1.0
+objects.ball.texture = { kind = "checker", rows = 2, cols = 4 }
+[[keyframe]]
+frame = 2
+[keyframe.settings]
+objects.ball.scale_u = 1.0
+"#,
+    )
+    .unwrap();
+    let tl = s.timeline(&ShadeSettings::defaults_for(&data())).unwrap();
+    assert_eq!(tl.settings_at(1).objects["ball"].scale_u, 0.0);
+    for f in 0..3 {
+        shade::Shading::new(&data(), &tl.settings_at(f)).unwrap();
+    }
+}
+
 #[test]
 fn keyframes_out_of_order_are_refused_with_file_line_and_field() {
     let text =
