@@ -273,8 +273,8 @@ fn object(g: &mut Gen, s: &mut String, f: &Frame, i: usize, centres: &mut Vec<[f
     writeln!(s, "[[object]]\nname = \"{name}\"").unwrap();
     // Free fall only where the worldline is cheap to build: its integration uses absolute
     // scales (steps of at most 0.25, a margin of 1 time unit), so at a ≪ 1 or a ≫ 1 one
-    // falling ball costs up to 400,000 integrator steps (seconds, ~600 MB; see the report
-    // of issue 10's fuzzing).
+    // falling ball costs up to 400,000 integrator steps (seconds, ~600 MB; BENCHMARKS.md,
+    // "Fuzzing").
     let fall_ok = f.godel && (0.05..=20.0).contains(&f.a) || !f.godel;
     let kind = loop {
         let k = g.index(10);

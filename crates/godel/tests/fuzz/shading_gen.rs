@@ -25,11 +25,12 @@ fn texture(g: &mut Gen, images: &[String]) -> String {
             format!("{{ kind = \"image\", path = {p:?} }}")
         }
         5 => "{ kind = \"earth\" }".into(),
-        6 => "{ kind = \"checker\" }".into(),
-        _ => format!(
-            "{{ kind = \"{}\" }}",
-            g.pick(&["Scene", "bogus", "", "image"])
-        ),
+        6 => "{ kind = \"scene\" }".into(),
+        _ if g.chance(0.3) => {
+            let k = g.pick(&["Scene", "bogus", "", "image", "checker"]);
+            format!("{{ kind = \"{k}\" }}")
+        }
+        _ => "{ kind = \"gradient\" }".into(),
     }
 }
 
@@ -74,7 +75,7 @@ pub fn settings(g: &mut Gen, objects: &[String], lights: usize, images: &[String
         writeln!(
             s,
             "brightness = \"{}\"",
-            g.pick(&["normalized", "physical", "bright"])
+            g.pick(&["normalized", "physical", "normalized", "physical", "bright"])
         )
         .unwrap();
     }
@@ -82,7 +83,12 @@ pub fn settings(g: &mut Gen, objects: &[String], lights: usize, images: &[String
         writeln!(s, "exposure = {}", value(g, 0.0, 10.0)).unwrap();
     }
     if g.chance(0.2) {
-        writeln!(s, "reference_squares = {}", g.pick(&["true", "false", "1"])).unwrap();
+        writeln!(
+            s,
+            "reference_squares = {}",
+            g.pick(&["true", "false", "true", "false", "1"])
+        )
+        .unwrap();
     }
     if g.chance(0.5) {
         writeln!(s, "[time]").unwrap();
@@ -97,7 +103,12 @@ pub fn settings(g: &mut Gen, objects: &[String], lights: usize, images: &[String
             }
         }
         if g.chance(0.4) {
-            writeln!(s, "mode = \"{}\"", g.pick(&["window", "travel", "Window"])).unwrap();
+            writeln!(
+                s,
+                "mode = \"{}\"",
+                g.pick(&["window", "travel", "window", "travel", "Window"])
+            )
+            .unwrap();
         }
         if g.chance(0.3) {
             writeln!(s, "legend = {}", g.pick(&["true", "false"])).unwrap();
