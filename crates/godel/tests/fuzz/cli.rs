@@ -11,7 +11,7 @@ use std::process::{Command, Output};
 use std::time::Duration;
 
 /// A subprocess is killed (and its case fails) past this.
-const LIMIT: Duration = Duration::from_secs(8);
+const LIMIT: Duration = Duration::from_secs(15);
 
 /// A fresh folder for one case's files.
 pub fn scratch() -> tempfile::TempDir {

@@ -208,6 +208,20 @@ pub fn check_records(scene: &Scene, data: &DataFile) -> Result<(), String> {
             ));
         }
     }
+    if let Some(name) = inside(scene) {
+        // Every ray starts inside that object and reaches its inner surface within max_past:
+        // it hits (that surface, or an object before it), unless a bound ran out.
+        for (i, r) in data.records.iter().enumerate() {
+            if matches!(r.status, RayStatus::Escaped | RayStatus::Failed) {
+                return Err(format!(
+                    "pixel ({}, {}): status {:?}, but the observer is inside object {name:?}, whose inner surface every ray reaches within max_past",
+                    i % w,
+                    i / w,
+                    r.status
+                ));
+            }
+        }
+    }
     if data.lights.len() != scene.lights.len() {
         return Err(format!(
             "{} light planes for {} lights",
@@ -291,4 +305,47 @@ pub fn shade_all(scene: &Scene, data: &DataFile) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The name of an object the observer is certainly inside, with its inner surface in reach of
+/// every ray within max_past: a local ball centred on the observer's position (at rest) or
+/// falling freely from the observer's own event, or a coordinate sphere around the observer,
+/// each small against a (≤ a/2), near the axis, and max_past long enough to cross it (a
+/// ball moving at speed v is crossed within γ(1 + v)·2R of coordinate time; 4× that is asked).
+fn inside(scene: &Scene) -> Option<String> {
+    let a = scene.metric.godel_a().unwrap_or(f64::INFINITY);
+    let o = scene.observer.event;
+    let near_axis = o.x.hypot(o.y) <= 0.25 * a.min(1e300);
+    if !near_axis {
+        return None;
+    }
+    scene.objects.iter().find_map(|ob| {
+        let (radius, gamma_1v) = match (ob.shape, ob.motion) {
+            (Shape::Sphere { radius }, scene::Motion::Rest { position })
+                if (position.x, position.y, position.z) == (o.x, o.y, o.z) =>
+            {
+                (radius, 1.0)
+            }
+            (Shape::Sphere { radius }, scene::Motion::Geodesic { start, velocity })
+                if start == o =>
+            {
+                (radius, velocity.gamma() * (1.0 + velocity.speed))
+            }
+            (Shape::CoordinateSphere { center, radius }, _) => {
+                let d = ((center[0] - o.x).powi(2)
+                    + (center[1] - o.y).powi(2)
+                    + (center[2] - o.z).powi(2))
+                .sqrt();
+                if d < 0.5 * radius && radius <= 0.25 * a {
+                    (radius, 1.0)
+                } else {
+                    return None;
+                }
+            }
+            _ => return None,
+        };
+        let reach = 4.0 * gamma_1v * 2.0 * radius;
+        (radius <= 0.5 * a && radius > 1e-6 * a.min(1.0) && scene.trace.max_past >= reach)
+            .then(|| ob.name.clone())
+    })
 }

@@ -275,7 +275,7 @@ fn object(g: &mut Gen, s: &mut String, f: &Frame, i: usize, centres: &mut Vec<[f
     // scales (steps of at most 0.25, a margin of 1 time unit), so at a ≪ 1 or a ≫ 1 one
     // falling ball costs up to 400,000 integrator steps (seconds, ~600 MB; BENCHMARKS.md,
     // "Fuzzing").
-    let fall_ok = f.godel && (0.05..=20.0).contains(&f.a) || !f.godel;
+    let fall_ok = (0.05..=20.0).contains(&f.a);
     let kind = loop {
         let k = g.index(10);
         if fall_ok || !(4..=6).contains(&k) {
