@@ -1,6 +1,7 @@
 //! Running fuzz cases: how many (`GODEL_FUZZ_CASES`), from which seed (`GODEL_FUZZ_SEED`),
 //! which one alone (`GODEL_FUZZ_CASE`), each on a worker thread under a time limit
-//! (`GODEL_FUZZ_LIMIT_S`) with panics caught. A case that panics, breaks a checked promise
+//! (`GODEL_FUZZ_LIMIT_S`) with panics caught; a test stops after 5 failing cases
+//! (`GODEL_FUZZ_MAX_FAILURES` collects more). A case that panics, breaks a checked promise
 //! or runs past the limit fails the test with the case printed and the command that
 //! replays it. A worker past the limit cannot be stopped, so the test fails at once.
 
@@ -19,8 +20,9 @@ pub const DEFAULT_CASES: u64 = 20_000;
 /// case seen in 100,000 (BENCHMARKS.md, "Fuzzing"), on the 2-core machine under load; a
 /// hang never ends.
 pub const DEFAULT_LIMIT: Duration = Duration::from_secs(20);
-/// Failures (other than a time-out) collected before the test stops.
-const MAX_FAILURES: usize = 5;
+/// Failures (other than a time-out) collected before the test stops, when
+/// `GODEL_FUZZ_MAX_FAILURES` is not set.
+const MAX_FAILURES: u64 = 5;
 
 fn env_u64(name: &str) -> Option<u64> {
     let v = std::env::var(name).ok()?;
@@ -39,6 +41,7 @@ pub struct Fuzz {
     cases: u64,
     only: Option<u64>,
     limit: Duration,
+    max_failures: u64,
     outcomes: BTreeMap<String, u64>,
     failures: Vec<String>,
     slowest: Vec<(Duration, u64)>,
@@ -69,6 +72,9 @@ impl Fuzz {
             cases,
             only,
             limit,
+            max_failures: env_u64("GODEL_FUZZ_MAX_FAILURES")
+                .unwrap_or(MAX_FAILURES)
+                .max(1),
             outcomes: BTreeMap::new(),
             failures: Vec::new(),
             slowest: Vec::new(),
@@ -156,7 +162,7 @@ impl Fuzz {
             "case {index}: {problem}\nreplay: {}\n--- case ---\n{shown}\n--- end of case ---",
             self.replay(index)
         ));
-        if self.failures.len() >= MAX_FAILURES {
+        if self.failures.len() as u64 >= self.max_failures {
             self.finish();
         }
     }
