@@ -13,7 +13,8 @@
 //! spread over MPI ranks with one writer.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Child, Command};
+use std::sync::{Mutex, MutexGuard};
 
 use anyhow::Context;
 use clap::Args;
@@ -220,13 +221,47 @@ fn ffmpeg_args(dir: &Path, frames: u32, fps: f64, out: &Path) -> Vec<std::ffi::O
     args
 }
 
+/// The ffmpeg encoding now, if any: kept where a signal handler can stop it before its
+/// temporary output is removed (otherwise ffmpeg could create that file again after).
+static ENCODER: Mutex<Option<Child>> = Mutex::new(None);
+
+fn encoder() -> MutexGuard<'static, Option<Child>> {
+    ENCODER.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Stops (kills and reaps) a running ffmpeg, for the signal handler in `main.rs`, which
+/// holds the returned lock until the process exits: the encoding waits on it meanwhile
+/// instead of reporting a failure of its own.
+pub fn stop_encoder() -> MutexGuard<'static, Option<Child>> {
+    let mut running = encoder();
+    if let Some(child) = running.as_mut() {
+        let _ = child.kill();
+        let _ = child.wait();
+    }
+    running
+}
+
 /// Encodes the frames into `DIR/sequence.mp4` (through a temporary file and a rename).
 fn encode_mp4(dir: &Path, frames: u32, fps: f64) -> anyhow::Result<PathBuf> {
     let out = dir.join(MP4);
     render::atomic::write_atomically_via_path(&out, |tmp| {
-        let status = Command::new("ffmpeg")
-            .args(ffmpeg_args(dir, frames, fps, tmp))
-            .status()?;
+        *encoder() = Some(
+            Command::new("ffmpeg")
+                .args(ffmpeg_args(dir, frames, fps, tmp))
+                .spawn()?,
+        );
+        // Polled, so that the lock is free for [`stop_encoder`] in between.
+        let status = loop {
+            let done = match encoder().as_mut() {
+                Some(child) => child.try_wait()?,
+                None => return Err(std::io::Error::other("ffmpeg went missing")),
+            };
+            if let Some(status) = done {
+                encoder().take();
+                break status;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
         if status.success() {
             Ok(())
         } else {

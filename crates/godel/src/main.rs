@@ -78,6 +78,8 @@ fn exit_on_signals() -> std::io::Result<()> {
         .name("signals".into())
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
+                // A child writing a temporary file stops first, so it cannot recreate it.
+                let _encoder = cmd_sequence::stop_encoder();
                 let removed = render::atomic::remove_live_temporaries();
                 if removed > 0 {
                     eprintln!("godel: interrupted; removed {removed} temporary file(s)");

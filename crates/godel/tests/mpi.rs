@@ -234,3 +234,38 @@ fn a_rank_killed_while_tracing_fails_the_job_and_nothing_is_written() {
     // by the up-front check of the output).
     assert!(files_in(&out).is_empty(), "{:?}", files_in(&out));
 }
+
+/// Issue 10: the checks made before tracing hold under MPI too: rank 0 refuses an output
+/// folder it cannot write, every rank a thread count beyond 8 per core.
+#[test]
+fn limits_are_checked_before_tracing_under_mpi() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = write_scene(tmp.path(), "ranks.toml", &scene_text(8.0));
+    let good = tmp.path().join("out");
+    let cases: [(&str, &str, &str); 2] = [
+        (
+            "/dev/null/out",
+            "1",
+            "godel: rank 0: --output: cannot create the output folder",
+        ),
+        (good.to_str().unwrap(), "100000", ": --threads: at most "),
+    ];
+    for (out, threads, needle) in cases {
+        let o = mpirun(&[
+            "-n",
+            "2",
+            GODEL,
+            "render",
+            &scene,
+            "-q",
+            "-o",
+            out,
+            "--threads",
+            threads,
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(needle), "{err}");
+        assert!(files_in(&good).is_empty());
+    }
+}

@@ -7,8 +7,8 @@
 //! # scene = "../scenes/static-sphere.toml"
 //! # observer_time = [0.0, 2.0]       # first and last frame, linear in between
 //! output = "frames"                  # folder for frame_0000.png, … and sequence.mp4
-//! frames = 48                      # 1 to 100000
-//! fps = 24.0                        # at most 1000
+//! frames = 48                        # 1 to 100000
+//! fps = 24.0                         # at most 1000
 //! interpolation = "smooth"           # default for every keyframe: "linear" | "smooth"
 //! mp4 = true                         # also encode an MP4 when ffmpeg is on PATH
 //!
