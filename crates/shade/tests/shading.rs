@@ -305,9 +305,9 @@ fn turning_the_body_moves_the_texture() {
     assert_eq!(moved(0.0, 0.125, 0.3), moved(0.0, 0.0, 0.425));
 }
 
-#[test]
-fn lamps_blink_with_the_emission_time() {
-    let lamp = Lamp {
+/// A green lamp at (0.3, 0.5), 10° wide, on for the first quarter of every 2 time units.
+fn green_lamp() -> Lamp {
+    Lamp {
         u: 0.3,
         v: 0.5,
         radius_deg: 10.0,
@@ -315,7 +315,12 @@ fn lamps_blink_with_the_emission_time() {
         phase: 0.0,
         duty: 0.25,
         color: [0.0, 1.0, 0.0],
-    };
+    }
+}
+
+#[test]
+fn lamps_blink_with_the_emission_time() {
+    let lamp = green_lamp();
     let at = |u: f32, t: f32| {
         let d = one_pixel(hit(0, u, 0.5, 1.0, t, 1.0), vec![]);
         let s = with(&d, |s| {
@@ -337,15 +342,7 @@ fn lamps_blink_with_the_emission_time() {
 #[test]
 fn lamps_and_light_sources_are_capped() {
     let data = synthetic();
-    let lamp = Lamp {
-        u: 0.3,
-        v: 0.5,
-        radius_deg: 10.0,
-        period: 2.0,
-        phase: 0.0,
-        duty: 0.25,
-        color: [0.0, 1.0, 0.0],
-    };
+    let lamp = green_lamp();
     let lamps = |n: usize| {
         with(&data, |s| {
             s.objects.get_mut("moon").unwrap().lamps = vec![lamp.clone(); n]

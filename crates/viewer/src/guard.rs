@@ -50,13 +50,12 @@ impl Access {
         }
     }
 
-    /// For a server listening on `addr`: a loopback address is [`Access::local`]; another
-    /// address is accepted too; listening on every interface (`0.0.0.0`, `::`) accepts any IP
-    /// address (names other than `localhost` stay refused, against DNS rebinding).
+    /// For a server listening on `addr`: the localhost names and that address; listening on
+    /// every interface (`0.0.0.0`, `::`) accepts any IP address (names other than
+    /// `localhost` stay refused, against DNS rebinding).
     pub fn listening_on(addr: SocketAddr) -> Access {
         let mut access = Access::local(addr.port());
         match addr.ip() {
-            ip if ip.is_loopback() => {}
             ip if ip.is_unspecified() => access.any_address = true,
             IpAddr::V4(ip) => access.names.push(ip.to_string()),
             IpAddr::V6(ip) => access.names.push(format!("[{ip}]")),
@@ -88,7 +87,7 @@ impl Access {
             self.port,
             if self.any_address {
                 " or to one of its IP addresses"
-            } else if self.names.is_empty() {
+            } else if self.names.iter().all(|n| LOCAL_NAMES.contains(&n.as_str())) {
                 ""
             } else {
                 " or to the address given with --host"
@@ -122,7 +121,7 @@ fn is_address(name: &str) -> bool {
     }
 }
 
-fn header_text<'a>(headers: &'a HeaderMap, name: header::HeaderName) -> Option<&'a str> {
+fn header_text(headers: &HeaderMap, name: header::HeaderName) -> Option<&str> {
     headers.get(name).map(|v| v.to_str().unwrap_or("\u{fffd}"))
 }
 

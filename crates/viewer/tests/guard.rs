@@ -74,6 +74,11 @@ fn other_addresses_are_named_with_host() {
     let local = Access::listening_on(addr("127.0.0.1:8737"));
     assert!(local.allows_host("localhost:8737"));
     assert!(!local.allows_host("192.168.1.5:8737"));
+    assert!(!local.allows_host("127.0.0.2:8737"));
+    // Another loopback address, as printed in the URL.
+    let other_loopback = Access::listening_on(addr("127.0.0.2:8737"));
+    assert!(other_loopback.allows_host("127.0.0.2:8737"));
+    assert!(other_loopback.allows_host("[::1]:8737"));
     // A given address: that address too, nothing else.
     let lan = Access::listening_on(addr("192.168.1.5:8737"));
     assert!(lan.allows_host("192.168.1.5:8737"));
