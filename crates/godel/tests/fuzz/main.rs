@@ -52,8 +52,13 @@ const CLI_EVERY_SHADE: u64 = 15;
 fn scene_case(fuzz: &mut Fuzz, k: u64, text: String, shown: &str) {
     let cli = fuzz.sampled(k, CLI_EVERY_SCENE);
     fuzz.run(k, shown, move || {
+        let started = std::time::Instant::now();
         let v = scene_case::run(&text)?;
-        if cli && v.cheap {
+        // The command line is checked for its promises, not its speed: a scene that took
+        // seconds in process (a far free-fall worldline, BENCHMARKS.md "Fuzzing") is not
+        // traced a second time.
+        let quick = started.elapsed() < std::time::Duration::from_secs(1);
+        if cli && v.cheap && quick {
             let exr = v.exr.as_ref().map(|(n, b)| (n.as_str(), b.as_slice()));
             cli::render(&text, v.expect, exr)?;
             return Ok(format!("{} (and CLI)", v.outcome));
@@ -95,6 +100,23 @@ fn fuzz_mutated_scenes() {
     fuzz.finish();
 }
 
+/// A text made by `make` for a fixture data file picked at random, mutated in 4 cases of 10:
+/// the fixture's index, the text, and the case as shown on failure.
+fn on_fixture(
+    g: &mut gen::Gen,
+    make: impl FnOnce(&mut gen::Gen, &fixtures::Fixture) -> String,
+) -> (usize, String, String) {
+    let fx = fixtures::get();
+    let f = g.index(fx.data.len());
+    let mut text = make(g, &fx.data[f]);
+    let mut log = Vec::new();
+    if g.chance(0.4) {
+        (text, log) = mutate::text(g, &text, &[]);
+    }
+    let shown = format!("data file {f}; mutations: {}\n{text}", log.join("; "));
+    (f, text, shown)
+}
+
 /// Settings files over the data files' defaults, generated and mutated; a sample through
 /// `godel shade --settings`.
 #[test]
@@ -102,19 +124,10 @@ fn fuzz_shade_settings() {
     let fx = fixtures::get();
     let mut fuzz = Fuzz::new("fuzz_shade_settings", 0.15);
     for k in fuzz.indices() {
-        let mut g = fuzz.gen(k);
-        let f = g.index(fx.data.len());
-        let mut text = shading_gen::settings(
-            &mut g,
-            &fx.data[f].objects(),
-            fx.data[f].data.lights.len(),
-            &fx.images,
-        );
-        let mut log = Vec::new();
-        if g.chance(0.4) {
-            (text, log) = mutate::text(&mut g, &text, &[]);
-        }
-        let shown = format!("data file {f}; mutations: {}\n{text}", log.join("; "));
+        let (f, text, shown) = on_fixture(&mut fuzz.gen(k), |g, fixture| {
+            let lights = fixture.data.lights.len();
+            shading_gen::settings(g, &fixture.objects(), lights, &fx.images)
+        });
         let cli = fuzz.sampled(k, CLI_EVERY_SHADE);
         fuzz.run(k, &shown, move || {
             let fixture = &fixtures::get().data[f];
@@ -126,6 +139,7 @@ fn fuzz_shade_settings() {
                     _ => cli::Expect::Failure,
                 };
                 cli::shade(&fixture.bytes, Some(&text), expect)?;
+                return Ok(format!("{outcome} (and CLI)"));
             }
             Ok(outcome)
         });
@@ -137,22 +151,12 @@ fn fuzz_shade_settings() {
 /// `godel sequence` (frames written all or none).
 #[test]
 fn fuzz_sequence_scripts() {
-    let fx = fixtures::get();
     let mut fuzz = Fuzz::new("fuzz_sequence_scripts", 0.1);
     for k in fuzz.indices() {
-        let mut g = fuzz.gen(k);
-        let f = g.index(fx.data.len());
-        let mut text = shading_gen::script(
-            &mut g,
-            "data.exr",
-            &fx.data[f].objects(),
-            fx.data[f].data.lights.len(),
-        );
-        let mut log = Vec::new();
-        if g.chance(0.4) {
-            (text, log) = mutate::text(&mut g, &text, &[]);
-        }
-        let shown = format!("data file {f}; mutations: {}\n{text}", log.join("; "));
+        let (f, text, shown) = on_fixture(&mut fuzz.gen(k), |g, fixture| {
+            let lights = fixture.data.lights.len();
+            shading_gen::script(g, "data.exr", &fixture.objects(), lights)
+        });
         let cli = fuzz.sampled(k, CLI_EVERY_SHADE);
         fuzz.run(k, &shown, move || {
             let fixture = &fixtures::get().data[f];
@@ -173,6 +177,7 @@ fn fuzz_sequence_scripts() {
                     .filter(|_| outcome == "frames shaded")
                     .map(|s| s.frames);
                 cli::sequence(&text, &fixture.bytes, frames)?;
+                return Ok(format!("{outcome} (and CLI)"));
             }
             Ok(outcome)
         });
@@ -235,6 +240,7 @@ fn fuzz_data_files() {
                     false => expect,
                 };
                 cli::shade(&bytes, None, expect)?;
+                return Ok(format!("{outcome} (and CLI)"));
             }
             Ok(outcome)
         });

@@ -101,7 +101,13 @@ pub fn run(text: &str) -> Result<Verdict, String> {
             });
         }
     };
-    let shrunk = !tiny(&mut scene).is_empty();
+    let notes = tiny(&mut scene);
+    let shrunk = !notes.is_empty();
+    // A failure says how the scene was made tiny, so that it can be replayed as traced.
+    let noted = |e: String| match shrunk {
+        true => format!("{e}\n(traced made tiny: {})", notes.join("; ")),
+        false => e,
+    };
     let (data, _stats) = match render::driver::render(&scene, &NoProgress) {
         Ok(r) => r,
         Err(e) => {
@@ -114,9 +120,9 @@ pub fn run(text: &str) -> Result<Verdict, String> {
             });
         }
     };
-    check_records(&scene, &data)?;
-    let bytes = round_trip(&data)?;
-    shade_all(&scene, &data)?;
+    check_records(&scene, &data).map_err(noted)?;
+    let bytes = round_trip(&data).map_err(noted)?;
+    shade_all(&scene, &data).map_err(noted)?;
     let hits = data.records.iter().filter(|r| r.is_hit()).count();
     Ok(Verdict {
         outcome: format!(
