@@ -39,9 +39,15 @@ const ORTHOGONALITY: f64 = 1e-6;
 /// Most loops a Gödel light ray may make within `max_past` (the tracer's bound on loop
 /// copies; a scene that would need more is refused up front).
 pub const MAX_RAY_LOOPS: u64 = 100_000;
-/// Largest proper radius of a local sphere in units of a: a local object is described in
-/// its rest frame to second order in its size (Riemann normal coordinates), which needs it
-/// small against the curvature scale a.
+/// Largest coordinate (times, positions, sizes) in units of a (of 1 in flat spacetime):
+/// beyond it the isometries that carry events to the axis, and f64 times, lose the
+/// precision the tracer needs (an observer at r = 1e9·a sees only NaN).
+pub const MAX_COORDINATE_PER_A: f64 = 1e6;
+/// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
+/// a local object is described in its rest frame to second order in its size (Riemann
+/// normal coordinates), which needs it small against the curvature scale a. Measured
+/// against the flat-space Lorentz-contracted ball, exit times of rays from inside differ by
+/// ~5 %·γ²R/a (curvature included), 2–3 % at the limit.
 pub const MAX_LOCAL_RADIUS_PER_A: f64 = 0.5;
 
 /// Everything of a [`Scene`] that comes from the file's contents.
@@ -206,6 +212,7 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
         });
     }
     godel_scales(&c, &metric, &trace, &objects)?;
+    coordinate_bounds(&c, &metric, &observer, &objects, &lights)?;
     Ok(Parts {
         name: raw.name,
         metric,
@@ -451,6 +458,22 @@ fn godel_scales(
     }
     for (i, o) in objects.iter().enumerate() {
         if let Shape::Sphere { radius } = o.shape {
+            // A ball moving at γ has a rest-frame neighbourhood whose static coordinates
+            // stretch by ~γ²·R: that, not R, must stay small against a.
+            if let Motion::Geodesic { velocity, .. } = o.motion {
+                let stretch = velocity.gamma().powi(2) * radius;
+                if stretch > MAX_LOCAL_RADIUS_PER_A * a {
+                    return c.err(
+                        &format!("object[{i}].radius"),
+                        format!(
+                            "{radius} is too large for a local sphere falling at speed {} with a = {a}: its rest frame is described to second order in γ²·radius = {stretch:.4}, which must be at most {MAX_LOCAL_RADIUS_PER_A}·a = {} (radius ≤ {:.4} at this speed)",
+                            velocity.speed,
+                            MAX_LOCAL_RADIUS_PER_A * a,
+                            MAX_LOCAL_RADIUS_PER_A * a / velocity.gamma().powi(2)
+                        ),
+                    );
+                }
+            }
             if radius > MAX_LOCAL_RADIUS_PER_A * a {
                 return c.err(
                     &format!("object[{i}].radius"),
@@ -461,6 +484,55 @@ fn godel_scales(
                 );
             }
         }
+    }
+    Ok(())
+}
+
+/// Every time, position and size in the scene within [`MAX_COORDINATE_PER_A`] of the
+/// scale (a in Gödel's universe, 1 in flat spacetime), located at the offending field.
+fn coordinate_bounds(
+    c: &Checker,
+    metric: &Metric,
+    observer: &Observer,
+    objects: &[Object],
+    lights: &[Light],
+) -> Result<()> {
+    let bound = MAX_COORDINATE_PER_A * metric.godel_a().unwrap_or(1.0);
+    let check = |path: &str, values: &[f64]| -> Result<()> {
+        match values.iter().find(|v| v.abs() > bound) {
+            Some(v) => c.err(
+                path,
+                format!("{v} is beyond ±{bound:e} (1e6 times the scale a): the tracer loses precision there"),
+            ),
+            None => Ok(()),
+        }
+    };
+    let event = |e: Event| [e.x, e.y, e.z];
+    check("observer.time", &[observer.event.t])?;
+    check("observer.position", &event(observer.event))?;
+    for (i, o) in objects.iter().enumerate() {
+        let p = |f: &str| format!("object[{i}].{f}");
+        match o.motion {
+            Motion::Rest { position } => check(&p("motion.position"), &event(position))?,
+            Motion::Geodesic { start, .. } => {
+                check(&p("motion.time"), &[start.t])?;
+                check(&p("motion.position"), &event(start))?;
+            }
+        }
+        match o.shape {
+            Shape::Sphere { radius } => check(&p("radius"), &[radius])?,
+            Shape::CoordinateSphere { center, radius } => {
+                check(&p("center"), &center)?;
+                check(&p("radius"), &[radius])?;
+            }
+            Shape::Plane { height, extent } => {
+                check(&p("height"), &[height])?;
+                check(&p("extent"), &[extent.unwrap_or(0.0)])?;
+            }
+        }
+    }
+    for (i, l) in lights.iter().enumerate() {
+        check(&format!("light[{i}].position"), &event(l.position))?;
     }
     Ok(())
 }
