@@ -13,7 +13,9 @@
 //! and calls `MPI_Abort`, so the whole job exits non-zero and rank 0 never writes a partial
 //! image; a rank that dies is caught by the MPI launcher, which ends the job the same way.
 
-use crate::cmd_render::{load_scene, progress_bar, thread_pool, write_outputs, RenderArgs};
+use crate::cmd_render::{
+    load_scene, output_names, progress_bar, thread_pool, write_outputs, RenderArgs,
+};
 use crate::cmd_sequence::{finish, start as start_sequence, Plan, SequenceArgs};
 use anyhow::Context;
 use mpi::environment::Threading;
@@ -201,7 +203,9 @@ pub fn render(args: RenderArgs) -> anyhow::Result<()> {
         let pool = thread_pool(args.threads)?;
         let scene = load_scene(&args.scene)?;
         if rank0 {
-            shade::textures_for_scene(&scene)?; // fail before tracing
+            // Fail before tracing: textures, and the folder rank 0 writes to.
+            shade::textures_for_scene(&scene)?;
+            crate::output::prepare("--output", &args.output, &output_names(&scene))?;
         }
         Ok((pool, scene))
     };
@@ -265,7 +269,7 @@ pub fn sequence(args: SequenceArgs) -> anyhow::Result<()> {
     let world = universe.world();
     let rank0 = world.rank() == 0;
     let set_up = || -> anyhow::Result<_> {
-        let text = std::fs::read_to_string(&args.script)
+        let text = scene::input::read_text(&args.script, scene::input::MAX_TEXT_BYTES)
             .with_context(|| format!("cannot read {}", args.script.display()))?;
         Ok((Plan::new(&args.script)?, fingerprint_of(&[&text])))
     };

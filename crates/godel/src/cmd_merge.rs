@@ -10,6 +10,9 @@ use scene::Scene;
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits: each part a regular file of at most 8 GiB. The EXR and the PNG are renamed together \
+at the end, as by `godel render`.")]
 pub struct MergeArgs {
     /// The part files (`<name>.part-i-of-N.exr`), all N of them, in any order.
     #[arg(required = true)]

@@ -1,8 +1,9 @@
 //! `godel render [SCENE] [-o DIR]`: traces a scene (or the built-in reference scene) and
 //! writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png` (the preview,
-//! shaded with the objects' own textures). Textures are loaded before tracing, and both
-//! files are produced in memory before either is written, each through a temporary file
-//! and a rename, so a failed run leaves no half-written output.
+//! shaded with the objects' own textures). Before any tracing: the thread count, the scene,
+//! its textures and the output folder are checked (`output::prepare`). Both files are
+//! written to temporaries and then renamed together (`output::write_together`), so a failed
+//! or interrupted run leaves no half-written output and never a new EXR beside an old PNG.
 //!
 //! With `--part i/N` it traces only part i of N (see `render::part`) and writes the part
 //! file `DIR/<name>.part-i-of-N.exr`; `godel merge` joins the parts. Built with the `mpi`
@@ -22,13 +23,23 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits, checked before any tracing (exit code 2, naming the flag or file:line:field): \
+--threads at most 8 per core; the scene a regular file of at most 16 MiB; its name at most \
+100 bytes, no leading '.' or '-'; image sides at most 20000 and 5·10⁷ pixels; \
+[trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
+writable.
+
+Writing: both files go to hidden temporaries `.NAME.godel-PID-HOST.XXXXXX.tmp` and are \
+renamed together at the end. Ctrl-C or SIGTERM removes the temporaries (exit 130 or 143); \
+temporaries that a killed run left are removed by the next run writing to that folder.")]
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,
     /// Output folder (created if missing).
     #[arg(short, long, default_value = "out")]
     pub output: PathBuf,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; at most 8 per core).
     #[arg(long)]
     pub threads: Option<usize>,
     /// No progress bar.
@@ -75,13 +86,14 @@ pub fn progress_bar(scene: &Scene, pixels: u64, quiet: bool) -> ProgressBar {
     bar
 }
 
-/// The worker thread pool of `--threads`.
+/// The worker thread pool of `--threads` (checked: 1 to 8 per core).
 pub fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
-    if threads == Some(0) {
-        return Err(crate::args::usage("--threads", "must be at least 1"));
-    }
+    let n = match threads {
+        Some(n) => crate::args::threads("--threads", n)?,
+        None => 0, // rayon's default: one per core
+    };
     rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
+        .num_threads(n)
         .build()
         .context("cannot start worker threads")
 }
@@ -91,14 +103,26 @@ pub fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> 
 /// exactly the files of a single run, whoever traced the pixels.
 pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
     let textures = shade::textures_for_scene(scene)?;
-    let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let exr = dir.join(format!("{}.exr", scene.name));
-    let png = dir.join(format!("{}.png", scene.name));
-    data.write(&exr)?;
-    shade::write_png(&image, &png)?;
+    let [exr, png] = output_names(scene).map(|n| dir.join(n));
+    let png_bytes = {
+        let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+        shade::encode_png(&image, &png)?
+    };
+    let exr_bytes = data
+        .to_bytes()
+        .map_err(|kind| render::datafile::DataFileError {
+            path: exr.clone(),
+            kind,
+        })?;
+    crate::output::write_together(&[(exr.clone(), &exr_bytes), (png.clone(), &png_bytes)])?;
     eprintln!("wrote {} and {}", png.display(), exr.display());
     Ok(())
+}
+
+/// The files a render writes: `<name>.exr` and `<name>.png`.
+pub fn output_names(scene: &Scene) -> [String; 2] {
+    [format!("{}.exr", scene.name), format!("{}.png", scene.name)]
 }
 
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
@@ -124,8 +148,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     }
     let pool = thread_pool(args.threads)?;
     let scene = load_scene(&args.scene)?;
-    // Textures load before tracing, so a bad texture fails fast.
+    // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
+    let outputs = match part {
+        Some(part) => vec![part.file_name(&scene.name)],
+        None => output_names(&scene).to_vec(),
+    };
+    crate::output::prepare("--output", &args.output, &outputs)?;
     if let Some(part) = part {
         return render_part(&args, &scene, part, &pool);
     }

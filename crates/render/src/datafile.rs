@@ -205,13 +205,15 @@ impl DataFile {
             .map_err(|e| at(DataFileErrorKind::Io(e)))
     }
 
-    /// Reads and checks a data file.
+    /// Reads and checks a data file (a regular file of at most
+    /// [`scene::input::MAX_DATA_BYTES`]).
     pub fn read(path: &Path) -> Result<DataFile, DataFileError> {
         let at = |kind| DataFileError {
             path: path.to_path_buf(),
             kind,
         };
-        let bytes = std::fs::read(path).map_err(|e| at(DataFileErrorKind::Io(e)))?;
+        let bytes = scene::input::read_bounded(path, scene::input::MAX_DATA_BYTES)
+            .map_err(|e| at(DataFileErrorKind::Io(e)))?;
         DataFile::from_bytes(&bytes).map_err(at)
     }
 

@@ -105,8 +105,14 @@ impl RenderStats {
     }
 }
 
+/// Most integration steps of all free-fall worldlines together (each ~1.5 KB): a bound on
+/// the memory a scene's moving objects take, checked before any tracing.
+pub const MAX_TOTAL_WORLDLINE_STEPS: usize = 400_000;
+
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    #[error("the free-fall worldlines need {steps} integration steps in all, more than {MAX_TOTAL_WORLDLINE_STEPS}: reduce trace.max_past, the number of falling objects, or raise spacetime.a")]
+    WorldlinesTooLong { steps: usize },
     #[error("object {name:?}: {source}")]
     Worldline {
         name: String,
@@ -151,6 +157,10 @@ impl<'a> Renderer<'a> {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let steps: usize = targets.iter().map(Target::integration_steps).sum();
+        if steps > MAX_TOTAL_WORLDLINE_STEPS {
+            return Err(RenderError::WorldlinesTooLong { steps });
+        }
         let options = TraceOptions {
             max_past: scene.trace.max_past,
             tolerance: scene.trace.tolerance,

@@ -187,10 +187,11 @@ impl Intersector {
         while len > 0 {
             len -= 1;
             let (a, b, pa, pb, depth) = open[len];
-            if !(pa.f.is_finite() && pb.f.is_finite()) || b <= a {
-                continue;
+            let finite = pa.f.is_finite() && pb.f.is_finite();
+            if b <= a || !(pa.f.is_finite() || pb.f.is_finite()) {
+                continue; // the object is not defined over this span (beyond its worldline)
             }
-            if Target::crossed(pa.f, pb.f) {
+            if finite && Target::crossed(pa.f, pb.f) {
                 let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
                 let l = refine_root(f, a, b, pa.f, pb.f);
                 let s = shift.apply(d.state_at(l));
@@ -199,8 +200,10 @@ impl Intersector {
                 }
                 continue;
             }
+            // With one end undefined (no rest-frame match there) nothing can be excluded:
+            // halve until both ends are known.
             let rate = pa.rate.max(pb.rate);
-            if Target::excluded(pa.f, pb.f, rate, b - a) || depth >= SEARCH_DEPTH {
+            if (finite && Target::excluded(pa.f, pb.f, rate, b - a)) || depth >= SEARCH_DEPTH {
                 continue;
             }
             if probes == budget {

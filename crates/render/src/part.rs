@@ -172,9 +172,11 @@ pub enum MergeError {
 
 /// Reads a part file and its part attributes.
 pub fn read_part(path: &Path) -> Result<PartFile, MergeError> {
-    let bytes = std::fs::read(path).map_err(|e| DataFileError {
-        path: path.to_path_buf(),
-        kind: DataFileErrorKind::Io(e),
+    let bytes = scene::input::read_bounded(path, scene::input::MAX_DATA_BYTES).map_err(|e| {
+        DataFileError {
+            path: path.to_path_buf(),
+            kind: DataFileErrorKind::Io(e),
+        }
     })?;
     let data = DataFile::decode(&bytes, true).map_err(|kind| DataFileError {
         path: path.to_path_buf(),

@@ -15,7 +15,7 @@
 
 use crate::bounds::Aabb;
 use crate::worldline::{WorldPoint, Worldline, WorldlineError};
-use scene::{Object, Shape};
+use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
 use spacetime::{normal, Event, FourVector, GeodesicState, Metric, Spacetime};
 use std::f64::consts::PI;
@@ -88,15 +88,36 @@ impl Target {
         t_max: f64,
     ) -> Result<Target, WorldlineError> {
         Ok(match object.shape {
-            Shape::Sphere { radius } => Target::LocalSphere {
-                radius,
-                worldline: Worldline::new(metric, &object.motion, t_min, t_max)?,
-            },
+            Shape::Sphere { radius } => {
+                // A point near a moving ball is simultaneous (in its rest frame) with a
+                // worldline point up to γ·v times the near zone's size away in time: the
+                // worldline must reach that far beyond the traced range.
+                let pad = match object.motion {
+                    Motion::Rest { .. } => 0.0,
+                    Motion::Geodesic { velocity, .. } => {
+                        let near =
+                            FAR_DISTANCE * metric.godel_a().unwrap_or(1.0) + FAR_RADII * radius;
+                        2.0 * velocity.gamma() * near
+                    }
+                };
+                Target::LocalSphere {
+                    radius,
+                    worldline: Worldline::new(metric, &object.motion, t_min - pad, t_max + pad)?,
+                }
+            }
             Shape::CoordinateSphere { center, radius } => {
                 Target::CoordinateSphere { center, radius }
             }
             Shape::Plane { height, extent } => Target::Plane { height, extent },
         })
+    }
+
+    /// How many integration steps the object's worldline holds (0 unless in free fall).
+    pub fn integration_steps(&self) -> usize {
+        match self {
+            Target::LocalSphere { worldline, .. } => worldline.integration_steps(),
+            _ => 0,
+        }
     }
 
     /// A coordinate box that holds every point of the object at coordinate times in
@@ -150,7 +171,15 @@ impl Target {
                             }
                             Worldline::Free(_) => FAR_SLACK,
                         };
-                        let d = if lp.exact { d1 } else { d1 / slack };
+                        // A far point is outside (beyond R + FAR_DISTANCE·a to first order):
+                        // however large the ball, its estimate stays at least half that margin
+                        // clear, never on the inside (2.95/1.3 once made a false crossing).
+                        let floor = radius + 0.5 * FAR_DISTANCE * metric.godel_a().unwrap_or(1.0);
+                        let d = if lp.exact {
+                            d1
+                        } else {
+                            (d1 / slack).max(floor)
+                        };
                         // The ray's speed in the rest frame is its energy there, −p·u, which
                         // is at most E·γ(1 + v) everywhere on the ray (see Worldline::
                         // speed_factor): a bound valid over any span, not just one step.

@@ -375,6 +375,11 @@ impl Tracer {
             return miss(RayStatus::Failed);
         };
         let g = frequency_ratio(self.frame.e[0], start.p, surf.emitter_velocity, s.p);
+        if !(g > 0.0 && g.is_finite()) {
+            // The surface's rest frame could not be matched reliably: never a record with a
+            // meaningless frequency shift.
+            return miss(RayStatus::Failed);
+        }
         Traced {
             record: PixelRecord {
                 object: h.target as i32,

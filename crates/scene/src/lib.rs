@@ -9,19 +9,22 @@
 //!   gives the direction in the observer's local frame.
 //! - [`SceneError`]: `file:line:column: field.path: message`.
 //!
+//! - [`input`]: the bounded reader every input file of `godel` goes through.
+//!
 //! Reading goes in three steps: the TOML text is parsed into a spanned tree (kept to locate
 //! errors), deserialized into raw records (`raw.rs`, unknown fields rejected), then checked
 //! and converted (`validate.rs`). No input makes it panic.
 
 mod camera;
 mod error;
+pub mod input;
 mod model;
 mod objects;
 mod raw;
 mod validate;
 
 pub use camera::Camera;
-pub use error::{line_column, Location, SceneError};
+pub use error::{line_column, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings,
@@ -38,12 +41,13 @@ pub const BUILTIN_SCENE_TEXT: &str = include_str!("../../../scenes/reference.tom
 pub const BUILTIN_SCENE_NAME: &str = "<builtin reference.toml>";
 
 impl Scene {
-    /// Reads and validates a scene file. Relative image paths are resolved against the
-    /// file's directory.
+    /// Reads and validates a scene file (a regular file of at most
+    /// [`input::MAX_TEXT_BYTES`]). Relative image paths are resolved against the file's
+    /// directory.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let text = input::read_text(path, input::MAX_TEXT_BYTES).map_err(|e| SceneError {
             file: file.clone(),
             location: None,
             field: String::new(),

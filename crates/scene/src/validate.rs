@@ -7,6 +7,8 @@
 //! position components left out are 0; a missing velocity direction is [1, 0, 0]; a missing
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
 //! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
+//! Bounds: tolerance in [1e-14, 1e-3], max_steps ≤ 10⁷, the name at most 100 bytes and
+//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels.
 //! Objects, motions and textures are checked in `objects.rs`.
 
 use crate::camera::Camera;
@@ -23,14 +25,29 @@ pub(crate) type Result<T> = std::result::Result<T, SceneError>;
 /// gigabytes.
 const MAX_SIDE: u32 = 20_000;
 const MAX_PIXELS: u64 = 50_000_000;
+/// The integrator tolerance's range: below 1e-14 the steps drown in rounding (f64 carries
+/// ~16 digits) and every ray fails; above 1e-3 the rays are not worth tracing.
+const MIN_TOLERANCE: f64 = 1e-14;
+const MAX_TOLERANCE: f64 = 1e-3;
+/// Most integrator steps per ray (the default is 100000).
+const MAX_STEPS: u64 = 10_000_000;
+/// Longest scene name in bytes: it becomes file names such as
+/// `.NAME.part-12-of-64.exr.godel-PID-HOST.XXXXXX.tmp`, which must stay within 255 bytes.
+const MAX_NAME_BYTES: usize = 100;
 /// forward and up count as orthogonal when |cos| ≤ this.
 const ORTHOGONALITY: f64 = 1e-6;
 /// Most loops a Gödel light ray may make within `max_past` (the tracer's bound on loop
 /// copies; a scene that would need more is refused up front).
 pub const MAX_RAY_LOOPS: u64 = 100_000;
-/// Largest proper radius of a local sphere in units of a: a local object is described in
-/// its rest frame to second order in its size (Riemann normal coordinates), which needs it
-/// small against the curvature scale a.
+/// Largest coordinate (times, positions, sizes) in units of a (of 1 in flat spacetime):
+/// beyond it the isometries that carry events to the axis, and f64 times, lose the
+/// precision the tracer needs (an observer at r = 1e9·a sees only NaN).
+pub const MAX_COORDINATE_PER_A: f64 = 1e6;
+/// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
+/// a local object is described in its rest frame to second order in its size (Riemann
+/// normal coordinates), which needs it small against the curvature scale a. Measured
+/// against the flat-space Lorentz-contracted ball, exit times of rays from inside differ by
+/// ~5 %·γ²R/a (curvature included), 2–3 % at the limit.
 pub const MAX_LOCAL_RADIUS_PER_A: f64 = 0.5;
 
 /// Everything of a [`Scene`] that comes from the file's contents.
@@ -168,13 +185,7 @@ impl Checker<'_> {
 
 pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Parts> {
     let c = Checker { loc };
-    c.name("name", &raw.name)?;
-    if raw.name.contains(['/', '\\']) {
-        return c.err(
-            "name",
-            "is used as an output file name and must not contain '/' or '\\'",
-        );
-    }
+    output_name(&c, &raw.name)?;
     let metric = spacetime(&c, raw.spacetime)?;
     let observer = observer(&c, raw.observer)?;
     let camera = camera(&c, raw.camera)?;
@@ -201,6 +212,7 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
         });
     }
     godel_rules(&c, &metric, &trace, &objects, &lights)?;
+    coordinate_bounds(&c, &metric, &observer, &objects, &lights)?;
     Ok(Parts {
         name: raw.name,
         metric,
@@ -210,6 +222,45 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
         objects,
         lights,
     })
+}
+
+/// The scene name becomes the output files' names: nothing that would make hidden files
+/// (`.`, `..`, a leading dot), look like a flag (leading `-`), hide in blanks, leave the
+/// folder, or not fit a file name with its temporary suffix.
+fn output_name(c: &Checker, name: &str) -> Result<()> {
+    c.name("name", name)?;
+    let why = "is used as the output files' name and";
+    if name.contains(['/', '\\']) {
+        return c.err("name", format!("{why} must not contain '/' or '\\'"));
+    }
+    if name.starts_with('.') {
+        return c.err(
+            "name",
+            format!("{why} must not start with '.' (hidden files), got {name:?}"),
+        );
+    }
+    if name.starts_with('-') {
+        return c.err(
+            "name",
+            format!("{why} must not start with '-', got {name:?}"),
+        );
+    }
+    if name.trim() != name {
+        return c.err(
+            "name",
+            format!("{why} must not start or end with blanks, got {name:?}"),
+        );
+    }
+    if name.len() > MAX_NAME_BYTES {
+        return c.err(
+            "name",
+            format!(
+                "{why} must be at most {MAX_NAME_BYTES} bytes long, got {}",
+                name.len()
+            ),
+        );
+    }
+    Ok(())
 }
 
 fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
@@ -357,8 +408,18 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     let d = TraceSettings::default();
     let Some(t) = raw else { return Ok(d) };
     let max_steps = t.max_steps.unwrap_or(d.max_steps);
-    if max_steps == 0 {
-        return c.err("trace.max_steps", "must be at least 1");
+    if !(1..=MAX_STEPS).contains(&max_steps) {
+        return c.err(
+            "trace.max_steps",
+            format!("must be in 1..={MAX_STEPS}, got {max_steps}"),
+        );
+    }
+    let tolerance = c.finite("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?;
+    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&tolerance) {
+        return c.err(
+            "trace.tolerance",
+            format!("must be in [{MIN_TOLERANCE:e}, {MAX_TOLERANCE}], got {tolerance:e}"),
+        );
     }
     Ok(TraceSettings {
         method: match t.method.unwrap_or(MethodName::Numeric) {
@@ -366,7 +427,7 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
             MethodName::Exact => TraceMethod::Exact,
         },
         max_past: c.positive("trace.max_past", t.max_past.unwrap_or(d.max_past))?,
-        tolerance: c.positive("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?,
+        tolerance,
         max_steps,
     })
 }
@@ -411,6 +472,22 @@ fn godel_rules(
     }
     for (i, o) in objects.iter().enumerate() {
         if let Shape::Sphere { radius } = o.shape {
+            // A ball moving at γ has a rest-frame neighbourhood whose static coordinates
+            // stretch by ~γ²·R: that, not R, must stay small against a.
+            if let Motion::Geodesic { velocity, .. } = o.motion {
+                let stretch = velocity.gamma().powi(2) * radius;
+                if stretch > MAX_LOCAL_RADIUS_PER_A * a {
+                    return c.err(
+                        &format!("object[{i}].radius"),
+                        format!(
+                            "{radius} is too large for a local sphere falling at speed {} with a = {a}: its rest frame is described to second order in γ²·radius = {stretch:.4}, which must be at most {MAX_LOCAL_RADIUS_PER_A}·a = {} (radius ≤ {:.4} at this speed)",
+                            velocity.speed,
+                            MAX_LOCAL_RADIUS_PER_A * a,
+                            MAX_LOCAL_RADIUS_PER_A * a / velocity.gamma().powi(2)
+                        ),
+                    );
+                }
+            }
             if radius > MAX_LOCAL_RADIUS_PER_A * a {
                 return c.err(
                     &format!("object[{i}].radius"),
@@ -421,6 +498,55 @@ fn godel_rules(
                 );
             }
         }
+    }
+    Ok(())
+}
+
+/// Every time, position and size in the scene within [`MAX_COORDINATE_PER_A`] of the
+/// scale (a in Gödel's universe, 1 in flat spacetime), located at the offending field.
+fn coordinate_bounds(
+    c: &Checker,
+    metric: &Metric,
+    observer: &Observer,
+    objects: &[Object],
+    lights: &[Light],
+) -> Result<()> {
+    let bound = MAX_COORDINATE_PER_A * metric.godel_a().unwrap_or(1.0);
+    let check = |path: &str, values: &[f64]| -> Result<()> {
+        match values.iter().find(|v| v.abs() > bound) {
+            Some(v) => c.err(
+                path,
+                format!("{v} is beyond ±{bound:e} (1e6 times the scale a): the tracer loses precision there"),
+            ),
+            None => Ok(()),
+        }
+    };
+    let event = |e: Event| [e.x, e.y, e.z];
+    check("observer.time", &[observer.event.t])?;
+    check("observer.position", &event(observer.event))?;
+    for (i, o) in objects.iter().enumerate() {
+        let p = |f: &str| format!("object[{i}].{f}");
+        match o.motion {
+            Motion::Rest { position } => check(&p("motion.position"), &event(position))?,
+            Motion::Geodesic { start, .. } => {
+                check(&p("motion.time"), &[start.t])?;
+                check(&p("motion.position"), &event(start))?;
+            }
+        }
+        match o.shape {
+            Shape::Sphere { radius } => check(&p("radius"), &[radius])?,
+            Shape::CoordinateSphere { center, radius } => {
+                check(&p("center"), &center)?;
+                check(&p("radius"), &[radius])?;
+            }
+            Shape::Plane { height, extent } => {
+                check(&p("height"), &[height])?;
+                check(&p("extent"), &[extent.unwrap_or(0.0)])?;
+            }
+        }
+    }
+    for (i, l) in lights.iter().enumerate() {
+        check(&format!("light[{i}].position"), &event(l.position))?;
     }
     Ok(())
 }

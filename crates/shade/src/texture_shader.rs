@@ -195,8 +195,8 @@ pub fn preview_with_textures(data: &DataFile, textures: &[Texture], scene: &Scen
     shade_lit(data, textures, &colours, BACKGROUND)
 }
 
-/// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
-pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
+/// The PNG file of `img`, in memory (`path` only names it in errors).
+pub fn encode_png(img: &RgbImage, path: &Path) -> Result<Vec<u8>, ShadeError> {
     let mut bytes = Vec::new();
     img.write_to(
         &mut std::io::Cursor::new(&mut bytes),
@@ -206,6 +206,12 @@ pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
         path: path.to_path_buf(),
         source,
     })?;
+    Ok(bytes)
+}
+
+/// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
+pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
+    let bytes = encode_png(img, path)?;
     write_atomically(path, |file| std::io::Write::write_all(file, &bytes)).map_err(|source| {
         ShadeError::Write {
             path: path.to_path_buf(),

@@ -77,6 +77,22 @@ fn checker_alternates_between_neighbouring_cells() {
     assert_ne!(at(0.3, 5.0 * dv - 1e-6), at(0.3, 5.0 * dv + 1e-6));
 }
 
+/// Fuzzing found `render` panicking ("attempt to add with overflow") on a checker with
+/// rows = cols = 4294967295: the cell parity summed two cell indices near u32::MAX. The
+/// largest checker still alternates between neighbouring cells.
+#[test]
+fn regression_fuzz_checker_with_u32_max_cells() {
+    let n = u32::MAX;
+    let t = Texture::load(&TextureSpec::Checker { rows: n, cols: n }).unwrap();
+    let light = |u: f64, v: f64| luminance(t.sample(u, v)) > 0.4;
+    // Near u = v = 1 the cell indices are n − 1 (even sum: light) and n − 2.
+    let (last, before) = (1.0 - 0.5 / n as f64, 1.0 - 1.5 / n as f64);
+    assert!(light(last, last));
+    assert!(!light(before, last));
+    assert!(!light(last, before));
+    assert!(light(before, before));
+}
+
 #[test]
 fn checker_shows_mirroring_and_the_marked_quadrant() {
     let t = Texture::load(&TextureSpec::Checker { rows: 2, cols: 4 }).unwrap();

@@ -3,26 +3,37 @@
 //! crate, so the page (embedded in the binary) only sends settings and shows what the
 //! server shaded: one shading implementation serves the command line and the viewer.
 //!
-//! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes.
+//! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes; image textures
+//!   only from the data file's folder and [`ViewerOptions::texture_folders`].
 //! - [`router`]: the routes (see [`routes`] for the table), [`serve`]: runs them.
+//! - [`Access`]: which `Host` names the server; [`guard`] checks Host, Origin and JSON bodies.
+//! - [`WorkLimit`]: the bound on concurrent shading.
 //! - The settings the page sends are `shade::ShadeSettings` as JSON.
 
+pub mod api_error;
 mod assets;
 pub mod encode;
+pub mod guard;
+pub mod limit;
 pub mod routes;
 pub mod state;
 
 use std::sync::Arc;
 
+pub use api_error::ApiError;
+pub use guard::{Access, MAX_BODY_BYTES};
+pub use limit::WorkLimit;
 pub use routes::router;
-pub use state::{LoadError, PixelInfo, ViewerState};
+pub use state::{LoadError, PixelInfo, ViewerOptions, ViewerState};
 
-/// Serves the viewer on `listener` until Ctrl-C (or SIGTERM).
+/// Serves the viewer on `listener` until Ctrl-C (or SIGTERM), answering what `access`
+/// allows.
 pub async fn serve(
     listener: tokio::net::TcpListener,
     state: Arc<ViewerState>,
+    access: Access,
 ) -> std::io::Result<()> {
-    axum::serve(listener, router(state))
+    axum::serve(listener, router(state, access))
         .with_graceful_shutdown(shutdown())
         .await
 }
@@ -50,8 +61,10 @@ async fn shutdown() {
 }
 
 /// Serves the viewer on an already bound `listener` on a new tokio runtime, blocking until
-/// Ctrl-C or SIGTERM: the command line needs no async code of its own.
+/// Ctrl-C or SIGTERM: the command line needs no async code of its own. Requests must name
+/// the address listened on ([`Access::listening_on`]).
 pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io::Result<()> {
+    let access = Access::listening_on(listener.local_addr()?);
     listener.set_nonblocking(true)?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         // Few I/O threads: shading runs on rayon's pool and tokio's blocking threads.
@@ -60,6 +73,6 @@ pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io:
         .build()?;
     runtime.block_on(async move {
         let listener = tokio::net::TcpListener::from_std(listener)?;
-        serve(listener, state).await
+        serve(listener, state, access).await
     })
 }
