@@ -2,7 +2,10 @@
 //! finite and bounded numbers, thread counts. Every failure is a [`UsageError`] naming the
 //! flag, which `main` turns into exit code 2.
 
+use anyhow::Context;
+use scene::Scene;
 use std::fmt;
+use std::path::PathBuf;
 
 /// An invalid command-line value: `--flag: what is wrong`.
 #[derive(Debug, Clone, PartialEq)]
@@ -89,6 +92,26 @@ pub fn threads(flag: &str, n: usize) -> anyhow::Result<usize> {
         ));
     }
     Ok(n)
+}
+
+/// Loads the scene named on the command line, or the built-in one.
+pub fn load_scene(path: &Option<PathBuf>) -> anyhow::Result<Scene> {
+    Ok(match path {
+        Some(p) => Scene::from_file(p)?,
+        None => Scene::builtin(),
+    })
+}
+
+/// The worker thread pool of `--threads` (checked: 1 to 8 per core).
+pub fn thread_pool(wanted: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    let n = match wanted {
+        Some(n) => threads("--threads", n)?,
+        None => 0, // rayon's default: one per core
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .context("cannot start worker threads")
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! different renders, a missing or repeated part, or overlapping parts are refused
 //! (`render::part::merge`), and nothing is written then.
 
-use crate::cmd_render::write_outputs;
+use crate::output::write_outputs;
 use clap::Args;
 use render::part::{merge, read_part};
 use scene::Scene;

@@ -20,7 +20,7 @@ use anyhow::Context;
 use clap::Args;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
-use render::datafile::DataFile;
+use datafile::DataFile;
 use render::driver::{header, render, NoProgress};
 use scene::Scene;
 use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};
@@ -244,7 +244,7 @@ pub fn stop_encoder() -> MutexGuard<'static, Option<Child>> {
 /// Encodes the frames into `DIR/sequence.mp4` (through a temporary file and a rename).
 fn encode_mp4(dir: &Path, frames: u32, fps: f64) -> anyhow::Result<PathBuf> {
     let out = dir.join(MP4);
-    render::atomic::write_atomically_via_path(&out, |tmp| {
+    datafile::atomic::write_atomically_via_path(&out, |tmp| {
         *encoder() = Some(
             Command::new("ffmpeg")
                 .args(ffmpeg_args(dir, frames, fps, tmp))
@@ -300,10 +300,10 @@ pub fn stale_outputs(dir: &Path, frames: u32) -> Vec<PathBuf> {
 }
 
 pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
-    // Under mpirun/srun the frames are spread over the ranks (cluster.rs).
+    // Under mpirun/srun the frames are spread over the ranks.
     #[cfg(feature = "mpi")]
     if crate::cluster::launched_by_mpi() {
-        return crate::cluster::sequence(args);
+        return under_mpi::run(args);
     }
     let plan = Plan::new(&args.script)?;
     let n = plan.frames();
@@ -326,7 +326,7 @@ pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
     std::fs::create_dir_all(dir)
         .map_err(|e| bad_output(format!("cannot create the folder {}: {e}", dir.display())))?;
     for path in [plan.frame_path(0), dir.join(MP4)] {
-        render::atomic::check_writable(&path)
+        datafile::atomic::check_writable(&path)
             .map_err(|e| bad_output(format!("cannot write {}: {e}", path.display())))?;
     }
     let stale = stale_outputs(dir, plan.frames());
@@ -442,5 +442,71 @@ mod tests {
             ]
         );
         assert!(stale_outputs(&dir.path().join("absent"), 4).is_empty());
+    }
+}
+
+/// `godel sequence` under MPI: frames as jobs of the generic queue
+/// (`crate::cluster::run_jobs`), each traced and shaded whole on one rank and sent to rank
+/// 0 as raw RGB, written by rank 0 as they arrive; the MP4 at the end.
+#[cfg(feature = "mpi")]
+mod under_mpi {
+    use super::*;
+    use crate::cluster::{abort, run_jobs, start as start_mpi};
+    use mpi::topology::Communicator;
+    use render::part::fingerprint_of;
+
+    pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
+        let universe = start_mpi()?;
+        let world = universe.world();
+        let rank0 = world.rank() == 0;
+        let set_up = || -> anyhow::Result<_> {
+            let text = scene::input::read_text(&args.script, scene::input::MAX_TEXT_BYTES)
+                .with_context(|| format!("cannot read {}", args.script.display()))?;
+            Ok((Plan::new(&args.script)?, fingerprint_of(&[&text])))
+        };
+        let (plan, key) = set_up().unwrap_or_else(|e| abort(&world, &e));
+        let bar = if rank0 {
+            start(&plan, &args).unwrap_or_else(|e| abort(&world, &e))
+        } else {
+            ProgressBar::hidden()
+        };
+        let work = |job: usize| -> anyhow::Result<Vec<u8>> {
+            let image = plan
+                .frame(job as u32)
+                .with_context(|| format!("frame {job}"))?;
+            let mut bytes = image.width().to_le_bytes().to_vec();
+            bytes.extend_from_slice(&image.height().to_le_bytes());
+            bytes.extend_from_slice(image.as_raw());
+            Ok(bytes)
+        };
+        let mut failure = None;
+        let mut done = |job: usize, bytes: Vec<u8>| {
+            let size = |at: usize| {
+                bytes
+                    .get(at..at + 4)
+                    .and_then(|b| b.try_into().ok())
+                    .map_or(0, u32::from_le_bytes)
+            };
+            let image = (bytes.len() >= 8)
+                .then(|| RgbImage::from_raw(size(0), size(4), bytes[8..].to_vec()))
+                .flatten();
+            let written = match image {
+                Some(image) => shade::write_png(&image, &plan.frame_path(job as u32))
+                    .map_err(anyhow::Error::from),
+                None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
+            };
+            match written {
+                Ok(()) => bar.inc(1),
+                Err(e) => failure = Some(e),
+            }
+        };
+        run_jobs(&world, plan.frames() as usize, &key, &work, &mut done);
+        if let Some(e) = failure {
+            abort(&world, &e);
+        }
+        if rank0 {
+            finish(&plan, &args, &bar).unwrap_or_else(|e| abort(&world, &e));
+        }
+        Ok(())
     }
 }

@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use render::datafile::DataFile;
+use datafile::DataFile;
 use shade::{
     BrightnessMode, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TimeMode,
 };

@@ -6,7 +6,7 @@
 //!
 //! SIGINT, SIGTERM and SIGHUP end every command but `view` (whose server stops gracefully on
 //! its own) through [`exit_on_signals`]: the temporary files of writes under way are
-//! removed (`render::atomic`) and the process exits with 128 + the signal's number (130 for
+//! removed (`datafile::atomic`) and the process exits with 128 + the signal's number (130 for
 //! Ctrl-C, 143 for SIGTERM), leaving no half-written file behind.
 
 mod args;
@@ -22,6 +22,8 @@ mod cmd_shade;
 mod cmd_view;
 mod output;
 mod plot_isometry;
+mod plot_kit;
+mod progress;
 mod svg;
 
 use clap::{Parser, Subcommand};
@@ -80,7 +82,7 @@ fn exit_on_signals() -> std::io::Result<()> {
             if let Some(signal) = signals.forever().next() {
                 // A child writing a temporary file stops first, so it cannot recreate it.
                 let _encoder = cmd_sequence::stop_encoder();
-                let removed = render::atomic::remove_live_temporaries();
+                let removed = datafile::atomic::remove_live_temporaries();
                 if removed > 0 {
                     eprintln!("godel: interrupted; removed {removed} temporary file(s)");
                 }

@@ -1,4 +1,4 @@
-//! Writing output files (via `render::atomic`): each through a temporary file and a rename,
+//! Writing output files (via `datafile::atomic`): each through a temporary file and a rename,
 //! files that belong together (a render's EXR and PNG) all staged first and then renamed
 //! together, and the output folder checked before any work ([`prepare`]), so that a failed
 //! or interrupted run leaves no half-written file and no unwritable folder is found late.
@@ -9,7 +9,9 @@
 //! there (crates/godel/tests/writes_cli.rs).
 
 use anyhow::Context;
-use render::atomic::{check_writable, commit_all, stage};
+use datafile::atomic::{check_writable, commit_all, stage};
+use datafile::DataFile;
+use scene::Scene;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -49,6 +51,33 @@ pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
         })?;
     }
     Ok(())
+}
+
+/// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures,
+/// lit where the scene has lights):
+/// exactly the files of a single run, whoever traced the pixels.
+pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
+    let textures = shade::textures_for_scene(scene)?;
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let [exr, png] = output_names(scene).map(|n| dir.join(n));
+    let png_bytes = {
+        let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+        shade::encode_png(&image, &png)?
+    };
+    let exr_bytes = data
+        .to_bytes()
+        .map_err(|kind| datafile::DataFileError {
+            path: exr.clone(),
+            kind,
+        })?;
+    write_together(&[(exr.clone(), &exr_bytes), (png.clone(), &png_bytes)])?;
+    eprintln!("wrote {} and {}", png.display(), exr.display());
+    Ok(())
+}
+
+/// The files a render writes: `<name>.exr` and `<name>.png`.
+pub fn output_names(scene: &Scene) -> [String; 2] {
+    [format!("{}.exr", scene.name), format!("{}.png", scene.name)]
 }
 
 /// The testing hook of the module doc.

@@ -3,9 +3,10 @@
 //! belong together (missing, repeated, overlapping, other scene, not a part) are refused
 //! with a message naming the file and nothing is written; light planes survive a split.
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use render::driver::Renderer;
-use render::part::{fingerprint, merge, read_part, write_part, Part};
+use render::part::{fingerprint, merge, read_part, write_part};
+use render::plan::Part;
 use render::tiles::{extract, insert};
 use scene::Scene;
 use std::path::Path;

@@ -10,21 +10,19 @@
 //! written from them) are identical whatever the number of threads or ranks, or the order
 //! in which tiles finish.
 
-use crate::datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use crate::intersect::Intersector;
 use crate::lighting::{LightSource, Lighting};
-use crate::record::{PixelRecord, RayStatus};
+use datafile::record::{PixelRecord, RayStatus};
 use crate::target::Target;
-use crate::tiles::{Assembler, TileData};
+use crate::plan::{tiles, Plan, Tile};
+use crate::tiles::{Assembler, Sink, TileData};
 use crate::tracer::{Scratch, TraceOptions, Tracer};
 use rayon::prelude::*;
 use scene::{Scene, TraceMethod};
 use spacetime::Spacetime;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
-
-/// Tile edge in pixels: small enough to balance rays of very different cost.
-const TILE: u32 = 16;
 
 /// Receives progress from the driver (the tracer never learns about terminals or MPI).
 pub trait Progress: Sync {
@@ -126,11 +124,6 @@ pub struct Renderer<'a> {
     tracer: Tracer,
     lighting: Lighting,
     tiles: Vec<Tile>,
-}
-
-/// Receives finished tiles, in any order (one at a time).
-pub trait Sink {
-    fn accept(&mut self, tile: TileData);
 }
 
 impl<'a> Renderer<'a> {
@@ -251,14 +244,15 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    /// Traces the tiles with these indices on rayon's current pool, handing each to `sink`
-    /// as it is done; returns what the rays did (wall time included).
+    /// Traces the tiles of `plan` on rayon's current pool, handing each to `sink` as it is
+    /// done; returns what the rays did (wall time included).
     pub fn run(
         &self,
-        indices: &[usize],
+        plan: &Plan,
         sink: &mut (dyn Sink + Send),
         progress: &dyn Progress,
     ) -> RenderStats {
+        let indices = plan.indices(&self.tiles);
         let started = Instant::now();
         let shared = Mutex::new((sink, RenderStats::default()));
         indices.par_iter().for_each_init(
@@ -296,31 +290,6 @@ pub fn header(scene: &Scene) -> DataHeader {
     }
 }
 
-/// The rectangle of pixels of one tile.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Tile {
-    pub col0: u32,
-    pub row0: u32,
-    pub cols: u32,
-    pub rows: u32,
-}
-
-/// All tiles of a width × height image, in row-major order.
-pub fn tiles(width: u32, height: u32) -> Vec<Tile> {
-    let mut out = Vec::new();
-    for row0 in (0..height).step_by(TILE as usize) {
-        for col0 in (0..width).step_by(TILE as usize) {
-            out.push(Tile {
-                col0,
-                row0,
-                cols: TILE.min(width - col0),
-                rows: TILE.min(height - row0),
-            });
-        }
-    }
-    out
-}
-
 /// Renders the whole scene on rayon's thread pool.
 pub fn render(
     scene: &Scene,
@@ -329,8 +298,18 @@ pub fn render(
     let started = Instant::now();
     let renderer = Renderer::new(scene)?;
     let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
-    let all: Vec<usize> = (0..renderer.tiles().len()).collect();
-    let mut stats = renderer.run(&all, &mut assembler, progress);
+    let mut stats = renderer.run(&Plan::All, &mut assembler, progress);
     stats.wall = started.elapsed();
     Ok((assembler.finish(), stats))
 }
+
+impl Renderer<'_> {
+    /// Traces the tiles of `plan` and returns them in index order.
+    pub fn trace(&self, plan: &Plan, progress: &dyn Progress) -> Vec<TileData> {
+        let mut out: Vec<TileData> = Vec::new();
+        self.run(plan, &mut out, progress);
+        out.sort_by_key(|t| t.index);
+        out
+    }
+}
+

@@ -1,16 +1,14 @@
-//! Tiles of traced data: [`TileData`] (what tracing one tile produced), the [`Assembler`]
-//! sink that puts tiles into a [`DataFile`], and taking tiles out of one (for merges).
+//! Traced tiles: [`TileData`] (what tracing one tile produced), the [`Sink`] that receives
+//! them, the [`Assembler`] sink that puts tiles into a [`DataFile`], and taking tiles out
+//! of one (for merges).
 //!
 //! A tile's records depend only on the scene and the tile (see `Renderer::trace_tile`), so
 //! an image assembled from tiles traced anywhere, in any order, equals a whole render
 //! byte for byte once written. Light planes (`DataFile::lights`) travel with each tile, so
 //! parts, merges and MPI runs carry them generically.
 
-use crate::datafile::DataFile;
-use crate::driver::{Progress, Renderer, Sink};
-use crate::record::PixelRecord;
-
-pub use crate::driver::Tile;
+use crate::plan::Tile;
+use datafile::{DataFile, PixelRecord};
 
 /// What tracing one tile produced: its records (row-major within the tile) and one plane
 /// of light values per light source (same order).
@@ -20,6 +18,11 @@ pub struct TileData {
     pub index: usize,
     pub records: Vec<PixelRecord>,
     pub lights: Vec<Vec<f32>>,
+}
+
+/// Receives finished tiles, in any order (one at a time).
+pub trait Sink {
+    fn accept(&mut self, tile: TileData);
 }
 
 /// The sink that puts traced tiles into a data file.
@@ -53,16 +56,6 @@ impl Sink for Assembler {
 impl Sink for Vec<TileData> {
     fn accept(&mut self, tile: TileData) {
         self.push(tile);
-    }
-}
-
-impl Renderer<'_> {
-    /// Traces the tiles with these indices and returns them in index order.
-    pub fn trace(&self, indices: &[usize], progress: &dyn Progress) -> Vec<TileData> {
-        let mut out: Vec<TileData> = Vec::with_capacity(indices.len());
-        self.run(indices, &mut out, progress);
-        out.sort_by_key(|t| t.index);
-        out
     }
 }
 

@@ -20,7 +20,7 @@
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
-use crate::record::{PixelRecord, RayStatus};
+use datafile::record::{PixelRecord, RayStatus};
 use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use spacetime::measure::frequency_ratio;
 use spacetime::{

@@ -5,7 +5,7 @@
 
 mod common;
 use common::{render_scene, scene};
-use render::datafile::DataFile;
+use datafile::DataFile;
 use spacetime::{
     shadow_rays, trace, Event, Geodesic, GeodesicKind, Godel, Metric, Spacetime, TraceLimits,
 };

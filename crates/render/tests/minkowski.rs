@@ -10,7 +10,7 @@
 mod common;
 
 use common::*;
-use render::datafile::DataFile;
+use datafile::DataFile;
 
 const FOV_DEG: f64 = 30.0;
 const N: usize = 81;

@@ -16,6 +16,7 @@
 //! and converted (`validate.rs`). No input makes it panic.
 
 mod camera;
+mod checker;
 mod error;
 pub mod input;
 mod model;

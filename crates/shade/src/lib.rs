@@ -14,7 +14,7 @@
 //! - [`TextureSource`]: where image textures may be read from — any file (the command line) or
 //!   only regular files inside given folders (the viewer); reads are capped
 //!   ([`MAX_IMAGE_FILE_BYTES`], [`MAX_IMAGE_SIDE`]).
-//! - [`shade_textures`] / [`preview`]: the texture shader, a [`render::datafile::DataFile`] to
+//! - [`shade_textures`] / [`preview`]: the texture shader, a [`datafile::DataFile`] to
 //!   an 8-bit sRGB image; [`write_png`] writes it atomically.
 //! - [`blackbody`]: Planck's law, CIE 1931 XYZ, XYZ → linear sRGB, and the black-body
 //!   colour table in temperature used by the frequency shader.

@@ -41,7 +41,7 @@ use std::fmt;
 use std::path::PathBuf;
 use std::str::FromStr;
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ShadeError;

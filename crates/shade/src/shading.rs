@@ -31,7 +31,7 @@ use std::collections::HashMap;
 
 use image::RgbImage;
 use rayon::prelude::*;
-use render::datafile::DataFile;
+use datafile::DataFile;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};

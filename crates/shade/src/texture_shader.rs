@@ -25,9 +25,9 @@ use std::path::Path;
 
 use image::RgbImage;
 use rayon::prelude::*;
-use render::atomic::write_atomically;
-use render::datafile::DataFile;
-use render::record::{PixelRecord, RayStatus};
+use datafile::atomic::write_atomically;
+use datafile::DataFile;
+use datafile::record::{PixelRecord, RayStatus};
 use scene::Scene;
 
 use crate::colour::rgb_to_srgb8;

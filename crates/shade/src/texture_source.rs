@@ -18,7 +18,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use scene::{ImageSource, Scene, TextureSpec};
 
 use crate::error::ShadeError;

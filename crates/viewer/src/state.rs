@@ -10,8 +10,8 @@
 use std::path::{Path, PathBuf};
 
 use image::RgbImage;
-use render::datafile::DataFile;
-use render::record::RayStatus;
+use datafile::DataFile;
+use datafile::record::RayStatus;
 use serde::Serialize;
 use shade::{ShadeSettings, Shading, TextureSource};
 
@@ -23,7 +23,7 @@ use crate::limit::WorkLimit;
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
     #[error(transparent)]
-    Data(#[from] render::datafile::DataFileError),
+    Data(#[from] datafile::DataFileError),
     #[error(transparent)]
     TextureFolder(shade::ShadeError),
     #[error(

@@ -3,7 +3,7 @@
 //! and a falling earth traced exactly; a ball beyond the horizon that no ray reaches), and
 //! image files for image textures (a good PNG, a truncated one, text named `.png`).
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use render::driver::NoProgress;
 use scene::Scene;
 use std::path::{Path, PathBuf};

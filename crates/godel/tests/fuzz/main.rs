@@ -222,7 +222,7 @@ fn fuzz_data_files() {
         fuzz.run(k, &shown, move || {
             let mut outcome = shading_case::data_bytes(&bytes)?;
             if let (Some(text), Ok(data)) =
-                (&settings, render::datafile::DataFile::from_bytes(&bytes))
+                (&settings, datafile::DataFile::from_bytes(&bytes))
             {
                 outcome = format!(
                     "{outcome}; settings {}",

@@ -1,9 +1,9 @@
-//! Atomic output (`render::atomic`): files that belong together appear together, an
+//! Atomic output (`datafile::atomic`): files that belong together appear together, an
 //! unwritable target is found before any work, and temporaries of dead processes are swept
 //! (issue 10: a kill between the EXR's rename and the PNG's left a new EXR beside an old
 //! PNG; `.NAME.XXXXXX.tmp` files stayed forever).
 
-use render::atomic::{
+use datafile::atomic::{
     check_writable, commit_all, live_temporaries, owner_of, stage, write_atomically,
 };
 use std::io::Write;

@@ -4,7 +4,7 @@
 //! (DESIGN.md, "Data file"): which object the backward null geodesic hit, where
 //! and when it was emitted, the frequency shift `g`, and the texture coordinates.
 //! Direct light from each source (`light_k`) is not part of the record: it is
-//! stored as separate planes in [`crate::datafile::DataFile::lights`] so that the
+//! stored as separate planes in [`crate::DataFile::lights`] so that the
 //! record stays small and `Copy`.
 
 /// How a pixel's ray ended. The numeric codes are those stored in the data
