@@ -1,12 +1,12 @@
 //! Scene files for the Gödel ray tracer: parsing, validation with located errors, and the
-//! runtime scene description (DESIGN.md, "Scene file (TOML)", "Cameras", "Errors").
+//! runtime scene description (README.md, "Scenes"; docs/physics.md, "Pixels and cameras").
 //!
 //! Main types:
 //! - [`Scene`]: the validated scene — metric, [`Observer`], [`Camera`], [`TraceSettings`],
 //!   [`Object`]s (shape, [`TextureSpec`], temperature, [`Motion`]) and [`Light`]s.
 //!   Read with [`Scene::from_file`], [`Scene::from_str`] or [`Scene::builtin`].
-//! - [`Camera`]: pixel → direction, exactly as DESIGN.md fixes it; [`Observer::pixel_direction`]
-//!   gives the direction in the observer's local frame.
+//! - [`Camera`]: pixel → direction, exactly as docs/physics.md ("Pixels and cameras") fixes
+//!   it; [`Observer::pixel_direction`] gives the direction in the observer's local frame.
 //! - [`SceneError`]: `file:line:column: field.path: message`.
 //!
 //! - [`input`]: the bounded reader every input file of `godel` goes through.

@@ -102,7 +102,8 @@ impl Default for TraceSettings {
     }
 }
 
-/// Whether an object lives in its own rest frame or is fixed in coordinates (DESIGN.md).
+/// Whether an object lives in its own rest frame or is fixed in coordinates (docs/physics.md,
+/// "Local objects").
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ObjectFrame {
     Local,

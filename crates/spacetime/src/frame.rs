@@ -1,5 +1,6 @@
 //! Local frames: the static observer's frame by Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
-//! (DESIGN.md), and Lorentz boosts of a frame to an observer moving with a given velocity.
+//! (docs/physics.md, "Frames"), and Lorentz boosts of a frame to an observer moving with a
+//! given velocity.
 
 use crate::vectors::{FourVector, MetricTensor, Tetrad};
 

@@ -1,4 +1,4 @@
-//! `viewer`: the live web viewer behind `godel view` (DESIGN.md, "The pipeline"). A local
+//! `viewer`: the live web viewer behind `godel view` (README.md, "Live viewer"). A local
 //! axum server holds one data file in memory and shades it on request with the `shade`
 //! crate, so the page (embedded in the binary) only sends settings and shows what the
 //! server shaded: one shading implementation serves the command line and the viewer.
