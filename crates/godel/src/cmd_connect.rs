@@ -20,8 +20,8 @@ use anyhow::Context;
 use clap::ValueEnum;
 use serde_json::json;
 use spacetime::{
-    shadow_rays, source_area_distance_sq, Branch, Cylindrical, Event, ExactGeodesic, FourVector,
-    Godel, Isometry, ShadowRay, Spacetime,
+    measure, shadow_rays, source_area_distance_sq, Branch, Cylindrical, Event, ExactGeodesic,
+    FourVector, Godel, Isometry, ShadowRay, Spacetime,
 };
 use std::io::Write;
 
@@ -87,7 +87,7 @@ pub struct Answer {
 /// Local spatial components of `v` in the static frame at `at`, normalized.
 fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
     let frame = metric.static_frame(at);
-    let n: [f64; 3] = std::array::from_fn(|i| metric.dot(at, frame.e[i + 1], v));
+    let [_, n @ ..] = measure::vector_components(&metric.metric(at), &frame, v);
     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
     n.map(|c| c / len)
 }

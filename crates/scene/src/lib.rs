@@ -28,7 +28,7 @@ pub use camera::Camera;
 pub use error::{line_column, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
-    TextureSpec, TraceMethod, TraceSettings,
+    TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
 pub use validate::{MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
