@@ -9,8 +9,11 @@
 
 mod assets;
 pub mod encode;
+pub mod gpu;
+pub mod gpu_routes;
 pub mod routes;
 pub mod state;
+pub mod wire;
 
 use std::sync::Arc;
 

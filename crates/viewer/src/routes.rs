@@ -45,7 +45,10 @@ pub fn router(state: Arc<ViewerState>) -> Router {
         .route("/api/png", post(png))
         .route("/api/keyframe", post(keyframe))
         .route("/api/pixel", get(pixel))
-        .with_state(state)
+        .with_state(state.clone())
+        .merge(crate::gpu_routes::router(Arc::new(
+            crate::gpu_routes::GpuState::new(state),
+        )))
 }
 
 /// An error answer: a status and a message for the page.

@@ -1,0 +1,156 @@
+//! The routes that feed the page's WebGL2 shaders ([`crate::gpu`] says what each holds):
+//!
+//! | route | answer |
+//! | --- | --- |
+//! | `GET /api/gpu/channel/{name}` | one channel of the data file ([`crate::wire`] array) |
+//! | `GET /api/gpu/textures` | each object's scene texture (JSON, [`crate::gpu::GpuTexture`]) |
+//! | `GET /api/gpu/image/{name}` | an image texture, `earth` or `scene-K` (RGB8 array) |
+//! | `GET /api/gpu/blackbody` | the black-body grid and the g·T table's layout (JSON) |
+//! | `GET /api/gpu/blackbody/gt` | the g·T table's entries (f32 RGBA array) |
+//!
+//! The data never changes while the server runs; the page fetches each item once.
+
+use std::sync::{Arc, OnceLock};
+
+use axum::extract::{Path, State};
+use axum::http::{header, HeaderName, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::routing::get;
+use axum::{Json, Router};
+use scene::Scene;
+use shade::{ImageTexture, Texture};
+
+use crate::gpu::{self, Channel, GpuTexture};
+use crate::state::ViewerState;
+
+/// The GPU routes' state: the loaded file and its scene textures, loaded on first request.
+pub struct GpuState {
+    viewer: Arc<ViewerState>,
+    textures: OnceLock<Result<Vec<Texture>, String>>,
+}
+
+impl GpuState {
+    pub fn new(viewer: Arc<ViewerState>) -> GpuState {
+        GpuState {
+            viewer,
+            textures: OnceLock::new(),
+        }
+    }
+
+    /// The objects' scene textures (the file was refused at loading if they cannot load, so
+    /// an error here means the image files changed meanwhile).
+    fn scene_textures(&self) -> Result<&[Texture], Response> {
+        let loaded = self.textures.get_or_init(|| {
+            let data = &self.viewer.data;
+            let scene =
+                Scene::from_str(&data.header.scene_text, "<scene embedded in the data file>")
+                    .map_err(|e| e.to_string())?;
+            shade::textures_for_scene(&scene).map_err(|e| e.to_string())
+        });
+        loaded
+            .as_deref()
+            .map_err(|e| error(StatusCode::INTERNAL_SERVER_ERROR, e.clone()))
+    }
+}
+
+/// The routes, with their own state; merged into [`crate::router`].
+pub fn router(state: Arc<GpuState>) -> Router {
+    Router::new()
+        .route("/api/gpu/channel/{name}", get(channel))
+        .route("/api/gpu/textures", get(textures))
+        .route("/api/gpu/image/{name}", get(image))
+        .route("/api/gpu/blackbody", get(blackbody))
+        .route("/api/gpu/blackbody/gt", get(gt_table))
+        .with_state(state)
+}
+
+fn error(status: StatusCode, message: impl Into<String>) -> Response {
+    let body = Json(serde_json::json!({ "error": message.into() }));
+    (status, [(header::CACHE_CONTROL, "no-store")], body).into_response()
+}
+
+/// A binary array answer.
+fn array(bytes: Vec<u8>) -> Response {
+    let headers = [
+        (
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/octet-stream"),
+        ),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (
+            HeaderName::from_static("x-content-type-options"),
+            HeaderValue::from_static("nosniff"),
+        ),
+    ];
+    (headers, bytes).into_response()
+}
+
+async fn channel(State(state): State<Arc<GpuState>>, Path(name): Path<String>) -> Response {
+    let data = &state.viewer.data;
+    let Some(channel) = Channel::parse(&name, data.lights.len()) else {
+        let lights = (0..data.lights.len())
+            .map(|k| format!(", light_{k}"))
+            .collect::<String>();
+        return error(
+            StatusCode::NOT_FOUND,
+            format!("no channel '{name}' (this file has id, u, v, g, t_emit, cos_i{lights})"),
+        );
+    };
+    let viewer = state.viewer.clone();
+    match tokio::task::spawn_blocking(move || channel.encode(&viewer.data)).await {
+        Ok(bytes) => array(bytes),
+        Err(e) => error(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("encoding {name}: {e}"),
+        ),
+    }
+}
+
+async fn textures(State(state): State<Arc<GpuState>>) -> Response {
+    let scene = match state.scene_textures() {
+        Ok(t) => t,
+        Err(e) => return e,
+    };
+    let objects: Vec<GpuTexture> = scene
+        .iter()
+        .enumerate()
+        .map(|(k, t)| gpu::describe_texture(k, t))
+        .collect();
+    let body = serde_json::json!({ "objects": objects });
+    ([(header::CACHE_CONTROL, "no-store")], Json(body)).into_response()
+}
+
+async fn image(State(state): State<Arc<GpuState>>, Path(name): Path<String>) -> Response {
+    let found: Result<ImageTexture, Response> = if name == gpu::EARTH {
+        ImageTexture::earth().map_err(|e| error(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))
+    } else {
+        let scene = match state.scene_textures() {
+            Ok(t) => t,
+            Err(e) => return e,
+        };
+        scene
+            .iter()
+            .enumerate()
+            .find_map(|(k, t)| match t {
+                Texture::Image(image) if gpu::scene_image_name(k) == name => Some(image.clone()),
+                _ => None,
+            })
+            .ok_or_else(|| error(StatusCode::NOT_FOUND, format!("no image '{name}'")))
+    };
+    match found {
+        Ok(image) => array(gpu::encode_image(&image)),
+        Err(e) => e,
+    }
+}
+
+async fn blackbody() -> Response {
+    (
+        [(header::CACHE_CONTROL, "no-store")],
+        Json(gpu::blackbody()),
+    )
+        .into_response()
+}
+
+async fn gt_table() -> Response {
+    array(gpu::encode_gt_table())
+}
