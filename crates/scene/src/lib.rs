@@ -8,19 +8,23 @@
 //! - [`Camera`]: pixel → direction, exactly as DESIGN.md fixes it; [`Observer::pixel_direction`]
 //!   gives the direction in the observer's local frame.
 //! - [`SceneError`]: `file:line:column: field.path: message`.
+//! - [`Scene::read_view`] and [`replace_view`]: read or replace only the observer's view
+//!   (camera, velocity, camera axes) in scene text, as `godel look` does.
 //!
 //! Reading goes in three steps: the TOML text is parsed into a spanned tree (kept to locate
 //! errors), deserialized into raw records (`raw.rs`, unknown fields rejected), then checked
 //! and converted (`validate.rs`). No input makes it panic.
 
 mod camera;
+mod edit;
 mod error;
 mod model;
 mod objects;
 mod raw;
 mod validate;
 
-pub use camera::Camera;
+pub use camera::{Camera, MAX_PIXELS, MAX_SIDE};
+pub use edit::{replace_view, ViewFields};
 pub use error::{line_column, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
@@ -63,6 +67,19 @@ impl Scene {
         parse(text, name_for_errors, base)
     }
 
+    /// Reads only the observer and the camera of scene text (both validated as in a whole
+    /// scene), leaving objects, textures and lights unchecked: data files embed their scene
+    /// text, whose image paths may not resolve where the data file is read.
+    pub fn read_view(text: &str, name_for_errors: &str) -> Result<(Observer, Camera), SceneError> {
+        with_raw(text, name_for_errors, |raw, loc| {
+            let c = validate::Checker { loc };
+            Ok((
+                validate::observer(&c, raw.observer)?,
+                validate::camera(&c, raw.camera)?,
+            ))
+        })
+    }
+
     /// The built-in reference scene ([`BUILTIN_SCENE_TEXT`]).
     pub fn builtin() -> Scene {
         // The embedded text is fixed at compile time and tested (`builtin_scene_is_valid`),
@@ -73,6 +90,27 @@ impl Scene {
 }
 
 fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
+    let parts = with_raw(text, file, |raw, loc| validate::build(raw, loc, base_dir))?;
+    Ok(Scene {
+        name: parts.name,
+        source_path: None,
+        source_text: text.to_string(),
+        metric: parts.metric,
+        observer: parts.observer,
+        camera: parts.camera,
+        trace: parts.trace,
+        objects: parts.objects,
+        lights: parts.lights,
+    })
+}
+
+/// Parses scene text into the raw records (`raw.rs`) and hands them to `check`, with the
+/// locator that places its errors in the text.
+fn with_raw<T>(
+    text: &str,
+    file: &str,
+    check: impl FnOnce(raw::RawScene, &Locator) -> Result<T, SceneError>,
+) -> Result<T, SceneError> {
     let root = match toml::de::DeTable::parse(text) {
         Ok(root) => root,
         Err(e) => {
@@ -96,18 +134,7 @@ fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
     let loc = Locator::new(file, text, Some(&root));
     let raw = raw::RawScene::deserialize(toml::de::Deserializer::from(root.clone()))
         .map_err(|e| loc.at_span(e.span(), e.message().to_string()))?;
-    let parts = validate::build(raw, &loc, base_dir)?;
-    Ok(Scene {
-        name: parts.name,
-        source_path: None,
-        source_text: text.to_string(),
-        metric: parts.metric,
-        observer: parts.observer,
-        camera: parts.camera,
-        trace: parts.trace,
-        objects: parts.objects,
-        lights: parts.lights,
-    })
+    check(raw, &loc)
 }
 
 #[cfg(test)]

@@ -19,13 +19,6 @@ use std::path::Path;
 
 pub(crate) type Result<T> = std::result::Result<T, SceneError>;
 
-/// Largest image side, and largest pixel count: guards against typos that would allocate
-/// gigabytes.
-const MAX_SIDE: u32 = 20_000;
-const MAX_PIXELS: u64 = 50_000_000;
-/// forward and up count as orthogonal when |cos| ≤ this.
-const ORTHOGONALITY: f64 = 1e-6;
-
 /// Everything of a [`Scene`] that comes from the file's contents.
 pub(crate) struct Parts {
     pub name: String,
@@ -219,7 +212,7 @@ fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
     }
 }
 
-fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
+pub(crate) fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     let Some(o) = raw else {
         return Ok(Observer {
             event: Event::default(),
@@ -236,13 +229,7 @@ fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     };
     let forward = c.direction("observer.forward", o.forward.unwrap_or([1.0, 0.0, 0.0]))?;
     let up = c.direction("observer.up", o.up.unwrap_or([0.0, 0.0, 1.0]))?;
-    let cos = forward[0] * up[0] + forward[1] * up[1] + forward[2] * up[2];
-    if cos.abs() > ORTHOGONALITY {
-        return c.err(
-            "observer.up",
-            format!("must be orthogonal to forward (cos of their angle is {cos:.3e})"),
-        );
-    }
+    Observer::check_axes(forward, up).or_else(|message| c.err("observer.up", message))?;
     Ok(Observer {
         event,
         velocity,
@@ -251,37 +238,9 @@ fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     })
 }
 
-fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
-    for (field, v) in [("width", r.width), ("height", r.height)] {
-        if v == 0 || v > MAX_SIDE {
-            return c.err(
-                &format!("camera.{field}"),
-                format!("must be in 1..={MAX_SIDE}, got {v}"),
-            );
-        }
-    }
-    let pixels = r.width as u64 * r.height as u64;
-    if pixels > MAX_PIXELS {
-        return c.err(
-            "camera.height",
-            format!("image has {pixels} pixels, more than the limit of {MAX_PIXELS}"),
-        );
-    }
+pub(crate) fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
     let (width, height) = (r.width, r.height);
-    let angle = |path: &str, v: f64, max: f64, max_inclusive: bool| -> Result<f64> {
-        let v = c.finite(path, v)?;
-        let ok = v > 0.0 && if max_inclusive { v <= max } else { v < max };
-        if ok {
-            Ok(v)
-        } else {
-            let close = if max_inclusive { "]" } else { ")" };
-            c.err(
-                path,
-                format!("must be in (0, {max}{close} degrees, got {v}"),
-            )
-        }
-    };
-    match r.kind {
+    let camera = match r.kind {
         CameraKind::Pinhole => {
             c.unused(
                 "camera.h_fov_deg",
@@ -293,12 +252,11 @@ fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
                 &r.v_fov_deg,
                 "by a pinhole camera (its vertical fov follows from the aspect ratio)",
             )?;
-            let fov = c.required("camera.fov_deg", r.fov_deg, "for a pinhole camera")?;
-            Ok(Camera::Pinhole {
-                fov_deg: angle("camera.fov_deg", fov, 180.0, false)?,
+            Camera::Pinhole {
+                fov_deg: c.required("camera.fov_deg", r.fov_deg, "for a pinhole camera")?,
                 width,
                 height,
-            })
+            }
         }
         CameraKind::Panorama => {
             c.unused(
@@ -306,21 +264,19 @@ fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
                 &r.fov_deg,
                 "by a panorama (use h_fov_deg and v_fov_deg)",
             )?;
-            let h = c.required("camera.h_fov_deg", r.h_fov_deg, "for a panorama")?;
-            let v = c.required("camera.v_fov_deg", r.v_fov_deg, "for a panorama")?;
-            Ok(Camera::Panorama {
-                h_fov_deg: angle("camera.h_fov_deg", h, 360.0, true)?,
-                v_fov_deg: angle("camera.v_fov_deg", v, 180.0, true)?,
+            Camera::Panorama {
+                h_fov_deg: c.required("camera.h_fov_deg", r.h_fov_deg, "for a panorama")?,
+                v_fov_deg: c.required("camera.v_fov_deg", r.v_fov_deg, "for a panorama")?,
                 width,
                 height,
-            })
+            }
         }
         CameraKind::Sphere => {
             let why = "by a sphere camera (always 360°×180°)";
             c.unused("camera.fov_deg", &r.fov_deg, why)?;
             c.unused("camera.h_fov_deg", &r.h_fov_deg, why)?;
             c.unused("camera.v_fov_deg", &r.v_fov_deg, why)?;
-            Ok(Camera::Sphere { width, height })
+            Camera::Sphere { width, height }
         }
         CameraKind::Fisheye => {
             c.unused(
@@ -336,13 +292,16 @@ fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
             if width != height {
                 return c.err("camera.height", format!("a fisheye image is square: height must equal width ({width}), got {height}"));
             }
-            let fov = angle("camera.fov_deg", r.fov_deg.unwrap_or(180.0), 360.0, true)?;
-            Ok(Camera::Fisheye {
-                fov_deg: fov,
+            Camera::Fisheye {
+                fov_deg: r.fov_deg.unwrap_or(180.0),
                 size: width,
-            })
+            }
         }
-    }
+    };
+    camera
+        .check()
+        .or_else(|(field, message)| c.err(field, message))?;
+    Ok(camera)
 }
 
 fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
