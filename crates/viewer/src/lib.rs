@@ -11,6 +11,7 @@ mod assets;
 pub mod encode;
 pub mod gpu;
 pub mod gpu_routes;
+pub mod look_routes;
 pub mod routes;
 pub mod state;
 pub mod wire;

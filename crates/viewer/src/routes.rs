@@ -47,7 +47,10 @@ pub fn router(state: Arc<ViewerState>) -> Router {
         .route("/api/pixel", get(pixel))
         .with_state(state.clone())
         .merge(crate::gpu_routes::router(Arc::new(
-            crate::gpu_routes::GpuState::new(state),
+            crate::gpu_routes::GpuState::new(state.clone()),
+        )))
+        .merge(crate::look_routes::router(Arc::new(
+            crate::look_routes::LookState::new(state),
         )))
 }
 
@@ -59,14 +62,14 @@ pub struct ApiError {
 }
 
 impl ApiError {
-    fn bad_request(message: impl Into<String>) -> ApiError {
+    pub(crate) fn bad_request(message: impl Into<String>) -> ApiError {
         ApiError {
             status: StatusCode::BAD_REQUEST,
             message: message.into(),
         }
     }
 
-    fn internal(message: impl Into<String>) -> ApiError {
+    pub(crate) fn internal(message: impl Into<String>) -> ApiError {
         ApiError {
             status: StatusCode::INTERNAL_SERVER_ERROR,
             message: message.into(),
@@ -165,7 +168,7 @@ async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Res
 }
 
 /// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
-fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
+pub(crate) fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
     let stem: String = state
         .data
         .header
