@@ -9,7 +9,7 @@ use render::datafile::DataFile;
 use render::driver::{render, NoProgress};
 use render::look::{look, pixel_look, LookView, SphereSource};
 use render::record::PixelRecord;
-use scene::{replace_view, Camera, Scene, ViewFields};
+use scene::{replace_view, Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::Path;
 
@@ -161,13 +161,15 @@ fn main() {
         }
         let velocity = LocalVelocity::new(speed, dir).unwrap();
         let view = LookView::new(camera, forward, [0.0, 0.0, 1.0], velocity).unwrap();
-        let fields = ViewFields {
-            camera,
+        let text = replace_view(
+            &sphere.header.scene_text,
+            "s",
+            &camera,
             velocity,
-            forward: view.forward,
-            up: view.up,
-        };
-        let text = replace_view(&sphere.header.scene_text, "s", &fields).unwrap();
+            view.forward,
+            view.up,
+        )
+        .unwrap();
         let scene = Scene::from_str(&text, "s").unwrap();
         let (direct, _) = render(&scene, &NoProgress).unwrap();
         let looked = look(&sphere, &view).unwrap();

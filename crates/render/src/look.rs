@@ -18,7 +18,7 @@
 use crate::datafile::DataFile;
 use crate::record::PixelRecord;
 use rayon::prelude::*;
-use scene::{Camera, Observer, Scene, SceneError, ViewFields};
+use scene::{Camera, Observer, Scene, SceneError};
 use spacetime::{aberrate, LocalVelocity};
 use std::f64::consts::{PI, TAU};
 
@@ -308,14 +308,15 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
         })
         .collect();
 
-    let fields = ViewFields {
-        camera: view.camera,
-        velocity: view.velocity,
-        forward: view.forward,
-        up: view.up,
-    };
-    let text = scene::replace_view(&sphere.header.scene_text, EMBEDDED, &fields)
-        .map_err(LookError::EmbeddedScene)?;
+    let text = scene::replace_view(
+        &sphere.header.scene_text,
+        EMBEDDED,
+        &view.camera,
+        view.velocity,
+        view.forward,
+        view.up,
+    )
+    .map_err(LookError::EmbeddedScene)?;
     let text = if text.starts_with(LOOK_COMMENT) {
         text
     } else {

@@ -2,7 +2,7 @@
 //! rest of the scene (objects, comments), reads back exactly, and reading a view checks
 //! only the observer and the camera.
 
-use scene::{replace_view, Camera, Scene, ViewFields};
+use scene::{replace_view, Camera, Scene};
 use spacetime::LocalVelocity;
 
 const TEXT: &str = r#"# a comment that must survive
@@ -61,21 +61,17 @@ fn a_replaced_view_reads_back_exactly_and_keeps_the_rest() {
     assert_eq!(observer.event.t, 1.5);
     let third = 1.0 / 3f64.sqrt();
     for camera in cameras() {
-        let fields = ViewFields {
-            camera,
-            velocity: LocalVelocity::new(0.123456789, [0.3, -0.4, 0.5]).unwrap(),
-            forward: [third, -third, third],
-            up: [0.5f64.sqrt(), 0.5f64.sqrt(), 0.0],
-        };
-        let text = replace_view(TEXT, "t.toml", &fields).expect("edit");
+        let velocity = LocalVelocity::new(0.123456789, [0.3, -0.4, 0.5]).unwrap();
+        let (forward, up) = ([third, -third, third], [0.5f64.sqrt(), 0.5f64.sqrt(), 0.0]);
+        let text = replace_view(TEXT, "t.toml", &camera, velocity, forward, up).expect("edit");
         let (o, c) = Scene::read_view(&text, "t.toml").expect("valid");
         assert_eq!(c, camera);
-        assert_eq!(o.velocity.speed, fields.velocity.speed);
+        assert_eq!(o.velocity.speed, velocity.speed);
         assert_eq!(o.event, observer.event, "time and position kept");
         for (a, b) in [
-            (o.forward, fields.forward),
-            (o.up, fields.up),
-            (o.velocity.direction, fields.velocity.direction),
+            (o.forward, forward),
+            (o.up, up),
+            (o.velocity.direction, velocity.direction),
         ] {
             assert!((0..3).all(|i| (a[i] - b[i]).abs() < 1e-15), "{a:?} {b:?}");
         }
@@ -87,22 +83,21 @@ fn a_replaced_view_reads_back_exactly_and_keeps_the_rest() {
 
 #[test]
 fn views_are_written_into_inline_and_missing_tables() {
-    let fields = ViewFields {
-        camera: cameras()[0],
-        velocity: LocalVelocity::REST,
-        forward: [0.0, 1.0, 0.0],
-        up: [0.0, 0.0, 1.0],
+    let camera = cameras()[0];
+    let edit = |text: &str, file: &str| {
+        let rest = LocalVelocity::REST;
+        replace_view(text, file, &camera, rest, [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])
     };
     let inline = "name = \"i\"\nobserver = { time = 2.0 }\ncamera = { kind = \"sphere\", width = 8, height = 4 }\n";
     let missing = "name = \"m\"\n[camera]\nkind = \"sphere\"\nwidth = 8\nheight = 4\n";
     for text in [inline, missing] {
-        let out = replace_view(text, "t.toml", &fields).expect("edit");
+        let out = edit(text, "t.toml").expect("edit");
         let (o, c) = Scene::read_view(&out, "t.toml").expect("valid");
-        assert_eq!((c, o.forward), (fields.camera, fields.forward), "{out}");
+        assert_eq!((c, o.forward), (camera, [0.0, 1.0, 0.0]), "{out}");
     }
-    let e = replace_view("observer = 3\n", "t.toml", &fields).unwrap_err();
+    let e = edit("observer = 3\n", "t.toml").unwrap_err();
     assert_eq!(e.field, "observer");
-    let e = replace_view("name = \n", "bad.toml", &fields).unwrap_err();
+    let e = edit("name = \n", "bad.toml").unwrap_err();
     assert!(e.to_string().starts_with("bad.toml:1:"), "{e}");
 }
 
