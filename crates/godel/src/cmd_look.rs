@@ -205,6 +205,14 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         velocity,
     )
     .map_err(|e| match e {
+        // The default up may not suit a given --forward: say where it came from.
+        LookError::View { field, message } if field == "observer.up" && args.up.is_none() => {
+            let up = source.up;
+            usage(
+                "--up",
+                format!("{message}: the sphere's up {up:?} does not fit this --forward; give --up"),
+            )
+        }
         LookError::View { field, message } => usage(flag_of(field, args.camera), message),
         e => usage(&file, e.to_string()),
     })?;

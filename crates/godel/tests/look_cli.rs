@@ -266,7 +266,7 @@ fn bad_sources_and_flags_are_refused_with_nothing_written() {
     );
     check(look(&src.join("missing.exr"), &pin), 1, &["missing.exr"]);
     // Flags: each case replaces (or adds) one flag of a good pinhole view.
-    let bad: [(&str, &str, &[&str]); 14] = [
+    let bad: [(&str, &str, &[&str]); 15] = [
         ("--velocity", "1,1,0,0", &["--velocity", "below 1"]),
         ("--velocity", "-1.5,1,0,0", &["--velocity", "below 1"]),
         ("--velocity", "0.5,0,0,0", &["--velocity", "direction"]),
@@ -279,6 +279,11 @@ fn bad_sources_and_flags_are_refused_with_nothing_written() {
         ("--forward", "0,0,0", &["--forward", "non-zero"]),
         ("--up", "1,0,0.5", &["--up", "orthogonal"]),
         ("--up", "1,0", &["--up"]),
+        (
+            "--forward",
+            "0,0,1",
+            &["--up", "the sphere's up", "give --up"],
+        ),
         ("--fov", "180", &["--fov", "(0, 180)"]),
         ("--fov", "-10", &["--fov"]),
         ("--h-fov", "90", &["--h-fov", "not used"]),

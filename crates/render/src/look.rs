@@ -87,6 +87,8 @@ pub enum LookError {
     Inconsistent { header: String, scene: String },
     #[error("{0}")]
     EmbeddedScene(SceneError),
+    #[error("inconsistent data file: {0}")]
+    Data(crate::datafile::DataFileErrorKind),
     #[error("{field}: {message}")]
     View {
         field: &'static str,
@@ -202,8 +204,10 @@ pub fn pixel_look(view: &LookView, col: u32, row: u32) -> Option<PixelLook> {
 
 impl SphereSource {
     /// The geometry of a full-sphere data file traced by the static observer. Refuses any
-    /// other camera (a 360°×180° panorama counts as a sphere) and a moving observer.
+    /// other camera (a 360°×180° panorama counts as a sphere), a moving observer, and a
+    /// data file whose sizes or object ids do not hold together ([`DataFile::validate`]).
     pub fn of(data: &DataFile) -> Result<SphereSource, LookError> {
+        data.validate().map_err(LookError::Data)?;
         let (observer, camera) = Scene::read_view(&data.header.scene_text, EMBEDDED)
             .map_err(LookError::EmbeddedScene)?;
         let full = match camera {

@@ -118,6 +118,9 @@ fn sources_that_are_not_a_static_full_sphere_are_refused() {
         look(&wrong_size, &v),
         Err(LookError::Inconsistent { .. })
     ));
+    let mut short = synthetic(&sphere, 8, 4);
+    short.records.pop();
+    assert!(matches!(look(&short, &v), Err(LookError::Data(_))));
     let mut broken = synthetic(&sphere, 8, 4);
     broken.header.scene_text = "name = ".into();
     assert!(matches!(

@@ -23,7 +23,7 @@ mod objects;
 mod raw;
 mod validate;
 
-pub use camera::{Camera, MAX_PIXELS, MAX_SIDE};
+pub use camera::Camera;
 pub use edit::replace_view;
 pub use error::{line_column, Location, SceneError};
 pub use model::{
