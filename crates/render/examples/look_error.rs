@@ -3,7 +3,10 @@
 //! view (the scene embedded in the sphere file, with the view written in). Prints, per view,
 //! object mismatches on edge and non-edge pixels and the g and t_emit errors of nearest
 //! neighbour and of bilinear interpolation, against the bound |∇f|·δ of docs/physics.md.
-//! `cargo run -p render --example look_error -- SPHERE.exr`
+//! The views aim at the first image of a ball at rest at r = a seen from the axis (39.2°
+//! left of +x): make SPHERE.exr with `godel render` of the scene `SPHERE_SCENE` in
+//! crates/render/tests/look.rs (the figures in docs/physics.md).
+//! `cargo run -p render --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
 
 use render::datafile::DataFile;
 use render::driver::{render, NoProgress};
@@ -188,14 +191,11 @@ fn main() {
                 let (mut is_edge, mut is_jump) = (false, false);
                 for dr in -1..=1 {
                     for dc in -1..=1 {
-                        match idx(&src, c0 + dc, r0 + dr) {
-                            Some(j) => {
-                                let rj = &sphere.records[j];
-                                is_edge |= rj.object != centre_rec.object
-                                    || rj.status != centre_rec.status;
-                                is_jump |= (rj.t_emit - centre_rec.t_emit).abs() as f64 > jump;
-                            }
-                            None => {}
+                        if let Some(j) = idx(&src, c0 + dc, r0 + dr) {
+                            let rj = &sphere.records[j];
+                            is_edge |=
+                                rj.object != centre_rec.object || rj.status != centre_rec.status;
+                            is_jump |= (rj.t_emit - centre_rec.t_emit).abs() as f64 > jump;
                         }
                     }
                 }
