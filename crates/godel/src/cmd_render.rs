@@ -89,13 +89,24 @@ pub fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> 
 /// lit where the scene has lights):
 /// exactly the files of a single run, whoever traced the pixels.
 pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
-    let textures = shade::textures_for_scene(scene)?;
-    let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let exr = dir.join(format!("{}.exr", scene.name));
     let png = dir.join(format!("{}.png", scene.name));
-    data.write(&exr)?;
-    shade::write_png(&image, &png)?;
+    write_data_and_preview(scene, data, &exr, &png)
+}
+
+/// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
+/// has lights) to `png`, the preview shaded before either file is written.
+pub fn write_data_and_preview(
+    scene: &Scene,
+    data: &DataFile,
+    exr: &Path,
+    png: &Path,
+) -> anyhow::Result<()> {
+    let textures = shade::textures_for_scene(scene)?;
+    let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+    data.write(exr)?;
+    shade::write_png(&image, png)?;
     eprintln!("wrote {} and {}", png.display(), exr.display());
     Ok(())
 }

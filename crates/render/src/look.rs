@@ -18,7 +18,7 @@
 use crate::datafile::DataFile;
 use crate::record::PixelRecord;
 use rayon::prelude::*;
-use scene::{Camera, Observer, Scene, SceneError, ViewFields};
+use scene::{Camera, Observer, Scene, SceneError};
 use spacetime::{aberrate, LocalVelocity};
 use std::f64::consts::{PI, TAU};
 
@@ -87,6 +87,8 @@ pub enum LookError {
     Inconsistent { header: String, scene: String },
     #[error("{0}")]
     EmbeddedScene(SceneError),
+    #[error("inconsistent data file: {0}")]
+    Data(crate::datafile::DataFileErrorKind),
     #[error("{field}: {message}")]
     View {
         field: &'static str,
@@ -202,8 +204,10 @@ pub fn pixel_look(view: &LookView, col: u32, row: u32) -> Option<PixelLook> {
 
 impl SphereSource {
     /// The geometry of a full-sphere data file traced by the static observer. Refuses any
-    /// other camera (a 360°×180° panorama counts as a sphere) and a moving observer.
+    /// other camera (a 360°×180° panorama counts as a sphere), a moving observer, and a
+    /// data file whose sizes or object ids do not hold together ([`DataFile::validate`]).
     pub fn of(data: &DataFile) -> Result<SphereSource, LookError> {
+        data.validate().map_err(LookError::Data)?;
         let (observer, camera) = Scene::read_view(&data.header.scene_text, EMBEDDED)
             .map_err(LookError::EmbeddedScene)?;
         let full = match camera {
@@ -308,14 +312,15 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
         })
         .collect();
 
-    let fields = ViewFields {
-        camera: view.camera,
-        velocity: view.velocity,
-        forward: view.forward,
-        up: view.up,
-    };
-    let text = scene::replace_view(&sphere.header.scene_text, EMBEDDED, &fields)
-        .map_err(LookError::EmbeddedScene)?;
+    let text = scene::replace_view(
+        &sphere.header.scene_text,
+        EMBEDDED,
+        &view.camera,
+        view.velocity,
+        view.forward,
+        view.up,
+    )
+    .map_err(LookError::EmbeddedScene)?;
     let text = if text.starts_with(LOOK_COMMENT) {
         text
     } else {

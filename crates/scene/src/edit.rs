@@ -8,20 +8,19 @@ use crate::error::SceneError;
 use spacetime::LocalVelocity;
 use toml_edit::{value, Array, DocumentMut, InlineTable, Item, Table, TableLike, Value};
 
-/// The view that [`replace_view`] writes: camera, observer velocity (in the static observer's
-/// frame at the same event) and camera axes (in the observer's own frame).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ViewFields {
-    pub camera: Camera,
-    pub velocity: LocalVelocity,
-    pub forward: [f64; 3],
-    pub up: [f64; 3],
-}
-
-/// `text` with `[camera]` replaced by `view.camera` and `[observer]`'s `velocity`, `forward`
-/// and `up` by those of `view` (the observer's time and position are kept). `file` names the
-/// text in errors. The result is not validated here: read it back with [`crate::Scene::read_view`].
-pub fn replace_view(text: &str, file: &str, view: &ViewFields) -> Result<String, SceneError> {
+/// `text` with `[camera]` replaced by `camera` and `[observer]`'s `velocity`, `forward` and
+/// `up` by the given ones: the velocity relative to the static observer at the same event
+/// (in its frame), the camera axes in the observer's own frame. The observer's time and
+/// position are kept. `file` names the text in errors. The result is not validated here:
+/// read it back with [`crate::Scene::read_view`].
+pub fn replace_view(
+    text: &str,
+    file: &str,
+    camera: &Camera,
+    velocity: LocalVelocity,
+    forward: [f64; 3],
+    up: [f64; 3],
+) -> Result<String, SceneError> {
     let mut doc: DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| SceneError {
         file: file.to_string(),
         location: e.span().map(|s| crate::error::line_column(text, s.start)),
@@ -36,17 +35,16 @@ pub fn replace_view(text: &str, file: &str, view: &ViewFields) -> Result<String,
     };
 
     let observer = table_entry(&mut doc, "observer").ok_or_else(|| not_a_table("observer"))?;
-    let v = view.velocity;
-    let mut velocity = InlineTable::new();
-    velocity.insert("speed", Value::from(v.speed));
-    velocity.insert("direction", Value::Array(vector(v.direction)));
-    observer.insert("velocity", value(velocity));
-    observer.insert("forward", value(vector(view.forward)));
-    observer.insert("up", value(vector(view.up)));
+    let mut v = InlineTable::new();
+    v.insert("speed", Value::from(velocity.speed));
+    v.insert("direction", Value::Array(vector(velocity.direction)));
+    observer.insert("velocity", value(v));
+    observer.insert("forward", value(vector(forward)));
+    observer.insert("up", value(vector(up)));
 
+    let c = *camera;
     let camera = table_entry(&mut doc, "camera").ok_or_else(|| not_a_table("camera"))?;
     camera.clear();
-    let c = view.camera;
     camera.insert("kind", value(c.kind()));
     match c {
         Camera::Pinhole { fov_deg, .. } | Camera::Fisheye { fov_deg, .. } => {

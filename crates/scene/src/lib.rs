@@ -23,8 +23,8 @@ mod objects;
 mod raw;
 mod validate;
 
-pub use camera::{Camera, MAX_PIXELS, MAX_SIDE};
-pub use edit::{replace_view, ViewFields};
+pub use camera::Camera;
+pub use edit::replace_view;
 pub use error::{line_column, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
