@@ -1,10 +1,13 @@
 // godel view: what the page fetches from the server once and keeps on the GPU: the data
 // file's channels (each fetched when a layer first needs it), the image textures (stacked in
-// one atlas texture), the black-body tables. Routes: crates/viewer/src/gpu_routes.rs.
+// one atlas texture of linear RGB), the black-body tables. Routes: crates/viewer/src/gpu_routes.rs.
 'use strict';
 
 import { parseArray } from './gl.js';
-import { Blackbody } from './overlays.js';
+import { Blackbody, srgb8ToLinear } from './overlays.js';
+
+// 8-bit sRGB → linear, the `shade` crate's table (texture.rs).
+const LINEAR = Float32Array.from({ length: 256 }, (_, k) => srgb8ToLinear(k));
 
 async function fetchOk(url) {
   const response = await fetch(url);
@@ -120,17 +123,18 @@ export class Data {
       height += image.height;
     }
     this.gpu.checkSize(width, height, 'the images of the textures, stacked');
-    const rgba = new Uint8Array(width * height * 4);
+    // Decoded to linear here, as the CPU decodes texels before filtering them.
+    const rgba = new Float32Array(width * height * 4);
     for (const image of this.images.values()) {
       for (let p = 0; p < image.width * image.height; p += 1) {
         const row = image.y0 + Math.floor(p / image.width);
         const at = (row * width + (p % image.width)) * 4;
-        rgba[at] = image.rgb[p * 3];
-        rgba[at + 1] = image.rgb[p * 3 + 1];
-        rgba[at + 2] = image.rgb[p * 3 + 2];
-        rgba[at + 3] = 255;
+        rgba[at] = LINEAR[image.rgb[p * 3]];
+        rgba[at + 1] = LINEAR[image.rgb[p * 3 + 1]];
+        rgba[at + 2] = LINEAR[image.rgb[p * 3 + 2]];
+        rgba[at + 3] = 1;
       }
     }
-    this.gpu.uploadRgba('atlas', width, height, rgba);
+    this.gpu.uploadFloatRgba('atlas', width, height, rgba);
   }
 }

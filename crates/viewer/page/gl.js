@@ -3,7 +3,7 @@
 // of the picture, and draws that texture on the canvas at any zoom with trilinear filtering.
 'use strict';
 
-import { VERTEX, SHADE_FS, DISPLAY_FS } from './shaders.js';
+import { VERTEX, shadeSource, DISPLAY_FS } from './shaders.js';
 
 // ---- the wire format: 16-byte header, then little-endian samples
 
@@ -45,7 +45,7 @@ export class Gpu {
     this.gl = gl;
     this.canvas = canvas;
     this.maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
-    this.shadeProgram = this.program(SHADE_FS);
+    this.shadePrograms = new Map(); // by features, compiled when first needed
     this.displayProgram = this.program(DISPLAY_FS);
     this.vao = gl.createVertexArray();
     this.textures = {};
@@ -134,9 +134,19 @@ export class Gpu {
     this.replace(name, this.texture2d(width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, bytes));
   }
 
+  // Small tables that change with the settings (the objects') are rewritten in place: a new
+  // texture per frame would make the driver set up its state afresh each time.
   uploadFloatRgba(name, width, height, floats) {
     const gl = this.gl;
+    const sizes = this.sizes || (this.sizes = {});
+    const size = `${width}×${height}`;
+    if (this.textures[name] && sizes[name] === size) {
+      gl.bindTexture(gl.TEXTURE_2D, this.textures[name]);
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, floats);
+      return;
+    }
     this.replace(name, this.texture2d(width, height, gl.RGBA32F, gl.RGBA, gl.FLOAT, floats));
+    sizes[name] = size;
   }
 
   replace(name, texture) {
@@ -145,9 +155,16 @@ export class Gpu {
   }
 
   location(program, name) {
-    const key = `${program === this.shadeProgram ? 's' : 'd'}:${name}`;
-    if (!this.locations.has(key)) this.locations.set(key, this.gl.getUniformLocation(program, name));
-    return this.locations.get(key);
+    if (!this.locations.has(program)) this.locations.set(program, new Map());
+    const known = this.locations.get(program);
+    if (!known.has(name)) known.set(name, this.gl.getUniformLocation(program, name));
+    return known.get(name);
+  }
+
+  shadeProgram(features) {
+    const key = JSON.stringify(features);
+    if (!this.shadePrograms.has(key)) this.shadePrograms.set(key, this.program(shadeSource(features)));
+    return this.shadePrograms.get(key);
   }
 
   // The offscreen picture, resized when the picture's size changes.
@@ -171,30 +188,32 @@ export class Gpu {
     return this.shaded;
   }
 
-  // The shading pass: `uniforms` maps names to [kind, value] (kind: 'i', 'f', 'u', 'iv',
-  // 'fv' with a vector size, e.g. 'f3', 'i4', 'f3v' for arrays).
-  shade(width, height, uniforms) {
+  // The shading pass, with the program of `features`: `uniforms` maps names to [kind, value]
+  // (kind: 'i', 'u', 'f', or a vector: 'i2', 'i4', 'f2', 'f3', 'f4'; arrays of vectors flat).
+  shade(width, height, features, uniforms) {
+    this.lastShade = [width, height, features, uniforms];
     const gl = this.gl;
     const target = this.target(width, height);
+    const program = this.shadeProgram(features);
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
     gl.viewport(0, 0, width, height);
-    gl.useProgram(this.shadeProgram);
+    gl.useProgram(program);
     const samplers = [
       ['uId', 'id', 'uint'], ['uU', 'u', 'float'], ['uV', 'v', 'float'], ['uG', 'g', 'float'],
       ['uT', 't_emit', 'float'], ['uCos', 'cos_i', 'uint'], ['uObjects', 'objects', 'float'],
-      ['uGt', 'gt', 'float'], ['uAtlas', 'atlas', 'rgba'], ['uLegend', 'legend', 'rgba'],
+      ['uGt', 'gt', 'float'], ['uAtlas', 'atlas', 'float'], ['uLegend', 'legend', 'rgba'],
     ];
     samplers.forEach(([uniform, name, kind], unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, this.textures[name] || this.blank[kind]);
-      gl.uniform1i(this.location(this.shadeProgram, uniform), unit);
+      gl.uniform1i(this.location(program, uniform), unit);
     });
     const unit = samplers.length;
     gl.activeTexture(gl.TEXTURE0 + unit);
     gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.textures.light || this.blank.array);
-    gl.uniform1i(this.location(this.shadeProgram, 'uLight'), unit);
+    gl.uniform1i(this.location(program, 'uLight'), unit);
     for (const [name, [kind, value]] of Object.entries(uniforms)) {
-      const at = this.location(this.shadeProgram, name);
+      const at = this.location(program, name);
       if (at === null) continue; // unused by the compiled shader
       const v = Array.isArray(value) ? value.flat() : value;
       switch (kind) {
@@ -244,6 +263,13 @@ export class Gpu {
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, out);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     return { width, height, bytes: out };
+  }
+
+  // Waits until the GPU has drawn everything asked of it (reading one pixel back).
+  finish() {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
   }
 
   // The canvas's RGBA bytes, top row first.

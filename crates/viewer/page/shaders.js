@@ -5,6 +5,10 @@
 // factor). It writes one texel per output pixel into an offscreen RGBA8 texture, row 0 of the
 // picture in texture row 0; DISPLAY_FS then draws that texture on the canvas, scaled with
 // trilinear filtering.
+//
+// The layers, look mode and image textures are chosen when the program is compiled
+// (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for every pixel,
+// so a program holds only the code its settings use.
 
 export const VERTEX = `#version 300 es
 // One triangle covering the viewport.
@@ -13,7 +17,7 @@ void main() {
   gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
 }`;
 
-export const SHADE_FS = `#version 300 es
+const SHADE_BODY = `
 precision highp float;
 precision highp int;
 precision highp usampler2D;
@@ -25,10 +29,9 @@ uniform usampler2D uCos;      // round(65535 clamp(cos_i, 0, 1))
 uniform sampler2DArray uLight;
 uniform sampler2D uObjects;   // per object (row): moves, first texture, second texture, (T, Y(T))
 uniform sampler2D uGt;        // g·T table, 1024 bins a row: rows [0, n) unit colour + Y, [n, 2n) normalized
-uniform sampler2D uAtlas;     // image textures (8-bit sRGB), stacked vertically
+uniform sampler2D uAtlas;     // image textures (linear RGB, decoded as the CPU does), stacked
 uniform sampler2D uLegend;    // travel-time legend, alpha 1 where drawn
 
-uniform bool uTexture, uFrequency, uTime, uLit, uTravel;
 uniform float uWinLo, uWinHi;        // f32 bounds equivalent to the f64 window
 uniform float uTravelLo, uTravelHi;
 uniform vec3 uStops[5];              // false-colour stops, linear
@@ -43,8 +46,6 @@ uniform vec3 uUnitLow, uUnitHigh;
 uniform vec4 uLnY;                   // ln Y at nodes 0, 1, last, last + 1
 
 uniform ivec2 uSize;                 // the data file's size
-uniform int uMode;                   // 0: pixel (col, row) of the data file; 1: look around
-uniform int uCam;                    // 0 pinhole, 1 panorama (and sphere), 2 fisheye
 uniform vec2 uCamAngles;             // pinhole: tan(fov/2); panorama: h, v fov (rad); fisheye: fov/2
 uniform ivec2 uOut;                  // output size
 uniform vec3 uF, uR, uUp;            // camera axes, moving observer's frame
@@ -52,8 +53,8 @@ uniform vec3 uVDir;
 uniform float uSpeed, uGamma;
 uniform vec3 uF0, uR0, uUp0;         // the sphere's camera axes, static frame
 
-uniform ivec4 uRef[2];               // reference squares: x0, y0, side, on
-uniform vec3 uRefColour[2];          // their 8-bit sRGB / 255
+uniform ivec4 uRef0, uRef1;          // reference squares: x0, y0, side, side (side 0: none)
+uniform vec3 uRefColour0, uRefColour1; // their 8-bit sRGB / 255
 uniform ivec4 uLegendRect;           // x0, y0, width, height (width 0: none)
 
 out vec4 outColour;
@@ -65,10 +66,6 @@ const vec3 NOT_TRACED = vec3(0.0);
 const float PI = 3.141592653589793;
 
 bool finite(float x) { return !isnan(x) && !isinf(x); }
-
-float srgbDecode(float s) {
-  return s <= 0.04045 ? s / 12.92 : pow((s + 0.055) / 1.055, 2.4);
-}
 
 float srgbEncode8(float x) {
   x = isnan(x) ? 0.0 : clamp(x, 0.0, 1.0);
@@ -83,8 +80,7 @@ vec3 hue(float h) {
 }
 
 vec3 atlasTexel(int y0, int c, int r) {
-  vec3 s = texelFetch(uAtlas, ivec2(c, y0 + r), 0).rgb;
-  return vec3(srgbDecode(s.r), srgbDecode(s.g), srgbDecode(s.b));
+  return texelFetch(uAtlas, ivec2(c, y0 + r), 0).rgb;
 }
 
 // A texture (kind, a, b, c) at moved coordinates (u, v); crates/shade/src/texture.rs.
@@ -108,6 +104,7 @@ vec3 sampleTexture(vec4 t, float u, float v) {
     return vec3(u, 0.2, v);
   }
   if (kind == 2) return t.yzw;         // uniform
+#if IMAGES
   // image: a = first atlas row, b = width, c = height; bilinear, wrapping in u, clamped in v
   int w = int(t.z), h = int(t.w), y0 = int(t.y);
   float x = u * t.z - 0.5;
@@ -121,6 +118,9 @@ vec3 sampleTexture(vec4 t, float u, float v) {
   vec3 top = mix(atlasTexel(y0, c0, r0), atlasTexel(y0, c1, r0), fx);
   vec3 bottom = mix(atlasTexel(y0, c0, r1), atlasTexel(y0, c1, r1), fx);
   return top + (bottom - top) * fy;
+#else
+  return vec3(1.0, 0.0, 1.0);
+#endif
 }
 
 vec4 gtEntry(int i, int part) {
@@ -170,80 +170,76 @@ vec3 falseColour(float s) {
   return a + f * (b - a);
 }
 
-// Linear RGB of data pixel p, its frequency shift multiplied by doppler.
+// Linear RGB of data pixel p, its frequency shift multiplied by doppler. Which layers run is
+// fixed at compile time (TEXTURE, TIME, TRAVEL, FREQUENCY, LIGHT).
+#define WINDOW (TIME && !TRAVEL)
+#define PAINTS (TEXTURE || WINDOW || LIGHT)
 vec3 shadePixel(ivec2 p, float doppler) {
   uint id = texelFetch(uId, p, 0).r;
-  if (id == 0u) return BACKGROUND;
-  if (id == 1u) return FAILED;
-  if (id == 2u) return STEP_BUDGET;
-  if (id == 3u) return NOT_TRACED;
+  if (id < 4u) {
+    return id == 0u ? BACKGROUND : id == 1u ? FAILED : id == 2u ? STEP_BUDGET : NOT_TRACED;
+  }
   int o = int(id - 4u);
-  vec4 move = texelFetch(uObjects, ivec2(0, o), 0);
-  vec4 first = texelFetch(uObjects, ivec2(1, o), 0);
-  vec4 second = texelFetch(uObjects, ivec2(2, o), 0);
-  vec4 body = texelFetch(uObjects, ivec2(3, o), 0);
-  bool paints = uTexture || (uTime && !uTravel) || uLit;
-  float u = 0.0, v = 0.0;
-  if (paints) {
-    u = move.x * texelFetch(uU, p, 0).r + move.z;
-    v = move.y * texelFetch(uV, p, 0).r + move.w;
-  }
   vec3 c = vec3(1.0);
-  bool painted = false, coloured = false;
-  if (uTexture) {
-    c *= sampleTexture(first, u, v);
-    painted = true;
+#if PAINTS
+  vec4 move = texelFetch(uObjects, ivec2(0, o), 0);
+  float u = move.x * texelFetch(uU, p, 0).r + move.z;
+  float v = move.y * texelFetch(uV, p, 0).r + move.w;
+  vec3 first = sampleTexture(texelFetch(uObjects, ivec2(1, o), 0), u, v);
+#endif
+#if TEXTURE
+  c *= first;
+#endif
+#if TIME
+  float t = texelFetch(uT, p, 0).r;
+#if TRAVEL
+  c *= falseColour((-t - uTravelLo) / (uTravelHi - uTravelLo));
+#else
+  vec3 second = sampleTexture(texelFetch(uObjects, ivec2(2, o), 0), u, v);
+  c *= (t >= uWinLo && t <= uWinHi) ? second : first;
+#endif
+#endif
+#if FREQUENCY
+  vec4 body = texelFetch(uObjects, ivec2(3, o), 0);
+  float g = texelFetch(uG, p, 0).r * doppler;
+  if (!finite(g) || g <= 0.0) return FAILED;
+  c *= blackbody(g, body.x, body.y);
+#endif
+#if LIGHT
+#if !TEXTURE && !TIME && !FREQUENCY
+  c = first;   // the light layer alone lights the first texture
+#endif
+  vec3 l = vec3(uAmbient);
+  for (int k = 0; k < 16; k++) {
+    if (k >= uLights) break;
+    float x = texelFetch(uLight, ivec3(p, k), 0).r;
+    x = finite(x) ? max(x, 0.0) : 0.0;
+    l += uLightW[k] * x;
   }
-  if (uTime) {
-    float t = texelFetch(uT, p, 0).r;
-    if (uTravel) {
-      c *= falseColour((-t - uTravelLo) / (uTravelHi - uTravelLo));
-      coloured = true;
-    } else {
-      bool inside = t >= uWinLo && t <= uWinHi;
-      c *= sampleTexture(inside ? second : first, u, v);
-      painted = true;
-    }
-  }
-  if (uFrequency) {
-    float g = texelFetch(uG, p, 0).r * doppler;
-    if (!finite(g) || g <= 0.0) return FAILED;
-    c *= blackbody(g, body.x, body.y);
-    coloured = true;
-  }
-  if (uLit) {
-    if (!painted && !coloured) c = sampleTexture(first, u, v);
-    vec3 l = vec3(uAmbient);
-    for (int k = 0; k < 16; k++) {
-      if (k >= uLights) break;
-      float x = texelFetch(uLight, ivec3(p, k), 0).r;
-      x = finite(x) ? max(x, 0.0) : 0.0;
-      l += uLightW[k] * x;
-    }
-    c *= l;
-  } else if (painted) {
-    float cosI = float(texelFetch(uCos, p, 0).r) / 65535.0;
-    c *= 0.25 + 0.75 * cosI;
-  }
+  c *= l;
+#elif TEXTURE || WINDOW
+  float cosI = float(texelFetch(uCos, p, 0).r) / 65535.0;
+  c *= 0.25 + 0.75 * cosI;
+#endif
   return c;
 }
 
+#if LOOK
 // Camera-basis direction (forward, right, up) of output pixel (col, row); false where the
 // camera shows nothing (crates/scene/src/camera.rs).
 bool pixelDirection(vec2 centre, out vec3 d) {
   vec2 size = vec2(uOut);
-  if (uCam == 0) {
-    float x = uCamAngles.x * (2.0 * centre.x / size.x - 1.0);
-    float y = uCamAngles.x * (size.y / size.x) * (1.0 - 2.0 * centre.y / size.y);
-    d = normalize(vec3(1.0, x, y));
-    return true;
-  }
-  if (uCam == 1) {
-    float alpha = uCamAngles.x * (centre.x / size.x - 0.5);
-    float beta = uCamAngles.y * (0.5 - centre.y / size.y);
-    d = vec3(cos(beta) * cos(alpha), cos(beta) * sin(alpha), sin(beta));
-    return true;
-  }
+#if CAMERA == 0
+  float x = uCamAngles.x * (2.0 * centre.x / size.x - 1.0);
+  float y = uCamAngles.x * (size.y / size.x) * (1.0 - 2.0 * centre.y / size.y);
+  d = normalize(vec3(1.0, x, y));
+  return true;
+#elif CAMERA == 1
+  float alpha = uCamAngles.x * (centre.x / size.x - 0.5);
+  float beta = uCamAngles.y * (0.5 - centre.y / size.y);
+  d = vec3(cos(beta) * cos(alpha), cos(beta) * sin(alpha), sin(beta));
+  return true;
+#else
   float dx = 2.0 * centre.x / size.x - 1.0;
   float dy = 1.0 - 2.0 * centre.y / size.y;
   float rho = length(vec2(dx, dy));
@@ -252,45 +248,68 @@ bool pixelDirection(vec2 centre, out vec3 d) {
   vec2 psi = rho > 0.0 ? vec2(dx, dy) / rho : vec2(0.0, 1.0);
   d = vec3(cos(theta), sin(theta) * psi.x, sin(theta) * psi.y);
   return true;
+#endif
 }
+#endif
 
-vec3 lookPixel(ivec2 q) {
+#if LOOK
+// The sphere pixel p that output pixel q shows, and the Doppler factor; false where the camera
+// shows nothing.
+bool lookSource(ivec2 q, out ivec2 p, out float doppler) {
   vec3 d;
-  if (!pixelDirection(vec2(q) + 0.5, d)) return NOT_TRACED;
+  if (!pixelDirection(vec2(q) + 0.5, d)) return false;
   vec3 own = d.x * uF + d.y * uR + d.z * uUp;
   // Aberration (render::look, spacetime::aberrate): the static observer's direction n.
   float along = dot(own, uVDir);
-  float scale = 1.0 / (uGamma * (1.0 - uSpeed * along));
-  vec3 n = (own + ((uGamma - 1.0) * along - uGamma * uSpeed) * uVDir) * scale;
+  doppler = 1.0 / (uGamma * (1.0 - uSpeed * along));
+  vec3 n = (own + ((uGamma - 1.0) * along - uGamma * uSpeed) * uVDir) * doppler;
   float alpha = atan(dot(n, uR0), dot(n, uF0));
   float beta = asin(clamp(dot(n, uUp0), -1.0, 1.0));
   float x = float(uSize.x) * (alpha / (2.0 * PI) + 0.5);
   float y = float(uSize.y) * (0.5 - beta / PI);
   int col = int(floor(x)) % uSize.x;
-  if (col < 0) col += uSize.x;
-  int row = clamp(int(floor(y)), 0, uSize.y - 1);
-  return shadePixel(ivec2(col, row), scale);
+  p = ivec2(col < 0 ? col + uSize.x : col, clamp(int(floor(y)), 0, uSize.y - 1));
+  return true;
+}
+#endif
+
+bool inside(ivec2 q, ivec4 r) {
+  return q.x >= r.x && q.y >= r.y && q.x < r.x + r.z && q.y < r.y + r.w;
 }
 
+// Overlays (reference squares, legend) drawn over the shaded pixel.
 void main() {
   ivec2 q = ivec2(gl_FragCoord.xy);   // row 0 of the picture is texture row 0
-  if (uLegendRect.z > 0) {
-    ivec2 l = q - uLegendRect.xy;
-    if (l.x >= 0 && l.y >= 0 && l.x < uLegendRect.z && l.y < uLegendRect.w) {
-      vec4 c = texelFetch(uLegend, l, 0);
-      if (c.a > 0.5) { outColour = vec4(c.rgb, 1.0); return; }
-    }
+#if LOOK
+  ivec2 p;
+  float doppler;
+  vec3 c = lookSource(q, p, doppler) ? shadePixel(p, doppler) : NOT_TRACED;
+#else
+  vec3 c = shadePixel(q, 1.0);
+#endif
+  vec4 o = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
+#if REFS
+  if (inside(q, uRef0)) o = vec4(uRefColour0, 1.0);
+  if (inside(q, uRef1)) o = vec4(uRefColour1, 1.0);
+#endif
+#if LEGEND
+  if (inside(q, uLegendRect)) {
+    vec4 l = texelFetch(uLegend, q - uLegendRect.xy, 0);
+    if (l.a > 0.5) o = vec4(l.rgb, 1.0);
   }
-  for (int k = 1; k >= 0; k--) {
-    ivec4 r = uRef[k];
-    if (r.w != 0 && q.x >= r.x && q.y >= r.y && q.x < r.x + r.z && q.y < r.y + r.z) {
-      outColour = vec4(uRefColour[k], 1.0);
-      return;
-    }
-  }
-  vec3 c = uMode == 0 ? shadePixel(q, 1.0) : lookPixel(q);
-  outColour = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
+#endif
+  outColour = o;
 }`;
+
+// The shading program's source for `features`: {texture, time, travel, frequency, light, look,
+// images, refs, legend} (booleans) and camera (0 pinhole, 1 panorama or sphere, 2 fisheye).
+export function shadeSource(features) {
+  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
+    'legend'];
+  const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
+  defines.push(`#define CAMERA ${features.camera || 0}`);
+  return `#version 300 es\n${defines.join('\n')}\n${SHADE_BODY}`;
+}
 
 export const DISPLAY_FS = `#version 300 es
 precision highp float;

@@ -59,6 +59,25 @@ export function objectTable(settings, info, data) {
   return table;
 }
 
+const CAMERAS = { pinhole: 0, panorama: 1, sphere: 1, fisheye: 2 };
+
+// What the shading program is compiled for (shaders.js, shadeSource), given the uniforms.
+export function featuresFor(settings, info, data, look, uniforms) {
+  const on = new Set(settings.shaders);
+  return {
+    texture: on.has('texture'),
+    time: on.has('time'),
+    travel: settings.time.mode === 'travel',
+    frequency: on.has('frequency'),
+    light: on.has('light'),
+    look: Boolean(look),
+    camera: look ? CAMERAS[look.view.camera.kind] : 0,
+    images: imagesFor(settings, info, data).length > 0,
+    refs: uniforms.uRef0[1][2] > 0 || uniforms.uRef1[1][2] > 0,
+    legend: uniforms.uLegendRect[1][2] > 0,
+  };
+}
+
 // Uniforms for a picture of width × height; `look` is null for the data file's own pixels,
 // else {view, sphere} (render::look's view and the sphere's axes).
 export function uniformsFor(settings, info, data, width, height, look) {
@@ -77,11 +96,6 @@ export function uniformsFor(settings, info, data, width, height, look) {
   }
   if (lightW.length > 16) throw new Error('the page shades at most 16 light channels');
   const u = {
-    uTexture: ['i', on.has('texture') ? 1 : 0],
-    uFrequency: ['i', on.has('frequency') ? 1 : 0],
-    uTime: ['i', on.has('time') ? 1 : 0],
-    uLit: ['i', on.has('light') ? 1 : 0],
-    uTravel: ['i', time.mode === 'travel' ? 1 : 0],
     uWinLo: ['f', winLo],
     uWinHi: ['f', winHi],
     uTravelLo: ['f', time.travel_min],
@@ -104,7 +118,6 @@ export function uniformsFor(settings, info, data, width, height, look) {
     uUnitHigh: ['f3', bb.unit[nodes - 1]],
     uLnY: ['f4', [bb.ln_y[0], bb.ln_y[1], bb.ln_y[nodes - 2], bb.ln_y[nodes - 1]]],
     uSize: ['i2', [info.width, info.height]],
-    uMode: ['i', look ? 1 : 0],
     uOut: ['i2', [width, height]],
   };
   if (look) Object.assign(u, lookUniforms(look.view, look.sphere));
@@ -116,12 +129,14 @@ export function uniformsFor(settings, info, data, width, height, look) {
       const square = referenceSquare(k, width, height);
       if (!square) return;
       const t = (settings.objects[name] || info.defaults.objects[name]).temperature;
-      refs[k] = [...square, 1];
+      refs[k] = [...square, square[2]];
       refColours[k] = bb.colour(1, t, physical, settings.exposure).map((c) => linearToSrgb8(c) / 255);
     });
   }
-  u.uRef = ['i4', refs];
-  u.uRefColour = ['f3', refColours];
+  u.uRef0 = ['i4', refs[0]];
+  u.uRef1 = ['i4', refs[1]];
+  u.uRefColour0 = ['f3', refColours[0]];
+  u.uRefColour1 = ['f3', refColours[1]];
   return u;
 }
 
@@ -136,21 +151,16 @@ export function legendFor(settings, width, height) {
 function lookUniforms(view, sphere) {
   const c = view.camera;
   const rad = Math.PI / 180;
-  let cam;
   let angles;
   if (c.kind === 'pinhole') {
-    cam = 0;
     angles = [Math.tan(0.5 * c.fov_deg * rad), 0];
   } else if (c.kind === 'fisheye') {
-    cam = 2;
     angles = [0.5 * c.fov_deg * rad, 0];
   } else {
-    cam = 1;
     angles = c.kind === 'sphere' ? [2 * Math.PI, Math.PI] : [c.h_fov_deg * rad, c.v_fov_deg * rad];
   }
   const { speed, direction } = view.velocity;
   return {
-    uCam: ['i', cam],
     uCamAngles: ['f2', angles],
     uF: ['f3', view.forward],
     uR: ['f3', cross(view.forward, view.up)],
