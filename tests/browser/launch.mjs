@@ -31,6 +31,15 @@ export const idle = (page) => page.waitForFunction(() => {
   return v && (v.error !== null || (v.frames > 0 && v.idle()));
 });
 
+// Opens the viewer and waits for its first picture; throws the page's error (e.g. no WebGL2)
+// if it shows one instead.
+export async function open(page, url) {
+  await page.goto(url);
+  await idle(page);
+  const error = await page.evaluate(() => window.godelViewer.error);
+  if (error !== null) throw new Error(`the viewer shows an error: ${error}`);
+}
+
 // Writes the page's shaded picture (or the canvas: which = 'canvas') to PATH (raw RGBA, top row
 // first) and its size and `extra` to PATH with .json; returns the size and the bytes.
 export async function savePicture(page, path, extra = {}, which = 'picture') {

@@ -6,7 +6,7 @@
 // Writes OUT_DIR/case-K.rgba (+ .json) for each, and prints {requests, console_errors, errors}.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, idle, savePicture } from './launch.mjs';
+import { launch, open, idle, savePicture } from './launch.mjs';
 
 const [url, outDir, casesFile] = process.argv.slice(2);
 if (!url || !outDir || !casesFile) {
@@ -17,8 +17,7 @@ const cases = JSON.parse(readFileSync(casesFile, 'utf8'));
 const { context, page, requests, consoleErrors } = await launch(outDir);
 const result = { errors: [] };
 try {
-  await page.goto(url);
-  await idle(page);
+  await open(page, url);
   for (const [k, settings] of cases.entries()) {
     await page.evaluate((s) => {
       const v = window.godelViewer;

@@ -9,7 +9,7 @@
 // PNG" download of the last case), and prints what it saw as one JSON object.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, idle, savePicture, differing } from './launch.mjs';
+import { launch, open, idle, savePicture, differing } from './launch.mjs';
 
 const [url, outDir, casesFile] = process.argv.slice(2);
 if (!url || !outDir || !casesFile) {
@@ -20,8 +20,7 @@ const cases = JSON.parse(readFileSync(casesFile, 'utf8'));
 const { context, page, requests, consoleErrors } = await launch(outDir);
 const result = { errors: [] };
 try {
-  await page.goto(url);
-  await idle(page);
+  await open(page, url);
   result.look = await page.evaluate(() => window.godelViewer.look);
   await page.evaluate(() => window.godelViewer.setViewSize(160, 120));
   await idle(page);

@@ -6,9 +6,10 @@
 //   COL ROW: a pixel that the caller knows to be a hit; its record is read on hover.
 // Writes into OUT_DIR: screenshot.png, saved.png (the "Save PNG" download),
 // keyframe.toml (the "Save keyframe" download), slider.rgba/.json (the picture after the
-// slider moved) and a fresh chromium profile.
+// slider moved), textured.rgba and zoomed.rgba (the picture with the texture layer, and the
+// canvas zoomed in on it) and a fresh chromium profile.
 import { join } from 'node:path';
-import { launch, idle, savePicture, differing } from './launch.mjs';
+import { launch, open, idle, savePicture, differing } from './launch.mjs';
 
 const [url, outDir, colText, rowText] = process.argv.slice(2);
 if (!url || !outDir || colText === undefined || rowText === undefined) {
@@ -21,10 +22,8 @@ const row = Number(rowText);
 const { context, page, requests, consoleErrors } = await launch(outDir);
 const result = {};
 try {
-  await page.goto(url);
-  await idle(page);
+  await open(page, url);
   result.title = await page.title();
-  result.webgl_error = await page.evaluate(() => window.godelViewer.error);
   const first = await savePicture(page, join(outDir, 'first.rgba'));
   result.canvas = [first.width, first.height];
 
@@ -87,6 +86,24 @@ try {
   result.png_name = await save('#save-png', 'saved.png');
   result.keyframe_name = await save('#save-keyframe', 'keyframe.toml');
   result.settings = await page.evaluate(() => window.godelViewer.settings);
+
+  // Zoom in with the wheel over the textured ball: the picture is enlarged smoothly
+  // (filtered), not in blocks, and the server is not asked.
+  await page.check('#layer-texture');
+  await idle(page);
+  await savePicture(page, join(outDir, 'textured.rgba'));
+  const requestsBeforeZoom = requests.length;
+  await page.mouse.move(
+    canvasBox.x + (col + 0.5) * canvasBox.width / result.canvas[0],
+    canvasBox.y + (row + 0.5) * canvasBox.height / result.canvas[1],
+  );
+  await page.mouse.wheel(0, -2000);
+  await page.waitForFunction(() => window.godelViewer.zoom() > 6);
+  await idle(page);
+  await savePicture(page, join(outDir, 'zoomed.rgba'), {}, 'canvas');
+  result.zoom = await page.evaluate(() => window.godelViewer.zoom());
+  result.requests_for_zoom = requests.slice(requestsBeforeZoom)
+    .filter((r) => !r.includes('/api/pixel?'));
 
   await page.screenshot({ path: join(outDir, 'screenshot.png'), fullPage: true });
 

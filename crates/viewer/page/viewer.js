@@ -398,6 +398,8 @@ viewer.finish = () => gpu.finish();
 viewer.fetched = () => data.fetched;
 // The WebGL side, for profiling from the console.
 viewer.gpu = () => gpu;
+// Canvas pixels per picture pixel (1 when looking around).
+viewer.zoom = () => (lookMode() ? 1 : pan.zoom);
 
 // ---- start
 

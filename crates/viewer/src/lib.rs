@@ -1,10 +1,15 @@
 //! `viewer`: the live web viewer behind `godel view` (DESIGN.md, "The pipeline"). A local
-//! axum server holds one data file in memory and shades it on request with the `shade`
-//! crate, so the page (embedded in the binary) only sends settings and shows what the
-//! server shaded: one shading implementation serves the command line and the viewer.
+//! axum server holds one data file in memory; the page (embedded in the binary) fetches the
+//! file's channels once and shades them on the GPU with WebGL2 shaders that reproduce the
+//! `shade` crate's rule, so every control, turn, zoom and boost redraws within a frame. The
+//! server stays the source of the data, of hover records, and of saved pictures and keyframes
+//! (shaded by the `shade` crate, after `render::look` for a turned or boosted view).
 //!
 //! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes.
-//! - [`router`]: the routes (see [`routes`] for the table), [`serve`]: runs them.
+//! - [`router`]: the routes (see [`routes`], [`gpu_routes`] and [`look_routes`] for the
+//!   tables), [`serve`]: runs them.
+//! - [`wire`]: the binary format of the arrays the page uploads as textures; [`gpu`]: what
+//!   they hold (channels, textures, black-body tables).
 //! - The settings the page sends are `shade::ShadeSettings` as JSON.
 
 mod assets;

@@ -8,6 +8,7 @@
 //! | `POST /api/png` (settings JSON) | the shaded picture as a PNG download |
 //! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
+//! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::look_routes`] |
 //!
 //! Bad requests (malformed or unknown settings, pixel outside the image) get 400 with
 //! `{"error": "..."}` naming the field; nothing a client sends can panic the server.
