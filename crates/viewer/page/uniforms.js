@@ -38,9 +38,10 @@ export function imagesFor(settings, info, data) {
   return [...names];
 }
 
-// The object table: 4 RGBA32F texels per object (one row each).
+// The object table: 4 RGBA32F texels per object (one row each; one row of zeros when the
+// file has no objects).
 export function objectTable(settings, info, data) {
-  const table = new Float32Array(info.objects.length * 16);
+  const table = new Float32Array(Math.max(info.objects.length, 1) * 16);
   const bb = data.blackbody;
   info.objects.forEach((name, k) => {
     const o = settings.objects[name] || info.defaults.objects[name];

@@ -18,7 +18,7 @@ const viewer = {
   look: null,      // the look-around state, for a full-sphere file
   frames: 0,       // pictures drawn on the canvas
   shadings: 0,     // shading passes run
-  frameTimes: [],  // performance.now() of each frame drawn
+  frameTimes: [],  // performance.now() of the last frames drawn (at most 600)
   firstPicture: null, // ms from navigation start to the first picture on the canvas
   record: null,    // the last pixel record shown
   error: null,     // the last error message shown
@@ -165,8 +165,8 @@ async function draw() {
       }
       uniforms.uLegendRect = ['i4', legend ? [legend.x0, legend.y0, legend.width, legend.height]
         : [0, 0, 0, 0]];
-      gpu.uploadFloatRgba('objects', 4, viewer.info.objects.length,
-        objectTable(settings, viewer.info, data));
+      const table = objectTable(settings, viewer.info, data);
+      gpu.uploadFloatRgba('objects', 4, table.length / 16, table);
       gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
         uniforms);
       viewer.shadings += 1;
@@ -189,6 +189,7 @@ async function draw() {
   const now = performance.now();
   viewer.frames += 1;
   viewer.frameTimes.push(now);
+  if (viewer.frameTimes.length > 600) viewer.frameTimes.shift();
   const recent = viewer.frameTimes.filter((t) => t > now - 1000).length;
   $('status').textContent = `${p.width}×${p.height} shaded on the GPU · ${recent} frames/s`;
   clearError();

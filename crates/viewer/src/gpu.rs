@@ -16,7 +16,7 @@ use render::record::{PixelRecord, RayStatus};
 use serde::Serialize;
 use shade::blackbody::{table, T_MAX, T_MIN};
 use shade::gt_table::{gt_table, SHIFT};
-use shade::{Texture, TextureChoice};
+use shade::Texture;
 
 use crate::wire::{Array, SampleType};
 
@@ -181,12 +181,6 @@ pub fn describe_texture(k: usize, texture: &Texture) -> GpuTexture {
             height: image.height(),
         },
     }
-}
-
-/// The texture choices the page draws without asking the server (everything but image files
-/// named in the settings, which the page cannot read).
-pub fn page_can_draw(choice: &TextureChoice) -> bool {
-    !matches!(choice, TextureChoice::Image { .. })
 }
 
 /// An image texture as 8-bit sRGB RGB samples, row 0 at the top (v = 1).

@@ -21,6 +21,7 @@ use scene::Scene;
 use shade::{ImageTexture, Texture};
 
 use crate::gpu::{self, Channel, GpuTexture};
+use crate::routes::ApiError;
 use crate::state::ViewerState;
 
 /// The GPU routes' state: the loaded file and its scene textures, loaded on first request.
@@ -39,7 +40,7 @@ impl GpuState {
 
     /// The objects' scene textures (the file was refused at loading if they cannot load, so
     /// an error here means the image files changed meanwhile).
-    fn scene_textures(&self) -> Result<&[Texture], Response> {
+    fn scene_textures(&self) -> Result<&[Texture], ApiError> {
         let loaded = self.textures.get_or_init(|| {
             let data = &self.viewer.data;
             let scene =
@@ -47,9 +48,7 @@ impl GpuState {
                     .map_err(|e| e.to_string())?;
             shade::textures_for_scene(&scene).map_err(|e| e.to_string())
         });
-        loaded
-            .as_deref()
-            .map_err(|e| error(StatusCode::INTERNAL_SERVER_ERROR, e.clone()))
+        loaded.as_deref().map_err(|e| ApiError::internal(e.clone()))
     }
 }
 
@@ -109,7 +108,7 @@ async fn channel(State(state): State<Arc<GpuState>>, Path(name): Path<String>) -
 async fn textures(State(state): State<Arc<GpuState>>) -> Response {
     let scene = match state.scene_textures() {
         Ok(t) => t,
-        Err(e) => return e,
+        Err(e) => return e.into_response(),
     };
     let objects: Vec<GpuTexture> = scene
         .iter()
@@ -126,7 +125,7 @@ async fn image(State(state): State<Arc<GpuState>>, Path(name): Path<String>) -> 
     } else {
         let scene = match state.scene_textures() {
             Ok(t) => t,
-            Err(e) => return e,
+            Err(e) => return e.into_response(),
         };
         scene
             .iter()
