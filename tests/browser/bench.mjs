@@ -20,6 +20,7 @@ try {
   await idle(page);
   result.error = await page.evaluate(() => window.godelViewer.error);
   result.first_picture_ms = await page.evaluate(() => window.godelViewer.firstPicture);
+  result.timeline_ms = await page.evaluate(() => window.godelViewer.timeline);
   result.fetched = await page.evaluate(() => window.godelViewer.fetched());
   result.picture = await page.evaluate(() => {
     const p = window.godelViewer.readPicture();

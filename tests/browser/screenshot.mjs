@@ -36,7 +36,8 @@ try {
   const scale = box.width / canvas[0];
   const zoom = await page.evaluate(() => (window.godelViewer.look ? 1 : null));
   const [sx, sy] = zoom ? [scale, scale] : [box.width / w, box.height / h];
-  const [ox, oy] = zoom ? [(canvas[0] - w) / 2 * scale, (canvas[1] - h) / 2 * scale] : [0, 0];
+  const [ox, oy] = zoom ? [Math.floor((canvas[0] - w) / 2) * scale,
+    Math.floor((canvas[1] - h) / 2) * scale] : [0, 0];
   await page.mouse.move(box.x + ox + (Number(col) + 0.5) * sx, box.y + oy + (Number(row) + 0.5) * sy);
   await page.waitForFunction(() => window.godelViewer.record !== null);
   await page.screenshot({ path: out });

@@ -3,7 +3,7 @@
 // of the picture, and draws that texture on the canvas at any zoom with trilinear filtering.
 'use strict';
 
-import { VERTEX, shadeSource, DISPLAY_FS } from './shaders.js';
+import { VERTEX, shadeSource, displaySource } from './shaders.js';
 
 // ---- the wire format: 16-byte header, then little-endian samples
 
@@ -46,7 +46,7 @@ export class Gpu {
     this.canvas = canvas;
     this.maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
     this.shadePrograms = new Map(); // by features, compiled when first needed
-    this.displayProgram = this.program(DISPLAY_FS);
+    this.displayPrograms = [this.program(displaySource(false)), this.program(displaySource(true))];
     this.vao = gl.createVertexArray();
     this.textures = {};
     this.locations = new Map();
@@ -180,7 +180,6 @@ export class Gpu {
     }
     const texture = this.texture2d(width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, null,
       gl.LINEAR);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
     const framebuffer = gl.createFramebuffer();
     gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
     gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
@@ -230,23 +229,32 @@ export class Gpu {
     }
     gl.bindVertexArray(this.vao);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
-    gl.bindTexture(gl.TEXTURE_2D, target.texture);
-    gl.generateMipmap(gl.TEXTURE_2D);
+    target.mipmapsStale = true;
   }
 
   // Draws the offscreen picture on the canvas: its top-left corner at canvas pixel `offset`,
-  // `zoom` canvas pixels per picture pixel.
+  // `zoom` canvas pixels per picture pixel; filtered (mipmaps made when first needed) unless
+  // it is shown texel for texel.
   display(offset, zoom) {
     const gl = this.gl;
-    if (!this.shaded) return;
+    const shaded = this.shaded;
+    if (!shaded) return;
+    const filtered = zoom !== 1 || !Number.isInteger(offset[0]) || !Number.isInteger(offset[1]);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, shaded.texture);
+    if (filtered && shaded.mipmapsStale) {
+      gl.generateMipmap(gl.TEXTURE_2D);
+      shaded.mipmapsStale = false;
+    }
+    // Without mipmaps a mipmapping filter would leave the texture incomplete (black).
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER,
+      filtered ? gl.LINEAR_MIPMAP_LINEAR : gl.NEAREST);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, this.canvas.width, this.canvas.height);
-    gl.useProgram(this.displayProgram);
-    gl.activeTexture(gl.TEXTURE0);
-    gl.bindTexture(gl.TEXTURE_2D, this.shaded.texture);
-    const p = this.displayProgram;
+    const p = this.displayPrograms[filtered ? 1 : 0];
+    gl.useProgram(p);
     gl.uniform1i(this.location(p, 'uShaded'), 0);
-    gl.uniform2f(this.location(p, 'uShadedSize'), this.shaded.width, this.shaded.height);
+    gl.uniform2f(this.location(p, 'uShadedSize'), shaded.width, shaded.height);
     gl.uniform2f(this.location(p, 'uCanvas'), this.canvas.width, this.canvas.height);
     gl.uniform2f(this.location(p, 'uOffset'), offset[0], offset[1]);
     gl.uniform1f(this.location(p, 'uZoom'), zoom);

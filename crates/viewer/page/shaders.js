@@ -3,8 +3,8 @@
 // the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
 // `render::look` (camera direction → aberration → nearest sphere pixel, g times the Doppler
 // factor). It writes one texel per output pixel into an offscreen RGBA8 texture, row 0 of the
-// picture in texture row 0; DISPLAY_FS then draws that texture on the canvas, scaled with
-// trilinear filtering.
+// picture in texture row 0; the display pass (displaySource) then draws that texture on the
+// canvas, scaled with trilinear filtering.
 //
 // The layers, look mode and image textures are chosen when the program is compiled
 // (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for every pixel,
@@ -311,7 +311,11 @@ export function shadeSource(features) {
   return `#version 300 es\n${defines.join('\n')}\n${SHADE_BODY}`;
 }
 
-export const DISPLAY_FS = `#version 300 es
+// The display pass: `filtered` samples the picture trilinearly at any zoom; otherwise it is
+// copied texel for texel (zoom 1 at a whole-pixel offset, as when looking around).
+export function displaySource(filtered) {
+  return `#version 300 es
+#define FILTERED ${filtered ? 1 : 0}
 precision highp float;
 uniform sampler2D uShaded;
 uniform vec2 uShadedSize;   // texels
@@ -322,9 +326,14 @@ out vec4 outColour;
 void main() {
   vec2 canvas = vec2(gl_FragCoord.x, uCanvas.y - gl_FragCoord.y);   // from the top
   vec2 q = (canvas - uOffset) / uZoom;
-  if (q.x < 0.0 || q.y < 0.0 || q.x > uShadedSize.x || q.y > uShadedSize.y) {
+  if (q.x < 0.0 || q.y < 0.0 || q.x >= uShadedSize.x || q.y >= uShadedSize.y) {
     outColour = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
+#if FILTERED
   outColour = vec4(texture(uShaded, q / uShadedSize).rgb, 1.0);
+#else
+  outColour = vec4(texelFetch(uShaded, ivec2(q), 0).rgb, 1.0);
+#endif
 }`;
+}

@@ -20,6 +20,7 @@ const viewer = {
   shadings: 0,     // shading passes run
   frameTimes: [],  // performance.now() of the last frames drawn (at most 600)
   firstPicture: null, // ms from navigation start to the first picture on the canvas
+  timeline: {},    // ms from navigation start: described, tables, channels (first load)
   record: null,    // the last pixel record shown
   error: null,     // the last error message shown
 };
@@ -150,6 +151,7 @@ async function draw() {
     } finally {
       loading = false;
     }
+    if (!viewer.timeline.channels) viewer.timeline.channels = performance.now();
     changed();
     return;
   }
@@ -174,7 +176,8 @@ async function draw() {
     }
     const canvas = $('image');
     if (lookMode()) {
-      gpu.display([(canvas.width - p.width) / 2, (canvas.height - p.height) / 2], 1);
+      gpu.display([Math.floor((canvas.width - p.width) / 2),
+        Math.floor((canvas.height - p.height) / 2)], 1);
     } else {
       gpu.display(pan.offset, pan.zoom);
     }
@@ -214,7 +217,7 @@ function picturePixel(c) {
   const canvas = $('image');
   const p = picture();
   const [ox, oy, zoom] = lookMode()
-    ? [(canvas.width - p.width) / 2, (canvas.height - p.height) / 2, 1]
+    ? [Math.floor((canvas.width - p.width) / 2), Math.floor((canvas.height - p.height) / 2), 1]
     : [pan.offset[0], pan.offset[1], pan.zoom];
   const col = Math.floor((c[0] - ox) / zoom);
   const row = Math.floor((c[1] - oy) / zoom);
@@ -413,6 +416,7 @@ async function start() {
     return;
   }
   const info = viewer.info;
+  viewer.timeline.described = performance.now();
   viewer.settings = structuredClone(info.defaults);
   $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
     + (viewer.view.sphere ? ' · full sphere: drag to look around' : '');
@@ -420,6 +424,7 @@ async function start() {
     gpu = new Gpu($('image'));
     data = new Data(gpu, info);
     await data.start();
+    viewer.timeline.tables = performance.now();
   } catch (e) {
     showError(e.message);
     return;
