@@ -15,7 +15,7 @@ if (!url || !out || col === undefined || row === undefined) {
 }
 const settings = JSON.parse(settingsText || '{"shaders": ["frequency"]}');
 const { context, page } = await launch(mkdtempSync(join(tmpdir(), 'godel-shot-')),
-  { width: 1500, height: 880 });
+  { width: 1500, height: 960 });
 try {
   await open(page, url);
   await page.evaluate((s) => {
