@@ -6,25 +6,20 @@
 //! alone assembles and writes. Rank 0 works too, on a thread of its own, while its main
 //! thread serves the queue (only that thread calls MPI: `Threading::Funneled`); with
 //! `GODEL_MPI_ROOT_WORKS=0` it only serves (e.g. when rank 0 sits on a service node).
-//! [`render`] runs `godel render` with tile batches as jobs, [`sequence`] runs
-//! `godel sequence` with frames as jobs.
+//! The commands bring their own jobs: `godel render` batches of tiles (cmd_render.rs),
+//! `godel sequence` whole frames (cmd_sequence.rs); this file knows neither.
 //!
 //! Failure: a rank whose scene, work or fingerprint fails prints `godel: rank R: <error>`
 //! and calls `MPI_Abort`, so the whole job exits non-zero and rank 0 never writes a partial
 //! image; a rank that dies is caught by the MPI launcher, which ends the job the same way.
 
-use crate::cmd_render::{load_scene, progress_bar, thread_pool, write_outputs, RenderArgs};
-use crate::cmd_sequence::{finish, start as start_sequence, Plan, SequenceArgs};
 use anyhow::Context;
 use mpi::environment::Threading;
 use mpi::topology::{Communicator, SimpleCommunicator};
 use mpi::traits::{Destination, Source};
-use render::driver::{NoProgress, RenderStats};
-use render::part::{fingerprint, fingerprint_of};
-use render::tiles::{count, insert, TileData, TileRenderer};
 use std::sync::mpsc;
 use std::sync::Mutex;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Worker → rank 0: "give me a job"; payload: the worker's fingerprint (first time) or
 /// the result of its last job (8-byte job number, then the bytes).
@@ -32,8 +27,6 @@ const TAG_ASK: i32 = 1;
 /// Rank 0 → worker: the next job number, or [`STOP`].
 const TAG_JOB: i32 = 2;
 const STOP: u64 = u64::MAX;
-/// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
-const TILES_PER_JOB: usize = 8;
 
 /// Whether an MPI launcher (OpenMPI's mpirun, Hydra, SLURM's srun with PMI/PMIx) started
 /// this process; a plain `godel render` then stays a single, MPI-free process.
@@ -45,7 +38,7 @@ pub fn launched_by_mpi() -> bool {
 
 /// Prints `godel: rank R: <error chain>` and aborts the whole MPI job with main's exit
 /// code convention (2 for bad input, 1 otherwise).
-fn abort(world: &SimpleCommunicator, err: &anyhow::Error) -> ! {
+pub fn abort(world: &SimpleCommunicator, err: &anyhow::Error) -> ! {
     let chain: Vec<String> = err.chain().map(|c| c.to_string()).collect();
     eprintln!("godel: rank {}: {}", world.rank(), chain.join(": "));
     let code = if err
@@ -184,129 +177,8 @@ fn worker(
 }
 
 /// Starts MPI (funneled: only the main thread calls it).
-fn start() -> anyhow::Result<mpi::environment::Universe> {
+pub fn start() -> anyhow::Result<mpi::environment::Universe> {
     let (universe, _) = mpi::initialize_with_threading(Threading::Funneled)
         .context("cannot start MPI (already started?)")?;
     Ok(universe)
-}
-
-/// `godel render` under MPI: tile batches as jobs; rank 0 writes the same files as a
-/// single-process run.
-pub fn render(args: RenderArgs) -> anyhow::Result<()> {
-    let universe = start()?;
-    let world = universe.world();
-    let rank0 = world.rank() == 0;
-    let set_up = || -> anyhow::Result<_> {
-        let pool = thread_pool(args.threads)?;
-        let scene = load_scene(&args.scene)?;
-        if rank0 {
-            shade::textures_for_scene(&scene)?; // fail before tracing
-        }
-        Ok((pool, scene))
-    };
-    let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
-    let renderer =
-        TileRenderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
-    let started = Instant::now();
-    let tiles = renderer.tiles();
-    // Small images still get a few jobs per rank.
-    let per_job = (tiles.len() / (4 * world.size() as usize)).clamp(1, TILES_PER_JOB);
-    let jobs: Vec<Vec<usize>> = (0..tiles.len())
-        .collect::<Vec<_>>()
-        .chunks(per_job)
-        .map(<[usize]>::to_vec)
-        .collect();
-    let work = |job: usize| -> anyhow::Result<Vec<u8>> {
-        let traced = pool.install(|| renderer.trace(&jobs[job], &NoProgress));
-        Ok(postcard::to_stdvec(&traced)?)
-    };
-    let pixels = scene.camera.width() as u64 * scene.camera.height() as u64;
-    let bar = progress_bar(&scene, pixels, args.quiet || !rank0);
-    let mut data = renderer.blank();
-    let mut failure = None;
-    let mut done = |job: usize, bytes: Vec<u8>| match postcard::from_bytes::<Vec<TileData>>(&bytes)
-    {
-        Ok(traced) if traced.iter().map(|t| t.index).eq(jobs[job].iter().copied()) => {
-            for t in &traced {
-                insert(&mut data, tiles[t.index], t);
-                bar.inc(t.records.len() as u64);
-            }
-        }
-        _ => failure = Some(job),
-    };
-    let per_rank = run_jobs(&world, jobs.len(), &fingerprint(&scene), &work, &mut done);
-    bar.finish_and_clear();
-    if !rank0 {
-        return Ok(());
-    }
-    if let Some(job) = failure {
-        let e = anyhow::anyhow!("the result of job {job} arrived damaged");
-        abort(&world, &e);
-    }
-    let stats = RenderStats {
-        wall: started.elapsed(),
-        ..count(&data.records)
-    };
-    write_outputs(&scene, &data, &args.output).unwrap_or_else(|e| abort(&world, &e));
-    let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
-    eprintln!(
-        "{} ({} ranks; jobs of {per_job} tiles per rank: {})",
-        stats.summary(),
-        world.size(),
-        shares.join(", ")
-    );
-    Ok(())
-}
-
-/// `godel sequence` under MPI: frames as jobs (each traced and shaded whole on one rank,
-/// sent to rank 0 as raw RGB), written by rank 0 as they arrive; the MP4 at the end.
-pub fn sequence(args: SequenceArgs) -> anyhow::Result<()> {
-    let universe = start()?;
-    let world = universe.world();
-    let rank0 = world.rank() == 0;
-    let set_up = || -> anyhow::Result<_> {
-        let text = std::fs::read_to_string(&args.script)
-            .with_context(|| format!("cannot read {}", args.script.display()))?;
-        Ok((Plan::new(&args.script)?, fingerprint_of(&[&text])))
-    };
-    let (plan, key) = set_up().unwrap_or_else(|e| abort(&world, &e));
-    let bar = if rank0 {
-        start_sequence(&plan, &args).unwrap_or_else(|e| abort(&world, &e))
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    let work = |job: usize| -> anyhow::Result<Vec<u8>> {
-        let image = plan
-            .frame(job as u32)
-            .with_context(|| format!("frame {job}"))?;
-        let mut bytes = image.width().to_le_bytes().to_vec();
-        bytes.extend_from_slice(&image.height().to_le_bytes());
-        bytes.extend_from_slice(image.as_raw());
-        Ok(bytes)
-    };
-    let mut failure = None;
-    let mut done = |job: usize, bytes: Vec<u8>| {
-        let size = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
-        let image = (bytes.len() >= 8)
-            .then(|| image::RgbImage::from_raw(size(0), size(4), bytes[8..].to_vec()))
-            .flatten();
-        let written = match image {
-            Some(image) => {
-                shade::write_png(&image, &plan.frame_path(job as u32)).map_err(anyhow::Error::from)
-            }
-            None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
-        };
-        match written {
-            Ok(()) => bar.inc(1),
-            Err(e) => failure = Some(e),
-        }
-    };
-    run_jobs(&world, plan.frames() as usize, &key, &work, &mut done);
-    if let Some(e) = failure {
-        abort(&world, &e);
-    }
-    if rank0 {
-        finish(&plan, &args, &bar).unwrap_or_else(|e| abort(&world, &e));
-    }
-    Ok(())
 }

@@ -28,6 +28,8 @@ use std::io::Write;
 
 /// Default `--until-time` for Minkowski, where rays never come back.
 pub const MINKOWSKI_DEFAULT_UNTIL: f64 = 10.0;
+/// Most samples (`--samples`): each costs ~130 bytes until printed.
+pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// The metrics known on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -57,7 +59,11 @@ pub enum Format {
 #[command(after_help = "\
 Stop: with --until-time DT the geodesic stops exactly where |t - T| = DT. Without it, a \
 Gödel geodesic stops after one loop: back on the starting axis (the start's x, y), or at \
-the latest after |t - T| = 2√2·π·a; a Minkowski geodesic stops at |t - T| = 10.
+the latest after |t - T| = 2√2·π·a; a Minkowski geodesic stops at |t - T| = 10. Either \
+method stops at the latest at parameter λ = 10⁶ (a note on stderr says so when that \
+comes before DT); the numeric one also after 100000 steps (an error).
+
+Limits: --samples at most 1000000.
 
 Output: CSV columns lambda,t,r,phi,z,x,y (phi unwrapped, continuous), or JSON with the \
 samples, the stop reason, the constants of motion and their relative drift.
@@ -89,7 +95,8 @@ pub struct GeodesicArgs {
     /// Stop exactly at |t - T| = DT (coordinate time, DT > 0).
     #[arg(long, value_name = "DT", allow_hyphen_values = true)]
     pub until_time: Option<f64>,
-    /// Number of samples, evenly spaced in the parameter (≥ 2; first at the start, last at the stop).
+    /// Number of samples, evenly spaced in the parameter (2 to 1000000; first at the start,
+    /// last at the stop).
     #[arg(long, value_name = "N", default_value_t = 100)]
     pub samples: usize,
     /// Output format.
@@ -124,6 +131,14 @@ impl Request {
         if r < 0.0 {
             return Err(usage("--at", format!("R must be ≥ 0, got {r}")));
         }
+        let start = Cylindrical { t, r, phi, z };
+        let frame = metric.static_frame(start.to_event());
+        if !frame.e.iter().all(|e| e.is_finite()) {
+            return Err(usage(
+                "--at",
+                format!("the metric cannot be evaluated at R = {r} (too far from the axis)"),
+            ));
+        }
         let dir = parse_vector::<3>("--dir", &args.dir)?;
         // Scale by the largest component first so that huge inputs cannot overflow the norm.
         let big = dir.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -153,10 +168,16 @@ impl Request {
                 format!("must be at least 2, got {}", args.samples),
             ));
         }
+        if args.samples > MAX_SAMPLES {
+            return Err(usage(
+                "--samples",
+                format!("at most {MAX_SAMPLES}, got {}", args.samples),
+            ));
+        }
         Ok(Request {
             metric,
             method: args.method,
-            start: Cylindrical { t, r, phi, z },
+            start,
             direction,
             speed,
             time: if args.past {
@@ -203,7 +224,8 @@ pub fn compute(req: &Request) -> anyhow::Result<Curve> {
     let at = req.start.to_event();
     let frame = req.metric.static_frame(at);
     let geodesic = Geodesic::launch(&req.metric, at, &frame, req.direction, req.speed, req.time)
-        .ok_or_else(|| usage("--dir", "cannot launch a geodesic along this direction"))?;
+        .filter(|g| g.start.x.is_finite() && g.start.p.is_finite())
+        .ok_or_else(|| usage("--at", "cannot launch a geodesic from this event"))?;
     let scale = req.metric.godel_a().unwrap_or(1.0);
     match req.method {
         Method::Numeric => {
@@ -232,8 +254,18 @@ pub fn compute(req: &Request) -> anyhow::Result<Curve> {
         }
         Method::Exact => {
             let tangent = geodesic.start.tangent(&req.metric);
-            let curve = ExactCurve::new(req.metric, at, tangent)
-                .ok_or_else(|| usage("--dir", "no closed form for this direction"))?;
+            // The launch succeeded, so the direction is fine: what fails is carrying the
+            // start to the origin in floating point, which loses the null condition far out.
+            let curve = ExactCurve::new(req.metric, at, tangent).ok_or_else(|| {
+                usage(
+                    "--at",
+                    format!(
+                        "the closed form cannot start this far from the axis (R = {}); \
+                         use --method numeric",
+                        req.start.r
+                    ),
+                )
+            })?;
             let (lambda_end, stop) = curve.stop(&req.limits)?;
             let n = req.samples;
             let samples: Vec<(f64, GeodesicState)> = (0..n)
@@ -318,8 +350,8 @@ impl ExactCurve {
     }
 
     /// The parameter where the curve stops under `limits`, and why: the first of the
-    /// return to the starting axis (λ = π/ω, Gödel only, not for curves along the axis)
-    /// and |t − t_start| = until_time.
+    /// return to the starting axis (λ = π/ω, Gödel only, not for curves along the axis),
+    /// |t − t_start| = until_time, and λ = max_affine (as the numeric method).
     fn stop(&self, limits: &TraceLimits) -> anyhow::Result<(f64, StopReason)> {
         let axis = match self {
             ExactCurve::Godel { a, g, .. }
@@ -329,28 +361,38 @@ impl ExactCurve {
             }
             _ => None,
         };
-        let time = limits.until_time.map(|dt| self.parameter_at_time(dt));
+        let time =
+            limits
+                .until_time
+                .map(|dt| match self.parameter_at_time(dt, limits.max_affine) {
+                    Some(lt) => (lt, StopReason::TimeReached),
+                    None => (limits.max_affine, StopReason::AffineLimit),
+                });
         match (axis, time) {
-            (Some(la), Some(lt)) if lt < la => Ok((lt, StopReason::TimeReached)),
+            (Some(la), Some((lt, why))) if lt < la => Ok((lt, why)),
             (Some(la), _) => Ok((la, StopReason::AxisReturn)),
-            (None, Some(lt)) => Ok((lt, StopReason::TimeReached)),
+            (None, Some(stop)) => Ok(stop),
             (None, None) => anyhow::bail!("the exact method needs --until-time here"),
         }
     }
 
-    /// The parameter λ > 0 with |t(λ) − t(0)| = dt: bracketed by doubling, then refined.
-    fn parameter_at_time(&self, dt: f64) -> f64 {
+    /// The parameter 0 < λ ≤ `max` with |t(λ) − t(0)| = dt (bracketed by doubling, then
+    /// refined), or `None` when t does not get that far by λ = `max`.
+    fn parameter_at_time(&self, dt: f64, max: f64) -> Option<f64> {
         let t0 = self.event_and_tangent(0.0).0.t;
         let f = |lambda: f64| (self.event_and_tangent(lambda).0.t - t0).abs() - dt;
-        let mut hi = dt;
-        while f(hi) < 0.0 && hi < 1e12 {
-            hi *= 2.0;
+        let mut hi = dt.min(max);
+        while f(hi) < 0.0 && hi < max {
+            hi = (2.0 * hi).min(max);
         }
         let f_hi = f(hi);
-        if f_hi == 0.0 {
-            return hi;
+        if f_hi.is_nan() || f_hi < 0.0 {
+            return None; // not reached by λ = max (or not finite there)
         }
-        refine_root(f, 0.0, hi, -dt, f_hi)
+        if f_hi == 0.0 {
+            return Some(hi);
+        }
+        Some(refine_root(f, 0.0, hi, -dt, f_hi))
     }
 }
 
@@ -456,6 +498,14 @@ fn json_document(req: &Request, curve: &Curve, rows: &[Row]) -> serde_json::Valu
 pub fn run(args: GeodesicArgs) -> anyhow::Result<()> {
     let req = Request::from_args(&args)?;
     let curve = compute(&req)?;
+    if let (Some(dt), StopReason::AffineLimit) = (args.until_time, curve.stop) {
+        eprintln!(
+            "note: stopped at lambda = {} ({}) before |t - T| reached {}",
+            num(curve.lambda_end),
+            curve.stop.describe(),
+            num(dt)
+        );
+    }
     let rows = rows(&req.metric, &curve.samples, req.start.phi);
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());

@@ -1,20 +1,21 @@
 //! `godel look SPHERE.exr --camera KIND … -o VIEW.exr`: any camera of any observer at the
-//! event of a full-sphere data file, without tracing (`render::look`; docs/physics.md,
-//! "Looking around without tracing"). Writes `VIEW.exr` (the data file, whose embedded scene
+//! event of a full-sphere data file, without tracing (`look`; docs/physics.md,
+//! "Observers at one event: aberration and Doppler"). Writes `VIEW.exr` (the data file, whose embedded scene
 //! is the sphere's with the camera and the observer's velocity and axes replaced) and
-//! `VIEW.png` (the preview, shaded like `godel render`'s), both produced in memory before
-//! either is written, each through a temporary file and a rename. Prints how far the
-//! source's resolution limits the result.
+//! `VIEW.png` (the preview, shaded like `godel render`'s), both produced in memory and then
+//! written together as `godel render` writes its pair (`output::write_data_and_preview`);
+//! the output folder is checked before the sphere is read. Prints how far the source's
+//! resolution limits the result.
 //!
 //! Exit 2 for bad flags (naming the flag) and for a data file that is not a static
 //! observer's full sphere; exit 1 for unreadable or damaged files, as `godel shade`.
 
 use crate::args::{parse_vector, usage};
-use crate::cmd_render::write_data_and_preview;
+use crate::output::{prepare, write_data_and_preview};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use render::datafile::DataFile;
-use render::look::{look, resolution, LookError, LookView, SphereSource};
+use datafile::DataFile;
+use look::{look, resolution, LookError, LookView, SphereSource};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::PathBuf;
@@ -155,7 +156,7 @@ fn velocity(text: &Option<String>) -> anyhow::Result<LocalVelocity> {
     })
 }
 
-/// The flag that sets a view field named by `render::look`.
+/// The flag that sets a view field named by `look`.
 fn flag_of(field: &str, camera: CameraKind) -> &'static str {
     match field {
         "camera.fov_deg" => "--fov",
@@ -195,6 +196,19 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         vector("--up", &args.up)?,
     );
 
+    let png = args.output.with_extension("png");
+    let names: Vec<String> = [&args.output, &png]
+        .iter()
+        .filter_map(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .collect();
+    let dir = args
+        .output
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    prepare("--output", dir, &names)?;
+
     let sphere = DataFile::read(&args.sphere)?;
     let read = started.elapsed();
     let source = SphereSource::of(&sphere).map_err(|e| usage(&file, e.to_string()))?;
@@ -222,10 +236,6 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         .context(
         "the preview is shaded with the sphere's scene (textures resolve from the current folder)",
     )?;
-    let png = args.output.with_extension("png");
-    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    }
     write_data_and_preview(&scene, &data, &args.output, &png)?;
 
     let r = resolution(&source, &view);

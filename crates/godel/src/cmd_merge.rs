@@ -3,13 +3,16 @@
 //! different renders, a missing or repeated part, or overlapping parts are refused
 //! (`render::part::merge`), and nothing is written then.
 
-use crate::cmd_render::write_outputs;
+use crate::output::write_outputs;
 use clap::Args;
 use render::part::{merge, read_part};
 use scene::Scene;
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits: each part a regular file of at most 8 GiB. The EXR and the PNG are renamed together \
+at the end, as by `godel render`.")]
 pub struct MergeArgs {
     /// The part files (`<name>.part-i-of-N.exr`), all N of them, in any order.
     #[arg(required = true)]

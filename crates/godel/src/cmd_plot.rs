@@ -8,10 +8,10 @@
 
 use crate::args::{positive, usage};
 use crate::output::write_atomic;
+use crate::plot_kit::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
 use crate::svg::{f, to_png, Svg};
-use anyhow::Context;
-use spacetime::{trace, Event, Geodesic, Godel, Metric, Spacetime, TimeDirection, TraceLimits};
-use std::f64::consts::{PI, SQRT_2};
+use spacetime::{Event, Godel, Metric};
+use std::f64::consts::PI;
 use std::path::PathBuf;
 
 /// `godel plot ...`
@@ -47,15 +47,9 @@ pub struct GeodesicsPlotArgs {
     pub output: PathBuf,
 }
 
-/// Colour-blind-safe palette (Okabe & Ito 2008, without yellow and black).
-pub const PALETTE: [&str; 6] = [
-    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
-];
 const TILTED_COLOUR: &str = "#9A9A9A";
 /// Elevation of the tilted rays above the plane.
 const TILT: f64 = PI / 4.0;
-/// Samples per ray from the dense output.
-const SAMPLES: usize = 600;
 
 /// One traced ray projected on the x–y plane, in units of a.
 struct Ray {
@@ -64,24 +58,6 @@ struct Ray {
     t_end: f64,
     tilted: bool,
     colour: &'static str,
-}
-
-/// Traces a future-directed light ray from the origin along the local direction `dir`:
-/// its events at [`SAMPLES`] evenly spaced parameters, and the time at its end.
-pub fn trace_ray(metric: Metric, a: f64, dir: [f64; 3]) -> anyhow::Result<(Vec<Event>, f64)> {
-    let origin = Event::new(0.0, 0.0, 0.0, 0.0);
-    let frame = metric.static_frame(origin);
-    let g = Geodesic::launch(&metric, origin, &frame, dir, 1.0, TimeDirection::Future)
-        .context("cannot launch a ray from the origin")?;
-    let traced = trace(metric, &g, &TraceLimits::one_loop(a));
-    if traced.stop.is_failure() {
-        anyhow::bail!(
-            "tracing a ray along {dir:?} failed: {}",
-            traced.stop.describe()
-        );
-    }
-    let events = traced.samples(SAMPLES).iter().map(|(_, s)| s.x).collect();
-    Ok((events, traced.end.x.t))
 }
 
 /// Points of `events` in the x–y plane, in units of a.
@@ -114,24 +90,6 @@ fn trace_fan(a: f64, n_plane: usize, n_tilted: usize) -> anyhow::Result<Vec<Ray>
         });
     }
     Ok(rays)
-}
-
-/// Unicode minus for negative tick labels.
-pub fn tick_label(v: f64) -> String {
-    let s = f(v);
-    match s.strip_prefix('-') {
-        Some(rest) => format!("\u{2212}{rest}"),
-        None => s,
-    }
-}
-
-/// A small filled arrowhead (data units) with its tip at `p`, pointing along `d`.
-pub fn arrowhead(p: (f64, f64), d: (f64, f64), len: f64) -> [(f64, f64); 3] {
-    let n = d.0.hypot(d.1).max(f64::MIN_POSITIVE);
-    let (ux, uy) = (d.0 / n, d.1 / n);
-    let (bx, by) = (p.0 - len * ux, p.1 - len * uy);
-    let w = 0.42 * len;
-    [p, (bx - w * uy, by + w * ux), (bx + w * uy, by - w * ux)]
 }
 
 /// Builds the figure's SVG text.
@@ -336,7 +294,7 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
         "future direction",
     );
 
-    let t_ret = 2.0 * PI * a * (SQRT_2 - 1.0);
+    let t_ret = Godel::new(a).shortest_loop_time();
     let plane: Vec<f64> = rays.iter().filter(|r| !r.tilted).map(|r| r.t_end).collect();
     let t_mean = plane.iter().sum::<f64>() / plane.len().max(1) as f64;
     let caption = [
@@ -393,55 +351,3 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
     write_atomic(&args.output, &bytes)
 }
 
-/// Whether a figure goes to PNG (`.png`) or SVG (`.svg`); any other name is an error.
-pub fn output_is_png(output: &std::path::Path) -> anyhow::Result<bool> {
-    let ext = output
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("svg") => Ok(false),
-        Some("png") => Ok(true),
-        _ => Err(usage(
-            "--output",
-            format!("must end in .svg or .png, got {}", output.display()),
-        )),
-    }
-}
-
-/// The axis titles x / a and y / a of a square frame at (`left`, `top`) with side `side`,
-/// then opens the data layer: clipped to the frame, in units of a with y up and the origin
-/// at the centre. The caller closes it with two [`Svg::end_group`].
-pub fn open_data_layer(s: &mut Svg, left: f64, top: f64, side: f64, scale: f64) {
-    let (cx, cy) = (left + side / 2.0, top + side / 2.0);
-    s.text(
-        (cx, top + side + 48.0),
-        17.0,
-        "middle",
-        r##"fill="#222""##,
-        "x / a",
-    );
-    s.raw(&format!(
-        r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
-        f(left - 52.0),
-        f(cy),
-        crate::svg::FONT_FAMILY
-    ));
-
-    // Data layer: units of a, y up, clipped to the frame.
-    s.raw(&format!(
-        r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
-        f(left),
-        f(top),
-        f(side),
-        f(side)
-    ));
-    s.group(r#"clip-path="url(#frame)""#);
-    s.group(&format!(
-        r#"id="data" transform="translate({},{}) scale({},{})""#,
-        f(cx),
-        f(cy),
-        f(scale),
-        f(-scale)
-    ));
-}

@@ -1,33 +1,44 @@
 //! `godel render [SCENE] [-o DIR]`: traces a scene (or the built-in reference scene) and
 //! writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png` (the preview,
-//! shaded with the objects' own textures). Textures are loaded before tracing, and both
-//! files are produced in memory before either is written, each through a temporary file
-//! and a rename, so a failed run leaves no half-written output.
+//! shaded with the objects' own textures). Before any tracing: the thread count, the scene,
+//! its textures and the output folder are checked (`output::prepare`). Both files are
+//! written to temporaries and then renamed together (`output::write_together`), so a failed
+//! or interrupted run leaves no half-written output and never a new EXR beside an old PNG.
 //!
 //! With `--part i/N` it traces only part i of N (see `render::part`) and writes the part
 //! file `DIR/<name>.part-i-of-N.exr`; `godel merge` joins the parts. Built with the `mpi`
 //! feature and started by mpirun/srun with several ranks, it spreads the tiles over the
 //! ranks (`cluster.rs`).
 
-use anyhow::Context;
+use crate::args::{load_scene, thread_pool};
+use crate::output::{output_names, prepare, write_outputs};
+use crate::progress::{progress_bar, Bar};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
-use render::datafile::DataFile;
-use render::driver::{render, Progress, RenderStats};
-use render::part::{fingerprint, write_part, Part};
-use render::tiles::{count, insert, TileRenderer};
-use scene::Scene;
-use std::path::{Path, PathBuf};
+use render::driver::Renderer;
+use render::part::{fingerprint, write_part};
+use render::plan::{Part, Plan};
+use render::tiles::Assembler;
+use std::path::PathBuf;
 use std::time::Instant;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits, checked before any tracing (exit code 2, naming the flag or file:line:field): \
+--threads at most 8 per core; the scene a regular file of at most 16 MiB; its name at most \
+100 bytes, no leading '.' or '-'; image sides at most 20000 and 5·10⁷ pixels; \
+[trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
+writable.
+
+Writing: both files go to hidden temporaries `.NAME.godel-PID-HOST.XXXXXX.tmp` and are \
+renamed together at the end. Ctrl-C or SIGTERM removes the temporaries (exit 130 or 143); \
+temporaries that a killed run left are removed by the next run writing to that folder.")]
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,
     /// Output folder (created if missing).
     #[arg(short, long, default_value = "out")]
     pub output: PathBuf,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; at most 8 per core).
     #[arg(long)]
     pub threads: Option<usize>,
     /// No progress bar.
@@ -37,78 +48,6 @@ pub struct RenderArgs {
     /// array jobs; join the parts with `godel merge`.
     #[arg(long, value_name = "i/N")]
     pub part: Option<String>,
-}
-
-/// The progress bar, fed by the render driver.
-pub struct Bar(pub ProgressBar);
-
-impl Progress for Bar {
-    fn advance(&self, pixels: u64) {
-        self.0.inc(pixels);
-    }
-}
-
-/// Loads the scene named on the command line, or the built-in one.
-pub fn load_scene(path: &Option<PathBuf>) -> anyhow::Result<Scene> {
-    Ok(match path {
-        Some(p) => Scene::from_file(p)?,
-        None => Scene::builtin(),
-    })
-}
-
-/// A progress bar over `pixels` pixels (hidden when `quiet`).
-pub fn progress_bar(scene: &Scene, pixels: u64, quiet: bool) -> ProgressBar {
-    let bar = if quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(pixels)
-    };
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{prefix} [{bar:40}] {percent:>3}% {pos}/{len} px, {per_sec}, ETA {eta}",
-        )
-        .expect("valid template")
-        .progress_chars("=> "),
-    );
-    bar.set_prefix(format!("tracing {}", scene.name));
-    bar
-}
-
-/// The worker thread pool of `--threads`.
-pub fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
-    if threads == Some(0) {
-        return Err(crate::args::usage("--threads", "must be at least 1"));
-    }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .context("cannot start worker threads")
-}
-
-/// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures,
-/// lit where the scene has lights):
-/// exactly the files of a single run, whoever traced the pixels.
-pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let exr = dir.join(format!("{}.exr", scene.name));
-    let png = dir.join(format!("{}.png", scene.name));
-    write_data_and_preview(scene, data, &exr, &png)
-}
-
-/// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
-/// has lights) to `png`, the preview shaded before either file is written.
-pub fn write_data_and_preview(
-    scene: &Scene,
-    data: &DataFile,
-    exr: &Path,
-    png: &Path,
-) -> anyhow::Result<()> {
-    let textures = shade::textures_for_scene(scene)?;
-    let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
-    data.write(exr)?;
-    shade::write_png(&image, png)?;
-    eprintln!("wrote {} and {}", png.display(), exr.display());
-    Ok(())
 }
 
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
@@ -130,65 +69,125 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     };
     #[cfg(feature = "mpi")]
     if part.is_none() && crate::cluster::launched_by_mpi() {
-        return crate::cluster::render(args);
+        return under_mpi::run(args);
     }
     let pool = thread_pool(args.threads)?;
     let scene = load_scene(&args.scene)?;
-    // Textures load before tracing, so a bad texture fails fast.
+    // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
-    if let Some(part) = part {
-        return render_part(&args, &scene, part, &pool);
-    }
-    let pixels = scene.camera.width() as u64 * scene.camera.height() as u64;
+    let outputs = match part {
+        Some(part) => vec![part.file_name(&scene.name)],
+        None => output_names(&scene).to_vec(),
+    };
+    prepare("--output", &args.output, &outputs)?;
+    let started = Instant::now();
+    let renderer = Renderer::new(&scene)?;
+    let plan = part.map_or(Plan::All, Plan::Part);
+    let pixels: u64 = plan
+        .indices(renderer.tiles())
+        .iter()
+        .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
+        .sum();
     let bar = progress_bar(&scene, pixels, args.quiet);
-    let (data, stats) = pool.install(|| render(&scene, &Bar(bar.clone())))?;
+    let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
+    let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
+    stats.wall = started.elapsed();
     bar.finish_and_clear();
-    write_outputs(&scene, &data, &args.output)?;
+    let data = assembler.finish();
+    match part {
+        None => write_outputs(&scene, &data, &args.output)?,
+        Some(part) => {
+            let path = args.output.join(part.file_name(&scene.name));
+            let scene_path = scene_path_text(&args.scene);
+            write_part(&path, &data, part, &fingerprint(&scene), &scene_path)?;
+            eprintln!("wrote {} (part {part})", path.display());
+        }
+    }
     eprintln!("{}", stats.summary());
     Ok(())
 }
 
-/// `--part i/N`: traces the part's tiles and writes the part file.
-fn render_part(
-    args: &RenderArgs,
-    scene: &Scene,
-    part: Part,
-    pool: &rayon::ThreadPool,
-) -> anyhow::Result<()> {
-    let started = Instant::now();
-    let renderer = TileRenderer::new(scene)?;
-    let mine = part.tiles(renderer.tiles().len());
-    let pixels: u64 = mine
-        .iter()
-        .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
-        .sum();
-    let bar = progress_bar(scene, pixels, args.quiet);
-    let traced = pool.install(|| renderer.trace(&mine, &Bar(bar.clone())));
-    bar.finish_and_clear();
-    let mut data = renderer.blank();
-    for t in &traced {
-        insert(&mut data, renderer.tiles()[t.index], t);
+/// `godel render` under MPI: batches of tiles as jobs of the generic queue
+/// (`crate::cluster::run_jobs`); rank 0 assembles and writes the same files as a
+/// single-process run.
+#[cfg(feature = "mpi")]
+mod under_mpi {
+    use super::*;
+    use crate::cluster::{abort, run_jobs, start};
+    use mpi::topology::Communicator;
+    use render::driver::{NoProgress, RenderStats};
+    use render::tiles::{Sink, TileData};
+
+    /// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
+    const TILES_PER_JOB: usize = 8;
+
+    pub fn run(args: RenderArgs) -> anyhow::Result<()> {
+        let universe = start()?;
+        let world = universe.world();
+        let rank0 = world.rank() == 0;
+        let set_up = || -> anyhow::Result<_> {
+            let pool = thread_pool(args.threads)?;
+            let scene = load_scene(&args.scene)?;
+            if rank0 {
+                // Fail before tracing: textures, and the folder rank 0 writes to.
+                shade::textures_for_scene(&scene)?;
+                prepare("--output", &args.output, &output_names(&scene))?;
+            }
+            Ok((pool, scene))
+        };
+        let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
+        let renderer =
+            Renderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
+        let started = Instant::now();
+        let tiles = renderer.tiles();
+        // Small images still get a few jobs per rank.
+        let per_job = (tiles.len() / (4 * world.size() as usize)).clamp(1, TILES_PER_JOB);
+        let jobs: Vec<Vec<usize>> = (0..tiles.len())
+            .collect::<Vec<_>>()
+            .chunks(per_job)
+            .map(<[usize]>::to_vec)
+            .collect();
+        let work = |job: usize| -> anyhow::Result<Vec<u8>> {
+            let plan = Plan::Tiles(jobs[job].clone());
+            let traced = pool.install(|| renderer.trace(&plan, &NoProgress));
+            Ok(postcard::to_stdvec(&traced)?)
+        };
+        let pixels = scene.camera.width() as u64 * scene.camera.height() as u64;
+        let bar = progress_bar(&scene, pixels, args.quiet || !rank0);
+        let mut assembler = Assembler::new(renderer.blank(), tiles);
+        let mut failure = None;
+        let mut done =
+            |job: usize, bytes: Vec<u8>| match postcard::from_bytes::<Vec<TileData>>(&bytes) {
+                Ok(traced) if traced.iter().map(|t| t.index).eq(jobs[job].iter().copied()) => {
+                    for t in traced {
+                        bar.inc(t.records.len() as u64);
+                        assembler.accept(t);
+                    }
+                }
+                _ => failure = Some(job),
+            };
+        let per_rank = run_jobs(&world, jobs.len(), &fingerprint(&scene), &work, &mut done);
+        bar.finish_and_clear();
+        if !rank0 {
+            return Ok(());
+        }
+        if let Some(job) = failure {
+            let e = anyhow::anyhow!("the result of job {job} arrived damaged");
+            abort(&world, &e);
+        }
+        let data = assembler.finish();
+        let stats = RenderStats {
+            wall: started.elapsed(),
+            ..RenderStats::count(&data.records)
+        };
+        write_outputs(&scene, &data, &args.output).unwrap_or_else(|e| abort(&world, &e));
+        let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
+        eprintln!(
+            "{} ({} ranks; jobs of {per_job} tiles per rank: {})",
+            stats.summary(),
+            world.size(),
+            shares.join(", ")
+        );
+        Ok(())
     }
-    let stats = RenderStats {
-        wall: started.elapsed(),
-        ..count(
-            &traced
-                .iter()
-                .flat_map(|t| t.records.iter().copied())
-                .collect::<Vec<_>>(),
-        )
-    };
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create {}", args.output.display()))?;
-    let path = args.output.join(part.file_name(&scene.name));
-    write_part(
-        &path,
-        &data,
-        part,
-        &fingerprint(scene),
-        &scene_path_text(&args.scene),
-    )?;
-    eprintln!("wrote {} (part {part})", path.display());
-    eprintln!("{}", stats.summary());
-    Ok(())
 }

@@ -2,6 +2,10 @@
 //! ([`shade::script`]): numbered PNGs `frame_0000.png`, … in the script's output folder, and
 //! `sequence.mp4` when `ffmpeg` is on PATH (a clear note, not an error, when it is not).
 //!
+//! The output folder holds this run's frames only: before the first frame, numbered frames
+//! beyond this run's count and an earlier `sequence.mp4` are removed (with a note), and
+//! ffmpeg is told the exact frame count, so the MP4 never shows another run's frames.
+//!
 //! [`Plan`] is built and checked completely before anything is written (the data file read,
 //! every keyframe's settings validated), then each frame is an independent, pure job
 //! [`Plan::frame`]`(i) -> image` (shade the data file, or trace the scene at that frame's
@@ -9,13 +13,14 @@
 //! spread over MPI ranks with one writer.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Child, Command};
+use std::sync::{Mutex, MutexGuard};
 
 use anyhow::Context;
 use clap::Args;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
-use render::datafile::DataFile;
+use datafile::DataFile;
 use render::driver::{header, render, NoProgress};
 use scene::Scene;
 use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};
@@ -23,6 +28,14 @@ use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};
 use crate::cmd_shade::settings_error;
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits, checked before the first frame (exit code 2, naming file:line:field): the script a \
+regular file of at most 16 MiB; frames 1 to 100000; fps at most 1000; the output folder \
+creatable and writable.
+
+The output folder holds this run's frames only: numbered frames beyond this run's count and \
+an earlier sequence.mp4 are removed first (a note lists them); ffmpeg encodes exactly this \
+run's frames.")]
 pub struct SequenceArgs {
     /// The sequence script (TOML).
     pub script: PathBuf,
@@ -171,45 +184,126 @@ fn have_ffmpeg() -> bool {
         .is_ok_and(|o| o.status.success())
 }
 
-/// Encodes the frames into `DIR/sequence.mp4` (through a temporary name and a rename).
-fn encode_mp4(dir: &Path, fps: f64) -> anyhow::Result<PathBuf> {
-    let out = dir.join("sequence.mp4");
-    let tmp = dir.join(".sequence.partial.mp4");
-    let status = Command::new("ffmpeg")
-        .args([
-            "-y",
-            "-loglevel",
-            "error",
-            "-framerate",
-            &fps.to_string(),
-            "-i",
-        ])
-        .arg(dir.join("frame_%04d.png"))
-        // H.264 in yuv420p needs even sizes; pad by one pixel where needed.
-        .args([
-            "-vf",
-            "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-            "-pix_fmt",
-            "yuv420p",
-            "-f",
-            "mp4",
-        ])
-        .arg(&tmp)
-        .status()
-        .context("cannot run ffmpeg")?;
-    if !status.success() {
-        let _ = std::fs::remove_file(&tmp);
-        anyhow::bail!("ffmpeg failed ({status}) encoding {}", out.display());
+/// The MP4 of a sequence.
+const MP4: &str = "sequence.mp4";
+
+/// ffmpeg's arguments to encode frames 0..`frames` of `dir` at `fps` into `out`: exactly
+/// that many frames, from frame 0, whatever else lies in the folder.
+fn ffmpeg_args(dir: &Path, frames: u32, fps: f64, out: &Path) -> Vec<std::ffi::OsString> {
+    let mut args: Vec<std::ffi::OsString> = [
+        "-y",
+        "-loglevel",
+        "error",
+        "-framerate",
+        &fps.to_string(),
+        "-start_number",
+        "0",
+        "-i",
+    ]
+    .iter()
+    .map(Into::into)
+    .collect();
+    args.push(dir.join("frame_%04d.png").into());
+    // H.264 in yuv420p needs even sizes; pad by one pixel where needed.
+    for a in [
+        "-frames:v",
+        &frames.to_string(),
+        "-vf",
+        "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+        "-pix_fmt",
+        "yuv420p",
+        "-f",
+        "mp4",
+    ] {
+        args.push(a.into());
     }
-    std::fs::rename(&tmp, &out).with_context(|| format!("cannot write {}", out.display()))?;
+    args.push(out.into());
+    args
+}
+
+/// The ffmpeg encoding now, if any: kept where a signal handler can stop it before its
+/// temporary output is removed (otherwise ffmpeg could create that file again after).
+static ENCODER: Mutex<Option<Child>> = Mutex::new(None);
+
+fn encoder() -> MutexGuard<'static, Option<Child>> {
+    ENCODER.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Stops (kills and reaps) a running ffmpeg, for the signal handler in `main.rs`, which
+/// holds the returned lock until the process exits: the encoding waits on it meanwhile
+/// instead of reporting a failure of its own.
+pub fn stop_encoder() -> MutexGuard<'static, Option<Child>> {
+    let mut running = encoder();
+    if let Some(child) = running.as_mut() {
+        let _ = child.kill();
+        let _ = child.wait();
+    }
+    running
+}
+
+/// Encodes the frames into `DIR/sequence.mp4` (through a temporary file and a rename).
+fn encode_mp4(dir: &Path, frames: u32, fps: f64) -> anyhow::Result<PathBuf> {
+    let out = dir.join(MP4);
+    datafile::atomic::write_atomically_via_path(&out, |tmp| {
+        *encoder() = Some(
+            Command::new("ffmpeg")
+                .args(ffmpeg_args(dir, frames, fps, tmp))
+                .spawn()?,
+        );
+        // Polled, so that the lock is free for [`stop_encoder`] in between.
+        let status = loop {
+            let done = match encoder().as_mut() {
+                Some(child) => child.try_wait()?,
+                None => return Err(std::io::Error::other("ffmpeg went missing")),
+            };
+            if let Some(status) = done {
+                encoder().take();
+                break status;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
+        if status.success() {
+            Ok(())
+        } else {
+            Err(std::io::Error::other(format!("ffmpeg failed ({status})")))
+        }
+    })
+    .with_context(|| format!("cannot encode {}", out.display()))?;
     Ok(out)
 }
 
+/// Files in `dir` that an earlier run left and this run of `frames` frames would not
+/// replace: numbered frames `frame_NNNN.png` from `frames` on, and `sequence.mp4`.
+pub fn stale_outputs(dir: &Path, frames: u32) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut stale: Vec<PathBuf> = entries
+        .flatten()
+        .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+        .map(|e| e.path())
+        .filter(|p| {
+            let Some(name) = p.file_name().and_then(|n| n.to_str()) else {
+                return false;
+            };
+            let frame = name
+                .strip_prefix("frame_")
+                .and_then(|n| n.strip_suffix(".png"))
+                .and_then(|n| n.parse::<u64>().ok())
+                // Exactly the name this program gives that frame.
+                .filter(|&i| name == format!("frame_{i:04}.png"));
+            name == MP4 || frame.is_some_and(|i| i >= u64::from(frames))
+        })
+        .collect();
+    stale.sort();
+    stale
+}
+
 pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
-    // Under mpirun/srun the frames are spread over the ranks (cluster.rs).
+    // Under mpirun/srun the frames are spread over the ranks.
     #[cfg(feature = "mpi")]
     if crate::cluster::launched_by_mpi() {
-        return crate::cluster::sequence(args);
+        return under_mpi::run(args);
     }
     let plan = Plan::new(&args.script)?;
     let n = plan.frames();
@@ -223,10 +317,35 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
     finish(&plan, &args, &bar)
 }
 
-/// Creates the output folder; the progress bar over the frames.
+/// Before the first frame: creates the output folder and checks that the frames and the
+/// MP4 can be written there (errors located at the script's `output`), removes what an
+/// earlier run left that this run would not replace; the progress bar over the frames.
 pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
     let dir = plan.output_dir();
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let bad_output = |e: String| settings_error("sequence", plan.script.error_at("output", e));
+    std::fs::create_dir_all(dir)
+        .map_err(|e| bad_output(format!("cannot create the folder {}: {e}", dir.display())))?;
+    for path in [plan.frame_path(0), dir.join(MP4)] {
+        datafile::atomic::check_writable(&path)
+            .map_err(|e| bad_output(format!("cannot write {}: {e}", path.display())))?;
+    }
+    let stale = stale_outputs(dir, plan.frames());
+    for path in &stale {
+        std::fs::remove_file(path)
+            .with_context(|| format!("cannot remove {} of an earlier run", path.display()))?;
+    }
+    if !stale.is_empty() {
+        let names: Vec<String> = stale
+            .iter()
+            .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .collect();
+        eprintln!(
+            "removed {} file(s) of an earlier run from {}: {}",
+            stale.len(),
+            dir.display(),
+            names.join(", ")
+        );
+    }
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -252,17 +371,142 @@ pub fn finish(plan: &Plan, args: &SequenceArgs, bar: &ProgressBar) -> anyhow::Re
     );
     if plan.script.mp4 && !args.no_mp4 {
         if have_ffmpeg() {
-            let mp4 = encode_mp4(dir, plan.script.fps)?;
+            let mp4 = encode_mp4(dir, n, plan.script.fps)?;
             eprintln!("wrote {}", mp4.display());
         } else {
             eprintln!(
                 "note: ffmpeg is not on PATH, so no MP4 was made (the PNG frames are complete). \
                  Install it (Debian/Ubuntu: apt-get install ffmpeg; macOS: brew install ffmpeg) \
-                 and run again, or: ffmpeg -framerate {} -i {}/frame_%04d.png -pix_fmt yuv420p sequence.mp4",
+                 and run again, or: ffmpeg -framerate {} -i {}/frame_%04d.png -frames:v {n} -pix_fmt yuv420p sequence.mp4",
                 plan.script.fps,
                 dir.display()
             );
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ffmpeg_encodes_exactly_this_runs_frames_from_zero() {
+        let args = ffmpeg_args(Path::new("out"), 4, 24.0, Path::new("out/.tmp"));
+        let args: Vec<String> = args
+            .iter()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect();
+        let after = |flag: &str| {
+            let i = args.iter().position(|a| a == flag).expect(flag);
+            args[i + 1].clone()
+        };
+        assert_eq!(after("-frames:v"), "4");
+        assert_eq!(after("-start_number"), "0");
+        assert_eq!(after("-framerate"), "24");
+        assert_eq!(after("-i"), "out/frame_%04d.png");
+        // Input options before the input, output options after it, the output last.
+        let input = args.iter().position(|a| a == "-i").unwrap();
+        assert!(args.iter().position(|a| a == "-start_number").unwrap() < input);
+        assert!(args.iter().position(|a| a == "-frames:v").unwrap() > input);
+        assert_eq!(args.last().unwrap(), "out/.tmp");
+    }
+
+    #[test]
+    fn stale_outputs_are_frames_beyond_the_count_and_the_mp4() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in [
+            "frame_0000.png",
+            "frame_0003.png",
+            "frame_0004.png",
+            "frame_0009.png",
+            "frame_10000.png",
+            "frame_00004.png", // not a name this program writes
+            "frame_0005.jpg",
+            "notes.txt",
+            "sequence.mp4",
+        ] {
+            std::fs::write(dir.path().join(name), b"x").unwrap();
+        }
+        let stale: Vec<String> = stale_outputs(dir.path(), 4)
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(
+            stale,
+            [
+                "frame_0004.png",
+                "frame_0009.png",
+                "frame_10000.png",
+                "sequence.mp4"
+            ]
+        );
+        assert!(stale_outputs(&dir.path().join("absent"), 4).is_empty());
+    }
+}
+
+/// `godel sequence` under MPI: frames as jobs of the generic queue
+/// (`crate::cluster::run_jobs`), each traced and shaded whole on one rank and sent to rank
+/// 0 as raw RGB, written by rank 0 as they arrive; the MP4 at the end.
+#[cfg(feature = "mpi")]
+mod under_mpi {
+    use super::*;
+    use crate::cluster::{abort, run_jobs, start as start_mpi};
+    use mpi::topology::Communicator;
+    use render::part::fingerprint_of;
+
+    pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
+        let universe = start_mpi()?;
+        let world = universe.world();
+        let rank0 = world.rank() == 0;
+        let set_up = || -> anyhow::Result<_> {
+            let text = scene::input::read_text(&args.script, scene::input::MAX_TEXT_BYTES)
+                .with_context(|| format!("cannot read {}", args.script.display()))?;
+            Ok((Plan::new(&args.script)?, fingerprint_of(&[&text])))
+        };
+        let (plan, key) = set_up().unwrap_or_else(|e| abort(&world, &e));
+        let bar = if rank0 {
+            start(&plan, &args).unwrap_or_else(|e| abort(&world, &e))
+        } else {
+            ProgressBar::hidden()
+        };
+        let work = |job: usize| -> anyhow::Result<Vec<u8>> {
+            let image = plan
+                .frame(job as u32)
+                .with_context(|| format!("frame {job}"))?;
+            let mut bytes = image.width().to_le_bytes().to_vec();
+            bytes.extend_from_slice(&image.height().to_le_bytes());
+            bytes.extend_from_slice(image.as_raw());
+            Ok(bytes)
+        };
+        let mut failure = None;
+        let mut done = |job: usize, bytes: Vec<u8>| {
+            let size = |at: usize| {
+                bytes
+                    .get(at..at + 4)
+                    .and_then(|b| b.try_into().ok())
+                    .map_or(0, u32::from_le_bytes)
+            };
+            let image = (bytes.len() >= 8)
+                .then(|| RgbImage::from_raw(size(0), size(4), bytes[8..].to_vec()))
+                .flatten();
+            let written = match image {
+                Some(image) => shade::write_png(&image, &plan.frame_path(job as u32))
+                    .map_err(anyhow::Error::from),
+                None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
+            };
+            match written {
+                Ok(()) => bar.inc(1),
+                Err(e) => failure = Some(e),
+            }
+        };
+        run_jobs(&world, plan.frames() as usize, &key, &work, &mut done);
+        if let Some(e) = failure {
+            abort(&world, &e);
+        }
+        if rank0 {
+            finish(&plan, &args, &bar).unwrap_or_else(|e| abort(&world, &e));
+        }
+        Ok(())
+    }
 }

@@ -6,9 +6,8 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::Args;
-use render::datafile::DataFile;
+use datafile::DataFile;
 use shade::{
     BrightnessMode, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TimeMode,
 };
@@ -16,6 +15,9 @@ use shade::{
 use crate::args::{parse_vector, usage};
 
 #[derive(Args, Debug)]
+#[command(after_help = "\
+Limits: the data file a regular file of at most 8 GiB; the settings file a regular file of \
+at most 16 MiB. A bad value names the flag that set it (or --settings).")]
 pub struct ShadeArgs {
     /// The data file written by `godel render` (.exr).
     pub data: PathBuf,
@@ -229,6 +231,36 @@ fn apply_flags(args: &ShadeArgs, names: &[String], s: &mut ShadeSettings) -> any
     Ok(())
 }
 
+/// The flag that set the settings field a [`ShadeError::Invalid`] names: the convenience
+/// flag when it was given, else `--settings` when a settings file was, else the flag.
+fn blamed_flag(args: &ShadeArgs, e: &ShadeError) -> &'static str {
+    let ShadeError::Invalid { field, .. } = e else {
+        return "--shader";
+    };
+    let parts: Vec<&str> = field.split(['.', '[']).collect();
+    let (flag, given) = match parts.as_slice() {
+        ["shaders", ..] => ("--shader", !args.shader.is_empty()),
+        ["objects", _, "texture", ..] => ("--texture", !args.texture.is_empty()),
+        ["objects", _, "window_texture", ..] => {
+            ("--window-texture", !args.window_texture.is_empty())
+        }
+        ["objects", _, "temperature", ..] => ("--temperature", !args.temperature.is_empty()),
+        ["objects", _, "rotation_deg", ..] => ("--rotate", !args.rotate.is_empty()),
+        ["objects", _, "offset_u" | "offset_v", ..] => ("--offset", !args.offset.is_empty()),
+        ["time", "t0" | "dt", ..] => ("--window", args.window.is_some()),
+        ["time", "travel_min" | "travel_max", ..] => ("--travel", args.travel.is_some()),
+        ["exposure", ..] => ("--exposure", args.exposure.is_some()),
+        ["light", "ambient", ..] => ("--ambient", args.ambient.is_some()),
+        ["light", "sources", ..] => ("--light", !args.light.is_empty()),
+        _ => ("--settings", args.settings.is_some()),
+    };
+    if !given && args.settings.is_some() {
+        "--settings"
+    } else {
+        flag
+    }
+}
+
 /// Settings errors are the user's input: exit code 2, like other usage errors.
 pub fn settings_error(flag: &str, e: ShadeError) -> anyhow::Error {
     match e {
@@ -244,14 +276,21 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
     let data = DataFile::read(&args.data)?;
     let mut settings = ShadeSettings::defaults_for(&data);
     if let Some(path) = &args.settings {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read the settings file {}", path.display()))?;
+        let text = scene::input::read_text(path, scene::input::MAX_TEXT_BYTES).map_err(|e| {
+            usage(
+                "--settings",
+                format!("cannot read the settings file {}: {e}", path.display()),
+            )
+        })?;
         settings = settings
             .overlay_toml(&text, &path.display().to_string())
             .map_err(|e| settings_error("--settings", e))?;
     }
     apply_flags(&args, &data.header.object_names, &mut settings)?;
-    let shading = Shading::new(&data, &settings).map_err(|e| settings_error("--shader", e))?;
+    let shading = Shading::new(&data, &settings).map_err(|e| {
+        let flag = blamed_flag(&args, &e);
+        settings_error(flag, e)
+    })?;
     let image = shading.image(&data);
     shade::write_png(&image, &args.output)?;
     let names: Vec<&str> = settings.shaders.iter().map(|k| k.name()).collect();

@@ -3,6 +3,11 @@
 //! 2 for usage errors (from clap, or an invalid value found by validation, see
 //! [`args::UsageError`]), 1 for any other failure; errors print as one line `error: ...`
 //! with their whole cause chain.
+//!
+//! SIGINT, SIGTERM and SIGHUP end every command but `view` (whose server stops gracefully on
+//! its own) through [`exit_on_signals`]: the temporary files of writes under way are
+//! removed (`datafile::atomic`) and the process exits with 128 + the signal's number (130 for
+//! Ctrl-C, 143 for SIGTERM), leaving no half-written file behind.
 
 mod args;
 #[cfg(feature = "mpi")]
@@ -18,6 +23,8 @@ mod cmd_shade;
 mod cmd_view;
 mod output;
 mod plot_isometry;
+mod plot_kit;
+mod progress;
 mod svg;
 
 use clap::{Parser, Subcommand};
@@ -70,6 +77,27 @@ fn run(command: Command) -> anyhow::Result<()> {
     }
 }
 
+/// Starts a thread that, on SIGINT, SIGTERM or SIGHUP, removes this process's temporary
+/// files and exits with 128 + the signal (the shell's convention for a signalled process).
+fn exit_on_signals() -> std::io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                // A child writing a temporary file stops first, so it cannot recreate it.
+                let _encoder = cmd_sequence::stop_encoder();
+                let removed = datafile::atomic::remove_live_temporaries();
+                if removed > 0 {
+                    eprintln!("godel: interrupted; removed {removed} temporary file(s)");
+                }
+                std::process::exit(128 + signal);
+            }
+        })?;
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -79,6 +107,12 @@ fn main() -> ExitCode {
             return ExitCode::from(e.exit_code().clamp(0, 255) as u8);
         }
     };
+    if !matches!(cli.command, Command::View(_)) {
+        if let Err(e) = exit_on_signals() {
+            eprintln!("error: cannot watch for signals: {e}");
+            return ExitCode::FAILURE;
+        }
+    }
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {

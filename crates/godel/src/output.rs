@@ -1,12 +1,108 @@
-//! Writing output files atomically (temporary file + rename, via `render::atomic`), so a
-//! failed run leaves no half-written file.
+//! Writing output files (via `datafile::atomic`): each through a temporary file and a rename,
+//! files that belong together (a render's EXR and PNG) all staged first and then renamed
+//! together, and the output folder checked before any work ([`prepare`]), so that a failed
+//! or interrupted run leaves no half-written file and no unwritable folder is found late.
+//!
+//! Testing hook: with `GODEL_PAUSE_BEFORE_RENAME=SECONDS` in the environment,
+//! [`write_together`] prints `staged: PATH …` on stderr once every file is a complete
+//! temporary and waits that long before renaming, so that tests can interrupt a run exactly
+//! there (crates/godel/tests/writes_cli.rs).
 
 use anyhow::Context;
+use datafile::atomic::{check_writable, commit_all, stage};
+use datafile::DataFile;
+use scene::Scene;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Writes `bytes` to `path` through a temporary file and a rename.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    render::atomic::write_atomically(path, |f| f.write_all(bytes))
-        .with_context(|| format!("cannot write {}", path.display()))
+    write_together(&[(path.to_path_buf(), bytes)])
+}
+
+/// Writes every file to a temporary first, then renames them one right after the other:
+/// either all appear (or are replaced) or, on an error or a signal, none does.
+pub fn write_together(files: &[(PathBuf, &[u8])]) -> anyhow::Result<()> {
+    let mut staged = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        staged.push(
+            stage(path, |f| f.write_all(bytes))
+                .with_context(|| format!("cannot write {}", path.display()))?,
+        );
+    }
+    pause_for_tests(files);
+    let targets: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    commit_all(staged).with_context(|| format!("cannot write {}", targets.join(" and ")))
+}
+
+/// Creates the output folder `dir` and checks that every file in `names` can be written
+/// there, before any work; failures are usage errors naming `flag`.
+pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        crate::args::usage(
+            flag,
+            format!("cannot create the output folder {}: {e}", dir.display()),
+        )
+    })?;
+    for name in names {
+        let path = dir.join(name);
+        check_writable(&path).map_err(|e| {
+            crate::args::usage(flag, format!("cannot write {}: {e}", path.display()))
+        })?;
+    }
+    Ok(())
+}
+
+/// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures,
+/// lit where the scene has lights):
+/// exactly the files of a single run, whoever traced the pixels.
+pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let [exr, png] = output_names(scene).map(|n| dir.join(n));
+    write_data_and_preview(scene, data, &exr, &png)
+}
+
+/// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
+/// has lights) to `png`: both made in memory first, then written together
+/// ([`write_together`]). `godel render` and `godel look` write this pair.
+pub fn write_data_and_preview(
+    scene: &Scene,
+    data: &DataFile,
+    exr: &Path,
+    png: &Path,
+) -> anyhow::Result<()> {
+    let textures = shade::textures_for_scene(scene)?;
+    let png_bytes = {
+        let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+        shade::encode_png(&image, png)?
+    };
+    let exr_bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {
+        path: exr.to_path_buf(),
+        kind,
+    })?;
+    write_together(&[
+        (exr.to_path_buf(), &exr_bytes),
+        (png.to_path_buf(), &png_bytes),
+    ])?;
+    eprintln!("wrote {} and {}", png.display(), exr.display());
+    Ok(())
+}
+
+/// The files a render writes: `<name>.exr` and `<name>.png`.
+pub fn output_names(scene: &Scene) -> [String; 2] {
+    [format!("{}.exr", scene.name), format!("{}.png", scene.name)]
+}
+
+/// The testing hook of the module doc.
+fn pause_for_tests(files: &[(PathBuf, &[u8])]) {
+    let Some(seconds) = std::env::var("GODEL_PAUSE_BEFORE_RENAME")
+        .ok()
+        .and_then(|v| v.parse::<f64>().ok())
+        .filter(|s| s.is_finite() && *s > 0.0)
+    else {
+        return;
+    };
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    eprintln!("staged: {}", names.join(" "));
+    std::thread::sleep(std::time::Duration::from_secs_f64(seconds.min(3600.0)));
 }

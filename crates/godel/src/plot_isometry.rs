@@ -11,12 +11,11 @@
 //! ∂φ rotates the loop about the origin.
 
 use crate::args::{positive, usage};
-use crate::cmd_plot::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
+use crate::plot_kit::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
 use crate::output::write_atomic;
 use crate::svg::{f, to_png, Svg};
 use clap::ValueEnum;
 use spacetime::{Event, Godel, Isometry, KillingField, Metric};
-use std::f64::consts::{PI, SQRT_2};
 use std::path::PathBuf;
 
 /// The Killing fields whose flow shows in the x–y plane (∂t and ∂z do not move a projection).
@@ -296,7 +295,7 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
         r##"fill="#222""##,
         "horizon of the origin, r = 2a",
     );
-    let t_ret = 2.0 * PI * a * (SQRT_2 - 1.0);
+    let t_ret = spacetime::Godel::new(a).shortest_loop_time();
     let caption = [
         format!("Gödel universe, a = {}. The flow", f(a)),
         format!("exp(s {}) is an isometry, so each image", field.label()),

@@ -404,3 +404,100 @@ fn plot_rejects_bad_input_and_leaves_no_file() {
     let out = godel(&["plot", "geodesics", "-o", "/nonexistent-dir/g.svg"]);
     assert_eq!(out.status.code(), Some(1));
 }
+
+/// Issue 10: `--samples 4000000000` aborted with SIGABRT after trying to allocate 288 GB.
+#[test]
+fn samples_are_bounded_up_front() {
+    for n in ["4000000000", "1000001"] {
+        let out = godel(&[
+            "geodesic",
+            "--at",
+            "0,0,0,0",
+            "--dir",
+            "1,0,0",
+            "--samples",
+            n,
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{n}: {err}");
+        assert!(
+            err.starts_with("error: --samples: at most 1000000"),
+            "{n}: {err}"
+        );
+        assert!(out.stdout.is_empty());
+    }
+    let rows = csv(&["--at", "0,0,0,0", "--dir", "1,0,0", "--samples", "1000000"]);
+    assert_eq!(rows.len(), 1_000_000);
+}
+
+/// Issue 10: a start event too far from the axis was blamed on `--dir`.
+#[test]
+fn a_start_too_far_out_is_blamed_on_at() {
+    for (r, method) in [
+        ("1e300", "exact"),
+        ("1e300", "numeric"),
+        ("1e20", "numeric"),
+        ("1000", "exact"),
+    ] {
+        let at = format!("0,{r},0,0");
+        let out = godel(&[
+            "geodesic", "--at", &at, "--dir", "1,0,0", "--method", method,
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{r} {method}: {err}");
+        assert!(err.starts_with("error: --at: "), "{r} {method}: {err}");
+        assert!(out.stdout.is_empty());
+    }
+}
+
+/// Issue 10: `--until-time 1e15` stopped at λ = 1e6 without saying so (and the exact
+/// method of Gödel's metric stopped at λ ≈ 4e-16, calling it the time bound).
+#[test]
+fn a_time_bound_out_of_reach_is_reported() {
+    for (metric, method) in [
+        ("minkowski", "numeric"),
+        ("minkowski", "exact"),
+        ("godel", "exact"),
+    ] {
+        let out = godel(&[
+            "geodesic",
+            "--format",
+            "json",
+            "--metric",
+            metric,
+            "--method",
+            method,
+            "--at",
+            "0,0,0,0",
+            "--dir",
+            "1,0,0",
+            "--until-time",
+            "1e15",
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{metric} {method}: {err}");
+        let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(doc["stop"], "affine_limit", "{metric} {method}");
+        assert_eq!(doc["lambda_end"], 1e6, "{metric} {method}");
+        let last = doc["samples"].as_array().unwrap().last().unwrap().clone();
+        assert!(last["t"].as_f64().unwrap() < 1e15);
+        assert!(
+            err.starts_with("note: stopped at lambda = 1000000 (affine-parameter bound reached)"),
+            "{metric} {method}: {err}"
+        );
+        assert!(err.contains("1e15"), "{err}");
+    }
+    // Within reach: no note.
+    let out = godel(&[
+        "geodesic",
+        "--metric",
+        "minkowski",
+        "--at",
+        "0,0,0,0",
+        "--dir",
+        "1,0,0",
+        "--until-time",
+        "100",
+    ]);
+    assert!(out.status.success() && out.stderr.is_empty());
+}

@@ -1,5 +1,5 @@
 //! End-to-end tests of `godel look`: from a full-sphere render it writes VIEW.exr (the very
-//! records of `render::look::look`, with a header and scene describing the new view) and
+//! records of `look::look`, with a header and scene describing the new view) and
 //! VIEW.png, and reports the source's resolution; the scene it embeds renders the same
 //! view when traced; negative flag values are accepted; a file that is not a static
 //! observer's full sphere, a part file and bad flags are refused with the file or flag
@@ -8,8 +8,8 @@
 mod common;
 
 use common::stderr;
-use render::datafile::DataFile;
-use render::look::{look, LookView};
+use datafile::DataFile;
+use look::{look, LookView};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::{Path, PathBuf};

@@ -1,13 +1,15 @@
 //! `godel render` under `mpirun` (cargo feature `mpi`; needs OpenMPI, which
 //! scripts/test.sh installs when missing): 2 ranks write the very bytes of a
-//! single-process run (a render and a 3-frame sequence), and a rank that fails ends the
-//! job non-zero with its rank named.
+//! single-process run (a render and a 3-frame sequence), a rank that fails ends the
+//! job non-zero with its rank named, and a rank killed while tracing ends the job non-zero
+//! with nothing written.
 #![cfg(feature = "mpi")]
 
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 mod common;
-use common::{stderr, write_scene};
+use common::{files_in, stderr, write_scene};
 
 const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 
@@ -147,4 +149,123 @@ fn two_ranks_write_the_frames_of_one_process() {
     // The frames differ from each other: the ball moved, so each frame was really made.
     let frame = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.png"))).unwrap();
     assert!(frame(0) != frame(2));
+}
+
+/// Bound on every wait below; the job itself needs seconds.
+const NEVER_HANGS: Duration = Duration::from_secs(180);
+
+/// The process whose environment holds every one of `vars` (`NAME=value`), if any.
+fn process_with(vars: &[&str]) -> Option<u32> {
+    for entry in std::fs::read_dir("/proc").ok()?.flatten() {
+        let Ok(pid) = entry.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(env) = std::fs::read(entry.path().join("environ")) else {
+            continue;
+        };
+        let entries: Vec<&[u8]> = env.split(|&b| b == 0).collect();
+        if vars.iter().all(|v| entries.contains(&v.as_bytes())) {
+            return Some(pid);
+        }
+    }
+    None
+}
+
+/// CPU time (user + system) of process `pid` so far, in clock ticks.
+fn cpu_ticks(pid: u32) -> Option<u64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // After the command name in parentheses: state is field 3, utime 14, stime 15.
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    Some(fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?)
+}
+
+/// Waits (bounded) until `f` gives a value.
+fn wait_for<T>(what: &str, mut f: impl FnMut() -> Option<T>) -> T {
+    let started = Instant::now();
+    loop {
+        if let Some(v) = f() {
+            return v;
+        }
+        assert!(
+            started.elapsed() < NEVER_HANGS,
+            "gave up waiting for {what}"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn a_rank_killed_while_tracing_fails_the_job_and_nothing_is_written() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Tens of seconds of tracing, all on rank 1 (rank 0 only serves the queue).
+    let text = scene_text(30.0)
+        .replace("width = 90", "width = 1600")
+        .replace("height = 37", "height = 800");
+    let scene = write_scene(tmp.path(), "slow.toml", &text);
+    let out = tmp.path().join("out");
+    // Marks this test's ranks among all processes of the machine.
+    let tag = format!("GODEL_TEST_JOB={}", tmp.path().display());
+    let mut job = Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe"])
+        .args(["-x", &tag, "-x", "GODEL_MPI_ROOT_WORKS=0", "-n", "2", GODEL])
+        .args(["render", &scene, "-q", "-o", out.to_str().unwrap()])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run mpirun (is OpenMPI installed? scripts/test.sh installs it)");
+    let rank1 = wait_for("rank 1 to start", || {
+        process_with(&[&tag, "OMPI_COMM_WORLD_RANK=1"])
+    });
+    // Well into its work: a second of CPU time (100 ticks) is far past start-up.
+    wait_for("rank 1 to trace", || cpu_ticks(rank1).filter(|&t| t >= 100));
+    let killed = Command::new("kill")
+        .args(["-KILL", &rank1.to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = wait_for("the job to end", || job.try_wait().unwrap());
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut job.stderr.take().unwrap(), &mut err).unwrap();
+    assert!(!status.success(), "the job succeeded without rank 1: {err}");
+    // No rank of the job is left running.
+    assert!(process_with(&[&tag]).is_none(), "a rank outlived the job");
+    // Nothing written: no image, no data file, no temporary (the folder itself was made
+    // by the up-front check of the output).
+    assert!(files_in(&out).is_empty(), "{:?}", files_in(&out));
+}
+
+/// Issue 10: the checks made before tracing hold under MPI too: rank 0 refuses an output
+/// folder it cannot write, every rank a thread count beyond 8 per core.
+#[test]
+fn limits_are_checked_before_tracing_under_mpi() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = write_scene(tmp.path(), "ranks.toml", &scene_text(8.0));
+    let good = tmp.path().join("out");
+    let cases: [(&str, &str, &str); 2] = [
+        (
+            "/dev/null/out",
+            "1",
+            "godel: rank 0: --output: cannot create the output folder",
+        ),
+        (good.to_str().unwrap(), "100000", ": --threads: at most "),
+    ];
+    for (out, threads, needle) in cases {
+        let o = mpirun(&[
+            "-n",
+            "2",
+            GODEL,
+            "render",
+            &scene,
+            "-q",
+            "-o",
+            out,
+            "--threads",
+            threads,
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(needle), "{err}");
+        assert!(files_in(&good).is_empty());
+    }
 }

@@ -3,9 +3,11 @@
 //! belong together (missing, repeated, overlapping, other scene, not a part) are refused
 //! with a message naming the file and nothing is written; light planes survive a split.
 
-use render::datafile::DataFile;
-use render::part::{fingerprint, merge, read_part, write_part, Part};
-use render::tiles::{blank, extract, image_tiles, insert};
+use datafile::DataFile;
+use render::driver::Renderer;
+use render::part::{fingerprint, merge, read_part, write_part};
+use render::plan::Part;
+use render::tiles::{extract, insert};
 use scene::Scene;
 use std::path::Path;
 use std::process::{Command, Output};
@@ -188,7 +190,8 @@ fn light_planes_travel_through_parts_and_merge() {
     // Synthetic light values (the tracer does not fill them yet): the split and the
     // merge must carry every plane to the same pixels.
     let scene = Scene::from_str(&scene_text(8.0), "split.toml").unwrap();
-    let mut whole = blank(&scene);
+    let renderer = Renderer::new(&scene).unwrap();
+    let mut whole = renderer.blank();
     let pixels = whole.width * whole.height;
     whole.lights = (0..2)
         .map(|k| {
@@ -197,12 +200,12 @@ fn light_planes_travel_through_parts_and_merge() {
                 .collect()
         })
         .collect();
-    let tiles = image_tiles(&scene);
+    let tiles = renderer.tiles();
     let tmp = tempfile::tempdir().unwrap();
     let read = (1..=3u32)
         .map(|index| {
             let part = Part { index, count: 3 };
-            let mut data = blank(&scene);
+            let mut data = renderer.blank();
             for k in part.tiles(tiles.len()) {
                 insert(&mut data, tiles[k], &extract(&whole, tiles[k], k));
             }

@@ -6,7 +6,7 @@
 //! `# expect field: PATH` (empty for TOML syntax errors) and `# <- error here` on the line
 //! the error must point at.
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

@@ -1,13 +1,21 @@
 //! End-to-end tests of `godel sequence`: numbered frames from one data file with keyframed
 //! settings (checked against the interpolation formula through the pictures), frames traced
 //! from a scene with the observer time advancing, the ffmpeg note or MP4, and bad scripts
-//! (keyframes out of order, unknown object) refused with file, line and field and no frames.
+//! (keyframes out of order, unknown object, frame counts and rates out of bounds, an
+//! unwritable output folder) refused with file, line and field and no frames; a run writes
+//! only its own frames.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
+
+mod common;
+use common::{files_in, run_within};
+
+/// Long enough for any of these commands on a loaded machine; they take well under a second.
+const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);
 
 fn godel(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_godel"))
@@ -159,9 +167,19 @@ fn refused(script_text: &str, needles: &[&str]) {
     data_file(dir.path());
     let script = dir.path().join("bad.toml");
     std::fs::write(&script, script_text).unwrap();
-    let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
+    // Bounded: before the frame count was bounded, `frames = 1e9` wrote until the disk
+    // was full.
+    let o = run_within(
+        Command::new(env!("CARGO_BIN_EXE_godel")).args([
+            "sequence",
+            script.to_str().unwrap(),
+            "-q",
+        ]),
+        NEVER_HANGS,
+    );
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
     for n in needles {
         assert!(e.contains(n), "expected {n:?} in {e}");
     }
@@ -189,6 +207,99 @@ fn bad_scripts_are_refused_before_any_frame() {
         "data = \"syn.exr\"\nframes = 9\nspeed = 3\n",
         &["bad.toml:3", "speed"],
     );
+}
+
+/// Issue 10: `frames = 1000000000` wrote until the disk was full; `fps = 1e300` was accepted.
+#[test]
+fn frame_counts_and_rates_are_bounded() {
+    refused(
+        "data = \"syn.exr\"\nframes = 1000000000\n",
+        &["bad.toml:2", "frames", "at most 100000"],
+    );
+    refused(
+        "data = \"syn.exr\"\nframes = 100001\n",
+        &["bad.toml:2", "frames", "at most 100000"],
+    );
+    refused(
+        "data = \"syn.exr\"\nframes = 9\nfps = 1e300\n",
+        &["bad.toml:3", "fps", "at most 1000"],
+    );
+}
+
+/// Issue 10: an unwritable output folder was found only after the work; a script or data
+/// file that is not a regular file (a FIFO blocks on open) was read without a bound.
+#[test]
+fn unwritable_outputs_and_odd_inputs_are_refused_before_any_frame() {
+    refused(
+        "data = \"syn.exr\"\nframes = 2\n\noutput = \"/dev/null/frames\"\n[settings]\nshaders = [\"frequency\"]\n",
+        &[
+            "bad.toml:4",
+            "output",
+            "cannot create the folder /dev/null/frames",
+        ],
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("fifo");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let script = dir.path().join("s.toml");
+    std::fs::write(&script, "data = \"fifo\"\nframes = 2\n").unwrap();
+    for input in [&fifo, &script] {
+        let o = run_within(
+            Command::new(env!("CARGO_BIN_EXE_godel")).args([
+                "sequence",
+                input.to_str().unwrap(),
+                "-q",
+            ]),
+            NEVER_HANGS,
+        );
+        let e = stderr(&o);
+        assert!(!o.status.success(), "{e}");
+        assert!(e.contains("not a regular file (a FIFO)"), "{e}");
+        assert!(!dir.path().join("frames").exists());
+    }
+}
+
+/// Issue 10: re-running a sequence with fewer frames into the same folder made an MP4 with
+/// the old frames in it. The earlier run's extra frames and its MP4 are removed first.
+#[test]
+fn a_shorter_rerun_leaves_only_its_own_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    data_file(dir.path());
+    let script = dir.path().join("s.toml");
+    let run = |frames: u32| {
+        std::fs::write(
+            &script,
+            format!(
+                "data = \"syn.exr\"\noutput = \"out\"\nframes = {frames}\nmp4 = false\n\
+                 [settings]\nshaders = [\"frequency\"]\n"
+            ),
+        )
+        .unwrap();
+        let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        o
+    };
+    run(10);
+    let out = dir.path().join("out");
+    // An MP4 of the 10 frames (as ffmpeg would have left it) and a file of the user's.
+    std::fs::write(out.join("sequence.mp4"), b"old movie").unwrap();
+    std::fs::write(out.join("notes.txt"), b"mine").unwrap();
+    let o = run(4);
+    let e = stderr(&o);
+    assert!(e.contains("removed 7 file(s) of an earlier run"), "{e}");
+    assert!(
+        e.contains("frame_0004.png") && e.contains("sequence.mp4"),
+        "{e}"
+    );
+    let expect: Vec<String> = (0..4)
+        .map(|i| format!("frame_{i:04}.png"))
+        .chain(["notes.txt".to_string()])
+        .collect();
+    assert_eq!(files_in(&out), expect);
 }
 
 #[test]

@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 
 fn godel(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_godel"))
@@ -349,7 +349,36 @@ fn bad_settings_are_usage_errors_with_no_output() {
         &["shade", s(&data), "--texture", "checker:0x2", "-o", s(&out)],
         &out,
         2,
-        &["objects.ball.texture"],
+        &["error: --texture: ", "objects.ball.texture"],
+    );
+    // Issue 10: these were blamed on --shader.
+    refused(
+        &[
+            "shade",
+            s(&data),
+            "--shader",
+            "time",
+            "--window-texture",
+            "ball=checker:0x0",
+            "-o",
+            s(&out),
+        ],
+        &out,
+        2,
+        &["error: --window-texture: ", "objects.ball.window_texture"],
+    );
+    refused(
+        &[
+            "shade",
+            s(&data),
+            "--texture",
+            "ball=checker:0x0",
+            "-o",
+            s(&out),
+        ],
+        &out,
+        2,
+        &["error: --texture: ", "objects.ball.texture"],
     );
     refused(
         &["shade", s(&data), "--shader", "light", "-o", s(&out)],
@@ -368,6 +397,25 @@ fn bad_settings_are_usage_errors_with_no_output() {
         &out,
         2,
         &["look.toml:4", "objects.ball.temprature", "unknown field"],
+    );
+    // A bad value from the settings file is blamed on --settings, not on --shader.
+    std::fs::write(
+        &settings,
+        "[objects.ball.texture]\nkind = \"checker\"\nrows = 0\ncols = 2\n",
+    )
+    .unwrap();
+    refused(
+        &["shade", s(&data), "--settings", s(&settings), "-o", s(&out)],
+        &out,
+        2,
+        &["error: --settings: ", "objects.ball.texture"],
+    );
+    // Issue 10: settings files are read with a bound; a device or FIFO is refused.
+    refused(
+        &["shade", s(&data), "--settings", "/dev/zero", "-o", s(&out)],
+        &out,
+        2,
+        &["error: --settings: ", "not a regular file"],
     );
     std::fs::write(&settings, "[objects.sun]\ntemperature = 3.0\n").unwrap();
     refused(

@@ -85,3 +85,107 @@ fn bad_host_names_the_flag() {
     let o = godel(&["view", "whatever.exr", "--host", "not an address"]);
     fails_with(&o, 2, &["--host", "not an address"]);
 }
+
+#[test]
+fn a_texture_folder_that_is_not_one_names_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let exr = small_data_file(dir.path());
+    let missing = dir.path().join("no-such-folder");
+    let o = godel(&[
+        "view",
+        exr.to_str().unwrap(),
+        "--port",
+        "0",
+        "--textures",
+        missing.to_str().unwrap(),
+    ]);
+    fails_with(&o, 2, &["--textures", "no-such-folder"]);
+}
+
+/// The `godel view` server, killed when dropped.
+struct Server(std::process::Child);
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// One HTTP/1.1 request over a fresh connection; returns the status code and the body.
+fn http(port: u16, request: &str) -> (u16, String) {
+    use std::io::{Read, Write};
+    let mut stream = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    // A deadline against hanging forever, not a speed check.
+    stream
+        .set_read_timeout(Some(std::time::Duration::from_secs(60)))
+        .unwrap();
+    stream.write_all(request.as_bytes()).unwrap();
+    let mut answer = String::new();
+    stream.read_to_string(&mut answer).unwrap();
+    let status = answer
+        .split(' ')
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no status in {answer:?}"));
+    let body = answer
+        .split_once("\r\n\r\n")
+        .map(|(_, b)| b.to_string())
+        .unwrap_or_default();
+    (status, body)
+}
+
+/// The running server checks Host against the port it really listens on, and wants JSON.
+#[test]
+fn the_server_answers_only_requests_naming_it() {
+    use std::io::BufRead;
+    let dir = tempfile::tempdir().unwrap();
+    let exr = small_data_file(dir.path());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
+        .args(["view", exr.to_str().unwrap(), "--port", "0"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let _server = Server(child);
+    let mut line = String::new();
+    std::io::BufReader::new(stdout)
+        .read_line(&mut line)
+        .unwrap();
+    let port: u16 = line
+        .trim()
+        .trim_end_matches('/')
+        .rsplit(':')
+        .next()
+        .and_then(|p| p.parse().ok())
+        .unwrap_or_else(|| panic!("no port in {line:?}"));
+    let get = |host: &str| {
+        http(
+            port,
+            &format!("GET /api/info HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n"),
+        )
+    };
+    let (status, body) = get(&format!("127.0.0.1:{port}"));
+    assert_eq!(status, 200, "{body}");
+    assert!(body.contains("\"file\":\"static-sphere.exr\""), "{body}");
+    assert!(!body.contains(&dir.path().display().to_string()), "{body}");
+    let (status, body) = get(&format!("localhost:{port}"));
+    assert_eq!(status, 200, "{body}");
+    let (status, body) = get(&format!("evil.example:{port}"));
+    assert_eq!(status, 403, "{body}");
+    assert!(body.contains("\"error\""), "{body}");
+    let (status, _) = get(&format!("127.0.0.1:{}", port.wrapping_add(1)));
+    assert_eq!(status, 403);
+    // A cross-site form post: text/plain, refused before shading.
+    let settings = "{}";
+    let (status, body) = http(
+        port,
+        &format!(
+            "POST /api/png HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nContent-Type: text/plain\r\n\
+             Content-Length: {}\r\nConnection: close\r\n\r\n{settings}",
+            settings.len()
+        ),
+    );
+    assert_eq!(status, 415, "{body}");
+}

@@ -17,8 +17,8 @@
 mod browser_support;
 
 use browser_support::*;
-use render::datafile::DataFile;
-use render::record::RayStatus;
+use datafile::record::RayStatus;
+use datafile::DataFile;
 use scene::Scene;
 use shade::{ShadeSettings, ShaderKind, Shading};
 

@@ -12,11 +12,11 @@ fn main() {
             .map(|c| {
                 let r = data.records[row * data.width + c];
                 match r.status {
-                    render::record::RayStatus::Hit => {
+                    datafile::record::RayStatus::Hit => {
                         char::from_digit((r.object as u32) % 10, 10).unwrap()
                     }
-                    render::record::RayStatus::Escaped => '.',
-                    render::record::RayStatus::NotTraced => ' ',
+                    datafile::record::RayStatus::Escaped => '.',
+                    datafile::record::RayStatus::NotTraced => ' ',
                     _ => '!',
                 }
             })

@@ -2,7 +2,7 @@
 //! the largest differences of g, t_emit, u, v where both hit the same object.
 //! `cargo run -p render --example compare -- A.exr B.exr`
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use std::path::Path;
 
 fn main() {

@@ -4,7 +4,7 @@
 fn main() {
     let mut args = std::env::args().skip(1);
     let path = args.next().expect("usage: inspect DATA.exr [ROW]");
-    let data = render::datafile::DataFile::read(std::path::Path::new(&path))
+    let data = datafile::DataFile::read(std::path::Path::new(&path))
         .unwrap_or_else(|e| panic!("{e}"));
     let row: usize = args
         .next()
@@ -42,7 +42,7 @@ fn main() {
 /// Images = 8-connected groups of hit pixels of one object with continuous emission time
 /// (neighbours differing by less than 0.5 in t_emit).
 #[allow(dead_code)]
-pub fn count_images(data: &render::datafile::DataFile) -> usize {
+pub fn count_images(data: &datafile::DataFile) -> usize {
     let (w, h) = (data.width, data.height);
     let mut label = vec![0usize; w * h];
     let mut n = 0;

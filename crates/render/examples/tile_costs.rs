@@ -5,8 +5,7 @@
 //! `cargo run --release -p render --example tile_costs -- [SCENE.toml]` (default: the
 //! built-in reference scene).
 
-use render::driver::NoProgress;
-use render::tiles::TileRenderer;
+use render::driver::Renderer;
 use scene::Scene;
 use std::time::Instant;
 
@@ -15,15 +14,12 @@ fn main() {
         Some(path) => Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}")),
         None => Scene::builtin(),
     };
-    let renderer = TileRenderer::new(&scene).expect("tracer");
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
+    let renderer = Renderer::new(&scene).expect("tracer");
+    let mut scratch = renderer.scratch();
     let mut ms: Vec<f64> = (0..renderer.tiles().len())
         .map(|k| {
             let t = Instant::now();
-            pool.install(|| renderer.trace(&[k], &NoProgress));
+            renderer.trace_tile(k, &mut scratch);
             t.elapsed().as_secs_f64() * 1e3
         })
         .collect();

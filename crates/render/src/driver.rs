@@ -1,22 +1,28 @@
-//! The parallel render driver: builds the tracer from a scene, traces all pixels in tiles
-//! with rayon, reports progress to a consumer, and assembles the data file.
+//! The parallel render driver: one pipeline for whole renders, parts, MPI batches and
+//! sequences. A [`Renderer`] (the scene's tracer and lights, built once) traces the tiles a
+//! caller names on rayon's pool and hands each finished [`TileData`] to a [`Sink`]: the
+//! data-file assembler (`crate::tiles::Assembler`), a part writer, an MPI sender. Progress
+//! goes to a [`Progress`] consumer; statistics are counted once, here. The tracer never
+//! learns about files, terminals or MPI.
 //!
 //! Determinism: every pixel is traced independently from the same shared, immutable
-//! tracer, so the records (and the files written from them) are identical whatever the
-//! number of threads or the order in which tiles finish.
+//! tracer (each tile starts with fresh per-thread state), so the records (and the files
+//! written from them) are identical whatever the number of threads or ranks, or the order
+//! in which tiles finish.
 
-use crate::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use crate::lighting::LightSource;
-use crate::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use crate::intersect::Intersector;
+use crate::lighting::{LightSource, Lighting};
+use datafile::record::{PixelRecord, RayStatus};
 use crate::target::Target;
-use crate::tracer::Tracer;
+use crate::plan::{tiles, Plan, Tile};
+use crate::tiles::{Assembler, Sink, TileData};
+use crate::tracer::{Scratch, TraceOptions, Tracer};
 use rayon::prelude::*;
 use scene::{Scene, TraceMethod};
 use spacetime::Spacetime;
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
-
-/// Tile edge in pixels: small enough to balance rays of very different cost.
-const TILE: u32 = 16;
 
 /// Receives progress from the driver (the tracer never learns about terminals or MPI).
 pub trait Progress: Sync {
@@ -38,24 +44,58 @@ pub struct RenderStats {
     pub hits: u64,
     pub escaped: u64,
     pub step_budget: u64,
+    /// Rays whose bounded intersection search or loop copies ran out (status `WorkLimit`).
+    pub work_limit: u64,
     pub failed: u64,
     pub wall: Duration,
 }
 
 impl RenderStats {
+    /// Adds the counts of `other` (wall time left as it is).
+    pub fn add(&mut self, other: &RenderStats) {
+        self.pixels += other.pixels;
+        self.traced += other.traced;
+        self.hits += other.hits;
+        self.escaped += other.escaped;
+        self.step_budget += other.step_budget;
+        self.work_limit += other.work_limit;
+        self.failed += other.failed;
+    }
+
+    /// How the rays of these records ended (`wall` left zero).
+    pub fn count(records: &[PixelRecord]) -> RenderStats {
+        let mut stats = RenderStats {
+            pixels: records.len() as u64,
+            ..Default::default()
+        };
+        for r in records {
+            match r.status {
+                RayStatus::Hit => stats.hits += 1,
+                RayStatus::Escaped => stats.escaped += 1,
+                RayStatus::StepBudget => stats.step_budget += 1,
+                RayStatus::WorkLimit => stats.work_limit += 1,
+                RayStatus::Failed => stats.failed += 1,
+                RayStatus::NotTraced => continue,
+            }
+            stats.traced += 1;
+        }
+        stats
+    }
+
     pub fn rays_per_second(&self) -> f64 {
         self.traced as f64 / self.wall.as_secs_f64().max(1e-9)
     }
     /// One line for the end of a render.
     pub fn summary(&self) -> String {
         format!(
-            "{} pixels, {} traced, {} hit, {} escaped, {} failed (step budget {}, integration {}), {:.2} s, {:.0} rays/s",
+            "{} pixels, {} traced, {} hit, {} escaped, {} failed (step budget {}, work limit {}, integration {}), {:.2} s, {:.0} rays/s",
             self.pixels,
             self.traced,
             self.hits,
             self.escaped,
-            self.step_budget + self.failed,
+            self.step_budget + self.work_limit + self.failed,
             self.step_budget,
+            self.work_limit,
             self.failed,
             self.wall.as_secs_f64(),
             self.rays_per_second()
@@ -63,58 +103,173 @@ impl RenderStats {
     }
 }
 
+/// Most integration steps of all free-fall worldlines together (each ~1.5 KB): a bound on
+/// the memory a scene's moving objects take, checked before any tracing.
+pub const MAX_TOTAL_WORLDLINE_STEPS: usize = 400_000;
+
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    #[error("the free-fall worldlines need {steps} integration steps in all, more than {MAX_TOTAL_WORLDLINE_STEPS}: reduce trace.max_past, the number of falling objects, or raise spacetime.a")]
+    WorldlinesTooLong { steps: usize },
     #[error("object {name:?}: {source}")]
     Worldline {
         name: String,
         source: crate::worldline::WorldlineError,
     },
-    #[error("trace.method = \"exact\" uses the Gödel closed forms: it needs metric = \"godel\"")]
-    ExactNeedsGodel,
-    #[error("[[light]] sources are traced with the Gödel closed forms (shadow rays): they need metric = \"godel\"")]
-    LightsNeedGodel,
 }
 
-/// Builds the shared tracer of a scene.
-pub fn build_tracer(scene: &Scene) -> Result<Tracer, RenderError> {
-    if scene.trace.method == TraceMethod::Exact && scene.metric.godel_a().is_none() {
-        return Err(RenderError::ExactNeedsGodel);
-    }
-    if !scene.lights.is_empty() && scene.metric.godel_a().is_none() {
-        return Err(RenderError::LightsNeedGodel);
-    }
-    let m = scene.metric;
-    let obs = scene.observer;
-    let frame = m.observer_frame(obs.event, obs.velocity);
-    // Worldlines cover the traced time range plus a margin for the objects' own size, and
-    // with lights the range of their shadow rays (emitted up to max_past before a hit).
-    let reach = if scene.lights.is_empty() { 1.0 } else { 2.0 };
-    let (t_min, t_max) = (
-        obs.event.t - reach * scene.trace.max_past - 1.0,
-        obs.event.t + 1.0,
-    );
-    let targets = scene
-        .objects
-        .iter()
-        .map(|o| {
-            Target::new(m, o, t_min, t_max).map_err(|source| RenderError::Worldline {
-                name: o.name.clone(),
-                source,
+/// A scene ready to trace: its tracer and lights, built once and shared by all threads.
+pub struct Renderer<'a> {
+    scene: &'a Scene,
+    tracer: Tracer,
+    lighting: Lighting,
+    tiles: Vec<Tile>,
+}
+
+impl<'a> Renderer<'a> {
+    /// Builds the tracer (objects with their worldlines) and the lights of `scene`.
+    pub fn new(scene: &'a Scene) -> Result<Renderer<'a>, RenderError> {
+        let m = scene.metric;
+        let obs = scene.observer;
+        let frame = m.observer_frame(obs.event, obs.velocity);
+        // Worldlines cover the traced time range plus a margin for the objects' own size,
+        // and with lights the range of their shadow rays (emitted up to max_past before a
+        // hit).
+        let reach = if scene.lights.is_empty() { 1.0 } else { 2.0 };
+        let (t_min, t_max) = (
+            obs.event.t - reach * scene.trace.max_past - 1.0,
+            obs.event.t + 1.0,
+        );
+        let targets = scene
+            .objects
+            .iter()
+            .map(|o| {
+                Target::new(m, o, t_min, t_max).map_err(|source| RenderError::Worldline {
+                    name: o.name.clone(),
+                    source,
+                })
             })
+            .collect::<Result<Vec<_>, _>>()?;
+        let steps: usize = targets.iter().map(Target::integration_steps).sum();
+        if steps > MAX_TOTAL_WORLDLINE_STEPS {
+            return Err(RenderError::WorldlinesTooLong { steps });
+        }
+        let options = TraceOptions {
+            max_past: scene.trace.max_past,
+            tolerance: scene.trace.tolerance,
+            max_steps: scene.trace.max_steps,
+            exact: scene.trace.method == TraceMethod::Exact,
+        };
+        let objects = Intersector { metric: m, targets };
+        let tracer = Tracer::new(objects, obs.event, frame, options);
+        let lighting = Lighting::new(
+            scene.lights.iter().map(LightSource::from_scene).collect(),
+            tracer.max_past(),
+        );
+        Ok(Renderer {
+            scene,
+            tracer,
+            lighting,
+            tiles: tiles(scene.camera.width(), scene.camera.height()),
         })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Tracer::new(
-        m,
-        obs.event,
-        frame,
-        targets,
-        scene.trace.max_past,
-        scene.trace.tolerance,
-        scene.trace.max_steps,
-        scene.trace.method == TraceMethod::Exact,
-    )
-    .with_lights(scene.lights.iter().map(LightSource::from_scene).collect()))
+    }
+
+    pub fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    /// All tiles of the image, row-major.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// The scene's data file with no pixel traced yet (status "not traced", no light
+    /// planes): what an [`Assembler`] starts from.
+    pub fn blank(&self) -> DataFile {
+        let (w, h) = (
+            self.scene.camera.width() as usize,
+            self.scene.camera.height() as usize,
+        );
+        DataFile {
+            header: header(self.scene),
+            width: w,
+            height: h,
+            records: vec![PixelRecord::miss(RayStatus::NotTraced); w * h],
+            lights: vec![],
+        }
+    }
+
+    /// Per-thread buffers.
+    pub fn scratch(&self) -> Scratch {
+        self.tracer.scratch()
+    }
+
+    /// Traces tile `index`: its records (row-major within the tile) and one plane of direct
+    /// light per light source.
+    pub fn trace_tile(&self, index: usize, scratch: &mut Scratch) -> TileData {
+        let tile = self.tiles[index];
+        let (scene, n) = (self.scene, self.lighting.lights.len());
+        let pixels = (tile.cols * tile.rows) as usize;
+        let mut records = Vec::with_capacity(pixels);
+        let mut lights = vec![vec![0.0f32; pixels]; n];
+        let mut lit = vec![0.0f32; n];
+        // Each tile starts afresh (see `Scratch::reset_first_step`), so that the records do
+        // not depend on which thread traced which tiles before.
+        scratch.reset_first_step();
+        for row in tile.row0..tile.row0 + tile.rows {
+            for col in tile.col0..tile.col0 + tile.cols {
+                let record = match scene.observer.pixel_direction(&scene.camera, col, row) {
+                    Some(dir) => {
+                        let traced = self.tracer.trace(dir, scratch);
+                        if n > 0 {
+                            let objects = &self.tracer.objects;
+                            let hit = traced.hit.as_ref();
+                            self.lighting
+                                .illuminate(objects, hit, &mut scratch.probes, &mut lit);
+                            for (plane, &v) in lights.iter_mut().zip(&lit) {
+                                plane[records.len()] = v;
+                            }
+                        }
+                        traced.record
+                    }
+                    None => PixelRecord::miss(RayStatus::NotTraced),
+                };
+                records.push(record);
+            }
+        }
+        TileData {
+            index,
+            records,
+            lights,
+        }
+    }
+
+    /// Traces the tiles of `plan` on rayon's current pool, handing each to `sink` as it is
+    /// done; returns what the rays did (wall time included).
+    pub fn run(
+        &self,
+        plan: &Plan,
+        sink: &mut (dyn Sink + Send),
+        progress: &dyn Progress,
+    ) -> RenderStats {
+        let indices = plan.indices(&self.tiles);
+        let started = Instant::now();
+        let shared = Mutex::new((sink, RenderStats::default()));
+        indices.par_iter().for_each_init(
+            || self.scratch(),
+            |scratch, &index| {
+                let tile = self.trace_tile(index, scratch);
+                let stats = RenderStats::count(&tile.records);
+                progress.advance(tile.records.len() as u64);
+                let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
+                guard.1.add(&stats);
+                guard.0.accept(tile);
+            },
+        );
+        let (_, mut stats) = shared.into_inner().unwrap_or_else(|e| e.into_inner());
+        stats.wall = started.elapsed();
+        stats
+    }
 }
 
 /// The header a data file of this scene carries.
@@ -135,150 +290,26 @@ pub fn header(scene: &Scene) -> DataHeader {
     }
 }
 
-/// The rectangle of pixels of one tile.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Tile {
-    pub col0: u32,
-    pub row0: u32,
-    pub cols: u32,
-    pub rows: u32,
-}
-
-/// All tiles of a width × height image, in row-major order.
-pub fn tiles(width: u32, height: u32) -> Vec<Tile> {
-    let mut out = Vec::new();
-    for row0 in (0..height).step_by(TILE as usize) {
-        for col0 in (0..width).step_by(TILE as usize) {
-            out.push(Tile {
-                col0,
-                row0,
-                cols: TILE.min(width - col0),
-                rows: TILE.min(height - row0),
-            });
-        }
-    }
-    out
-}
-
-/// Traces the pixels of `tile` (row-major within the tile).
-pub fn trace_tile(
-    scene: &Scene,
-    tracer: &Tracer,
-    tile: Tile,
-    scratch: &mut crate::tracer::Scratch,
-) -> Vec<PixelRecord> {
-    let mut out = Vec::with_capacity((tile.cols * tile.rows) as usize);
-    // Each tile starts afresh (see `Scratch::first_step`), so that the records do not depend
-    // on which thread traced which tiles before.
-    scratch.reset_first_step();
-    for row in tile.row0..tile.row0 + tile.rows {
-        for col in tile.col0..tile.col0 + tile.cols {
-            out.push(
-                match scene.observer.pixel_direction(&scene.camera, col, row) {
-                    Some(n) => tracer.trace(n, scratch),
-                    None => PixelRecord::miss(RayStatus::NotTraced),
-                },
-            );
-        }
-    }
-    out
-}
-
-/// Traces the pixels of `tile` with direct illumination: the records, and the light
-/// values pixel-major (`scene.lights.len()` per pixel, in the records' order).
-pub fn trace_tile_lit(
-    scene: &Scene,
-    tracer: &Tracer,
-    tile: Tile,
-    scratch: &mut crate::tracer::Scratch,
-) -> (Vec<PixelRecord>, Vec<f32>) {
-    let n = scene.lights.len();
-    if n == 0 {
-        return (trace_tile(scene, tracer, tile, scratch), Vec::new());
-    }
-    let pixels = (tile.cols * tile.rows) as usize;
-    let (mut records, mut lights) = (Vec::with_capacity(pixels), vec![0.0; pixels * n]);
-    scratch.reset_first_step();
-    let mut i = 0;
-    for row in tile.row0..tile.row0 + tile.rows {
-        for col in tile.col0..tile.col0 + tile.cols {
-            records.push(
-                match scene.observer.pixel_direction(&scene.camera, col, row) {
-                    Some(dir) => {
-                        let r = tracer.trace(dir, scratch);
-                        tracer.illuminate(scratch, &mut lights[i * n..(i + 1) * n]);
-                        r
-                    }
-                    None => PixelRecord::miss(RayStatus::NotTraced),
-                },
-            );
-            i += 1;
-        }
-    }
-    (records, lights)
-}
-
 /// Renders the whole scene on rayon's thread pool.
 pub fn render(
     scene: &Scene,
     progress: &dyn Progress,
 ) -> Result<(DataFile, RenderStats), RenderError> {
     let started = Instant::now();
-    let tracer = build_tracer(scene)?;
-    let (w, h) = (scene.camera.width(), scene.camera.height());
-    let tiles = tiles(w, h);
-    let done: Vec<(Vec<PixelRecord>, Vec<f32>)> = tiles
-        .par_iter()
-        .map_init(
-            || tracer.scratch(),
-            |scratch, &tile| {
-                let r = trace_tile_lit(scene, &tracer, tile, scratch);
-                progress.advance(r.0.len() as u64);
-                r
-            },
-        )
-        .collect();
-    let mut records = vec![PixelRecord::MISS; (w * h) as usize];
-    let n = scene.lights.len();
-    let mut lights = vec![vec![0.0f32; (w * h) as usize]; n];
-    for (tile, (recs, lit)) in tiles.iter().zip(done) {
-        for (i, r) in recs.into_iter().enumerate() {
-            let (c, rr) = (
-                tile.col0 + i as u32 % tile.cols,
-                tile.row0 + i as u32 / tile.cols,
-            );
-            let at = (rr * w + c) as usize;
-            records[at] = r;
-            for (k, plane) in lights.iter_mut().enumerate() {
-                plane[at] = lit[i * n + k];
-            }
-        }
-    }
-    let mut stats = RenderStats {
-        pixels: records.len() as u64,
-        ..Default::default()
-    };
-    for r in &records {
-        match r.status {
-            RayStatus::Hit => stats.hits += 1,
-            RayStatus::Escaped => stats.escaped += 1,
-            RayStatus::StepBudget => stats.step_budget += 1,
-            RayStatus::Failed => stats.failed += 1,
-            RayStatus::NotTraced => {}
-        }
-    }
-    stats.traced = stats.pixels
-        - records
-            .iter()
-            .filter(|r| r.status == RayStatus::NotTraced)
-            .count() as u64;
+    let renderer = Renderer::new(scene)?;
+    let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
+    let mut stats = renderer.run(&Plan::All, &mut assembler, progress);
     stats.wall = started.elapsed();
-    let data = DataFile {
-        header: header(scene),
-        width: w as usize,
-        height: h as usize,
-        records,
-        lights,
-    };
-    Ok((data, stats))
+    Ok((assembler.finish(), stats))
 }
+
+impl Renderer<'_> {
+    /// Traces the tiles of `plan` and returns them in index order.
+    pub fn trace(&self, plan: &Plan, progress: &dyn Progress) -> Vec<TileData> {
+        let mut out: Vec<TileData> = Vec::new();
+        self.run(plan, &mut out, progress);
+        out.sort_by_key(|t| t.index);
+        out
+    }
+}
+

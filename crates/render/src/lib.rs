@@ -1,21 +1,22 @@
-//! `render`: tracing a scene into per-pixel records, and storing them.
+//! `render`: tracing a scene into per-pixel records (stored by the `datafile` crate).
 //!
-//! - [`record`]: [`record::PixelRecord`], what one pixel's ray found.
-//! - [`datafile`]: [`datafile::DataFile`], the per-pixel data file (OpenEXR).
-//! - [`atomic`]: write-to-temporary-then-rename for every output file.
-//! - [`tiles`]: trace any set of tiles, assemble data files from tiles (split and MPI runs).
-//! - [`part`]: `--part i/N` part files and their merge.
-//! - [`look`]: any camera of any observer at the event of a full-sphere trace, without
-//!   tracing (aberration and Doppler shift of the static observer's records).
+//! - [`driver`]: [`driver::Renderer`] traces the tiles of a plan and hands each to a
+//!   [`tiles::Sink`] (the data-file [`tiles::Assembler`], a part writer, an MPI sender).
+//! - [`tracer`]: one pixel's backward light ray, numeric or exact, and its record.
+//! - [`intersect`]: the bounded intersection search shared by pixel and shadow rays, over
+//!   the [`segment`]s of a ray; [`target`]: the objects' signed distances and surfaces;
+//!   [`worldline`]: the objects' worldlines and body frames; [`bounds`]: boxes.
+//! - [`lighting`]: direct light from point sources by shadow rays.
+//! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
+//!   `--part i/N` part files and their merge.
 
-pub mod atomic;
 pub mod bounds;
-pub mod datafile;
 pub mod driver;
+pub mod intersect;
 pub mod lighting;
-pub mod look;
 pub mod part;
-pub mod record;
+pub mod plan;
+pub mod segment;
 pub mod target;
 pub mod tiles;
 pub mod tracer;

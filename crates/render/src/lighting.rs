@@ -37,11 +37,11 @@
 //! surface itself is not counted at its end point, but it does block a ray that passes
 //! through the object earlier (self-shadowing, e.g. of later windings).
 
-use crate::target::Target;
-use crate::tracer::{LazyStep, Scratch, Shift, Tracer, EXACT_SEGMENTS};
+use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
+use crate::segment::{Segment, Shift, EXACT_SEGMENTS};
 use spacetime::{
     shadow_rays, source_area_distance_sq, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
-    ShadowRay, Spacetime,
+    Godel, ShadowRay, Spacetime,
 };
 use std::f64::consts::{PI, SQRT_2};
 
@@ -70,46 +70,61 @@ impl LightSource {
     }
 }
 
-/// A pixel ray's hit at full precision: the surface event (with the backward ray's
-/// momentum there), the object and the matched proper time on its worldline.
-#[derive(Clone, Copy, Debug)]
-pub struct HitPoint {
-    pub state: GeodesicState,
-    pub target: usize,
-    pub tau: f64,
+/// The scene's lights and the window of emission times that counts.
+pub struct Lighting {
+    pub lights: Vec<LightSource>,
+    /// Light emitted more than this (coordinate time) before a hit is not counted.
+    window: f64,
 }
 
-impl Tracer {
-    /// Direct light from each source at the last traced ray's hit (see the module
-    /// documentation), into `out[k]` for light k; zeros where the ray hit nothing.
-    pub fn illuminate(&self, scratch: &mut Scratch, out: &mut [f32]) {
+impl Lighting {
+    pub fn new(lights: Vec<LightSource>, window: f64) -> Lighting {
+        Lighting { lights, window }
+    }
+
+    /// Direct light from each source at a pixel ray's hit (see the module documentation)
+    /// into `out[k]` for light k: zeros where the ray hit nothing (`hit` is `None`) or the
+    /// metric is not Gödel's, NaN where a connecting ray's occlusion search ran out of work
+    /// (unknown light).
+    pub fn illuminate(
+        &self,
+        objects: &Intersector,
+        hit: Option<&HitPoint>,
+        probes: &mut Probes,
+        out: &mut [f32],
+    ) {
         out.fill(0.0);
-        let (Some(hit), Some(a)) = (scratch.hit, self.metric.godel_a()) else {
+        let (Some(hit), Some(a)) = (hit, objects.metric.godel_a()) else {
             return;
         };
         for (o, light) in out.iter_mut().zip(&self.lights) {
-            *o = self.irradiance(a, light, &hit, scratch) as f32;
+            *o = self
+                .irradiance(objects, a, light, hit, probes)
+                .map_or(f32::NAN, |e| e as f32);
         }
     }
 
-    /// The irradiance E = Σ P g² cos θ/(4π D²) over the unoccluded connecting rays.
+    /// The irradiance E = Σ P g² cos θ/(4π D²) over the unoccluded connecting rays; `None`
+    /// when the occlusion search of one of them ran out of work.
     pub fn irradiance(
         &self,
+        objects: &Intersector,
         a: f64,
         light: &LightSource,
         hit: &HitPoint,
-        scratch: &mut Scratch,
-    ) -> f64 {
+        probes: &mut Probes,
+    ) -> Option<f64> {
+        let metric = &objects.metric;
         let x = hit.state.x;
-        let view = self.metric.raise(x, hit.state.p);
-        let target: &Target = &self.targets[hit.target];
+        let view = metric.raise(x, hit.state.p);
+        let target = &objects.targets[hit.target];
         let mut sum = 0.0;
         for ray in self.connecting_rays(a, light, x) {
             let Some(geo) = ExactGeodesic::new(a, ray.emission, ray.tangent) else {
                 continue;
             };
             let (_, k_end) = geo.at(ray.lambda);
-            let Some(inc) = target.incidence(&self.metric, x, hit.tau, view, k_end) else {
+            let Some(inc) = target.incidence(metric, x, hit.tau, view, k_end) else {
                 continue;
             };
             if !(inc.cos > 0.0) {
@@ -119,49 +134,60 @@ impl Tracer {
             if !(d2 > 0.0 && d2.is_finite()) {
                 continue;
             }
-            if self.occluded(geo, &ray, scratch) {
+            if occluded(objects, geo, &ray, probes).ok()? {
                 continue;
             }
             sum += light.power * inc.energy * inc.energy * inc.cos / (4.0 * PI * d2);
         }
-        sum
+        Some(sum)
     }
 
-    /// The light rays from `light` to `x` emitted at most `max_past` before it.
+    /// The light rays from `light` to `x` emitted at most the window before it.
     pub fn connecting_rays(&self, a: f64, light: &LightSource, x: Event) -> Vec<ShadowRay> {
-        let window = self.max_past();
-        // Each winding takes at least T_ret = 2πa(√2 − 1) of the source's time; the
+        // Each winding takes at least the shortest loop time of the source's clock; the
         // isometry to the source's axis shifts the target's time by at most 2√2 a·π.
-        let t_ret = 2.0 * PI * a * (SQRT_2 - 1.0);
-        let windings = ((window + 2.0 * SQRT_2 * PI * a) / t_ret).ceil().min(1e4) as u32 + 1;
+        let t_ret = Godel::new(a).shortest_loop_time();
+        let windings = ((self.window + 2.0 * SQRT_2 * PI * a) / t_ret)
+            .ceil()
+            .min(1e4) as u32
+            + 1;
         let mut rays = shadow_rays(a, light.position, x, windings);
-        rays.retain(|r| r.emission.t >= x.t - window);
+        rays.retain(|r| r.emission.t >= x.t - self.window);
         rays
     }
+}
 
-    /// Whether any object blocks `ray` (future-directed from its emission) before it
-    /// reaches its end, cut short by [`END_CUT`].
-    fn occluded(&self, geo: ExactGeodesic, ray: &ShadowRay, scratch: &mut Scratch) -> bool {
-        let start = GeodesicState {
-            x: ray.emission,
-            p: self.metric.lower(ray.emission, ray.tangent),
-        };
-        let (sys, s0) = GeodesicSystem::new(self.metric, &start);
-        let end = ray.lambda * (1.0 - END_CUT);
-        let per_loop = geo.origin.return_parameter() / EXACT_SEGMENTS as f64;
-        let n = (end / per_loop).ceil().clamp(1.0, 1e5) as usize;
-        let (pa, pb) = (&mut scratch.start, &mut scratch.end);
-        self.probe_all(&start, 0.0, pa);
-        let mut y0 = s0;
-        for i in 0..n {
-            let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
-            let d = LazyStep::exact(geo, sys, l0, y0, l1);
-            if self.scan(&d, Shift::default(), l0, l1, pa, pb).is_some() {
-                return true;
-            }
-            y0 = d.y1;
-            std::mem::swap(pa, pb);
+/// Whether any object blocks `ray` (future-directed from its emission) before it reaches
+/// its end, cut short by [`END_CUT`]. A surface crossing blocks, so a light inside a ball
+/// reaches only the ball's inner surface.
+fn occluded(
+    objects: &Intersector,
+    geo: ExactGeodesic,
+    ray: &ShadowRay,
+    probes: &mut Probes,
+) -> Result<bool, OutOfWork> {
+    let metric = objects.metric;
+    let start = GeodesicState {
+        x: ray.emission,
+        p: metric.lower(ray.emission, ray.tangent),
+    };
+    let (sys, s0) = GeodesicSystem::new(metric, &start);
+    let end = ray.lambda * (1.0 - END_CUT);
+    let per_loop = geo.origin.return_parameter() / EXACT_SEGMENTS as f64;
+    let n = (end / per_loop).ceil().clamp(1.0, 1e5) as usize;
+    objects.probe_all(&start, 0.0, probes);
+    let mut y0 = s0;
+    for i in 0..n {
+        let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
+        let d = Segment::exact(geo, sys, l0, y0, l1);
+        if objects
+            .scan(&d, Shift::default(), l0, l1, probes)?
+            .is_some()
+        {
+            return Ok(true);
         }
-        false
+        y0 = d.y1;
+        probes.advance();
     }
+    Ok(false)
 }

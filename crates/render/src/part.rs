@@ -1,79 +1,21 @@
-//! Split renders for array jobs: part `i/N` of an image (a fixed, interleaved share of
-//! its tiles), the part file (a full-size data file whose other pixels are "not traced",
+//! Split renders for array jobs: the part file of part `i/N` of an image (`crate::plan::Part`) (a full-size data file whose other pixels are "not traced",
 //! with header attributes naming the part and a fingerprint of what was rendered), and
 //! the merge that checks the parts belong together and joins them.
 //!
 //! Tiles are dealt round-robin (tile k goes to part k mod N + 1), not in stripes, so
 //! that the costly rays near the horizon spread over all parts.
 
-use std::fmt;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 
 use exr::prelude::{AttributeValue, Text};
 use sha2::{Digest, Sha256};
 
-use crate::atomic::write_atomically;
-use crate::datafile::{DataFile, DataFileError, DataFileErrorKind, FORMAT_VERSION};
-use crate::driver::tiles;
-use crate::record::RayStatus;
+use crate::plan::{tiles, Part};
 use crate::tiles::{extract, insert, pixel_indices};
+use datafile::atomic::write_atomically;
+use datafile::{attr, DataFile, DataFileError, DataFileErrorKind, RayStatus, FORMAT_VERSION};
 use scene::Scene;
-
-/// Header attributes of a part file.
-pub mod attr {
-    /// `"i/N"`.
-    pub const PART: &str = "godel.part";
-    /// [`super::fingerprint`] of the render.
-    pub const FINGERPRINT: &str = "godel.fingerprint";
-    /// The scene file's path (empty for the built-in scene), to find its textures.
-    pub const SCENE_PATH: &str = "godel.scene_path";
-}
-
-/// Part `index` (1-based) of `count`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub struct Part {
-    pub index: u32,
-    pub count: u32,
-}
-
-impl fmt::Display for Part {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
-}
-
-impl FromStr for Part {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Part, String> {
-        let bad = || format!("expected i/N with 1 ≤ i ≤ N (e.g. 2/8), got '{s}'");
-        let (i, n) = s.split_once('/').ok_or_else(bad)?;
-        let index: u32 = i.trim().parse().map_err(|_| bad())?;
-        let count: u32 = n.trim().parse().map_err(|_| bad())?;
-        if index == 0 || index > count {
-            return Err(bad());
-        }
-        Ok(Part { index, count })
-    }
-}
-
-impl Part {
-    /// Whether tile `k` of the image belongs to this part.
-    pub fn has_tile(&self, k: usize) -> bool {
-        k % self.count as usize == (self.index - 1) as usize
-    }
-
-    /// The indices of this part's tiles among `tile_count` tiles.
-    pub fn tiles(&self, tile_count: usize) -> Vec<usize> {
-        (0..tile_count).filter(|&k| self.has_tile(k)).collect()
-    }
-
-    /// The part file's name for a scene: `NAME.part-I-of-N.exr`.
-    pub fn file_name(&self, scene_name: &str) -> String {
-        format!("{scene_name}.part-{}-of-{}.exr", self.index, self.count)
-    }
-}
 
 /// Hex SHA-256 of everything that decides a render's pixels: the scene text (camera and
 /// trace settings included), the camera as understood, the program and format versions.
@@ -172,9 +114,11 @@ pub enum MergeError {
 
 /// Reads a part file and its part attributes.
 pub fn read_part(path: &Path) -> Result<PartFile, MergeError> {
-    let bytes = std::fs::read(path).map_err(|e| DataFileError {
-        path: path.to_path_buf(),
-        kind: DataFileErrorKind::Io(e),
+    let bytes = scene::input::read_bounded(path, scene::input::MAX_DATA_BYTES).map_err(|e| {
+        DataFileError {
+            path: path.to_path_buf(),
+            kind: DataFileErrorKind::Io(e),
+        }
     })?;
     let data = DataFile::decode(&bytes, true).map_err(|kind| DataFileError {
         path: path.to_path_buf(),

@@ -6,14 +6,18 @@
 //! - coordinate spheres |X − c| ≤ R and planes z = h in pseudo-Cartesian (x, y, z), static.
 //!
 //! Each target reports a signed distance f (negative inside) and a bound on |df/dλ| at a
-//! ray state. A hit inside a step is excluded when f(λa) + f(λb) > rate·(λb − λa) (the ray
-//! cannot reach the surface and come back out within the step); otherwise the step's dense
-//! output is bisected. So no hit is missed between integration steps, however thin.
+//! ray state. A hit is a crossing of the surface (a change of the side of f, on the surface
+//! counting as inside), so a ray that starts inside an object sees its inner surface. A
+//! crossing inside a step is excluded when both ends are on one side and
+//! |f(λa)| + |f(λb)| > rate·(λb − λa) (the ray cannot reach the surface and come back
+//! within the step); otherwise the step's dense output is bisected. So no hit is missed
+//! between integration steps, however thin.
 
 use crate::bounds::Aabb;
 use crate::worldline::{WorldPoint, Worldline, WorldlineError};
-use scene::{Object, Shape};
-use spacetime::{Event, FourVector, GeodesicState, Metric, Spacetime};
+use scene::{Motion, Object, Shape};
+use spacetime::measure::{covector_components, vector_components};
+use spacetime::{normal, Event, FourVector, GeodesicState, Metric, Spacetime};
 use std::f64::consts::PI;
 
 /// Safety factor on the rate bound: covers the variation of the local photon energy and
@@ -70,7 +74,8 @@ pub struct Surface {
     pub emitter_velocity: FourVector,
     /// Unit photon direction (of propagation, toward the observer) in the object's frame.
     pub dir: [f64; 3],
-    /// Cosine between the outward surface normal and `dir`.
+    /// Cosine between the surface normal on the side the photon leaves (outward, or
+    /// inward for an inner surface seen from inside) and `dir`; ≥ 0.
     pub cos_i: f64,
 }
 
@@ -83,15 +88,36 @@ impl Target {
         t_max: f64,
     ) -> Result<Target, WorldlineError> {
         Ok(match object.shape {
-            Shape::Sphere { radius } => Target::LocalSphere {
-                radius,
-                worldline: Worldline::new(metric, &object.motion, t_min, t_max)?,
-            },
+            Shape::Sphere { radius } => {
+                // A point near a moving ball is simultaneous (in its rest frame) with a
+                // worldline point up to γ·v times the near zone's size away in time: the
+                // worldline must reach that far beyond the traced range.
+                let pad = match object.motion {
+                    Motion::Rest { .. } => 0.0,
+                    Motion::Geodesic { velocity, .. } => {
+                        let near =
+                            FAR_DISTANCE * metric.godel_a().unwrap_or(1.0) + FAR_RADII * radius;
+                        2.0 * velocity.gamma() * near
+                    }
+                };
+                Target::LocalSphere {
+                    radius,
+                    worldline: Worldline::new(metric, &object.motion, t_min - pad, t_max + pad)?,
+                }
+            }
             Shape::CoordinateSphere { center, radius } => {
                 Target::CoordinateSphere { center, radius }
             }
             Shape::Plane { height, extent } => Target::Plane { height, extent },
         })
+    }
+
+    /// How many integration steps the object's worldline holds (0 unless in free fall).
+    pub fn integration_steps(&self) -> usize {
+        match self {
+            Target::LocalSphere { worldline, .. } => worldline.integration_steps(),
+            _ => 0,
+        }
     }
 
     /// A coordinate box that holds every point of the object at coordinate times in
@@ -145,7 +171,15 @@ impl Target {
                             }
                             Worldline::Free(_) => FAR_SLACK,
                         };
-                        let d = if lp.exact { d1 } else { d1 / slack };
+                        // A far point is outside (beyond R + FAR_DISTANCE·a to first order):
+                        // however large the ball, its estimate stays at least half that margin
+                        // clear, never on the inside (2.95/1.3 once made a false crossing).
+                        let floor = radius + 0.5 * FAR_DISTANCE * metric.godel_a().unwrap_or(1.0);
+                        let d = if lp.exact {
+                            d1
+                        } else {
+                            (d1 / slack).max(floor)
+                        };
                         // The ray's speed in the rest frame is its energy there, −p·u, which
                         // is at most E·γ(1 + v) everywhere on the ray (see Worldline::
                         // speed_factor): a bound valid over any span, not just one step.
@@ -180,20 +214,21 @@ impl Target {
         }
     }
 
-    /// Whether the sign pattern (fa, fb) shows the ray entering the object.
-    pub fn entered(&self, fa: f64, fb: f64) -> bool {
-        match self {
-            Target::Plane { .. } => (fa > 0.0) != (fb > 0.0),
-            _ => fa > 0.0 && fb <= 0.0,
-        }
+    /// Whether the ray crosses the surface between two probes with values fa, fb: a change
+    /// of side, with f ≤ 0 counting as inside (on the surface is inside). Any crossing is a
+    /// hit: for a ray that starts outside the first crossing is its entry; for a ray that
+    /// starts inside (or on the surface) it is the exit, so it sees the inner surface
+    /// (a large coordinate sphere around the observer becomes the scene's surroundings).
+    /// For planes, z ≤ height counts as the "inside" side.
+    pub fn crossed(fa: f64, fb: f64) -> bool {
+        (fa > 0.0) != (fb > 0.0)
     }
 
-    /// Whether a hit inside a step with end values fa, fb is impossible.
-    pub fn excluded(&self, fa: f64, fb: f64, rate: f64, h: f64) -> bool {
-        match self {
-            Target::Plane { .. } => (fa > 0.0) == (fb > 0.0) && fa.abs() + fb.abs() > rate * h,
-            _ => fa + fb > rate * h,
-        }
+    /// Whether a crossing inside a span of length `h` with end values fa, fb is impossible:
+    /// both ends on one side, and the ray cannot reach the surface and come back within the
+    /// span, since |df/dλ| ≤ rate (`rate == 0`: f is constant, e.g. a ray lying in a plane).
+    pub fn excluded(fa: f64, fb: f64, rate: f64, h: f64) -> bool {
+        !Self::crossed(fa, fb) && (fa.abs() + fb.abs() > rate * h || rate == 0.0)
     }
 
     /// Whether a probe may vouch for a span of several steps: its distance is a lower bound
@@ -241,7 +276,8 @@ impl Target {
                     v,
                     emitter_velocity: u_emit,
                     dir,
-                    cos_i: dot3(n, dir),
+                    // The normal on the side the photon leaves (inward for an inner surface).
+                    cos_i: dot3(n, dir).abs(),
                 })
             }
             Target::CoordinateSphere { center, .. } => {
@@ -253,7 +289,7 @@ impl Target {
                     v,
                     emitter_velocity: FourVector::new(1.0, 0.0, 0.0, 0.0),
                     dir,
-                    cos_i: dot3(n, normalize3([-k.x, -k.y, -k.z])),
+                    cos_i: dot3(n, normalize3([-k.x, -k.y, -k.z])).abs(),
                 })
             }
             Target::Plane { extent, .. } => {
@@ -278,9 +314,10 @@ impl Target {
 /// How light arriving at a surface point meets the surface (for direct illumination).
 #[derive(Clone, Copy, Debug)]
 pub struct Incidence {
-    /// Cosine between the outward normal (for planes: the normal on the viewer's side) and
-    /// the direction the light comes from, in the object's rest frame; negative when the
-    /// light arrives from behind the surface.
+    /// Cosine between the normal on the viewer's side (outward, or inward where the viewer
+    /// sees an inner surface from inside; for planes the side the viewer is on) and the
+    /// direction the light comes from, in the object's rest frame; negative when the light
+    /// arrives from behind the surface the viewer sees.
     pub cos: f64,
     /// The light's energy −k·u in the object's rest frame (for k normalized to energy 1 at
     /// a static source, the source→object frequency ratio).
@@ -308,17 +345,22 @@ impl Target {
                 };
                 let lp = worldline.localize(metric, x, seed, f64::INFINITY)?;
                 let (_, kl) = rest_frame_photon(metric, worldline, &lp.at, x, k_light);
+                let (_, kv) = rest_frame_photon(metric, worldline, &lp.at, x, view);
+                let n = normalize3(lp.xi);
+                // The viewer's photon leaves along −view: outside when it moves outward.
+                let side = viewer_side(n, [-kv[1], -kv[2], -kv[3]]);
                 let d = normalize3([kl[1], kl[2], kl[3]]);
                 Some(Incidence {
-                    cos: -dot3(normalize3(lp.xi), d),
+                    cos: -side * dot3(n, d),
                     energy: kl[0],
                 })
             }
             Target::CoordinateSphere { center, .. } => {
                 // Coordinate normal and direction, as for `cos_i` of these orientation aids.
                 let n = normalize3([x.x - center[0], x.y - center[1], x.z - center[2]]);
+                let side = viewer_side(n, [-view.x, -view.y, -view.z]);
                 Some(Incidence {
-                    cos: -dot3(n, normalize3([k_light.x, k_light.y, k_light.z])),
+                    cos: -side * dot3(n, normalize3([k_light.x, k_light.y, k_light.z])),
                     energy: -metric.lower(x, k_light).t,
                 })
             }
@@ -348,47 +390,32 @@ fn rest_frame_photon(
     let gam = metric.christoffel(at.event);
     let g = metric.metric(at.event);
     let d = (x - at.event).to_array();
-    let ka = k.to_array();
-    // k in normal coordinates at the centre: k + Γ Δx k.
-    let mut kn = ka;
-    for mu in 0..4 {
-        for a in 0..4 {
-            for b in 0..4 {
-                kn[mu] += gam[mu][a][b] * d[a] * ka[b];
-            }
-        }
-    }
-    let mut kl = [0.0; 4];
-    for (i, e) in at.frame.e.iter().enumerate() {
-        let e = e.to_array();
-        let s: f64 = (0..4)
-            .map(|m| (0..4).map(|n| g[m][n] * e[m] * kn[n]).sum::<f64>())
-            .sum();
-        kl[i] = if i == 0 { -s } else { s };
-    }
+    // k carried from the hit point to the centre, then measured in the body frame.
+    let kn = normal::transport(&gam, (at.event - x).to_array(), k.to_array());
+    let kl = vector_components(&g, &at.frame, FourVector::from_array(kn));
     let u_emit = match wl {
         Worldline::Rest { .. } => FourVector::new(1.0, 0.0, 0.0, 0.0),
         Worldline::Free(_) => {
-            let u = at.frame.e[0].to_array();
-            let mut ux = u;
-            for mu in 0..4 {
-                for a in 0..4 {
-                    for b in 0..4 {
-                        ux[mu] -= gam[mu][a][b] * d[a] * u[b];
-                    }
-                }
-            }
-            FourVector::from_array(ux)
+            FourVector::from_array(normal::transport(&gam, d, at.frame.e[0].to_array()))
         }
     };
     (u_emit, kl)
 }
 
+/// +1 when the viewer's photon, leaving the surface along `photon`, is on the side of the
+/// outward normal `n` (an outer surface), −1 for an inner surface seen from inside.
+fn viewer_side(n: [f64; 3], photon: [f64; 3]) -> f64 {
+    if dot3(n, photon) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
 /// Unit direction of propagation of the photon (−k) in the static frame at `x`.
 fn static_direction(metric: &Metric, x: Event, k: FourVector) -> [f64; 3] {
-    let f = metric.static_frame(x);
-    let p = metric.lower(x, -1.0 * k);
-    normalize3([f.e[1].contract(p), f.e[2].contract(p), f.e[3].contract(p)])
+    let c = covector_components(&metric.static_frame(x), metric.lower(x, -1.0 * k));
+    normalize3([c[1], c[2], c[3]])
 }
 
 /// Body longitude/latitude as texture coordinates: u = (φ + π)/2π from e1 toward e2,

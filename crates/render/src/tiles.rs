@@ -1,101 +1,61 @@
-//! Tile-level rendering for split and distributed runs: trace any set of the image's
-//! tiles into [`TileData`], and put tiles into (or take them out of) a [`DataFile`].
+//! Traced tiles: [`TileData`] (what tracing one tile produced), the [`Sink`] that receives
+//! them, the [`Assembler`] sink that puts tiles into a [`DataFile`], and taking tiles out
+//! of one (for merges).
 //!
-//! A tile's records depend only on the scene and the tile (see `driver::trace_tile`), so
-//! an image assembled from tiles traced anywhere, in any order, equals the one
-//! `driver::render` makes, byte for byte once written. Light planes (`DataFile::lights`)
-//! travel with each tile, so parts, merges and MPI runs carry them generically.
+//! A tile's records depend only on the scene and the tile (see `Renderer::trace_tile`), so
+//! an image assembled from tiles traced anywhere, in any order, equals a whole render
+//! byte for byte once written. Light planes (`DataFile::lights`) travel with each tile, so
+//! parts, merges and MPI runs carry them generically.
 
-use crate::datafile::DataFile;
-use crate::driver::{
-    build_tracer, header, tiles, trace_tile_lit, Progress, RenderError, RenderStats,
-};
-use crate::record::{PixelRecord, RayStatus};
-use crate::tracer::Tracer;
-use rayon::prelude::*;
-use scene::Scene;
-
-pub use crate::driver::Tile;
+use crate::plan::Tile;
+use datafile::{DataFile, PixelRecord};
 
 /// What tracing one tile produced: its records (row-major within the tile) and one plane
 /// of light values per light source (same order).
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TileData {
-    /// Index of the tile in [`TileRenderer::tiles`].
+    /// Index of the tile in the image's tiles (`Renderer::tiles`).
     pub index: usize,
     pub records: Vec<PixelRecord>,
     pub lights: Vec<Vec<f32>>,
 }
 
-/// A scene's tracer and tile list, ready to trace any subset of the tiles.
-pub struct TileRenderer<'a> {
-    scene: &'a Scene,
-    tracer: Tracer,
+/// Receives finished tiles, in any order (one at a time).
+pub trait Sink {
+    fn accept(&mut self, tile: TileData);
+}
+
+/// The sink that puts traced tiles into a data file.
+pub struct Assembler {
+    data: DataFile,
     tiles: Vec<Tile>,
 }
 
-impl<'a> TileRenderer<'a> {
-    pub fn new(scene: &'a Scene) -> Result<TileRenderer<'a>, RenderError> {
-        Ok(TileRenderer {
-            scene,
-            tracer: build_tracer(scene)?,
-            tiles: image_tiles(scene),
-        })
+impl Assembler {
+    /// Fills `data` (usually `Renderer::blank`) with the tiles of `tiles` as they come.
+    pub fn new(data: DataFile, tiles: &[Tile]) -> Assembler {
+        Assembler {
+            data,
+            tiles: tiles.to_vec(),
+        }
     }
 
-    /// All tiles of the image, in the driver's (row-major) order.
-    pub fn tiles(&self) -> &[Tile] {
-        &self.tiles
-    }
-
-    /// Traces the tiles with these indices on rayon's current pool, in parallel.
-    pub fn trace(&self, indices: &[usize], progress: &dyn Progress) -> Vec<TileData> {
-        indices
-            .par_iter()
-            .map_init(
-                || self.tracer.scratch(),
-                |scratch, &index| {
-                    let tile = self.tiles[index];
-                    let (records, lit) = trace_tile_lit(self.scene, &self.tracer, tile, scratch);
-                    progress.advance(records.len() as u64);
-                    // Pixel-major light values (one per source) into one plane per source.
-                    let n = self.scene.lights.len();
-                    let lights = (0..n)
-                        .map(|k| (0..records.len()).map(|i| lit[i * n + k]).collect())
-                        .collect();
-                    TileData {
-                        index,
-                        records,
-                        lights,
-                    }
-                },
-            )
-            .collect()
-    }
-
-    /// The scene's data file with no pixel traced yet (status "not traced").
-    pub fn blank(&self) -> DataFile {
-        blank(self.scene)
+    /// The data file with every tile received so far.
+    pub fn finish(self) -> DataFile {
+        self.data
     }
 }
 
-/// The tiles of a scene's image.
-pub fn image_tiles(scene: &Scene) -> Vec<Tile> {
-    tiles(scene.camera.width(), scene.camera.height())
+impl Sink for Assembler {
+    fn accept(&mut self, tile: TileData) {
+        insert(&mut self.data, self.tiles[tile.index], &tile);
+    }
 }
 
-/// The scene's data file with no pixel traced yet (status "not traced", no light planes).
-pub fn blank(scene: &Scene) -> DataFile {
-    let (w, h) = (
-        scene.camera.width() as usize,
-        scene.camera.height() as usize,
-    );
-    DataFile {
-        header: header(scene),
-        width: w,
-        height: h,
-        records: vec![PixelRecord::miss(RayStatus::NotTraced); w * h],
-        lights: vec![],
+/// A sink that keeps the tiles as they are.
+impl Sink for Vec<TileData> {
+    fn accept(&mut self, tile: TileData) {
+        self.push(tile);
     }
 }
 
@@ -132,23 +92,4 @@ pub fn extract(data: &DataFile, tile: Tile, index: usize) -> TileData {
             .map(|plane| at.iter().map(|&i| plane[i]).collect())
             .collect(),
     }
-}
-
-/// How the rays of these records ended (`wall` left zero).
-pub fn count(records: &[PixelRecord]) -> RenderStats {
-    let mut stats = RenderStats {
-        pixels: records.len() as u64,
-        ..Default::default()
-    };
-    for r in records {
-        match r.status {
-            RayStatus::Hit => stats.hits += 1,
-            RayStatus::Escaped => stats.escaped += 1,
-            RayStatus::StepBudget => stats.step_budget += 1,
-            RayStatus::Failed => stats.failed += 1,
-            RayStatus::NotTraced => continue,
-        }
-        stats.traced += 1;
-    }
-    stats
 }

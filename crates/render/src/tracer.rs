@@ -1,36 +1,39 @@
-//! The numeric tracer: one backward light ray per pixel, integrated with DOP853 from the
-//! observer into the past, tested against every object in space and time.
+//! The pixel tracer: one backward light ray per pixel, from the observer into the past,
+//! searched for its first surface crossing of any object in space and time
+//! (`crate::intersect`). Two ways to follow the ray, with the same search and the same
+//! records to f32 rounding:
 //!
-//! Pixel → ray (formulary §4): a pixel looking along the local unit direction n starts the
-//! past-directed null ray k = −e0 + nⁱ eᵢ of the observer's (boosted) frame.
+//! - numeric: DOP853 steps of the geodesic equations (any metric);
+//! - exact: closed-form Gödel geodesics carried to the observer's event by an isometry
+//!   (docs/physics.md, "Closed forms" and "Isometries").
 //!
-//! Gödel loops: every light ray through an event returns to that event's axis (its x, y)
-//! after a finite affine length and then retraces the same loop, shifted in t and z only
-//! (formulary §2; ∂t and ∂z are Killing and the isometries of §3 commute with them). So the
-//! first loop is integrated once, checked to close (position and momentum), and its dense
-//! steps are reused for the later loops with the shift (Δt, Δz, Δλ): the intersection test
-//! still runs against each object at each loop's times. This bounds the integration error
-//! to one loop, however far into the past a ray is followed.
+//! Pixel → ray: a pixel looking along the local unit direction n starts the past-directed
+//! null ray k = −e₀ + nⁱ eᵢ of the observer's (boosted) frame ([`photon_tangent`]).
 //!
-//! Frequency shift g = (p·u_obs)/(p·u_emit) (DESIGN.md), from the photon's covariant
-//! momentum at both ends.
+//! Gödel loops: every light ray returns to its start's axis and then retraces its loop
+//! shifted in t and z only (`crate::segment`). So the first loop is followed once (the
+//! numeric one checked to close, position and momentum, by [`AxisWatch`]) and stored; later
+//! loops are its copies, each still searched against every object at its own times. This
+//! bounds the integration error to one loop, however far into the past a ray is followed.
+//! The number of copies is bounded by [`scene::MAX_RAY_LOOPS`].
+//!
+//! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
-use crate::bounds::Aabb;
-use crate::lighting::{HitPoint, LightSource};
-use crate::record::{PixelRecord, RayStatus};
-use crate::target::{Probe, Target};
+use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
+use datafile::record::{PixelRecord, RayStatus};
+use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
+use spacetime::measure::frequency_ratio;
 use spacetime::{
-    refine_root, DenseStep, Dop853, Event, ExactGeodesic, GeodesicState, GeodesicSystem, Metric,
-    OdeSystem, Spacetime, StepData, StepOutcome, Tetrad, Tolerances, STATE,
+    photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, FourVector, GeodesicState,
+    GeodesicSystem, OdeSystem, Spacetime, StepOutcome, Tetrad, TimeDirection, Tolerances,
 };
-use std::cell::OnceCell;
 
-/// Everything a ray needs, built once per render and shared by all threads.
+/// Everything a pixel's ray needs, built once per render and shared by all threads.
 pub struct Tracer {
-    pub(crate) metric: Metric,
+    /// The scene's objects, ready to be searched.
+    pub objects: Intersector,
     observer: Event,
     frame: Tetrad,
-    pub(crate) targets: Vec<Target>,
     /// Rays stop at coordinate time observer.t − max_past.
     t_bound: f64,
     tol: Tolerances,
@@ -39,29 +42,25 @@ pub struct Tracer {
     periodic: bool,
     /// Use the closed-form geodesics instead of the integrator (Gödel only).
     exact: bool,
-    /// Point lights at rest, for direct illumination (`crate::lighting`).
-    pub(crate) lights: Vec<LightSource>,
 }
 
-/// Segments per loop for the exact tracer (and the shadow rays' occlusion test). Each
-/// segment end costs a closed-form evaluation whether or not a probe is needed there;
-/// fewer, longer segments cost more bisection near objects. Measured with callgrind on
-/// scenes/bench-static.toml (exact, one thread, whole CLI render): 32 → 1.77 G instructions,
-/// 16 → 1.32 G, 8 → 1.25 G; on the reference scene at 440×50, 16 and 8 are within 1 %.
-pub(crate) const EXACT_SEGMENTS: usize = 16;
+/// How a tracer follows rays (from the scene's `[trace]` table).
+#[derive(Clone, Copy, Debug)]
+pub struct TraceOptions {
+    pub max_past: f64,
+    pub tolerance: f64,
+    pub max_steps: u64,
+    pub exact: bool,
+}
 
 /// Per-thread buffers, reused from ray to ray (no allocation per ray).
-#[derive(Default)]
 pub struct Scratch {
-    steps: Vec<LazyStep>,
-    pub(crate) start: Vec<Measured>,
-    pub(crate) end: Vec<Measured>,
+    segments: Vec<Segment>,
+    pub probes: Probes,
     /// The first step size the previous ray's integrator settled on: neighbouring pixels
     /// take nearly the same steps, so the next ray starts there instead of with the
     /// initial-step heuristic (two evaluations and a short first step). Reset per tile.
     first_step: Option<f64>,
-    /// The last traced ray's hit at full precision (for direct illumination), if any.
-    pub(crate) hit: Option<HitPoint>,
 }
 
 impl Scratch {
@@ -71,146 +70,45 @@ impl Scratch {
     }
 }
 
-/// A probe and the ray parameter (absolute: loop shifts included) where it was taken.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Measured {
-    probe: Probe,
-    at: f64,
+/// What a pixel's ray found: its record and, for a hit, the hit at full precision.
+pub struct Traced {
+    pub record: PixelRecord,
+    pub hit: Option<HitPoint>,
 }
 
-/// Conservative advancement: since |df/dλ| ≤ rate, a probe showing clearance f proves that
-/// the ray meets nothing of that object before λ + f/rate, so no probe is needed until
-/// then. Capped, because the rate bound is made for spans of a few steps.
-const MAX_SKIP: f64 = 1.0;
-
-/// A stored step whose dense output is made on first use (most steps never need it), or a
-/// segment of a closed-form geodesic (the exact tracer), evaluated directly.
-pub struct LazyStep {
-    data: StepData<STATE>,
-    sys: GeodesicSystem<Metric>,
-    dense: OnceCell<DenseStep<STATE>>,
-    exact: Option<ExactGeodesic>,
+/// How a stretch of the ray ended.
+enum End {
+    /// A crossing in segment `segment` of the stored ones, moved by `shift`.
+    Hit {
+        segment: usize,
+        shift: Shift,
+        crossing: Crossing,
+    },
+    Miss(RayStatus),
 }
 
-impl LazyStep {
-    fn new(data: StepData<STATE>, sys: GeodesicSystem<Metric>) -> Self {
-        LazyStep {
-            data,
-            sys,
-            dense: OnceCell::new(),
-            exact: None,
-        }
-    }
-    /// The segment [l0, l1] of a closed-form geodesic whose state at l0 is `y0`.
-    pub(crate) fn exact(
-        geo: ExactGeodesic,
-        sys: GeodesicSystem<Metric>,
-        l0: f64,
-        y0: [f64; STATE],
-        l1: f64,
-    ) -> Self {
-        let data = StepData {
-            lambda0: l0,
-            h: l1 - l0,
-            y0,
-            y1: exact_state(&geo, &sys, l1),
-        };
-        LazyStep {
-            data,
-            sys,
-            dense: OnceCell::new(),
-            exact: Some(geo),
-        }
-    }
-    fn eval(&self, l: f64) -> [f64; STATE] {
-        if l == self.data.lambda1() {
-            self.data.y1
-        } else if l == self.data.lambda0 {
-            self.data.y0
-        } else if let Some(geo) = &self.exact {
-            exact_state(geo, &self.sys, l)
-        } else {
-            self.dense
-                .get_or_init(|| self.data.dense(&self.sys))
-                .eval(l)
-        }
-    }
-
-    /// The phase-space point at `l`.
-    fn state_at(&self, l: f64) -> GeodesicState {
-        self.sys.state(&self.eval(l))
-    }
-}
-
-impl std::ops::Deref for LazyStep {
-    type Target = StepData<STATE>;
-    fn deref(&self) -> &StepData<STATE> {
-        &self.data
-    }
-}
-
-/// The integrated-state form (t, x, y, z, p_x, p_y) of a closed-form geodesic at `l`.
-fn exact_state(geo: &ExactGeodesic, sys: &GeodesicSystem<Metric>, l: f64) -> [f64; STATE] {
-    let (x, k) = geo.at(l);
-    let p = sys.metric.lower(x, k);
-    [x.t, x.x, x.y, x.z, p.x, p.y]
-}
-
-/// A shift of a stored loop: later loops are the first one moved in t, z and λ.
-#[derive(Clone, Copy, Default)]
-pub(crate) struct Shift {
-    dt: f64,
-    dz: f64,
-    dl: f64,
-}
-
-impl Shift {
-    fn times(self, k: f64) -> Shift {
-        Shift {
-            dt: k * self.dt,
-            dz: k * self.dz,
-            dl: k * self.dl,
-        }
-    }
-    fn apply(self, mut st: GeodesicState) -> GeodesicState {
-        st.x.t += self.dt;
-        st.x.z += self.dz;
-        st
-    }
-}
-
-pub(crate) struct Hit {
-    target: usize,
-    lambda: f64,
-    tau: f64,
+/// The first loop either ends the ray or closes with a period (the shift to the next loop).
+enum FirstLoop {
+    Ended(End),
+    Closed(Shift),
 }
 
 impl Tracer {
-    pub fn new(
-        metric: Metric,
-        observer: Event,
-        frame: Tetrad,
-        targets: Vec<Target>,
-        max_past: f64,
-        tolerance: f64,
-        max_steps: u64,
-        exact: bool,
-    ) -> Tracer {
+    pub fn new(objects: Intersector, observer: Event, frame: Tetrad, opt: TraceOptions) -> Tracer {
+        let godel = objects.metric.godel_a().is_some();
         Tracer {
-            metric,
+            objects,
             observer,
             frame,
-            targets,
-            t_bound: observer.t - max_past,
+            t_bound: observer.t - opt.max_past,
             tol: Tolerances {
-                rtol: tolerance,
-                atol: tolerance,
+                rtol: opt.tolerance,
+                atol: opt.tolerance,
                 ..Tolerances::default()
             },
-            max_steps,
-            periodic: matches!(metric, Metric::Godel(_)),
-            exact: exact && matches!(metric, Metric::Godel(_)),
-            lights: Vec::new(),
+            max_steps: opt.max_steps,
+            periodic: godel,
+            exact: opt.exact && godel,
         }
     }
 
@@ -219,64 +117,73 @@ impl Tracer {
         self.observer.t - self.t_bound
     }
 
-    /// The same tracer with point lights (direct illumination, `crate::lighting`).
-    pub fn with_lights(self, lights: Vec<LightSource>) -> Tracer {
-        Tracer { lights, ..self }
-    }
-
+    /// Buffers for one thread.
     pub fn scratch(&self) -> Scratch {
-        let none = Measured {
-            probe: Probe {
-                f: 0.0,
-                rate: 0.0,
-                tau: f64::NAN,
-            },
-            at: 0.0,
-        };
         Scratch {
-            steps: Vec::new(),
-            start: vec![none; self.targets.len()],
-            end: vec![none; self.targets.len()],
+            segments: Vec::new(),
+            probes: self.objects.probes(),
             first_step: None,
-            hit: None,
         }
     }
 
     /// Traces the pixel looking along the local unit direction `n`.
-    pub fn trace(&self, n: [f64; 3], scratch: &mut Scratch) -> PixelRecord {
-        let k = self.frame.vector([-1.0, n[0], n[1], n[2]]);
+    pub fn trace(&self, n: [f64; 3], scratch: &mut Scratch) -> Traced {
+        let k = photon_tangent(&self.frame, n, TimeDirection::Past);
         let start = GeodesicState {
             x: self.observer,
-            p: self.metric.lower(self.observer, k),
+            p: self.objects.metric.lower(self.observer, k),
         };
-        let (sys, s0) = GeodesicSystem::new(self.metric, &start);
         let Scratch {
-            steps,
-            start: probes_a,
-            end: probes_b,
+            segments,
+            probes,
             first_step,
-            hit,
         } = scratch;
-        steps.clear();
-        *hit = None;
-        self.probe_all(&start, 0.0, probes_a);
-        if self.exact {
-            return self.trace_exact(&start, k, sys, s0, steps, probes_a, probes_b, hit);
+        segments.clear();
+        self.objects.probe_all(&start, 0.0, probes);
+        let first = if self.exact {
+            self.first_loop_exact(&start, k, segments, probes)
+        } else {
+            self.first_loop_numeric(&start, segments, probes, first_step)
+        };
+        let end = match first {
+            FirstLoop::Ended(end) => end,
+            FirstLoop::Closed(period) => self.later_loops(&start, period, segments, probes),
+        };
+        match end {
+            End::Hit {
+                segment,
+                shift,
+                crossing,
+            } => self.record(&start, &segments[segment], shift, crossing),
+            End::Miss(status) => Traced {
+                record: PixelRecord::miss(status),
+                hit: None,
+            },
         }
+    }
+
+    /// The numeric first loop: DOP853 steps, each scanned as it is taken, until the ray
+    /// ends or closes on its axis (Gödel; in other metrics it never closes).
+    fn first_loop_numeric(
+        &self,
+        start: &GeodesicState,
+        segments: &mut Vec<Segment>,
+        probes: &mut Probes,
+        first_step: &mut Option<f64>,
+    ) -> FirstLoop {
+        let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
         let mut ode = Dop853::new(sys, 0.0, s0, self.tol, *first_step);
-        let (x0, y0) = (s0[1], s0[2]);
-        let axis_g = |s: &[f64; STATE], d: &[f64; STATE]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
-        let mut max_d2: f64 = 0.0;
+        let mut axis = AxisWatch::new(start);
         let mut periodic = self.periodic;
-        let period = loop {
+        loop {
             if ode.accepted >= self.max_steps {
-                return PixelRecord::miss(RayStatus::StepBudget);
+                return FirstLoop::Ended(End::Miss(RayStatus::StepBudget));
             }
-            let g_prev = axis_g(ode.state(), ode.derivative());
+            let g_prev = axis.g(ode.state(), ode.derivative());
             match ode.step() {
                 StepOutcome::Accepted => {}
                 StepOutcome::Stalled | StepOutcome::NonFinite => {
-                    return PixelRecord::miss(RayStatus::Failed)
+                    return FirstLoop::Ended(End::Miss(RayStatus::Failed))
                 }
             }
             if ode.accepted == 1 {
@@ -286,77 +193,79 @@ impl Tracer {
             }
             // Kept in place (a step record is large): only the first loop is stored for reuse.
             if !periodic {
-                steps.clear();
+                segments.clear();
             }
-            steps.push(LazyStep::new(ode.last_step(), sys));
-            let d = steps.last().expect("just pushed");
+            segments.push(Segment::step(ode.last_step(), sys));
+            let d = segments.last().expect("just pushed");
             let mut hi = d.lambda1();
             let mut closed = None;
             if periodic {
-                let s1 = d.y1;
-                let g1 = axis_g(&s1, ode.derivative());
-                if max_d2 > 0.0 && g_prev < 0.0 && g1 >= 0.0 {
-                    let gl = |l: f64| {
-                        let st = d.eval(l);
-                        axis_g(&st, &sys.rhs(&st))
-                    };
-                    let l = refine_root(gl, d.lambda0, d.lambda1(), g_prev, g1);
-                    let e = d.eval(l);
-                    let dmin2 = (e[1] - x0).powi(2) + (e[2] - y0).powi(2);
-                    let dp = (e[4] - s0[4]).abs() + (e[5] - s0[5]).abs();
-                    let p = start.p;
-                    let pscale = p.t.abs() + p.x.abs() + p.y.abs() + p.z.abs();
-                    if dmin2 <= 1e-14 * max_d2 && dp <= 1e-7 * pscale {
-                        hi = l;
+                let back = axis.after_step(
+                    g_prev,
+                    &d.y1,
+                    ode.derivative(),
+                    d.lambda0,
+                    d.lambda1(),
+                    |l| d.eval(l),
+                    |st| sys.rhs(st),
+                );
+                match back {
+                    Some(r) if r.closed => {
+                        hi = r.lambda;
                         closed = Some(Shift {
-                            dt: e[0] - s0[0],
-                            dz: e[3] - s0[3],
-                            dl: l,
+                            dt: r.state[0] - s0[0],
+                            dz: r.state[3] - s0[3],
+                            dl: r.lambda,
                         });
-                    } else if dmin2 <= 1e-6 * max_d2 {
-                        periodic = false; // did not close well enough: integrate on
                     }
+                    // Did not close well enough: integrate on.
+                    Some(r) if r.near => periodic = false,
+                    _ => {}
                 }
-                max_d2 = max_d2.max((s1[1] - x0).powi(2) + (s1[2] - y0).powi(2));
             }
-            if let Some(h) = self.scan(d, Shift::default(), d.lambda0, hi, probes_a, probes_b) {
-                return self.record(&start, d, Shift::default(), h, hit);
+            match self
+                .objects
+                .scan(d, Shift::default(), d.lambda0, hi, probes)
+            {
+                Ok(Some(crossing)) => {
+                    return FirstLoop::Ended(End::Hit {
+                        segment: segments.len() - 1,
+                        shift: Shift::default(),
+                        crossing,
+                    })
+                }
+                Ok(None) => {}
+                Err(OutOfWork) => return FirstLoop::Ended(End::Miss(RayStatus::WorkLimit)),
             }
             if d.eval(hi)[0] < self.t_bound || !d.y1.iter().all(|v| v.is_finite()) {
-                return PixelRecord::miss(if d.y1[0] < self.t_bound {
+                return FirstLoop::Ended(End::Miss(if d.y1[0] < self.t_bound {
                     RayStatus::Escaped
                 } else {
                     RayStatus::Failed
-                });
+                }));
             }
-            std::mem::swap(probes_a, probes_b);
+            probes.advance();
             if let Some(p) = closed {
-                break p;
+                return FirstLoop::Closed(p);
             }
-        };
-        self.later_loops(&start, s0, period, steps, probes_a, probes_b, hit)
+        }
     }
 
-    /// The exact tracer's first loop: closed-form segments (Kajari et al. 2009; formulary §2
-    /// carried by the isometries of §3), then the same loop reuse as the numeric tracer,
-    /// with the period known exactly.
-    #[allow(clippy::too_many_arguments)]
-    fn trace_exact(
+    /// The exact first loop: [`EXACT_SEGMENTS`] closed-form segments up to the return to
+    /// the axis, whose parameter and shift are known exactly.
+    fn first_loop_exact(
         &self,
         start: &GeodesicState,
-        k: spacetime::FourVector,
-        sys: GeodesicSystem<Metric>,
-        s0: [f64; STATE],
-        steps: &mut Vec<LazyStep>,
-        probes_a: &mut Vec<Measured>,
-        probes_b: &mut Vec<Measured>,
-        hit: &mut Option<HitPoint>,
-    ) -> PixelRecord {
-        let Some(a) = self.metric.godel_a() else {
-            return PixelRecord::miss(RayStatus::Failed);
+        k: FourVector,
+        segments: &mut Vec<Segment>,
+        probes: &mut Probes,
+    ) -> FirstLoop {
+        let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
+        let Some(a) = self.objects.metric.godel_a() else {
+            return FirstLoop::Ended(End::Miss(RayStatus::Failed));
         };
         let Some(geo) = ExactGeodesic::new(a, self.observer, k) else {
-            return PixelRecord::miss(RayStatus::Failed);
+            return FirstLoop::Ended(End::Miss(RayStatus::Failed));
         };
         let l_ret = geo.origin.return_parameter();
         for i in 0..EXACT_SEGMENTS {
@@ -364,230 +273,133 @@ impl Tracer {
                 l_ret * i as f64 / EXACT_SEGMENTS as f64,
                 l_ret * (i + 1) as f64 / EXACT_SEGMENTS as f64,
             );
-            let y0 = steps.last().map_or(s0, |d| d.y1);
-            steps.push(LazyStep::exact(geo, sys, l0, y0, l1));
-            let d = steps.last().expect("just pushed");
-            if let Some(h) = self.scan(d, Shift::default(), l0, l1, probes_a, probes_b) {
-                return self.record(start, d, Shift::default(), h, hit);
+            let y0 = segments.last().map_or(s0, |d| d.y1);
+            segments.push(Segment::exact(geo, sys, l0, y0, l1));
+            let d = segments.last().expect("just pushed");
+            match self.objects.scan(d, Shift::default(), l0, l1, probes) {
+                Ok(Some(crossing)) => {
+                    return FirstLoop::Ended(End::Hit {
+                        segment: segments.len() - 1,
+                        shift: Shift::default(),
+                        crossing,
+                    })
+                }
+                Ok(None) => {}
+                Err(OutOfWork) => return FirstLoop::Ended(End::Miss(RayStatus::WorkLimit)),
             }
             if d.y1[0] < self.t_bound {
-                return PixelRecord::miss(RayStatus::Escaped);
+                return FirstLoop::Ended(End::Miss(RayStatus::Escaped));
             }
-            std::mem::swap(probes_a, probes_b);
+            probes.advance();
         }
-        let end = steps.last().expect("segments").y1;
-        let period = Shift {
+        let end = segments.last().expect("segments").y1;
+        FirstLoop::Closed(Shift {
             dt: end[0] - s0[0],
             dz: end[3] - s0[3],
             dl: l_ret,
-        };
-        self.later_loops(start, s0, period, steps, probes_a, probes_b, hit)
+        })
     }
 
     /// Later loops: the stored first loop, shifted by whole periods.
-    #[allow(clippy::too_many_arguments)]
     fn later_loops(
         &self,
         start: &GeodesicState,
-        s0: [f64; STATE],
         period: Shift,
-        steps: &[LazyStep],
-        probes_a: &mut Vec<Measured>,
-        probes_b: &mut Vec<Measured>,
-        hit: &mut Option<HitPoint>,
-    ) -> PixelRecord {
+        segments: &[Segment],
+        probes: &mut Probes,
+    ) -> End {
         if !(period.dt < 0.0) {
-            return PixelRecord::miss(RayStatus::Failed); // a backward ray must go to the past
+            return End::Miss(RayStatus::Failed); // a backward ray must go to the past
         }
-        let loop_box = loop_bounds(steps);
-        let mut result = None;
-        'copies: for k in 1.. {
+        let t0 = start.x.t;
+        let loop_box = loop_bounds(segments);
+        // Scene validation keeps max_past within MAX_RAY_LOOPS loops of the shortest period;
+        // the bound here holds whatever the period of this ray turned out to be.
+        for k in 1..=scene::MAX_RAY_LOOPS {
             let shift = period.times(k as f64);
             // Skip a loop that comes near no object (boxes in coordinates, at its times).
-            let (t_hi, t_lo) = (s0[0] + shift.dt, s0[0] + shift.dt + period.dt);
+            let (t_hi, t_lo) = (t0 + shift.dt, t0 + shift.dt + period.dt);
             if t_hi < self.t_bound {
-                break;
+                return End::Miss(RayStatus::Escaped);
             }
             let here = loop_box.shifted_z(shift.dz);
+            let metric = &self.objects.metric;
             if !self
+                .objects
                 .targets
                 .iter()
-                .any(|t| t.bounds(&self.metric, t_lo, t_hi).intersects(&here))
+                .any(|t| t.bounds(metric, t_lo, t_hi).intersects(&here))
             {
                 continue;
             }
-            let first = shift.apply(steps[0].state_at(steps[0].lambda0));
-            self.probe_all(&first, shift.dl, probes_a);
-            for (i, d) in steps.iter().enumerate() {
-                let hi = if i + 1 == steps.len() {
+            let first = shift.apply(segments[0].state_at(segments[0].lambda0));
+            self.objects.probe_all(&first, shift.dl, probes);
+            for (i, d) in segments.iter().enumerate() {
+                let hi = if i + 1 == segments.len() {
                     period.dl
                 } else {
                     d.lambda1()
                 };
-                if let Some(h) = self.scan(d, shift, d.lambda0, hi, probes_a, probes_b) {
-                    result = Some(self.record(start, d, shift, h, hit));
-                    break 'copies;
+                match self.objects.scan(d, shift, d.lambda0, hi, probes) {
+                    Ok(Some(crossing)) => {
+                        return End::Hit {
+                            segment: i,
+                            shift,
+                            crossing,
+                        }
+                    }
+                    Ok(None) => {}
+                    Err(OutOfWork) => return End::Miss(RayStatus::WorkLimit),
                 }
                 if d.y1[0] + shift.dt < self.t_bound {
-                    break 'copies;
+                    return End::Miss(RayStatus::Escaped);
                 }
-                std::mem::swap(probes_a, probes_b);
+                probes.advance();
             }
         }
-        result.unwrap_or(PixelRecord::miss(RayStatus::Escaped))
+        End::Miss(RayStatus::WorkLimit)
     }
 
-    pub(crate) fn probe_all(&self, s: &GeodesicState, at: f64, out: &mut [Measured]) {
-        for (t, o) in self.targets.iter().zip(out.iter_mut()) {
-            *o = Measured {
-                probe: t.probe(&self.metric, s, f64::NAN),
-                at,
-            };
-        }
-    }
-
-    /// The earliest-λ entry into any object within [lo, hi] of step `d` (moved by `shift`).
-    /// Fills `end` with the probes at `hi`; `start` holds those at `lo`.
-    pub(crate) fn scan(
-        &self,
-        d: &LazyStep,
-        shift: Shift,
-        lo: f64,
-        hi: f64,
-        start: &[Measured],
-        end: &mut [Measured],
-    ) -> Option<Hit> {
-        let (lo_abs, hi_abs) = (lo + shift.dl, hi + shift.dl);
-        let mut s_hi = None;
-        let mut best: Option<Hit> = None;
-        for (i, t) in self.targets.iter().enumerate() {
-            let m = start[i];
-            let p = m.probe;
-            // Clearance: distance for spheres, |z − h| for planes (either side).
-            let clear = if matches!(t, Target::Plane { .. }) {
-                p.f.abs()
-            } else {
-                p.f
-            };
-            if t.vouches_for_spans()
-                && clear.is_finite()
-                && hi_abs < m.at + (clear / p.rate).min(MAX_SKIP)
-            {
-                end[i] = m; // provably nothing of this object within [lo, hi]
-                continue;
-            }
-            // A probe taken before lo still bounds f at lo from below (same sign).
-            let pa = Probe {
-                f: p.f - p.f.signum() * p.rate * (lo_abs - m.at),
-                ..p
-            };
-            let s_hi = *s_hi.get_or_insert_with(|| shift.apply(d.state_at(hi)));
-            let pb = t.probe(&self.metric, &s_hi, pa.tau);
-            end[i] = Measured {
-                probe: pb,
-                at: hi_abs,
-            };
-            let limit = best.as_ref().map_or(hi, |b| b.lambda);
-            if let Some((l, tau)) = self.search(t, d, shift, lo, limit.min(hi), pa, pb, 0) {
-                if best.as_ref().map_or(true, |b| l < b.lambda) {
-                    best = Some(Hit {
-                        target: i,
-                        lambda: l,
-                        tau,
-                    });
-                }
-            }
-        }
-        best
-    }
-
-    /// Bisection search for the first entry into `t` on [a, b].
-    #[allow(clippy::too_many_arguments)]
-    fn search(
-        &self,
-        t: &Target,
-        d: &LazyStep,
-        shift: Shift,
-        a: f64,
-        b: f64,
-        pa: Probe,
-        pb: Probe,
-        depth: u32,
-    ) -> Option<(f64, f64)> {
-        if !(pa.f.is_finite() && pb.f.is_finite()) || b <= a {
-            return None;
-        }
-        if t.entered(pa.f, pb.f) {
-            let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
-            let l = refine_root(f, a, b, pa.f, pb.f);
-            let s = shift.apply(d.state_at(l));
-            // Land just inside so that the surface point is on the object.
-            return t
-                .accepts(&s)
-                .then_some((l, t.probe(&self.metric, &s, pa.tau).tau));
-        }
-        let rate = pa.rate.max(pb.rate);
-        if t.excluded(pa.f, pb.f, rate, b - a) || depth >= 30 {
-            return None;
-        }
-        let m = 0.5 * (a + b);
-        let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), pa.tau);
-        self.search(t, d, shift, a, m, pa, pm, depth + 1)
-            .or_else(|| self.search(t, d, shift, m, b, pm, pb, depth + 1))
-    }
-
-    fn record(
-        &self,
-        start: &GeodesicState,
-        d: &LazyStep,
-        shift: Shift,
-        h: Hit,
-        hit: &mut Option<HitPoint>,
-    ) -> PixelRecord {
+    /// The record of a crossing found in segment `d` moved by `shift`.
+    fn record(&self, start: &GeodesicState, d: &Segment, shift: Shift, h: Crossing) -> Traced {
+        let miss = |status| Traced {
+            record: PixelRecord::miss(status),
+            hit: None,
+        };
         let s = shift.apply(d.state_at(h.lambda));
         if s.x.t < self.t_bound {
-            return PixelRecord::miss(RayStatus::Escaped);
+            return miss(RayStatus::Escaped);
         }
-        let Some(surf) = self.targets[h.target].surface(&self.metric, &s, h.tau) else {
-            return PixelRecord::miss(RayStatus::Failed);
+        let metric = &self.objects.metric;
+        let Some(surf) = self.objects.targets[h.target].surface(metric, &s, h.tau) else {
+            return miss(RayStatus::Failed);
         };
-        let g = self.frame.e[0].contract(start.p) / surf.emitter_velocity.contract(s.p);
-        *hit = Some(HitPoint {
-            state: s,
-            target: h.target,
-            tau: h.tau,
-        });
-        PixelRecord {
-            object: h.target as i32,
-            status: RayStatus::Hit,
-            u: surf.u as f32,
-            v: surf.v as f32,
-            g: g as f32,
-            t_emit: (s.x.t - self.observer.t) as f32,
-            x: s.x.x as f32,
-            y: s.x.y as f32,
-            z: s.x.z as f32,
-            lambda: (h.lambda + shift.dl) as f32,
-            dir: surf.dir.map(|c| c as f32),
-            cos_i: surf.cos_i as f32,
+        let g = frequency_ratio(self.frame.e[0], start.p, surf.emitter_velocity, s.p);
+        if !(g > 0.0 && g.is_finite()) {
+            // The surface's rest frame could not be matched reliably: never a record with a
+            // meaningless frequency shift.
+            return miss(RayStatus::Failed);
+        }
+        Traced {
+            record: PixelRecord {
+                object: h.target as i32,
+                status: RayStatus::Hit,
+                u: surf.u as f32,
+                v: surf.v as f32,
+                g: g as f32,
+                t_emit: (s.x.t - self.observer.t) as f32,
+                x: s.x.x as f32,
+                y: s.x.y as f32,
+                z: s.x.z as f32,
+                lambda: (h.lambda + shift.dl) as f32,
+                dir: surf.dir.map(|c| c as f32),
+                cos_i: surf.cos_i as f32,
+            },
+            hit: Some(HitPoint {
+                state: s,
+                target: h.target,
+                tau: h.tau,
+            }),
         }
     }
-}
-
-/// A coordinate box around a stored loop: step ends, grown by a quarter of the longest
-/// chord (an arc of one step, turning by well under a radian, departs from its chord by
-/// at most about an eighth of it).
-fn loop_bounds(steps: &[LazyStep]) -> Aabb {
-    let mut b = Aabb::EMPTY;
-    let mut grow: f64 = 0.0;
-    for st in steps {
-        b.add([st.y0[1], st.y0[2], st.y0[3]]);
-        b.add([st.y1[1], st.y1[2], st.y1[3]]);
-        let chord = ((st.y1[1] - st.y0[1]).powi(2)
-            + (st.y1[2] - st.y0[2]).powi(2)
-            + (st.y1[3] - st.y0[3]).powi(2))
-        .sqrt();
-        grow = grow.max(0.25 * chord);
-    }
-    b.grown(grow)
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use render::datafile::DataFile;
+use datafile::DataFile;
 
 /// A small Gödel scene with a static and a free-falling sphere (both images, Doppler
 /// shifts, several emission times), so that the records vary from pixel to pixel.

@@ -5,7 +5,6 @@
 
 mod common;
 use common::{render_scene, scene};
-use render::driver::{build_tracer, RenderError};
 use std::path::Path;
 
 fn scene_file(name: &str, method: &str, width: u32, height: u32) -> scene::Scene {
@@ -84,15 +83,4 @@ fn exact_and_numeric_tracers_agree_pixel_by_pixel() {
             "{name}: {differ} pixels differ"
         );
     }
-}
-
-#[test]
-fn exact_method_needs_the_godel_metric() {
-    let s = scene(
-        "name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n[camera]\nkind = \"pinhole\"\nfov_deg = 60.0\nwidth = 8\nheight = 8\n[trace]\nmethod = \"exact\"\n",
-    );
-    assert!(matches!(
-        build_tracer(&s),
-        Err(RenderError::ExactNeedsGodel)
-    ));
 }

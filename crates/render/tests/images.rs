@@ -9,7 +9,7 @@
 mod common;
 
 use common::*;
-use render::record::RayStatus;
+use datafile::record::RayStatus;
 use spacetime::Spacetime;
 use std::f64::consts::TAU;
 

@@ -5,7 +5,7 @@
 
 mod common;
 use common::{render_scene, scene};
-use render::datafile::DataFile;
+use datafile::DataFile;
 use spacetime::{
     shadow_rays, trace, Event, Geodesic, GeodesicKind, Godel, Metric, Spacetime, TraceLimits,
 };
@@ -211,13 +211,4 @@ fn light_planes_round_trip_through_the_data_file() {
     let back = DataFile::from_bytes(&d.to_bytes().unwrap()).unwrap();
     assert_eq!(back.lights, d.lights);
     assert_eq!(back.records, d.records);
-}
-
-#[test]
-fn lights_need_the_godel_metric() {
-    let s = scene("name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n[camera]\nkind = \"pinhole\"\nfov_deg = 60.0\nwidth = 8\nheight = 8\n[[light]]\nposition = { x = 1.0, y = 0.0, z = 0.0 }\n");
-    assert!(matches!(
-        render::driver::build_tracer(&s),
-        Err(render::driver::RenderError::LightsNeedGodel)
-    ));
 }

@@ -4,11 +4,11 @@
 
 mod common;
 use common::{render_scene, scene};
-use render::record::RayStatus;
+use datafile::record::RayStatus;
 
 /// Mean angle from the camera's forward axis (radians) of the hit pixels of a sphere
 /// camera image, and the mean pixel direction in the observer frame (forward, right, up).
-fn mean_hit_direction(d: &render::datafile::DataFile, s: &scene::Scene) -> [f64; 3] {
+fn mean_hit_direction(d: &datafile::DataFile, s: &scene::Scene) -> [f64; 3] {
     let mut sum = [0.0; 3];
     for row in 0..d.height {
         for col in 0..d.width {

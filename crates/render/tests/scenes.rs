@@ -4,7 +4,7 @@
 
 mod common;
 use common::render_scene;
-use render::datafile::DataFile;
+use datafile::DataFile;
 use scene::Scene;
 use std::path::Path;
 

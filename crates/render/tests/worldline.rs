@@ -148,3 +148,40 @@ fn regression_probes_are_lower_bounds_and_the_distance_obeys_the_rate() {
         );
     }
 }
+
+/// Regression (fuzzing): falling balls at a small `a` took up to 2 × 200,000 stored steps
+/// each (8 s and 580 MiB for one ball at a = 1e-6), with no bound on their number. Each
+/// worldline now holds at most `MAX_WORLDLINE_STEPS` per direction, and all of a scene's
+/// together at most `MAX_TOTAL_WORLDLINE_STEPS`, checked before any pixel is traced.
+#[test]
+fn regression_worldlines_beyond_their_budget_are_refused_before_tracing() {
+    use render::driver::{render, NoProgress, RenderError, MAX_TOTAL_WORLDLINE_STEPS};
+    use render::worldline::MAX_WORLDLINE_STEPS;
+    let ball = |i: usize| {
+        format!("[[object]]\nname = \"b{i}\"\nradius = 1e-4\nmotion = {{ kind = \"geodesic\", time = 0.0, position = {{ x = {}, y = 0.0, z = 0.0 }}, speed = 0.5, direction = [0, 1, 0] }}\n", 1e-4 * i as f64)
+    };
+    let balls = MAX_TOTAL_WORLDLINE_STEPS / MAX_WORLDLINE_STEPS + 1;
+    let text = format!(
+        "name = \"many\"\n[spacetime]\na = 1e-3\n[camera]\nkind = \"sphere\"\nwidth = 4\nheight = 2\n[trace]\nmax_past = 200.0\n{}",
+        (0..balls).map(ball).collect::<String>()
+    );
+    let s = scene::Scene::from_str(&text, "many.toml").unwrap();
+    match render(&s, &NoProgress) {
+        Err(e @ RenderError::WorldlinesTooLong { steps }) => {
+            assert!(steps > MAX_TOTAL_WORLDLINE_STEPS, "{e}");
+            assert!(e.to_string().contains("max_past"), "{e}");
+        }
+        other => panic!(
+            "expected the worldline budget error, got {:?}",
+            other.map(|r| r.1)
+        ),
+    }
+    // One such ball alone stays within its own bound.
+    let one = scene::Scene::from_str(
+        &text.replace(&(1..balls).map(ball).collect::<String>(), ""),
+        "one.toml",
+    )
+    .unwrap();
+    let (_, stats) = render(&one, &NoProgress).expect("a single ball is within budget");
+    assert_eq!(stats.pixels, 8);
+}

@@ -42,16 +42,32 @@ impl SceneError {
 }
 
 impl fmt::Display for SceneError {
+    /// One line, whatever the input: control characters that come from the file (a key or a
+    /// value quoted in a message, an odd file name) are written escaped, e.g. `\n`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file)?;
+        write!(f, "{}", one_line(&self.file))?;
         if let Some(l) = self.location {
             write!(f, ":{}:{}", l.line, l.column)?;
         }
         if !self.field.is_empty() {
-            write!(f, ": {}", self.field)?;
+            write!(f, ": {}", one_line(&self.field))?;
         }
-        write!(f, ": {}", self.message)
+        write!(f, ": {}", one_line(&self.message))
     }
+}
+
+/// `text` with its control characters escaped (a line break becomes `\n`), for messages
+/// that quote what a user wrote and must stay one line.
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 impl std::error::Error for SceneError {}

@@ -11,13 +11,17 @@
 //! - [`Scene::read_view`] and [`replace_view`]: read or replace only the observer's view
 //!   (camera, velocity, camera axes) in scene text, as `godel look` does.
 //!
+//! - [`input`]: the bounded reader every input file of `godel` goes through.
+//!
 //! Reading goes in three steps: the TOML text is parsed into a spanned tree (kept to locate
 //! errors), deserialized into raw records (`raw.rs`, unknown fields rejected), then checked
 //! and converted (`validate.rs`). No input makes it panic.
 
 mod camera;
+mod checker;
 mod edit;
 mod error;
+pub mod input;
 mod model;
 mod objects;
 mod raw;
@@ -25,11 +29,12 @@ mod validate;
 
 pub use camera::Camera;
 pub use edit::replace_view;
-pub use error::{line_column, Location, SceneError};
+pub use error::{line_column, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings,
 };
+pub use validate::{MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;
 use serde::Deserialize;
@@ -41,12 +46,13 @@ pub const BUILTIN_SCENE_TEXT: &str = include_str!("../../../scenes/reference.tom
 pub const BUILTIN_SCENE_NAME: &str = "<builtin reference.toml>";
 
 impl Scene {
-    /// Reads and validates a scene file. Relative image paths are resolved against the
-    /// file's directory.
+    /// Reads and validates a scene file (a regular file of at most
+    /// [`input::MAX_TEXT_BYTES`]). Relative image paths are resolved against the file's
+    /// directory.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let text = input::read_text(path, input::MAX_TEXT_BYTES).map_err(|e| SceneError {
             file: file.clone(),
             location: None,
             field: String::new(),
@@ -72,7 +78,7 @@ impl Scene {
     /// text, whose image paths may not resolve where the data file is read.
     pub fn read_view(text: &str, name_for_errors: &str) -> Result<(Observer, Camera), SceneError> {
         with_raw(text, name_for_errors, |raw, loc| {
-            let c = validate::Checker { loc };
+            let c = checker::Checker { loc };
             Ok((
                 validate::observer(&c, raw.observer)?,
                 validate::camera(&c, raw.camera)?,

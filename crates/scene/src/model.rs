@@ -9,7 +9,8 @@ use std::path::PathBuf;
 /// A complete scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
-    /// Output base name (`<name>.png`, `<name>.exr`); non-empty, no path separators.
+    /// Output base name (`<name>.png`, `<name>.exr`): 1 to 100 bytes, no path separators,
+    /// no leading `.` or `-`, no surrounding blanks.
     pub name: String,
     /// The file the scene came from (`None` for [`Scene::from_str`] and the built-in scene).
     pub source_path: Option<PathBuf>,
@@ -99,9 +100,9 @@ pub struct TraceSettings {
     pub method: TraceMethod,
     /// Follow rays this far into the past in coordinate time (> 0; default 30).
     pub max_past: f64,
-    /// Integrator tolerance, relative and absolute (> 0; default 1e-11).
+    /// Integrator tolerance, relative and absolute (in [1e-14, 1e-3]; default 1e-11).
     pub tolerance: f64,
-    /// Step budget per ray (≥ 1; default 100000).
+    /// Step budget per ray (1 to 10⁷; default 100000).
     pub max_steps: u64,
 }
 

@@ -6,7 +6,7 @@
 
 use crate::model::*;
 use crate::raw::*;
-use crate::validate::{Checker, Result};
+use crate::checker::{Checker, Result};
 use spacetime::Event;
 use std::path::Path;
 

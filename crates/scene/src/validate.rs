@@ -7,17 +7,41 @@
 //! position components left out are 0; a missing velocity direction is [1, 0, 0]; a missing
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
 //! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
+//! Bounds: tolerance in [1e-14, 1e-3], max_steps ≤ 10⁷, the name at most 100 bytes and
+//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels ([`Camera::check`]).
 //! Objects, motions and textures are checked in `objects.rs`.
 
 use crate::camera::Camera;
-use crate::error::{Locator, SceneError};
+use crate::checker::{Checker, Result};
+use crate::error::Locator;
 use crate::model::*;
 use crate::raw::*;
 use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
 use std::path::Path;
 
-pub(crate) type Result<T> = std::result::Result<T, SceneError>;
+/// The integrator tolerance's range: below 1e-14 the steps drown in rounding (f64 carries
+/// ~16 digits) and every ray fails; above 1e-3 the rays are not worth tracing.
+const MIN_TOLERANCE: f64 = 1e-14;
+const MAX_TOLERANCE: f64 = 1e-3;
+/// Most integrator steps per ray (the default is 100000).
+const MAX_STEPS: u64 = 10_000_000;
+/// Longest scene name in bytes: it becomes file names such as
+/// `.NAME.part-12-of-64.exr.godel-PID-HOST.XXXXXX.tmp`, which must stay within 255 bytes.
+const MAX_NAME_BYTES: usize = 100;
+/// Most loops a Gödel light ray may make within `max_past` (the tracer's bound on loop
+/// copies; a scene that would need more is refused up front).
+pub const MAX_RAY_LOOPS: u64 = 100_000;
+/// Largest coordinate (times, positions, sizes) in units of a (of 1 in flat spacetime):
+/// beyond it the isometries that carry events to the axis, and f64 times, lose the
+/// precision the tracer needs (an observer at r = 1e9·a sees only NaN).
+pub const MAX_COORDINATE_PER_A: f64 = 1e6;
+/// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
+/// a local object is described in its rest frame to second order in its size (Riemann
+/// normal coordinates), which needs it small against the curvature scale a. Measured
+/// against the flat-space Lorentz-contracted ball, exit times of rays from inside differ by
+/// ~5 %·γ²R/a (curvature included), 2–3 % at the limit.
+pub const MAX_LOCAL_RADIUS_PER_A: f64 = 0.5;
 
 /// Everything of a [`Scene`] that comes from the file's contents.
 pub(crate) struct Parts {
@@ -30,137 +54,9 @@ pub(crate) struct Parts {
     pub lights: Vec<Light>,
 }
 
-pub(crate) struct Checker<'a> {
-    pub loc: &'a Locator<'a>,
-}
-
-impl Checker<'_> {
-    pub(crate) fn err<T>(&self, path: &str, message: impl Into<String>) -> Result<T> {
-        Err(self.loc.at_path(path, message))
-    }
-
-    pub(crate) fn finite(&self, path: &str, v: f64) -> Result<f64> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            self.err(path, format!("must be a finite number, got {v}"))
-        }
-    }
-
-    pub(crate) fn positive(&self, path: &str, v: f64) -> Result<f64> {
-        let v = self.finite(path, v)?;
-        if v > 0.0 {
-            Ok(v)
-        } else {
-            self.err(path, format!("must be positive, got {v}"))
-        }
-    }
-
-    pub(crate) fn non_negative(&self, path: &str, v: f64) -> Result<f64> {
-        let v = self.finite(path, v)?;
-        if v >= 0.0 {
-            Ok(v)
-        } else {
-            self.err(path, format!("must not be negative, got {v}"))
-        }
-    }
-
-    pub(crate) fn color(&self, path: &str, c: [f64; 3]) -> Result<[f64; 3]> {
-        for (i, v) in c.iter().enumerate() {
-            self.non_negative(&format!("{path}[{i}]"), *v)?;
-        }
-        Ok(c)
-    }
-
-    /// A non-zero finite vector, normalized.
-    pub(crate) fn direction(&self, path: &str, v: [f64; 3]) -> Result<[f64; 3]> {
-        for (i, c) in v.iter().enumerate() {
-            self.finite(&format!("{path}[{i}]"), *c)?;
-        }
-        let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return self.err(path, format!("must be a non-zero direction, got {v:?}"));
-        }
-        Ok([v[0] / n, v[1] / n, v[2] / n])
-    }
-
-    pub(crate) fn velocity(
-        &self,
-        path: &str,
-        speed: f64,
-        direction: Option<[f64; 3]>,
-    ) -> Result<LocalVelocity> {
-        let speed_path = format!("{path}.speed");
-        let speed = self.finite(&speed_path, speed)?;
-        if !(0.0..1.0).contains(&speed) {
-            return self.err(
-                &speed_path,
-                format!("must be in [0, 1) (a fraction of light speed), got {speed}"),
-            );
-        }
-        let dir = self.direction(
-            &format!("{path}.direction"),
-            direction.unwrap_or([1.0, 0.0, 0.0]),
-        )?;
-        match LocalVelocity::new(speed, dir) {
-            Some(v) => Ok(v),
-            None => self.err(path, "is not a valid velocity"),
-        }
-    }
-
-    pub(crate) fn position(&self, path: &str, p: RawPosition, t: f64) -> Result<Event> {
-        let cyl = p.r.is_some() || p.phi.is_some();
-        let cart = p.x.is_some() || p.y.is_some();
-        if cyl && cart {
-            return self.err(path, "give either { r, phi, z } (cylindrical) or { x, y, z } (pseudo-Cartesian), not both");
-        }
-        let z = self.finite(&format!("{path}.z"), p.z.unwrap_or(0.0))?;
-        if cyl {
-            let r = self.non_negative(&format!("{path}.r"), p.r.unwrap_or(0.0))?;
-            let phi = self.finite(&format!("{path}.phi"), p.phi.unwrap_or(0.0))?;
-            Ok(Event::new(t, r * phi.cos(), r * phi.sin(), z))
-        } else {
-            let x = self.finite(&format!("{path}.x"), p.x.unwrap_or(0.0))?;
-            let y = self.finite(&format!("{path}.y"), p.y.unwrap_or(0.0))?;
-            Ok(Event::new(t, x, y, z))
-        }
-    }
-
-    pub(crate) fn name(&self, path: &str, name: &str) -> Result<()> {
-        if name.trim().is_empty() {
-            return self.err(path, "must not be empty");
-        }
-        if name.chars().any(|c| c.is_control()) {
-            return self.err(path, "must not contain control characters");
-        }
-        Ok(())
-    }
-
-    /// Reports a field given where it has no meaning.
-    pub(crate) fn unused<T>(&self, path: &str, v: &Option<T>, why: &str) -> Result<()> {
-        match v {
-            Some(_) => self.err(path, format!("not used {why}")),
-            None => Ok(()),
-        }
-    }
-
-    pub(crate) fn required<T: Copy>(&self, path: &str, v: Option<T>, why: &str) -> Result<T> {
-        match v {
-            Some(v) => Ok(v),
-            None => self.err(path, format!("missing, required {why}")),
-        }
-    }
-}
-
 pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Parts> {
     let c = Checker { loc };
-    c.name("name", &raw.name)?;
-    if raw.name.contains(['/', '\\']) {
-        return c.err(
-            "name",
-            "is used as an output file name and must not contain '/' or '\\'",
-        );
-    }
+    output_name(&c, &raw.name)?;
     let metric = spacetime(&c, raw.spacetime)?;
     let observer = observer(&c, raw.observer)?;
     let camera = camera(&c, raw.camera)?;
@@ -186,6 +82,8 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
             power: c.non_negative(&format!("{path}.power"), l.power.unwrap_or(1.0))?,
         });
     }
+    godel_rules(&c, &metric, &trace, &objects, &lights)?;
+    coordinate_bounds(&c, &metric, &observer, &objects, &lights)?;
     Ok(Parts {
         name: raw.name,
         metric,
@@ -195,6 +93,45 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
         objects,
         lights,
     })
+}
+
+/// The scene name becomes the output files' names: nothing that would make hidden files
+/// (`.`, `..`, a leading dot), look like a flag (leading `-`), hide in blanks, leave the
+/// folder, or not fit a file name with its temporary suffix.
+fn output_name(c: &Checker, name: &str) -> Result<()> {
+    c.name("name", name)?;
+    let why = "is used as the output files' name and";
+    if name.contains(['/', '\\']) {
+        return c.err("name", format!("{why} must not contain '/' or '\\'"));
+    }
+    if name.starts_with('.') {
+        return c.err(
+            "name",
+            format!("{why} must not start with '.' (hidden files), got {name:?}"),
+        );
+    }
+    if name.starts_with('-') {
+        return c.err(
+            "name",
+            format!("{why} must not start with '-', got {name:?}"),
+        );
+    }
+    if name.trim() != name {
+        return c.err(
+            "name",
+            format!("{why} must not start or end with blanks, got {name:?}"),
+        );
+    }
+    if name.len() > MAX_NAME_BYTES {
+        return c.err(
+            "name",
+            format!(
+                "{why} must be at most {MAX_NAME_BYTES} bytes long, got {}",
+                name.len()
+            ),
+        );
+    }
+    Ok(())
 }
 
 fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
@@ -308,8 +245,18 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     let d = TraceSettings::default();
     let Some(t) = raw else { return Ok(d) };
     let max_steps = t.max_steps.unwrap_or(d.max_steps);
-    if max_steps == 0 {
-        return c.err("trace.max_steps", "must be at least 1");
+    if !(1..=MAX_STEPS).contains(&max_steps) {
+        return c.err(
+            "trace.max_steps",
+            format!("must be in 1..={MAX_STEPS}, got {max_steps}"),
+        );
+    }
+    let tolerance = c.finite("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?;
+    if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&tolerance) {
+        return c.err(
+            "trace.tolerance",
+            format!("must be in [{MIN_TOLERANCE:e}, {MAX_TOLERANCE}], got {tolerance:e}"),
+        );
     }
     Ok(TraceSettings {
         method: match t.method.unwrap_or(MethodName::Numeric) {
@@ -317,7 +264,126 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
             MethodName::Exact => TraceMethod::Exact,
         },
         max_past: c.positive("trace.max_past", t.max_past.unwrap_or(d.max_past))?,
-        tolerance: c.positive("trace.tolerance", t.tolerance.unwrap_or(d.tolerance))?,
+        tolerance,
         max_steps,
     })
+}
+
+/// Checks that need both the metric and the rest. The exact tracer and the lights use
+/// Gödel's closed forms, so they need that metric. In Gödel's universe, rays loop with a
+/// period of at least [`Godel::shortest_loop_time`], so `max_past` bounds the number of
+/// loops a ray makes ([`MAX_RAY_LOOPS`]); and a local sphere must be small against a.
+fn godel_rules(
+    c: &Checker,
+    metric: &Metric,
+    trace: &TraceSettings,
+    objects: &[Object],
+    lights: &[Light],
+) -> Result<()> {
+    let Metric::Godel(godel) = metric else {
+        if trace.method == TraceMethod::Exact {
+            return c.err(
+                "trace.method",
+                "\"exact\" uses the Gödel closed forms: it needs spacetime.metric = \"godel\"",
+            );
+        }
+        if !lights.is_empty() {
+            return c.err(
+                "light[0]",
+                "lights are traced with the Gödel closed forms (shadow rays): they need spacetime.metric = \"godel\"",
+            );
+        }
+        return Ok(());
+    };
+    let a = godel.a;
+    let loops = trace.max_past / godel.shortest_loop_time();
+    if loops > MAX_RAY_LOOPS as f64 {
+        return c.err(
+            "trace.max_past",
+            format!(
+                "{} is {loops:.3e} loops of a light ray (one loop takes at least 2πa(√2 − 1) = {:.4} with a = {a}); at most {MAX_RAY_LOOPS} are followed: reduce max_past or raise spacetime.a",
+                trace.max_past,
+                godel.shortest_loop_time()
+            ),
+        );
+    }
+    for (i, o) in objects.iter().enumerate() {
+        if let Shape::Sphere { radius } = o.shape {
+            // A ball moving at γ has a rest-frame neighbourhood whose static coordinates
+            // stretch by ~γ²·R: that, not R, must stay small against a.
+            if let Motion::Geodesic { velocity, .. } = o.motion {
+                let stretch = velocity.gamma().powi(2) * radius;
+                if stretch > MAX_LOCAL_RADIUS_PER_A * a {
+                    return c.err(
+                        &format!("object[{i}].radius"),
+                        format!(
+                            "{radius} is too large for a local sphere falling at speed {} with a = {a}: its rest frame is described to second order in γ²·radius = {stretch:.4}, which must be at most {MAX_LOCAL_RADIUS_PER_A}·a = {} (radius ≤ {:.4} at this speed)",
+                            velocity.speed,
+                            MAX_LOCAL_RADIUS_PER_A * a,
+                            MAX_LOCAL_RADIUS_PER_A * a / velocity.gamma().powi(2)
+                        ),
+                    );
+                }
+            }
+            if radius > MAX_LOCAL_RADIUS_PER_A * a {
+                return c.err(
+                    &format!("object[{i}].radius"),
+                    format!(
+                        "{radius} is too large for a local sphere with a = {a}: a local object is described in its rest frame to second order in its size, which needs radius ≤ {MAX_LOCAL_RADIUS_PER_A}·a = {}; use frame = \"coordinates\" for a large object",
+                        MAX_LOCAL_RADIUS_PER_A * a
+                    ),
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every time, position and size in the scene within [`MAX_COORDINATE_PER_A`] of the
+/// scale (a in Gödel's universe, 1 in flat spacetime), located at the offending field.
+fn coordinate_bounds(
+    c: &Checker,
+    metric: &Metric,
+    observer: &Observer,
+    objects: &[Object],
+    lights: &[Light],
+) -> Result<()> {
+    let bound = MAX_COORDINATE_PER_A * metric.godel_a().unwrap_or(1.0);
+    let check = |path: &str, values: &[f64]| -> Result<()> {
+        match values.iter().find(|v| v.abs() > bound) {
+            Some(v) => c.err(
+                path,
+                format!("{v} is beyond ±{bound:e} (1e6 times the scale a): the tracer loses precision there"),
+            ),
+            None => Ok(()),
+        }
+    };
+    let event = |e: Event| [e.x, e.y, e.z];
+    check("observer.time", &[observer.event.t])?;
+    check("observer.position", &event(observer.event))?;
+    for (i, o) in objects.iter().enumerate() {
+        let p = |f: &str| format!("object[{i}].{f}");
+        match o.motion {
+            Motion::Rest { position } => check(&p("motion.position"), &event(position))?,
+            Motion::Geodesic { start, .. } => {
+                check(&p("motion.time"), &[start.t])?;
+                check(&p("motion.position"), &event(start))?;
+            }
+        }
+        match o.shape {
+            Shape::Sphere { radius } => check(&p("radius"), &[radius])?,
+            Shape::CoordinateSphere { center, radius } => {
+                check(&p("center"), &center)?;
+                check(&p("radius"), &[radius])?;
+            }
+            Shape::Plane { height, extent } => {
+                check(&p("height"), &[height])?;
+                check(&p("extent"), &[extent.unwrap_or(0.0)])?;
+            }
+        }
+    }
+    for (i, l) in lights.iter().enumerate() {
+        check(&format!("light[{i}].position"), &event(l.position))?;
+    }
+    Ok(())
 }

@@ -212,7 +212,7 @@ fn observer_pixel_directions_use_forward_right_up() {
 #[test]
 fn image_textures() {
     let t = |tex: &str| {
-        scene(&format!("[[object]]\nname = \"b\"\nradius = 1\ntexture = {tex}\nmotion = {{ kind = \"rest\", position = {{ r = 1 }} }}\n"))
+        scene(&format!("[[object]]\nname = \"b\"\nradius = 0.2\ntexture = {tex}\nmotion = {{ kind = \"rest\", position = {{ r = 1 }} }}\n"))
     };
     assert_eq!(
         t("{ kind = \"image\", builtin = \"earth\" }")
@@ -241,4 +241,64 @@ fn image_textures() {
         t("{ kind = \"uniform\" }").unwrap_err().field,
         "object[0].texture.color"
     );
+}
+
+/// Issue 10: `tolerance = 1e-300` or `1e10` was accepted, and then every pixel failed with
+/// exit 0; a huge `max_steps` was accepted too. Both are refused at the field.
+#[test]
+fn tolerance_and_step_budget_are_bounded() {
+    for bad in ["1e-300", "1e-15", "1e10", "0.01"] {
+        let e = err(&format!("[trace]\ntolerance = {bad}\n"));
+        assert_eq!(e.field, "trace.tolerance", "{bad}: {e}");
+        assert_eq!(e.line(), Some(7), "{bad}: {e}");
+        assert!(
+            e.message.contains("1e-14") && e.message.contains("0.001"),
+            "{e}"
+        );
+    }
+    for good in ["1e-14", "1e-11", "1e-3"] {
+        let s = scene(&format!("[trace]\ntolerance = {good}\n")).unwrap();
+        assert_eq!(s.trace.tolerance, good.parse::<f64>().unwrap());
+    }
+    let e = err("[trace]\nmax_steps = 10000001\n");
+    assert_eq!(e.field, "trace.max_steps", "{e}");
+    assert!(e.message.contains("10000000"), "{e}");
+    assert_eq!(
+        scene("[trace]\nmax_steps = 10000000\n")
+            .unwrap()
+            .trace
+            .max_steps,
+        10_000_000
+    );
+}
+
+/// Issue 10: `name = "."` wrote hidden files `..png` and `..exr`. Names that would make
+/// hidden or odd output files are refused at the field.
+#[test]
+fn output_names_that_make_hidden_or_odd_files_are_refused() {
+    let long = "n".repeat(101);
+    for bad in [
+        ".",
+        "..",
+        ".hidden",
+        "-flag",
+        " padded",
+        "padded ",
+        long.as_str(),
+    ] {
+        let text = MINIMAL.replacen("name = \"m\"", &format!("name = {bad:?}"), 1);
+        let e = Scene::from_str(&text, "test.toml").unwrap_err();
+        assert_eq!(e.field, "name", "{bad:?}: {e}");
+        assert_eq!(e.line(), Some(1), "{bad:?}: {e}");
+    }
+    for good in [
+        "a.b",
+        "static-sphere",
+        "n_1",
+        "Gödel 1949",
+        &"n".repeat(100),
+    ] {
+        let text = MINIMAL.replacen("name = \"m\"", &format!("name = {good:?}"), 1);
+        assert_eq!(Scene::from_str(&text, "test.toml").unwrap().name, good);
+    }
 }

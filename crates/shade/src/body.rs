@@ -2,7 +2,7 @@
 //! scale, turn about the body axis) and its blinking lamps; the rule is in
 //! [`crate::shading`]'s documentation.
 
-use render::record::PixelRecord;
+use datafile::record::PixelRecord;
 
 use crate::checks::{colour, finite, invalid, positive};
 use crate::error::ShadeError;

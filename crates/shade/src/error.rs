@@ -7,12 +7,27 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum ShadeError {
     /// An image texture file could not be read or decoded.
-    #[error("image texture {}: {source}", path.display())]
+    #[error("image texture {}: {source}", one_line(path.display()))]
     ImageRead {
         path: PathBuf,
         #[source]
         source: image::ImageError,
     },
+    /// An image texture path names something other than a regular file (a folder, a FIFO,
+    /// a device).
+    #[error("image texture {}: not a regular file", one_line(path.display()))]
+    ImageNotFile { path: PathBuf },
+    /// An image texture file or image is larger than the caps.
+    #[error("image texture {}: {}", one_line(path.display()), one_line(what))]
+    ImageTooLarge { path: PathBuf, what: String },
+    /// An image texture path that the texture source does not allow: missing, outside its
+    /// folders (symbolic links resolved), or not a regular file. The message says no more, so
+    /// that it reveals nothing about files elsewhere.
+    #[error("image texture {}: no image file of that name in the folders textures may come from", one_line(path.display()))]
+    ImageRefused { path: PathBuf },
+    /// A folder given as a place textures may come from cannot be used.
+    #[error("texture folder {}: {}", one_line(path.display()), one_line(message))]
+    TextureFolder { path: PathBuf, message: String },
     /// A built-in image failed to decode (a broken build, never user input).
     #[error("built-in image {name}: {source}")]
     Builtin {
@@ -21,7 +36,7 @@ pub enum ShadeError {
         source: image::ImageError,
     },
     /// An image texture has zero width or height.
-    #[error("image texture {}: the image is empty ({width}×{height})", path.display())]
+    #[error("image texture {}: the image is empty ({width}×{height})", one_line(path.display()))]
     EmptyImage {
         path: PathBuf,
         width: u32,
@@ -34,24 +49,24 @@ pub enum ShadeError {
         scene: Vec<String>,
     },
     /// Encoding an output image failed.
-    #[error("encoding {}: {source}", path.display())]
+    #[error("encoding {}: {source}", one_line(path.display()))]
     Encode {
         path: PathBuf,
         #[source]
         source: image::ImageError,
     },
     /// Writing an output file failed (nothing was left at `path`).
-    #[error("writing {}: {source}", path.display())]
+    #[error("writing {}: {source}", one_line(path.display()))]
     Write {
         path: PathBuf,
         #[source]
         source: std::io::Error,
     },
     /// A settings value is invalid (field path such as `objects.ball.temperature`).
-    #[error("shade settings: {field}: {message}")]
+    #[error("shade settings: {}: {}", one_line(field), one_line(message))]
     Invalid { field: String, message: String },
     /// A settings file is malformed or names unknown fields.
-    #[error("{file}{}{}: {message}", line_suffix(*line), field_suffix(field))]
+    #[error("{}{}{}: {}", one_line(file), line_suffix(*line), field_suffix(field), one_line(message))]
     Settings {
         file: String,
         /// 1-based; 0 when unknown.
@@ -60,7 +75,7 @@ pub enum ShadeError {
         message: String,
     },
     /// A sequence script is malformed, names unknown fields, or has keyframes out of order.
-    #[error("{file}{}{}: {message}", line_suffix(*line), field_suffix(field))]
+    #[error("{}{}{}: {}", one_line(file), line_suffix(*line), field_suffix(field), one_line(message))]
     Script {
         file: String,
         /// 1-based; 0 when unknown.
@@ -89,6 +104,11 @@ fn field_suffix(field: &str) -> String {
     if field.is_empty() {
         String::new()
     } else {
-        format!(": {field}")
+        format!(": {}", one_line(field))
     }
+}
+
+/// Text from the user (paths, names, values quoted in messages) kept on one line.
+fn one_line(text: impl std::fmt::Display) -> String {
+    scene::one_line(&text.to_string())
 }

@@ -27,8 +27,8 @@
 //! Rows are shaded in parallel; the result does not depend on the thread count.
 
 use image::RgbImage;
-use render::datafile::DataFile;
-use render::record::PixelRecord;
+use datafile::DataFile;
+use datafile::record::PixelRecord;
 
 use crate::blackbody::table;
 use crate::colour::rgb_to_srgb8;

@@ -11,7 +11,10 @@
 //! - [`Texture`]: a runtime texture (checker, gradient, uniform, equirectangular image such as
 //!   the built-in earth) built from a scene's `TextureSpec` with [`Texture::load`], sampled at
 //!   body coordinates (u, v) in linear RGB.
-//! - [`shade_textures`] / [`preview`]: the texture shader, a [`render::datafile::DataFile`] to
+//! - [`TextureSource`]: where image textures may be read from — any file (the command line) or
+//!   only regular files inside given folders (the viewer); reads are capped
+//!   ([`MAX_IMAGE_FILE_BYTES`], [`MAX_IMAGE_SIDE`]).
+//! - [`shade_textures`] / [`preview`]: the texture shader, a [`datafile::DataFile`] to
 //!   an 8-bit sRGB image; [`write_png`] writes it atomically.
 //! - [`blackbody`]: Planck's law, CIE 1931 XYZ, XYZ → linear sRGB, and the black-body
 //!   colour table in temperature used by the frequency shader.
@@ -33,6 +36,7 @@ pub mod settings;
 pub mod shading;
 pub mod texture;
 pub mod texture_shader;
+pub mod texture_source;
 mod tree;
 
 pub use error::ShadeError;
@@ -40,11 +44,12 @@ pub use frequency_shader::{shade_frequency, Brightness};
 pub use script::{keyframe_toml, FrameSource, Interpolation, Keyframe, Script, Timeline};
 pub use settings::{
     BrightnessMode, Lamp, LightSettings, LightSource, ObjectSettings, ShadeSettings, ShaderKind,
-    TextureChoice, TimeMode, TimeSettings,
+    TextureChoice, TimeMode, TimeSettings, MAX_LAMPS, MAX_LIGHT_SOURCES,
 };
 pub use shading::Shading;
-pub use texture::{ImageTexture, Texture};
+pub use texture::{ImageTexture, Texture, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE};
 pub use texture_shader::{
-    pixel_colour, preview, shade_textures, shading_factor, textures_for_scene, write_png,
-    BACKGROUND,
+    encode_png, pixel_colour, preview, shade_textures, shading_factor, textures_for_scene,
+    write_png, BACKGROUND,
 };
+pub use texture_source::TextureSource;

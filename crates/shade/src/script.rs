@@ -7,8 +7,8 @@
 //! # scene = "../scenes/static-sphere.toml"
 //! # observer_time = [0.0, 2.0]       # first and last frame, linear in between
 //! output = "frames"                  # folder for frame_0000.png, … and sequence.mp4
-//! frames = 48
-//! fps = 24.0
+//! frames = 48                        # 1 to 100000
+//! fps = 24.0                         # at most 1000
 //! interpolation = "smooth"           # default for every keyframe: "linear" | "smooth"
 //! mp4 = true                         # also encode an MP4 when ffmpeg is on PATH
 //!
@@ -175,14 +175,22 @@ pub fn keyframe_toml(frame: u32, settings: &ShadeSettings) -> String {
     .expect("settings always serialize to TOML")
 }
 
+/// Most frames in a sequence (over an hour at 24 fps).
+pub const MAX_FRAMES: u32 = 100_000;
+/// Highest frame rate.
+pub const MAX_FPS: f64 = 1000.0;
+
 impl Script {
-    /// Reads and checks a script file.
+    /// Reads and checks a script file (a regular file of at most
+    /// [`scene::input::MAX_TEXT_BYTES`]).
     pub fn from_file(path: &Path) -> Result<Script, ShadeError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ShadeError::Script {
-            file: path.display().to_string(),
-            line: 0,
-            field: String::new(),
-            message: format!("cannot read the script: {e}"),
+        let text = scene::input::read_text(path, scene::input::MAX_TEXT_BYTES).map_err(|e| {
+            ShadeError::Script {
+                file: path.display().to_string(),
+                line: 0,
+                field: String::new(),
+                message: format!("cannot read the script: {e}"),
+            }
         })?;
         Script::parse(&text, path)
     }
@@ -232,13 +240,19 @@ impl Script {
                         .into(),
                 )),
             };
-        if raw.frames == 0 {
-            return Err(error("frames", "must be at least 1".into()));
+        if !(1..=MAX_FRAMES).contains(&raw.frames) {
+            return Err(error(
+                "frames",
+                format!(
+                    "must be at least 1 and at most {MAX_FRAMES}, got {}",
+                    raw.frames
+                ),
+            ));
         }
-        if !(raw.fps.is_finite() && raw.fps > 0.0) {
+        if !(raw.fps.is_finite() && raw.fps > 0.0 && raw.fps <= MAX_FPS) {
             return Err(error(
                 "fps",
-                format!("must be positive and finite, got {}", raw.fps),
+                format!("must be positive and at most {MAX_FPS}, got {}", raw.fps),
             ));
         }
         let mut keyframes: Vec<Keyframe> = Vec::new();
@@ -302,6 +316,16 @@ impl Script {
         })
     }
 
+    /// An error about `field` of this script, located at its line.
+    pub fn error_at(&self, field: &str, message: impl Into<String>) -> ShadeError {
+        ShadeError::Script {
+            file: self.file.clone(),
+            line: line_of_path(&self.text, field).unwrap_or(0),
+            field: field.to_string(),
+            message: message.into(),
+        }
+    }
+
     /// The complete settings at each keyframe, starting from `defaults` (those of the data
     /// file); errors name the script line and field of an unknown field or object, or of a
     /// value of the wrong type.
@@ -316,8 +340,14 @@ impl Script {
         let mut current = merge(&start, &self.settings, "")
             .map_err(|(f, m)| error(format!("settings.{f}"), m))?;
         let check = |table: &toml::Table, field: &str| {
-            ShadeSettings::deserialize(table.clone())
-                .map_err(|e| error(field.to_string(), e.message().to_string()))
+            ShadeSettings::from_table(table.clone()).map_err(|(path, message)| {
+                let at = if path.is_empty() {
+                    field.to_string()
+                } else {
+                    format!("{field}.{path}")
+                };
+                error(at, message)
+            })
         };
         let base = check(&current, "settings")?;
         let mut keys = Vec::new();

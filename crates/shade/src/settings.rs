@@ -41,7 +41,7 @@ use std::fmt;
 use std::path::PathBuf;
 use std::str::FromStr;
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ShadeError;
@@ -218,7 +218,7 @@ pub struct ObjectSettings {
     /// Texture coordinates: u_tex = scale_u·u + offset_u − rotation_deg/360, v_tex = scale_v·v + offset_v.
     pub offset_u: f64,
     pub offset_v: f64,
-    /// Non-zero.
+    /// Finite; 0 spreads one texel over the whole body (a keyframed flip passes through it).
     pub scale_u: f64,
     pub scale_v: f64,
     /// The body turned about its axis by this angle (u is the longitude).
@@ -284,6 +284,13 @@ pub struct ShadeSettings {
     /// By object name; objects not listed keep their defaults.
     pub objects: BTreeMap<String, ObjectSettings>,
 }
+
+/// Most lamps on one object: each is tested at every pixel of the object, so the cost of a
+/// picture grows with them (20,000 lamps took 21.7 s of two cores for one picture).
+pub const MAX_LAMPS: usize = 64;
+/// Most light sources a settings value may list beyond the data file's light channels (more
+/// may be listed where the data file has more channels).
+pub const MAX_LIGHT_SOURCES: usize = 64;
 
 /// Default highlight inside the time window: warm yellow.
 pub const WINDOW_COLOUR: [f64; 3] = [1.0, 0.75, 0.1];
@@ -420,7 +427,17 @@ impl ShadeSettings {
     pub fn overlay(&self, partial: &toml::Table) -> Result<ShadeSettings, (String, String)> {
         let base = toml::Table::try_from(self).expect("settings serialize to a TOML table");
         let merged = crate::tree::merge(&base, partial, "")?;
-        ShadeSettings::deserialize(merged).map_err(|e| (String::new(), e.message().to_string()))
+        ShadeSettings::from_table(merged)
+    }
+
+    /// Complete settings from a TOML table; on error, the path of the field at fault (e.g.
+    /// `objects.ball.texture` for a checker without `rows`) and what is wrong.
+    pub(crate) fn from_table(table: toml::Table) -> Result<ShadeSettings, (String, String)> {
+        serde_path_to_error::deserialize(table).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." { String::new() } else { path };
+            (path, e.inner().message().to_string())
+        })
     }
 }
 

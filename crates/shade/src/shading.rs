@@ -17,30 +17,37 @@
 //! exactly the render's preview; black bodies and false colours are not Lambert-shaded.
 //! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
 //!
+//! Caps, checked with the other settings so that every front end gets them: at most
+//! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
+//! light count, if larger); image files as [`crate::texture`] caps them.
+//!
 //! Texture coordinates: u_tex = scale_u·u + offset_u − rotation_deg/360 (the body turned about
 //! its axis: u is the longitude), v_tex = scale_v·v + offset_v. A lamp covers the disc of
 //! angular radius `radius_deg` around its centre on the unit sphere (longitude 2π·u_tex,
 //! latitude π(v_tex − ½)) and is on when ((t − phase)/period) mod 1 < duty, t being the
 //! coordinate time of emission (observer time + t_emit); off it shows a tenth of its colour.
 
+use std::collections::HashMap;
+
 use image::RgbImage;
 use rayon::prelude::*;
-use render::datafile::DataFile;
-use scene::Scene;
+use datafile::DataFile;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
-use crate::checks::{colour, finite, invalid, non_negative, nonzero, positive};
+use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
 use crate::colour::rgb_to_srgb8_fast;
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
 use crate::legend::{draw_legend, false_colour};
 use crate::settings::{
-    BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
+    BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
+    MAX_LIGHT_SOURCES,
 };
 use crate::texture::{ImageTexture, Texture};
 use crate::texture_shader::{shading_factor, status_colour, BACKGROUND, FAILED};
+use crate::texture_source::TextureSource;
 
 /// Settings checked against a data file, textures loaded: ready to shade it (or other data
 /// files with the same objects and lights) any number of times.
@@ -64,10 +71,21 @@ pub struct Shading {
 }
 
 impl Shading {
-    /// Checks `settings` against `data` and loads the textures. Errors name the settings
-    /// field (e.g. `objects.ball.temperature`), the unknown object, the image file, or the
-    /// missing light channels.
+    /// Checks `settings` against `data` and loads the textures, image files from anywhere
+    /// ([`TextureSource::any`]: the command line). Errors name the settings field (e.g.
+    /// `objects.ball.temperature`), the unknown object, the image file, or the missing light
+    /// channels.
     pub fn new(data: &DataFile, settings: &ShadeSettings) -> Result<Shading, ShadeError> {
+        Shading::with_textures(data, settings, &TextureSource::any())
+    }
+
+    /// [`Shading::new`] with image textures, and the embedded scene's textures, from `textures`
+    /// (the viewer restricts them to a few folders).
+    pub fn with_textures(
+        data: &DataFile,
+        settings: &ShadeSettings,
+        textures: &TextureSource,
+    ) -> Result<Shading, ShadeError> {
         if settings.shaders.is_empty() {
             return Err(invalid("shaders", "name at least one shader"));
         }
@@ -78,16 +96,14 @@ impl Shading {
         }
         let has = |k: ShaderKind| settings.shaders.contains(&k);
         let names = &data.header.object_names;
-        for name in settings.objects.keys() {
-            if !names.contains(name) {
-                return Err(invalid(
-                    format!("objects.{name}"),
-                    format!(
-                        "unknown object '{name}' (the data file's objects: {})",
-                        names.join(", ")
-                    ),
-                ));
-            }
+        if let Some(name) = first_unknown(names, settings.objects.keys()) {
+            return Err(invalid(
+                format!("objects.{name}"),
+                format!(
+                    "unknown object '{name}' (the data file's objects: {})",
+                    name_list(names)
+                ),
+            ));
         }
         let exposure = non_negative("exposure", settings.exposure)?;
         let brightness = match settings.brightness {
@@ -121,6 +137,17 @@ impl Shading {
                 ),
             ));
         }
+        let most = MAX_LIGHT_SOURCES.max(data.lights.len());
+        if sources.len() > most {
+            return Err(invalid(
+                "light.sources",
+                format!(
+                    "at most {most} sources (the data file has {} light channel(s)), got {}",
+                    data.lights.len(),
+                    sources.len()
+                ),
+            ));
+        }
         let mut lights = Vec::new();
         for k in 0..data.lights.len() {
             let w = match sources.get(k) {
@@ -141,28 +168,42 @@ impl Shading {
 
         // The scene's own textures, only when a layer paints textures.
         let paints = has(ShaderKind::Texture) || has(ShaderKind::Time) || has(ShaderKind::Light);
-        let defaults = ShadeSettings::defaults_for(data);
+        // The data file's defaults only for objects the settings leave out (reading them
+        // parses the embedded scene: the page sends every object, and skips that).
+        let defaults =
+            (settings.objects.len() < names.len()).then(|| ShadeSettings::defaults_for(data));
         let mut scene_textures: Option<Vec<Texture>> = None;
         let mut earth: Option<Texture> = None;
+        // Each image file decoded once, however many objects show it.
+        let mut images = HashMap::new();
         let mut objects = Vec::with_capacity(names.len());
         for (k, name) in names.iter().enumerate() {
             let o = settings
                 .objects
                 .get(name)
-                .or_else(|| defaults.objects.get(name))
+                .or_else(|| defaults.as_ref().and_then(|d| d.objects.get(name)))
                 .cloned()
                 .unwrap_or_else(|| ObjectSettings::new(crate::settings::DEFAULT_TEMPERATURE));
             let field = format!("objects.{name}");
             let temperature = positive(&format!("{field}.temperature"), o.temperature)?;
             let scale = [
-                nonzero(&format!("{field}.scale_u"), o.scale_u)?,
-                nonzero(&format!("{field}.scale_v"), o.scale_v)?,
+                finite(&format!("{field}.scale_u"), o.scale_u)?,
+                finite(&format!("{field}.scale_v"), o.scale_v)?,
             ];
             let rotation = finite(&format!("{field}.rotation_deg"), o.rotation_deg)?;
             let offset = [
                 finite(&format!("{field}.offset_u"), o.offset_u)? - rotation / 360.0,
                 finite(&format!("{field}.offset_v"), o.offset_v)?,
             ];
+            if o.lamps.len() > MAX_LAMPS {
+                return Err(invalid(
+                    format!("{field}.lamps"),
+                    format!(
+                        "at most {MAX_LAMPS} lamps per object, got {}",
+                        o.lamps.len()
+                    ),
+                ));
+            }
             let lamps = o
                 .lamps
                 .iter()
@@ -177,7 +218,7 @@ impl Shading {
                 Ok(match choice {
                     TextureChoice::Scene => {
                         if scene_textures.is_none() {
-                            scene_textures = Some(load_scene_textures(data)?);
+                            scene_textures = Some(textures.scene_textures(data)?);
                         }
                         scene_textures
                             .as_ref()
@@ -198,7 +239,9 @@ impl Shading {
                     TextureChoice::Uniform { color } => {
                         Texture::Uniform(colour(&format!("{f}.color"), *color)?)
                     }
-                    TextureChoice::Image { path } => Texture::Image(ImageTexture::from_file(path)?),
+                    TextureChoice::Image { path } => {
+                        Texture::Image(textures.image_cached(path, &mut images)?)
+                    }
                     TextureChoice::Earth => {
                         if earth.is_none() {
                             earth = Some(Texture::Image(ImageTexture::earth()?));
@@ -395,12 +438,14 @@ impl Shading {
     }
 }
 
-/// The scene's own textures, from the scene text embedded in the data file (relative image
-/// paths resolve against the current directory).
-fn load_scene_textures(data: &DataFile) -> Result<Vec<Texture>, ShadeError> {
-    let scene = Scene::from_str(&data.header.scene_text, "<scene embedded in the data file>")
-        .map_err(ShadeError::EmbeddedScene)?;
-    crate::texture_shader::textures_for_scene(&scene)
+/// The data file's object names for a message: all of them, or the first few and the count.
+fn name_list(names: &[String]) -> String {
+    const SHOWN: usize = 10;
+    if names.len() <= SHOWN {
+        names.join(", ")
+    } else {
+        format!("{}, … ({} in all)", names[..SHOWN].join(", "), names.len())
+    }
 }
 
 fn mul(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {

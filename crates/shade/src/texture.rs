@@ -17,7 +17,12 @@
 //!   clamping in v.
 //!
 //! Out-of-range u wraps and v clamps for every texture; NaN counts as 0.
+//!
+//! Image files are read with bounded work: regular files only (never a FIFO or a device), at
+//! most [`MAX_IMAGE_FILE_BYTES`], decoded with at most [`MAX_IMAGE_SIDE`] pixels on a side.
+//! Which files may be read at all is [`crate::texture_source`]'s business.
 
+use std::io::Read;
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
@@ -28,6 +33,13 @@ use crate::error::ShadeError;
 
 /// The built-in earth map (Natural Earth, public domain; see assets/NOTICE.md).
 const EARTH_PNG: &[u8] = include_bytes!("../../../assets/earth-natural-earth-720x360.png");
+
+/// Largest image texture file read, in bytes (256 MiB).
+pub const MAX_IMAGE_FILE_BYTES: u64 = 256 << 20;
+/// Largest image texture side, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+/// Most memory the decoder may allocate for one image (an RGBA image 16384 × 8192 fits).
+const MAX_DECODE_BYTES: u64 = 512 << 20;
 
 /// Light checker cells: 0.9 grey, mixed this much with the hue of u.
 const CHECKER_LIGHT: f32 = 0.9;
@@ -98,22 +110,72 @@ impl Texture {
 }
 
 impl ImageTexture {
-    /// Reads and decodes an image file (any format the `image` crate was built with: PNG).
+    /// Reads and decodes an image file (any format the `image` crate was built with: PNG):
+    /// a regular file of at most [`MAX_IMAGE_FILE_BYTES`], at most [`MAX_IMAGE_SIDE`] pixels
+    /// on a side. Errors name `path`.
     pub fn from_file(path: &Path) -> Result<ImageTexture, ShadeError> {
-        let error = |source| ShadeError::ImageRead {
-            path: path.to_path_buf(),
-            source,
+        ImageTexture::read(path, path)
+    }
+
+    /// [`ImageTexture::from_file`] of `file`, with errors naming `shown` instead (the path as
+    /// the user gave it, where `file` is where it was found).
+    pub fn read(file: &Path, shown: &Path) -> Result<ImageTexture, ShadeError> {
+        let io_error = |e: std::io::Error| ShadeError::ImageRead {
+            path: shown.to_path_buf(),
+            source: image::ImageError::IoError(e),
         };
-        let decoded = image::ImageReader::open(path)
-            .map_err(|e| error(image::ImageError::IoError(e)))?
+        let too_large = |what: String| ShadeError::ImageTooLarge {
+            path: shown.to_path_buf(),
+            what,
+        };
+        // Checked before opening: opening a FIFO would wait for a writer.
+        if !std::fs::metadata(file).map_err(io_error)?.is_file() {
+            return Err(ShadeError::ImageNotFile {
+                path: shown.to_path_buf(),
+            });
+        }
+        let opened = std::fs::File::open(file).map_err(io_error)?;
+        // Checked again on what was opened, in case the name was replaced meanwhile.
+        let meta = opened.metadata().map_err(io_error)?;
+        if !meta.is_file() {
+            return Err(ShadeError::ImageNotFile {
+                path: shown.to_path_buf(),
+            });
+        }
+        let cap = format!("{} MiB", MAX_IMAGE_FILE_BYTES >> 20);
+        if meta.len() > MAX_IMAGE_FILE_BYTES {
+            return Err(too_large(format!("the file is larger than {cap}")));
+        }
+        let mut bytes = Vec::new();
+        opened
+            .take(MAX_IMAGE_FILE_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(io_error)?;
+        if bytes.len() as u64 > MAX_IMAGE_FILE_BYTES {
+            return Err(too_large(format!("the file grew larger than {cap}")));
+        }
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
             .with_guessed_format()
-            .map_err(|e| error(image::ImageError::IoError(e)))?
-            .decode()
-            .map_err(error)?;
-        let rgb = decoded.to_rgb8();
+            .map_err(io_error)?;
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_IMAGE_SIDE);
+        limits.max_image_height = Some(MAX_IMAGE_SIDE);
+        limits.max_alloc = Some(MAX_DECODE_BYTES);
+        reader.limits(limits);
+        let decoded = reader.decode().map_err(|e| match e {
+            image::ImageError::Limits(_) => too_large(format!(
+                "more than {MAX_IMAGE_SIDE} pixels on a side or {} MiB decoded",
+                MAX_DECODE_BYTES >> 20
+            )),
+            source => ShadeError::ImageRead {
+                path: shown.to_path_buf(),
+                source,
+            },
+        })?;
+        let rgb = decoded.into_rgb8();
         if rgb.width() == 0 || rgb.height() == 0 {
             return Err(ShadeError::EmptyImage {
-                path: path.to_path_buf(),
+                path: shown.to_path_buf(),
                 width: rgb.width(),
                 height: rgb.height(),
             });
@@ -213,7 +275,8 @@ fn linear_lut() -> &'static [f32; 256] {
 fn checker(rows: u32, cols: u32, u: f64, v: f64) -> [f32; 3] {
     let i = ((u * cols as f64) as u32).min(cols - 1);
     let j = ((v * rows as f64) as u32).min(rows - 1);
-    if (i + j).is_multiple_of(2) {
+    // The parity of i + j, without the sum (rows and cols go up to u32::MAX).
+    if (i ^ j) & 1 == 0 {
         let tint = hue(u as f32);
         let grey = [CHECKER_LIGHT; 3];
         lerp3(grey, tint.map(|c| c * CHECKER_LIGHT), CHECKER_TINT)

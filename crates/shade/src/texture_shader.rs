@@ -8,7 +8,7 @@
 //! | hit object k | texture k at (u, v) × (0.25 + 0.75·max(cos_i, 0)) |
 //! | nothing hit (escaped) | the `background` argument ([`BACKGROUND`] for the preview) |
 //! | integration failed | [`FAILED`], magenta |
-//! | step budget spent | [`STEP_BUDGET`], dark magenta |
+//! | step budget or work limit spent | [`STEP_BUDGET`], dark magenta |
 //! | not traced (outside a fisheye circle) | [`NOT_TRACED`], black |
 //! | object with no texture (data and textures disagree) | [`FAILED`] |
 //!
@@ -25,9 +25,9 @@ use std::path::Path;
 
 use image::RgbImage;
 use rayon::prelude::*;
-use render::atomic::write_atomically;
-use render::datafile::DataFile;
-use render::record::{PixelRecord, RayStatus};
+use datafile::atomic::write_atomically;
+use datafile::DataFile;
+use datafile::record::{PixelRecord, RayStatus};
 use scene::Scene;
 
 use crate::colour::rgb_to_srgb8;
@@ -90,7 +90,7 @@ pub fn shade_pixels_at(
 pub fn status_colour(record: &PixelRecord, background: [f32; 3]) -> Option<[f32; 3]> {
     match record.status {
         RayStatus::Failed => Some(FAILED),
-        RayStatus::StepBudget => Some(STEP_BUDGET),
+        RayStatus::StepBudget | RayStatus::WorkLimit => Some(STEP_BUDGET),
         RayStatus::NotTraced => Some(NOT_TRACED),
         RayStatus::Hit | RayStatus::Escaped => (record.object < 0).then_some(background),
     }
@@ -195,8 +195,8 @@ pub fn preview_with_textures(data: &DataFile, textures: &[Texture], scene: &Scen
     shade_lit(data, textures, &colours, BACKGROUND)
 }
 
-/// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
-pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
+/// The PNG file of `img`, in memory (`path` only names it in errors).
+pub fn encode_png(img: &RgbImage, path: &Path) -> Result<Vec<u8>, ShadeError> {
     let mut bytes = Vec::new();
     img.write_to(
         &mut std::io::Cursor::new(&mut bytes),
@@ -206,6 +206,12 @@ pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
         path: path.to_path_buf(),
         source,
     })?;
+    Ok(bytes)
+}
+
+/// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
+pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
+    let bytes = encode_png(img, path)?;
     write_atomically(path, |file| std::io::Write::write_all(file, &bytes)).map_err(|source| {
         ShadeError::Write {
             path: path.to_path_buf(),

@@ -53,9 +53,9 @@ fn join(prefix: &str, key: &str) -> String {
 /// held at `a` until `s` reaches 1, then `b`.
 pub fn lerp(a: &Value, b: &Value, s: f64) -> Value {
     match (a, b) {
-        (Value::Float(x), Value::Float(y)) => Value::Float(x + s * (y - x)),
-        (Value::Float(x), Value::Integer(y)) => Value::Float(x + s * (*y as f64 - x)),
-        (Value::Integer(x), Value::Float(y)) => Value::Float(*x as f64 + s * (y - *x as f64)),
+        (Value::Float(x), Value::Float(y)) => Value::Float(mix(*x, *y, s)),
+        (Value::Float(x), Value::Integer(y)) => Value::Float(mix(*x, *y as f64, s)),
+        (Value::Integer(x), Value::Float(y)) => Value::Float(mix(*x as f64, *y, s)),
         (Value::Table(x), Value::Table(y))
             if x.get("kind") == y.get("kind") && x.len() == y.len() =>
         {
@@ -73,6 +73,21 @@ pub fn lerp(a: &Value, b: &Value, s: f64) -> Value {
             Value::Array(x.iter().zip(y).map(|(p, q)| lerp(p, q, s)).collect())
         }
         _ => hold(a, b, s),
+    }
+}
+
+/// `x + s·(y − x)`, exactly x at s = 0 (a keyframe's own value, −0.0 included); where
+/// y − x overflows (finite values of opposite sign near the largest float), the same point
+/// as `(1 − s)·x + s·y`, kept between x and y.
+fn mix(x: f64, y: f64, s: f64) -> f64 {
+    if s == 0.0 {
+        return x;
+    }
+    let v = x + s * (y - x);
+    if v.is_finite() || !(x.is_finite() && y.is_finite()) {
+        v
+    } else {
+        (x * (1.0 - s) + y * s).clamp(x.min(y), x.max(y))
     }
 }
 

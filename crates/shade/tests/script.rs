@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::record::PixelRecord;
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::PixelRecord;
 use shade::{FrameSource, Interpolation, Script, ShadeError, ShadeSettings, ShaderKind};
 
 fn data() -> DataFile {
@@ -90,6 +90,74 @@ fn linear_and_smooth_interpolation_at_known_fractions() {
     // Non-numeric fields switch when the next keyframe is reached.
     assert_eq!(tl.settings_at(14).shaders, vec![ShaderKind::Texture]);
     assert_eq!(tl.settings_at(15).shaders, vec![ShaderKind::Frequency]);
+}
+
+/// Fuzzing found frame 0 of a script with `offset_u` going from −1e308 to 1e308 with
+/// offset_u = NaN: the interpolation computed x + s·(y − x), and y − x overflows. Every
+/// frame between two finite keyframe values is finite, between them, and exact at the
+/// keyframes.
+#[test]
+fn regression_fuzz_interpolation_between_extreme_values_stays_finite() {
+    let s = script(
+        r#"data = "d.exr"
+frames = 5
+interpolation = "linear"
+[[keyframe]]
+frame = 0
+[keyframe.settings]
+objects.ball.offset_u = -1e308
+objects.ball.offset_v = 1.7976931348623157e308
+[[keyframe]]
+frame = 4
+[keyframe.settings]
+objects.ball.offset_u = 1e308
+objects.ball.offset_v = 1.7976931348623157e308
+"#,
+    )
+    .unwrap();
+    let tl = s.timeline(&ShadeSettings::defaults_for(&data())).unwrap();
+    let at = |f: u32| {
+        let o = &tl.settings_at(f).objects["ball"];
+        (o.offset_u, o.offset_v)
+    };
+    assert_eq!(at(0), (-1e308, f64::MAX));
+    assert_eq!(at(4), (1e308, f64::MAX));
+    assert_eq!(at(2).0, 0.0);
+    for f in 0..5 {
+        let (u, v) = at(f);
+        assert!((-1e308..=1e308).contains(&u), "frame {f}: offset_u = {u}");
+        assert_eq!(v, f64::MAX, "frame {f}");
+    }
+    assert!(at(1).0 < at(2).0 && at(2).0 < at(3).0);
+}
+
+/// Fuzzing found a sequence that stops half-way: a texture flipped by keyframes
+/// (scale_u from −1 to 1) passes through scale 0 at an in-between frame, which the settings
+/// refused after earlier frames were written. A zero scale is a valid picture (one texel over
+/// the whole body): every frame of the flip prepares.
+#[test]
+fn regression_fuzz_a_flip_through_zero_scale_shades_every_frame() {
+    let s = script(
+        r#"data = "d.exr"
+frames = 3
+interpolation = "linear"
+[[keyframe]]
+frame = 0
+[keyframe.settings]
+objects.ball.scale_u = -1.0
+objects.ball.texture = { kind = "checker", rows = 2, cols = 4 }
+[[keyframe]]
+frame = 2
+[keyframe.settings]
+objects.ball.scale_u = 1.0
+"#,
+    )
+    .unwrap();
+    let tl = s.timeline(&ShadeSettings::defaults_for(&data())).unwrap();
+    assert_eq!(tl.settings_at(1).objects["ball"].scale_u, 0.0);
+    for f in 0..3 {
+        shade::Shading::new(&data(), &tl.settings_at(f)).unwrap();
+    }
 }
 
 #[test]

@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use scene::{BuiltinImage, ImageSource, TextureSpec};
 use shade::colour::{linear_to_srgb, linear_to_srgb8, rgb_to_srgb8, srgb_to_linear};
 use shade::{shade_textures, shading_factor, write_png, ShadeError, Texture};
@@ -75,6 +75,22 @@ fn checker_alternates_between_neighbouring_cells() {
     let at = |u: f64, v: f64| luminance(t.sample(u, v)) > 0.4;
     assert_ne!(at(3.0 * du - 1e-6, 0.3), at(3.0 * du + 1e-6, 0.3));
     assert_ne!(at(0.3, 5.0 * dv - 1e-6), at(0.3, 5.0 * dv + 1e-6));
+}
+
+/// Fuzzing found `render` panicking ("attempt to add with overflow") on a checker with
+/// rows = cols = 4294967295: the cell parity summed two cell indices near u32::MAX. The
+/// largest checker still alternates between neighbouring cells.
+#[test]
+fn regression_fuzz_checker_with_u32_max_cells() {
+    let n = u32::MAX;
+    let t = Texture::load(&TextureSpec::Checker { rows: n, cols: n }).unwrap();
+    let light = |u: f64, v: f64| luminance(t.sample(u, v)) > 0.4;
+    // Near u = v = 1 the cell indices are n − 1 (even sum: light) and n − 2.
+    let (last, before) = (1.0 - 0.5 / n as f64, 1.0 - 1.5 / n as f64);
+    assert!(light(last, last));
+    assert!(!light(before, last));
+    assert!(!light(last, before));
+    assert!(light(before, before));
 }
 
 #[test]

@@ -3,13 +3,14 @@
 //! is decided by t_emit alone, the light layer follows its formula, textures move and lamps
 //! blink, and bad settings are refused naming the field.
 
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use scene::Scene;
 use shade::blackbody::{normalize_max, observed_xyz, unit_rgb};
 use shade::colour::rgb_to_srgb8;
 use shade::{
-    BrightnessMode, Lamp, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TimeMode,
+    BrightnessMode, Lamp, LightSource, ShadeError, ShadeSettings, ShaderKind, Shading,
+    TextureChoice, TimeMode, MAX_LAMPS, MAX_LIGHT_SOURCES,
 };
 
 const SCENE: &str = r#"name = "two"
@@ -304,9 +305,9 @@ fn turning_the_body_moves_the_texture() {
     assert_eq!(moved(0.0, 0.125, 0.3), moved(0.0, 0.0, 0.425));
 }
 
-#[test]
-fn lamps_blink_with_the_emission_time() {
-    let lamp = Lamp {
+/// A green lamp at (0.3, 0.5), 10° wide, on for the first quarter of every 2 time units.
+fn green_lamp() -> Lamp {
+    Lamp {
         u: 0.3,
         v: 0.5,
         radius_deg: 10.0,
@@ -314,7 +315,12 @@ fn lamps_blink_with_the_emission_time() {
         phase: 0.0,
         duty: 0.25,
         color: [0.0, 1.0, 0.0],
-    };
+    }
+}
+
+#[test]
+fn lamps_blink_with_the_emission_time() {
+    let lamp = green_lamp();
     let at = |u: f32, t: f32| {
         let d = one_pixel(hit(0, u, 0.5, 1.0, t, 1.0), vec![]);
         let s = with(&d, |s| {
@@ -329,6 +335,44 @@ fn lamps_blink_with_the_emission_time() {
     assert!((at(0.3, -0.5)[1] - 0.1).abs() < 1e-6);
     // Outside its 10° disc the texture shows, whatever the time.
     assert_eq!(at(0.5, -4.0), at(0.5, -1.0));
+}
+
+/// The caps on per-settings sizes (lamps per object, light sources) hold for every front end:
+/// one over is refused naming the field and the cap, the cap itself is accepted.
+#[test]
+fn lamps_and_light_sources_are_capped() {
+    let data = synthetic();
+    let lamp = green_lamp();
+    let lamps = |n: usize| {
+        with(&data, |s| {
+            s.objects.get_mut("moon").unwrap().lamps = vec![lamp.clone(); n]
+        })
+    };
+    assert!(Shading::new(&data, &lamps(MAX_LAMPS)).is_ok());
+    let e = Shading::new(&data, &lamps(MAX_LAMPS + 1)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "shade settings: objects.moon.lamps: at most {MAX_LAMPS} lamps per object, got {}",
+            MAX_LAMPS + 1
+        )
+    );
+
+    let source = LightSource {
+        on: true,
+        intensity: 1.0,
+        color: [1.0; 3],
+    };
+    let sources = |n: usize| with(&data, |s| s.light.sources = vec![source.clone(); n]);
+    // Listed sources beyond the data file's (none) are ignored up to the cap.
+    assert!(Shading::new(&data, &sources(MAX_LIGHT_SOURCES)).is_ok());
+    let e = Shading::new(&data, &sources(20_000)).unwrap_err();
+    assert!(
+        e.to_string().starts_with(&format!(
+            "shade settings: light.sources: at most {MAX_LIGHT_SOURCES} sources"
+        )),
+        "{e}"
+    );
 }
 
 #[test]

@@ -236,6 +236,8 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
             rejected: 0,
             evaluations: 1,
         };
+        // A state or step the arithmetic cannot handle (NaN, an overflowing estimate) gives
+        // an infinite or NaN size here; `step` then reports it instead of retrying forever.
         me.h = h0.unwrap_or_else(|| me.initial_step()).min(tol.h_max);
         me
     }
@@ -310,11 +312,14 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
         (100.0 * h0).min(h1)
     }
 
-    /// Attempts steps until one is accepted or the integration cannot go on.
+    /// Attempts steps until one is accepted or the integration cannot go on. Bounded: every
+    /// retry shrinks a finite step by at least a factor 0.9 until it falls below `h_min`;
+    /// an infinite or NaN step size (which shrinking never makes finite) ends the attempt
+    /// at once.
     pub fn step(&mut self) -> StepOutcome {
         loop {
             let h = self.h;
-            if !(h >= self.tol.h_min) {
+            if !(h >= self.tol.h_min && h.is_finite()) {
                 return StepOutcome::Stalled;
             }
             self.k[0] = self.f;
@@ -391,7 +396,8 @@ impl<const N: usize, S: OdeSystem<N>> Dop853<N, S> {
                 self.lambda += h;
                 self.y = y_new;
                 self.f = f_new;
-                self.h = (h * factor).min(self.tol.h_max);
+                // Kept finite: an infinite step could never be shrunk back.
+                self.h = (h * factor).min(self.tol.h_max).min(f64::MAX);
                 self.accepted += 1;
                 return StepOutcome::Accepted;
             }

@@ -1,10 +1,9 @@
 //! Local frames: the static observer's frame by Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
 //! (DESIGN.md), Lorentz boosts of a frame to an observer moving with a given velocity, and
 //! the aberration and Doppler factor between two observers at one event (docs/physics.md,
-//! "Looking around without tracing").
+//! "Observers at one event: aberration and Doppler").
 
-use crate::metric::MetricTensor;
-use crate::vectors::{FourVector, Tetrad};
+use crate::vectors::{FourVector, MetricTensor, Tetrad};
 
 /// A velocity given in an observer's local frame: speed 0 ≤ v < 1 along a unit direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -103,7 +102,7 @@ pub fn boost(frame: &Tetrad, velocity: LocalVelocity) -> Tetrad {
 /// boosted frame of [`boost`]); the photon it receives travels along −`own`. Returns the
 /// unit direction n along which the static observer sees the same photon, and the ratio of
 /// the photon's frequencies seen by the two, ν_moving/ν_static = γ(1 + n·v)
-/// = 1/(γ(1 − n′·v)) (docs/physics.md, "Looking around without tracing"):
+/// = 1/(γ(1 − n′·v)) (docs/physics.md, "Observers at one event: aberration and Doppler"):
 ///
 /// n = (n′ + ((γ − 1)(n′·v̂) − γv) v̂) / (γ(1 − n′·v)).
 pub fn aberrate(velocity: LocalVelocity, own: [f64; 3]) -> ([f64; 3], f64) {

@@ -53,6 +53,17 @@ impl GeodesicState {
     }
 }
 
+/// The tangent of a photon that an observer with `frame` sees along the unit local
+/// direction `n`: k = ±e0 + nⁱ eᵢ (+ future, − past). The past-directed one moves spatially
+/// along n as its parameter grows: a pixel looking along n traces it backward.
+pub fn photon_tangent(frame: &Tetrad, n: [f64; 3], time: TimeDirection) -> FourVector {
+    let sign = match time {
+        TimeDirection::Future => 1.0,
+        TimeDirection::Past => -1.0,
+    };
+    frame.vector([sign, n[0], n[1], n[2]])
+}
+
 /// Initial data of a geodesic.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Geodesic {
@@ -79,7 +90,7 @@ impl Geodesic {
         };
         let (kind, tangent) = if speed == 1.0 {
             let n = LocalVelocity::new(0.0, direction)?.direction;
-            (GeodesicKind::Null, frame.vector([sign, n[0], n[1], n[2]]))
+            (GeodesicKind::Null, photon_tangent(frame, n, time))
         } else {
             let v = LocalVelocity::new(speed, direction)?;
             let g = v.gamma();
@@ -292,6 +303,91 @@ impl TracedGeodesic {
     }
 }
 
+/// Watches an integration for the curve's return to its start's axis (the start's x, y):
+/// g = (X − X₀)·Ẋ in the x–y plane changes sign from − to + at each closest approach, which
+/// is refined on the step's dense output. In Gödel's universe every geodesic returns there
+/// and then retraces its loop shifted in t and z only (docs/physics.md, "Closed forms").
+#[derive(Clone, Copy, Debug)]
+pub struct AxisWatch {
+    x0: f64,
+    y0: f64,
+    p0: [f64; 2],
+    pscale: f64,
+    max_d2: f64,
+}
+
+/// A closest approach to the start's axis, found inside one step.
+#[derive(Clone, Copy, Debug)]
+pub struct AxisReturn {
+    /// Its parameter and integrated state.
+    pub lambda: f64,
+    pub state: [f64; STATE],
+    /// Whether the curve is back on its axis with its starting momentum: distance² within
+    /// 1e-14 of the largest distance² so far, transverse momentum within 1e-7 of its scale
+    /// (both well above the integrator's error, far below any near miss).
+    pub closed: bool,
+    /// Whether it passes near the axis (distance² within 1e-6 of the largest) without
+    /// closing: the loop is not reproduced well enough to be reused.
+    pub near: bool,
+}
+
+impl AxisWatch {
+    pub fn new(start: &GeodesicState) -> AxisWatch {
+        let p = start.p;
+        AxisWatch {
+            x0: start.x.x,
+            y0: start.x.y,
+            p0: [p.x, p.y],
+            pscale: p.t.abs() + p.x.abs() + p.y.abs() + p.z.abs(),
+            max_d2: 0.0,
+        }
+    }
+
+    /// g at an integrated state `s` with derivative `d`; take it before each step.
+    pub fn g(&self, s: &[f64; STATE], d: &[f64; STATE]) -> f64 {
+        (s[1] - self.x0) * d[1] + (s[2] - self.y0) * d[2]
+    }
+
+    /// After an accepted step on [lo, hi] ending at `s1` with derivative `d1`, given g before
+    /// it: the closest approach to the axis inside the step, once the curve has moved away.
+    /// `eval` is the step's dense output, `rhs` the system's right-hand side.
+    #[allow(clippy::too_many_arguments)]
+    pub fn after_step(
+        &mut self,
+        g_prev: f64,
+        s1: &[f64; STATE],
+        d1: &[f64; STATE],
+        lo: f64,
+        hi: f64,
+        eval: impl Fn(f64) -> [f64; STATE],
+        rhs: impl Fn(&[f64; STATE]) -> [f64; STATE],
+    ) -> Option<AxisReturn> {
+        let g1 = self.g(s1, d1);
+        let mut found = None;
+        if self.max_d2 > 0.0 && g_prev < 0.0 && g1 >= 0.0 {
+            let gl = |l: f64| {
+                let st = eval(l);
+                self.g(&st, &rhs(&st))
+            };
+            let l = refine_root(gl, lo, hi, g_prev, g1);
+            let e = eval(l);
+            let dmin2 = (e[1] - self.x0).powi(2) + (e[2] - self.y0).powi(2);
+            let dp = (e[4] - self.p0[0]).abs() + (e[5] - self.p0[1]).abs();
+            let closed = dmin2 <= 1e-14 * self.max_d2 && dp <= 1e-7 * self.pscale;
+            found = Some(AxisReturn {
+                lambda: l,
+                state: e,
+                closed,
+                near: !closed && dmin2 <= 1e-6 * self.max_d2,
+            });
+        }
+        self.max_d2 = self
+            .max_d2
+            .max((s1[1] - self.x0).powi(2) + (s1[2] - self.y0).powi(2));
+        found
+    }
+}
+
 /// Finds a root of `f` in [lo, hi] given opposite signs at the ends (Illinois variant of
 /// regula falsi; converges superlinearly, never leaves the bracket).
 pub fn refine_root(
@@ -338,11 +434,8 @@ pub fn trace(metric: Metric, geodesic: &Geodesic, limits: &TraceLimits) -> Trace
     let (sys, s0) = GeodesicSystem::new(metric, &start);
     let mut ode = Dop853::new(sys, 0.0, s0, limits.tolerances, None);
     let mut steps = Vec::new();
-    let (x0, y0, t0) = (s0[1], s0[2], s0[0]);
-    // Axis return: g = (X − X0)·Ẋ in the x–y plane changes sign from − to + at the minimum
-    // distance; armed once the curve has moved away by more than `arm`.
-    let axis_g = |s: &[f64; STATE], d: &[f64; STATE]| (s[1] - x0) * d[1] + (s[2] - y0) * d[2];
-    let mut max_d2: f64 = 0.0;
+    let t0 = s0[0];
+    let mut axis = AxisWatch::new(&start);
     let finish = |steps: Vec<DenseStep<STATE>>,
                   l: f64,
                   end: [f64; STATE],
@@ -364,7 +457,7 @@ pub fn trace(metric: Metric, geodesic: &Geodesic, limits: &TraceLimits) -> Trace
             return finish(steps, l, s, StopReason::StepBudget, &ode);
         }
         ode.limit_next_step(limits.max_affine - ode.lambda());
-        let g_prev = axis_g(ode.state(), ode.derivative());
+        let g_prev = axis.g(ode.state(), ode.derivative());
         match ode.step() {
             StepOutcome::Accepted => {}
             StepOutcome::Stalled => {
@@ -398,22 +491,18 @@ pub fn trace(metric: Metric, geodesic: &Geodesic, limits: &TraceLimits) -> Trace
         }
         // Axis return.
         if limits.stop_at_axis_return {
-            let d2 = (s1[1] - x0).powi(2) + (s1[2] - y0).powi(2);
-            let g1 = axis_g(&s1, ode.derivative());
-            let armed = max_d2 > 0.0;
-            if armed && g_prev < 0.0 && g1 >= 0.0 {
-                let gl = |l: f64| {
-                    let st = dense.eval(l);
-                    axis_g(&st, &sys.rhs(&st))
-                };
-                let l = refine_root(gl, dense.lambda0, dense.lambda1(), g_prev, g1);
-                let end = dense.eval(l);
-                let dmin2 = (end[1] - x0).powi(2) + (end[2] - y0).powi(2);
-                if dmin2 <= 1e-12 * max_d2 {
-                    return finish(steps, l, end, StopReason::AxisReturn, &ode);
-                }
+            let back = axis.after_step(
+                g_prev,
+                &s1,
+                ode.derivative(),
+                dense.lambda0,
+                dense.lambda1(),
+                |l| dense.eval(l),
+                |st| sys.rhs(st),
+            );
+            if let Some(r) = back.filter(|r| r.closed) {
+                return finish(steps, r.lambda, r.state, StopReason::AxisReturn, &ode);
             }
-            max_d2 = max_d2.max(d2);
         }
         if ode.lambda() >= limits.max_affine {
             let (l, s) = (ode.lambda(), *ode.state());

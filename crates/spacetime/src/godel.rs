@@ -19,7 +19,8 @@
 //!   2H = (1 − 2c) p_t² − (√2/a) c p_t L + c(p_x² + p_y²) + k(1 + c)(x p_x + y p_y)² + p_z²,
 //! L = x p_y − y p_x = p_φ.
 
-use crate::metric::{MetricTensor, Spacetime};
+use crate::metric::Spacetime;
+use crate::vectors::MetricTensor;
 use crate::vectors::{Covector, Event, FourVector};
 use std::f64::consts::SQRT_2;
 
@@ -46,6 +47,14 @@ impl Godel {
     /// Radius of the optical horizon, r_G = 2a.
     pub fn horizon_radius(&self) -> f64 {
         2.0 * self.a
+    }
+
+    /// The shortest coordinate time in which a light ray returns to its starting axis,
+    /// T_ret = 2πa(√2 − 1), for rays in the plane (Kundt 1956; Kajari et al. 2009): rays
+    /// tilted out of the plane take longer, up to √2·πa along the axis. So a ray followed
+    /// Δt into the past makes at most Δt/T_ret + 1 loops.
+    pub fn shortest_loop_time(&self) -> f64 {
+        2.0 * std::f64::consts::PI * self.a * (std::f64::consts::SQRT_2 - 1.0)
     }
 }
 

@@ -27,8 +27,10 @@ mod geodesic;
 mod godel;
 pub mod isometry;
 pub mod killing;
+pub mod measure;
 mod metric;
 mod minkowski;
+pub mod normal;
 mod vectors;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
@@ -37,12 +39,12 @@ pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use frame::{aberrate, boost, gram_schmidt_static_frame, LocalVelocity};
 pub use geodesic::{
-    refine_root, trace, Geodesic, GeodesicKind, GeodesicState, GeodesicSystem, StopReason,
-    TimeDirection, TraceLimits, TracedGeodesic, STATE,
+    photon_tangent, refine_root, trace, AxisReturn, AxisWatch, Geodesic, GeodesicKind,
+    GeodesicState, GeodesicSystem, StopReason, TimeDirection, TraceLimits, TracedGeodesic, STATE,
 };
 pub use godel::Godel;
 pub use isometry::{Complex, Isometry};
 pub use killing::KillingField;
-pub use metric::{Christoffel, Metric, MetricTensor, Spacetime};
+pub use metric::{Metric, Spacetime};
 pub use minkowski::Minkowski;
-pub use vectors::{Covector, Cylindrical, Event, FourVector, Tetrad};
+pub use vectors::{Christoffel, Covector, Cylindrical, Event, FourVector, MetricTensor, Tetrad};

@@ -7,13 +7,8 @@
 //! closed-form metric derivatives each metric supplies.
 
 use crate::frame::{boost, gram_schmidt_static_frame, LocalVelocity};
-use crate::vectors::{Covector, Event, FourVector, Tetrad};
+use crate::vectors::{Christoffel, Covector, Event, FourVector, MetricTensor, Tetrad};
 use crate::{Godel, Minkowski};
-
-/// Components g_μν (or g^μν) in the pseudo-Cartesian coordinate basis.
-pub type MetricTensor = [[f64; 4]; 4];
-/// Components Γ^μ_αβ, indexed `[mu][alpha][beta]`.
-pub type Christoffel = [[[f64; 4]; 4]; 4];
 
 /// A spacetime metric in pseudo-Cartesian coordinates (t, x, y, z).
 ///

@@ -1,7 +1,8 @@
 //! Flat spacetime, ds² = −dt² + dx² + dy² + dz²: the reference against which the
 //! tracer's Gödel-independent machinery (cameras, intersection, aberration) is tested.
 
-use crate::metric::{MetricTensor, Spacetime};
+use crate::metric::Spacetime;
+use crate::vectors::MetricTensor;
 use crate::vectors::{Covector, Event, FourVector, Tetrad};
 
 #[derive(Clone, Copy, Debug, PartialEq, Default)]

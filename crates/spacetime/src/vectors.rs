@@ -6,6 +6,11 @@
 
 use std::ops::{Add, Mul, Neg, Sub};
 
+/// Components g_μν (or g^μν) in the pseudo-Cartesian coordinate basis.
+pub type MetricTensor = [[f64; 4]; 4];
+/// Components Γ^μ_αβ, indexed `[mu][alpha][beta]`.
+pub type Christoffel = [[[f64; 4]; 4]; 4];
+
 /// A spacetime event in pseudo-Cartesian coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Event {

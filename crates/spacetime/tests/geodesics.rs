@@ -382,6 +382,67 @@ fn dense_output_is_accurate_between_steps() {
     assert!(ode.accepted < 200, "too many steps: {}", ode.accepted);
 }
 
+/// A system that counts its evaluations and stops the test once they exceed a bound no
+/// bounded step attempt comes near (each attempt is a dozen evaluations, retries shrink the
+/// step at least tenfold per few attempts).
+struct Counted<F: Fn(&[f64; 2]) -> [f64; 2]> {
+    rhs: F,
+    calls: std::cell::Cell<u64>,
+}
+
+impl<F: Fn(&[f64; 2]) -> [f64; 2]> OdeSystem<2> for Counted<F> {
+    fn rhs(&self, y: &[f64; 2]) -> [f64; 2] {
+        self.calls.set(self.calls.get() + 1);
+        assert!(
+            self.calls.get() < 1_000_000,
+            "a million evaluations: the step attempt retries without end"
+        );
+        (self.rhs)(y)
+    }
+}
+
+/// Fuzzing found `godel render` hanging on an observer at r = 1e9 (a = 1): the ray's
+/// start was NaN, the first step size came out infinite, and `step` retried an infinite
+/// step forever (inf · 0.25 = inf). Now such an attempt ends as not accepted.
+#[test]
+fn regression_fuzz_infinite_step_size_ends_the_attempt() {
+    let nan = Counted {
+        rhs: |y: &[f64; 2]| [y[1], -y[0]],
+        calls: Default::default(),
+    };
+    let mut ode = Dop853::new(nan, 0.0, [f64::NAN, 0.0], Tolerances::default(), None);
+    assert_ne!(ode.step(), StepOutcome::Accepted);
+    let given = Counted {
+        rhs: |y: &[f64; 2]| [y[1], -y[0]],
+        calls: Default::default(),
+    };
+    let mut ode = Dop853::new(
+        given,
+        0.0,
+        [1.0, 0.0],
+        Tolerances::default(),
+        Some(f64::INFINITY),
+    );
+    assert_eq!(ode.step(), StepOutcome::Stalled);
+}
+
+/// Where the error estimate vanishes (here y' = 0) the step grows tenfold per step; it
+/// used to overflow to infinity after ~310 steps and then retry forever. Now it stays
+/// finite and every step is accepted.
+#[test]
+fn regression_fuzz_growing_step_stays_finite() {
+    let still = Counted {
+        rhs: |_: &[f64; 2]| [0.0, 0.0],
+        calls: Default::default(),
+    };
+    let mut ode = Dop853::new(still, 0.0, [1.0, 2.0], Tolerances::default(), Some(1.0));
+    for _ in 0..400 {
+        assert_eq!(ode.step(), StepOutcome::Accepted);
+        assert!(ode.next_step_size().is_finite());
+    }
+    assert_eq!(*ode.state(), [1.0, 2.0]);
+}
+
 #[test]
 fn launch_rejects_bad_directions_and_speeds() {
     let m = Metric::Godel(Godel::new(1.0));

@@ -1,4 +1,4 @@
-// godel view: cameras and looking around, in f64 as `render::look` and `scene::Camera`
+// godel view: cameras and looking around, in f64 as the `look` crate and `scene::Camera`
 // compute them (the shader does the same in f32 per pixel): a pixel's direction for any
 // camera, the aberration and Doppler factor of a moving observer, the sphere pixel a
 // direction falls in; and the look-around view (projection, zoom, turn, velocity) that the

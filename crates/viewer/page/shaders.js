@@ -1,7 +1,7 @@
 // godel view: the GLSL ES 3.00 shaders. SHADE_FS reproduces the `shade` crate's per-pixel
 // rule (crates/shade/src/shading.rs: texture, time, frequency and light layers multiplied,
 // the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
-// `render::look` (camera direction → aberration → nearest sphere pixel, g times the Doppler
+// the `look` crate (camera direction → aberration → nearest sphere pixel, g times the Doppler
 // factor). It writes one texel per output pixel into an offscreen RGBA8 texture, row 0 of the
 // picture in texture row 0; the display pass (displaySource) then draws that texture on the
 // canvas, scaled with trilinear filtering.
@@ -259,7 +259,7 @@ bool lookSource(ivec2 q, out ivec2 p, out float doppler) {
   vec3 d;
   if (!pixelDirection(vec2(q) + 0.5, d)) return false;
   vec3 own = d.x * uF + d.y * uR + d.z * uUp;
-  // Aberration (render::look, spacetime::aberrate): the static observer's direction n.
+  // Aberration (look crate, spacetime::aberrate): the static observer's direction n.
   float along = dot(own, uVDir);
   doppler = 1.0 / (uGamma * (1.0 - uSpeed * along));
   vec3 n = (own + ((uGamma - 1.0) * along - uGamma * uSpeed) * uVDir) * doppler;

@@ -80,7 +80,7 @@ export function featuresFor(settings, info, data, look, uniforms) {
 }
 
 // Uniforms for a picture of width × height; `look` is null for the data file's own pixels,
-// else {view, sphere} (render::look's view and the sphere's axes).
+// else {view, sphere} (the `look` crate's view and the sphere's axes).
 export function uniformsFor(settings, info, data, width, height, look) {
   const on = new Set(settings.shaders);
   const bb = data.blackbody;

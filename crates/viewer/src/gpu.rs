@@ -11,8 +11,8 @@
 //! | `u`, `v`, `g`, `t_emit`, `light_K` | f32 | the data file's values, unchanged |
 //! | `cos_i` | u16 | round(65535·clamp(cos_i, 0, 1)), NaN as 0: all the Lambert factor reads |
 
-use render::datafile::DataFile;
-use render::record::{PixelRecord, RayStatus};
+use datafile::DataFile;
+use datafile::{PixelRecord, RayStatus};
 use serde::Serialize;
 use shade::blackbody::{table, T_MAX, T_MIN};
 use shade::gt_table::{gt_table, SHIFT};
@@ -128,7 +128,7 @@ pub fn id_type(objects: usize) -> SampleType {
 pub fn id_code(r: &PixelRecord, objects: usize) -> u32 {
     match r.status {
         RayStatus::Failed => ID_FAILED,
-        RayStatus::StepBudget => ID_STEP_BUDGET,
+        RayStatus::StepBudget | RayStatus::WorkLimit => ID_STEP_BUDGET,
         RayStatus::NotTraced => ID_NOT_TRACED,
         RayStatus::Hit | RayStatus::Escaped => match usize::try_from(r.object) {
             Err(_) => ID_BACKGROUND,

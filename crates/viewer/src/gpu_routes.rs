@@ -8,7 +8,11 @@
 //! | `GET /api/gpu/blackbody` | the black-body grid and the g·T table's layout (JSON) |
 //! | `GET /api/gpu/blackbody/gt` | the g·T table's entries (f32 RGBA array) |
 //!
-//! The data never changes while the server runs; the page fetches each item once.
+//! The data never changes while the server runs; the page fetches each item once. Like every
+//! route these pass [`crate::guard::check`]; the arrays are encoded within the server's bound
+//! on concurrent work ([`crate::limit::WorkLimit`]: a data file's channel can be tens of MB),
+//! and the image textures are the embedded scene's as the viewer loaded them, from the data
+//! file's folder and the `--textures` folders only ([`shade::TextureSource`]).
 
 use std::sync::{Arc, OnceLock};
 
@@ -17,11 +21,10 @@ use axum::http::{header, HeaderName, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::{Json, Router};
-use scene::Scene;
 use shade::{ImageTexture, Texture};
 
+use crate::api_error::{no_store, ApiError};
 use crate::gpu::{self, Channel, GpuTexture};
-use crate::routes::ApiError;
 use crate::state::ViewerState;
 
 /// The GPU routes' state: the loaded file and its scene textures, loaded on first request.
@@ -38,16 +41,12 @@ impl GpuState {
         }
     }
 
-    /// The objects' scene textures (the file was refused at loading if they cannot load, so
-    /// an error here means the image files changed meanwhile).
+    /// The objects' scene textures, as the viewer loaded them when it loaded the file (which
+    /// was refused if they could not be loaded from the allowed folders).
     fn scene_textures(&self) -> Result<&[Texture], ApiError> {
-        let loaded = self.textures.get_or_init(|| {
-            let data = &self.viewer.data;
-            let scene =
-                Scene::from_str(&data.header.scene_text, "<scene embedded in the data file>")
-                    .map_err(|e| e.to_string())?;
-            shade::textures_for_scene(&scene).map_err(|e| e.to_string())
-        });
+        let loaded = self
+            .textures
+            .get_or_init(|| self.viewer.scene_textures().map_err(|e| e.to_string()));
         loaded.as_deref().map_err(|e| ApiError::internal(e.clone()))
     }
 }
@@ -61,11 +60,6 @@ pub fn router(state: Arc<GpuState>) -> Router {
         .route("/api/gpu/blackbody", get(blackbody))
         .route("/api/gpu/blackbody/gt", get(gt_table))
         .with_state(state)
-}
-
-fn error(status: StatusCode, message: impl Into<String>) -> Response {
-    let body = Json(serde_json::json!({ "error": message.into() }));
-    (status, [(header::CACHE_CONTROL, "no-store")], body).into_response()
 }
 
 /// A binary array answer.
@@ -84,70 +78,69 @@ fn array(bytes: Vec<u8>) -> Response {
     (headers, bytes).into_response()
 }
 
-async fn channel(State(state): State<Arc<GpuState>>, Path(name): Path<String>) -> Response {
+async fn channel(
+    State(state): State<Arc<GpuState>>,
+    Path(name): Path<String>,
+) -> Result<Response, ApiError> {
     let data = &state.viewer.data;
     let Some(channel) = Channel::parse(&name, data.lights.len()) else {
         let lights = (0..data.lights.len())
             .map(|k| format!(", light_{k}"))
             .collect::<String>();
-        return error(
+        return Err(ApiError::new(
             StatusCode::NOT_FOUND,
             format!("no channel '{name}' (this file has id, u, v, g, t_emit, cos_i{lights})"),
-        );
+        ));
     };
     let viewer = state.viewer.clone();
-    match tokio::task::spawn_blocking(move || channel.encode(&viewer.data)).await {
-        Ok(bytes) => array(bytes),
-        Err(e) => error(
-            StatusCode::INTERNAL_SERVER_ERROR,
-            format!("encoding {name}: {e}"),
-        ),
-    }
+    let bytes = state
+        .viewer
+        .work()
+        .admit()?
+        .run(move || channel.encode(&viewer.data))
+        .await?;
+    Ok(array(bytes))
 }
 
-async fn textures(State(state): State<Arc<GpuState>>) -> Response {
-    let scene = match state.scene_textures() {
-        Ok(t) => t,
-        Err(e) => return e.into_response(),
-    };
-    let objects: Vec<GpuTexture> = scene
+async fn textures(State(state): State<Arc<GpuState>>) -> Result<Response, ApiError> {
+    let objects: Vec<GpuTexture> = state
+        .scene_textures()?
         .iter()
         .enumerate()
         .map(|(k, t)| gpu::describe_texture(k, t))
         .collect();
     let body = serde_json::json!({ "objects": objects });
-    ([(header::CACHE_CONTROL, "no-store")], Json(body)).into_response()
+    Ok((no_store(), Json(body)).into_response())
 }
 
-async fn image(State(state): State<Arc<GpuState>>, Path(name): Path<String>) -> Response {
-    let found: Result<ImageTexture, Response> = if name == gpu::EARTH {
-        ImageTexture::earth().map_err(|e| error(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))
+async fn image(
+    State(state): State<Arc<GpuState>>,
+    Path(name): Path<String>,
+) -> Result<Response, ApiError> {
+    let image = if name == gpu::EARTH {
+        ImageTexture::earth().map_err(|e| ApiError::internal(e.to_string()))?
     } else {
-        let scene = match state.scene_textures() {
-            Ok(t) => t,
-            Err(e) => return e.into_response(),
-        };
-        scene
+        state
+            .scene_textures()?
             .iter()
             .enumerate()
             .find_map(|(k, t)| match t {
                 Texture::Image(image) if gpu::scene_image_name(k) == name => Some(image.clone()),
                 _ => None,
             })
-            .ok_or_else(|| error(StatusCode::NOT_FOUND, format!("no image '{name}'")))
+            .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, format!("no image '{name}'")))?
     };
-    match found {
-        Ok(image) => array(gpu::encode_image(&image)),
-        Err(e) => e,
-    }
+    let bytes = state
+        .viewer
+        .work()
+        .admit()?
+        .run(move || gpu::encode_image(&image))
+        .await?;
+    Ok(array(bytes))
 }
 
 async fn blackbody() -> Response {
-    (
-        [(header::CACHE_CONTROL, "no-store")],
-        Json(gpu::blackbody()),
-    )
-        .into_response()
+    (no_store(), Json(gpu::blackbody())).into_response()
 }
 
 async fn gt_table() -> Response {

@@ -1,21 +1,27 @@
-//! `viewer`: the live web viewer behind `godel view` (DESIGN.md, "The pipeline"). A local
+//! `viewer`: the live web viewer behind `godel view`. A local
 //! axum server holds one data file in memory; the page (embedded in the binary) fetches the
 //! file's channels once and shades them on the GPU with WebGL2 shaders that reproduce the
 //! `shade` crate's rule, so every control, turn, zoom and boost redraws within a frame. The
 //! server stays the source of the data, of hover records, and of saved pictures and keyframes
-//! (shaded by the `shade` crate, after `render::look` for a turned or boosted view).
+//! (shaded by the `shade` crate, after the `look` crate for a turned or boosted view).
 //!
-//! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes.
+//! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes; image textures
+//!   only from the data file's folder and [`ViewerOptions::texture_folders`].
 //! - [`router`]: the routes (see [`routes`], [`gpu_routes`] and [`look_routes`] for the
 //!   tables), [`serve`]: runs them.
+//! - [`Access`]: which `Host` names the server; [`guard`] checks Host, Origin and JSON bodies.
+//! - [`WorkLimit`]: the bound on concurrent shading.
 //! - [`wire`]: the binary format of the arrays the page uploads as textures; [`gpu`]: what
 //!   they hold (channels, textures, black-body tables).
 //! - The settings the page sends are `shade::ShadeSettings` as JSON.
 
+pub mod api_error;
 mod assets;
 pub mod encode;
 pub mod gpu;
 pub mod gpu_routes;
+pub mod guard;
+pub mod limit;
 pub mod look_routes;
 pub mod routes;
 pub mod state;
@@ -23,15 +29,20 @@ pub mod wire;
 
 use std::sync::Arc;
 
+pub use api_error::ApiError;
+pub use guard::{Access, MAX_BODY_BYTES};
+pub use limit::WorkLimit;
 pub use routes::router;
-pub use state::{LoadError, PixelInfo, ViewerState};
+pub use state::{LoadError, PixelInfo, ViewerOptions, ViewerState};
 
-/// Serves the viewer on `listener` until Ctrl-C (or SIGTERM).
+/// Serves the viewer on `listener` until Ctrl-C (or SIGTERM), answering what `access`
+/// allows.
 pub async fn serve(
     listener: tokio::net::TcpListener,
     state: Arc<ViewerState>,
+    access: Access,
 ) -> std::io::Result<()> {
-    axum::serve(listener, router(state))
+    axum::serve(listener, router(state, access))
         .with_graceful_shutdown(shutdown())
         .await
 }
@@ -59,8 +70,10 @@ async fn shutdown() {
 }
 
 /// Serves the viewer on an already bound `listener` on a new tokio runtime, blocking until
-/// Ctrl-C or SIGTERM: the command line needs no async code of its own.
+/// Ctrl-C or SIGTERM: the command line needs no async code of its own. Requests must name
+/// the address listened on ([`Access::listening_on`]).
 pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io::Result<()> {
+    let access = Access::listening_on(listener.local_addr()?);
     listener.set_nonblocking(true)?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         // Few I/O threads: shading runs on rayon's pool and tokio's blocking threads.
@@ -69,6 +82,6 @@ pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io:
         .build()?;
     runtime.block_on(async move {
         let listener = tokio::net::TcpListener::from_std(listener)?;
-        serve(listener, state).await
+        serve(listener, state, access).await
     })
 }

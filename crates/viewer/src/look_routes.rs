@@ -1,5 +1,5 @@
 //! Looking around a full-sphere data file: the view the page starts from, and the pictures
-//! of turned or boosted views made on the server with the `render::look` remapping and the
+//! of turned or boosted views made on the server with the `look` remapping and the
 //! `shade` crate (what `godel look` then `godel shade` make), for saving and for checking
 //! the page's shaders.
 //!
@@ -14,6 +14,12 @@
 //! with the camera fields of a scene file (`h_fov_deg`, `v_fov_deg` for a panorama,
 //! `fov_deg` for a pinhole or fisheye) and the axes in the moving observer's own frame, the
 //! velocity in the static observer's, as in `godel look`.
+//!
+//! Like every route these pass [`crate::guard::check`] (Host, Origin, JSON bodies within
+//! [`crate::MAX_BODY_BYTES`]); a look picture is made within the server's bound on concurrent
+//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] pixels; its settings
+//! are prepared as `/api/png`'s ([`ViewerState::prepare`]: caps on lamps and sources, image
+//! textures only from the allowed folders).
 
 use std::sync::{Arc, OnceLock};
 
@@ -23,15 +29,22 @@ use axum::http::{header, HeaderName, HeaderValue};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
-use render::look::{look, LookView, SphereSource};
+use look::{look, LookView, SphereSource};
 use scene::{Camera, Scene};
 use serde::{Deserialize, Serialize};
-use shade::{ShadeSettings, Shading};
+use shade::ShadeSettings;
 use spacetime::LocalVelocity;
 
+use crate::api_error::{no_store, ApiError};
 use crate::encode;
-use crate::routes::ApiError;
 use crate::state::ViewerState;
+
+/// The most pixels of a look picture for `viewer`: the data file's own count, or a 4K
+/// screen's (3840×2160) where that is more. A client cannot make the server hold more than
+/// a few pictures' worth of records at once (the work limit bounds how many are made).
+pub fn max_look_pixels(viewer: &ViewerState) -> u64 {
+    (viewer.data.width as u64 * viewer.data.height as u64).max(3840 * 2160)
+}
 
 /// The look routes' state: the loaded file, and its object directions once computed.
 pub struct LookState {
@@ -252,12 +265,11 @@ fn n_dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 async fn view(State(state): State<Arc<LookState>>) -> Result<Response, ApiError> {
-    let info = tokio::task::spawn_blocking(move || {
-        state.view.get_or_init(|| view_info(&state.viewer)).clone()
-    })
-    .await
-    .map_err(|e| ApiError::internal(format!("describing the view: {e}")))?;
-    Ok(([(header::CACHE_CONTROL, "no-store")], Json(info)).into_response())
+    let ticket = state.viewer.work().admit()?;
+    let info = ticket
+        .run(move || state.view.get_or_init(|| view_info(&state.viewer)).clone())
+        .await?;
+    Ok((no_store(), Json(info)).into_response())
 }
 
 /// The body of the look routes.
@@ -283,24 +295,38 @@ fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiE
             v.velocity.speed, v.velocity.direction
         ))
     })?;
-    let look_view = LookView::new(v.camera.camera()?, v.forward, v.up, velocity)
+    let camera = v.camera.camera()?;
+    let pixels = camera.width() as u64 * camera.height() as u64;
+    let most = max_look_pixels(viewer);
+    if pixels > most {
+        return Err(ApiError::bad_request(format!(
+            "view: camera: {}×{} is {pixels} pixels, more than this viewer makes ({most}: the \
+             data file's own count or 3840×2160); use godel look for larger pictures",
+            camera.width(),
+            camera.height()
+        )));
+    }
+    let look_view = LookView::new(camera, v.forward, v.up, velocity)
         .map_err(|e| ApiError::bad_request(format!("view: {e}")))?;
+    // Prepared for the loaded file: the looked file has the same objects, lights and event.
+    let shading = viewer
+        .prepare(&request.settings)
+        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
     let looked =
         look(&viewer.data, &look_view).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
-    let shading = Shading::new(&looked, &request.settings)
-        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
     Ok(shading.image(&looked))
 }
 
 async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
     let viewer = state.viewer.clone();
     let disposition = crate::routes::attachment(&viewer, "look.png");
-    let bytes = tokio::task::spawn_blocking(move || {
-        let img = shade_look(&viewer, &body)?;
-        encode::png(&img).map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
-    })
-    .await
-    .map_err(|e| ApiError::internal(format!("looking: {e}")))??;
+    let ticket = viewer.work().admit()?;
+    let bytes = ticket
+        .run(move || {
+            let img = shade_look(&viewer, &body)?;
+            encode::png(&img).map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
+        })
+        .await??;
     let headers = [
         (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
         (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
@@ -311,9 +337,8 @@ async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Respons
 
 async fn image(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
     let viewer = state.viewer.clone();
-    let img = tokio::task::spawn_blocking(move || shade_look(&viewer, &body))
-        .await
-        .map_err(|e| ApiError::internal(format!("looking: {e}")))??;
+    let ticket = viewer.work().admit()?;
+    let img = ticket.run(move || shade_look(&viewer, &body)).await??;
     let headers = [
         (
             header::CONTENT_TYPE,

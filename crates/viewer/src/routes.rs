@@ -10,29 +10,34 @@
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
 //! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::look_routes`] |
 //!
-//! Bad requests (malformed or unknown settings, pixel outside the image) get 400 with
-//! `{"error": "..."}` naming the field; nothing a client sends can panic the server.
-//! Shading runs on tokio's blocking threads, and within it on rayon's pool, so slow
-//! shading never stalls the hover requests.
+//! Every request first passes [`crate::guard::check`] (Host, Origin, JSON bodies, body size:
+//! 403, 415, 413). Bad requests (malformed or unknown settings, pixel outside the image) get
+//! 400 with `{"error": "..."}` naming the field; nothing a client sends can panic the server.
+//! Shading runs on tokio's blocking threads, and within it on rayon's pool, so slow shading
+//! never stalls the hover requests; at most as many pictures as [`crate::limit::WorkLimit`]
+//! allows are shaded at once, a few more wait, the rest get 503.
 
 use std::sync::Arc;
 use std::time::Instant;
 
 use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
-use axum::extract::{Query, State};
-use axum::http::{header, HeaderName, HeaderValue, StatusCode};
+use axum::extract::{DefaultBodyLimit, Query, State};
+use axum::http::{header, HeaderName, HeaderValue};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
-use axum::{Json, Router};
+use axum::{middleware, Json, Router};
 use serde::Deserialize;
 
+use crate::api_error::no_store;
+pub use crate::api_error::ApiError;
 use crate::encode;
+use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::state::ViewerState;
 use shade::{ShadeSettings, Shading};
 
-/// The server's routes over one loaded data file.
-pub fn router(state: Arc<ViewerState>) -> Router {
+/// The server's routes over one loaded data file, answering requests that `access` allows.
+pub fn router(state: Arc<ViewerState>, access: Access) -> Router {
     let mut router = Router::new();
     for (path, content_type, body) in crate::assets::FILES {
         router = router.route(
@@ -53,41 +58,13 @@ pub fn router(state: Arc<ViewerState>) -> Router {
         .merge(crate::look_routes::router(Arc::new(
             crate::look_routes::LookState::new(state),
         )))
-}
-
-/// An error answer: a status and a message for the page.
-#[derive(Debug)]
-pub struct ApiError {
-    pub status: StatusCode,
-    pub message: String,
-}
-
-impl ApiError {
-    pub(crate) fn bad_request(message: impl Into<String>) -> ApiError {
-        ApiError {
-            status: StatusCode::BAD_REQUEST,
-            message: message.into(),
-        }
-    }
-
-    pub(crate) fn internal(message: impl Into<String>) -> ApiError {
-        ApiError {
-            status: StatusCode::INTERNAL_SERVER_ERROR,
-            message: message.into(),
-        }
-    }
-}
-
-impl IntoResponse for ApiError {
-    fn into_response(self) -> Response {
-        let body = Json(serde_json::json!({ "error": self.message }));
-        (self.status, no_store(), body).into_response()
-    }
-}
-
-/// API answers change with every request: never cache them.
-fn no_store() -> [(HeaderName, &'static str); 1] {
-    [(header::CACHE_CONTROL, "no-store")]
+        // Layers added after the merges cover every route, the GPU and look ones included.
+        // The guard reads POST bodies up to its own cap; the extractors' limit must not be lower.
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(middleware::from_fn_with_state(
+            Arc::new(access),
+            crate::guard::check,
+        ))
 }
 
 /// Parses the settings JSON sent by the page and prepares them with the `shade` crate
@@ -113,13 +90,13 @@ pub fn parse_settings(
     Ok((settings, shading))
 }
 
-/// Runs `job` on a blocking thread; a panic there (a bug, never input) becomes a 500.
+/// Runs `job` on a blocking thread within the state's bound on shading work (503 when too
+/// many are waiting); a panic there (a bug, never input) becomes a 500.
 async fn blocking<T: Send + 'static>(
+    state: &ViewerState,
     job: impl FnOnce() -> T + Send + 'static,
 ) -> Result<T, ApiError> {
-    tokio::task::spawn_blocking(job)
-        .await
-        .map_err(|e| ApiError::internal(format!("shading failed: {e}")))
+    state.work().admit()?.run(job).await
 }
 
 async fn info(State(state): State<Arc<ViewerState>>) -> impl IntoResponse {
@@ -127,7 +104,7 @@ async fn info(State(state): State<Arc<ViewerState>>) -> impl IntoResponse {
 }
 
 async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
-    let (bytes, width, height, shade_ms, encode_ms) = blocking(move || {
+    let (bytes, width, height, shade_ms, encode_ms) = blocking(&state.clone(), move || {
         // Preparing (checking settings, loading textures) counts as shading.
         let started = Instant::now();
         let (_, shading) = parse_settings(&state, &body)?;
@@ -193,7 +170,7 @@ pub(crate) fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
 
 async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
     let disposition = attachment(&state, "png");
-    let bytes = blocking(move || {
+    let bytes = blocking(&state.clone(), move || {
         let (_, shading) = parse_settings(&state, &body)?;
         encode::png(&state.shade(&shading))
             .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
@@ -221,7 +198,7 @@ async fn keyframe(
 ) -> Result<Response, ApiError> {
     let Query(q) =
         query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
-    let (settings, state) = blocking(move || {
+    let (settings, state) = blocking(&state.clone(), move || {
         let prepared = parse_settings(&state, &body);
         prepared.map(|(settings, _)| (settings, state))
     })

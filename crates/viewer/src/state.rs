@@ -1,22 +1,41 @@
-//! What the server holds while it runs: the data file in memory, its default settings, and
-//! the operations the routes need (prepare and shade settings, one pixel's record, a
-//! keyframe), the shading all done by the `shade` crate. Immutable after loading, so every
-//! request shares it without locks.
+//! What the server holds while it runs: the data file in memory, its default settings, where
+//! image textures may come from, the bound on shading work, and the operations the routes
+//! need (prepare and shade settings, one pixel's record, a keyframe), the shading all done by
+//! the `shade` crate. Immutable after loading, so every request shares it without locks.
+//!
+//! Image textures (the embedded scene's and those a client names) are read only from the data
+//! file's folder and the folders named with `--textures` ([`shade::TextureSource::within`]);
+//! the embedded scene's are loaded once, here.
 
 use std::path::{Path, PathBuf};
 
+use datafile::record::RayStatus;
+use datafile::DataFile;
 use image::RgbImage;
-use render::datafile::DataFile;
-use render::record::RayStatus;
 use serde::Serialize;
-use shade::{ShadeSettings, Shading};
+use shade::{ShadeSettings, Shading, TextureSource};
 
-/// Why a data file cannot be viewed: it cannot be read, or its default settings (the
-/// scene's own textures) cannot be prepared.
+use crate::limit::WorkLimit;
+
+/// Why a data file cannot be viewed: it cannot be read, a texture folder cannot be used, the
+/// embedded scene's textures cannot be loaded from the allowed folders, or its default
+/// settings cannot be prepared.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
     #[error(transparent)]
-    Data(#[from] render::datafile::DataFileError),
+    Data(#[from] datafile::DataFileError),
+    #[error(transparent)]
+    TextureFolder(shade::ShadeError),
+    #[error(
+        "data file {}: {source}; the viewer reads image textures only from the data file's \
+         folder and the folders named with --textures DIR",
+        path.display()
+    )]
+    SceneTextures {
+        path: PathBuf,
+        #[source]
+        source: shade::ShadeError,
+    },
     #[error("data file {}: {source}", path.display())]
     Shade {
         path: PathBuf,
@@ -25,12 +44,34 @@ pub enum LoadError {
     },
 }
 
+/// How to serve a data file beyond the file itself.
+#[derive(Debug)]
+pub struct ViewerOptions {
+    /// Folders image textures may come from besides the data file's own (`--textures`).
+    pub texture_folders: Vec<PathBuf>,
+    /// The bound on concurrent shading work.
+    pub work: WorkLimit,
+}
+
+impl Default for ViewerOptions {
+    /// No further texture folders; one shading job per core.
+    fn default() -> ViewerOptions {
+        ViewerOptions {
+            texture_folders: Vec::new(),
+            work: WorkLimit::for_this_machine(),
+        }
+    }
+}
+
 /// A loaded data file, ready to shade.
 pub struct ViewerState {
-    /// The file as named on the command line.
+    /// The file as named on the command line (never shown to clients: [`Info::file`] is its
+    /// file name).
     pub path: PathBuf,
     pub data: DataFile,
     defaults: ShadeSettings,
+    textures: TextureSource,
+    work: WorkLimit,
 }
 
 /// One pixel's record as the page shows it.
@@ -42,7 +83,7 @@ pub struct PixelInfo {
     pub object: i32,
     /// Its name, or `null`.
     pub object_name: Option<String>,
-    /// `hit`, `escaped`, `step budget`, `failed`, `not traced`.
+    /// `hit`, `escaped`, `step budget`, `failed`, `not traced`, `work limit`.
     pub status: &'static str,
     pub u: f32,
     pub v: f32,
@@ -61,6 +102,7 @@ pub struct PixelInfo {
 /// What the page needs to build its controls.
 #[derive(Clone, Debug, Serialize)]
 pub struct Info {
+    /// The data file's name, without its folder.
     pub file: String,
     pub scene_name: String,
     pub width: usize,
@@ -74,16 +116,40 @@ pub struct Info {
 impl ViewerState {
     /// Reads `path` and checks that its default settings shade; errors name the file.
     pub fn load(path: &Path) -> Result<ViewerState, LoadError> {
-        let data = DataFile::read(path)?;
-        ViewerState::new(path, data)
+        ViewerState::load_with(path, ViewerOptions::default())
     }
 
-    /// Prepares an already-read data file (`path` names it in messages). The default
-    /// settings are shaded once here, so a file whose scene textures cannot be loaded is
-    /// refused before anything is served.
+    /// [`ViewerState::load`] with `options`.
+    pub fn load_with(path: &Path, options: ViewerOptions) -> Result<ViewerState, LoadError> {
+        let data = DataFile::read(path)?;
+        ViewerState::new_with(path, data, options)
+    }
+
+    /// Prepares an already-read data file (`path` names it in messages and gives its folder)
+    /// with the default options.
     pub fn new(path: &Path, data: DataFile) -> Result<ViewerState, LoadError> {
+        ViewerState::new_with(path, data, ViewerOptions::default())
+    }
+
+    /// Prepares an already-read data file. The embedded scene's textures are loaded and the
+    /// default settings shaded once here, so a file whose scene textures cannot be loaded is
+    /// refused before anything is served.
+    pub fn new_with(
+        path: &Path,
+        data: DataFile,
+        options: ViewerOptions,
+    ) -> Result<ViewerState, LoadError> {
+        let mut folders = vec![path.parent().unwrap_or(Path::new("")).to_path_buf()];
+        folders.extend(options.texture_folders);
+        let textures = TextureSource::within(&folders)
+            .map_err(LoadError::TextureFolder)?
+            .with_scene_textures(&data)
+            .map_err(|source| LoadError::SceneTextures {
+                path: path.to_path_buf(),
+                source,
+            })?;
         let defaults = ShadeSettings::defaults_for(&data);
-        Shading::new(&data, &defaults).map_err(|source| LoadError::Shade {
+        Shading::with_textures(&data, &defaults, &textures).map_err(|source| LoadError::Shade {
             path: path.to_path_buf(),
             source,
         })?;
@@ -91,13 +157,35 @@ impl ViewerState {
             path: path.to_path_buf(),
             data,
             defaults,
+            textures,
+            work: options.work,
         })
+    }
+
+    /// The canonical folders image textures may come from (the data file's first).
+    pub fn texture_folders(&self) -> &[PathBuf] {
+        self.textures.folders().unwrap_or_default()
+    }
+
+    /// The embedded scene's textures in object order, image files from the allowed folders
+    /// (loaded once, when the file was loaded).
+    pub fn scene_textures(&self) -> Result<Vec<shade::Texture>, shade::ShadeError> {
+        self.textures.scene_textures(&self.data)
+    }
+
+    /// The bound on concurrent shading work.
+    pub fn work(&self) -> &WorkLimit {
+        &self.work
     }
 
     pub fn info(&self) -> Info {
         let h = &self.data.header;
         Info {
-            file: self.path.display().to_string(),
+            file: self
+                .path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
             scene_name: h.scene_name.clone(),
             width: self.data.width,
             height: self.data.height,
@@ -109,9 +197,10 @@ impl ViewerState {
     }
 
     /// Checks settings sent by the page against this file and prepares them (the `shade`
-    /// crate loads the textures and names the bad field).
+    /// crate checks the values and caps, loads the textures from the allowed folders and names
+    /// the bad field).
     pub fn prepare(&self, settings: &ShadeSettings) -> Result<Shading, shade::ShadeError> {
-        Shading::new(&self.data, settings)
+        Shading::with_textures(&self.data, settings, &self.textures)
     }
 
     /// The picture for prepared settings as RGB8 bytes, row 0 first; rows in parallel.
@@ -166,5 +255,6 @@ pub fn status_name(status: RayStatus) -> &'static str {
         RayStatus::StepBudget => "step budget",
         RayStatus::Failed => "failed",
         RayStatus::NotTraced => "not traced",
+        RayStatus::WorkLimit => "work limit",
     }
 }

@@ -1,138 +1,19 @@
 //! The viewer's HTTP interface without a browser: requests go straight into the router
 //! (tower's `oneshot`), on a data file built in memory whose every pixel is known.
 
+mod common;
+
 use std::path::Path;
-use std::sync::Arc;
 
-use axum::body::Body;
-use axum::http::{Request, StatusCode};
-use http_body_util::BodyExt;
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::record::{PixelRecord, RayStatus};
-use shade::{ShadeSettings, ShaderKind, Shading};
-use tower::ServiceExt;
+use axum::http::StatusCode;
+use common::{
+    data, error_of, frequency, frequency_settings, get, post, send, HEIGHT, SCENE, WIDTH,
+};
+use shade::{ShadeSettings, Shading};
 use viewer::ViewerState;
-
-const SCENE: &str = r#"
-name = "api-test"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-time = 0.0
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 220.0
-v_fov_deg = 25.0
-width = 8
-height = 4
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
-
-const WIDTH: usize = 8;
-const HEIGHT: usize = 4;
-
-/// Left half: hits on the ball with u = col/8, v = row/4, g = 1 + col/10, t_emit = −(1 + row);
-/// right half: nothing hit.
-fn data() -> DataFile {
-    let mut records = Vec::new();
-    for row in 0..HEIGHT {
-        for col in 0..WIDTH {
-            records.push(if col < WIDTH / 2 {
-                PixelRecord {
-                    object: 0,
-                    status: RayStatus::Hit,
-                    u: col as f32 / 8.0,
-                    v: row as f32 / 4.0,
-                    g: 1.0 + col as f32 / 10.0,
-                    t_emit: -(1.0 + row as f32),
-                    cos_i: 1.0,
-                    ..PixelRecord::MISS
-                }
-            } else {
-                PixelRecord::MISS
-            });
-        }
-    }
-    DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "api-test".into(),
-            scene_text: SCENE.into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
-        width: WIDTH,
-        height: HEIGHT,
-        records,
-        lights: Vec::new(),
-    }
-}
-
-fn state() -> Arc<ViewerState> {
-    Arc::new(ViewerState::new(Path::new("api-test.exr"), data()).unwrap())
-}
-
-/// Sends one request; returns status, headers and body.
-async fn send(request: Request<Body>) -> (StatusCode, axum::http::HeaderMap, Vec<u8>) {
-    let response = viewer::router(state()).oneshot(request).await.unwrap();
-    let status = response.status();
-    let headers = response.headers().clone();
-    let body = response
-        .into_body()
-        .collect()
-        .await
-        .unwrap()
-        .to_bytes()
-        .to_vec();
-    (status, headers, body)
-}
-
-fn post(path: &str, body: &str) -> Request<Body> {
-    Request::post(path)
-        .body(Body::from(body.to_string()))
-        .unwrap()
-}
-
-fn get(path: &str) -> Request<Body> {
-    Request::get(path).body(Body::empty()).unwrap()
-}
-
-/// The data file's default settings with only the frequency layer at `temperature`.
-fn frequency_settings(temperature: f64) -> ShadeSettings {
-    let mut settings = ShadeSettings::defaults_for(&data());
-    settings.shaders = vec![ShaderKind::Frequency];
-    settings.objects.get_mut("ball").unwrap().temperature = temperature;
-    settings
-}
-
-fn frequency(temperature: f64) -> String {
-    serde_json::to_string(&frequency_settings(temperature)).unwrap()
-}
-
 /// The picture the shade crate makes of `data()` for `settings`.
 fn shaded(settings: &ShadeSettings) -> image::RgbImage {
     Shading::new(&data(), settings).unwrap().image(&data())
-}
-
-fn error_of(body: &[u8]) -> String {
-    let v: serde_json::Value = serde_json::from_slice(body).expect("error answers are JSON");
-    v["error"].as_str().unwrap().to_string()
 }
 
 #[tokio::test]

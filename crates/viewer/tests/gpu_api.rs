@@ -1,151 +1,18 @@
 //! The routes that feed the page's GPU shaders and look around a full sphere, without a
 //! browser: requests go straight into the router, on data files built in memory whose every
 //! pixel is known. The arrays on the wire must hold the data file's values exactly, the
-//! tables the `shade` crate's, and the looked-at pictures `render::look` + `shade`'s.
+//! tables the `shade` crate's, and the looked-at pictures `look` + `shade`'s.
 
-use std::path::Path;
-use std::sync::Arc;
+mod gpu_common;
 
-use axum::body::Body;
-use axum::http::{Request, StatusCode};
-use http_body_util::BodyExt;
-use render::datafile::{DataFile, DataHeader, FORMAT_VERSION};
-use render::look::{look, LookView};
-use render::record::{PixelRecord, RayStatus};
+use axum::http::StatusCode;
+use datafile::{PixelRecord, RayStatus};
+use gpu_common::*;
+use look::{look, LookView};
 use scene::Camera;
 use shade::{ShadeSettings, ShaderKind, Shading};
 use spacetime::LocalVelocity;
-use tower::ServiceExt;
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
-use viewer::ViewerState;
-
-/// A full sphere (16×8) of a static observer in flat spacetime: a uniform ball and the earth.
-const SCENE: &str = r#"
-name = "gpu-test"
-[spacetime]
-metric = "minkowski"
-[observer]
-time = 0.0
-position = { x = 0.0, y = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "sphere"
-width = 16
-height = 8
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
-temperature = 5800.0
-motion = { kind = "rest", position = { x = 0.0, y = -1.0, z = 0.0 } }
-[[object]]
-name = "globe"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 4000.0
-motion = { kind = "rest", position = { x = 1.0, y = 0.0, z = 0.0 } }
-"#;
-
-const W: usize = 16;
-const H: usize = 8;
-
-/// Columns 11, 12 of rows 3, 4 show the ball (azimuth 360°((col + ½)/16 − ½) = 78.75° and
-/// 101.25° to the right: around right = forward × up = −y), columns 7, 8 the globe (∓11.25°:
-/// around +x), where the scene puts them; one pixel of each other status; the rest escaped. (`godel look` refuses object ids the file does not name; the
-/// channel test adds one.)
-fn data() -> DataFile {
-    let mut records = vec![PixelRecord::MISS; W * H];
-    for row in 3..5 {
-        for (col, object) in [(11, 0), (12, 0), (7, 1), (8, 1)] {
-            let k = row * W + col;
-            records[k] = PixelRecord {
-                object,
-                status: RayStatus::Hit,
-                u: 0.1 + 0.037 * k as f32,
-                v: 0.9 - 0.011 * k as f32,
-                g: 0.5 + 0.013 * k as f32,
-                t_emit: -1.0 - 0.1 * k as f32,
-                cos_i: [0.3, 1.7, -0.2, f32::NAN][k % 4],
-                ..PixelRecord::MISS
-            };
-        }
-    }
-    records[0] = PixelRecord::miss(RayStatus::Failed);
-    records[1] = PixelRecord::miss(RayStatus::StepBudget);
-    records[2] = PixelRecord::miss(RayStatus::NotTraced);
-    let light = (0..W * H).map(|i| i as f32 * 0.25 - 3.0).collect();
-    DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "gpu-test".into(),
-            scene_text: SCENE.into(),
-            camera: Camera::Sphere {
-                width: W as u32,
-                height: H as u32,
-            }
-            .describe(),
-            observer_time: 0.0,
-            metric: "minkowski".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into(), "globe".into()],
-        },
-        width: W,
-        height: H,
-        records,
-        lights: vec![light],
-    }
-}
-
-/// The same pixels seen by a 60° pinhole camera: not a full sphere.
-fn flat() -> DataFile {
-    let mut flat = data();
-    flat.header.scene_text =
-        SCENE.replace("kind = \"sphere\"", "kind = \"pinhole\"\nfov_deg = 60.0");
-    flat.header.camera = Camera::Pinhole {
-        fov_deg: 60.0,
-        width: W as u32,
-        height: H as u32,
-    }
-    .describe();
-    flat
-}
-
-fn router_for(data: DataFile) -> axum::Router {
-    viewer::router(Arc::new(
-        ViewerState::new(Path::new("gpu-test.exr"), data).unwrap(),
-    ))
-}
-
-async fn send(data: DataFile, request: Request<Body>) -> (StatusCode, Vec<u8>) {
-    let response = router_for(data).oneshot(request).await.unwrap();
-    let status = response.status();
-    let body = response.into_body().collect().await.unwrap().to_bytes();
-    (status, body.to_vec())
-}
-
-fn get(path: &str) -> Request<Body> {
-    Request::get(path)
-        .header("host", "127.0.0.1")
-        .body(Body::empty())
-        .unwrap()
-}
-
-fn post(path: &str, body: String) -> Request<Body> {
-    Request::post(path)
-        .header("host", "127.0.0.1")
-        .header("content-type", "application/json")
-        .body(Body::from(body))
-        .unwrap()
-}
-
-fn json(body: &[u8]) -> serde_json::Value {
-    serde_json::from_slice(body).expect("a JSON answer")
-}
 
 /// The samples of a wire array as u32 (integers) or f32 bits, after checking the header.
 fn samples(body: &[u8], kind: SampleType, components: u8, size: (usize, usize)) -> Vec<u32> {
@@ -171,6 +38,7 @@ async fn channels_hold_the_data_files_values_exactly() {
             status: RayStatus::Hit,
             ..PixelRecord::MISS
         };
+        d.records[4] = PixelRecord::miss(RayStatus::WorkLimit);
         d
     };
     let d = data();
@@ -202,11 +70,12 @@ async fn channels_hold_the_data_files_values_exactly() {
         assert!((got[i] as f32 / 65535.0 - c).abs() <= 0.5 / 65535.0, "{i}");
     }
 
-    // What each pixel shows: background 0, failed 1, step budget 2, not traced 3, object k at
-    // 4 + k; an object the file does not name shows as failed, as the shade crate colours it.
+    // What each pixel shows: background 0, failed 1, step budget (or work limit) 2, not traced
+    // 3, object k at 4 + k; an object the file does not name shows as failed, as the shade
+    // crate colours it.
     let (_, body) = send(data(), get("/api/gpu/channel/id")).await;
     let ids = samples(&body, SampleType::U8, 1, (W, H));
-    assert_eq!(&ids[..5], &[1, 2, 3, 1, 0]);
+    assert_eq!(&ids[..6], &[1, 2, 3, 1, 2, 0]);
     assert_eq!(ids[3 * W + 11], 4);
     assert_eq!(ids[4 * W + 8], 5);
     assert_eq!(ids.iter().filter(|&&id| id >= 4).count(), 8);

@@ -5,7 +5,7 @@
 //! coordinate in f64); the test counts them and requires them to be rare.
 
 use super::browser_support::*;
-use render::datafile::DataFile;
+use datafile::DataFile;
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, Shading, TextureChoice, TimeMode};
 
 /// A 240×60 panorama of a checkered ball lit from the side and a falling ball painted with an

@@ -10,8 +10,8 @@ use std::path::Path;
 
 use super::browser_support::*;
 use super::{angles, azimuth_elevation, number};
-use render::datafile::DataFile;
-use render::look::{pixel_look, LookView, SphereSource};
+use datafile::DataFile;
+use look::{pixel_look, LookView, SphereSource};
 use scene::Camera;
 use serde_json::{json, Value};
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TimeMode};
@@ -66,7 +66,7 @@ fn vector(v: &Value) -> [f64; 3] {
     [0, 1, 2].map(|i| v[i].as_f64().unwrap())
 }
 
-/// The view of a saved body ({"settings", "view"}) as `render::look` reads it.
+/// The view of a saved body ({"settings", "view"}) as `look` reads it.
 fn look_view(view: &Value) -> LookView {
     let c = &view["camera"];
     let (w, h) = (

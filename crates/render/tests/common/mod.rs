@@ -5,7 +5,7 @@
 //! renderer).
 #![allow(dead_code)]
 
-use render::datafile::DataFile;
+use datafile::DataFile;
 use render::driver::{render, NoProgress, RenderStats};
 use scene::Scene;
 use spacetime::{

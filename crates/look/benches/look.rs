@@ -1,14 +1,13 @@
-//! Speed of `render::look`: a 1920×1080 view from a synthetic 4096×2048 full-sphere data
+//! Speed of `look`: a 1920×1080 view from a synthetic 4096×2048 full-sphere data
 //! file (no tracing: the records are made up, with hits and misses in bands), for a 90°
 //! pinhole at rest and at 0.9 c, and the 360°×180° sphere itself turned. The look only;
 //! reading and writing files is not included.
 //! Run: cargo bench -p render --bench look
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use render::datafile::DataFile;
+use datafile::{DataFile, PixelRecord, RayStatus};
+use look::{look, LookView};
 use render::driver::header;
-use render::look::{look, LookView};
-use render::record::{PixelRecord, RayStatus};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 

@@ -1,18 +1,25 @@
-//! `render::look` (docs/physics.md, "Looking around without tracing") against independent
+//! `look` (docs/physics.md, "Observers at one event: aberration and Doppler") against independent
 //! computations: direct renders of the same camera and observer velocity (the tracer with a
 //! boosted frame), the identity view, the Doppler factor's two closed forms, the shrinking
 //! and blue shift of a ball the observer moves towards, the magnification of the static sky
 //! (dθ = D dθ′). Refusals and the output header: `look_input.rs`.
 
-mod common;
-
-use common::{render_scene, scene};
-use render::datafile::DataFile;
-use render::look::{look, pixel_look, resolution, LookView, SphereSource};
-use render::record::{PixelRecord, RayStatus};
-use scene::{replace_view, Camera};
+use datafile::{DataFile, PixelRecord, RayStatus};
+use look::{look, pixel_look, resolution, LookView, SphereSource};
+use render::driver::{render, NoProgress};
+use scene::{replace_view, Camera, Scene};
 use spacetime::LocalVelocity;
 use std::sync::OnceLock;
+
+/// A validated scene from TOML text (panics with the located error otherwise).
+fn scene(text: &str) -> Scene {
+    Scene::from_str(text, "test.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// The data file of a direct render.
+fn render_scene(s: &Scene) -> DataFile {
+    render(s, &NoProgress).expect("render").0
+}
 
 /// A ball at rest at r = 1 (seen twice, g = 1 for the static observer) and a ball falling
 /// past at 0.7 c (several images, g ≠ 1), seen from the axis over the full sphere.
@@ -49,7 +56,7 @@ const JUMP: f32 = 1.2;
 
 fn sphere() -> &'static DataFile {
     static SPHERE: OnceLock<DataFile> = OnceLock::new();
-    SPHERE.get_or_init(|| render_scene(&scene(SPHERE_SCENE)).0)
+    SPHERE.get_or_init(|| render_scene(&scene(SPHERE_SCENE)))
 }
 
 /// The direction of the resting ball's first image from the axis (formulary of
@@ -86,7 +93,7 @@ fn direct(view: &LookView) -> DataFile {
     ] {
         assert!((0..3).all(|i| (a[i] - b[i]).abs() < 1e-15), "{a:?} {b:?}");
     }
-    render_scene(&s).0
+    render_scene(&s)
 }
 
 fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {

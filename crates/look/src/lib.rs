@@ -1,6 +1,6 @@
-//! Looking around without tracing: the data file of any camera, held by any observer at
+//! `look`: looking around without tracing. The data file of any camera, held by any observer at
 //! the event of a full-sphere trace of the static observer, remapped from that trace
-//! (docs/physics.md, "Looking around without tracing").
+//! (docs/physics.md, "Observers at one event: aberration and Doppler").
 //!
 //! Every observer at one event receives the same photons, so the static observer's full
 //! sphere of directions holds every view from that event. A pixel of a [`LookView`] looks
@@ -15,8 +15,7 @@
 //! [`SphereSource::pixel_size`]), [`pixel_look`] (one output pixel: its direction in both
 //! frames and D), [`resolution`] (how far the source's pixels limit the output).
 
-use crate::datafile::DataFile;
-use crate::record::PixelRecord;
+use datafile::{DataFile, DataFileErrorKind, PixelRecord, RayStatus};
 use rayon::prelude::*;
 use scene::{Camera, Observer, Scene, SceneError};
 use spacetime::{aberrate, LocalVelocity};
@@ -88,7 +87,7 @@ pub enum LookError {
     #[error("{0}")]
     EmbeddedScene(SceneError),
     #[error("inconsistent data file: {0}")]
-    Data(crate::datafile::DataFileErrorKind),
+    Data(DataFileErrorKind),
     #[error("{field}: {message}")]
     View {
         field: &'static str,
@@ -289,7 +288,7 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
     let width = view.camera.width() as usize;
     let pixels = width * view.camera.height() as usize;
     // Per pixel: its record and the source pixel it came from (for the light planes).
-    let mut samples = vec![(PixelRecord::miss(crate::record::RayStatus::NotTraced), None); pixels];
+    let mut samples = vec![(PixelRecord::miss(RayStatus::NotTraced), None); pixels];
     samples
         .par_chunks_mut(width)
         .enumerate()

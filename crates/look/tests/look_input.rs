@@ -1,11 +1,10 @@
-//! `render::look` on input it must refuse (sources that are not a static observer's full
+//! `look` on input it must refuse (sources that are not a static observer's full
 //! sphere, inconsistent files, views with bad values, each naming what is wrong) and the
 //! header of what it writes (the new camera and view, the rest of the scene kept). Small
 //! synthetic data files: nothing is traced.
 
-use render::datafile::DataFile;
-use render::look::{look, LookError, LookView, LOOK_COMMENT};
-use render::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, PixelRecord, RayStatus};
+use look::{look, LookError, LookView, LOOK_COMMENT};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 

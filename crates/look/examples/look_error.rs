@@ -1,17 +1,16 @@
-//! Measures `render::look` against direct renders: for several cameras and observer
+//! Measures `look` against direct renders: for several cameras and observer
 //! velocities, the look of a full-sphere data file is compared with a trace of the same
 //! view (the scene embedded in the sphere file, with the view written in). Prints, per view,
 //! object mismatches on edge and non-edge pixels and the g and t_emit errors of nearest
 //! neighbour and of bilinear interpolation, against the bound |∇f|·δ of docs/physics.md.
 //! The views aim at the first image of a ball at rest at r = a seen from the axis (39.2°
 //! left of +x): make SPHERE.exr with `godel render` of the scene `SPHERE_SCENE` in
-//! crates/render/tests/look.rs (the figures in docs/physics.md).
-//! `cargo run -p render --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
+//! crates/look/tests/look.rs (the figures in docs/physics.md).
+//! `cargo run -p look --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
 
-use render::datafile::DataFile;
+use datafile::{DataFile, PixelRecord};
+use look::{look, pixel_look, LookView, SphereSource};
 use render::driver::{render, NoProgress};
-use render::look::{look, pixel_look, LookView, SphereSource};
-use render::record::PixelRecord;
 use scene::{replace_view, Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::Path;

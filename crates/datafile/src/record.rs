@@ -4,7 +4,7 @@
 //! (DESIGN.md, "Data file"): which object the backward null geodesic hit, where
 //! and when it was emitted, the frequency shift `g`, and the texture coordinates.
 //! Direct light from each source (`light_k`) is not part of the record: it is
-//! stored as separate planes in [`crate::datafile::DataFile::lights`] so that the
+//! stored as separate planes in [`crate::DataFile::lights`] so that the
 //! record stays small and `Copy`.
 
 /// How a pixel's ray ended. The numeric codes are those stored in the data
@@ -22,16 +22,21 @@ pub enum RayStatus {
     Failed = 3,
     /// The pixel was not traced (fisheye pixels outside the image circle).
     NotTraced = 4,
+    /// A bounded search ran out of work before the ray was resolved: the intersection
+    /// search's probe budget, or the limit on loop copies (every loop of the tracer has a
+    /// limit fixed in advance, so a pixel is marked instead of hanging).
+    WorkLimit = 5,
 }
 
 impl RayStatus {
     /// All statuses, in code order.
-    pub const ALL: [RayStatus; 5] = [
+    pub const ALL: [RayStatus; 6] = [
         RayStatus::Hit,
         RayStatus::Escaped,
         RayStatus::StepBudget,
         RayStatus::Failed,
         RayStatus::NotTraced,
+        RayStatus::WorkLimit,
     ];
 
     /// The code stored in the data file.
@@ -47,6 +52,7 @@ impl RayStatus {
             2 => Some(RayStatus::StepBudget),
             3 => Some(RayStatus::Failed),
             4 => Some(RayStatus::NotTraced),
+            5 => Some(RayStatus::WorkLimit),
             _ => None,
         }
     }

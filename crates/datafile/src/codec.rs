@@ -29,7 +29,7 @@
 //! joined by `\n`). Text is UTF-8; numbers are Rust's shortest round-trip
 //! decimal form (`{:?}`), so f64 values survive exactly.
 //!
-//! Part files of a split render (`crate::part`) carry `godel.part` too; reading
+//! Part files of a split render (`render::part`) carry `godel.part` too; reading
 //! one as a whole data file is refused.
 //!
 //! Output is deterministic: the exr crate keeps custom attributes in a
@@ -67,6 +67,13 @@ pub mod attr {
     pub const A: &str = "godel.a";
     pub const METHOD: &str = "godel.method";
     pub const OBJECTS: &str = "godel.objects";
+    /// Part files of a split render: `"i/N"`.
+    pub const PART: &str = "godel.part";
+    /// Part files: the fingerprint of what was rendered.
+    pub const FINGERPRINT: &str = "godel.fingerprint";
+    /// Part files: the scene file's path (empty for the built-in scene), to find its
+    /// textures.
+    pub const SCENE_PATH: &str = "godel.scene_path";
 }
 
 /// Reading a record field as f32.
@@ -205,13 +212,15 @@ impl DataFile {
             .map_err(|e| at(DataFileErrorKind::Io(e)))
     }
 
-    /// Reads and checks a data file.
+    /// Reads and checks a data file (a regular file of at most
+    /// [`scene::input::MAX_DATA_BYTES`]).
     pub fn read(path: &Path) -> Result<DataFile, DataFileError> {
         let at = |kind| DataFileError {
             path: path.to_path_buf(),
             kind,
         };
-        let bytes = std::fs::read(path).map_err(|e| at(DataFileErrorKind::Io(e)))?;
+        let bytes = scene::input::read_bounded(path, scene::input::MAX_DATA_BYTES)
+            .map_err(|e| at(DataFileErrorKind::Io(e)))?;
         DataFile::from_bytes(&bytes).map_err(at)
     }
 
@@ -261,7 +270,7 @@ impl DataFile {
     }
 
     /// [`DataFile::to_bytes`] with extra text attributes in the header (the part
-    /// files of a split render carry theirs this way, see `crate::part`).
+    /// files of a split render carry theirs this way, see `render::part`).
     pub fn to_bytes_with(&self, extra: &[(&str, String)]) -> Result<Vec<u8>, DataFileErrorKind> {
         self.validate()?;
         let h = &self.header;
@@ -324,13 +333,13 @@ impl DataFile {
     }
 
     /// Decodes and checks OpenEXR bytes. Never panics. Refuses the part files of a split
-    /// render (see `crate::part`), which are not whole images.
+    /// render (see `render::part`), which are not whole images.
     pub fn from_bytes(bytes: &[u8]) -> Result<DataFile, DataFileErrorKind> {
         Self::decode(bytes, false)
     }
 
     /// [`DataFile::from_bytes`], also reading part files when `allow_part`.
-    pub(crate) fn decode(bytes: &[u8], allow_part: bool) -> Result<DataFile, DataFileErrorKind> {
+    pub fn decode(bytes: &[u8], allow_part: bool) -> Result<DataFile, DataFileErrorKind> {
         if bytes.len() < 4 || bytes[..4] != [0x76, 0x2f, 0x31, 0x01] {
             return Err(DataFileErrorKind::NotExr);
         }
@@ -345,7 +354,7 @@ impl DataFile {
             .from_buffered(Cursor::new(bytes))
             .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
         let layer = &image.layer_data;
-        let part = Text::new_or_panic(crate::part::attr::PART);
+        let part = Text::new_or_panic(attr::PART);
         if let (false, Some(value)) = (allow_part, layer.attributes.other.get(&part)) {
             let text = match value {
                 AttributeValue::Text(t) => String::from_utf8_lossy(t.bytes()).into_owned(),

@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 
 use exr::prelude::{AttributeValue, FlatSamples, Text, WritableImage};
 use proptest::prelude::*;
-use render::atomic::{write_atomically, write_atomically_via_path};
-use render::datafile::{attr, DataFile, DataFileErrorKind, DataHeader, FORMAT_VERSION};
-use render::record::{PixelRecord, RayStatus};
+use datafile::atomic::{write_atomically, write_atomically_via_path};
+use datafile::{attr, DataFile, DataFileErrorKind, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 
 /// SplitMix64: a small deterministic generator for test data.
 struct Rng(u64);
@@ -186,7 +186,7 @@ fn miss_record() {
     for status in RayStatus::ALL {
         assert_eq!(RayStatus::from_code(status.code()), Some(status));
     }
-    assert_eq!(RayStatus::from_code(5), None);
+    assert_eq!(RayStatus::from_code(RayStatus::ALL.len() as u32), None);
 }
 
 #[test]

@@ -1,0 +1,299 @@
+//! Atomic file output: write to a temporary file next to the target, then
+//! rename it over the target.
+//!
+//! DESIGN.md, "Errors": bad input or a failed write must leave no partial
+//! output behind. Every writer of user-visible files (data files, PNGs, MP4s)
+//! goes through this module: on success the target holds the complete new
+//! content; on any error the target is left as it was (absent or with its old
+//! content) and the temporary file is removed.
+//!
+//! - [`write_atomically`], [`write_atomically_via_path`]: one file.
+//! - [`stage`], [`stage_via_path`], then [`commit_all`]: several files that belong
+//!   together (a render's EXR and PNG) are all written to temporaries first and
+//!   renamed only when every one is complete, one rename right after the other.
+//! - [`check_writable`]: creates and removes the temporary a later write would
+//!   use, so that an unwritable folder or a name too long is found before any work.
+//!
+//! Temporary files are named `.NAME.godel-PID-HOST.XXXXXX.tmp` (hidden, beside
+//! the target, so the rename never crosses a file system) and are kept in a
+//! process-wide registry while they exist. [`remove_live_temporaries`] deletes
+//! them all (the command line calls it on SIGINT/SIGTERM before exiting); it waits
+//! for a commit in progress, so a signal never separates the renames of one
+//! [`commit_all`]. Temporaries that a killed process left behind (SIGKILL, power
+//! loss) are swept: the first time a process writes into a folder, it removes the
+//! temporaries there whose name carries this host and a process id that no longer
+//! runs (Linux, where `/proc` tells which processes run; elsewhere nothing is swept).
+//! The registry is global state by necessity: a signal handler has no other way to
+//! find the files.
+
+use std::collections::{BTreeSet, HashSet};
+use std::fs::File;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard};
+
+use tempfile::NamedTempFile;
+
+/// Temporary files that exist now.
+static LIVE: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
+/// Held while renames are under way (and by [`remove_live_temporaries`] for good).
+static COMMIT: Mutex<()> = Mutex::new(());
+/// Folders already swept for stale temporaries by this process.
+static SWEPT: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+
+/// A lock that a panicking holder does not poison for everyone else.
+fn lock<T>(m: &'static Mutex<T>) -> MutexGuard<'static, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// A complete temporary file waiting to be renamed onto its target.
+#[derive(Debug)]
+pub struct Staged {
+    /// `None` only once renamed.
+    temp: Option<NamedTempFile>,
+    target: PathBuf,
+}
+
+impl Staged {
+    /// The file this will become.
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        // Removed first, then unregistered: a signal in between finds it gone.
+        if let Some(temp) = self.temp.take() {
+            let path = temp.path().to_path_buf();
+            drop(temp);
+            lock(&LIVE).remove(&path);
+        }
+    }
+}
+
+/// Writes `path` atomically: `write` fills a fresh temporary file in the same
+/// directory as `path`; the file is flushed, synced and renamed onto `path`.
+///
+/// If `write` (or the flush, sync or rename) fails, the temporary file is
+/// deleted and `path` is untouched.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut File) -> io::Result<()>,
+) -> io::Result<()> {
+    commit_all(vec![stage(path, write)?])
+}
+
+/// Like [`write_atomically`], for writers that want a file *path* rather than
+/// an open file (for example a library or a program that opens the file itself).
+///
+/// `write` receives the path of an existing, empty temporary file in the same
+/// directory as `path`; it may truncate and overwrite it. Afterwards the
+/// temporary file is renamed onto `path`.
+pub fn write_atomically_via_path(
+    path: &Path,
+    write: impl FnOnce(&Path) -> io::Result<()>,
+) -> io::Result<()> {
+    commit_all(vec![stage_via_path(path, write)?])
+}
+
+/// Writes the content of `path` to a temporary file (flushed and synced) and
+/// hands it back for [`commit_all`]; dropping the result removes the temporary.
+pub fn stage(path: &Path, write: impl FnOnce(&mut File) -> io::Result<()>) -> io::Result<Staged> {
+    let mut staged = temp_file_for(path)?;
+    let temp = staged.temp_mut()?;
+    write(temp.as_file_mut())?;
+    temp.as_file_mut().flush()?;
+    temp.as_file().sync_all()?;
+    Ok(staged)
+}
+
+/// [`stage`] for writers that want a path (see [`write_atomically_via_path`]).
+pub fn stage_via_path(
+    path: &Path,
+    write: impl FnOnce(&Path) -> io::Result<()>,
+) -> io::Result<Staged> {
+    let mut staged = temp_file_for(path)?;
+    let temp = staged.temp_mut()?.path().to_path_buf();
+    write(&temp)?;
+    File::open(&temp)?.sync_all()?;
+    Ok(staged)
+}
+
+/// Renames every staged file onto its target, in order, with nothing in between
+/// (and no signal cleanup: it waits until all are renamed). On an error the
+/// temporaries not yet renamed are removed and the error is returned.
+pub fn commit_all(staged: Vec<Staged>) -> io::Result<()> {
+    let _renaming = lock(&COMMIT);
+    for mut s in staged {
+        if let Some(temp) = s.temp.take() {
+            let path = temp.path().to_path_buf();
+            // On failure the temporary comes back in the error and is removed with it.
+            let result = temp.persist(&s.target).map(|_| ()).map_err(|e| e.error);
+            lock(&LIVE).remove(&path);
+            result?;
+        }
+    }
+    Ok(())
+}
+
+/// Checks that `path` can be written: it is not a directory, and the temporary
+/// file of a write can be created beside it (the folder exists and is writable,
+/// the names are not too long). The probe is removed again.
+pub fn check_writable(path: &Path) -> io::Result<()> {
+    if path.is_dir() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{} is a directory", path.display()),
+        ));
+    }
+    drop(temp_file_for(path)?);
+    Ok(())
+}
+
+/// Deletes every temporary file this process has open and blocks any further
+/// temporary file or rename for good: call it only right before the process
+/// exits (the command line's signal handler does). Returns how many it removed.
+pub fn remove_live_temporaries() -> usize {
+    // Wait for renames under way; then keep both locks until the process ends.
+    let commit = lock(&COMMIT);
+    let live = lock(&LIVE);
+    let removed = live
+        .iter()
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count();
+    std::mem::forget(live);
+    std::mem::forget(commit);
+    removed
+}
+
+/// The temporary files this process has open now (for tests and messages).
+pub fn live_temporaries() -> Vec<PathBuf> {
+    lock(&LIVE).iter().cloned().collect()
+}
+
+impl Staged {
+    fn temp_mut(&mut self) -> io::Result<&mut NamedTempFile> {
+        self.temp
+            .as_mut()
+            .ok_or_else(|| io::Error::other("the temporary file was already renamed"))
+    }
+}
+
+/// A new, registered temporary file in the directory of `path`.
+fn temp_file_for(path: &Path) -> io::Result<Staged> {
+    let dir = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{} does not name a file", path.display()),
+        )
+    })?;
+    sweep_once(&dir);
+    let mut prefix = std::ffi::OsString::from(".");
+    prefix.push(name);
+    prefix.push(format!(".{}.", owner_tag()));
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    // Temporary files are created private (0600); the output should get the
+    // usual permissions of a new file (0666 less the umask).
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    // Created and registered under the registry's lock, so that a signal handler
+    // sees every temporary file that exists.
+    let mut live = lock(&LIVE);
+    let temp = builder.tempfile_in(&dir)?;
+    live.insert(temp.path().to_path_buf());
+    Ok(Staged {
+        temp: Some(temp),
+        target: path.to_path_buf(),
+    })
+}
+
+/// `godel-PID-HOST`: who made a temporary file (HOST with anything but letters and
+/// digits replaced by `_`, at most 32 characters).
+fn owner_tag() -> String {
+    format!("godel-{}-{}", std::process::id(), host())
+}
+
+fn host() -> String {
+    let raw = std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .ok()
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .unwrap_or_default();
+    let h: String = raw
+        .trim()
+        .chars()
+        .take(32)
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    if h.is_empty() {
+        "unknown".into()
+    } else {
+        h
+    }
+}
+
+/// The process id and host of a temporary file name of ours
+/// (`.NAME.godel-PID-HOST.XXXXXX.tmp`), else `None`.
+pub fn owner_of(file_name: &str) -> Option<(u32, &str)> {
+    let rest = file_name.strip_prefix('.')?.strip_suffix(".tmp")?;
+    let (rest, _random) = rest.rsplit_once('.')?;
+    let (_name, tag) = rest.rsplit_once('.')?;
+    let (pid, host) = tag.strip_prefix("godel-")?.split_once('-')?;
+    Some((pid.parse().ok()?, host))
+}
+
+/// Removes, once per folder and process, the temporaries of this host whose
+/// process no longer runs. Best effort: what cannot be read or removed stays.
+fn sweep_once(dir: &Path) {
+    // Only where /proc tells which processes run, and never for an unknown host (a
+    // folder shared over the network holds other machines' temporaries).
+    let proc = Path::new("/proc");
+    let here = host();
+    if !proc.join("self").exists() || here == "unknown" {
+        return;
+    }
+    let key = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+    if !lock(&SWEPT).get_or_insert_with(HashSet::new).insert(key) {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some((pid, host)) = name.to_str().and_then(owner_of) else {
+            continue;
+        };
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && host == here && !proc.join(pid.to_string()).exists() {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn owner_tags_read_back() {
+        assert_eq!(
+            owner_of(".a.b.png.godel-123-node_1.Ab3xYz.tmp"),
+            Some((123, "node_1"))
+        );
+        assert_eq!(owner_of(".x.exr.Ab3xYz.tmp"), None);
+        assert_eq!(owner_of("x.exr.godel-1-h.Ab3xYz.tmp"), None);
+        assert_eq!(owner_of(".x.exr.godel-pid-h.Ab3xYz.tmp"), None);
+        let tag = owner_tag();
+        let name = format!(".out.png.{tag}.abcdef.tmp");
+        assert_eq!(owner_of(&name), Some((std::process::id(), host().as_str())));
+    }
+}

@@ -1,0 +1,16 @@
+//! `datafile`: what a traced image stores, apart from the tracer that fills it, so that the
+//! shaders and the viewer read it without compiling the tracer.
+//!
+//! - [`record`]: [`PixelRecord`] and [`RayStatus`], what one pixel's ray found.
+//! - The data file ([`DataFile`], [`DataHeader`]): one OpenEXR file per traced image with one
+//!   named channel per record field, read back without re-tracing (see [`attr`] for its
+//!   header attributes, part files of split renders included).
+//! - [`atomic`]: every output file is written to a temporary file and renamed, several files
+//!   together where they belong together; temporaries are removed on signals and swept.
+
+pub mod atomic;
+mod codec;
+pub mod record;
+
+pub use codec::*;
+pub use record::{PixelRecord, RayStatus};
