@@ -1,11 +1,10 @@
 //! Atomic file output: write to a temporary file next to the target, then
 //! rename it over the target.
 //!
-//! DESIGN.md, "Errors": bad input or a failed write must leave no partial
-//! output behind. Every writer of user-visible files (data files, PNGs, MP4s)
-//! goes through this module: on success the target holds the complete new
-//! content; on any error the target is left as it was (absent or with its old
-//! content) and the temporary file is removed.
+//! Bad input or a failed write must leave no partial output behind. Every writer of
+//! user-visible files (data files, PNGs, MP4s) goes through this module: on success the
+//! target holds the complete new content; on any error the target is left as it was (absent
+//! or with its old content) and the temporary file is removed.
 //!
 //! - [`write_atomically`], [`write_atomically_via_path`]: one file.
 //! - [`stage`], [`stage_via_path`], then [`commit_all`]: several files that belong

@@ -3,14 +3,15 @@
 //!
 //! An initial-value integrator cannot aim a ray at a point; Gödel's homogeneity can: the
 //! isometry sending the source to the axis turns the problem into the closed forms through
-//! the origin (`spacetime::connect`, formulary §3; Grave et al., PRD 80, 103002 (2009),
-//! Sec. III). Rays exist only where the event lies within the source's horizon (ρ < 2a);
-//! within it there are two per winding in the source's plane, and more off it.
+//! the origin (`spacetime::connect`; docs/physics.md, "Light rays between a source and an
+//! event"; Grave et al., PRD 80, 103002 (2009)). Rays exist only where the event lies within
+//! the source's horizon (ρ < 2a); within it there are two per winding in the source's plane,
+//! and more off it.
 //!
 //! Each ray is re-evaluated from its emission event with the closed form (isometry ∘ closed
 //! form ∘ inverse) and its miss distance at the event printed, so a user sees that it lands.
-//! Directions are unit vectors in the static observer's local frame (DESIGN.md,
-//! Conventions): at the source, where the light leaves to; at the event, where it is seen
+//! Directions are unit vectors in the static observer's local frame (docs/physics.md,
+//! "Frames"): at the source, where the light leaves to; at the event, where it is seen
 //! (the opposite of its propagation). Static source and static receiver see no frequency
 //! shift (g = 1: ∂t is a Killing field of unit norm), so none is printed.
 
@@ -19,8 +20,8 @@ use anyhow::Context;
 use clap::ValueEnum;
 use serde_json::json;
 use spacetime::{
-    shadow_rays, source_area_distance_sq, Branch, Cylindrical, Event, ExactGeodesic, FourVector,
-    Godel, Isometry, ShadowRay, Spacetime,
+    measure, shadow_rays, source_area_distance_sq, Branch, Cylindrical, Event, ExactGeodesic,
+    FourVector, Godel, Isometry, ShadowRay, Spacetime,
 };
 use std::io::Write;
 
@@ -86,7 +87,7 @@ pub struct Answer {
 /// Local spatial components of `v` in the static frame at `at`, normalized.
 fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
     let frame = metric.static_frame(at);
-    let n: [f64; 3] = std::array::from_fn(|i| metric.dot(at, frame.e[i + 1], v));
+    let [_, n @ ..] = measure::vector_components(&metric.metric(at), &frame, v);
     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
     n.map(|c| c / len)
 }

@@ -1,5 +1,5 @@
 //! `godel shade DATA.exr --shader texture|frequency|time|light … -o out.png`: re-colours a
-//! traced data file without tracing again (DESIGN.md, "The pipeline"). The settings start
+//! traced data file without tracing again (README.md, "Shading"). The settings start
 //! from the data file's defaults ([`shade::ShadeSettings::defaults_for`]), then a settings
 //! file (`--settings`), then the convenience flags, in that order; the picture is written
 //! atomically, so a failed run leaves nothing at the output path.

@@ -1,6 +1,7 @@
 //! End-to-end tests of the `godel` binary: `geodesic` output (CSV/JSON) against closed forms
-//! of the Gödel formulary (return time 2πa(√2 − 1), sense of rotation), input validation
-//! (exit code 2 naming the flag), and `plot geodesics` (valid SVG with the horizon, PNG).
+//! of Gödel light rays (docs/physics.md, "Closed forms": return time 2πa(√2 − 1), sense of
+//! rotation), input validation (exit code 2 naming the flag), and `plot geodesics` (valid SVG
+//! with the horizon, PNG).
 
 use std::f64::consts::{PI, SQRT_2};
 use std::process::{Command, Output};
@@ -113,7 +114,7 @@ fn future_rays_turn_counter_clockwise_and_past_rays_clockwise() {
         "--past",
     ]);
     let (f, p) = (future[50], past[50]);
-    // Mid-loop: r = r_max = 2a, φ = ±π/2, t = ±T_ret/2 (formulary §2).
+    // Mid-loop: r = r_max = 2a, φ = ±π/2, t = ±T_ret/2 (docs/physics.md, "Closed forms").
     assert!(f[6] > 1.99 && (f[2] - 2.0).abs() < 1e-8 && (f[3] - PI / 2.0).abs() < 1e-8);
     assert!(p[6] < -1.99 && (p[2] - 2.0).abs() < 1e-8 && (p[3] + PI / 2.0).abs() < 1e-8);
     assert!((f[1] - T_RET / 2.0).abs() < 1e-8 && (p[1] + T_RET / 2.0).abs() < 1e-8);
@@ -149,7 +150,7 @@ fn default_godel_stop_is_one_loop_back_on_the_axis() {
             "λ_ret = 2πa, got {}",
             last[0]
         );
-        // On return φ has turned by ±π (formulary §2).
+        // On return φ has turned by ±π (docs/physics.md, "Closed forms").
         assert!(
             (last[3] - if past { -PI } else { PI }).abs() < 1e-6,
             "φ = {}",

@@ -192,7 +192,8 @@ fn connecting_rays_land_on_the_event_and_point_back_at_the_source() {
 
 #[test]
 fn connect_counts_and_the_horizon() {
-    // In the source's plane (equal z): exactly two rays per winding (formulary §3).
+    // In the source's plane (equal z): exactly two rays per winding (docs/physics.md, "Light
+    // rays between a source and an event").
     for w in [0, 2] {
         let doc = json(&[
             "connect",

@@ -59,8 +59,8 @@ fn sphere() -> &'static DataFile {
     SPHERE.get_or_init(|| render_scene(&scene(SPHERE_SCENE)))
 }
 
-/// The direction of the resting ball's first image from the axis (formulary of
-/// docs/physics.md: tan az = √2 ρ/√(4a² − ρ²) for ρ = 1, a = 1): 39.23° from e_x.
+/// The direction of the resting ball's first image from the axis (docs/physics.md, "Images
+/// of a point": tan az = √2 ρ/√(4a² − ρ²) for ρ = 1, a = 1): 39.23° from e_x.
 fn towards_resting() -> [f64; 3] {
     let az = (2f64.sqrt() / 3f64.sqrt()).atan();
     [az.cos(), az.sin(), 0.0]
@@ -106,8 +106,8 @@ fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
     s.atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
 }
 
-/// The static direction of source pixel centre (col, row) (DESIGN.md "Cameras": the sphere
-/// is the 360°×180° panorama), columns wrapped.
+/// The static direction of source pixel centre (col, row) (docs/physics.md, "Pixels and
+/// cameras": the sphere is the 360°×180° panorama), columns wrapped.
 fn centre(src: &SphereSource, col: i64, row: i64) -> [f64; 3] {
     let cam = Camera::Sphere {
         width: src.width as u32,

@@ -1,7 +1,8 @@
 //! `render`: tracing a scene into per-pixel records (stored by the `datafile` crate).
 //!
 //! - [`driver`]: [`driver::Renderer`] traces the tiles of a plan and hands each to a
-//!   [`tiles::Sink`] (the data-file [`tiles::Assembler`], a part writer, an MPI sender).
+//!   [`tiles::Sink`] (the data-file [`tiles::Assembler`] of an image or a part; a list of
+//!   tiles for MPI).
 //! - [`tracer`]: one pixel's backward light ray, numeric or exact, and its record.
 //! - [`intersect`]: the bounded intersection search shared by pixel and shadow rays, over
 //!   the [`segment`]s of a ray; [`target`]: the objects' signed distances and surfaces;

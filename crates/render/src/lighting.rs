@@ -4,14 +4,15 @@
 //! object along it in space and time, and summed with a Lambert law in the object's rest
 //! frame.
 //!
-//! The connecting rays are the closed forms of [`spacetime::connect`] (formulary §5): a
-//! source at rest is carried to the axis by an isometry, where the rays are solved for in
-//! one variable. There can be several, emitted at different times (two per winding around
-//! the source's axis, and infinitely many windings when the target is off the source's
-//! plane); rays emitted more than `max_past` before the hit are not counted, the same
-//! window as the pixel rays.
+//! The connecting rays are the closed forms of [`spacetime::connect`] (docs/physics.md,
+//! "Light rays between a source and an event"): a source at rest is carried to the axis by
+//! an isometry, where the rays are solved for in one variable. There can be several, emitted
+//! at different times (two per winding around the source's axis, and infinitely many
+//! windings when the target is off the source's plane); rays emitted more than `max_past`
+//! before the hit are not counted, the same window as the pixel rays.
 //!
-//! Intensity law (irradiance on the surface, in the object's rest frame), per ray:
+//! Intensity law (irradiance on the surface, in the object's rest frame; docs/physics.md,
+//! "Area distance and irradiance"), per ray:
 //!
 //!   E = P · g² · cos θ / (4π D²)
 //!

@@ -1,4 +1,5 @@
-//! Ray–object intersection for the three kinds of object (DESIGN.md "Objects"):
+//! Ray–object intersection for the three kinds of object (docs/physics.md, "Local objects"
+//! and "The intersection search"):
 //!
 //! - local spheres: a ray point is expressed in the object's rest frame at the simultaneous
 //!   point of its worldline (`worldline.rs`); the ball is |ξ| ≤ R there, so aberration and
@@ -128,7 +129,8 @@ impl Target {
                 // The rest frame's "now" differs from coordinate time across the ball.
                 let dt = 4.0 * radius + 0.1;
                 let b = worldline.bounds(t0 - dt, t1 + dt);
-                // A proper length along r spans √(1 + (r/2a)²) in coordinates (formulary §4).
+                // A proper length along r spans √(1 + (r/2a)²) in coordinates
+                // (docs/physics.md, "The Gödel metric": g_rr = 1/(1 + s²)).
                 let s2 = metric.godel_a().map_or(0.0, |a| {
                     ((b.max_radius() + 2.0 * radius) / (2.0 * a)).powi(2)
                 });

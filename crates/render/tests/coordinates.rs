@@ -1,5 +1,6 @@
-//! Coordinate objects (DESIGN.md: static spheres and planes given and intersected in
-//! pseudo-Cartesian coordinates), checked in flat spacetime against the exact geometry.
+//! Coordinate objects (docs/physics.md, "Local objects": static spheres and planes given and
+//! intersected in pseudo-Cartesian coordinates), checked in flat spacetime against the exact
+//! geometry.
 
 mod common;
 use common::{render_scene, scene};

@@ -1,7 +1,8 @@
 //! Gödel images rendered by the numeric tracer, checked against independent computations:
-//! the formulary's closed forms (§5: image azimuths and delays of a static point seen from
-//! the axis) and a numeric shoot-and-solve with `spacetime::trace` (bisection in azimuth for
-//! the backward ray through the sphere's centre), never against the renderer itself.
+//! the closed forms (docs/physics.md, "Images of a point": image azimuths and delays of a
+//! static point seen from the axis) and a numeric shoot-and-solve with `spacetime::trace`
+//! (bisection in azimuth for the backward ray through the sphere's centre), never against the
+//! renderer itself.
 //!
 //! Geometry of every scene: observer at rest at the origin, camera forward = e_x, up = e_z,
 //! so right = −e_y and a local azimuth az (counter-clockwise from e_x) shows at α = −az.
@@ -78,7 +79,8 @@ fn solved_images() -> [(f64, f64); 2] {
         );
         out[k] = (az, t);
     }
-    // Formulary §5, a = 1, ρ = 1: az − φ_c = 39.2315204836°, 140.7684795164°.
+    // docs/physics.md, "Images of a point", a = 1, ρ = 1: az − φ_c = 39.2315204836°,
+    // 140.7684795164°.
     assert!(((out[0].0 - PHI_C).to_degrees() - 39.231_520_483_6).abs() < 1e-6);
     assert!(((out[1].0 - PHI_C).to_degrees() - 140.768_479_516_4).abs() < 1e-6);
     out
@@ -124,7 +126,7 @@ fn static_sphere_inside_horizon_is_seen_twice_where_the_connecting_rays_point() 
         let r = d.record(col, MID_ROW);
         assert_eq!(r.status, RayStatus::Hit, "image {k} at column {col}");
         // Emission time: the ray meets the surface within the ball's light-travel size of
-        // the centre crossing (formulary §5 delays Δt_k).
+        // the centre crossing (delays Δt_k, docs/physics.md, "Images of a point").
         t_emit[k] = r.t_emit as f64;
         assert!(
             (t_emit[k] - t_centre).abs() <= 0.15,
@@ -137,7 +139,8 @@ fn static_sphere_inside_horizon_is_seen_twice_where_the_connecting_rays_point() 
         eprintln!("image {k}: az {:.4}°, column {colf:.3}, group centroid {mean:.3}, offset {off:.3} px, {} px, t_emit {:.4} (−Δt {:.4})",
             az.to_degrees(), groups[gi].len(), t_emit[k], t_centre);
         // The far image's "centre" is the ray through the centre point, not its centroid
-        // (formulary caveat), but at this size the two agree to well within a pixel.
+        // (docs/physics.md, "Images of a point"), but at this size the two agree to well
+        // within a pixel.
         assert!(
             off <= 1.0,
             "image {k}: centroid {mean} vs centre ray {colf}"

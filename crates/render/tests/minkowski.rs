@@ -5,7 +5,8 @@
 //!
 //! The expected hit mask is computed pixel by pixel from the definition of a local sphere
 //! (the ray, in the sphere's rest frame, comes within R of its centre), with the pixel
-//! directions taken from the DESIGN.md pinhole formula, not from the scene crate.
+//! directions taken from the pinhole formula of docs/physics.md ("Pixels and cameras"), not
+//! from the scene crate.
 
 mod common;
 
@@ -15,8 +16,8 @@ use datafile::DataFile;
 const FOV_DEG: f64 = 30.0;
 const N: usize = 81;
 
-/// Pinhole pixel direction (DESIGN.md) in the observer's frame, with forward = e_x,
-/// up = e_z, right = forward × up = −e_y.
+/// Pinhole pixel direction (docs/physics.md, "Pixels and cameras") in the observer's frame,
+/// with forward = e_x, up = e_z, right = forward × up = −e_y.
 fn pixel_dir(col: usize, row: usize) -> [f64; 3] {
     let t = (0.5 * FOV_DEG).to_radians().tan();
     let (w, h) = (N as f64, N as f64);

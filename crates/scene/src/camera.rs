@@ -1,5 +1,5 @@
-//! Cameras: which direction each pixel looks along, exactly as fixed in DESIGN.md
-//! ("Cameras"), so that every tool reads pixels the same way.
+//! Cameras: which direction each pixel looks along, exactly as fixed in docs/physics.md
+//! ("Pixels and cameras"), so that every tool reads pixels the same way.
 //!
 //! Directions are returned in the *camera basis*: components along (forward, right, up),
 //! with right = forward × up. [`crate::Observer::pixel_direction`] turns them into the

@@ -1,12 +1,12 @@
 //! Scene files for the Gödel ray tracer: parsing, validation with located errors, and the
-//! runtime scene description (DESIGN.md, "Scene file (TOML)", "Cameras", "Errors").
+//! runtime scene description (README.md, "Scenes"; docs/physics.md, "Pixels and cameras").
 //!
 //! Main types:
 //! - [`Scene`]: the validated scene — metric, [`Observer`], [`Camera`], [`TraceSettings`],
 //!   [`Object`]s (shape, [`TextureSpec`], temperature, [`Motion`]) and [`Light`]s.
 //!   Read with [`Scene::from_file`], [`Scene::from_str`] or [`Scene::builtin`].
-//! - [`Camera`]: pixel → direction, exactly as DESIGN.md fixes it; [`Observer::pixel_direction`]
-//!   gives the direction in the observer's local frame.
+//! - [`Camera`]: pixel → direction, exactly as docs/physics.md ("Pixels and cameras") fixes
+//!   it; [`Observer::pixel_direction`] gives the direction in the observer's local frame.
 //! - [`SceneError`]: `file:line:column: field.path: message`.
 //! - [`Scene::read_view`] and [`replace_view`]: read or replace only the observer's view
 //!   (camera, velocity, camera axes) in scene text, as `godel look` does.
@@ -32,7 +32,7 @@ pub use edit::replace_view;
 pub use error::{line_column, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
-    TextureSpec, TraceMethod, TraceSettings,
+    TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
 pub use validate::{MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 

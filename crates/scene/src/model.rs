@@ -117,7 +117,8 @@ impl Default for TraceSettings {
     }
 }
 
-/// Whether an object lives in its own rest frame or is fixed in coordinates (DESIGN.md).
+/// Whether an object lives in its own rest frame or is fixed in coordinates (docs/physics.md,
+/// "Local objects").
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ObjectFrame {
     Local,
@@ -187,6 +188,10 @@ pub enum Motion {
     },
 }
 
+/// An object's black-body temperature when the scene gives none, K (about the Sun's
+/// surface). Shaders fall back to it for objects a settings file does not name.
+pub const DEFAULT_TEMPERATURE: f64 = 5800.0;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
     /// Unique within the scene.
@@ -194,7 +199,7 @@ pub struct Object {
     pub frame: ObjectFrame,
     pub shape: Shape,
     pub texture: TextureSpec,
-    /// Black-body temperature in kelvin (> 0; default 5800).
+    /// Black-body temperature in kelvin (> 0; default [`DEFAULT_TEMPERATURE`]).
     pub temperature: f64,
     pub motion: Motion,
 }

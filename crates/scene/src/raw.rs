@@ -1,7 +1,7 @@
-//! The scene file exactly as written (DESIGN.md, "Scene file (TOML)"): serde structs with
-//! unknown fields rejected everywhere. Nothing is checked here beyond TOML types; the
-//! meaning (which fields go with which `kind`, ranges, units) is checked in `validate.rs`,
-//! which turns these records into the runtime types with located errors.
+//! The scene file exactly as written (README.md, "Scenes"): serde structs with unknown
+//! fields rejected everywhere. Nothing is checked here beyond TOML types; the meaning (which
+//! fields go with which `kind`, ranges, units) is checked in `validate.rs`, which turns these
+//! records into the runtime types with located errors.
 //!
 //! Tables with a `kind` are flat structs with optional fields rather than serde-tagged
 //! enums: serde buffers tagged enums, which loses the byte spans that locate errors.

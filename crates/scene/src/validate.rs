@@ -2,7 +2,7 @@
 //! (`model.rs`), checking every number and every combination of fields, each failure a
 //! [`SceneError`] located at the offending value.
 //!
-//! Defaults where DESIGN.md is silent: a missing `[spacetime]` is Gödel with a = 1; a
+//! Defaults for what a scene file leaves out: a missing `[spacetime]` is Gödel with a = 1; a
 //! missing `[observer]` is at rest at the origin at t = 0 looking along e1 with e3 up;
 //! position components left out are 0; a missing velocity direction is [1, 0, 0]; a missing
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is

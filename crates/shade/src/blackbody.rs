@@ -14,11 +14,12 @@
 //!   `x = X/(X+Y+Z)`, `y = Y/(X+Y+Z)`.
 //! - IEC 61966-2-1 (sRGB): XYZ → linear sRGB with the standard's matrix (D65 white); the
 //!   8-bit transfer function lives in [`crate::colour`].
-//! - The frequency-shift law (DESIGN.md, "Conventions"): `I_ν/ν³` is invariant along a ray,
-//!   so a black body at T seen with shift g = ν_obs/ν_emit has the observed spectrum
-//!   `g³ B_ν(ν/g, T) = B_ν(ν, g·T)`, a black body at g·T exactly; its bolometric radiance
-//!   `σ(gT)⁴/π` scales with g⁴ (Stefan–Boltzmann). [`observed_xyz`] integrates the
-//!   transformed spectrum directly, so that tests can check the law rather than assume it.
+//! - The frequency-shift law (docs/physics.md, "Black body and colour"): `I_ν/ν³` is
+//!   invariant along a ray, so a black body at T seen with shift g = ν_obs/ν_emit has the
+//!   observed spectrum `g³ B_ν(ν/g, T) = B_ν(ν, g·T)`, a black body at g·T exactly; its
+//!   bolometric radiance `σ(gT)⁴/π` scales with g⁴ (Stefan–Boltzmann). [`observed_xyz`]
+//!   integrates the transformed spectrum directly, so that tests can check the law rather
+//!   than assume it.
 //!
 //! Colours: [`unit_colour`] is linear sRGB scaled to luminance Y = 1, with out-of-gamut
 //! (negative) components clamped to 0; [`colour`] is the same scaled so that its largest

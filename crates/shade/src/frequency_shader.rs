@@ -1,5 +1,6 @@
 //! The frequency shader: shows each object as a black body of its own temperature T_k seen
-//! with the pixel's frequency shift g, without re-tracing (DESIGN.md, "The pipeline").
+//! with the pixel's frequency shift g, without re-tracing (docs/physics.md, "Black body and
+//! colour").
 //!
 //! A black body at T seen with shift g = ν_obs/ν_emit is a black body at g·T (Planck's law
 //! with the invariance of I_ν/ν³; see [`crate::blackbody`]), so a hit pixel of object k shows
@@ -26,9 +27,9 @@
 //! figures of the Gödel-universe visualizations; see [`reference_square`] for the layout.
 //! Rows are shaded in parallel; the result does not depend on the thread count.
 
-use image::RgbImage;
-use datafile::DataFile;
 use datafile::record::PixelRecord;
+use datafile::DataFile;
+use image::RgbImage;
 
 use crate::blackbody::table;
 use crate::colour::rgb_to_srgb8;

@@ -1,5 +1,5 @@
 //! `shade`: the post-render stage — shading per-pixel data files into pictures without
-//! re-tracing (DESIGN.md, "The pipeline").
+//! re-tracing (README.md, "Shading").
 //!
 //! Main types and functions:
 //! - [`ShadeSettings`]: every shader parameter (serde; TOML files, keyframes, the viewer),

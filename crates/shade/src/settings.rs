@@ -294,8 +294,7 @@ pub const MAX_LIGHT_SOURCES: usize = 64;
 
 /// Default highlight inside the time window: warm yellow.
 pub const WINDOW_COLOUR: [f64; 3] = [1.0, 0.75, 0.1];
-/// Default temperature when the scene gives none, K (the scene's default).
-pub const DEFAULT_TEMPERATURE: f64 = 5800.0;
+pub use scene::DEFAULT_TEMPERATURE;
 /// Default ambient light.
 pub const DEFAULT_AMBIENT: f64 = 0.15;
 

@@ -150,13 +150,14 @@ pub fn shadow_rays(a: f64, source: Event, target: Event, max_winding: u32) -> Ve
 /// `source`: the cross-section dA at the ray's end of the bundle leaving the source into
 /// the solid angle dΩ (measured in the source's rest frame). A point source of luminosity
 /// L then gives the energy flux L g²/(4π D²) across the ray at the receiver (Etherington's
-/// reciprocity, e.g. Ellis, Gen. Rel. Grav. 39, 1047 (2007) §6.4; g = ν_received/ν_emitted).
+/// reciprocity: Etherington, Phil. Mag. 15, 761 (1933); Ellis, Gen. Rel. Grav. 39, 1047
+/// (2007); docs/physics.md, "Area distance and irradiance"; g = ν_received/ν_emitted).
 ///
-/// Computed in the frame where the source sits on the axis (formulary §3: the isometry
-/// preserves the metric, the affine parameter and static frames). There the bundle's
-/// directions are (ψ, χ) with k = (1, sin ψ cos χ, sin ψ sin χ, cos ψ), and the two Jacobi
-/// fields at the ray's end are J_χ = ∂_φ (rotation about the axis, a Killing field: exact)
-/// and J_ψ by a central difference of the closed form (error ~1e-10). Both are orthogonal
+/// Computed in the frame where the source sits on the axis (docs/physics.md, "Isometries":
+/// the isometry preserves the metric, the affine parameter and static frames). There the
+/// bundle's directions are (ψ, χ) with k = (1, sin ψ cos χ, sin ψ sin χ, cos ψ), and the two
+/// Jacobi fields at the ray's end are J_χ = ∂_φ (rotation about the axis, a Killing field:
+/// exact) and J_ψ by a central difference of the closed form (error ~1e-10). Both are orthogonal
 /// to the ray's tangent (they vanish at emission), so the area √det g(J_i, J_j) is the same
 /// for every observer (Sachs). D² = area/sin ψ. NaN where the ray leaves along ±z (sin ψ = 0:
 /// the parametrization degenerates) or `ray` is not from `source`.

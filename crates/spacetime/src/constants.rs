@@ -1,6 +1,6 @@
 //! Constants of motion of geodesics in Gödel's (and Minkowski) spacetime, from the Killing
-//! fields ∂t, ∂φ, ∂z (formulary §1): E = −p_t, L = p_φ = x p_y − y p_x, p_z, and the
-//! normalization N = g^{μν} p_μ p_ν (0 for light, −1 for particles with proper time).
+//! fields ∂t, ∂φ, ∂z (docs/physics.md, "Geodesics"): E = −p_t, L = p_φ = x p_y − y p_x, p_z,
+//! and the normalization N = g^{μν} p_μ p_ν (0 for light, −1 for particles with proper time).
 
 use crate::geodesic::{GeodesicState, TracedGeodesic};
 use crate::metric::Spacetime;

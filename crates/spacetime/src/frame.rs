@@ -1,7 +1,7 @@
 //! Local frames: the static observer's frame by Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
-//! (DESIGN.md), Lorentz boosts of a frame to an observer moving with a given velocity, and
-//! the aberration and Doppler factor between two observers at one event (docs/physics.md,
-//! "Observers at one event: aberration and Doppler").
+//! (docs/physics.md, "Frames"), Lorentz boosts of a frame to an observer moving with a given
+//! velocity, and the aberration and Doppler factor between two observers at one event
+//! (docs/physics.md, "Observers at one event: aberration and Doppler").
 
 use crate::vectors::{FourVector, MetricTensor, Tetrad};
 

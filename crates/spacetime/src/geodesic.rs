@@ -4,10 +4,10 @@
 //! (t, x, y, z, p_t, p_x, p_y, p_z). The parameter is affine for light and proper time for
 //! massive particles (normalization g^{μν} p_μ p_ν = −1).
 //!
-//! Launch (formulary §4): a photon seen along the local unit direction n moves with tangent
-//! k = ±e0 + nⁱ eᵢ (+ future, − past: the past-directed curve moves spatially along n as the
-//! parameter grows, as a pixel's backward ray does); a particle of speed v has
-//! u = γ(±e0 + v nⁱ eᵢ).
+//! Launch (docs/physics.md, "Geodesics" and "Pixels and cameras"): a photon seen along the
+//! local unit direction n moves with tangent k = ±e0 + nⁱ eᵢ (+ future, − past: the
+//! past-directed curve moves spatially along n as the parameter grows, as a pixel's backward
+//! ray does); a particle of speed v has u = γ(±e0 + v nⁱ eᵢ).
 
 use crate::dop853::{DenseStep, Dop853, OdeSystem, StepOutcome, Tolerances};
 use crate::frame::LocalVelocity;
@@ -209,7 +209,7 @@ impl Default for TraceLimits {
 impl TraceLimits {
     /// The `godel geodesic` default for the Gödel metric with parameter `a`: back on the
     /// starting axis, bounded by 2√2πa of coordinate time, longer than any return time
-    /// (formulary §2: T_ret ≤ √2πa for light, < 2√2πa for particles).
+    /// (docs/physics.md, "Closed forms": T_ret ≤ √2πa for light, < 2√2πa for particles).
     pub fn one_loop(a: f64) -> Self {
         TraceLimits {
             until_time: Some(2.0 * SQRT_2 * PI * a),

@@ -1,7 +1,7 @@
 //! Gödel's rotating universe (Gödel, Rev. Mod. Phys. 21, 447 (1949)) in pseudo-Cartesian
 //! coordinates x = r cos φ, y = r sin φ, smooth on the axis.
 //!
-//! Line element (DESIGN.md), written as ds² = −(dt + α)² + h with
+//! Line element (docs/physics.md, "The Gödel metric"), written as ds² = −(dt + α)² + h with
 //! α = (x dy − y dx)/(√2 a) and the static observers' spatial metric
 //! h = dr²/(1+s²) + r²(1+s²) dφ² + dz², s = r/2a. In these coordinates
 //!
@@ -14,8 +14,9 @@
 //!   g^tt = 1 − 2c,  g^tx = c y/(√2 a),  g^ty = −c x/(√2 a),
 //!   g^ij = c δ_ij + k(1 + c) X_i X_j,  g^zz = 1,
 //!
-//! which is the cylindrical inverse g^tt = −(1−s²)/(1+s²), g^tφ = −1/(√2 a(1+s²)), … of the
-//! formulary rewritten. The Hamiltonian used by the integrator is then
+//! which is the cylindrical inverse g^tt = −(1−s²)/(1+s²), g^tφ = −1/(√2 a(1+s²)), …
+//! (docs/physics.md, "The Gödel metric") rewritten. The Hamiltonian used by the integrator
+//! (docs/physics.md, "Geodesics") is then
 //!   2H = (1 − 2c) p_t² − (√2/a) c p_t L + c(p_x² + p_y²) + k(1 + c)(x p_x + y p_y)² + p_z²,
 //! L = x p_y − y p_x = p_φ.
 

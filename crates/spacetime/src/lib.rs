@@ -14,8 +14,8 @@
 //!   isometries and their differentials), [`ExactGeodesic`] (closed-form geodesics through
 //!   any event), [`shadow_rays`] (light rays from a source at rest to an event).
 //!
-//! Conventions (DESIGN.md): c = 1, signature (−,+,+,+), Gödel parameter `a`, optical horizon
-//! at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
+//! Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), Gödel parameter
+//! `a`, optical horizon at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
 //! pseudo-Cartesian x = r cos φ, y = r sin φ.
 
 pub mod closed_form;

@@ -78,7 +78,8 @@ pub trait Spacetime {
         FourVector::from_array(v)
     }
 
-    /// The static observer's orthonormal frame: Gram–Schmidt of (∂t, ∂x, ∂y, ∂z) (DESIGN.md).
+    /// The static observer's orthonormal frame: Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
+    /// (docs/physics.md, "Frames").
     fn static_frame(&self, x: Event) -> Tetrad {
         gram_schmidt_static_frame(&self.metric(x))
     }

@@ -1,7 +1,7 @@
-//! Geodesics: the integrator against the closed forms through the origin (formulary §2,
-//! derived independently of the integrator), known facts of Gödel light rays (horizon at
-//! 2a, return time, sense of rotation), conservation of E, L, p_z and the null condition,
-//! rays through the axis, and straight lines in Minkowski spacetime.
+//! Geodesics: the integrator against the closed forms through the origin (docs/physics.md,
+//! "Closed forms"; written out independently in this file), known facts of Gödel light rays
+//! (horizon at 2a, return time, sense of rotation), conservation of E, L, p_z and the null
+//! condition, rays through the axis, and straight lines in Minkowski spacetime.
 
 mod common;
 use common::Rng;
@@ -166,7 +166,7 @@ fn no_light_ray_from_the_origin_crosses_the_horizon_and_tilted_rays_stay_inside(
             );
             assert!(
                 (r_max - want).abs() < 1e-6 * a,
-                "r_max {r_max} vs formulary {want} for ψ = {}",
+                "r_max {r_max} vs closed form {want} for ψ = {}",
                 cos_psi.acos()
             );
         }
@@ -292,7 +292,7 @@ fn until_time_stops_exactly_on_the_bound_in_both_directions() {
 }
 
 #[test]
-fn timelike_in_plane_return_time_matches_the_formulary() {
+fn timelike_in_plane_return_time_matches_the_closed_form() {
     let a = 1.0;
     let m = Metric::Godel(Godel::new(a));
     for v in [0.1, 0.5, 0.9] {

@@ -1,5 +1,6 @@
 //! Metric, inverse, Christoffel symbols, Hamilton's equations and local frames, checked
-//! against finite differences, the formulary's cylindrical closed forms, and orthonormality.
+//! against finite differences, the cylindrical closed forms (docs/physics.md, "The Gödel
+//! metric" and "Frames"), and orthonormality.
 
 mod common;
 use common::Rng;
@@ -30,7 +31,8 @@ fn inverse_metric_is_the_inverse() {
 
 #[test]
 fn metric_matches_the_cylindrical_line_element() {
-    // ds² of DESIGN.md evaluated on a coordinate displacement, vs g_μν in pseudo-Cartesian.
+    // The cylindrical ds² (docs/physics.md, "The Gödel metric") evaluated on a coordinate
+    // displacement, vs g_μν in pseudo-Cartesian.
     let mut rng = Rng::new(2);
     for g in godels() {
         let a = g.a;
@@ -129,9 +131,10 @@ fn christoffel_symbols_match_finite_differences_inside_and_outside_the_horizon()
 }
 
 #[test]
-fn christoffel_symbols_match_the_formulary_in_cylindrical_coordinates() {
-    // Transform the pseudo-Cartesian Γ to (t, r, φ, z) and compare with the formulary's
-    // closed forms (§1). Γ'^μ_αβ = ∂x'^μ/∂x^ν (Γ^ν_ρσ J^ρ_α J^σ_β + ∂²x^ν/∂x'^α∂x'^β).
+fn christoffel_symbols_match_the_closed_forms_in_cylindrical_coordinates() {
+    // Transform the pseudo-Cartesian Γ to (t, r, φ, z) and compare with the closed forms
+    // (docs/physics.md, "The Gödel metric").
+    // Γ'^μ_αβ = ∂x'^μ/∂x^ν (Γ^ν_ρσ J^ρ_α J^σ_β + ∂²x^ν/∂x'^α∂x'^β).
     let mut rng = Rng::new(4);
     for g in godels() {
         let a = g.a;
@@ -307,8 +310,9 @@ fn static_and_boosted_frames_are_orthonormal() {
 }
 
 #[test]
-fn static_frame_matches_the_formulary_on_the_half_plane_phi_zero() {
-    // Formulary §4: e_r = D ∂_r, e_φ = (∂_φ − r²/(√2 a) ∂_t)/(r D) with D = √(1 + s²).
+fn static_frame_matches_the_closed_form_on_the_half_plane_phi_zero() {
+    // docs/physics.md, "Frames": e_r = D ∂_r, e_φ = (∂_φ − r²/(√2 a) ∂_t)/(r D) with
+    // D = √(1 + s²).
     for g in godels() {
         for r in [0.3, 1.0, 1.9, 2.5, 5.0] {
             let r = r * g.a;

@@ -1,6 +1,6 @@
 //! Symmetries of Gödel's universe: the five Killing fields (Killing's equation and their
-//! commutators), the finite isometries (formulary §3) and the closed-form geodesics built
-//! on them (formulary §2).
+//! commutators), the finite isometries (docs/physics.md, "Isometries") and the closed-form
+//! geodesics built on them (docs/physics.md, "Closed forms").
 
 mod common;
 use common::Rng;

@@ -1,9 +1,9 @@
-//! `viewer`: the live web viewer behind `godel view`. A local
-//! axum server holds one data file in memory; the page (embedded in the binary) fetches the
-//! file's channels once and shades them on the GPU with WebGL2 shaders that reproduce the
-//! `shade` crate's rule, so every control, turn, zoom and boost redraws within a frame. The
-//! server stays the source of the data, of hover records, and of saved pictures and keyframes
-//! (shaded by the `shade` crate, after the `look` crate for a turned or boosted view).
+//! `viewer`: the live web viewer behind `godel view` (README.md, "Live viewer"). A local axum
+//! server holds one data file in memory; the page (embedded in the binary) fetches the file's
+//! channels once and shades them on the GPU with WebGL2 shaders that reproduce the `shade`
+//! crate's rule, so every control, turn, zoom and boost redraws within a frame. The server
+//! stays the source of the data, of hover records, and of saved pictures and keyframes (shaded
+//! by the `shade` crate, after the `look` crate for a turned or boosted view).
 //!
 //! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes; image textures
 //!   only from the data file's folder and [`ViewerOptions::texture_folders`].

@@ -1,8 +1,8 @@
 //! Helpers shared by the renderer's integration tests: scenes from TOML text, rendering,
-//! connected groups of hit pixels, the panorama's pixel geometry (DESIGN.md "Cameras"),
-//! and an independent numeric shoot-and-solve for the light rays connecting the observer
-//! on the Gödel axis with a static point (built on `spacetime::trace` only, not on the
-//! renderer).
+//! connected groups of hit pixels, the panorama's pixel geometry (docs/physics.md, "Pixels
+//! and cameras"), and an independent numeric shoot-and-solve for the light rays connecting
+//! the observer on the Gödel axis with a static point (built on `spacetime::trace` only, not
+//! on the renderer).
 #![allow(dead_code)]
 
 use datafile::DataFile;
@@ -73,7 +73,7 @@ pub fn wrap_pi(a: f64) -> f64 {
 
 /// Fractional column of the panorama direction with camera azimuth `alpha` (radians,
 /// positive to the right): the pixel containing it is `floor`, its centre is at `+ 0.5`
-/// (DESIGN.md: α = h_fov·((col + ½)/W − ½)).
+/// (docs/physics.md, "Pixels and cameras": α = h_fov·((col + ½)/W − ½)).
 pub fn panorama_col(alpha: f64, h_fov: f64, width: usize) -> f64 {
     width as f64 * (alpha / h_fov + 0.5)
 }
@@ -207,14 +207,14 @@ pub fn connecting_rays(a: f64, c: [f64; 2], first_half: bool) -> Vec<(f64, f64)>
     out
 }
 
-/// Formulary §2/§5: Φ(θ) = arctan(q tan θ), continuous in θ.
+/// docs/physics.md, "Closed forms": Φ(θ) = arctan(q tan θ), continuous in θ.
 pub fn big_phi(q: f64, theta: f64) -> f64 {
     let (s, c) = theta.sin_cos();
     theta + ((q - 1.0) * s * c).atan2(c * c + q * s * s)
 }
 
-/// Formulary §5 closed form: image azimuths (counter-clockwise from e_x) and delays of a
-/// static point at (ρ, φ_c, 0) seen from the origin: [(az_1, Δt_1), (az_2, Δt_2)].
+/// docs/physics.md, "Images of a point": image azimuths (counter-clockwise from e_x) and
+/// delays of a static point at (ρ, φ_c, 0) seen from the origin: [(az_1, Δt_1), (az_2, Δt_2)].
 pub fn closed_form_images(a: f64, rho: f64, phi_c: f64) -> [(f64, f64); 2] {
     let th1 = (rho / (2.0 * a)).asin();
     let th2 = PI - th1;
