@@ -9,8 +9,21 @@ import { Blackbody, srgb8ToLinear } from './overlays.js';
 // 8-bit sRGB → linear, the `shade` crate's table (texture.rs).
 const LINEAR = Float32Array.from({ length: 256 }, (_, k) => srgb8ToLinear(k));
 
+// How many arrays the page asks for at once: within the server's waiting places (four per
+// core, crates/viewer/src/limit.rs) even on one core, so one page alone never meets a 503.
+const PARALLEL = 4;
+// A 503 (the server busy with other tabs or scripts) is retried this many times, waiting a
+// little longer each time (about 10 s in all), then shown as an error.
+const BUSY_RETRIES = 20;
+
+const sleep = (ms) => new Promise((resolve) => { setTimeout(resolve, ms); });
+
 async function fetchOk(url) {
-  const response = await fetch(url);
+  let response = await fetch(url);
+  for (let k = 1; response.status === 503 && k <= BUSY_RETRIES; k += 1) {
+    await sleep(50 * k);
+    response = await fetch(url);
+  }
   if (!response.ok) {
     const text = await response.text();
     let message = text;
@@ -81,10 +94,19 @@ export class Data {
     return names.filter((n) => !this.loaded.has(n));
   }
 
+  // The arrays at `urls`, at most PARALLEL requests at a time, in order.
+  async arrays(urls) {
+    const out = [];
+    for (let i = 0; i < urls.length; i += PARALLEL) {
+      out.push(...await Promise.all(urls.slice(i, i + PARALLEL).map((u) => this.array(u))));
+    }
+    return out;
+  }
+
   // Fetches and uploads the channels not yet on the GPU.
   async ensure(names) {
     const missing = this.missing(names);
-    const arrays = await Promise.all(missing.map((n) => this.array(`/api/gpu/channel/${n}`)));
+    const arrays = await this.arrays(missing.map((n) => `/api/gpu/channel/${n}`));
     missing.forEach((name, i) => {
       const a = arrays[i];
       if (a.width !== this.info.width || a.height !== this.info.height) {
@@ -110,7 +132,7 @@ export class Data {
   async ensureImages(names) {
     const missing = names.filter((n) => !this.images.has(n));
     if (missing.length === 0) return;
-    const arrays = await Promise.all(missing.map((n) => this.array(`/api/gpu/image/${n}`)));
+    const arrays = await this.arrays(missing.map((n) => `/api/gpu/image/${n}`));
     missing.forEach((name, i) => {
       const a = arrays[i];
       this.images.set(name, { width: a.width, height: a.height, rgb: a.data });
