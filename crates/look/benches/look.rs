@@ -2,7 +2,7 @@
 //! file (no tracing: the records are made up, with hits and misses in bands), for a 90°
 //! pinhole at rest and at 0.9 c, and the 360°×180° sphere itself turned. The look only;
 //! reading and writing files is not included.
-//! Run: cargo bench -p render --bench look
+//! Run: cargo bench -p look --bench look
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use datafile::{DataFile, PixelRecord, RayStatus};
