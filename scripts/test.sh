@@ -4,8 +4,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# The viewer's browser test (crates/godel/tests/viewer_browser.rs) drives Debian's chromium
+# The viewer's browser tests (crates/godel/tests/viewer_browser.rs) drive Debian's chromium
 # through playwright-core; playwright's own browser download cannot work here, and is not used.
+# The page shades with WebGL2: headless chromium renders it in software on SwiftShader, which
+# Debian's chromium package ships (/usr/lib/chromium/libvk_swiftshader.so); no GPU is needed.
 command -v chromium >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null; }
 [ -d tests/browser/node_modules/playwright-core ] || (cd tests/browser && npm ci --silent --no-audit --no-fund)

@@ -1,32 +1,44 @@
-// Makes the README's picture of the viewer (docs/viewer.png) with Debian's chromium:
-// the frequency layer at the scene's temperatures, the mouse on pixel COL ROW.
-// usage: node screenshot.mjs URL OUT.png COL ROW   (with `godel view` serving URL)
-import { chromium } from 'playwright-core';
+// Makes the README's pictures of the viewer with Debian's chromium (WebGL2 on SwiftShader):
+// the mouse on pixel COL ROW of the picture, after applying SETTINGS (JSON: "shaders", and for
+// a full-sphere file "look": projection, fov, yaw, pitch, speed, preset).
+// usage: node screenshot.mjs URL OUT.png COL ROW [SETTINGS]   (with `godel view` serving URL)
+//   e.g. node screenshot.mjs URL docs/viewer.png 700 125 '{"shaders": ["frequency"]}'
 import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { launch, open, idle } from './launch.mjs';
 
-const [url, out, col, row] = process.argv.slice(2);
-const args = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
-const context = await chromium.launchPersistentContext(mkdtempSync(join(tmpdir(), 'godel-shot-')), {
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args,
-  viewport: { width: 1500, height: 820 },
-});
+const [url, out, col, row, settingsText] = process.argv.slice(2);
+if (!url || !out || col === undefined || row === undefined) {
+  console.error('usage: node screenshot.mjs URL OUT.png COL ROW [SETTINGS]');
+  process.exit(2);
+}
+const settings = JSON.parse(settingsText || '{"shaders": ["frequency"]}');
+const { context, page } = await launch(mkdtempSync(join(tmpdir(), 'godel-shot-')),
+  { width: 1500, height: 960 });
 try {
-  const page = context.pages()[0] || await context.newPage();
-  const idle = () => page.waitForFunction(() => window.godelViewer?.frames > 0
-    && window.godelViewer.idle());
-  await page.goto(url);
-  await idle();
-  await page.check('#layer-frequency');
-  await page.uncheck('#layer-texture');
-  await idle();
+  await open(page, url);
+  await page.evaluate((s) => {
+    const v = window.godelViewer;
+    if (s.shaders) v.settings.shaders = s.shaders;
+    if (s.look && v.look) Object.assign(v.look, s.look);
+    v.changed();
+  }, settings);
+  await idle(page);
   const box = await page.locator('#image').boundingBox();
-  const [w, h] = await page.evaluate(() => [window.godelViewer.info.width,
-    window.godelViewer.info.height]);
-  await page.mouse.move(box.x + (Number(col) + 0.5) * box.width / w,
-    box.y + (Number(row) + 0.5) * box.height / h);
+  const [w, h] = await page.evaluate(() => {
+    const p = window.godelViewer.readPicture();
+    return [p.width, p.height];
+  });
+  // The picture is centred on the canvas (look) or fills it (a file's own pixels).
+  const canvas = await page.evaluate(() => [document.getElementById('image').width,
+    document.getElementById('image').height]);
+  const scale = box.width / canvas[0];
+  const zoom = await page.evaluate(() => (window.godelViewer.look ? 1 : null));
+  const [sx, sy] = zoom ? [scale, scale] : [box.width / w, box.height / h];
+  const [ox, oy] = zoom ? [Math.floor((canvas[0] - w) / 2) * scale,
+    Math.floor((canvas[1] - h) / 2) * scale] : [0, 0];
+  await page.mouse.move(box.x + ox + (Number(col) + 0.5) * sx, box.y + oy + (Number(row) + 0.5) * sy);
   await page.waitForFunction(() => window.godelViewer.record !== null);
   await page.screenshot({ path: out });
 } finally {

@@ -1,9 +1,9 @@
 //! `godel view DATA.exr [--port P] [--host H] [--textures DIR]…`: the live web viewer. Loads
 //! the data file (errors before anything is served), binds the port (0: any free port),
 //! prints `godel view: serving http://HOST:PORT/` on stdout and serves until Ctrl-C; the
-//! server and the page live in the `viewer` crate. Image textures come only from the data
-//! file's folder and the `--textures` folders; requests must name localhost (or the `--host`
-//! address).
+//! server and the page (which shades on the GPU with WebGL2) live in the `viewer` crate.
+//! Image textures come only from the data file's folder and the `--textures` folders;
+//! requests must name localhost (or the `--host` address).
 
 use std::io::Write;
 use std::net::{IpAddr, SocketAddr, TcpListener};
@@ -17,7 +17,8 @@ use crate::args::usage;
 
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Data file (.exr) written by `godel render`.
+    /// Data file (.exr) written by `godel render` (a full sphere, `[camera] kind = "sphere"`,
+    /// can be looked around in any direction and at any velocity).
     pub data: PathBuf,
     /// Port to serve on; 0 picks a free one.
     #[arg(long, default_value_t = 8737)]

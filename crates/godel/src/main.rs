@@ -14,6 +14,7 @@ mod args;
 mod cluster;
 mod cmd_connect;
 mod cmd_geodesic;
+mod cmd_look;
 mod cmd_merge;
 mod cmd_plot;
 mod cmd_render;
@@ -42,11 +43,15 @@ struct Cli {
 enum Command {
     /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
+    /// Any camera of any observer at the event of a full-sphere data file, without tracing:
+    /// turn, zoom, change projection, boost (aberration and Doppler shift).
+    Look(cmd_look::LookArgs),
     /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
     Shade(cmd_shade::ShadeArgs),
     /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
     Sequence(cmd_sequence::SequenceArgs),
-    /// Serve a live web viewer of a data file: shader controls, pixel records, saving.
+    /// Serve a live web viewer of a data file, shaded on the GPU: shader controls, zoom, pixel
+    /// records, saving; a full-sphere file can be looked around and boosted.
     View(cmd_view::ViewArgs),
     /// Join the part files of `render --part i/N` into the files a single run writes.
     Merge(cmd_merge::MergeArgs),
@@ -61,6 +66,7 @@ enum Command {
 fn run(command: Command) -> anyhow::Result<()> {
     match command {
         Command::Render(args) => cmd_render::run(args),
+        Command::Look(args) => cmd_look::run(args),
         Command::Shade(args) => cmd_shade::run(args),
         Command::Sequence(args) => cmd_sequence::run(args),
         Command::View(args) => cmd_view::run(args),

@@ -57,18 +57,33 @@ pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
 /// lit where the scene has lights):
 /// exactly the files of a single run, whoever traced the pixels.
 pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
-    let textures = shade::textures_for_scene(scene)?;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let [exr, png] = output_names(scene).map(|n| dir.join(n));
+    write_data_and_preview(scene, data, &exr, &png)
+}
+
+/// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
+/// has lights) to `png`: both made in memory first, then written together
+/// ([`write_together`]). `godel render` and `godel look` write this pair.
+pub fn write_data_and_preview(
+    scene: &Scene,
+    data: &DataFile,
+    exr: &Path,
+    png: &Path,
+) -> anyhow::Result<()> {
+    let textures = shade::textures_for_scene(scene)?;
     let png_bytes = {
         let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
-        shade::encode_png(&image, &png)?
+        shade::encode_png(&image, png)?
     };
     let exr_bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {
-        path: exr.clone(),
+        path: exr.to_path_buf(),
         kind,
     })?;
-    write_together(&[(exr.clone(), &exr_bytes), (png.clone(), &png_bytes)])?;
+    write_together(&[
+        (exr.to_path_buf(), &exr_bytes),
+        (png.to_path_buf(), &png_bytes),
+    ])?;
     eprintln!("wrote {} and {}", png.display(), exr.display());
     Ok(())
 }

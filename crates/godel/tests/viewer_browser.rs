@@ -1,22 +1,29 @@
-//! The live viewer in a real browser: renders a small scene with `godel render`, serves its
-//! data file with `godel view --port 0`, and drives Debian's chromium through playwright-core
-//! (tests/browser/viewer.mjs): move the temperature slider, hover a hit pixel, press both save
-//! buttons, send bad settings, take a screenshot. This test checks what the browser saw
-//! against the data file and the `shade` crate. Chromium and the npm packages are installed
-//! by `bash scripts/test.sh`; without them this test fails and says so.
+//! The live viewer in a real browser: renders small scenes with `godel render`, serves their
+//! data files with `godel view --port 0`, and drives Debian's chromium through
+//! playwright-core (tests/browser/*.mjs), with WebGL2 on SwiftShader (software rendering; a
+//! browser without WebGL2 fails these tests). Checked here against the data files, the
+//! `shade` crate and `godel look`:
+//!
+//! - the slider redraws on the GPU without asking the server, hover shows the file's record
+//!   and direction, the save buttons download the server's PNG and keyframe, errors show;
+//! - every layer combination shaded on the GPU equals the `shade` crate within one 8-bit step;
+//! - looking around a full sphere (drag, projections, velocity) equals `godel look` then
+//!   `godel shade` within one step, and a boost turns the ball ahead blue, the one behind red;
+//! - the page asks nothing of any server but its own.
+//!
+//! Chromium and the npm packages are installed by `bash scripts/test.sh`; without them these
+//! tests fail and say so.
 
-use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
-use std::time::Duration;
+mod browser_support;
 
+use browser_support::*;
 use datafile::record::RayStatus;
 use datafile::DataFile;
+use scene::Scene;
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A 96×48 pinhole view of a checkered ball at rest inside the horizon.
-const SCENE: &str = r#"
+const BALL_SCENE: &str = r#"
 name = "viewer-test"
 [spacetime]
 metric = "godel"
@@ -42,94 +49,33 @@ temperature = 5800.0
 motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
 "#;
 
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn chromium() -> PathBuf {
-    std::env::var_os("CHROMIUM")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/usr/bin/chromium"))
-}
-
-/// Fails (never skips) when the browser or the npm packages are missing.
-fn require_browser_tools() {
-    let chromium = chromium();
-    assert!(
-        chromium.exists(),
-        "{} is missing: run `bash scripts/test.sh`, which installs Debian's chromium",
-        chromium.display()
-    );
-    let playwright = repo_root().join("tests/browser/node_modules/playwright-core");
-    assert!(
-        playwright.exists(),
-        "{} is missing: run `bash scripts/test.sh`, which runs `npm ci` in tests/browser",
-        playwright.display()
-    );
-}
-
-/// The `godel view` server, killed when dropped.
-struct Server(Child);
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-/// Starts `godel view DATA --port 0`; returns it and the URL it printed.
-fn start_viewer(data: &Path) -> (Server, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(["view", data.to_str().unwrap(), "--port", "0"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::inherit())
-        .spawn()
-        .expect("start godel view");
-    let stdout = child.stdout.take().unwrap();
-    let server = Server(child);
-    let (send, receive) = mpsc::channel();
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = BufReader::new(stdout).read_line(&mut line);
-        let _ = send.send(line);
-    });
-    // A deadline against hanging forever, not a speed check.
-    let line = receive
-        .recv_timeout(Duration::from_secs(120))
-        .expect("godel view printed no URL");
-    let url = line
-        .trim()
-        .strip_prefix("godel view: serving ")
-        .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
-        .to_string();
-    assert!(
-        url.starts_with("http://127.0.0.1:") && url.ends_with('/'),
-        "{url}"
-    );
-    (server, url)
-}
-
-fn number(text: &serde_json::Value) -> f64 {
+pub fn number(text: &serde_json::Value) -> f64 {
     text.as_str()
         .unwrap_or_else(|| panic!("{text} is not text"))
         .parse()
         .unwrap_or_else(|_| panic!("{text} is not a number"))
 }
 
+/// "AZ°, EL°" as the page writes a direction.
+pub fn angles(text: &serde_json::Value) -> [f64; 2] {
+    let t = text.as_str().unwrap().replace('°', "");
+    let v: Vec<f64> = t.split(',').map(|x| x.trim().parse().unwrap()).collect();
+    [v[0], v[1]]
+}
+
+/// Azimuth (x towards y) and elevation (towards z) of a unit direction, degrees.
+pub fn azimuth_elevation(n: [f64; 3]) -> [f64; 2] {
+    [
+        n[1].atan2(n[0]).to_degrees(),
+        n[2].clamp(-1.0, 1.0).asin().to_degrees(),
+    ]
+}
+
 #[test]
 fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("viewer-test.toml");
-    std::fs::write(&scene, SCENE).unwrap();
-    let rendered = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(["render", scene.to_str().unwrap(), "-q", "-o"])
-        .arg(dir.path())
-        .output()
-        .unwrap();
-    assert!(rendered.status.success(), "{rendered:?}");
-    let exr = dir.path().join("viewer-test.exr");
+    let exr = render(dir.path(), "viewer-test", BALL_SCENE);
     let data = DataFile::read(&exr).unwrap();
 
     // The hit pixel nearest the centre of the ball's image.
@@ -149,36 +95,22 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
             d(a).total_cmp(&d(b))
         })
         .unwrap();
-    let expected = *data.record(col, row);
 
-    let (server, url) = start_viewer(&exr);
+    let (server, url) = start_viewer(&exr, dir.path());
     let out = dir.path().join("browser");
     std::fs::create_dir(&out).unwrap();
-    let browser = Command::new("node")
-        .current_dir(repo_root().join("tests/browser"))
-        .env("CHROMIUM", chromium())
-        .arg("viewer.mjs")
-        .arg(&url)
-        .arg(&out)
-        .args([col.to_string(), row.to_string()])
-        .output()
-        .expect("run node (installed with chromium by scripts/test.sh)");
-    drop(server);
-    assert!(
-        browser.status.success(),
-        "browser script failed:\n{}\n{}",
-        String::from_utf8_lossy(&browser.stdout),
-        String::from_utf8_lossy(&browser.stderr)
+    let seen = run_script(
+        "viewer.mjs",
+        &url,
+        &out,
+        &[col.to_string(), row.to_string()],
     );
-    let seen: serde_json::Value = serde_json::from_slice(&browser.stdout).expect("one JSON object");
-    // Figures for BENCHMARKS.md, not checked: timing depends on the machine's load.
-    eprintln!("round trips (ms): {}", seen["round_trips_ms"]);
-    eprintln!("server timings (ms): {}", seen["server_timings_ms"]);
+    drop(server);
 
     assert_eq!(seen["title"], "godel view");
     assert_eq!(seen["canvas"], serde_json::json!([data.width, data.height]));
 
-    // The slider moved down, and the picture followed.
+    // The slider moved down, and the picture followed, shaded on the GPU: no request.
     let t_before = seen["temperature"][0].as_f64().unwrap();
     let t_after = seen["temperature"][1].as_f64().unwrap();
     assert_eq!(
@@ -189,7 +121,8 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         t_after < 4000.0,
         "the drag moved the slider down: {t_after}"
     );
-    assert!(seen["frames_for_drag"].as_u64().unwrap() >= 1);
+    assert!(seen["shadings_for_drag"].as_u64().unwrap() >= 1);
+    assert_eq!(seen["requests_for_drag"], serde_json::json!([]));
     let changed = seen["pixels_changed"].as_u64().unwrap() as usize;
     assert!(
         changed * 10 >= hits.len() * 9 && changed < data.width * data.height,
@@ -197,12 +130,24 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         hits.len()
     );
 
-    // The record shown on hover is the data file's.
+    // The page's settings are the file's defaults with the frequency layer alone at the
+    // slider's temperature, and its picture is the shade crate's within one 8-bit step.
+    let mut want_settings = ShadeSettings::defaults_for(&data);
+    want_settings.shaders = vec![ShaderKind::Frequency];
+    want_settings.objects.get_mut("ball").unwrap().temperature = t_after;
+    let settings: ShadeSettings = serde_json::from_value(seen["settings"].clone()).unwrap();
+    assert_eq!(settings, want_settings);
+    let want = Shading::new(&data, &want_settings).unwrap().image(&data);
+    let (_, _, gpu) = read_rgba(&out.join("slider.rgba"));
+    let c = compare(&gpu, want.as_raw(), data.width);
+    assert!(c.max <= 1, "GPU vs shade: max {}, {:?}", c.max, c.off);
+
+    // The record shown on hover is the data file's, with the pixel's direction.
     let shown = &seen["record_shown"];
-    // Shown larger than its size, the picture puts the mouse on exactly the pixel aimed at.
     assert_eq!(shown["pixel"], format!("{col}, {row}"));
     assert_eq!(shown["object"], "ball");
     assert_eq!(shown["status"], "hit");
+    let expected = *data.record(col, row);
     for (field, value) in [
         ("u", expected.u),
         ("v", expected.v),
@@ -217,20 +162,22 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         );
     }
     assert!(expected.t_emit < 0.0);
+    let scene = Scene::from_str(BALL_SCENE, "ball").unwrap();
+    let n = scene
+        .observer
+        .pixel_direction(&scene.camera, col as u32, row as u32)
+        .unwrap();
+    let [az, el] = angles(&shown["direction"]);
+    let [want_az, want_el] = azimuth_elevation(n);
+    assert!(
+        (az - want_az).abs() < 0.006 && (el - want_el).abs() < 0.006,
+        "direction shown {az}°, {el}°; the camera's {want_az}°, {want_el}°"
+    );
+    assert_eq!(number(&shown["doppler"]), 1.0);
 
-    // The page's settings are the file's defaults with the frequency layer alone at the
-    // slider's temperature.
-    let mut want_settings = ShadeSettings::defaults_for(&data);
-    want_settings.shaders = vec![ShaderKind::Frequency];
-    want_settings.objects.get_mut("ball").unwrap().temperature = t_after;
-    let settings: ShadeSettings = serde_json::from_value(seen["settings"].clone()).unwrap();
-    assert_eq!(settings, want_settings);
-
-    // "Save PNG" downloads the server's shading of those settings, as the shade crate
-    // (and so `godel shade`) makes it.
+    // "Save PNG" downloads the server's shading of those settings, as `godel shade` makes it.
     assert_eq!(seen["png_name"], "viewer-test.png");
     let saved = image::open(out.join("saved.png")).unwrap().to_rgb8();
-    let want = Shading::new(&data, &want_settings).unwrap().image(&data);
     assert!(saved == want, "the saved PNG is not the shaded view");
 
     // "Save keyframe" downloads a sequence-script keyframe holding those settings.
@@ -243,7 +190,7 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         .unwrap();
     assert_eq!(saved_settings, want_settings);
 
-    // Bad settings from the page: the server's 400 message is shown on the page.
+    // Bad settings sent to the server: its 400 message is shown on the page.
     assert_eq!(seen["error_shown"], true);
     let error = seen["error_text"].as_str().unwrap();
     assert!(
@@ -253,7 +200,41 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     for message in seen["console_errors"].as_array().unwrap() {
         assert!(message.as_str().unwrap().contains("400"), "{message}");
     }
+    assert_only_local_requests(&seen, &url);
+
+    // Zoomed in with the wheel on the textured ball, the canvas shows blends between
+    // neighbouring pixels (linear filtering): most of the ball's canvas pixels have colours
+    // that are nowhere in the picture, where blocky enlargement would show only its own.
+    assert!(seen["zoom"].as_f64().unwrap() > 6.0);
+    assert_eq!(seen["requests_for_zoom"], serde_json::json!([]));
+    let (_, _, textured) = read_rgba(&out.join("textured.rgba"));
+    let palette: std::collections::HashSet<&[u8]> = textured.chunks_exact(3).collect();
+    let (_, _, zoomed) = read_rgba(&out.join("zoomed.rgba"));
+    let mut counts = std::collections::HashMap::new();
+    zoomed
+        .chunks_exact(3)
+        .for_each(|p| *counts.entry(p).or_insert(0) += 1);
+    let background = counts
+        .iter()
+        .max_by_key(|(_, n)| **n)
+        .map(|(p, _)| *p)
+        .unwrap();
+    let ball: Vec<&[u8]> = zoomed
+        .chunks_exact(3)
+        .filter(|p| *p != background)
+        .collect();
+    let blended = ball.iter().filter(|p| !palette.contains(*p)).count();
+    assert!(
+        ball.len() > 1000 && blended * 2 > ball.len(),
+        "{blended} of {} canvas pixels off the background are blends",
+        ball.len()
+    );
 
     let screenshot = image::open(out.join("screenshot.png")).unwrap();
     assert!(screenshot.width() >= 800 && screenshot.height() >= 400);
 }
+
+#[path = "viewer_browser/layers.rs"]
+mod layers;
+#[path = "viewer_browser/look.rs"]
+mod look;

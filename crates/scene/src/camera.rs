@@ -6,9 +6,15 @@
 //! observer's local-frame components. Pixel (col, row) has its centre at (col + ½, row + ½);
 //! row 0 is the top row.
 
+/// Largest image side, and largest pixel count: guards against typos that would allocate
+/// gigabytes.
+pub const MAX_SIDE: u32 = 20_000;
+pub const MAX_PIXELS: u64 = 50_000_000;
+
 /// The closed set of cameras. Field-of-view angles are in degrees; values are validated
-/// when a scene is read (pinhole fov in (0, 180), panorama h_fov in (0, 360] and v_fov in
-/// (0, 180], fisheye fov in (0, 360], sizes ≥ 1).
+/// when a scene is read, or with [`Camera::check`] (pinhole fov in (0, 180), panorama h_fov
+/// in (0, 360] and v_fov in (0, 180], fisheye fov in (0, 360], sizes in 1..=[`MAX_SIDE`],
+/// at most [`MAX_PIXELS`] pixels).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Camera {
     /// Image plane at unit distance, horizontal field of view `fov_deg`, square pixels.
@@ -72,6 +78,52 @@ impl Camera {
             } => format!("panorama {h_fov_deg}°×{v_fov_deg}°, {w}×{h}"),
             Camera::Sphere { .. } => format!("sphere 360°×180°, {w}×{h}"),
             Camera::Fisheye { fov_deg, .. } => format!("fisheye {fov_deg}°, {w}×{h}"),
+        }
+    }
+
+    /// Checks sizes and angles (the limits in the type's documentation). The error names
+    /// the scene-file field, e.g. `("camera.fov_deg", "must be in (0, 180) degrees, got 180")`.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        let (width, height) = (self.width(), self.height());
+        for (field, v) in [("camera.width", width), ("camera.height", height)] {
+            if v == 0 || v > MAX_SIDE {
+                return Err((field, format!("must be in 1..={MAX_SIDE}, got {v}")));
+            }
+        }
+        let pixels = width as u64 * height as u64;
+        if pixels > MAX_PIXELS {
+            return Err((
+                "camera.height",
+                format!("image has {pixels} pixels, more than the limit of {MAX_PIXELS}"),
+            ));
+        }
+        let angle = |field: &'static str, v: f64, max: f64, max_inclusive: bool| {
+            if !v.is_finite() {
+                return Err((field, format!("must be a finite number, got {v}")));
+            }
+            let ok = v > 0.0 && if max_inclusive { v <= max } else { v < max };
+            if ok {
+                Ok(())
+            } else {
+                let close = if max_inclusive { "]" } else { ")" };
+                Err((
+                    field,
+                    format!("must be in (0, {max}{close} degrees, got {v}"),
+                ))
+            }
+        };
+        match *self {
+            Camera::Pinhole { fov_deg, .. } => angle("camera.fov_deg", fov_deg, 180.0, false),
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                ..
+            } => {
+                angle("camera.h_fov_deg", h_fov_deg, 360.0, true)?;
+                angle("camera.v_fov_deg", v_fov_deg, 180.0, true)
+            }
+            Camera::Sphere { .. } => Ok(()),
+            Camera::Fisheye { fov_deg, .. } => angle("camera.fov_deg", fov_deg, 360.0, true),
         }
     }
 

@@ -8,6 +8,8 @@
 //! - [`Camera`]: pixel → direction, exactly as docs/physics.md ("Pixels and cameras") fixes
 //!   it; [`Observer::pixel_direction`] gives the direction in the observer's local frame.
 //! - [`SceneError`]: `file:line:column: field.path: message`.
+//! - [`Scene::read_view`] and [`replace_view`]: read or replace only the observer's view
+//!   (camera, velocity, camera axes) in scene text, as `godel look` does.
 //!
 //! - [`input`]: the bounded reader every input file of `godel` goes through.
 //!
@@ -17,6 +19,7 @@
 
 mod camera;
 mod checker;
+mod edit;
 mod error;
 pub mod input;
 mod model;
@@ -25,6 +28,7 @@ mod raw;
 mod validate;
 
 pub use camera::Camera;
+pub use edit::replace_view;
 pub use error::{line_column, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
@@ -69,6 +73,19 @@ impl Scene {
         parse(text, name_for_errors, base)
     }
 
+    /// Reads only the observer and the camera of scene text (both validated as in a whole
+    /// scene), leaving objects, textures and lights unchecked: data files embed their scene
+    /// text, whose image paths may not resolve where the data file is read.
+    pub fn read_view(text: &str, name_for_errors: &str) -> Result<(Observer, Camera), SceneError> {
+        with_raw(text, name_for_errors, |raw, loc| {
+            let c = checker::Checker { loc };
+            Ok((
+                validate::observer(&c, raw.observer)?,
+                validate::camera(&c, raw.camera)?,
+            ))
+        })
+    }
+
     /// The built-in reference scene ([`BUILTIN_SCENE_TEXT`]).
     pub fn builtin() -> Scene {
         // The embedded text is fixed at compile time and tested (`builtin_scene_is_valid`),
@@ -79,6 +96,27 @@ impl Scene {
 }
 
 fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
+    let parts = with_raw(text, file, |raw, loc| validate::build(raw, loc, base_dir))?;
+    Ok(Scene {
+        name: parts.name,
+        source_path: None,
+        source_text: text.to_string(),
+        metric: parts.metric,
+        observer: parts.observer,
+        camera: parts.camera,
+        trace: parts.trace,
+        objects: parts.objects,
+        lights: parts.lights,
+    })
+}
+
+/// Parses scene text into the raw records (`raw.rs`) and hands them to `check`, with the
+/// locator that places its errors in the text.
+fn with_raw<T>(
+    text: &str,
+    file: &str,
+    check: impl FnOnce(raw::RawScene, &Locator) -> Result<T, SceneError>,
+) -> Result<T, SceneError> {
     let root = match toml::de::DeTable::parse(text) {
         Ok(root) => root,
         Err(e) => {
@@ -102,18 +140,7 @@ fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
     let loc = Locator::new(file, text, Some(&root));
     let raw = raw::RawScene::deserialize(toml::de::Deserializer::from(root.clone()))
         .map_err(|e| loc.at_span(e.span(), e.message().to_string()))?;
-    let parts = validate::build(raw, &loc, base_dir)?;
-    Ok(Scene {
-        name: parts.name,
-        source_path: None,
-        source_text: text.to_string(),
-        metric: parts.metric,
-        observer: parts.observer,
-        camera: parts.camera,
-        trace: parts.trace,
-        objects: parts.objects,
-        lights: parts.lights,
-    })
+    check(raw, &loc)
 }
 
 #[cfg(test)]

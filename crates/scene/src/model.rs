@@ -38,6 +38,21 @@ pub struct Observer {
 }
 
 impl Observer {
+    /// `forward` and `up` count as orthogonal when the cosine of their angle is at most this.
+    pub const ORTHOGONALITY: f64 = 1e-6;
+
+    /// Checks that the unit vectors `forward` and `up` are orthogonal (within
+    /// [`Observer::ORTHOGONALITY`]); the error says by how much they are not.
+    pub fn check_axes(forward: [f64; 3], up: [f64; 3]) -> Result<(), String> {
+        let cos = forward[0] * up[0] + forward[1] * up[1] + forward[2] * up[2];
+        if cos.abs() > Observer::ORTHOGONALITY {
+            return Err(format!(
+                "must be orthogonal to forward (cos of their angle is {cos:.3e})"
+            ));
+        }
+        Ok(())
+    }
+
     /// right = forward × up (unit, since forward ⟂ up).
     pub fn right(&self) -> [f64; 3] {
         cross(self.forward, self.up)

@@ -8,7 +8,7 @@
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
 //! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
 //! Bounds: tolerance in [1e-14, 1e-3], max_steps ≤ 10⁷, the name at most 100 bytes and
-//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels.
+//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels ([`Camera::check`]).
 //! Objects, motions and textures are checked in `objects.rs`.
 
 use crate::camera::Camera;
@@ -20,10 +20,6 @@ use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
 use std::path::Path;
 
-/// Largest image side, and largest pixel count: guards against typos that would allocate
-/// gigabytes.
-const MAX_SIDE: u32 = 20_000;
-const MAX_PIXELS: u64 = 50_000_000;
 /// The integrator tolerance's range: below 1e-14 the steps drown in rounding (f64 carries
 /// ~16 digits) and every ray fails; above 1e-3 the rays are not worth tracing.
 const MIN_TOLERANCE: f64 = 1e-14;
@@ -33,8 +29,6 @@ const MAX_STEPS: u64 = 10_000_000;
 /// Longest scene name in bytes: it becomes file names such as
 /// `.NAME.part-12-of-64.exr.godel-PID-HOST.XXXXXX.tmp`, which must stay within 255 bytes.
 const MAX_NAME_BYTES: usize = 100;
-/// forward and up count as orthogonal when |cos| ≤ this.
-const ORTHOGONALITY: f64 = 1e-6;
 /// Most loops a Gödel light ray may make within `max_past` (the tracer's bound on loop
 /// copies; a scene that would need more is refused up front).
 pub const MAX_RAY_LOOPS: u64 = 100_000;
@@ -155,7 +149,7 @@ fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
     }
 }
 
-fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
+pub(crate) fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     let Some(o) = raw else {
         return Ok(Observer {
             event: Event::default(),
@@ -172,13 +166,7 @@ fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     };
     let forward = c.direction("observer.forward", o.forward.unwrap_or([1.0, 0.0, 0.0]))?;
     let up = c.direction("observer.up", o.up.unwrap_or([0.0, 0.0, 1.0]))?;
-    let cos = forward[0] * up[0] + forward[1] * up[1] + forward[2] * up[2];
-    if cos.abs() > ORTHOGONALITY {
-        return c.err(
-            "observer.up",
-            format!("must be orthogonal to forward (cos of their angle is {cos:.3e})"),
-        );
-    }
+    Observer::check_axes(forward, up).or_else(|message| c.err("observer.up", message))?;
     Ok(Observer {
         event,
         velocity,
@@ -187,37 +175,9 @@ fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     })
 }
 
-fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
-    for (field, v) in [("width", r.width), ("height", r.height)] {
-        if v == 0 || v > MAX_SIDE {
-            return c.err(
-                &format!("camera.{field}"),
-                format!("must be in 1..={MAX_SIDE}, got {v}"),
-            );
-        }
-    }
-    let pixels = r.width as u64 * r.height as u64;
-    if pixels > MAX_PIXELS {
-        return c.err(
-            "camera.height",
-            format!("image has {pixels} pixels, more than the limit of {MAX_PIXELS}"),
-        );
-    }
+pub(crate) fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
     let (width, height) = (r.width, r.height);
-    let angle = |path: &str, v: f64, max: f64, max_inclusive: bool| -> Result<f64> {
-        let v = c.finite(path, v)?;
-        let ok = v > 0.0 && if max_inclusive { v <= max } else { v < max };
-        if ok {
-            Ok(v)
-        } else {
-            let close = if max_inclusive { "]" } else { ")" };
-            c.err(
-                path,
-                format!("must be in (0, {max}{close} degrees, got {v}"),
-            )
-        }
-    };
-    match r.kind {
+    let camera = match r.kind {
         CameraKind::Pinhole => {
             c.unused(
                 "camera.h_fov_deg",
@@ -229,12 +189,11 @@ fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
                 &r.v_fov_deg,
                 "by a pinhole camera (its vertical fov follows from the aspect ratio)",
             )?;
-            let fov = c.required("camera.fov_deg", r.fov_deg, "for a pinhole camera")?;
-            Ok(Camera::Pinhole {
-                fov_deg: angle("camera.fov_deg", fov, 180.0, false)?,
+            Camera::Pinhole {
+                fov_deg: c.required("camera.fov_deg", r.fov_deg, "for a pinhole camera")?,
                 width,
                 height,
-            })
+            }
         }
         CameraKind::Panorama => {
             c.unused(
@@ -242,21 +201,19 @@ fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
                 &r.fov_deg,
                 "by a panorama (use h_fov_deg and v_fov_deg)",
             )?;
-            let h = c.required("camera.h_fov_deg", r.h_fov_deg, "for a panorama")?;
-            let v = c.required("camera.v_fov_deg", r.v_fov_deg, "for a panorama")?;
-            Ok(Camera::Panorama {
-                h_fov_deg: angle("camera.h_fov_deg", h, 360.0, true)?,
-                v_fov_deg: angle("camera.v_fov_deg", v, 180.0, true)?,
+            Camera::Panorama {
+                h_fov_deg: c.required("camera.h_fov_deg", r.h_fov_deg, "for a panorama")?,
+                v_fov_deg: c.required("camera.v_fov_deg", r.v_fov_deg, "for a panorama")?,
                 width,
                 height,
-            })
+            }
         }
         CameraKind::Sphere => {
             let why = "by a sphere camera (always 360°×180°)";
             c.unused("camera.fov_deg", &r.fov_deg, why)?;
             c.unused("camera.h_fov_deg", &r.h_fov_deg, why)?;
             c.unused("camera.v_fov_deg", &r.v_fov_deg, why)?;
-            Ok(Camera::Sphere { width, height })
+            Camera::Sphere { width, height }
         }
         CameraKind::Fisheye => {
             c.unused(
@@ -272,13 +229,16 @@ fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
             if width != height {
                 return c.err("camera.height", format!("a fisheye image is square: height must equal width ({width}), got {height}"));
             }
-            let fov = angle("camera.fov_deg", r.fov_deg.unwrap_or(180.0), 360.0, true)?;
-            Ok(Camera::Fisheye {
-                fov_deg: fov,
+            Camera::Fisheye {
+                fov_deg: r.fov_deg.unwrap_or(180.0),
                 size: width,
-            })
+            }
         }
-    }
+    };
+    camera
+        .check()
+        .or_else(|(field, message)| c.err(field, message))?;
+    Ok(camera)
 }
 
 fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {

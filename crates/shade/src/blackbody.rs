@@ -243,6 +243,18 @@ impl BlackbodyTable {
         }
     }
 
+    /// The grid: ln T of the first node and the step in ln T between nodes.
+    pub fn grid(&self) -> (f64, f64) {
+        (self.ln_t_min, self.step)
+    }
+
+    /// The nodes in order: (linear sRGB at luminance 1, ln Y) at each grid temperature (the
+    /// viewer's page interpolates them as [`BlackbodyTable::unit_colour`] and
+    /// [`BlackbodyTable::luminance`] do).
+    pub fn nodes(&self) -> impl Iterator<Item = ([f64; 3], f64)> + '_ {
+        self.nodes.iter().map(|n| (n.unit, n.ln_y))
+    }
+
     /// Grid position of ln T: interval index and unclamped fraction within it.
     fn locate(&self, t: f64) -> (usize, f64) {
         let s = (t.ln() - self.ln_t_min) / self.step;

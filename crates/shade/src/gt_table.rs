@@ -13,7 +13,7 @@ use std::sync::OnceLock;
 use crate::blackbody::{normalize_max, table, T_MAX, T_MIN};
 
 /// Bits dropped from the f32 pattern: 10 mantissa bits remain.
-const SHIFT: u32 = 13;
+pub const SHIFT: u32 = 13;
 
 /// One bin.
 #[derive(Clone, Copy, Debug)]
@@ -50,6 +50,17 @@ impl GtTable {
             })
             .collect();
         GtTable { first, entries }
+    }
+
+    /// The bin number (f32 bit pattern of a temperature shifted right by [`SHIFT`]) of the
+    /// first entry: entry i holds bin `first_bin() + i`.
+    pub fn first_bin(&self) -> u32 {
+        self.first
+    }
+
+    /// The entries in bin order (the viewer uploads them to the GPU as they are).
+    pub fn entries(&self) -> &[GtEntry] {
+        &self.entries
     }
 
     /// The bin of temperature `t` (K), `None` outside the table or for non-finite `t`.

@@ -221,6 +221,12 @@ impl ImageTexture {
         self.height
     }
 
+    /// The 8-bit sRGB pixels, row-major, row 0 at the top (the viewer uploads them to the
+    /// GPU, which decodes and filters them as [`Texture::sample`] does).
+    pub fn srgb8(&self) -> &[[u8; 3]] {
+        &self.pixels
+    }
+
     /// Linear RGB of pixel (col, row), row 0 at the top.
     pub fn pixel(&self, col: usize, row: usize) -> [f32; 3] {
         let lut = linear_lut();

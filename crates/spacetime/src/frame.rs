@@ -1,6 +1,7 @@
 //! Local frames: the static observer's frame by Gram–Schmidt of (∂t, ∂x, ∂y, ∂z)
-//! (docs/physics.md, "Frames"), and Lorentz boosts of a frame to an observer moving with a
-//! given velocity.
+//! (docs/physics.md, "Frames"), Lorentz boosts of a frame to an observer moving with a given
+//! velocity, and the aberration and Doppler factor between two observers at one event
+//! (docs/physics.md, "Observers at one event: aberration and Doppler").
 
 use crate::vectors::{FourVector, MetricTensor, Tetrad};
 
@@ -92,4 +93,28 @@ pub fn boost(frame: &Tetrad, velocity: LocalVelocity) -> Tetrad {
         out[i + 1] = frame.vector(comps);
     }
     Tetrad { e: out }
+}
+
+/// Aberration and Doppler factor between an observer moving with `velocity` (relative to a
+/// frame, here called static) and that frame's observer at the same event.
+///
+/// `own` is a unit direction the moving observer looks along (towards the source, in its
+/// boosted frame of [`boost`]); the photon it receives travels along −`own`. Returns the
+/// unit direction n along which the static observer sees the same photon, and the ratio of
+/// the photon's frequencies seen by the two, ν_moving/ν_static = γ(1 + n·v)
+/// = 1/(γ(1 − n′·v)) (docs/physics.md, "Observers at one event: aberration and Doppler"):
+///
+/// n = (n′ + ((γ − 1)(n′·v̂) − γv) v̂) / (γ(1 − n′·v)).
+pub fn aberrate(velocity: LocalVelocity, own: [f64; 3]) -> ([f64; 3], f64) {
+    let gamma = velocity.gamma();
+    let (v, d) = (velocity.speed, velocity.direction);
+    let along = own[0] * d[0] + own[1] * d[1] + own[2] * d[2];
+    let scale = 1.0 / (gamma * (1.0 - v * along));
+    let c = (gamma - 1.0) * along - gamma * v;
+    let n = [
+        (own[0] + c * d[0]) * scale,
+        (own[1] + c * d[1]) * scale,
+        (own[2] + c * d[2]) * scale,
+    ];
+    (n, scale)
 }

@@ -331,3 +331,68 @@ fn static_frame_matches_the_closed_form_on_the_half_plane_phi_zero() {
         }
     }
 }
+
+#[test]
+fn aberration_is_the_boost_applied_to_the_photon() {
+    // The moving observer's pixel n′ launches k = −e0′ + n′ⁱeᵢ′ in its boosted frame; in the
+    // static frame the same vector is (1/D)(−e0 + nⁱeᵢ): `aberrate` must give that n and D.
+    let mut rng = Rng::new(7);
+    for g in godels() {
+        for _ in 0..200 {
+            let x = rng.event(4.0 * g.a);
+            let f = g.static_frame(x);
+            let v = LocalVelocity::new(rng.uniform(0.0, 0.99), rng.direction()).unwrap();
+            let own = rng.direction();
+            let k = boost(&f, v).vector([-1.0, own[0], own[1], own[2]]);
+            // Static-frame components: k = c(−e0 + nⁱeᵢ) with c = g(k, e0), nⁱ = g(k, eᵢ)/c.
+            let c = g.dot(x, k, f.e[0]);
+            let (n, d) = aberrate(v, own);
+            assert!((d * c - 1.0).abs() < 1e-9, "D = {d}, 1/c = {}", 1.0 / c);
+            for i in 0..3 {
+                let want = g.dot(x, k, f.e[i + 1]) / c;
+                assert!((n[i] - want).abs() < 1e-9, "n = {n:?}");
+            }
+            // g′/g = γ(1 + n·v) with the static direction n.
+            let nv: f64 = (0..3).map(|i| n[i] * v.direction[i]).sum();
+            assert!((d - v.gamma() * (1.0 + v.speed * nv)).abs() < 1e-9 * d);
+        }
+    }
+}
+
+#[test]
+fn aberration_round_trip_and_the_direction_of_motion() {
+    // Seen from the moving observer, the static one moves with −v (the boost keeps the axes
+    // aligned): boosting back returns the original direction and the inverse factor.
+    let mut rng = Rng::new(8);
+    for _ in 0..500 {
+        let v = LocalVelocity::new(rng.uniform(0.0, 0.999), rng.direction()).unwrap();
+        let back = LocalVelocity::new(v.speed, v.direction.map(|c| -c)).unwrap();
+        let own = rng.direction();
+        let (n, d) = aberrate(v, own);
+        let (again, d_back) = aberrate(back, n);
+        assert!(
+            (0..3).all(|i| (again[i] - own[i]).abs() < 1e-9),
+            "{own:?} → {again:?}"
+        );
+        assert!((d * d_back - 1.0).abs() < 1e-9);
+        assert!(((n[0].powi(2) + n[1].powi(2) + n[2].powi(2)).sqrt() - 1.0).abs() < 1e-12);
+        // Straight ahead and straight behind keep their direction; ahead is blue-shifted by
+        // √((1 + v)/(1 − v)), behind red-shifted by its inverse.
+        let ahead = ((1.0 + v.speed) / (1.0 - v.speed)).sqrt();
+        let (n, d) = aberrate(v, v.direction);
+        assert!(
+            (0..3).all(|i| (n[i] - v.direction[i]).abs() < 1e-9) && (d / ahead - 1.0).abs() < 1e-9
+        );
+        let (n, d) = aberrate(v, back.direction);
+        assert!(
+            (0..3).all(|i| (n[i] - back.direction[i]).abs() < 1e-9)
+                && (d * ahead - 1.0).abs() < 1e-9
+        );
+    }
+    // Looking perpendicular to the motion, the moving observer sees what the static one
+    // sees tilted backwards by arcsin v (n = n′/γ − v v̂), red-shifted by 1/γ (the
+    // transverse Doppler effect).
+    let v = LocalVelocity::new(0.6, [1.0, 0.0, 0.0]).unwrap();
+    let (n, d) = aberrate(v, [0.0, 1.0, 0.0]);
+    assert!((n[0] + 0.6).abs() < 1e-12 && (n[1] - 0.8).abs() < 1e-12 && (d - 0.8).abs() < 1e-12);
+}

@@ -1,22 +1,34 @@
-// godel view: builds the controls from /api/info, sends the settings (JSON) to the server
-// on every change and draws the RGBA picture it answers; shows a pixel's record on hover.
-// Slider events are coalesced: at most one picture request is in flight, and when it comes
-// back only the newest settings are sent (stale intermediate positions are dropped).
+// godel view: the page. Fetches the data file's description and, once, the arrays the GPU
+// shades from (data.js); every control change, drag or wheel step redraws in the next
+// animation frame without asking the server (gl.js, shaders.js). The server still answers
+// hover records (/api/pixel) and makes the saved PNG and keyframe. For a full-sphere data
+// file the page looks around (look.js): any projection, turn, zoom and observer velocity.
 'use strict';
 
+import { Gpu } from './gl.js';
+import { Data, channelsFor, fetchJson } from './data.js';
+import { describeControls, buildControls } from './controls.js';
+import { uniformsFor, featuresFor, objectTable, imagesFor, legendFor } from './uniforms.js';
+import * as L from './look.js';
+
 const viewer = {
-  info: null,
-  settings: null,
-  frames: 0,        // pictures drawn
-  roundTrips: [],   // ms from the first unserved change to its picture on screen
-  serverTimings: [], // Server-Timing of each picture: {shade, encode}
-  record: null,     // the last pixel record shown
-  error: null,      // the last error message shown
-  busy: false,      // a picture request is in flight
+  info: null,      // /api/info
+  view: null,      // /api/view
+  settings: null,  // ShadeSettings
+  look: null,      // the look-around state, for a full-sphere file
+  frames: 0,       // pictures drawn on the canvas
+  shadings: 0,     // shading passes run
+  frameTimes: [],  // performance.now() of the last frames drawn (at most 600)
+  firstPicture: null, // ms from navigation start to the first picture on the canvas
+  timeline: {},    // ms from navigation start: described, tables, channels (first load)
+  record: null,    // the last pixel record shown
+  error: null,     // the last error message shown
 };
 window.godelViewer = viewer;
 
 const $ = (id) => document.getElementById(id);
+let gpu = null;
+let data = null;
 
 function showError(message) {
   viewer.error = message;
@@ -29,7 +41,6 @@ function clearError() {
   $('error').hidden = true;
 }
 
-// Error answers are {"error": "..."}; anything else is shown as text.
 async function errorText(response) {
   const text = await response.text();
   try {
@@ -39,273 +50,259 @@ async function errorText(response) {
   }
 }
 
-// ---- settings paths: ['objects', 'ball', 'temperature'] → settings.objects.ball.temperature
-// (arrays of keys, since object names may contain dots)
+// ---- what is on the canvas: the picture's size, and where it lies
 
-function getPath(object, path) {
-  return path.reduce((o, key) => (o == null ? undefined : o[key]), object);
+let fixedSize = null;      // [w, h] canvas pixels set by a script, else the layout decides
+const pan = { zoom: 1, offset: [0, 0], fitted: true };
+
+function lookMode() {
+  return viewer.look !== null;
 }
 
-function setPath(object, path, value) {
-  const parent = getPath(object, path.slice(0, -1));
-  parent[path[path.length - 1]] = value;
+// The picture the shading pass makes: {width, height, look} (look: view and sphere, or null).
+function picture() {
+  const canvas = $('image');
+  if (!lookMode()) return { width: viewer.info.width, height: viewer.info.height, look: null };
+  // The velocity's direction follows its preset (the view's centre turns with the view).
+  viewer.look.direction = L.presetDirection(viewer.look.preset, viewer.look, viewer.view.view,
+    viewer.view.object_directions);
+  const view = L.lookView(viewer.look, viewer.view.view, canvas.width, canvas.height);
+  return { width: view.camera.width, height: view.camera.height, look: { view, sphere: sphere() } };
 }
 
-// ---- the controls: one description per control, built from the file's info.
-// Kinds: 'range' and 'select' set a value; 'check' a boolean; 'layer' adds or removes a
-// shader in settings.shaders; 'texture' picks a texture choice (an object with a kind).
-
-const LAYERS = ['texture', 'frequency', 'time', 'light'];
-
-// A texture choice of each kind, as the shade crate reads it.
-const TEXTURES = {
-  scene: { kind: 'scene' },
-  checker: { kind: 'checker', rows: 8, cols: 16 },
-  gradient: { kind: 'gradient' },
-  uniform: { kind: 'uniform', color: [0.8, 0.8, 0.8] },
-  earth: { kind: 'earth' },
-};
-
-function describeControls(info) {
-  const d = info.defaults;
-  const tMax = Math.max(d.time.travel_max, 1);
-  const groups = [{
-    title: 'Shader layers (multiplied)',
-    controls: LAYERS.map((layer) => ({
-      id: `layer-${layer}`, label: layer, kind: 'layer', layer,
-      disabled: layer === 'light' && info.lights === 0,
-    })),
-  }, {
-    title: 'Frequency',
-    controls: [
-      { id: 'brightness', label: 'brightness', path: ['brightness'], kind: 'select',
-        options: ['normalized', 'physical'] },
-      { id: 'exposure', label: 'exposure', path: ['exposure'], kind: 'range',
-        min: 0, max: 4, step: 0.01 },
-      { id: 'reference-squares', label: 'reference squares', path: ['reference_squares'],
-        kind: 'check' },
-    ],
-  }, {
-    title: 'Time',
-    controls: [
-      { id: 'time-mode', label: 'mode', path: ['time', 'mode'], kind: 'select',
-        options: ['window', 'travel'] },
-      { id: 'time-t0', label: 'window start t0', path: ['time', 't0'], kind: 'range',
-        min: -Math.ceil(tMax * 1.1), max: 0, step: 0.01 },
-      { id: 'time-dt', label: 'window length Δt', path: ['time', 'dt'], kind: 'range',
-        min: 0.01, max: Math.ceil(tMax), step: 0.01 },
-      { id: 'time-legend', label: 'legend', path: ['time', 'legend'], kind: 'check' },
-    ],
-  }];
-  if (info.lights > 0) {
-    const controls = [{ id: 'light-ambient', label: 'ambient', path: ['light', 'ambient'],
-      kind: 'range', min: 0, max: 1, step: 0.01 }];
-    for (let k = 0; k < info.lights; k += 1) {
-      controls.push(
-        { id: `light-${k}-on`, label: `light ${k} on`, path: ['light', 'sources', k, 'on'],
-          kind: 'check' },
-        { id: `light-${k}-intensity`, label: `light ${k} intensity`,
-          path: ['light', 'sources', k, 'intensity'], kind: 'range', min: 0, max: 5, step: 0.01 },
-      );
-    }
-    groups.push({ title: 'Light', controls });
-  }
-  info.objects.forEach((name, k) => {
-    const path = (field) => ['objects', name, field];
-    groups.push({
-      title: `Object ${name}`,
-      controls: [
-        { id: `texture-${k}`, label: 'texture', path: path('texture'), kind: 'texture' },
-        { id: `window-texture-${k}`, label: 'texture in window', path: path('window_texture'),
-          kind: 'texture' },
-        { id: `offset-u-${k}`, label: 'u offset', path: path('offset_u'), kind: 'range',
-          min: -1, max: 1, step: 0.001 },
-        { id: `offset-v-${k}`, label: 'v offset', path: path('offset_v'), kind: 'range',
-          min: -1, max: 1, step: 0.001 },
-        { id: `rotation-${k}`, label: 'rotation (°)', path: path('rotation_deg'), kind: 'range',
-          min: -180, max: 180, step: 0.5 },
-        { id: `temperature-${k}`, label: 'temperature (K)', path: path('temperature'),
-          kind: 'range', min: 1000, max: 20000, step: 10 },
-      ],
-    });
-  });
-  return groups;
+function sphere() {
+  const v = viewer.view.view;
+  return { width: viewer.info.width, height: viewer.info.height, forward: v.forward, up: v.up };
 }
 
-function inputFor(c) {
-  let input;
-  if (c.kind === 'select' || c.kind === 'texture') {
-    input = document.createElement('select');
-    const options = c.kind === 'texture' ? Object.keys(TEXTURES) : c.options;
-    for (const option of options) input.append(new Option(option, option));
-    const current = getPath(viewer.settings, c.path);
-    if (c.kind === 'texture' && !(current.kind in TEXTURES)) {
-      // A choice the page cannot make (an image file) stays selectable as it is.
-      TEXTURES[current.kind] = current;
-      input.append(new Option(current.kind, current.kind));
-    }
-    input.value = c.kind === 'texture' ? current.kind : current;
-  } else if (c.kind === 'check' || c.kind === 'layer') {
-    input = document.createElement('input');
-    input.type = 'checkbox';
-    input.checked = c.kind === 'layer'
-      ? viewer.settings.shaders.includes(c.layer)
-      : getPath(viewer.settings, c.path);
+function fit() {
+  const canvas = $('image');
+  pan.zoom = Math.min(canvas.width / viewer.info.width, canvas.height / viewer.info.height);
+  pan.offset = [(canvas.width - viewer.info.width * pan.zoom) / 2,
+    (canvas.height - viewer.info.height * pan.zoom) / 2];
+  pan.fitted = true;
+}
+
+function layout() {
+  const canvas = $('image');
+  const room = $('picture').clientWidth;
+  const dpr = window.devicePixelRatio || 1;
+  let css;
+  if (fixedSize) {
+    css = [fixedSize[0] / dpr, fixedSize[1] / dpr];
+  } else if (lookMode()) {
+    css = [room, Math.round(Math.min(window.innerHeight * 0.6, room / 2))];
   } else {
-    input = document.createElement('input');
-    input.type = c.kind;
-    for (const key of ['min', 'max', 'step']) input[key] = c[key];
-    input.value = getPath(viewer.settings, c.path);
+    const aspect = viewer.info.width / viewer.info.height;
+    const w = Math.min(room, window.innerHeight * 0.6 * aspect);
+    css = [w, w / aspect];
   }
-  input.id = c.id;
-  input.disabled = Boolean(c.disabled);
-  return input;
+  canvas.style.width = `${css[0]}px`;
+  canvas.style.height = `${css[1]}px`;
+  const w = Math.max(1, Math.round(css[0] * dpr));
+  const h = Math.max(1, Math.round(css[1] * dpr));
+  if (canvas.width !== w || canvas.height !== h) {
+    canvas.width = w;
+    canvas.height = h;
+    shadeDirty = true;
+  }
+  if (!lookMode() && pan.fitted) fit();
+  changed(false);
 }
 
-// Reads a control into the settings.
-function apply(c, input) {
-  if (c.kind === 'layer') {
-    const on = new Set(viewer.settings.shaders);
-    if (input.checked) on.add(c.layer); else on.delete(c.layer);
-    viewer.settings.shaders = LAYERS.filter((layer) => on.has(layer));
-  } else if (c.kind === 'check') {
-    setPath(viewer.settings, c.path, input.checked);
-  } else if (c.kind === 'texture') {
-    setPath(viewer.settings, c.path, structuredClone(TEXTURES[input.value]));
-  } else if (c.kind === 'select') {
-    setPath(viewer.settings, c.path, input.value);
-  } else {
-    setPath(viewer.settings, c.path, Number(input.value));
-  }
-}
+// ---- drawing: coalesced into animation frames
 
-function buildControls(groups) {
-  const form = $('controls');
-  form.textContent = '';
-  for (const group of groups) {
-    const title = document.createElement('div');
-    title.className = 'group';
-    title.textContent = group.title;
-    form.append(title);
-    for (const c of group.controls) {
-      const label = document.createElement('label');
-      label.htmlFor = c.id;
-      label.textContent = c.label;
-      const input = inputFor(c);
-      const output = document.createElement('output');
-      output.htmlFor = c.id;
-      output.value = c.kind === 'range' ? input.value : '';
-      input.addEventListener(c.kind === 'range' ? 'input' : 'change', () => {
-        apply(c, input);
-        if (c.kind === 'range') output.value = input.value;
-        changed();
-      });
-      form.append(label, input, output);
-    }
-  }
-}
+let frameQueued = false;
+let shadeDirty = true;   // the picture must be shaded again (else only displayed)
+let loading = false;     // channels or images are being fetched
+let legendKey = null;
 
-// ---- the picture: coalesced requests
-
-let dirtySince = null;   // time of the first change not yet sent
-let frameQueued = false; // a requestAnimationFrame callback is pending
-
-function changed() {
-  if (dirtySince === null) dirtySince = performance.now();
+// A change: `shade` false when only the display (zoom, pan) changed.
+function changed(shade = true) {
+  if (shade) shadeDirty = true;
   if (!frameQueued) {
     frameQueued = true;
-    requestAnimationFrame(sendNewest);
+    requestAnimationFrame(draw);
   }
 }
 
-async function sendNewest() {
+async function draw() {
   frameQueued = false;
-  if (viewer.busy || dirtySince === null) return; // the answer in flight sends again
-  const since = dirtySince;
-  dirtySince = null;
-  await requestPicture(JSON.stringify(viewer.settings), since);
-  if (dirtySince !== null) changed();
-}
-
-// Sends `body` (settings JSON) and draws the answer; errors are shown on the page.
-async function requestPicture(body, since) {
-  viewer.busy = true;
+  if (loading || !gpu) return;
+  const settings = viewer.settings;
+  let need;
+  let images;
   try {
-    const response = await fetch('/api/image', { method: 'POST', body,
-      headers: { 'Content-Type': 'application/json' } });
-    if (!response.ok) {
-      showError(await errorText(response));
-      return false;
-    }
-    const width = Number(response.headers.get('X-Image-Width'));
-    const height = Number(response.headers.get('X-Image-Height'));
-    const bytes = new Uint8ClampedArray(await response.arrayBuffer());
-    const canvas = $('image');
-    if (canvas.width !== width || canvas.height !== height) {
-      canvas.width = width;
-      canvas.height = height;
-    }
-    canvas.getContext('2d').putImageData(new ImageData(bytes, width, height), 0, 0);
-    const elapsed = performance.now() - since;
-    viewer.frames += 1;
-    viewer.roundTrips.push(elapsed);
-    const timing = parseServerTiming(response.headers.get('Server-Timing'));
-    viewer.serverTimings.push(timing);
-    $('status').textContent = `${width}×${height} · shaded in ${timing.shade.toFixed(1)} ms`
-      + ` · on screen after ${elapsed.toFixed(0)} ms`;
-    clearError();
-    return true;
+    need = channelsFor(settings, viewer.info.lights);
+    images = imagesFor(settings, viewer.info, data);
   } catch (e) {
-    showError(`cannot reach the viewer's server: ${e}`);
-    return false;
-  } finally {
-    viewer.busy = false;
+    showError(e.message);
+    return;
+  }
+  if (data.missing(need).length || images.some((n) => !data.images.has(n))) {
+    loading = true;
+    $('status').textContent = 'loading the data file\u2019s channels…';
+    try {
+      await data.ensure(need);
+      await data.ensureImages(images);
+    } catch (e) {
+      showError(`cannot load the data for the GPU: ${e.message}`);
+      return;
+    } finally {
+      loading = false;
+    }
+    if (!viewer.timeline.channels) viewer.timeline.channels = performance.now();
+    changed();
+    return;
+  }
+  const p = picture();
+  try {
+    if (shadeDirty) {
+      const uniforms = uniformsFor(settings, viewer.info, data, p.width, p.height, p.look);
+      const legend = legendFor(settings, p.width, p.height);
+      const key = legend && JSON.stringify([p.width, p.height, settings.time]);
+      if (legend && key !== legendKey) {
+        gpu.uploadRgba('legend', legend.width, legend.height, legend.pixels);
+        legendKey = key;
+      }
+      uniforms.uLegendRect = ['i4', legend ? [legend.x0, legend.y0, legend.width, legend.height]
+        : [0, 0, 0, 0]];
+      const table = objectTable(settings, viewer.info, data);
+      gpu.uploadFloatRgba('objects', 4, table.length / 16, table);
+      gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
+        uniforms);
+      viewer.shadings += 1;
+      shadeDirty = false;
+    }
+    const canvas = $('image');
+    if (lookMode()) {
+      gpu.display([Math.floor((canvas.width - p.width) / 2),
+        Math.floor((canvas.height - p.height) / 2)], 1);
+    } else {
+      gpu.display(pan.offset, pan.zoom);
+    }
+  } catch (e) {
+    showError(e.message);
+    return;
+  }
+  if (viewer.firstPicture === null) {
+    gpu.finish(); // the first picture counts when it is on the canvas, not when asked for
+    viewer.firstPicture = performance.now();
+  }
+  const now = performance.now();
+  viewer.frames += 1;
+  viewer.frameTimes.push(now);
+  if (viewer.frameTimes.length > 600) viewer.frameTimes.shift();
+  const recent = viewer.frameTimes.filter((t) => t > now - 1000).length;
+  $('status').textContent = `${p.width}×${p.height} shaded on the GPU · ${recent} frames/s`;
+  clearError();
+}
+
+// Nothing waiting to be drawn or fetched (for tests and scripts).
+viewer.idle = () => !frameQueued && !loading && !shadeDirty;
+
+// ---- the mouse: drag to turn (look) or pan, wheel to zoom, hover for the record
+
+let dragging = null;
+
+function canvasPoint(event) {
+  const canvas = $('image');
+  const rect = canvas.getBoundingClientRect();
+  return [(event.clientX - rect.left) * canvas.width / rect.width,
+    (event.clientY - rect.top) * canvas.height / rect.height];
+}
+
+// The picture pixel under canvas point c, or null.
+function picturePixel(c) {
+  const canvas = $('image');
+  const p = picture();
+  const [ox, oy, zoom] = lookMode()
+    ? [Math.floor((canvas.width - p.width) / 2), Math.floor((canvas.height - p.height) / 2), 1]
+    : [pan.offset[0], pan.offset[1], pan.zoom];
+  const col = Math.floor((c[0] - ox) / zoom);
+  const row = Math.floor((c[1] - oy) / zoom);
+  if (col < 0 || row < 0 || col >= p.width || row >= p.height) return null;
+  return [col, row];
+}
+
+function onDrag(event) {
+  const c = canvasPoint(event);
+  const [dx, dy] = [c[0] - dragging[0], c[1] - dragging[1]];
+  dragging = c;
+  if (lookMode()) {
+    const deg = L.radiansPerPixel(viewer.look, picture().width) * 180 / Math.PI;
+    const look = viewer.look;
+    look.yaw = ((look.yaw - dx * deg + 540) % 360) - 180;
+    look.pitch = Math.min(90, Math.max(-90, look.pitch + dy * deg));
+    syncControls();
+    changed();
+  } else {
+    pan.offset = [pan.offset[0] + dx, pan.offset[1] + dy];
+    pan.fitted = false;
+    changed(false);
   }
 }
 
-function parseServerTiming(header) {
-  const out = { shade: NaN, encode: NaN };
-  for (const part of (header || '').split(',')) {
-    const m = part.trim().match(/^(\w+);dur=([\d.]+)/);
-    if (m) out[m[1]] = Number(m[2]);
+function onWheel(event) {
+  event.preventDefault();
+  const factor = Math.exp(event.deltaY * 0.001);
+  if (lookMode()) {
+    const look = viewer.look;
+    const range = L.PROJECTIONS[look.projection];
+    look.fov = Math.min(range.max, Math.max(range.min, look.fov * factor));
+    syncControls();
+    changed();
+  } else {
+    const c = canvasPoint(event);
+    const zoom = Math.min(64, Math.max(0.05, pan.zoom / factor));
+    pan.offset = [c[0] - (c[0] - pan.offset[0]) * zoom / pan.zoom,
+      c[1] - (c[1] - pan.offset[1]) * zoom / pan.zoom];
+    pan.zoom = zoom;
+    pan.fitted = false;
+    changed(false);
   }
-  return out;
 }
 
-// No picture request in flight or waiting (for tests and scripts).
-viewer.idle = () => !viewer.busy && dirtySince === null && !frameQueued;
+let syncControls = () => {};
 
-// Sends `text` as the settings, as the page does: for checking how errors show.
-viewer.sendRaw = (text) => requestPicture(text, performance.now());
+// ---- hover: the record of the data pixel under the mouse, and where it looks
 
-// ---- hover: the pixel's record
-
-let hoverWanted = null; // [col, row] under the mouse
+let hoverWanted = null; // {pixel: [col, row] of the data file, ...what the page adds}
 let hoverBusy = false;
 let hoverShown = null;
 
-function pixelUnder(event) {
-  const canvas = $('image');
-  const rect = canvas.getBoundingClientRect();
-  const col = Math.floor((event.clientX - rect.left) / rect.width * canvas.width);
-  const row = Math.floor((event.clientY - rect.top) / rect.height * canvas.height);
-  if (col < 0 || row < 0 || col >= canvas.width || row >= canvas.height) return null;
-  return [col, row];
+function hoverAt(event) {
+  const q = picturePixel(canvasPoint(event));
+  if (!q) return;
+  const deg = (n) => L.azimuthElevation(n).map((x) => x.toFixed(2)).join('°, ') + '°';
+  if (lookMode()) {
+    const at = L.lookPixel(picture().look.view, sphere(), q[0], q[1]);
+    if (!at) return;
+    hoverWanted = { pixel: at.source, view: q, doppler: at.doppler, direction: deg(at.own),
+      staticDirection: viewer.look.speed > 0 ? deg(at.static) : '–' };
+  } else {
+    const v = viewer.view.view;
+    const d = v && L.cameraDirection(v.camera, q[0], q[1]);
+    hoverWanted = { pixel: q, doppler: 1, direction: d ? deg(L.toLocal(d, v.forward, v.up)) : '–',
+      staticDirection: '–' };
+  }
+  fetchHover();
 }
 
 async function fetchHover() {
   if (hoverBusy || hoverWanted === null) return;
-  const [col, row] = hoverWanted;
-  if (hoverShown && hoverShown[0] === col && hoverShown[1] === row) return;
+  const wanted = hoverWanted;
+  if (hoverShown && JSON.stringify(hoverShown) === JSON.stringify(wanted)) return;
   hoverBusy = true;
   try {
+    const [col, row] = wanted.pixel;
     const response = await fetch(`/api/pixel?col=${col}&row=${row}`);
     if (!response.ok) {
       showError(await errorText(response));
       return;
     }
-    showRecord(await response.json());
-    hoverShown = [col, row];
+    showRecord(await response.json(), wanted);
+    hoverShown = wanted;
   } catch (e) {
     showError(`cannot reach the viewer's server: ${e}`);
   } finally {
@@ -316,30 +313,40 @@ async function fetchHover() {
 
 const number = (x, digits) => (x === null || x === undefined ? '–' : Number(x).toFixed(digits));
 
-function showRecord(r) {
+function showRecord(r, at) {
   viewer.record = r;
+  const hit = r.object >= 0;
+  const g = hit ? Math.fround(r.g * at.doppler) : r.g;
   const fields = {
-    pixel: `${r.col}, ${r.row}`,
+    pixel: at.view ? `${r.col}, ${r.row} (view ${at.view[0]}, ${at.view[1]})` : `${r.col}, ${r.row}`,
     object: r.object_name === null ? 'none' : r.object_name,
     status: r.status,
     u: number(r.u, 4),
     v: number(r.v, 4),
-    g: number(r.g, 4),
+    g: number(g, 4),
     t_emit: number(r.t_emit, 4),
     travel_time: number(r.travel_time, 4),
     lights: r.lights.length ? r.lights.map((x) => number(x, 3)).join(', ') : '–',
+    direction: at.direction,
+    static_direction: at.staticDirection,
+    doppler: number(at.doppler, 4),
   };
-  const hit = r.object >= 0;
+  const always = ['pixel', 'object', 'status', 'direction', 'static_direction', 'doppler'];
   for (const [field, text] of Object.entries(fields)) {
-    const keep = ['pixel', 'object', 'status'].includes(field) || hit;
+    const keep = always.includes(field) || hit;
     document.querySelector(`#record [data-field="${field}"]`).textContent = keep ? text : '–';
   }
 }
 
-// ---- saving
+// ---- saving: the server shades the PNG (look + shade for a turned or boosted view)
 
-async function download(url, fallbackName) {
-  const response = await fetch(url, { method: 'POST', body: JSON.stringify(viewer.settings),
+function saveBody() {
+  if (!lookMode()) return JSON.stringify(viewer.settings);
+  return JSON.stringify({ settings: viewer.settings, view: picture().look.view });
+}
+
+async function download(url, body, fallbackName) {
+  const response = await fetch(url, { method: 'POST', body,
     headers: { 'Content-Type': 'application/json' } });
   if (!response.ok) {
     showError(await errorText(response));
@@ -359,47 +366,105 @@ async function download(url, fallbackName) {
 }
 
 async function saveKeyframe() {
-  const blob = await download('/api/keyframe', 'keyframe.toml');
+  const blob = await download('/api/keyframe', JSON.stringify(viewer.settings), 'keyframe.toml');
   if (blob) {
     $('keyframe').textContent = await blob.text();
     $('keyframe').hidden = false;
   }
 }
 
-// ---- start
+// ---- for tests and scripts
 
-// As wide as the page, but at most 60% of the window high, keeping the aspect ratio.
-function fitCanvas() {
-  const canvas = $('image');
-  const byHeight = window.innerHeight * 0.6 * canvas.width / canvas.height;
-  canvas.style.width = `${Math.min($('picture').clientWidth, byHeight)}px`;
-}
+const base64 = (bytes) => {
+  let s = '';
+  for (let i = 0; i < bytes.length; i += 8192) s += String.fromCharCode(...bytes.subarray(i, i + 8192));
+  return btoa(s);
+};
+// The shaded picture (RGBA, top row first), and the canvas as shown.
+viewer.readPicture = () => { const p = gpu.readShaded(); return { ...p, bytes: base64(p.bytes) }; };
+viewer.readCanvas = () => { const p = gpu.readCanvas(); return { ...p, bytes: base64(p.bytes) }; };
+// Fixes the canvas at w × h pixels (null: back to the layout).
+viewer.setViewSize = (w, h) => { fixedSize = w ? [w, h] : null; layout(); };
+// The settings and view the server would shade for "Save PNG".
+viewer.saveBody = saveBody;
+// Sends `text` to the server as settings, as the page did before it shaded on the GPU: for
+// checking that the server's messages show.
+viewer.sendRaw = async (text) => {
+  const response = await fetch('/api/image', { method: 'POST', body: text,
+    headers: { 'Content-Type': 'application/json' } });
+  if (!response.ok) showError(await errorText(response));
+  return response.ok;
+};
+viewer.changed = () => { syncControls(); changed(); };
+// Waits for the GPU (benchmarks: a frame counts when drawn, not when asked for).
+viewer.finish = () => gpu.finish();
+// What the page fetched: [url, bytes, ms] per array.
+viewer.fetched = () => data.fetched;
+// The WebGL side, for profiling from the console.
+viewer.gpu = () => gpu;
+// Canvas pixels per picture pixel (1 when looking around).
+viewer.zoom = () => (lookMode() ? 1 : pan.zoom);
+
+// ---- start
 
 async function start() {
   try {
-    const response = await fetch('/api/info');
-    if (!response.ok) throw new Error(await errorText(response));
-    viewer.info = await response.json();
+    [viewer.info, viewer.view] = await Promise.all([fetchJson('/api/info'),
+      fetchJson('/api/view')]);
   } catch (e) {
     showError(`cannot load the data file's description: ${e.message || e}`);
     return;
   }
-  viewer.settings = structuredClone(viewer.info.defaults);
-  $('file').textContent = `${viewer.info.file} · ${viewer.info.scene_name} · `
-    + `${viewer.info.width}×${viewer.info.height}`;
-  const canvas = $('image');
-  canvas.width = viewer.info.width;
-  canvas.height = viewer.info.height;
-  buildControls(describeControls(viewer.info));
-  fitCanvas();
-  window.addEventListener('resize', fitCanvas);
-  canvas.addEventListener('mousemove', (event) => {
-    hoverWanted = pixelUnder(event);
-    fetchHover();
+  const info = viewer.info;
+  viewer.timeline.described = performance.now();
+  viewer.settings = structuredClone(info.defaults);
+  $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
+    + (viewer.view.sphere ? ' · full sphere: drag to look around' : '');
+  try {
+    gpu = new Gpu($('image'));
+    data = new Data(gpu, info);
+    await data.start();
+    viewer.timeline.tables = performance.now();
+  } catch (e) {
+    showError(e.message);
+    return;
+  }
+  if (viewer.view.sphere) viewer.look = L.newLook(viewer.view.view);
+  const targets = { settings: viewer.settings, look: viewer.look };
+  syncControls = buildControls(describeControls(info, viewer.view), targets, (target) => {
+    if (target === 'look') lookChanged();
+    changed();
   });
-  $('save-png').addEventListener('click', () => download('/api/png', 'view.png'));
+  const canvas = $('image');
+  canvas.addEventListener('pointerdown', (event) => {
+    dragging = canvasPoint(event);
+    canvas.setPointerCapture(event.pointerId);
+  });
+  canvas.addEventListener('pointermove', (event) => {
+    if (dragging) onDrag(event);
+    hoverAt(event);
+  });
+  canvas.addEventListener('pointerup', () => { dragging = null; });
+  canvas.addEventListener('wheel', onWheel, { passive: false });
+  canvas.addEventListener('dblclick', () => { if (!lookMode()) { fit(); changed(false); } });
+  window.addEventListener('resize', layout);
+  $('save-png').addEventListener('click', () => download(lookMode() ? '/api/look/png' : '/api/png',
+    saveBody(), 'view.png'));
   $('save-keyframe').addEventListener('click', saveKeyframe);
-  changed();
+  layout();
 }
+
+// After a look control: the preset's direction, the projection's field of view.
+function lookChanged() {
+  const look = viewer.look;
+  const range = L.PROJECTIONS[look.projection];
+  if (look.projection !== lookChanged.projection) {
+    look.fov = range.fov;
+    lookChanged.projection = look.projection;
+  }
+  look.fov = Math.min(range.max, Math.max(range.min, look.fov));
+  syncControls();
+}
+lookChanged.projection = 'pinhole';
 
 start();

@@ -1,8 +1,8 @@
-//! The page (HTML, CSS, JavaScript), embedded in the binary so that the viewer needs no
-//! files beside it and nothing from the internet.
+//! The page (HTML, CSS, JavaScript modules), embedded in the binary so that the viewer needs
+//! no files beside it and nothing from the internet.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 3] = [
+pub const FILES: [(&str, &str, &str); 10] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -13,9 +13,16 @@ pub const FILES: [(&str, &str, &str); 3] = [
         "text/css; charset=utf-8",
         include_str!("../page/viewer.css"),
     ),
-    (
-        "/viewer.js",
-        "text/javascript; charset=utf-8",
-        include_str!("../page/viewer.js"),
-    ),
+    js("/viewer.js", include_str!("../page/viewer.js")),
+    js("/controls.js", include_str!("../page/controls.js")),
+    js("/data.js", include_str!("../page/data.js")),
+    js("/gl.js", include_str!("../page/gl.js")),
+    js("/shaders.js", include_str!("../page/shaders.js")),
+    js("/uniforms.js", include_str!("../page/uniforms.js")),
+    js("/overlays.js", include_str!("../page/overlays.js")),
+    js("/look.js", include_str!("../page/look.js")),
 ];
+
+const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {
+    (path, "text/javascript; charset=utf-8", body)
+}

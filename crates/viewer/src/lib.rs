@@ -1,22 +1,31 @@
-//! `viewer`: the live web viewer behind `godel view` (README.md, "Live viewer"). A local
-//! axum server holds one data file in memory and shades it on request with the `shade`
-//! crate, so the page (embedded in the binary) only sends settings and shows what the
-//! server shaded: one shading implementation serves the command line and the viewer.
+//! `viewer`: the live web viewer behind `godel view` (README.md, "Live viewer"). A local axum
+//! server holds one data file in memory; the page (embedded in the binary) fetches the file's
+//! channels once and shades them on the GPU with WebGL2 shaders that reproduce the `shade`
+//! crate's rule, so every control, turn, zoom and boost redraws within a frame. The server
+//! stays the source of the data, of hover records, and of saved pictures and keyframes (shaded
+//! by the `shade` crate, after the `look` crate for a turned or boosted view).
 //!
 //! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes; image textures
 //!   only from the data file's folder and [`ViewerOptions::texture_folders`].
-//! - [`router`]: the routes (see [`routes`] for the table), [`serve`]: runs them.
+//! - [`router`]: the routes (see [`routes`], [`gpu_routes`] and [`look_routes`] for the
+//!   tables), [`serve`]: runs them.
 //! - [`Access`]: which `Host` names the server; [`guard`] checks Host, Origin and JSON bodies.
 //! - [`WorkLimit`]: the bound on concurrent shading.
+//! - [`wire`]: the binary format of the arrays the page uploads as textures; [`gpu`]: what
+//!   they hold (channels, textures, black-body tables).
 //! - The settings the page sends are `shade::ShadeSettings` as JSON.
 
 pub mod api_error;
 mod assets;
 pub mod encode;
+pub mod gpu;
+pub mod gpu_routes;
 pub mod guard;
 pub mod limit;
+pub mod look_routes;
 pub mod routes;
 pub mod state;
+pub mod wire;
 
 use std::sync::Arc;
 

@@ -8,6 +8,7 @@
 //! | `POST /api/png` (settings JSON) | the shaded picture as a PNG download |
 //! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
+//! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::look_routes`] |
 //!
 //! Every request first passes [`crate::guard::check`] (Host, Origin, JSON bodies, body size:
 //! 403, 415, 413). Bad requests (malformed or unknown settings, pixel outside the image) get
@@ -50,7 +51,14 @@ pub fn router(state: Arc<ViewerState>, access: Access) -> Router {
         .route("/api/png", post(png))
         .route("/api/keyframe", post(keyframe))
         .route("/api/pixel", get(pixel))
-        .with_state(state)
+        .with_state(state.clone())
+        .merge(crate::gpu_routes::router(Arc::new(
+            crate::gpu_routes::GpuState::new(state.clone()),
+        )))
+        .merge(crate::look_routes::router(Arc::new(
+            crate::look_routes::LookState::new(state),
+        )))
+        // Layers added after the merges cover every route, the GPU and look ones included.
         // The guard reads POST bodies up to its own cap; the extractors' limit must not be lower.
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
         .layer(middleware::from_fn_with_state(
@@ -138,7 +146,7 @@ async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Res
 }
 
 /// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
-fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
+pub(crate) fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
     let stem: String = state
         .data
         .header

@@ -167,6 +167,12 @@ impl ViewerState {
         self.textures.folders().unwrap_or_default()
     }
 
+    /// The embedded scene's textures in object order, image files from the allowed folders
+    /// (loaded once, when the file was loaded).
+    pub fn scene_textures(&self) -> Result<Vec<shade::Texture>, shade::ShadeError> {
+        self.textures.scene_textures(&self.data)
+    }
+
     /// The bound on concurrent shading work.
     pub fn work(&self) -> &WorkLimit {
         &self.work

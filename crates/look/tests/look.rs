@@ -1,0 +1,443 @@
+//! `look` (docs/physics.md, "Observers at one event: aberration and Doppler") against independent
+//! computations: direct renders of the same camera and observer velocity (the tracer with a
+//! boosted frame), the identity view, the Doppler factor's two closed forms, the shrinking
+//! and blue shift of a ball the observer moves towards, the magnification of the static sky
+//! (dθ = D dθ′). Refusals and the output header: `look_input.rs`.
+
+use datafile::{DataFile, PixelRecord, RayStatus};
+use look::{look, pixel_look, resolution, LookView, SphereSource};
+use render::driver::{render, NoProgress};
+use scene::{replace_view, Camera, Scene};
+use spacetime::LocalVelocity;
+use std::sync::OnceLock;
+
+/// A validated scene from TOML text (panics with the located error otherwise).
+fn scene(text: &str) -> Scene {
+    Scene::from_str(text, "test.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// The data file of a direct render.
+fn render_scene(s: &Scene) -> DataFile {
+    render(s, &NoProgress).expect("render").0
+}
+
+/// A ball at rest at r = 1 (seen twice, g = 1 for the static observer) and a ball falling
+/// past at 0.7 c (several images, g ≠ 1), seen from the axis over the full sphere.
+const SPHERE_SCENE: &str = r#"
+name = "two-balls"
+[spacetime]
+metric = "godel"
+a = 1.0
+[observer]
+position = { r = 0.0, phi = 0.0, z = 0.0 }
+forward = [1, 0, 0]
+up = [0, 0, 1]
+[camera]
+kind = "sphere"
+width = 720
+height = 360
+[trace]
+method = "exact"
+max_past = 10.0
+[[object]]
+name = "resting"
+radius = 0.3
+motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
+[[object]]
+name = "falling"
+radius = 0.25
+motion = { kind = "geodesic", time = 0.0, position = { x = -1.0, y = 0.3, z = 0.2 }, speed = 0.7, direction = [1, 0, 0] }
+"#;
+const RESTING: i32 = 0;
+const FALLING: i32 = 1;
+/// Twice the larger ball's diameter: within one image of a ball, neighbouring pixels'
+/// emission times differ by far less; a larger step is a boundary between two images.
+const JUMP: f32 = 1.2;
+
+fn sphere() -> &'static DataFile {
+    static SPHERE: OnceLock<DataFile> = OnceLock::new();
+    SPHERE.get_or_init(|| render_scene(&scene(SPHERE_SCENE)))
+}
+
+/// The direction of the resting ball's first image from the axis (docs/physics.md, "Images
+/// of a point": tan az = √2 ρ/√(4a² − ρ²) for ρ = 1, a = 1): 39.23° from e_x.
+fn towards_resting() -> [f64; 3] {
+    let az = (2f64.sqrt() / 3f64.sqrt()).atan();
+    [az.cos(), az.sin(), 0.0]
+}
+
+fn view(camera: Camera, forward: [f64; 3], speed: f64, direction: [f64; 3]) -> LookView {
+    let velocity = LocalVelocity::new(speed, direction).expect("velocity");
+    LookView::new(camera, forward, [0.0, 0.0, 1.0], velocity).expect("view")
+}
+
+/// A direct trace of `view` at the sphere's event.
+fn direct(view: &LookView) -> DataFile {
+    let text = replace_view(
+        SPHERE_SCENE,
+        "test.toml",
+        &view.camera,
+        view.velocity,
+        view.forward,
+        view.up,
+    )
+    .expect("edit");
+    let s = scene(&text);
+    // The comparison means something only if the direct render really has this view.
+    assert_eq!(s.camera, view.camera);
+    assert_eq!(s.observer.velocity.speed, view.velocity.speed);
+    for (a, b) in [
+        (s.observer.velocity.direction, view.velocity.direction),
+        (s.observer.forward, view.forward),
+        (s.observer.up, view.up),
+    ] {
+        assert!((0..3).all(|i| (a[i] - b[i]).abs() < 1e-15), "{a:?} {b:?}");
+    }
+    render_scene(&s)
+}
+
+fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let c = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let s = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+    s.atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+}
+
+/// The static direction of source pixel centre (col, row) (docs/physics.md, "Pixels and
+/// cameras": the sphere is the 360°×180° panorama), columns wrapped.
+fn centre(src: &SphereSource, col: i64, row: i64) -> [f64; 3] {
+    let cam = Camera::Sphere {
+        width: src.width as u32,
+        height: src.height as u32,
+    };
+    let col = col.rem_euclid(src.width as i64) as u32;
+    let d = cam.pixel_direction(col, row as u32).expect("inside");
+    let r = [
+        src.forward[1] * src.up[2] - src.forward[2] * src.up[1],
+        src.forward[2] * src.up[0] - src.forward[0] * src.up[2],
+        src.forward[0] * src.up[1] - src.forward[1] * src.up[0],
+    ];
+    [0, 1, 2].map(|i| d[0] * src.forward[i] + d[1] * r[i] + d[2] * src.up[i])
+}
+
+/// What the source knows around a static direction: whether the 3×3 block of pixels
+/// around the one containing it mixes objects or statuses (an edge pixel) or images of one
+/// object (a t_emit jump), the largest finite-difference gradients of g, t_emit and λ there
+/// (per radian), and the angle δ from the direction to the containing pixel's centre.
+struct Around {
+    edge: bool,
+    jump: bool,
+    grad_g: f64,
+    grad_t: f64,
+    grad_l: f64,
+    delta: f64,
+}
+
+fn around(src: &SphereSource, data: &DataFile, n: [f64; 3]) -> Around {
+    let pos = src.position(n);
+    let (c0, r0) = (
+        pos[0].floor() as i64,
+        (pos[1].floor() as i64).clamp(0, src.height as i64 - 1),
+    );
+    let me = data.records[src.nearest(pos)];
+    let here = centre(src, c0, r0);
+    let mut a = Around {
+        edge: false,
+        jump: false,
+        grad_g: 0.0,
+        grad_t: 0.0,
+        grad_l: 0.0,
+        delta: angle(n, here),
+    };
+    for dr in -1..=1i64 {
+        for dc in -1..=1i64 {
+            let r = r0 + dr;
+            if (dr, dc) == (0, 0) || r < 0 || r >= src.height as i64 {
+                continue;
+            }
+            let j = r as usize * src.width + (c0 + dc).rem_euclid(src.width as i64) as usize;
+            let o: PixelRecord = data.records[j];
+            a.edge |= o.object != me.object || o.status != me.status;
+            a.jump |= (o.t_emit - me.t_emit).abs() > JUMP;
+            let ang = angle(here, centre(src, c0 + dc, r));
+            a.grad_g = a.grad_g.max((o.g - me.g).abs() as f64 / ang);
+            a.grad_t = a.grad_t.max((o.t_emit - me.t_emit).abs() as f64 / ang);
+            a.grad_l = a.grad_l.max((o.lambda - me.lambda).abs() as f64 / ang);
+        }
+    }
+    a
+}
+
+/// The views compared with direct renders: a pinhole turned towards the resting ball at
+/// rest and moving towards it at 0.5 c, a panorama and a dome fisheye moving sideways at
+/// 0.9 c.
+fn compared_views() -> Vec<(&'static str, LookView)> {
+    let t = towards_resting();
+    let side = [-t[1], t[0], 0.0];
+    let pinhole = Camera::Pinhole {
+        fov_deg: 60.0,
+        width: 240,
+        height: 160,
+    };
+    vec![
+        ("pinhole at rest", view(pinhole, t, 0.0, t)),
+        ("pinhole 0.5c towards", view(pinhole, t, 0.5, t)),
+        (
+            "panorama 0.9c sideways",
+            view(
+                Camera::Panorama {
+                    h_fov_deg: 360.0,
+                    v_fov_deg: 60.0,
+                    width: 720,
+                    height: 120,
+                },
+                [1.0, 0.0, 0.0],
+                0.9,
+                side,
+            ),
+        ),
+        (
+            "fisheye 0.9c sideways",
+            view(
+                Camera::Fisheye {
+                    fov_deg: 180.0,
+                    size: 240,
+                },
+                t,
+                0.9,
+                side,
+            ),
+        ),
+    ]
+}
+
+#[test]
+fn look_agrees_with_direct_renders_within_the_stated_bound() {
+    let data = sphere();
+    let src = SphereSource::of(data).expect("a sphere");
+    let mut falling_checked = 0;
+    for (name, v) in compared_views() {
+        let looked = look(data, &v).expect("look");
+        let traced = direct(&v);
+        assert_eq!((looked.width, looked.height), (traced.width, traced.height));
+        let (mut inner, mut hits, mut resting) = (0, 0, 0);
+        for row in 0..v.camera.height() {
+            for col in 0..v.camera.width() {
+                let i = traced.index(col as usize, row as usize);
+                let (a, b) = (looked.records[i], traced.records[i]);
+                let Some(p) = pixel_look(&v, col, row) else {
+                    assert_eq!(a.status, RayStatus::NotTraced);
+                    assert_eq!(b.status, RayStatus::NotTraced);
+                    continue;
+                };
+                let s = around(&src, data, p.static_dir);
+                if s.edge {
+                    continue;
+                }
+                inner += 1;
+                // The same object (and status) on every pixel that is not an edge pixel.
+                assert_eq!(
+                    (a.object, a.status),
+                    (b.object, b.status),
+                    "{name}: pixel ({col}, {row})"
+                );
+                if !a.is_hit() || s.jump {
+                    continue;
+                }
+                hits += 1;
+                // Nearest neighbour: |Δf| ≤ D·|∇f|·δ, with the gradient estimated from the
+                // source's neighbours (a finite difference, hence the margin of 1.5).
+                let bound_g = 1.5 * p.doppler * s.grad_g * s.delta + 2e-6 * b.g as f64;
+                let bound_t = 1.5 * s.grad_t * s.delta + 2e-6 * (b.t_emit as f64).abs();
+                let (dg, dt) = ((a.g - b.g).abs() as f64, (a.t_emit - b.t_emit).abs() as f64);
+                assert!(
+                    dg <= bound_g,
+                    "{name} ({col}, {row}): |Δg| {dg} > {bound_g}"
+                );
+                assert!(
+                    dt <= bound_t,
+                    "{name} ({col}, {row}): |Δt| {dt} > {bound_t}"
+                );
+                // λ belongs to the photon normalized to unit energy in the observer's frame:
+                // it scales with D like g.
+                let bound_l = 1.5 * p.doppler * s.grad_l * s.delta + 2e-6 * b.lambda as f64;
+                let dl = (a.lambda - b.lambda).abs() as f64;
+                assert!(
+                    dl <= bound_l,
+                    "{name} ({col}, {row}): |Δλ| {dl} > {bound_l}"
+                );
+                if a.object == RESTING {
+                    // At rest, the static observer sees g = 1 exactly: g′ is the Doppler
+                    // factor alone, with no interpolation error.
+                    resting += 1;
+                    assert!((b.g as f64 - p.doppler).abs() <= 2e-6 * p.doppler);
+                } else {
+                    falling_checked += (a.object == FALLING && dg > 0.0) as usize;
+                }
+            }
+        }
+        // Enough of each picture is compared for the test to mean something.
+        assert!(
+            inner > 10_000 && hits > 200 && resting > 100,
+            "{name}: {inner} {hits} {resting}"
+        );
+    }
+    // The falling ball's g varies, so its comparison exercises the bound.
+    assert!(falling_checked > 100, "{falling_checked}");
+}
+
+#[test]
+fn the_identity_view_reproduces_the_source_exactly() {
+    let data = sphere();
+    let src = SphereSource::of(data).expect("a sphere");
+    let cam = Camera::Sphere {
+        width: data.width as u32,
+        height: data.height as u32,
+    };
+    let v = LookView::new(cam, src.forward, src.up, LocalVelocity::REST).expect("view");
+    let same = look(data, &v).expect("look");
+    assert_eq!(same.records, data.records);
+    assert_eq!(same.lights, data.lights);
+    assert_eq!(same.header.camera, data.header.camera);
+    // The output is itself a static full sphere, and reads back as a data file.
+    let again = DataFile::from_bytes(&same.to_bytes().expect("encode")).expect("decode");
+    assert_eq!(SphereSource::of(&again).expect("still a sphere"), src);
+    let r = resolution(&src, &v);
+    let pixel = std::f64::consts::PI / data.height as f64;
+    assert!((r.source_pixel - pixel).abs() < 1e-12);
+    for o in [r.output_pixel_min, r.output_pixel_max] {
+        assert!((o - pixel).abs() < 1e-9 * pixel, "{r:?}");
+    }
+}
+
+#[test]
+fn doppler_factor_has_both_closed_forms_and_scales_g() {
+    let data = sphere();
+    let src = SphereSource::of(data).expect("a sphere");
+    let (_, v) = compared_views().remove(2);
+    let looked = look(data, &v).expect("look");
+    let (gamma, speed, d) = (v.velocity.gamma(), v.velocity.speed, v.velocity.direction);
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut hits = 0;
+    for row in 0..v.camera.height() {
+        for col in 0..v.camera.width() {
+            let p = pixel_look(&v, col, row).expect("a panorama shows every pixel");
+            // g′/g = γ(1 + n·v) with n the static direction, = 1/(γ(1 − n′·v)) with the
+            // moving observer's own direction n′.
+            let forward_form = gamma * (1.0 + speed * dot(p.static_dir, d));
+            let own_form = 1.0 / (gamma * (1.0 - speed * dot(p.own, d)));
+            assert!((forward_form - own_form).abs() < 1e-12 * own_form);
+            assert!((p.doppler - own_form).abs() < 1e-12 * own_form);
+            let i = looked.index(col as usize, row as usize);
+            let (a, s) = (
+                looked.records[i],
+                data.records[src.nearest(src.position(p.static_dir))],
+            );
+            if s.is_hit() {
+                hits += 1;
+                assert!((a.g as f64 - s.g as f64 * own_form).abs() <= 1e-6 * a.g as f64);
+                assert!(
+                    (a.lambda as f64 - s.lambda as f64 * own_form).abs() <= 1e-6 * a.lambda as f64
+                );
+                let unchanged = |r: PixelRecord| {
+                    (
+                        r.object, r.u, r.v, r.t_emit, r.x, r.y, r.z, r.dir, r.cos_i, r.status,
+                    )
+                };
+                assert_eq!(unchanged(a), unchanged(s));
+            }
+        }
+    }
+    assert!(hits > 1000, "{hits}");
+}
+
+#[test]
+fn a_ball_moved_towards_is_blue_shifted_and_shrinks() {
+    let data = sphere();
+    let t = towards_resting();
+    let cam = Camera::Pinhole {
+        fov_deg: 120.0,
+        width: 240,
+        height: 160,
+    };
+    // The pixels of the resting ball's first image: within 45° of the axis (its second
+    // image is 101.5° away in the static sky, at least 70° in the views below).
+    let first_image = |d: &DataFile| -> Vec<(PixelRecord, f64)> {
+        let mut out = Vec::new();
+        for row in 0..d.height {
+            for col in 0..d.width {
+                let dir = cam.pixel_direction(col as u32, row as u32).expect("inside");
+                if d.record(col, row).object == RESTING && dir[0] > 0.5f64.sqrt() {
+                    out.push((*d.record(col, row), dir[0]));
+                }
+            }
+        }
+        out
+    };
+    // The solid angle it covers: a pinhole pixel spans cos³ of its angle from the axis (in
+    // units of a pixel at the centre).
+    let solid_angle = |d: &DataFile| -> f64 { first_image(d).iter().map(|p| p.1.powi(3)).sum() };
+    let at_rest = look(data, &view(cam, t, 0.0, t)).expect("look");
+    assert!(solid_angle(&at_rest) > 1000.0);
+    let speed: f64 = 0.5;
+    // Along the motion D = √((1 + v)/(1 − v)); a solid angle at angle θ from it shrinks by
+    // 1/D(θ)², D(θ) = γ(1 + v cos θ): between 1/3 (θ = 0) and 0.347 (θ = 20°, the ball's
+    // angular radius) for v = 0.5.
+    let d = ((1.0 + speed) / (1.0 - speed)).sqrt();
+    let towards = look(data, &view(cam, t, speed, t)).expect("look");
+    let ratio = solid_angle(&towards) / solid_angle(&at_rest);
+    assert!(
+        (0.95..1.1).contains(&(ratio * d * d)),
+        "solid angle ratio {ratio}, 1/D² = {}",
+        1.0 / (d * d)
+    );
+    for (r, _) in first_image(&towards) {
+        assert!(r.g > 1.6 && r.g as f64 <= d * 1.000_001, "g′ {}", r.g);
+    }
+    // Moving away, the same ball is red-shifted and grows by D(θ)² (3 to 2.67).
+    let away = look(data, &view(cam, t, speed, t.map(|c| -c))).expect("look");
+    let ratio = solid_angle(&away) / solid_angle(&at_rest);
+    assert!(
+        (0.85..1.02).contains(&(ratio / (d * d))),
+        "solid angle ratio {ratio}"
+    );
+    for (r, _) in first_image(&away) {
+        assert!(
+            r.g < 0.62 && r.g as f64 >= 1.0 / d * 0.999_999,
+            "g′ {}",
+            r.g
+        );
+    }
+}
+
+#[test]
+fn the_static_sky_is_magnified_by_the_doppler_factor() {
+    // dθ = D dθ′: along the motion, an output pixel covers D times its own angle of the
+    // static observer's sky (so the source's pixels limit the output D times sooner).
+    let src = SphereSource::of(sphere()).expect("a sphere");
+    let cam = Camera::Pinhole {
+        fov_deg: 1.0,
+        width: 100,
+        height: 100,
+    };
+    let f = [1.0, 0.0, 0.0];
+    let rest = resolution(&src, &view(cam, f, 0.0, f));
+    let own = 2.0 * 0.5f64.to_radians().tan() / 100.0;
+    assert!((rest.output_pixel_max / own - 1.0).abs() < 1e-3, "{rest:?}");
+    for speed in [0.5f64, 0.9] {
+        let d = ((1.0 + speed) / (1.0 - speed)).sqrt();
+        let towards = resolution(&src, &view(cam, f, speed, f));
+        let away = resolution(&src, &view(cam, f, speed, [-1.0, 0.0, 0.0]));
+        assert!(
+            (towards.output_pixel_max / own / d - 1.0).abs() < 1e-3,
+            "{towards:?}"
+        );
+        assert!(
+            (away.output_pixel_max / own * d - 1.0).abs() < 1e-3,
+            "{away:?}"
+        );
+    }
+}

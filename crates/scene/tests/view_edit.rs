@@ -1,0 +1,120 @@
+//! `Scene::read_view` and `replace_view`: writing another view into scene text keeps the
+//! rest of the scene (objects, comments), reads back exactly, and reading a view checks
+//! only the observer and the camera.
+
+use scene::{replace_view, Camera, Scene};
+use spacetime::LocalVelocity;
+
+const TEXT: &str = r#"# a comment that must survive
+name = "v"
+[observer]
+time = 1.5
+position = { r = 0.5, phi = 0.25, z = 0.0 }
+forward = [1, 0, 0]
+up = [0, 0, 1]
+[camera]
+kind = "sphere"   # the source
+width = 64
+height = 32
+[[object]]
+name = "ball"
+radius = 0.2
+texture = { kind = "image", path = "does-not-exist.png" }
+motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
+"#;
+
+fn cameras() -> Vec<Camera> {
+    vec![
+        Camera::Pinhole {
+            fov_deg: 47.5,
+            width: 33,
+            height: 21,
+        },
+        Camera::Panorama {
+            h_fov_deg: 220.0,
+            v_fov_deg: 25.0,
+            width: 880,
+            height: 100,
+        },
+        Camera::Sphere {
+            width: 64,
+            height: 32,
+        },
+        Camera::Fisheye {
+            fov_deg: 180.0,
+            size: 99,
+        },
+    ]
+}
+
+#[test]
+fn a_replaced_view_reads_back_exactly_and_keeps_the_rest() {
+    // Texture files need not exist to read a view (a data file's embedded scene).
+    let (observer, camera) = Scene::read_view(TEXT, "t.toml").expect("view");
+    assert_eq!(
+        camera,
+        Camera::Sphere {
+            width: 64,
+            height: 32
+        }
+    );
+    assert_eq!(observer.event.t, 1.5);
+    let third = 1.0 / 3f64.sqrt();
+    for camera in cameras() {
+        let velocity = LocalVelocity::new(0.123456789, [0.3, -0.4, 0.5]).unwrap();
+        let (forward, up) = ([third, -third, third], [0.5f64.sqrt(), 0.5f64.sqrt(), 0.0]);
+        let text = replace_view(TEXT, "t.toml", &camera, velocity, forward, up).expect("edit");
+        let (o, c) = Scene::read_view(&text, "t.toml").expect("valid");
+        assert_eq!(c, camera);
+        assert_eq!(o.velocity.speed, velocity.speed);
+        assert_eq!(o.event, observer.event, "time and position kept");
+        for (a, b) in [
+            (o.forward, forward),
+            (o.up, up),
+            (o.velocity.direction, velocity.direction),
+        ] {
+            assert!((0..3).all(|i| (a[i] - b[i]).abs() < 1e-15), "{a:?} {b:?}");
+        }
+        assert!(text.starts_with("# a comment that must survive\nname = \"v\""));
+        assert!(text.contains("path = \"does-not-exist.png\""));
+        assert!(!text.contains("# the source"), "the old camera is gone");
+    }
+}
+
+#[test]
+fn views_are_written_into_inline_and_missing_tables() {
+    let camera = cameras()[0];
+    let edit = |text: &str, file: &str| {
+        let rest = LocalVelocity::REST;
+        replace_view(text, file, &camera, rest, [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])
+    };
+    let inline = "name = \"i\"\nobserver = { time = 2.0 }\ncamera = { kind = \"sphere\", width = 8, height = 4 }\n";
+    let missing = "name = \"m\"\n[camera]\nkind = \"sphere\"\nwidth = 8\nheight = 4\n";
+    for text in [inline, missing] {
+        let out = edit(text, "t.toml").expect("edit");
+        let (o, c) = Scene::read_view(&out, "t.toml").expect("valid");
+        assert_eq!((c, o.forward), (camera, [0.0, 1.0, 0.0]), "{out}");
+    }
+    let e = edit("observer = 3\n", "t.toml").unwrap_err();
+    assert_eq!(e.field, "observer");
+    let e = edit("name = \n", "bad.toml").unwrap_err();
+    assert!(e.to_string().starts_with("bad.toml:1:"), "{e}");
+}
+
+#[test]
+fn reading_a_view_checks_observer_and_camera_with_located_errors() {
+    let bad_fov = TEXT.replace(
+        "kind = \"sphere\"   # the source",
+        "kind = \"pinhole\"\nfov_deg = 200",
+    );
+    let e = Scene::read_view(&bad_fov, "t.toml").unwrap_err();
+    assert_eq!(
+        (e.field.as_str(), e.line()),
+        ("camera.fov_deg", Some(10)),
+        "{e}"
+    );
+    let tilted = TEXT.replace("up = [0, 0, 1]", "up = [0.1, 0, 1]");
+    let e = Scene::read_view(&tilted, "t.toml").unwrap_err();
+    assert_eq!(e.field, "observer.up");
+    assert!(e.message.contains("orthogonal"), "{e}");
+}

@@ -1,0 +1,297 @@
+// godel view: the WebGL2 side. Uploads the arrays the server sends (crates/viewer/src/wire.rs)
+// as textures, runs the shading pass (shaders.js) into an offscreen RGBA8 texture the size
+// of the picture, and draws that texture on the canvas at any zoom with trilinear filtering.
+'use strict';
+
+import { VERTEX, shadeSource, displaySource } from './shaders.js';
+
+// ---- the wire format: 16-byte header, then little-endian samples
+
+const TYPES = { 1: Uint8Array, 2: Uint16Array, 3: Uint32Array, 4: Float32Array };
+
+export function parseArray(buffer) {
+  const view = new DataView(buffer);
+  const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
+  const Type = TYPES[view.getUint8(12)];
+  if (magic !== 'GDL1' || !Type) throw new Error('the server sent an array in an unknown format');
+  const width = view.getUint32(4, true);
+  const height = view.getUint32(8, true);
+  const components = view.getUint8(13);
+  const data = new Type(buffer, 16, width * height * components);
+  return { width, height, components, data };
+}
+
+// Texture formats by typed array and component count.
+function formatOf(gl, data, components) {
+  if (data instanceof Float32Array) {
+    return [[gl.R32F, gl.RG32F, gl.RGB32F, gl.RGBA32F][components - 1],
+      [gl.RED, gl.RG, gl.RGB, gl.RGBA][components - 1], gl.FLOAT];
+  }
+  const integer = [gl.RED_INTEGER, gl.RG_INTEGER, gl.RGB_INTEGER, gl.RGBA_INTEGER][components - 1];
+  if (data instanceof Uint8Array) return [gl.R8UI, integer, gl.UNSIGNED_BYTE];
+  if (data instanceof Uint16Array) return [gl.R16UI, integer, gl.UNSIGNED_SHORT];
+  return [gl.R32UI, integer, gl.UNSIGNED_INT];
+}
+
+export class Gpu {
+  constructor(canvas) {
+    const gl = canvas.getContext('webgl2', { antialias: false, alpha: false, depth: false,
+      preserveDrawingBuffer: true, premultipliedAlpha: false });
+    if (!gl) {
+      throw new Error('this browser offers no WebGL2: the viewer shades on the graphics card '
+        + 'and needs it (enable hardware acceleration, or start chromium with '
+        + '--use-angle=swiftshader --enable-unsafe-swiftshader for software rendering)');
+    }
+    this.gl = gl;
+    this.canvas = canvas;
+    this.maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
+    this.shadePrograms = new Map(); // by features, compiled when first needed
+    this.displayPrograms = [this.program(displaySource(false)), this.program(displaySource(true))];
+    this.vao = gl.createVertexArray();
+    this.textures = {};
+    this.locations = new Map();
+    this.shaded = null; // { texture, framebuffer, width, height }
+    // 1×1 stand-ins for textures a pass does not read.
+    this.blank = {
+      float: this.texture2d(1, 1, gl.R32F, gl.RED, gl.FLOAT, new Float32Array(1)),
+      uint: this.texture2d(1, 1, gl.R8UI, gl.RED_INTEGER, gl.UNSIGNED_BYTE, new Uint8Array(1)),
+      rgba: this.texture2d(1, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4)),
+      array: this.arrayTexture(1, 1, 1, new Float32Array(1)),
+    };
+  }
+
+  program(fragment) {
+    const gl = this.gl;
+    const compile = (type, source) => {
+      const s = gl.createShader(type);
+      gl.shaderSource(s, source);
+      gl.compileShader(s);
+      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) {
+        throw new Error(`shader: ${gl.getShaderInfoLog(s)}`);
+      }
+      return s;
+    };
+    const p = gl.createProgram();
+    gl.attachShader(p, compile(gl.VERTEX_SHADER, VERTEX));
+    gl.attachShader(p, compile(gl.FRAGMENT_SHADER, fragment));
+    gl.linkProgram(p);
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) {
+      throw new Error(`shader program: ${gl.getProgramInfoLog(p)}`);
+    }
+    return p;
+  }
+
+  checkSize(width, height, what) {
+    if (width > this.maxSize || height > this.maxSize) {
+      throw new Error(`${what} is ${width}×${height}; this browser's WebGL textures are at most `
+        + `${this.maxSize}×${this.maxSize}`);
+    }
+  }
+
+  texture2d(width, height, internal, format, type, data, filter) {
+    const gl = this.gl;
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.texImage2D(gl.TEXTURE_2D, 0, internal, width, height, 0, format, type, data);
+    const f = filter || gl.NEAREST;
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, f);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, f);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    return t;
+  }
+
+  arrayTexture(width, height, layers, data) {
+    const gl = this.gl;
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, t);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.texImage3D(gl.TEXTURE_2D_ARRAY, 0, gl.R32F, width, height, layers, 0, gl.RED, gl.FLOAT,
+      data);
+    gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    return t;
+  }
+
+  // Stores a parsed array as texture `name` (replacing any earlier one).
+  upload(name, array) {
+    this.checkSize(array.width, array.height, name);
+    const [internal, format, type] = formatOf(this.gl, array.data, array.components);
+    this.replace(name, this.texture2d(array.width, array.height, internal, format, type,
+      array.data));
+  }
+
+  // The light planes, one layer each.
+  uploadLights(planes, width, height) {
+    const data = new Float32Array(width * height * planes.length);
+    planes.forEach((p, k) => data.set(p.data, k * width * height));
+    this.replace('light', this.arrayTexture(width, height, planes.length, data));
+  }
+
+  uploadRgba(name, width, height, bytes) {
+    const gl = this.gl;
+    this.replace(name, this.texture2d(width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, bytes));
+  }
+
+  // Small tables that change with the settings (the objects') are rewritten in place: a new
+  // texture per frame would make the driver set up its state afresh each time.
+  uploadFloatRgba(name, width, height, floats) {
+    const gl = this.gl;
+    const sizes = this.sizes || (this.sizes = {});
+    const size = `${width}×${height}`;
+    if (this.textures[name] && sizes[name] === size) {
+      gl.bindTexture(gl.TEXTURE_2D, this.textures[name]);
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, floats);
+      return;
+    }
+    this.replace(name, this.texture2d(width, height, gl.RGBA32F, gl.RGBA, gl.FLOAT, floats));
+    sizes[name] = size;
+  }
+
+  replace(name, texture) {
+    if (this.textures[name]) this.gl.deleteTexture(this.textures[name]);
+    this.textures[name] = texture;
+  }
+
+  location(program, name) {
+    if (!this.locations.has(program)) this.locations.set(program, new Map());
+    const known = this.locations.get(program);
+    if (!known.has(name)) known.set(name, this.gl.getUniformLocation(program, name));
+    return known.get(name);
+  }
+
+  shadeProgram(features) {
+    const key = JSON.stringify(features);
+    if (!this.shadePrograms.has(key)) this.shadePrograms.set(key, this.program(shadeSource(features)));
+    return this.shadePrograms.get(key);
+  }
+
+  // The offscreen picture, resized when the picture's size changes.
+  target(width, height) {
+    const gl = this.gl;
+    if (this.shaded && this.shaded.width === width && this.shaded.height === height) {
+      return this.shaded;
+    }
+    this.checkSize(width, height, 'the picture');
+    if (this.shaded) {
+      gl.deleteTexture(this.shaded.texture);
+      gl.deleteFramebuffer(this.shaded.framebuffer);
+    }
+    const texture = this.texture2d(width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, null,
+      gl.LINEAR);
+    const framebuffer = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+    this.shaded = { texture, framebuffer, width, height };
+    return this.shaded;
+  }
+
+  // The shading pass, with the program of `features`: `uniforms` maps names to [kind, value]
+  // (kind: 'i', 'u', 'f', or a vector: 'i2', 'i4', 'f2', 'f3', 'f4'; arrays of vectors flat).
+  shade(width, height, features, uniforms) {
+    this.lastShade = [width, height, features, uniforms];
+    const gl = this.gl;
+    const target = this.target(width, height);
+    const program = this.shadeProgram(features);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
+    gl.viewport(0, 0, width, height);
+    gl.useProgram(program);
+    const samplers = [
+      ['uId', 'id', 'uint'], ['uU', 'u', 'float'], ['uV', 'v', 'float'], ['uG', 'g', 'float'],
+      ['uT', 't_emit', 'float'], ['uCos', 'cos_i', 'uint'], ['uObjects', 'objects', 'float'],
+      ['uGt', 'gt', 'float'], ['uAtlas', 'atlas', 'float'], ['uLegend', 'legend', 'rgba'],
+    ];
+    samplers.forEach(([uniform, name, kind], unit) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, this.textures[name] || this.blank[kind]);
+      gl.uniform1i(this.location(program, uniform), unit);
+    });
+    const unit = samplers.length;
+    gl.activeTexture(gl.TEXTURE0 + unit);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.textures.light || this.blank.array);
+    gl.uniform1i(this.location(program, 'uLight'), unit);
+    for (const [name, [kind, value]] of Object.entries(uniforms)) {
+      const at = this.location(program, name);
+      if (at === null) continue; // unused by the compiled shader
+      const v = Array.isArray(value) ? value.flat() : value;
+      switch (kind) {
+        case 'i': gl.uniform1i(at, v); break;
+        case 'u': gl.uniform1ui(at, v); break;
+        case 'f': gl.uniform1f(at, v); break;
+        case 'i2': gl.uniform2iv(at, v); break;
+        case 'i4': gl.uniform4iv(at, v); break;
+        case 'f2': gl.uniform2fv(at, v); break;
+        case 'f3': gl.uniform3fv(at, v); break;
+        case 'f4': gl.uniform4fv(at, v); break;
+        default: throw new Error(`uniform kind ${kind}`);
+      }
+    }
+    gl.bindVertexArray(this.vao);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    target.mipmapsStale = true;
+  }
+
+  // Draws the offscreen picture on the canvas: its top-left corner at canvas pixel `offset`,
+  // `zoom` canvas pixels per picture pixel; filtered (mipmaps made when first needed) unless
+  // it is shown texel for texel.
+  display(offset, zoom) {
+    const gl = this.gl;
+    const shaded = this.shaded;
+    if (!shaded) return;
+    const filtered = zoom !== 1 || !Number.isInteger(offset[0]) || !Number.isInteger(offset[1]);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, shaded.texture);
+    if (filtered && shaded.mipmapsStale) {
+      gl.generateMipmap(gl.TEXTURE_2D);
+      shaded.mipmapsStale = false;
+    }
+    // Without mipmaps a mipmapping filter would leave the texture incomplete (black).
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER,
+      filtered ? gl.LINEAR_MIPMAP_LINEAR : gl.NEAREST);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.viewport(0, 0, this.canvas.width, this.canvas.height);
+    const p = this.displayPrograms[filtered ? 1 : 0];
+    gl.useProgram(p);
+    gl.uniform1i(this.location(p, 'uShaded'), 0);
+    gl.uniform2f(this.location(p, 'uShadedSize'), shaded.width, shaded.height);
+    gl.uniform2f(this.location(p, 'uCanvas'), this.canvas.width, this.canvas.height);
+    gl.uniform2f(this.location(p, 'uOffset'), offset[0], offset[1]);
+    gl.uniform1f(this.location(p, 'uZoom'), zoom);
+    gl.bindVertexArray(this.vao);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+  }
+
+  // The offscreen picture's RGBA bytes, row 0 (the top of the picture) first.
+  readShaded() {
+    const gl = this.gl;
+    const { framebuffer, width, height } = this.shaded;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    const out = new Uint8Array(width * height * 4);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return { width, height, bytes: out };
+  }
+
+  // Waits until the GPU has drawn everything asked of it (reading one pixel back).
+  finish() {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+  }
+
+  // The canvas's RGBA bytes, top row first.
+  readCanvas() {
+    const gl = this.gl;
+    const { width, height } = this.canvas;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    const raw = new Uint8Array(width * height * 4);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, raw);
+    const out = new Uint8Array(raw.length);
+    const row = width * 4;
+    for (let y = 0; y < height; y += 1) {
+      out.set(raw.subarray((height - 1 - y) * row, (height - y) * row), y * row);
+    }
+    return { width, height, bytes: out };
+  }
+}

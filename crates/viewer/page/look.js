@@ -1,0 +1,174 @@
+// godel view: cameras and looking around, in f64 as the `look` crate and `scene::Camera`
+// compute them (the shader does the same in f32 per pixel): a pixel's direction for any
+// camera, the aberration and Doppler factor of a moving observer, the sphere pixel a
+// direction falls in; and the look-around view (projection, zoom, turn, velocity) that the
+// mouse and the controls change.
+'use strict';
+
+export const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+export const cross = (a, b) => [
+  a[1] * b[2] - a[2] * b[1],
+  a[2] * b[0] - a[0] * b[2],
+  a[0] * b[1] - a[1] * b[0],
+];
+const scaled = (a, s) => a.map((x) => x * s);
+const add = (a, b) => a.map((x, i) => x + b[i]);
+export const normalize = (a) => scaled(a, 1 / Math.sqrt(dot(a, a)));
+const RAD = Math.PI / 180;
+
+// Camera-basis direction (forward, right, up) of pixel (col, row) of `camera` (the JSON of
+// /api/view: kind, width, height, fov_deg | h_fov_deg, v_fov_deg), or null where it shows
+// nothing (crates/scene/src/camera.rs).
+export function cameraDirection(camera, col, row) {
+  const { width: w, height: h } = camera;
+  if (col < 0 || row < 0 || col >= w || row >= h) return null;
+  const cx = col + 0.5;
+  const cy = row + 0.5;
+  const panorama = (hFov, vFov) => {
+    const alpha = hFov * RAD * (cx / w - 0.5);
+    const beta = vFov * RAD * (0.5 - cy / h);
+    return [Math.cos(beta) * Math.cos(alpha), Math.cos(beta) * Math.sin(alpha), Math.sin(beta)];
+  };
+  switch (camera.kind) {
+    case 'pinhole': {
+      const t = Math.tan(0.5 * camera.fov_deg * RAD);
+      const x = t * (2 * cx / w - 1);
+      const y = t * (h / w) * (1 - 2 * cy / h);
+      const n = Math.sqrt(1 + x * x + y * y);
+      return [1 / n, x / n, y / n];
+    }
+    case 'panorama': return panorama(camera.h_fov_deg, camera.v_fov_deg);
+    case 'sphere': return panorama(360, 180);
+    default: { // fisheye
+      const dx = 2 * cx / w - 1;
+      const dy = 1 - 2 * cy / h;
+      const rho = Math.hypot(dx, dy);
+      if (rho > 1) return null;
+      const theta = rho * 0.5 * camera.fov_deg * RAD;
+      const [s, c] = rho > 0 ? [dx / rho, dy / rho] : [0, 1];
+      return [Math.cos(theta), Math.sin(theta) * s, Math.sin(theta) * c];
+    }
+  }
+}
+
+// Local-frame direction of a camera-basis direction, for axes forward and up.
+export function toLocal(d, forward, up) {
+  const right = cross(forward, up);
+  return [0, 1, 2].map((i) => d[0] * forward[i] + d[1] * right[i] + d[2] * up[i]);
+}
+
+// spacetime::aberrate: the static observer's direction n of the photon a moving observer
+// (speed, unit direction) sees along `own`, and the Doppler factor D = γ(1 + n·v).
+export function aberrate(speed, direction, own) {
+  const gamma = 1 / Math.sqrt(1 - speed * speed);
+  const along = dot(own, direction);
+  const scale = 1 / (gamma * (1 - speed * along));
+  const c = (gamma - 1) * along - gamma * speed;
+  return [own.map((x, i) => (x + c * direction[i]) * scale), scale];
+}
+
+// SphereSource::position and ::nearest: the sphere pixel (col, row) containing static
+// direction n, for a sphere of width × height with axes forward, up.
+export function spherePixel(sphere, n) {
+  const right = cross(sphere.forward, sphere.up);
+  const alpha = Math.atan2(dot(n, right), dot(n, sphere.forward));
+  const beta = Math.asin(Math.min(Math.max(dot(n, sphere.up), -1), 1));
+  const x = sphere.width * (alpha / (2 * Math.PI) + 0.5);
+  const y = sphere.height * (0.5 - beta / Math.PI);
+  const w = sphere.width;
+  const col = ((Math.floor(x) % w) + w) % w;
+  const row = Math.min(Math.max(Math.floor(y), 0), sphere.height - 1);
+  return [col, row];
+}
+
+// Azimuth (from x towards y) and elevation (towards z) of a unit direction, degrees.
+export function azimuthElevation(n) {
+  return [Math.atan2(n[1], n[0]) / RAD, Math.asin(Math.min(Math.max(n[2], -1), 1)) / RAD];
+}
+
+// ---- the look-around view
+
+export const PROJECTIONS = {
+  pinhole: { fov: 90, min: 5, max: 170 },
+  panorama: { fov: 220, min: 20, max: 360 },
+  fisheye: { fov: 180, min: 20, max: 360 },
+  sphere: { fov: 360, min: 360, max: 360 },
+};
+
+// A view of a sphere file: turned by yaw (to the right) and pitch (up), in degrees, from the
+// file's own axes, with the projection's field of view, moving with speed along direction.
+export function newLook(file) {
+  return {
+    projection: 'pinhole',
+    fov: PROJECTIONS.pinhole.fov,
+    yaw: 0,
+    pitch: 0,
+    speed: 0,
+    preset: 'forward',
+    direction: [...file.forward],
+  };
+}
+
+// The camera axes of a look in the moving observer's frame (the file's axes turned).
+export function lookAxes(look, file) {
+  const right = cross(file.forward, file.up);
+  const [sy, cy] = [Math.sin(look.yaw * RAD), Math.cos(look.yaw * RAD)];
+  const [sp, cp] = [Math.sin(look.pitch * RAD), Math.cos(look.pitch * RAD)];
+  const level = add(scaled(file.forward, cy), scaled(right, sy));
+  return {
+    forward: add(scaled(level, cp), scaled(file.up, sp)),
+    up: add(scaled(level, -sp), scaled(file.up, cp)),
+  };
+}
+
+// The camera of a look on a width × height view (a fisheye uses the largest square).
+export function lookCamera(look, width, height) {
+  switch (look.projection) {
+    case 'pinhole': return { kind: 'pinhole', fov_deg: look.fov, width, height };
+    case 'panorama': return { kind: 'panorama', h_fov_deg: look.fov,
+      v_fov_deg: Math.min(180, look.fov * height / width), width, height };
+    case 'sphere': return { kind: 'sphere', width, height };
+    default: {
+      const size = Math.min(width, height);
+      return { kind: 'fisheye', fov_deg: look.fov, width: size, height: size };
+    }
+  }
+}
+
+// The view as /api/look/* reads it.
+export function lookView(look, file, width, height) {
+  const { forward, up } = lookAxes(look, file);
+  return {
+    camera: lookCamera(look, width, height),
+    forward,
+    up,
+    velocity: { speed: look.speed, direction: look.direction },
+  };
+}
+
+// Radians of view per pixel across the width (for dragging).
+export function radiansPerPixel(look, width) {
+  return look.fov * RAD / Math.max(width, 1);
+}
+
+// The direction a velocity preset names, static frame: the view's centre, an object, an axis.
+export function presetDirection(preset, look, file, objectDirections) {
+  const axes = { '+x': [1, 0, 0], '-x': [-1, 0, 0], '+y': [0, 1, 0], '-y': [0, -1, 0],
+    '+z': [0, 0, 1], '-z': [0, 0, -1] };
+  if (preset in axes) return axes[preset];
+  if (preset.startsWith('object:')) {
+    const d = objectDirections[Number(preset.slice(7))];
+    if (d) return d;
+  }
+  return lookAxes(look, file).forward;
+}
+
+// Where output pixel (col, row) of a look looks: its own direction, the static one, D, and the
+// sphere pixel whose record it shows; null outside the camera's picture.
+export function lookPixel(view, sphere, col, row) {
+  const d = cameraDirection(view.camera, col, row);
+  if (!d) return null;
+  const own = toLocal(d, view.forward, view.up);
+  const [n, doppler] = aberrate(view.velocity.speed, view.velocity.direction, own);
+  return { own, static: n, doppler, source: spherePixel(sphere, n) };
+}

@@ -1,0 +1,191 @@
+// godel view: numbers the page computes once per change on the CPU, mirroring the `shade`
+// crate so that the picture equals `godel shade`: the black-body grid (colour and luminance
+// of a temperature, crates/shade/src/blackbody.rs), 8-bit sRGB (colour.rs), the
+// travel-time colour map and its legend (legend.rs), the reference squares
+// (frequency_shader.rs), and f32 bounds equivalent to the f64 time window.
+'use strict';
+
+const f32 = Math.fround;
+
+// ---- 8-bit sRGB, in f32 as the crate computes it
+
+export function srgbToLinear(s) {
+  s = Number.isNaN(s) ? 0 : Math.min(Math.max(f32(s), 0), 1);
+  return s <= 0.04045 ? f32(s / 12.92) : f32(Math.pow(f32(f32(s + 0.055) / 1.055), 2.4));
+}
+
+export function srgb8ToLinear(k) {
+  return srgbToLinear(f32(k / 255));
+}
+
+export function linearToSrgb8(x) {
+  x = Number.isNaN(x) ? 0 : Math.min(Math.max(f32(x), 0), 1);
+  const s = x <= 0.0031308 ? f32(12.92 * x)
+    : f32(f32(1.055 * f32(Math.pow(x, f32(1 / 2.4)))) - 0.055);
+  return Math.round(f32(s * 255));
+}
+
+// ---- the black-body grid (BlackbodyTable): served by /api/gpu/blackbody
+
+export class Blackbody {
+  constructor(json) {
+    Object.assign(this, json);
+  }
+
+  locate(t) {
+    const s = (Math.log(t) - this.ln_t_min) / this.step;
+    const last = this.unit.length - 2;
+    const i = Math.min(Math.max(Math.floor(s), 0), last);
+    return [i, s - i];
+  }
+
+  unitColour(t) {
+    if (!(t > 0 && Number.isFinite(t))) return [0, 0, 0];
+    const [i, f0] = this.locate(t);
+    const f = Math.min(Math.max(f0, 0), 1);
+    const a = this.unit[i];
+    const b = this.unit[i + 1];
+    return [0, 1, 2].map((k) => a[k] + f * (b[k] - a[k]));
+  }
+
+  luminance(t) {
+    if (!(t > 0 && Number.isFinite(t))) return 0;
+    const [i, f] = this.locate(t);
+    const a = this.ln_y[i];
+    const b = this.ln_y[i + 1];
+    return Math.exp(a + f * (b - a));
+  }
+
+  // blackbody_colour(g, t, brightness) of frequency_shader.rs, as f32.
+  colour(g, t, physical, exposure) {
+    const shifted = g * t;
+    let rgb;
+    if (!physical) {
+      rgb = normalizeMax(this.unitColour(shifted));
+    } else {
+      const scale = exposure * this.luminance(shifted) / this.luminance(t);
+      rgb = this.unitColour(shifted).map((c) => c * scale);
+      const max = Math.max(...rgb);
+      if (max > 1) rgb = rgb.map((c) => c / max);
+    }
+    return rgb.map(f32);
+  }
+}
+
+function normalizeMax(rgb) {
+  const max = Math.max(...rgb);
+  return max > 0 && Number.isFinite(max) ? rgb.map((c) => c / max) : [0, 0, 0];
+}
+
+// ---- reference squares: reference_square(k, width, height)
+
+export function referenceSquare(k, width, height) {
+  const side = Math.min(Math.max(Math.floor(Math.min(width, height) / 8), 8), 16);
+  const gap = Math.floor(side / 4);
+  const x0 = gap + k * (side + gap);
+  const y0 = gap;
+  return x0 + side <= width && y0 + side <= height ? [x0, y0, side] : null;
+}
+
+// ---- travel-time false colour and legend
+
+const STOPS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+export const LINEAR_STOPS = STOPS.map((s) => s.map(srgb8ToLinear));
+
+export function falseColour(s) {
+  s = f32(Number.isNaN(s) ? 0 : Math.min(Math.max(s, 0), 1));
+  const x = f32(s * 4);
+  const i = Math.min(Math.floor(x), 3);
+  const f = f32(x - i);
+  const a = LINEAR_STOPS[i];
+  const b = LINEAR_STOPS[i + 1];
+  return [0, 1, 2].map((k) => f32(a[k] + f32(f * f32(b[k] - a[k]))));
+}
+
+const GLYPHS = {
+  0: [7, 5, 5, 5, 7], 1: [2, 6, 2, 2, 7], 2: [7, 1, 7, 4, 7], 3: [7, 1, 7, 1, 7],
+  4: [5, 5, 7, 1, 1], 5: [7, 4, 7, 1, 7], 6: [7, 4, 7, 5, 7], 7: [7, 1, 1, 1, 1],
+  8: [7, 5, 7, 5, 7], 9: [7, 5, 7, 1, 7], '.': [0, 0, 0, 0, 2], '-': [0, 0, 7, 0, 0],
+};
+
+// label(v) of legend.rs: an integer, or one decimal rounded half to even as Rust formats.
+export function label(v) {
+  if (Math.abs(v - Math.round(v)) < 1e-9) {
+    const r = v < 0 ? -Math.round(-v) : Math.round(v); // half away from zero
+    return String(r === 0 ? 0 : r);
+  }
+  const t = v * 10;
+  let r = Math.round(t);
+  if (Number.isInteger(t * 2) && !Number.isInteger(t)) {
+    const down = Math.floor(t);
+    r = down % 2 === 0 ? down : down + 1;
+  }
+  // Rust keeps the sign of a negative value that rounds to zero ("-0.0"); toFixed drops it.
+  return r === 0 && v < 0 ? '-0.0' : (r / 10).toFixed(1);
+}
+
+// The legend of draw_legend(img, min, max) on a width × height picture: null when the
+// picture is too small, else {x0, y0, width, height, pixels} with pixels RGBA, alpha 255
+// where the legend draws (rows from the top).
+export function legend(width, height, min, max) {
+  if (width < 48 || height < 24) return null;
+  const scale = Math.min(Math.max(Math.floor(height / 60), 1), 3);
+  const barW = Math.min(Math.max(Math.floor(width / 4), 40), 256);
+  const barH = Math.min(Math.max(Math.floor(height / 25), 3), 12);
+  const margin = 2 * scale;
+  const yBar = height - margin - barH;
+  const yText = Math.max(yBar - (6 * scale + scale), 0);
+  const box = { x0: 0, y0: yText, width, height: height - yText };
+  box.pixels = new Uint8Array(box.width * box.height * 4);
+  const put = (x, y, c) => {
+    if (x >= width || y >= height) return;
+    const i = ((y - box.y0) * box.width + x) * 4;
+    box.pixels.set([c[0], c[1], c[2], 255], i);
+  };
+  for (let x = 0; x < barW; x += 1) {
+    const c = falseColour(x / (barW - 1)).map(linearToSrgb8);
+    for (let y = yBar; y < yBar + barH; y += 1) put(margin + x, y, c);
+  }
+  const text = (x, y, s) => {
+    [...s].forEach((ch, n) => {
+      const rows = GLYPHS[ch];
+      if (!rows) return;
+      rows.forEach((bits, j) => {
+        for (let i = 0; i < 3; i += 1) {
+          if ((bits & (4 >> i)) === 0) continue;
+          for (let dy = 0; dy < scale; dy += 1) {
+            for (let dx = 0; dx < scale; dx += 1) {
+              put(x + (n * 4 + i) * scale + dx, y + j * scale + dy, [255, 255, 255]);
+            }
+          }
+        }
+      });
+    });
+  };
+  text(margin, yText, label(min));
+  const right = label(max);
+  text(Math.max(margin + barW - right.length * 4 * scale, 0), yText, right);
+  return box;
+}
+
+// ---- the time window: f32 bounds [lo, hi] such that for every f32 t,
+// lo ≤ t ≤ hi exactly when t0 ≤ t ≤ t0 + dt in f64 (as shading.rs compares).
+
+const buffer = new DataView(new ArrayBuffer(4));
+
+function nextF32(x, up) {
+  if (x === 0) return up ? 1.401298464324817e-45 : -1.401298464324817e-45;
+  buffer.setFloat32(0, x);
+  const bits = buffer.getInt32(0);
+  buffer.setInt32(0, (x > 0) === up ? bits + 1 : bits - 1);
+  return buffer.getFloat32(0);
+}
+
+export function windowBounds(t0, dt) {
+  const hi64 = t0 + dt;
+  let lo = f32(t0);
+  if (lo < t0) lo = nextF32(lo, true);
+  let hi = f32(hi64);
+  if (hi > hi64) hi = nextF32(hi, false);
+  return [lo, hi];
+}

@@ -1,0 +1,339 @@
+// godel view: the GLSL ES 3.00 shaders. SHADE_FS reproduces the `shade` crate's per-pixel
+// rule (crates/shade/src/shading.rs: texture, time, frequency and light layers multiplied,
+// the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
+// the `look` crate (camera direction → aberration → nearest sphere pixel, g times the Doppler
+// factor). It writes one texel per output pixel into an offscreen RGBA8 texture, row 0 of the
+// picture in texture row 0; the display pass (displaySource) then draws that texture on the
+// canvas, scaled with trilinear filtering.
+//
+// The layers, look mode and image textures are chosen when the program is compiled
+// (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for every pixel,
+// so a program holds only the code its settings use.
+
+export const VERTEX = `#version 300 es
+// One triangle covering the viewport.
+void main() {
+  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}`;
+
+const SHADE_BODY = `
+precision highp float;
+precision highp int;
+precision highp usampler2D;
+precision highp sampler2DArray;
+
+uniform usampler2D uId;       // 0 background, 1 failed, 2 step budget, 3 not traced, 4 + k object k
+uniform sampler2D uU, uV, uG, uT;
+uniform usampler2D uCos;      // round(65535 clamp(cos_i, 0, 1))
+uniform sampler2DArray uLight;
+uniform sampler2D uObjects;   // per object (row): moves, first texture, second texture, (T, Y(T))
+uniform sampler2D uGt;        // g·T table, 1024 bins a row: rows [0, n) unit colour + Y, [n, 2n) normalized
+uniform sampler2D uAtlas;     // image textures (linear RGB, decoded as the CPU does), stacked
+uniform sampler2D uLegend;    // travel-time legend, alpha 1 where drawn
+
+uniform float uWinLo, uWinHi;        // f32 bounds equivalent to the f64 window
+uniform float uTravelLo, uTravelHi;
+uniform vec3 uStops[5];              // false-colour stops, linear
+uniform bool uPhysical;
+uniform float uExposure, uAmbient;
+uniform int uLights;
+uniform vec3 uLightW[16];
+uniform uint uGtFirst;
+uniform int uGtBins, uGtRows;
+uniform float uTMin, uTMax, uLnTMin, uLnStep, uNodeLast;
+uniform vec3 uUnitLow, uUnitHigh;
+uniform vec4 uLnY;                   // ln Y at nodes 0, 1, last, last + 1
+
+uniform ivec2 uSize;                 // the data file's size
+uniform vec2 uCamAngles;             // pinhole: tan(fov/2); panorama: h, v fov (rad); fisheye: fov/2
+uniform ivec2 uOut;                  // output size
+uniform vec3 uF, uR, uUp;            // camera axes, moving observer's frame
+uniform vec3 uVDir;
+uniform float uSpeed, uGamma;
+uniform vec3 uF0, uR0, uUp0;         // the sphere's camera axes, static frame
+
+uniform ivec4 uRef0, uRef1;          // reference squares: x0, y0, side, side (side 0: none)
+uniform vec3 uRefColour0, uRefColour1; // their 8-bit sRGB / 255
+uniform ivec4 uLegendRect;           // x0, y0, width, height (width 0: none)
+
+out vec4 outColour;
+
+const vec3 BACKGROUND = vec3(0.004, 0.006, 0.02);
+const vec3 FAILED = vec3(1.0, 0.0, 1.0);
+const vec3 STEP_BUDGET = vec3(0.15, 0.0, 0.15);
+const vec3 NOT_TRACED = vec3(0.0);
+const float PI = 3.141592653589793;
+
+bool finite(float x) { return !isnan(x) && !isinf(x); }
+
+float srgbEncode8(float x) {
+  x = isnan(x) ? 0.0 : clamp(x, 0.0, 1.0);
+  float s = x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+  return floor(s * 255.0 + 0.5) / 255.0;
+}
+
+vec3 hue(float h) {
+  vec3 k = vec3(5.0, 3.0, 1.0) + h * 6.0;
+  k = mix(k, k - 6.0, step(6.0, k));
+  return 1.0 - clamp(min(k, 4.0 - k), 0.0, 1.0);
+}
+
+vec3 atlasTexel(int y0, int c, int r) {
+  return texelFetch(uAtlas, ivec2(c, y0 + r), 0).rgb;
+}
+
+// A texture (kind, a, b, c) at moved coordinates (u, v); crates/shade/src/texture.rs.
+vec3 sampleTexture(vec4 t, float u, float v) {
+  u = finite(u) ? u - floor(u) : 0.0;
+  if (u >= 1.0) u = 0.0;
+  v = isnan(v) ? 0.0 : clamp(v, 0.0, 1.0);
+  int kind = int(t.x);
+  if (kind == 0) {                     // checker: a rows, b cols
+    uint rows = uint(t.y), cols = uint(t.z);
+    uint i = min(uint(u * t.z), cols - 1u);
+    uint j = min(uint(v * t.y), rows - 1u);
+    if (((i + j) & 1u) == 0u) {
+      vec3 grey = vec3(0.9);
+      return grey + (hue(u) * 0.9 - grey) * 0.5;
+    }
+    return (u < 0.5 && v >= 0.5) ? vec3(0.35, 0.03, 0.03) : vec3(0.15);
+  }
+  if (kind == 1) {                     // gradient
+    if (u < 0.01 || u > 0.99) return vec3(1.0);
+    return vec3(u, 0.2, v);
+  }
+  if (kind == 2) return t.yzw;         // uniform
+#if IMAGES
+  // image: a = first atlas row, b = width, c = height; bilinear, wrapping in u, clamped in v
+  int w = int(t.z), h = int(t.w), y0 = int(t.y);
+  float x = u * t.z - 0.5;
+  float y = (1.0 - v) * t.w - 0.5;
+  float x0 = floor(x), yf = floor(y);
+  float fx = x - x0, fy = y - yf;
+  int c0 = int(x0), c1 = c0 + 1;
+  c0 = c0 < 0 ? c0 + w : (c0 >= w ? c0 - w : c0);
+  c1 = c1 < 0 ? c1 + w : (c1 >= w ? c1 - w : c1);
+  int r0 = clamp(int(yf), 0, h - 1), r1 = clamp(int(yf) + 1, 0, h - 1);
+  vec3 top = mix(atlasTexel(y0, c0, r0), atlasTexel(y0, c1, r0), fx);
+  vec3 bottom = mix(atlasTexel(y0, c0, r1), atlasTexel(y0, c1, r1), fx);
+  return top + (bottom - top) * fy;
+#else
+  return vec3(1.0, 0.0, 1.0);
+#endif
+}
+
+vec4 gtEntry(int i, int part) {
+  return texelFetch(uGt, ivec2(i & 1023, (i >> 10) + part * uGtRows), 0);
+}
+
+// Black body at g·T (crates/shade/src/shading.rs, blackbody), for g finite and > 0.
+vec3 blackbody(float g, float temperature, float lumT) {
+  float gt = g * temperature;
+  vec3 unit;
+  float lum;
+  vec3 normalized;
+  if (gt >= uTMin && gt <= uTMax) {
+    int i = clamp(int((floatBitsToUint(gt) >> 13u) - uGtFirst), 0, uGtBins - 1);
+    vec4 e = gtEntry(i, 0);
+    unit = e.rgb;
+    lum = e.a;
+    normalized = gtEntry(i, 1).rgb;
+  } else {
+    // Outside the table: the grid's end colour, ln Y extrapolated linearly in ln T.
+    float s = (log(gt) - uLnTMin) / uLnStep;
+    if (gt < uTMin) {
+      unit = uUnitLow;
+      lum = exp(uLnY.x + s * (uLnY.y - uLnY.x));
+    } else {
+      unit = uUnitHigh;
+      lum = exp(uLnY.z + (s - uNodeLast) * (uLnY.w - uLnY.z));
+    }
+    float m = max(unit.r, max(unit.g, unit.b));
+    normalized = m > 0.0 ? unit / m : vec3(0.0);
+  }
+  if (!uPhysical) return normalized;
+  vec3 rgb = unit * (uExposure * lum / lumT);
+  float m = max(rgb.r, max(rgb.g, rgb.b));
+  return m > 1.0 ? rgb / m : rgb;
+}
+
+vec3 falseColour(float s) {
+  s = isnan(s) ? 0.0 : clamp(s, 0.0, 1.0);
+  float x = s * 4.0;
+  int i = min(int(floor(x)), 3);
+  float f = x - float(i);
+  vec3 a = uStops[0], b = uStops[1];
+  if (i == 1) { a = uStops[1]; b = uStops[2]; }
+  if (i == 2) { a = uStops[2]; b = uStops[3]; }
+  if (i == 3) { a = uStops[3]; b = uStops[4]; }
+  return a + f * (b - a);
+}
+
+// Linear RGB of data pixel p, its frequency shift multiplied by doppler. Which layers run is
+// fixed at compile time (TEXTURE, TIME, TRAVEL, FREQUENCY, LIGHT).
+#define WINDOW (TIME && !TRAVEL)
+#define PAINTS (TEXTURE || WINDOW || LIGHT)
+vec3 shadePixel(ivec2 p, float doppler) {
+  uint id = texelFetch(uId, p, 0).r;
+  if (id < 4u) {
+    return id == 0u ? BACKGROUND : id == 1u ? FAILED : id == 2u ? STEP_BUDGET : NOT_TRACED;
+  }
+  int o = int(id - 4u);
+  vec3 c = vec3(1.0);
+#if PAINTS
+  vec4 move = texelFetch(uObjects, ivec2(0, o), 0);
+  float u = move.x * texelFetch(uU, p, 0).r + move.z;
+  float v = move.y * texelFetch(uV, p, 0).r + move.w;
+  vec3 first = sampleTexture(texelFetch(uObjects, ivec2(1, o), 0), u, v);
+#endif
+#if TEXTURE
+  c *= first;
+#endif
+#if TIME
+  float t = texelFetch(uT, p, 0).r;
+#if TRAVEL
+  c *= falseColour((-t - uTravelLo) / (uTravelHi - uTravelLo));
+#else
+  vec3 second = sampleTexture(texelFetch(uObjects, ivec2(2, o), 0), u, v);
+  c *= (t >= uWinLo && t <= uWinHi) ? second : first;
+#endif
+#endif
+#if FREQUENCY
+  vec4 body = texelFetch(uObjects, ivec2(3, o), 0);
+  float g = texelFetch(uG, p, 0).r * doppler;
+  if (!finite(g) || g <= 0.0) return FAILED;
+  c *= blackbody(g, body.x, body.y);
+#endif
+#if LIGHT
+#if !TEXTURE && !TIME && !FREQUENCY
+  c = first;   // the light layer alone lights the first texture
+#endif
+  vec3 l = vec3(uAmbient);
+  for (int k = 0; k < 16; k++) {
+    if (k >= uLights) break;
+    float x = texelFetch(uLight, ivec3(p, k), 0).r;
+    x = finite(x) ? max(x, 0.0) : 0.0;
+    l += uLightW[k] * x;
+  }
+  c *= l;
+#elif TEXTURE || WINDOW
+  float cosI = float(texelFetch(uCos, p, 0).r) / 65535.0;
+  c *= 0.25 + 0.75 * cosI;
+#endif
+  return c;
+}
+
+#if LOOK
+// Camera-basis direction (forward, right, up) of output pixel (col, row); false where the
+// camera shows nothing (crates/scene/src/camera.rs).
+bool pixelDirection(vec2 centre, out vec3 d) {
+  vec2 size = vec2(uOut);
+#if CAMERA == 0
+  float x = uCamAngles.x * (2.0 * centre.x / size.x - 1.0);
+  float y = uCamAngles.x * (size.y / size.x) * (1.0 - 2.0 * centre.y / size.y);
+  d = normalize(vec3(1.0, x, y));
+  return true;
+#elif CAMERA == 1
+  float alpha = uCamAngles.x * (centre.x / size.x - 0.5);
+  float beta = uCamAngles.y * (0.5 - centre.y / size.y);
+  d = vec3(cos(beta) * cos(alpha), cos(beta) * sin(alpha), sin(beta));
+  return true;
+#else
+  float dx = 2.0 * centre.x / size.x - 1.0;
+  float dy = 1.0 - 2.0 * centre.y / size.y;
+  float rho = length(vec2(dx, dy));
+  if (rho > 1.0) return false;
+  float theta = rho * uCamAngles.x;
+  vec2 psi = rho > 0.0 ? vec2(dx, dy) / rho : vec2(0.0, 1.0);
+  d = vec3(cos(theta), sin(theta) * psi.x, sin(theta) * psi.y);
+  return true;
+#endif
+}
+#endif
+
+#if LOOK
+// The sphere pixel p that output pixel q shows, and the Doppler factor; false where the camera
+// shows nothing.
+bool lookSource(ivec2 q, out ivec2 p, out float doppler) {
+  vec3 d;
+  if (!pixelDirection(vec2(q) + 0.5, d)) return false;
+  vec3 own = d.x * uF + d.y * uR + d.z * uUp;
+  // Aberration (look crate, spacetime::aberrate): the static observer's direction n.
+  float along = dot(own, uVDir);
+  doppler = 1.0 / (uGamma * (1.0 - uSpeed * along));
+  vec3 n = (own + ((uGamma - 1.0) * along - uGamma * uSpeed) * uVDir) * doppler;
+  float alpha = atan(dot(n, uR0), dot(n, uF0));
+  float beta = asin(clamp(dot(n, uUp0), -1.0, 1.0));
+  float x = float(uSize.x) * (alpha / (2.0 * PI) + 0.5);
+  float y = float(uSize.y) * (0.5 - beta / PI);
+  int col = int(floor(x)) % uSize.x;
+  p = ivec2(col < 0 ? col + uSize.x : col, clamp(int(floor(y)), 0, uSize.y - 1));
+  return true;
+}
+#endif
+
+bool inside(ivec2 q, ivec4 r) {
+  return q.x >= r.x && q.y >= r.y && q.x < r.x + r.z && q.y < r.y + r.w;
+}
+
+// Overlays (reference squares, legend) drawn over the shaded pixel.
+void main() {
+  ivec2 q = ivec2(gl_FragCoord.xy);   // row 0 of the picture is texture row 0
+#if LOOK
+  ivec2 p;
+  float doppler;
+  vec3 c = lookSource(q, p, doppler) ? shadePixel(p, doppler) : NOT_TRACED;
+#else
+  vec3 c = shadePixel(q, 1.0);
+#endif
+  vec4 o = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
+#if REFS
+  if (inside(q, uRef0)) o = vec4(uRefColour0, 1.0);
+  if (inside(q, uRef1)) o = vec4(uRefColour1, 1.0);
+#endif
+#if LEGEND
+  if (inside(q, uLegendRect)) {
+    vec4 l = texelFetch(uLegend, q - uLegendRect.xy, 0);
+    if (l.a > 0.5) o = vec4(l.rgb, 1.0);
+  }
+#endif
+  outColour = o;
+}`;
+
+// The shading program's source for `features`: {texture, time, travel, frequency, light, look,
+// images, refs, legend} (booleans) and camera (0 pinhole, 1 panorama or sphere, 2 fisheye).
+export function shadeSource(features) {
+  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
+    'legend'];
+  const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
+  defines.push(`#define CAMERA ${features.camera || 0}`);
+  return `#version 300 es\n${defines.join('\n')}\n${SHADE_BODY}`;
+}
+
+// The display pass: `filtered` samples the picture trilinearly at any zoom; otherwise it is
+// copied texel for texel (zoom 1 at a whole-pixel offset, as when looking around).
+export function displaySource(filtered) {
+  return `#version 300 es
+#define FILTERED ${filtered ? 1 : 0}
+precision highp float;
+uniform sampler2D uShaded;
+uniform vec2 uShadedSize;   // texels
+uniform vec2 uCanvas;       // canvas pixels
+uniform vec2 uOffset;       // canvas position of the picture's top-left corner
+uniform float uZoom;        // canvas pixels per texel
+out vec4 outColour;
+void main() {
+  vec2 canvas = vec2(gl_FragCoord.x, uCanvas.y - gl_FragCoord.y);   // from the top
+  vec2 q = (canvas - uOffset) / uZoom;
+  if (q.x < 0.0 || q.y < 0.0 || q.x >= uShadedSize.x || q.y >= uShadedSize.y) {
+    outColour = vec4(0.0, 0.0, 0.0, 1.0);
+    return;
+  }
+#if FILTERED
+  outColour = vec4(texture(uShaded, q / uShadedSize).rgb, 1.0);
+#else
+  outColour = vec4(texelFetch(uShaded, ivec2(q), 0).rgb, 1.0);
+#endif
+}`;
+}

@@ -1,0 +1,176 @@
+// godel view: the shading pass's inputs for given settings (the `shade` crate's
+// ShadeSettings, as Shading::new prepares them) and, in look mode, a view: the uniforms, the
+// per-object table and the overlays (reference squares, travel-time legend).
+'use strict';
+
+import { referenceSquare, legend, linearToSrgb8, LINEAR_STOPS, windowBounds } from './overlays.js';
+import { cross } from './look.js';
+
+// The texture a choice names, as (kind, a, b, c) for the shader, and the image it needs.
+function textureOf(choice, k, data) {
+  let t = choice;
+  if (t.kind === 'scene') t = data.sceneTextures[k];
+  switch (t.kind) {
+    case 'checker':
+      if (!(t.rows >= 1 && t.cols >= 1)) throw new Error('checker rows and cols must be at least 1');
+      return { texel: [0, t.rows, t.cols, 0] };
+    case 'gradient': return { texel: [1, 0, 0, 0] };
+    case 'uniform': return { texel: [2, ...t.color] };
+    case 'earth': return { image: 'earth' };
+    case 'image':
+      if (t.image) return { image: t.image };
+      throw new Error(`the page cannot read image files named in the settings (${t.path}); `
+        + 'save the settings and use `godel shade`');
+    default: throw new Error(`unknown texture kind '${t.kind}'`);
+  }
+}
+
+// The images the settings' textures need (fetched before shading).
+export function imagesFor(settings, info, data) {
+  const names = new Set();
+  info.objects.forEach((name, k) => {
+    const o = settings.objects[name] || info.defaults.objects[name];
+    for (const choice of [o.texture, o.window_texture]) {
+      const t = textureOf(choice, k, data);
+      if (t.image) names.add(t.image);
+    }
+  });
+  return [...names];
+}
+
+// The object table: 4 RGBA32F texels per object (one row each; one row of zeros when the
+// file has no objects).
+export function objectTable(settings, info, data) {
+  const table = new Float32Array(Math.max(info.objects.length, 1) * 16);
+  const bb = data.blackbody;
+  info.objects.forEach((name, k) => {
+    const o = settings.objects[name] || info.defaults.objects[name];
+    const texel = (choice) => {
+      const t = textureOf(choice, k, data);
+      if (!t.image) return t.texel;
+      const image = data.images.get(t.image);
+      return [3, image.y0, image.width, image.height];
+    };
+    table.set([
+      o.scale_u, o.scale_v, o.offset_u - o.rotation_deg / 360, o.offset_v,
+      ...texel(o.texture), ...texel(o.window_texture),
+      o.temperature, bb.luminance(o.temperature), 0, 0,
+    ], k * 16);
+  });
+  return table;
+}
+
+const CAMERAS = { pinhole: 0, panorama: 1, sphere: 1, fisheye: 2 };
+
+// What the shading program is compiled for (shaders.js, shadeSource), given the uniforms.
+export function featuresFor(settings, info, data, look, uniforms) {
+  const on = new Set(settings.shaders);
+  return {
+    texture: on.has('texture'),
+    time: on.has('time'),
+    travel: settings.time.mode === 'travel',
+    frequency: on.has('frequency'),
+    light: on.has('light'),
+    look: Boolean(look),
+    camera: look ? CAMERAS[look.view.camera.kind] : 0,
+    images: imagesFor(settings, info, data).length > 0,
+    refs: uniforms.uRef0[1][2] > 0 || uniforms.uRef1[1][2] > 0,
+    legend: uniforms.uLegendRect[1][2] > 0,
+  };
+}
+
+// Uniforms for a picture of width × height; `look` is null for the data file's own pixels,
+// else {view, sphere} (the `look` crate's view and the sphere's axes).
+export function uniformsFor(settings, info, data, width, height, look) {
+  const on = new Set(settings.shaders);
+  const bb = data.blackbody;
+  const physical = settings.brightness === 'physical';
+  const time = settings.time;
+  const [winLo, winHi] = windowBounds(time.t0, time.dt);
+  const nodes = bb.unit.length;
+  const sources = settings.light.sources;
+  const lightW = [];
+  for (let k = 0; k < info.lights; k += 1) {
+    const s = sources[k];
+    lightW.push(!s ? [1, 1, 1] : s.on ? s.color.map((c) => Math.fround(c) * Math.fround(s.intensity))
+      : [0, 0, 0]);
+  }
+  if (lightW.length > 16) throw new Error('the page shades at most 16 light channels');
+  const u = {
+    uWinLo: ['f', winLo],
+    uWinHi: ['f', winHi],
+    uTravelLo: ['f', time.travel_min],
+    uTravelHi: ['f', time.travel_max],
+    uStops: ['f3', LINEAR_STOPS],
+    uPhysical: ['i', physical ? 1 : 0],
+    uExposure: ['f', settings.exposure],
+    uAmbient: ['f', settings.light.ambient],
+    uLights: ['i', lightW.length],
+    uLightW: ['f3', lightW.length ? lightW : [[0, 0, 0]]],
+    uGtFirst: ['u', bb.gt_first_bin],
+    uGtBins: ['i', bb.gt_bins],
+    uGtRows: ['i', data.gtRows],
+    uTMin: ['f', bb.t_min],
+    uTMax: ['f', bb.t_max],
+    uLnTMin: ['f', bb.ln_t_min],
+    uLnStep: ['f', bb.step],
+    uNodeLast: ['f', nodes - 2],
+    uUnitLow: ['f3', bb.unit[0]],
+    uUnitHigh: ['f3', bb.unit[nodes - 1]],
+    uLnY: ['f4', [bb.ln_y[0], bb.ln_y[1], bb.ln_y[nodes - 2], bb.ln_y[nodes - 1]]],
+    uSize: ['i2', [info.width, info.height]],
+    uOut: ['i2', [width, height]],
+  };
+  if (look) Object.assign(u, lookUniforms(look.view, look.sphere));
+  // Reference squares of the first two objects' unshifted colours (frequency layer).
+  const refs = [[0, 0, 0, 0], [0, 0, 0, 0]];
+  const refColours = [[0, 0, 0], [0, 0, 0]];
+  if (on.has('frequency') && settings.reference_squares) {
+    info.objects.slice(0, 2).forEach((name, k) => {
+      const square = referenceSquare(k, width, height);
+      if (!square) return;
+      const t = (settings.objects[name] || info.defaults.objects[name]).temperature;
+      refs[k] = [...square, square[2]];
+      refColours[k] = bb.colour(1, t, physical, settings.exposure).map((c) => linearToSrgb8(c) / 255);
+    });
+  }
+  u.uRef0 = ['i4', refs[0]];
+  u.uRef1 = ['i4', refs[1]];
+  u.uRefColour0 = ['f3', refColours[0]];
+  u.uRefColour1 = ['f3', refColours[1]];
+  return u;
+}
+
+// The travel-time legend for these settings on a width × height picture, or null.
+export function legendFor(settings, width, height) {
+  const on = new Set(settings.shaders);
+  const t = settings.time;
+  if (!(on.has('time') && t.mode === 'travel' && t.legend)) return null;
+  return legend(width, height, t.travel_min, t.travel_max);
+}
+
+function lookUniforms(view, sphere) {
+  const c = view.camera;
+  const rad = Math.PI / 180;
+  let angles;
+  if (c.kind === 'pinhole') {
+    angles = [Math.tan(0.5 * c.fov_deg * rad), 0];
+  } else if (c.kind === 'fisheye') {
+    angles = [0.5 * c.fov_deg * rad, 0];
+  } else {
+    angles = c.kind === 'sphere' ? [2 * Math.PI, Math.PI] : [c.h_fov_deg * rad, c.v_fov_deg * rad];
+  }
+  const { speed, direction } = view.velocity;
+  return {
+    uCamAngles: ['f2', angles],
+    uF: ['f3', view.forward],
+    uR: ['f3', cross(view.forward, view.up)],
+    uUp: ['f3', view.up],
+    uVDir: ['f3', direction],
+    uSpeed: ['f', speed],
+    uGamma: ['f', 1 / Math.sqrt(1 - speed * speed)],
+    uF0: ['f3', sphere.forward],
+    uR0: ['f3', cross(sphere.forward, sphere.up)],
+    uUp0: ['f3', sphere.up],
+  };
+}

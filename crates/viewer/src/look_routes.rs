@@ -1,0 +1,358 @@
+//! Looking around a full-sphere data file: the view the page starts from, and the pictures
+//! of turned or boosted views made on the server with the `look` remapping and the
+//! `shade` crate (what `godel look` then `godel shade` make), for saving and for checking
+//! the page's shaders.
+//!
+//! | route | answer |
+//! | --- | --- |
+//! | `GET /api/view` | the file's camera and observer axes and velocity, whether it is a full sphere the page can look around in, and for a sphere the direction towards each object (JSON) |
+//! | `POST /api/look/png` (`{"settings": …, "view": …}`) | the shaded picture of that view, PNG download |
+//! | `POST /api/look/image` (same body) | the same picture as raw RGBA; `X-Image-Width`, `X-Image-Height` |
+//!
+//! A view is `{"camera": {"kind": "pinhole", "fov_deg": 60, "width": 640, "height": 360},
+//! "forward": [x, y, z], "up": [x, y, z], "velocity": {"speed": 0.5, "direction": [x, y, z]}}`,
+//! with the camera fields of a scene file (`h_fov_deg`, `v_fov_deg` for a panorama,
+//! `fov_deg` for a pinhole or fisheye) and the axes in the moving observer's own frame, the
+//! velocity in the static observer's, as in `godel look`.
+//!
+//! Like every route these pass [`crate::guard::check`] (Host, Origin, JSON bodies within
+//! [`crate::MAX_BODY_BYTES`]); a look picture is made within the server's bound on concurrent
+//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] pixels; its settings
+//! are prepared as `/api/png`'s ([`ViewerState::prepare`]: caps on lamps and sources, image
+//! textures only from the allowed folders).
+
+use std::sync::{Arc, OnceLock};
+
+use axum::body::Bytes;
+use axum::extract::State;
+use axum::http::{header, HeaderName, HeaderValue};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use look::{look, LookView, SphereSource};
+use scene::{Camera, Scene};
+use serde::{Deserialize, Serialize};
+use shade::ShadeSettings;
+use spacetime::LocalVelocity;
+
+use crate::api_error::{no_store, ApiError};
+use crate::encode;
+use crate::state::ViewerState;
+
+/// The most pixels of a look picture for `viewer`: the data file's own count, or a 4K
+/// screen's (3840×2160) where that is more. A client cannot make the server hold more than
+/// a few pictures' worth of records at once (the work limit bounds how many are made).
+pub fn max_look_pixels(viewer: &ViewerState) -> u64 {
+    (viewer.data.width as u64 * viewer.data.height as u64).max(3840 * 2160)
+}
+
+/// The look routes' state: the loaded file, and its object directions once computed.
+pub struct LookState {
+    viewer: Arc<ViewerState>,
+    view: OnceLock<ViewInfo>,
+}
+
+impl LookState {
+    pub fn new(viewer: Arc<ViewerState>) -> LookState {
+        LookState {
+            viewer,
+            view: OnceLock::new(),
+        }
+    }
+}
+
+pub fn router(state: Arc<LookState>) -> Router {
+    Router::new()
+        .route("/api/view", get(view))
+        .route("/api/look/png", post(png))
+        .route("/api/look/image", post(image))
+        .with_state(state)
+}
+
+/// A camera as the page and scene files write it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum CameraJson {
+    Pinhole {
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    },
+    Panorama {
+        h_fov_deg: f64,
+        v_fov_deg: f64,
+        width: u32,
+        height: u32,
+    },
+    Sphere {
+        width: u32,
+        height: u32,
+    },
+    Fisheye {
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    },
+}
+
+impl CameraJson {
+    pub fn of(camera: &Camera) -> CameraJson {
+        match *camera {
+            Camera::Pinhole {
+                fov_deg,
+                width,
+                height,
+            } => CameraJson::Pinhole {
+                fov_deg,
+                width,
+                height,
+            },
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width,
+                height,
+            } => CameraJson::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width,
+                height,
+            },
+            Camera::Sphere { width, height } => CameraJson::Sphere { width, height },
+            Camera::Fisheye { fov_deg, size } => CameraJson::Fisheye {
+                fov_deg,
+                width: size,
+                height: size,
+            },
+        }
+    }
+
+    /// The camera; a fisheye must be square (as in a scene file).
+    pub fn camera(&self) -> Result<Camera, ApiError> {
+        Ok(match *self {
+            CameraJson::Pinhole {
+                fov_deg,
+                width,
+                height,
+            } => Camera::Pinhole {
+                fov_deg,
+                width,
+                height,
+            },
+            CameraJson::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width,
+                height,
+            } => Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width,
+                height,
+            },
+            CameraJson::Sphere { width, height } => Camera::Sphere { width, height },
+            CameraJson::Fisheye {
+                fov_deg,
+                width,
+                height,
+            } => {
+                if width != height {
+                    return Err(ApiError::bad_request(format!(
+                        "view: camera.height: a fisheye image is square: height must equal \
+                         width ({width}), got {height}"
+                    )));
+                }
+                Camera::Fisheye {
+                    fov_deg,
+                    size: width,
+                }
+            }
+        })
+    }
+}
+
+/// A velocity as the page writes it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VelocityJson {
+    pub speed: f64,
+    pub direction: [f64; 3],
+}
+
+/// A view to look at: camera, axes in the moving observer's frame, velocity in the static
+/// observer's frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViewJson {
+    pub camera: CameraJson,
+    pub forward: [f64; 3],
+    pub up: [f64; 3],
+    pub velocity: VelocityJson,
+}
+
+/// `GET /api/view`.
+#[derive(Clone, Debug, Serialize)]
+pub struct ViewInfo {
+    /// The file's own view.
+    pub view: Option<ViewJson>,
+    /// The page can look around: a full sphere traced by the static observer.
+    pub sphere: bool,
+    /// Why not, when it cannot.
+    pub sphere_error: Option<String>,
+    /// For a sphere, per object: the unit direction (static frame) of the mean of its
+    /// pixels' directions weighted by their solid angle, `null` where it shows nowhere.
+    pub object_directions: Vec<Option<[f64; 3]>>,
+}
+
+fn view_info(viewer: &ViewerState) -> ViewInfo {
+    let data = &viewer.data;
+    let read = Scene::read_view(&data.header.scene_text, "<scene embedded in the data file>");
+    let view = read.as_ref().ok().map(|(observer, camera)| ViewJson {
+        camera: CameraJson::of(camera),
+        forward: observer.forward,
+        up: observer.up,
+        velocity: VelocityJson {
+            speed: observer.velocity.speed,
+            direction: observer.velocity.direction,
+        },
+    });
+    let (sphere, sphere_error, object_directions) = match (SphereSource::of(data), &read) {
+        (Ok(_), Ok((observer, camera))) => {
+            let k = data.header.object_names.len();
+            let mut sums = vec![[0.0f64; 3]; k];
+            for row in 0..data.height {
+                for col in 0..data.width {
+                    let r = &data.records[data.index(col, row)];
+                    let Some(sum) = usize::try_from(r.object).ok().and_then(|o| sums.get_mut(o))
+                    else {
+                        continue;
+                    };
+                    if !r.is_hit() {
+                        continue;
+                    }
+                    let Some(n) = observer.pixel_direction(camera, col as u32, row as u32) else {
+                        continue;
+                    };
+                    // Solid angle of an equirectangular pixel ∝ cos(elevation).
+                    let cos_el = (1.0 - n_dot(n, observer.up).powi(2)).max(0.0).sqrt();
+                    for i in 0..3 {
+                        sum[i] += cos_el * n[i];
+                    }
+                }
+            }
+            let dirs = sums
+                .into_iter()
+                .map(|s| {
+                    let len = n_dot(s, s).sqrt();
+                    (len > 0.0).then(|| s.map(|c| c / len))
+                })
+                .collect();
+            (true, None, dirs)
+        }
+        (Err(e), _) => (false, Some(e.to_string()), Vec::new()),
+        (_, Err(e)) => (false, Some(e.to_string()), Vec::new()),
+    };
+    ViewInfo {
+        view,
+        sphere,
+        sphere_error,
+        object_directions,
+    }
+}
+
+fn n_dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+async fn view(State(state): State<Arc<LookState>>) -> Result<Response, ApiError> {
+    let ticket = state.viewer.work().admit()?;
+    let info = ticket
+        .run(move || state.view.get_or_init(|| view_info(&state.viewer)).clone())
+        .await?;
+    Ok((no_store(), Json(info)).into_response())
+}
+
+/// The body of the look routes.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LookRequest {
+    settings: ShadeSettings,
+    view: ViewJson,
+}
+
+/// The picture of the requested view, shaded: look, then shade.
+fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
+    let mut json = serde_json::Deserializer::from_slice(body);
+    let request: LookRequest = serde_path_to_error::deserialize(&mut json)
+        .map_err(|e| ApiError::bad_request(format!("look: {}: {}", e.path(), e.inner())))?;
+    json.end()
+        .map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
+    let v = &request.view;
+    let velocity = LocalVelocity::new(v.velocity.speed, v.velocity.direction).ok_or_else(|| {
+        ApiError::bad_request(format!(
+            "view: observer.velocity: speed must be in [0, 1) and the direction non-zero, \
+             got {} along {:?}",
+            v.velocity.speed, v.velocity.direction
+        ))
+    })?;
+    let camera = v.camera.camera()?;
+    let pixels = camera.width() as u64 * camera.height() as u64;
+    let most = max_look_pixels(viewer);
+    if pixels > most {
+        return Err(ApiError::bad_request(format!(
+            "view: camera: {}×{} is {pixels} pixels, more than this viewer makes ({most}: the \
+             data file's own count or 3840×2160); use godel look for larger pictures",
+            camera.width(),
+            camera.height()
+        )));
+    }
+    let look_view = LookView::new(camera, v.forward, v.up, velocity)
+        .map_err(|e| ApiError::bad_request(format!("view: {e}")))?;
+    // Prepared for the loaded file: the looked file has the same objects, lights and event.
+    let shading = viewer
+        .prepare(&request.settings)
+        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+    let looked =
+        look(&viewer.data, &look_view).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
+    Ok(shading.image(&looked))
+}
+
+async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
+    let viewer = state.viewer.clone();
+    let disposition = crate::routes::attachment(&viewer, "look.png");
+    let ticket = viewer.work().admit()?;
+    let bytes = ticket
+        .run(move || {
+            let img = shade_look(&viewer, &body)?;
+            encode::png(&img).map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
+        })
+        .await??;
+    let headers = [
+        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (header::CONTENT_DISPOSITION, disposition),
+    ];
+    Ok((headers, bytes).into_response())
+}
+
+async fn image(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
+    let viewer = state.viewer.clone();
+    let ticket = viewer.work().admit()?;
+    let img = ticket.run(move || shade_look(&viewer, &body)).await??;
+    let headers = [
+        (
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/octet-stream"),
+        ),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (
+            HeaderName::from_static("x-image-width"),
+            HeaderValue::from(img.width()),
+        ),
+        (
+            HeaderName::from_static("x-image-height"),
+            HeaderValue::from(img.height()),
+        ),
+    ];
+    Ok((headers, encode::rgba_from_rgb(img.as_raw())).into_response())
+}

@@ -1,0 +1,62 @@
+// Shared by the browser scripts: starts Debian's chromium through playwright-core with WebGL2
+// on SwiftShader (software rendering: the tests need no graphics card), records every request
+// the page makes and every console error, and reads pictures back from the page.
+import { chromium } from 'playwright-core';
+import { mkdtempSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+
+// The closed network refuses chromium's own connections: switch them all off. WebGL2 runs on
+// ANGLE over SwiftShader (software Vulkan), which headless chromium allows only when asked.
+export const ARGS = ['--headless', '--no-sandbox', '--use-gl=angle', '--use-angle=swiftshader',
+  '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+
+export async function launch(dir, viewport = { width: 1400, height: 900 }) {
+  const context = await chromium.launchPersistentContext(mkdtempSync(join(dir, 'profile-')), {
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ARGS,
+    acceptDownloads: true, viewport,
+  });
+  const page = context.pages()[0] || await context.newPage();
+  const requests = [];
+  const consoleErrors = [];
+  context.on('request', (r) => requests.push(r.url()));
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+  return { context, page, requests, consoleErrors };
+}
+
+// Waits until the page has drawn a picture and has nothing left to draw or fetch.
+export const idle = (page) => page.waitForFunction(() => {
+  const v = window.godelViewer;
+  return v && (v.error !== null || (v.frames > 0 && v.idle()));
+});
+
+// Opens the viewer and waits for its first picture; throws the page's error (e.g. no WebGL2)
+// if it shows one instead.
+export async function open(page, url) {
+  await page.goto(url);
+  await idle(page);
+  const error = await page.evaluate(() => window.godelViewer.error);
+  if (error !== null) throw new Error(`the viewer shows an error: ${error}`);
+}
+
+// Writes the page's shaded picture (or the canvas: which = 'canvas') to PATH (raw RGBA, top row
+// first) and its size and `extra` to PATH with .json; returns the size and the bytes.
+export async function savePicture(page, path, extra = {}, which = 'picture') {
+  const p = await page.evaluate((w) => (w === 'canvas' ? window.godelViewer.readCanvas()
+    : window.godelViewer.readPicture()), which);
+  const bytes = Buffer.from(p.bytes, 'base64');
+  writeFileSync(path, bytes);
+  writeFileSync(path.replace(/\.rgba$/, '.json'), JSON.stringify({ width: p.width,
+    height: p.height, ...extra }));
+  return { width: p.width, height: p.height, bytes };
+}
+
+// Pixels (RGB) that differ between two RGBA buffers.
+export function differing(a, b) {
+  let n = 0;
+  for (let i = 0; i < Math.min(a.length, b.length); i += 4) {
+    if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) n += 1;
+  }
+  return n + Math.abs(a.length - b.length) / 4;
+}
