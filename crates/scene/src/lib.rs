@@ -102,18 +102,7 @@ fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
     let loc = Locator::new(file, text, Some(&root));
     let raw = raw::RawScene::deserialize(toml::de::Deserializer::from(root.clone()))
         .map_err(|e| loc.at_span(e.span(), e.message().to_string()))?;
-    let parts = validate::build(raw, &loc, base_dir)?;
-    Ok(Scene {
-        name: parts.name,
-        source_path: None,
-        source_text: text.to_string(),
-        metric: parts.metric,
-        observer: parts.observer,
-        camera: parts.camera,
-        trace: parts.trace,
-        objects: parts.objects,
-        lights: parts.lights,
-    })
+    validate::build(raw, text, &loc, base_dir)
 }
 
 #[cfg(test)]
