@@ -16,22 +16,11 @@ use datafile::DataFile;
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A 96×48 pinhole view of a checkered ball at rest inside the horizon.
-const SCENE: &str = r#"
-name = "viewer-test"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-time = 0.0
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "pinhole"
-fov_deg = 60.0
-width = 96
-height = 48
-[trace]
+fn scene_text() -> String {
+    testkit::godel_scene(
+        "viewer-test",
+        &testkit::pinhole(60.0, 96, 48),
+        r#"[trace]
 method = "numeric"
 max_past = 10.0
 [[object]]
@@ -40,7 +29,9 @@ radius = 0.2
 texture = { kind = "checker", rows = 8, cols = 16 }
 temperature = 5800.0
 motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
+"#,
+    )
+}
 
 fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -122,7 +113,7 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("viewer-test.toml");
-    std::fs::write(&scene, SCENE).unwrap();
+    std::fs::write(&scene, scene_text()).unwrap();
     let rendered = Command::new(env!("CARGO_BIN_EXE_godel"))
         .args(["render", scene.to_str().unwrap(), "-q", "-o"])
         .arg(dir.path())

@@ -36,9 +36,14 @@ pub fn pinhole(fov_deg: f64, width: usize, height: usize) -> String {
     )
 }
 
-/// A scene named `name` in Gödel's universe (a = 1) seen by [`OBSERVER_AT_ORIGIN`] through a
-/// 360° × 40° panorama of `width` × `height` pixels, tracing back `max_past`; `objects` (TOML
-/// `[[object]]` and `[[light]]` tables) follow.
+/// A scene named `name` in Gödel's universe (a = 1) seen by [`OBSERVER_AT_ORIGIN`] through
+/// `camera` ([`panorama`], [`pinhole`]); `rest` (the `[trace]` table, objects, lights) follows.
+pub fn godel_scene(name: &str, camera: &str, rest: &str) -> String {
+    format!("name = \"{name}\"\n{GODEL}{OBSERVER_AT_ORIGIN}{camera}{rest}")
+}
+
+/// A [`godel_scene`] through a 360° × 40° panorama of `width` × `height` pixels, tracing back
+/// `max_past`; `objects` (TOML `[[object]]` and `[[light]]` tables) follow.
 pub fn axis_panorama(
     name: &str,
     width: usize,
@@ -46,9 +51,10 @@ pub fn axis_panorama(
     max_past: f64,
     objects: &str,
 ) -> String {
-    format!(
-        "name = \"{name}\"\n{GODEL}{OBSERVER_AT_ORIGIN}{}[trace]\nmax_past = {max_past:?}\n{objects}",
-        panorama(360.0, 40.0, width, height)
+    godel_scene(
+        name,
+        &panorama(360.0, 40.0, width, height),
+        &format!("[trace]\nmax_past = {max_past:?}\n{objects}"),
     )
 }
 
@@ -58,7 +64,7 @@ pub fn godel_header(
     scene_name: &str,
     scene_text: &str,
     camera: &str,
-    objects: &[&str],
+    objects: &[impl AsRef<str>],
 ) -> DataHeader {
     DataHeader {
         format_version: FORMAT_VERSION,
@@ -69,7 +75,7 @@ pub fn godel_header(
         metric: "godel".into(),
         godel_a: 1.0,
         method: "numeric".into(),
-        object_names: objects.iter().map(|o| o.to_string()).collect(),
+        object_names: objects.iter().map(|o| o.as_ref().to_string()).collect(),
     }
 }
 
