@@ -8,8 +8,8 @@
 
 use crate::args::{positive, usage};
 use crate::plot_kit::{
-    arrowhead, caption, legend_heading, legend_text, output_is_png, trace_ray, write_figure, Frame,
-    PALETTE,
+    arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, trace_ray,
+    write_figure, Frame, PALETTE,
 };
 use crate::svg::f;
 use spacetime::{Event, Godel, Metric};
@@ -193,14 +193,7 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
     let mut y = top + 20.0;
     legend_heading(&mut s, x0, y);
     y += 28.0;
-    for (k, colour) in PALETTE.iter().enumerate().take(n_plane.min(PALETTE.len())) {
-        let xk = x0 + 9.0 * k as f64;
-        s.line(
-            (xk, y - 5.0),
-            (xk + 30.0, y - 5.0),
-            &format!(r#"stroke="{colour}" stroke-width="2""#),
-        );
-    }
+    palette_swatches(&mut s, (x0, y), n_plane, 9.0);
     legend_text(
         &mut s,
         (x0 + 80.0, y),

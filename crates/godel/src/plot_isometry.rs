@@ -12,8 +12,8 @@
 
 use crate::args::{positive, usage};
 use crate::plot_kit::{
-    arrowhead, caption, legend_heading, legend_text, output_is_png, tick_label, trace_ray,
-    write_figure, Frame, PALETTE,
+    arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, tick_label,
+    trace_ray, write_figure, Frame, PALETTE,
 };
 use crate::svg::f;
 use clap::ValueEnum;
@@ -196,18 +196,7 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
     );
     legend_text(&mut s, (x0 + 70.0, y), "light ray from the origin");
     y += 26.0;
-    for (k, colour) in PALETTE
-        .iter()
-        .enumerate()
-        .take(images.len().min(PALETTE.len()))
-    {
-        let xk = x0 + 6.0 * k as f64;
-        s.line(
-            (xk, y - 5.0),
-            (xk + 30.0, y - 5.0),
-            &format!(r#"stroke="{colour}" stroke-width="2""#),
-        );
-    }
+    palette_swatches(&mut s, (x0, y), images.len(), 6.0);
     let unit = if field == FieldName::Phi { "" } else { "a" };
     legend_text(
         &mut s,

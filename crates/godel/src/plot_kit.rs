@@ -210,6 +210,19 @@ pub fn legend_heading(s: &mut Svg, x: f64, y: f64) {
     );
 }
 
+/// The legend's sample of the first `n` palette colours: short lines `step` pixels apart,
+/// overlapping, on the text line at `at`.
+pub fn palette_swatches(s: &mut Svg, (x0, y): (f64, f64), n: usize, step: f64) {
+    for (k, colour) in PALETTE.iter().enumerate().take(n.min(PALETTE.len())) {
+        let xk = x0 + step * k as f64;
+        s.line(
+            (xk, y - 5.0),
+            (xk + 30.0, y - 5.0),
+            &format!(r#"stroke="{colour}" stroke-width="2""#),
+        );
+    }
+}
+
 /// A legend entry's text, starting at `at`.
 pub fn legend_text(s: &mut Svg, at: (f64, f64), text: &str) {
     s.text(at, 15.0, "start", r##"fill="#222""##, text);

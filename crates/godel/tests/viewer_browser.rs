@@ -17,19 +17,11 @@ use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A 96×48 pinhole view of a checkered ball at rest inside the horizon.
 fn scene_text() -> String {
-    testkit::godel_scene(
+    testkit::ball_ahead(
         "viewer-test",
         &testkit::pinhole(60.0, 96, 48),
-        r#"[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "checker", rows = 8, cols = 16 }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#,
+        "ball",
+        r#"{ kind = "checker", rows = 8, cols = 16 }"#,
     )
 }
 

@@ -25,7 +25,7 @@ mod raw;
 mod validate;
 
 pub use camera::Camera;
-pub use error::{line_column, one_line, Location, SceneError};
+pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,

@@ -58,6 +58,21 @@ pub fn axis_panorama(
     )
 }
 
+/// A [`godel_scene`] through `camera`, traced numerically back to t = −10, of one sphere
+/// `object` of radius 0.2 at 5800 K wearing `texture` (an inline TOML table), at rest at r = 1
+/// straight ahead (φ = 0): the scene of the viewer's tests and benchmarks.
+pub fn ball_ahead(name: &str, camera: &str, object: &str, texture: &str) -> String {
+    godel_scene(
+        name,
+        camera,
+        &format!(
+            "[trace]\nmethod = \"numeric\"\nmax_past = 10.0\n[[object]]\nname = \"{object}\"\n\
+             radius = 0.2\ntexture = {texture}\ntemperature = 5800.0\n\
+             motion = {{ kind = \"rest\", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}\n"
+        ),
+    )
+}
+
 /// The header of a synthetic data file: traced numerically in Gödel's universe (a = 1) with
 /// the observer at time 0, by a camera described as `camera`, seeing `objects`.
 pub fn godel_header(

@@ -8,19 +8,11 @@ use datafile::DataFile;
 
 /// The scene the data file claims to come from: the earth-textured ball.
 fn scene() -> String {
-    testkit::godel_scene(
+    testkit::ball_ahead(
         "bench",
         &testkit::panorama(220.0, 25.0, 2200, 250),
-        r#"[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "earth"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#,
+        "earth",
+        r#"{ kind = "image", builtin = "earth" }"#,
     )
 }
 

@@ -25,19 +25,11 @@ pub const HEIGHT: usize = 4;
 
 /// The scene the data file claims to come from: one ball with a uniform texture.
 pub fn scene() -> String {
-    testkit::godel_scene(
+    testkit::ball_ahead(
         "api-test",
         &testkit::panorama(220.0, 25.0, WIDTH, HEIGHT),
-        r#"[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#,
+        "ball",
+        r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
     )
 }
 
