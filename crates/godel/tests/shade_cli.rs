@@ -16,8 +16,8 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-/// The small scene rendered by the first test (Gödel a = 1 by default), also the scene text
-/// of the synthetic data files.
+/// The small scene rendered by the first test, also the scene text of the synthetic data
+/// files.
 fn small_scene() -> String {
     testkit::axis_panorama(
         "small",

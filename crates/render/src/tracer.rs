@@ -240,7 +240,7 @@ impl Tracer {
         }
     }
 
-    /// Scans the latest segment of the first loop (not shifted) over [`lo`, `hi`]: the ray's
+    /// Scans the latest segment of the first loop (not shifted) over [lo, hi]: the ray's
     /// end when an object is hit there or the search runs out of work, else `None`.
     fn scan_first_loop(
         &self,
