@@ -1,11 +1,19 @@
 //! Validation of raw command-line values shared by the subcommands: comma-separated vectors,
-//! finite and bounded numbers, thread counts. Every failure is a [`UsageError`] naming the
-//! flag, which `main` turns into exit code 2.
+//! finite and bounded numbers, thread counts, output formats. Every failure is a
+//! [`UsageError`] naming the flag, which `main` turns into exit code 2.
 
 use anyhow::Context;
+use clap::ValueEnum;
 use scene::Scene;
 use std::fmt;
 use std::path::PathBuf;
+
+/// The output formats of `godel geodesic` and `godel connect` (`--format`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    Csv,
+    Json,
+}
 
 /// An invalid command-line value: `--flag: what is wrong`.
 #[derive(Debug, Clone, PartialEq)]

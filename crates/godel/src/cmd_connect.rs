@@ -15,22 +15,14 @@
 //! (the opposite of its propagation). Static source and static receiver see no frequency
 //! shift (g = 1: ∂t is a Killing field of unit norm), so none is printed.
 
-use crate::args::{parse_vector, positive, usage};
+use crate::args::{parse_vector, positive, usage, Format};
 use anyhow::Context;
-use clap::ValueEnum;
 use serde_json::json;
 use spacetime::{
     measure, shadow_rays, source_area_distance_sq, Branch, Cylindrical, Event, ExactGeodesic,
     FourVector, Godel, Isometry, ShadowRay, Spacetime,
 };
 use std::io::Write;
-
-/// Output formats.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Format {
-    Csv,
-    Json,
-}
 
 /// Raw command-line arguments of `godel connect`.
 #[derive(clap::Args, Debug)]

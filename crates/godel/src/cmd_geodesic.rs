@@ -14,7 +14,7 @@
 //! Physics: Gödel, Rev. Mod. Phys. 21, 447 (1949); constants of motion from the Killing fields
 //! ∂t, ∂φ, ∂z; integration in pseudo-Cartesian coordinates by the `spacetime` crate.
 
-use crate::args::{parse_vector, positive, usage};
+use crate::args::{parse_vector, positive, usage, Format};
 use anyhow::Context;
 use clap::ValueEnum;
 use serde_json::json;
@@ -45,13 +45,6 @@ pub enum Method {
     Numeric,
     /// Evaluate the closed form (isometry ∘ closed form through the origin ∘ inverse).
     Exact,
-}
-
-/// Output formats.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Format {
-    Csv,
-    Json,
 }
 
 /// Raw command-line arguments of `godel geodesic` (validated by [`Request::from_args`]).

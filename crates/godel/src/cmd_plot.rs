@@ -7,9 +7,11 @@
 //! the closed form. Output: SVG, or PNG rasterized from it (chosen by the `-o` extension).
 
 use crate::args::{positive, usage};
-use crate::output::write_atomic;
-use crate::plot_kit::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
-use crate::svg::{f, to_png, Svg};
+use crate::plot_kit::{
+    arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, trace_ray,
+    write_figure, Frame, PALETTE,
+};
+use crate::svg::f;
 use spacetime::{Event, Godel, Metric};
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -94,23 +96,10 @@ fn trace_fan(a: f64, n_plane: usize, n_tilted: usize) -> anyhow::Result<Vec<Ray>
 
 /// Builds the figure's SVG text.
 fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
-    let (width, height) = (1040.0, 660.0);
-    let (left, top, side) = (90.0, 64.0, 520.0);
-    let half = 2.5; // data range [-2.5, 2.5] in units of a
-    let scale = side / (2.0 * half);
-    let (cx, cy) = (left + side / 2.0, top + side / 2.0);
-    let px = |x: f64| cx + scale * x;
-    let py = |y: f64| cy - scale * y;
-    let data = |w: f64| w / scale; // a width in pixels, in data units
-    let mut s = Svg::new(width, height);
-    s.rect((0.0, 0.0), (width, height), r#"fill="white""#);
-    s.text(
-        (left, 38.0),
-        22.0,
-        "start",
-        r##"fill="#222""##,
-        "Light rays through the origin of Gödel’s universe",
-    );
+    let fr = Frame::new(2.5); // data range [-2.5, 2.5] in units of a
+    let (left, top, side) = (fr.left, fr.top, fr.side);
+    let (px, py, data) = (|x| fr.px(x), |y| fr.py(y), |w| fr.data(w));
+    let mut s = fr.canvas("Light rays through the origin of Gödel’s universe");
 
     // Grid, frame, ticks, labels (pixel coordinates).
     for k in -2..=2 {
@@ -135,23 +124,10 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
         s.line((left, py(v)), (left + len, py(v)), st);
         s.line((left + side, py(v)), (left + side - len, py(v)), st);
         if k % 2 == 0 {
-            s.text(
-                (px(v), top + side + 20.0),
-                15.0,
-                "middle",
-                r##"fill="#333""##,
-                &tick_label(v),
-            );
-            s.text(
-                (left - 10.0, py(v) + 5.0),
-                15.0,
-                "end",
-                r##"fill="#333""##,
-                &tick_label(v),
-            );
+            fr.tick_labels(&mut s, v);
         }
     }
-    open_data_layer(&mut s, left, top, side, scale);
+    fr.open_data_layer(&mut s);
     s.circle(
         (0.0, 0.0),
         2.0,
@@ -191,24 +167,9 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
             );
         }
     }
-    s.circle(
-        (0.0, 0.0),
-        2.0,
-        &format!(
-            r##"id="horizon" fill="none" stroke="#222" stroke-width="{}" stroke-dasharray="{} {}""##,
-            f(data(1.6)),
-            f(data(7.0)),
-            f(data(5.0))
-        ),
-    );
+    fr.horizon(&mut s, 1.6);
     s.circle((0.0, 0.0), data(3.5), r##"fill="#222""##);
-    s.end_group();
-    s.end_group();
-    s.rect(
-        (left, top),
-        (side, side),
-        r##"fill="none" stroke="#333" stroke-width="1.2""##,
-    );
+    fr.close_data_layer(&mut s);
 
     // Horizon label with a leader line, in the upper right corner of the frame.
     let at = 0.30 * PI;
@@ -228,29 +189,14 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
     );
 
     // Legend and caption on the right.
-    let x0 = left + side + 40.0;
+    let x0 = fr.legend_left();
     let mut y = top + 20.0;
-    s.text(
-        (x0, y),
-        16.0,
-        "start",
-        r##"fill="#222" font-weight="bold""##,
-        "Legend",
-    );
+    legend_heading(&mut s, x0, y);
     y += 28.0;
-    for (k, colour) in PALETTE.iter().enumerate().take(n_plane.min(PALETTE.len())) {
-        let xk = x0 + 9.0 * k as f64;
-        s.line(
-            (xk, y - 5.0),
-            (xk + 30.0, y - 5.0),
-            &format!(r#"stroke="{colour}" stroke-width="2""#),
-        );
-    }
-    s.text(
+    palette_swatches(&mut s, (x0, y), n_plane, 9.0);
+    legend_text(
+        &mut s,
         (x0 + 80.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
         &format!("light rays in the plane ({n_plane})"),
     );
     if n_tilted > 0 {
@@ -260,11 +206,9 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
             (x0 + 72.0, y - 5.0),
             &format!(r#"stroke="{TILTED_COLOUR}" stroke-width="2""#),
         );
-        s.text(
+        legend_text(
+            &mut s,
             (x0 + 80.0, y),
-            15.0,
-            "start",
-            r##"fill="#222""##,
             &format!("tilted 45° out of it ({n_tilted})"),
         );
     }
@@ -274,30 +218,18 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
         (x0 + 72.0, y - 5.0),
         r##"stroke="#222" stroke-width="1.6" stroke-dasharray="7 5""##,
     );
-    s.text(
-        (x0 + 80.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
-        "optical horizon r = 2a",
-    );
+    legend_text(&mut s, (x0 + 80.0, y), "optical horizon r = 2a");
     y += 26.0;
     s.polygon(
         &[(x0 + 44.0, y - 5.0), (x0 + 32.0, y - 10.0), (x0 + 32.0, y)],
         r##"fill="#444""##,
     );
-    s.text(
-        (x0 + 80.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
-        "future direction",
-    );
+    legend_text(&mut s, (x0 + 80.0, y), "future direction");
 
     let t_ret = Godel::new(a).shortest_loop_time();
     let plane: Vec<f64> = rays.iter().filter(|r| !r.tilted).map(|r| r.t_end).collect();
     let t_mean = plane.iter().sum::<f64>() / plane.len().max(1) as f64;
-    let caption = [
+    let lines = [
         format!("Gödel universe, a = {}. Each future-directed", f(a)),
         "light ray from the origin circles counter-".to_string(),
         "clockwise, touches the optical horizon".to_string(),
@@ -310,11 +242,7 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
         String::new(),
         "Traced numerically (DOP853), one loop each.".to_string(),
     ];
-    y += 48.0;
-    for line in caption {
-        s.text((x0, y), 15.0, "start", r##"fill="#333""##, &line);
-        y += 22.0;
-    }
+    caption(&mut s, x0, y + 48.0, &lines);
     s.finish("Light rays through the origin of Gödel's universe")
 }
 
@@ -343,10 +271,5 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
     let png = output_is_png(&args.output)?;
     let rays = trace_fan(a, args.rays, args.tilted)?;
     let svg = figure(a, &rays, args.rays, args.tilted);
-    let bytes = if png {
-        to_png(&svg, 2.0)?
-    } else {
-        svg.into_bytes()
-    };
-    write_atomic(&args.output, &bytes)
+    write_figure(&args.output, svg, png)
 }

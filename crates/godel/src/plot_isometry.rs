@@ -11,9 +11,11 @@
 //! ∂φ rotates the loop about the origin.
 
 use crate::args::{positive, usage};
-use crate::output::write_atomic;
-use crate::plot_kit::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
-use crate::svg::{f, to_png, Svg};
+use crate::plot_kit::{
+    arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, tick_label,
+    trace_ray, write_figure, Frame, PALETTE,
+};
+use crate::svg::f;
 use clap::ValueEnum;
 use spacetime::{Event, Godel, Isometry, KillingField, Metric};
 use std::path::PathBuf;
@@ -102,48 +104,23 @@ pub fn parameters(n: usize, spread: f64) -> Vec<f64> {
 
 /// Draws the figure; `events` is the traced ray (events along it).
 fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -> String {
-    let (width, height) = (1040.0, 660.0);
-    let (left, top, side) = (90.0, 64.0, 520.0);
-    let scale = side / (2.0 * HALF);
-    let (cx, cy) = (left + side / 2.0, top + side / 2.0);
-    let px = |x: f64| cx + scale * x;
-    let py = |y: f64| cy - scale * y;
-    let data = |w: f64| w / scale;
+    let fr = Frame::new(HALF);
+    let (left, top, side) = (fr.left, fr.top, fr.side);
+    let (px, py, data) = (|x| fr.px(x), |y| fr.py(y), |w| fr.data(w));
     let field = args.field;
-    let mut s = Svg::new(width, height);
-    s.rect((0.0, 0.0), (width, height), r#"fill="white""#);
-    s.text(
-        (left, 38.0),
-        22.0,
-        "start",
-        r##"fill="#222""##,
-        &format!(
-            "A light ray moved along the Killing field {}",
-            field.label()
-        ),
-    );
+    let mut s = fr.canvas(&format!(
+        "A light ray moved along the Killing field {}",
+        field.label()
+    ));
 
     for k in -3..=3 {
         let v = k as f64;
         let grid = r##"stroke="#ececec" stroke-width="1""##;
         s.line((px(v), top), (px(v), top + side), grid);
         s.line((left, py(v)), (left + side, py(v)), grid);
-        s.text(
-            (px(v), top + side + 20.0),
-            15.0,
-            "middle",
-            r##"fill="#333""##,
-            &tick_label(v),
-        );
-        s.text(
-            (left - 10.0, py(v) + 5.0),
-            15.0,
-            "end",
-            r##"fill="#333""##,
-            &tick_label(v),
-        );
+        fr.tick_labels(&mut s, v);
     }
-    open_data_layer(&mut s, left, top, side, scale);
+    fr.open_data_layer(&mut s);
 
     // The field's arrows: direction of its x–y part on a grid (length fixed; the field
     // grows like r/2a far out).
@@ -204,66 +181,26 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
     );
     s.circle((0.0, 0.0), data(4.5), &format!(r#"fill="{ORIGINAL}""#));
     s.end_group();
-    s.circle(
-        (0.0, 0.0),
-        2.0,
-        &format!(
-            r##"id="horizon" fill="none" stroke="#222" stroke-width="{}" stroke-dasharray="{} {}""##,
-            f(data(1.2)),
-            f(data(7.0)),
-            f(data(5.0))
-        ),
-    );
-    s.end_group();
-    s.end_group();
-    s.rect(
-        (left, top),
-        (side, side),
-        r##"fill="none" stroke="#333" stroke-width="1.2""##,
-    );
+    fr.horizon(&mut s, 1.2);
+    fr.close_data_layer(&mut s);
 
     // Legend and caption.
-    let x0 = left + side + 40.0;
+    let x0 = fr.legend_left();
     let mut y = top + 20.0;
-    s.text(
-        (x0, y),
-        16.0,
-        "start",
-        r##"fill="#222" font-weight="bold""##,
-        "Legend",
-    );
+    legend_heading(&mut s, x0, y);
     y += 28.0;
     s.line(
         (x0, y - 5.0),
         (x0 + 60.0, y - 5.0),
         &format!(r#"stroke="{ORIGINAL}" stroke-width="3""#),
     );
-    s.text(
-        (x0 + 70.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
-        "light ray from the origin",
-    );
+    legend_text(&mut s, (x0 + 70.0, y), "light ray from the origin");
     y += 26.0;
-    for (k, colour) in PALETTE
-        .iter()
-        .enumerate()
-        .take(images.len().min(PALETTE.len()))
-    {
-        let xk = x0 + 6.0 * k as f64;
-        s.line(
-            (xk, y - 5.0),
-            (xk + 30.0, y - 5.0),
-            &format!(r#"stroke="{colour}" stroke-width="2""#),
-        );
-    }
+    palette_swatches(&mut s, (x0, y), images.len(), 6.0);
     let unit = if field == FieldName::Phi { "" } else { "a" };
-    s.text(
+    legend_text(
+        &mut s,
         (x0 + 70.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
         &format!(
             "its images, s = {}{unit} … {}{unit}",
             tick_label(images[0].s),
@@ -275,11 +212,9 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
         &[(x0 + 44.0, y - 5.0), (x0 + 24.0, y - 10.0), (x0 + 24.0, y)],
         r##"fill="#9a9a9a""##,
     );
-    s.text(
+    legend_text(
+        &mut s,
         (x0 + 70.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
         &format!("direction of {} (x–y part)", field.label()),
     );
     y += 26.0;
@@ -288,15 +223,9 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
         (x0 + 60.0, y - 5.0),
         r##"stroke="#222" stroke-width="1.2" stroke-dasharray="7 5""##,
     );
-    s.text(
-        (x0 + 70.0, y),
-        15.0,
-        "start",
-        r##"fill="#222""##,
-        "horizon of the origin, r = 2a",
-    );
+    legend_text(&mut s, (x0 + 70.0, y), "horizon of the origin, r = 2a");
     let t_ret = spacetime::Godel::new(a).shortest_loop_time();
-    let caption = [
+    let lines = [
         format!("Gödel universe, a = {}. The flow", f(a)),
         format!("exp(s {}) is an isometry, so each image", field.label()),
         "of the ray is again a light ray: it leaves".to_string(),
@@ -308,11 +237,7 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
         "the origin, where the light rays are".to_string(),
         "known in closed form.".to_string(),
     ];
-    y += 44.0;
-    for line in caption {
-        s.text((x0, y), 15.0, "start", r##"fill="#333""##, &line);
-        y += 22.0;
-    }
+    caption(&mut s, x0, y + 44.0, &lines);
     s.finish(&format!(
         "A light ray of Gödel's universe moved along the Killing field {}",
         field.label()
@@ -361,10 +286,5 @@ pub fn plot_isometry(args: IsometryPlotArgs) -> anyhow::Result<()> {
         })
         .collect();
     let svg = figure(&args, a, &events, &images);
-    let bytes = if png {
-        to_png(&svg, 2.0)?
-    } else {
-        svg.into_bytes()
-    };
-    write_atomic(&args.output, &bytes)
+    write_figure(&args.output, svg, png)
 }

@@ -1,9 +1,11 @@
 //! Pieces both figures of `godel plot` draw with: the palette, a light ray from the origin
 //! sampled for drawing, tick labels, arrowheads, the output type chosen by the extension,
-//! and the clipped data layer in units of a.
+//! the shared layout (canvas, frame, clipped data layer in units of a, horizon, legend,
+//! caption) and writing the figure.
 
 use crate::args::usage;
-use crate::svg::{f, Svg};
+use crate::output::write_atomic;
+use crate::svg::{f, to_png, Svg};
 use anyhow::Context;
 use spacetime::{trace, Event, Geodesic, Metric, Spacetime, TimeDirection, TraceLimits};
 
@@ -66,39 +68,180 @@ pub fn output_is_png(output: &std::path::Path) -> anyhow::Result<bool> {
     }
 }
 
-/// The axis titles x / a and y / a of a square frame at (`left`, `top`) with side `side`,
-/// then opens the data layer: clipped to the frame, in units of a with y up and the origin
-/// at the centre. The caller closes it with two [`Svg::end_group`].
-pub fn open_data_layer(s: &mut Svg, left: f64, top: f64, side: f64, scale: f64) {
-    let (cx, cy) = (left + side / 2.0, top + side / 2.0);
-    s.text(
-        (cx, top + side + 48.0),
-        17.0,
-        "middle",
-        r##"fill="#222""##,
-        "x / a",
-    );
-    s.raw(&format!(
-        r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
-        f(left - 52.0),
-        f(cy),
-        crate::svg::FONT_FAMILY
-    ));
+/// The layout both figures share: a white 1040 × 660 canvas, a square frame of 520 pixels at
+/// (90, 64) showing [−half, half]² in units of a, the legend and caption to its right.
+pub struct Frame {
+    pub left: f64,
+    pub top: f64,
+    pub side: f64,
+    /// Pixels per unit of a.
+    pub scale: f64,
+}
 
-    // Data layer: units of a, y up, clipped to the frame.
-    s.raw(&format!(
-        r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
-        f(left),
-        f(top),
-        f(side),
-        f(side)
-    ));
-    s.group(r#"clip-path="url(#frame)""#);
-    s.group(&format!(
-        r#"id="data" transform="translate({},{}) scale({},{})""#,
-        f(cx),
-        f(cy),
-        f(scale),
-        f(-scale)
-    ));
+impl Frame {
+    pub fn new(half: f64) -> Frame {
+        let side = 520.0;
+        Frame {
+            left: 90.0,
+            top: 64.0,
+            side,
+            scale: side / (2.0 * half),
+        }
+    }
+
+    /// The canvas, white, with `title` above the frame.
+    pub fn canvas(&self, title: &str) -> Svg {
+        let (width, height) = (1040.0, 660.0);
+        let mut s = Svg::new(width, height);
+        s.rect((0.0, 0.0), (width, height), r#"fill="white""#);
+        s.text((self.left, 38.0), 22.0, "start", r##"fill="#222""##, title);
+        s
+    }
+
+    /// Pixel column of the data coordinate x.
+    pub fn px(&self, x: f64) -> f64 {
+        (self.left + self.side / 2.0) + self.scale * x
+    }
+
+    /// Pixel row of the data coordinate y (y up).
+    pub fn py(&self, y: f64) -> f64 {
+        (self.top + self.side / 2.0) - self.scale * y
+    }
+
+    /// A width in pixels, in data units.
+    pub fn data(&self, w: f64) -> f64 {
+        w / self.scale
+    }
+
+    /// The left edge of the legend.
+    pub fn legend_left(&self) -> f64 {
+        self.left + self.side + 40.0
+    }
+
+    /// The tick labels of the value `v` below the frame (x) and left of it (y).
+    pub fn tick_labels(&self, s: &mut Svg, v: f64) {
+        s.text(
+            (self.px(v), self.top + self.side + 20.0),
+            15.0,
+            "middle",
+            r##"fill="#333""##,
+            &tick_label(v),
+        );
+        s.text(
+            (self.left - 10.0, self.py(v) + 5.0),
+            15.0,
+            "end",
+            r##"fill="#333""##,
+            &tick_label(v),
+        );
+    }
+
+    /// The axis titles x / a and y / a, then opens the data layer: clipped to the frame, in
+    /// units of a with y up and the origin at the centre. [`Frame::close_data_layer`] closes it.
+    pub fn open_data_layer(&self, s: &mut Svg) {
+        let (left, top, side, scale) = (self.left, self.top, self.side, self.scale);
+        let (cx, cy) = (left + side / 2.0, top + side / 2.0);
+        s.text(
+            (cx, top + side + 48.0),
+            17.0,
+            "middle",
+            r##"fill="#222""##,
+            "x / a",
+        );
+        s.raw(&format!(
+            r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
+            f(left - 52.0),
+            f(cy),
+            crate::svg::FONT_FAMILY
+        ));
+
+        // Data layer: units of a, y up, clipped to the frame.
+        s.raw(&format!(
+            r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
+            f(left),
+            f(top),
+            f(side),
+            f(side)
+        ));
+        s.group(r#"clip-path="url(#frame)""#);
+        s.group(&format!(
+            r#"id="data" transform="translate({},{}) scale({},{})""#,
+            f(cx),
+            f(cy),
+            f(scale),
+            f(-scale)
+        ));
+    }
+
+    /// The optical horizon r = 2a of the origin, dashed, `width` pixels wide (data layer).
+    pub fn horizon(&self, s: &mut Svg, width: f64) {
+        s.circle(
+            (0.0, 0.0),
+            2.0,
+            &format!(
+                r##"id="horizon" fill="none" stroke="#222" stroke-width="{}" stroke-dasharray="{} {}""##,
+                f(self.data(width)),
+                f(self.data(7.0)),
+                f(self.data(5.0))
+            ),
+        );
+    }
+
+    /// Closes the data layer and draws the frame over it.
+    pub fn close_data_layer(&self, s: &mut Svg) {
+        s.end_group();
+        s.end_group();
+        s.rect(
+            (self.left, self.top),
+            (self.side, self.side),
+            r##"fill="none" stroke="#333" stroke-width="1.2""##,
+        );
+    }
+}
+
+/// The bold "Legend" heading at (`x`, `y`).
+pub fn legend_heading(s: &mut Svg, x: f64, y: f64) {
+    s.text(
+        (x, y),
+        16.0,
+        "start",
+        r##"fill="#222" font-weight="bold""##,
+        "Legend",
+    );
+}
+
+/// The legend's sample of the first `n` palette colours: short lines `step` pixels apart,
+/// overlapping, on the text line at `at`.
+pub fn palette_swatches(s: &mut Svg, (x0, y): (f64, f64), n: usize, step: f64) {
+    for (k, colour) in PALETTE.iter().enumerate().take(n.min(PALETTE.len())) {
+        let xk = x0 + step * k as f64;
+        s.line(
+            (xk, y - 5.0),
+            (xk + 30.0, y - 5.0),
+            &format!(r#"stroke="{colour}" stroke-width="2""#),
+        );
+    }
+}
+
+/// A legend entry's text, starting at `at`.
+pub fn legend_text(s: &mut Svg, at: (f64, f64), text: &str) {
+    s.text(at, 15.0, "start", r##"fill="#222""##, text);
+}
+
+/// The caption's lines from (`x`, `y`) down, 22 pixels apart.
+pub fn caption(s: &mut Svg, x: f64, mut y: f64, lines: &[String]) {
+    for line in lines {
+        s.text((x, y), 15.0, "start", r##"fill="#333""##, line);
+        y += 22.0;
+    }
+}
+
+/// Writes the figure `svg` to `output`, as PNG (at twice the size) when `png`, else as SVG.
+pub fn write_figure(output: &std::path::Path, svg: String, png: bool) -> anyhow::Result<()> {
+    let bytes = if png {
+        to_png(&svg, 2.0)?
+    } else {
+        svg.into_bytes()
+    };
+    write_atomic(output, &bytes)
 }

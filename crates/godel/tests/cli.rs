@@ -4,14 +4,10 @@
 //! with the horizon, PNG).
 
 use std::f64::consts::{PI, SQRT_2};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
+mod common;
+use common::godel;
 
 fn stdout(o: &Output) -> String {
     assert!(

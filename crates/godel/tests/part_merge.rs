@@ -10,17 +10,9 @@ use render::plan::Part;
 use render::tiles::{extract, insert};
 use scene::Scene;
 use std::path::Path;
-use std::process::{Command, Output};
 
 mod common;
-use common::{stderr, write_scene};
-
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
+use common::{godel, stderr, write_scene};
 
 /// The shared lit test scene, named "split".
 fn scene_text(max_past: f64) -> String {

@@ -8,47 +8,25 @@
 
 use datafile::DataFile;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{godel, stderr};
 
 const W: u32 = 120;
 const H: u32 = 15;
 
 fn small_scene() -> String {
-    format!(
-        r#"
-name = "small"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 40.0
-width = {W}
-height = {H}
-[trace]
-max_past = 6.0
-[[object]]
+    testkit::axis_panorama(
+        "small",
+        W as usize,
+        H as usize,
+        6.0,
+        r#"[[object]]
 name = "ball"
 radius = 0.2
-texture = {{ kind = "checker", rows = 4, cols = 8 }}
-motion = {{ kind = "rest", position = {{ r = 1.0, phi = 0.7, z = 0.0 }} }}
-"#
+texture = { kind = "checker", rows = 4, cols = 8 }
+motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
+"#,
     )
 }
 

@@ -6,42 +6,26 @@
 //! only its own frames.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 
 mod common;
-use common::{files_in, run_within};
+use common::{files_in, godel, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine; they take well under a second.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);
 
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
 /// A 4×1 data file of one object "ball" with g = 1.
 fn data_file(dir: &Path) -> PathBuf {
     let data = DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "syn".into(),
-            scene_text: "name = \"syn\"\n[[object]]\nname = \"ball\"\n".into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
+        header: testkit::godel_header(
+            "syn",
+            "name = \"syn\"\n[[object]]\nname = \"ball\"\n",
+            "panorama",
+            &["ball"],
+        ),
         width: 4,
         height: 1,
         records: vec![
@@ -124,24 +108,17 @@ fn a_scene_traced_with_the_observer_time_advancing() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(
         dir.path().join("fall.toml"),
-        r#"name = "fall"
-[observer]
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 40.0
-width = 48
-height = 6
-[trace]
-max_past = 4.0
-[[object]]
+        testkit::axis_panorama(
+            "fall",
+            48,
+            6,
+            4.0,
+            r#"[[object]]
 name = "ball"
 radius = 0.3
 motion = { kind = "geodesic", time = 0.0, position = { x = 1.0, y = -0.5, z = 0.0 }, speed = 0.5, direction = [0, 1, 0] }
 "#,
+        ),
     )
     .unwrap();
     let script = dir.path().join("seq.toml");

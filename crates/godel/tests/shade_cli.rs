@@ -5,64 +5,41 @@
 //! non-zero exit and no output file.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{godel, stderr};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-const SCENE: &str = r#"
-name = "small"
-[observer]
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 40.0
-width = 96
-height = 12
-[trace]
-max_past = 6.0
-[[object]]
+/// The small scene rendered by the first test, also the scene text of the synthetic data
+/// files.
+fn small_scene() -> String {
+    testkit::axis_panorama(
+        "small",
+        96,
+        12,
+        6.0,
+        r#"[[object]]
 name = "ball"
 radius = 0.3
 temperature = 4000.0
 texture = { kind = "checker", rows = 4, cols = 8 }
 motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
-"#;
+"#,
+    )
+}
 
 /// A synthetic data file: 16 pixels of object "ball", g = 1, t_emit = −i/2, with `lights`
 /// light planes of value 1.
 fn synthetic(dir: &Path, lights: usize) -> PathBuf {
     let n = 16;
     let data = DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "syn".into(),
-            scene_text: SCENE.into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
+        header: testkit::godel_header("syn", &small_scene(), "panorama", &["ball"]),
         width: n,
         height: 1,
         records: (0..n)
@@ -92,7 +69,7 @@ fn png(path: &Path) -> image::RgbImage {
 fn texture_shader_reproduces_the_render_preview() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("small.toml");
-    std::fs::write(&scene, SCENE).unwrap();
+    std::fs::write(&scene, small_scene()).unwrap();
     let o = godel(&["render", s(&scene), "-o", s(dir.path()), "-q"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = dir.path().join("tex.png");

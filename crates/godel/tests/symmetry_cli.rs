@@ -4,14 +4,8 @@
 //! `plot isometry` (each image of the ray closes on its own start, which lies on the field's
 //! orbit of the origin).
 
-use std::process::{Command, Output};
-
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
+mod common;
+use common::godel;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let o = godel(args);

@@ -3,12 +3,8 @@
 
 use std::process::{Command, Output};
 
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
+mod common;
+use common::godel;
 
 fn fails_with(o: &Output, code: i32, needles: &[&str]) {
     let stderr = String::from_utf8_lossy(&o.stderr);

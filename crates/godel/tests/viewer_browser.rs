@@ -23,31 +23,14 @@ use scene::Scene;
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A 96×48 pinhole view of a checkered ball at rest inside the horizon.
-const BALL_SCENE: &str = r#"
-name = "viewer-test"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-time = 0.0
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "pinhole"
-fov_deg = 60.0
-width = 96
-height = 48
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "checker", rows = 8, cols = 16 }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
+fn scene_text() -> String {
+    testkit::ball_ahead(
+        "viewer-test",
+        &testkit::pinhole(60.0, 96, 48),
+        "ball",
+        r#"{ kind = "checker", rows = 8, cols = 16 }"#,
+    )
+}
 
 pub fn number(text: &serde_json::Value) -> f64 {
     text.as_str()
@@ -75,7 +58,7 @@ pub fn azimuth_elevation(n: [f64; 3]) -> [f64; 2] {
 fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
-    let exr = render(dir.path(), "viewer-test", BALL_SCENE);
+    let exr = render(dir.path(), "viewer-test", &scene_text());
     let data = DataFile::read(&exr).unwrap();
 
     // The hit pixel nearest the centre of the ball's image.
@@ -162,7 +145,7 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         );
     }
     assert!(expected.t_emit < 0.0);
-    let scene = Scene::from_str(BALL_SCENE, "ball").unwrap();
+    let scene = Scene::from_str(&scene_text(), "ball").unwrap();
     let n = scene
         .observer
         .pixel_direction(&scene.camera, col as u32, row as u32)

@@ -223,19 +223,8 @@ impl Tracer {
                     _ => {}
                 }
             }
-            match self
-                .objects
-                .scan(d, Shift::default(), d.lambda0, hi, probes)
-            {
-                Ok(Some(crossing)) => {
-                    return FirstLoop::Ended(End::Hit {
-                        segment: segments.len() - 1,
-                        shift: Shift::default(),
-                        crossing,
-                    })
-                }
-                Ok(None) => {}
-                Err(OutOfWork) => return FirstLoop::Ended(End::Miss(RayStatus::WorkLimit)),
+            if let Some(end) = self.scan_first_loop(segments, d.lambda0, hi, probes) {
+                return FirstLoop::Ended(end);
             }
             if d.eval(hi)[0] < self.t_bound || !d.y1.iter().all(|v| v.is_finite()) {
                 return FirstLoop::Ended(End::Miss(if d.y1[0] < self.t_bound {
@@ -248,6 +237,27 @@ impl Tracer {
             if let Some(p) = closed {
                 return FirstLoop::Closed(p);
             }
+        }
+    }
+
+    /// Scans the latest segment of the first loop (not shifted) over [lo, hi]: the ray's
+    /// end when an object is hit there or the search runs out of work, else `None`.
+    fn scan_first_loop(
+        &self,
+        segments: &[Segment],
+        lo: f64,
+        hi: f64,
+        probes: &mut Probes,
+    ) -> Option<End> {
+        let d = segments.last().expect("a segment");
+        match self.objects.scan(d, Shift::default(), lo, hi, probes) {
+            Ok(Some(crossing)) => Some(End::Hit {
+                segment: segments.len() - 1,
+                shift: Shift::default(),
+                crossing,
+            }),
+            Ok(None) => None,
+            Err(OutOfWork) => Some(End::Miss(RayStatus::WorkLimit)),
         }
     }
 
@@ -276,16 +286,8 @@ impl Tracer {
             let y0 = segments.last().map_or(s0, |d| d.y1);
             segments.push(Segment::exact(geo, sys, l0, y0, l1));
             let d = segments.last().expect("just pushed");
-            match self.objects.scan(d, Shift::default(), l0, l1, probes) {
-                Ok(Some(crossing)) => {
-                    return FirstLoop::Ended(End::Hit {
-                        segment: segments.len() - 1,
-                        shift: Shift::default(),
-                        crossing,
-                    })
-                }
-                Ok(None) => {}
-                Err(OutOfWork) => return FirstLoop::Ended(End::Miss(RayStatus::WorkLimit)),
+            if let Some(end) = self.scan_first_loop(segments, l0, l1, probes) {
+                return FirstLoop::Ended(end);
             }
             if d.y1[0] < self.t_bound {
                 return FirstLoop::Ended(End::Miss(RayStatus::Escaped));

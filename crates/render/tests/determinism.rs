@@ -8,24 +8,13 @@ use datafile::DataFile;
 
 /// A small Gödel scene with a static and a free-falling sphere (both images, Doppler
 /// shifts, several emission times), so that the records vary from pixel to pixel.
-const SCENE: &str = r#"
-name = "determinism"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 40.0
-width = 96
-height = 20
-[trace]
-max_past = 8.0
-[[object]]
+fn scene_text() -> String {
+    testkit::axis_panorama(
+        "determinism",
+        96,
+        20,
+        8.0,
+        r#"[[object]]
 name = "still"
 radius = 0.2
 motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
@@ -33,10 +22,12 @@ motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
 name = "falling"
 radius = 0.25
 motion = { kind = "geodesic", time = -1.0, position = { x = -0.8, y = 0.2, z = 0.0 }, speed = 0.6, direction = [0, 1, 0] }
-"#;
+"#,
+    )
+}
 
 fn render_with_threads(n: usize) -> DataFile {
-    let s = scene(SCENE);
+    let s = scene(&scene_text());
     rayon::ThreadPoolBuilder::new()
         .num_threads(n)
         .build()
@@ -70,7 +61,7 @@ fn rendered_data_file_round_trips_and_is_thread_count_independent() {
 
     let back = DataFile::read(&p1).unwrap();
     assert_eq!(back, one, "data file did not read back unchanged");
-    assert_eq!(back.header.scene_text, SCENE);
+    assert_eq!(back.header.scene_text, scene_text());
     assert_eq!(back.header.object_names, ["still", "falling"]);
     // Rendering again gives the same bytes (no state kept between renders).
     let again = render_with_threads(2);

@@ -175,6 +175,13 @@ impl<'a> Locator<'a> {
     }
 }
 
+/// The 1-based line of the value at `path` (such as `keyframe[2].settings.exposure`) in the
+/// TOML `text`, or of its nearest existing ancestor; `None` if the text does not parse.
+pub fn line_of_path(text: &str, path: &str) -> Option<usize> {
+    let root = DeTable::parse(text).ok()?;
+    Some(line_column(text, span_of_path(&root, &parse_path(path)).start).line)
+}
+
 fn span_of_path(root: &Spanned<DeTable<'_>>, path: &[Segment]) -> std::ops::Range<usize> {
     let mut span = root.span();
     // The document root's span starts at 0; a missing top-level table is best reported at

@@ -29,7 +29,7 @@ mod validate;
 
 pub use camera::Camera;
 pub use edit::replace_view;
-pub use error::{line_column, one_line, Location, SceneError};
+pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
@@ -96,18 +96,7 @@ impl Scene {
 }
 
 fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
-    let parts = with_raw(text, file, |raw, loc| validate::build(raw, loc, base_dir))?;
-    Ok(Scene {
-        name: parts.name,
-        source_path: None,
-        source_text: text.to_string(),
-        metric: parts.metric,
-        observer: parts.observer,
-        camera: parts.camera,
-        trace: parts.trace,
-        objects: parts.objects,
-        lights: parts.lights,
-    })
+    with_raw(text, file, |raw, loc| validate::build(raw, text, loc, base_dir))
 }
 
 /// Parses scene text into the raw records (`raw.rs`) and hands them to `check`, with the

@@ -43,18 +43,13 @@ pub const MAX_COORDINATE_PER_A: f64 = 1e6;
 /// ~5 %·γ²R/a (curvature included), 2–3 % at the limit.
 pub const MAX_LOCAL_RADIUS_PER_A: f64 = 0.5;
 
-/// Everything of a [`Scene`] that comes from the file's contents.
-pub(crate) struct Parts {
-    pub name: String,
-    pub metric: Metric,
-    pub observer: Observer,
-    pub camera: Camera,
-    pub trace: TraceSettings,
-    pub objects: Vec<Object>,
-    pub lights: Vec<Light>,
-}
-
-pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Parts> {
+/// The scene of the parsed file `raw` (whose text is `source_text`), checked.
+pub(crate) fn build(
+    raw: RawScene,
+    source_text: &str,
+    loc: &Locator,
+    base_dir: &Path,
+) -> Result<Scene> {
     let c = Checker { loc };
     output_name(&c, &raw.name)?;
     let metric = spacetime(&c, raw.spacetime)?;
@@ -84,8 +79,10 @@ pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Par
     }
     godel_rules(&c, &metric, &trace, &objects, &lights)?;
     coordinate_bounds(&c, &metric, &observer, &objects, &lights)?;
-    Ok(Parts {
+    Ok(Scene {
         name: raw.name,
+        source_path: None,
+        source_text: source_text.to_string(),
         metric,
         observer,
         camera,

@@ -6,7 +6,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use datafile::record::PixelRecord;
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A data file with `n` objects named `o0`, `o1`, … (its embedded scene lists them).
@@ -22,17 +22,7 @@ fn data(n: usize) -> DataFile {
         ));
     }
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "many".into(),
-            scene_text: scene,
-            camera: "pinhole".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: names,
-        },
+        header: testkit::godel_header("many", &scene, "pinhole", &names),
         width: 4,
         height: 1,
         records: vec![PixelRecord::MISS; 4],

@@ -42,7 +42,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::ShadeError;
 use crate::settings::ShadeSettings;
-use crate::tree::{lerp, line_of_path, merge};
+use crate::tree::{lerp, merge};
+use scene::line_of_path;
 
 /// How a keyframe goes on to the next.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -411,7 +411,7 @@ impl ShadeSettings {
             }
         })?;
         self.overlay(&partial).map_err(|(field, message)| {
-            let line = crate::tree::line_of_path(text, &field).unwrap_or(0);
+            let line = scene::line_of_path(text, &field).unwrap_or(0);
             ShadeError::Settings {
                 file: file.to_string(),
                 line,

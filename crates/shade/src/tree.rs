@@ -1,8 +1,7 @@
 //! Operations on TOML value trees that settings files and sequence scripts need: overlaying a
 //! partial table on complete settings (unknown keys are errors), interpolating two complete
-//! settings trees leaf by leaf, and finding the line of a field path in a TOML text.
+//! settings trees leaf by leaf.
 
-use toml::de::{DeTable, DeValue};
 use toml::{Table, Value};
 
 /// `base` with every key of `partial` replaced. Tables merge recursively, except texture
@@ -97,52 +96,4 @@ fn hold(a: &Value, b: &Value, s: f64) -> Value {
     } else {
         a.clone()
     }
-}
-
-/// One step of a field path such as `keyframe[2].settings.exposure`.
-enum Segment<'a> {
-    Key(&'a str),
-    Index(usize),
-}
-
-fn segments(path: &str) -> Vec<Segment<'_>> {
-    let mut out = Vec::new();
-    for part in path.split('.').filter(|p| !p.is_empty()) {
-        let mut pieces = part.split('[');
-        if let Some(key) = pieces.next().filter(|k| !k.is_empty()) {
-            out.push(Segment::Key(key));
-        }
-        for idx in pieces {
-            if let Ok(i) = idx.trim_end_matches(']').parse() {
-                out.push(Segment::Index(i));
-            }
-        }
-    }
-    out
-}
-
-/// The 1-based line of the value at `path` in `text` (or of its nearest existing ancestor);
-/// `None` if the text does not parse.
-pub fn line_of_path(text: &str, path: &str) -> Option<usize> {
-    let root = DeTable::parse(text).ok()?;
-    let mut span = root.span();
-    let mut table: Option<&DeTable<'_>> = Some(root.get_ref());
-    let mut node: Option<&DeValue<'_>> = None;
-    for seg in segments(path) {
-        let next = match (seg, table, node) {
-            (Segment::Key(k), Some(t), _) => {
-                t.iter().find(|(key, _)| key.get_ref() == k).map(|(_, v)| v)
-            }
-            (Segment::Index(i), _, Some(DeValue::Array(a))) => a.get(i),
-            _ => None,
-        };
-        let Some(v) = next else { break };
-        span = v.span();
-        node = Some(v.get_ref());
-        table = match v.get_ref() {
-            DeValue::Table(t) => Some(t),
-            _ => None,
-        };
-    }
-    Some(scene::line_column(text, span.start).line)
 }

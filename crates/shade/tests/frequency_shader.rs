@@ -2,7 +2,7 @@
 //! physical brightness ordering, statuses, and the reference squares.
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::blackbody::{self, table};
 use shade::colour::rgb_to_srgb8;
 use shade::frequency_shader::{blackbody_colour, reference_square};
@@ -42,17 +42,7 @@ fn synthetic() -> DataFile {
     ];
     records[ROW * width..ROW * width + row.len()].copy_from_slice(&row);
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "test".into(),
-            scene_text: String::new(),
-            camera: "test".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["a".into(), "b".into(), "c".into()],
-        },
+        header: testkit::godel_header("test", "", "test", &["a", "b", "c"]),
         width,
         height,
         records,

@@ -2,7 +2,7 @@
 //! can reuse.
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::colour::rgb_to_srgb8;
 use shade::texture_shader::{direct_light, shade_lit, LIT_AMBIENT};
 use shade::Texture;
@@ -15,17 +15,7 @@ fn data(lights: Vec<Vec<f32>>) -> DataFile {
         ..PixelRecord::MISS
     };
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "lit".into(),
-            scene_text: String::new(),
-            camera: "test".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
+        header: testkit::godel_header("lit", "", "test", &["ball"]),
         width: 4,
         height: 1,
         records: vec![hit, hit, hit, PixelRecord::MISS],

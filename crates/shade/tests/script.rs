@@ -5,22 +5,17 @@
 use std::path::Path;
 
 use datafile::record::PixelRecord;
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::{FrameSource, Interpolation, Script, ShadeError, ShadeSettings, ShaderKind};
 
 fn data() -> DataFile {
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "s".into(),
-            scene_text: "name = \"s\"\n[[object]]\nname = \"ball\"\ntemperature = 5000.0\n".into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
+        header: testkit::godel_header(
+            "s",
+            "name = \"s\"\n[[object]]\nname = \"ball\"\ntemperature = 5000.0\n",
+            "panorama",
+            &["ball"],
+        ),
         width: 1,
         height: 1,
         records: vec![PixelRecord::MISS],

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::{
     keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
 };
@@ -42,17 +42,7 @@ fn data(lights: usize) -> DataFile {
         })
         .collect();
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "two".into(),
-            scene_text: SCENE.into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into(), "moon".into()],
-        },
+        header: testkit::godel_header("two", SCENE, "panorama", &["ball", "moon"]),
         width: w,
         height: h,
         records,

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::{DataFile, DataHeader};
 use scene::{BuiltinImage, ImageSource, TextureSpec};
 use shade::colour::{linear_to_srgb, linear_to_srgb8, rgb_to_srgb8, srgb_to_linear};
 use shade::{shade_textures, shading_factor, write_png, ShadeError, Texture};
@@ -227,17 +227,7 @@ fn image_file_texture_decodes_srgb() {
 // ---- the texture shader ----------------------------------------------------------------
 
 fn header(objects: &[&str]) -> DataHeader {
-    DataHeader {
-        format_version: FORMAT_VERSION,
-        scene_name: "test".into(),
-        scene_text: String::new(),
-        camera: "test".into(),
-        observer_time: 0.0,
-        metric: "godel".into(),
-        godel_a: 1.0,
-        method: "numeric".into(),
-        object_names: objects.iter().map(|s| s.to_string()).collect(),
-    }
+    testkit::godel_header("test", "", "test", objects)
 }
 
 fn hit(u: f32, v: f32, cos_i: f32) -> PixelRecord {

@@ -4,7 +4,7 @@
 //! blink, and bad settings are refused naming the field.
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::{DataFile, DataHeader};
 use scene::Scene;
 use shade::blackbody::{normalize_max, observed_xyz, unit_rgb};
 use shade::colour::rgb_to_srgb8;
@@ -13,14 +13,12 @@ use shade::{
     TextureChoice, TimeMode, MAX_LAMPS, MAX_LIGHT_SOURCES,
 };
 
-const SCENE: &str = r#"name = "two"
-[camera]
-kind = "panorama"
-h_fov_deg = 220.0
-v_fov_deg = 25.0
-width = 64
-height = 8
-[[object]]
+/// Two objects: a checkered ball at 4000 K and a moon with a gradient.
+fn scene() -> String {
+    format!(
+        "name = \"two\"\n{}{}",
+        testkit::panorama(220.0, 25.0, 64, 8),
+        r#"[[object]]
 name = "ball"
 radius = 0.1
 temperature = 4000
@@ -31,20 +29,12 @@ name = "moon"
 radius = 0.1
 texture = { kind = "gradient" }
 motion = { kind = "rest", position = { r = 1.0, phi = 1.0, z = 0.0 } }
-"#;
+"#
+    )
+}
 
 fn header() -> DataHeader {
-    DataHeader {
-        format_version: FORMAT_VERSION,
-        scene_name: "two".into(),
-        scene_text: SCENE.into(),
-        camera: "panorama".into(),
-        observer_time: 0.0,
-        metric: "godel".into(),
-        godel_a: 1.0,
-        method: "numeric".into(),
-        object_names: vec!["ball".into(), "moon".into()],
-    }
+    testkit::godel_header("two", &scene(), "panorama", &["ball", "moon"])
 }
 
 fn hit(object: i32, u: f32, v: f32, g: f32, t_emit: f32, cos_i: f32) -> PixelRecord {
@@ -112,7 +102,7 @@ fn close(a: [f32; 3], b: [f32; 3], tol: f32) -> bool {
 #[test]
 fn texture_layer_with_the_scenes_textures_reproduces_the_preview() {
     let data = synthetic();
-    let scene = Scene::from_str(SCENE, "two.toml").unwrap();
+    let scene = Scene::from_str(&scene(), "two.toml").unwrap();
     let preview = shade::preview(&data, &scene).unwrap();
     let shaded = Shading::new(&data, &ShadeSettings::defaults_for(&data))
         .unwrap()

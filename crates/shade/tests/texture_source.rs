@@ -8,7 +8,7 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::{
     ImageTexture, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TextureSource,
     MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
@@ -162,34 +162,30 @@ fn oversized_files_and_images_are_refused() {
     assert_eq!(ImageTexture::from_file(&edge).unwrap().width(), 16384);
 }
 
-const SCENE: &str = r#"name = "tex"
-[camera]
-kind = "pinhole"
-fov_deg = 90.0
-width = 2
-height = 1
-[[object]]
+/// A scene whose one object wears the image at the path TEXTURE.
+fn scene() -> String {
+    format!(
+        "name = \"tex\"\n{}{}",
+        testkit::pinhole(90.0, 2, 1),
+        r#"[[object]]
 name = "ball"
 radius = 0.1
 texture = { kind = "image", path = "TEXTURE" }
 motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
+"#
+    )
+}
 
 /// A 2×1 data file whose embedded scene maps the image `texture` onto its one object;
 /// pixel 0 hits it, pixel 1 misses.
 fn data(texture: &str) -> DataFile {
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "tex".into(),
-            scene_text: SCENE.replace("TEXTURE", texture),
-            camera: "pinhole".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
+        header: testkit::godel_header(
+            "tex",
+            &scene().replace("TEXTURE", texture),
+            "pinhole",
+            &["ball"],
+        ),
         width: 2,
         height: 1,
         records: vec![

@@ -212,53 +212,58 @@ impl Isometry {
         if self.is_translation() {
             return (Event::new(at.t - self.t0, at.x, at.y, at.z - self.z0), v);
         }
-        let a = self.a;
-        let w = disc(a, at.x, at.y);
-        let dw = disc_differential(a, at.x, at.y, v.x, v.y);
-        let den = Complex::new(1.0, 0.0) - self.w0.conj() * w;
-        let rot = Complex::cis(self.rotation);
-        let w1 = rot * ((w - self.w0) / den);
-        let (x, y) = from_disc(a, w1);
-        let event = Event::new(
-            at.t - self.t0 - 2.0 * SQRT_2 * a * den.arg(),
-            x,
-            y,
-            at.z - self.z0,
-        );
-        let dw1 = rot * (dw.scale(1.0 - self.w0.norm_sqr()) / (den * den));
-        let (dx, dy) = from_disc_differential(a, w1, dw1);
-        let dt = v.t + 2.0 * SQRT_2 * a * (self.w0.conj() * dw / den).im;
-        (event, FourVector::new(dt, dx, dy, v.z))
+        let m = self.moved(at);
+        (self.image_event(at, &m), self.image_vector(at, v, &m))
     }
 
     /// The image of an event.
     pub fn apply(&self, e: Event) -> Event {
-        let a = self.a;
-        let w = disc(a, e.x, e.y);
-        let den = Complex::new(1.0, 0.0) - self.w0.conj() * w;
-        let w1 = Complex::cis(self.rotation) * ((w - self.w0) / den);
-        let (x, y) = from_disc(a, w1);
-        Event::new(
-            e.t - self.t0 - 2.0 * SQRT_2 * a * den.arg(),
-            x,
-            y,
-            e.z - self.z0,
-        )
+        self.image_event(e, &self.moved(e))
     }
 
     /// The differential: the image at `apply(at)` of the tangent vector `v` at `at`.
     pub fn push(&self, at: Event, v: FourVector) -> FourVector {
-        let a = self.a;
-        let w = disc(a, at.x, at.y);
-        let dw = disc_differential(a, at.x, at.y, v.x, v.y);
+        self.image_vector(at, v, &self.moved(at))
+    }
+
+    /// The Möbius map of the disc coordinate of `at`: w ↦ e^{iα}(w − w0)/(1 − w̄0 w).
+    fn moved(&self, at: Event) -> Moved {
+        let w = disc(self.a, at.x, at.y);
         let den = Complex::new(1.0, 0.0) - self.w0.conj() * w;
         let rot = Complex::cis(self.rotation);
         let w1 = rot * ((w - self.w0) / den);
+        Moved { den, rot, w1 }
+    }
+
+    /// The image of `at`, given its moved disc coordinate `m`.
+    fn image_event(&self, at: Event, m: &Moved) -> Event {
+        let a = self.a;
+        let (x, y) = from_disc(a, m.w1);
+        Event::new(
+            at.t - self.t0 - 2.0 * SQRT_2 * a * m.den.arg(),
+            x,
+            y,
+            at.z - self.z0,
+        )
+    }
+
+    /// The image of the tangent vector `v` at `at`, given the moved disc coordinate `m` of `at`.
+    fn image_vector(&self, at: Event, v: FourVector, m: &Moved) -> FourVector {
+        let a = self.a;
+        let dw = disc_differential(a, at.x, at.y, v.x, v.y);
         // d[(w − w0)/(1 − w̄0 w)] = (1 − |w0|²) dw/(1 − w̄0 w)².
-        let dw1 = rot * (dw.scale(1.0 - self.w0.norm_sqr()) / (den * den));
-        let (dx, dy) = from_disc_differential(a, w1, dw1);
+        let dw1 = m.rot * (dw.scale(1.0 - self.w0.norm_sqr()) / (m.den * m.den));
+        let (dx, dy) = from_disc_differential(a, m.w1, dw1);
         // dt' = dt − 2√2 a d arg(1 − w̄0 w) = dt + 2√2 a Im(w̄0 dw/(1 − w̄0 w)).
-        let dt = v.t + 2.0 * SQRT_2 * a * (self.w0.conj() * dw / den).im;
+        let dt = v.t + 2.0 * SQRT_2 * a * (self.w0.conj() * dw / m.den).im;
         FourVector::new(dt, dx, dy, v.z)
     }
+}
+
+/// The disc coordinate of an event under an isometry's Möbius map: the denominator
+/// 1 − w̄0 w, the rotation e^{iα} and the image w1.
+struct Moved {
+    den: Complex,
+    rot: Complex,
+    w1: Complex,
 }

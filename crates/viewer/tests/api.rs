@@ -7,7 +7,7 @@ use std::path::Path;
 
 use axum::http::StatusCode;
 use common::{
-    data, error_of, frequency, frequency_settings, get, post, send, HEIGHT, SCENE, WIDTH,
+    data, error_of, frequency, frequency_settings, get, post, scene, send, HEIGHT, WIDTH,
 };
 use shade::{ShadeSettings, Shading};
 use viewer::ViewerState;
@@ -180,7 +180,7 @@ async fn bad_pixel_queries_get_400() {
 #[test]
 fn a_data_file_whose_scene_texture_cannot_load_is_refused() {
     let mut d = data();
-    d.header.scene_text = SCENE.replace(
+    d.header.scene_text = scene().replace(
         r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
         r#"{ kind = "image", path = "/nonexistent/texture.png" }"#,
     );

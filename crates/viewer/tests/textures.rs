@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use axum::http::StatusCode;
-use common::{data, error_of, post, send_to, SCENE};
+use common::{data, error_of, post, scene, send_to};
 use shade::{ShadeSettings, ShaderKind, Shading, TextureChoice};
 use viewer::{ViewerOptions, ViewerState, WorkLimit};
 
@@ -129,7 +129,7 @@ fn the_embedded_scenes_textures_come_from_the_same_folders() {
     write_png(&elsewhere.path().join("far.png"), 30);
     let with_texture = |path: &str| {
         let mut d = data();
-        d.header.scene_text = SCENE.replace(
+        d.header.scene_text = scene().replace(
             r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
             &format!(r#"{{ kind = "image", path = "{path}" }}"#),
         );

@@ -1,46 +1,37 @@
-//! Helpers shared by the CLI tests of parts and MPI ranks: a small lit scene, writing it,
-//! reading a command's standard error.
+//! Helpers shared by the CLI tests: running `godel`, reading a command's standard error, a
+//! small lit scene (parts and MPI ranks), writing it, running under a time limit.
 #![allow(dead_code)]
 
 use std::path::Path;
 use std::process::Output;
 
-pub fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+#[allow(unused_imports)] // not every test file reads standard error
+pub use testkit::stderr;
+
+/// Runs the `godel` binary of this package with `args` to its end.
+pub fn godel(args: &[&str]) -> Output {
+    testkit::run(env!("CARGO_BIN_EXE_godel"), args)
 }
 
 /// A small scene with a falling, textured ball (several images, varied records) lit by a
 /// point light (a `light_0` channel), 6×3 tiles of 16 pixels with ragged edges.
 /// `name` names the output files; `max_past` tells two scenes apart.
 pub fn lit_scene_text(name: &str, max_past: f64) -> String {
-    format!(
-        r#"
-name = "{name}"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 40.0
-width = 90
-height = 37
-[trace]
-max_past = {max_past:?}
-[[object]]
+    testkit::axis_panorama(
+        name,
+        90,
+        37,
+        max_past,
+        r#"[[object]]
 name = "ball"
 radius = 0.25
-texture = {{ kind = "checker", rows = 4, cols = 8 }}
-motion = {{ kind = "geodesic", time = -1.0, position = {{ x = -0.8, y = 0.2, z = 0.0 }}, speed = 0.6, direction = [0, 1, 0] }}
+texture = { kind = "checker", rows = 4, cols = 8 }
+motion = { kind = "geodesic", time = -1.0, position = { x = -0.8, y = 0.2, z = 0.0 }, speed = 0.6, direction = [0, 1, 0] }
 [[light]]
-position = {{ x = 1.0, y = 1.0, z = 0.0 }}
+position = { x = 1.0, y = 1.0, z = 0.0 }
 color = [1.0, 1.0, 1.0]
 power = 12.0
-"#
+"#,
     )
 }
 

@@ -2,16 +2,15 @@
 //! (`benches/shade.rs`) and the CPU-time example (`examples/shade_cpu.rs`).
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
-const SCENE: &str = r#"name = "bench"
-[camera]
-kind = "pinhole"
-fov_deg = 90.0
-width = 1920
-height = 1080
-[[object]]
+/// The scene the data file claims to come from: an earth-textured and a checkered ball.
+fn scene() -> String {
+    format!(
+        "name = \"bench\"\n{}{}",
+        testkit::pinhole(90.0, 1920, 1080),
+        r#"[[object]]
 name = "earth"
 radius = 0.2
 texture = { kind = "image", builtin = "earth" }
@@ -23,7 +22,9 @@ radius = 0.2
 texture = { kind = "checker", rows = 8, cols = 16 }
 temperature = 4000.0
 motion = { kind = "rest", position = { r = 1.0, phi = 2.0, z = 0.0 } }
-"#;
+"#
+    )
+}
 
 /// 1920×1080: two thirds of the pixels hit one of two objects with varied u, v, g, t_emit
 /// and cos_i; two light planes.
@@ -51,17 +52,7 @@ pub fn data() -> DataFile {
         })
         .collect();
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "bench".into(),
-            scene_text: SCENE.into(),
-            camera: "pinhole".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["earth".into(), "ball".into()],
-        },
+        header: testkit::godel_header("bench", &scene(), "pinhole", &["earth", "ball"]),
         width: w,
         height: h,
         records,

@@ -4,34 +4,17 @@
 //! empty sky.
 
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 
-const SCENE: &str = r#"
-name = "bench"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-time = 0.0
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 220.0
-v_fov_deg = 25.0
-width = 2200
-height = 250
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "earth"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
+/// The scene the data file claims to come from: the earth-textured ball.
+fn scene() -> String {
+    testkit::ball_ahead(
+        "bench",
+        &testkit::panorama(220.0, 25.0, 2200, 250),
+        "earth",
+        r#"{ kind = "image", builtin = "earth" }"#,
+    )
+}
 
 /// The synthetic data file at `width` × `height`.
 pub fn data(width: usize, height: usize) -> DataFile {
@@ -56,17 +39,7 @@ pub fn data(width: usize, height: usize) -> DataFile {
         }
     }
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "bench".into(),
-            scene_text: SCENE.into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["earth".into()],
-        },
+        header: testkit::godel_header("bench", &scene(), "panorama", &["earth"]),
         width,
         height,
         records,

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use axum::body::Body;
 use axum::http::{HeaderMap, Request, StatusCode};
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::DataFile;
 use http_body_util::BodyExt;
 use shade::{ShadeSettings, ShaderKind};
 use tower::ServiceExt;
@@ -20,35 +20,18 @@ pub const PORT: u16 = 8737;
 /// The Host header a browser on this machine sends.
 pub const HOST: &str = "127.0.0.1:8737";
 
-pub const SCENE: &str = r#"
-name = "api-test"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-time = 0.0
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 220.0
-v_fov_deg = 25.0
-width = 8
-height = 4
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
-
 pub const WIDTH: usize = 8;
 pub const HEIGHT: usize = 4;
+
+/// The scene the data file claims to come from: one ball with a uniform texture.
+pub fn scene() -> String {
+    testkit::ball_ahead(
+        "api-test",
+        &testkit::panorama(220.0, 25.0, WIDTH, HEIGHT),
+        "ball",
+        r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
+    )
+}
 
 /// Left half: hits on the ball with u = col/8, v = row/4, g = 1 + col/10, t_emit = −(1 + row);
 /// right half: nothing hit.
@@ -73,17 +56,7 @@ pub fn data() -> DataFile {
         }
     }
     DataFile {
-        header: DataHeader {
-            format_version: FORMAT_VERSION,
-            scene_name: "api-test".into(),
-            scene_text: SCENE.into(),
-            camera: "panorama".into(),
-            observer_time: 0.0,
-            metric: "godel".into(),
-            godel_a: 1.0,
-            method: "numeric".into(),
-            object_names: vec!["ball".into()],
-        },
+        header: testkit::godel_header("api-test", &scene(), "panorama", &["ball"]),
         width: WIDTH,
         height: HEIGHT,
         records,

@@ -1,0 +1,108 @@
+//! Fixtures shared by the tests, benches and examples of the workspace's crates: the pieces
+//! of scene text that every small test scene repeats, the header of a synthetic data file,
+//! and running a command-line binary. Only a dev-dependency; never published.
+//!
+//! The binary to run is passed in (`env!("CARGO_BIN_EXE_godel")` is known only inside the
+//! `godel` package).
+
+use std::process::{Command, Output};
+
+use datafile::{DataHeader, FORMAT_VERSION};
+
+/// `[spacetime]`: Gödel's universe with a = 1.
+pub const GODEL: &str = "[spacetime]\nmetric = \"godel\"\na = 1.0\n";
+
+/// `[observer]`: at rest at the origin (on the Gödel axis) at time 0, looking along +x with +z
+/// up, so that the camera's right is −y.
+pub const OBSERVER_AT_ORIGIN: &str = "[observer]
+time = 0.0
+position = { r = 0.0, phi = 0.0, z = 0.0 }
+forward = [1, 0, 0]
+up = [0, 0, 1]
+";
+
+/// `[camera]`: a panorama of `h_fov_deg` × `v_fov_deg` at `width` × `height` pixels.
+pub fn panorama(h_fov_deg: f64, v_fov_deg: f64, width: usize, height: usize) -> String {
+    format!(
+        "[camera]\nkind = \"panorama\"\nh_fov_deg = {h_fov_deg:?}\nv_fov_deg = {v_fov_deg:?}\n\
+         width = {width}\nheight = {height}\n"
+    )
+}
+
+/// `[camera]`: a pinhole of `fov_deg` horizontally at `width` × `height` pixels.
+pub fn pinhole(fov_deg: f64, width: usize, height: usize) -> String {
+    format!(
+        "[camera]\nkind = \"pinhole\"\nfov_deg = {fov_deg:?}\nwidth = {width}\nheight = {height}\n"
+    )
+}
+
+/// A scene named `name` in Gödel's universe (a = 1) seen by [`OBSERVER_AT_ORIGIN`] through
+/// `camera` ([`panorama`], [`pinhole`]); `rest` (the `[trace]` table, objects, lights) follows.
+pub fn godel_scene(name: &str, camera: &str, rest: &str) -> String {
+    format!("name = \"{name}\"\n{GODEL}{OBSERVER_AT_ORIGIN}{camera}{rest}")
+}
+
+/// A [`godel_scene`] through a 360° × 40° panorama of `width` × `height` pixels, tracing back
+/// `max_past`; `objects` (TOML `[[object]]` and `[[light]]` tables) follow.
+pub fn axis_panorama(
+    name: &str,
+    width: usize,
+    height: usize,
+    max_past: f64,
+    objects: &str,
+) -> String {
+    godel_scene(
+        name,
+        &panorama(360.0, 40.0, width, height),
+        &format!("[trace]\nmax_past = {max_past:?}\n{objects}"),
+    )
+}
+
+/// A [`godel_scene`] through `camera`, traced numerically back to t = −10, of one sphere
+/// `object` of radius 0.2 at 5800 K wearing `texture` (an inline TOML table), at rest at r = 1
+/// straight ahead (φ = 0): the scene of the viewer's tests and benchmarks.
+pub fn ball_ahead(name: &str, camera: &str, object: &str, texture: &str) -> String {
+    godel_scene(
+        name,
+        camera,
+        &format!(
+            "[trace]\nmethod = \"numeric\"\nmax_past = 10.0\n[[object]]\nname = \"{object}\"\n\
+             radius = 0.2\ntexture = {texture}\ntemperature = 5800.0\n\
+             motion = {{ kind = \"rest\", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}\n"
+        ),
+    )
+}
+
+/// The header of a synthetic data file: traced numerically in Gödel's universe (a = 1) with
+/// the observer at time 0, by a camera described as `camera`, seeing `objects`.
+pub fn godel_header(
+    scene_name: &str,
+    scene_text: &str,
+    camera: &str,
+    objects: &[impl AsRef<str>],
+) -> DataHeader {
+    DataHeader {
+        format_version: FORMAT_VERSION,
+        scene_name: scene_name.into(),
+        scene_text: scene_text.into(),
+        camera: camera.into(),
+        observer_time: 0.0,
+        metric: "godel".into(),
+        godel_a: 1.0,
+        method: "numeric".into(),
+        object_names: objects.iter().map(|o| o.as_ref().to_string()).collect(),
+    }
+}
+
+/// Runs the binary `bin` with `args` to its end, collecting its output.
+pub fn run(bin: &str, args: &[&str]) -> Output {
+    Command::new(bin)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("run {bin}: {e}"))
+}
+
+/// A command's standard error as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
