@@ -8,8 +8,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 
 mod common;
 use common::{files_in, run_within};
@@ -41,6 +41,7 @@ fn data_file(dir: &Path) -> PathBuf {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into()],
+            supersample: 1,
         },
         width: 4,
         height: 1,
@@ -51,6 +52,7 @@ fn data_file(dir: &Path) -> PathBuf {
                 g: 1.0,
                 t_emit: -1.0,
                 cos_i: 1.0,
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             };
             4

@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 
 fn godel(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_godel"))
@@ -62,6 +62,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into()],
+            supersample: 1,
         },
         width: n,
         height: 1,
@@ -74,6 +75,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
                 g: 1.0,
                 t_emit: -(i as f32) / 2.0,
                 cos_i: 1.0,
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             })
             .collect(),

@@ -20,8 +20,8 @@
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
-use datafile::record::{PixelRecord, RayStatus};
 use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
+use datafile::record::{PixelRecord, RayStatus};
 use spacetime::measure::frequency_ratio;
 use spacetime::{
     photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, FourVector, GeodesicState,
@@ -394,6 +394,7 @@ impl Tracer {
                 lambda: (h.lambda + shift.dl) as f32,
                 dir: surf.dir.map(|c| c as f32),
                 cos_i: surf.cos_i as f32,
+                view: [0.0; 3],
             },
             hit: Some(HitPoint {
                 state: s,

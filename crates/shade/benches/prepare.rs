@@ -5,8 +5,8 @@
 //! `cargo bench -p shade --bench prepare -- --measurement-time 5 --warm-up-time 1`
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::PixelRecord;
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A data file with `n` objects named `o0`, `o1`, … (its embedded scene lists them).
@@ -32,6 +32,7 @@ fn data(n: usize) -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: names,
+            supersample: 1,
         },
         width: 4,
         height: 1,

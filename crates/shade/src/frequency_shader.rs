@@ -26,9 +26,9 @@
 //! figures of the Gödel-universe visualizations; see [`reference_square`] for the layout.
 //! Rows are shaded in parallel; the result does not depend on the thread count.
 
-use image::RgbImage;
-use datafile::DataFile;
 use datafile::record::PixelRecord;
+use datafile::DataFile;
+use image::RgbImage;
 
 use crate::blackbody::table;
 use crate::colour::rgb_to_srgb8;
@@ -54,7 +54,8 @@ pub fn shade_frequency(data: &DataFile, temperatures: &[f64], brightness: Bright
         frequency_colour(record, temperatures, brightness)
     });
     for (k, &t) in temperatures.iter().take(REFERENCE_SQUARES).enumerate() {
-        let Some((x0, y0, side)) = reference_square(k, data.width, data.height) else {
+        let (w, h) = data.picture_size();
+        let Some((x0, y0, side)) = reference_square(k, w, h) else {
             continue;
         };
         let colour = rgb_to_srgb8(blackbody_colour(1.0, t, brightness).unwrap_or(FAILED));

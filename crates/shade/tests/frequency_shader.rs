@@ -1,8 +1,8 @@
 //! Tests of the frequency shader on a synthetic data file: black-body colours at g·T, the
 //! physical brightness ordering, statuses, and the reference squares.
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::blackbody::{self, table};
 use shade::colour::rgb_to_srgb8;
 use shade::frequency_shader::{blackbody_colour, reference_square};
@@ -52,6 +52,7 @@ fn synthetic() -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["a".into(), "b".into(), "c".into()],
+            supersample: 1,
         },
         width,
         height,

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::PixelRecord;
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::{FrameSource, Interpolation, Script, ShadeError, ShadeSettings, ShaderKind};
 
 fn data() -> DataFile {
@@ -20,6 +20,7 @@ fn data() -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into()],
+            supersample: 1,
         },
         width: 1,
         height: 1,

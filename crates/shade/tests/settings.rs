@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::{
     keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
 };
@@ -38,6 +38,7 @@ fn data(lights: usize) -> DataFile {
             g: 1.0,
             t_emit: -2.5 - i as f32 * 0.5,
             cos_i: 1.0,
+            view: [0.0; 3],
             ..PixelRecord::MISS
         })
         .collect();
@@ -52,6 +53,7 @@ fn data(lights: usize) -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into(), "moon".into()],
+            supersample: 1,
         },
         width: w,
         height: h,

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::{
     ImageTexture, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TextureSource,
     MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
@@ -189,6 +189,7 @@ fn data(texture: &str) -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into()],
+            supersample: 1,
         },
         width: 2,
         height: 1,
@@ -199,6 +200,7 @@ fn data(texture: &str) -> DataFile {
                 u: 0.3,
                 v: 0.7,
                 cos_i: 1.0,
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             },
             PixelRecord::MISS,

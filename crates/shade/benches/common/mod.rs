@@ -1,8 +1,8 @@
 //! The synthetic 1920×1080 data file and the shader cases shared by the shading benchmark
 //! (`benches/shade.rs`) and the CPU-time example (`examples/shade_cpu.rs`).
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
 const SCENE: &str = r#"name = "bench"
@@ -46,6 +46,7 @@ pub fn data() -> DataFile {
                 g: 0.3 + 3.0 * c / w as f32,
                 t_emit: -30.0 * r / h as f32,
                 cos_i: (c / 50.0).sin(),
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             }
         })
@@ -61,6 +62,7 @@ pub fn data() -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["earth".into(), "ball".into()],
+            supersample: 1,
         },
         width: w,
         height: h,

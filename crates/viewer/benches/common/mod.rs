@@ -3,8 +3,8 @@
 //! covering half the pixels (a 50-pixel checkerboard) with varied (u, v, g, t_emit), the rest
 //! empty sky.
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 
 const SCENE: &str = r#"
 name = "bench"
@@ -48,6 +48,7 @@ pub fn data(width: usize, height: usize) -> DataFile {
                     g: 0.5 + x,
                     t_emit: -1.0 - 10.0 * x,
                     cos_i: 1.0 - y,
+                    view: [0.0; 3],
                     ..PixelRecord::MISS
                 }
             } else {
@@ -66,6 +67,7 @@ pub fn data(width: usize, height: usize) -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["earth".into()],
+            supersample: 1,
         },
         width,
         height,

@@ -8,9 +8,9 @@ use std::sync::Arc;
 
 use axum::body::Body;
 use axum::http::{HeaderMap, Request, StatusCode};
-use http_body_util::BodyExt;
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use http_body_util::BodyExt;
 use shade::{ShadeSettings, ShaderKind};
 use tower::ServiceExt;
 use viewer::{Access, ViewerState};
@@ -65,6 +65,7 @@ pub fn data() -> DataFile {
                     g: 1.0 + col as f32 / 10.0,
                     t_emit: -(1.0 + row as f32),
                     cos_i: 1.0,
+                    view: [0.0; 3],
                     ..PixelRecord::MISS
                 }
             } else {
@@ -83,6 +84,7 @@ pub fn data() -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into()],
+            supersample: 1,
         },
         width: WIDTH,
         height: HEIGHT,
