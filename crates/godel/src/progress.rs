@@ -31,3 +31,4 @@ pub fn progress_bar(scene: &Scene, pixels: u64, quiet: bool) -> ProgressBar {
     bar.set_prefix(format!("tracing {}", scene.name));
     bar
 }
+
