@@ -42,7 +42,7 @@ samples = {samples}
 max_past = 12.0
 [[object]]
 name = "ball"
-radius = 0.3
+radius = 0.25
 texture = {{ kind = "checker", rows = 4, cols = 8 }}
 motion = {{ kind = "geodesic", time = 0.0, position = {{ x = -1.0, y = 0.3, z = 0.0 }}, speed = 0.7, direction = [1, 0, 0] }}
 "#
