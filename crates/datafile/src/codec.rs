@@ -37,7 +37,8 @@
 //! Header: text attributes `godel.format_version`, `godel.scene_name`,
 //! `godel.scene` (the whole scene file), `godel.camera`, `godel.observer_time`,
 //! `godel.metric`, `godel.a`, `godel.method`, `godel.objects` (object names
-//! joined by `\n`), `godel.supersample` (samples per picture pixel along each side). Text is UTF-8; numbers are Rust's shortest round-trip
+//! joined by `\n`), `godel.supersample` (samples per picture pixel along each
+//! side). Text is UTF-8; numbers are Rust's shortest round-trip
 //! decimal form (`{:?}`), so f64 values survive exactly.
 //!
 //! Part files of a split render (`render::part`) carry `godel.part` too; reading
