@@ -307,7 +307,8 @@ pub fn round_trip(data: &DataFile) -> Result<Vec<u8>, String> {
 pub fn shade_all(scene: &Scene, data: &DataFile) -> Result<(), String> {
     let textures = shade::textures_for_scene(scene).map_err(|e| format!("textures: {e}"))?;
     let preview = shade::texture_shader::preview_with_textures(data, &textures, scene);
-    let size = (data.width as u32, data.height as u32);
+    // Pictures have the camera's size: the samples of each pixel are filtered into it.
+    let size = (scene.camera.width(), scene.camera.height());
     if preview.dimensions() != size {
         return Err(format!("preview {:?} for {size:?}", preview.dimensions()));
     }
