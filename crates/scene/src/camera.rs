@@ -124,7 +124,7 @@ impl Camera {
 /// Most rays per pixel (`[camera] samples`, `godel render --samples`): 16×16.
 pub const MAX_SAMPLES: u32 = 256;
 /// Most rays per image, samples included: each ray keeps its record in memory and in the
-/// data file (~144 bytes while writing), so this bounds memory as the pixel limit does.
+/// data file (~150 bytes while writing), so this bounds memory as the pixel limit does.
 pub const MAX_RAYS: u64 = 50_000_000;
 
 /// Checks a rays-per-pixel count for a `width` × `height` image: a square number s² in
