@@ -1,7 +1,7 @@
 //! The per-pixel data file: one OpenEXR file per traced image (README.md,
 //! "The data file"), read back by the post-render shaders without re-tracing.
 //!
-//! # Format (format version 1)
+//! # Format (format version 2)
 //!
 //! A single-part, scan-line OpenEXR image, ZIP compressed (lossless, so a
 //! round trip is exact), one channel per field of [`PixelRecord`]:
@@ -12,7 +12,18 @@
 //! | `status` | u32 | [`RayStatus::code`] |
 //! | `u`, `v`, `g`, `t_emit`, `x`, `y`, `z`, `lambda`, `cos_i` | f32 | the field of the same name |
 //! | `dir_x`, `dir_y`, `dir_z` | f32 | `dir[0]`, `dir[1]`, `dir[2]` |
+//! | `view_x`, `view_y`, `view_z` | f32 | `view[0]`, `view[1]`, `view[2]` |
 //! | `light_0`, `light_1`, … | f32 | [`DataFile::lights`]`[k]` |
+//!
+//! *No value where there is none:* where a record's status is not "hit", the physical
+//! channels (`u` … `cos_i`, `dir_*`, `light_k`) hold NaN, and where a pixel was not traced
+//! `view_*` holds NaN too, so that an analysis that forgets to mask by `status` sees NaN
+//! rather than plausible zeros. Reading turns them back into the in-memory convention of
+//! [`PixelRecord::miss`] (zeros).
+//!
+//! *Samples:* with `godel.supersample` = s > 1 the image is s×s samples per picture pixel
+//! (see `samples.rs`): the stored image is (W·s)×(H·s) and picture pixel (col, row) is
+//! the block of samples (s·col + i, s·row + j), 0 ≤ i, j < s.
 //!
 //! `object` is f32, not u32, so that −1 is representable; object indices are
 //! therefore limited to [`MAX_OBJECT`] (2^24), below which f32 holds every
@@ -26,7 +37,8 @@
 //! Header: text attributes `godel.format_version`, `godel.scene_name`,
 //! `godel.scene` (the whole scene file), `godel.camera`, `godel.observer_time`,
 //! `godel.metric`, `godel.a`, `godel.method`, `godel.objects` (object names
-//! joined by `\n`). Text is UTF-8; numbers are Rust's shortest round-trip
+//! joined by `\n`), `godel.supersample` (samples per picture pixel along each
+//! side). Text is UTF-8; numbers are Rust's shortest round-trip
 //! decimal form (`{:?}`), so f64 values survive exactly.
 //!
 //! Part files of a split render (`render::part`) carry `godel.part` too; reading
@@ -51,7 +63,7 @@ use exr_header::{check_layout, sort_header_attributes};
 mod exr_header;
 
 /// The format version this code writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Largest object index that the f32 `object` channel stores exactly.
 pub const MAX_OBJECT: i32 = 1 << 24;
@@ -67,6 +79,8 @@ pub mod attr {
     pub const A: &str = "godel.a";
     pub const METHOD: &str = "godel.method";
     pub const OBJECTS: &str = "godel.objects";
+    /// Samples per picture pixel along each side (s; s² rays per pixel).
+    pub const SUPERSAMPLE: &str = "godel.supersample";
     /// Part files of a split render: `"i/N"`.
     pub const PART: &str = "godel.part";
     /// Part files: the fingerprint of what was rendered.
@@ -81,8 +95,9 @@ type Get = fn(&PixelRecord) -> f32;
 /// Writing a record field from f32.
 type Set = fn(&mut PixelRecord, f32);
 
-/// The f32 channels other than `object`, with their record fields.
-const FLOAT_CHANNELS: [(&str, Get, Set); 12] = [
+/// The physical f32 channels (NaN in the file where the status is not "hit"), with their
+/// record fields.
+const PHYSICAL_CHANNELS: [(&str, Get, Set); 12] = [
     ("u", |r| r.u, |r, s| r.u = s),
     ("v", |r| r.v, |r, s| r.v = s),
     ("g", |r| r.g, |r, s| r.g = s),
@@ -95,6 +110,13 @@ const FLOAT_CHANNELS: [(&str, Get, Set); 12] = [
     ("dir_y", |r| r.dir[1], |r, s| r.dir[1] = s),
     ("dir_z", |r| r.dir[2], |r, s| r.dir[2] = s),
     ("cos_i", |r| r.cos_i, |r, s| r.cos_i = s),
+];
+
+/// The camera ray's direction (NaN in the file where the pixel was not traced).
+const VIEW_CHANNELS: [(&str, Get, Set); 3] = [
+    ("view_x", |r| r.view[0], |r, s| r.view[0] = s),
+    ("view_y", |r| r.view[1], |r, s| r.view[1] = s),
+    ("view_z", |r| r.view[2], |r, s| r.view[2] = s),
 ];
 
 /// Name of the channel holding light plane `k`.
@@ -124,6 +146,9 @@ pub struct DataHeader {
     /// Object names in scene-file order; `object` ids index this list.
     /// Names must be non-empty and contain no newline.
     pub object_names: Vec<String>,
+    /// Samples per picture pixel along each side, 1 to [`crate::MAX_SUPERSAMPLE`]: the
+    /// image's width and height are multiples of it (see [`DataFile::picture_size`]).
+    pub supersample: u32,
 }
 
 /// A traced image's per-pixel data.
@@ -234,6 +259,19 @@ impl DataFile {
         if self.width == 0 || self.height == 0 || self.width > i32::MAX as usize / 2 {
             return inconsistent(format!("image size {}×{}", self.width, self.height));
         }
+        let s = h.supersample;
+        if s == 0 || s > crate::MAX_SUPERSAMPLE {
+            return Err(DataFileErrorKind::BadAttribute {
+                name: attr::SUPERSAMPLE,
+                problem: format!("{s} is not in 1..={}", crate::MAX_SUPERSAMPLE),
+            });
+        }
+        if self.width % s as usize != 0 || self.height % s as usize != 0 {
+            return inconsistent(format!(
+                "image size {}×{} is not a multiple of the supersampling {s}",
+                self.width, self.height
+            ));
+        }
         if self.records.len() != pixels {
             return inconsistent(format!(
                 "{} records for {}×{} pixels",
@@ -281,12 +319,21 @@ impl DataFile {
         channels.push(AnyChannel::new("object", FlatSamples::F32(objects)));
         let status = self.records.iter().map(|r| r.status.code()).collect();
         channels.push(AnyChannel::new("status", FlatSamples::U32(status)));
-        for (name, get, _) in FLOAT_CHANNELS {
-            channels.push(AnyChannel::new(name, FlatSamples::F32(plane(&get))));
+        let physical = |r: &PixelRecord, v: f32| if r.has_emission() { v } else { f32::NAN };
+        for (name, get, _) in PHYSICAL_CHANNELS {
+            let values = plane(&|r| physical(r, get(r)));
+            channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
+        }
+        for (name, get, _) in VIEW_CHANNELS {
+            let traced = |r: &PixelRecord| r.status != RayStatus::NotTraced;
+            let values = plane(&|r| if traced(r) { get(r) } else { f32::NAN });
+            channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
         }
         for (k, values) in self.lights.iter().enumerate() {
             let name = Text::new_or_panic(light_channel_name(k)); // ASCII
-            channels.push(AnyChannel::new(name, FlatSamples::F32(values.clone())));
+            let values = self.records.iter().zip(values);
+            let values = values.map(|(r, &v)| physical(r, v)).collect();
+            channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
         }
 
         let mut attributes = LayerAttributes::default();
@@ -300,6 +347,7 @@ impl DataFile {
             (attr::A, format!("{:?}", h.godel_a)),
             (attr::METHOD, h.method.clone()),
             (attr::OBJECTS, h.object_names.join("\n")),
+            (attr::SUPERSAMPLE, h.supersample.to_string()),
         ];
         let extra = extra.iter().map(|(n, v)| (*n, v.clone()));
         for (name, value) in texts.into_iter().chain(extra) {
@@ -424,7 +472,22 @@ impl DataFile {
             godel_a: number(attr::A)?,
             method: text(attr::METHOD)?,
             object_names,
+            supersample: text(attr::SUPERSAMPLE)?
+                .trim()
+                .parse::<u32>()
+                .ok()
+                .filter(|s| (1..=crate::MAX_SUPERSAMPLE).contains(s))
+                .ok_or_else(|| DataFileErrorKind::BadAttribute {
+                    name: attr::SUPERSAMPLE,
+                    problem: format!("not a whole number in 1..={}", crate::MAX_SUPERSAMPLE),
+                })?,
         };
+        if width % header.supersample as usize != 0 || height % header.supersample as usize != 0 {
+            return inconsistent(format!(
+                "image size {width}×{height} is not a multiple of the supersampling {}",
+                header.supersample
+            ));
+        }
 
         let channel = |name: &str| -> Result<&FlatSamples, DataFileErrorKind> {
             let found = layer.channel_data.list.iter().find(|c| c.name.eq(name));
@@ -471,15 +534,31 @@ impl DataFile {
                     problem: format!("unknown status code {}", status[i]),
                 })?;
         }
-        for (name, _, set) in FLOAT_CHANNELS {
+        // Records without an emission (or not traced) keep the zeros of `PixelRecord::miss`
+        // where the file has NaN.
+        for (name, _, set) in PHYSICAL_CHANNELS {
             for (record, &value) in records.iter_mut().zip(f32_channel(name)?) {
-                set(record, value);
+                if record.has_emission() {
+                    set(record, value);
+                }
+            }
+        }
+        for (name, _, set) in VIEW_CHANNELS {
+            for (record, &value) in records.iter_mut().zip(f32_channel(name)?) {
+                if record.status != RayStatus::NotTraced {
+                    set(record, value);
+                }
             }
         }
 
         let mut lights = Vec::new();
         while let Ok(values) = f32_channel(&light_channel_name(lights.len())) {
-            lights.push(values.to_vec());
+            let values = records.iter().zip(values);
+            lights.push(
+                values
+                    .map(|(r, &v)| if r.has_emission() { v } else { 0.0 })
+                    .collect(),
+            );
         }
         // A light channel that is present but unreadable is an error, not the end.
         f32_channel(&light_channel_name(lights.len()))

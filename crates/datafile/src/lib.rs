@@ -5,12 +5,17 @@
 //! - The data file ([`DataFile`], [`DataHeader`]): one OpenEXR file per traced image with one
 //!   named channel per record field, read back without re-tracing (see [`attr`] for its
 //!   header attributes, part files of split renders included).
+//! - Samples (`samples.rs`): an anti-aliased file keeps s×s records per picture pixel;
+//!   [`DataFile::picture_size`], [`DataFile::sample_indices`] and the box filter
+//!   [`DataFile::box_filter`] that every shader applies after colouring each sample.
 //! - [`atomic`]: every output file is written to a temporary file and renamed, several files
 //!   together where they belong together; temporaries are removed on signals and swept.
 
 pub mod atomic;
 mod codec;
 pub mod record;
+mod samples;
 
 pub use codec::*;
 pub use record::{PixelRecord, RayStatus};
+pub use samples::MAX_SUPERSAMPLE;

@@ -87,6 +87,11 @@ pub struct PixelRecord {
     pub dir: [f32; 3],
     /// Cosine between the surface normal and the photon.
     pub cos_i: f32,
+    /// The direction the pixel (or sample) looks along: the unit vector −(photon's spatial
+    /// direction) in the observer's orthonormal frame (e1, e2, e3: the static frame at the
+    /// observer's event boosted by its velocity; on the axis e1, e2, e3 = ∂x, ∂y, ∂z).
+    /// Set for every traced ray, hit or not; zero for a pixel not traced.
+    pub view: [f32; 3],
 }
 
 impl PixelRecord {
@@ -97,7 +102,8 @@ impl PixelRecord {
     pub const MISS: PixelRecord = PixelRecord::miss(RayStatus::Escaped);
 
     /// A record for a pixel where nothing was hit: object −1, the given
-    /// status, and every other field zero (never NaN).
+    /// status, and every other field zero in memory (the data file stores NaN in its
+    /// physical channels instead, see `crate::DataFile`).
     pub const fn miss(status: RayStatus) -> PixelRecord {
         PixelRecord {
             object: PixelRecord::NO_OBJECT,
@@ -112,7 +118,15 @@ impl PixelRecord {
             lambda: 0.0,
             dir: [0.0; 3],
             cos_i: 0.0,
+            view: [0.0; 3],
         }
+    }
+
+    /// Whether the record holds an emission event (status hit): the fields u, v, g,
+    /// t_emit, x, y, z, lambda, dir and cos_i (and the light planes) mean something only
+    /// then, and the data file stores NaN in them otherwise.
+    pub const fn has_emission(&self) -> bool {
+        matches!(self.status, RayStatus::Hit)
     }
 
     /// Whether the ray hit an object.

@@ -40,13 +40,14 @@ fn header(objects: usize) -> DataHeader {
         godel_a: std::f64::consts::PI * 1e-7,
         method: "numeric".into(),
         object_names: (0..objects).map(|k| format!("object {k} ✓")).collect(),
+        supersample: 1,
     }
 }
 
 fn random_file(width: usize, height: usize, lights: usize, seed: u64) -> DataFile {
     let mut rng = Rng(seed);
     let objects = 5;
-    let records = (0..width * height)
+    let records: Vec<PixelRecord> = (0..width * height)
         .map(|_| {
             let object = (rng.next() % (objects as u64 + 1)) as i32 - 1;
             let status = RayStatus::ALL[(rng.next() % 5) as usize];
@@ -63,11 +64,32 @@ fn random_file(width: usize, height: usize, lights: usize, seed: u64) -> DataFil
                 lambda: rng.f32(),
                 dir: [rng.f32(), rng.f32(), rng.f32()],
                 cos_i: rng.f32(),
+                view: [rng.f32(), rng.f32(), rng.f32()],
             }
         })
         .collect();
+    // Only hits carry physical values (and only traced rays a view direction): the file
+    // stores NaN for the others and reads them back as the zeros of `PixelRecord::miss`.
+    let records: Vec<PixelRecord> = records
+        .into_iter()
+        .map(|r: PixelRecord| match r.status {
+            RayStatus::Hit => r,
+            RayStatus::NotTraced => PixelRecord {
+                object: r.object,
+                ..PixelRecord::miss(r.status)
+            },
+            _ => PixelRecord {
+                object: r.object,
+                view: r.view,
+                ..PixelRecord::miss(r.status)
+            },
+        })
+        .collect();
     let lights = (0..lights)
-        .map(|_| (0..width * height).map(|_| rng.f32()).collect())
+        .map(|_| {
+            let values = records.iter().map(|r| (r.has_emission(), rng.f32()));
+            values.map(|(hit, v)| if hit { v } else { 0.0 }).collect()
+        })
         .collect();
     DataFile {
         header: header(objects),
@@ -116,6 +138,10 @@ fn round_trip_is_exact() {
 fn round_trip_keeps_special_values() {
     let mut file = random_file(4, 2, 1, 5);
     file.records[0] = PixelRecord::miss(RayStatus::NotTraced);
+    file.lights[0][0] = 0.0;
+    for i in 1..=5 {
+        file.records[i].status = RayStatus::Hit;
+    }
     file.records[1].u = f32::MAX;
     file.records[1].v = f32::MIN_POSITIVE / 8.0; // subnormal
     file.records[1].g = -0.0;
@@ -357,7 +383,11 @@ fn bad_attributes_are_reported() {
         ("a_nan", attr::A, text("NaN")),
         ("time_empty", attr::OBSERVER_TIME, text("")),
         ("version_text", attr::FORMAT_VERSION, text("v1")),
-        ("version_2", attr::FORMAT_VERSION, text("2")),
+        ("version_1", attr::FORMAT_VERSION, text("1")),
+        ("supersample_0", attr::SUPERSAMPLE, text("0")),
+        ("supersample_17", attr::SUPERSAMPLE, text("17")),
+        ("supersample_half", attr::SUPERSAMPLE, text("1.5")),
+        ("supersample_3", attr::SUPERSAMPLE, text("3")),
         ("a_float", attr::A, Some(AttributeValue::F32(1.0))),
         (
             "metric_latin1",
@@ -376,7 +406,14 @@ fn bad_attributes_are_reported() {
             "no_scene" | "no_version" => {
                 assert!(matches!(kind, DataFileErrorKind::MissingAttribute(n) if n == name))
             }
-            "version_2" => assert!(matches!(kind, DataFileErrorKind::UnsupportedVersion(2))),
+            "version_1" => assert!(matches!(kind, DataFileErrorKind::UnsupportedVersion(1))),
+            // 7×3 records are not a whole number of 3×3 sample blocks.
+            "supersample_3" => {
+                assert!(
+                    matches!(kind, DataFileErrorKind::Inconsistent(_)),
+                    "{message}"
+                )
+            }
             "one_object" => assert!(matches!(kind, DataFileErrorKind::BadValue { .. })),
             _ => assert!(
                 matches!(kind, DataFileErrorKind::BadAttribute { name: n, .. } if n == name),
@@ -385,6 +422,82 @@ fn bad_attributes_are_reported() {
         }
         assert!(!message.is_empty());
     }
+}
+
+#[test]
+fn records_without_a_hit_store_nan_in_the_physical_channels() {
+    let dir = temp_dir();
+    let mut file = random_file(6, 2, 2, 21);
+    let statuses = [RayStatus::Hit, RayStatus::Escaped, RayStatus::NotTraced];
+    for (i, r) in file.records.iter_mut().enumerate() {
+        let status = statuses[i % 3];
+        *r = match status {
+            RayStatus::Hit => PixelRecord {
+                object: 1,
+                status,
+                ..*r
+            },
+            RayStatus::NotTraced => PixelRecord::miss(status), // no direction
+            _ => PixelRecord {
+                view: [0.6, 0.0, 0.8],
+                ..PixelRecord::miss(status)
+            },
+        };
+    }
+    for plane in &mut file.lights {
+        for (i, v) in plane.iter_mut().enumerate() {
+            *v = if i % 3 == 0 { 0.5 } else { 0.0 };
+        }
+    }
+    let path = dir.path().join("nan.exr");
+    file.write(&path).unwrap();
+    // Through the exr crate, as any analysis would read it.
+    let image = exr::prelude::read_all_flat_layers_from_file(&path).unwrap();
+    let layer = &image.layer_data[0];
+    let plane = |name: &str| -> Vec<f32> {
+        let c = layer.channel_data.list.iter().find(|c| c.name.eq(name));
+        match &c.unwrap_or_else(|| panic!("no channel {name}")).sample_data {
+            FlatSamples::F32(v) => v.clone(),
+            _ => panic!("{name} is not f32"),
+        }
+    };
+    let physical = [
+        "u", "v", "g", "t_emit", "x", "y", "z", "lambda", "dir_x", "dir_y", "dir_z", "cos_i",
+        "light_0", "light_1",
+    ];
+    for name in physical {
+        for (i, v) in plane(name).iter().enumerate() {
+            assert_eq!(v.is_nan(), i % 3 != 0, "{name}[{i}] = {v}");
+        }
+    }
+    for name in ["view_x", "view_y", "view_z"] {
+        for (i, v) in plane(name).iter().enumerate() {
+            assert_eq!(v.is_nan(), i % 3 == 2, "{name}[{i}] = {v}");
+        }
+    }
+    assert_eq!(plane("view_z")[1], 0.8);
+    // Read back: the in-memory zeros of a miss, exactly the records written.
+    assert_eq!(DataFile::read(&path).unwrap(), file);
+}
+
+#[test]
+fn supersampled_files_name_their_factor_and_group_samples_into_pixels() {
+    let mut file = random_file(6, 4, 1, 22);
+    file.header.supersample = 2;
+    let back = DataFile::from_bytes(&file.to_bytes().unwrap()).unwrap();
+    assert_eq!(back.header.supersample, 2);
+    assert_eq!(back.picture_size(), (3, 2));
+    // Picture pixel (2, 1) is the samples at columns 4, 5 and rows 2, 3.
+    let at: Vec<usize> = back.sample_indices(2, 1).collect();
+    assert_eq!(at, vec![2 * 6 + 4, 2 * 6 + 5, 3 * 6 + 4, 3 * 6 + 5]);
+    let mean = back.box_filter(2, 1, |i| [i as f32, 1.0, 0.0]);
+    assert_eq!(mean, [(16 + 17 + 22 + 23) as f32 / 4.0, 1.0, 0.0]);
+    // A factor that does not divide the image is refused when writing.
+    file.header.supersample = 4;
+    assert!(matches!(
+        file.to_bytes(),
+        Err(DataFileErrorKind::Inconsistent(_))
+    ));
 }
 
 #[test]

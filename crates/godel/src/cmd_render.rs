@@ -25,7 +25,8 @@ use std::time::Instant;
 #[command(after_help = "\
 Limits, checked before any tracing (exit code 2, naming the flag or file:line:field): \
 --threads at most 8 per core; the scene a regular file of at most 16 MiB; its name at most \
-100 bytes, no leading '.' or '-'; image sides at most 20000 and 5·10⁷ pixels; \
+100 bytes, no leading '.' or '-'; image sides at most 20000 and 5·10⁷ pixels; samples a \
+square number at most 256, at most 5·10⁷ rays in all; \
 [trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
 writable.
 
@@ -48,6 +49,22 @@ pub struct RenderArgs {
     /// array jobs; join the parts with `godel merge`.
     #[arg(long, value_name = "i/N")]
     pub part: Option<String>,
+    /// Rays per pixel, a square number (1, 4, 9, 16, … up to 256) traced on a grid in each
+    /// pixel; overrides the scene's `[camera] samples`. Every sample's record is kept in
+    /// the data file (see README, "The data file").
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub samples: Option<i64>,
+}
+
+/// The scene of `args`, with `--samples` applied (checked as `[camera] samples` is).
+fn scene_of(args: &RenderArgs) -> anyhow::Result<scene::Scene> {
+    let mut scene = load_scene(&args.scene)?;
+    if let Some(n) = args.samples {
+        scene
+            .set_samples(n)
+            .map_err(|e| crate::args::usage("--samples", e))?;
+    }
+    Ok(scene)
 }
 
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
@@ -72,7 +89,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return under_mpi::run(args);
     }
     let pool = thread_pool(args.threads)?;
-    let scene = load_scene(&args.scene)?;
+    let scene = scene_of(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
@@ -127,7 +144,7 @@ mod under_mpi {
         let rank0 = world.rank() == 0;
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
-            let scene = load_scene(&args.scene)?;
+            let scene = scene_of(&args)?;
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
@@ -152,7 +169,8 @@ mod under_mpi {
             let traced = pool.install(|| renderer.trace(&plan, &NoProgress));
             Ok(postcard::to_stdvec(&traced)?)
         };
-        let pixels = scene.camera.width() as u64 * scene.camera.height() as u64;
+        let camera = renderer.sample_camera();
+        let pixels = camera.width() as u64 * camera.height() as u64;
         let bar = progress_bar(&scene, pixels, args.quiet || !rank0);
         let mut assembler = Assembler::new(renderer.blank(), tiles);
         let mut failure = None;

@@ -69,8 +69,8 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
     eprintln!(
         "{} ({}×{}); image textures from {}; press Ctrl-C to stop",
         args.data.display(),
-        state.data.width,
-        state.data.height,
+        state.data.picture_size().0,
+        state.data.picture_size().1,
         folders.join(", ")
     );
     viewer::run(listener, Arc::new(state)).context("the viewer's server failed")

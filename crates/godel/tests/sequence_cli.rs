@@ -35,6 +35,7 @@ fn data_file(dir: &Path) -> PathBuf {
                 g: 1.0,
                 t_emit: -1.0,
                 cos_i: 1.0,
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             };
             4

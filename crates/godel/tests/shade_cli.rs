@@ -51,6 +51,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
                 g: 1.0,
                 t_emit: -(i as f32) / 2.0,
                 cos_i: 1.0,
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             })
             .collect(),

@@ -49,6 +49,7 @@ fn sphere() -> DataFile {
                 lambda: 1.0 + (col % 13) as f32,
                 dir: [0.0, 0.6, 0.8],
                 cos_i: 0.5,
+                view: [0.0, 0.0, 1.0],
             }
         })
         .collect();

@@ -296,7 +296,10 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
             for (col, slot) in out.iter_mut().enumerate() {
                 if let Some(p) = pixel_look(view, col as u32, row as u32) {
                     let i = source.nearest(source.position(p.static_dir));
-                    *slot = (boosted(sphere.records[i], p.doppler), Some(i));
+                    let mut record = boosted(sphere.records[i], p.doppler);
+                    // The direction this camera's pixel looks, in the moving observer's frame.
+                    record.view = p.own.map(|c| c as f32);
+                    *slot = (record, Some(i));
                 }
             }
         });
@@ -328,6 +331,7 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
     let mut header = sphere.header.clone();
     header.scene_text = text;
     header.camera = view.camera.describe();
+    header.supersample = 1;
     Ok(DataFile {
         header,
         width,

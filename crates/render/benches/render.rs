@@ -5,7 +5,9 @@
 //! (2) the reference scene at a reduced 440×50 (its full 2200×250 wall time is measured
 //!     with the CLI, see BENCHMARKS.md).
 //! Each with the numeric tracer on 1 and 2 threads, and the exact tracer on 1.
-//! Run: cargo bench -p render --bench render
+//! (3) samples per pixel: the reference scene at 220×25 pixels with 1, 4 and 16 samples
+//!     (numeric, 2 threads, data file included); throughput in picture pixels.
+//! Run: cargo bench -p render --bench render (only (3): `-- samples_per_pixel`)
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use render::driver::{render, NoProgress};
@@ -13,6 +15,10 @@ use scene::Scene;
 use std::path::Path;
 
 fn scene(path: &str, width: u32, height: u32, method: &str) -> Scene {
+    sampled_scene(path, width, height, method, 1)
+}
+
+fn sampled_scene(path: &str, width: u32, height: u32, method: &str, samples: u32) -> Scene {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .join(path);
@@ -23,7 +29,9 @@ fn scene(path: &str, width: u32, height: u32, method: &str) -> Scene {
             if l.starts_with("width") {
                 format!("width = {width}")
             } else if l.starts_with("height") {
-                format!("height = {height}")
+                format!("height = {height}\nsamples = {samples}")
+            } else if l.starts_with("samples") {
+                String::new()
             } else if l.starts_with("method") {
                 format!("method = \"{method}\"")
             } else {
@@ -80,5 +88,29 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+/// (3): the cost of N samples per pixel against one.
+fn samples(c: &mut Criterion) {
+    let (w, h) = (220, 25);
+    let mut group = c.benchmark_group("samples_per_pixel");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(u64::from(w * h)));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    for n in [1, 4, 16] {
+        let sc = sampled_scene("scenes/reference.toml", w, h, "numeric", n);
+        group.bench_function(format!("reference_220x25_{n}_samples"), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    let (data, _) = render(&sc, &NoProgress).unwrap();
+                    data.to_bytes().unwrap().len()
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, samples);
 criterion_main!(benches);

@@ -19,7 +19,7 @@ use crate::tracer::{Scratch, TraceOptions, Tracer};
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use rayon::prelude::*;
-use scene::{Scene, TraceMethod};
+use scene::{Camera, Scene, TraceMethod};
 use spacetime::Spacetime;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -121,6 +121,9 @@ pub enum RenderError {
 /// A scene ready to trace: its tracer and lights, built once and shared by all threads.
 pub struct Renderer<'a> {
     scene: &'a Scene,
+    /// The camera whose pixels are the scene's samples (the scene's camera when
+    /// `samples` = 1): every tile, part and record is of this sample grid.
+    camera: Camera,
     tracer: Tracer,
     lighting: Lighting,
     tiles: Vec<Tile>,
@@ -166,11 +169,13 @@ impl<'a> Renderer<'a> {
             scene.lights.iter().map(LightSource::from_scene).collect(),
             tracer.max_past(),
         );
+        let camera = scene.sample_camera();
         Ok(Renderer {
             scene,
+            camera,
             tracer,
             lighting,
-            tiles: tiles(scene.camera.width(), scene.camera.height()),
+            tiles: tiles(camera.width(), camera.height()),
         })
     }
 
@@ -178,7 +183,12 @@ impl<'a> Renderer<'a> {
         self.scene
     }
 
-    /// All tiles of the image, row-major.
+    /// The camera of the sample grid (see [`Scene::sample_camera`]).
+    pub fn sample_camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// All tiles of the image (of samples), row-major.
     pub fn tiles(&self) -> &[Tile] {
         &self.tiles
     }
@@ -186,10 +196,7 @@ impl<'a> Renderer<'a> {
     /// The scene's data file with no pixel traced yet (status "not traced", no light
     /// planes): what an [`Assembler`] starts from.
     pub fn blank(&self) -> DataFile {
-        let (w, h) = (
-            self.scene.camera.width() as usize,
-            self.scene.camera.height() as usize,
-        );
+        let (w, h) = (self.camera.width() as usize, self.camera.height() as usize);
         DataFile {
             header: header(self.scene),
             width: w,
@@ -218,7 +225,7 @@ impl<'a> Renderer<'a> {
         scratch.reset_first_step();
         for row in tile.row0..tile.row0 + tile.rows {
             for col in tile.col0..tile.col0 + tile.cols {
-                let record = match scene.observer.pixel_direction(&scene.camera, col, row) {
+                let record = match scene.observer.pixel_direction(&self.camera, col, row) {
                     Some(dir) => {
                         let traced = self.tracer.trace(dir, scratch);
                         if n > 0 {
@@ -230,7 +237,10 @@ impl<'a> Renderer<'a> {
                                 plane[records.len()] = v;
                             }
                         }
-                        traced.record
+                        PixelRecord {
+                            view: dir.map(|c| c as f32),
+                            ..traced.record
+                        }
                     }
                     None => PixelRecord::miss(RayStatus::NotTraced),
                 };
@@ -287,6 +297,7 @@ pub fn header(scene: &Scene) -> DataHeader {
             TraceMethod::Exact => "exact".into(),
         },
         object_names: scene.objects.iter().map(|o| o.name.clone()).collect(),
+        supersample: scene.supersample(),
     }
 }
 

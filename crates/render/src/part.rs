@@ -18,9 +18,11 @@ use datafile::{attr, DataFile, DataFileError, DataFileErrorKind, RayStatus, FORM
 use scene::Scene;
 
 /// Hex SHA-256 of everything that decides a render's pixels: the scene text (camera and
-/// trace settings included), the camera as understood, the program and format versions.
+/// trace settings included), the camera as understood, the samples per pixel (which
+/// `--samples` may set), the program and format versions.
 pub fn fingerprint(scene: &Scene) -> String {
-    fingerprint_of(&[&scene.source_text, &scene.camera.describe()])
+    let samples = format!("samples {}", scene.samples);
+    fingerprint_of(&[&scene.source_text, &scene.camera.describe(), &samples])
 }
 
 /// Hex SHA-256 of `fields` (each length-prefixed) and the program and format versions.

@@ -396,6 +396,7 @@ impl Tracer {
                 lambda: (h.lambda + shift.dl) as f32,
                 dir: surf.dir.map(|c| c as f32),
                 cos_i: surf.cos_i as f32,
+                view: [0.0; 3],
             },
             hit: Some(HitPoint {
                 state: s,

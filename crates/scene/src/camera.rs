@@ -4,7 +4,8 @@
 //! Directions are returned in the *camera basis*: components along (forward, right, up),
 //! with right = forward × up. [`crate::Observer::pixel_direction`] turns them into the
 //! observer's local-frame components. Pixel (col, row) has its centre at (col + ½, row + ½);
-//! row 0 is the top row.
+//! row 0 is the top row. Sub-pixel samples are the pixels of [`Camera::supersampled`]
+//! (docs/physics.md, "Pixels and cameras").
 
 /// Largest image side, and largest pixel count: guards against typos that would allocate
 /// gigabytes.
@@ -172,6 +173,78 @@ impl Camera {
     }
 }
 
+/// Most rays per pixel (`[camera] samples`, `godel render --samples`): 16×16.
+pub const MAX_SAMPLES: u32 = 256;
+/// Most rays per image, samples included: each ray keeps its record in memory and in the
+/// data file (~150 bytes while writing), so this bounds memory as the pixel limit does.
+pub const MAX_RAYS: u64 = 50_000_000;
+
+/// Checks a rays-per-pixel count for a `width` × `height` image: a square number s² in
+/// 1..=[`MAX_SAMPLES`] with width · height · s² ≤ [`MAX_RAYS`]; returns s, the samples per
+/// pixel along each side. The message names no field (the caller does).
+pub fn samples_per_side(samples: i64, width: u32, height: u32) -> Result<u32, String> {
+    if !(1..=i64::from(MAX_SAMPLES)).contains(&samples) {
+        return Err(format!(
+            "must be in 1..={MAX_SAMPLES} rays per pixel, got {samples}"
+        ));
+    }
+    let side = (samples as f64).sqrt().round() as u32;
+    if i64::from(side * side) != samples {
+        return Err(format!(
+            "must be a square number (1, 4, 9, 16, …: s×s rays on a grid in each pixel), got {samples}"
+        ));
+    }
+    let rays = u64::from(width) * u64::from(height) * samples as u64;
+    if rays > MAX_RAYS {
+        return Err(format!(
+            "{width}×{height} pixels × {samples} samples = {rays} rays, more than the limit of {MAX_RAYS}"
+        ));
+    }
+    Ok(side)
+}
+
+impl Camera {
+    /// The camera whose pixels are the `s`×`s` samples of this camera's pixels: the same
+    /// view with width and height multiplied by `s`. Its pixel (s·col + i, s·row + j) has
+    /// its centre at (col + (i + ½)/s, row + (j + ½)/s) of this camera, so
+    /// [`Camera::pixel_direction`] of the result is the sub-pixel direction (stratified on a
+    /// regular grid), and a render with s×s samples traces exactly the rays of a render s
+    /// times larger.
+    pub fn supersampled(&self, s: u32) -> Camera {
+        let s = s.max(1);
+        match *self {
+            Camera::Pinhole {
+                fov_deg,
+                width,
+                height,
+            } => Camera::Pinhole {
+                fov_deg,
+                width: width * s,
+                height: height * s,
+            },
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width,
+                height,
+            } => Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width: width * s,
+                height: height * s,
+            },
+            Camera::Sphere { width, height } => Camera::Sphere {
+                width: width * s,
+                height: height * s,
+            },
+            Camera::Fisheye { fov_deg, size } => Camera::Fisheye {
+                fov_deg,
+                size: size * s,
+            },
+        }
+    }
+}
+
 /// Panorama direction at fractional image position (u, v) ∈ (0, 1)², v = 0 at the top.
 fn panorama(h_fov_deg: f64, v_fov_deg: f64, u: f64, v: f64) -> [f64; 3] {
     let alpha = h_fov_deg.to_radians() * (u - 0.5);
@@ -214,6 +287,38 @@ mod tests {
                 size: 101,
             },
         ]
+    }
+
+    #[test]
+    fn samples_are_the_pixels_of_the_supersampled_camera_at_sub_pixel_centres() {
+        for c in cameras() {
+            let s = 3;
+            let fine = c.supersampled(s);
+            assert_eq!(
+                (fine.width(), fine.height()),
+                (c.width() * s, c.height() * s)
+            );
+            // The middle sample of each pixel (odd s) is the pixel's centre.
+            for (col, row) in [(0, 0), (c.width() / 2, c.height() / 2), (7, 5)] {
+                let centre = c.pixel_direction(col, row);
+                let middle = fine.pixel_direction(s * col + 1, s * row + 1);
+                match (centre, middle) {
+                    (Some(a), Some(b)) => assert!(close(a, b), "{c:?} ({col}, {row})"),
+                    (a, b) => assert_eq!(a.is_some(), b.is_some(), "{c:?} ({col}, {row})"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sample_counts_are_square_and_bounded() {
+        assert_eq!(samples_per_side(1, 10, 10), Ok(1));
+        assert_eq!(samples_per_side(16, 10, 10), Ok(4));
+        assert_eq!(samples_per_side(256, 10, 10), Ok(16));
+        for bad in [0, -4, 2, 15, 257, 1024] {
+            assert!(samples_per_side(bad, 10, 10).is_err(), "{bad}");
+        }
+        assert!(samples_per_side(16, 5000, 1000).is_err()); // 8·10⁷ rays
     }
 
     #[test]

@@ -27,7 +27,7 @@ mod objects;
 mod raw;
 mod validate;
 
-pub use camera::Camera;
+pub use camera::{samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES};
 pub use edit::replace_view;
 pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
@@ -84,6 +84,24 @@ impl Scene {
                 validate::camera(&c, raw.camera)?,
             ))
         })
+    }
+
+    /// Samples per pixel along each side: s for `samples` = s².
+    pub fn supersample(&self) -> u32 {
+        (f64::from(self.samples).sqrt().round() as u32).max(1)
+    }
+
+    /// The camera whose pixels are this scene's samples (see [`Camera::supersampled`]).
+    pub fn sample_camera(&self) -> Camera {
+        self.camera.supersampled(self.supersample())
+    }
+
+    /// Sets the rays per pixel (e.g. from `godel render --samples`), checked as
+    /// `[camera] samples` is; the message names no flag (the caller does).
+    pub fn set_samples(&mut self, samples: i64) -> Result<(), String> {
+        samples_per_side(samples, self.camera.width(), self.camera.height())?;
+        self.samples = samples as u32;
+        Ok(())
     }
 
     /// The built-in reference scene ([`BUILTIN_SCENE_TEXT`]).

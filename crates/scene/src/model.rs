@@ -19,6 +19,9 @@ pub struct Scene {
     pub metric: Metric,
     pub observer: Observer,
     pub camera: Camera,
+    /// Rays per pixel (`[camera] samples`): a square number s², traced on an s×s grid in each
+    /// pixel ([`Camera::supersampled`]); width · height · samples ≤ `camera::MAX_RAYS`.
+    pub samples: u32,
     pub trace: TraceSettings,
     /// In scene-file order; the data file's `object` channel indexes this list.
     pub objects: Vec<Object>,

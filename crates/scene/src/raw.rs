@@ -84,6 +84,8 @@ pub struct RawCamera {
     pub v_fov_deg: Option<f64>,
     pub width: u32,
     pub height: u32,
+    /// Rays per pixel (a square number); default 1.
+    pub samples: Option<i64>,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq)]

@@ -8,7 +8,8 @@
 //! `[trace]` is numeric, max_past 30, tolerance 1e-11, 100000 steps; an object's frame is
 //! local, its texture a checker 8×16, its temperature 5800 K; fisheye fov is 180°.
 //! Bounds: tolerance in [1e-14, 1e-3], max_steps ≤ 10⁷, the name at most 100 bytes and
-//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels ([`Camera::check`]).
+//! no hidden or odd file name; image sides ≤ 20000 and ≤ 5·10⁷ pixels ([`Camera::check`]);
+//! `[camera] samples` a square number ≤ 256 with ≤ 5·10⁷ rays in all.
 //! Objects, motions and textures are checked in `objects.rs`.
 
 use crate::camera::Camera;
@@ -54,7 +55,12 @@ pub(crate) fn build(
     output_name(&c, &raw.name)?;
     let metric = spacetime(&c, raw.spacetime)?;
     let observer = observer(&c, raw.observer)?;
+    let samples = raw.camera.samples.unwrap_or(1);
     let camera = camera(&c, raw.camera)?;
+    if let Err(message) = crate::camera::samples_per_side(samples, camera.width(), camera.height())
+    {
+        return c.err("camera.samples", message);
+    }
     let trace = trace(&c, raw.trace)?;
     let mut objects = Vec::with_capacity(raw.object.len());
     let mut seen: HashMap<String, usize> = HashMap::new();
@@ -86,6 +92,7 @@ pub(crate) fn build(
         metric,
         observer,
         camera,
+        samples: samples as u32,
         trace,
         objects,
         lights,

@@ -55,7 +55,8 @@ pub fn shade_frequency(data: &DataFile, temperatures: &[f64], brightness: Bright
         frequency_colour(record, temperatures, brightness)
     });
     for (k, &t) in temperatures.iter().take(REFERENCE_SQUARES).enumerate() {
-        let Some((x0, y0, side)) = reference_square(k, data.width, data.height) else {
+        let (w, h) = data.picture_size();
+        let Some((x0, y0, side)) = reference_square(k, w, h) else {
             continue;
         };
         let colour = rgb_to_srgb8(blackbody_colour(1.0, t, brightness).unwrap_or(FAILED));

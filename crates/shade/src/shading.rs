@@ -284,12 +284,13 @@ impl Shading {
         })
     }
 
-    /// Shades `data` into a new 8-bit sRGB image (rows in parallel; the result does not depend
-    /// on the thread count).
+    /// Shades `data` into a new 8-bit sRGB image of its picture size (rows in parallel; the
+    /// result does not depend on the thread count).
     pub fn image(&self, data: &DataFile) -> RgbImage {
         let mut bytes = Vec::new();
         self.image_into(data, &mut bytes);
-        match (u32::try_from(data.width), u32::try_from(data.height)) {
+        let (w, h) = data.picture_size();
+        match (u32::try_from(w), u32::try_from(h)) {
             (Ok(w), Ok(h)) if !bytes.is_empty() => {
                 RgbImage::from_raw(w, h, bytes).unwrap_or_else(|| RgbImage::new(0, 0))
             }
@@ -297,13 +298,14 @@ impl Shading {
         }
     }
 
-    /// Shades `data` into `bytes` (resized to width × height × 3, RGB8 row-major, row 0 at the
-    /// top), reusing the caller's buffer: the viewer's path. Overlays (reference squares,
-    /// legend) included.
+    /// Shades `data` into `bytes` (resized to the picture's width × height × 3, RGB8
+    /// row-major, row 0 at the top), reusing the caller's buffer: the viewer's path. An
+    /// anti-aliased file is shaded sample by sample and box-filtered
+    /// ([`DataFile::box_filter`]). Overlays (reference squares, legend) included.
     pub fn image_into(&self, data: &DataFile, bytes: &mut Vec<u8>) {
-        let (w, h) = (data.width, data.height);
+        let (w, h) = data.picture_size();
         bytes.clear();
-        if w == 0 || h == 0 || data.records.len() < w * h {
+        if w == 0 || h == 0 || data.records.len() < data.width * data.height {
             return;
         }
         bytes.resize(w * h * 3, 0);
@@ -312,14 +314,15 @@ impl Shading {
             .enumerate()
             .for_each(|(row, out)| {
                 for (col, px) in out.chunks_exact_mut(3).enumerate() {
-                    let i = row * w + col;
-                    px.copy_from_slice(&rgb_to_srgb8_fast(self.pixel(data, i)));
+                    let c = data.box_filter(col, row, |i| self.pixel(data, i));
+                    px.copy_from_slice(&rgb_to_srgb8_fast(c));
                 }
             });
         self.overlays(w, h, bytes);
     }
 
-    /// Linear RGB of pixel `i` (row-major index) of `data`.
+    /// Linear RGB of record `i` (row-major index) of `data`: one sample of an anti-aliased
+    /// file.
     pub fn pixel(&self, data: &DataFile, i: usize) -> [f32; 3] {
         let Some(rec) = data.records.get(i) else {
             return FAILED;

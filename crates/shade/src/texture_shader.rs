@@ -18,7 +18,9 @@
 //! A scene with `[[light]]` sources is previewed lit instead: texture × (0.06 + Σ_k colour_k ·
 //! light_k), light_k the direct irradiance the renderer stores per light (see
 //! `render::lighting`); [`direct_light`] is that sum for any shader.
-//! Colours are encoded as 8-bit sRGB. Rows are shaded in parallel; the result does not
+//! An anti-aliased data file is coloured sample by sample, then box-filtered in linear RGB
+//! to the picture size (never an averaged record: see `datafile`'s samples). Colours are
+//! encoded as 8-bit sRGB. Rows are shaded in parallel; the result does not
 //! depend on the thread count.
 
 use std::path::Path;
@@ -59,26 +61,30 @@ pub fn shade_pixels(data: &DataFile, colour: impl Fn(&PixelRecord) -> [f32; 3] +
     shade_pixels_at(data, |_, record| colour(record))
 }
 
-/// [`shade_pixels`] with the pixel's index (into `records` and the light planes) as well.
+/// [`shade_pixels`] with the sample's index (into `records` and the light planes) as well.
+/// An anti-aliased file is shaded sample by sample and box-filtered to its picture size
+/// ([`DataFile::box_filter`]).
 pub fn shade_pixels_at(
     data: &DataFile,
     colour: impl Fn(usize, &PixelRecord) -> [f32; 3] + Sync,
 ) -> RgbImage {
-    let (Ok(width), Ok(height)) = (u32::try_from(data.width), u32::try_from(data.height)) else {
+    let (w, h) = data.picture_size();
+    let (Ok(width), Ok(height)) = (u32::try_from(w), u32::try_from(h)) else {
         return RgbImage::new(0, 0);
     };
     if width == 0 || height == 0 {
         return RgbImage::new(0, 0);
     }
-    let row_bytes = data.width * 3;
-    let mut bytes = vec![0u8; row_bytes * data.height];
+    let row_bytes = w * 3;
+    let mut bytes = vec![0u8; row_bytes * h];
     bytes
         .par_chunks_mut(row_bytes)
         .enumerate()
         .for_each(|(row, out)| {
             for (col, px) in out.chunks_exact_mut(3).enumerate() {
-                let i = data.index(col, row);
-                let c = data.records.get(i).map_or(FAILED, |r| colour(i, r));
+                let c = data.box_filter(col, row, |i| {
+                    data.records.get(i).map_or(FAILED, |r| colour(i, r))
+                });
                 px.copy_from_slice(&rgb_to_srgb8(c));
             }
         });

@@ -38,6 +38,7 @@ fn data(lights: usize) -> DataFile {
             g: 1.0,
             t_emit: -2.5 - i as f32 * 0.5,
             cos_i: 1.0,
+            view: [0.0; 3],
             ..PixelRecord::MISS
         })
         .collect();

@@ -195,6 +195,7 @@ fn data(texture: &str) -> DataFile {
                 u: 0.3,
                 v: 0.7,
                 cos_i: 1.0,
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             },
             PixelRecord::MISS,

@@ -91,6 +91,7 @@ pub fn godel_header(
         godel_a: 1.0,
         method: "numeric".into(),
         object_names: objects.iter().map(|o| o.as_ref().to_string()).collect(),
+        supersample: 1,
     }
 }
 

@@ -115,8 +115,8 @@ async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Res
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         Ok::<_, ApiError>((
             bytes,
-            state.data.width as u32,
-            state.data.height as u32,
+            state.data.picture_size().0 as u32,
+            state.data.picture_size().1 as u32,
             ms(shaded - started),
             ms(shaded.elapsed()),
         ))
@@ -233,7 +233,10 @@ async fn pixel(
     let record = state.pixel(q.col, q.row).ok_or_else(|| {
         ApiError::bad_request(format!(
             "pixel ({}, {}) is outside the {}×{} image",
-            q.col, q.row, state.data.width, state.data.height
+            q.col,
+            q.row,
+            state.data.picture_size().0,
+            state.data.picture_size().1
         ))
     })?;
     Ok((no_store(), Json(record)).into_response())

@@ -187,8 +187,8 @@ impl ViewerState {
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default(),
             scene_name: h.scene_name.clone(),
-            width: self.data.width,
-            height: self.data.height,
+            width: self.data.picture_size().0,
+            height: self.data.picture_size().1,
             objects: h.object_names.clone(),
             lights: self.data.lights.len(),
             observer_time: h.observer_time,
@@ -213,12 +213,16 @@ impl ViewerState {
         shading.image(&self.data)
     }
 
-    /// The record of pixel (`col`, `row`), or `None` outside the image.
+    /// The record of picture pixel (`col`, `row`), or `None` outside the picture. In an
+    /// anti-aliased file (s×s samples per pixel) that is the sample at (⌊s/2⌋, ⌊s/2⌋) of the
+    /// pixel's block, the one nearest its centre.
     pub fn pixel(&self, col: usize, row: usize) -> Option<PixelInfo> {
-        if col >= self.data.width || row >= self.data.height {
+        let (w, h) = self.data.picture_size();
+        if col >= w || row >= h {
             return None;
         }
-        let i = self.data.index(col, row);
+        let s = self.data.supersample();
+        let i = self.data.index(s * col + s / 2, s * row + s / 2);
         let r = self.data.records.get(i)?;
         let object_name = usize::try_from(r.object)
             .ok()

@@ -189,3 +189,40 @@ fn a_data_file_whose_scene_texture_cannot_load_is_refused() {
     assert!(message.contains("x.exr"), "{message}");
     assert!(message.contains("/nonexistent/texture.png"), "{message}");
 }
+
+#[tokio::test]
+async fn a_sampled_file_is_shown_at_its_picture_size_and_hovers_the_centre_sample() {
+    // The 8×4 records as 2×2 samples per pixel: a 4×2 picture.
+    let mut sampled = data();
+    sampled.header.supersample = 2;
+    let state =
+        std::sync::Arc::new(ViewerState::new(Path::new("aa.exr"), sampled.clone()).unwrap());
+    let (_, _, body) = common::send_to(state.clone(), get("/api/info")).await;
+    let info: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(
+        (info["width"].clone(), info["height"].clone()),
+        (4.into(), 2.into())
+    );
+    let (status, headers, body) =
+        common::send_to(state.clone(), post("/api/image", &frequency(3000.0))).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        (&headers["x-image-width"], &headers["x-image-height"]),
+        (&"4".parse().unwrap(), &"2".parse().unwrap())
+    );
+    // The shade crate's picture: each sample shaded, then the 2×2 blocks averaged.
+    let want = Shading::new(&sampled, &frequency_settings(3000.0))
+        .unwrap()
+        .image(&sampled);
+    assert_eq!(want.dimensions(), (4, 2));
+    for (rgba, rgb) in body.chunks_exact(4).zip(want.pixels()) {
+        assert_eq!(&rgba[..3], &rgb.0);
+    }
+    // Picture pixel (1, 0) is samples (2..4, 0..2); the hover shows sample (3, 1).
+    let (_, _, body) = common::send_to(state.clone(), get("/api/pixel?col=1&row=0")).await;
+    let r: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(r["u"].as_f64().unwrap(), 3.0 / 8.0);
+    assert_eq!(r["v"].as_f64().unwrap(), 1.0 / 4.0);
+    let (status, _, _) = common::send_to(state, get("/api/pixel?col=4&row=0")).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+}

@@ -59,6 +59,11 @@ pub fn tiny(scene: &mut Scene) -> Vec<String> {
     if c.describe() != before {
         notes.push(format!("camera {before} -> {}", c.describe()));
     }
+    // Samples multiply the rays: at most 2×2 (still more than one, to keep them tested).
+    if scene.samples > 4 {
+        notes.push(format!("samples {} -> 4", scene.samples));
+        scene.samples = 4;
+    }
     let most = match scene.metric.godel_a() {
         Some(a) => TINY_LOOPS * spacetime::Godel::new(a).shortest_loop_time(),
         None => TINY_MAX_PAST_FLAT,
@@ -141,13 +146,15 @@ pub fn run(text: &str) -> Result<Verdict, String> {
 
 /// The data file's promises about records (README, "The data file").
 pub fn check_records(scene: &Scene, data: &DataFile) -> Result<(), String> {
+    // One record per sample: the camera's size times the samples per side.
+    let s = scene.supersample() as usize;
     let (w, h) = (
-        scene.camera.width() as usize,
-        scene.camera.height() as usize,
+        scene.camera.width() as usize * s,
+        scene.camera.height() as usize * s,
     );
     if (data.width, data.height, data.records.len()) != (w, h, w * h) {
         return Err(format!(
-            "data file {}×{} with {} records for a {w}×{h} camera",
+            "data file {}×{} with {} records for a {w}×{h} sample grid",
             data.width,
             data.height,
             data.records.len()
@@ -159,8 +166,22 @@ pub fn check_records(scene: &Scene, data: &DataFile) -> Result<(), String> {
     let slack = 1e-4 * (1.0 + scene.trace.max_past) + 1e-12 * t_obs.abs();
     for (i, r) in data.records.iter().enumerate() {
         let at = format!("pixel ({}, {})", i % w, i / w);
+        // The camera ray's direction: a unit vector for every traced ray, zero otherwise.
+        let view = r.view.map(f64::from);
+        let norm = (view[0] * view[0] + view[1] * view[1] + view[2] * view[2]).sqrt();
+        let traced = r.status != RayStatus::NotTraced;
+        if (traced && (norm - 1.0).abs() > 1e-5) || (!traced && norm != 0.0) {
+            return Err(format!(
+                "{at}: camera ray direction {view:?} for status {:?}",
+                r.status
+            ));
+        }
         if r.status != RayStatus::Hit {
-            if *r != PixelRecord::miss(r.status) {
+            let miss = PixelRecord {
+                view: r.view,
+                ..PixelRecord::miss(r.status)
+            };
+            if *r != miss {
                 return Err(format!(
                     "{at}: status {:?} but the record is not a miss: {r:?}",
                     r.status
@@ -263,7 +284,7 @@ pub fn round_trip(data: &DataFile) -> Result<Vec<u8>, String> {
             .flat_map(|r| {
                 [
                     r.u, r.v, r.g, r.t_emit, r.x, r.y, r.z, r.lambda, r.cos_i, r.dir[0], r.dir[1],
-                    r.dir[2],
+                    r.dir[2], r.view[0], r.view[1], r.view[2],
                 ]
                 .map(f32::to_bits)
                 .into_iter()
@@ -286,7 +307,8 @@ pub fn round_trip(data: &DataFile) -> Result<Vec<u8>, String> {
 pub fn shade_all(scene: &Scene, data: &DataFile) -> Result<(), String> {
     let textures = shade::textures_for_scene(scene).map_err(|e| format!("textures: {e}"))?;
     let preview = shade::texture_shader::preview_with_textures(data, &textures, scene);
-    let size = (data.width as u32, data.height as u32);
+    // Pictures have the camera's size: the samples of each pixel are filtered into it.
+    let size = (scene.camera.width(), scene.camera.height());
     if preview.dimensions() != size {
         return Err(format!("preview {:?} for {size:?}", preview.dimensions()));
     }

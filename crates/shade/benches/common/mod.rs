@@ -47,6 +47,7 @@ pub fn data() -> DataFile {
                 g: 0.3 + 3.0 * c / w as f32,
                 t_emit: -30.0 * r / h as f32,
                 cos_i: (c / 50.0).sin(),
+                view: [0.0; 3],
                 ..PixelRecord::MISS
             }
         })

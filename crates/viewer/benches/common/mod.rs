@@ -31,6 +31,7 @@ pub fn data(width: usize, height: usize) -> DataFile {
                     g: 0.5 + x,
                     t_emit: -1.0 - 10.0 * x,
                     cos_i: 1.0 - y,
+                    view: [0.0; 3],
                     ..PixelRecord::MISS
                 }
             } else {

@@ -48,6 +48,7 @@ pub fn data() -> DataFile {
                     g: 1.0 + col as f32 / 10.0,
                     t_emit: -(1.0 + row as f32),
                     cos_i: 1.0,
+                    view: [0.0; 3],
                     ..PixelRecord::MISS
                 }
             } else {

@@ -87,6 +87,7 @@ pub fn data() -> DataFile {
             godel_a: 1.0,
             method: "numeric".into(),
             object_names: vec!["ball".into(), "globe".into()],
+            supersample: 1,
         },
         width: W,
         height: H,
