@@ -36,6 +36,46 @@ pub fn pinhole(fov_deg: f64, width: usize, height: usize) -> String {
     )
 }
 
+/// `[camera]`: the full sphere (360° × 180°) at `width` × `height` pixels.
+pub fn sphere(width: usize, height: usize) -> String {
+    format!("[camera]\nkind = \"sphere\"\nwidth = {width}\nheight = {height}\n")
+}
+
+/// `[observer]`: at rest at time `time` at (r, φ, z) = (`r`, `phi`, 0), looking along +x with
+/// +z up ([`OBSERVER_AT_ORIGIN`] at time 0 and r = 0).
+pub fn observer_at(time: f64, r: f64, phi: f64) -> String {
+    format!(
+        "[observer]\ntime = {time:?}\nposition = {{ r = {r:?}, phi = {phi:?}, z = 0.0 }}\n\
+         forward = [1, 0, 0]\nup = [0, 0, 1]\n"
+    )
+}
+
+/// `[trace]`: with `method` (`"numeric"`, `"exact"`) back to t = −`max_past`.
+pub fn trace(method: &str, max_past: f64) -> String {
+    format!("[trace]\nmethod = \"{method}\"\nmax_past = {max_past:?}\n")
+}
+
+/// `[[object]]`: a sphere named `name` of `radius` at rest at (r, φ, z) = (`r`, `phi`, 0),
+/// with the default texture and temperature.
+pub fn ball_at_rest(name: &str, radius: f64, r: f64, phi: f64) -> String {
+    format!(
+        "[[object]]\nname = \"{name}\"\nradius = {radius:?}\n\
+         motion = {{ kind = \"rest\", position = {{ r = {r:?}, phi = {phi:?}, z = 0.0 }} }}\n"
+    )
+}
+
+/// The message of a viewer refusing the image texture at `path` (shown as `P` in it) that
+/// lies outside the folders textures may come from: asserts that `error` is exactly that.
+pub fn assert_texture_refused(error: &str, path: &std::path::Path) {
+    let message = error.replace(&path.display().to_string(), "P");
+    assert_eq!(
+        message,
+        "settings: image texture P: no image file of that name in the folders textures \
+         may come from",
+        "{path:?}"
+    );
+}
+
 /// A scene named `name` in Gödel's universe (a = 1) seen by [`OBSERVER_AT_ORIGIN`] through
 /// `camera` ([`panorama`], [`pinhole`]); `rest` (the `[trace]` table, objects, lights) follows.
 pub fn godel_scene(name: &str, camera: &str, rest: &str) -> String {

@@ -14,23 +14,17 @@ use tower::ServiceExt;
 use viewer::{Access, ViewerState};
 
 /// A full sphere (16×8) of a static observer in flat spacetime: a uniform ball and the earth.
-pub const SCENE: &str = r#"
-name = "gpu-test"
-[spacetime]
-metric = "minkowski"
-[observer]
-time = 0.0
-position = { x = 0.0, y = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "sphere"
-width = 16
-height = 8
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
+pub fn scene_text() -> String {
+    format!(
+        "name = \"gpu-test\"\n[spacetime]\nmetric = \"minkowski\"\n{}{}{}{OBJECTS}",
+        testkit::OBSERVER_AT_ORIGIN,
+        testkit::sphere(W, H),
+        testkit::trace("numeric", 10.0)
+    )
+}
+
+/// The objects of [`scene_text`].
+const OBJECTS: &str = r#"[[object]]
 name = "ball"
 radius = 0.2
 texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
@@ -76,7 +70,7 @@ pub fn data() -> DataFile {
         header: DataHeader {
             format_version: FORMAT_VERSION,
             scene_name: "gpu-test".into(),
-            scene_text: SCENE.into(),
+            scene_text: scene_text(),
             camera: Camera::Sphere {
                 width: W as u32,
                 height: H as u32,
@@ -100,7 +94,7 @@ pub fn data() -> DataFile {
 pub fn flat() -> DataFile {
     let mut flat = data();
     flat.header.scene_text =
-        SCENE.replace("kind = \"sphere\"", "kind = \"pinhole\"\nfov_deg = 60.0");
+        scene_text().replace("kind = \"sphere\"", "kind = \"pinhole\"\nfov_deg = 60.0");
     flat.header.camera = Camera::Pinhole {
         fov_deg: 60.0,
         width: W as u32,
