@@ -13,9 +13,10 @@ use spacetime::LocalVelocity;
 
 /// Two balls at rest at r = 1, seen from the axis by the static observer.
 fn sphere_scene() -> String {
-    testkit::godel_scene(
+    testkit::sphere_scene(
         "synthetic-sphere",
-        &testkit::sphere(4096, 2048),
+        4096,
+        2048,
         &format!(
             "{}{}",
             testkit::ball_at_rest("a", 0.2, 1.0, 0.0),

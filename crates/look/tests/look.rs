@@ -27,9 +27,10 @@ fn render_scene(s: &Scene) -> DataFile {
 /// A ball at rest at r = 1 (seen twice, g = 1 for the static observer) and a ball falling
 /// past at 0.7 c (several images, g ≠ 1), seen from the axis over the full sphere.
 fn sphere_scene() -> String {
-    testkit::godel_scene(
+    testkit::sphere_scene(
         "two-balls",
-        &testkit::sphere(720, 360),
+        720,
+        360,
         &format!(
             "{}{}[[object]]\nname = \"falling\"\nradius = 0.25\nmotion = {{ kind = \"geodesic\", \
              time = 0.0, position = {{ x = -1.0, y = 0.3, z = 0.2 }}, speed = 0.7, \

@@ -10,9 +10,10 @@ use spacetime::LocalVelocity;
 
 /// A ball at rest at r = 1 seen from the axis over a small full sphere.
 fn small_scene() -> String {
-    testkit::godel_scene(
+    testkit::sphere_scene(
         "small",
-        &testkit::sphere(8, 4),
+        8,
+        4,
         &format!(
             "{}{}",
             testkit::trace("exact", 10.0),

@@ -1,6 +1,7 @@
 //! Fixtures shared by the tests, benches and examples of the workspace's crates: the pieces
 //! of scene text that every small test scene repeats, the header of a synthetic data file,
-//! and running a command-line binary. Only a dev-dependency; never published.
+//! running a command-line binary, and the viewer's refusal of a texture from elsewhere. Only
+//! a dev-dependency; never published.
 //!
 //! The binary to run is passed in (`env!("CARGO_BIN_EXE_godel")` is known only inside the
 //! `godel` package).
@@ -106,11 +107,38 @@ pub fn ball_ahead(name: &str, camera: &str, object: &str, texture: &str) -> Stri
         name,
         camera,
         &format!(
-            "[trace]\nmethod = \"numeric\"\nmax_past = 10.0\n[[object]]\nname = \"{object}\"\n\
-             radius = 0.2\ntexture = {texture}\ntemperature = 5800.0\n\
-             motion = {{ kind = \"rest\", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}\n"
+            "{}{}",
+            trace("numeric", 10.0),
+            textured_ball(
+                object,
+                0.2,
+                texture,
+                5800.0,
+                "{ r = 1.0, phi = 0.0, z = 0.0 }"
+            )
         ),
     )
+}
+
+/// `[[object]]`: a sphere named `name` of `radius` wearing `texture` (an inline TOML table)
+/// at `temperature` kelvin, at rest at `position` (an inline TOML table).
+pub fn textured_ball(
+    name: &str,
+    radius: f64,
+    texture: &str,
+    temperature: f64,
+    position: &str,
+) -> String {
+    format!(
+        "[[object]]\nname = \"{name}\"\nradius = {radius:?}\ntexture = {texture}\n\
+         temperature = {temperature:?}\nmotion = {{ kind = \"rest\", position = {position} }}\n"
+    )
+}
+
+/// A [`godel_scene`] through the full sphere (360° × 180°) of `width` × `height` pixels;
+/// `rest` follows.
+pub fn sphere_scene(name: &str, width: usize, height: usize, rest: &str) -> String {
+    godel_scene(name, &sphere(width, height), rest)
 }
 
 /// The header of a synthetic data file: traced numerically in Gödel's universe (a = 1) with

@@ -155,18 +155,9 @@ impl CameraJson {
                 fov_deg,
                 width,
                 height,
-            } => {
-                if width != height {
-                    return Err(ApiError::bad_request(format!(
-                        "view: camera.height: a fisheye image is square: height must equal \
-                         width ({width}), got {height}"
-                    )));
-                }
-                Camera::Fisheye {
-                    fov_deg,
-                    size: width,
-                }
-            }
+            } => Camera::fisheye(fov_deg, width, height).map_err(|(field, message)| {
+                ApiError::bad_request(format!("view: {field}: {message}"))
+            })?,
         })
     }
 }

@@ -16,27 +16,26 @@ use viewer::{Access, ViewerState};
 /// A full sphere (16×8) of a static observer in flat spacetime: a uniform ball and the earth.
 pub fn scene_text() -> String {
     format!(
-        "name = \"gpu-test\"\n[spacetime]\nmetric = \"minkowski\"\n{}{}{}{OBJECTS}",
+        "name = \"gpu-test\"\n[spacetime]\nmetric = \"minkowski\"\n{}{}{}{}{}",
         testkit::OBSERVER_AT_ORIGIN,
         testkit::sphere(W, H),
-        testkit::trace("numeric", 10.0)
+        testkit::trace("numeric", 10.0),
+        testkit::textured_ball(
+            "ball",
+            0.2,
+            "{ kind = \"uniform\", color = [0.2, 0.4, 0.6] }",
+            5800.0,
+            "{ x = 0.0, y = -1.0, z = 0.0 }"
+        ),
+        testkit::textured_ball(
+            "globe",
+            0.2,
+            "{ kind = \"image\", builtin = \"earth\" }",
+            4000.0,
+            "{ x = 1.0, y = 0.0, z = 0.0 }"
+        ),
     )
 }
-
-/// The objects of [`scene_text`].
-const OBJECTS: &str = r#"[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
-temperature = 5800.0
-motion = { kind = "rest", position = { x = 0.0, y = -1.0, z = 0.0 } }
-[[object]]
-name = "globe"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 4000.0
-motion = { kind = "rest", position = { x = 1.0, y = 0.0, z = 0.0 } }
-"#;
 
 pub const W: usize = 16;
 pub const H: usize = 8;
