@@ -64,12 +64,10 @@ pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Resu
         let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
         shade::encode_png(&image, &png)?
     };
-    let exr_bytes = data
-        .to_bytes()
-        .map_err(|kind| datafile::DataFileError {
-            path: exr.clone(),
-            kind,
-        })?;
+    let exr_bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {
+        path: exr.clone(),
+        kind,
+    })?;
     write_together(&[(exr.clone(), &exr_bytes), (png.clone(), &png_bytes)])?;
     eprintln!("wrote {} and {}", png.display(), exr.display());
     Ok(())

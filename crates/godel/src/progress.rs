@@ -31,4 +31,3 @@ pub fn progress_bar(scene: &Scene, pixels: u64, quiet: bool) -> ProgressBar {
     bar.set_prefix(format!("tracing {}", scene.name));
     bar
 }
-

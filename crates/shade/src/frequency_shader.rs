@@ -26,9 +26,9 @@
 //! figures of the Gödel-universe visualizations; see [`reference_square`] for the layout.
 //! Rows are shaded in parallel; the result does not depend on the thread count.
 
-use image::RgbImage;
-use datafile::DataFile;
 use datafile::record::PixelRecord;
+use datafile::DataFile;
+use image::RgbImage;
 
 use crate::blackbody::table;
 use crate::colour::rgb_to_srgb8;

@@ -29,9 +29,9 @@
 
 use std::collections::HashMap;
 
+use datafile::DataFile;
 use image::RgbImage;
 use rayon::prelude::*;
-use datafile::DataFile;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};

@@ -23,11 +23,11 @@
 
 use std::path::Path;
 
+use datafile::atomic::write_atomically;
+use datafile::record::{PixelRecord, RayStatus};
+use datafile::DataFile;
 use image::RgbImage;
 use rayon::prelude::*;
-use datafile::atomic::write_atomically;
-use datafile::DataFile;
-use datafile::record::{PixelRecord, RayStatus};
 use scene::Scene;
 
 use crate::colour::rgb_to_srgb8;

@@ -1,8 +1,8 @@
 //! Tests of the frequency shader on a synthetic data file: black-body colours at g·T, the
 //! physical brightness ordering, statuses, and the reference squares.
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::blackbody::{self, table};
 use shade::colour::rgb_to_srgb8;
 use shade::frequency_shader::{blackbody_colour, reference_square};

@@ -1,8 +1,8 @@
 //! The lit preview: texture × (ambient + Σ colour_k · light_k), and the light sum any shader
 //! can reuse.
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use shade::colour::rgb_to_srgb8;
 use shade::texture_shader::{direct_light, shade_lit, LIT_AMBIENT};
 use shade::Texture;

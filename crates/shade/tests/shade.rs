@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use scene::{BuiltinImage, ImageSource, TextureSpec};
 use shade::colour::{linear_to_srgb, linear_to_srgb8, rgb_to_srgb8, srgb_to_linear};
 use shade::{shade_textures, shading_factor, write_png, ShadeError, Texture};

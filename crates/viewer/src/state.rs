@@ -9,9 +9,9 @@
 
 use std::path::{Path, PathBuf};
 
-use image::RgbImage;
-use datafile::DataFile;
 use datafile::record::RayStatus;
+use datafile::DataFile;
+use image::RgbImage;
 use serde::Serialize;
 use shade::{ShadeSettings, Shading, TextureSource};
 
