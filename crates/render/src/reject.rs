@@ -20,6 +20,10 @@
 //! |Δz| ≤ reach, the least d_H exceeds reach = [`REACH_PER_RADIUS`]·R: the renderer's ball
 //! (second-order normal coordinates, `worldline.rs`) lies within that static distance of
 //! its centre (a property test measures the ratio).
+//!
+//! Planes z = h (coordinate objects, static): along a closed-form ray z is linear in λ, so
+//! the ray crosses the plane at most once, where p_z λ = h − z_0; a ray that keeps a clear
+//! side over the whole stretch searched never crosses it.
 
 use crate::target::Target;
 use crate::worldline::Worldline;
@@ -41,6 +45,50 @@ pub const REACH_PER_A: f64 = 1e-6;
 
 /// The numeric tracer uses the rejection only at integration tolerances up to this.
 pub const NUMERIC_TOLERANCE: f64 = 1e-9;
+
+/// An object whose whole-ray test [`Rejection::misses`] can leave it out of a ray's search.
+#[derive(Clone, Copy, Debug)]
+pub enum Rejection {
+    Ball(StaticBall),
+    /// A plane at height `z` in the origin frame (its extent ignored: conservative).
+    Plane {
+        z: f64,
+    },
+}
+
+impl Rejection {
+    /// The rejection test of `target` for rays from the place of `from` (see
+    /// [`StaticBall::new`]), in Gödel's universe with parameter `a`; None for objects in
+    /// motion and coordinate spheres.
+    pub fn new(a: f64, from: Event, target: &Target) -> Option<Rejection> {
+        match target {
+            Target::Plane { height, .. } => Some(Rejection::Plane { z: height - from.z }),
+            _ => StaticBall::new(a, from, target).map(Rejection::Ball),
+        }
+    }
+
+    /// Whether the closed-form light ray `geo` from the origin, over λ ∈ [0, until], provably
+    /// never enters the object's surface (see [`StaticBall::misses`]). A plane: the
+    /// signed height p_z λ − z keeps one side, clear of the plane by more than rounding, at
+    /// both ends (it is linear in λ).
+    pub fn misses(&self, geo: &OriginGeodesic, until: f64) -> bool {
+        match *self {
+            Rejection::Ball(b) => b.misses(geo, until),
+            Rejection::Plane { z } => {
+                let f0 = -z;
+                let (f1, span) = if until.is_finite() {
+                    (geo.pz * until - z, (geo.pz * until).abs())
+                } else if geo.pz == 0.0 {
+                    (f0, 0.0)
+                } else {
+                    (geo.pz * f64::INFINITY, 0.0)
+                };
+                let clear = 1e-9 * (1.0 + z.abs() + span);
+                f0.abs() > clear && f1.abs() > clear && (f0 > 0.0) == (f1 > 0.0)
+            }
+        }
+    }
+}
 
 /// A ball at rest, seen from the observer's origin frame.
 #[derive(Clone, Copy, Debug)]

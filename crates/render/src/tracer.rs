@@ -25,7 +25,7 @@
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
-use crate::reject::{StaticBall, NUMERIC_TOLERANCE};
+use crate::reject::{Rejection, NUMERIC_TOLERANCE};
 use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use datafile::record::{PixelRecord, RayStatus};
 use spacetime::measure::frequency_ratio;
@@ -48,9 +48,9 @@ pub struct Tracer {
     periodic: bool,
     /// Use the closed-form geodesics instead of the integrator (Gödel only).
     exact: bool,
-    /// Per object, its whole-ray rejection test (objects at rest, Gödel only; none where
+    /// Per object, its whole-ray rejection test (balls at rest and planes, Gödel only; none where
     /// the numeric tracer's tolerance is too loose for its margin).
-    balls: Vec<Option<StaticBall>>,
+    rejections: Vec<Option<Rejection>>,
 }
 
 /// How a tracer follows rays (from the scene's `[trace]` table).
@@ -106,13 +106,13 @@ impl Tracer {
     pub fn new(objects: Intersector, observer: Event, frame: Tetrad, opt: TraceOptions) -> Tracer {
         let godel = objects.metric.godel_a().is_some();
         let exact = opt.exact && godel;
-        let balls = objects
+        let rejections = objects
             .targets
             .iter()
             .map(|t| {
                 let a = objects.metric.godel_a()?;
                 let sure = exact || opt.tolerance <= NUMERIC_TOLERANCE;
-                StaticBall::new(a, observer, t).filter(|_| sure)
+                Rejection::new(a, observer, t).filter(|_| sure)
             })
             .collect();
         Tracer {
@@ -128,14 +128,14 @@ impl Tracer {
             max_steps: opt.max_steps,
             periodic: godel,
             exact,
-            balls,
+            rejections,
         }
     }
 
     /// The same tracer without whole-ray rejection: every ray searches every object (for
     /// tests and benchmarks that compare the two).
     pub fn without_rejection(mut self) -> Tracer {
-        self.balls.iter_mut().for_each(|b| *b = None);
+        self.rejections.iter_mut().for_each(|b| *b = None);
         self
     }
 
@@ -172,7 +172,7 @@ impl Tracer {
             .godel_a()
             .and_then(|a| ExactGeodesic::new(a, self.observer, k));
         let mut near_any = false;
-        for (on, ball) in probes.active.iter_mut().zip(&self.balls) {
+        for (on, ball) in probes.active.iter_mut().zip(&self.rejections) {
             *on = !matches!((ball, &geo), (Some(b), Some(g)) if b.misses(&g.origin, f64::INFINITY));
             near_any |= *on;
         }
