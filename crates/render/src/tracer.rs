@@ -48,8 +48,8 @@ pub struct Tracer {
     periodic: bool,
     /// Use the closed-form geodesics instead of the integrator (Gödel only).
     exact: bool,
-    /// Per object, its whole-ray rejection test (balls at rest and planes, Gödel only; none where
-    /// the numeric tracer's tolerance is too loose for its margin).
+    /// Per object, its whole-ray rejection test (balls at rest and planes, Gödel only; none
+    /// where the numeric tracer's tolerance is too loose for its margin).
     rejections: Vec<Option<Rejection>>,
 }
 
@@ -166,14 +166,16 @@ impl Tracer {
             first_step,
         } = scratch;
         segments.clear();
+        // The closed form: the exact tracer's ray, and the numeric one's rejection tests.
         let geo = self
             .objects
             .metric
             .godel_a()
+            .filter(|_| self.exact || self.rejections.iter().any(Option::is_some))
             .and_then(|a| ExactGeodesic::new(a, self.observer, k));
         let mut near_any = false;
-        for (on, ball) in probes.active.iter_mut().zip(&self.rejections) {
-            *on = !matches!((ball, &geo), (Some(b), Some(g)) if b.misses(&g.origin, f64::INFINITY));
+        for (on, rej) in probes.active.iter_mut().zip(&self.rejections) {
+            *on = !matches!((rej, &geo), (Some(r), Some(g)) if r.misses(&g.origin, f64::INFINITY));
             near_any |= *on;
         }
         if self.exact && !near_any {

@@ -226,7 +226,8 @@ proptest! {
     /// The rejection changes nothing: every pixel's record (bit for bit) is the same with it
     /// as without it, for both tracers, moving observers, several balls at rest near and far
     /// (also around the observer), with and without a floor plane and a ball in free fall
-    /// (never rejected).
+    /// (never rejected). (That rejection happens at all is `most_rays_far_from_a_ball_are_
+    /// rejected`; that hits survive it, every image test of the renderer, which run with it.)
     #[test]
     fn records_are_the_same_with_and_without_rejection(
         a in 0.5f64..2.0,
@@ -248,18 +249,14 @@ proptest! {
         let with = tracer(&sc);
         let without = tracer(&sc).without_rejection();
         let (mut s1, mut s2) = (with.scratch(), without.scratch());
-        let mut hits = 0;
         for row in 0..sc.camera.height() {
             for col in 0..sc.camera.width() {
                 let n = sc.observer.pixel_direction(&sc.camera, col, row).unwrap();
                 let r1 = with.trace(n, &mut s1).record;
                 let r2 = without.trace(n, &mut s2).record;
                 prop_assert_eq!(format!("{r1:?}"), format!("{r2:?}"), "pixel ({}, {})", col, row);
-                hits += (r1.object >= 0) as usize;
             }
         }
-        // Not vacuous: rays near the balls still find them.
-        prop_assert!(hits > 0 || balls.iter().all(|(_, r)| *r < 0.1 * a));
     }
 }
 
