@@ -11,34 +11,12 @@
 //!     of its pixels, two threads, numeric (as the file) and exact.
 //! Run: cargo bench -p render --bench speed [-- FILTER]
 
+mod common;
+
+use common::scene;
 use criterion::{criterion_group, criterion_main, Bencher, Criterion, Throughput};
 use render::driver::{render, NoProgress};
-use scene::Scene;
-use std::path::Path;
 use std::time::Duration;
-
-fn scene(path: &str, width: u32, height: u32, method: &str) -> Scene {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(path);
-    let text = std::fs::read_to_string(&p).expect("scene file");
-    let text = text
-        .lines()
-        .map(|l| {
-            if l.starts_with("width") {
-                format!("width = {width}")
-            } else if l.starts_with("height") {
-                format!("height = {height}")
-            } else if l.starts_with("method") {
-                format!("method = \"{method}\"")
-            } else {
-                l.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    Scene::from_str(&text, path).expect("valid scene")
-}
 
 /// CPU time of the whole process so far (every thread).
 fn cpu_now() -> Duration {
