@@ -350,4 +350,3 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
     };
     write_atomic(&args.output, &bytes)
 }
-

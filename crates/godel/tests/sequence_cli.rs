@@ -8,8 +8,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 
 mod common;
 use common::{files_in, run_within};

@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use datafile::record::{PixelRecord, RayStatus};
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 
 fn godel(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_godel"))

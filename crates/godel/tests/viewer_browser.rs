@@ -11,8 +11,8 @@ use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use datafile::DataFile;
 use datafile::record::RayStatus;
+use datafile::DataFile;
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A 96×48 pinhole view of a checkered ball at rest inside the horizon.

@@ -24,7 +24,7 @@ mod objects;
 mod raw;
 mod validate;
 
-pub use camera::Camera;
+pub use camera::{azimuth_elevation, direction_from, Camera};
 pub use error::{line_column, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,

@@ -18,19 +18,20 @@
 //! A scene with `[[light]]` sources is previewed lit instead: texture × (0.06 + Σ_k colour_k ·
 //! light_k), light_k the direct irradiance the renderer stores per light (see
 //! `render::lighting`); [`direct_light`] is that sum for any shader.
-//! Colours are encoded as 8-bit sRGB. Rows are shaded in parallel; the result does not
+//! Colours are encoded as 8-bit sRGB, hit pixels through the display tone curve
+//! ([`crate::colour::tone_map`]). Rows are shaded in parallel; the result does not
 //! depend on the thread count.
 
 use std::path::Path;
 
+use datafile::atomic::write_atomically;
+use datafile::record::{PixelRecord, RayStatus};
+use datafile::DataFile;
 use image::RgbImage;
 use rayon::prelude::*;
-use datafile::atomic::write_atomically;
-use datafile::DataFile;
-use datafile::record::{PixelRecord, RayStatus};
 use scene::Scene;
 
-use crate::colour::rgb_to_srgb8;
+use crate::colour::{display_srgb8, rgb_to_srgb8};
 use crate::error::ShadeError;
 use crate::texture::Texture;
 
@@ -78,8 +79,19 @@ pub fn shade_pixels_at(
         .for_each(|(row, out)| {
             for (col, px) in out.chunks_exact_mut(3).enumerate() {
                 let i = data.index(col, row);
-                let c = data.records.get(i).map_or(FAILED, |r| colour(i, r));
-                px.copy_from_slice(&rgb_to_srgb8(c));
+                let Some(r) = data.records.get(i) else {
+                    px.copy_from_slice(&rgb_to_srgb8(FAILED));
+                    continue;
+                };
+                let c = colour(i, r);
+                // Hit pixels are shown through the display tone curve; status colours and
+                // the failure colour are display codes, shown as they are.
+                let shown = if status_colour(r, BACKGROUND).is_none() && c != FAILED {
+                    display_srgb8(c, 1.0)
+                } else {
+                    rgb_to_srgb8(c)
+                };
+                px.copy_from_slice(&shown);
             }
         });
     RgbImage::from_raw(width, height, bytes).expect("buffer has width × height × 3 bytes")

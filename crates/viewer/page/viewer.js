@@ -86,6 +86,13 @@ function describeControls(info) {
         kind: 'check' },
     ],
   }, {
+    title: 'Picture',
+    controls: [
+      { id: 'grid', label: 'orientation marks', path: ['grid'], kind: 'check' },
+      { id: 'ev', label: 'exposure (stops)', path: ['ev'], kind: 'range',
+        min: -4, max: 4, step: 0.1 },
+    ],
+  }, {
     title: 'Time',
     controls: [
       { id: 'time-mode', label: 'mode', path: ['time', 'mode'], kind: 'select',
@@ -328,10 +335,12 @@ function showRecord(r) {
     t_emit: number(r.t_emit, 4),
     travel_time: number(r.travel_time, 4),
     lights: r.lights.length ? r.lights.map((x) => number(x, 3)).join(', ') : '–',
+    direction: r.azimuth_deg === null || r.azimuth_deg === undefined ? '–'
+      : `az ${number(r.azimuth_deg, 1)}°, el ${number(r.elevation_deg, 1)}°`,
   };
   const hit = r.object >= 0;
   for (const [field, text] of Object.entries(fields)) {
-    const keep = ['pixel', 'object', 'status'].includes(field) || hit;
+    const keep = ['pixel', 'object', 'status', 'direction'].includes(field) || hit;
     document.querySelector(`#record [data-field="${field}"]`).textContent = keep ? text : '–';
   }
 }
