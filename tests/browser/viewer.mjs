@@ -108,7 +108,8 @@ try {
     return rec && Math.abs(rec.col - c) <= 1 && Math.abs(rec.row - r) <= 1;
   }, [col, row]);
   result.record_shown = {};
-  for (const field of ['pixel', 'object', 'status', 'u', 'v', 'g', 't_emit', 'travel_time']) {
+  for (const field of ['pixel', 'object', 'status', 'u', 'v', 'g', 't_emit', 'travel_time',
+    'direction']) {
     result.record_shown[field] = await page.textContent(`#record [data-field="${field}"]`);
   }
 

@@ -217,6 +217,20 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
         );
     }
     assert!(expected.t_emit < 0.0);
+    // The viewing direction shown is the camera's for that pixel (one decimal on the page).
+    let camera = scene::Scene::from_str(&data.header.scene_text, "embedded")
+        .unwrap()
+        .camera;
+    let (az, el) = scene::azimuth_elevation(
+        camera
+            .pixel_direction(col as u32, row as u32)
+            .expect("a hit pixel is traced"),
+    );
+    assert_eq!(
+        shown["direction"],
+        format!("az {az:.1}°, el {el:.1}°"),
+        "the page's direction for pixel {col}, {row}"
+    );
 
     // The page's settings are the file's defaults with the frequency layer alone at the
     // slider's temperature.

@@ -48,12 +48,12 @@ fn label(v: f64) -> String {
 }
 
 /// The legend's title, with the unit: travel time is coordinate time −t_emit, in the
-/// units of the scene (those of the Gödel parameter a; c = 1).
-pub const LEGEND_TITLE: &str = "light travel time -t_emit (coordinate time)";
+/// scene's units (those of the Gödel parameter a, with c = 1).
+pub const LEGEND_TITLE: &str = "light travel time -t_emit (units of a, c = 1)";
 
-/// Draws the legend of travel times `min`..`max` on one line in the bottom-left corner:
-/// `min`, the colour bar (violet at `min`, yellow at `max`), `max`, and the title with its
-/// unit, in the readable type of [`crate::text`]. Images too small for it (under 48×24
+/// Draws the legend of travel times `min`..`max` in the bottom-left corner: `min`, the
+/// colour bar (violet at `min`, yellow at `max`), `max`, and the title with its unit (on the
+/// same line, or above it on narrow pictures), in the readable type of [`crate::text`]. Images too small for it (under 48×24
 /// pixels) are left as they are.
 pub fn draw_legend(img: &mut RgbImage, min: f64, max: f64) {
     let (w, h) = (img.width(), img.height());
@@ -81,7 +81,17 @@ pub fn draw_legend(img: &mut RgbImage, min: f64, max: f64) {
     let high = label(max);
     draw_text(img, x, y, scale, &high, white);
     x += i64::from(text_width(&high, scale)) + 6 * s;
-    draw_text(img, x, y, scale, LEGEND_TITLE, white);
+    // The title after the bar (in smaller type if need be), or above it where the line
+    // would not fit.
+    let fits = |k: u32| x + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w);
+    if fits(scale) {
+        draw_text(img, x, y, scale, LEGEND_TITLE, white);
+    } else if scale > 1 && fits(scale - 1) {
+        let small = i64::from(text_height(scale - 1));
+        draw_text(img, x, y + th - small, scale - 1, LEGEND_TITLE, white);
+    } else {
+        draw_text(img, margin, y - th - 3 * s, scale, LEGEND_TITLE, white);
+    }
 }
 
 /// Writes what the reference squares show beside them: `g = 1: 5800 K` (and the second

@@ -108,7 +108,7 @@ pub fn ticks(camera: &Camera) -> Vec<Tick> {
     let (h_span, v_span) = spans(camera);
     let label_px = f64::from(text_width("-180°", scale) + 8 * scale);
     let az_step = step(f64::from(w) / h_span, label_px);
-    let el_step = step(f64::from(h) / v_span, f64::from(2 * text_height(scale)));
+    let el_step = step(f64::from(h) / v_span, 2.5 * f64::from(text_height(scale)));
     let mut out = Vec::new();
     let mut push = |axis, degrees: f64, pos: Option<(f64, f64)>, edge_y: Option<f64>| {
         let Some((x, y)) = pos else { return };
@@ -230,6 +230,19 @@ pub fn draw_marks(img: &mut RgbImage, camera: &Camera) {
     let (wi, hi) = (i64::from(w), i64::from(h));
     let th = i64::from(text_height(scale));
     let fisheye = matches!(camera, Camera::Fisheye { .. });
+    // Labels are placed azimuths first; one that would overlap a placed label is left out
+    // (its tick stays).
+    let mut placed: Vec<[i64; 4]> = Vec::new();
+    let mut label = |img: &mut RgbImage, x: i64, y: i64, text: &str| {
+        let r = [x, y, x + i64::from(text_width(text, scale)), y + th];
+        let overlaps = placed
+            .iter()
+            .any(|p| r[0] < p[2] + s && p[0] < r[2] + s && r[1] < p[3] && p[1] < r[3]);
+        if !overlaps {
+            draw_text(img, x, y, scale, text, MARK_COLOUR);
+            placed.push(r);
+        }
+    };
     for t in &ticks {
         let (x, y) = (i64::from(t.col), i64::from(t.row));
         let tw = i64::from(text_width(&t.label, scale));
@@ -238,22 +251,27 @@ pub fn draw_marks(img: &mut RgbImage, camera: &Camera) {
                 fill(img, x - s / 2, hi - len, s.max(1), len, MARK_COLOUR);
                 fill(img, x - s / 2, 0, s.max(1), len, MARK_COLOUR);
                 let lx = (x - tw / 2).clamp(0, (wi - tw).max(0));
-                draw_text(img, lx, hi - len - th - 2 * s, scale, &t.label, MARK_COLOUR);
+                label(img, lx, hi - len - th - 2 * s, &t.label);
             }
             (Axis::Elevation, false) => {
                 fill(img, 0, y - s / 2, len, s.max(1), MARK_COLOUR);
                 fill(img, wi - len, y - s / 2, len, s.max(1), MARK_COLOUR);
                 let ly = (y - th / 2).clamp(0, (hi - th).max(0));
-                draw_text(img, len + 2 * s, ly, scale, &t.label, MARK_COLOUR);
+                label(img, len + 2 * s, ly, &t.label);
             }
             (Axis::Azimuth, true) => {
                 fill(img, x - s / 2, y - len / 2, s.max(1), len, MARK_COLOUR);
                 let lx = (x - tw / 2).clamp(0, (wi - tw).max(0));
-                draw_text(img, lx, y + len, scale, &t.label, MARK_COLOUR);
+                label(img, lx, (y + len).min(hi - th), &t.label);
             }
             (Axis::Elevation, true) => {
                 fill(img, x - len / 2, y - s / 2, len, s.max(1), MARK_COLOUR);
-                draw_text(img, x + len, y - th / 2, scale, &t.label, MARK_COLOUR);
+                label(
+                    img,
+                    x + len,
+                    (y - th / 2).clamp(0, (hi - th).max(0)),
+                    &t.label,
+                );
             }
         }
     }
