@@ -4,11 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use datafile::atomic::{write_atomically, write_atomically_via_path};
-use datafile::record::{PixelRecord, RayStatus};
-use datafile::{attr, DataFile, DataFileErrorKind, DataHeader, FORMAT_VERSION};
 use exr::prelude::{AttributeValue, FlatSamples, Text, WritableImage};
 use proptest::prelude::*;
+use datafile::atomic::{write_atomically, write_atomically_via_path};
+use datafile::{attr, DataFile, DataFileErrorKind, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 
 /// SplitMix64: a small deterministic generator for test data.
 struct Rng(u64);

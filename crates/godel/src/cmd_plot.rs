@@ -350,3 +350,4 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
     };
     write_atomic(&args.output, &bytes)
 }
+

@@ -18,9 +18,9 @@ use std::sync::{Mutex, MutexGuard};
 
 use anyhow::Context;
 use clap::Args;
-use datafile::DataFile;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
+use datafile::DataFile;
 use render::driver::{header, render, NoProgress};
 use scene::Scene;
 use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};

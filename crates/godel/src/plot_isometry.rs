@@ -11,8 +11,8 @@
 //! ∂φ rotates the loop about the origin.
 
 use crate::args::{positive, usage};
-use crate::output::write_atomic;
 use crate::plot_kit::{arrowhead, open_data_layer, output_is_png, tick_label, trace_ray, PALETTE};
+use crate::output::write_atomic;
 use crate::svg::{f, to_png, Svg};
 use clap::ValueEnum;
 use spacetime::{Event, Godel, Isometry, KillingField, Metric};

@@ -4,8 +4,8 @@
 fn main() {
     let mut args = std::env::args().skip(1);
     let path = args.next().expect("usage: inspect DATA.exr [ROW]");
-    let data =
-        datafile::DataFile::read(std::path::Path::new(&path)).unwrap_or_else(|e| panic!("{e}"));
+    let data = datafile::DataFile::read(std::path::Path::new(&path))
+        .unwrap_or_else(|e| panic!("{e}"));
     let row: usize = args
         .next()
         .map_or(data.height / 2, |r| r.parse().expect("row"));

@@ -10,14 +10,14 @@
 //! written from them) are identical whatever the number of threads or ranks, or the order
 //! in which tiles finish.
 
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use crate::intersect::Intersector;
 use crate::lighting::{LightSource, Lighting};
-use crate::plan::{tiles, Plan, Tile};
+use datafile::record::{PixelRecord, RayStatus};
 use crate::target::Target;
+use crate::plan::{tiles, Plan, Tile};
 use crate::tiles::{Assembler, Sink, TileData};
 use crate::tracer::{Scratch, TraceOptions, Tracer};
-use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use rayon::prelude::*;
 use scene::{Scene, TraceMethod};
 use spacetime::Spacetime;
@@ -312,3 +312,4 @@ impl Renderer<'_> {
         out
     }
 }
+

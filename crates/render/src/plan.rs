@@ -101,8 +101,7 @@ impl Plan {
             Plan::All => (0..tiles.len()).collect(),
             Plan::Part(p) => p.tiles(tiles.len()),
             Plan::Tiles(list) => {
-                let mut out: Vec<usize> =
-                    list.iter().copied().filter(|&k| k < tiles.len()).collect();
+                let mut out: Vec<usize> = list.iter().copied().filter(|&k| k < tiles.len()).collect();
                 out.sort_unstable();
                 out.dedup();
                 out

@@ -20,8 +20,8 @@
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
-use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use datafile::record::{PixelRecord, RayStatus};
+use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use spacetime::measure::frequency_ratio;
 use spacetime::{
     photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, FourVector, GeodesicState,

@@ -12,8 +12,8 @@
 mod common;
 
 use common::{godel, render_scene, scene};
-use datafile::record::RayStatus;
 use datafile::DataFile;
+use datafile::record::RayStatus;
 use scene::Scene;
 use spacetime::{
     trace, Event, FourVector, Geodesic, Metric, Spacetime, TimeDirection, Tolerances, TraceLimits,

@@ -4,9 +4,9 @@
 //! Defaults: frame local, texture a checker with 8 rows and 16 columns, temperature 5800 K,
 //! checker rows 8 and cols 16 when only one is given, geodesic start time 0.
 
-use crate::checker::{Checker, Result};
 use crate::model::*;
 use crate::raw::*;
+use crate::checker::{Checker, Result};
 use spacetime::Event;
 use std::path::Path;
 

@@ -20,6 +20,7 @@ use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
 use std::path::Path;
 
+
 /// Largest image side, and largest pixel count: guards against typos that would allocate
 /// gigabytes.
 const MAX_SIDE: u32 = 20_000;
@@ -59,6 +60,7 @@ pub(crate) struct Parts {
     pub objects: Vec<Object>,
     pub lights: Vec<Light>,
 }
+
 
 pub(crate) fn build(raw: RawScene, loc: &Locator, base_dir: &Path) -> Result<Parts> {
     let c = Checker { loc };

@@ -5,8 +5,8 @@
 //! `cargo bench -p shade --bench prepare -- --measurement-time 5 --warm-up-time 1`
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use datafile::record::PixelRecord;
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::PixelRecord;
 use shade::{ShadeSettings, ShaderKind, Shading};
 
 /// A data file with `n` objects named `o0`, `o1`, … (its embedded scene lists them).

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use datafile::record::PixelRecord;
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::PixelRecord;
 use shade::{FrameSource, Interpolation, Script, ShadeError, ShadeSettings, ShaderKind};
 
 fn data() -> DataFile {

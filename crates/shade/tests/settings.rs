@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use shade::{
     keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
 };

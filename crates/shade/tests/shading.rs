@@ -3,8 +3,8 @@
 //! is decided by t_emit alone, the light layer follows its formula, textures move and lamps
 //! blink, and bad settings are refused naming the field.
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use scene::Scene;
 use shade::blackbody::{normalize_max, observed_xyz, unit_rgb};
 use shade::colour::rgb_to_srgb8;

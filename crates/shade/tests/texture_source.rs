@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use shade::{
     ImageTexture, ShadeError, ShadeSettings, ShaderKind, Shading, TextureChoice, TextureSource,
     MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,

@@ -221,7 +221,9 @@ fn fuzz_data_files() {
         let cli = fuzz.sampled(k, CLI_EVERY_SHADE);
         fuzz.run(k, &shown, move || {
             let mut outcome = shading_case::data_bytes(&bytes)?;
-            if let (Some(text), Ok(data)) = (&settings, datafile::DataFile::from_bytes(&bytes)) {
+            if let (Some(text), Ok(data)) =
+                (&settings, datafile::DataFile::from_bytes(&bytes))
+            {
                 outcome = format!(
                     "{outcome}; settings {}",
                     shading_case::settings(&data, text)?

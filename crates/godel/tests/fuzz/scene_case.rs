@@ -4,9 +4,9 @@
 //! data file's promises, round-tripped through the EXR codec, previewed, and shaded with the
 //! data file's default settings in every layer.
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use render::driver::NoProgress;
+use datafile::record::{PixelRecord, RayStatus};
 use scene::{Camera, Scene, SceneError, Shape};
 use shade::{ShadeSettings, ShaderKind, Shading};
 

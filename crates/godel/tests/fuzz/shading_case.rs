@@ -5,8 +5,8 @@
 //! accepted settings must shade the whole picture and read back from their own TOML; a
 //! script's frames must all shade once its keyframes do.
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
+use datafile::record::{PixelRecord, RayStatus};
 use shade::{Script, ShadeSettings, ShaderKind, Shading};
 use std::path::Path;
 

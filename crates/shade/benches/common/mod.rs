@@ -1,8 +1,8 @@
 //! The synthetic 1920×1080 data file and the shader cases shared by the shading benchmark
 //! (`benches/shade.rs`) and the CPU-time example (`examples/shade_cpu.rs`).
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
 const SCENE: &str = r#"name = "bench"

@@ -3,8 +3,8 @@
 //! covering half the pixels (a 50-pixel checkerboard) with varied (u, v, g, t_emit), the rest
 //! empty sky.
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 
 const SCENE: &str = r#"
 name = "bench"

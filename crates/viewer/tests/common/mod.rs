@@ -8,9 +8,9 @@ use std::sync::Arc;
 
 use axum::body::Body;
 use axum::http::{HeaderMap, Request, StatusCode};
-use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use http_body_util::BodyExt;
+use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::record::{PixelRecord, RayStatus};
 use shade::{ShadeSettings, ShaderKind};
 use tower::ServiceExt;
 use viewer::{Access, ViewerState};
