@@ -2,7 +2,8 @@
 //! shade, and each refuses the other form; render's scene overrides are validated like the
 //! scene and name their flag; shade refuses flags no chosen layer reads; negative numbers
 //! reach validation as values; a closed pipe ends quietly with 0; each error is said once;
-//! shade writes linear EXR or tone-mapped PNG by extension and refuses other extensions.
+//! shade writes linear EXR or tone-mapped PNG by extension and refuses other extensions;
+//! progress rates are whole numbers.
 
 mod common;
 
@@ -313,4 +314,41 @@ pub fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
     assert_eq!(names, ["B", "G", "R"]);
     let (r, g, b) = (plane("R"), plane("G"), plane("B"));
     (0..r.len()).map(|i| [r[i], g[i], b[i]]).collect()
+}
+
+#[test]
+fn progress_rates_are_whole_numbers() {
+    // The bar is drawn only on a terminal: `script` (util-linux) gives the render one.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_scene(dir.path(), "lit.toml", &lit_scene_text("lit", 4.0));
+    let command = format!(
+        "'{}' render '{}' -o '{}'",
+        env!("CARGO_BIN_EXE_godel"),
+        scene,
+        s(&dir.path().join("out"))
+    );
+    let o = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .output()
+        .expect("`script` (util-linux) runs the render on a terminal");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+    let screen = String::from_utf8_lossy(&o.stdout).replace('\r', "\n");
+    // Every rate the bar printed: the text between the last ", " and "/s".
+    let rates: Vec<&str> = screen
+        .match_indices("/s")
+        .filter_map(|(i, _)| screen[..i].rsplit(", ").next())
+        .filter(|r| !r.contains('\n'))
+        .collect();
+    assert!(!rates.is_empty(), "no progress drawn: {screen}");
+    for r in rates {
+        // The bar's "N px/s" and the summary's "N rays/s".
+        let digits = r
+            .strip_suffix(" px")
+            .or_else(|| r.strip_suffix(" rays"))
+            .unwrap_or_else(|| panic!("rate {r:?}"));
+        assert!(
+            !digits.is_empty() && digits.chars().all(|c| c.is_ascii_digit()),
+            "rate {r:?} is not a whole number of px/s"
+        );
+    }
 }

@@ -17,6 +17,11 @@
 //! exactly the render's preview; black bodies and false colours are not Lambert-shaded.
 //! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
 //!
+//! Pictures for display ([`Shading::image`]) scale each hit pixel by 2^`ev` and pass it
+//! through the display tone curve ([`crate::colour::tone_map`]), then draw the overlays:
+//! orientation marks (`grid`, [`crate::marks`]), reference squares and the travel-time
+//! legend; [`Shading::linear`] gives the colours before all of that (the EXR output).
+//!
 //! Caps, checked with the other settings so that every front end gets them: at most
 //! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
 //! light count, if larger); image files as [`crate::texture`] caps them.
