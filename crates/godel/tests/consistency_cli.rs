@@ -11,7 +11,7 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-use common::{files_in, lit_scene_text, stderr, write_scene};
+use common::{files_in, lit_scene_text, read_rgb, stderr, write_scene};
 
 fn godel(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_godel"))
@@ -282,38 +282,6 @@ fn shade_output_type_follows_the_extension() {
         }
     }
     assert!(hits > 20);
-}
-
-/// The R, G, B planes of an OpenEXR file, read with the exr crate.
-pub fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
-    use exr::prelude::*;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .all_layers()
-        .all_attributes()
-        .from_file(path)
-        .unwrap();
-    let layer = &image.layer_data[0];
-    let plane = |name: &str| -> Vec<f32> {
-        let ch = layer
-            .channel_data
-            .list
-            .iter()
-            .find(|c| c.name == Text::from(name))
-            .unwrap_or_else(|| panic!("channel {name}"));
-        ch.sample_data.values_as_f32().collect()
-    };
-    let names: Vec<String> = layer
-        .channel_data
-        .list
-        .iter()
-        .map(|c| c.name.to_string())
-        .collect();
-    assert_eq!(names, ["B", "G", "R"]);
-    let (r, g, b) = (plane("R"), plane("G"), plane("B"));
-    (0..r.len()).map(|i| [r[i], g[i], b[i]]).collect()
 }
 
 #[test]

@@ -12,7 +12,7 @@ mod common;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use common::stderr;
+use common::{read_rgb, stderr};
 
 fn godel(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_godel"))
@@ -27,33 +27,6 @@ fn s(p: &Path) -> &str {
 
 fn scene(name: &str) -> String {
     format!("{}/../../scenes/{name}", env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The R, G, B planes of a float OpenEXR picture.
-fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
-    use exr::prelude::*;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .all_layers()
-        .all_attributes()
-        .from_file(path)
-        .unwrap();
-    let layer = &image.layer_data[0];
-    let plane = |name: &str| -> Vec<f32> {
-        layer
-            .channel_data
-            .list
-            .iter()
-            .find(|c| c.name == Text::from(name))
-            .unwrap()
-            .sample_data
-            .values_as_f32()
-            .collect()
-    };
-    let (r, g, b) = (plane("R"), plane("G"), plane("B"));
-    (0..r.len()).map(|i| [r[i], g[i], b[i]]).collect()
 }
 
 #[test]

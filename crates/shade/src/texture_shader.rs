@@ -24,7 +24,6 @@
 
 use std::path::Path;
 
-use datafile::atomic::write_atomically;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use image::RgbImage;
@@ -223,11 +222,5 @@ pub fn encode_png(img: &RgbImage, path: &Path) -> Result<Vec<u8>, ShadeError> {
 
 /// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
 pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
-    let bytes = encode_png(img, path)?;
-    write_atomically(path, |file| std::io::Write::write_all(file, &bytes)).map_err(|source| {
-        ShadeError::Write {
-            path: path.to_path_buf(),
-            source,
-        }
-    })
+    crate::hdr::write_bytes(path, &encode_png(img, path)?)
 }
