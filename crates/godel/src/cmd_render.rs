@@ -196,16 +196,17 @@ mod under_mpi {
         let bar = progress_bar(&scene, pixels, args.quiet || !rank0);
         let mut assembler = Assembler::new(renderer.blank(), tiles);
         let mut failure = None;
-        let mut done =
-            |job: usize, bytes: Vec<u8>| match postcard::from_bytes::<Vec<TileData>>(&bytes) {
-                Ok(traced) if traced.iter().map(|t| t.index).eq(jobs[job].iter().copied()) => {
-                    for t in traced {
-                        bar.inc(t.records.len() as u64);
-                        assembler.accept(t);
-                    }
+        let mut done = |job: usize, bytes: Vec<u8>| match postcard::from_bytes::<Vec<TileData>>(
+            &bytes,
+        ) {
+            Ok(traced) if traced.iter().map(|t| t.index).eq(jobs[job].iter().copied()) => {
+                for t in traced {
+                    bar.inc(t.records.len() as u64);
+                    assembler.accept(t);
                 }
-                _ => failure = Some(job),
-            };
+            }
+            _ => failure = Some(job),
+        };
         let per_rank = run_jobs(&world, jobs.len(), &fingerprint(&scene), &work, &mut done);
         bar.finish_and_clear();
         if !rank0 {

@@ -21,8 +21,8 @@ use shade::hdr::{encode_exr, write_bytes, PictureFormat};
 #[command(after_help = "\
 Output: -o names the picture FILE (as for plot); its extension picks the format: .png \
 (8-bit sRGB: exposure --ev, then the display tone curve, then overlays) or .exr (linear \
-scene-referred RGB, 32-bit float channels R, G, B, no overlays). Any other extension is an \
-error.
+scene-referred RGB, 32-bit float channels R, G, B, no overlays, so --ev and --grid are \
+refused there). Any other extension is an error.
 
 Flags a chosen layer does not read are errors: --temperature, --exposure and --no-reference \
 need the frequency layer; --window, --window-texture, --travel and --no-legend the time \
@@ -256,79 +256,35 @@ fn apply_flags(args: &ShadeArgs, names: &[String], s: &mut ShadeSettings) -> any
     Ok(())
 }
 
-/// The layer-specific flags given although no chosen layer reads them: an error naming the
-/// first such flag and the layer it needs (never silently ignored).
-fn unused_flags(args: &ShadeArgs, shaders: &[ShaderKind]) -> anyhow::Result<()> {
+/// The layer-specific flags given although no chosen layer reads them, and the display
+/// flags given for a linear `.exr`: an error naming the first such flag and what it needs
+/// (never silently ignored).
+fn unused_flags(
+    args: &ShadeArgs,
+    shaders: &[ShaderKind],
+    format: PictureFormat,
+) -> anyhow::Result<()> {
     let has = |k: ShaderKind| shaders.contains(&k);
-    let paints = has(ShaderKind::Texture) || has(ShaderKind::Time) || has(ShaderKind::Light);
-    let checks: [(&str, bool, bool, &str); 12] = [
-        (
-            "--temperature",
-            !args.temperature.is_empty(),
-            has(ShaderKind::Frequency),
-            "frequency",
-        ),
-        (
-            "--exposure",
-            args.exposure.is_some(),
-            has(ShaderKind::Frequency),
-            "frequency",
-        ),
-        (
-            "--no-reference",
-            args.no_reference,
-            has(ShaderKind::Frequency),
-            "frequency",
-        ),
-        (
-            "--window",
-            args.window.is_some(),
-            has(ShaderKind::Time),
-            "time",
-        ),
-        (
-            "--window-texture",
-            !args.window_texture.is_empty(),
-            has(ShaderKind::Time),
-            "time",
-        ),
-        (
-            "--travel",
-            args.travel.is_some(),
-            has(ShaderKind::Time),
-            "time",
-        ),
-        ("--no-legend", args.no_legend, has(ShaderKind::Time), "time"),
-        (
-            "--ambient",
-            args.ambient.is_some(),
-            has(ShaderKind::Light),
-            "light",
-        ),
-        (
-            "--light",
-            !args.light.is_empty(),
-            has(ShaderKind::Light),
-            "light",
-        ),
-        (
-            "--texture",
-            !args.texture.is_empty(),
-            paints,
-            "texture, time or light",
-        ),
-        (
-            "--rotate",
-            !args.rotate.is_empty(),
-            paints,
-            "texture, time or light",
-        ),
-        (
-            "--offset",
-            !args.offset.is_empty(),
-            paints,
-            "texture, time or light",
-        ),
+    let (freq, time, light) = (
+        has(ShaderKind::Frequency),
+        has(ShaderKind::Time),
+        has(ShaderKind::Light),
+    );
+    let paints = has(ShaderKind::Texture) || time || light;
+    let (f, t, l, p) = ("frequency", "time", "light", "texture, time or light");
+    let checks = [
+        ("--temperature", !args.temperature.is_empty(), freq, f),
+        ("--exposure", args.exposure.is_some(), freq, f),
+        ("--no-reference", args.no_reference, freq, f),
+        ("--window", args.window.is_some(), time, t),
+        ("--window-texture", !args.window_texture.is_empty(), time, t),
+        ("--travel", args.travel.is_some(), time, t),
+        ("--no-legend", args.no_legend, time, t),
+        ("--ambient", args.ambient.is_some(), light, l),
+        ("--light", !args.light.is_empty(), light, l),
+        ("--texture", !args.texture.is_empty(), paints, p),
+        ("--rotate", !args.rotate.is_empty(), paints, p),
+        ("--offset", !args.offset.is_empty(), paints, p),
     ];
     for (flag, given, used, layer) in checks {
         if given && !used {
@@ -340,6 +296,16 @@ fn unused_flags(args: &ShadeArgs, shaders: &[ShaderKind]) -> anyhow::Result<()> 
                     names.join(",")
                 ),
             ));
+        }
+    }
+    if format == PictureFormat::Exr {
+        for (flag, given) in [("--ev", args.ev.is_some()), ("--grid", args.grid)] {
+            if given {
+                return Err(usage(
+                    flag,
+                    "has no effect on a linear .exr picture (no exposure, tone curve or overlays): write a .png",
+                ));
+            }
         }
     }
     Ok(())
@@ -411,7 +377,7 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
             .map_err(|e| settings_error("--settings", e))?;
     }
     apply_flags(&args, &data.header.object_names, &mut settings)?;
-    unused_flags(&args, &settings.shaders)?;
+    unused_flags(&args, &settings.shaders, format)?;
     let shading = Shading::new(&data, &settings).map_err(|e| {
         let flag = blamed_flag(&args, &e);
         settings_error(flag, e)

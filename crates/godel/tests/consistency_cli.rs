@@ -138,6 +138,15 @@ fn shade_refuses_flags_no_chosen_layer_reads() {
         assert!(stderr(&o).contains(layer), "{}", stderr(&o));
         assert!(!out.exists());
     }
+    // Display settings on a linear picture are refused as well.
+    let exr = dir.path().join("x.exr");
+    for flag in [vec!["--grid"], vec!["--ev", "1"]] {
+        let mut all = vec!["shade", s(&data), "-o", s(&exr)];
+        all.extend(flag.iter().copied());
+        let o = godel(&all);
+        assert_usage(&o, flag[0]);
+        assert!(!exr.exists());
+    }
     // With the layer, the same flag works.
     let o = godel(&[
         "shade",
