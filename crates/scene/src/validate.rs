@@ -189,6 +189,11 @@ fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer> {
     })
 }
 
+/// [`camera`] on its own, for [`crate::camera_from_str`].
+pub(crate) fn camera_only(loc: &Locator, r: RawCamera) -> Result<Camera> {
+    camera(&Checker { loc }, r)
+}
+
 fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
     for (field, v) in [("width", r.width), ("height", r.height)] {
         if v == 0 || v > MAX_SIDE {

@@ -160,13 +160,13 @@ pub fn ticks(camera: &Camera) -> Vec<Tick> {
     out
 }
 
-/// The camera a data file was traced with, sized to the data file's image: from the scene
-/// embedded in its header (`None` if that does not read as a scene).
+/// The camera a data file was traced with, sized to the data file's image: the `[camera]`
+/// of the scene embedded in its header (`None` if that does not read as a camera).
 pub fn data_camera(data: &datafile::DataFile) -> Option<Camera> {
-    let scene = scene::Scene::from_str(&data.header.scene_text, "embedded scene").ok()?;
+    let camera = scene::camera_from_str(&data.header.scene_text, "embedded scene").ok()?;
     let w = u32::try_from(data.width).ok()?;
     let h = u32::try_from(data.height).ok()?;
-    Some(scene.camera.with_size(w, h))
+    Some(camera.with_size(w, h))
 }
 
 /// Azimuth and elevation (degrees, camera basis) where pixel (col, row) of a picture made
