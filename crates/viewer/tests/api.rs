@@ -111,6 +111,27 @@ async fn pixel_record_comes_from_the_data_in_memory() {
     assert_eq!(r["status"], "escaped");
 }
 
+#[tokio::test]
+async fn pixel_record_says_where_the_pixel_looks() {
+    // The test scene's camera: a 220°×25° panorama on 8×4 pixels, so pixel centres look at
+    // azimuth 220·((col + ½)/8 − ½) and elevation 25·(½ − (row + ½)/4) (the closed form).
+    for (col, row) in [(0, 0), (3, 2), (7, 3), (5, 1)] {
+        let (status, _, body) = send(get(&format!("/api/pixel?col={col}&row={row}"))).await;
+        assert_eq!(status, StatusCode::OK);
+        let r: serde_json::Value = serde_json::from_slice(&body).unwrap();
+        let az = 220.0 * ((col as f64 + 0.5) / 8.0 - 0.5);
+        let el = 25.0 * (0.5 - (row as f64 + 0.5) / 4.0);
+        assert!(
+            (r["azimuth_deg"].as_f64().unwrap() - az).abs() < 1e-9,
+            "{r}"
+        );
+        assert!(
+            (r["elevation_deg"].as_f64().unwrap() - el).abs() < 1e-9,
+            "{r}"
+        );
+    }
+}
+
 /// `frequency_settings(5000)` as JSON with `change` applied.
 fn altered(change: impl FnOnce(&mut serde_json::Value)) -> String {
     let mut v = serde_json::to_value(frequency_settings(5000.0)).unwrap();
