@@ -2,13 +2,15 @@
 // rule (crates/shade/src/shading.rs: texture, time, frequency and light layers multiplied,
 // the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
 // the `look` crate (camera direction → aberration → nearest sphere pixel, g times the Doppler
-// factor). It writes one texel per output pixel into an offscreen RGBA8 texture, row 0 of the
-// picture in texture row 0; the display pass (displaySource) then draws that texture on the
+// factor). For an anti-aliased file (s×s samples per pixel) it colours each sample and
+// averages the linear colours of a pixel's samples before encoding (a box filter). It writes
+// one texel per output pixel into an offscreen RGBA8 texture, row 0 of the picture in
+// texture row 0; the display pass (displaySource) then draws that texture on the
 // canvas, scaled with trilinear filtering.
 //
-// The layers, look mode and image textures are chosen when the program is compiled
-// (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for every pixel,
-// so a program holds only the code its settings use.
+// The layers, look mode, image textures and samples per pixel are chosen when the program is
+// compiled (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for
+// every pixel, so a program holds only the code its settings use.
 
 export const VERTEX = `#version 300 es
 // One triangle covering the viewport.
@@ -284,6 +286,17 @@ void main() {
   ivec2 p;
   float doppler;
   vec3 c = lookSource(q, p, doppler) ? shadePixel(p, doppler) : NOT_TRACED;
+#elif SUPERSAMPLE > 1
+  // An anti-aliased file: picture pixel q is the s×s block of samples from s·q; each sample
+  // is coloured and the linear colours averaged (box filter, crates/datafile/src/samples.rs)
+  // before the 8-bit sRGB encoding, as the shade crate does.
+  vec3 c = vec3(0.0);
+  for (int j = 0; j < SUPERSAMPLE; j++) {
+    for (int i = 0; i < SUPERSAMPLE; i++) {
+      c += shadePixel(q * SUPERSAMPLE + ivec2(i, j), 1.0);
+    }
+  }
+  c /= float(SUPERSAMPLE * SUPERSAMPLE);
 #else
   vec3 c = shadePixel(q, 1.0);
 #endif
@@ -302,12 +315,14 @@ void main() {
 }`;
 
 // The shading program's source for `features`: {texture, time, travel, frequency, light, look,
-// images, refs, legend} (booleans) and camera (0 pinhole, 1 panorama or sphere, 2 fisheye).
+// images, refs, legend} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
+// supersample (samples per pixel along each side, 1 when absent).
 export function shadeSource(features) {
   const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
     'legend'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
   defines.push(`#define CAMERA ${features.camera || 0}`);
+  defines.push(`#define SUPERSAMPLE ${features.supersample || 1}`);
   return `#version 300 es\n${defines.join('\n')}\n${SHADE_BODY}`;
 }
 

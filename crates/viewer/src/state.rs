@@ -112,8 +112,12 @@ pub struct Info {
     /// The data file's name, without its folder.
     pub file: String,
     pub scene_name: String,
+    /// The picture's size (the data file's image divided by `supersample`).
     pub width: usize,
     pub height: usize,
+    /// Samples per picture pixel along each side (1: one ray per pixel): the channels the
+    /// GPU routes send are the sample grid, `width`·s × `height`·s.
+    pub supersample: usize,
     pub objects: Vec<String>,
     pub lights: usize,
     pub observer_time: f64,
@@ -198,6 +202,7 @@ impl ViewerState {
             scene_name: h.scene_name.clone(),
             width: self.data.picture_size().0,
             height: self.data.picture_size().1,
+            supersample: self.data.supersample(),
             objects: h.object_names.clone(),
             lights: self.data.lights.len(),
             observer_time: h.observer_time,

@@ -37,6 +37,7 @@ async fn info_describes_the_file_and_its_defaults() {
     let info: serde_json::Value = serde_json::from_slice(&body).unwrap();
     assert_eq!(info["width"], WIDTH);
     assert_eq!(info["height"], HEIGHT);
+    assert_eq!(info["supersample"], 1);
     assert_eq!(info["objects"], serde_json::json!(["ball"]));
     assert_eq!(info["defaults"]["objects"]["ball"]["temperature"], 5800.0);
     assert_eq!(info["defaults"]["shaders"], serde_json::json!(["texture"]));
@@ -224,6 +225,12 @@ async fn a_sampled_file_is_shown_at_its_picture_size_and_hovers_the_centre_sampl
         (info["width"].clone(), info["height"].clone()),
         (4.into(), 2.into())
     );
+    // The page learns the factor: the GPU channels are the 8×4 sample grid.
+    assert_eq!(info["supersample"], 2);
+    let (status, _, body) = common::send_to(state.clone(), get("/api/gpu/channel/u")).await;
+    assert_eq!(status, StatusCode::OK);
+    let size = |at: usize| u32::from_le_bytes(body[at..at + 4].try_into().unwrap());
+    assert_eq!((size(4), size(8)), (8, 4));
     let (status, headers, body) =
         common::send_to(state.clone(), post("/api/image", &frequency(3000.0))).await;
     assert_eq!(status, StatusCode::OK);
