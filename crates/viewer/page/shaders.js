@@ -75,6 +75,16 @@ float srgbEncode8(float x) {
   return floor(s * 255.0 + 0.5) / 255.0;
 }
 
+// The display tone curve of crates/shade/src/colour.rs (`tone_map`): identity up to the knee
+// 0.8, then a shoulder 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2, that never reaches white.
+float toneMap(float x) {
+  if (isnan(x)) return 0.0;
+  if (x <= 0.8) return x;
+  if (isinf(x)) return 1.0;
+  float y = (x - 0.8) / 0.2;
+  return 0.8 + 0.2 * (y / (1.0 + y));
+}
+
 vec3 hue(float h) {
   vec3 k = vec3(5.0, 3.0, 1.0) + h * 6.0;
   k = mix(k, k - 6.0, step(6.0, k));
@@ -226,6 +236,14 @@ vec3 shadePixel(ivec2 p, float doppler) {
   return c;
 }
 
+// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels through
+// the tone curve, status colours (display codes) as they are; crates/shade/src/shading.rs.
+vec3 displayPixel(ivec2 p, float doppler) {
+  vec3 c = shadePixel(p, doppler);
+  if (texelFetch(uId, p, 0).r < 4u || c == FAILED) return c;
+  return vec3(toneMap(c.r), toneMap(c.g), toneMap(c.b));
+}
+
 #if LOOK
 // Camera-basis direction (forward, right, up) of output pixel (col, row); false where the
 // camera shows nothing (crates/scene/src/camera.rs).
@@ -285,20 +303,20 @@ void main() {
 #if LOOK
   ivec2 p;
   float doppler;
-  vec3 c = lookSource(q, p, doppler) ? shadePixel(p, doppler) : NOT_TRACED;
+  vec3 c = lookSource(q, p, doppler) ? displayPixel(p, doppler) : NOT_TRACED;
 #elif SUPERSAMPLE > 1
   // An anti-aliased file: picture pixel q is the s×s block of samples from s·q; each sample
-  // is coloured and the linear colours averaged (box filter, crates/datafile/src/samples.rs)
-  // before the 8-bit sRGB encoding, as the shade crate does.
+  // is coloured and tone-mapped, and the linear colours averaged (box filter,
+  // crates/datafile/src/samples.rs) before the 8-bit sRGB encoding, as the shade crate does.
   vec3 c = vec3(0.0);
   for (int j = 0; j < SUPERSAMPLE; j++) {
     for (int i = 0; i < SUPERSAMPLE; i++) {
-      c += shadePixel(q * SUPERSAMPLE + ivec2(i, j), 1.0);
+      c += displayPixel(q * SUPERSAMPLE + ivec2(i, j), 1.0);
     }
   }
   c /= float(SUPERSAMPLE * SUPERSAMPLE);
 #else
-  vec3 c = shadePixel(q, 1.0);
+  vec3 c = displayPixel(q, 1.0);
 #endif
   vec4 o = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
 #if REFS
