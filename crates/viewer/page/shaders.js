@@ -75,7 +75,7 @@ float srgbEncode8(float x) {
   return floor(s * 255.0 + 0.5) / 255.0;
 }
 
-// The display tone curve of crates/shade/src/colour.rs (`tone_map`): identity up to the knee
+// The display tone curve of crates/shade/src/colour.rs (tone_map): identity up to the knee
 // 0.8, then a shoulder 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2, that never reaches white.
 float toneMap(float x) {
   if (isnan(x)) return 0.0;
