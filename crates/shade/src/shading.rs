@@ -45,7 +45,7 @@ use crate::colour::{display_srgb8, rgb_to_srgb8_fast, tone_map};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
-use crate::legend::{draw_legend, false_colour, label_reference_squares};
+use crate::legend::{draw_legend, false_colour};
 use crate::marks::draw_marks;
 use crate::settings::{
     BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
@@ -509,8 +509,6 @@ impl Shading {
                     }
                 }
             }
-            let temps: Vec<f64> = self.objects.iter().map(|o| o.temperature).collect();
-            label_reference_squares(&mut img, &temps);
         }
         if legend {
             draw_legend(&mut img, self.travel.0, self.travel.1);
