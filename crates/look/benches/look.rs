@@ -11,24 +11,22 @@ use render::driver::header;
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 
-const SPHERE_SCENE: &str = r#"
-name = "synthetic-sphere"
-[camera]
-kind = "sphere"
-width = 4096
-height = 2048
-[[object]]
-name = "a"
-radius = 0.2
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
-name = "b"
-radius = 0.2
-motion = { kind = "rest", position = { r = 1.0, phi = 2.0, z = 0.0 } }
-"#;
+/// Two balls at rest at r = 1, seen from the axis by the static observer.
+fn sphere_scene() -> String {
+    testkit::sphere_scene(
+        "synthetic-sphere",
+        4096,
+        2048,
+        &format!(
+            "{}{}",
+            testkit::ball_at_rest("a", 0.2, 1.0, 0.0),
+            testkit::ball_at_rest("b", 0.2, 1.0, 2.0)
+        ),
+    )
+}
 
 fn sphere() -> DataFile {
-    let scene = Scene::from_str(SPHERE_SCENE, "bench").expect("valid scene");
+    let scene = Scene::from_str(&sphere_scene(), "bench").expect("valid scene");
     let (w, h) = (4096, 2048);
     let records = (0..w * h)
         .map(|i| {

@@ -4,14 +4,18 @@
 //! object mismatches on edge and non-edge pixels and the g and t_emit errors of nearest
 //! neighbour and of bilinear interpolation, against the bound |∇f|·δ of docs/physics.md.
 //! The views aim at the first image of a ball at rest at r = a seen from the axis (39.2°
-//! left of +x): make SPHERE.exr with `godel render` of the scene `SPHERE_SCENE` in
+//! left of +x): make SPHERE.exr with `godel render` of the scene `sphere_scene()` in
 //! crates/look/tests/look.rs (the figures in docs/physics.md).
 //! `cargo run -p look --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use common::{FISHEYE, PANORAMA, PINHOLE};
 use datafile::{DataFile, PixelRecord};
 use look::{look, pixel_look, LookView, SphereSource};
 use render::driver::{render, NoProgress};
-use scene::{replace_view, Camera, Scene};
+use scene::{replace_view, Scene};
 use spacetime::LocalVelocity;
 use std::path::Path;
 
@@ -112,50 +116,16 @@ fn main() {
     let side = [-d39.sin(), d39.cos(), 0.0];
     let only = std::env::args().nth(2);
     let views = [
-        (
-            "pinhole 60° rest",
-            Camera::Pinhole {
-                fov_deg: 60.0,
-                width: 240,
-                height: 160,
-            },
-            towards,
-            0.0,
-            towards,
-        ),
-        (
-            "pinhole 60° 0.5c towards",
-            Camera::Pinhole {
-                fov_deg: 60.0,
-                width: 240,
-                height: 160,
-            },
-            towards,
-            0.5,
-            towards,
-        ),
+        ("pinhole 60° rest", PINHOLE, towards, 0.0, towards),
+        ("pinhole 60° 0.5c towards", PINHOLE, towards, 0.5, towards),
         (
             "panorama 360x60 0.9c side",
-            Camera::Panorama {
-                h_fov_deg: 360.0,
-                v_fov_deg: 60.0,
-                width: 720,
-                height: 120,
-            },
+            PANORAMA,
             [1.0, 0.0, 0.0],
             0.9,
             side,
         ),
-        (
-            "fisheye 180 0.9c side",
-            Camera::Fisheye {
-                fov_deg: 180.0,
-                size: 240,
-            },
-            towards,
-            0.9,
-            side,
-        ),
+        ("fisheye 180 0.9c side", FISHEYE, towards, 0.9, side),
     ];
     for (name, camera, forward, speed, dir) in views {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {

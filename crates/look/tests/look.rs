@@ -4,6 +4,9 @@
 //! and blue shift of a ball the observer moves towards, the magnification of the static sky
 //! (dθ = D dθ′). Refusals and the output header: `look_input.rs`.
 
+mod common;
+
+use common::{FISHEYE, PANORAMA, PINHOLE};
 use datafile::{DataFile, PixelRecord, RayStatus};
 use look::{look, pixel_look, resolution, LookView, SphereSource};
 use render::driver::{render, NoProgress};
@@ -23,31 +26,20 @@ fn render_scene(s: &Scene) -> DataFile {
 
 /// A ball at rest at r = 1 (seen twice, g = 1 for the static observer) and a ball falling
 /// past at 0.7 c (several images, g ≠ 1), seen from the axis over the full sphere.
-const SPHERE_SCENE: &str = r#"
-name = "two-balls"
-[spacetime]
-metric = "godel"
-a = 1.0
-[observer]
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "sphere"
-width = 720
-height = 360
-[trace]
-method = "exact"
-max_past = 10.0
-[[object]]
-name = "resting"
-radius = 0.3
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
-name = "falling"
-radius = 0.25
-motion = { kind = "geodesic", time = 0.0, position = { x = -1.0, y = 0.3, z = 0.2 }, speed = 0.7, direction = [1, 0, 0] }
-"#;
+fn sphere_scene() -> String {
+    testkit::sphere_scene(
+        "two-balls",
+        720,
+        360,
+        &format!(
+            "{}{}[[object]]\nname = \"falling\"\nradius = 0.25\nmotion = {{ kind = \"geodesic\", \
+             time = 0.0, position = {{ x = -1.0, y = 0.3, z = 0.2 }}, speed = 0.7, \
+             direction = [1, 0, 0] }}\n",
+            testkit::trace("exact", 10.0),
+            testkit::ball_at_rest("resting", 0.3, 1.0, 0.0),
+        ),
+    )
+}
 const RESTING: i32 = 0;
 const FALLING: i32 = 1;
 /// Twice the larger ball's diameter: within one image of a ball, neighbouring pixels'
@@ -56,7 +48,7 @@ const JUMP: f32 = 1.2;
 
 fn sphere() -> &'static DataFile {
     static SPHERE: OnceLock<DataFile> = OnceLock::new();
-    SPHERE.get_or_init(|| render_scene(&scene(SPHERE_SCENE)))
+    SPHERE.get_or_init(|| render_scene(&scene(&sphere_scene())))
 }
 
 /// The direction of the resting ball's first image from the axis (docs/physics.md, "Images
@@ -74,7 +66,7 @@ fn view(camera: Camera, forward: [f64; 3], speed: f64, direction: [f64; 3]) -> L
 /// A direct trace of `view` at the sphere's event.
 fn direct(view: &LookView) -> DataFile {
     let text = replace_view(
-        SPHERE_SCENE,
+        &sphere_scene(),
         "test.toml",
         &view.camera,
         view.velocity,
@@ -177,40 +169,14 @@ fn around(src: &SphereSource, data: &DataFile, n: [f64; 3]) -> Around {
 fn compared_views() -> Vec<(&'static str, LookView)> {
     let t = towards_resting();
     let side = [-t[1], t[0], 0.0];
-    let pinhole = Camera::Pinhole {
-        fov_deg: 60.0,
-        width: 240,
-        height: 160,
-    };
     vec![
-        ("pinhole at rest", view(pinhole, t, 0.0, t)),
-        ("pinhole 0.5c towards", view(pinhole, t, 0.5, t)),
+        ("pinhole at rest", view(PINHOLE, t, 0.0, t)),
+        ("pinhole 0.5c towards", view(PINHOLE, t, 0.5, t)),
         (
             "panorama 0.9c sideways",
-            view(
-                Camera::Panorama {
-                    h_fov_deg: 360.0,
-                    v_fov_deg: 60.0,
-                    width: 720,
-                    height: 120,
-                },
-                [1.0, 0.0, 0.0],
-                0.9,
-                side,
-            ),
+            view(PANORAMA, [1.0, 0.0, 0.0], 0.9, side),
         ),
-        (
-            "fisheye 0.9c sideways",
-            view(
-                Camera::Fisheye {
-                    fov_deg: 180.0,
-                    size: 240,
-                },
-                t,
-                0.9,
-                side,
-            ),
-        ),
+        ("fisheye 0.9c sideways", view(FISHEYE, t, 0.9, side)),
     ]
 }
 

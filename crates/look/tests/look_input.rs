@@ -8,24 +8,19 @@ use look::{look, LookError, LookView, LOOK_COMMENT};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 
-const SCENE: &str = r#"
-name = "small"
-[observer]
-position = { r = 0.0, phi = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "sphere"
-width = 8
-height = 4
-[trace]
-method = "exact"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.3
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
+/// A ball at rest at r = 1 seen from the axis over a small full sphere.
+fn small_scene() -> String {
+    testkit::sphere_scene(
+        "small",
+        8,
+        4,
+        &format!(
+            "{}{}",
+            testkit::trace("exact", 10.0),
+            testkit::ball_at_rest("ball", 0.3, 1.0, 0.0)
+        ),
+    )
+}
 
 fn scene(text: &str) -> Scene {
     Scene::from_str(text, "t.toml").expect("scene")
@@ -48,7 +43,7 @@ fn synthetic(text: &str, width: usize, height: usize) -> DataFile {
 }
 
 fn with_camera(camera: &str, observer_extra: &str) -> String {
-    SCENE
+    small_scene()
         .replace("kind = \"sphere\"\nwidth = 8\nheight = 4", camera)
         .replace(
             "up = [0, 0, 1]",
@@ -234,8 +229,8 @@ fn the_output_header_describes_the_new_view() {
     assert_eq!((observer.forward, observer.up), (v.forward, v.up));
     // Everything else of the scene is kept: objects, trace settings.
     let s = Scene::from_str(&out.header.scene_text, "out").expect("a whole scene");
-    assert_eq!(s.objects, scene(SCENE).objects);
-    assert_eq!(s.trace, scene(SCENE).trace);
+    assert_eq!(s.objects, scene(&small_scene()).objects);
+    assert_eq!(s.trace, scene(&small_scene()).trace);
     assert!(out.header.scene_text.starts_with(LOOK_COMMENT));
     // The fisheye's corners are not shown.
     assert_eq!(out.records[0].status, RayStatus::NotTraced);

@@ -39,6 +39,27 @@ pub enum Camera {
 }
 
 impl Camera {
+    /// A fisheye of `fov_deg` on a `width` × `height` image, which must be square. The error
+    /// names the scene-file field, as [`Camera::check`]'s does.
+    pub fn fisheye(
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Camera, (&'static str, String)> {
+        if width != height {
+            return Err((
+                "camera.height",
+                format!(
+                    "a fisheye image is square: height must equal width ({width}), got {height}"
+                ),
+            ));
+        }
+        Ok(Camera::Fisheye {
+            fov_deg,
+            size: width,
+        })
+    }
+
     pub fn width(&self) -> u32 {
         match *self {
             Camera::Pinhole { width, .. }
@@ -543,6 +564,23 @@ mod tests {
             assert!(c.pixel_direction(c.width(), 0).is_none());
             assert!(c.pixel_direction(0, c.height()).is_none());
         }
+    }
+
+    #[test]
+    fn a_fisheye_is_square() {
+        assert_eq!(
+            Camera::fisheye(180.0, 64, 64),
+            Ok(Camera::Fisheye {
+                fov_deg: 180.0,
+                size: 64
+            })
+        );
+        let (field, message) = Camera::fisheye(180.0, 64, 65).unwrap_err();
+        assert_eq!(field, "camera.height");
+        assert!(
+            message.contains("must equal width (64), got 65"),
+            "{message}"
+        );
     }
 
     #[test]

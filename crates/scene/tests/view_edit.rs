@@ -5,23 +5,16 @@
 use scene::{replace_view, Camera, Scene};
 use spacetime::LocalVelocity;
 
-const TEXT: &str = r#"# a comment that must survive
-name = "v"
-[observer]
-time = 1.5
-position = { r = 0.5, phi = 0.25, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "sphere"   # the source
-width = 64
-height = 32
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "image", path = "does-not-exist.png" }
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-"#;
+/// A scene with comments, an observer at t = 1.5 off the axis and a sphere camera.
+fn text() -> String {
+    format!(
+        "# a comment that must survive\nname = \"v\"\n{}[camera]\n\
+         kind = \"sphere\"   # the source\nwidth = 64\nheight = 32\n[[object]]\nname = \"ball\"\n\
+         radius = 0.2\ntexture = {{ kind = \"image\", path = \"does-not-exist.png\" }}\n\
+         motion = {{ kind = \"rest\", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}\n",
+        testkit::observer_at(1.5, 0.5, 0.25)
+    )
+}
 
 fn cameras() -> Vec<Camera> {
     vec![
@@ -50,7 +43,7 @@ fn cameras() -> Vec<Camera> {
 #[test]
 fn a_replaced_view_reads_back_exactly_and_keeps_the_rest() {
     // Texture files need not exist to read a view (a data file's embedded scene).
-    let (observer, camera) = Scene::read_view(TEXT, "t.toml").expect("view");
+    let (observer, camera) = Scene::read_view(&text(), "t.toml").expect("view");
     assert_eq!(
         camera,
         Camera::Sphere {
@@ -63,7 +56,7 @@ fn a_replaced_view_reads_back_exactly_and_keeps_the_rest() {
     for camera in cameras() {
         let velocity = LocalVelocity::new(0.123456789, [0.3, -0.4, 0.5]).unwrap();
         let (forward, up) = ([third, -third, third], [0.5f64.sqrt(), 0.5f64.sqrt(), 0.0]);
-        let text = replace_view(TEXT, "t.toml", &camera, velocity, forward, up).expect("edit");
+        let text = replace_view(&text(), "t.toml", &camera, velocity, forward, up).expect("edit");
         let (o, c) = Scene::read_view(&text, "t.toml").expect("valid");
         assert_eq!(c, camera);
         assert_eq!(o.velocity.speed, velocity.speed);
@@ -103,7 +96,7 @@ fn views_are_written_into_inline_and_missing_tables() {
 
 #[test]
 fn reading_a_view_checks_observer_and_camera_with_located_errors() {
-    let bad_fov = TEXT.replace(
+    let bad_fov = text().replace(
         "kind = \"sphere\"   # the source",
         "kind = \"pinhole\"\nfov_deg = 200",
     );
@@ -113,7 +106,7 @@ fn reading_a_view_checks_observer_and_camera_with_located_errors() {
         ("camera.fov_deg", Some(10)),
         "{e}"
     );
-    let tilted = TEXT.replace("up = [0, 0, 1]", "up = [0.1, 0, 1]");
+    let tilted = text().replace("up = [0, 0, 1]", "up = [0.1, 0, 1]");
     let e = Scene::read_view(&tilted, "t.toml").unwrap_err();
     assert_eq!(e.field, "observer.up");
     assert!(e.message.contains("orthogonal"), "{e}");

@@ -1,6 +1,7 @@
 //! Fixtures shared by the tests, benches and examples of the workspace's crates: the pieces
 //! of scene text that every small test scene repeats, the header of a synthetic data file,
-//! and running a command-line binary. Only a dev-dependency; never published.
+//! running a command-line binary, and the viewer's refusal of a texture from elsewhere. Only
+//! a dev-dependency; never published.
 //!
 //! The binary to run is passed in (`env!("CARGO_BIN_EXE_godel")` is known only inside the
 //! `godel` package).
@@ -36,6 +37,46 @@ pub fn pinhole(fov_deg: f64, width: usize, height: usize) -> String {
     )
 }
 
+/// `[camera]`: the full sphere (360° × 180°) at `width` × `height` pixels.
+pub fn sphere(width: usize, height: usize) -> String {
+    format!("[camera]\nkind = \"sphere\"\nwidth = {width}\nheight = {height}\n")
+}
+
+/// `[observer]`: at rest at time `time` at (r, φ, z) = (`r`, `phi`, 0), looking along +x with
+/// +z up ([`OBSERVER_AT_ORIGIN`] at time 0 and r = 0).
+pub fn observer_at(time: f64, r: f64, phi: f64) -> String {
+    format!(
+        "[observer]\ntime = {time:?}\nposition = {{ r = {r:?}, phi = {phi:?}, z = 0.0 }}\n\
+         forward = [1, 0, 0]\nup = [0, 0, 1]\n"
+    )
+}
+
+/// `[trace]`: with `method` (`"numeric"`, `"exact"`) back to t = −`max_past`.
+pub fn trace(method: &str, max_past: f64) -> String {
+    format!("[trace]\nmethod = \"{method}\"\nmax_past = {max_past:?}\n")
+}
+
+/// `[[object]]`: a sphere named `name` of `radius` at rest at (r, φ, z) = (`r`, `phi`, 0),
+/// with the default texture and temperature.
+pub fn ball_at_rest(name: &str, radius: f64, r: f64, phi: f64) -> String {
+    format!(
+        "[[object]]\nname = \"{name}\"\nradius = {radius:?}\n\
+         motion = {{ kind = \"rest\", position = {{ r = {r:?}, phi = {phi:?}, z = 0.0 }} }}\n"
+    )
+}
+
+/// The message of a viewer refusing the image texture at `path` (shown as `P` in it) that
+/// lies outside the folders textures may come from: asserts that `error` is exactly that.
+pub fn assert_texture_refused(error: &str, path: &std::path::Path) {
+    let message = error.replace(&path.display().to_string(), "P");
+    assert_eq!(
+        message,
+        "settings: image texture P: no image file of that name in the folders textures \
+         may come from",
+        "{path:?}"
+    );
+}
+
 /// A scene named `name` in Gödel's universe (a = 1) seen by [`OBSERVER_AT_ORIGIN`] through
 /// `camera` ([`panorama`], [`pinhole`]); `rest` (the `[trace]` table, objects, lights) follows.
 pub fn godel_scene(name: &str, camera: &str, rest: &str) -> String {
@@ -66,11 +107,38 @@ pub fn ball_ahead(name: &str, camera: &str, object: &str, texture: &str) -> Stri
         name,
         camera,
         &format!(
-            "[trace]\nmethod = \"numeric\"\nmax_past = 10.0\n[[object]]\nname = \"{object}\"\n\
-             radius = 0.2\ntexture = {texture}\ntemperature = 5800.0\n\
-             motion = {{ kind = \"rest\", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}\n"
+            "{}{}",
+            trace("numeric", 10.0),
+            textured_ball(
+                object,
+                0.2,
+                texture,
+                5800.0,
+                "{ r = 1.0, phi = 0.0, z = 0.0 }"
+            )
         ),
     )
+}
+
+/// `[[object]]`: a sphere named `name` of `radius` wearing `texture` (an inline TOML table)
+/// at `temperature` kelvin, at rest at `position` (an inline TOML table).
+pub fn textured_ball(
+    name: &str,
+    radius: f64,
+    texture: &str,
+    temperature: f64,
+    position: &str,
+) -> String {
+    format!(
+        "[[object]]\nname = \"{name}\"\nradius = {radius:?}\ntexture = {texture}\n\
+         temperature = {temperature:?}\nmotion = {{ kind = \"rest\", position = {position} }}\n"
+    )
+}
+
+/// A [`godel_scene`] through the full sphere (360° × 180°) of `width` × `height` pixels;
+/// `rest` follows.
+pub fn sphere_scene(name: &str, width: usize, height: usize, rest: &str) -> String {
+    godel_scene(name, &sphere(width, height), rest)
 }
 
 /// The header of a synthetic data file: traced numerically in Gödel's universe (a = 1) with

@@ -155,18 +155,9 @@ impl CameraJson {
                 fov_deg,
                 width,
                 height,
-            } => {
-                if width != height {
-                    return Err(ApiError::bad_request(format!(
-                        "view: camera.height: a fisheye image is square: height must equal \
-                         width ({width}), got {height}"
-                    )));
-                }
-                Camera::Fisheye {
-                    fov_deg,
-                    size: width,
-                }
-            }
+            } => Camera::fisheye(fov_deg, width, height).map_err(|(field, message)| {
+                ApiError::bad_request(format!("view: {field}: {message}"))
+            })?,
         })
     }
 }
@@ -327,32 +318,17 @@ async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Respons
             encode::png(&img).map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
         })
         .await??;
-    let headers = [
-        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (header::CONTENT_DISPOSITION, disposition),
-    ];
-    Ok((headers, bytes).into_response())
+    Ok(crate::routes::png_download(bytes, disposition))
 }
 
 async fn image(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
     let viewer = state.viewer.clone();
     let ticket = viewer.work().admit()?;
     let img = ticket.run(move || shade_look(&viewer, &body)).await??;
-    let headers = [
-        (
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/octet-stream"),
-        ),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (
-            HeaderName::from_static("x-image-width"),
-            HeaderValue::from(img.width()),
-        ),
-        (
-            HeaderName::from_static("x-image-height"),
-            HeaderValue::from(img.height()),
-        ),
-    ];
-    Ok((headers, encode::rgba_from_rgb(img.as_raw())).into_response())
+    let bytes = encode::rgba_from_rgb(img.as_raw());
+    Ok(crate::routes::rgba_picture(
+        bytes,
+        img.width(),
+        img.height(),
+    ))
 }

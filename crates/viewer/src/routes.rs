@@ -123,6 +123,17 @@ async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Res
     })
     .await??;
     let timing = format!("shade;dur={shade_ms:.2}, encode;dur={encode_ms:.2}");
+    let mut response = rgba_picture(bytes, width, height);
+    response.headers_mut().insert(
+        HeaderName::from_static("server-timing"),
+        HeaderValue::from_str(&timing).expect("ASCII"),
+    );
+    Ok(response)
+}
+
+/// A picture as raw RGBA bytes, `width` × `height` in `X-Image-Width`, `X-Image-Height`;
+/// never cached.
+pub(crate) fn rgba_picture(bytes: Vec<u8>, width: u32, height: u32) -> Response {
     let headers = [
         (
             header::CONTENT_TYPE,
@@ -137,12 +148,18 @@ async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Res
             HeaderName::from_static("x-image-height"),
             HeaderValue::from(height),
         ),
-        (
-            HeaderName::from_static("server-timing"),
-            HeaderValue::from_str(&timing).expect("ASCII"),
-        ),
     ];
-    Ok((headers, bytes).into_response())
+    (headers, bytes).into_response()
+}
+
+/// A PNG file download named by `disposition` ([`attachment`]); never cached.
+pub(crate) fn png_download(bytes: Vec<u8>, disposition: HeaderValue) -> Response {
+    let headers = [
+        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (header::CONTENT_DISPOSITION, disposition),
+    ];
+    (headers, bytes).into_response()
 }
 
 /// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
@@ -176,12 +193,7 @@ async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Respo
             .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
     })
     .await??;
-    let headers = [
-        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (header::CONTENT_DISPOSITION, disposition),
-    ];
-    Ok((headers, bytes).into_response())
+    Ok(png_download(bytes, disposition))
 }
 
 /// `?frame=N` (default 0).

@@ -14,35 +14,28 @@ use tower::ServiceExt;
 use viewer::{Access, ViewerState};
 
 /// A full sphere (16×8) of a static observer in flat spacetime: a uniform ball and the earth.
-pub const SCENE: &str = r#"
-name = "gpu-test"
-[spacetime]
-metric = "minkowski"
-[observer]
-time = 0.0
-position = { x = 0.0, y = 0.0, z = 0.0 }
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "sphere"
-width = 16
-height = 8
-[trace]
-method = "numeric"
-max_past = 10.0
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "uniform", color = [0.2, 0.4, 0.6] }
-temperature = 5800.0
-motion = { kind = "rest", position = { x = 0.0, y = -1.0, z = 0.0 } }
-[[object]]
-name = "globe"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 4000.0
-motion = { kind = "rest", position = { x = 1.0, y = 0.0, z = 0.0 } }
-"#;
+pub fn scene_text() -> String {
+    format!(
+        "name = \"gpu-test\"\n[spacetime]\nmetric = \"minkowski\"\n{}{}{}{}{}",
+        testkit::OBSERVER_AT_ORIGIN,
+        testkit::sphere(W, H),
+        testkit::trace("numeric", 10.0),
+        testkit::textured_ball(
+            "ball",
+            0.2,
+            "{ kind = \"uniform\", color = [0.2, 0.4, 0.6] }",
+            5800.0,
+            "{ x = 0.0, y = -1.0, z = 0.0 }"
+        ),
+        testkit::textured_ball(
+            "globe",
+            0.2,
+            "{ kind = \"image\", builtin = \"earth\" }",
+            4000.0,
+            "{ x = 1.0, y = 0.0, z = 0.0 }"
+        ),
+    )
+}
 
 pub const W: usize = 16;
 pub const H: usize = 8;
@@ -76,7 +69,7 @@ pub fn data() -> DataFile {
         header: DataHeader {
             format_version: FORMAT_VERSION,
             scene_name: "gpu-test".into(),
-            scene_text: SCENE.into(),
+            scene_text: scene_text(),
             camera: Camera::Sphere {
                 width: W as u32,
                 height: H as u32,
@@ -100,7 +93,7 @@ pub fn data() -> DataFile {
 pub fn flat() -> DataFile {
     let mut flat = data();
     flat.header.scene_text =
-        SCENE.replace("kind = \"sphere\"", "kind = \"pinhole\"\nfov_deg = 60.0");
+        scene_text().replace("kind = \"sphere\"", "kind = \"pinhole\"\nfov_deg = 60.0");
     flat.header.camera = Camera::Pinhole {
         fov_deg: 60.0,
         width: W as u32,
