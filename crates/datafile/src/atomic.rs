@@ -207,12 +207,24 @@ fn temp_file_for(path: &Path) -> io::Result<Staged> {
     // Created and registered under the registry's lock, so that a signal handler
     // sees every temporary file that exists.
     let mut live = lock(&LIVE);
-    let temp = builder.tempfile_in(&dir)?;
+    // tempfile's errors append "at path <the temporary>": the user named the target, and
+    // the caller names it, so only the cause is kept.
+    let temp = builder.tempfile_in(&dir).map_err(without_temp_path)?;
     live.insert(temp.path().to_path_buf());
     Ok(Staged {
         temp: Some(temp),
         target: path.to_path_buf(),
     })
+}
+
+/// A tempfile error without its " at path <temporary>" suffix (tempfile keeps the operating
+/// system's error private, so the suffix is cut from the text; the kind is kept).
+fn without_temp_path(e: io::Error) -> io::Error {
+    let text = e.to_string();
+    match text.find(" at path ") {
+        Some(i) => io::Error::new(e.kind(), text[..i].to_string()),
+        None => e,
+    }
 }
 
 /// `godel-PID-HOST`: who made a temporary file (HOST with anything but letters and

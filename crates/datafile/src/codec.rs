@@ -3,7 +3,7 @@
 //!
 //! # Format (format version 2)
 //!
-//! A single-part, scan-line OpenEXR image, ZIP compressed (lossless, so a
+//! A single-part, scan-line OpenEXR image, RLE compressed (lossless, so a
 //! round trip is exact), one channel per field of [`PixelRecord`]:
 //!
 //! | channel | type | content |
@@ -359,7 +359,11 @@ impl DataFile {
         }
 
         let encoding = Encoding {
-            compression: Compression::ZIP16,
+            // RLE, chosen by measurement (BENCHMARKS.md, "Speed issue"): encoding is
+            // several times faster than ZIP (which was ~35 % of a static scene's exact
+            // render after the speed-ups), files about twice ZIP's size (the missed
+            // pixels' runs compress well); uncompressed would be ~12 times larger.
+            compression: Compression::RLE,
             blocks: Blocks::ScanLines,
             // Increasing order makes the (parallel) writer emit blocks in a
             // fixed order.

@@ -181,7 +181,7 @@ fn round_trip_without_objects() {
 #[test]
 fn output_is_deterministic() {
     let dir = temp_dir();
-    let file = random_file(301, 67, 2, 7); // several ZIP blocks, parallel writer
+    let file = random_file(301, 67, 2, 7); // several blocks, parallel writer
     let (a, b) = (dir.path().join("a.exr"), dir.path().join("b.exr"));
     file.write(&a).unwrap();
     file.write(&b).unwrap();

@@ -236,7 +236,7 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         .context(
         "the preview is shaded with the sphere's scene (textures resolve from the current folder)",
     )?;
-    write_data_and_preview(&scene, &data, &args.output, &png)?;
+    write_data_and_preview(&scene, &data, &args.output, &png, false)?;
 
     let r = resolution(&source, &view);
     let deg = |rad: f64| rad.to_degrees();

@@ -17,12 +17,17 @@ pub struct MergeArgs {
     /// The part files (`<name>.part-i-of-N.exr`), all N of them, in any order.
     #[arg(required = true)]
     pub parts: Vec<PathBuf>,
-    /// Output folder (created if missing).
-    #[arg(short, long, default_value = "out")]
+    /// Output FOLDER (created if missing): receives NAME.png and NAME.exr; a path ending in
+    /// .png or .exr is refused.
+    #[arg(short, long, default_value = "out", value_name = "FOLDER")]
     pub output: PathBuf,
+    /// Orientation marks on the preview: azimuth/elevation grid with labelled ticks.
+    #[arg(long)]
+    pub grid: bool,
 }
 
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    crate::output::check_folder("--output", &args.output)?;
     let parts = args
         .parts
         .iter()
@@ -37,5 +42,5 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     } else {
         Scene::from_str(&data.header.scene_text, &first.scene_path)?
     };
-    write_outputs(&scene, &data, &args.output)
+    write_outputs(&scene, &data, &args.output, args.grid)
 }

@@ -10,8 +10,9 @@
 //! feature and started by mpirun/srun with several ranks, it spreads the tiles over the
 //! ranks (`cluster.rs`).
 
-use crate::args::{load_scene, thread_pool};
-use crate::output::{output_names, prepare, write_outputs};
+use crate::args::thread_pool;
+use crate::output::{check_folder, output_names, prepare, write_outputs};
+use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
 use render::driver::Renderer;
@@ -30,15 +31,39 @@ square number at most 256, at most 5·10⁷ rays in all; \
 [trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
 writable.
 
+Output: -o names a FOLDER (as for merge); the files in it are NAME.png and NAME.exr, NAME \
+the scene's name or --name. A path ending in .png or .exr is refused (choose the file names \
+with --name). --width, --height, --max-past, --method and --name replace the scene's \
+camera.width, camera.height, trace.max_past, trace.method and name, checked like the \
+scene file (errors name the flag); the data file embeds the scene as rendered.
+
 Writing: both files go to hidden temporaries `.NAME.godel-PID-HOST.XXXXXX.tmp` and are \
 renamed together at the end. Ctrl-C or SIGTERM removes the temporaries (exit 130 or 143); \
 temporaries that a killed run left are removed by the next run writing to that folder.")]
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,
-    /// Output folder (created if missing).
-    #[arg(short, long, default_value = "out")]
+    /// Output FOLDER (created if missing): receives NAME.png and NAME.exr.
+    #[arg(short, long, default_value = "out", value_name = "FOLDER")]
     pub output: PathBuf,
+    /// Image width in pixels (replaces [camera] width).
+    #[arg(long, allow_negative_numbers = true)]
+    pub width: Option<i64>,
+    /// Image height in pixels (replaces [camera] height).
+    #[arg(long, allow_negative_numbers = true)]
+    pub height: Option<i64>,
+    /// Follow rays this far into the past (replaces [trace] max_past).
+    #[arg(long, allow_negative_numbers = true, value_name = "T")]
+    pub max_past: Option<f64>,
+    /// Tracing method, numeric or exact (replaces [trace] method).
+    #[arg(long)]
+    pub method: Option<String>,
+    /// The output files' name NAME (replaces the scene's name).
+    #[arg(long, allow_hyphen_values = true)]
+    pub name: Option<String>,
+    /// Orientation marks on the preview: azimuth/elevation grid with labelled ticks.
+    #[arg(long)]
+    pub grid: bool,
     /// Worker threads (default: all cores; at most 8 per core).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -56,15 +81,29 @@ pub struct RenderArgs {
     pub samples: Option<i64>,
 }
 
-/// The scene of `args`, with `--samples` applied (checked as `[camera] samples` is).
+/// The scene of `args`: its file with the flags' overrides, then `--samples` (checked as
+/// `[camera] samples` is, against the final image size).
 fn scene_of(args: &RenderArgs) -> anyhow::Result<scene::Scene> {
-    let mut scene = load_scene(&args.scene)?;
+    let mut scene = load_with_overrides(&args.scene, &args.overrides())?;
     if let Some(n) = args.samples {
         scene
             .set_samples(n)
             .map_err(|e| crate::args::usage("--samples", e))?;
     }
     Ok(scene)
+}
+
+impl RenderArgs {
+    /// The scene fields the flags replace.
+    pub fn overrides(&self) -> Overrides {
+        Overrides {
+            width: self.width,
+            height: self.height,
+            max_past: self.max_past,
+            method: self.method.clone(),
+            name: self.name.clone(),
+        }
+    }
 }
 
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
@@ -89,6 +128,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return under_mpi::run(args);
     }
     let pool = thread_pool(args.threads)?;
+    check_folder("--output", &args.output)?;
     let scene = scene_of(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
@@ -112,7 +152,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let data = assembler.finish();
     match part {
-        None => write_outputs(&scene, &data, &args.output)?,
+        None => write_outputs(&scene, &data, &args.output, args.grid)?,
         Some(part) => {
             let path = args.output.join(part.file_name(&scene.name));
             let scene_path = scene_path_text(&args.scene);
@@ -144,6 +184,7 @@ mod under_mpi {
         let rank0 = world.rank() == 0;
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
+            check_folder("--output", &args.output)?;
             let scene = scene_of(&args)?;
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
@@ -198,7 +239,7 @@ mod under_mpi {
             wall: started.elapsed(),
             ..RenderStats::count(&data.records)
         };
-        write_outputs(&scene, &data, &args.output).unwrap_or_else(|e| abort(&world, &e));
+        write_outputs(&scene, &data, &args.output, args.grid).unwrap_or_else(|e| abort(&world, &e));
         let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
         eprintln!(
             "{} ({} ranks; jobs of {per_job} tiles per rank: {})",

@@ -1,7 +1,9 @@
 //! `godel shade DATA.exr --shader texture|frequency|time|light … -o out.png`: re-colours a
 //! traced data file without tracing again (README.md, "Shading"). The settings start
 //! from the data file's defaults ([`shade::ShadeSettings::defaults_for`]), then a settings
-//! file (`--settings`), then the convenience flags, in that order; the picture is written
+//! file (`--settings`), then the convenience flags, in that order; a flag that no chosen
+//! layer reads is refused ([`unused_flags`]). The picture's format follows the output's
+//! extension (`.png` tone-mapped for display, `.exr` linear; [`shade::hdr`]); it is written
 //! atomically, so a failed run leaves nothing at the output path.
 
 use std::path::PathBuf;
@@ -13,16 +15,27 @@ use shade::{
 };
 
 use crate::args::{parse_vector, usage};
+use shade::hdr::{encode_exr, write_bytes, PictureFormat};
 
 #[derive(Args, Debug)]
 #[command(after_help = "\
+Output: -o names the picture FILE (as for plot); its extension picks the format: .png \
+(8-bit sRGB: exposure --ev, then the display tone curve, then overlays) or .exr (linear \
+scene-referred RGB, 32-bit float channels R, G, B, no overlays, so --ev and --grid are \
+refused there). Any other extension is an error.
+
+Flags a chosen layer does not read are errors: --temperature, --exposure and --no-reference \
+need the frequency layer; --window, --window-texture, --travel and --no-legend the time \
+layer; --ambient and --light the light layer; --texture, --rotate and --offset a layer \
+that paints textures (texture, time or light).
+
 Limits: the data file a regular file of at most 8 GiB; the settings file a regular file of \
 at most 16 MiB. A bad value names the flag that set it (or --settings).")]
 pub struct ShadeArgs {
     /// The data file written by `godel render` (.exr).
     pub data: PathBuf,
-    /// Output picture (.png).
-    #[arg(short, long)]
+    /// Output picture FILE: .png (for display) or .exr (linear HDR).
+    #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
     /// Shader layers, multiplied: texture, frequency, time, light (comma-separated or repeated,
     /// e.g. `frequency,time`).
@@ -32,7 +45,7 @@ pub struct ShadeArgs {
     #[arg(long)]
     pub settings: Option<PathBuf>,
     /// Black-body temperature in K: `5000` for every object, or `NAME=5000` (repeatable).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub temperature: Vec<String>,
     /// Texture: `SPEC` for every object or `NAME=SPEC`; SPEC is scene, checker:ROWSxCOLS,
     /// gradient, uniform:R,G,B, image:PATH or earth (repeatable).
@@ -46,11 +59,17 @@ pub struct ShadeArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub window: Option<String>,
     /// False colour by light travel time over MIN,MAX (switches the time shader to it).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub travel: Option<String>,
     /// Physical brightness (radiance ratio Y(gT)/Y(T)) with this exposure.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f64>,
+    /// PNG exposure compensation in stops (colours × 2^EV before the tone curve), -20 to 20.
+    #[arg(long, allow_negative_numbers = true, value_name = "EV")]
+    pub ev: Option<f64>,
+    /// Orientation marks: azimuth/elevation grid with labelled ticks (PNG).
+    #[arg(long)]
+    pub grid: bool,
     /// Turn the body: `DEG` for every object or `NAME=DEG` (repeatable).
     #[arg(long, allow_hyphen_values = true)]
     pub rotate: Vec<String>,
@@ -58,7 +77,7 @@ pub struct ShadeArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub offset: Vec<String>,
     /// Ambient light of the light shader.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub ambient: Option<f64>,
     /// Light source K: `K=off`, `K=on` or `K=INTENSITY` (repeatable).
     #[arg(long)]
@@ -228,6 +247,67 @@ fn apply_flags(args: &ShadeArgs, names: &[String], s: &mut ShadeSettings) -> any
     if args.no_legend {
         s.time.legend = false;
     }
+    if let Some(ev) = args.ev {
+        s.ev = ev;
+    }
+    if args.grid {
+        s.grid = true;
+    }
+    Ok(())
+}
+
+/// The layer-specific flags given although no chosen layer reads them, and the display
+/// flags given for a linear `.exr`: an error naming the first such flag and what it needs
+/// (never silently ignored).
+fn unused_flags(
+    args: &ShadeArgs,
+    shaders: &[ShaderKind],
+    format: PictureFormat,
+) -> anyhow::Result<()> {
+    let has = |k: ShaderKind| shaders.contains(&k);
+    let (freq, time, light) = (
+        has(ShaderKind::Frequency),
+        has(ShaderKind::Time),
+        has(ShaderKind::Light),
+    );
+    let paints = has(ShaderKind::Texture) || time || light;
+    let (f, t, l, p) = ("frequency", "time", "light", "texture, time or light");
+    let checks = [
+        ("--temperature", !args.temperature.is_empty(), freq, f),
+        ("--exposure", args.exposure.is_some(), freq, f),
+        ("--no-reference", args.no_reference, freq, f),
+        ("--window", args.window.is_some(), time, t),
+        ("--window-texture", !args.window_texture.is_empty(), time, t),
+        ("--travel", args.travel.is_some(), time, t),
+        ("--no-legend", args.no_legend, time, t),
+        ("--ambient", args.ambient.is_some(), light, l),
+        ("--light", !args.light.is_empty(), light, l),
+        ("--texture", !args.texture.is_empty(), paints, p),
+        ("--rotate", !args.rotate.is_empty(), paints, p),
+        ("--offset", !args.offset.is_empty(), paints, p),
+    ];
+    for (flag, given, used, layer) in checks {
+        if given && !used {
+            let names: Vec<&str> = shaders.iter().map(|k| k.name()).collect();
+            return Err(usage(
+                flag,
+                format!(
+                    "has no effect with the shader layers {} (it needs the {layer} layer: add it with --shader)",
+                    names.join(",")
+                ),
+            ));
+        }
+    }
+    if format == PictureFormat::Exr {
+        for (flag, given) in [("--ev", args.ev.is_some()), ("--grid", args.grid)] {
+            if given {
+                return Err(usage(
+                    flag,
+                    "has no effect on a linear .exr picture (no exposure, tone curve or overlays): write a .png",
+                ));
+            }
+        }
+    }
     Ok(())
 }
 
@@ -250,6 +330,7 @@ fn blamed_flag(args: &ShadeArgs, e: &ShadeError) -> &'static str {
         ["time", "t0" | "dt", ..] => ("--window", args.window.is_some()),
         ["time", "travel_min" | "travel_max", ..] => ("--travel", args.travel.is_some()),
         ["exposure", ..] => ("--exposure", args.exposure.is_some()),
+        ["ev", ..] => ("--ev", args.ev.is_some()),
         ["light", "ambient", ..] => ("--ambient", args.ambient.is_some()),
         ["light", "sources", ..] => ("--light", !args.light.is_empty()),
         _ => ("--settings", args.settings.is_some()),
@@ -273,6 +354,15 @@ pub fn settings_error(flag: &str, e: ShadeError) -> anyhow::Error {
 }
 
 pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
+    let format = PictureFormat::from_path(&args.output).ok_or_else(|| {
+        usage(
+            "--output",
+            format!(
+                "{}: unsupported picture type (use .png for display or .exr for linear HDR)",
+                args.output.display()
+            ),
+        )
+    })?;
     let data = DataFile::read(&args.data)?;
     let mut settings = ShadeSettings::defaults_for(&data);
     if let Some(path) = &args.settings {
@@ -287,18 +377,27 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
             .map_err(|e| settings_error("--settings", e))?;
     }
     apply_flags(&args, &data.header.object_names, &mut settings)?;
+    unused_flags(&args, &settings.shaders, format)?;
     let shading = Shading::new(&data, &settings).map_err(|e| {
         let flag = blamed_flag(&args, &e);
         settings_error(flag, e)
     })?;
-    let image = shading.image(&data);
-    shade::write_png(&image, &args.output)?;
+    let (w, h) = (data.width, data.height);
+    match format {
+        PictureFormat::Png => shade::write_png(&shading.image(&data), &args.output)?,
+        PictureFormat::Exr => {
+            let bytes = encode_exr(&shading.linear(&data), w, h, &args.output)?;
+            write_bytes(&args.output, &bytes)?;
+        }
+    }
     let names: Vec<&str> = settings.shaders.iter().map(|k| k.name()).collect();
+    let kind = match format {
+        PictureFormat::Png => "",
+        PictureFormat::Exr => ", linear RGB",
+    };
     eprintln!(
-        "wrote {} ({}×{}, shader {})",
+        "wrote {} ({w}×{h}{kind}, shader {})",
         args.output.display(),
-        image.width(),
-        image.height(),
         names.join(" × ")
     );
     if settings.shaders.contains(&ShaderKind::Time) && settings.time.mode == TimeMode::Travel {

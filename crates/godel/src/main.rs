@@ -2,7 +2,8 @@
 //! subcommand to its own module (`cmd_*.rs`). `main` returns the exit code: 0 on success,
 //! 2 for usage errors (from clap, or an invalid value found by validation, see
 //! [`args::UsageError`]), 1 for any other failure; errors print as one line `error: ...`
-//! with their whole cause chain.
+//! with their cause chain, each cause said once. A closed standard output (`godel … | head`)
+//! ends the command quietly with 0.
 //!
 //! SIGINT, SIGTERM and SIGHUP end every command but `view` (whose server stops gracefully on
 //! its own) through [`exit_on_signals`]: the temporary files of writes under way are
@@ -22,6 +23,7 @@ mod cmd_sequence;
 mod cmd_shade;
 mod cmd_view;
 mod output;
+mod overrides;
 mod plot_isometry;
 mod plot_kit;
 mod progress;
@@ -32,7 +34,14 @@ use std::process::ExitCode;
 
 /// See the Gödel universe from inside: a general-relativistic ray tracer.
 #[derive(Parser, Debug)]
-#[command(name = "godel", version, about)]
+#[command(
+    name = "godel",
+    version,
+    about,
+    after_help = "Output (-o): a FOLDER for render and merge (they write NAME.png and NAME.exr \
+there; a path ending in .png or .exr is refused), a FILE for shade and plot (the extension \
+picks the format). Sequences name their folder in the script."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -41,7 +50,7 @@ struct Cli {
 /// The subcommands, one module each, in the order of a user's work.
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Trace a scene: writes DIR/<name>.png (preview) and DIR/<name>.exr (per-pixel data).
+    /// Trace a scene: writes FOLDER/<name>.png (preview) and FOLDER/<name>.exr (per-pixel data).
     Render(cmd_render::RenderArgs),
     /// Any camera of any observer at the event of a full-sphere data file, without tracing:
     /// turn, zoom, change projection, boost (aberration and Doppler shift).
@@ -98,6 +107,23 @@ fn exit_on_signals() -> std::io::Result<()> {
     Ok(())
 }
 
+/// The error and its causes on one line, each said once: a cause whose text the line
+/// already holds (errors that quote their source) is left out.
+fn message(err: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -116,8 +142,15 @@ fn main() -> ExitCode {
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
-            let chain: Vec<String> = err.chain().map(|c| c.to_string()).collect();
-            eprintln!("error: {}", chain.join(": "));
+            // A reader that stops early (`godel … | head`) is no failure: end quietly, as
+            // other Unix tools do.
+            if err.chain().any(|c| {
+                c.downcast_ref::<std::io::Error>()
+                    .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+            }) {
+                return ExitCode::SUCCESS;
+            }
+            eprintln!("error: {}", message(&err));
             // Bad input (flags, scene files) exits 2, other failures 1.
             if err
                 .chain()

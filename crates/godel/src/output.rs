@@ -53,13 +53,28 @@ pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Refuses an output FOLDER path that looks like a picture file (ends in .png or .exr):
+/// `render -o pic.png` would otherwise make a folder named pic.png.
+pub fn check_folder(flag: &str, dir: &Path) -> anyhow::Result<()> {
+    if shade::hdr::PictureFormat::from_path(dir).is_some() {
+        return Err(crate::args::usage(
+            flag,
+            format!(
+                "{} looks like a file, but this command writes NAME.png and NAME.exr into a folder: give a folder (and --name to choose NAME)",
+                dir.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures,
-/// lit where the scene has lights):
-/// exactly the files of a single run, whoever traced the pixels.
-pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path) -> anyhow::Result<()> {
+/// lit where the scene has lights, through the display tone curve; with orientation marks
+/// when `grid`): exactly the files of a single run, whoever traced the pixels.
+pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path, grid: bool) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let [exr, png] = output_names(scene).map(|n| dir.join(n));
-    write_data_and_preview(scene, data, &exr, &png)
+    write_data_and_preview(scene, data, &exr, &png, grid)
 }
 
 /// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
@@ -70,10 +85,14 @@ pub fn write_data_and_preview(
     data: &DataFile,
     exr: &Path,
     png: &Path,
+    grid: bool,
 ) -> anyhow::Result<()> {
     let textures = shade::textures_for_scene(scene)?;
     let png_bytes = {
-        let image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+        let mut image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+        if grid {
+            shade::marks::draw_marks(&mut image, &scene.camera);
+        }
         shade::encode_png(&image, png)?
     };
     let exr_bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {

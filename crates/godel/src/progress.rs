@@ -23,11 +23,40 @@ pub fn progress_bar(scene: &Scene, pixels: u64, quiet: bool) -> ProgressBar {
     };
     bar.set_style(
         ProgressStyle::with_template(
-            "{prefix} [{bar:40}] {percent:>3}% {pos}/{len} px, {per_sec}, ETA {eta}",
+            "{prefix} [{bar:40}] {percent:>3}% {pos}/{len} px, {rate}, ETA {eta}",
         )
         .expect("valid template")
+        .with_key(
+            "rate",
+            |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = w.write_str(&rate_text(state.per_sec()));
+            },
+        )
         .progress_chars("=> "),
     );
     bar.set_prefix(format!("tracing {}", scene.name));
     bar
+}
+
+/// A rate as a whole number of pixels per second (`42013 px/s`; indicatif's own `{per_sec}`
+/// prints `42,013.0142/s`).
+pub fn rate_text(per_sec: f64) -> String {
+    if per_sec.is_finite() && per_sec >= 0.0 {
+        format!("{:.0} px/s", per_sec)
+    } else {
+        "– px/s".to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rates_are_whole_numbers() {
+        assert_eq!(rate_text(42_013.0142), "42013 px/s");
+        assert_eq!(rate_text(0.4), "0 px/s");
+        assert_eq!(rate_text(f64::INFINITY), "– px/s");
+        assert_eq!(rate_text(f64::NAN), "– px/s");
+    }
 }

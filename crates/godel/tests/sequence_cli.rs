@@ -81,7 +81,17 @@ texture = { kind = "uniform", color = [0.0, 1.0, 0.0] }
     let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
     let e = stderr(&o);
     assert!(o.status.success(), "{e}");
+    // The README's display curve: identity to 0.8, then 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2.
+    let tone = |x: f64| {
+        if x <= 0.8 {
+            x
+        } else {
+            let y = (x - 0.8) / 0.2;
+            0.8 + 0.2 * y / (1.0 + y)
+        }
+    };
     let srgb = |x: f64| {
+        let x = tone(x);
         let s = if x <= 0.003_130_8 {
             12.92 * x
         } else {

@@ -82,6 +82,8 @@ pub enum LookError {
     NotSphere(String),
     #[error("traced by an observer moving at {0} c: looking around needs the static observer's sphere (observer.velocity.speed = 0), the velocity is applied by the look itself")]
     MovingSource(f64),
+    #[error("anti-aliased with {0}×{0} rays per pixel: looking around needs one ray per sphere pixel; trace the sphere without `samples` (at {0} times the width and height for the same rays)")]
+    Supersampled(usize),
     #[error("the data file's header says its camera is `{header}`, its embedded scene `{scene}`")]
     Inconsistent { header: String, scene: String },
     #[error("{0}")]
@@ -203,8 +205,9 @@ pub fn pixel_look(view: &LookView, col: u32, row: u32) -> Option<PixelLook> {
 
 impl SphereSource {
     /// The geometry of a full-sphere data file traced by the static observer. Refuses any
-    /// other camera (a 360°×180° panorama counts as a sphere), a moving observer, and a
-    /// data file whose sizes or object ids do not hold together ([`DataFile::validate`]).
+    /// other camera (a 360°×180° panorama counts as a sphere), a moving observer, an
+    /// anti-aliased file (several rays per pixel, not one per direction), and a data file
+    /// whose sizes or object ids do not hold together ([`DataFile::validate`]).
     pub fn of(data: &DataFile) -> Result<SphereSource, LookError> {
         data.validate().map_err(LookError::Data)?;
         let (observer, camera) = Scene::read_view(&data.header.scene_text, EMBEDDED)
@@ -220,6 +223,9 @@ impl SphereSource {
         };
         if !full {
             return Err(LookError::NotSphere(camera.describe()));
+        }
+        if data.supersample() > 1 {
+            return Err(LookError::Supersampled(data.supersample()));
         }
         let size = (camera.width() as usize, camera.height() as usize);
         if camera.describe() != data.header.camera || size != (data.width, data.height) {

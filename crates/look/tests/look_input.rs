@@ -112,6 +112,12 @@ fn sources_that_are_not_a_static_full_sphere_are_refused() {
         look(&wrong_size, &v),
         Err(LookError::Inconsistent { .. })
     ));
+    // An anti-aliased sphere (2×2 rays per pixel: 16×8 records) is refused, saying why.
+    let mut sampled = synthetic(&sphere, 16, 8);
+    sampled.header.supersample = 2;
+    let e = look(&sampled, &v).unwrap_err();
+    assert!(matches!(e, LookError::Supersampled(2)), "{e}");
+    assert!(e.to_string().contains("2×2 rays per pixel"), "{e}");
     let mut short = synthetic(&sphere, 8, 4);
     short.records.pop();
     assert!(matches!(look(&short, &v), Err(LookError::Data(_))));

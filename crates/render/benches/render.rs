@@ -9,39 +9,11 @@
 //!     (numeric, 2 threads, data file included); throughput in picture pixels.
 //! Run: cargo bench -p render --bench render (only (3): `-- samples_per_pixel`)
 
+mod common;
+
+use common::{sampled_scene, scene};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use render::driver::{render, NoProgress};
-use scene::Scene;
-use std::path::Path;
-
-fn scene(path: &str, width: u32, height: u32, method: &str) -> Scene {
-    sampled_scene(path, width, height, method, 1)
-}
-
-fn sampled_scene(path: &str, width: u32, height: u32, method: &str, samples: u32) -> Scene {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(path);
-    let text = std::fs::read_to_string(&p).expect("scene file");
-    let text = text
-        .lines()
-        .map(|l| {
-            if l.starts_with("width") {
-                format!("width = {width}")
-            } else if l.starts_with("height") {
-                format!("height = {height}\nsamples = {samples}")
-            } else if l.starts_with("samples") {
-                String::new()
-            } else if l.starts_with("method") {
-                format!("method = \"{method}\"")
-            } else {
-                l.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    Scene::from_str(&text, path).expect("valid scene")
-}
 
 fn bench(c: &mut Criterion) {
     let threads = [1usize, 2];

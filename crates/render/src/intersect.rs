@@ -53,10 +53,14 @@ pub struct Measured {
 }
 
 /// Per-thread buffers: the probes of every object at the start and the end of the segment
-/// being scanned (swapped from segment to segment, reused from ray to ray).
+/// being scanned (swapped from segment to segment, reused from ray to ray), and which
+/// objects the current ray searches at all.
 pub struct Probes {
     pub start: Vec<Measured>,
     pub end: Vec<Measured>,
+    /// False for an object the ray provably never comes near (`crate::reject`): it is
+    /// neither probed nor searched. Set per ray by its caller (all true by default).
+    pub active: Vec<bool>,
 }
 
 impl Probes {
@@ -97,13 +101,22 @@ impl Intersector {
         Probes {
             start: vec![none; self.targets.len()],
             end: vec![none; self.targets.len()],
+            active: vec![true; self.targets.len()],
         }
     }
 
-    /// Probes every object at the ray state `s` (taken at absolute parameter `at`) into the
-    /// start buffer.
+    /// Probes every active object at the ray state `s` (taken at absolute parameter `at`)
+    /// into the start buffer.
     pub fn probe_all(&self, s: &GeodesicState, at: f64, probes: &mut Probes) {
-        for (t, o) in self.targets.iter().zip(probes.start.iter_mut()) {
+        for ((t, o), &on) in self
+            .targets
+            .iter()
+            .zip(&mut probes.start)
+            .zip(&probes.active)
+        {
+            if !on {
+                continue;
+            }
             *o = Measured {
                 probe: t.probe(&self.metric, s, f64::NAN),
                 at,
@@ -111,7 +124,7 @@ impl Intersector {
         }
     }
 
-    /// The earliest-λ surface crossing of any object within [lo, hi] of segment `d` (moved
+    /// The earliest-λ surface crossing of any active object within [lo, hi] of segment `d` (moved
     /// by `shift`): an entry, or the exit of a ray that started inside (see
     /// [`Target::crossed`]). Reads the probes at `lo` from `probes.start` and leaves those
     /// at `hi` in `probes.end`.
@@ -127,6 +140,9 @@ impl Intersector {
         let mut s_hi = None;
         let mut best: Option<Crossing> = None;
         for (i, t) in self.targets.iter().enumerate() {
+            if !probes.active[i] {
+                continue;
+            }
             let m = probes.start[i];
             let p = m.probe;
             // Clearance from the surface, on either side of it.

@@ -6,7 +6,8 @@
 //! - [`tracer`]: one pixel's backward light ray, numeric or exact, and its record.
 //! - [`intersect`]: the bounded intersection search shared by pixel and shadow rays, over
 //!   the [`segment`]s of a ray; [`target`]: the objects' signed distances and surfaces;
-//!   [`worldline`]: the objects' worldlines and body frames; [`bounds`]: boxes.
+//!   [`worldline`]: the objects' worldlines and body frames; [`bounds`]: boxes;
+//!   [`reject`]: whole-ray rejection of objects at rest.
 //! - [`lighting`]: direct light from point sources by shadow rays.
 //! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
 //!   `--part i/N` part files and their merge.
@@ -17,6 +18,7 @@ pub mod intersect;
 pub mod lighting;
 pub mod part;
 pub mod plan;
+pub mod reject;
 pub mod segment;
 pub mod target;
 pub mod tiles;

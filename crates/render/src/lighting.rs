@@ -36,15 +36,18 @@
 //! own intersection search (bracketing with rate bounds, so thin occluders are not missed)
 //! on the closed-form curve from emission to just before the hit ([`END_CUT`]): the lit
 //! surface itself is not counted at its end point, but it does block a ray that passes
-//! through the object earlier (self-shadowing, e.g. of later windings).
+//! through the object earlier (self-shadowing, e.g. of later windings). Objects at rest that
+//! a connecting ray provably never comes near (`crate::reject`) are left out of its search.
 
 use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
+use crate::reject::Rejection;
 use crate::segment::{Segment, Shift, EXACT_SEGMENTS};
 use spacetime::{
     shadow_rays, source_area_distance_sq, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
     Godel, ShadowRay, Spacetime,
 };
 use std::f64::consts::{PI, SQRT_2};
+use std::sync::OnceLock;
 
 /// The occlusion test stops this fraction of the affine length before the lit point, so
 /// that the surface being lit does not count as its own occluder (the point lies on it to
@@ -76,11 +79,25 @@ pub struct Lighting {
     pub lights: Vec<LightSource>,
     /// Light emitted more than this (coordinate time) before a hit is not counted.
     window: f64,
+    /// Per light, per object: its whole-ray rejection test seen from the light (built on
+    /// first use, for the objects of the first call: a renderer's lighting serves one scene).
+    rejections: OnceLock<Vec<Vec<Option<Rejection>>>>,
 }
 
 impl Lighting {
     pub fn new(lights: Vec<LightSource>, window: f64) -> Lighting {
-        Lighting { lights, window }
+        Lighting {
+            lights,
+            window,
+            rejections: OnceLock::new(),
+        }
+    }
+
+    /// The same lighting without whole-ray rejection: every connecting ray searches every
+    /// object (for tests and benchmarks that compare the two).
+    pub fn without_rejection(self) -> Lighting {
+        let rejections = OnceLock::from(vec![Vec::new(); self.lights.len()]);
+        Lighting { rejections, ..self }
     }
 
     /// Direct light from each source at a pixel ray's hit (see the module documentation)
@@ -98,20 +115,33 @@ impl Lighting {
         let (Some(hit), Some(a)) = (hit, objects.metric.godel_a()) else {
             return;
         };
-        for (o, light) in out.iter_mut().zip(&self.lights) {
+        let rejections = self.rejections.get_or_init(|| {
+            self.lights
+                .iter()
+                .map(|l| {
+                    objects
+                        .targets
+                        .iter()
+                        .map(|t| Rejection::new(a, l.position, t))
+                        .collect()
+                })
+                .collect()
+        });
+        for ((o, light), rejections) in out.iter_mut().zip(&self.lights).zip(rejections) {
             *o = self
-                .irradiance(objects, a, light, hit, probes)
+                .irradiance(objects, a, (light, rejections), hit, probes)
                 .map_or(f32::NAN, |e| e as f32);
         }
     }
 
-    /// The irradiance E = Σ P g² cos θ/(4π D²) over the unoccluded connecting rays; `None`
-    /// when the occlusion search of one of them ran out of work.
-    pub fn irradiance(
+    /// The irradiance E = Σ P g² cos θ/(4π D²) over the unoccluded connecting rays of
+    /// `light` (with its objects' rejection tests); `None` when the occlusion search of one
+    /// of them ran out of work.
+    fn irradiance(
         &self,
         objects: &Intersector,
         a: f64,
-        light: &LightSource,
+        (light, rejections): (&LightSource, &[Option<Rejection>]),
         hit: &HitPoint,
         probes: &mut Probes,
     ) -> Option<f64> {
@@ -135,7 +165,7 @@ impl Lighting {
             if !(d2 > 0.0 && d2.is_finite()) {
                 continue;
             }
-            if occluded(objects, geo, &ray, probes).ok()? {
+            if occluded(objects, geo, &ray, rejections, probes).ok()? {
                 continue;
             }
             sum += light.power * inc.energy * inc.energy * inc.cos / (4.0 * PI * d2);
@@ -160,20 +190,33 @@ impl Lighting {
 
 /// Whether any object blocks `ray` (future-directed from its emission) before it reaches
 /// its end, cut short by [`END_CUT`]. A surface crossing blocks, so a light inside a ball
-/// reaches only the ball's inner surface.
+/// reaches only the ball's inner surface. Objects whose `rejections` test rejects the ray over
+/// that stretch are not searched (nothing to search: not occluded).
 fn occluded(
     objects: &Intersector,
     geo: ExactGeodesic,
     ray: &ShadowRay,
+    rejections: &[Option<Rejection>],
     probes: &mut Probes,
 ) -> Result<bool, OutOfWork> {
     let metric = objects.metric;
+    let end = ray.lambda * (1.0 - END_CUT);
+    let mut near_any = false;
+    for (i, on) in probes.active.iter_mut().enumerate() {
+        *on = !rejections
+            .get(i)
+            .and_then(Option::as_ref)
+            .is_some_and(|b| b.misses(&geo.origin, end));
+        near_any |= *on;
+    }
+    if !near_any {
+        return Ok(false);
+    }
     let start = GeodesicState {
         x: ray.emission,
         p: metric.lower(ray.emission, ray.tangent),
     };
     let (sys, s0) = GeodesicSystem::new(metric, &start);
-    let end = ray.lambda * (1.0 - END_CUT);
     let per_loop = geo.origin.return_parameter() / EXACT_SEGMENTS as f64;
     let n = (end / per_loop).ceil().clamp(1.0, 1e5) as usize;
     objects.probe_all(&start, 0.0, probes);

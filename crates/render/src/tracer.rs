@@ -17,15 +17,21 @@
 //! bounds the integration error to one loop, however far into the past a ray is followed.
 //! The number of copies is bounded by [`scene::MAX_RAY_LOOPS`].
 //!
+//! Objects at rest that a ray provably never comes near (`crate::reject`, one test per ray
+//! and object for all its loops) are left out of its search; a ray of the exact tracer that
+//! comes near none of the objects is not followed at all (it escapes, as its search would
+//! have found).
+//!
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
+use crate::reject::{Rejection, NUMERIC_TOLERANCE};
 use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use datafile::record::{PixelRecord, RayStatus};
 use spacetime::measure::frequency_ratio;
 use spacetime::{
-    photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, FourVector, GeodesicState,
-    GeodesicSystem, OdeSystem, Spacetime, StepOutcome, Tetrad, TimeDirection, Tolerances,
+    photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
+    OdeSystem, Spacetime, StepOutcome, Tetrad, TimeDirection, Tolerances,
 };
 
 /// Everything a pixel's ray needs, built once per render and shared by all threads.
@@ -42,6 +48,9 @@ pub struct Tracer {
     periodic: bool,
     /// Use the closed-form geodesics instead of the integrator (Gödel only).
     exact: bool,
+    /// Per object, its whole-ray rejection test (balls at rest and planes, Gödel only; none
+    /// where the numeric tracer's tolerance is too loose for its margin).
+    rejections: Vec<Option<Rejection>>,
 }
 
 /// How a tracer follows rays (from the scene's `[trace]` table).
@@ -96,6 +105,16 @@ enum FirstLoop {
 impl Tracer {
     pub fn new(objects: Intersector, observer: Event, frame: Tetrad, opt: TraceOptions) -> Tracer {
         let godel = objects.metric.godel_a().is_some();
+        let exact = opt.exact && godel;
+        let rejections = objects
+            .targets
+            .iter()
+            .map(|t| {
+                let a = objects.metric.godel_a()?;
+                let sure = exact || opt.tolerance <= NUMERIC_TOLERANCE;
+                Rejection::new(a, observer, t).filter(|_| sure)
+            })
+            .collect();
         Tracer {
             objects,
             observer,
@@ -108,8 +127,16 @@ impl Tracer {
             },
             max_steps: opt.max_steps,
             periodic: godel,
-            exact: opt.exact && godel,
+            exact,
+            rejections,
         }
+    }
+
+    /// The same tracer without whole-ray rejection: every ray searches every object (for
+    /// tests and benchmarks that compare the two).
+    pub fn without_rejection(mut self) -> Tracer {
+        self.rejections.iter_mut().for_each(|b| *b = None);
+        self
     }
 
     /// How far into the past rays are followed (coordinate time).
@@ -139,9 +166,29 @@ impl Tracer {
             first_step,
         } = scratch;
         segments.clear();
+        // The closed form: the exact tracer's ray, and the numeric one's rejection tests.
+        let geo = self
+            .objects
+            .metric
+            .godel_a()
+            .filter(|_| self.exact || self.rejections.iter().any(Option::is_some))
+            .and_then(|a| ExactGeodesic::new(a, self.observer, k));
+        let mut near_any = false;
+        for (on, rej) in probes.active.iter_mut().zip(&self.rejections) {
+            *on = !matches!((rej, &geo), (Some(r), Some(g)) if r.misses(&g.origin, f64::INFINITY));
+            near_any |= *on;
+        }
+        if self.exact && !near_any {
+            if let Some(status) = self.escape_unsearched(&start, geo) {
+                return Traced {
+                    record: PixelRecord::miss(status),
+                    hit: None,
+                };
+            }
+        }
         self.objects.probe_all(&start, 0.0, probes);
         let first = if self.exact {
-            self.first_loop_exact(&start, k, segments, probes)
+            self.first_loop_exact(&start, geo, segments, probes)
         } else {
             self.first_loop_numeric(&start, segments, probes, first_step)
         };
@@ -261,20 +308,34 @@ impl Tracer {
         }
     }
 
+    /// The status of an exact ray that searches no object, if it surely escapes: its search
+    /// would find nothing, and it reaches the time bound within the loop limit (the period
+    /// computed as the first loop computes it). None: trace it in full.
+    fn escape_unsearched(
+        &self,
+        start: &GeodesicState,
+        geo: Option<ExactGeodesic>,
+    ) -> Option<RayStatus> {
+        let geo = geo?;
+        let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
+        let l_ret = geo.origin.return_parameter();
+        let end = Segment::exact(geo, sys, 0.0, s0, l_ret).y1;
+        let dt = end[0] - s0[0];
+        let last = start.x.t + scene::MAX_RAY_LOOPS as f64 * dt;
+        (dt < 0.0 && last < self.t_bound).then_some(RayStatus::Escaped)
+    }
+
     /// The exact first loop: [`EXACT_SEGMENTS`] closed-form segments up to the return to
     /// the axis, whose parameter and shift are known exactly.
     fn first_loop_exact(
         &self,
         start: &GeodesicState,
-        k: FourVector,
+        geo: Option<ExactGeodesic>,
         segments: &mut Vec<Segment>,
         probes: &mut Probes,
     ) -> FirstLoop {
         let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
-        let Some(a) = self.objects.metric.godel_a() else {
-            return FirstLoop::Ended(End::Miss(RayStatus::Failed));
-        };
-        let Some(geo) = ExactGeodesic::new(a, self.observer, k) else {
+        let Some(geo) = geo else {
             return FirstLoop::Ended(End::Miss(RayStatus::Failed));
         };
         let l_ret = geo.origin.return_parameter();

@@ -152,17 +152,23 @@ impl Camera {
     /// Unit direction in the camera basis (forward, right, up) for pixel (col, row);
     /// `None` outside the image or, for the fisheye, outside the inscribed circle.
     pub fn pixel_direction(&self, col: u32, row: u32) -> Option<[f64; 3]> {
-        let (w, h) = (self.width(), self.height());
-        if col >= w || row >= h {
+        if col >= self.width() || row >= self.height() {
             return None;
         }
-        let (w, h) = (w as f64, h as f64);
-        let (cx, cy) = (col as f64 + 0.5, row as f64 + 0.5);
+        self.direction_at(col as f64 + 0.5, row as f64 + 0.5)
+    }
+
+    /// Unit direction in the camera basis for the continuous image position (x, y) in pixel
+    /// units, (0, 0) the top-left corner of the image and (col + ½, row + ½) the centre of
+    /// pixel (col, row); `None` for the fisheye outside its circle. Positions outside the
+    /// image are extrapolated (the marks use them for ticks on the border).
+    pub fn direction_at(&self, x: f64, y: f64) -> Option<[f64; 3]> {
+        let (w, h) = (self.width() as f64, self.height() as f64);
         match *self {
             Camera::Pinhole { fov_deg, .. } => {
                 let t = (0.5 * fov_deg).to_radians().tan();
-                let x = t * (2.0 * cx / w - 1.0);
-                let y = t * (h / w) * (1.0 - 2.0 * cy / h);
+                let x = t * (2.0 * x / w - 1.0);
+                let y = t * (h / w) * (1.0 - 2.0 * y / h);
                 let n = (1.0 + x * x + y * y).sqrt();
                 Some([1.0 / n, x / n, y / n])
             }
@@ -170,12 +176,12 @@ impl Camera {
                 h_fov_deg,
                 v_fov_deg,
                 ..
-            } => Some(panorama(h_fov_deg, v_fov_deg, cx / w, cy / h)),
-            Camera::Sphere { .. } => Some(panorama(360.0, 180.0, cx / w, cy / h)),
+            } => Some(panorama(h_fov_deg, v_fov_deg, x / w, y / h)),
+            Camera::Sphere { .. } => Some(panorama(360.0, 180.0, x / w, y / h)),
             Camera::Fisheye { fov_deg, .. } => {
                 // Offsets from the centre in units of the circle's radius: right and up.
-                let dx = 2.0 * cx / w - 1.0;
-                let dy = 1.0 - 2.0 * cy / h;
+                let dx = 2.0 * x / w - 1.0;
+                let dy = 1.0 - 2.0 * y / h;
                 let rho = dx.hypot(dy);
                 if rho > 1.0 {
                     return None;
@@ -192,6 +198,113 @@ impl Camera {
             }
         }
     }
+
+    /// The inverse of [`Camera::direction_at`]: the continuous image position (x, y) at which
+    /// the camera looks along `d` (camera basis, any length), or `None` where it does not look
+    /// that way (behind a pinhole, outside a panorama's field or a fisheye's circle, the zero
+    /// vector). The one home of the inverse mapping: orientation marks and the viewer's
+    /// direction readout both go through [`Camera::direction_at`] and this.
+    pub fn image_position(&self, d: [f64; 3]) -> Option<(f64, f64)> {
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if !(n.is_finite() && n > 0.0) {
+            return None;
+        }
+        let d = [d[0] / n, d[1] / n, d[2] / n];
+        let (w, h) = (self.width() as f64, self.height() as f64);
+        let (x, y) = match *self {
+            Camera::Pinhole { fov_deg, .. } => {
+                if d[0] <= 0.0 {
+                    return None;
+                }
+                let t = (0.5 * fov_deg).to_radians().tan();
+                let (px, py) = (d[1] / d[0], d[2] / d[0]);
+                (0.5 * w * (px / t + 1.0), 0.5 * h * (1.0 - py / (t * h / w)))
+            }
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                ..
+            } => panorama_inverse(h_fov_deg, v_fov_deg, d, w, h)?,
+            Camera::Sphere { .. } => panorama_inverse(360.0, 180.0, d, w, h)?,
+            Camera::Fisheye { fov_deg, .. } => {
+                let theta = d[0].clamp(-1.0, 1.0).acos();
+                let rho = theta / (0.5 * fov_deg).to_radians();
+                if rho > 1.0 + 1e-12 {
+                    return None;
+                }
+                let s = d[1].hypot(d[2]);
+                let (sin_psi, cos_psi) = if s > 0.0 {
+                    (d[1] / s, d[2] / s)
+                } else {
+                    (0.0, 1.0)
+                };
+                (
+                    0.5 * w * (rho * sin_psi + 1.0),
+                    0.5 * h * (1.0 - rho * cos_psi),
+                )
+            }
+        };
+        Some((x, y))
+    }
+
+    /// The same camera with another image size (the fisheye takes `width`): the geometry of
+    /// a picture shown at another resolution than it was traced.
+    pub fn with_size(&self, width: u32, height: u32) -> Camera {
+        match *self {
+            Camera::Pinhole { fov_deg, .. } => Camera::Pinhole {
+                fov_deg,
+                width,
+                height,
+            },
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                ..
+            } => Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                width,
+                height,
+            },
+            Camera::Sphere { .. } => Camera::Sphere { width, height },
+            Camera::Fisheye { fov_deg, .. } => Camera::Fisheye {
+                fov_deg,
+                size: width,
+            },
+        }
+    }
+}
+
+/// Azimuth and elevation in degrees of a direction in the camera basis (forward, right, up):
+/// azimuth from forward toward right in (−180°, 180°], elevation above the forward–right
+/// plane in [−90°, 90°].
+pub fn azimuth_elevation(d: [f64; 3]) -> (f64, f64) {
+    let horizontal = d[0].hypot(d[1]);
+    (
+        d[1].atan2(d[0]).to_degrees(),
+        d[2].atan2(horizontal).to_degrees(),
+    )
+}
+
+/// The unit direction (camera basis) at azimuth `az_deg` and elevation `el_deg`
+/// (the inverse of [`azimuth_elevation`]).
+pub fn direction_from(az_deg: f64, el_deg: f64) -> [f64; 3] {
+    let (sa, ca) = az_deg.to_radians().sin_cos();
+    let (sb, cb) = el_deg.to_radians().sin_cos();
+    [cb * ca, cb * sa, sb]
+}
+
+/// Image position of direction `d` (unit) in a panorama spanning `h_fov`×`v_fov` degrees,
+/// `None` outside the field.
+fn panorama_inverse(h_fov: f64, v_fov: f64, d: [f64; 3], w: f64, h: f64) -> Option<(f64, f64)> {
+    let (az, el) = azimuth_elevation(d);
+    let u = az / h_fov + 0.5;
+    let v = 0.5 - el / v_fov;
+    let eps = 1e-12;
+    if !(-eps..=1.0 + eps).contains(&u) || !(-eps..=1.0 + eps).contains(&v) {
+        return None;
+    }
+    Some((u * w, v * h))
 }
 
 /// Most rays per pixel (`[camera] samples`, `godel render --samples`): 16×16.
@@ -479,5 +592,42 @@ mod tests {
             height: 100,
         };
         assert_eq!(c.describe(), "panorama 220°×25°, 880×100");
+    }
+
+    #[test]
+    fn image_position_inverts_direction_at() {
+        for c in cameras() {
+            let (w, h) = (c.width(), c.height());
+            for row in (0..h).step_by(3) {
+                for col in (0..w).step_by(7) {
+                    let Some(d) = c.pixel_direction(col, row) else {
+                        continue;
+                    };
+                    let (x, y) = c.image_position(d).expect("a traced pixel maps back");
+                    assert!(
+                        (x - (col as f64 + 0.5)).abs() < 1e-7
+                            && (y - (row as f64 + 0.5)).abs() < 1e-7,
+                        "{c:?} {col},{row}: {x},{y}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn azimuth_elevation_round_trips_and_is_oriented() {
+        for (az, el) in [(0.0, 0.0), (30.0, 10.0), (-120.0, -45.0), (179.0, 89.0)] {
+            let (a, e) = azimuth_elevation(direction_from(az, el));
+            assert!((a - az).abs() < 1e-9 && (e - el).abs() < 1e-9);
+        }
+        // Right is positive azimuth, up positive elevation.
+        assert!((azimuth_elevation([0.0, 1.0, 0.0]).0 - 90.0).abs() < 1e-12);
+        assert!((azimuth_elevation([0.0, 0.0, 1.0]).1 - 90.0).abs() < 1e-12);
+        // Directions a camera does not see have no position.
+        let pin = cameras()[0];
+        assert!(pin.image_position([-1.0, 0.0, 0.0]).is_none());
+        let pano = cameras()[1];
+        assert!(pano.image_position(direction_from(150.0, 0.0)).is_none());
+        assert!(pano.image_position([0.0; 3]).is_none());
     }
 }

@@ -27,7 +27,9 @@ mod objects;
 mod raw;
 mod validate;
 
-pub use camera::{samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES};
+pub use camera::{
+    azimuth_elevation, direction_from, samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES,
+};
 pub use edit::replace_view;
 pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
@@ -113,6 +115,24 @@ impl Scene {
     }
 }
 
+/// Only the `[camera]` of scene text, validated as in a scene file; the rest of the text
+/// must be TOML but is not checked. For readers of a data file's embedded scene (marks, the
+/// viewer's pixel directions), whose image textures need not be where the scene was.
+pub fn camera_from_str(text: &str, name_for_errors: &str) -> Result<Camera, SceneError> {
+    /// The document with everything but the camera ignored.
+    #[derive(Deserialize)]
+    struct CameraOnly {
+        camera: raw::RawCamera,
+    }
+    let root = toml::de::DeTable::parse(text).map_err(|e| {
+        Locator::new(name_for_errors, text, None).at_span(e.span(), e.message().to_string())
+    })?;
+    let loc = Locator::new(name_for_errors, text, Some(&root));
+    let raw = CameraOnly::deserialize(toml::de::Deserializer::from(root.clone()))
+        .map_err(|e| loc.at_span(e.span(), e.message().to_string()))?;
+    validate::camera_only(&loc, raw.camera)
+}
+
 fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
     with_raw(text, file, |raw, loc| validate::build(raw, text, loc, base_dir))
 }
@@ -159,5 +179,19 @@ mod tests {
         let s = Scene::builtin();
         assert_eq!(s.camera.width(), 880);
         assert_eq!(s.metric.godel_a(), Some(1.0));
+    }
+
+    #[test]
+    fn the_camera_reads_without_the_rest_of_the_scene() {
+        // An image texture that is not there: the scene is refused, its camera is not.
+        let text = BUILTIN_SCENE_TEXT.replace(r#"builtin = "earth""#, r#"path = "gone.png""#);
+        assert!(Scene::from_str(&text, "x.toml").is_err());
+        let camera = camera_from_str(&text, "x.toml").unwrap();
+        assert_eq!(camera, Scene::builtin().camera);
+        // The camera itself is checked as in a scene file, with the place of the error.
+        let bad = BUILTIN_SCENE_TEXT.replace("width = 880", "width = 0");
+        let e = camera_from_str(&bad, "x.toml").unwrap_err();
+        assert_eq!(e.field, "camera.width");
+        assert!(e.line().is_some());
     }
 }

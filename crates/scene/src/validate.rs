@@ -179,6 +179,11 @@ pub(crate) fn observer(c: &Checker, raw: Option<RawObserver>) -> Result<Observer
     })
 }
 
+/// [`camera`] on its own, for [`crate::camera_from_str`].
+pub(crate) fn camera_only(loc: &Locator, r: RawCamera) -> Result<Camera> {
+    camera(&Checker { loc }, r)
+}
+
 pub(crate) fn camera(c: &Checker, r: RawCamera) -> Result<Camera> {
     let (width, height) = (r.width, r.height);
     let camera = match r.kind {

@@ -1,6 +1,42 @@
 //! Colour encoding: linear RGB ↔ sRGB with the standard piecewise sRGB transfer function
 //! (IEC 61966-2-1), and conversion to 8-bit with rounding. Values are clamped to [0, 1]
 //! before encoding; NaN counts as 0.
+//!
+//! Pictures for display (PNG) pass shaded colours through [`tone_map`] first: linear up to
+//! the knee [`TONE_KNEE`] = 0.8, and above it a rational shoulder
+//! `k + (1 − k)·y/(1 + y)`, y = (x − k)/(1 − k), which is continuous with slope 1 at the
+//! knee and approaches 1 without reaching it (a film-like highlight roll-off: the
+//! x/(1 + x) form of Reinhard et al., "Photographic tone reproduction for digital images",
+//! SIGGRAPH 2002, applied above the knee only). Nothing below 0.8 changes, 1.0
+//! becomes 0.9, and 8-bit white (255) needs x ≥ 9.6 (ten times white), so lit highlights keep their gradation
+//! instead of clipping. Applied per channel to hit pixels; the status colours (failed, not
+//! traced) are display codes and skip it.
+
+/// The knee of [`tone_map`]: values up to it are shown unchanged.
+pub const TONE_KNEE: f32 = 0.8;
+
+/// The display tone curve of the module doc: identity up to [`TONE_KNEE`], a rational shoulder
+/// above it toward 1 (∞ → 1, NaN → 0, negative values unchanged for the encoder to clamp).
+pub fn tone_map(x: f32) -> f32 {
+    if x.is_nan() {
+        return 0.0;
+    }
+    if x <= TONE_KNEE {
+        return x;
+    }
+    if x.is_infinite() {
+        return 1.0;
+    }
+    let y = (x - TONE_KNEE) / (1.0 - TONE_KNEE);
+    TONE_KNEE + (1.0 - TONE_KNEE) * (y / (1.0 + y))
+}
+
+/// A shaded linear colour, scaled by `gain` (2^ev), as displayed: tone-mapped, 8-bit sRGB
+/// (through [`linear_to_srgb8_fast`]).
+#[inline]
+pub fn display_srgb8(c: [f32; 3], gain: f32) -> [u8; 3] {
+    c.map(|x| linear_to_srgb8_fast(tone_map(x * gain)))
+}
 
 /// Encodes one linear component as sRGB in [0, 1] (clamped; NaN → 0).
 ///
@@ -123,6 +159,30 @@ pub fn rgb_to_srgb8_fast(c: [f32; 3]) -> [u8; 3] {
 #[cfg(test)]
 mod fast_tests {
     use super::*;
+
+    #[test]
+    fn tone_curve_is_identity_below_the_knee_smooth_and_below_white() {
+        for x in [0.0f32, 0.1, 0.5, 0.8] {
+            assert_eq!(tone_map(x), x);
+        }
+        assert!((tone_map(1.0) - 0.9).abs() < 1e-6);
+        // Slope 1 on both sides of the knee (C¹).
+        let h = 1e-3f32;
+        let slope = (tone_map(TONE_KNEE + h) - tone_map(TONE_KNEE)) / h;
+        assert!((slope - 1.0).abs() < 5e-3, "{slope}");
+        // Strictly increasing and below 1; 8-bit white only from 9.6 on.
+        let mut last = 0.0;
+        for k in 1..2000 {
+            let x = k as f32 * 0.05;
+            let y = tone_map(x);
+            assert!(y > last && y < 1.0, "{x}");
+            last = y;
+        }
+        assert!(linear_to_srgb8(tone_map(9.5)) < 255);
+        assert_eq!(linear_to_srgb8(tone_map(9.7)), 255);
+        assert_eq!(tone_map(f32::INFINITY), 1.0);
+        assert_eq!(tone_map(f32::NAN), 0.0);
+    }
 
     #[test]
     fn bins_hold_one_threshold_at_most() {

@@ -55,6 +55,9 @@ pub enum ShadeError {
         #[source]
         source: image::ImageError,
     },
+    /// Encoding an OpenEXR picture failed.
+    #[error("encoding {}: {}", one_line(path.display()), one_line(message))]
+    Exr { path: PathBuf, message: String },
     /// Writing an output file failed (nothing was left at `path`).
     #[error("writing {}: {source}", one_line(path.display()))]
     Write {

@@ -32,7 +32,7 @@ use datafile::DataFile;
 use image::RgbImage;
 
 use crate::blackbody::table;
-use crate::colour::rgb_to_srgb8;
+use crate::colour::display_srgb8;
 use crate::texture_shader::{shade_pixels, status_colour, BACKGROUND, FAILED};
 
 /// How bright a black-body pixel is drawn.
@@ -59,7 +59,8 @@ pub fn shade_frequency(data: &DataFile, temperatures: &[f64], brightness: Bright
         let Some((x0, y0, side)) = reference_square(k, w, h) else {
             continue;
         };
-        let colour = rgb_to_srgb8(blackbody_colour(1.0, t, brightness).unwrap_or(FAILED));
+        // The colour a pixel at g = 1 shows (through the display tone curve).
+        let colour = display_srgb8(blackbody_colour(1.0, t, brightness).unwrap_or(FAILED), 1.0);
         for y in y0..y0 + side {
             for x in x0..x0 + side {
                 img.put_pixel(x as u32, y as u32, image::Rgb(colour));

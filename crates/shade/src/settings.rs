@@ -9,6 +9,8 @@
 //! brightness = "normalized"         # frequency shader: "normalized" | "physical"
 //! exposure = 1.0                    # physical brightness: multiplier of Y(gT)/Y(T)
 //! reference_squares = true          # frequency shader: unshifted colours top left
+//! ev = 0.0                          # PNG: exposure compensation in stops before the tone curve
+//! grid = false                      # PNG: azimuth/elevation marks (crate::marks)
 //!
 //! [time]
 //! mode = "window"                   # "window" | "travel" (false colour by light travel time)
@@ -279,6 +281,14 @@ pub struct ShadeSettings {
     pub exposure: f64,
     /// Frequency layer: reference squares of the unshifted colours (first two objects).
     pub reference_squares: bool,
+    /// Exposure compensation of pictures for display, in stops: colours are scaled by 2^ev
+    /// before the tone curve ([`crate::colour::tone_map`]); within ±20. Linear (EXR) output
+    /// is not scaled.
+    #[serde(default)]
+    pub ev: f64,
+    /// Orientation marks (azimuth/elevation grid, ticks and labels, [`crate::marks`]).
+    #[serde(default)]
+    pub grid: bool,
     pub time: TimeSettings,
     pub light: LightSettings,
     /// By object name; objects not listed keep their defaults.
@@ -373,6 +383,8 @@ impl ShadeSettings {
             brightness: BrightnessMode::Normalized,
             exposure: 1.0,
             reference_squares: true,
+            ev: 0.0,
+            grid: false,
             time: TimeSettings {
                 mode: TimeMode::Window,
                 t0: -(tmin + tmax) / 2.0 - dt / 2.0,

@@ -17,6 +17,11 @@
 //! exactly the render's preview; black bodies and false colours are not Lambert-shaded.
 //! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
 //!
+//! Pictures for display ([`Shading::image`]) scale each hit pixel by 2^`ev` and pass it
+//! through the display tone curve ([`crate::colour::tone_map`]), then draw the overlays:
+//! orientation marks (`grid`, [`crate::marks`]), reference squares and the travel-time
+//! legend; [`Shading::linear`] gives the colours before all of that (the EXR output).
+//!
 //! Caps, checked with the other settings so that every front end gets them: at most
 //! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
 //! light count, if larger); image files as [`crate::texture`] caps them.
@@ -36,11 +41,12 @@ use rayon::prelude::*;
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
 use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
-use crate::colour::rgb_to_srgb8_fast;
+use crate::colour::{display_srgb8, rgb_to_srgb8_fast, tone_map};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
 use crate::legend::{draw_legend, false_colour};
+use crate::marks::draw_marks;
 use crate::settings::{
     BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
     MAX_LIGHT_SOURCES,
@@ -68,7 +74,14 @@ pub struct Shading {
     /// on·intensity·color per light plane.
     lights: Vec<[f32; 3]>,
     observer_time: f64,
+    /// 2^ev, applied before the display tone curve.
+    gain: f32,
+    /// The camera, for orientation marks (`grid`); `None` without them.
+    marks: Option<scene::Camera>,
 }
+
+/// Most exposure compensation, in stops either way.
+pub const MAX_EV: f64 = 20.0;
 
 impl Shading {
     /// Checks `settings` against `data` and loads the textures, image files from anywhere
@@ -122,6 +135,23 @@ impl Shading {
             ));
         }
         let ambient = non_negative("light.ambient", settings.light.ambient)? as f32;
+        let ev = finite("ev", settings.ev)?;
+        if ev.abs() > MAX_EV {
+            return Err(invalid(
+                "ev",
+                format!("must be within ±{MAX_EV} stops, got {ev}"),
+            ));
+        }
+        let marks = if settings.grid {
+            Some(crate::marks::data_camera(data).ok_or_else(|| {
+                invalid(
+                    "grid",
+                    "the data file's embedded scene has no usable camera",
+                )
+            })?)
+        } else {
+            None
+        };
         let sources = &settings.light.sources;
         if has(ShaderKind::Light) && data.lights.is_empty() {
             return Err(ShadeError::NoLightChannels);
@@ -281,6 +311,8 @@ impl Shading {
             ambient,
             lights,
             observer_time: data.header.observer_time,
+            gain: 2f64.powf(ev) as f32,
+            marks,
         })
     }
 
@@ -314,11 +346,43 @@ impl Shading {
             .enumerate()
             .for_each(|(row, out)| {
                 for (col, px) in out.chunks_exact_mut(3).enumerate() {
-                    let c = data.box_filter(col, row, |i| self.pixel(data, i));
+                    // Each sample as displayed (hit samples through exposure and the tone
+                    // curve; status colours are display codes), then the pixel's box filter.
+                    let c = data.box_filter(col, row, |i| self.displayed(data, i));
                     px.copy_from_slice(&rgb_to_srgb8_fast(c));
                 }
             });
         self.overlays(w, h, bytes);
+    }
+
+    /// Shades `data` into linear, scene-referred RGB (row-major, row 0 at the top) at the
+    /// picture size, each pixel the box filter of its samples: no exposure compensation, no
+    /// tone curve, no overlays; what `godel shade -o x.exr` writes.
+    pub fn linear(&self, data: &DataFile) -> Vec<[f32; 3]> {
+        let (w, h) = data.picture_size();
+        if data.records.len() < data.width * data.height {
+            return Vec::new();
+        }
+        (0..w * h)
+            .into_par_iter()
+            .map(|p| data.box_filter(p % w, p / w, |i| self.pixel(data, i)))
+            .collect()
+    }
+
+    /// Sample `i` as displayed, in linear light before the 8-bit encoding: hit samples
+    /// scaled by the exposure gain and put through the tone curve, status colours as they are.
+    fn displayed(&self, data: &DataFile, i: usize) -> [f32; 3] {
+        let c = self.pixel(data, i);
+        let hit = c != FAILED
+            && data
+                .records
+                .get(i)
+                .is_some_and(|r| status_colour(r, BACKGROUND).is_none());
+        if hit {
+            c.map(|x| tone_map(x * self.gain))
+        } else {
+            c
+        }
     }
 
     /// Linear RGB of record `i` (row-major index) of `data`: one sample of an anti-aliased
@@ -414,30 +478,42 @@ impl Shading {
         })
     }
 
-    /// Reference squares (frequency layer) and the travel-time legend.
+    /// Reference squares (frequency layer), the travel-time legend and orientation marks.
     fn overlays(&self, w: usize, h: usize, bytes: &mut [u8]) {
-        if self.frequency && self.reference_squares {
-            for (k, obj) in self.objects.iter().take(REFERENCE_SQUARES).enumerate() {
+        let legend = self.time && self.time_mode == TimeMode::Travel && self.legend;
+        let squares = self.frequency && self.reference_squares;
+        if !(legend || squares || self.marks.is_some()) {
+            return;
+        }
+        let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) else {
+            return;
+        };
+        let Some(mut img) = RgbImage::from_raw(wu, hu, bytes.to_vec()) else {
+            return;
+        };
+        if let Some(camera) = &self.marks {
+            draw_marks(&mut img, camera);
+        }
+        if squares {
+            let shown = self.objects.iter().take(REFERENCE_SQUARES).enumerate();
+            for (k, obj) in shown {
                 let Some((x0, y0, side)) = reference_square(k, w, h) else {
                     continue;
                 };
+                // The colour a pixel at g = 1 shows: through exposure and the tone curve.
                 let c = blackbody_colour(1.0, obj.temperature, self.brightness).unwrap_or(FAILED);
-                let c = crate::colour::rgb_to_srgb8(c);
+                let c = display_srgb8(c, self.gain);
                 for y in y0..y0 + side {
                     for x in x0..x0 + side {
-                        bytes[(y * w + x) * 3..][..3].copy_from_slice(&c);
+                        img.put_pixel(x as u32, y as u32, image::Rgb(c));
                     }
                 }
             }
         }
-        if self.time && self.time_mode == TimeMode::Travel && self.legend {
-            if let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) {
-                let mut img = RgbImage::from_raw(wu, hu, bytes.to_vec())
-                    .expect("buffer has width × height × 3 bytes");
-                draw_legend(&mut img, self.travel.0, self.travel.1);
-                bytes.copy_from_slice(img.as_raw());
-            }
+        if legend {
+            draw_legend(&mut img, self.travel.0, self.travel.1);
         }
+        bytes.copy_from_slice(img.as_raw());
     }
 }
 

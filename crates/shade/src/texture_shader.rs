@@ -18,21 +18,22 @@
 //! A scene with `[[light]]` sources is previewed lit instead: texture × (0.06 + Σ_k colour_k ·
 //! light_k), light_k the direct irradiance the renderer stores per light (see
 //! `render::lighting`); [`direct_light`] is that sum for any shader.
-//! An anti-aliased data file is coloured sample by sample, then box-filtered in linear RGB
-//! to the picture size (never an averaged record: see `datafile`'s samples). Colours are
-//! encoded as 8-bit sRGB. Rows are shaded in parallel; the result does not
+//! An anti-aliased data file is coloured sample by sample, then box-filtered to the picture
+//! size (never an averaged record: see `datafile`'s samples). Hit samples go through the
+//! display tone curve ([`crate::colour::tone_map`]) before the filter; status colours are
+//! display codes, shown as they are. Colours are encoded as 8-bit sRGB. Rows are shaded in
+//! parallel; the result does not
 //! depend on the thread count.
 
 use std::path::Path;
 
-use datafile::atomic::write_atomically;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use image::RgbImage;
 use rayon::prelude::*;
 use scene::Scene;
 
-use crate::colour::rgb_to_srgb8;
+use crate::colour::{rgb_to_srgb8, tone_map};
 use crate::error::ShadeError;
 use crate::texture::Texture;
 
@@ -83,7 +84,15 @@ pub fn shade_pixels_at(
         .for_each(|(row, out)| {
             for (col, px) in out.chunks_exact_mut(3).enumerate() {
                 let c = data.box_filter(col, row, |i| {
-                    data.records.get(i).map_or(FAILED, |r| colour(i, r))
+                    let Some(r) = data.records.get(i) else {
+                        return FAILED;
+                    };
+                    let c = colour(i, r);
+                    if status_colour(r, BACKGROUND).is_none() && c != FAILED {
+                        c.map(tone_map)
+                    } else {
+                        c
+                    }
                 });
                 px.copy_from_slice(&rgb_to_srgb8(c));
             }
@@ -217,11 +226,5 @@ pub fn encode_png(img: &RgbImage, path: &Path) -> Result<Vec<u8>, ShadeError> {
 
 /// Writes `img` as a PNG file atomically: on error nothing is left at `path`.
 pub fn write_png(img: &RgbImage, path: &Path) -> Result<(), ShadeError> {
-    let bytes = encode_png(img, path)?;
-    write_atomically(path, |file| std::io::Write::write_all(file, &bytes)).map_err(|source| {
-        ShadeError::Write {
-            path: path.to_path_buf(),
-            source,
-        }
-    })
+    crate::hdr::write_bytes(path, &encode_png(img, path)?)
 }

@@ -4,7 +4,7 @@
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::blackbody::{self, table};
-use shade::colour::rgb_to_srgb8;
+use shade::colour::{display_srgb8, rgb_to_srgb8};
 use shade::frequency_shader::{blackbody_colour, reference_square};
 use shade::texture_shader::{BACKGROUND, FAILED, NOT_TRACED, STEP_BUDGET};
 use shade::{shade_frequency, Brightness};
@@ -50,8 +50,9 @@ fn synthetic() -> DataFile {
     }
 }
 
+/// A hit pixel's colour as displayed (through the tone curve).
 fn srgb8(c: [f64; 3]) -> [u8; 3] {
-    rgb_to_srgb8(c.map(|v| v as f32))
+    display_srgb8(c.map(|v| v as f32), 1.0)
 }
 
 fn px(img: &image::RgbImage, col: usize, row: usize) -> [u8; 3] {
@@ -142,7 +143,7 @@ fn reference_squares_show_the_unshifted_colours() {
         for (k, t) in [T0, T1].into_iter().enumerate() {
             let (x0, y0, side) = reference_square(k, data.width, data.height).unwrap();
             assert!((8..=16).contains(&side));
-            let want = rgb_to_srgb8(blackbody_colour(1.0, t, brightness).unwrap());
+            let want = display_srgb8(blackbody_colour(1.0, t, brightness).unwrap(), 1.0);
             for y in y0..y0 + side {
                 for x in x0..x0 + side {
                     assert_eq!(px(&img, x, y), want, "square {k} at ({x}, {y})");

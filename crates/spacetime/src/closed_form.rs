@@ -76,6 +76,11 @@ impl OriginGeodesic {
         self.r_max
     }
 
+    /// (cos χ, sin χ) of the initial direction χ of the spatial projection.
+    pub fn cis_chi(&self) -> (f64, f64) {
+        self.cis_chi
+    }
+
     /// The parameter after which the spatial projection is back on the axis: λ = π/ω.
     pub fn return_parameter(&self) -> f64 {
         PI / self.omega

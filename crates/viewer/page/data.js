@@ -90,6 +90,13 @@ export class Data {
     return a;
   }
 
+  // The size of the sample grid the channels hold: the picture's times the samples per
+  // pixel along each side (crates/datafile/src/samples.rs).
+  sampleSize() {
+    const s = this.info.supersample || 1;
+    return [this.info.width * s, this.info.height * s];
+  }
+
   missing(names) {
     return names.filter((n) => !this.loaded.has(n));
   }
@@ -107,10 +114,11 @@ export class Data {
   async ensure(names) {
     const missing = this.missing(names);
     const arrays = await this.arrays(missing.map((n) => `/api/gpu/channel/${n}`));
+    const [width, height] = this.sampleSize();
     missing.forEach((name, i) => {
       const a = arrays[i];
-      if (a.width !== this.info.width || a.height !== this.info.height) {
-        throw new Error(`channel ${name} is ${a.width}×${a.height}, the file ${this.info.width}×${this.info.height}`);
+      if (a.width !== width || a.height !== height) {
+        throw new Error(`channel ${name} is ${a.width}×${a.height}, the file's samples ${width}×${height}`);
       }
       const light = name.match(/^light_(\d+)$/);
       if (light) {
@@ -123,7 +131,7 @@ export class Data {
     if (missing.some((n) => n.startsWith('light_'))) {
       const planes = this.lightPlanes.filter(Boolean);
       if (planes.length === this.info.lights) {
-        this.gpu.uploadLights(planes, this.info.width, this.info.height);
+        this.gpu.uploadLights(planes, width, height);
       }
     }
   }

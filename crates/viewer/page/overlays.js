@@ -18,6 +18,17 @@ export function srgb8ToLinear(k) {
   return srgbToLinear(f32(k / 255));
 }
 
+// The display tone curve of crates/shade/src/colour.rs (tone_map), in f32 as Rust computes
+// it: identity up to 0.8, then 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2.
+export function toneMap(x) {
+  if (Number.isNaN(x)) return 0;
+  x = f32(x);
+  if (x <= f32(0.8)) return x;
+  if (!Number.isFinite(x)) return 1;
+  const y = f32(f32(x - f32(0.8)) / f32(f32(1) - f32(0.8)));
+  return f32(f32(0.8) + f32(f32(f32(1) - f32(0.8)) * f32(y / f32(1 + y))));
+}
+
 export function linearToSrgb8(x) {
   x = Number.isNaN(x) ? 0 : Math.min(Math.max(f32(x), 0), 1);
   const s = x <= 0.0031308 ? f32(12.92 * x)

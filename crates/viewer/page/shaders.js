@@ -2,13 +2,15 @@
 // rule (crates/shade/src/shading.rs: texture, time, frequency and light layers multiplied,
 // the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
 // the `look` crate (camera direction → aberration → nearest sphere pixel, g times the Doppler
-// factor). It writes one texel per output pixel into an offscreen RGBA8 texture, row 0 of the
-// picture in texture row 0; the display pass (displaySource) then draws that texture on the
+// factor). For an anti-aliased file (s×s samples per pixel) it colours each sample and
+// averages the linear colours of a pixel's samples before encoding (a box filter). It writes
+// one texel per output pixel into an offscreen RGBA8 texture, row 0 of the picture in
+// texture row 0; the display pass (displaySource) then draws that texture on the
 // canvas, scaled with trilinear filtering.
 //
-// The layers, look mode and image textures are chosen when the program is compiled
-// (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for every pixel,
-// so a program holds only the code its settings use.
+// The layers, look mode, image textures and samples per pixel are chosen when the program is
+// compiled (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for
+// every pixel, so a program holds only the code its settings use.
 
 export const VERTEX = `#version 300 es
 // One triangle covering the viewport.
@@ -71,6 +73,16 @@ float srgbEncode8(float x) {
   x = isnan(x) ? 0.0 : clamp(x, 0.0, 1.0);
   float s = x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
   return floor(s * 255.0 + 0.5) / 255.0;
+}
+
+// The display tone curve of crates/shade/src/colour.rs (tone_map): identity up to the knee
+// 0.8, then a shoulder 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2, that never reaches white.
+float toneMap(float x) {
+  if (isnan(x)) return 0.0;
+  if (x <= 0.8) return x;
+  if (isinf(x)) return 1.0;
+  float y = (x - 0.8) / 0.2;
+  return 0.8 + 0.2 * (y / (1.0 + y));
 }
 
 vec3 hue(float h) {
@@ -224,6 +236,14 @@ vec3 shadePixel(ivec2 p, float doppler) {
   return c;
 }
 
+// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels through
+// the tone curve, status colours (display codes) as they are; crates/shade/src/shading.rs.
+vec3 displayPixel(ivec2 p, float doppler) {
+  vec3 c = shadePixel(p, doppler);
+  if (texelFetch(uId, p, 0).r < 4u || c == FAILED) return c;
+  return vec3(toneMap(c.r), toneMap(c.g), toneMap(c.b));
+}
+
 #if LOOK
 // Camera-basis direction (forward, right, up) of output pixel (col, row); false where the
 // camera shows nothing (crates/scene/src/camera.rs).
@@ -283,9 +303,20 @@ void main() {
 #if LOOK
   ivec2 p;
   float doppler;
-  vec3 c = lookSource(q, p, doppler) ? shadePixel(p, doppler) : NOT_TRACED;
+  vec3 c = lookSource(q, p, doppler) ? displayPixel(p, doppler) : NOT_TRACED;
+#elif SUPERSAMPLE > 1
+  // An anti-aliased file: picture pixel q is the s×s block of samples from s·q; each sample
+  // is coloured and tone-mapped, and the linear colours averaged (box filter,
+  // crates/datafile/src/samples.rs) before the 8-bit sRGB encoding, as the shade crate does.
+  vec3 c = vec3(0.0);
+  for (int j = 0; j < SUPERSAMPLE; j++) {
+    for (int i = 0; i < SUPERSAMPLE; i++) {
+      c += displayPixel(q * SUPERSAMPLE + ivec2(i, j), 1.0);
+    }
+  }
+  c /= float(SUPERSAMPLE * SUPERSAMPLE);
 #else
-  vec3 c = shadePixel(q, 1.0);
+  vec3 c = displayPixel(q, 1.0);
 #endif
   vec4 o = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
 #if REFS
@@ -302,12 +333,14 @@ void main() {
 }`;
 
 // The shading program's source for `features`: {texture, time, travel, frequency, light, look,
-// images, refs, legend} (booleans) and camera (0 pinhole, 1 panorama or sphere, 2 fisheye).
+// images, refs, legend} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
+// supersample (samples per pixel along each side, 1 when absent).
 export function shadeSource(features) {
   const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
     'legend'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
   defines.push(`#define CAMERA ${features.camera || 0}`);
+  defines.push(`#define SUPERSAMPLE ${features.supersample || 1}`);
   return `#version 300 es\n${defines.join('\n')}\n${SHADE_BODY}`;
 }
 

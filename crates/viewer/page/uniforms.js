@@ -3,7 +3,7 @@
 // per-object table and the overlays (reference squares, travel-time legend).
 'use strict';
 
-import { referenceSquare, legend, linearToSrgb8, LINEAR_STOPS, windowBounds } from './overlays.js';
+import { referenceSquare, legend, linearToSrgb8, toneMap, LINEAR_STOPS, windowBounds } from './overlays.js';
 import { cross } from './look.js';
 
 // The texture a choice names, as (kind, a, b, c) for the shader, and the image it needs.
@@ -72,6 +72,9 @@ export function featuresFor(settings, info, data, look, uniforms) {
     frequency: on.has('frequency'),
     light: on.has('light'),
     look: Boolean(look),
+    // Samples per pixel along each side, box-filtered by the shading pass (never in a look:
+    // a sampled sphere is refused as a sphere, as `godel look` refuses it).
+    supersample: look ? 1 : info.supersample,
     camera: look ? CAMERAS[look.view.camera.kind] : 0,
     images: imagesFor(settings, info, data).length > 0,
     refs: uniforms.uRef0[1][2] > 0 || uniforms.uRef1[1][2] > 0,
@@ -131,7 +134,9 @@ export function uniformsFor(settings, info, data, width, height, look) {
       if (!square) return;
       const t = (settings.objects[name] || info.defaults.objects[name]).temperature;
       refs[k] = [...square, square[2]];
-      refColours[k] = bb.colour(1, t, physical, settings.exposure).map((c) => linearToSrgb8(c) / 255);
+      // The colour a pixel at g = 1 shows: through the display tone curve, as shade draws it.
+      refColours[k] = bb.colour(1, t, physical, settings.exposure)
+        .map((c) => linearToSrgb8(toneMap(c)) / 255);
     });
   }
   u.uRef0 = ['i4', refs[0]];

@@ -418,8 +418,14 @@ async function start() {
   const info = viewer.info;
   viewer.timeline.described = performance.now();
   viewer.settings = structuredClone(info.defaults);
+  // A sampled sphere is shown as a picture: `godel look` refuses it, and so does the page.
+  const camera = viewer.view.view?.camera;
+  const sampledSphere = info.supersample > 1 && camera && (camera.kind === 'sphere'
+    || (camera.kind === 'panorama' && camera.h_fov_deg === 360 && camera.v_fov_deg === 180));
   $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
-    + (viewer.view.sphere ? ' · full sphere: drag to look around' : '');
+    + (info.supersample > 1 ? ` · ${info.supersample}×${info.supersample} rays per pixel` : '')
+    + (viewer.view.sphere ? ' · full sphere: drag to look around' : '')
+    + (sampledSphere ? ` · no looking around: ${viewer.view.sphere_error}` : '');
   try {
     gpu = new Gpu($('image'));
     data = new Data(gpu, info);

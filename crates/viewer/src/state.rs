@@ -72,6 +72,8 @@ pub struct ViewerState {
     defaults: ShadeSettings,
     textures: TextureSource,
     work: WorkLimit,
+    /// The camera of the embedded scene, sized to the data file (for pixel directions).
+    camera: Option<scene::Camera>,
 }
 
 /// One pixel's record as the page shows it.
@@ -97,6 +99,11 @@ pub struct PixelInfo {
     pub z: f32,
     /// Direct light from each source, where the file has light channels.
     pub lights: Vec<f32>,
+    /// Where the pixel looks, in degrees in the camera basis (azimuth from forward toward
+    /// right, elevation above the forward–right plane; `shade::marks::pixel_angles`, from
+    /// the camera in the data file's embedded scene); `null` where the camera does not look.
+    pub azimuth_deg: Option<f64>,
+    pub elevation_deg: Option<f64>,
 }
 
 /// What the page needs to build its controls.
@@ -105,8 +112,12 @@ pub struct Info {
     /// The data file's name, without its folder.
     pub file: String,
     pub scene_name: String,
+    /// The picture's size (the data file's image divided by `supersample`).
     pub width: usize,
     pub height: usize,
+    /// Samples per picture pixel along each side (1: one ray per pixel): the channels the
+    /// GPU routes send are the sample grid, `width`·s × `height`·s.
+    pub supersample: usize,
     pub objects: Vec<String>,
     pub lights: usize,
     pub observer_time: f64,
@@ -153,12 +164,14 @@ impl ViewerState {
             path: path.to_path_buf(),
             source,
         })?;
+        let camera = shade::marks::data_camera(&data);
         Ok(ViewerState {
             path: path.to_path_buf(),
             data,
             defaults,
             textures,
             work: options.work,
+            camera,
         })
     }
 
@@ -189,6 +202,7 @@ impl ViewerState {
             scene_name: h.scene_name.clone(),
             width: self.data.picture_size().0,
             height: self.data.picture_size().1,
+            supersample: self.data.supersample(),
             objects: h.object_names.clone(),
             lights: self.data.lights.len(),
             observer_time: h.observer_time,
@@ -224,6 +238,9 @@ impl ViewerState {
         let s = self.data.supersample();
         let i = self.data.index(s * col + s / 2, s * row + s / 2);
         let r = self.data.records.get(i)?;
+        let angles = self.camera.as_ref().and_then(|c| {
+            shade::marks::pixel_angles(c, u32::try_from(col).ok()?, u32::try_from(row).ok()?)
+        });
         let object_name = usize::try_from(r.object)
             .ok()
             .and_then(|k| self.data.header.object_names.get(k).cloned());
@@ -242,6 +259,8 @@ impl ViewerState {
             y: r.y,
             z: r.z,
             lights: self.data.lights.iter().map(|plane| plane[i]).collect(),
+            azimuth_deg: angles.map(|a| a.0),
+            elevation_deg: angles.map(|a| a.1),
         })
     }
 

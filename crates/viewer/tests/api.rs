@@ -37,6 +37,7 @@ async fn info_describes_the_file_and_its_defaults() {
     let info: serde_json::Value = serde_json::from_slice(&body).unwrap();
     assert_eq!(info["width"], WIDTH);
     assert_eq!(info["height"], HEIGHT);
+    assert_eq!(info["supersample"], 1);
     assert_eq!(info["objects"], serde_json::json!(["ball"]));
     assert_eq!(info["defaults"]["objects"]["ball"]["temperature"], 5800.0);
     assert_eq!(info["defaults"]["shaders"], serde_json::json!(["texture"]));
@@ -109,6 +110,27 @@ async fn pixel_record_comes_from_the_data_in_memory() {
     assert_eq!(r["object"], -1);
     assert_eq!(r["object_name"], serde_json::Value::Null);
     assert_eq!(r["status"], "escaped");
+}
+
+#[tokio::test]
+async fn pixel_record_says_where_the_pixel_looks() {
+    // The test scene's camera: a 220°×25° panorama on 8×4 pixels, so pixel centres look at
+    // azimuth 220·((col + ½)/8 − ½) and elevation 25·(½ − (row + ½)/4) (the closed form).
+    for (col, row) in [(0, 0), (3, 2), (7, 3), (5, 1)] {
+        let (status, _, body) = send(get(&format!("/api/pixel?col={col}&row={row}"))).await;
+        assert_eq!(status, StatusCode::OK);
+        let r: serde_json::Value = serde_json::from_slice(&body).unwrap();
+        let az = 220.0 * ((col as f64 + 0.5) / 8.0 - 0.5);
+        let el = 25.0 * (0.5 - (row as f64 + 0.5) / 4.0);
+        assert!(
+            (r["azimuth_deg"].as_f64().unwrap() - az).abs() < 1e-9,
+            "{r}"
+        );
+        assert!(
+            (r["elevation_deg"].as_f64().unwrap() - el).abs() < 1e-9,
+            "{r}"
+        );
+    }
 }
 
 /// `frequency_settings(5000)` as JSON with `change` applied.
@@ -203,6 +225,12 @@ async fn a_sampled_file_is_shown_at_its_picture_size_and_hovers_the_centre_sampl
         (info["width"].clone(), info["height"].clone()),
         (4.into(), 2.into())
     );
+    // The page learns the factor: the GPU channels are the 8×4 sample grid.
+    assert_eq!(info["supersample"], 2);
+    let (status, _, body) = common::send_to(state.clone(), get("/api/gpu/channel/u")).await;
+    assert_eq!(status, StatusCode::OK);
+    let size = |at: usize| u32::from_le_bytes(body[at..at + 4].try_into().unwrap());
+    assert_eq!((size(4), size(8)), (8, 4));
     let (status, headers, body) =
         common::send_to(state.clone(), post("/api/image", &frequency(3000.0))).await;
     assert_eq!(status, StatusCode::OK);

@@ -193,6 +193,18 @@ async fn view_says_whether_the_page_can_look_around() {
         .unwrap()
         .contains("full-sphere"));
     assert_eq!(view["view"]["camera"]["fov_deg"], 60.0);
+
+    // An anti-aliased sphere (its 16×8 records as 2×2 rays per pixel) is refused as `godel
+    // look` refuses it, saying why; the page shows it as a picture.
+    let mut sampled = data();
+    sampled.header.supersample = 2;
+    let (_, body) = send(sampled, get("/api/view")).await;
+    let view = json(&body);
+    assert_eq!(view["sphere"], false);
+    assert!(view["sphere_error"]
+        .as_str()
+        .unwrap()
+        .contains("2×2 rays per pixel"));
 }
 
 fn look_body(speed: f64) -> (String, ShadeSettings, LookView) {

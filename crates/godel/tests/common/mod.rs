@@ -1,5 +1,6 @@
 //! Helpers shared by the CLI tests: running `godel`, reading a command's standard error, a
-//! small lit scene (parts and MPI ranks), writing it, running under a time limit.
+//! small lit scene (parts and MPI ranks), writing it, running under a time limit, reading the
+//! R, G, B planes of a picture EXR.
 #![allow(dead_code)]
 
 use std::path::Path;
@@ -92,4 +93,36 @@ pub fn files_in(dir: &Path) -> Vec<String> {
     };
     v.sort();
     v
+}
+
+/// The R, G, B planes of an OpenEXR file, read with the exr crate.
+pub fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
+    use exr::prelude::*;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_file(path)
+        .unwrap();
+    let layer = &image.layer_data[0];
+    let plane = |name: &str| -> Vec<f32> {
+        let ch = layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name == Text::from(name))
+            .unwrap_or_else(|| panic!("channel {name}"));
+        ch.sample_data.values_as_f32().collect()
+    };
+    let names: Vec<String> = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    assert_eq!(names, ["B", "G", "R"]);
+    let (r, g, b) = (plane("R"), plane("G"), plane("B"));
+    (0..r.len()).map(|i| [r[i], g[i], b[i]]).collect()
 }

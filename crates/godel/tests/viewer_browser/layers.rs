@@ -2,7 +2,8 @@
 //! (what `godel shade` and "Save PNG" make): within one 8-bit step per channel. The only
 //! pixels excused are those whose texture coordinate lies within 1e-4 of a checker cell's
 //! edge, where the GPU's f32 arithmetic may pick the neighbouring cell (the CPU computes the
-//! coordinate in f64); the test counts them and requires them to be rare.
+//! coordinate in f64); the test counts them and requires them to be rare. The same holds for
+//! an anti-aliased file (every sample shaded, then box-filtered).
 
 use super::browser_support::*;
 use datafile::DataFile;
@@ -131,6 +132,18 @@ fn cases(data: &DataFile) -> Vec<ShadeSettings> {
     cases
 }
 
+/// Whether any sample of picture pixel (`col`, `row`) lies near a checker edge (see
+/// [`near_checker_edge`]).
+fn pixel_near_checker_edge(
+    data: &DataFile,
+    settings: &ShadeSettings,
+    col: usize,
+    row: usize,
+) -> bool {
+    data.sample_indices(col, row)
+        .any(|i| near_checker_edge(data, settings, i))
+}
+
 /// Whether pixel `i`'s texture coordinates lie within 1e-4 of a cell edge of a checker that
 /// object's textures use under `settings` (computed in f64 as the `shade` crate does).
 fn near_checker_edge(data: &DataFile, settings: &ShadeSettings, i: usize) -> bool {
@@ -160,12 +173,32 @@ fn near_checker_edge(data: &DataFile, settings: &ShadeSettings, i: usize) -> boo
 
 #[test]
 fn every_layer_combination_on_the_gpu_equals_the_shade_crate() {
+    check_layers(240, 60, 1);
+}
+
+/// The scene with 2×2 samples per pixel at half the size (the same rays): the page opens the
+/// file of 240×60 samples as a 120×30 picture, shades every sample and box-filters them in
+/// linear light, as `godel shade` does.
+#[test]
+fn an_anti_aliased_file_on_the_gpu_equals_the_shade_crate() {
+    check_layers(120, 30, 2);
+}
+
+/// Renders [`scene`] at `width` × `height` pixels with s×s rays per pixel, shades it in the
+/// browser with every case and compares each picture with the `shade` crate's.
+fn check_layers(width: usize, height: usize, s: usize) {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
     let texture = dir.path().join("pattern.png");
     write_texture(&texture);
-    let exr = render(dir.path(), "layers", &scene(&texture));
+    let text = scene(&texture).replace(
+        "width = 240\nheight = 60\n",
+        &format!("width = {width}\nheight = {height}\nsamples = {}\n", s * s),
+    );
+    let exr = render(dir.path(), "layers", &text);
     let data = DataFile::read(&exr).unwrap();
+    assert_eq!(data.picture_size(), (width, height));
+    assert_eq!((data.width, data.height), (width * s, height * s));
     assert!(!data.lights.is_empty());
     let objects_seen = |k: i32| data.records.iter().filter(|r| r.object == k).count();
     assert!(
@@ -192,11 +225,11 @@ fn every_layer_combination_on_the_gpu_equals_the_shade_crate() {
         assert_eq!(seen["errors"][k], serde_json::Value::Null, "case {k}");
         let cpu = Shading::new(&data, settings).unwrap().image(&data);
         let (w, h, gpu) = read_rgba(&out.join(format!("case-{k}.rgba")));
-        assert_eq!((w, h), (data.width, data.height));
+        assert_eq!((w, h), (width, height));
         let c = compare(&gpu, cpu.as_raw(), w);
         for &(col, row) in &c.off {
             assert!(
-                near_checker_edge(&data, settings, data.index(col, row)),
+                pixel_near_checker_edge(&data, settings, col, row),
                 "case {k} ({:?}): pixel ({col}, {row}) differs by more than one step: GPU {:?}, \
                  CPU {:?}",
                 settings.shaders,
@@ -210,12 +243,16 @@ fn every_layer_combination_on_the_gpu_equals_the_shade_crate() {
     }
     // Figures for the report.
     eprintln!(
-        "GPU vs shade over {} cases: max difference {worst} (8-bit steps) outside {excused} \
-         pixels excused at checker edges (where it is {worst_excused}), of {} shaded",
+        "GPU vs shade over {} cases ({}×{} pixels, {} samples each): max difference {worst} \
+         (8-bit steps) outside {excused} pixels excused at checker edges (where it is \
+         {worst_excused}), of {} shaded",
         cases.len(),
-        cases.len() * data.width * data.height
+        width,
+        height,
+        data.supersample().pow(2),
+        cases.len() * width * height
     );
-    assert!(excused * 1000 <= cases.len() * data.width * data.height);
+    assert!(excused * 1000 <= cases.len() * width * height);
     assert!(seen["console_errors"].as_array().unwrap().is_empty());
     assert_only_local_requests(&seen, &url);
 }

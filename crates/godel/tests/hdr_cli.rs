@@ -1,0 +1,157 @@
+//! Highlights do not clip (issue 12): `scenes/lit-shadow.toml` has lit pixels brighter than
+//! white in linear light (the linear EXR from `godel shade -o x.exr` shows them), yet neither
+//! the render's preview nor the default `godel shade` PNG has a clipped pixel.
+//!
+//! "Clipped" is defined as: a hit pixel with any 8-bit channel at 255. Before the tone
+//! curve, every lit pixel with a linear channel above 0.9955 (sRGB 254.5/255) showed as 255
+//! and lost its gradation; the test checks that such pixels exist in the linear image and
+//! that none is at 255 in either PNG. Orientation marks are drawn only when asked for.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use common::{read_rgb, stderr};
+
+fn godel(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_godel"))
+        .args(args)
+        .output()
+        .expect("run godel")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn scene(name: &str) -> String {
+    format!("{}/../../scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn lit_shadow_highlights_do_not_clip() {
+    let dir = tempfile::tempdir().unwrap();
+    // Half the scene's size, as the render tests trace it: the same rays, fewer of them.
+    let o = godel(&[
+        "render",
+        &scene("lit-shadow.toml"),
+        "-q",
+        "-o",
+        s(dir.path()),
+        "--width",
+        "360",
+        "--height",
+        "40",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let data_path = dir.path().join("lit-shadow.exr");
+    let data = datafile::DataFile::read(&data_path).unwrap();
+    let hit: Vec<bool> = data
+        .records
+        .iter()
+        .map(|r| r.status == datafile::RayStatus::Hit && r.object >= 0)
+        .collect();
+
+    // The default shading (the scene's textures, lit), linear and for display.
+    let (exr, png) = (dir.path().join("lit.exr"), dir.path().join("lit.png"));
+    for out in [&exr, &png] {
+        let o = godel(&[
+            "shade",
+            s(&data_path),
+            "--shader",
+            "texture,light",
+            "-o",
+            s(out),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let linear = read_rgb(&exr);
+    let white = 0.9955; // linear value that 8-bit sRGB rounds to 255
+    let bright = (0..linear.len())
+        .filter(|&i| hit[i] && linear[i].iter().any(|&c| c > white))
+        .count();
+    assert!(
+        bright >= 20,
+        "the scene should have highlights above white, found {bright}"
+    );
+
+    let preview = image::open(dir.path().join("lit-shadow.png"))
+        .unwrap()
+        .to_rgb8();
+    let shaded = image::open(&png).unwrap().to_rgb8();
+    for (name, img) in [("preview", &preview), ("shade PNG", &shaded)] {
+        let clipped = img
+            .pixels()
+            .enumerate()
+            .filter(|(i, p)| hit[*i] && p.0.contains(&255))
+            .count();
+        assert_eq!(
+            clipped, 0,
+            "{name}: {clipped} clipped of {bright} bright pixels"
+        );
+    }
+    // Brighter stays brighter: the brightest linear pixel is among the brightest shown.
+    let luma = |c: [f32; 3]| c[0] + c[1] + c[2];
+    let top = (0..linear.len())
+        .filter(|&i| hit[i])
+        .max_by(|&a, &b| luma(linear[a]).total_cmp(&luma(linear[b])))
+        .unwrap();
+    let shown = |i: usize| {
+        shaded.as_raw()[3 * i..3 * i + 3]
+            .iter()
+            .map(|&v| u32::from(v))
+            .sum::<u32>()
+    };
+    let brighter = (0..linear.len())
+        .filter(|&i| hit[i] && shown(i) > shown(top))
+        .count();
+    assert_eq!(brighter, 0, "the brightest pixel is shown brightest");
+}
+
+#[test]
+fn exposure_compensation_scales_the_png_by_two_to_the_ev() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = godel(&[
+        "render",
+        &scene("static-sphere.toml"),
+        "-q",
+        "-o",
+        s(dir.path()),
+        "--width",
+        "120",
+        "--height",
+        "20",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let data_path = dir.path().join("static-sphere.exr");
+    let exr = dir.path().join("linear.exr");
+    let o = godel(&["shade", s(&data_path), "-o", s(&exr)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let linear = read_rgb(&exr);
+    let data = datafile::DataFile::read(&data_path).unwrap();
+    let mut hits = 0;
+    for (ev, gain) in [("0", 1.0f32), ("1", 2.0), ("-1.5", 0.353_553_4)] {
+        let png = dir.path().join(format!("ev{ev}.png"));
+        let o = godel(&["shade", s(&data_path), "--ev", ev, "-o", s(&png)]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let img = image::open(&png).unwrap().to_rgb8();
+        hits = 0;
+        for (i, rec) in data.records.iter().enumerate() {
+            if rec.status != datafile::RayStatus::Hit || rec.object < 0 {
+                continue;
+            }
+            hits += 1;
+            // 2^ev times the linear colour, then the display transform.
+            let want = shade::colour::display_srgb8(linear[i].map(|c| c * gain), 1.0);
+            let got = &img.as_raw()[3 * i..3 * i + 3];
+            for k in 0..3 {
+                assert!(
+                    want[k].abs_diff(got[k]) <= 1,
+                    "ev {ev}, pixel {i}: {want:?} vs {got:?}"
+                );
+            }
+        }
+    }
+    assert!(hits > 20, "the sphere is seen");
+}

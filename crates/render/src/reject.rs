@@ -1,0 +1,188 @@
+//! Whole-ray rejection of objects at rest: one O(1) test per ray and object, in place of
+//! the per-segment search, for every loop of the ray at once (docs/physics.md, "Whole-ray
+//! rejection").
+//!
+//! In the disc coordinate w of the static observers' space (docs/physics.md, "The Gödel
+//! metric": the Poincaré disc of curvature −1/a², times the z line), the spatial
+//! projection of a light ray through the origin is a hyperbolic circle through the origin:
+//! its farthest point w_max (θ = π/2 in "Closed forms") lies at proper distance
+//! 2a·asinh(r_max/2a), the circle's hyperbolic centre h halfway, its radius
+//! ρ = a·asinh(r_max/2a). The ray moves along it at the constant h-speed √(E² − p_z²), so
+//! the angle about h grows linearly in λ, one turn per return parameter λ_ret; later loops
+//! retrace it. The observer's isometry to the origin (the exact tracer's) carries each
+//! ball's centre C to the origin frame once per render. Then the static distance
+//! D = √(d_H² + Δz²) (d_H = 2a·atanh|(w − w_C)/(1 − w̄_C w)|) from the ray to C satisfies,
+//! with δ the angle at h between the ray point and C (hyperbolic law of cosines),
+//!
+//!   cosh(d_H/a) = cosh(d_hC/a)·cosh(ρ/a) − sinh(d_hC/a)·sinh(ρ/a)·cos δ,
+//!
+//! and Δz = p_z λ − z_C is linear in λ. The ray is rejected when, over the λ window where
+//! |Δz| ≤ reach, the least d_H exceeds reach = [`REACH_PER_RADIUS`]·R: the renderer's ball
+//! (second-order normal coordinates, `worldline.rs`) lies within that static distance of
+//! its centre (a property test measures the ratio).
+//!
+//! Planes z = h (coordinate objects, static): along a closed-form ray z is linear in λ, so
+//! the ray crosses the plane at most once, where p_z λ = h − z_0; a ray that keeps a clear
+//! side over the whole stretch searched never crosses it.
+
+use crate::target::Target;
+use crate::worldline::Worldline;
+use spacetime::isometry::disc;
+use spacetime::{Complex, Event, Isometry, OriginGeodesic};
+use std::f64::consts::{PI, TAU};
+
+/// Static distance D from the centre covered by a local ball at rest of radius R, per R.
+/// The renderer's ball |ξ| ≤ R (ξ in second-order normal coordinates, R ≤ a/2 by scene
+/// validation) lies within D ≤ 1.03·R of its centre (worst ratio found by the property
+/// test `a_static_ball_lies_within_its_reach`, which asserts D ≤ 1.05·|ξ|); the rest is
+/// margin for the numeric tracer's deviation from the closed form and for rounding, and
+/// keeps the rejected rays far from a graze, where the search could run out of work.
+pub const REACH_PER_RADIUS: f64 = 1.25;
+
+/// Added to the reach, per a: covers the numeric tracer's deviation from the closed form
+/// (it rejects only at tolerances ≤ [`NUMERIC_TOLERANCE`]) for balls of any size.
+pub const REACH_PER_A: f64 = 1e-6;
+
+/// The numeric tracer uses the rejection only at integration tolerances up to this.
+pub const NUMERIC_TOLERANCE: f64 = 1e-9;
+
+/// An object whose whole-ray test [`Rejection::misses`] can leave it out of a ray's search.
+#[derive(Clone, Copy, Debug)]
+pub enum Rejection {
+    Ball(StaticBall),
+    /// A plane at height `z` in the origin frame (its extent ignored: conservative).
+    Plane {
+        z: f64,
+    },
+}
+
+impl Rejection {
+    /// The rejection test of `target` for rays from the place of `from` (see
+    /// [`StaticBall::new`]), in Gödel's universe with parameter `a`; None for objects in
+    /// motion and coordinate spheres.
+    pub fn new(a: f64, from: Event, target: &Target) -> Option<Rejection> {
+        match target {
+            Target::Plane { height, .. } => Some(Rejection::Plane { z: height - from.z }),
+            _ => StaticBall::new(a, from, target).map(Rejection::Ball),
+        }
+    }
+
+    /// Whether the closed-form light ray `geo` from the origin, over λ ∈ [0, until], provably
+    /// never enters the object's surface (see [`StaticBall::misses`]). A plane: the
+    /// signed height p_z λ − z keeps one side, clear of the plane by more than rounding, at
+    /// both ends (it is linear in λ).
+    pub fn misses(&self, geo: &OriginGeodesic, until: f64) -> bool {
+        match *self {
+            Rejection::Ball(b) => b.misses(geo, until),
+            Rejection::Plane { z } => {
+                let f0 = -z;
+                let (f1, span) = if until.is_finite() {
+                    (geo.pz * until - z, (geo.pz * until).abs())
+                } else if geo.pz == 0.0 {
+                    (f0, 0.0)
+                } else {
+                    (geo.pz * f64::INFINITY, 0.0)
+                };
+                let clear = 1e-9 * (1.0 + z.abs() + span);
+                f0.abs() > clear && f1.abs() > clear && (f0 > 0.0) == (f1 > 0.0)
+            }
+        }
+    }
+}
+
+/// A ball at rest, seen from the observer's origin frame.
+#[derive(Clone, Copy, Debug)]
+pub struct StaticBall {
+    a: f64,
+    /// Disc coordinate and height of the centre in the origin frame.
+    w: Complex,
+    z: f64,
+    /// Static distance beyond which no ray point is inside.
+    reach: f64,
+}
+
+/// The hyperbolic distance 2a·atanh|(w − c)/(1 − c̄ w)| of two points of the disc, and the
+/// Möbius image (w − c)/(1 − c̄ w) (c moved to the disc's centre).
+fn moved(c: Complex, w: Complex) -> Complex {
+    (w - c) / (Complex::new(1.0, 0.0) - c.conj() * w)
+}
+
+/// The static distance √(d_H² + Δz²) between two points (x, y, z) of the static observers'
+/// space (H² × R; docs/physics.md, "The Gödel metric").
+pub fn static_distance(a: f64, p: [f64; 3], q: [f64; 3]) -> f64 {
+    let m = moved(disc(a, p[0], p[1]), disc(a, q[0], q[1]));
+    let dh = 2.0 * a * m.norm_sqr().sqrt().atanh();
+    dh.hypot(q[2] - p[2])
+}
+
+impl StaticBall {
+    /// The ball of `target` as seen from the origin frame of `from` (the start of the rays:
+    /// an observer, or a light at rest: only its place matters), if it is a local ball at
+    /// rest in Gödel's universe with parameter `a` (None otherwise).
+    pub fn new(a: f64, from: Event, target: &Target) -> Option<StaticBall> {
+        let Target::LocalSphere {
+            radius,
+            worldline: Worldline::Rest { position, .. },
+        } = target
+        else {
+            return None;
+        };
+        let c = Isometry::to_origin(a, from).apply(*position);
+        Some(StaticBall {
+            a,
+            w: disc(a, c.x, c.y),
+            z: c.z,
+            reach: REACH_PER_RADIUS * radius + REACH_PER_A * a,
+        })
+    }
+
+    /// Whether the light ray `geo` (through the origin), over λ ∈ [0, until] (all its loops
+    /// with `until` = ∞), provably stays farther than the reach from the centre. False when
+    /// unsure (NaN included).
+    pub fn misses(&self, geo: &OriginGeodesic, until: f64) -> bool {
+        let (a, reach) = (self.a, self.reach);
+        // The λ window where |p_z λ − z_C| ≤ reach.
+        let (lo, hi) = if geo.pz == 0.0 {
+            if self.z.abs() > reach {
+                return true;
+            }
+            (0.0, until)
+        } else {
+            let (l1, l2) = ((self.z - reach) / geo.pz, (self.z + reach) / geo.pz);
+            (l1.min(l2).max(0.0), l1.max(l2).min(until))
+        };
+        if hi < lo {
+            return true;
+        }
+        // The ray's circle: farthest point in the direction χ + sgn(E)·π/2.
+        let sg = geo.energy.signum();
+        let (c, s) = geo.cis_chi();
+        let dir = Complex::new(-sg * s, sg * c);
+        let big = (geo.r_max() / (2.0 * a)).asinh(); // d(0, w_max)/2a
+        let rho = a * big;
+        let h = dir.scale((0.5 * big).tanh());
+        let mc = moved(h, self.w);
+        let d_hc = 2.0 * a * mc.norm_sqr().sqrt().atanh();
+        let nearest = (d_hc - rho).abs();
+        if nearest > reach {
+            return true;
+        }
+        let l_ret = geo.return_parameter();
+        if !(hi - lo < l_ret) {
+            return false;
+        }
+        // Angle about h: the origin's at λ = 0, then sgn(E)·2π per loop.
+        let alpha0 = (Complex::new(0.0, 0.0) - h).arg();
+        let delta = |l: f64| alpha0 + sg * TAU * l / l_ret - mc.arg();
+        let (d1, d2) = (delta(lo), delta(hi));
+        let (dmin, dmax) = (d1.min(d2), d1.max(d2));
+        if (dmin / TAU).ceil() * TAU <= dmax {
+            return false; // the window passes the circle's point nearest the centre
+        }
+        let cos = |d: f64| (d - TAU * (d / TAU).round()).clamp(-PI, PI).cos();
+        let cos_d = cos(d1).max(cos(d2));
+        let (x, y) = (d_hc / a, rho / a);
+        let cosh_d = x.cosh() * y.cosh() - x.sinh() * y.sinh() * cos_d;
+        a * cosh_d.max(1.0).acosh() > reach
+    }
+}

@@ -1,0 +1,278 @@
+//! Orientation marks: where the camera looks, drawn on a picture as a faint grid of constant
+//! azimuth and elevation with labelled ticks (`godel shade --grid`, `godel render --grid`,
+//! the viewer's *grid* switch).
+//!
+//! Azimuth and elevation are those of [`scene::azimuth_elevation`] in the camera basis:
+//! azimuth from `forward` toward `right`, elevation above the forward–right plane, in degrees.
+//! Every position comes from the camera model's own inverse mapping
+//! ([`scene::Camera::image_position`]), so a tick labelled 30° sits where
+//! [`scene::Camera::pixel_direction`] looks at azimuth 30°:
+//!
+//! - panorama, sphere, pinhole: azimuth ticks on the top and bottom edges (azimuth is constant
+//!   down a column for these cameras), labels above the bottom edge; elevation ticks on the
+//!   left and right edges at the edge's own azimuth, labels beside the left edge;
+//! - fisheye: azimuth ticks along the horizon (elevation 0, the horizontal diameter) and
+//!   elevation ticks along the meridian of azimuth 0 (the vertical diameter), labelled beside
+//!   them.
+//!
+//! The tick spacing is the smallest of 5°, 10°, 15°, 30°, 45°, 90° at which labels do not
+//! overlap.
+
+use image::RgbImage;
+use scene::{azimuth_elevation, direction_from, Camera};
+
+use crate::text::{draw_text, fill, readable_scale, text_height, text_width};
+
+/// Which angle a mark labels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    Azimuth,
+    Elevation,
+}
+
+/// One tick: its angle and the pixel where it touches its edge (or, for the fisheye, the
+/// pixel on the horizon or meridian it marks).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tick {
+    pub axis: Axis,
+    pub degrees: f64,
+    pub col: u32,
+    pub row: u32,
+    pub label: String,
+}
+
+/// Colour of ticks and labels.
+pub const MARK_COLOUR: [u8; 3] = [255, 255, 255];
+/// Colour of the grid lines, blended at [`GRID_ALPHA`].
+const GRID_COLOUR: [f32; 3] = [200.0, 220.0, 255.0];
+const GRID_ALPHA: f32 = 0.35;
+const STEPS: [f64; 6] = [5.0, 10.0, 15.0, 30.0, 45.0, 90.0];
+
+/// The label of an angle: `30°`, `-45°`.
+fn label(deg: f64) -> String {
+    format!("{}°", deg.round() as i64)
+}
+
+/// Angular extent (degrees) across the image horizontally and vertically.
+fn spans(camera: &Camera) -> (f64, f64) {
+    match *camera {
+        Camera::Pinhole {
+            fov_deg,
+            width,
+            height,
+        } => {
+            let t = (0.5 * fov_deg).to_radians().tan();
+            let v = 2.0
+                * (t * f64::from(height) / f64::from(width))
+                    .atan()
+                    .to_degrees();
+            (fov_deg, v)
+        }
+        Camera::Panorama {
+            h_fov_deg,
+            v_fov_deg,
+            ..
+        } => (h_fov_deg, v_fov_deg),
+        Camera::Sphere { .. } => (360.0, 180.0),
+        Camera::Fisheye { fov_deg, .. } => (fov_deg, fov_deg),
+    }
+}
+
+/// The smallest step whose ticks are at least `min_px` apart, given `px_per_deg`.
+fn step(px_per_deg: f64, min_px: f64) -> f64 {
+    STEPS
+        .into_iter()
+        .find(|s| s * px_per_deg >= min_px)
+        .unwrap_or(90.0)
+}
+
+/// Multiples of `step` strictly inside (−half, half), and ±half itself when it is a multiple
+/// below 180 (a panorama's edge).
+fn multiples(step: f64, half: f64) -> Vec<f64> {
+    let n = (half / step).floor() as i64;
+    (-n..=n).map(|k| k as f64 * step).collect()
+}
+
+/// The pixel holding continuous image position (x, y), if inside the image.
+fn pixel(camera: &Camera, x: f64, y: f64) -> Option<(u32, u32)> {
+    let (w, h) = (f64::from(camera.width()), f64::from(camera.height()));
+    // Positions exactly on the right or bottom border belong to the last pixel.
+    let (x, y) = (x.min(w - 0.5), y.min(h - 0.5));
+    (x >= 0.0 && y >= 0.0).then(|| (x as u32, y as u32))
+}
+
+/// The labelled ticks for `camera` (sized as the picture they are drawn on).
+pub fn ticks(camera: &Camera) -> Vec<Tick> {
+    let (w, h) = (camera.width(), camera.height());
+    let scale = readable_scale(w, h);
+    let (h_span, v_span) = spans(camera);
+    let label_px = f64::from(text_width("-180°", scale) + 8 * scale);
+    let az_step = step(f64::from(w) / h_span, label_px);
+    let el_step = step(f64::from(h) / v_span, 2.5 * f64::from(text_height(scale)));
+    let mut out = Vec::new();
+    let mut push = |axis, degrees: f64, pos: Option<(f64, f64)>, edge_y: Option<f64>| {
+        let Some((x, y)) = pos else { return };
+        let y = edge_y.unwrap_or(y);
+        if let Some((col, row)) = pixel(camera, x, y) {
+            out.push(Tick {
+                axis,
+                degrees,
+                col,
+                row,
+                label: label(degrees),
+            });
+        }
+    };
+    match camera {
+        Camera::Fisheye { .. } => {
+            let half = (0.5 * h_span).min(180.0);
+            for a in multiples(az_step, half) {
+                let pos = camera.image_position(direction_from(a, 0.0));
+                push(Axis::Azimuth, a, pos, None);
+            }
+            for e in multiples(el_step, (0.5 * v_span).min(90.0)) {
+                if e != 0.0 {
+                    let pos = camera.image_position(direction_from(0.0, e));
+                    push(Axis::Elevation, e, pos, None);
+                }
+            }
+        }
+        _ => {
+            let half = (0.5 * h_span).min(180.0);
+            for a in multiples(az_step, half) {
+                // Azimuth is constant down a column: the tick stands on the bottom edge.
+                let pos = camera.image_position(direction_from(a, 0.0));
+                push(Axis::Azimuth, a, pos, Some(f64::from(h)));
+            }
+            // The left edge's own azimuth (direction_at on the border, mid-height).
+            let Some(edge) = camera.direction_at(0.0, 0.5 * f64::from(h)) else {
+                return out;
+            };
+            let (left_az, _) = azimuth_elevation(edge);
+            for e in multiples(el_step, (0.5 * v_span).min(90.0)) {
+                let pos = camera
+                    .image_position(direction_from(left_az, e))
+                    .map(|(_, y)| (0.0, y));
+                push(Axis::Elevation, e, pos, None);
+            }
+        }
+    }
+    out
+}
+
+/// The camera a data file was traced with, sized to the data file's image: the `[camera]`
+/// of the scene embedded in its header (`None` if that does not read as a camera).
+pub fn data_camera(data: &datafile::DataFile) -> Option<Camera> {
+    let camera = scene::camera_from_str(&data.header.scene_text, "embedded scene").ok()?;
+    let w = u32::try_from(data.width).ok()?;
+    let h = u32::try_from(data.height).ok()?;
+    Some(camera.with_size(w, h))
+}
+
+/// Azimuth and elevation (degrees, camera basis) where pixel (col, row) of a picture made
+/// with `camera` looks; `None` for pixels the camera does not trace. What the viewer shows
+/// under the mouse.
+pub fn pixel_angles(camera: &Camera, col: u32, row: u32) -> Option<(f64, f64)> {
+    camera.pixel_direction(col, row).map(azimuth_elevation)
+}
+
+/// Blends the grid colour into pixel (x, y) if it is inside the image.
+fn blend(img: &mut RgbImage, x: f64, y: f64) {
+    if x < 0.0 || y < 0.0 || x >= f64::from(img.width()) || y >= f64::from(img.height()) {
+        return;
+    }
+    let p = img.get_pixel_mut(x as u32, y as u32);
+    for (c, g) in p.0.iter_mut().zip(GRID_COLOUR) {
+        *c = (f32::from(*c) * (1.0 - GRID_ALPHA) + g * GRID_ALPHA).round() as u8;
+    }
+}
+
+/// Draws the faint grid lines of the ticks' azimuths and elevations: each line sampled at
+/// most half a pixel apart and mapped through [`Camera::image_position`].
+fn draw_grid(img: &mut RgbImage, camera: &Camera, ticks: &[Tick]) {
+    let (w, h) = (f64::from(camera.width()), f64::from(camera.height()));
+    let (h_span, v_span) = spans(camera);
+    let px_per_deg = (w / h_span).max(h / v_span).max(1e-3);
+    let d = (0.5 / px_per_deg).clamp(1e-3, 0.5);
+    let n = (360.0 / d).ceil().min(2e6) as usize;
+    let mut seen = std::collections::HashSet::new();
+    for t in ticks {
+        for k in 0..=n {
+            let s = -180.0 + k as f64 * d;
+            let dir = match t.axis {
+                Axis::Azimuth if s.abs() <= 90.0 => direction_from(t.degrees, s),
+                Axis::Elevation => direction_from(s, t.degrees),
+                Axis::Azimuth => continue,
+            };
+            if let Some((x, y)) = camera.image_position(dir) {
+                // One blend per pixel, so crossings and dense samples are not darker.
+                if x >= 0.0 && y >= 0.0 && seen.insert((x as u32, y as u32)) {
+                    blend(img, x, y);
+                }
+            }
+        }
+    }
+}
+
+/// Draws the grid, the ticks and their labels on `img` (a picture made with `camera`'s
+/// geometry at any size: the camera is resized to the picture).
+pub fn draw_marks(img: &mut RgbImage, camera: &Camera) {
+    let (w, h) = (img.width(), img.height());
+    if w < 16 || h < 16 {
+        return;
+    }
+    let camera = camera.with_size(w, h);
+    let ticks = ticks(&camera);
+    draw_grid(img, &camera, &ticks);
+    let scale = readable_scale(w, h);
+    let s = i64::from(scale);
+    let len = 4 * s + 2;
+    let (wi, hi) = (i64::from(w), i64::from(h));
+    let th = i64::from(text_height(scale));
+    let fisheye = matches!(camera, Camera::Fisheye { .. });
+    // Labels are placed azimuths first; one that would overlap a placed label is left out
+    // (its tick stays).
+    let mut placed: Vec<[i64; 4]> = Vec::new();
+    let mut label = |img: &mut RgbImage, x: i64, y: i64, text: &str| {
+        let r = [x, y, x + i64::from(text_width(text, scale)), y + th];
+        let overlaps = placed
+            .iter()
+            .any(|p| r[0] < p[2] + s && p[0] < r[2] + s && r[1] < p[3] && p[1] < r[3]);
+        if !overlaps {
+            draw_text(img, x, y, scale, text, MARK_COLOUR);
+            placed.push(r);
+        }
+    };
+    for t in &ticks {
+        let (x, y) = (i64::from(t.col), i64::from(t.row));
+        let tw = i64::from(text_width(&t.label, scale));
+        match (t.axis, fisheye) {
+            (Axis::Azimuth, false) => {
+                fill(img, x - s / 2, hi - len, s.max(1), len, MARK_COLOUR);
+                fill(img, x - s / 2, 0, s.max(1), len, MARK_COLOUR);
+                let lx = (x - tw / 2).clamp(0, (wi - tw).max(0));
+                label(img, lx, hi - len - th - 2 * s, &t.label);
+            }
+            (Axis::Elevation, false) => {
+                fill(img, 0, y - s / 2, len, s.max(1), MARK_COLOUR);
+                fill(img, wi - len, y - s / 2, len, s.max(1), MARK_COLOUR);
+                let ly = (y - th / 2).clamp(0, (hi - th).max(0));
+                label(img, len + 2 * s, ly, &t.label);
+            }
+            (Axis::Azimuth, true) => {
+                fill(img, x - s / 2, y - len / 2, s.max(1), len, MARK_COLOUR);
+                let lx = (x - tw / 2).clamp(0, (wi - tw).max(0));
+                label(img, lx, (y + len).min(hi - th), &t.label);
+            }
+            (Axis::Elevation, true) => {
+                fill(img, x - len / 2, y - s / 2, len, s.max(1), MARK_COLOUR);
+                label(
+                    img,
+                    x + len,
+                    (y - th / 2).clamp(0, (hi - th).max(0)),
+                    &t.label,
+                );
+            }
+        }
+    }
+}
