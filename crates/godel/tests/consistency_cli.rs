@@ -11,14 +11,7 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-use common::{files_in, lit_scene_text, read_rgb, stderr, write_scene};
-
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
+use common::{files_in, godel, lit_scene_text, read_rgb, stderr, write_scene};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -10,16 +10,8 @@
 mod common;
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-use common::{read_rgb, stderr};
-
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
+use common::{godel, read_rgb, stderr};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -7,20 +7,12 @@
 
 mod common;
 
-use common::stderr;
+use common::{godel, stderr};
 use datafile::DataFile;
 use look::{look, LookView};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

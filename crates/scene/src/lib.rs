@@ -134,7 +134,9 @@ pub fn camera_from_str(text: &str, name_for_errors: &str) -> Result<Camera, Scen
 }
 
 fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {
-    with_raw(text, file, |raw, loc| validate::build(raw, text, loc, base_dir))
+    with_raw(text, file, |raw, loc| {
+        validate::build(raw, text, loc, base_dir)
+    })
 }
 
 /// Parses scene text into the raw records (`raw.rs`) and hands them to `check`, with the

@@ -23,6 +23,7 @@ pub mod gpu_routes;
 pub mod guard;
 pub mod limit;
 pub mod look_routes;
+mod responses;
 pub mod routes;
 pub mod state;
 pub mod wire;

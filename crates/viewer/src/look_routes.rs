@@ -309,7 +309,7 @@ fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiE
 
 async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
     let viewer = state.viewer.clone();
-    let disposition = crate::routes::attachment(&viewer, "look.png");
+    let disposition = crate::responses::attachment(&viewer, "look.png");
     let ticket = viewer.work().admit()?;
     let bytes = ticket
         .run(move || {
@@ -317,7 +317,7 @@ async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Respons
             encode::png(&img).map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
         })
         .await??;
-    Ok(crate::routes::png_download(bytes, disposition))
+    Ok(crate::responses::png_download(bytes, disposition))
 }
 
 async fn image(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
@@ -325,7 +325,7 @@ async fn image(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Respo
     let ticket = viewer.work().admit()?;
     let img = ticket.run(move || shade_look(&viewer, &body)).await??;
     let bytes = encode::rgba_from_rgb(img.as_raw());
-    Ok(crate::routes::rgba_picture(
+    Ok(crate::responses::rgba_picture(
         bytes,
         img.width(),
         img.height(),

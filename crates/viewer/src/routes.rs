@@ -33,6 +33,7 @@ use crate::api_error::no_store;
 pub use crate::api_error::ApiError;
 use crate::encode;
 use crate::guard::{Access, MAX_BODY_BYTES};
+use crate::responses::{attachment, png_download, rgba_picture};
 use crate::state::ViewerState;
 use shade::{ShadeSettings, Shading};
 
@@ -129,60 +130,6 @@ async fn image(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Res
         HeaderValue::from_str(&timing).expect("ASCII"),
     );
     Ok(response)
-}
-
-/// A picture as raw RGBA bytes, `width` × `height` in `X-Image-Width`, `X-Image-Height`;
-/// never cached.
-pub(crate) fn rgba_picture(bytes: Vec<u8>, width: u32, height: u32) -> Response {
-    let headers = [
-        (
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/octet-stream"),
-        ),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (
-            HeaderName::from_static("x-image-width"),
-            HeaderValue::from(width),
-        ),
-        (
-            HeaderName::from_static("x-image-height"),
-            HeaderValue::from(height),
-        ),
-    ];
-    (headers, bytes).into_response()
-}
-
-/// A PNG file download named by `disposition` ([`attachment`]); never cached.
-pub(crate) fn png_download(bytes: Vec<u8>, disposition: HeaderValue) -> Response {
-    let headers = [
-        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (header::CONTENT_DISPOSITION, disposition),
-    ];
-    (headers, bytes).into_response()
-}
-
-/// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
-pub(crate) fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
-    let stem: String = state
-        .data
-        .header
-        .scene_name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    let stem = if stem.is_empty() {
-        "view".to_string()
-    } else {
-        stem
-    };
-    HeaderValue::from_str(&format!("attachment; filename=\"{stem}.{extension}\"")).expect("ASCII")
 }
 
 async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {

@@ -1,0 +1,61 @@
+//! The HTTP responses that carry pictures: raw RGBA for the page's canvas, PNG downloads
+//! named after the scene. Shared by the shading routes and the look routes.
+
+use axum::http::{header, HeaderName, HeaderValue};
+use axum::response::{IntoResponse, Response};
+
+use crate::state::ViewerState;
+
+/// A picture as raw RGBA bytes, `width` × `height` in `X-Image-Width`, `X-Image-Height`;
+/// never cached.
+pub fn rgba_picture(bytes: Vec<u8>, width: u32, height: u32) -> Response {
+    let headers = [
+        (
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/octet-stream"),
+        ),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (
+            HeaderName::from_static("x-image-width"),
+            HeaderValue::from(width),
+        ),
+        (
+            HeaderName::from_static("x-image-height"),
+            HeaderValue::from(height),
+        ),
+    ];
+    (headers, bytes).into_response()
+}
+
+/// A PNG file download named by `disposition` ([`attachment`]); never cached.
+pub fn png_download(bytes: Vec<u8>, disposition: HeaderValue) -> Response {
+    let headers = [
+        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (header::CONTENT_DISPOSITION, disposition),
+    ];
+    (headers, bytes).into_response()
+}
+
+/// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
+pub fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
+    let stem: String = state
+        .data
+        .header
+        .scene_name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let stem = if stem.is_empty() {
+        "view".to_string()
+    } else {
+        stem
+    };
+    HeaderValue::from_str(&format!("attachment; filename=\"{stem}.{extension}\"")).expect("ASCII")
+}
