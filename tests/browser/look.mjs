@@ -60,7 +60,10 @@ try {
   }
 
   // Hover the centre of the last view: the record of the sphere pixel it shows, its direction.
+  // The record of an earlier hover (the drag above ended over the picture) must not be read
+  // as this one's: forget it, then wait for the answer to this move.
   const centre = await page.locator('#image').boundingBox();
+  await page.evaluate(() => { window.godelViewer.record = null; });
   await page.mouse.move(centre.x + centre.width / 2, centre.y + centre.height / 2);
   await page.waitForFunction(() => window.godelViewer.record !== null);
   result.record = await page.evaluate(() => window.godelViewer.record);
