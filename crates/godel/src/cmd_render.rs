@@ -81,18 +81,6 @@ pub struct RenderArgs {
     pub samples: Option<i64>,
 }
 
-/// The scene of `args`: its file with the flags' overrides, then `--samples` (checked as
-/// `[camera] samples` is, against the final image size).
-fn scene_of(args: &RenderArgs) -> anyhow::Result<scene::Scene> {
-    let mut scene = load_with_overrides(&args.scene, &args.overrides())?;
-    if let Some(n) = args.samples {
-        scene
-            .set_samples(n)
-            .map_err(|e| crate::args::usage("--samples", e))?;
-    }
-    Ok(scene)
-}
-
 impl RenderArgs {
     /// The scene fields the flags replace.
     pub fn overrides(&self) -> Overrides {
@@ -102,6 +90,7 @@ impl RenderArgs {
             max_past: self.max_past,
             method: self.method.clone(),
             name: self.name.clone(),
+            samples: self.samples,
         }
     }
 }
@@ -129,7 +118,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     }
     let pool = thread_pool(args.threads)?;
     check_folder("--output", &args.output)?;
-    let scene = scene_of(&args)?;
+    let scene = load_with_overrides(&args.scene, &args.overrides())?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
@@ -185,7 +174,7 @@ mod under_mpi {
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
             check_folder("--output", &args.output)?;
-            let scene = scene_of(&args)?;
+            let scene = load_with_overrides(&args.scene, &args.overrides())?;
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;

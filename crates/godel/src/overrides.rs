@@ -1,6 +1,6 @@
-//! `godel render --width --height --max-past --method --name`: scene fields set from the
-//! command line. The values are written into the scene's TOML (`camera.width`,
-//! `camera.height`, `trace.max_past`, `trace.method`, `name`) and the result is validated by
+//! `godel render --width --height --max-past --method --name --samples`: scene fields set from
+//! the command line. The values are written into the scene's TOML (`camera.width`,
+//! `camera.height`, `trace.max_past`, `trace.method`, `name`, `camera.samples`) and the result is validated by
 //! the scene crate exactly like a scene file, so the same rules hold; a refusal names the
 //! flag. The data file then embeds the scene as rendered (overrides included).
 
@@ -19,6 +19,7 @@ pub struct Overrides {
     pub max_past: Option<f64>,
     pub method: Option<String>,
     pub name: Option<String>,
+    pub samples: Option<i64>,
 }
 
 /// Each override: its flag, its scene field path, and its TOML value.
@@ -38,6 +39,9 @@ fn entries(o: &Overrides) -> Vec<(&'static str, [&'static str; 2], Value)> {
     }
     if let Some(n) = &o.name {
         out.push(("--name", ["", "name"], Value::String(n.clone())));
+    }
+    if let Some(n) = o.samples {
+        out.push(("--samples", ["camera", "samples"], Value::Integer(n)));
     }
     out
 }

@@ -11,7 +11,7 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-use common::{files_in, godel, lit_scene_text, read_rgb, stderr, write_scene};
+use common::{files_in, godel, lit_scene_text, read_rgb, shade_lit_pair, stderr, write_scene};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -249,18 +249,7 @@ fn shade_output_type_follows_the_extension() {
         assert_usage(&o, "--output");
         assert!(!out.exists());
     }
-    let (exr, png) = (dir.path().join("x.exr"), dir.path().join("x.png"));
-    for out in [&exr, &png] {
-        let o = godel(&[
-            "shade",
-            s(&data_path),
-            "--shader",
-            "texture,light",
-            "-o",
-            s(out),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-    }
+    let (exr, png) = shade_lit_pair(&data_path, dir.path(), "x");
     // The EXR holds float R, G, B; the PNG is the same colours through the display
     // transform (tone curve, sRGB) on every hit pixel.
     let linear = read_rgb(&exr);

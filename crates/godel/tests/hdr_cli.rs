@@ -11,7 +11,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{godel, read_rgb, stderr};
+use common::{godel, read_rgb, shade_lit_pair, stderr};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -46,18 +46,7 @@ fn lit_shadow_highlights_do_not_clip() {
         .collect();
 
     // The default shading (the scene's textures, lit), linear and for display.
-    let (exr, png) = (dir.path().join("lit.exr"), dir.path().join("lit.png"));
-    for out in [&exr, &png] {
-        let o = godel(&[
-            "shade",
-            s(&data_path),
-            "--shader",
-            "texture,light",
-            "-o",
-            s(out),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-    }
+    let (exr, png) = shade_lit_pair(&data_path, dir.path(), "lit");
     let linear = read_rgb(&exr);
     let white = 0.9955; // linear value that 8-bit sRGB rounds to 255
     let bright = (0..linear.len())

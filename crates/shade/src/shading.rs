@@ -41,7 +41,7 @@ use rayon::prelude::*;
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
 use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
-use crate::colour::{display_srgb8, rgb_to_srgb8_fast, tone_map};
+use crate::colour::{display_srgb8, rgb_to_srgb8_fast};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
@@ -52,7 +52,7 @@ use crate::settings::{
     MAX_LIGHT_SOURCES,
 };
 use crate::texture::{ImageTexture, Texture};
-use crate::texture_shader::{shading_factor, status_colour, BACKGROUND, FAILED};
+use crate::texture_shader::{displayed, shading_factor, status_colour, BACKGROUND, FAILED};
 use crate::texture_source::TextureSource;
 
 /// Settings checked against a data file, textures loaded: ready to shade it (or other data
@@ -373,15 +373,9 @@ impl Shading {
     /// scaled by the exposure gain and put through the tone curve, status colours as they are.
     fn displayed(&self, data: &DataFile, i: usize) -> [f32; 3] {
         let c = self.pixel(data, i);
-        let hit = c != FAILED
-            && data
-                .records
-                .get(i)
-                .is_some_and(|r| status_colour(r, BACKGROUND).is_none());
-        if hit {
-            c.map(|x| tone_map(x * self.gain))
-        } else {
-            c
+        match data.records.get(i) {
+            Some(r) => displayed(c, r, self.gain),
+            None => c,
         }
     }
 

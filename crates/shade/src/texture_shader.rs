@@ -87,17 +87,23 @@ pub fn shade_pixels_at(
                     let Some(r) = data.records.get(i) else {
                         return FAILED;
                     };
-                    let c = colour(i, r);
-                    if status_colour(r, BACKGROUND).is_none() && c != FAILED {
-                        c.map(tone_map)
-                    } else {
-                        c
-                    }
+                    displayed(colour(i, r), r, 1.0)
                 });
                 px.copy_from_slice(&rgb_to_srgb8(c));
             }
         });
     RgbImage::from_raw(width, height, bytes).expect("buffer has width × height × 3 bytes")
+}
+
+/// A sample's colour `c` (of record `r`) as displayed, in linear light before the 8-bit
+/// encoding: a hit scaled by `gain` (2^ev) and put through the tone curve; status colours and
+/// the failure colour are display codes, shown as they are. One rule for every shader.
+pub fn displayed(c: [f32; 3], r: &PixelRecord, gain: f32) -> [f32; 3] {
+    if status_colour(r, BACKGROUND).is_none() && c != FAILED {
+        c.map(|x| tone_map(x * gain))
+    } else {
+        c
+    }
 }
 
 /// What a record shows whatever the shader: the failure colours, and `background` where

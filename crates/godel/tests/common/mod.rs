@@ -3,7 +3,7 @@
 //! R, G, B planes of a picture EXR.
 #![allow(dead_code)]
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 #[allow(unused_imports)] // not every test file reads standard error
@@ -125,4 +125,25 @@ pub fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
     assert_eq!(names, ["B", "G", "R"]);
     let (r, g, b) = (plane("R"), plane("G"), plane("B"));
     (0..r.len()).map(|i| [r[i], g[i], b[i]]).collect()
+}
+
+/// Shades the data file `data` with the lit texture layers into `STEM.exr` (linear RGB) and
+/// `STEM.png` (for display) in `dir`; asserts both runs succeed and returns the two paths.
+pub fn shade_lit_pair(data: &Path, dir: &Path, stem: &str) -> (PathBuf, PathBuf) {
+    let (exr, png) = (
+        dir.join(format!("{stem}.exr")),
+        dir.join(format!("{stem}.png")),
+    );
+    for out in [&exr, &png] {
+        let o = godel(&[
+            "shade",
+            data.to_str().unwrap(),
+            "--shader",
+            "texture,light",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    (exr, png)
 }
