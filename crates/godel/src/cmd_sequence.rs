@@ -1,10 +1,14 @@
 //! `godel sequence SCRIPT.toml`: image sequences with keyframed shader settings
 //! ([`shade::script`]): numbered PNGs `frame_0000.png`, … in the script's output folder, and
 //! `sequence.mp4` when `ffmpeg` is on PATH (a clear note, not an error, when it is not).
+//! Traced frames follow the keyframed observer and camera ([`crate::flight`]); with
+//! `[trace] keep_data = true` each frame's data file `frame_NNNN.exr` is written together
+//! with its picture (both staged, then renamed one right after the other).
 //!
 //! The output folder holds this run's frames only: before the first frame, numbered frames
-//! beyond this run's count and an earlier `sequence.mp4` are removed (with a note), and
-//! ffmpeg is told the exact frame count, so the MP4 never shows another run's frames.
+//! beyond this run's count, numbered data files that this run does not write and an earlier
+//! `sequence.mp4` are removed (with a note), and ffmpeg is told the exact frame count, so
+//! the MP4 never shows another run's frames.
 //!
 //! [`Plan`] is built and checked completely before anything is written (the data file read,
 //! every keyframe's settings validated), then each frame is an independent, pure job
@@ -26,6 +30,8 @@ use scene::Scene;
 use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};
 
 use crate::cmd_shade::settings_error;
+use crate::flight::Flight;
+use crate::output::write_together;
 
 #[derive(Args, Debug)]
 #[command(after_help = "\
@@ -51,13 +57,15 @@ pub struct SequenceArgs {
 enum Source {
     /// One data file for every frame.
     Data(DataFile),
-    /// A scene traced per frame: its text, its path (for messages and image paths), and the
-    /// observer-time range.
-    Trace {
-        text: String,
-        path: PathBuf,
-        observer_time: Option<[f64; 2]>,
-    },
+    /// A scene traced per frame, each frame's scene from the flight; with `keep_data` the
+    /// frame's data file is kept.
+    Trace { flight: Box<Flight>, keep_data: bool },
+}
+
+/// One frame made: its picture, and its data file's bytes when the sequence keeps them.
+pub struct Frame {
+    pub image: RgbImage,
+    pub data: Option<Vec<u8>>,
 }
 
 /// A checked sequence, ready to make frames.
@@ -77,8 +85,7 @@ impl Plan {
                 (Source::Data(data.clone()), data)
             }
             FrameSource::Trace {
-                scene,
-                observer_time,
+                scene, keep_data, ..
             } => {
                 let s = Scene::from_file(scene)?;
                 // A data file without pixels: the scene's objects and header, for defaults
@@ -90,10 +97,11 @@ impl Plan {
                     records: Vec::new(),
                     lights: Vec::new(),
                 };
+                let flight =
+                    Flight::new(&s, &script).map_err(|e| settings_error("sequence", e))?;
                 let source = Source::Trace {
-                    text: s.source_text.clone(),
-                    path: scene.clone(),
-                    observer_time: *observer_time,
+                    flight: Box::new(flight),
+                    keep_data: *keep_data,
                 };
                 (source, probe)
             }
@@ -120,21 +128,42 @@ impl Plan {
         self.script.frames
     }
 
-    /// The picture of frame `i`: a pure function of the plan and `i`.
-    pub fn frame(&self, i: u32) -> anyhow::Result<RgbImage> {
+    /// The picture of frame `i` (and its data file's bytes when kept): a pure function of
+    /// the plan and `i`.
+    pub fn frame(&self, i: u32) -> anyhow::Result<Frame> {
         let settings = self.timeline.settings_at(i);
         match &self.source {
-            Source::Data(data) => Ok(Shading::new(data, &settings)?.image(data)),
-            Source::Trace {
-                text,
-                path,
-                observer_time,
-            } => {
-                let scene = scene_at(text, path, *observer_time, i, self.script.frames)?;
+            Source::Data(data) => Ok(Frame {
+                image: Shading::new(data, &settings)?.image(data),
+                data: None,
+            }),
+            Source::Trace { flight, keep_data } => {
+                let scene = flight
+                    .scene_at(i)
+                    .map_err(|e| settings_error("sequence", e))?;
                 let (data, _) = render(&scene, &NoProgress)?;
-                Ok(Shading::new(&data, &settings)?.image(&data))
+                let image = Shading::new(&data, &settings)?.image(&data);
+                let bytes = match keep_data {
+                    true => Some(data.to_bytes().map_err(|kind| datafile::DataFileError {
+                        path: self.data_path(i),
+                        kind,
+                    })?),
+                    false => None,
+                };
+                Ok(Frame { image, data: bytes })
             }
         }
+    }
+
+    /// Whether each frame's data file is written.
+    pub fn keeps_data(&self) -> bool {
+        matches!(
+            self.source,
+            Source::Trace {
+                keep_data: true,
+                ..
+            }
+        )
     }
 
     /// The folder the frames go to.
@@ -146,34 +175,22 @@ impl Plan {
     pub fn frame_path(&self, i: u32) -> PathBuf {
         self.script.output.join(format!("frame_{i:04}.png"))
     }
-}
 
-/// The scene with the observer's time of frame `i` of `n` (linear from the first value of
-/// `range` to the second), or unchanged without a range.
-fn scene_at(
-    text: &str,
-    path: &Path,
-    range: Option<[f64; 2]>,
-    i: u32,
-    n: u32,
-) -> anyhow::Result<Scene> {
-    let name = path.display().to_string();
-    let Some([t0, t1]) = range else {
-        return Ok(Scene::from_str(text, &name)?);
-    };
-    let s = if n > 1 {
-        f64::from(i) / f64::from(n - 1)
-    } else {
-        0.0
-    };
-    let mut table: toml::Table = text.parse().with_context(|| format!("{name}: not TOML"))?;
-    let observer = table
-        .entry("observer")
-        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-    if let toml::Value::Table(o) = observer {
-        o.insert("time".into(), toml::Value::Float(t0 + s * (t1 - t0)));
+    /// Where frame `i`'s data file is written (with `keep_data`).
+    pub fn data_path(&self, i: u32) -> PathBuf {
+        self.script.output.join(format!("frame_{i:04}.exr"))
     }
-    Ok(Scene::from_str(&toml::to_string(&table)?, &name)?)
+
+    /// Writes frame `i`: its picture, and its data file beside it when given, both complete
+    /// before either is renamed into place.
+    pub fn write_frame(&self, i: u32, image: &RgbImage, data: Option<&[u8]>) -> anyhow::Result<()> {
+        let png = self.frame_path(i);
+        let Some(exr) = data else {
+            return Ok(shade::write_png(image, &png)?);
+        };
+        let png_bytes = shade::encode_png(image, &png)?;
+        write_together(&[(self.data_path(i), exr), (png, &png_bytes)])
+    }
 }
 
 /// Whether `ffmpeg` runs.
@@ -273,8 +290,10 @@ fn encode_mp4(dir: &Path, frames: u32, fps: f64) -> anyhow::Result<PathBuf> {
 }
 
 /// Files in `dir` that an earlier run left and this run of `frames` frames would not
-/// replace: numbered frames `frame_NNNN.png` from `frames` on, and `sequence.mp4`.
-pub fn stale_outputs(dir: &Path, frames: u32) -> Vec<PathBuf> {
+/// replace: numbered frames `frame_NNNN.png` from `frames` on, numbered data files
+/// `frame_NNNN.exr` from `frames` on (all of them when this run keeps no data), and
+/// `sequence.mp4`.
+pub fn stale_outputs(dir: &Path, frames: u32, keep_data: bool) -> Vec<PathBuf> {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return Vec::new();
     };
@@ -286,13 +305,17 @@ pub fn stale_outputs(dir: &Path, frames: u32) -> Vec<PathBuf> {
             let Some(name) = p.file_name().and_then(|n| n.to_str()) else {
                 return false;
             };
-            let frame = name
-                .strip_prefix("frame_")
-                .and_then(|n| n.strip_suffix(".png"))
-                .and_then(|n| n.parse::<u64>().ok())
-                // Exactly the name this program gives that frame.
-                .filter(|&i| name == format!("frame_{i:04}.png"));
-            name == MP4 || frame.is_some_and(|i| i >= u64::from(frames))
+            let numbered = |ext: &str| {
+                name.strip_prefix("frame_")
+                    .and_then(|n| n.strip_suffix(ext))
+                    .and_then(|n| n.parse::<u64>().ok())
+                    // Exactly the name this program gives that frame.
+                    .filter(|&i| name == format!("frame_{i:04}{ext}"))
+            };
+            let beyond = |i: u64| i >= u64::from(frames);
+            name == MP4
+                || numbered(".png").is_some_and(beyond)
+                || numbered(".exr").is_some_and(|i| !keep_data || beyond(i))
         })
         .collect();
     stale.sort();
@@ -310,8 +333,8 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
     let bar = start(&plan, &args)?;
     // The one place that writes: frames in order, each atomically.
     for i in 0..n {
-        let image = plan.frame(i).with_context(|| format!("frame {i}"))?;
-        shade::write_png(&image, &plan.frame_path(i))?;
+        let frame = plan.frame(i).with_context(|| format!("frame {i}"))?;
+        plan.write_frame(i, &frame.image, frame.data.as_deref())?;
         bar.inc(1);
     }
     finish(&plan, &args, &bar)
@@ -325,11 +348,12 @@ pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
     let bad_output = |e: String| settings_error("sequence", plan.script.error_at("output", e));
     std::fs::create_dir_all(dir)
         .map_err(|e| bad_output(format!("cannot create the folder {}: {e}", dir.display())))?;
-    for path in [plan.frame_path(0), dir.join(MP4)] {
+    let data = plan.keeps_data().then(|| plan.data_path(0));
+    for path in [plan.frame_path(0), dir.join(MP4)].into_iter().chain(data) {
         datafile::atomic::check_writable(&path)
             .map_err(|e| bad_output(format!("cannot write {}: {e}", path.display())))?;
     }
-    let stale = stale_outputs(dir, plan.frames());
+    let stale = stale_outputs(dir, plan.frames(), plan.keeps_data());
     for path in &stale {
         std::fs::remove_file(path)
             .with_context(|| format!("cannot remove {} of an earlier run", path.display()))?;
@@ -423,31 +447,50 @@ mod tests {
             "frame_10000.png",
             "frame_00004.png", // not a name this program writes
             "frame_0005.jpg",
+            "frame_0001.exr",
+            "frame_0004.exr",
+            "frame_04.exr", // not a name this program writes
             "notes.txt",
             "sequence.mp4",
         ] {
             std::fs::write(dir.path().join(name), b"x").unwrap();
         }
-        let stale: Vec<String> = stale_outputs(dir.path(), 4)
-            .iter()
-            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
-            .collect();
+        let stale = |keep_data| -> Vec<String> {
+            stale_outputs(dir.path(), 4, keep_data)
+                .iter()
+                .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+                .collect()
+        };
         assert_eq!(
-            stale,
+            stale(true),
             [
+                "frame_0004.exr",
                 "frame_0004.png",
                 "frame_0009.png",
                 "frame_10000.png",
                 "sequence.mp4"
             ]
         );
-        assert!(stale_outputs(&dir.path().join("absent"), 4).is_empty());
+        // Without data kept, every numbered data file is an earlier run's.
+        assert_eq!(
+            stale(false),
+            [
+                "frame_0001.exr",
+                "frame_0004.exr",
+                "frame_0004.png",
+                "frame_0009.png",
+                "frame_10000.png",
+                "sequence.mp4"
+            ]
+        );
+        assert!(stale_outputs(&dir.path().join("absent"), 4, true).is_empty());
     }
 }
 
 /// `godel sequence` under MPI: frames as jobs of the generic queue
 /// (`crate::cluster::run_jobs`), each traced and shaded whole on one rank and sent to rank
-/// 0 as raw RGB, written by rank 0 as they arrive; the MP4 at the end.
+/// 0 as raw RGB followed by the data file's bytes (with `keep_data`), written by rank 0 as
+/// they arrive, exactly as one process writes them; the MP4 at the end.
 #[cfg(feature = "mpi")]
 mod under_mpi {
     use super::*;
@@ -471,12 +514,15 @@ mod under_mpi {
             ProgressBar::hidden()
         };
         let work = |job: usize| -> anyhow::Result<Vec<u8>> {
-            let image = plan
+            let frame = plan
                 .frame(job as u32)
                 .with_context(|| format!("frame {job}"))?;
-            let mut bytes = image.width().to_le_bytes().to_vec();
-            bytes.extend_from_slice(&image.height().to_le_bytes());
-            bytes.extend_from_slice(image.as_raw());
+            let mut bytes = frame.image.width().to_le_bytes().to_vec();
+            bytes.extend_from_slice(&frame.image.height().to_le_bytes());
+            bytes.extend_from_slice(frame.image.as_raw());
+            if let Some(data) = &frame.data {
+                bytes.extend_from_slice(data);
+            }
             Ok(bytes)
         };
         let mut failure = None;
@@ -487,13 +533,19 @@ mod under_mpi {
                     .and_then(|b| b.try_into().ok())
                     .map_or(0, u32::from_le_bytes)
             };
-            let image = (bytes.len() >= 8)
-                .then(|| RgbImage::from_raw(size(0), size(4), bytes[8..].to_vec()))
-                .flatten();
-            let written = match image {
-                Some(image) => shade::write_png(&image, &plan.frame_path(job as u32))
-                    .map_err(anyhow::Error::from),
-                None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
+            // The RGB bytes end where the size says; the data file's bytes follow.
+            let end = (size(0) as usize)
+                .checked_mul(size(4) as usize)
+                .and_then(|n| n.checked_mul(3))
+                .and_then(|n| n.checked_add(8))
+                .filter(|&end| bytes.len() >= 8 && end <= bytes.len());
+            let image = end
+                .and_then(|end| RgbImage::from_raw(size(0), size(4), bytes[8..end].to_vec()));
+            let data = end.map(|end| &bytes[end..]);
+            let written = match (image, data) {
+                (Some(image), Some(data)) if plan.keeps_data() == !data.is_empty() => plan
+                    .write_frame(job as u32, &image, plan.keeps_data().then_some(data)),
+                _ => Err(anyhow::anyhow!("frame {job} arrived damaged")),
             };
             match written {
                 Ok(()) => bar.inc(1),

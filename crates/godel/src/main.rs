@@ -22,6 +22,7 @@ mod cmd_render;
 mod cmd_sequence;
 mod cmd_shade;
 mod cmd_view;
+mod flight;
 mod output;
 mod overrides;
 mod plot_isometry;

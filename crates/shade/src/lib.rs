@@ -44,7 +44,10 @@ mod tree;
 
 pub use error::ShadeError;
 pub use frequency_shader::{shade_frequency, Brightness};
-pub use script::{keyframe_toml, FrameSource, Interpolation, Keyframe, Script, Timeline};
+pub use script::{
+    keyframe_toml, FrameSource, Interpolation, Keyframe, Script, Section, Timeline, Track,
+    CAMERA_KEYS,
+};
 pub use settings::{
     BrightnessMode, Lamp, LightSettings, LightSource, ObjectSettings, ShadeSettings, ShaderKind,
     TextureChoice, TimeMode, TimeSettings, MAX_LAMPS, MAX_LIGHT_SOURCES,

@@ -1,0 +1,281 @@
+//! Fly-through sequences: the scene of each frame of a traced sequence, with the observer
+//! and the camera's field of view keyframed in the script (`shade::script`, README.md,
+//! "Sequences").
+//!
+//! [`Flight::new`] starts from the scene's own observer (time, position as x, y, z,
+//! velocity, forward, up) and camera (its fields of view) and follows the script's
+//! `[keyframe.observer]` and `[keyframe.camera]` tables with the script's easing
+//! ([`shade::Track`]). Every number goes linearly in the eased fraction, so the position
+//! moves along a straight line in the coordinates (x, y, z) between two keyframes (not a
+//! geodesic, and the observer's velocity is whatever the keyframes say, not the motion
+//! along that line). Forward and up are interpolated as vectors; then up is made orthogonal
+//! to forward (Gram–Schmidt: up − (up·f̂)f̂), which leaves up unchanged where the
+//! keyframe's own axes are orthogonal; where up becomes parallel to forward, or forward
+//! vanishes, that is an error. `[trace] observer_time` (the older way, linear from the first
+//! to the last frame) sets the time when no keyframe does.
+//!
+//! Only the fields some keyframe sets are written into the scene text (the rest of the
+//! scene stays as written), and the scene is read again with the usual checks
+//! (`scene::Scene::from_str`), so that frame `f` is exactly the scene a user would write
+//! with that observer; a frame whose scene is refused names `keyframe[i].FIELD` of the
+//! script (i: the keyframe at or after that frame). [`Flight::new`] checks every frame.
+
+use scene::{Camera, Scene};
+use shade::{FrameSource, Script, Section, ShadeError, Track};
+use toml::{Table, Value};
+
+/// The observer fields written into the scene when a keyframe sets one of them: position
+/// as a whole, velocity as a whole, forward and up together.
+const GROUPS: [&[&str]; 4] = [&["time"], &["position"], &["velocity"], &["forward", "up"]];
+
+/// Below this length of up's part orthogonal to forward (relative to up's length), up is
+/// taken as parallel to forward.
+const PARALLEL: f64 = 1e-6;
+
+/// A checked fly-through: the scene text and the tracks of the observer and the camera.
+pub struct Flight {
+    /// The scene as written, and its path for messages and relative image paths.
+    text: String,
+    name: String,
+    /// The script (for located errors).
+    script: Script,
+    observer_time: Option<[f64; 2]>,
+    frames: u32,
+    observer: Track,
+    camera: Track,
+    /// The observer keys and the camera keys that any keyframe sets.
+    observer_keys: Vec<&'static str>,
+    camera_keys: Vec<String>,
+}
+
+impl Flight {
+    /// The flight of `script` through `scene` (read from `script`'s `[trace] scene`), with
+    /// the observer's time from `[trace] observer_time` when given; every frame's scene is
+    /// checked.
+    pub fn new(scene: &Scene, script: &Script) -> Result<Flight, ShadeError> {
+        let observer_time = match script.source {
+            FrameSource::Trace { observer_time, .. } => observer_time,
+            FrameSource::Data(_) => None,
+        };
+        let observer = script.track(Section::Observer, &observer_table(scene))?;
+        let camera = script.track(Section::Camera, &camera_table(&scene.camera))?;
+        let set = |section: Section, key: &str| {
+            script.keyframes.iter().any(|k| match section {
+                Section::Observer => k.observer.contains_key(key),
+                _ => k.camera.contains_key(key),
+            })
+        };
+        let observer_keys = GROUPS
+            .iter()
+            .filter(|g| g.iter().any(|k| set(Section::Observer, k)))
+            .flat_map(|g| g.iter().copied())
+            .collect();
+        let camera_keys = shade::CAMERA_KEYS
+            .iter()
+            .filter(|k| set(Section::Camera, k))
+            .map(|k| k.to_string())
+            .collect();
+        let flight = Flight {
+            text: scene.source_text.clone(),
+            name: scene
+                .source_path
+                .as_ref()
+                .map_or_else(|| scene.name.clone(), |p| p.display().to_string()),
+            script: script.clone(),
+            observer_time,
+            frames: script.frames,
+            observer,
+            camera,
+            observer_keys,
+            camera_keys,
+        };
+        // The keyframes first, so that a bad keyframe is named as such, then every frame in
+        // between (an interpolated up may meet forward). Bounded by the frame count.
+        if !(flight.observer_keys.is_empty() && flight.camera_keys.is_empty()) {
+            let keyframes = script.keyframes.iter().map(|k| k.frame);
+            for f in keyframes.chain(0..script.frames) {
+                flight.scene_at(f)?;
+            }
+        }
+        Ok(flight)
+    }
+
+    /// The scene of frame `frame`.
+    pub fn scene_at(&self, frame: u32) -> Result<Scene, ShadeError> {
+        let towards = self.script.keyframe_towards(frame).unwrap_or(0);
+        let at = |field: &str, message: String| {
+            self.script.error_at(
+                &format!("keyframe[{towards}].{field}"),
+                format!("{message} (frame {frame})"),
+            )
+        };
+        if self.observer_keys.is_empty()
+            && self.camera_keys.is_empty()
+            && self.observer_time.is_none()
+        {
+            return Scene::from_str(&self.text, &self.name)
+                .map_err(|e| self.script.error_at("trace.scene", one_line(&e)));
+        }
+        let mut table: Table = self
+            .text
+            .parse()
+            .map_err(|e| self.script.error_at("trace.scene", format!("{}: {e}", self.name)))?;
+        let observer = section(&mut table, "observer");
+        if let Value::Table(o) = self.observer.at(frame) {
+            for key in &self.observer_keys {
+                if let Some(v) = o.get(*key) {
+                    observer.insert(key.to_string(), v.clone());
+                }
+            }
+            if self.observer_keys.contains(&"forward") {
+                let (forward, up) = axes(&o).map_err(|(f, m)| at(&format!("observer.{f}"), m))?;
+                observer.insert("forward".into(), vector(forward));
+                observer.insert("up".into(), vector(up));
+            }
+        }
+        if let Some([t0, t1]) = self.observer_time {
+            // As the sequence has always done: linear from the first frame to the last.
+            let s = if self.frames > 1 {
+                f64::from(frame) / f64::from(self.frames - 1)
+            } else {
+                0.0
+            };
+            observer.insert("time".into(), Value::Float(t0 + s * (t1 - t0)));
+        }
+        let camera = section(&mut table, "camera");
+        if let Value::Table(c) = self.camera.at(frame) {
+            for key in &self.camera_keys {
+                if let Some(v) = c.get(key) {
+                    camera.insert(key.clone(), v.clone());
+                }
+            }
+        }
+        let text = toml::to_string(&table)
+            .map_err(|e| self.script.error_at("trace.scene", e.to_string()))?;
+        Scene::from_str(&text, &self.name).map_err(|e| {
+            if e.field.starts_with("observer") || e.field.starts_with("camera") {
+                at(&e.field, e.message.clone())
+            } else {
+                self.script.error_at("trace.scene", one_line(&e))
+            }
+        })
+    }
+}
+
+fn one_line(e: &scene::SceneError) -> String {
+    scene::one_line(&e.to_string())
+}
+
+/// The table at `key` of `table`, made a table when missing.
+fn section<'a>(table: &'a mut Table, key: &str) -> &'a mut Table {
+    let entry = table
+        .entry(key)
+        .or_insert_with(|| Value::Table(Table::new()));
+    if !entry.is_table() {
+        *entry = Value::Table(Table::new());
+    }
+    match entry {
+        Value::Table(t) => t,
+        _ => unreachable!("made a table just above"),
+    }
+}
+
+/// The scene's observer as a keyframe table: every key, position in x, y, z.
+fn observer_table(scene: &Scene) -> Table {
+    let o = &scene.observer;
+    let e = o.event;
+    let mut position = Table::new();
+    for (k, v) in [("x", e.x), ("y", e.y), ("z", e.z)] {
+        position.insert(k.into(), Value::Float(v));
+    }
+    let mut velocity = Table::new();
+    velocity.insert("speed".into(), Value::Float(o.velocity.speed));
+    velocity.insert("direction".into(), vector(o.velocity.direction));
+    let mut t = Table::new();
+    t.insert("time".into(), Value::Float(e.t));
+    t.insert("position".into(), Value::Table(position));
+    t.insert("velocity".into(), Value::Table(velocity));
+    t.insert("forward".into(), vector(o.forward));
+    t.insert("up".into(), vector(o.up));
+    t
+}
+
+/// The fields of view of `camera` as a keyframe table (keys among `shade::CAMERA_KEYS`).
+fn camera_table(camera: &Camera) -> Table {
+    let keys: Vec<(&str, f64)> = match *camera {
+        Camera::Pinhole { fov_deg, .. } | Camera::Fisheye { fov_deg, .. } => {
+            vec![("fov_deg", fov_deg)]
+        }
+        Camera::Panorama {
+            h_fov_deg,
+            v_fov_deg,
+            ..
+        } => vec![("h_fov_deg", h_fov_deg), ("v_fov_deg", v_fov_deg)],
+        Camera::Sphere { .. } => Vec::new(),
+    };
+    keys.into_iter()
+        .map(|(k, v)| (k.to_string(), Value::Float(v)))
+        .collect()
+}
+
+fn vector(v: [f64; 3]) -> Value {
+    Value::Array(v.iter().map(|&c| Value::Float(c)).collect())
+}
+
+fn read_vector(o: &Table, key: &str) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    if let Some(Value::Array(a)) = o.get(key) {
+        for (c, v) in out.iter_mut().zip(a) {
+            *c = v.as_float().unwrap_or(0.0);
+        }
+    }
+    out
+}
+
+/// Forward as interpolated, and up made orthogonal to it: up − (up·f̂)f̂. Errors
+/// `(field, message)` when forward vanishes or up is parallel to it.
+fn axes(o: &Table) -> Result<([f64; 3], [f64; 3]), (String, String)> {
+    let (f, u) = (read_vector(o, "forward"), read_vector(o, "up"));
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let nf = norm(f);
+    if !(nf > 0.0 && nf.is_finite()) {
+        return Err((
+            "forward".into(),
+            format!("forward interpolates to {f:?}, not a direction"),
+        ));
+    }
+    let fh = [f[0] / nf, f[1] / nf, f[2] / nf];
+    let d = u[0] * fh[0] + u[1] * fh[1] + u[2] * fh[2];
+    let up = [u[0] - d * fh[0], u[1] - d * fh[1], u[2] - d * fh[2]];
+    if !(norm(up) > PARALLEL * norm(u)) {
+        return Err((
+            "up".into(),
+            format!("up {u:?} is parallel to forward {f:?} here: no camera orientation"),
+        ));
+    }
+    Ok((f, up))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(forward: [f64; 3], up: [f64; 3]) -> Table {
+        let mut t = Table::new();
+        t.insert("forward".into(), vector(forward));
+        t.insert("up".into(), vector(up));
+        t
+    }
+
+    #[test]
+    fn up_is_made_orthogonal_to_forward_and_kept_where_it_is() {
+        let (f, u) = axes(&table([1.0, 1.0, 0.0], [0.0, 0.0, 2.0])).unwrap();
+        assert_eq!((f, u), ([1.0, 1.0, 0.0], [0.0, 0.0, 2.0]));
+        let (_, u) = axes(&table([1.0, 0.0, 0.0], [1.0, 0.0, 1.0])).unwrap();
+        assert_eq!(u, [0.0, 0.0, 1.0]);
+        let e = axes(&table([1.0, 0.0, 0.0], [-2.0, 0.0, 0.0])).unwrap_err();
+        assert_eq!(e.0, "up");
+        let e = axes(&table([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])).unwrap_err();
+        assert_eq!(e.0, "forward");
+    }
+}
