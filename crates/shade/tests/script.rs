@@ -6,7 +6,9 @@ use std::path::Path;
 
 use datafile::record::PixelRecord;
 use datafile::DataFile;
-use shade::{FrameSource, Interpolation, Script, ShadeError, ShadeSettings, ShaderKind};
+use shade::{
+    FrameSource, Interpolation, Script, Section, ShadeError, ShadeSettings, ShaderKind,
+};
 
 fn data() -> DataFile {
     DataFile {
@@ -231,7 +233,157 @@ fn sources_frames_and_times_are_checked() {
         s.source,
         FrameSource::Trace {
             scene: Path::new("dir/s.toml").to_path_buf(),
-            observer_time: Some([0.0, 2.0])
+            observer_time: Some([0.0, 2.0]),
+            keep_data: false,
         }
     );
+    let s = script("frames = 3\n[trace]\nscene = \"s.toml\"\nkeep_data = true\n").unwrap();
+    assert!(matches!(
+        s.source,
+        FrameSource::Trace {
+            keep_data: true,
+            observer_time: None,
+            ..
+        }
+    ));
+}
+
+const FLIGHT: &str = r#"frames = 11
+interpolation = "linear"
+[trace]
+scene = "s.toml"
+
+[[keyframe]]
+frame = 2
+[keyframe.observer]
+time = 1
+position = { x = 0.5 }
+[keyframe.camera]
+fov_deg = 60
+
+[[keyframe]]
+frame = 6
+interpolation = "smooth"
+[keyframe.observer]
+position = { y = -1.0, z = 2 }
+forward = [0, 1, 0]
+
+[[keyframe]]
+frame = 10
+[keyframe.observer]
+time = 3.0
+"#;
+
+fn start() -> toml::Table {
+    toml::toml! {
+        time = 0.0
+        position = { x = 0.0, y = 0.0, z = 0.0 }
+        forward = [1.0, 0.0, 0.0]
+    }
+}
+
+fn number(v: &toml::Value, path: &[&str]) -> f64 {
+    let mut v = v;
+    for key in path {
+        v = match key.parse::<usize>() {
+            Ok(i) => &v.as_array().unwrap()[i],
+            Err(_) => &v[*key],
+        };
+    }
+    v.as_float().unwrap()
+}
+
+#[test]
+fn observer_and_camera_tracks_follow_the_keyframes_with_the_easing() {
+    let s = script(FLIGHT).unwrap();
+    let track = s.track(Section::Observer, &start()).unwrap();
+    // Integers became floats; fields hold until a keyframe changes them.
+    let at = |f: u32, path: &[&str]| number(&track.at(f), path);
+    assert_eq!(at(0, &["time"]), 1.0, "before the first keyframe its values hold");
+    assert_eq!(at(2, &["position", "x"]), 0.5);
+    assert_eq!(at(6, &["position", "x"]), 0.5);
+    assert_eq!(at(6, &["position", "z"]), 2.0);
+    assert_eq!(at(10, &["forward", "1"]), 1.0);
+    // Linear from keyframe 0 to 1 (frames 2 → 6): a quarter of the way at frame 3.
+    assert_eq!(at(3, &["position", "y"]), 0.25 * -1.0);
+    assert_eq!(at(3, &["forward", "0"]), 1.0 - 0.25);
+    // Smooth from keyframe 1 to 2 (frames 6 → 10): time 1 → 3 at s = 1/4.
+    let e = 0.25 * 0.25 * (3.0 - 2.0 * 0.25);
+    assert!((at(7, &["time"]) - (1.0 + e * 2.0)).abs() < 1e-15);
+    assert_eq!(at(10, &["time"]), 3.0);
+    // The camera: keys among CAMERA_KEYS; one the start lacks is located.
+    let camera = s
+        .track(Section::Camera, &toml::toml! { fov_deg = 90.0 })
+        .unwrap();
+    assert_eq!(number(&camera.at(0), &["fov_deg"]), 60.0);
+    let e = s
+        .track(Section::Camera, &toml::toml! { h_fov_deg = 90.0 })
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("seq.toml:12") && e.contains("keyframe[0].camera.fov_deg"),
+        "{e}"
+    );
+    assert!(shade::CAMERA_KEYS.contains(&"v_fov_deg"));
+    assert!(s.sets(Section::Observer) && s.sets(Section::Camera));
+    assert!(!s.sets(Section::Settings));
+    assert_eq!(s.keyframe_towards(0), Some(0));
+    assert_eq!(s.keyframe_towards(7), Some(2));
+    assert_eq!(s.keyframe_towards(10), Some(2));
+}
+
+#[test]
+fn bad_observer_and_camera_keyframes_are_located() {
+    let traced = "frames = 5\n[trace]\nscene = \"s.toml\"\n";
+    for (text, line, field, needle) in [
+        (
+            format!("{traced}[[keyframe]]\nframe = 1\n[keyframe.observer]\nvelocity = {{ speed = nan }}\n"),
+            7,
+            "keyframe[0].observer.velocity.speed",
+            "must be finite",
+        ),
+        (
+            format!("{traced}[[keyframe]]\nframe = 1\n[keyframe.observer]\nposition = {{ r = 1.0 }}\n"),
+            7,
+            "keyframe[0].observer.position.r",
+            "unknown field 'r' (expected one of: x, y, z)",
+        ),
+        (
+            format!("{traced}[[keyframe]]\nframe = 1\n[keyframe.observer]\nforward = [1, 0]\n"),
+            7,
+            "keyframe[0].observer.forward",
+            "array of 3 numbers",
+        ),
+        (
+            format!("{traced}[[keyframe]]\nframe = 1\n[keyframe.camera]\nwidth = 10\n"),
+            7,
+            "keyframe[0].camera.width",
+            "unknown field 'width'",
+        ),
+        (
+            "frames = 5\n[trace]\nscene = \"s.toml\"\nobserver_time = [0.0, 1.0]\n\
+             [[keyframe]]\nframe = 1\n[keyframe.observer]\ntime = 0.5\n"
+                .to_string(),
+            8,
+            "keyframe[0].observer.time",
+            "observer_time",
+        ),
+        (
+            "data = \"d.exr\"\nframes = 5\n[[keyframe]]\nframe = 1\n[keyframe.camera]\nfov_deg = 10\n"
+                .to_string(),
+            6,
+            "keyframe[0].camera.fov_deg",
+            "re-shades one data file",
+        ),
+    ] {
+        let e = script(&text).unwrap_err();
+        let ShadeError::Script {
+            line: l, field: f, ..
+        } = &e
+        else {
+            panic!("{e}")
+        };
+        assert_eq!((*l, f.as_str()), (line, field), "{text}: {e}");
+        assert!(e.to_string().contains(needle), "{text}: {e}");
+    }
 }
