@@ -1,8 +1,8 @@
 //! `godel render` under `mpirun` (cargo feature `mpi`; needs OpenMPI, which
 //! scripts/test.sh installs when missing): 2 ranks write the very bytes of a
-//! single-process run (a render and a 3-frame sequence), a rank that fails ends the
-//! job non-zero with its rank named, and a rank killed while tracing ends the job non-zero
-//! with nothing written.
+//! single-process run (a render, a 3-frame sequence, and a fly-through keeping its data
+//! files), a rank that fails ends the job non-zero with its rank named, and a rank killed
+//! while tracing ends the job non-zero with nothing written.
 #![cfg(feature = "mpi")]
 
 use std::process::{Command, Output, Stdio};
@@ -149,6 +149,50 @@ fn two_ranks_write_the_frames_of_one_process() {
     // The frames differ from each other: the ball moved, so each frame was really made.
     let frame = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.png"))).unwrap();
     assert!(frame(0) != frame(2));
+}
+
+#[test]
+fn two_ranks_write_the_frames_and_data_files_of_one_process() {
+    let tmp = tempfile::tempdir().unwrap();
+    write_scene(tmp.path(), "fall.toml", &scene_text(6.0));
+    // A fly-through keeping each frame's data file: the observer moves and turns.
+    let script = |out: &str| {
+        let text = format!(
+            "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\n\
+             keep_data = true\n[[keyframe]]\nframe = 0\n[[keyframe]]\nframe = 2\n\
+             [keyframe.observer]\ntime = 1.0\nposition = {{ x = 0.3, y = 0.1, z = 0.0 }}\n\
+             forward = [0, 1, 0]\n"
+        );
+        write_scene(tmp.path(), &format!("{out}.toml"), &text)
+    };
+    let (one, two) = (script("one"), script("two"));
+    let out = Command::new(GODEL)
+        .args(["sequence", &one, "-q"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Rank 0 only serves the queue: every frame and data file comes from rank 1.
+    let out = mpirun(&[
+        "-x",
+        "GODEL_MPI_ROOT_WORKS=0",
+        "-n",
+        "2",
+        GODEL,
+        "sequence",
+        &two,
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let names = files_in(&tmp.path().join("one"));
+    assert_eq!(names.len(), 6, "{names:?}");
+    assert_eq!(names, files_in(&tmp.path().join("two")));
+    for f in &names {
+        let a = std::fs::read(tmp.path().join("one").join(f)).unwrap();
+        let b = std::fs::read(tmp.path().join("two").join(f)).unwrap();
+        assert!(a == b, "{f} differs between 1 process and 2 ranks");
+    }
+    let data = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.exr"))).unwrap();
+    assert!(data(0) != data(2), "the observer moved between frames 0 and 2");
 }
 
 /// Bound on every wait below; the job itself needs seconds.
