@@ -39,9 +39,13 @@ Limits, checked before the first frame (exit code 2, naming file:line:field): th
 regular file of at most 16 MiB; frames 1 to 100000; fps at most 1000; the output folder \
 creatable and writable.
 
-The output folder holds this run's frames only: numbered frames beyond this run's count and \
-an earlier sequence.mp4 are removed first (a note lists them); ffmpeg encodes exactly this \
-run's frames.")]
+The output folder holds this run's frames only: numbered frames beyond this run's count, \
+numbered data files this run does not write and an earlier sequence.mp4 are removed first (a \
+note lists them); ffmpeg encodes exactly this run's frames.
+
+Traced sequences may keyframe the observer ([keyframe.observer]: time, position {x, y, z}, \
+velocity, forward, up) and the field of view ([keyframe.camera]); the position moves along a \
+straight coordinate line. [trace] keep_data = true writes frame_NNNN.exr beside each frame.")]
 pub struct SequenceArgs {
     /// The sequence script (TOML).
     pub script: PathBuf,
@@ -59,7 +63,10 @@ enum Source {
     Data(DataFile),
     /// A scene traced per frame, each frame's scene from the flight; with `keep_data` the
     /// frame's data file is kept.
-    Trace { flight: Box<Flight>, keep_data: bool },
+    Trace {
+        flight: Box<Flight>,
+        keep_data: bool,
+    },
 }
 
 /// One frame made: its picture, and its data file's bytes when the sequence keeps them.
@@ -97,8 +104,7 @@ impl Plan {
                     records: Vec::new(),
                     lights: Vec::new(),
                 };
-                let flight =
-                    Flight::new(&s, &script).map_err(|e| settings_error("sequence", e))?;
+                let flight = Flight::new(&s, &script).map_err(|e| settings_error("sequence", e))?;
                 let source = Source::Trace {
                     flight: Box::new(flight),
                     keep_data: *keep_data,
@@ -539,12 +545,13 @@ mod under_mpi {
                 .and_then(|n| n.checked_mul(3))
                 .and_then(|n| n.checked_add(8))
                 .filter(|&end| bytes.len() >= 8 && end <= bytes.len());
-            let image = end
-                .and_then(|end| RgbImage::from_raw(size(0), size(4), bytes[8..end].to_vec()));
+            let image =
+                end.and_then(|end| RgbImage::from_raw(size(0), size(4), bytes[8..end].to_vec()));
             let data = end.map(|end| &bytes[end..]);
             let written = match (image, data) {
-                (Some(image), Some(data)) if plan.keeps_data() == !data.is_empty() => plan
-                    .write_frame(job as u32, &image, plan.keeps_data().then_some(data)),
+                (Some(image), Some(data)) if plan.keeps_data() == !data.is_empty() => {
+                    plan.write_frame(job as u32, &image, plan.keeps_data().then_some(data))
+                }
                 _ => Err(anyhow::anyhow!("frame {job} arrived damaged")),
             };
             match written {

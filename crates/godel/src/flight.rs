@@ -116,10 +116,10 @@ impl Flight {
             return Scene::from_str(&self.text, &self.name)
                 .map_err(|e| self.script.error_at("trace.scene", one_line(&e)));
         }
-        let mut table: Table = self
-            .text
-            .parse()
-            .map_err(|e| self.script.error_at("trace.scene", format!("{}: {e}", self.name)))?;
+        let mut table: Table = self.text.parse().map_err(|e| {
+            self.script
+                .error_at("trace.scene", format!("{}: {e}", self.name))
+        })?;
         let observer = section(&mut table, "observer");
         if let Value::Table(o) = self.observer.at(frame) {
             for key in &self.observer_keys {

@@ -118,7 +118,8 @@ fn keyframes_reproduce_direct_renders_bit_for_bit() {
         assert!(o.status.success(), "{}", stderr(&o));
         let png = |p: &Path| std::fs::read(p).unwrap();
         assert!(
-            png(&out.join(format!("frame_{frame:04}.png"))) == png(&direct.join(format!("{name}.png"))),
+            png(&out.join(format!("frame_{frame:04}.png")))
+                == png(&direct.join(format!("{name}.png"))),
             "frame {frame}'s picture differs from the render of keyframe {k}"
         );
         assert_eq!(
@@ -149,13 +150,15 @@ fn run_sequence(dir: &Path, top: &str, trace: &str, keys: &str) -> std::process:
     let script = dir.join("seq.toml");
     std::fs::write(
         &script,
-        format!(
-            "output = \"out\"\nmp4 = false\n{top}[trace]\nscene = \"fly.toml\"\n{trace}{keys}"
-        ),
+        format!("output = \"out\"\nmp4 = false\n{top}[trace]\nscene = \"fly.toml\"\n{trace}{keys}"),
     )
     .unwrap();
     run_within(
-        Command::new(env!("CARGO_BIN_EXE_godel")).args(["sequence", script.to_str().unwrap(), "-q"]),
+        Command::new(env!("CARGO_BIN_EXE_godel")).args([
+            "sequence",
+            script.to_str().unwrap(),
+            "-q",
+        ]),
         NEVER_HANGS,
     )
 }
@@ -222,7 +225,11 @@ fn refused(traced: Option<(&str, &str)>, script: &str, needles: &[&str]) {
         run_sequence(dir.path(), top, trace, script)
     } else {
         std::fs::write(dir.path().join("seq.toml"), script).unwrap();
-        godel(&["sequence", dir.path().join("seq.toml").to_str().unwrap(), "-q"])
+        godel(&[
+            "sequence",
+            dir.path().join("seq.toml").to_str().unwrap(),
+            "-q",
+        ])
     };
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{e}");
@@ -230,7 +237,10 @@ fn refused(traced: Option<(&str, &str)>, script: &str, needles: &[&str]) {
     for n in needles {
         assert!(e.contains(n), "expected {n:?} in {e}");
     }
-    assert!(!dir.path().join("out").exists(), "no output for a bad script");
+    assert!(
+        !dir.path().join("out").exists(),
+        "no output for a bad script"
+    );
 }
 
 #[test]
@@ -241,13 +251,21 @@ fn bad_keyframes_are_refused_with_file_line_and_field() {
         None,
         "data = \"syn.exr\"\noutput = \"out\"\nframes = 3\n[[keyframe]]\nframe = 1\n\
          [keyframe.observer]\ntime = 1.0\n",
-        &["seq.toml:7", "keyframe[0].observer.time", "re-shades one data file"],
+        &[
+            "seq.toml:7",
+            "keyframe[0].observer.time",
+            "re-shades one data file",
+        ],
     );
     refused(
         None,
         "data = \"syn.exr\"\noutput = \"out\"\nframes = 3\n[[keyframe]]\nframe = 1\n\
          [keyframe.camera]\nh_fov_deg = 90.0\n",
-        &["seq.toml:7", "keyframe[0].camera.h_fov_deg", "re-shades one data file"],
+        &[
+            "seq.toml:7",
+            "keyframe[0].camera.h_fov_deg",
+            "re-shades one data file",
+        ],
     );
     let three = Some(("frames = 3\n", ""));
     // Time given twice.
@@ -260,18 +278,30 @@ fn bad_keyframes_are_refused_with_file_line_and_field() {
     refused(
         three,
         "[[keyframe]]\nframe = 1\n[keyframe.observer]\nspeed = 0.3\n",
-        &["seq.toml:9", "keyframe[0].observer.speed", "unknown field 'speed'"],
+        &[
+            "seq.toml:9",
+            "keyframe[0].observer.speed",
+            "unknown field 'speed'",
+        ],
     );
     refused(
         three,
         "[[keyframe]]\nframe = 1\n[keyframe.camera]\nzoom = 2.0\n",
-        &["seq.toml:9", "keyframe[0].camera.zoom", "unknown field 'zoom'"],
+        &[
+            "seq.toml:9",
+            "keyframe[0].camera.zoom",
+            "unknown field 'zoom'",
+        ],
     );
     // A field of view the scene's camera (a panorama) has not.
     refused(
         three,
         "[[keyframe]]\nframe = 1\n[keyframe.camera]\nfov_deg = 60.0\n",
-        &["seq.toml:9", "keyframe[0].camera.fov_deg", "unknown field 'fov_deg'"],
+        &[
+            "seq.toml:9",
+            "keyframe[0].camera.fov_deg",
+            "unknown field 'fov_deg'",
+        ],
     );
     // NaN.
     refused(
@@ -291,6 +321,11 @@ fn bad_keyframes_are_refused_with_file_line_and_field() {
         Some(("frames = 5\n", "")),
         "[[keyframe]]\nframe = 0\n[keyframe.observer]\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
          [[keyframe]]\nframe = 4\n[keyframe.observer]\nforward = [0, 0, 1]\nup = [1, 0, 0]\n",
-        &["seq.toml:15", "keyframe[1].observer.up", "parallel", "frame 2"],
+        &[
+            "seq.toml:15",
+            "keyframe[1].observer.up",
+            "parallel",
+            "frame 2",
+        ],
     );
 }

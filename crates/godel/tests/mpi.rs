@@ -192,7 +192,10 @@ fn two_ranks_write_the_frames_and_data_files_of_one_process() {
         assert!(a == b, "{f} differs between 1 process and 2 ranks");
     }
     let data = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.exr"))).unwrap();
-    assert!(data(0) != data(2), "the observer moved between frames 0 and 2");
+    assert!(
+        data(0) != data(2),
+        "the observer moved between frames 0 and 2"
+    );
 }
 
 /// Bound on every wait below; the job itself needs seconds.

@@ -7,7 +7,8 @@
 //! - [`Shading`]: settings checked against a data file with textures loaded;
 //!   [`Shading::image`] / [`Shading::image_into`] shade it (texture, frequency, time and light
 //!   layers, combined by multiplication; see [`shading`]).
-//! - [`Script`], [`Timeline`], [`keyframe_toml`]: sequence scripts with keyframed settings.
+//! - [`Script`], [`Timeline`], [`Track`], [`keyframe_toml`]: sequence scripts with keyframed
+//!   settings, observer and camera.
 //! - [`Texture`]: a runtime texture (checker, gradient, uniform, equirectangular image such as
 //!   the built-in earth) built from a scene's `TextureSpec` with [`Texture::load`], sampled at
 //!   body coordinates (u, v) in linear RGB.

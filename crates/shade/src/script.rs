@@ -221,7 +221,11 @@ struct RawKeyframe {
 fn observer_shape() -> toml::Table {
     let v3 = || toml::Value::Array(vec![toml::Value::Float(0.0); 3]);
     let table = |keys: &[(&str, toml::Value)]| {
-        toml::Value::Table(keys.iter().map(|(k, v)| (k.to_string(), v.clone())).collect())
+        toml::Value::Table(
+            keys.iter()
+                .map(|(k, v)| (k.to_string(), v.clone()))
+                .collect(),
+        )
     };
     let f = toml::Value::Float(0.0);
     let mut t = toml::Table::new();
@@ -553,8 +557,8 @@ impl Script {
     /// value of the wrong type.
     pub fn timeline(&self, defaults: &ShadeSettings) -> Result<Timeline, ShadeError> {
         let start = toml::Table::try_from(defaults).expect("settings serialize to a table");
-        let start =
-            merge(&start, &self.settings, "").map_err(|(f, m)| self.error_at(&format!("settings.{f}"), m))?;
+        let start = merge(&start, &self.settings, "")
+            .map_err(|(f, m)| self.error_at(&format!("settings.{f}"), m))?;
         let check = |table: &toml::Table, field: &str| {
             ShadeSettings::from_table(table.clone()).map_err(|(path, message)| {
                 let at = if path.is_empty() {

@@ -6,9 +6,7 @@ use std::path::Path;
 
 use datafile::record::PixelRecord;
 use datafile::DataFile;
-use shade::{
-    FrameSource, Interpolation, Script, Section, ShadeError, ShadeSettings, ShaderKind,
-};
+use shade::{FrameSource, Interpolation, Script, Section, ShadeError, ShadeSettings, ShaderKind};
 
 fn data() -> DataFile {
     DataFile {
@@ -299,7 +297,11 @@ fn observer_and_camera_tracks_follow_the_keyframes_with_the_easing() {
     let track = s.track(Section::Observer, &start()).unwrap();
     // Integers became floats; fields hold until a keyframe changes them.
     let at = |f: u32, path: &[&str]| number(&track.at(f), path);
-    assert_eq!(at(0, &["time"]), 1.0, "before the first keyframe its values hold");
+    assert_eq!(
+        at(0, &["time"]),
+        1.0,
+        "before the first keyframe its values hold"
+    );
     assert_eq!(at(2, &["position", "x"]), 0.5);
     assert_eq!(at(6, &["position", "x"]), 0.5);
     assert_eq!(at(6, &["position", "z"]), 2.0);
