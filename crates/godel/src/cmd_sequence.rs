@@ -60,7 +60,7 @@ pub struct SequenceArgs {
 /// Where each frame's data comes from, loaded.
 enum Source {
     /// One data file for every frame.
-    Data(DataFile),
+    Data(Box<DataFile>),
     /// A scene traced per frame, each frame's scene from the flight; with `keep_data` the
     /// frame's data file is kept.
     Trace {
@@ -89,7 +89,7 @@ impl Plan {
         let (source, probe) = match &script.source {
             FrameSource::Data(p) => {
                 let data = DataFile::read(p)?;
-                (Source::Data(data.clone()), data)
+                (Source::Data(Box::new(data.clone())), data)
             }
             FrameSource::Trace {
                 scene, keep_data, ..
@@ -549,7 +549,7 @@ mod under_mpi {
                 end.and_then(|end| RgbImage::from_raw(size(0), size(4), bytes[8..end].to_vec()));
             let data = end.map(|end| &bytes[end..]);
             let written = match (image, data) {
-                (Some(image), Some(data)) if plan.keeps_data() == !data.is_empty() => {
+                (Some(image), Some(data)) if plan.keeps_data() != data.is_empty() => {
                     plan.write_frame(job as u32, &image, plan.keeps_data().then_some(data))
                 }
                 _ => Err(anyhow::anyhow!("frame {job} arrived damaged")),

@@ -247,7 +247,8 @@ fn axes(o: &Table) -> Result<([f64; 3], [f64; 3]), (String, String)> {
     let fh = [f[0] / nf, f[1] / nf, f[2] / nf];
     let d = u[0] * fh[0] + u[1] * fh[1] + u[2] * fh[2];
     let up = [u[0] - d * fh[0], u[1] - d * fh[1], u[2] - d * fh[2]];
-    if !(norm(up) > PARALLEL * norm(u)) {
+    let apart = norm(up) > PARALLEL * norm(u);
+    if !apart {
         return Err((
             "up".into(),
             format!("up {u:?} is parallel to forward {f:?} here: no camera orientation"),
