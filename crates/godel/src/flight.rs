@@ -19,6 +19,10 @@
 //! (`scene::Scene::from_str`), so that frame `f` is exactly the scene a user would write
 //! with that observer; a frame whose scene is refused names `keyframe[i].FIELD` of the
 //! script (i: the keyframe at or after that frame). [`Flight::new`] checks every frame.
+//!
+//! What the interpolated fields mean is the scene's: the event in the coordinates
+//! (t, x, y, z) of docs/physics.md "Conventions", the velocity relative to the static observer
+//! there and the camera axes in the observer's frame ("Frames", "Pixels and cameras").
 
 use scene::{Camera, Scene};
 use shade::{FrameSource, Script, Section, ShadeError, Track};
