@@ -39,6 +39,7 @@ uniform float uTravelLo, uTravelHi;
 uniform vec3 uStops[5];              // false-colour stops, linear
 uniform bool uPhysical;
 uniform float uExposure, uAmbient;
+uniform float uGain;                 // 2^ev: exposure compensation before the tone curve
 uniform int uLights;
 uniform vec3 uLightW[16];
 uniform uint uGtFirst;
@@ -236,11 +237,13 @@ vec3 shadePixel(ivec2 p, float doppler) {
   return c;
 }
 
-// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels through
-// the tone curve, status colours (display codes) as they are; crates/shade/src/shading.rs.
+// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels scaled by
+// 2^ev and put through the tone curve, status colours (display codes) as they are;
+// crates/shade/src/shading.rs and texture_shader.rs (displayed).
 vec3 displayPixel(ivec2 p, float doppler) {
   vec3 c = shadePixel(p, doppler);
   if (texelFetch(uId, p, 0).r < 4u || c == FAILED) return c;
+  c *= uGain;
   return vec3(toneMap(c.r), toneMap(c.g), toneMap(c.b));
 }
 

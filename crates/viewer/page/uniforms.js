@@ -91,6 +91,8 @@ export function uniformsFor(settings, info, data, width, height, look) {
   const time = settings.time;
   const [winLo, winHi] = windowBounds(time.t0, time.dt);
   const nodes = bb.unit.length;
+  // 2^ev in f32, as Shading::new computes it (2f64.powf(ev) as f32).
+  const gain = Math.fround(2 ** settings.ev);
   const sources = settings.light.sources;
   const lightW = [];
   for (let k = 0; k < info.lights; k += 1) {
@@ -108,6 +110,7 @@ export function uniformsFor(settings, info, data, width, height, look) {
     uPhysical: ['i', physical ? 1 : 0],
     uExposure: ['f', settings.exposure],
     uAmbient: ['f', settings.light.ambient],
+    uGain: ['f', gain],
     uLights: ['i', lightW.length],
     uLightW: ['f3', lightW.length ? lightW : [[0, 0, 0]]],
     uGtFirst: ['u', bb.gt_first_bin],
@@ -134,9 +137,10 @@ export function uniformsFor(settings, info, data, width, height, look) {
       if (!square) return;
       const t = (settings.objects[name] || info.defaults.objects[name]).temperature;
       refs[k] = [...square, square[2]];
-      // The colour a pixel at g = 1 shows: through the display tone curve, as shade draws it.
+      // The colour a pixel at g = 1 shows: scaled by 2^ev and through the display tone
+      // curve, as shade draws it (colour.rs, display_srgb8).
       refColours[k] = bb.colour(1, t, physical, settings.exposure)
-        .map((c) => linearToSrgb8(toneMap(c)) / 255);
+        .map((c) => linearToSrgb8(toneMap(Math.fround(c * gain))) / 255);
     });
   }
   u.uRef0 = ['i4', refs[0]];

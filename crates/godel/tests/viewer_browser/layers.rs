@@ -123,6 +123,16 @@ fn cases(data: &DataFile) -> Vec<ShadeSettings> {
         s.time.t0 = -3.0;
         s.time.dt = 1.5;
     }));
+    // Exposure compensation (ev): hit colours scaled by 2^ev before the tone curve, the
+    // reference squares too; a page that ignored ev would show the ev = 0 picture.
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Texture, ShaderKind::Light];
+        s.ev = 1.5;
+    }));
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Frequency];
+        s.ev = -2.3;
+    }));
     cases.push(with(&|s| {
         s.shaders = vec![ShaderKind::Light];
         s.light.ambient = 0.4;
@@ -219,6 +229,19 @@ fn check_layers(width: usize, height: usize, s: usize) {
         &[cases_file.display().to_string()],
     );
     drop(server);
+
+    // The ev cases differ from their ev = 0 pictures: comparing within one step means
+    // something there.
+    for (k, settings) in cases.iter().enumerate().filter(|(_, s)| s.ev != 0.0) {
+        let plain = ShadeSettings {
+            ev: 0.0,
+            ..settings.clone()
+        };
+        let a = Shading::new(&data, settings).unwrap().image(&data);
+        let b = Shading::new(&data, &plain).unwrap().image(&data);
+        let c = compare(a.as_raw(), b.as_raw(), width);
+        assert!(c.off.len() > 100, "case {k}: ev changes {} pixels", c.off.len());
+    }
 
     let (mut worst, mut worst_excused, mut excused) = (0, 0, 0);
     for (k, settings) in cases.iter().enumerate() {
