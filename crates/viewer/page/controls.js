@@ -74,6 +74,11 @@ export function describeControls(info, view) {
         min: -6, max: 6, step: 0.1 },
     ],
   }, {
+    title: 'Overlays',
+    controls: [
+      { id: 'grid', label: 'orientation marks', path: ['grid'], kind: 'check' },
+    ],
+  }, {
     title: 'Frequency',
     controls: [
       { id: 'brightness', label: 'brightness', path: ['brightness'], kind: 'select',
