@@ -12,7 +12,7 @@ use image::{RgbImage, RgbaImage};
 use scene::Camera;
 
 use crate::legend::{draw_legend, label_reference_squares};
-use crate::marks::draw_marks;
+use crate::marks::{bottom_band, draw_marks};
 
 /// What the layer shows.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -33,7 +33,8 @@ impl Overlays {
     }
 
     /// The layer for a `width` × `height` picture; `None` when there is nothing to draw.
-    /// Marks first, then the square labels and the legend over them.
+    /// Marks first, then the square labels and the legend over them (the legend above the
+    /// marks' azimuth labels).
     pub fn draw(&self, width: u32, height: u32) -> Option<RgbaImage> {
         if self.is_empty() || width == 0 || height == 0 {
             return None;
@@ -46,7 +47,9 @@ impl Overlays {
             label_reference_squares(&mut layer, &self.reference_labels);
         }
         if let Some((min, max)) = self.legend {
-            draw_legend(&mut layer, min, max);
+            // Above the azimuth labels, where there are marks.
+            let above = self.marks.map_or(0, |c| bottom_band(&c, width, height));
+            draw_legend(&mut layer, min, max, above);
         }
         Some(layer)
     }
@@ -127,6 +130,51 @@ mod tests {
             "nothing above the legend"
         );
         assert_eq!(layer.get_pixel(w / 2, h / 2).0[3], 0);
+    }
+
+    #[test]
+    fn with_marks_the_legend_sits_above_the_azimuth_labels() {
+        let (w, h) = (1320, 150);
+        let camera = Camera::Panorama {
+            h_fov_deg: 220.0,
+            v_fov_deg: 25.0,
+            width: w,
+            height: h,
+        };
+        let with_marks = Overlays {
+            marks: Some(camera),
+            legend: Some((0.0, 12.0)),
+            ..Overlays::default()
+        }
+        .draw(w, h)
+        .unwrap();
+        let marks_only = Overlays {
+            marks: Some(camera),
+            ..Overlays::default()
+        }
+        .draw(w, h)
+        .unwrap();
+        // The azimuth labels' band is as the marks alone draw it.
+        let band = bottom_band(&camera, w, h);
+        assert!(band > 0);
+        for y in h - band + 1..h {
+            for x in 0..w {
+                assert_eq!(
+                    with_marks.get_pixel(x, y),
+                    marks_only.get_pixel(x, y),
+                    "({x}, {y})"
+                );
+            }
+        }
+        // The legend's bar (its violet end) is just above that band.
+        let violet = (0..h)
+            .rev()
+            .find(|&y| (0..w).any(|x| with_marks.get_pixel(x, y).0 == [68, 1, 84, 255]))
+            .unwrap();
+        assert!(
+            violet < h - band && violet + band / 2 > h - band,
+            "bar bottom at {violet}"
+        );
     }
 
     #[test]

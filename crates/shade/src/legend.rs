@@ -56,11 +56,12 @@ pub const LEGEND_TITLE: &str = "light travel time -t_emit (units of a, c = 1)";
 pub const FREQUENCY_TITLE: &str = "frequency shift g: black body at g·T";
 
 /// Draws the legend of travel times `min`..`max` into the overlay layer `img`, in its
-/// bottom-left corner: `min`, the colour bar (violet at `min`, yellow at `max`), `max`, and
-/// the title with its unit (on the same line, or above it on narrow pictures), in the
-/// readable type of [`crate::text`]. Layers too small for it (under 48×24 pixels) are left
-/// as they are.
-pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64) {
+/// bottom-left corner, `above` pixels up from the bottom edge (room for orientation marks'
+/// labels): `min`, the colour bar (violet at `min`, yellow at `max`), `max`, and the title
+/// with its unit (on the same line, or above it on narrow pictures), in the readable type of
+/// [`crate::text`], on a dark panel that hides whatever lies beneath. Layers too small for
+/// it (under 48×24 pixels, or with no room above `above`) are left as they are.
+pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64, above: u32) {
     let (w, h) = (img.width(), img.height());
     if w < 48 || h < 24 {
         return;
@@ -70,33 +71,41 @@ pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64) {
     let th = i64::from(text_height(scale));
     let bar_w = i64::from((w / 5).clamp(40, 256));
     let margin = 3 * s;
-    let y = i64::from(h) - margin - th;
+    let y = i64::from(h) - i64::from(above) - margin - th;
+    if y < 2 * s {
+        return;
+    }
+    // The line: low, bar, high, then the title (in smaller type if need be, or above the
+    // line where it would not fit).
+    let (low, high) = (label(min), label(max));
+    let x_bar = margin + i64::from(text_width(&low, scale)) + 3 * s;
+    let x_high = x_bar + bar_w + 3 * s;
+    let x_title = x_high + i64::from(text_width(&high, scale)) + 6 * s;
+    let fits = |k: u32| x_title + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w);
+    let (tx, ty, ts) = if fits(scale) {
+        (x_title, y, scale)
+    } else if scale > 1 && fits(scale - 1) {
+        (
+            x_title,
+            y + th - i64::from(text_height(scale - 1)),
+            scale - 1,
+        )
+    } else {
+        (margin, y - th - 3 * s, scale)
+    };
+    // A dark panel behind it all, so that it reads on any picture and over the marks.
+    let right = x_high + i64::from(text_width(&high, scale));
+    let right = right.max(tx + i64::from(text_width(LEGEND_TITLE, ts))) + 2 * s;
+    let top = ty.min(y) - 2 * s;
+    fill(img, 0, top, right, y + th + 2 * s - top, [12, 12, 12]);
     let white = [255, 255, 255];
-    let mut x = margin;
-    let low = label(min);
-    draw_text(img, x, y, scale, &low, white);
-    x += i64::from(text_width(&low, scale)) + 3 * s;
-    // A dark frame, so that the bar's ends read on any picture.
-    fill(img, x - s, y - s, bar_w + 2 * s, th + 2 * s, [12, 12, 12]);
+    draw_text(img, margin, y, scale, &low, white);
     for i in 0..bar_w {
         let c = rgb_to_srgb8(false_colour(i as f64 / (bar_w - 1) as f64));
-        fill(img, x + i, y, 1, th, c);
+        fill(img, x_bar + i, y, 1, th, c);
     }
-    x += bar_w + 3 * s;
-    let high = label(max);
-    draw_text(img, x, y, scale, &high, white);
-    x += i64::from(text_width(&high, scale)) + 6 * s;
-    // The title after the bar (in smaller type if need be), or above it where the line
-    // would not fit.
-    let fits = |k: u32| x + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w);
-    if fits(scale) {
-        draw_text(img, x, y, scale, LEGEND_TITLE, white);
-    } else if scale > 1 && fits(scale - 1) {
-        let small = i64::from(text_height(scale - 1));
-        draw_text(img, x, y + th - small, scale - 1, LEGEND_TITLE, white);
-    } else {
-        draw_text(img, margin, y - th - 3 * s, scale, LEGEND_TITLE, white);
-    }
+    draw_text(img, x_high, y, scale, &high, white);
+    draw_text(img, tx, ty, ts, LEGEND_TITLE, white);
 }
 
 /// Writes what the reference squares of a `w`×`h` picture show into its overlay layer

@@ -211,6 +211,18 @@ fn draw_grid(img: &mut RgbaImage, camera: &Camera, ticks: &[Tick]) {
     }
 }
 
+/// Height in pixels of the band along the bottom edge that the azimuth ticks and labels of
+/// a `width`×`height` picture made with `camera` occupy (0 for a fisheye, whose labels run
+/// along the horizon): where the layer keeps other overlays out.
+pub fn bottom_band(camera: &Camera, width: u32, height: u32) -> u32 {
+    if matches!(camera, Camera::Fisheye { .. }) || width < 16 || height < 16 {
+        return 0;
+    }
+    let s = readable_scale(width, height);
+    // Tick (4s + 2), gap (2s), label line, and a gap above it (s).
+    4 * s + 2 + 2 * s + text_height(s) + s
+}
+
 /// Draws the grid, the ticks and their labels into `img`, the overlay layer of a picture made
 /// with `camera`'s geometry at any size (the camera is resized to the layer).
 pub fn draw_marks(img: &mut RgbaImage, camera: &Camera) {
