@@ -382,7 +382,8 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
         let flag = blamed_flag(&args, &e);
         settings_error(flag, e)
     })?;
-    let (w, h) = (data.width, data.height);
+    // The picture's size: an anti-aliased file holds s×s samples per pixel.
+    let (w, h) = data.picture_size();
     match format {
         PictureFormat::Png => shade::write_png(&shading.image(&data), &args.output)?,
         PictureFormat::Exr => {

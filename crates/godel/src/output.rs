@@ -91,7 +91,13 @@ pub fn write_data_and_preview(
     let png_bytes = {
         let mut image = shade::texture_shader::preview_with_textures(data, &textures, scene);
         if grid {
-            shade::marks::draw_marks(&mut image, &scene.camera);
+            let marks = shade::layer::Overlays {
+                marks: Some(scene.camera),
+                ..Default::default()
+            };
+            if let Some(layer) = marks.draw(image.width(), image.height()) {
+                shade::layer::composite(&mut image, &layer);
+            }
         }
         shade::encode_png(&image, png)?
     };

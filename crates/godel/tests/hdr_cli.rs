@@ -136,3 +136,36 @@ fn exposure_compensation_scales_the_png_by_two_to_the_ev() {
     }
     assert!(hits > 20, "the sphere is seen");
 }
+
+/// An anti-aliased data file (2×2 rays per pixel) shades to an EXR of its picture's size,
+/// each pixel the box filter of its samples' linear colours (the sample grid's size was
+/// once used, and the command failed).
+#[test]
+fn an_anti_aliased_file_shades_to_an_exr_of_its_picture_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = godel(&[
+        "render",
+        &scene("lit-shadow.toml"),
+        "-q",
+        "-o",
+        s(dir.path()),
+        "--width",
+        "120",
+        "--height",
+        "14",
+        "--samples",
+        "4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let data_path = dir.path().join("lit-shadow.exr");
+    let data = datafile::DataFile::read(&data_path).unwrap();
+    assert_eq!((data.width, data.height), (240, 28));
+    assert_eq!(data.picture_size(), (120, 14));
+    let (exr, _) = shade_lit_pair(&data_path, dir.path(), "aa");
+    let linear = read_rgb(&exr);
+    let mut settings = shade::ShadeSettings::defaults_for(&data);
+    settings.shaders = vec![shade::ShaderKind::Texture, shade::ShaderKind::Light];
+    let want = shade::Shading::new(&data, &settings).unwrap().linear(&data);
+    assert_eq!(linear.len(), 120 * 14);
+    assert_eq!(linear, want);
+}

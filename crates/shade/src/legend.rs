@@ -1,13 +1,17 @@
 //! False colour for light travel time and its legend: a colour bar in the bottom-left corner
-//! with the range's two ends written in a 3×5 pixel digit font, so that a picture shaded by
-//! travel time can be read without the command that made it.
+//! with the range's two ends, a title and the unit written in readable type
+//! ([`crate::text`]), so that a picture shaded by travel time can be read without the
+//! command that made it; and the label of the frequency shader's reference squares. Both are
+//! drawn into the overlay layer ([`crate::layer`]).
 //!
 //! The colour map runs through five stops of the viridis map (dark violet for the shortest
 //! travel time, yellow for the longest), interpolated linearly in linear RGB.
 
-use image::RgbImage;
+use image::RgbaImage;
 
 use crate::colour::{rgb_to_srgb8, srgb8_to_linear};
+use crate::frequency_shader::{reference_square, REFERENCE_SQUARES};
+use crate::text::{draw_text, fill, readable_scale, text_height, text_width};
 
 /// The viridis stops, 8-bit sRGB.
 const STOPS: [[u8; 3]; 5] = [
@@ -35,48 +39,6 @@ fn linear_stops() -> &'static [[f32; 3]; 5] {
     TABLE.get_or_init(|| STOPS.map(|s| s.map(srgb8_to_linear)))
 }
 
-/// Glyphs 3 wide, 5 high, rows top to bottom, bit 2 = left column.
-fn glyph(c: char) -> Option<[u8; 5]> {
-    Some(match c {
-        '0' => [7, 5, 5, 5, 7],
-        '1' => [2, 6, 2, 2, 7],
-        '2' => [7, 1, 7, 4, 7],
-        '3' => [7, 1, 7, 1, 7],
-        '4' => [5, 5, 7, 1, 1],
-        '5' => [7, 4, 7, 1, 7],
-        '6' => [7, 4, 7, 5, 7],
-        '7' => [7, 1, 1, 1, 1],
-        '8' => [7, 5, 7, 5, 7],
-        '9' => [7, 5, 7, 1, 7],
-        '.' => [0, 0, 0, 0, 2],
-        '-' => [0, 0, 7, 0, 0],
-        _ => return None,
-    })
-}
-
-/// Writes `text` (digits, '.', '-') at (x, y), each font pixel a `scale`×`scale` block.
-fn draw_text(img: &mut RgbImage, x: u32, y: u32, scale: u32, text: &str, colour: [u8; 3]) {
-    for (n, c) in text.chars().enumerate() {
-        let Some(rows) = glyph(c) else { continue };
-        for (j, bits) in rows.iter().enumerate() {
-            for i in 0..3u32 {
-                if bits & (4 >> i) == 0 {
-                    continue;
-                }
-                for dy in 0..scale {
-                    for dx in 0..scale {
-                        let px = x + (n as u32 * 4 + i) * scale + dx;
-                        let py = y + j as u32 * scale + dy;
-                        if px < img.width() && py < img.height() {
-                            img.put_pixel(px, py, image::Rgb(colour));
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
 /// Short decimal form of a range end: at most one decimal.
 fn label(v: f64) -> String {
     if (v - v.round()).abs() < 1e-9 {
@@ -86,36 +48,98 @@ fn label(v: f64) -> String {
     }
 }
 
-/// Draws the legend of travel times `min`..`max` in the bottom-left corner: the colour bar
-/// (left end `min`), with `min` above its left end and `max` above its right end. Images too
-/// small for it (under 48×24 pixels) are left as they are.
-pub fn draw_legend(img: &mut RgbImage, min: f64, max: f64) {
+/// The legend's title, with the unit: travel time is coordinate time −t_emit, in the
+/// scene's units (those of the Gödel parameter a, with c = 1).
+pub const LEGEND_TITLE: &str = "light travel time -t_emit (units of a, c = 1)";
+
+/// The title beside the frequency shader's reference squares: what the colours mean.
+pub const FREQUENCY_TITLE: &str = "frequency shift g: black body at g·T";
+
+/// Draws the legend of travel times `min`..`max` into the overlay layer `img`, in its
+/// bottom-left corner, `above` pixels up from the bottom edge (room for orientation marks'
+/// labels): `min`, the colour bar (violet at `min`, yellow at `max`), `max`, and the title
+/// with its unit (on the same line, or above it on narrow pictures), in the readable type of
+/// [`crate::text`], on a dark panel that hides whatever lies beneath. Layers too small for
+/// it (under 48×24 pixels, or with no room above `above`) are left as they are.
+pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64, above: u32) {
     let (w, h) = (img.width(), img.height());
     if w < 48 || h < 24 {
         return;
     }
-    let scale = (h / 60).clamp(1, 3);
-    let bar_w = (w / 4).clamp(40, 256);
-    let bar_h = (h / 25).clamp(3, 12);
-    let margin = 2 * scale;
-    let y_bar = h - margin - bar_h;
-    let y_text = y_bar.saturating_sub(6 * scale + scale);
-    for x in 0..bar_w {
-        let c = rgb_to_srgb8(false_colour(f64::from(x) / f64::from(bar_w - 1)));
-        for y in y_bar..y_bar + bar_h {
-            img.put_pixel(margin + x, y, image::Rgb(c));
-        }
+    let scale = readable_scale(w, h);
+    let s = i64::from(scale);
+    let th = i64::from(text_height(scale));
+    let bar_w = i64::from((w / 5).clamp(40, 256));
+    let margin = 3 * s;
+    let y = i64::from(h) - i64::from(above) - margin - th;
+    if y < 2 * s {
+        return;
     }
+    // The line: low, bar, high, then the title (in smaller type if need be, or above the
+    // line where it would not fit).
+    let (low, high) = (label(min), label(max));
+    let x_bar = margin + i64::from(text_width(&low, scale)) + 3 * s;
+    let x_high = x_bar + bar_w + 3 * s;
+    let x_title = x_high + i64::from(text_width(&high, scale)) + 6 * s;
+    let fits = |k: u32| x_title + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w);
+    let (tx, ty, ts) = if fits(scale) {
+        (x_title, y, scale)
+    } else if scale > 1 && fits(scale - 1) {
+        (
+            x_title,
+            y + th - i64::from(text_height(scale - 1)),
+            scale - 1,
+        )
+    } else {
+        (margin, y - th - 3 * s, scale)
+    };
+    // A dark panel behind it all, so that it reads on any picture and over the marks.
+    let right = x_high + i64::from(text_width(&high, scale));
+    let right = right.max(tx + i64::from(text_width(LEGEND_TITLE, ts))) + 2 * s;
+    let top = ty.min(y) - 2 * s;
+    fill(img, 0, top, right, y + th + 2 * s - top, [12, 12, 12]);
     let white = [255, 255, 255];
-    draw_text(img, margin, y_text, scale, &label(min), white);
-    let right = label(max);
-    let text_w = right.chars().count() as u32 * 4 * scale;
-    draw_text(
-        img,
-        (margin + bar_w).saturating_sub(text_w),
-        y_text,
-        scale,
-        &right,
-        white,
-    );
+    draw_text(img, margin, y, scale, &low, white);
+    for i in 0..bar_w {
+        let c = rgb_to_srgb8(false_colour(i as f64 / (bar_w - 1) as f64));
+        fill(img, x_bar + i, y, 1, th, c);
+    }
+    draw_text(img, x_high, y, scale, &high, white);
+    draw_text(img, tx, ty, ts, LEGEND_TITLE, white);
+}
+
+/// Writes what the reference squares of a `w`×`h` picture show into its overlay layer
+/// `img`: beside them the unshifted colours' temperatures, `g = 1: 5800 K, 3500 K` (one per
+/// square shown, `temperatures` in object order), and below them the frequency title.
+/// Lines too long for the picture are written in smaller type (down to 8-pixel type).
+pub fn label_reference_squares(img: &mut RgbaImage, temperatures: &[f64]) {
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let shown = temperatures.len().min(REFERENCE_SQUARES);
+    let Some((x0, y0, side)) = (0..shown).rev().find_map(|k| reference_square(k, w, h)) else {
+        return;
+    };
+    let temps: Vec<String> = temperatures[..shown]
+        .iter()
+        .map(|t| format!("{} K", t.round() as i64))
+        .collect();
+    let text = format!("g = 1: {}", temps.join(", "));
+    let readable = readable_scale(w as u32, h as u32);
+    let fitting = |x: i64, text: &str| {
+        (1..=readable)
+            .rev()
+            .find(|&k| x + i64::from(text_width(text, k)) <= w as i64)
+            .unwrap_or(1)
+    };
+    let white = [255, 255, 255];
+    let x = (x0 + side + side / 2) as i64;
+    let scale = fitting(x, &text);
+    let th = i64::from(text_height(scale));
+    let y = (y0 as i64 + (side as i64 - th) / 2).max(0);
+    draw_text(img, x, y, scale, &text, white);
+    // The title under the squares, left-aligned with the first.
+    let (first_x, _, _) = reference_square(0, w, h).unwrap_or((x0, y0, side));
+    let x = first_x as i64;
+    let scale = fitting(x, FREQUENCY_TITLE);
+    let y = (y0 + side) as i64 + (y0 as i64).max(i64::from(scale) * 2) + i64::from(scale);
+    draw_text(img, x, y, scale, FREQUENCY_TITLE, white);
 }

@@ -21,6 +21,8 @@
 //!   colour table in temperature used by the frequency shader.
 //! - [`shade_frequency`]: the frequency shader, objects as black bodies at g·T with
 //!   [`Brightness`] normalized or physical, and reference squares of the unshifted colours.
+//! - [`layer`]: the overlay layer (orientation marks, legend, labels) as one RGBA image,
+//!   composited over the picture here and over the GPU's picture by the viewer.
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
 //! - [`ShadeError`]: every error, naming the file or field concerned.
 
@@ -32,6 +34,7 @@ mod error;
 pub mod frequency_shader;
 pub mod gt_table;
 pub mod hdr;
+pub mod layer;
 pub mod legend;
 pub mod marks;
 pub mod script;

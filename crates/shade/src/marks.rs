@@ -16,9 +16,10 @@
 //!   them.
 //!
 //! The tick spacing is the smallest of 5°, 10°, 15°, 30°, 45°, 90° at which labels do not
-//! overlap.
+//! overlap. The marks are drawn into the RGBA overlay layer ([`crate::layer`]): ticks and
+//! labels opaque, grid lines translucent.
 
-use image::RgbImage;
+use image::{Rgba, RgbaImage};
 use scene::{azimuth_elevation, direction_from, Camera};
 
 use crate::text::{draw_text, fill, readable_scale, text_height, text_width};
@@ -43,9 +44,8 @@ pub struct Tick {
 
 /// Colour of ticks and labels.
 pub const MARK_COLOUR: [u8; 3] = [255, 255, 255];
-/// Colour of the grid lines, blended at [`GRID_ALPHA`].
-const GRID_COLOUR: [f32; 3] = [200.0, 220.0, 255.0];
-const GRID_ALPHA: f32 = 0.35;
+/// Colour of the grid lines, with the opacity (35 %) they are blended at.
+const GRID_COLOUR: [u8; 4] = [200, 220, 255, 89];
 const STEPS: [f64; 6] = [5.0, 10.0, 15.0, 30.0, 45.0, 90.0];
 
 /// The label of an angle: `30°`, `-45°`.
@@ -98,7 +98,7 @@ fn pixel(camera: &Camera, x: f64, y: f64) -> Option<(u32, u32)> {
     let (w, h) = (f64::from(camera.width()), f64::from(camera.height()));
     // Positions exactly on the right or bottom border belong to the last pixel.
     let (x, y) = (x.min(w - 0.5), y.min(h - 0.5));
-    (x >= 0.0 && y >= 0.0).then(|| (x as u32, y as u32))
+    (x >= 0.0 && y >= 0.0).then_some((x as u32, y as u32))
 }
 
 /// The labelled ticks for `camera` (sized as the picture they are drawn on).
@@ -176,20 +176,17 @@ pub fn pixel_angles(camera: &Camera, col: u32, row: u32) -> Option<(f64, f64)> {
     camera.pixel_direction(col, row).map(azimuth_elevation)
 }
 
-/// Blends the grid colour into pixel (x, y) if it is inside the image.
-fn blend(img: &mut RgbImage, x: f64, y: f64) {
+/// Puts the translucent grid colour at pixel (x, y) if it is inside the image.
+fn grid_pixel(img: &mut RgbaImage, x: f64, y: f64) {
     if x < 0.0 || y < 0.0 || x >= f64::from(img.width()) || y >= f64::from(img.height()) {
         return;
     }
-    let p = img.get_pixel_mut(x as u32, y as u32);
-    for (c, g) in p.0.iter_mut().zip(GRID_COLOUR) {
-        *c = (f32::from(*c) * (1.0 - GRID_ALPHA) + g * GRID_ALPHA).round() as u8;
-    }
+    img.put_pixel(x as u32, y as u32, Rgba(GRID_COLOUR));
 }
 
 /// Draws the faint grid lines of the ticks' azimuths and elevations: each line sampled at
 /// most half a pixel apart and mapped through [`Camera::image_position`].
-fn draw_grid(img: &mut RgbImage, camera: &Camera, ticks: &[Tick]) {
+fn draw_grid(img: &mut RgbaImage, camera: &Camera, ticks: &[Tick]) {
     let (w, h) = (f64::from(camera.width()), f64::from(camera.height()));
     let (h_span, v_span) = spans(camera);
     let px_per_deg = (w / h_span).max(h / v_span).max(1e-3);
@@ -205,18 +202,30 @@ fn draw_grid(img: &mut RgbImage, camera: &Camera, ticks: &[Tick]) {
                 Axis::Azimuth => continue,
             };
             if let Some((x, y)) = camera.image_position(dir) {
-                // One blend per pixel, so crossings and dense samples are not darker.
+                // One visit per pixel (crossings and dense samples).
                 if x >= 0.0 && y >= 0.0 && seen.insert((x as u32, y as u32)) {
-                    blend(img, x, y);
+                    grid_pixel(img, x, y);
                 }
             }
         }
     }
 }
 
-/// Draws the grid, the ticks and their labels on `img` (a picture made with `camera`'s
-/// geometry at any size: the camera is resized to the picture).
-pub fn draw_marks(img: &mut RgbImage, camera: &Camera) {
+/// Height in pixels of the band along the bottom edge that the azimuth ticks and labels of
+/// a `width`×`height` picture made with `camera` occupy (0 for a fisheye, whose labels run
+/// along the horizon): where the layer keeps other overlays out.
+pub fn bottom_band(camera: &Camera, width: u32, height: u32) -> u32 {
+    if matches!(camera, Camera::Fisheye { .. }) || width < 16 || height < 16 {
+        return 0;
+    }
+    let s = readable_scale(width, height);
+    // Tick (4s + 2), gap (2s), label line, and a gap above it (s).
+    4 * s + 2 + 2 * s + text_height(s) + s
+}
+
+/// Draws the grid, the ticks and their labels into `img`, the overlay layer of a picture made
+/// with `camera`'s geometry at any size (the camera is resized to the layer).
+pub fn draw_marks(img: &mut RgbaImage, camera: &Camera) {
     let (w, h) = (img.width(), img.height());
     if w < 16 || h < 16 {
         return;
@@ -233,7 +242,7 @@ pub fn draw_marks(img: &mut RgbImage, camera: &Camera) {
     // Labels are placed azimuths first; one that would overlap a placed label is left out
     // (its tick stays).
     let mut placed: Vec<[i64; 4]> = Vec::new();
-    let mut label = |img: &mut RgbImage, x: i64, y: i64, text: &str| {
+    let mut label = |img: &mut RgbaImage, x: i64, y: i64, text: &str| {
         let r = [x, y, x + i64::from(text_width(text, scale)), y + th];
         let overlaps = placed
             .iter()

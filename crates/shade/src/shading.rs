@@ -18,9 +18,10 @@
 //! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
 //!
 //! Pictures for display ([`Shading::image`]) scale each hit pixel by 2^`ev` and pass it
-//! through the display tone curve ([`crate::colour::tone_map`]), then draw the overlays:
-//! orientation marks (`grid`, [`crate::marks`]), reference squares and the travel-time
-//! legend; [`Shading::linear`] gives the colours before all of that (the EXR output).
+//! through the display tone curve ([`crate::colour::tone_map`]), then draw the reference
+//! squares and composite the overlay layer ([`crate::layer`]: orientation marks (`grid`),
+//! the travel-time legend, the squares' labels); [`Shading::linear`] gives the colours
+//! before all of that (the EXR output).
 //!
 //! Caps, checked with the other settings so that every front end gets them: at most
 //! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
@@ -35,7 +36,7 @@
 use std::collections::HashMap;
 
 use datafile::DataFile;
-use image::RgbImage;
+use image::{RgbImage, RgbaImage};
 use rayon::prelude::*;
 
 use crate::blackbody::table;
@@ -45,8 +46,8 @@ use crate::colour::{display_srgb8, rgb_to_srgb8_fast};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
-use crate::legend::{draw_legend, false_colour};
-use crate::marks::draw_marks;
+use crate::layer::{composite, Overlays};
+use crate::legend::false_colour;
 use crate::settings::{
     BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
     MAX_LIGHT_SOURCES,
@@ -472,11 +473,42 @@ impl Shading {
         })
     }
 
-    /// Reference squares (frequency layer), the travel-time legend and orientation marks.
-    fn overlays(&self, w: usize, h: usize, bytes: &mut [u8]) {
+    /// What the overlay layer ([`crate::layer`]) shows with these settings: orientation
+    /// marks (`grid`), the travel-time legend, the reference squares' labels.
+    pub fn overlays_shown(&self) -> Overlays {
         let legend = self.time && self.time_mode == TimeMode::Travel && self.legend;
         let squares = self.frequency && self.reference_squares;
-        if !(legend || squares || self.marks.is_some()) {
+        Overlays {
+            marks: self.marks,
+            legend: legend.then_some(self.travel),
+            reference_labels: if squares {
+                self.objects.iter().map(|o| o.temperature).collect()
+            } else {
+                Vec::new()
+            },
+        }
+    }
+
+    /// The overlay layer of a `w` × `h` picture (`None`: nothing to draw); what the viewer
+    /// serves for the page to composite over its own shading.
+    pub fn overlay(&self, w: u32, h: u32) -> Option<RgbaImage> {
+        self.overlays_shown().draw(w, h)
+    }
+
+    /// Orientation marks for `camera` instead of the data file's (a view looked at from a
+    /// full-sphere file); nothing changes without `grid`.
+    pub fn mark_camera(&mut self, camera: &scene::Camera) {
+        if self.marks.is_some() {
+            self.marks = Some(*camera);
+        }
+    }
+
+    /// The reference squares (frequency layer), drawn into the picture, then the overlay
+    /// layer composited over it.
+    fn overlays(&self, w: usize, h: usize, bytes: &mut [u8]) {
+        let squares = self.frequency && self.reference_squares;
+        let shown = self.overlays_shown();
+        if shown.is_empty() {
             return;
         }
         let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) else {
@@ -485,9 +517,6 @@ impl Shading {
         let Some(mut img) = RgbImage::from_raw(wu, hu, bytes.to_vec()) else {
             return;
         };
-        if let Some(camera) = &self.marks {
-            draw_marks(&mut img, camera);
-        }
         if squares {
             let shown = self.objects.iter().take(REFERENCE_SQUARES).enumerate();
             for (k, obj) in shown {
@@ -504,8 +533,8 @@ impl Shading {
                 }
             }
         }
-        if legend {
-            draw_legend(&mut img, self.travel.0, self.travel.1);
+        if let Some(layer) = shown.draw(wu, hu) {
+            composite(&mut img, &layer);
         }
         bytes.copy_from_slice(img.as_raw());
     }

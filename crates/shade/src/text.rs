@@ -2,9 +2,10 @@
 //! the public-domain 8×8 bitmap font of the `font8x8` crate (ASCII, Latin-1 and Greek, so
 //! `°`, `×`, `Δ` and `φ` are available). Each font pixel is a `scale`×`scale` block, and
 //! the text gets a one-block dark outline so that it reads on bright and dark pictures alike.
+//! Everything is drawn opaque into the RGBA overlay layer ([`crate::layer`]).
 
 use font8x8::{UnicodeFonts, BASIC_FONTS, GREEK_FONTS, LATIN_FONTS};
-use image::RgbImage;
+use image::{Rgba, RgbaImage};
 
 /// Width and height of one glyph in font pixels.
 pub const GLYPH: u32 = 8;
@@ -60,7 +61,7 @@ fn ink(text: &str) -> impl Iterator<Item = (u32, u32)> + '_ {
 
 /// Writes `text` with its top-left corner at (x, y) in `colour`, outlined in near-black;
 /// whatever falls outside the image is cut off.
-pub fn draw_text(img: &mut RgbImage, x: i64, y: i64, scale: u32, text: &str, colour: [u8; 3]) {
+pub fn draw_text(img: &mut RgbaImage, x: i64, y: i64, scale: u32, text: &str, colour: [u8; 3]) {
     let s = i64::from(scale);
     let outline = [12, 12, 12];
     for (i, j) in ink(text) {
@@ -73,12 +74,13 @@ pub fn draw_text(img: &mut RgbImage, x: i64, y: i64, scale: u32, text: &str, col
     }
 }
 
-/// Fills the rectangle at (x, y) of size w × h, clipped to the image.
-pub fn fill(img: &mut RgbImage, x: i64, y: i64, w: i64, h: i64, colour: [u8; 3]) {
+/// Fills the rectangle at (x, y) of size w × h with opaque `colour`, clipped to the image.
+pub fn fill(img: &mut RgbaImage, x: i64, y: i64, w: i64, h: i64, colour: [u8; 3]) {
     let (iw, ih) = (i64::from(img.width()), i64::from(img.height()));
+    let [r, g, b] = colour;
     for py in y.max(0)..(y + h).min(ih) {
         for px in x.max(0)..(x + w).min(iw) {
-            img.put_pixel(px as u32, py as u32, image::Rgb(colour));
+            img.put_pixel(px as u32, py as u32, Rgba([r, g, b, 255]));
         }
     }
 }
@@ -89,13 +91,13 @@ mod tests {
 
     #[test]
     fn text_is_drawn_in_its_colour_and_outlined() {
-        let mut img = RgbImage::from_pixel(60, 20, image::Rgb([200, 200, 200]));
+        let mut img = RgbaImage::new(60, 20);
         draw_text(&mut img, 2, 2, 1, "30°", [255, 255, 0]);
-        let count = |c: [u8; 3]| img.pixels().filter(|p| p.0 == c).count();
-        assert!(count([255, 255, 0]) > 20, "glyph ink");
-        assert!(count([12, 12, 12]) > 20, "outline");
+        let count = |c: [u8; 4]| img.pixels().filter(|p| p.0 == c).count();
+        assert!(count([255, 255, 0, 255]) > 20, "glyph ink");
+        assert!(count([12, 12, 12, 255]) > 20, "outline");
         // Nothing beyond the three glyphs and their outline.
-        assert!(img.get_pixel(2 + 3 * 8 + 2, 10).0 == [200, 200, 200]);
+        assert!(img.get_pixel(2 + 3 * 8 + 2, 10).0 == [0, 0, 0, 0]);
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! camera's forward mapping (`Camera::pixel_direction`), and panorama ticks also against the
 //! panorama's closed form (column = (az/h_fov + ½)·width).
 
-use image::RgbImage;
+use image::RgbaImage;
 use scene::{azimuth_elevation, Camera};
 use shade::marks::{draw_marks, ticks, Axis, MARK_COLOUR};
 
@@ -105,10 +105,16 @@ fn panorama_ticks_match_the_closed_form_and_are_drawn() {
         .unwrap();
     assert!(up.row < 50);
 
-    let mut img = RgbImage::from_pixel(880, 100, image::Rgb([0, 0, 40]));
+    let mut img = RgbaImage::new(880, 100);
     draw_marks(&mut img, &c);
     for t in &ts {
-        assert_eq!(img.get_pixel(t.col, t.row).0, MARK_COLOUR, "{}", t.label);
+        assert_eq!(
+            img.get_pixel(t.col, t.row).0[..3],
+            MARK_COLOUR,
+            "{}",
+            t.label
+        );
+        assert_eq!(img.get_pixel(t.col, t.row).0[3], 255, "{}", t.label);
     }
 }
 
@@ -117,13 +123,18 @@ fn marks_follow_the_picture_size() {
     // A picture shown at twice the traced size gets the ticks of the resized camera.
     let c = cameras()[1];
     let big = c.with_size(1440, 720);
-    let mut img = RgbImage::from_pixel(1440, 720, image::Rgb([0, 0, 0]));
+    let mut img = RgbaImage::new(1440, 720);
     draw_marks(&mut img, &c);
     for t in ticks(&big) {
-        assert_eq!(img.get_pixel(t.col, t.row).0, MARK_COLOUR, "{}", t.label);
+        assert_eq!(
+            img.get_pixel(t.col, t.row).0[..3],
+            MARK_COLOUR,
+            "{}",
+            t.label
+        );
     }
     // Too small a picture is left alone.
-    let mut tiny = RgbImage::new(8, 8);
+    let mut tiny = RgbaImage::new(8, 8);
     draw_marks(&mut tiny, &c);
-    assert!(tiny.pixels().all(|p| p.0 == [0, 0, 0]));
+    assert!(tiny.pixels().all(|p| p.0 == [0, 0, 0, 0]));
 }

@@ -68,6 +68,17 @@ export function describeControls(info, view) {
       disabled: layer === 'light' && info.lights === 0,
     })),
   }, {
+    title: 'Picture',
+    controls: [
+      { id: 'ev', label: 'exposure compensation (EV)', path: ['ev'], kind: 'range',
+        min: -6, max: 6, step: 0.1 },
+    ],
+  }, {
+    title: 'Overlays',
+    controls: [
+      { id: 'grid', label: 'orientation marks', path: ['grid'], kind: 'check' },
+    ],
+  }, {
     title: 'Frequency',
     controls: [
       { id: 'brightness', label: 'brightness', path: ['brightness'], kind: 'select',

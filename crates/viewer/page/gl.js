@@ -134,6 +134,16 @@ export class Gpu {
     this.replace(name, this.texture2d(width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, bytes));
   }
 
+  // An image decoded by the browser (the overlay layer's PNG), its bytes as they are: not
+  // premultiplied by alpha, no colour conversion.
+  uploadBitmap(name, bitmap) {
+    const gl = this.gl;
+    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
+    gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);
+    this.replace(name, this.texture2d(bitmap.width, bitmap.height, gl.RGBA8, gl.RGBA,
+      gl.UNSIGNED_BYTE, bitmap));
+  }
+
   // Small tables that change with the settings (the objects') are rewritten in place: a new
   // texture per frame would make the driver set up its state afresh each time.
   uploadFloatRgba(name, width, height, floats) {
@@ -200,7 +210,7 @@ export class Gpu {
     const samplers = [
       ['uId', 'id', 'uint'], ['uU', 'u', 'float'], ['uV', 'v', 'float'], ['uG', 'g', 'float'],
       ['uT', 't_emit', 'float'], ['uCos', 'cos_i', 'uint'], ['uObjects', 'objects', 'float'],
-      ['uGt', 'gt', 'float'], ['uAtlas', 'atlas', 'float'], ['uLegend', 'legend', 'rgba'],
+      ['uGt', 'gt', 'float'], ['uAtlas', 'atlas', 'float'], ['uOverlay', 'overlay', 'rgba'],
     ];
     samplers.forEach(([uniform, name, kind], unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);

@@ -1,8 +1,9 @@
 // godel view: numbers the page computes once per change on the CPU, mirroring the `shade`
 // crate so that the picture equals `godel shade`: the black-body grid (colour and luminance
 // of a temperature, crates/shade/src/blackbody.rs), 8-bit sRGB (colour.rs), the
-// travel-time colour map and its legend (legend.rs), the reference squares
-// (frequency_shader.rs), and f32 bounds equivalent to the f64 time window.
+// travel-time colour map's stops (legend.rs), the reference squares (frequency_shader.rs),
+// and f32 bounds equivalent to the f64 time window. The overlay layer (marks, legend,
+// labels) is not drawn here: the server draws it (crates/shade/src/layer.rs, /api/overlay).
 'use strict';
 
 const f32 = Math.fround;
@@ -98,86 +99,10 @@ export function referenceSquare(k, width, height) {
   return x0 + side <= width && y0 + side <= height ? [x0, y0, side] : null;
 }
 
-// ---- travel-time false colour and legend
+// ---- travel-time false colour: the stops (the shader interpolates them)
 
 const STOPS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
 export const LINEAR_STOPS = STOPS.map((s) => s.map(srgb8ToLinear));
-
-export function falseColour(s) {
-  s = f32(Number.isNaN(s) ? 0 : Math.min(Math.max(s, 0), 1));
-  const x = f32(s * 4);
-  const i = Math.min(Math.floor(x), 3);
-  const f = f32(x - i);
-  const a = LINEAR_STOPS[i];
-  const b = LINEAR_STOPS[i + 1];
-  return [0, 1, 2].map((k) => f32(a[k] + f32(f * f32(b[k] - a[k]))));
-}
-
-const GLYPHS = {
-  0: [7, 5, 5, 5, 7], 1: [2, 6, 2, 2, 7], 2: [7, 1, 7, 4, 7], 3: [7, 1, 7, 1, 7],
-  4: [5, 5, 7, 1, 1], 5: [7, 4, 7, 1, 7], 6: [7, 4, 7, 5, 7], 7: [7, 1, 1, 1, 1],
-  8: [7, 5, 7, 5, 7], 9: [7, 5, 7, 1, 7], '.': [0, 0, 0, 0, 2], '-': [0, 0, 7, 0, 0],
-};
-
-// label(v) of legend.rs: an integer, or one decimal rounded half to even as Rust formats.
-export function label(v) {
-  if (Math.abs(v - Math.round(v)) < 1e-9) {
-    const r = v < 0 ? -Math.round(-v) : Math.round(v); // half away from zero
-    return String(r === 0 ? 0 : r);
-  }
-  const t = v * 10;
-  let r = Math.round(t);
-  if (Number.isInteger(t * 2) && !Number.isInteger(t)) {
-    const down = Math.floor(t);
-    r = down % 2 === 0 ? down : down + 1;
-  }
-  // Rust keeps the sign of a negative value that rounds to zero ("-0.0"); toFixed drops it.
-  return r === 0 && v < 0 ? '-0.0' : (r / 10).toFixed(1);
-}
-
-// The legend of draw_legend(img, min, max) on a width × height picture: null when the
-// picture is too small, else {x0, y0, width, height, pixels} with pixels RGBA, alpha 255
-// where the legend draws (rows from the top).
-export function legend(width, height, min, max) {
-  if (width < 48 || height < 24) return null;
-  const scale = Math.min(Math.max(Math.floor(height / 60), 1), 3);
-  const barW = Math.min(Math.max(Math.floor(width / 4), 40), 256);
-  const barH = Math.min(Math.max(Math.floor(height / 25), 3), 12);
-  const margin = 2 * scale;
-  const yBar = height - margin - barH;
-  const yText = Math.max(yBar - (6 * scale + scale), 0);
-  const box = { x0: 0, y0: yText, width, height: height - yText };
-  box.pixels = new Uint8Array(box.width * box.height * 4);
-  const put = (x, y, c) => {
-    if (x >= width || y >= height) return;
-    const i = ((y - box.y0) * box.width + x) * 4;
-    box.pixels.set([c[0], c[1], c[2], 255], i);
-  };
-  for (let x = 0; x < barW; x += 1) {
-    const c = falseColour(x / (barW - 1)).map(linearToSrgb8);
-    for (let y = yBar; y < yBar + barH; y += 1) put(margin + x, y, c);
-  }
-  const text = (x, y, s) => {
-    [...s].forEach((ch, n) => {
-      const rows = GLYPHS[ch];
-      if (!rows) return;
-      rows.forEach((bits, j) => {
-        for (let i = 0; i < 3; i += 1) {
-          if ((bits & (4 >> i)) === 0) continue;
-          for (let dy = 0; dy < scale; dy += 1) {
-            for (let dx = 0; dx < scale; dx += 1) {
-              put(x + (n * 4 + i) * scale + dx, y + j * scale + dy, [255, 255, 255]);
-            }
-          }
-        }
-      });
-    });
-  };
-  text(margin, yText, label(min));
-  const right = label(max);
-  text(Math.max(margin + barW - right.length * 4 * scale, 0), yText, right);
-  return box;
-}
 
 // ---- the time window: f32 bounds [lo, hi] such that for every f32 t,
 // lo ≤ t ≤ hi exactly when t0 ≤ t ≤ t0 + dt in f64 (as shading.rs compares).

@@ -32,13 +32,14 @@ uniform sampler2DArray uLight;
 uniform sampler2D uObjects;   // per object (row): moves, first texture, second texture, (T, Y(T))
 uniform sampler2D uGt;        // g·T table, 1024 bins a row: rows [0, n) unit colour + Y, [n, 2n) normalized
 uniform sampler2D uAtlas;     // image textures (linear RGB, decoded as the CPU does), stacked
-uniform sampler2D uLegend;    // travel-time legend, alpha 1 where drawn
+uniform sampler2D uOverlay;   // the overlay layer (marks, legend, labels), RGBA, picture size
 
 uniform float uWinLo, uWinHi;        // f32 bounds equivalent to the f64 window
 uniform float uTravelLo, uTravelHi;
 uniform vec3 uStops[5];              // false-colour stops, linear
 uniform bool uPhysical;
 uniform float uExposure, uAmbient;
+uniform float uGain;                 // 2^ev: exposure compensation before the tone curve
 uniform int uLights;
 uniform vec3 uLightW[16];
 uniform uint uGtFirst;
@@ -57,7 +58,6 @@ uniform vec3 uF0, uR0, uUp0;         // the sphere's camera axes, static frame
 
 uniform ivec4 uRef0, uRef1;          // reference squares: x0, y0, side, side (side 0: none)
 uniform vec3 uRefColour0, uRefColour1; // their 8-bit sRGB / 255
-uniform ivec4 uLegendRect;           // x0, y0, width, height (width 0: none)
 
 out vec4 outColour;
 
@@ -236,11 +236,13 @@ vec3 shadePixel(ivec2 p, float doppler) {
   return c;
 }
 
-// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels through
-// the tone curve, status colours (display codes) as they are; crates/shade/src/shading.rs.
+// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels scaled by
+// 2^ev and put through the tone curve, status colours (display codes) as they are;
+// crates/shade/src/shading.rs and texture_shader.rs (displayed).
 vec3 displayPixel(ivec2 p, float doppler) {
   vec3 c = shadePixel(p, doppler);
   if (texelFetch(uId, p, 0).r < 4u || c == FAILED) return c;
+  c *= uGain;
   return vec3(toneMap(c.r), toneMap(c.g), toneMap(c.b));
 }
 
@@ -297,7 +299,9 @@ bool inside(ivec2 q, ivec4 r) {
   return q.x >= r.x && q.y >= r.y && q.x < r.x + r.z && q.y < r.y + r.w;
 }
 
-// Overlays (reference squares, legend) drawn over the shaded pixel.
+// The reference squares, then the server's overlay layer (crates/shade/src/layer.rs)
+// composited over the shaded pixel: out = layer·a + picture·(1 − a), a the layer's alpha,
+// rounded to 8 bits by the RGBA8 target, as shade's layer::composite.
 void main() {
   ivec2 q = ivec2(gl_FragCoord.xy);   // row 0 of the picture is texture row 0
 #if LOOK
@@ -323,21 +327,19 @@ void main() {
   if (inside(q, uRef0)) o = vec4(uRefColour0, 1.0);
   if (inside(q, uRef1)) o = vec4(uRefColour1, 1.0);
 #endif
-#if LEGEND
-  if (inside(q, uLegendRect)) {
-    vec4 l = texelFetch(uLegend, q - uLegendRect.xy, 0);
-    if (l.a > 0.5) o = vec4(l.rgb, 1.0);
-  }
+#if OVERLAY
+  vec4 l = texelFetch(uOverlay, q, 0);
+  o.rgb = o.rgb * (1.0 - l.a) + l.rgb * l.a;
 #endif
   outColour = o;
 }`;
 
 // The shading program's source for `features`: {texture, time, travel, frequency, light, look,
-// images, refs, legend} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
+// images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
 // supersample (samples per pixel along each side, 1 when absent).
 export function shadeSource(features) {
   const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
-    'legend'];
+    'overlay'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
   defines.push(`#define CAMERA ${features.camera || 0}`);
   defines.push(`#define SUPERSAMPLE ${features.supersample || 1}`);

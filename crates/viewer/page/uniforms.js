@@ -1,9 +1,9 @@
 // godel view: the shading pass's inputs for given settings (the `shade` crate's
 // ShadeSettings, as Shading::new prepares them) and, in look mode, a view: the uniforms, the
-// per-object table and the overlays (reference squares, travel-time legend).
+// per-object table, the reference squares, and what the overlay layer depends on.
 'use strict';
 
-import { referenceSquare, legend, linearToSrgb8, toneMap, LINEAR_STOPS, windowBounds } from './overlays.js';
+import { referenceSquare, linearToSrgb8, toneMap, LINEAR_STOPS, windowBounds } from './overlays.js';
 import { cross } from './look.js';
 
 // The texture a choice names, as (kind, a, b, c) for the shader, and the image it needs.
@@ -78,7 +78,7 @@ export function featuresFor(settings, info, data, look, uniforms) {
     camera: look ? CAMERAS[look.view.camera.kind] : 0,
     images: imagesFor(settings, info, data).length > 0,
     refs: uniforms.uRef0[1][2] > 0 || uniforms.uRef1[1][2] > 0,
-    legend: uniforms.uLegendRect[1][2] > 0,
+    overlay: Boolean(uniforms.uOverlayOn && uniforms.uOverlayOn[1]),
   };
 }
 
@@ -91,6 +91,8 @@ export function uniformsFor(settings, info, data, width, height, look) {
   const time = settings.time;
   const [winLo, winHi] = windowBounds(time.t0, time.dt);
   const nodes = bb.unit.length;
+  // 2^ev in f32, as Shading::new computes it (2f64.powf(ev) as f32).
+  const gain = Math.fround(2 ** settings.ev);
   const sources = settings.light.sources;
   const lightW = [];
   for (let k = 0; k < info.lights; k += 1) {
@@ -108,6 +110,7 @@ export function uniformsFor(settings, info, data, width, height, look) {
     uPhysical: ['i', physical ? 1 : 0],
     uExposure: ['f', settings.exposure],
     uAmbient: ['f', settings.light.ambient],
+    uGain: ['f', gain],
     uLights: ['i', lightW.length],
     uLightW: ['f3', lightW.length ? lightW : [[0, 0, 0]]],
     uGtFirst: ['u', bb.gt_first_bin],
@@ -134,9 +137,10 @@ export function uniformsFor(settings, info, data, width, height, look) {
       if (!square) return;
       const t = (settings.objects[name] || info.defaults.objects[name]).temperature;
       refs[k] = [...square, square[2]];
-      // The colour a pixel at g = 1 shows: through the display tone curve, as shade draws it.
+      // The colour a pixel at g = 1 shows: scaled by 2^ev and through the display tone
+      // curve, as shade draws it (colour.rs, display_srgb8).
       refColours[k] = bb.colour(1, t, physical, settings.exposure)
-        .map((c) => linearToSrgb8(toneMap(c)) / 255);
+        .map((c) => linearToSrgb8(toneMap(Math.fround(c * gain))) / 255);
     });
   }
   u.uRef0 = ['i4', refs[0]];
@@ -146,12 +150,22 @@ export function uniformsFor(settings, info, data, width, height, look) {
   return u;
 }
 
-// The travel-time legend for these settings on a width × height picture, or null.
-export function legendFor(settings, width, height) {
+// What the server's overlay layer (crates/shade/src/layer.rs: orientation marks, travel-time
+// legend, reference-square labels) depends on for these settings and picture, as a string;
+// null when it draws nothing. Shading::overlays_shown decides the same.
+export function overlayKey(settings, info, p) {
   const on = new Set(settings.shaders);
   const t = settings.time;
-  if (!(on.has('time') && t.mode === 'travel' && t.legend)) return null;
-  return legend(width, height, t.travel_min, t.travel_max);
+  const legend = on.has('time') && t.mode === 'travel' && t.legend;
+  const squares = on.has('frequency') && settings.reference_squares && info.objects.length > 0;
+  if (!legend && !squares && !settings.grid) return null;
+  const temperature = (name) => (settings.objects[name] || info.defaults.objects[name]).temperature;
+  return JSON.stringify({
+    size: [p.width, p.height],
+    marks: settings.grid ? (p.look ? p.look.view.camera : 'file') : null,
+    legend: legend ? [t.travel_min, t.travel_max] : null,
+    squares: squares ? info.objects.slice(0, 2).map(temperature) : null,
+  });
 }
 
 function lookUniforms(view, sphere) {

@@ -8,7 +8,7 @@
 import { Gpu } from './gl.js';
 import { Data, channelsFor, fetchJson } from './data.js';
 import { describeControls, buildControls } from './controls.js';
-import { uniformsFor, featuresFor, objectTable, imagesFor, legendFor } from './uniforms.js';
+import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey } from './uniforms.js';
 import * as L from './look.js';
 
 const viewer = {
@@ -115,7 +115,46 @@ function layout() {
 let frameQueued = false;
 let shadeDirty = true;   // the picture must be shaded again (else only displayed)
 let loading = false;     // channels or images are being fetched
-let legendKey = null;
+
+// The overlay layer (orientation marks, legend, labels), drawn by the server for the
+// settings (crates/shade/src/layer.rs) and composited by the shading pass: the key it was
+// made for (overlayKey), its size, whether it draws anything; the one wanted next.
+const overlay = { key: null, size: null, drawn: false, wanted: null, busy: false };
+
+function overlayPending() {
+  return overlay.busy || (overlay.wanted !== null && overlay.wanted.key !== overlay.key);
+}
+
+// Fetches the wanted overlay (one request at a time; the latest wish wins), then redraws.
+async function fetchOverlay() {
+  const want = overlay.wanted;
+  if (overlay.busy || want === null || want.key === overlay.key) return;
+  overlay.busy = true;
+  try {
+    const response = await fetch(want.url, { method: 'POST', body: want.body,
+      headers: { 'Content-Type': 'application/json' } });
+    if (!response.ok) {
+      showError(await errorText(response));
+      overlay.drawn = false;
+    } else if (response.status === 204) {
+      overlay.drawn = false;
+    } else {
+      const bitmap = await createImageBitmap(await response.blob(),
+        { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+      gpu.uploadBitmap('overlay', bitmap);
+      overlay.size = [bitmap.width, bitmap.height];
+      bitmap.close();
+      overlay.drawn = true;
+    }
+  } catch (e) {
+    showError(`cannot load the overlay from the viewer's server: ${e.message || e}`);
+    overlay.drawn = false;
+  } finally {
+    overlay.key = want.key;
+    overlay.busy = false;
+  }
+  changed();
+}
 
 // A change: `shade` false when only the display (zoom, pan) changed.
 function changed(shade = true) {
@@ -159,14 +198,19 @@ async function draw() {
   try {
     if (shadeDirty) {
       const uniforms = uniformsFor(settings, viewer.info, data, p.width, p.height, p.look);
-      const legend = legendFor(settings, p.width, p.height);
-      const key = legend && JSON.stringify([p.width, p.height, settings.time]);
-      if (legend && key !== legendKey) {
-        gpu.uploadRgba('legend', legend.width, legend.height, legend.pixels);
-        legendKey = key;
+      const key = overlayKey(settings, viewer.info, p);
+      if (key === null) {
+        overlay.wanted = null;
+      } else if (key !== overlay.key) {
+        overlay.wanted = { key, url: p.look ? '/api/look/overlay' : '/api/overlay',
+          body: p.look ? JSON.stringify({ settings, view: p.look.view })
+            : JSON.stringify(settings) };
+        fetchOverlay();
       }
-      uniforms.uLegendRect = ['i4', legend ? [legend.x0, legend.y0, legend.width, legend.height]
-        : [0, 0, 0, 0]];
+      // Until the new layer comes, the last one of the same size stays (no flicker).
+      const shown = key !== null && overlay.drawn && overlay.size !== null
+        && overlay.size[0] === p.width && overlay.size[1] === p.height;
+      uniforms.uOverlayOn = ['i', shown ? 1 : 0];
       const table = objectTable(settings, viewer.info, data);
       gpu.uploadFloatRgba('objects', 4, table.length / 16, table);
       gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
@@ -199,7 +243,7 @@ async function draw() {
 }
 
 // Nothing waiting to be drawn or fetched (for tests and scripts).
-viewer.idle = () => !frameQueued && !loading && !shadeDirty;
+viewer.idle = () => !frameQueued && !loading && !shadeDirty && !overlayPending();
 
 // ---- the mouse: drag to turn (look) or pan, wheel to zoom, hover for the record
 

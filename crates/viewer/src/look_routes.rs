@@ -8,6 +8,7 @@
 //! | `GET /api/view` | the file's camera and observer axes and velocity, whether it is a full sphere the page can look around in, and for a sphere the direction towards each object (JSON) |
 //! | `POST /api/look/png` (`{"settings": …, "view": …}`) | the shaded picture of that view, PNG download |
 //! | `POST /api/look/image` (same body) | the same picture as raw RGBA; `X-Image-Width`, `X-Image-Height` |
+//! | `POST /api/look/overlay` (same body) | that picture's overlay layer (orientation marks of the view's camera, legend, labels) as an RGBA PNG, 204 when there is nothing to draw |
 //!
 //! A view is `{"camera": {"kind": "pinhole", "fov_deg": 60, "width": 640, "height": 360},
 //! "forward": [x, y, z], "up": [x, y, z], "velocity": {"speed": 0.5, "direction": [x, y, z]}}`,
@@ -31,7 +32,7 @@ use axum::{Json, Router};
 use look::{look, LookView, SphereSource};
 use scene::{Camera, Scene};
 use serde::{Deserialize, Serialize};
-use shade::ShadeSettings;
+use shade::{ShadeSettings, Shading};
 use spacetime::LocalVelocity;
 
 use crate::api_error::{no_store, ApiError};
@@ -65,6 +66,7 @@ pub fn router(state: Arc<LookState>) -> Router {
         .route("/api/view", get(view))
         .route("/api/look/png", post(png))
         .route("/api/look/image", post(image))
+        .route("/api/look/overlay", post(overlay))
         .with_state(state)
 }
 
@@ -270,8 +272,9 @@ struct LookRequest {
     view: ViewJson,
 }
 
-/// The picture of the requested view, shaded: look, then shade.
-fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
+/// The requested view, checked, and the settings prepared for it (orientation marks for
+/// the view's camera).
+fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading), ApiError> {
     let mut json = serde_json::Deserializer::from_slice(body);
     let request: LookRequest = serde_path_to_error::deserialize(&mut json)
         .map_err(|e| ApiError::bad_request(format!("look: {}: {}", e.path(), e.inner())))?;
@@ -299,12 +302,32 @@ fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiE
     let look_view = LookView::new(camera, v.forward, v.up, velocity)
         .map_err(|e| ApiError::bad_request(format!("view: {e}")))?;
     // Prepared for the loaded file: the looked file has the same objects, lights and event.
-    let shading = viewer
+    let mut shading = viewer
         .prepare(&request.settings)
         .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+    shading.mark_camera(&camera);
+    Ok((look_view, shading))
+}
+
+/// The picture of the requested view, shaded: look, then shade.
+fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
+    let (look_view, shading) = prepare_look(viewer, body)?;
     let looked =
         look(&viewer.data, &look_view).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
     Ok(shading.image(&looked))
+}
+
+async fn overlay(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
+    let viewer = state.viewer.clone();
+    let ticket = viewer.work().admit()?;
+    ticket
+        .run(move || {
+            let (view, shading) = prepare_look(&viewer, &body)?;
+            crate::responses::overlay_png(
+                shading.overlay(view.camera.width(), view.camera.height()),
+            )
+        })
+        .await?
 }
 
 async fn png(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {

@@ -1,10 +1,32 @@
 //! The HTTP responses that carry pictures: raw RGBA for the page's canvas, PNG downloads
-//! named after the scene. Shared by the shading routes and the look routes.
+//! named after the scene, the overlay layer as an RGBA PNG. Shared by the shading routes and
+//! the look routes.
 
-use axum::http::{header, HeaderName, HeaderValue};
+use axum::http::{header, HeaderName, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
+use image::RgbaImage;
 
+use crate::api_error::ApiError;
 use crate::state::ViewerState;
+
+/// The overlay layer ([`shade::layer`]) as an RGBA PNG, or 204 No Content when there is
+/// nothing to draw; never cached.
+pub fn overlay_png(layer: Option<RgbaImage>) -> Result<Response, ApiError> {
+    let Some(layer) = layer else {
+        return Ok((
+            StatusCode::NO_CONTENT,
+            [(header::CACHE_CONTROL, "no-store")],
+        )
+            .into_response());
+    };
+    let bytes = crate::encode::png_rgba(&layer)
+        .map_err(|e| ApiError::internal(format!("encoding the overlay PNG: {e}")))?;
+    let headers = [
+        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+    ];
+    Ok((headers, bytes).into_response())
+}
 
 /// A picture as raw RGBA bytes, `width` × `height` in `X-Image-Width`, `X-Image-Height`;
 /// never cached.

@@ -6,6 +6,7 @@
 //! | `GET /api/info` | file, size, objects, light count, default settings (JSON) |
 //! | `POST /api/image` (settings JSON) | the shaded picture as raw RGBA; `X-Image-Width`, `X-Image-Height`, `Server-Timing` |
 //! | `POST /api/png` (settings JSON) | the shaded picture as a PNG download |
+//! | `POST /api/overlay` (settings JSON) | the overlay layer (orientation marks, legend, labels; `shade::layer`) of the picture as an RGBA PNG, 204 when there is nothing to draw |
 //! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
 //! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::look_routes`] |
@@ -33,7 +34,7 @@ use crate::api_error::no_store;
 pub use crate::api_error::ApiError;
 use crate::encode;
 use crate::guard::{Access, MAX_BODY_BYTES};
-use crate::responses::{attachment, png_download, rgba_picture};
+use crate::responses::{attachment, overlay_png, png_download, rgba_picture};
 use crate::state::ViewerState;
 use shade::{ShadeSettings, Shading};
 
@@ -50,6 +51,7 @@ pub fn router(state: Arc<ViewerState>, access: Access) -> Router {
         .route("/api/info", get(info))
         .route("/api/image", post(image))
         .route("/api/png", post(png))
+        .route("/api/overlay", post(overlay))
         .route("/api/keyframe", post(keyframe))
         .route("/api/pixel", get(pixel))
         .with_state(state.clone())
@@ -141,6 +143,20 @@ async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Respo
     })
     .await??;
     Ok(png_download(bytes, disposition))
+}
+
+async fn overlay(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {
+    blocking(&state.clone(), move || {
+        let (_, shading) = parse_settings(&state, &body)?;
+        let (w, h) = state.data.picture_size();
+        let size = (u32::try_from(w), u32::try_from(h));
+        let layer = match size {
+            (Ok(w), Ok(h)) => shading.overlay(w, h),
+            _ => None,
+        };
+        overlay_png(layer)
+    })
+    .await?
 }
 
 /// `?frame=N` (default 0).

@@ -254,3 +254,30 @@ async fn a_sampled_file_is_shown_at_its_picture_size_and_hovers_the_centre_sampl
     let (status, _, _) = common::send_to(state, get("/api/pixel?col=4&row=0")).await;
     assert_eq!(status, StatusCode::BAD_REQUEST);
 }
+
+#[tokio::test]
+async fn overlay_is_the_shade_crates_layer_as_png_or_204() {
+    // Nothing to draw (no marks, squares or legend): 204, no body.
+    let none = altered(|v| {
+        v["shaders"] = serde_json::json!(["texture"]);
+    });
+    let (status, _, body) = send(post("/api/overlay", &none)).await;
+    assert_eq!(status, StatusCode::NO_CONTENT);
+    assert!(body.is_empty());
+    // Reference squares' labels: an RGBA PNG of the picture's size, equal to the layer.
+    let (status, headers, body) = send(post("/api/overlay", &frequency(3000.0))).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(headers["content-type"], "image/png");
+    let png = image::load_from_memory(&body).unwrap();
+    assert_eq!(png.color(), image::ColorType::Rgba8);
+    let want = Shading::new(&data(), &frequency_settings(3000.0))
+        .unwrap()
+        .overlay(WIDTH as u32, HEIGHT as u32)
+        .unwrap();
+    assert!(png.to_rgba8() == want);
+    // Bad settings: 400 naming the field, as for the picture.
+    let bad = altered(|v| v["ev"] = serde_json::json!(99.0));
+    let (status, _, body) = send(post("/api/overlay", &bad)).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(error_of(&body).contains("ev"), "{}", error_of(&body));
+}

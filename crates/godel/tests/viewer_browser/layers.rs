@@ -3,7 +3,9 @@
 //! pixels excused are those whose texture coordinate lies within 1e-4 of a checker cell's
 //! edge, where the GPU's f32 arithmetic may pick the neighbouring cell (the CPU computes the
 //! coordinate in f64); the test counts them and requires them to be rare. The same holds for
-//! an anti-aliased file (every sample shaded, then box-filtered).
+//! an anti-aliased file (every sample shaded, then box-filtered). The cases include exposure
+//! compensation (`ev`) and the overlay layer (orientation marks, legend, square labels) that
+//! the page fetches from the server and composites over its shading.
 
 use super::browser_support::*;
 use datafile::DataFile;
@@ -123,6 +125,29 @@ fn cases(data: &DataFile) -> Vec<ShadeSettings> {
         s.time.t0 = -3.0;
         s.time.dt = 1.5;
     }));
+    // Exposure compensation (ev): hit colours scaled by 2^ev before the tone curve, the
+    // reference squares too; a page that ignored ev would show the ev = 0 picture.
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Texture, ShaderKind::Light];
+        s.ev = 1.5;
+    }));
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Frequency];
+        s.ev = -2.3;
+    }));
+    // The server's overlay layer composited by the page: orientation marks over the
+    // texture layer; marks, reference squares with their labels and the travel-time
+    // legend together.
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Texture];
+        s.grid = true;
+    }));
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Time, ShaderKind::Frequency];
+        s.time.mode = TimeMode::Travel;
+        s.grid = true;
+        s.ev = 0.7;
+    }));
     cases.push(with(&|s| {
         s.shaders = vec![ShaderKind::Light];
         s.light.ambient = 0.4;
@@ -219,6 +244,48 @@ fn check_layers(width: usize, height: usize, s: usize) {
         &[cases_file.display().to_string()],
     );
     drop(server);
+
+    // The ev cases differ from their ev = 0 pictures: comparing within one step means
+    // something there.
+    for (k, settings) in cases.iter().enumerate().filter(|(_, s)| s.ev != 0.0) {
+        let plain = ShadeSettings {
+            ev: 0.0,
+            ..settings.clone()
+        };
+        let a = Shading::new(&data, settings).unwrap().image(&data);
+        let b = Shading::new(&data, &plain).unwrap().image(&data);
+        let c = compare(a.as_raw(), b.as_raw(), width);
+        assert!(
+            c.off.len() > 50,
+            "case {k}: ev changes {} pixels",
+            c.off.len()
+        );
+    }
+
+    // The overlay cases differ from their pictures without overlays (marks, legend, labels
+    // drawn): the page must composite the layer to pass.
+    let drawn = |s: &ShadeSettings| {
+        s.grid
+            || (s.shaders.contains(&ShaderKind::Time)
+                && s.time.mode == TimeMode::Travel
+                && s.time.legend)
+            || (s.shaders.contains(&ShaderKind::Frequency) && s.reference_squares)
+    };
+    for (k, settings) in cases.iter().enumerate().filter(|(_, s)| s.grid) {
+        let mut bare = settings.clone();
+        bare.grid = false;
+        bare.time.legend = false;
+        bare.reference_squares = false;
+        assert!(!drawn(&bare));
+        let a = Shading::new(&data, settings).unwrap().image(&data);
+        let b = Shading::new(&data, &bare).unwrap().image(&data);
+        let c = compare(a.as_raw(), b.as_raw(), width);
+        assert!(
+            c.off.len() > 200,
+            "case {k}: overlays change {} pixels",
+            c.off.len()
+        );
+    }
 
     let (mut worst, mut worst_excused, mut excused) = (0, 0, 0);
     for (k, settings) in cases.iter().enumerate() {

@@ -248,7 +248,7 @@ fn looking_around_on_the_gpu_equals_godel_look() {
     use ShaderKind::*;
     let cases = vec![
         json!({"look": {"projection": "pinhole", "fov": 90, "yaw": 30, "pitch": 10, "speed": 0},
-               "settings": with(&[Texture], &|_| {})}),
+               "settings": with(&[Texture], &|s| s.grid = true)}),
         json!({"look": {"projection": "pinhole", "fov": 60, "yaw": -20, "pitch": -5,
                  "speed": 0.6, "preset": "+x"},
         "settings": with(&[Texture, Frequency], &|s| {
@@ -259,7 +259,7 @@ fn looking_around_on_the_gpu_equals_godel_look() {
                "settings": with(&[Frequency, Time], &|s| s.time.mode = TimeMode::Travel)}),
         json!({"look": {"projection": "fisheye", "fov": 180, "yaw": 10, "pitch": 60,
                         "speed": 0.3, "preset": "-z"},
-               "settings": with(&[Texture, Time], &|_| {})}),
+               "settings": with(&[Texture, Time], &|s| s.grid = true)}),
         json!({"look": {"projection": "sphere", "fov": 360, "yaw": 0, "pitch": 0, "speed": 0,
                         "preset": "+x"},
                "settings": with(&[Frequency], &|s| s.reference_squares = false)}),
