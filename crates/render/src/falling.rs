@@ -49,6 +49,7 @@ struct Cell {
 /// A ball in free fall, seen from the origin frame of the rays' start.
 #[derive(Clone, Debug)]
 pub struct FallingBall {
+    a: f64,
     /// Sorted by time.
     cells: Vec<Cell>,
     /// Static distance M = reach + m within which a ray point may be in the ball, and
@@ -98,6 +99,7 @@ impl FallingBall {
         let near = reach + 0.5 * speed * dtau;
         let u_t = gamma + SQRT_2 * speed;
         Some(FallingBall {
+            a,
             cells,
             near,
             cosh_near: (near / a).cosh(),
@@ -105,6 +107,16 @@ impl FallingBall {
                 + 0.5 * u_t * dtau
                 + SLACK_PER_A * a,
         })
+    }
+
+    /// The same test with its reach and time slack scaled by `factor`: a test that compares
+    /// records with and without the rejection uses factor < 1 (an over-eager bound) to see
+    /// that the comparison catches it.
+    pub fn scaled(mut self, factor: f64) -> FallingBall {
+        self.near *= factor;
+        self.cosh_near = (self.near / self.a).cosh();
+        self.slack *= factor;
+        self
     }
 
     /// For the ray `ray` starting at time `t_start` (relative to `from.t`), per loop k

@@ -68,10 +68,12 @@ impl Rejection {
     pub fn new(a: f64, from: Event, target: &Target) -> Option<Rejection> {
         match target {
             Target::Plane { height, .. } => Some(Rejection::Plane { z: height - from.z }),
-            _ => StaticBall::new(a, from, target).map(Rejection::Ball).or_else(|| {
-                FallingBall::new(a, &Metric::Godel(Godel::new(a)), from, target)
-                    .map(Rejection::Falling)
-            }),
+            _ => StaticBall::new(a, from, target)
+                .map(Rejection::Ball)
+                .or_else(|| {
+                    FallingBall::new(a, &Metric::Godel(Godel::new(a)), from, target)
+                        .map(Rejection::Falling)
+                }),
         }
     }
 
@@ -210,7 +212,11 @@ pub fn set_ray(
     probes: &mut Probes,
 ) {
     let circle = geo
-        .filter(|_| rejections.iter().any(|r| matches!(r, Some(Rejection::Falling(_)))))
+        .filter(|_| {
+            rejections
+                .iter()
+                .any(|r| matches!(r, Some(Rejection::Falling(_))))
+        })
         .map(RayCircle::new);
     for i in 0..probes.on_ray.len() {
         let (on, by_loop) = match (rejections.get(i).and_then(Option::as_ref), geo) {

@@ -139,6 +139,18 @@ impl Tracer {
         self
     }
 
+    /// The same tracer with the reach of its balls in free fall scaled by `factor`
+    /// ([`crate::falling::FallingBall::scaled`]; for tests that must see an over-eager bound
+    /// change records).
+    pub fn with_falling_reach_scaled(mut self, factor: f64) -> Tracer {
+        for r in &mut self.rejections {
+            if let Some(Rejection::Falling(f)) = r {
+                *f = f.clone().scaled(factor);
+            }
+        }
+        self
+    }
+
     /// How far into the past rays are followed (coordinate time).
     pub fn max_past(&self) -> f64 {
         self.observer.t - self.t_bound
@@ -189,8 +201,8 @@ impl Tracer {
                 }
             }
         }
-        let near_any = probes.activate(0, 0.0);
-        if self.exact && !near_any {
+        probes.activate(0, 0.0);
+        if self.exact && !probes.on_ray.iter().any(|&on| on) {
             if let Some(status) = self.escape_unsearched(&start, geo) {
                 return Traced {
                     record: PixelRecord::miss(status),
