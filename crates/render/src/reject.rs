@@ -25,7 +25,7 @@
 //! the ray crosses the plane at most once, where p_z λ = h − z_0; a ray that keeps a clear
 //! side over the whole stretch searched never crosses it.
 
-use crate::circle::RayCircle;
+use crate::circle::{moved, RayCircle};
 use crate::falling::FallingBall;
 use crate::intersect::Probes;
 use crate::target::Target;
@@ -111,12 +111,6 @@ pub struct StaticBall {
     z: f64,
     /// Static distance beyond which no ray point is inside.
     reach: f64,
-}
-
-/// The hyperbolic distance 2a·atanh|(w − c)/(1 − c̄ w)| of two points of the disc, and the
-/// Möbius image (w − c)/(1 − c̄ w) (c moved to the disc's centre).
-fn moved(c: Complex, w: Complex) -> Complex {
-    (w - c) / (Complex::new(1.0, 0.0) - c.conj() * w)
 }
 
 /// The static distance √(d_H² + Δz²) between two points (x, y, z) of the static observers'
