@@ -99,7 +99,7 @@ impl RayCircle {
     /// distance m of the disc point `w` (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)):
     /// None only when it provably lies farther all over [lo, hi]; `hi` when unsure (NaN).
     pub fn last_within(&self, w: Complex, nw: f64, cosh_m: f64, lo: f64, hi: f64) -> Option<f64> {
-        if !(lo <= hi) {
+        if lo > hi || lo.is_nan() || hi.is_nan() {
             return None;
         }
         // cosh(d(h, w)/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
