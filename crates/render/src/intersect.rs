@@ -214,7 +214,7 @@ impl Intersector {
             if let Some((l, tau)) =
                 self.search(t, d, shift, lo, limit.min(hi), pa, pb, SEARCH_PROBES)?
             {
-                if best.as_ref().map_or(true, |b| l < b.lambda) {
+                if best.as_ref().is_none_or(|b| l < b.lambda) {
                     best = Some(Crossing {
                         target: i,
                         lambda: l,

@@ -13,6 +13,15 @@
 //! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
 //!   `--part i/N` part files and their merge.
 
+// `!(a < b)` is how this crate writes "not a < b, NaN included" (a NaN must fail the
+// test); per-axis loops over [f64; 3]; `Worldline::Free` is large, and boxing it would
+// add an indirection to every probe.
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::large_enum_variant
+)]
+
 pub mod bounds;
 pub mod circle;
 pub mod driver;

@@ -336,7 +336,7 @@ fn an_over_eager_falling_bound_changes_the_reference_scene() {
             let n_loops = (sc.trace.max_past / c.dt_loop.abs()).ceil() as usize;
             loops_total += n_loops;
             loops_cut += (0..n_loops)
-                .filter(|&k| out.get(k).map_or(true, |&u| u < c.l_ret))
+                .filter(|&k| out.get(k).is_none_or(|&u| u < c.l_ret))
                 .count();
         }
     }
