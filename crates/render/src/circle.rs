@@ -40,13 +40,7 @@ pub struct RayCircle {
     /// Coordinate time gained per turn in the origin frame:
     /// sgn(E)·2√2·a·π − E·λ_ret (t = sgn(E)·2√2·a·Φ(θ) − Eλ, Φ gains π per turn).
     pub dt_loop: f64,
-    /// Origin-frame time at λ = j·λ_ret/[`TIME_SAMPLES`] of the first turn, times the sign
-    /// of `dt_loop` (so increasing: t is monotone along the ray).
-    times: [f64; TIME_SAMPLES + 1],
 }
-
-/// Samples of the time along the first turn (see [`RayCircle::window`]).
-pub const TIME_SAMPLES: usize = 32;
 
 impl RayCircle {
     pub fn new(geo: &OriginGeodesic) -> RayCircle {
@@ -58,12 +52,6 @@ impl RayCircle {
         let big = (geo.r_max() / (2.0 * a)).asinh(); // ρ/a
         let h = dir.scale((0.5 * big).tanh());
         let l_ret = geo.return_parameter();
-        let dt_loop = sg * 2.0 * SQRT_2 * a * PI - geo.energy * l_ret;
-        let up = if dt_loop < 0.0 { -1.0 } else { 1.0 };
-        let mut times = [0.0; TIME_SAMPLES + 1];
-        for (j, t) in times.iter_mut().enumerate() {
-            *t = up * geo.at(l_ret * j as f64 / TIME_SAMPLES as f64).0.t;
-        }
         RayCircle {
             h,
             nh: 1.0 - h.norm_sqr(),
@@ -73,26 +61,8 @@ impl RayCircle {
             sg,
             l_ret,
             pz: geo.pz,
-            dt_loop,
-            times,
+            dt_loop: sg * 2.0 * SQRT_2 * a * PI - geo.energy * l_ret,
         }
-    }
-
-    /// A λ interval of turn k (absolute λ) outside which the ray's origin-frame time lies
-    /// outside [t_lo, t_hi]: t is monotone along the ray, so between two samples it lies
-    /// between their times.
-    pub fn window(&self, k: f64, t_lo: f64, t_hi: f64) -> (f64, f64) {
-        let shift = k * self.dt_loop;
-        let up = if self.dt_loop < 0.0 { -1.0 } else { 1.0 };
-        let (p, q) = (up * (t_lo - shift), up * (t_hi - shift));
-        let (lo, hi) = (p.min(q), p.max(q));
-        // Samples j ≤ i have times ≤ lo: λ ≥ λ_i; samples from j on have times ≥ hi.
-        let i = self.times.partition_point(|&t| t <= lo);
-        let j = self.times.partition_point(|&t| t < hi);
-        let step = self.l_ret / TIME_SAMPLES as f64;
-        let first = i.saturating_sub(1) as f64 * step;
-        let last = j.min(TIME_SAMPLES) as f64 * step;
-        (k * self.l_ret + first, k * self.l_ret + last)
     }
 
     /// The largest λ in [lo, hi] at which the ray's projection may lie within hyperbolic

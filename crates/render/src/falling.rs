@@ -76,7 +76,7 @@ impl FallingBall {
         let speed = (gamma * gamma - 1.0).max(0.0).sqrt(); // γv
         let v = speed / gamma;
         let span = tau_max - tau_min;
-        let dtau = (0.5 * radius).max(span / MAX_CELLS);
+        let dtau = radius.max(span / MAX_CELLS);
         let n = ((span / dtau).ceil() as usize).max(1);
         let to = Isometry::to_origin(a, from);
         let mut cells = Vec::with_capacity(n);
@@ -145,7 +145,7 @@ impl FallingBall {
                 return true;
             }
             let l1 = (l0 + ray.l_ret).min(until);
-            let u = self.last_near(ray, (kf, t_start), ta.min(tb), ta.max(tb), l0, l1);
+            let u = self.last_near(ray, ta.min(tb), ta.max(tb), l0, l1);
             out.push(u.map_or(f64::NEG_INFINITY, |l| l - l0));
             if u.is_some() {
                 needed = out.len();
@@ -154,18 +154,9 @@ impl FallingBall {
         false
     }
 
-    /// The last λ in [l0, l1] (loop k of a ray starting at `t_start`, with times in
-    /// [t_lo, t_hi]) at which the ray may be within the ball: for each cell, where the ray's
-    /// time is within S of the cell's, its z within M and its circle within M.
-    fn last_near(
-        &self,
-        ray: &RayCircle,
-        (k, t_start): (f64, f64),
-        t_lo: f64,
-        t_hi: f64,
-        l0: f64,
-        l1: f64,
-    ) -> Option<f64> {
+    /// The last λ in [l0, l1] (one loop, with times in [t_lo, t_hi]) at which the ray may
+    /// be within the ball.
+    fn last_near(&self, ray: &RayCircle, t_lo: f64, t_hi: f64, l0: f64, l1: f64) -> Option<f64> {
         let m = self.near;
         let i0 = self.cells.partition_point(|c| c.t < t_lo - self.slack);
         let mut last: Option<f64> = None;
@@ -183,9 +174,6 @@ impl FallingBall {
                 let (p, q) = ((c.z - m) / ray.pz, (c.z + m) / ray.pz);
                 (p.min(q).max(l0), p.max(q).min(l1))
             };
-            // The λ window of the loop where the ray's time is within S of the cell's.
-            let (wl, wh) = ray.window(k, c.t - self.slack - t_start, c.t + self.slack - t_start);
-            let (lo, hi) = (lo.max(wl), hi.min(wh));
             let lo = last.map_or(lo, |l| lo.max(l));
             if let Some(l) = ray.last_within(c.w, c.nw, self.cosh_near, lo, hi) {
                 last = Some(l);

@@ -4,6 +4,9 @@
 //! light are the same, bit for bit, with and without the rejection (and an over-eager bound
 //! is caught by that comparison).
 
+mod common;
+
+use common::tracer;
 use proptest::prelude::*;
 use render::circle::RayCircle;
 use render::falling::{FallingBall, REACH_PER_GAMMA_RADIUS};
@@ -138,31 +141,6 @@ proptest! {
         }
         let _ = inside;
     }
-}
-
-/// The renderer's tracer of a scene.
-fn tracer(sc: &scene::Scene) -> Tracer {
-    use render::intersect::Intersector;
-    use render::tracer::TraceOptions;
-    let m = sc.metric;
-    let o = sc.observer;
-    let t_min = o.event.t - sc.trace.max_past - 1.0;
-    let targets = sc
-        .objects
-        .iter()
-        .map(|ob| Target::new(m, ob, t_min, o.event.t + 1.0).unwrap())
-        .collect();
-    Tracer::new(
-        Intersector { metric: m, targets },
-        o.event,
-        m.observer_frame(o.event, o.velocity),
-        TraceOptions {
-            max_past: sc.trace.max_past,
-            tolerance: sc.trace.tolerance,
-            max_steps: sc.trace.max_steps,
-            exact: sc.trace.method == scene::TraceMethod::Exact,
-        },
-    )
 }
 
 /// A random scene of falling balls (start place, speed, direction, radius) and maybe one

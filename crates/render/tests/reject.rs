@@ -1,6 +1,9 @@
 //! Whole-ray rejection of balls at rest (`render::reject`): the reach covers the renderer's
 //! own ball, and a rejected ray never comes within the reach of the centre on any loop.
 
+mod common;
+
+use common::tracer;
 use proptest::prelude::*;
 use render::reject::{static_distance, StaticBall, REACH_PER_A, REACH_PER_RADIUS};
 use render::target::Target;
@@ -193,31 +196,6 @@ fn random_scene(
         );
     }
     scene::Scene::from_str(&text, "random.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
-}
-
-/// The scene's tracer, built as the renderer builds it.
-fn tracer(sc: &scene::Scene) -> render::tracer::Tracer {
-    use render::intersect::Intersector;
-    use render::tracer::{TraceOptions, Tracer};
-    let m = sc.metric;
-    let o = sc.observer;
-    let t_min = o.event.t - sc.trace.max_past - 1.0;
-    let targets = sc
-        .objects
-        .iter()
-        .map(|ob| Target::new(m, ob, t_min, o.event.t + 1.0).unwrap())
-        .collect();
-    Tracer::new(
-        Intersector { metric: m, targets },
-        o.event,
-        m.observer_frame(o.event, o.velocity),
-        TraceOptions {
-            max_past: sc.trace.max_past,
-            tolerance: sc.trace.tolerance,
-            max_steps: sc.trace.max_steps,
-            exact: sc.trace.method == scene::TraceMethod::Exact,
-        },
-    )
 }
 
 proptest! {
