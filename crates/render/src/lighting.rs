@@ -37,7 +37,9 @@
 //! on the closed-form curve from emission to just before the hit ([`END_CUT`]): the lit
 //! surface itself is not counted at its end point, but it does block a ray that passes
 //! through the object earlier (self-shadowing, e.g. of later windings). Objects at rest that
-//! a connecting ray provably never comes near (`crate::reject`) are left out of its search.
+//! a connecting ray provably never comes near (`crate::reject`) are left out of its search,
+//! and a ball in free fall from the ray's last λ within its reach on (docs/physics.md,
+//! "Occlusion").
 
 use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
 use crate::reject::{set_ray, Rejection};

@@ -20,7 +20,9 @@
 //! Objects at rest that a ray provably never comes near (`crate::reject`, one test per ray
 //! and object for all its loops) are left out of its search; a ray of the exact tracer that
 //! comes near none of the objects is not followed at all (it escapes, as its search would
-//! have found).
+//! have found). A ball in free fall is left out of each loop from the last λ on where the
+//! ray may be within its reach (`crate::falling`, docs/physics.md "Balls in free fall"):
+//! only a loop's start probes afresh, so only a loop's end may go unsearched.
 //!
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
