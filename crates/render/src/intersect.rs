@@ -59,14 +59,56 @@ pub struct Probes {
     pub start: Vec<Measured>,
     pub end: Vec<Measured>,
     /// False for an object the ray provably never comes near (`crate::reject`): it is
-    /// neither probed nor searched. Set per ray by its caller (all true by default).
+    /// neither probed nor searched. Set per segment by its caller (all true by default),
+    /// from the following.
     pub active: Vec<bool>,
+    /// Whether the current ray searches the object at all (`crate::reject::set_ray`).
+    pub on_ray: Vec<bool>,
+    /// Whether `loops` limits the search of the object (balls in free fall).
+    pub by_loop: Vec<bool>,
+    /// Per object and loop k of the ray: the λ, from the loop's start, up to which the loop
+    /// searches it (−∞, or a loop past the end: not at all).
+    pub loops: Vec<Vec<f64>>,
 }
 
 impl Probes {
     /// The end probes become the next segment's start probes.
     pub fn advance(&mut self) {
         std::mem::swap(&mut self.start, &mut self.end);
+    }
+
+    /// The λ, from the start of loop `k`, up to which the current ray searches object `i`.
+    pub fn until(&self, i: usize, k: usize) -> f64 {
+        if !self.on_ray[i] {
+            f64::NEG_INFINITY
+        } else if !self.by_loop[i] {
+            f64::INFINITY
+        } else {
+            self.loops[i].get(k).copied().unwrap_or(f64::NEG_INFINITY)
+        }
+    }
+
+    /// The last λ of the whole ray (loops of parameter `l_ret`) at which object `i` is
+    /// searched.
+    pub fn last(&self, i: usize, l_ret: f64) -> f64 {
+        if !self.on_ray[i] || !self.by_loop[i] {
+            return self.until(i, 0);
+        }
+        (self.loops[i].iter().enumerate())
+            .map(|(k, u)| k as f64 * l_ret + u)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Sets `active` for a segment of loop `k` that starts at `lambda0` (from the loop's
+    /// start): an object is searched while λ ≤ its `until`, so within a loop only a first
+    /// stretch of segments is searched (a later loop probes afresh). Whether any is.
+    pub fn activate(&mut self, k: usize, lambda0: f64) -> bool {
+        let mut any = false;
+        for i in 0..self.active.len() {
+            self.active[i] = lambda0 <= self.until(i, k);
+            any |= self.active[i];
+        }
+        any
     }
 }
 
@@ -102,6 +144,9 @@ impl Intersector {
             start: vec![none; self.targets.len()],
             end: vec![none; self.targets.len()],
             active: vec![true; self.targets.len()],
+            on_ray: vec![true; self.targets.len()],
+            by_loop: vec![false; self.targets.len()],
+            loops: vec![Vec::new(); self.targets.len()],
         }
     }
 
@@ -169,7 +214,7 @@ impl Intersector {
             if let Some((l, tau)) =
                 self.search(t, d, shift, lo, limit.min(hi), pa, pb, SEARCH_PROBES)?
             {
-                if best.as_ref().map_or(true, |b| l < b.lambda) {
+                if best.as_ref().is_none_or(|b| l < b.lambda) {
                     best = Some(Crossing {
                         target: i,
                         lambda: l,

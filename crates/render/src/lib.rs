@@ -7,13 +7,25 @@
 //! - [`intersect`]: the bounded intersection search shared by pixel and shadow rays, over
 //!   the [`segment`]s of a ray; [`target`]: the objects' signed distances and surfaces;
 //!   [`worldline`]: the objects' worldlines and body frames; [`bounds`]: boxes;
-//!   [`reject`]: whole-ray rejection of objects at rest.
+//!   [`reject`]: whole-ray rejection of objects at rest, and loop by loop of balls in free
+//!   fall ([`falling`]), with the rays' circles ([`circle`]).
 //! - [`lighting`]: direct light from point sources by shadow rays.
 //! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
 //!   `--part i/N` part files and their merge.
 
+// `!(a < b)` is how this crate writes "not a < b, NaN included" (a NaN must fail the
+// test); per-axis loops over [f64; 3]; `Worldline::Free` is large, and boxing it would
+// add an indirection to every probe.
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::large_enum_variant
+)]
+
 pub mod bounds;
+pub mod circle;
 pub mod driver;
+pub mod falling;
 pub mod intersect;
 pub mod lighting;
 pub mod part;

@@ -37,10 +37,12 @@
 //! on the closed-form curve from emission to just before the hit ([`END_CUT`]): the lit
 //! surface itself is not counted at its end point, but it does block a ray that passes
 //! through the object earlier (self-shadowing, e.g. of later windings). Objects at rest that
-//! a connecting ray provably never comes near (`crate::reject`) are left out of its search.
+//! a connecting ray provably never comes near (`crate::reject`) are left out of its search,
+//! and a ball in free fall from the ray's last λ within its reach on (docs/physics.md,
+//! "Occlusion").
 
 use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
-use crate::reject::Rejection;
+use crate::reject::{set_ray, Rejection};
 use crate::segment::{Segment, Shift, EXACT_SEGMENTS};
 use spacetime::{
     shadow_rays, source_area_distance_sq, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
@@ -165,7 +167,8 @@ impl Lighting {
             if !(d2 > 0.0 && d2.is_finite()) {
                 continue;
             }
-            if occluded(objects, geo, &ray, rejections, probes).ok()? {
+            let from = (ray.emission.t - light.position.t, rejections);
+            if occluded(objects, geo, &ray, from, probes).ok()? {
                 continue;
             }
             sum += light.power * inc.energy * inc.energy * inc.cos / (4.0 * PI * d2);
@@ -191,25 +194,30 @@ impl Lighting {
 /// Whether any object blocks `ray` (future-directed from its emission) before it reaches
 /// its end, cut short by [`END_CUT`]. A surface crossing blocks, so a light inside a ball
 /// reaches only the ball's inner surface. Objects whose `rejections` test rejects the ray over
-/// that stretch are not searched (nothing to search: not occluded).
+/// that stretch are not searched (nothing to search: not occluded); a ball in free fall is
+/// searched only up to the last λ where the ray may be within its reach (docs/physics.md,
+/// "Occlusion"). `t_start`: the emission's time after the light's event of the tests.
 fn occluded(
     objects: &Intersector,
     geo: ExactGeodesic,
     ray: &ShadowRay,
-    rejections: &[Option<Rejection>],
+    (t_start, rejections): (f64, &[Option<Rejection>]),
     probes: &mut Probes,
 ) -> Result<bool, OutOfWork> {
     let metric = objects.metric;
     let end = ray.lambda * (1.0 - END_CUT);
-    let mut near_any = false;
-    for (i, on) in probes.active.iter_mut().enumerate() {
-        *on = !rejections
-            .get(i)
-            .and_then(Option::as_ref)
-            .is_some_and(|b| b.misses(&geo.origin, end));
-        near_any |= *on;
+    set_ray(rejections, Some(&geo.origin), t_start, end, probes);
+    let l_ret = geo.origin.return_parameter();
+    // One chain of segments with no fresh probe: an object is searched from the start up
+    // to its last λ within reach (a stretch searched later would start from other probes).
+    for i in 0..probes.loops.len() {
+        if probes.by_loop[i] {
+            let last = probes.last(i, l_ret);
+            probes.loops[i].clear();
+            probes.loops[i].push(last);
+        }
     }
-    if !near_any {
+    if !probes.activate(0, 0.0) {
         return Ok(false);
     }
     let start = GeodesicState {
@@ -224,6 +232,7 @@ fn occluded(
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
         let d = Segment::exact(geo, sys, l0, y0, l1);
+        probes.activate(0, l0);
         if objects
             .scan(&d, Shift::default(), l0, l1, probes)?
             .is_some()

@@ -25,10 +25,13 @@
 //! the ray crosses the plane at most once, where p_z λ = h − z_0; a ray that keeps a clear
 //! side over the whole stretch searched never crosses it.
 
+use crate::circle::{moved, RayCircle};
+use crate::falling::FallingBall;
+use crate::intersect::Probes;
 use crate::target::Target;
 use crate::worldline::Worldline;
 use spacetime::isometry::disc;
-use spacetime::{Complex, Event, Isometry, OriginGeodesic};
+use spacetime::{Complex, Event, Godel, Isometry, Metric, OriginGeodesic};
 use std::f64::consts::{PI, TAU};
 
 /// Static distance D from the centre covered by a local ball at rest of radius R, per R.
@@ -47,23 +50,30 @@ pub const REACH_PER_A: f64 = 1e-6;
 pub const NUMERIC_TOLERANCE: f64 = 1e-9;
 
 /// An object whose whole-ray test [`Rejection::misses`] can leave it out of a ray's search.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub enum Rejection {
     Ball(StaticBall),
     /// A plane at height `z` in the origin frame (its extent ignored: conservative).
     Plane {
         z: f64,
     },
+    /// A ball in free fall: rejected loop by loop (`crate::falling`).
+    Falling(FallingBall),
 }
 
 impl Rejection {
     /// The rejection test of `target` for rays from the place of `from` (see
-    /// [`StaticBall::new`]), in Gödel's universe with parameter `a`; None for objects in
-    /// motion and coordinate spheres.
+    /// [`StaticBall::new`]; for a ball in free fall also its time), in Gödel's universe with
+    /// parameter `a`; None for coordinate spheres.
     pub fn new(a: f64, from: Event, target: &Target) -> Option<Rejection> {
         match target {
             Target::Plane { height, .. } => Some(Rejection::Plane { z: height - from.z }),
-            _ => StaticBall::new(a, from, target).map(Rejection::Ball),
+            _ => StaticBall::new(a, from, target)
+                .map(Rejection::Ball)
+                .or_else(|| {
+                    FallingBall::new(a, &Metric::Godel(Godel::new(a)), from, target)
+                        .map(Rejection::Falling)
+                }),
         }
     }
 
@@ -71,9 +81,11 @@ impl Rejection {
     /// never enters the object's surface (see [`StaticBall::misses`]). A plane: the
     /// signed height p_z λ − z keeps one side, clear of the plane by more than rounding, at
     /// both ends (it is linear in λ).
+    /// A ball in free fall: never (see [`set_ray`] for its test, loop by loop).
     pub fn misses(&self, geo: &OriginGeodesic, until: f64) -> bool {
         match *self {
             Rejection::Ball(b) => b.misses(geo, until),
+            Rejection::Falling(_) => false,
             Rejection::Plane { z } => {
                 let f0 = -z;
                 let (f1, span) = if until.is_finite() {
@@ -99,12 +111,6 @@ pub struct StaticBall {
     z: f64,
     /// Static distance beyond which no ray point is inside.
     reach: f64,
-}
-
-/// The hyperbolic distance 2a·atanh|(w − c)/(1 − c̄ w)| of two points of the disc, and the
-/// Möbius image (w − c)/(1 − c̄ w) (c moved to the disc's centre).
-fn moved(c: Complex, w: Complex) -> Complex {
-    (w - c) / (Complex::new(1.0, 0.0) - c.conj() * w)
 }
 
 /// The static distance √(d_H² + Δz²) between two points (x, y, z) of the static observers'
@@ -184,5 +190,40 @@ impl StaticBall {
         let (x, y) = (d_hc / a, rho / a);
         let cosh_d = x.cosh() * y.cosh() - x.sinh() * y.sinh() * cos_d;
         a * cosh_d.max(1.0).acosh() > reach
+    }
+}
+
+/// Sets, for the closed-form ray `geo` from the start of the rays (its time `t_start`
+/// after the `from` event of the tests), over λ ∈ [0, until], which objects it searches
+/// ([`Probes::on_ray`]) and, for balls in free fall, up to which λ of each loop
+/// ([`Probes::loops`]). With no closed form (`None`: not Gödel's universe) or no test, an
+/// object is searched all along.
+pub fn set_ray(
+    rejections: &[Option<Rejection>],
+    geo: Option<&OriginGeodesic>,
+    t_start: f64,
+    until: f64,
+    probes: &mut Probes,
+) {
+    let circle = geo
+        .filter(|_| {
+            rejections
+                .iter()
+                .any(|r| matches!(r, Some(Rejection::Falling(_))))
+        })
+        .map(RayCircle::new);
+    for i in 0..probes.on_ray.len() {
+        let (on, by_loop) = match (rejections.get(i).and_then(Option::as_ref), geo) {
+            (Some(Rejection::Falling(f)), Some(_)) => {
+                let sure = circle
+                    .as_ref()
+                    .is_some_and(|c| f.loops(c, t_start, until, &mut probes.loops[i]));
+                (!sure || !probes.loops[i].is_empty(), sure)
+            }
+            (Some(r), Some(g)) => (!r.misses(g, until), false),
+            _ => (true, false),
+        };
+        probes.on_ray[i] = on;
+        probes.by_loop[i] = by_loop;
     }
 }

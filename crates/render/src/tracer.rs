@@ -20,12 +20,14 @@
 //! Objects at rest that a ray provably never comes near (`crate::reject`, one test per ray
 //! and object for all its loops) are left out of its search; a ray of the exact tracer that
 //! comes near none of the objects is not followed at all (it escapes, as its search would
-//! have found).
+//! have found). A ball in free fall is left out of each loop from the last λ on where the
+//! ray may be within its reach (`crate::falling`, docs/physics.md "Balls in free fall"):
+//! only a loop's start probes afresh, so only a loop's end may go unsearched.
 //!
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
-use crate::reject::{Rejection, NUMERIC_TOLERANCE};
+use crate::reject::{set_ray, Rejection, NUMERIC_TOLERANCE};
 use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use datafile::record::{PixelRecord, RayStatus};
 use spacetime::measure::frequency_ratio;
@@ -139,6 +141,18 @@ impl Tracer {
         self
     }
 
+    /// The same tracer with the reach of its balls in free fall scaled by `factor`
+    /// ([`crate::falling::FallingBall::scaled`]; for tests that must see an over-eager bound
+    /// change records).
+    pub fn with_falling_reach_scaled(mut self, factor: f64) -> Tracer {
+        for r in &mut self.rejections {
+            if let Some(Rejection::Falling(f)) = r {
+                *f = f.clone().scaled(factor);
+            }
+        }
+        self
+    }
+
     /// How far into the past rays are followed (coordinate time).
     pub fn max_past(&self) -> f64 {
         self.observer.t - self.t_bound
@@ -173,12 +187,24 @@ impl Tracer {
             .godel_a()
             .filter(|_| self.exact || self.rejections.iter().any(Option::is_some))
             .and_then(|a| ExactGeodesic::new(a, self.observer, k));
-        let mut near_any = false;
-        for (on, rej) in probes.active.iter_mut().zip(&self.rejections) {
-            *on = !matches!((rej, &geo), (Some(r), Some(g)) if r.misses(&g.origin, f64::INFINITY));
-            near_any |= *on;
+        set_ray(
+            &self.rejections,
+            geo.as_ref().map(|g| &g.origin),
+            0.0,
+            f64::INFINITY,
+            probes,
+        );
+        if !self.exact {
+            // A numeric first loop that does not close runs on without fresh probes: it
+            // may leave a ball in free fall out of its end only if no later loop needs it.
+            for (i, loops) in probes.loops.iter_mut().enumerate() {
+                if probes.by_loop[i] && loops.len() > 1 {
+                    loops[0] = f64::INFINITY;
+                }
+            }
         }
-        if self.exact && !near_any {
+        probes.activate(0, 0.0);
+        if self.exact && !probes.on_ray.iter().any(|&on| on) {
             if let Some(status) = self.escape_unsearched(&start, geo) {
                 return Traced {
                     record: PixelRecord::miss(status),
@@ -244,6 +270,7 @@ impl Tracer {
             }
             segments.push(Segment::step(ode.last_step(), sys));
             let d = segments.last().expect("just pushed");
+            probes.activate(0, d.lambda0);
             let mut hi = d.lambda1();
             let mut closed = None;
             if periodic {
@@ -347,6 +374,7 @@ impl Tracer {
             let y0 = segments.last().map_or(s0, |d| d.y1);
             segments.push(Segment::exact(geo, sys, l0, y0, l1));
             let d = segments.last().expect("just pushed");
+            probes.activate(0, l0);
             if let Some(end) = self.scan_first_loop(segments, l0, l1, probes) {
                 return FirstLoop::Ended(end);
             }
@@ -387,17 +415,18 @@ impl Tracer {
             }
             let here = loop_box.shifted_z(shift.dz);
             let metric = &self.objects.metric;
-            if !self
-                .objects
-                .targets
-                .iter()
-                .any(|t| t.bounds(metric, t_lo, t_hi).intersects(&here))
+            // Objects this loop searches at all (`crate::reject`), and whose box it meets.
+            let k = k as usize;
+            if !probes.activate(k, 0.0)
+                || !(self.objects.targets.iter().zip(&probes.active))
+                    .any(|(t, &on)| on && t.bounds(metric, t_lo, t_hi).intersects(&here))
             {
                 continue;
             }
             let first = shift.apply(segments[0].state_at(segments[0].lambda0));
             self.objects.probe_all(&first, shift.dl, probes);
             for (i, d) in segments.iter().enumerate() {
+                probes.activate(k, d.lambda0);
                 let hi = if i + 1 == segments.len() {
                     period.dl
                 } else {

@@ -257,6 +257,15 @@ impl Worldline {
         }
     }
 
+    /// The proper-time range [τ_min, τ_max] of a free fall and its Lorentz factor γ = −u_t
+    /// relative to the static observers (None at rest).
+    pub fn free_fall_range(&self) -> Option<(f64, f64, f64)> {
+        match self {
+            Worldline::Rest { .. } => None,
+            Worldline::Free(f) => Some((f.tau_min, f.tau_max, (-f.start[4]).max(1.0))),
+        }
+    }
+
     /// How many integration steps the worldline holds (0 at rest).
     pub fn integration_steps(&self) -> usize {
         match self {

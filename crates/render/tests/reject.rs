@@ -1,6 +1,9 @@
 //! Whole-ray rejection of balls at rest (`render::reject`): the reach covers the renderer's
 //! own ball, and a rejected ray never comes within the reach of the centre on any loop.
 
+mod common;
+
+use common::tracer;
 use proptest::prelude::*;
 use render::reject::{static_distance, StaticBall, REACH_PER_A, REACH_PER_RADIUS};
 use render::target::Target;
@@ -195,39 +198,15 @@ fn random_scene(
     scene::Scene::from_str(&text, "random.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
 }
 
-/// The scene's tracer, built as the renderer builds it.
-fn tracer(sc: &scene::Scene) -> render::tracer::Tracer {
-    use render::intersect::Intersector;
-    use render::tracer::{TraceOptions, Tracer};
-    let m = sc.metric;
-    let o = sc.observer;
-    let t_min = o.event.t - sc.trace.max_past - 1.0;
-    let targets = sc
-        .objects
-        .iter()
-        .map(|ob| Target::new(m, ob, t_min, o.event.t + 1.0).unwrap())
-        .collect();
-    Tracer::new(
-        Intersector { metric: m, targets },
-        o.event,
-        m.observer_frame(o.event, o.velocity),
-        TraceOptions {
-            max_past: sc.trace.max_past,
-            tolerance: sc.trace.tolerance,
-            max_steps: sc.trace.max_steps,
-            exact: sc.trace.method == scene::TraceMethod::Exact,
-        },
-    )
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
     /// The rejection changes nothing: every pixel's record (bit for bit) is the same with it
     /// as without it, for both tracers, moving observers, several balls at rest near and far
     /// (also around the observer), with and without a floor plane and a ball in free fall
-    /// (never rejected). (That rejection happens at all is `most_rays_far_from_a_ball_are_
-    /// rejected`; that hits survive it, every image test of the renderer, which run with it.)
+    /// (rejected loop by loop; see also `tests/falling.rs`). (That rejection happens at all
+    /// is `most_rays_far_from_a_ball_are_rejected`; that hits survive it, every image test of
+    /// the renderer, which run with it.)
     #[test]
     fn records_are_the_same_with_and_without_rejection(
         a in 0.5f64..2.0,

@@ -1,4 +1,8 @@
 //! Shared by the render benches: an example scene at a given size and tracing method.
+//!
+//! Only the `[camera]` table's `width`, `height` and `samples` and the `[trace]` table's
+//! `method` are replaced; every other line (an object's `height`, for instance, the height
+//! of a plane) is kept as written, so that the bench renders the scene file's geometry.
 
 use scene::Scene;
 use std::path::Path;
@@ -16,22 +20,29 @@ pub fn sampled_scene(path: &str, width: u32, height: u32, method: &str, samples:
         .join("../..")
         .join(path);
     let text = std::fs::read_to_string(&p).expect("scene file");
-    let text = text
-        .lines()
-        .map(|l| {
-            if l.starts_with("width") {
-                format!("width = {width}")
-            } else if l.starts_with("height") {
-                format!("height = {height}\nsamples = {samples}")
-            } else if l.starts_with("samples") {
-                String::new()
-            } else if l.starts_with("method") {
-                format!("method = \"{method}\"")
-            } else {
-                l.to_string()
+    let mut table = "";
+    let mut out = Vec::new();
+    for l in text.lines() {
+        let key = l.split('=').next().unwrap_or("").trim();
+        if l.starts_with('[') {
+            table = l.trim();
+        }
+        match (table, key) {
+            ("[camera]", "width") => out.push(format!("width = {width}")),
+            ("[camera]", "height") => {
+                out.push(format!("height = {height}"));
+                out.push(format!("samples = {samples}"));
             }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    Scene::from_str(&text, path).expect("valid scene")
+            ("[camera]", "samples") => {}
+            ("[trace]", "method") => out.push(format!("method = \"{method}\"")),
+            _ => out.push(l.to_string()),
+        }
+    }
+    let scene = Scene::from_str(&out.join("\n"), path).expect("valid scene");
+    assert_eq!(
+        (scene.camera.width(), scene.camera.height()),
+        (width, height),
+        "{path}: the bench could not set the camera size"
+    );
+    scene
 }

@@ -2,7 +2,7 @@
 //! connected groups of hit pixels, the panorama's pixel geometry (docs/physics.md, "Pixels
 //! and cameras"), and an independent numeric shoot-and-solve for the light rays connecting
 //! the observer on the Gödel axis with a static point (built on `spacetime::trace` only, not
-//! on the renderer).
+//! on the renderer); the tracer of a scene, built as the renderer builds it.
 #![allow(dead_code)]
 
 use datafile::DataFile;
@@ -227,4 +227,31 @@ pub fn closed_form_images(a: f64, rho: f64, phi_c: f64) -> [(f64, f64); 2] {
         )
     };
     [img(th1), img(th2)]
+}
+
+/// The scene's tracer, built as the renderer builds it (worldlines one time unit beyond the
+/// traced range on both sides).
+pub fn tracer(sc: &Scene) -> render::tracer::Tracer {
+    use render::intersect::Intersector;
+    use render::target::Target;
+    use render::tracer::{TraceOptions, Tracer};
+    let m = sc.metric;
+    let o = sc.observer;
+    let t_min = o.event.t - sc.trace.max_past - 1.0;
+    let targets = sc
+        .objects
+        .iter()
+        .map(|ob| Target::new(m, ob, t_min, o.event.t + 1.0).unwrap())
+        .collect();
+    Tracer::new(
+        Intersector { metric: m, targets },
+        o.event,
+        m.observer_frame(o.event, o.velocity),
+        TraceOptions {
+            max_past: sc.trace.max_past,
+            tolerance: sc.trace.tolerance,
+            max_steps: sc.trace.max_steps,
+            exact: sc.trace.method == scene::TraceMethod::Exact,
+        },
+    )
 }

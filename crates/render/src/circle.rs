@@ -1,0 +1,108 @@
+//! A Gödel light ray's spatial projection as a circle of the hyperbolic disc, with the
+//! λ-stretches where it may pass within a given distance of a point (docs/physics.md,
+//! "Whole-ray rejection" for the circle, "Balls in free fall" for the stretches).
+//!
+//! In the disc coordinate w of the static observers' space (curvature −1/a²), the light ray
+//! through the origin with the closed form of "Closed forms" runs along the hyperbolic
+//! circle with centre h (halfway to its farthest point) and radius ρ = a·asinh(r_max/2a),
+//! its angle about h growing by sgn(E)·2π per return parameter λ_ret. A point w at
+//! distance d from h and a ray point at angle δ from w's direction (seen from h) are at
+//! distance d_H with cosh(d_H/a) = cosh(d/a)·cosh(ρ/a) − sinh(d/a)·sinh(ρ/a)·cos δ, so
+//! d_H ≤ m exactly on an arc |δ| ≤ A of every turn.
+
+use spacetime::{Complex, OriginGeodesic};
+use std::f64::consts::{PI, SQRT_2, TAU};
+
+/// Added to the half-width of an arc (radians): rounding of the angles.
+const ARC_SLACK: f64 = 1e-9;
+
+/// The Möbius image (w − c)/(1 − c̄ w) of w (c moved to the disc's centre).
+pub fn moved(c: Complex, w: Complex) -> Complex {
+    (w - c) / (Complex::new(1.0, 0.0) - c.conj() * w)
+}
+
+/// The circle of one light ray through the origin (see the module documentation).
+#[derive(Clone, Copy, Debug)]
+pub struct RayCircle {
+    h: Complex,
+    /// 1 − |h|².
+    nh: f64,
+    cosh_rho: f64,
+    sinh_rho: f64,
+    /// sgn(E) times the angle of the origin about h (λ = 0).
+    psi0: f64,
+    /// sgn(E).
+    sg: f64,
+    /// Return parameter λ_ret: one turn.
+    pub l_ret: f64,
+    /// dz/dλ.
+    pub pz: f64,
+    /// Coordinate time gained per turn in the origin frame:
+    /// sgn(E)·2√2·a·π − E·λ_ret (t = sgn(E)·2√2·a·Φ(θ) − Eλ, Φ gains π per turn).
+    pub dt_loop: f64,
+}
+
+impl RayCircle {
+    pub fn new(geo: &OriginGeodesic) -> RayCircle {
+        let a = geo.a;
+        let sg = geo.energy.signum();
+        let (c, s) = geo.cis_chi();
+        // The farthest point lies in the direction χ + sgn(E)·π/2.
+        let dir = Complex::new(-sg * s, sg * c);
+        let big = (geo.r_max() / (2.0 * a)).asinh(); // ρ/a
+        let h = dir.scale((0.5 * big).tanh());
+        let l_ret = geo.return_parameter();
+        RayCircle {
+            h,
+            nh: 1.0 - h.norm_sqr(),
+            cosh_rho: big.cosh(),
+            sinh_rho: big.sinh(),
+            psi0: sg * (Complex::new(0.0, 0.0) - h).arg(),
+            sg,
+            l_ret,
+            pz: geo.pz,
+            dt_loop: sg * 2.0 * SQRT_2 * a * PI - geo.energy * l_ret,
+        }
+    }
+
+    /// The largest λ in [lo, hi] at which the ray's projection may lie within hyperbolic
+    /// distance m of the disc point `w` (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)):
+    /// None only when it provably lies farther all over [lo, hi]; `hi` when unsure (NaN).
+    pub fn last_within(&self, w: Complex, nw: f64, cosh_m: f64, lo: f64, hi: f64) -> Option<f64> {
+        if lo > hi || lo.is_nan() || hi.is_nan() {
+            return None;
+        }
+        // cosh(d(h, w)/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
+        let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
+        let sh = (ch * ch - 1.0).max(0.0).sqrt();
+        let num = ch * self.cosh_rho - cosh_m;
+        let den = sh * self.sinh_rho;
+        if !(num.is_finite() && den.is_finite()) {
+            return Some(hi);
+        }
+        if num <= -den {
+            return Some(hi); // within m all round the circle
+        }
+        if num > den {
+            return None; // beyond m all round (cos δ would have to exceed 1)
+        }
+        let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
+        // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h.
+        let beta = moved(self.h, w).arg();
+        let psi_hi = self.psi0 - self.sg * beta + TAU * hi / self.l_ret;
+        let r = psi_hi - TAU * (psi_hi / TAU).round();
+        let back = if r.abs() <= half {
+            0.0
+        } else if r > half {
+            r - half
+        } else {
+            r + TAU - half
+        };
+        let l = hi - back * self.l_ret / TAU;
+        if l.is_nan() {
+            Some(hi)
+        } else {
+            (l >= lo).then_some(l)
+        }
+    }
+}

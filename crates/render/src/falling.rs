@@ -1,0 +1,187 @@
+//! Rejection of balls in free fall, loop by loop of a ray (docs/physics.md, "Balls in free
+//! fall").
+//!
+//! A free-falling centre moves through the static observers' space at the constant speed
+//! √(γ² − 1) per unit of its proper time (γ = −u_t is conserved), and its coordinate time
+//! changes by at most U = γ + √2·√(γ² − 1) per unit of proper time (u^t = γ + g_ti u^i and
+//! |g_ti u^i| ≤ √2 times the static length of u's spatial part). So the worldline, cut into
+//! cells of proper time Δτ, lies within static distance m = √(γ² − 1)·Δτ/2 of each cell's
+//! middle point, at coordinate times within U·Δτ/2 of its time. A point X inside the
+//! renderer's ball (|ξ| ≤ R at the simultaneous centre P) lies within static distance
+//! 1.25·γ·R of P (a boost stretches rest-frame lengths by at most γ; 1.25 covers the
+//! second-order terms, measured ≤ 1.05) and within coordinate time 1.25·γ·R·(v + √2) of it
+//! (the rest frame's "now" is tilted by γv against the static one, and coordinate time
+//! differs from static time by g_ti Δx^i). A loop of a ray (origin frame: t monotone along
+//! it, from kΔ to (k+1)Δ) can therefore meet the ball only at ray points within static
+//! distance M = reach + m of some cell whose time lies within the loop's window widened by
+//! S = 1.25·γ·R·(v + √2) + U·Δτ/2; the ray's circle (`crate::circle`) and its linear z give
+//! the last λ of the loop where that may happen.
+
+use crate::circle::RayCircle;
+use crate::target::Target;
+use crate::worldline::Worldline;
+use spacetime::isometry::disc;
+use spacetime::{Complex, Event, Isometry, Metric};
+use std::f64::consts::SQRT_2;
+
+/// A ball point lies within REACH_PER_GAMMA_RADIUS·γ·R (static distance) of its
+/// simultaneous centre, and within that times (v + √2) in coordinate time (checked by the
+/// property test `a_falling_ball_lies_within_its_reach`, which asserts a ratio of 1.05).
+pub const REACH_PER_GAMMA_RADIUS: f64 = 1.25;
+
+/// Added to the reach and to the time slack, per a: the numeric tracer's deviation from the
+/// closed form (as `crate::reject::REACH_PER_A`).
+pub const SLACK_PER_A: f64 = 1e-6;
+
+/// At most this many cells per worldline (longer worldlines get longer cells).
+const MAX_CELLS: f64 = 4096.0;
+
+/// A stretch of the worldline, in the origin frame of the rays' start.
+#[derive(Clone, Copy, Debug)]
+struct Cell {
+    /// Coordinate time, disc coordinate, 1 − |w|² and height of the middle point.
+    t: f64,
+    w: Complex,
+    nw: f64,
+    z: f64,
+}
+
+/// A ball in free fall, seen from the origin frame of the rays' start.
+#[derive(Clone, Debug)]
+pub struct FallingBall {
+    a: f64,
+    /// Sorted by time.
+    cells: Vec<Cell>,
+    /// Static distance M = reach + m within which a ray point may be in the ball, and
+    /// cosh(M/a).
+    near: f64,
+    cosh_near: f64,
+    /// Time slack S between a ray point and the cells that may hold its centre.
+    slack: f64,
+}
+
+impl FallingBall {
+    /// The ball of `target` seen from the origin frame of `from` (a pixel ray's observer or
+    /// a light: times of rays count from `from.t`), if it is a local ball in free fall in
+    /// Gödel's universe with parameter `a` (None otherwise).
+    pub fn new(a: f64, metric: &Metric, from: Event, target: &Target) -> Option<FallingBall> {
+        let Target::LocalSphere {
+            radius,
+            worldline: w @ Worldline::Free(_),
+        } = target
+        else {
+            return None;
+        };
+        let (tau_min, tau_max, gamma) = w.free_fall_range()?;
+        let speed = (gamma * gamma - 1.0).max(0.0).sqrt(); // γv
+        let v = speed / gamma;
+        let span = tau_max - tau_min;
+        let dtau = radius.max(span / MAX_CELLS);
+        let n = ((span / dtau).ceil() as usize).max(1);
+        let to = Isometry::to_origin(a, from);
+        let mut cells = Vec::with_capacity(n);
+        for i in 0..n {
+            let tau = (tau_min + (i as f64 + 0.5) * dtau).min(tau_max);
+            let p = to.apply(w.at(metric, tau)?.event);
+            let wd = disc(a, p.x, p.y);
+            cells.push(Cell {
+                t: p.t,
+                w: wd,
+                nw: 1.0 - wd.norm_sqr(),
+                z: p.z,
+            });
+        }
+        if !cells.iter().all(|c| c.t.is_finite() && c.nw > 0.0) {
+            return None;
+        }
+        cells.sort_by(|p, q| p.t.total_cmp(&q.t));
+        let reach = REACH_PER_GAMMA_RADIUS * gamma * radius + SLACK_PER_A * a;
+        let near = reach + 0.5 * speed * dtau;
+        let u_t = gamma + SQRT_2 * speed;
+        Some(FallingBall {
+            a,
+            cells,
+            near,
+            cosh_near: (near / a).cosh(),
+            slack: REACH_PER_GAMMA_RADIUS * gamma * radius * (v + SQRT_2)
+                + 0.5 * u_t * dtau
+                + SLACK_PER_A * a,
+        })
+    }
+
+    /// The same test with its reach and time slack scaled by `factor`: a test that compares
+    /// records with and without the rejection uses factor < 1 (an over-eager bound) to see
+    /// that the comparison catches it.
+    pub fn scaled(mut self, factor: f64) -> FallingBall {
+        self.near *= factor;
+        self.cosh_near = (self.near / self.a).cosh();
+        self.slack *= factor;
+        self
+    }
+
+    /// For the ray `ray` starting at time `t_start` (relative to `from.t`), per loop k
+    /// (λ ∈ [k·λ_ret, (k+1)·λ_ret]) while k·λ_ret < `until`: the λ, counted from the loop's
+    /// start, up to which the loop must search the ball (−∞: not at all), pushed to `out`
+    /// (cleared first). Loops past the end of `out` need no search. False when unsure
+    /// (then `out` means nothing and every loop searches the ball).
+    pub fn loops(&self, ray: &RayCircle, t_start: f64, until: f64, out: &mut Vec<f64>) -> bool {
+        out.clear();
+        let (first, last) = match (self.cells.first(), self.cells.last()) {
+            (Some(f), Some(l)) => (f.t - self.slack, l.t + self.slack),
+            _ => return true,
+        };
+        let dt = ray.dt_loop;
+        if !(dt != 0.0 && dt.is_finite() && ray.l_ret > 0.0 && t_start.is_finite()) {
+            return false;
+        }
+        let mut needed = 0;
+        for k in 0..=scene::MAX_RAY_LOOPS {
+            let kf = k as f64;
+            let l0 = kf * ray.l_ret;
+            let (ta, tb) = (t_start + kf * dt, t_start + (kf + 1.0) * dt);
+            // Loops beyond the worldline's times, in the ray's direction, need nothing.
+            if l0 >= until || (dt < 0.0 && ta < first) || (dt > 0.0 && ta > last) {
+                out.truncate(needed);
+                return true;
+            }
+            let l1 = (l0 + ray.l_ret).min(until);
+            let u = self.last_near(ray, ta.min(tb), ta.max(tb), l0, l1);
+            out.push(u.map_or(f64::NEG_INFINITY, |l| l - l0));
+            if u.is_some() {
+                needed = out.len();
+            }
+        }
+        false
+    }
+
+    /// The last λ in [l0, l1] (one loop, with times in [t_lo, t_hi]) at which the ray may
+    /// be within the ball.
+    fn last_near(&self, ray: &RayCircle, t_lo: f64, t_hi: f64, l0: f64, l1: f64) -> Option<f64> {
+        let m = self.near;
+        let i0 = self.cells.partition_point(|c| c.t < t_lo - self.slack);
+        let mut last: Option<f64> = None;
+        for c in &self.cells[i0..] {
+            if c.t > t_hi + self.slack {
+                break;
+            }
+            // The λ window where |p_z λ − z| ≤ M.
+            let (lo, hi) = if ray.pz == 0.0 {
+                if c.z.abs() > m {
+                    continue;
+                }
+                (l0, l1)
+            } else {
+                let (p, q) = ((c.z - m) / ray.pz, (c.z + m) / ray.pz);
+                (p.min(q).max(l0), p.max(q).min(l1))
+            };
+            let lo = last.map_or(lo, |l| lo.max(l));
+            if let Some(l) = ray.last_within(c.w, c.nw, self.cosh_near, lo, hi) {
+                last = Some(l);
+                if l >= l1 {
+                    break;
+                }
+            }
+        }
+        last
+    }
+}

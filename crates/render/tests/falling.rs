@@ -1,0 +1,322 @@
+//! Rejection of balls in free fall loop by loop (`render::falling`, docs/physics.md "Balls
+//! in free fall" and "Occlusion"): the reach and time slack cover the renderer's own ball,
+//! no loop stretch where a ray is inside a falling ball is left out, and records and direct
+//! light are the same, bit for bit, with and without the rejection (and an over-eager bound
+//! is caught by that comparison).
+
+mod common;
+
+use common::tracer;
+use proptest::prelude::*;
+use render::circle::RayCircle;
+use render::falling::{FallingBall, REACH_PER_GAMMA_RADIUS};
+use render::reject::static_distance;
+use render::target::Target;
+use render::tracer::Tracer;
+use render::worldline::Worldline;
+use scene::Motion;
+use spacetime::{
+    photon_tangent, Event, ExactGeodesic, GeodesicState, Godel, LocalVelocity, Metric, Spacetime,
+    TimeDirection,
+};
+
+/// Bound asserted below on (static distance)/(γ|ξ|) and on the time offset over
+/// γ|ξ|(v + √2), below [`REACH_PER_GAMMA_RADIUS`].
+const RATIO: f64 = 1.05;
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = norm(v);
+    [v[0] / n, v[1] / n, v[2] / n]
+}
+
+/// A ball of `radius` falling freely from `start` with `speed` along `dir`, its worldline
+/// covering coordinate times [t_min, t_max].
+fn falling(a: f64, start: Event, speed: f64, dir: [f64; 3], radius: f64, t: (f64, f64)) -> Target {
+    let metric = Metric::Godel(Godel::new(a));
+    let motion = Motion::Geodesic {
+        start,
+        velocity: LocalVelocity::new(speed, dir).unwrap(),
+    };
+    Target::LocalSphere {
+        radius,
+        worldline: Worldline::new(metric, &motion, t.0, t.1).unwrap(),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, max_global_rejects: 100_000, ..ProptestConfig::default() })]
+
+    /// The renderer's falling ball is |ξ| ≤ R at the simultaneous centre P (second-order
+    /// normal coordinates). For every point with |ξ| ≤ a/2 (the largest radius allowed) the
+    /// static distance from P is at most RATIO·γ|ξ| and the coordinate-time offset at most
+    /// RATIO·γ|ξ|(v + √2), within the reach and slack the rejection uses.
+    #[test]
+    fn a_falling_ball_lies_within_its_reach(
+        a in 0.2f64..5.0,
+        s in prop::array::uniform3(-1.5f64..1.5),
+        speed in 0.0f64..0.95, dir in prop::array::uniform3(-1.0f64..1.0),
+        tau in -3.0f64..3.0,
+        xi in prop::array::uniform3(-1.0f64..1.0), len in 0.0f64..0.55,
+    ) {
+        prop_assume!(norm(dir) > 1e-3 && norm(xi) > 1e-3);
+        let metric = Metric::Godel(Godel::new(a));
+        let start = Event::new(0.0, a * s[0], a * s[1], a * s[2]);
+        let Target::LocalSphere { worldline, .. } =
+            falling(a, start, speed, dir, 0.1 * a, (-20.0 * a, 20.0 * a)) else { unreachable!() };
+        let p = worldline.at(&metric, tau * a);
+        prop_assume!(p.is_some());
+        let p = p.unwrap();
+        // A displacement of proper length ~len·a in the ball's rest frame.
+        let d = unit(xi);
+        let e = p.frame.e.map(|v| v.to_array());
+        let c = |k: usize| a * len * (d[0] * e[1][k] + d[1] * e[2][k] + d[2] * e[3][k]);
+        let x = Event::new(
+            p.event.t + c(0), p.event.x + c(1), p.event.y + c(2), p.event.z + c(3),
+        );
+        let lp = worldline.localize(&metric, x, tau * a, f64::INFINITY).unwrap();
+        let r = norm(lp.xi);
+        prop_assume!(r <= 0.5 * a);
+        let (_, _, gamma) = worldline.free_fall_range().unwrap();
+        let v = (1.0 - 1.0 / (gamma * gamma)).sqrt();
+        let q = lp.at.event;
+        let dist = static_distance(a, [q.x, q.y, q.z], [x.x, x.y, x.z]);
+        prop_assert!(
+            dist <= RATIO * gamma * r + 1e-12 * a,
+            "static distance {dist} against γ|ξ| = {}", gamma * r
+        );
+        let dt = (x.t - q.t).abs();
+        prop_assert!(
+            dt <= RATIO * gamma * r * (v + std::f64::consts::SQRT_2) + 1e-12 * a,
+            "time offset {dt} against γ|ξ| = {}, v = {v}", gamma * r
+        );
+        prop_assert!(RATIO < REACH_PER_GAMMA_RADIUS);
+    }
+
+    /// Rays from random events near a falling ball's path: wherever the ray (sampled over
+    /// its loops) is inside the renderer's ball, its loop searches the ball there.
+    #[test]
+    fn no_stretch_inside_a_falling_ball_is_left_out(
+        a in 0.5f64..2.0,
+        o in prop::array::uniform3(-0.5f64..0.5), t0 in -2.0f64..2.0,
+        n in prop::array::uniform3(-1.0f64..1.0),
+        s in prop::array::uniform3(-1.0f64..1.0),
+        speed in 0.0f64..0.9, dir in prop::array::uniform3(-1.0f64..1.0),
+        radius in 0.1f64..0.5,
+    ) {
+        prop_assume!(norm(n) > 1e-3 && norm(dir) > 1e-3);
+        let metric = Metric::Godel(Godel::new(a));
+        let obs = Event::new(t0, a * o[0], a * o[1], 0.2 * a * o[2]);
+        let start = Event::new(0.0, a * s[0], a * s[1], 0.2 * a * s[2]);
+        let target = falling(a, start, speed, dir, radius * a, (t0 - 12.0 * a, t0 + 2.0 * a));
+        let k = photon_tangent(&metric.static_frame(obs), unit(n), TimeDirection::Past);
+        let geo = ExactGeodesic::new(a, obs, k).unwrap();
+        let ball = FallingBall::new(a, &metric, obs, &target).unwrap();
+        let circle = RayCircle::new(&geo.origin);
+        let mut loops = Vec::new();
+        prop_assert!(ball.loops(&circle, 0.0, f64::INFINITY, &mut loops));
+        let l_ret = geo.origin.return_parameter();
+        let samples = 4000;
+        let end = 4.0 * l_ret;
+        for i in 0..=samples {
+            let l = end * i as f64 / samples as f64;
+            let (x, k) = geo.at(l);
+            if x.t < t0 - 10.0 * a {
+                break;
+            }
+            let st = GeodesicState { x, p: metric.lower(x, k) };
+            if target.probe(&metric, &st, f64::NAN).f <= 0.0 {
+                let lp = (l / l_ret).floor() as usize;
+                let until = loops.get(lp).copied().unwrap_or(f64::NEG_INFINITY);
+                prop_assert!(
+                    l - lp as f64 * l_ret <= until,
+                    "inside at λ = {l} (loop {lp}), but searched only to {until}"
+                );
+            }
+        }
+    }
+}
+
+/// A random scene of falling balls (start place, speed, direction, radius) and maybe one
+/// at rest, seen by a full-sphere camera from the origin.
+fn scene_text(
+    a: f64,
+    balls: &[([f64; 3], f64, [f64; 3], f64)],
+    max_past: f64,
+    method: &str,
+) -> String {
+    let mut text = format!(
+        "name = \"f\"\n[spacetime]\nmetric = \"godel\"\na = {a}\n\
+         [observer]\ntime = 0.0\nposition = {{ x = 0.0, y = 0.0, z = 0.0 }}\n\
+         forward = [-1, 0, 0]\nup = [0, 0, 1]\n\
+         [camera]\nkind = \"sphere\"\nwidth = 48\nheight = 24\n\
+         [trace]\nmethod = \"{method}\"\nmax_past = {max_past}\n"
+    );
+    for (i, (p, speed, d, r)) in balls.iter().enumerate() {
+        text += &format!(
+            "[[object]]\nname = \"b{i}\"\nradius = {r}\ntexture = {{ kind = \"checker\", rows = 4, cols = 8 }}\n\
+             motion = {{ kind = \"geodesic\", time = 0.0, position = {{ x = {}, y = {}, z = {} }}, \
+             speed = {speed}, direction = [{}, {}, {}] }}\n",
+            p[0], p[1], p[2], d[0], d[1], d[2]
+        );
+    }
+    text
+}
+
+/// Falling balls from random places near the observer, random speeds and directions, and
+/// radii as fractions of the largest one allowed.
+fn balls() -> impl Strategy<Value = Vec<([f64; 3], f64, [f64; 3], f64)>> {
+    prop::collection::vec(
+        (
+            prop::array::uniform3(-1.2f64..1.2),
+            0.0f64..0.9,
+            prop::array::uniform3(-1.0f64..1.0),
+            0.1f64..0.9,
+        ),
+        1..3,
+    )
+    .prop_filter("a direction", |v| v.iter().all(|b| norm(b.2) > 1e-2))
+}
+
+/// Every pixel's record, as text, of `tracer` on `sc`.
+fn records(tracer: &Tracer, sc: &scene::Scene) -> Vec<String> {
+    let mut scratch = tracer.scratch();
+    let mut out = Vec::new();
+    for row in 0..sc.camera.height() {
+        for col in 0..sc.camera.width() {
+            let n = sc.observer.pixel_direction(&sc.camera, col, row).unwrap();
+            out.push(format!("{:?}", tracer.trace(n, &mut scratch).record));
+        }
+    }
+    out
+}
+
+fn scaled_balls(
+    a: f64,
+    b: &[([f64; 3], f64, [f64; 3], f64)],
+) -> Vec<([f64; 3], f64, [f64; 3], f64)> {
+    b.iter()
+        // Radius a fraction of the largest allowed, a/(2γ²).
+        .map(|(p, s, d, r)| {
+            (
+                [a * p[0], a * p[1], 0.3 * a * p[2]],
+                *s,
+                *d,
+                0.5 * r * a * (1.0 - s * s),
+            )
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Every pixel's record is the same, bit for bit, with the rejection as without it, for
+    /// both tracers and one or two balls in free fall anywhere near the observer.
+    #[test]
+    fn records_with_falling_balls_are_the_same_with_and_without_rejection(
+        a in 0.5f64..2.0,
+        b in balls(),
+        max_past in 2.0f64..14.0,
+        exact in any::<bool>(),
+    ) {
+        let method = if exact { "exact" } else { "numeric" };
+        let text = scene_text(a, &scaled_balls(a, &b), max_past * a, method);
+        let sc = scene::Scene::from_str(&text, "falling.toml").unwrap();
+        let with = records(&tracer(&sc), &sc);
+        let without = records(&tracer(&sc).without_rejection(), &sc);
+        for (i, (r1, r2)) in with.iter().zip(&without).enumerate() {
+            prop_assert_eq!(r1, r2, "pixel {}", i);
+        }
+    }
+
+    /// Shadow rays: the direct light at every hit is the same, bit for bit, with the
+    /// rejection as without it, with balls in free fall between the lights and the hits.
+    #[test]
+    fn direct_light_with_falling_balls_is_the_same_with_and_without_rejection(
+        a in 0.5f64..2.0,
+        b in balls(),
+        lights in prop::collection::vec(prop::array::uniform3(-1.5f64..1.5), 1..3),
+        max_past in 2.0f64..8.0,
+    ) {
+        use render::lighting::{LightSource, Lighting};
+        let text = scene_text(a, &scaled_balls(a, &b), max_past * a, "exact");
+        let sc = scene::Scene::from_str(&text, "falling.toml").unwrap();
+        let tr = tracer(&sc);
+        let sources: Vec<LightSource> = lights
+            .iter()
+            .map(|l| LightSource { position: Event::new(0.0, a * l[0], a * l[1], 0.3 * a * l[2]), power: 1.0 })
+            .collect();
+        let with = Lighting::new(sources.clone(), max_past * a);
+        let without = Lighting::new(sources, max_past * a).without_rejection();
+        let mut scratch = tr.scratch();
+        let (mut o1, mut o2) = (vec![0.0f32; lights.len()], vec![0.0f32; lights.len()]);
+        for row in 0..sc.camera.height() {
+            for col in 0..sc.camera.width() {
+                let n = sc.observer.pixel_direction(&sc.camera, col, row).unwrap();
+                let Some(hit) = tr.trace(n, &mut scratch).hit else { continue };
+                with.illuminate(&tr.objects, Some(&hit), &mut scratch.probes, &mut o1);
+                without.illuminate(&tr.objects, Some(&hit), &mut scratch.probes, &mut o2);
+                prop_assert_eq!(format!("{o1:?}"), format!("{o2:?}"), "pixel ({}, {})", col, row);
+            }
+        }
+    }
+}
+
+/// The reference scene (a ball falling past the observer at 0.7 c) at 88×10, both tracers.
+fn reference(method: &str) -> scene::Scene {
+    let text = scene::BUILTIN_SCENE_TEXT
+        .replace("width = 880", "width = 88")
+        .replace("height = 100", "height = 10")
+        .replace("samples = 4", "samples = 1")
+        .replace("method = \"numeric\"", &format!("method = \"{method}\""));
+    scene::Scene::from_str(&text, "reference.toml").unwrap()
+}
+
+/// The comparison can fail: with the reach and time slack of the falling ball cut to a
+/// tenth, rays that do meet the ball leave it out of their search, and records differ;
+/// with the rejection as it is, the records are the same and most loops of most rays
+/// search the ball for less than the whole loop (the rejection is not vacuous).
+#[test]
+fn an_over_eager_falling_bound_changes_the_reference_scene() {
+    for method in ["exact", "numeric"] {
+        let sc = reference(method);
+        let without = records(&tracer(&sc).without_rejection(), &sc);
+        assert_eq!(records(&tracer(&sc), &sc), without, "{method}");
+        let eager = records(&tracer(&sc).with_falling_reach_scaled(0.1), &sc);
+        let differ = eager.iter().zip(&without).filter(|(p, q)| p != q).count();
+        assert!(differ > 10, "{method}: {differ} records differ");
+    }
+    // Not vacuous: count the loop stretches left out for the reference scene's rays.
+    let sc = reference("exact");
+    let a = 1.0;
+    let metric = Metric::Godel(Godel::new(a));
+    let tr = tracer(&sc);
+    let obs = sc.observer.event;
+    let ball = FallingBall::new(a, &metric, obs, &tr.objects.targets[0]).unwrap();
+    let frame = metric.observer_frame(obs, sc.observer.velocity);
+    let (mut loops_total, mut loops_cut) = (0, 0);
+    let mut out = Vec::new();
+    for row in 0..sc.camera.height() {
+        for col in 0..sc.camera.width() {
+            let n = sc.observer.pixel_direction(&sc.camera, col, row).unwrap();
+            let k = photon_tangent(&frame, n, TimeDirection::Past);
+            let geo = ExactGeodesic::new(a, obs, k).unwrap();
+            let c = RayCircle::new(&geo.origin);
+            assert!(ball.loops(&c, 0.0, f64::INFINITY, &mut out));
+            // Loops within the traced 30 time units.
+            let n_loops = (sc.trace.max_past / c.dt_loop.abs()).ceil() as usize;
+            loops_total += n_loops;
+            loops_cut += (0..n_loops)
+                .filter(|&k| out.get(k).is_none_or(|&u| u < c.l_ret))
+                .count();
+        }
+    }
+    assert!(
+        loops_cut * 10 >= loops_total * 8,
+        "{loops_cut} of {loops_total}"
+    );
+}
