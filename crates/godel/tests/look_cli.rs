@@ -7,39 +7,22 @@
 
 mod common;
 
-use common::{godel, stderr};
+use common::{godel, path_arg as s, stderr};
 use datafile::DataFile;
 use look::{look, LookView};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::{Path, PathBuf};
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use std::process::Output;
 
 /// A ball at rest at r = 1, its first image 39.2° to the left of +x, traced over the
 /// whole sphere (or another camera).
 fn scene_text(name: &str, camera: &str, observer_extra: &str) -> String {
+    let ball = testkit::textured_ball_at("ball", 0.3, &testkit::checker(4, 8), 5800.0, 1.0, 0.0);
     format!(
-        r#"
-name = "{name}"
-[observer]
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-{observer_extra}
-[camera]
-{camera}
-[trace]
-method = "exact"
-max_past = 6.0
-[[object]]
-name = "ball"
-radius = 0.3
-texture = {{ kind = "checker", rows = 4, cols = 8 }}
-motion = {{ kind = "rest", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}
-"#
+        "name = \"{name}\"\n{}{observer_extra}\n[camera]\n{camera}\n{}{ball}",
+        testkit::OBSERVER_AT_ORIGIN,
+        testkit::trace("exact", 6.0),
     )
 }
 
@@ -49,9 +32,14 @@ const SPHERE: &str = "kind = \"sphere\"\nwidth = 240\nheight = 120";
 fn render(dir: &Path, name: &str, text: &str, extra: &[&str]) -> PathBuf {
     let scene = dir.join(format!("{name}.toml"));
     std::fs::write(&scene, text).unwrap();
-    let o = godel(&[&["render", s(&scene), "-o", s(dir), "-q"], extra].concat());
+    let o = common::render(&scene, dir, &[&["-q"], extra].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     dir.join(format!("{name}.exr"))
+}
+
+/// Runs `godel look DATA -o OUT` followed by `extra` to its end.
+fn run_look(data: &Path, out: &Path, extra: &[&str]) -> Output {
+    godel(&[&["look", s(data), "-o", s(out)], extra].concat())
 }
 
 #[test]
@@ -59,26 +47,26 @@ fn look_writes_the_view_and_its_preview_and_reports_resolution() {
     let tmp = tempfile::tempdir().unwrap();
     let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
     let out = tmp.path().join("views/fast.exr");
-    let o = godel(&[
-        "look",
-        s(&sphere),
-        "--camera",
-        "pinhole",
-        "--fov",
-        "90",
-        "--width",
-        "64",
-        "--height",
-        "48",
-        "--forward",
-        "0.7746,0.6325,0",
-        "--up",
-        "0,0,1",
-        "--velocity",
-        "0.9,0,1,0",
-        "-o",
-        s(&out),
-    ]);
+    let o = run_look(
+        &sphere,
+        &out,
+        &[
+            "--camera",
+            "pinhole",
+            "--fov",
+            "90",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--forward",
+            "0.7746,0.6325,0",
+            "--up",
+            "0,0,1",
+            "--velocity",
+            "0.9,0,1,0",
+        ],
+    );
     let e = stderr(&o);
     assert!(o.status.success(), "{e}");
     assert!(e.contains("a source pixel spans 1.5000°"), "{e}");
@@ -108,24 +96,24 @@ fn the_embedded_scene_traces_the_same_view() {
     let tmp = tempfile::tempdir().unwrap();
     let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
     let out = tmp.path().join("pano.exr");
-    let o = godel(&[
-        "look",
-        s(&sphere),
-        "--camera",
-        "panorama",
-        "--h-fov",
-        "360",
-        "--v-fov",
-        "60",
-        "--width",
-        "240",
-        "--height",
-        "40",
-        "--velocity",
-        "0.6,0,-1,0",
-        "-o",
-        s(&out),
-    ]);
+    let o = run_look(
+        &sphere,
+        &out,
+        &[
+            "--camera",
+            "panorama",
+            "--h-fov",
+            "360",
+            "--v-fov",
+            "60",
+            "--width",
+            "240",
+            "--height",
+            "40",
+            "--velocity",
+            "0.6,0,-1,0",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let looked = DataFile::read(&out).unwrap();
     let traced = render(
@@ -157,8 +145,8 @@ fn negative_values_are_flag_values() {
     let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
     let run = |name: &str, flags: &[&str]| -> DataFile {
         let out = tmp.path().join(format!("{name}.exr"));
-        let base = ["look", s(&sphere), "--camera", "fisheye", "--width", "40"];
-        let o = godel(&[&base[..], flags, &["-o", s(&out)]].concat());
+        let base = ["--camera", "fisheye", "--width", "40"];
+        let o = run_look(&sphere, &out, &[&base[..], flags].concat());
         assert!(o.status.success(), "{flags:?}: {}", stderr(&o));
         DataFile::read(&out).unwrap()
     };

@@ -12,7 +12,7 @@ use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 
 mod common;
-use common::{files_in, godel, run_within, stderr};
+use common::{files_in, godel, png, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine; they take well under a second.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);
@@ -45,10 +45,6 @@ fn data_file(dir: &Path) -> PathBuf {
     let path = dir.join("syn.exr");
     data.write(&path).unwrap();
     path
-}
-
-fn png(path: &Path) -> image::RgbImage {
-    image::open(path).unwrap().to_rgb8()
 }
 
 #[test]

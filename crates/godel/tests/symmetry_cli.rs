@@ -7,6 +7,23 @@
 mod common;
 use common::godel;
 
+/// The two samples (start and end) of `godel geodesic` as JSON from `at` along `dir`
+/// (`extra` flags) until coordinate time `until`.
+fn end_points(at: &str, dir: &str, extra: &[&str], until: &str) -> serde_json::Value {
+    let base = [
+        "geodesic",
+        "--format",
+        "json",
+        "--samples",
+        "2",
+        "--at",
+        at,
+        "--dir",
+        dir,
+    ];
+    json(&[&base[..], extra, &["--until-time", until]].concat())
+}
+
 fn json(args: &[&str]) -> serde_json::Value {
     let o = godel(args);
     assert!(
@@ -140,19 +157,8 @@ fn connecting_rays_land_on_the_event_and_point_back_at_the_source() {
         ];
         assert!(on_source.iter().all(|d| d.abs() < 1e-10), "{on_source:?}");
         // Forward from the emission along the departure direction, numerically.
-        let fwd = json(&[
-            "geodesic",
-            "--format",
-            "json",
-            "--samples",
-            "2",
-            "--at",
-            &cylindrical(e),
-            "--dir",
-            &list(&ray["departure"]),
-            "--until-time",
-            &travel.to_string(),
-        ]);
+        let travel = travel.to_string();
+        let fwd = end_points(&cylindrical(e), &list(&ray["departure"]), &[], &travel);
         let end = *samples(&fwd).last().unwrap();
         let miss = end
             .iter()
@@ -161,20 +167,7 @@ fn connecting_rays_land_on_the_event_and_point_back_at_the_source() {
             .fold(0.0, f64::max);
         assert!(miss < 1e-7, "forward ray misses the event by {miss:e}");
         // Backward from the event along the viewing direction: lands on the source.
-        let back = json(&[
-            "geodesic",
-            "--format",
-            "json",
-            "--samples",
-            "2",
-            "--at",
-            &from,
-            "--dir",
-            &list(&ray["look"]),
-            "--past",
-            "--until-time",
-            &travel.to_string(),
-        ]);
+        let back = end_points(&from, &list(&ray["look"]), &["--past"], &travel);
         let end = *samples(&back).last().unwrap();
         let miss = [end[1] - src[0], end[2] - src[1], end[3] - src[2]]
             .iter()

@@ -3,7 +3,7 @@
 //! geometry.
 
 mod common;
-use common::{render_scene, scene};
+use common::{pixel_directions, render_scene, scene};
 
 fn flat(objects: &str, forward: &str, up: &str) -> scene::Scene {
     scene(&format!(
@@ -36,28 +36,22 @@ fn a_floor_plane_is_hit_exactly_below_the_horizon_with_the_right_emission_point(
         "[0, 0, 1]",
     );
     let (d, _) = render_scene(&s);
-    for row in 0..d.height {
-        for col in 0..d.width {
-            let n = s
-                .observer
-                .pixel_direction(&s.camera, col as u32, row as u32)
-                .unwrap();
-            let r = d.records[row * d.width + col];
-            // Nearly level rays meet the floor beyond max_past = 40: not seen.
-            let dist = -1.0 / n[2];
-            if n[2] < 0.0 && dist < 40.0 - 1e-6 {
-                assert!(r.is_hit(), "({col},{row}) looks down but misses the floor");
-                assert!(
-                    (r.t_emit as f64 + dist).abs() < 1e-4 * dist.max(1.0),
-                    "t_emit {} vs {}",
-                    r.t_emit,
-                    -dist
-                );
-                assert!((r.x as f64 - n[0] * dist).abs() < 1e-4 * dist.max(1.0));
-                assert!((r.z as f64 + 1.0).abs() < 1e-5);
-            } else {
-                assert!(!r.is_hit(), "({col},{row}) looks up or too far but hits");
-            }
+    for (col, row, n) in pixel_directions(&s, &d) {
+        let r = d.records[row * d.width + col];
+        // Nearly level rays meet the floor beyond max_past = 40: not seen.
+        let dist = -1.0 / n[2];
+        if n[2] < 0.0 && dist < 40.0 - 1e-6 {
+            assert!(r.is_hit(), "({col},{row}) looks down but misses the floor");
+            assert!(
+                (r.t_emit as f64 + dist).abs() < 1e-4 * dist.max(1.0),
+                "t_emit {} vs {}",
+                r.t_emit,
+                -dist
+            );
+            assert!((r.x as f64 - n[0] * dist).abs() < 1e-4 * dist.max(1.0));
+            assert!((r.z as f64 + 1.0).abs() < 1e-5);
+        } else {
+            assert!(!r.is_hit(), "({col},{row}) looks up or too far but hits");
         }
     }
 }
@@ -72,19 +66,13 @@ fn a_coordinate_sphere_has_angular_radius_asin_r_over_d() {
     let (d, _) = render_scene(&s);
     let half = (1.0f64 / 4.0).asin();
     let pixel = 2.0 * (45f64.to_radians()).tan() / 81.0; // pixel size at the image centre
-    for row in 0..d.height {
-        for col in 0..d.width {
-            let n = s
-                .observer
-                .pixel_direction(&s.camera, col as u32, row as u32)
-                .unwrap();
-            let angle = n[0].clamp(-1.0, 1.0).acos();
-            let hit = d.records[row * d.width + col].is_hit();
-            if angle < half - pixel {
-                assert!(hit, "({col},{row}) at {angle} inside {half}");
-            } else if angle > half + pixel {
-                assert!(!hit, "({col},{row}) at {angle} outside {half}");
-            }
+    for (col, row, n) in pixel_directions(&s, &d) {
+        let angle = n[0].clamp(-1.0, 1.0).acos();
+        let hit = d.records[row * d.width + col].is_hit();
+        if angle < half - pixel {
+            assert!(hit, "({col},{row}) at {angle} inside {half}");
+        } else if angle > half + pixel {
+            assert!(!hit, "({col},{row}) at {angle} outside {half}");
         }
     }
 }

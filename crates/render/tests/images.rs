@@ -54,6 +54,15 @@ motion = {motion}
     ))
 }
 
+/// The panorama of the ball at rest at (r, φ) = (RHO, PHI_C), traced back to `max_past`.
+fn static_sphere_scene(name: &str, max_past: f64) -> scene::Scene {
+    panorama_scene(
+        name,
+        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
+        max_past,
+    )
+}
+
 fn centre() -> [f64; 2] {
     [RHO * PHI_C.cos(), RHO * PHI_C.sin()]
 }
@@ -103,11 +112,7 @@ fn group_near(groups: &[Vec<(usize, usize)>], col: usize) -> Option<usize> {
 #[test]
 fn static_sphere_inside_horizon_is_seen_twice_where_the_connecting_rays_point() {
     let images = solved_images();
-    let s = panorama_scene(
-        "static-inside",
-        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
-        10.0,
-    );
+    let s = static_sphere_scene("static-inside", 10.0);
     let (d, stats) = render_scene(&s);
     assert_eq!(stats.failed + stats.step_budget, 0, "{}", stats.summary());
     let groups = groups(&d, true);
@@ -326,11 +331,7 @@ fn edge(inside: f64, outside: f64, first_half: bool) -> f64 {
 #[test]
 fn static_sphere_images_have_the_width_of_a_ball_of_proper_radius_r() {
     let images = solved_images();
-    let s = panorama_scene(
-        "static-edges",
-        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
-        4.0,
-    );
+    let s = static_sphere_scene("static-edges", 4.0);
     let (d, _) = render_scene(&s);
     for (k, &(az, _)) in images.iter().enumerate() {
         let first_half = k == 0;

@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{godel, render_scene, scene};
+use common::{bisect, godel, pixel_directions, render_scene, scene};
 use datafile::record::RayStatus;
 use datafile::DataFile;
 use scene::Scene;
@@ -158,7 +158,7 @@ fn static_ball(metric: Metric, c: [f64; 3], radius: f64) -> impl Fn(Event) -> f6
             let p = Event::new(tc, c[0], c[1], c[2]);
             dot(metric, p, u, xi_at(tc))
         };
-        let tc = bisect(sim, x.t - 2.0, x.t + 2.0);
+        let tc = bisect(sim, x.t - 2.0, x.t + 2.0, 100);
         let p = Event::new(tc, c[0], c[1], c[2]);
         let xi = xi_at(tc);
         dot(metric, p, xi, xi).max(0.0).sqrt() - radius
@@ -185,24 +185,6 @@ fn dot(metric: Metric, at: Event, u: FourVector, v: FourVector) -> f64 {
     (0..4)
         .map(|m| (0..4).map(|n| g[m][n] * u[m] * v[n]).sum::<f64>())
         .sum()
-}
-
-/// A root of an increasing-or-decreasing `f` on [lo, hi] with a sign change.
-fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let flo = f(lo);
-    assert!(
-        (flo > 0.0) != (f(hi) > 0.0),
-        "no sign change on [{lo}, {hi}]"
-    );
-    for _ in 0..100 {
-        let m = 0.5 * (lo + hi);
-        if (f(m) > 0.0) == (flo > 0.0) {
-            lo = m;
-        } else {
-            hi = m;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 /// The proper (radar) distance between two static worldlines of the Gödel metric: the
@@ -320,17 +302,11 @@ fn observer_on_the_surface_counts_as_inside() {
         check_exits(&s, &d, &sphere, 2e-6);
         // Looking away from the centre, the surface is where the observer stands.
         let mut at_eye = 0;
-        for row in 0..d.height {
-            for col in 0..d.width {
-                let n = s
-                    .observer
-                    .pixel_direction(&s.camera, col as u32, row as u32)
-                    .unwrap();
-                let rec = d.record(col, row);
-                if n[0] < -0.05 {
-                    assert!(rec.t_emit.abs() < 1e-6 && rec.x.abs() < 1e-6, "{rec:?}");
-                    at_eye += 1;
-                }
+        for (col, row, n) in pixel_directions(&s, &d) {
+            let rec = d.record(col, row);
+            if n[0] < -0.05 {
+                assert!(rec.t_emit.abs() < 1e-6 && rec.x.abs() < 1e-6, "{rec:?}");
+                at_eye += 1;
             }
         }
         assert!(at_eye > 0);
@@ -400,7 +376,7 @@ fn check_falling_ball_around_the_observer(
             })
             .find(|&(lo, hi)| (sim(lo) > 0.0) != (sim(hi) > 0.0))
             .expect("a simultaneous worldline point");
-        let tau = bisect(sim, lo, hi);
+        let tau = bisect(sim, lo, hi, 100);
         let (p, _) = at(tau);
         let xi = normal_displacement(metric, p, x);
         dot(metric, p, xi, xi).max(0.0).sqrt() - r

@@ -9,23 +9,15 @@ use shade::{
     keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
 };
 
-const SCENE: &str = r#"name = "two"
-[camera]
-kind = "panorama"
-[[object]]
-name = "ball"
-radius = 0.1
-temperature = 4000
-texture = { kind = "checker", rows = 4, cols = 8 }
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
-name = "moon"
-radius = 0.1
-motion = { kind = "rest", position = { r = 1.0, phi = 1.0, z = 0.0 } }
-[[light]]
-position = { r = 1.5, phi = 0.0, z = 0.0 }
-color = [1.0, 0.5, 0.25]
-"#;
+/// A checkered ball at 4000 K, a moon and a coloured light.
+fn scene() -> String {
+    format!(
+        "name = \"two\"\n[camera]\nkind = \"panorama\"\n{}{}{}",
+        testkit::textured_ball_at("ball", 0.1, &testkit::checker(4, 8), 4000.0, 1.0, 0.0),
+        testkit::ball_at_rest("moon", 0.1, 1.0, 1.0),
+        "[[light]]\nposition = { r = 1.5, phi = 0.0, z = 0.0 }\ncolor = [1.0, 0.5, 0.25]\n",
+    )
+}
 
 fn data(lights: usize) -> DataFile {
     let (w, h) = (8, 2);
@@ -43,7 +35,7 @@ fn data(lights: usize) -> DataFile {
         })
         .collect();
     DataFile {
-        header: testkit::godel_header("two", SCENE, "panorama", &["ball", "moon"]),
+        header: testkit::godel_header("two", &scene(), "panorama", &["ball", "moon"]),
         width: w,
         height: h,
         records,

@@ -16,15 +16,10 @@ use shade::{
 /// Two objects: a checkered ball at 4000 K and a moon with a gradient.
 fn scene() -> String {
     format!(
-        "name = \"two\"\n{}{}",
+        "name = \"two\"\n{}{}{}",
         testkit::panorama(220.0, 25.0, 64, 8),
+        testkit::textured_ball_at("ball", 0.1, &testkit::checker(4, 8), 4000.0, 1.0, 0.0),
         r#"[[object]]
-name = "ball"
-radius = 0.1
-temperature = 4000
-texture = { kind = "checker", rows = 4, cols = 8 }
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
 name = "moon"
 radius = 0.1
 texture = { kind = "gradient" }

@@ -7,22 +7,12 @@ use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
 /// The scene the data file claims to come from: an earth-textured and a checkered ball.
 fn scene() -> String {
+    let earth = "{ kind = \"image\", builtin = \"earth\" }";
     format!(
-        "name = \"bench\"\n{}{}",
+        "name = \"bench\"\n{}{}{}",
         testkit::pinhole(90.0, 1920, 1080),
-        r#"[[object]]
-name = "earth"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "checker", rows = 8, cols = 16 }
-temperature = 4000.0
-motion = { kind = "rest", position = { r = 1.0, phi = 2.0, z = 0.0 } }
-"#
+        testkit::textured_ball_at("earth", 0.2, earth, 5800.0, 1.0, 0.0),
+        testkit::textured_ball_at("ball", 0.2, &testkit::checker(8, 16), 4000.0, 1.0, 2.0),
     )
 }
 
