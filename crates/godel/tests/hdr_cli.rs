@@ -9,25 +9,24 @@
 
 mod common;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use common::{read_rgb, render, shade, shade_lit_pair, stderr};
 
-fn scene(name: &str) -> PathBuf {
-    testkit::scenes_dir().join(name)
+/// Renders the example scene `scenes/STEM.toml` at `width` × `height` into `dir`; returns
+/// the data file.
+fn render_example(dir: &Path, stem: &str, width: &str, height: &str) -> PathBuf {
+    let scene = testkit::scenes_dir().join(format!("{stem}.toml"));
+    let o = render(&scene, dir, &["-q", "--width", width, "--height", height]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    dir.join(format!("{stem}.exr"))
 }
 
 #[test]
 fn lit_shadow_highlights_do_not_clip() {
     let dir = tempfile::tempdir().unwrap();
     // Half the scene's size, as the render tests trace it: the same rays, fewer of them.
-    let o = render(
-        &scene("lit-shadow.toml"),
-        dir.path(),
-        &["-q", "--width", "360", "--height", "40"],
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let data_path = dir.path().join("lit-shadow.exr");
+    let data_path = render_example(dir.path(), "lit-shadow", "360", "40");
     let data = datafile::DataFile::read(&data_path).unwrap();
     let hit: Vec<bool> = data
         .records
@@ -83,13 +82,7 @@ fn lit_shadow_highlights_do_not_clip() {
 #[test]
 fn exposure_compensation_scales_the_png_by_two_to_the_ev() {
     let dir = tempfile::tempdir().unwrap();
-    let o = render(
-        &scene("static-sphere.toml"),
-        dir.path(),
-        &["-q", "--width", "120", "--height", "20"],
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let data_path = dir.path().join("static-sphere.exr");
+    let data_path = render_example(dir.path(), "static-sphere", "120", "20");
     let exr = dir.path().join("linear.exr");
     let o = shade(&data_path, &exr, &[]);
     assert!(o.status.success(), "{}", stderr(&o));

@@ -37,6 +37,19 @@ fn render(dir: &Path, name: &str, text: &str, extra: &[&str]) -> PathBuf {
     dir.join(format!("{name}.exr"))
 }
 
+/// Renders the full sphere of [`scene_text`] into `dir`; returns the data file's path.
+fn sphere_source(dir: &Path) -> PathBuf {
+    render(dir, "sphere", &scene_text("sphere", SPHERE, ""), &[])
+}
+
+/// Runs `godel look DATA -o OUT` followed by `flags` (separated by spaces) and asserts that it
+/// succeeds; returns its standard error.
+fn look_ok(data: &Path, out: &Path, flags: &str) -> String {
+    let o = run_look(data, out, &flags.split(' ').collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    stderr(&o)
+}
+
 /// Runs `godel look DATA -o OUT` followed by `extra` to its end.
 fn run_look(data: &Path, out: &Path, extra: &[&str]) -> Output {
     godel(&[&["look", s(data), "-o", s(out)], extra].concat())
@@ -45,30 +58,14 @@ fn run_look(data: &Path, out: &Path, extra: &[&str]) -> Output {
 #[test]
 fn look_writes_the_view_and_its_preview_and_reports_resolution() {
     let tmp = tempfile::tempdir().unwrap();
-    let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(tmp.path());
     let out = tmp.path().join("views/fast.exr");
-    let o = run_look(
+    let e = look_ok(
         &sphere,
         &out,
-        &[
-            "--camera",
-            "pinhole",
-            "--fov",
-            "90",
-            "--width",
-            "64",
-            "--height",
-            "48",
-            "--forward",
-            "0.7746,0.6325,0",
-            "--up",
-            "0,0,1",
-            "--velocity",
-            "0.9,0,1,0",
-        ],
+        "--camera pinhole --fov 90 --width 64 --height 48 --forward 0.7746,0.6325,0 --up 0,0,1 \
+         --velocity 0.9,0,1,0",
     );
-    let e = stderr(&o);
-    assert!(o.status.success(), "{e}");
     assert!(e.contains("a source pixel spans 1.5000°"), "{e}");
     assert!(e.contains("of the static observer's sky"), "{e}");
     let data = DataFile::read(&out).expect("a data file");
@@ -94,27 +91,13 @@ fn look_writes_the_view_and_its_preview_and_reports_resolution() {
 #[test]
 fn the_embedded_scene_traces_the_same_view() {
     let tmp = tempfile::tempdir().unwrap();
-    let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(tmp.path());
     let out = tmp.path().join("pano.exr");
-    let o = run_look(
+    look_ok(
         &sphere,
         &out,
-        &[
-            "--camera",
-            "panorama",
-            "--h-fov",
-            "360",
-            "--v-fov",
-            "60",
-            "--width",
-            "240",
-            "--height",
-            "40",
-            "--velocity",
-            "0.6,0,-1,0",
-        ],
+        "--camera panorama --h-fov 360 --v-fov 60 --width 240 --height 40 --velocity 0.6,0,-1,0",
     );
-    assert!(o.status.success(), "{}", stderr(&o));
     let looked = DataFile::read(&out).unwrap();
     let traced = render(
         tmp.path(),
@@ -142,7 +125,7 @@ fn the_embedded_scene_traces_the_same_view() {
 #[test]
 fn negative_values_are_flag_values() {
     let tmp = tempfile::tempdir().unwrap();
-    let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(tmp.path());
     let run = |name: &str, flags: &[&str]| -> DataFile {
         let out = tmp.path().join(format!("{name}.exr"));
         let base = ["--camera", "fisheye", "--width", "40"];
@@ -182,7 +165,7 @@ fn bad_sources_and_flags_are_refused_with_nothing_written() {
     let tmp = tempfile::tempdir().unwrap();
     let src = tmp.path().join("src");
     std::fs::create_dir(&src).unwrap();
-    let sphere = render(&src, "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(&src);
     let pinhole = render(
         &src,
         "pinhole",

@@ -30,6 +30,14 @@ motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
     )
 }
 
+/// Writes [`small_scene`] as `dir/scene.toml`; returns its path and the output folder
+/// `dir/out`.
+fn small_scene_in(dir: &Path) -> (PathBuf, PathBuf) {
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, small_scene()).unwrap();
+    (scene, dir.join("out"))
+}
+
 /// The first number before `word` in `line` (e.g. "1800 pixels").
 fn count_before(line: &str, word: &str) -> u64 {
     let words: Vec<&str> = line.split_whitespace().collect();
@@ -52,9 +60,7 @@ fn output_files(dir: &Path) -> Vec<PathBuf> {
 #[test]
 fn render_writes_png_and_exr_and_a_summary() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("scene.toml");
-    std::fs::write(&scene, small_scene()).unwrap();
-    let out = tmp.path().join("out");
+    let (scene, out) = small_scene_in(tmp.path());
     let o = render(&scene, &out, &["--quiet", "--threads", "2"]);
     let err = stderr(&o);
     assert!(o.status.success(), "exit {:?}: {err}", o.status);
@@ -131,9 +137,7 @@ fn bad_scenes_exit_2_naming_file_line_and_field_and_leave_no_output() {
 #[test]
 fn zero_threads_and_missing_scene_are_refused() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("scene.toml");
-    std::fs::write(&scene, small_scene()).unwrap();
-    let out = tmp.path().join("out");
+    let (scene, out) = small_scene_in(tmp.path());
     let o = render(&scene, &out, &["--threads", "0"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--threads"), "{}", stderr(&o));

@@ -6,7 +6,6 @@
 
 use std::path::{Path, PathBuf};
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 
 mod common;
@@ -39,17 +38,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
         width: n,
         height: 1,
         records: (0..n)
-            .map(|i| PixelRecord {
-                object: 0,
-                status: RayStatus::Hit,
-                u: 0.3,
-                v: 0.3,
-                g: 1.0,
-                t_emit: -(i as f32) / 2.0,
-                cos_i: 1.0,
-                view: [0.0; 3],
-                ..PixelRecord::MISS
-            })
+            .map(|i| testkit::hit(0, 0.3, 0.3, 1.0, -(i as f32) / 2.0, 1.0))
             .collect(),
         lights: vec![vec![1.0; n]; lights],
     };
@@ -91,35 +80,21 @@ fn frequency_flag_at_6504_kelvin_gives_near_white() {
     let dir = tempfile::tempdir().unwrap();
     let data = synthetic(dir.path(), 0);
     let out = dir.path().join("f.png");
-    let o = shade(
-        &data,
-        &out,
-        &[
-            "--shader",
-            "frequency",
-            "--temperature",
-            "6504",
-            "--no-reference",
-        ],
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    for p in png(&out).pixels() {
+    let frequency = |temperature: &str| {
+        let flags = ["--shader", "frequency", "--no-reference"];
+        let o = shade(
+            &data,
+            &out,
+            &[&flags[..], &["--temperature", temperature]].concat(),
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        png(&out)
+    };
+    for p in frequency("6504").pixels() {
         assert!(p.0.iter().all(|&c| c >= 240), "{p:?}");
     }
     // 2000 K is red.
-    let o = shade(
-        &data,
-        &out,
-        &[
-            "--shader",
-            "frequency",
-            "--temperature",
-            "ball=2000",
-            "--no-reference",
-        ],
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let p = *png(&out).get_pixel(5, 0);
+    let p = *frequency("ball=2000").get_pixel(5, 0);
     assert!(p[0] > p[1] && p[1] > p[2], "{p:?}");
 }
 

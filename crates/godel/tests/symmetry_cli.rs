@@ -262,14 +262,10 @@ fn images(svg: &str) -> Vec<(f64, Vec<(f64, f64)>)> {
 fn isometry_plot_moves_the_ray_along_the_field() {
     let dir = tempfile::tempdir().unwrap();
     let svg_path = dir.path().join("iso.svg");
-    let o = godel(&[
-        "plot",
-        "isometry",
-        "--images",
-        "5",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
+    let plot = |flags: &[&str], out: &std::path::Path| {
+        godel(&[&["plot", "isometry", "-o", out.to_str().unwrap()], flags].concat())
+    };
+    let o = plot(&["--images", "5"], &svg_path);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     assert!(svg.contains("id=\"original\"") && svg.contains("id=\"field\""));
@@ -291,29 +287,15 @@ fn isometry_plot_moves_the_ray_along_the_field() {
     }
     // ∂φ rotates about the origin: every image starts there.
     let png_path = dir.path().join("iso.png");
-    let o = godel(&[
-        "plot",
-        "isometry",
-        "--field",
-        "phi",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
+    let o = plot(&["--field", "phi"], &svg_path);
     assert!(o.status.success());
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     for (_, pts) in images(&svg) {
         assert!(pts[0].0.abs() < 1e-4 && pts[0].1.abs() < 1e-4);
     }
-    let o = godel(&["plot", "isometry", "-o", png_path.to_str().unwrap()]);
+    let o = plot(&[], &png_path);
     assert!(o.status.success());
     assert!(std::fs::read(&png_path).unwrap().starts_with(b"\x89PNG"));
-    let o = godel(&[
-        "plot",
-        "isometry",
-        "--images",
-        "0",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
+    let o = plot(&["--images", "0"], &svg_path);
     assert_eq!(o.status.code(), Some(2));
 }

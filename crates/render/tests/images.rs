@@ -27,30 +27,20 @@ const MID_ROW: usize = H / 2;
 
 fn panorama_scene(name: &str, motion: &str, max_past: f64) -> scene::Scene {
     scene(&format!(
-        r#"
-name = "{name}"
+        r#"name = "{name}"
 [spacetime]
 metric = "godel"
 a = {A}
-[observer]
-time = 0.0
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = {V_FOV_DEG}
-width = {W}
-height = {H}
-[trace]
+{}{}[trace]
 max_past = {max_past}
 [[object]]
 name = "ball"
 radius = {RADIUS}
 texture = {{ kind = "gradient" }}
 motion = {motion}
-"#
+"#,
+        testkit::OBSERVER_AT_ORIGIN,
+        testkit::panorama(360.0, V_FOV_DEG, W, H),
     ))
 }
 

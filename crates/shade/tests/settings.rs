@@ -3,7 +3,6 @@
 
 use std::path::Path;
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::{
     keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
@@ -22,17 +21,7 @@ fn scene() -> String {
 fn data(lights: usize) -> DataFile {
     let (w, h) = (8, 2);
     let records = (0..w * h)
-        .map(|i| PixelRecord {
-            object: (i % 2) as i32,
-            status: RayStatus::Hit,
-            u: 0.3,
-            v: 0.6,
-            g: 1.0,
-            t_emit: -2.5 - i as f32 * 0.5,
-            cos_i: 1.0,
-            view: [0.0; 3],
-            ..PixelRecord::MISS
-        })
+        .map(|i| testkit::hit((i % 2) as i32, 0.3, 0.6, 1.0, -2.5 - i as f32 * 0.5, 1.0))
         .collect();
     DataFile {
         header: testkit::godel_header("two", &scene(), "panorama", &["ball", "moon"]),

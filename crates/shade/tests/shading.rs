@@ -12,6 +12,7 @@ use shade::{
     BrightnessMode, Lamp, LightSource, ShadeError, ShadeSettings, ShaderKind, Shading,
     TextureChoice, TimeMode, MAX_LAMPS, MAX_LIGHT_SOURCES,
 };
+use testkit::hit;
 
 /// Two objects: a checkered ball at 4000 K and a moon with a gradient.
 fn scene() -> String {
@@ -30,19 +31,6 @@ motion = { kind = "rest", position = { r = 1.0, phi = 1.0, z = 0.0 } }
 
 fn header() -> DataHeader {
     testkit::godel_header("two", &scene(), "panorama", &["ball", "moon"])
-}
-
-fn hit(object: i32, u: f32, v: f32, g: f32, t_emit: f32, cos_i: f32) -> PixelRecord {
-    PixelRecord {
-        object,
-        status: RayStatus::Hit,
-        u,
-        v,
-        g,
-        t_emit,
-        cos_i,
-        ..PixelRecord::MISS
-    }
 }
 
 /// 64×8 pixels: both objects at many (u, v, cos_i), a few misses and failures.

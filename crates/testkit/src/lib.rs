@@ -1,5 +1,6 @@
 //! Fixtures shared by the tests, benches and examples of the workspace's crates: the pieces
-//! of scene text that every small test scene repeats, the header of a synthetic data file,
+//! of scene text that every small test scene repeats, the header and the hit records of a
+//! synthetic data file, the example scenes and what a bad one expects,
 //! running a command-line binary, and the viewer's refusal of a texture from elsewhere. Only
 //! a dev-dependency; never published.
 //!
@@ -8,6 +9,7 @@
 
 use std::process::{Command, Output};
 
+use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataHeader, FORMAT_VERSION};
 
 /// `[spacetime]`: Gödel's universe with a = 1.
@@ -177,6 +179,21 @@ pub fn godel_header(
         method: "numeric".into(),
         object_names: objects.iter().map(|o| o.as_ref().to_string()).collect(),
         supersample: 1,
+    }
+}
+
+/// The record of a pixel that hit `object` at texture coordinates (`u`, `v`) with frequency
+/// ratio `g`, emission time `t_emit` and light cosine `cos_i` (every other field zero).
+pub fn hit(object: i32, u: f32, v: f32, g: f32, t_emit: f32, cos_i: f32) -> PixelRecord {
+    PixelRecord {
+        object,
+        status: RayStatus::Hit,
+        u,
+        v,
+        g,
+        t_emit,
+        cos_i,
+        ..PixelRecord::MISS
     }
 }
 

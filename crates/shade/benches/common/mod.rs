@@ -1,7 +1,7 @@
 //! The synthetic 1920×1080 data file and the shader cases shared by the shading benchmark
 //! (`benches/shade.rs`) and the CPU-time example (`examples/shade_cpu.rs`).
 
-use datafile::record::{PixelRecord, RayStatus};
+use datafile::record::PixelRecord;
 use datafile::DataFile;
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
@@ -29,17 +29,14 @@ pub fn data() -> DataFile {
             if i % 3 == 2 {
                 return PixelRecord::MISS;
             }
-            PixelRecord {
-                object: (i % 2) as i32,
-                status: RayStatus::Hit,
-                u: (c / 97.0).fract(),
-                v: (r / 61.0).fract(),
-                g: 0.3 + 3.0 * c / w as f32,
-                t_emit: -30.0 * r / h as f32,
-                cos_i: (c / 50.0).sin(),
-                view: [0.0; 3],
-                ..PixelRecord::MISS
-            }
+            testkit::hit(
+                (i % 2) as i32,
+                (c / 97.0).fract(),
+                (r / 61.0).fract(),
+                0.3 + 3.0 * c / w as f32,
+                -30.0 * r / h as f32,
+                (c / 50.0).sin(),
+            )
         })
         .collect();
     DataFile {
