@@ -78,6 +78,11 @@ fn with(data: &DataFile, f: impl FnOnce(&mut ShadeSettings)) -> ShadeSettings {
     s
 }
 
+/// The default settings of `data` with the layers `shaders`.
+fn with_shaders(data: &DataFile, shaders: &[ShaderKind]) -> ShadeSettings {
+    with(data, |s| s.shaders = shaders.to_vec())
+}
+
 fn close(a: [f32; 3], b: [f32; 3], tol: f32) -> bool {
     (0..3).all(|k| (a[k] - b[k]).abs() <= tol)
 }
@@ -189,7 +194,7 @@ fn time_window_is_decided_by_t_emit_alone() {
 #[test]
 fn frequency_times_time_window_is_the_product() {
     let data = one_pixel(hit(0, 0.3, 0.3, 1.3, -4.0, 0.5), vec![]);
-    let freq = with(&data, |s| s.shaders = vec![ShaderKind::Frequency]);
+    let freq = with_shaders(&data, &[ShaderKind::Frequency]);
     let window = with(&data, |s| {
         s.shaders = vec![ShaderKind::Time];
         s.time.t0 = -5.0;
@@ -238,9 +243,7 @@ fn light_layer_is_albedo_times_ambient_plus_lights() {
 #[test]
 fn light_layer_without_light_channels_is_an_error() {
     let data = synthetic();
-    let s = with(&data, |s| {
-        s.shaders = vec![ShaderKind::Texture, ShaderKind::Light]
-    });
+    let s = with_shaders(&data, &[ShaderKind::Texture, ShaderKind::Light]);
     let e = Shading::new(&data, &s).unwrap_err();
     assert!(matches!(e, ShadeError::NoLightChannels), "{e}");
     assert!(e.to_string().contains("light channels"), "{e}");
@@ -427,9 +430,7 @@ fn travel_time_false_colour_runs_over_its_range_with_a_legend() {
 #[test]
 fn image_does_not_depend_on_the_thread_count() {
     let data = synthetic();
-    let s = with(&data, |s| {
-        s.shaders = vec![ShaderKind::Frequency, ShaderKind::Texture]
-    });
+    let s = with_shaders(&data, &[ShaderKind::Frequency, ShaderKind::Texture]);
     let shading = Shading::new(&data, &s).unwrap();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
