@@ -293,11 +293,14 @@ fn bad_sample_counts_are_refused_before_tracing() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("rays"), "{}", stderr(&o));
     // In the scene file: located at the field.
-    let bad = write_scene(tmp.path(), "bad.toml", &scene_text("bad", 40, 10, 3));
+    let text = scene_text("bad", 40, 10, 3);
+    let line = 1 + text.lines().position(|l| l == "samples = 3").unwrap();
+    let bad = write_scene(tmp.path(), "bad.toml", &text);
     let o = godel(&["render", &bad, "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let at = format!("bad.toml:{line}:");
     assert!(
-        stderr(&o).contains("bad.toml:9:") && stderr(&o).contains("camera.samples"),
+        stderr(&o).contains(&at) && stderr(&o).contains("camera.samples"),
         "{}",
         stderr(&o)
     );
