@@ -26,8 +26,7 @@ fn small_data_file(dir: &std::path::Path) -> std::path::PathBuf {
     std::fs::write(&scene, text).unwrap();
     let o = common::render(&scene, dir, &["-q"]);
     assert!(o.status.success(), "{o:?}");
-    let exr = dir.join("static-sphere.exr");
-    exr
+    dir.join("static-sphere.exr")
 }
 
 #[test]

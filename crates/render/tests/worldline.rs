@@ -18,9 +18,8 @@ fn free_fall_frames_stay_orthonormal_along_the_worldline() {
         let p = wl.at(&m, tau).expect("inside the integrated range");
         // Orthonormal: g(e_a, e_b) = η_ab, the flat metric's components.
         let eta = Minkowski.metric(p.event);
-        for a in 0..4 {
-            for b in 0..4 {
-                let want = eta[a][b];
+        for (a, eta_a) in eta.iter().enumerate() {
+            for (b, &want) in eta_a.iter().enumerate() {
                 let got = m.dot(p.event, p.frame.e[a], p.frame.e[b]);
                 assert!(
                     (got - want).abs() < 1e-9,

@@ -351,10 +351,13 @@ fn lamps_and_light_sources_are_capped() {
     );
 }
 
+/// A change of the settings and the field its error must name.
+type BadSetting = (Box<dyn Fn(&mut ShadeSettings)>, &'static str);
+
 #[test]
 fn bad_settings_are_refused_naming_the_field() {
     let data = synthetic();
-    let cases: Vec<(Box<dyn Fn(&mut ShadeSettings)>, &str)> = vec![
+    let cases: Vec<BadSetting> = vec![
         (
             Box::new(|s| s.objects.get_mut("ball").unwrap().temperature = -5.0),
             "objects.ball.temperature",

@@ -154,7 +154,7 @@ pub fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
             .channel_data
             .list
             .iter()
-            .find(|c| c.name == Text::from(name))
+            .find(|c| c.name == *name)
             .unwrap_or_else(|| panic!("channel {name}"));
         ch.sample_data.values_as_f32().collect()
     };

@@ -20,7 +20,7 @@ fn scene() -> String {
 /// and cos_i; two light planes.
 pub fn data() -> DataFile {
     let (w, h) = (1920usize, 1080usize);
-    let mut lights = vec![Vec::with_capacity(w * h); 2];
+    let mut lights: Vec<Vec<f32>> = (0..2).map(|_| Vec::with_capacity(w * h)).collect();
     let records = (0..w * h)
         .map(|i| {
             let (c, r) = ((i % w) as f32, (i / w) as f32);
