@@ -52,11 +52,12 @@ use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use exr::prelude::{
-    AnyChannel, AnyChannels, AttributeValue, Blocks, Compression, Encoding, FlatSamples, Image,
-    Layer, LayerAttributes, LineOrder, ReadChannels, ReadLayers, SmallVec, Text, WritableImage,
+    AnyChannel, AttributeValue, Compression, FlatSamples, LayerAttributes, ReadChannels,
+    ReadLayers, SmallVec, Text,
 };
 
 use crate::atomic::write_atomically;
+use crate::exr_write::exr_bytes;
 use crate::record::{PixelRecord, RayStatus};
 use exr_header::{check_layout, sort_header_attributes};
 
@@ -358,28 +359,13 @@ impl DataFile {
                 .insert(Text::new_or_panic(name), AttributeValue::Text(text));
         }
 
-        let encoding = Encoding {
-            // RLE, chosen by measurement (BENCHMARKS.md, "Speed issue"): encoding is
-            // several times faster than ZIP (which was ~35 % of a static scene's exact
-            // render after the speed-ups), files about twice ZIP's size (the missed
-            // pixels' runs compress well); uncompressed would be ~12 times larger.
-            compression: Compression::RLE,
-            blocks: Blocks::ScanLines,
-            // Increasing order makes the (parallel) writer emit blocks in a
-            // fixed order.
-            line_order: LineOrder::Increasing,
-        };
-        let layer = Layer::new(
-            (self.width, self.height),
-            attributes,
-            encoding,
-            AnyChannels::sort(channels.into()),
-        );
-        let mut bytes = Vec::new();
-        Image::from_layer(layer)
-            .write()
-            .to_buffered(Cursor::new(&mut bytes))
-            .map_err(|e| DataFileErrorKind::Exr(e.to_string()))?;
+        // RLE, chosen by measurement (BENCHMARKS.md, "Speed issue"): encoding is several
+        // times faster than ZIP (which was ~35 % of a static scene's exact render after the
+        // speed-ups), files about twice ZIP's size (the missed pixels' runs compress well);
+        // uncompressed would be ~12 times larger.
+        let size = (self.width, self.height);
+        let mut bytes = exr_bytes(size, attributes, Compression::RLE, channels)
+            .map_err(DataFileErrorKind::Exr)?;
         sort_header_attributes(&mut bytes).map_err(DataFileErrorKind::Exr)?;
         Ok(bytes)
     }

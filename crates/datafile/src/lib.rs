@@ -8,14 +8,18 @@
 //! - Samples (`samples.rs`): an anti-aliased file keeps s×s records per picture pixel;
 //!   [`DataFile::picture_size`], [`DataFile::sample_indices`] and the box filter
 //!   [`DataFile::box_filter`] that every shader applies after colouring each sample.
+//! - [`exr_bytes`]: an OpenEXR image written into memory, deterministically (the data file's
+//!   and the shaders' linear pictures).
 //! - [`atomic`]: every output file is written to a temporary file and renamed, several files
 //!   together where they belong together; temporaries are removed on signals and swept.
 
 pub mod atomic;
 mod codec;
+mod exr_write;
 pub mod record;
 mod samples;
 
 pub use codec::*;
+pub use exr_write::exr_bytes;
 pub use record::{PixelRecord, RayStatus};
 pub use samples::MAX_SUPERSAMPLE;

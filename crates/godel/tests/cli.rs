@@ -7,7 +7,7 @@ use std::f64::consts::{PI, SQRT_2};
 use std::process::Output;
 
 mod common;
-use common::godel;
+use common::{geodesic_along_x, godel};
 
 fn stdout(o: &Output) -> String {
     assert!(
@@ -269,9 +269,7 @@ fn bad_input_exits_2_naming_the_flag() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
     // Our own validation errors are a single line.
-    let out = godel(&[
-        "geodesic", "--at", "0,0,0,0", "--dir", "1,0,0", "--speed", "1.5",
-    ]);
+    let out = godel(&geodesic_along_x(&["--speed", "1.5"]));
     assert_eq!(
         String::from_utf8_lossy(&out.stderr),
         "error: --speed: must be in [0, 1), got 1.5\n"
@@ -281,15 +279,7 @@ fn bad_input_exits_2_naming_the_flag() {
 #[test]
 fn an_integration_failure_exits_1_with_the_reason() {
     // Many loops: the step budget runs out long before |t| reaches the bound.
-    let out = godel(&[
-        "geodesic",
-        "--at",
-        "0,0,0,0",
-        "--dir",
-        "1,0,0",
-        "--until-time",
-        "1e7",
-    ]);
+    let out = godel(&geodesic_along_x(&["--until-time", "1e7"]));
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
@@ -406,15 +396,7 @@ fn plot_rejects_bad_input_and_leaves_no_file() {
 #[test]
 fn samples_are_bounded_up_front() {
     for n in ["4000000000", "1000001"] {
-        let out = godel(&[
-            "geodesic",
-            "--at",
-            "0,0,0,0",
-            "--dir",
-            "1,0,0",
-            "--samples",
-            n,
-        ]);
+        let out = godel(&geodesic_along_x(&["--samples", n]));
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{n}: {err}");
         assert!(
@@ -485,16 +467,11 @@ fn a_time_bound_out_of_reach_is_reported() {
         assert!(err.contains("1e15"), "{err}");
     }
     // Within reach: no note.
-    let out = godel(&[
-        "geodesic",
+    let out = godel(&geodesic_along_x(&[
         "--metric",
         "minkowski",
-        "--at",
-        "0,0,0,0",
-        "--dir",
-        "1,0,0",
         "--until-time",
         "100",
-    ]);
+    ]));
     assert!(out.status.success() && out.stderr.is_empty());
 }

@@ -11,11 +11,10 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-use common::{files_in, godel, lit_scene_text, read_rgb, shade_lit_pair, stderr, write_scene};
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use common::{
+    files_in, geodesic_along_x, godel, lit_scene_text, path_arg as s, read_rgb, shade_lit_pair,
+    stderr, write_scene,
+};
 
 /// Exit code 2 and one `error: FLAG: …` line.
 fn assert_usage(o: &Output, flag: &str) {
@@ -190,15 +189,7 @@ fn negative_numbers_are_values_and_are_validated() {
 #[test]
 fn a_closed_pipe_ends_quietly_with_zero() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args([
-            "geodesic",
-            "--at",
-            "0,0,0,0",
-            "--dir",
-            "1,0,0",
-            "--samples",
-            "200000",
-        ])
+        .args(geodesic_along_x(&["--samples", "200000"]))
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()

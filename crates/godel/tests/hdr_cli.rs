@@ -9,35 +9,24 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use common::{godel, read_rgb, shade_lit_pair, stderr};
+use common::{read_rgb, render, shade, shade_lit_pair, stderr};
 
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn scene(name: &str) -> String {
-    format!("{}/../../scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+/// Renders the example scene `scenes/STEM.toml` at `width` × `height` into `dir`; returns
+/// the data file.
+fn render_example(dir: &Path, stem: &str, width: &str, height: &str) -> PathBuf {
+    let scene = testkit::scenes_dir().join(format!("{stem}.toml"));
+    let o = render(&scene, dir, &["-q", "--width", width, "--height", height]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    dir.join(format!("{stem}.exr"))
 }
 
 #[test]
 fn lit_shadow_highlights_do_not_clip() {
     let dir = tempfile::tempdir().unwrap();
     // Half the scene's size, as the render tests trace it: the same rays, fewer of them.
-    let o = godel(&[
-        "render",
-        &scene("lit-shadow.toml"),
-        "-q",
-        "-o",
-        s(dir.path()),
-        "--width",
-        "360",
-        "--height",
-        "40",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let data_path = dir.path().join("lit-shadow.exr");
+    let data_path = render_example(dir.path(), "lit-shadow", "360", "40");
     let data = datafile::DataFile::read(&data_path).unwrap();
     let hit: Vec<bool> = data
         .records
@@ -93,28 +82,16 @@ fn lit_shadow_highlights_do_not_clip() {
 #[test]
 fn exposure_compensation_scales_the_png_by_two_to_the_ev() {
     let dir = tempfile::tempdir().unwrap();
-    let o = godel(&[
-        "render",
-        &scene("static-sphere.toml"),
-        "-q",
-        "-o",
-        s(dir.path()),
-        "--width",
-        "120",
-        "--height",
-        "20",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let data_path = dir.path().join("static-sphere.exr");
+    let data_path = render_example(dir.path(), "static-sphere", "120", "20");
     let exr = dir.path().join("linear.exr");
-    let o = godel(&["shade", s(&data_path), "-o", s(&exr)]);
+    let o = shade(&data_path, &exr, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let linear = read_rgb(&exr);
     let data = datafile::DataFile::read(&data_path).unwrap();
     let mut hits = 0;
     for (ev, gain) in [("0", 1.0f32), ("1", 2.0), ("-1.5", 0.353_553_4)] {
         let png = dir.path().join(format!("ev{ev}.png"));
-        let o = godel(&["shade", s(&data_path), "--ev", ev, "-o", s(&png)]);
+        let o = shade(&data_path, &png, &["--ev", ev]);
         assert!(o.status.success(), "{}", stderr(&o));
         let img = image::open(&png).unwrap().to_rgb8();
         hits = 0;

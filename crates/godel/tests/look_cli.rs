@@ -7,39 +7,22 @@
 
 mod common;
 
-use common::{godel, stderr};
+use common::{godel, path_arg as s, stderr};
 use datafile::DataFile;
 use look::{look, LookView};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::{Path, PathBuf};
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use std::process::Output;
 
 /// A ball at rest at r = 1, its first image 39.2° to the left of +x, traced over the
 /// whole sphere (or another camera).
 fn scene_text(name: &str, camera: &str, observer_extra: &str) -> String {
+    let ball = testkit::textured_ball_at("ball", 0.3, &testkit::checker(4, 8), 5800.0, 1.0, 0.0);
     format!(
-        r#"
-name = "{name}"
-[observer]
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-{observer_extra}
-[camera]
-{camera}
-[trace]
-method = "exact"
-max_past = 6.0
-[[object]]
-name = "ball"
-radius = 0.3
-texture = {{ kind = "checker", rows = 4, cols = 8 }}
-motion = {{ kind = "rest", position = {{ r = 1.0, phi = 0.0, z = 0.0 }} }}
-"#
+        "name = \"{name}\"\n{}{observer_extra}\n[camera]\n{camera}\n{}{ball}",
+        testkit::OBSERVER_AT_ORIGIN,
+        testkit::trace("exact", 6.0),
     )
 }
 
@@ -49,38 +32,40 @@ const SPHERE: &str = "kind = \"sphere\"\nwidth = 240\nheight = 120";
 fn render(dir: &Path, name: &str, text: &str, extra: &[&str]) -> PathBuf {
     let scene = dir.join(format!("{name}.toml"));
     std::fs::write(&scene, text).unwrap();
-    let o = godel(&[&["render", s(&scene), "-o", s(dir), "-q"], extra].concat());
+    let o = common::render(&scene, dir, &[&["-q"], extra].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     dir.join(format!("{name}.exr"))
+}
+
+/// Renders the full sphere of [`scene_text`] into `dir`; returns the data file's path.
+fn sphere_source(dir: &Path) -> PathBuf {
+    render(dir, "sphere", &scene_text("sphere", SPHERE, ""), &[])
+}
+
+/// Runs `godel look DATA -o OUT` followed by `flags` (separated by spaces) and asserts that it
+/// succeeds; returns its standard error.
+fn look_ok(data: &Path, out: &Path, flags: &str) -> String {
+    let o = run_look(data, out, &flags.split(' ').collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    stderr(&o)
+}
+
+/// Runs `godel look DATA -o OUT` followed by `extra` to its end.
+fn run_look(data: &Path, out: &Path, extra: &[&str]) -> Output {
+    godel(&[&["look", s(data), "-o", s(out)], extra].concat())
 }
 
 #[test]
 fn look_writes_the_view_and_its_preview_and_reports_resolution() {
     let tmp = tempfile::tempdir().unwrap();
-    let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(tmp.path());
     let out = tmp.path().join("views/fast.exr");
-    let o = godel(&[
-        "look",
-        s(&sphere),
-        "--camera",
-        "pinhole",
-        "--fov",
-        "90",
-        "--width",
-        "64",
-        "--height",
-        "48",
-        "--forward",
-        "0.7746,0.6325,0",
-        "--up",
-        "0,0,1",
-        "--velocity",
-        "0.9,0,1,0",
-        "-o",
-        s(&out),
-    ]);
-    let e = stderr(&o);
-    assert!(o.status.success(), "{e}");
+    let e = look_ok(
+        &sphere,
+        &out,
+        "--camera pinhole --fov 90 --width 64 --height 48 --forward 0.7746,0.6325,0 --up 0,0,1 \
+         --velocity 0.9,0,1,0",
+    );
     assert!(e.contains("a source pixel spans 1.5000°"), "{e}");
     assert!(e.contains("of the static observer's sky"), "{e}");
     let data = DataFile::read(&out).expect("a data file");
@@ -106,27 +91,13 @@ fn look_writes_the_view_and_its_preview_and_reports_resolution() {
 #[test]
 fn the_embedded_scene_traces_the_same_view() {
     let tmp = tempfile::tempdir().unwrap();
-    let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(tmp.path());
     let out = tmp.path().join("pano.exr");
-    let o = godel(&[
-        "look",
-        s(&sphere),
-        "--camera",
-        "panorama",
-        "--h-fov",
-        "360",
-        "--v-fov",
-        "60",
-        "--width",
-        "240",
-        "--height",
-        "40",
-        "--velocity",
-        "0.6,0,-1,0",
-        "-o",
-        s(&out),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    look_ok(
+        &sphere,
+        &out,
+        "--camera panorama --h-fov 360 --v-fov 60 --width 240 --height 40 --velocity 0.6,0,-1,0",
+    );
     let looked = DataFile::read(&out).unwrap();
     let traced = render(
         tmp.path(),
@@ -154,11 +125,11 @@ fn the_embedded_scene_traces_the_same_view() {
 #[test]
 fn negative_values_are_flag_values() {
     let tmp = tempfile::tempdir().unwrap();
-    let sphere = render(tmp.path(), "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(tmp.path());
     let run = |name: &str, flags: &[&str]| -> DataFile {
         let out = tmp.path().join(format!("{name}.exr"));
-        let base = ["look", s(&sphere), "--camera", "fisheye", "--width", "40"];
-        let o = godel(&[&base[..], flags, &["-o", s(&out)]].concat());
+        let base = ["--camera", "fisheye", "--width", "40"];
+        let o = run_look(&sphere, &out, &[&base[..], flags].concat());
         assert!(o.status.success(), "{flags:?}: {}", stderr(&o));
         DataFile::read(&out).unwrap()
     };
@@ -194,7 +165,7 @@ fn bad_sources_and_flags_are_refused_with_nothing_written() {
     let tmp = tempfile::tempdir().unwrap();
     let src = tmp.path().join("src");
     std::fs::create_dir(&src).unwrap();
-    let sphere = render(&src, "sphere", &scene_text("sphere", SPHERE, ""), &[]);
+    let sphere = sphere_source(&src);
     let pinhole = render(
         &src,
         "pinhole",

@@ -12,16 +12,11 @@ use scene::Scene;
 use std::path::Path;
 
 mod common;
-use common::{godel, stderr, write_scene};
+use common::{assert_same_files, godel, godel_ok as render_ok, stderr, write_scene};
 
 /// The shared lit test scene, named "split".
 fn scene_text(max_past: f64) -> String {
     common::lit_scene_text("split", max_past)
-}
-
-fn render_ok(args: &[&str]) {
-    let out = godel(args);
-    assert!(out.status.success(), "godel {args:?}: {}", stderr(&out));
 }
 
 /// Renders parts i/3 of `scene` into `dir`; returns their paths, part 1 first.
@@ -71,14 +66,12 @@ fn three_parts_merged_in_any_order_equal_the_single_run_byte_for_byte() {
 
     let merged = tmp.path().join("merged");
     render_ok(&["merge", &p[2], &p[0], &p[1], "-o", merged.to_str().unwrap()]);
-    for file in ["split.exr", "split.png"] {
-        let a = std::fs::read(single.join(file)).unwrap();
-        let b = std::fs::read(merged.join(file)).unwrap();
-        assert!(
-            a == b,
-            "{file} differs between the single run and the merge"
-        );
-    }
+    assert_same_files(
+        &single,
+        &merged,
+        &["split.exr", "split.png"],
+        "the single run and the merge",
+    );
 }
 
 /// Runs a merge that must fail; checks the message and that nothing was written.

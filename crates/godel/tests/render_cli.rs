@@ -10,7 +10,7 @@ use datafile::DataFile;
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{godel, stderr};
+use common::{render, stderr};
 
 const W: u32 = 120;
 const H: u32 = 15;
@@ -28,6 +28,14 @@ texture = { kind = "checker", rows = 4, cols = 8 }
 motion = { kind = "rest", position = { r = 1.0, phi = 0.7, z = 0.0 } }
 "#,
     )
+}
+
+/// Writes [`small_scene`] as `dir/scene.toml`; returns its path and the output folder
+/// `dir/out`.
+fn small_scene_in(dir: &Path) -> (PathBuf, PathBuf) {
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, small_scene()).unwrap();
+    (scene, dir.join("out"))
 }
 
 /// The first number before `word` in `line` (e.g. "1800 pixels").
@@ -52,18 +60,8 @@ fn output_files(dir: &Path) -> Vec<PathBuf> {
 #[test]
 fn render_writes_png_and_exr_and_a_summary() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("scene.toml");
-    std::fs::write(&scene, small_scene()).unwrap();
-    let out = tmp.path().join("out");
-    let o = godel(&[
-        "render",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--quiet",
-        "--threads",
-        "2",
-    ]);
+    let (scene, out) = small_scene_in(tmp.path());
+    let o = render(&scene, &out, &["--quiet", "--threads", "2"]);
     let err = stderr(&o);
     assert!(o.status.success(), "exit {:?}: {err}", o.status);
 
@@ -89,62 +87,21 @@ fn render_writes_png_and_exr_and_a_summary() {
 
     // One thread gives the same data file, byte for byte.
     let out1 = tmp.path().join("out1");
-    let o = godel(&[
-        "render",
-        scene.to_str().unwrap(),
-        "-o",
-        out1.to_str().unwrap(),
-        "-q",
-        "--threads",
-        "1",
-    ]);
+    let o = render(&scene, &out1, &["-q", "--threads", "1"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(std::fs::read(out1.join("small.exr")).unwrap() == std::fs::read(&exr).unwrap());
 }
 
-fn bad_scenes() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bad");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    files.sort();
-    files
-}
-
-/// (field, line) that a bad scene declares.
-fn expectation(text: &str) -> (String, usize) {
-    let field = text
-        .lines()
-        .find_map(|l| l.strip_prefix("# expect field:"))
-        .expect("a `# expect field:` line")
-        .trim()
-        .to_string();
-    let line = text
-        .lines()
-        .position(|l| l.contains("# <- error here"))
-        .expect("a `# <- error here` marker")
-        + 1;
-    (field, line)
-}
-
 #[test]
 fn bad_scenes_exit_2_naming_file_line_and_field_and_leave_no_output() {
-    let files = bad_scenes();
+    let files = testkit::toml_files(&testkit::scenes_dir().join("bad"));
     assert!(files.len() >= 10, "{files:?}");
     let tmp = tempfile::tempdir().unwrap();
     for (i, f) in files.iter().enumerate() {
         let text = std::fs::read_to_string(f).unwrap();
-        let (field, line) = expectation(&text);
+        let (field, line) = testkit::bad_scene_expectation(&text);
         let out = tmp.path().join(format!("out{i}"));
-        let o = godel(&[
-            "render",
-            f.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "-q",
-        ]);
+        let o = render(f, &out, &["-q"]);
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{}: {err}", f.display());
         let located = format!("{}:{line}:", f.display());
@@ -180,28 +137,14 @@ fn bad_scenes_exit_2_naming_file_line_and_field_and_leave_no_output() {
 #[test]
 fn zero_threads_and_missing_scene_are_refused() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("scene.toml");
-    std::fs::write(&scene, small_scene()).unwrap();
-    let out = tmp.path().join("out");
-    let o = godel(&[
-        "render",
-        scene.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--threads",
-        "0",
-    ]);
+    let (scene, out) = small_scene_in(tmp.path());
+    let o = render(&scene, &out, &["--threads", "0"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--threads"), "{}", stderr(&o));
     assert!(output_files(&out).is_empty());
 
     let missing = tmp.path().join("no-such-scene.toml");
-    let o = godel(&[
-        "render",
-        missing.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = render(&missing, &out, &[]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("no-such-scene.toml"), "{}", stderr(&o));
     assert!(output_files(&out).is_empty());

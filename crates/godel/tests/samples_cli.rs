@@ -8,43 +8,28 @@ use image::RgbImage;
 use shade::colour::{rgb_to_srgb8, rgb_to_srgb8_fast, srgb8_to_linear};
 use shade::{ShadeSettings, Shading};
 use std::path::Path;
-use std::process::{Command, Output};
 
 mod common;
-use common::{stderr, write_scene};
+use common::{assert_same_files, godel, godel_ok as ok, render, stderr, write_scene};
 
-fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
-
-fn ok(args: &[&str]) {
-    let out = godel(args);
-    assert!(out.status.success(), "godel {args:?}: {}", stderr(&out));
+/// Runs `godel render SCENE -o OUT EXTRA…` and asserts that it succeeds.
+fn ok_render(scene: &str, out: &Path, extra: &[&str]) {
+    let o = render(Path::new(scene), out, extra);
+    assert!(o.status.success(), "render {scene}: {}", stderr(&o));
 }
 
 /// A ball falling past at 0.7 c, seen several times with g from red to blue and a range of
 /// emission times: a checkerboard whose edges and colours anti-aliasing must get right.
 fn scene_text(name: &str, width: u32, height: u32, samples: u32) -> String {
     format!(
-        r#"
-name = "{name}"
-[camera]
-kind = "panorama"
-h_fov_deg = 300.0
-v_fov_deg = 40.0
-width = {width}
-height = {height}
-samples = {samples}
-[trace]
-max_past = 12.0
-[[object]]
+        "name = \"{name}\"\n{}samples = {samples}\n{}{}",
+        testkit::panorama(300.0, 40.0, width as usize, height as usize),
+        testkit::trace("numeric", 12.0),
+        r#"[[object]]
 name = "ball"
 radius = 0.25
-texture = {{ kind = "checker", rows = 4, cols = 8 }}
-motion = {{ kind = "geodesic", time = 0.0, position = {{ x = -1.0, y = 0.3, z = 0.0 }}, speed = 0.7, direction = [1, 0, 0] }}
+texture = { kind = "checker", rows = 4, cols = 8 }
+motion = { kind = "geodesic", time = 0.0, position = { x = -1.0, y = 0.3, z = 0.0 }, speed = 0.7, direction = [1, 0, 0] }
 "#
     )
 }
@@ -224,41 +209,15 @@ fn parts_of_a_sampled_render_merge_into_the_single_run() {
             .replace("width = 90\nheight = 37", "width = 30\nheight = 13"),
     );
     let single = tmp.path().join("single");
-    ok(&[
-        "render",
-        &scene,
-        "--samples",
-        "4",
-        "-o",
-        single.to_str().unwrap(),
-        "-q",
-    ]);
+    ok_render(&scene, &single, &["--samples", "4", "-q"]);
     let parts = tmp.path().join("parts");
     for i in 1..=3 {
         let part = format!("{i}/3");
-        ok(&[
-            "render",
-            &scene,
-            "--samples",
-            "4",
-            "--part",
-            &part,
-            "-o",
-            parts.to_str().unwrap(),
-            "-q",
-        ]);
+        ok_render(&scene, &parts, &["--samples", "4", "--part", &part, "-q"]);
     }
     // A part traced with other samples does not belong to the render.
     let other = tmp.path().join("other");
-    ok(&[
-        "render",
-        &scene,
-        "--part",
-        "3/3",
-        "-o",
-        other.to_str().unwrap(),
-        "-q",
-    ]);
+    ok_render(&scene, &other, &["--part", "3/3", "-q"]);
     let merged = tmp.path().join("merged");
     let part = |dir: &Path, i: u32| {
         dir.join(format!("lit.part-{i}-of-3.exr"))
@@ -277,11 +236,12 @@ fn parts_of_a_sampled_render_merge_into_the_single_run() {
     assert_eq!(refused.status.code(), Some(1), "{}", stderr(&refused));
     assert!(!merged.join("lit.exr").exists());
     ok(&["merge", &p3, &p1, &p2, "-o", merged.to_str().unwrap()]);
-    for file in ["lit.exr", "lit.png"] {
-        let a = std::fs::read(single.join(file)).unwrap();
-        let b = std::fs::read(merged.join(file)).unwrap();
-        assert!(a == b, "{file} of the merge differs from the single run");
-    }
+    assert_same_files(
+        &single,
+        &merged,
+        &["lit.exr", "lit.png"],
+        "the single run and the merge",
+    );
     let data = DataFile::read(&single.join("lit.exr")).unwrap();
     assert_eq!(
         (data.width, data.height, data.header.supersample),
@@ -333,11 +293,14 @@ fn bad_sample_counts_are_refused_before_tracing() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("rays"), "{}", stderr(&o));
     // In the scene file: located at the field.
-    let bad = write_scene(tmp.path(), "bad.toml", &scene_text("bad", 40, 10, 3));
+    let text = scene_text("bad", 40, 10, 3);
+    let line = 1 + text.lines().position(|l| l == "samples = 3").unwrap();
+    let bad = write_scene(tmp.path(), "bad.toml", &text);
     let o = godel(&["render", &bad, "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let at = format!("bad.toml:{line}:");
     assert!(
-        stderr(&o).contains("bad.toml:9:") && stderr(&o).contains("camera.samples"),
+        stderr(&o).contains(&at) && stderr(&o).contains("camera.samples"),
         "{}",
         stderr(&o)
     );

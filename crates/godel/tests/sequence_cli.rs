@@ -6,13 +6,12 @@
 //! only its own frames.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 
 mod common;
-use common::{files_in, godel, run_within, stderr};
+use common::{files_in, godel, png, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine; they take well under a second.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);
@@ -28,27 +27,12 @@ fn data_file(dir: &Path) -> PathBuf {
         ),
         width: 4,
         height: 1,
-        records: vec![
-            PixelRecord {
-                object: 0,
-                status: RayStatus::Hit,
-                g: 1.0,
-                t_emit: -1.0,
-                cos_i: 1.0,
-                view: [0.0; 3],
-                ..PixelRecord::MISS
-            };
-            4
-        ],
+        records: vec![testkit::hit(0, 0.0, 0.0, 1.0, -1.0, 1.0); 4],
         lights: vec![],
     };
     let path = dir.join("syn.exr");
     data.write(&path).unwrap();
     path
-}
-
-fn png(path: &Path) -> image::RgbImage {
-    image::open(path).unwrap().to_rgb8()
 }
 
 #[test]
@@ -150,6 +134,26 @@ motion = { kind = "geodesic", time = 0.0, position = { x = 1.0, y = -0.5, z = 0.
     assert!(!dir.path().join("out/sequence.mp4").exists());
 }
 
+/// Runs `godel sequence SCRIPT -q`, killed and failed after [`NEVER_HANGS`].
+fn sequence_within(script: &Path) -> Output {
+    run_within(
+        Command::new(env!("CARGO_BIN_EXE_godel")).args([
+            "sequence",
+            script.to_str().unwrap(),
+            "-q",
+        ]),
+        NEVER_HANGS,
+    )
+}
+
+/// Runs `godel sequence` on each script text, which must be refused before any frame with a
+/// message holding every needle.
+fn refused_all(cases: &[(&str, &[&str])]) {
+    for (script_text, needles) in cases {
+        refused(script_text, needles);
+    }
+}
+
 fn refused(script_text: &str, needles: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
     data_file(dir.path());
@@ -157,14 +161,7 @@ fn refused(script_text: &str, needles: &[&str]) {
     std::fs::write(&script, script_text).unwrap();
     // Bounded: before the frame count was bounded, `frames = 1e9` wrote until the disk
     // was full.
-    let o = run_within(
-        Command::new(env!("CARGO_BIN_EXE_godel")).args([
-            "sequence",
-            script.to_str().unwrap(),
-            "-q",
-        ]),
-        NEVER_HANGS,
-    );
+    let o = sequence_within(&script);
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{e}");
     assert_eq!(e.lines().count(), 1, "{e}");
@@ -179,39 +176,31 @@ fn refused(script_text: &str, needles: &[&str]) {
 
 #[test]
 fn bad_scripts_are_refused_before_any_frame() {
-    refused(
-        "data = \"syn.exr\"\nframes = 9\n\n[[keyframe]]\nframe = 6\n\n[[keyframe]]\nframe = 2\n",
-        &["bad.toml:8", "keyframe[1].frame", "out of order"],
-    );
-    refused(
-        "data = \"syn.exr\"\nframes = 9\n[[keyframe]]\nframe = 1\n[keyframe.settings]\nobjects.sun.temperature = 3000.0\n",
-        &["bad.toml:6", "keyframe[0].settings.objects.sun", "unknown object 'sun'"],
-    );
-    refused(
-        "data = \"syn.exr\"\nframes = 9\n[settings]\nexposure = -1.0\n",
-        &["exposure", "≥ 0"],
-    );
-    refused(
-        "data = \"syn.exr\"\nframes = 9\nspeed = 3\n",
-        &["bad.toml:3", "speed"],
-    );
+    refused_all(&[
+        ("data = \"syn.exr\"\nframes = 9\n\n[[keyframe]]\nframe = 6\n\n[[keyframe]]\nframe = 2\n", &["bad.toml:8", "keyframe[1].frame", "out of order"]),
+        ("data = \"syn.exr\"\nframes = 9\n[[keyframe]]\nframe = 1\n[keyframe.settings]\nobjects.sun.temperature = 3000.0\n", &["bad.toml:6", "keyframe[0].settings.objects.sun", "unknown object 'sun'"]),
+        ("data = \"syn.exr\"\nframes = 9\n[settings]\nexposure = -1.0\n", &["exposure", "≥ 0"]),
+        ("data = \"syn.exr\"\nframes = 9\nspeed = 3\n", &["bad.toml:3", "speed"]),
+    ]);
 }
 
 /// Issue 10: `frames = 1000000000` wrote until the disk was full; `fps = 1e300` was accepted.
 #[test]
 fn frame_counts_and_rates_are_bounded() {
-    refused(
-        "data = \"syn.exr\"\nframes = 1000000000\n",
-        &["bad.toml:2", "frames", "at most 100000"],
-    );
-    refused(
-        "data = \"syn.exr\"\nframes = 100001\n",
-        &["bad.toml:2", "frames", "at most 100000"],
-    );
-    refused(
-        "data = \"syn.exr\"\nframes = 9\nfps = 1e300\n",
-        &["bad.toml:3", "fps", "at most 1000"],
-    );
+    refused_all(&[
+        (
+            "data = \"syn.exr\"\nframes = 1000000000\n",
+            &["bad.toml:2", "frames", "at most 100000"],
+        ),
+        (
+            "data = \"syn.exr\"\nframes = 100001\n",
+            &["bad.toml:2", "frames", "at most 100000"],
+        ),
+        (
+            "data = \"syn.exr\"\nframes = 9\nfps = 1e300\n",
+            &["bad.toml:3", "fps", "at most 1000"],
+        ),
+    ]);
 }
 
 /// Issue 10: an unwritable output folder was found only after the work; a script or data
@@ -236,14 +225,7 @@ fn unwritable_outputs_and_odd_inputs_are_refused_before_any_frame() {
     let script = dir.path().join("s.toml");
     std::fs::write(&script, "data = \"fifo\"\nframes = 2\n").unwrap();
     for input in [&fifo, &script] {
-        let o = run_within(
-            Command::new(env!("CARGO_BIN_EXE_godel")).args([
-                "sequence",
-                input.to_str().unwrap(),
-                "-q",
-            ]),
-            NEVER_HANGS,
-        );
+        let o = sequence_within(input);
         let e = stderr(&o);
         assert!(!o.status.success(), "{e}");
         assert!(e.contains("not a regular file (a FIFO)"), "{e}");

@@ -6,15 +6,10 @@
 
 use std::path::{Path, PathBuf};
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 
 mod common;
-use common::{godel, stderr};
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use common::{path_arg as s, png, render, shade, stderr};
 
 /// The small scene rendered by the first test, also the scene text of the synthetic data
 /// files.
@@ -43,17 +38,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
         width: n,
         height: 1,
         records: (0..n)
-            .map(|i| PixelRecord {
-                object: 0,
-                status: RayStatus::Hit,
-                u: 0.3,
-                v: 0.3,
-                g: 1.0,
-                t_emit: -(i as f32) / 2.0,
-                cos_i: 1.0,
-                view: [0.0; 3],
-                ..PixelRecord::MISS
-            })
+            .map(|i| testkit::hit(0, 0.3, 0.3, 1.0, -(i as f32) / 2.0, 1.0))
             .collect(),
         lights: vec![vec![1.0; n]; lights],
     };
@@ -62,26 +47,16 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
     path
 }
 
-fn png(path: &Path) -> image::RgbImage {
-    image::open(path).unwrap().to_rgb8()
-}
-
 #[test]
 fn texture_shader_reproduces_the_render_preview() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("small.toml");
     std::fs::write(&scene, small_scene()).unwrap();
-    let o = godel(&["render", s(&scene), "-o", s(dir.path()), "-q"]);
+    let o = render(&scene, dir.path(), &["-q"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = dir.path().join("tex.png");
-    let o = godel(&[
-        "shade",
-        s(&dir.path().join("small.exr")),
-        "--shader",
-        "texture",
-        "-o",
-        s(&out),
-    ]);
+    let data = dir.path().join("small.exr");
+    let o = shade(&data, &out, &["--shader", "texture"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let (a, b) = (png(&out), png(&dir.path().join("small.png")));
     assert_eq!(a.dimensions(), b.dimensions());
@@ -95,14 +70,7 @@ fn texture_shader_reproduces_the_render_preview() {
     assert!(hits > 10, "the ball is in the picture");
     // The checker turned by one column (45°) changes the picture; the frequency shader too.
     let turned = dir.path().join("turned.png");
-    let o = godel(&[
-        "shade",
-        s(&dir.path().join("small.exr")),
-        "--rotate",
-        "ball=45",
-        "-o",
-        s(&turned),
-    ]);
+    let o = shade(&data, &turned, &["--rotate", "ball=45"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_ne!(png(&turned), a);
 }
@@ -112,35 +80,21 @@ fn frequency_flag_at_6504_kelvin_gives_near_white() {
     let dir = tempfile::tempdir().unwrap();
     let data = synthetic(dir.path(), 0);
     let out = dir.path().join("f.png");
-    let o = godel(&[
-        "shade",
-        s(&data),
-        "--shader",
-        "frequency",
-        "--temperature",
-        "6504",
-        "--no-reference",
-        "-o",
-        s(&out),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    for p in png(&out).pixels() {
+    let frequency = |temperature: &str| {
+        let flags = ["--shader", "frequency", "--no-reference"];
+        let o = shade(
+            &data,
+            &out,
+            &[&flags[..], &["--temperature", temperature]].concat(),
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        png(&out)
+    };
+    for p in frequency("6504").pixels() {
         assert!(p.0.iter().all(|&c| c >= 240), "{p:?}");
     }
     // 2000 K is red.
-    let o = godel(&[
-        "shade",
-        s(&data),
-        "--shader",
-        "frequency",
-        "--temperature",
-        "ball=2000",
-        "--no-reference",
-        "-o",
-        s(&out),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let p = *png(&out).get_pixel(5, 0);
+    let p = *frequency("ball=2000").get_pixel(5, 0);
     assert!(p[0] > p[1] && p[1] > p[2], "{p:?}");
 }
 
@@ -149,19 +103,19 @@ fn window_flag_switches_texture_by_t_emit() {
     let dir = tempfile::tempdir().unwrap();
     let data = synthetic(dir.path(), 0);
     let out = dir.path().join("w.png");
-    let o = godel(&[
-        "shade",
-        s(&data),
-        "--shader",
-        "time",
-        "--window=-4,2",
-        "--texture",
-        "uniform:0,0,1",
-        "--window-texture",
-        "ball=uniform:1,0,0",
-        "-o",
-        s(&out),
-    ]);
+    let o = shade(
+        &data,
+        &out,
+        &[
+            "--shader",
+            "time",
+            "--window=-4,2",
+            "--texture",
+            "uniform:0,0,1",
+            "--window-texture",
+            "ball=uniform:1,0,0",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let img = png(&out);
     for i in 0..16u32 {
@@ -183,8 +137,6 @@ fn light_flags_switch_sources() {
     let data = synthetic(dir.path(), 2);
     let (on, off) = (dir.path().join("on.png"), dir.path().join("off.png"));
     let base = [
-        "shade",
-        s(&data),
         "--shader",
         "light",
         "--texture",
@@ -192,21 +144,19 @@ fn light_flags_switch_sources() {
         "--ambient",
         "0",
     ];
-    let o = godel(&[&base[..], &["-o", s(&on)]].concat());
+    let o = shade(&data, &on, &base);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = godel(
-        &[
-            &base[..],
-            &["--light", "1=off", "--light", "0=0.5", "-o", s(&off)],
-        ]
-        .concat(),
+    let o = shade(
+        &data,
+        &off,
+        &[&base[..], &["--light", "1=off", "--light", "0=0.5"]].concat(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
     // 0.2 × (1 + 1) = 0.4 linear, then 0.2 × 0.5 = 0.1 linear.
     let srgb = |x: f64| (255.0 * (1.055 * x.powf(1.0 / 2.4) - 0.055)).round() as u8;
     assert_eq!(png(&on).get_pixel(3, 0)[1], srgb(0.4));
     assert_eq!(png(&off).get_pixel(3, 0)[1], srgb(0.1));
-    let o = godel(&[&base[..], &["--light", "2=off", "-o", s(&off)]].concat());
+    let o = shade(&data, &off, &[&base[..], &["--light", "2=off"]].concat());
     assert_eq!(o.status.code(), Some(2));
     assert!(
         stderr(&o).contains("light 2 does not exist"),
@@ -217,8 +167,9 @@ fn light_flags_switch_sources() {
 
 /// Runs `godel shade` on bad input: non-zero exit `code`, stderr contains every needle, no
 /// output file.
-fn refused(args: &[&str], out: &Path, code: i32, needles: &[&str]) {
-    let o = godel(args);
+fn refused(data: &Path, extra: &[&str], out: &Path, code: i32, needles: &[&str]) {
+    let o = shade(data, out, extra);
+    let args = [&[s(data)], extra].concat();
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(code), "{args:?}: {e}");
     assert!(e.starts_with("error: "), "{e}");
@@ -245,30 +196,15 @@ fn bad_data_files_are_clear_errors_with_no_output() {
     let bytes = std::fs::read(&good).unwrap();
     let truncated = dir.path().join("truncated.exr");
     std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
-    refused(
-        &["shade", s(&truncated), "-o", s(&out)],
-        &out,
-        1,
-        &["truncated.exr"],
-    );
+    refused(&truncated, &[], &out, 1, &["truncated.exr"]);
     // Not EXR.
     let text = dir.path().join("notes.exr");
     std::fs::write(&text, "this is not an image\n").unwrap();
-    refused(
-        &["shade", s(&text), "-o", s(&out)],
-        &out,
-        1,
-        &["notes.exr", "not an OpenEXR file"],
-    );
+    refused(&text, &[], &out, 1, &["notes.exr", "not an OpenEXR file"]);
     // An EXR without the data channels.
     let rgb = dir.path().join("photo.exr");
     exr::prelude::write_rgb_file(&rgb, 4, 4, |_, _| (0.5f32, 0.5f32, 0.5f32)).unwrap();
-    refused(
-        &["shade", s(&rgb), "-o", s(&out)],
-        &out,
-        1,
-        &["photo.exr", "godel."],
-    );
+    refused(&rgb, &[], &out, 1, &["photo.exr", "godel."]);
     // A data file lacking one channel: `t_emit` renamed in the header (same length, so the
     // file stays a valid EXR).
     let mut renamed = bytes.clone();
@@ -279,19 +215,9 @@ fn bad_data_files_are_clear_errors_with_no_output() {
     renamed[at + 5] = b'q';
     let lacking = dir.path().join("lacking.exr");
     std::fs::write(&lacking, &renamed).unwrap();
-    refused(
-        &["shade", s(&lacking), "-o", s(&out)],
-        &out,
-        1,
-        &["lacking.exr", "t_emit"],
-    );
+    refused(&lacking, &[], &out, 1, &["lacking.exr", "t_emit"]);
     // Missing file.
-    refused(
-        &["shade", s(&dir.path().join("none.exr")), "-o", s(&out)],
-        &out,
-        1,
-        &["none.exr"],
-    );
+    refused(&dir.path().join("none.exr"), &[], &out, 1, &["none.exr"]);
 }
 
 #[test]
@@ -299,72 +225,44 @@ fn bad_settings_are_usage_errors_with_no_output() {
     let dir = tempfile::tempdir().unwrap();
     let data = synthetic(dir.path(), 0);
     let out = dir.path().join("out.png");
+    refused(&data, &["--shader", "sepia"], &out, 2, &["sepia"]);
     refused(
-        &["shade", s(&data), "--shader", "sepia", "-o", s(&out)],
-        &out,
-        2,
-        &["sepia"],
-    );
-    refused(
-        &[
-            "shade",
-            s(&data),
-            "--texture",
-            "sun=checker:2x2",
-            "-o",
-            s(&out),
-        ],
+        &data,
+        &["--texture", "sun=checker:2x2"],
         &out,
         2,
         &["--texture", "unknown object 'sun'"],
     );
     refused(
-        &["shade", s(&data), "--temperature", "ball=-3", "-o", s(&out)],
+        &data,
+        &["--temperature", "ball=-3"],
         &out,
         2,
         &["--temperature", "positive"],
     );
     refused(
-        &["shade", s(&data), "--texture", "checker:0x2", "-o", s(&out)],
+        &data,
+        &["--texture", "checker:0x2"],
         &out,
         2,
         &["error: --texture: ", "objects.ball.texture"],
     );
     // Issue 10: these were blamed on --shader.
     refused(
-        &[
-            "shade",
-            s(&data),
-            "--shader",
-            "time",
-            "--window-texture",
-            "ball=checker:0x0",
-            "-o",
-            s(&out),
-        ],
+        &data,
+        &["--shader", "time", "--window-texture", "ball=checker:0x0"],
         &out,
         2,
         &["error: --window-texture: ", "objects.ball.window_texture"],
     );
     refused(
-        &[
-            "shade",
-            s(&data),
-            "--texture",
-            "ball=checker:0x0",
-            "-o",
-            s(&out),
-        ],
+        &data,
+        &["--texture", "ball=checker:0x0"],
         &out,
         2,
         &["error: --texture: ", "objects.ball.texture"],
     );
-    refused(
-        &["shade", s(&data), "--shader", "light", "-o", s(&out)],
-        &out,
-        2,
-        &["light channels"],
-    );
+    refused(&data, &["--shader", "light"], &out, 2, &["light channels"]);
     let settings = dir.path().join("look.toml");
     std::fs::write(
         &settings,
@@ -372,7 +270,8 @@ fn bad_settings_are_usage_errors_with_no_output() {
     )
     .unwrap();
     refused(
-        &["shade", s(&data), "--settings", s(&settings), "-o", s(&out)],
+        &data,
+        &["--settings", s(&settings)],
         &out,
         2,
         &["look.toml:4", "objects.ball.temprature", "unknown field"],
@@ -384,21 +283,24 @@ fn bad_settings_are_usage_errors_with_no_output() {
     )
     .unwrap();
     refused(
-        &["shade", s(&data), "--settings", s(&settings), "-o", s(&out)],
+        &data,
+        &["--settings", s(&settings)],
         &out,
         2,
         &["error: --settings: ", "objects.ball.texture"],
     );
     // Issue 10: settings files are read with a bound; a device or FIFO is refused.
     refused(
-        &["shade", s(&data), "--settings", "/dev/zero", "-o", s(&out)],
+        &data,
+        &["--settings", "/dev/zero"],
         &out,
         2,
         &["error: --settings: ", "not a regular file"],
     );
     std::fs::write(&settings, "[objects.sun]\ntemperature = 3.0\n").unwrap();
     refused(
-        &["shade", s(&data), "--settings", s(&settings), "-o", s(&out)],
+        &data,
+        &["--settings", s(&settings)],
         &out,
         2,
         &["look.toml:1", "unknown object 'sun'"],
@@ -416,7 +318,7 @@ fn a_settings_file_sets_any_field() {
     )
     .unwrap();
     let out = dir.path().join("out.png");
-    let o = godel(&["shade", s(&data), "--settings", s(&settings), "-o", s(&out)]);
+    let o = shade(&data, &out, &["--settings", s(&settings)]);
     assert!(o.status.success(), "{}", stderr(&o));
     // 1.0 through the display tone curve (0.9) is sRGB 243.
     assert_eq!(png(&out).get_pixel(0, 0).0, [0, 243, 0]);

@@ -7,6 +7,23 @@
 mod common;
 use common::godel;
 
+/// The two samples (start and end) of `godel geodesic` as JSON from `at` along `dir`
+/// (`extra` flags) until coordinate time `until`.
+fn end_points(at: &str, dir: &str, extra: &[&str], until: &str) -> serde_json::Value {
+    let base = [
+        "geodesic",
+        "--format",
+        "json",
+        "--samples",
+        "2",
+        "--at",
+        at,
+        "--dir",
+        dir,
+    ];
+    json(&[&base[..], extra, &["--until-time", until]].concat())
+}
+
 fn json(args: &[&str]) -> serde_json::Value {
     let o = godel(args);
     assert!(
@@ -140,19 +157,8 @@ fn connecting_rays_land_on_the_event_and_point_back_at_the_source() {
         ];
         assert!(on_source.iter().all(|d| d.abs() < 1e-10), "{on_source:?}");
         // Forward from the emission along the departure direction, numerically.
-        let fwd = json(&[
-            "geodesic",
-            "--format",
-            "json",
-            "--samples",
-            "2",
-            "--at",
-            &cylindrical(e),
-            "--dir",
-            &list(&ray["departure"]),
-            "--until-time",
-            &travel.to_string(),
-        ]);
+        let travel = travel.to_string();
+        let fwd = end_points(&cylindrical(e), &list(&ray["departure"]), &[], &travel);
         let end = *samples(&fwd).last().unwrap();
         let miss = end
             .iter()
@@ -161,20 +167,7 @@ fn connecting_rays_land_on_the_event_and_point_back_at_the_source() {
             .fold(0.0, f64::max);
         assert!(miss < 1e-7, "forward ray misses the event by {miss:e}");
         // Backward from the event along the viewing direction: lands on the source.
-        let back = json(&[
-            "geodesic",
-            "--format",
-            "json",
-            "--samples",
-            "2",
-            "--at",
-            &from,
-            "--dir",
-            &list(&ray["look"]),
-            "--past",
-            "--until-time",
-            &travel.to_string(),
-        ]);
+        let back = end_points(&from, &list(&ray["look"]), &["--past"], &travel);
         let end = *samples(&back).last().unwrap();
         let miss = [end[1] - src[0], end[2] - src[1], end[3] - src[2]]
             .iter()
@@ -269,14 +262,10 @@ fn images(svg: &str) -> Vec<(f64, Vec<(f64, f64)>)> {
 fn isometry_plot_moves_the_ray_along_the_field() {
     let dir = tempfile::tempdir().unwrap();
     let svg_path = dir.path().join("iso.svg");
-    let o = godel(&[
-        "plot",
-        "isometry",
-        "--images",
-        "5",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
+    let plot = |flags: &[&str], out: &std::path::Path| {
+        godel(&[&["plot", "isometry", "-o", out.to_str().unwrap()], flags].concat())
+    };
+    let o = plot(&["--images", "5"], &svg_path);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     assert!(svg.contains("id=\"original\"") && svg.contains("id=\"field\""));
@@ -298,29 +287,15 @@ fn isometry_plot_moves_the_ray_along_the_field() {
     }
     // ∂φ rotates about the origin: every image starts there.
     let png_path = dir.path().join("iso.png");
-    let o = godel(&[
-        "plot",
-        "isometry",
-        "--field",
-        "phi",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
+    let o = plot(&["--field", "phi"], &svg_path);
     assert!(o.status.success());
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     for (_, pts) in images(&svg) {
         assert!(pts[0].0.abs() < 1e-4 && pts[0].1.abs() < 1e-4);
     }
-    let o = godel(&["plot", "isometry", "-o", png_path.to_str().unwrap()]);
+    let o = plot(&[], &png_path);
     assert!(o.status.success());
     assert!(std::fs::read(&png_path).unwrap().starts_with(b"\x89PNG"));
-    let o = godel(&[
-        "plot",
-        "isometry",
-        "--images",
-        "0",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
+    let o = plot(&["--images", "0"], &svg_path);
     assert_eq!(o.status.code(), Some(2));
 }

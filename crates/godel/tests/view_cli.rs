@@ -19,23 +19,14 @@ fn fails_with(o: &Output, code: i32, needles: &[&str]) {
 /// Renders a 48×8 view of scenes/static-sphere.toml into `dir`; returns the data file.
 fn small_data_file(dir: &std::path::Path) -> std::path::PathBuf {
     let scene = dir.join("s.toml");
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/static-sphere.toml"),
-    )
-    .unwrap()
-    .replace("width = 720", "width = 48")
-    .replace("height = 120", "height = 8");
+    let text = std::fs::read_to_string(testkit::scenes_dir().join("static-sphere.toml"))
+        .unwrap()
+        .replace("width = 720", "width = 48")
+        .replace("height = 120", "height = 8");
     std::fs::write(&scene, text).unwrap();
-    let o = godel(&[
-        "render",
-        scene.to_str().unwrap(),
-        "-q",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
+    let o = common::render(&scene, dir, &["-q"]);
     assert!(o.status.success(), "{o:?}");
-    let exr = dir.join("static-sphere.exr");
-    exr
+    dir.join("static-sphere.exr")
 }
 
 #[test]

@@ -7,7 +7,7 @@
 //! moment that matters: both files complete as temporaries, neither renamed yet.
 
 use std::io::{BufRead, BufReader};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
@@ -17,6 +17,15 @@ use common::{files_in, lit_scene_text, run_within, stderr, write_scene};
 
 const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 const NEVER_HANGS: Duration = Duration::from_secs(120);
+
+/// Writes the lit test scene named "ranks" into `dir` and makes the output folder `dir/out`;
+/// returns both paths.
+fn ranks_scene_in(dir: &Path) -> (String, PathBuf) {
+    let scene = write_scene(dir, "ranks.toml", &lit_scene_text("ranks", 6.0));
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    (scene, out)
+}
 
 /// Starts a render of the lit test scene into `out` that pauses once both files are
 /// staged, sends `signal` there, and returns the exit code and the files seen in `out`
@@ -95,9 +104,7 @@ fn a_signal_during_the_write_leaves_neither_file_nor_temporary() {
 #[test]
 fn an_interrupted_rerun_keeps_the_earlier_pair() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = write_scene(tmp.path(), "ranks.toml", &lit_scene_text("ranks", 6.0));
-    let out = tmp.path().join("out");
-    std::fs::create_dir_all(&out).unwrap();
+    let (scene, out) = ranks_scene_in(tmp.path());
     std::fs::write(out.join("ranks.exr"), b"earlier exr").unwrap();
     std::fs::write(out.join("ranks.png"), b"earlier png").unwrap();
     let (exit, _) = interrupt_at_the_rename(&scene, &out, "-TERM");
@@ -128,9 +135,7 @@ fn host_tag() -> String {
 #[test]
 fn temporaries_left_by_a_killed_run_are_swept() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = write_scene(tmp.path(), "ranks.toml", &lit_scene_text("ranks", 6.0));
-    let out = tmp.path().join("out");
-    std::fs::create_dir_all(&out).unwrap();
+    let (scene, out) = ranks_scene_in(tmp.path());
     // What a run killed with SIGKILL leaves: its process is gone.
     let mut gone = Command::new("true").spawn().unwrap();
     let pid = gone.id();

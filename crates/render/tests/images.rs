@@ -27,31 +27,30 @@ const MID_ROW: usize = H / 2;
 
 fn panorama_scene(name: &str, motion: &str, max_past: f64) -> scene::Scene {
     scene(&format!(
-        r#"
-name = "{name}"
+        r#"name = "{name}"
 [spacetime]
 metric = "godel"
 a = {A}
-[observer]
-time = 0.0
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-forward = [1, 0, 0]
-up = [0, 0, 1]
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = {V_FOV_DEG}
-width = {W}
-height = {H}
-[trace]
+{}{}[trace]
 max_past = {max_past}
 [[object]]
 name = "ball"
 radius = {RADIUS}
 texture = {{ kind = "gradient" }}
 motion = {motion}
-"#
+"#,
+        testkit::OBSERVER_AT_ORIGIN,
+        testkit::panorama(360.0, V_FOV_DEG, W, H),
     ))
+}
+
+/// The panorama of the ball at rest at (r, φ) = (RHO, PHI_C), traced back to `max_past`.
+fn static_sphere_scene(name: &str, max_past: f64) -> scene::Scene {
+    panorama_scene(
+        name,
+        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
+        max_past,
+    )
 }
 
 fn centre() -> [f64; 2] {
@@ -103,11 +102,7 @@ fn group_near(groups: &[Vec<(usize, usize)>], col: usize) -> Option<usize> {
 #[test]
 fn static_sphere_inside_horizon_is_seen_twice_where_the_connecting_rays_point() {
     let images = solved_images();
-    let s = panorama_scene(
-        "static-inside",
-        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
-        10.0,
-    );
+    let s = static_sphere_scene("static-inside", 10.0);
     let (d, stats) = render_scene(&s);
     assert_eq!(stats.failed + stats.step_budget, 0, "{}", stats.summary());
     let groups = groups(&d, true);
@@ -326,11 +321,7 @@ fn edge(inside: f64, outside: f64, first_half: bool) -> f64 {
 #[test]
 fn static_sphere_images_have_the_width_of_a_ball_of_proper_radius_r() {
     let images = solved_images();
-    let s = panorama_scene(
-        "static-edges",
-        &format!("{{ kind = \"rest\", position = {{ r = {RHO}, phi = {PHI_C}, z = 0.0 }} }}"),
-        4.0,
-    );
+    let s = static_sphere_scene("static-edges", 4.0);
     let (d, _) = render_scene(&s);
     for (k, &(az, _)) in images.iter().enumerate() {
         let first_half = k == 0;

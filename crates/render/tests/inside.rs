@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{godel, render_scene, scene};
+use common::{bisect, godel, pixel_directions, render_scene, scene};
 use datafile::record::RayStatus;
 use datafile::DataFile;
 use scene::Scene;
@@ -22,22 +22,24 @@ use spacetime::{
 
 fn scene_text(name: &str, method: &str, max_past: f64, objects: &str) -> String {
     format!(
-        r#"
-name = "{name}"
-[observer]
-position = {{ r = 0.0, phi = 0.0, z = 0.0 }}
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 160.0
-width = 24
-height = 12
-[trace]
-method = "{method}"
-max_past = {max_past:?}
-{objects}
-"#
+        "name = \"{name}\"\n[observer]\nposition = {{ r = 0.0, phi = 0.0, z = 0.0 }}\n{}{}{objects}\n",
+        testkit::panorama(360.0, 160.0, 24, 12),
+        testkit::trace(method, max_past),
     )
+}
+
+/// The inline TOML table of the point `c` in pseudo-Cartesian coordinates.
+fn xyz(c: [f64; 3]) -> String {
+    format!("{{ x = {}, y = {}, z = {} }}", c[0], c[1], c[2])
+}
+
+/// Renders [`scene_text`] traced back to t = −30 by `method` and asserts that every pixel
+/// hits; returns the scene and its data file.
+fn all_hit(name: &str, method: &str, objects: &str) -> (Scene, DataFile) {
+    let s = scene(&scene_text(name, method, 30.0, objects));
+    let (d, stats) = render_scene(&s);
+    assert_eq!(stats.hits, stats.pixels, "{}", stats.summary());
+    (s, d)
 }
 
 /// The backward light ray of pixel (col, row) of a static observer, integrated
@@ -158,7 +160,7 @@ fn static_ball(metric: Metric, c: [f64; 3], radius: f64) -> impl Fn(Event) -> f6
             let p = Event::new(tc, c[0], c[1], c[2]);
             dot(metric, p, u, xi_at(tc))
         };
-        let tc = bisect(sim, x.t - 2.0, x.t + 2.0);
+        let tc = bisect(sim, x.t - 2.0, x.t + 2.0, 100);
         let p = Event::new(tc, c[0], c[1], c[2]);
         let xi = xi_at(tc);
         dot(metric, p, xi, xi).max(0.0).sqrt() - radius
@@ -187,24 +189,6 @@ fn dot(metric: Metric, at: Event, u: FourVector, v: FourVector) -> f64 {
         .sum()
 }
 
-/// A root of an increasing-or-decreasing `f` on [lo, hi] with a sign change.
-fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let flo = f(lo);
-    assert!(
-        (flo > 0.0) != (f(hi) > 0.0),
-        "no sign change on [{lo}, {hi}]"
-    );
-    for _ in 0..100 {
-        let m = 0.5 * (lo + hi);
-        if (f(m) > 0.0) == (flo > 0.0) {
-            lo = m;
-        } else {
-            hi = m;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 /// The proper (radar) distance between two static worldlines of the Gödel metric: the
 /// static observers' space is the hyperbolic plane of curvature −1/a² times a line,
 /// 4a²|dw|²/(1 − |w|²)² + dz² with w = (x + iy)/√(x² + y² + 4a²), so
@@ -230,17 +214,14 @@ fn coordinate_sphere_around_the_observer_is_seen_from_inside() {
         |x: Event| ((x.x - c[0]).powi(2) + (x.y - c[1]).powi(2) + (x.z - c[2]).powi(2)).sqrt() - r;
     let mut records = Vec::new();
     for method in ["numeric", "exact"] {
-        let s = scene(&scene_text(
+        let (s, d) = all_hit(
             "inside-coordinates",
             method,
-            30.0,
             &format!(
-                "[[object]]\nname = \"room\"\nframe = \"coordinates\"\nshape = \"sphere\"\ncenter = {{ x = {}, y = {}, z = {} }}\nradius = {r}\ntexture = {{ kind = \"gradient\" }}",
-                c[0], c[1], c[2]
+                "[[object]]\nname = \"room\"\nframe = \"coordinates\"\nshape = \"sphere\"\ncenter = {}\nradius = {r}\ntexture = {{ kind = \"gradient\" }}",
+                xyz(c)
             ),
-        ));
-        let (d, stats) = render_scene(&s);
-        assert_eq!(stats.hits, stats.pixels, "{}", stats.summary());
+        );
         check_exits(&s, &d, &sphere, 2e-6);
         records.push(d);
     }
@@ -257,17 +238,14 @@ fn local_sphere_at_rest_around_the_observer_is_seen_from_inside() {
     let (c, r) = ([0.15, 0.1, 0.0], 0.4);
     let ball = static_ball(godel(a), c, r);
     for method in ["numeric", "exact"] {
-        let s = scene(&scene_text(
+        let (s, d) = all_hit(
             "inside-local",
             method,
-            30.0,
             &format!(
-                "[[object]]\nname = \"ball\"\nradius = {r}\nmotion = {{ kind = \"rest\", position = {{ x = {}, y = {}, z = {} }} }}",
-                c[0], c[1], c[2]
+                "[[object]]\nname = \"ball\"\nradius = {r}\nmotion = {{ kind = \"rest\", position = {} }}",
+                xyz(c)
             ),
-        ));
-        let (d, stats) = render_scene(&s);
-        assert_eq!(stats.hits, stats.pixels, "{}", stats.summary());
+        );
         check_exits(&s, &d, &ball, 2e-6);
         // Physics cross-check: the exit points lie at the ball's exact proper distance
         // from the centre, up to the third-order term of the local description.
@@ -285,14 +263,11 @@ fn local_sphere_at_rest_around_the_observer_is_seen_from_inside() {
 fn tiny_ball_centred_on_the_observer_is_hit_everywhere() {
     // Was: no hit at all (the start was inside, and only entries counted).
     for method in ["numeric", "exact"] {
-        let s = scene(&scene_text(
+        let (_, d) = all_hit(
             "tiny",
             method,
-            30.0,
             "[[object]]\nname = \"dot\"\nradius = 1e-6\nmotion = { kind = \"rest\", position = { r = 0.0, phi = 0.0, z = 0.0 } }",
-        ));
-        let (d, stats) = render_scene(&s);
-        assert_eq!(stats.hits, stats.pixels, "{}", stats.summary());
+        );
         for rec in &d.records {
             let dist =
                 (f64::from(rec.x).powi(2) + f64::from(rec.y).powi(2) + f64::from(rec.z).powi(2))
@@ -309,28 +284,19 @@ fn observer_on_the_surface_counts_as_inside() {
     let (c, r) = ([0.5, 0.0, 0.0], 0.5);
     let sphere = |x: Event| ((x.x - c[0]).powi(2) + x.y.powi(2) + x.z.powi(2)).sqrt() - r;
     for method in ["numeric", "exact"] {
-        let s = scene(&scene_text(
+        let (s, d) = all_hit(
             "on-surface",
             method,
-            30.0,
             "[[object]]\nname = \"shell\"\nframe = \"coordinates\"\nshape = \"sphere\"\ncenter = { x = 0.5, y = 0.0, z = 0.0 }\nradius = 0.5",
-        ));
-        let (d, stats) = render_scene(&s);
-        assert_eq!(stats.hits, stats.pixels, "{}", stats.summary());
+        );
         check_exits(&s, &d, &sphere, 2e-6);
         // Looking away from the centre, the surface is where the observer stands.
         let mut at_eye = 0;
-        for row in 0..d.height {
-            for col in 0..d.width {
-                let n = s
-                    .observer
-                    .pixel_direction(&s.camera, col as u32, row as u32)
-                    .unwrap();
-                let rec = d.record(col, row);
-                if n[0] < -0.05 {
-                    assert!(rec.t_emit.abs() < 1e-6 && rec.x.abs() < 1e-6, "{rec:?}");
-                    at_eye += 1;
-                }
+        for (col, row, n) in pixel_directions(&s, &d) {
+            let rec = d.record(col, row);
+            if n[0] < -0.05 {
+                assert!(rec.t_emit.abs() < 1e-6 && rec.x.abs() < 1e-6, "{rec:?}");
+                at_eye += 1;
             }
         }
         assert!(at_eye > 0);
@@ -400,7 +366,7 @@ fn check_falling_ball_around_the_observer(
             })
             .find(|&(lo, hi)| (sim(lo) > 0.0) != (sim(hi) > 0.0))
             .expect("a simultaneous worldline point");
-        let tau = bisect(sim, lo, hi);
+        let tau = bisect(sim, lo, hi, 100);
         let (p, _) = at(tau);
         let xi = normal_displacement(metric, p, x);
         dot(metric, p, xi, xi).max(0.0).sqrt() - r

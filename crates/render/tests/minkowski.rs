@@ -231,42 +231,36 @@ fn regression_large_fast_ball_matches_the_closed_form() {
     let gamma = 1.0 / (1.0 - speed * speed).sqrt();
     let v = [0.0, -1.0, 0.0];
     let (mut hits, mut checked) = (0, 0);
-    for row in 0..d.height {
-        for col in 0..d.width {
-            let n = s
-                .observer
-                .pixel_direction(&s.camera, col as u32, row as u32)
-                .unwrap();
-            // x′(s) = A·s + B: the boost along v of X(s) − (t0, 0).
-            let boost = |dt: f64, dx: [f64; 3]| {
-                let par: f64 = (0..3).map(|i| dx[i] * v[i]).sum();
-                std::array::from_fn::<f64, 3, _>(|i| {
-                    dx[i] + ((gamma - 1.0) * par - gamma * speed * dt) * v[i]
-                })
-            };
-            let (a, b) = (boost(-1.0, n), boost(-t0, [0.0; 3]));
-            let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
-            let (qa, qb, qc) = (dot(a, a), 2.0 * dot(a, b), dot(b, b) - radius * radius);
-            let disc = qb * qb - 4.0 * qa * qc;
-            let first = (disc >= 0.0)
-                .then(|| (-qb - disc.sqrt()) / (2.0 * qa))
-                .filter(|&s| s > 0.0 && s <= max_past);
-            let r = d.record(col, row);
-            // Rays within 1e-6 of grazing or of max_past may go either way.
-            let marginal =
-                disc.abs() < 1e-6 * qb * qb || first.is_some_and(|s| (s - max_past).abs() < 1e-6);
-            if marginal {
-                continue;
+    for (col, row, n) in pixel_directions(&s, &d) {
+        // x′(s) = A·s + B: the boost along v of X(s) − (t0, 0).
+        let boost = |dt: f64, dx: [f64; 3]| {
+            let par: f64 = (0..3).map(|i| dx[i] * v[i]).sum();
+            std::array::from_fn::<f64, 3, _>(|i| {
+                dx[i] + ((gamma - 1.0) * par - gamma * speed * dt) * v[i]
+            })
+        };
+        let (a, b) = (boost(-1.0, n), boost(-t0, [0.0; 3]));
+        let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+        let (qa, qb, qc) = (dot(a, a), 2.0 * dot(a, b), dot(b, b) - radius * radius);
+        let disc = qb * qb - 4.0 * qa * qc;
+        let first = (disc >= 0.0)
+            .then(|| (-qb - disc.sqrt()) / (2.0 * qa))
+            .filter(|&s| s > 0.0 && s <= max_past);
+        let r = d.record(col, row);
+        // Rays within 1e-6 of grazing or of max_past may go either way.
+        let marginal =
+            disc.abs() < 1e-6 * qb * qb || first.is_some_and(|s| (s - max_past).abs() < 1e-6);
+        if marginal {
+            continue;
+        }
+        checked += 1;
+        match first {
+            Some(s1) => {
+                hits += 1;
+                assert!(r.is_hit(), "pixel ({col}, {row}) should see the ball at s = {s1}");
+                assert!((f64::from(r.t_emit) + s1).abs() < 1e-5, "{} vs {}", r.t_emit, -s1);
             }
-            checked += 1;
-            match first {
-                Some(s1) => {
-                    hits += 1;
-                    assert!(r.is_hit(), "pixel ({col}, {row}) should see the ball at s = {s1}");
-                    assert!((f64::from(r.t_emit) + s1).abs() < 1e-5, "{} vs {}", r.t_emit, -s1);
-                }
-                None => assert!(!r.is_hit(), "pixel ({col}, {row}) should miss (disc {disc}, qa {qa} qb {qb} qc {qc}, n {n:?}): {r:?}"),
-            }
+            None => assert!(!r.is_hit(), "pixel ({col}, {row}) should miss (disc {disc}, qa {qa} qb {qb} qc {qc}, n {n:?}): {r:?}"),
         }
     }
     assert!(hits > 10 && checked > 400, "{hits} hits of {checked}");

@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{render_scene, scene};
+use common::{pixel_directions, render_scene, scene};
 use std::f64::consts::{PI, SQRT_2};
 
 const A: f64 = 1.0;
@@ -86,49 +86,43 @@ fn every_pixel_sees_the_inner_surface_or_the_ball_inside_it() {
     assert_eq!(stats.hits, stats.pixels, "{}", stats.summary());
     let mut checked = 0;
     let mut worst: f64 = 0.0;
-    for row in 0..d.height {
-        for col in 0..d.width {
-            let r = d.record(col, row);
-            let n = s
-                .observer
-                .pixel_direction(&s.camera, col as u32, row as u32)
-                .unwrap();
-            let e = exit(n, radius);
-            if r.object == 1 {
-                // The ball is inside the sphere: its light left after the ray's exit event.
-                assert!(f64::from(r.t_emit) > e[0], "ball behind the surroundings");
-                continue;
-            }
-            assert_eq!(r.object, 0, "pixel ({col}, {row})");
-            let dev = [
-                f64::from(r.t_emit) - e[0],
-                f64::from(r.x) - e[1],
-                f64::from(r.y) - e[2],
-                f64::from(r.z) - e[3],
-            ]
-            .iter()
-            .fold(0.0_f64, |m, v| m.max(v.abs()));
-            assert!(
-                dev < 1e-5,
-                "pixel ({col}, {row}): record (t {}, {}, {}, {}) vs closed form {e:?}",
-                r.t_emit,
-                r.x,
-                r.y,
-                r.z
-            );
-            worst = worst.max(dev);
-            // Static emitter, static observer: g = 1 (E is conserved along the ray).
-            assert!((r.g - 1.0).abs() < 1e-5, "g = {}", r.g);
-            // Texture coordinates: longitude and latitude of the exit point on the sphere.
-            let u = (e[2].atan2(e[1]) + PI) / (2.0 * PI);
-            let v = 0.5 + (e[3] / radius).clamp(-1.0, 1.0).asin() / PI;
-            let du = (f64::from(r.u) - u).abs();
-            assert!(du.min(1.0 - du) < 1e-4, "u {} vs {u}", r.u);
-            assert!((f64::from(r.v) - v).abs() < 1e-4, "v {} vs {v}", r.v);
-            // The ray was followed backward: emitted in the past, within one loop.
-            assert!(r.t_emit < 0.0 && f64::from(r.t_emit) > -2.0 * SQRT_2 * PI * A);
-            checked += 1;
+    for (col, row, n) in pixel_directions(&s, &d) {
+        let r = d.record(col, row);
+        let e = exit(n, radius);
+        if r.object == 1 {
+            // The ball is inside the sphere: its light left after the ray's exit event.
+            assert!(f64::from(r.t_emit) > e[0], "ball behind the surroundings");
+            continue;
         }
+        assert_eq!(r.object, 0, "pixel ({col}, {row})");
+        let dev = [
+            f64::from(r.t_emit) - e[0],
+            f64::from(r.x) - e[1],
+            f64::from(r.y) - e[2],
+            f64::from(r.z) - e[3],
+        ]
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+        assert!(
+            dev < 1e-5,
+            "pixel ({col}, {row}): record (t {}, {}, {}, {}) vs closed form {e:?}",
+            r.t_emit,
+            r.x,
+            r.y,
+            r.z
+        );
+        worst = worst.max(dev);
+        // Static emitter, static observer: g = 1 (E is conserved along the ray).
+        assert!((r.g - 1.0).abs() < 1e-5, "g = {}", r.g);
+        // Texture coordinates: longitude and latitude of the exit point on the sphere.
+        let u = (e[2].atan2(e[1]) + PI) / (2.0 * PI);
+        let v = 0.5 + (e[3] / radius).clamp(-1.0, 1.0).asin() / PI;
+        let du = (f64::from(r.u) - u).abs();
+        assert!(du.min(1.0 - du) < 1e-4, "u {} vs {u}", r.u);
+        assert!((f64::from(r.v) - v).abs() < 1e-4, "v {} vs {v}", r.v);
+        // The ray was followed backward: emitted in the past, within one loop.
+        assert!(r.t_emit < 0.0 && f64::from(r.t_emit) > -2.0 * SQRT_2 * PI * A);
+        checked += 1;
     }
     eprintln!("surroundings: {checked} inner-surface pixels, largest deviation {worst:.2e}");
     assert!(

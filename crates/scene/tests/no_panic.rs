@@ -5,14 +5,10 @@
 
 use proptest::prelude::*;
 use scene::{Scene, SceneError};
-use std::path::Path;
 
 fn good_texts() -> Vec<String> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
-    let mut texts: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+    let mut texts: Vec<String> = testkit::toml_files(&testkit::scenes_dir())
+        .into_iter()
         .map(|p| std::fs::read_to_string(p).unwrap())
         .collect();
     texts.sort();

@@ -6,21 +6,9 @@
 //! the line the error must point at.
 
 use scene::{Camera, Motion, Scene, SceneError, Shape, TextureSpec};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn scenes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
-}
-
-fn toml_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    files.sort();
-    files
-}
+use testkit::{bad_scene_expectation as expectation, scenes_dir, toml_files};
 
 #[test]
 fn every_good_scene_parses() {
@@ -88,21 +76,6 @@ fn floor_grid_has_a_coordinate_plane() {
         TextureSpec::Checker { rows: 12, cols: 12 }
     );
     assert_eq!(s.lights.len(), 1);
-}
-
-fn expectation(text: &str) -> (String, usize) {
-    let field = text
-        .lines()
-        .find_map(|l| l.strip_prefix("# expect field:"))
-        .expect("a `# expect field:` line")
-        .trim()
-        .to_string();
-    let line = text
-        .lines()
-        .position(|l| l.contains("# <- error here"))
-        .expect("a `# <- error here` marker")
-        + 1;
-    (field, line)
 }
 
 fn check_bad(path: &Path) -> SceneError {

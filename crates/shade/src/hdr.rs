@@ -4,13 +4,9 @@
 //! that hit nothing or failed hold their status colours). Both are written atomically
 //! (`datafile::atomic`), so a failed write leaves nothing at the path.
 
-use std::io::Cursor;
 use std::path::Path;
 
-use exr::prelude::{
-    AnyChannel, AnyChannels, Blocks, Compression, Encoding, FlatSamples, Image, Layer,
-    LayerAttributes, LineOrder, WritableImage,
-};
+use exr::prelude::{AnyChannel, Compression, FlatSamples, LayerAttributes};
 
 use crate::error::ShadeError;
 
@@ -57,23 +53,8 @@ pub fn encode_exr(
         AnyChannel::new("G", plane(1)),
         AnyChannel::new("B", plane(2)),
     ];
-    let encoding = Encoding {
-        compression: Compression::ZIP16,
-        blocks: Blocks::ScanLines,
-        line_order: LineOrder::Increasing,
-    };
-    let layer = Layer::new(
-        (width, height),
-        LayerAttributes::default(),
-        encoding,
-        AnyChannels::sort(channels.into()),
-    );
-    let mut bytes = Vec::new();
-    Image::from_layer(layer)
-        .write()
-        .to_buffered(Cursor::new(&mut bytes))
-        .map_err(|e| fail(e.to_string()))?;
-    Ok(bytes)
+    let attributes = LayerAttributes::default();
+    datafile::exr_bytes((width, height), attributes, Compression::ZIP16, channels).map_err(fail)
 }
 
 /// Writes bytes to `path` atomically.

@@ -3,47 +3,28 @@
 
 use std::path::Path;
 
-use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::{
     keyframe_toml, Script, ShadeError, ShadeSettings, ShaderKind, TextureChoice, TimeMode,
 };
 
-const SCENE: &str = r#"name = "two"
-[camera]
-kind = "panorama"
-[[object]]
-name = "ball"
-radius = 0.1
-temperature = 4000
-texture = { kind = "checker", rows = 4, cols = 8 }
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
-name = "moon"
-radius = 0.1
-motion = { kind = "rest", position = { r = 1.0, phi = 1.0, z = 0.0 } }
-[[light]]
-position = { r = 1.5, phi = 0.0, z = 0.0 }
-color = [1.0, 0.5, 0.25]
-"#;
+/// A checkered ball at 4000 K, a moon and a coloured light.
+fn scene() -> String {
+    format!(
+        "name = \"two\"\n[camera]\nkind = \"panorama\"\n{}{}{}",
+        testkit::textured_ball_at("ball", 0.1, &testkit::checker(4, 8), 4000.0, 1.0, 0.0),
+        testkit::ball_at_rest("moon", 0.1, 1.0, 1.0),
+        "[[light]]\nposition = { r = 1.5, phi = 0.0, z = 0.0 }\ncolor = [1.0, 0.5, 0.25]\n",
+    )
+}
 
 fn data(lights: usize) -> DataFile {
     let (w, h) = (8, 2);
     let records = (0..w * h)
-        .map(|i| PixelRecord {
-            object: (i % 2) as i32,
-            status: RayStatus::Hit,
-            u: 0.3,
-            v: 0.6,
-            g: 1.0,
-            t_emit: -2.5 - i as f32 * 0.5,
-            cos_i: 1.0,
-            view: [0.0; 3],
-            ..PixelRecord::MISS
-        })
+        .map(|i| testkit::hit((i % 2) as i32, 0.3, 0.6, 1.0, -2.5 - i as f32 * 0.5, 1.0))
         .collect();
     DataFile {
-        header: testkit::godel_header("two", SCENE, "panorama", &["ball", "moon"]),
+        header: testkit::godel_header("two", &scene(), "panorama", &["ball", "moon"]),
         width: w,
         height: h,
         records,

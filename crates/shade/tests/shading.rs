@@ -12,19 +12,15 @@ use shade::{
     BrightnessMode, Lamp, LightSource, ShadeError, ShadeSettings, ShaderKind, Shading,
     TextureChoice, TimeMode, MAX_LAMPS, MAX_LIGHT_SOURCES,
 };
+use testkit::hit;
 
 /// Two objects: a checkered ball at 4000 K and a moon with a gradient.
 fn scene() -> String {
     format!(
-        "name = \"two\"\n{}{}",
+        "name = \"two\"\n{}{}{}",
         testkit::panorama(220.0, 25.0, 64, 8),
+        testkit::textured_ball_at("ball", 0.1, &testkit::checker(4, 8), 4000.0, 1.0, 0.0),
         r#"[[object]]
-name = "ball"
-radius = 0.1
-temperature = 4000
-texture = { kind = "checker", rows = 4, cols = 8 }
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
 name = "moon"
 radius = 0.1
 texture = { kind = "gradient" }
@@ -35,19 +31,6 @@ motion = { kind = "rest", position = { r = 1.0, phi = 1.0, z = 0.0 } }
 
 fn header() -> DataHeader {
     testkit::godel_header("two", &scene(), "panorama", &["ball", "moon"])
-}
-
-fn hit(object: i32, u: f32, v: f32, g: f32, t_emit: f32, cos_i: f32) -> PixelRecord {
-    PixelRecord {
-        object,
-        status: RayStatus::Hit,
-        u,
-        v,
-        g,
-        t_emit,
-        cos_i,
-        ..PixelRecord::MISS
-    }
 }
 
 /// 64×8 pixels: both objects at many (u, v, cos_i), a few misses and failures.
@@ -93,6 +76,11 @@ fn with(data: &DataFile, f: impl FnOnce(&mut ShadeSettings)) -> ShadeSettings {
     let mut s = ShadeSettings::defaults_for(data);
     f(&mut s);
     s
+}
+
+/// The default settings of `data` with the layers `shaders`.
+fn with_shaders(data: &DataFile, shaders: &[ShaderKind]) -> ShadeSettings {
+    with(data, |s| s.shaders = shaders.to_vec())
 }
 
 fn close(a: [f32; 3], b: [f32; 3], tol: f32) -> bool {
@@ -206,7 +194,7 @@ fn time_window_is_decided_by_t_emit_alone() {
 #[test]
 fn frequency_times_time_window_is_the_product() {
     let data = one_pixel(hit(0, 0.3, 0.3, 1.3, -4.0, 0.5), vec![]);
-    let freq = with(&data, |s| s.shaders = vec![ShaderKind::Frequency]);
+    let freq = with_shaders(&data, &[ShaderKind::Frequency]);
     let window = with(&data, |s| {
         s.shaders = vec![ShaderKind::Time];
         s.time.t0 = -5.0;
@@ -255,9 +243,7 @@ fn light_layer_is_albedo_times_ambient_plus_lights() {
 #[test]
 fn light_layer_without_light_channels_is_an_error() {
     let data = synthetic();
-    let s = with(&data, |s| {
-        s.shaders = vec![ShaderKind::Texture, ShaderKind::Light]
-    });
+    let s = with_shaders(&data, &[ShaderKind::Texture, ShaderKind::Light]);
     let e = Shading::new(&data, &s).unwrap_err();
     assert!(matches!(e, ShadeError::NoLightChannels), "{e}");
     assert!(e.to_string().contains("light channels"), "{e}");
@@ -365,10 +351,13 @@ fn lamps_and_light_sources_are_capped() {
     );
 }
 
+/// A change of the settings and the field its error must name.
+type BadSetting = (Box<dyn Fn(&mut ShadeSettings)>, &'static str);
+
 #[test]
 fn bad_settings_are_refused_naming_the_field() {
     let data = synthetic();
-    let cases: Vec<(Box<dyn Fn(&mut ShadeSettings)>, &str)> = vec![
+    let cases: Vec<BadSetting> = vec![
         (
             Box::new(|s| s.objects.get_mut("ball").unwrap().temperature = -5.0),
             "objects.ball.temperature",
@@ -444,9 +433,7 @@ fn travel_time_false_colour_runs_over_its_range_with_a_legend() {
 #[test]
 fn image_does_not_depend_on_the_thread_count() {
     let data = synthetic();
-    let s = with(&data, |s| {
-        s.shaders = vec![ShaderKind::Frequency, ShaderKind::Texture]
-    });
+    let s = with_shaders(&data, &[ShaderKind::Frequency, ShaderKind::Texture]);
     let shading = Shading::new(&data, &s).unwrap();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)

@@ -1,5 +1,6 @@
 //! Fixtures shared by the tests, benches and examples of the workspace's crates: the pieces
-//! of scene text that every small test scene repeats, the header of a synthetic data file,
+//! of scene text that every small test scene repeats, the header and the hit records of a
+//! synthetic data file, the example scenes and what a bad one expects,
 //! running a command-line binary, and the viewer's refusal of a texture from elsewhere. Only
 //! a dev-dependency; never published.
 //!
@@ -8,6 +9,7 @@
 
 use std::process::{Command, Output};
 
+use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataHeader, FORMAT_VERSION};
 
 /// `[spacetime]`: Gödel's universe with a = 1.
@@ -109,13 +111,7 @@ pub fn ball_ahead(name: &str, camera: &str, object: &str, texture: &str) -> Stri
         &format!(
             "{}{}",
             trace("numeric", 10.0),
-            textured_ball(
-                object,
-                0.2,
-                texture,
-                5800.0,
-                "{ r = 1.0, phi = 0.0, z = 0.0 }"
-            )
+            textured_ball_at(object, 0.2, texture, 5800.0, 1.0, 0.0)
         ),
     )
 }
@@ -133,6 +129,29 @@ pub fn textured_ball(
         "[[object]]\nname = \"{name}\"\nradius = {radius:?}\ntexture = {texture}\n\
          temperature = {temperature:?}\nmotion = {{ kind = \"rest\", position = {position} }}\n"
     )
+}
+
+/// [`textured_ball`] at rest at (r, φ, z) = (`r`, `phi`, 0).
+pub fn textured_ball_at(
+    name: &str,
+    radius: f64,
+    texture: &str,
+    temperature: f64,
+    r: f64,
+    phi: f64,
+) -> String {
+    textured_ball(
+        name,
+        radius,
+        texture,
+        temperature,
+        &format!("{{ r = {r:?}, phi = {phi:?}, z = 0.0 }}"),
+    )
+}
+
+/// The inline TOML table of a checker texture of `rows` × `cols` cells.
+pub fn checker(rows: u32, cols: u32) -> String {
+    format!("{{ kind = \"checker\", rows = {rows}, cols = {cols} }}")
 }
 
 /// A [`godel_scene`] through the full sphere (360° × 180°) of `width` × `height` pixels;
@@ -163,6 +182,21 @@ pub fn godel_header(
     }
 }
 
+/// The record of a pixel that hit `object` at texture coordinates (`u`, `v`) with frequency
+/// ratio `g`, emission time `t_emit` and light cosine `cos_i` (every other field zero).
+pub fn hit(object: i32, u: f32, v: f32, g: f32, t_emit: f32, cos_i: f32) -> PixelRecord {
+    PixelRecord {
+        object,
+        status: RayStatus::Hit,
+        u,
+        v,
+        g,
+        t_emit,
+        cos_i,
+        ..PixelRecord::MISS
+    }
+}
+
 /// Runs the binary `bin` with `args` to its end, collecting its output.
 pub fn run(bin: &str, args: &[&str]) -> Output {
     Command::new(bin)
@@ -174,4 +208,39 @@ pub fn run(bin: &str, args: &[&str]) -> Output {
 /// A command's standard error as text.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The workspace's `scenes/` folder (the example scenes; `bad/` below it holds the scenes
+/// that must be refused).
+pub fn scenes_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+/// The `.toml` files directly in `dir`, sorted.
+pub fn toml_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("read {}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// What a bad scene's text declares it must be refused with: the field of its line
+/// `# expect field: PATH` (empty for TOML syntax errors) and the 1-based number of the line
+/// marked `# <- error here`.
+pub fn bad_scene_expectation(text: &str) -> (String, usize) {
+    let field = text
+        .lines()
+        .find_map(|l| l.strip_prefix("# expect field:"))
+        .expect("a `# expect field:` line")
+        .trim()
+        .to_string();
+    let line = text
+        .lines()
+        .position(|l| l.contains("# <- error here"))
+        .expect("a `# <- error here` marker")
+        + 1;
+    (field, line)
 }

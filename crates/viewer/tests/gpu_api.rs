@@ -6,7 +6,7 @@
 mod gpu_common;
 
 use axum::http::StatusCode;
-use datafile::{PixelRecord, RayStatus};
+use datafile::{DataFile, PixelRecord, RayStatus};
 use gpu_common::*;
 use look::{look, LookView};
 use scene::Camera;
@@ -185,26 +185,26 @@ async fn view_says_whether_the_page_can_look_around() {
     assert!(dir(0)[1] < -0.99, "{:?}", dir(0));
     assert!(dir(1)[0] > 0.99, "{:?}", dir(1));
 
-    let (_, body) = send(flat(), get("/api/view")).await;
-    let view = json(&body);
-    assert_eq!(view["sphere"], false);
-    assert!(view["sphere_error"]
-        .as_str()
-        .unwrap()
-        .contains("full-sphere"));
+    let (view, why) = refused_view(flat()).await;
+    assert!(why.contains("full-sphere"), "{why}");
     assert_eq!(view["view"]["camera"]["fov_deg"], 60.0);
 
     // An anti-aliased sphere (its 16×8 records as 2×2 rays per pixel) is refused as `godel
     // look` refuses it, saying why; the page shows it as a picture.
     let mut sampled = data();
     sampled.header.supersample = 2;
-    let (_, body) = send(sampled, get("/api/view")).await;
+    let (_, why) = refused_view(sampled).await;
+    assert!(why.contains("2×2 rays per pixel"), "{why}");
+}
+
+/// The answer of `/api/view` for `data`, which must say that the page cannot look around,
+/// and the reason it gives.
+async fn refused_view(data: DataFile) -> (serde_json::Value, String) {
+    let (_, body) = send(data, get("/api/view")).await;
     let view = json(&body);
     assert_eq!(view["sphere"], false);
-    assert!(view["sphere_error"]
-        .as_str()
-        .unwrap()
-        .contains("2×2 rays per pixel"));
+    let why = view["sphere_error"].as_str().unwrap().to_string();
+    (view, why)
 }
 
 fn look_body(speed: f64) -> (String, ShadeSettings, LookView) {

@@ -1,4 +1,5 @@
-//! Helpers shared by the CLI tests: running `godel`, reading a command's standard error, a
+//! Helpers shared by the CLI tests: running `godel` (`render` in particular), a path as an
+//! argument, reading a PNG's pixels, reading a command's standard error, a
 //! small lit scene (parts and MPI ranks), writing it, running under a time limit, reading the
 //! R, G, B planes of a picture EXR.
 #![allow(dead_code)]
@@ -12,6 +13,47 @@ pub use testkit::stderr;
 /// Runs the `godel` binary of this package with `args` to its end.
 pub fn godel(args: &[&str]) -> Output {
     testkit::run(env!("CARGO_BIN_EXE_godel"), args)
+}
+
+/// Runs `godel` with `args` and asserts that it succeeds; returns its output.
+pub fn godel_ok(args: &[&str]) -> Output {
+    let o = godel(args);
+    assert!(o.status.success(), "godel {args:?}: {}", stderr(&o));
+    o
+}
+
+/// Runs `godel render SCENE -o OUT` followed by `extra` to its end.
+pub fn render(scene: &Path, out: &Path, extra: &[&str]) -> Output {
+    godel(&[&["render", path_arg(scene), "-o", path_arg(out)], extra].concat())
+}
+
+/// Runs `godel shade DATA -o OUT` followed by `extra` to its end.
+pub fn shade(data: &Path, out: &Path, extra: &[&str]) -> Output {
+    godel(&[&["shade", path_arg(data), "-o", path_arg(out)], extra].concat())
+}
+
+/// The arguments of `godel geodesic` from the origin at t = 0 along +x, then `extra`.
+pub fn geodesic_along_x<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    [&["geodesic", "--at", "0,0,0,0", "--dir", "1,0,0"], extra].concat()
+}
+
+/// Asserts that each of `files` is the same, byte for byte, in folders `a` and `b`
+/// (`between` names the two runs in the message).
+pub fn assert_same_files(a: &Path, b: &Path, files: &[&str], between: &str) {
+    for file in files {
+        let (x, y) = (std::fs::read(a.join(file)), std::fs::read(b.join(file)));
+        assert!(x.unwrap() == y.unwrap(), "{file} differs between {between}");
+    }
+}
+
+/// A path as a command-line argument (the tests' paths are UTF-8).
+pub fn path_arg(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The pixels of a picture file (a PNG) as 8-bit RGB.
+pub fn png(path: &Path) -> image::RgbImage {
+    image::open(path).unwrap().to_rgb8()
 }
 
 /// A small scene with a falling, textured ball (several images, varied records) lit by a
@@ -112,7 +154,7 @@ pub fn read_rgb(path: &Path) -> Vec<[f32; 3]> {
             .channel_data
             .list
             .iter()
-            .find(|c| c.name == Text::from(name))
+            .find(|c| c.name == *name)
             .unwrap_or_else(|| panic!("channel {name}"));
         ch.sample_data.values_as_f32().collect()
     };
@@ -135,14 +177,7 @@ pub fn shade_lit_pair(data: &Path, dir: &Path, stem: &str) -> (PathBuf, PathBuf)
         dir.join(format!("{stem}.png")),
     );
     for out in [&exr, &png] {
-        let o = godel(&[
-            "shade",
-            data.to_str().unwrap(),
-            "--shader",
-            "texture,light",
-            "-o",
-            out.to_str().unwrap(),
-        ]);
+        let o = shade(data, out, &["--shader", "texture,light"]);
         assert!(o.status.success(), "{}", stderr(&o));
     }
     (exr, png)

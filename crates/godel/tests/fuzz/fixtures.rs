@@ -9,15 +9,12 @@ use scene::Scene;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-const LIT: &str = r#"
-name = "lit"
-[camera]
-kind = "panorama"
-h_fov_deg = 360.0
-v_fov_deg = 60.0
-width = 10
-height = 5
-[trace]
+/// Lit balls with a light channel.
+fn lit() -> String {
+    format!(
+        "name = \"lit\"\n{}{}",
+        testkit::panorama(360.0, 60.0, 10, 5),
+        r#"[trace]
 max_past = 8.0
 [[object]]
 name = "ball"
@@ -31,7 +28,9 @@ motion = { kind = "rest", position = { x = 0.686, y = 0.444, z = 0.0 } }
 [[light]]
 position = { x = 1.0, y = 1.0, z = 0.0 }
 power = 12.0
-"#;
+"#
+    )
+}
 
 const MANY: &str = r#"
 name = "many"
@@ -65,18 +64,14 @@ texture = { kind = "image", builtin = "earth" }
 motion = { kind = "geodesic", time = 0.0, position = { x = -1.0, y = 0.3, z = 0.0 }, speed = 0.7, direction = [1, 0, 0] }
 "#;
 
-const EMPTY: &str = r#"
-name = "empty"
-[camera]
-kind = "pinhole"
-fov_deg = 90.0
-width = 4
-height = 2
-[[object]]
-name = "far"
-radius = 0.2
-motion = { kind = "rest", position = { r = 2.5, phi = 0.0, z = 0.0 } }
-"#;
+/// A ball beyond the horizon that no ray reaches.
+fn empty() -> String {
+    format!(
+        "name = \"empty\"\n{}{}",
+        testkit::pinhole(90.0, 4, 2),
+        testkit::ball_at_rest("far", 0.2, 2.5, 0.0)
+    )
+}
 
 /// A traced data file and its encoding.
 pub struct Fixture {
@@ -112,7 +107,7 @@ pub fn scratch_root() -> PathBuf {
 }
 
 fn make() -> Fixtures {
-    let data = [LIT, MANY, EMPTY]
+    let data = [lit(), MANY.to_string(), empty()]
         .iter()
         .map(|text| {
             let scene = Scene::from_str(text, "fixture.toml").expect("fixture scene is valid");

@@ -27,15 +27,10 @@ use std::path::Path;
 
 /// The example scenes shipped in `scenes/` (good and bad), as mutation bases.
 fn example_scenes() -> Vec<String> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    let root = testkit::scenes_dir();
     let mut out = Vec::new();
     for dir in [root.clone(), root.join("bad")] {
-        let mut paths: Vec<_> = std::fs::read_dir(&dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-            .collect();
-        paths.sort();
+        let paths = testkit::toml_files(&dir);
         out.extend(paths.iter().map(|p| std::fs::read_to_string(p).unwrap()));
     }
     out

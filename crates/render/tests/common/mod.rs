@@ -23,6 +23,41 @@ pub fn render_scene(s: &Scene) -> (DataFile, RenderStats) {
     render(s, &NoProgress).expect("render")
 }
 
+/// Every pixel of the data file `d` rendered from `s`, row by row, as (column, row, the
+/// direction its ray leaves the observer in the observer's frame).
+pub fn pixel_directions(s: &Scene, d: &DataFile) -> Vec<(usize, usize, [f64; 3])> {
+    let mut out = Vec::with_capacity(d.width * d.height);
+    for row in 0..d.height {
+        for col in 0..d.width {
+            let n = s
+                .observer
+                .pixel_direction(&s.camera, col as u32, row as u32)
+                .unwrap();
+            out.push((col, row, n));
+        }
+    }
+    out
+}
+
+/// A root of an increasing-or-decreasing `f` on [lo, hi] with a sign change, by
+/// `iterations` halvings.
+pub fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, iterations: usize) -> f64 {
+    let flo = f(lo);
+    assert!(
+        (flo > 0.0) != (f(hi) > 0.0),
+        "no sign change on [{lo}, {hi}]"
+    );
+    for _ in 0..iterations {
+        let m = 0.5 * (lo + hi);
+        if (f(m) > 0.0) == (flo > 0.0) {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
 /// Connected groups of hit pixels (8-connectivity). With `wrap`, column 0 and column
 /// W − 1 are neighbours (a 360° panorama). Each group is a list of (col, row).
 pub fn groups(d: &DataFile, wrap: bool) -> Vec<Vec<(usize, usize)>> {
@@ -188,16 +223,7 @@ pub fn connecting_rays(a: f64, c: [f64; 2], first_half: bool) -> Vec<(f64, f64)>
         if (fs[i] > 0.0) == (fs[i + 1] > 0.0) {
             continue;
         }
-        let (mut lo, mut hi, flo) = (azs[i], azs[i + 1], fs[i]);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if (f(mid) > 0.0) == (flo > 0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let az = 0.5 * (lo + hi);
+        let az = bisect(f, azs[i], azs[i + 1], 60);
         let ray = backward_ray(m, a, az);
         let (d, l) = closest_approach(m, &ray, c, first_half);
         if d.abs() < 1e-7 {

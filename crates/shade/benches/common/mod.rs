@@ -1,28 +1,18 @@
 //! The synthetic 1920×1080 data file and the shader cases shared by the shading benchmark
 //! (`benches/shade.rs`) and the CPU-time example (`examples/shade_cpu.rs`).
 
-use datafile::record::{PixelRecord, RayStatus};
+use datafile::record::PixelRecord;
 use datafile::DataFile;
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
 /// The scene the data file claims to come from: an earth-textured and a checkered ball.
 fn scene() -> String {
+    let earth = "{ kind = \"image\", builtin = \"earth\" }";
     format!(
-        "name = \"bench\"\n{}{}",
+        "name = \"bench\"\n{}{}{}",
         testkit::pinhole(90.0, 1920, 1080),
-        r#"[[object]]
-name = "earth"
-radius = 0.2
-texture = { kind = "image", builtin = "earth" }
-temperature = 5800.0
-motion = { kind = "rest", position = { r = 1.0, phi = 0.0, z = 0.0 } }
-[[object]]
-name = "ball"
-radius = 0.2
-texture = { kind = "checker", rows = 8, cols = 16 }
-temperature = 4000.0
-motion = { kind = "rest", position = { r = 1.0, phi = 2.0, z = 0.0 } }
-"#
+        testkit::textured_ball_at("earth", 0.2, earth, 5800.0, 1.0, 0.0),
+        testkit::textured_ball_at("ball", 0.2, &testkit::checker(8, 16), 4000.0, 1.0, 2.0),
     )
 }
 
@@ -30,7 +20,7 @@ motion = { kind = "rest", position = { r = 1.0, phi = 2.0, z = 0.0 } }
 /// and cos_i; two light planes.
 pub fn data() -> DataFile {
     let (w, h) = (1920usize, 1080usize);
-    let mut lights = vec![Vec::with_capacity(w * h); 2];
+    let mut lights: Vec<Vec<f32>> = (0..2).map(|_| Vec::with_capacity(w * h)).collect();
     let records = (0..w * h)
         .map(|i| {
             let (c, r) = ((i % w) as f32, (i / w) as f32);
@@ -39,17 +29,14 @@ pub fn data() -> DataFile {
             if i % 3 == 2 {
                 return PixelRecord::MISS;
             }
-            PixelRecord {
-                object: (i % 2) as i32,
-                status: RayStatus::Hit,
-                u: (c / 97.0).fract(),
-                v: (r / 61.0).fract(),
-                g: 0.3 + 3.0 * c / w as f32,
-                t_emit: -30.0 * r / h as f32,
-                cos_i: (c / 50.0).sin(),
-                view: [0.0; 3],
-                ..PixelRecord::MISS
-            }
+            testkit::hit(
+                (i % 2) as i32,
+                (c / 97.0).fract(),
+                (r / 61.0).fract(),
+                0.3 + 3.0 * c / w as f32,
+                -30.0 * r / h as f32,
+                (c / 50.0).sin(),
+            )
         })
         .collect();
     DataFile {

@@ -3,7 +3,7 @@
 //! covering half the pixels (a 50-pixel checkerboard) with varied (u, v, g, t_emit), the rest
 //! empty sky.
 
-use datafile::record::{PixelRecord, RayStatus};
+use datafile::record::PixelRecord;
 use datafile::DataFile;
 
 /// The scene the data file claims to come from: the earth-textured ball.
@@ -23,17 +23,7 @@ pub fn data(width: usize, height: usize) -> DataFile {
         for col in 0..width {
             let (x, y) = (col as f32 / width as f32, row as f32 / height as f32);
             records.push(if (col / 50 + row / 50) % 2 == 0 {
-                PixelRecord {
-                    object: 0,
-                    status: RayStatus::Hit,
-                    u: (7.0 * x).fract(),
-                    v: y,
-                    g: 0.5 + x,
-                    t_emit: -1.0 - 10.0 * x,
-                    cos_i: 1.0 - y,
-                    view: [0.0; 3],
-                    ..PixelRecord::MISS
-                }
+                testkit::hit(0, (7.0 * x).fract(), y, 0.5 + x, -1.0 - 10.0 * x, 1.0 - y)
             } else {
                 PixelRecord::MISS
             });

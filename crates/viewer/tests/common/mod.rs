@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use axum::body::Body;
 use axum::http::{HeaderMap, Request, StatusCode};
-use datafile::record::{PixelRecord, RayStatus};
+use datafile::record::PixelRecord;
 use datafile::DataFile;
 use http_body_util::BodyExt;
 use shade::{ShadeSettings, ShaderKind};
@@ -40,17 +40,14 @@ pub fn data() -> DataFile {
     for row in 0..HEIGHT {
         for col in 0..WIDTH {
             records.push(if col < WIDTH / 2 {
-                PixelRecord {
-                    object: 0,
-                    status: RayStatus::Hit,
-                    u: col as f32 / 8.0,
-                    v: row as f32 / 4.0,
-                    g: 1.0 + col as f32 / 10.0,
-                    t_emit: -(1.0 + row as f32),
-                    cos_i: 1.0,
-                    view: [0.0; 3],
-                    ..PixelRecord::MISS
-                }
+                testkit::hit(
+                    0,
+                    col as f32 / 8.0,
+                    row as f32 / 4.0,
+                    1.0 + col as f32 / 10.0,
+                    -(1.0 + row as f32),
+                    1.0,
+                )
             } else {
                 PixelRecord::MISS
             });
