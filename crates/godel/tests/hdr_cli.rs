@@ -120,19 +120,12 @@ fn exposure_compensation_scales_the_png_by_two_to_the_ev() {
 #[test]
 fn an_anti_aliased_file_shades_to_an_exr_of_its_picture_size() {
     let dir = tempfile::tempdir().unwrap();
-    let o = godel(&[
-        "render",
-        &scene("lit-shadow.toml"),
-        "-q",
-        "-o",
-        s(dir.path()),
-        "--width",
-        "120",
-        "--height",
-        "14",
-        "--samples",
-        "4",
-    ]);
+    let scene = testkit::scenes_dir().join("lit-shadow.toml");
+    let o = render(
+        &scene,
+        dir.path(),
+        &["-q", "--width", "120", "--height", "14", "--samples", "4"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let data_path = dir.path().join("lit-shadow.exr");
     let data = datafile::DataFile::read(&data_path).unwrap();
