@@ -11,7 +11,7 @@ use std::process::Command;
 use datafile::DataFile;
 
 mod common;
-use common::{files_in, godel, run_within, stderr};
+use common::{assert_refused, files_in, godel, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(300);
@@ -231,16 +231,7 @@ fn refused(traced: Option<(&str, &str)>, script: &str, needles: &[&str]) {
             "-q",
         ])
     };
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(2), "{e}");
-    assert_eq!(e.lines().count(), 1, "{e}");
-    for n in needles {
-        assert!(e.contains(n), "expected {n:?} in {e}");
-    }
-    assert!(
-        !dir.path().join("out").exists(),
-        "no output for a bad script"
-    );
+    assert_refused(&o, needles, &dir.path().join("out"));
 }
 
 #[test]

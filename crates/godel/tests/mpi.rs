@@ -111,16 +111,17 @@ fn a_rank_with_another_scene_fails_the_job_and_is_named() {
     assert!(!dir.join("ranks.exr").exists());
 }
 
-#[test]
-fn two_ranks_write_the_frames_of_one_process() {
-    let tmp = tempfile::tempdir().unwrap();
-    write_scene(tmp.path(), "fall.toml", &scene_text(6.0));
-    // The same 3 frames (observer time advancing, so each frame is traced) into two folders.
+/// Runs the 3-frame sequence whose script after `[trace]` is `trace` once in one process
+/// (into `one/`) and once on 2 ranks (into `two/`), rank 0 only serving the queue so that
+/// every frame comes from rank 1; asserts both runs wrote the same file names with the same
+/// bytes and returns the names.
+fn sequence_alone_and_on_two_ranks(dir: &std::path::Path, trace: &str) -> Vec<String> {
+    write_scene(dir, "fall.toml", &scene_text(6.0));
     let script = |out: &str| {
         let text = format!(
-            "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\nobserver_time = [0.0, 1.5]\n"
+            "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\n{trace}"
         );
-        write_scene(tmp.path(), &format!("{out}.toml"), &text)
+        write_scene(dir, &format!("{out}.toml"), &text)
     };
     let (one, two) = (script("one"), script("two"));
     let out = Command::new(GODEL)
@@ -128,7 +129,6 @@ fn two_ranks_write_the_frames_of_one_process() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
-    // Rank 0 only serves the queue here: every frame comes from rank 1.
     let out = mpirun(&[
         "-x",
         "GODEL_MPI_ROOT_WORKS=0",
@@ -140,12 +140,22 @@ fn two_ranks_write_the_frames_of_one_process() {
         "-q",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
-    for i in 0..3 {
-        let f = format!("frame_{i:04}.png");
-        let a = std::fs::read(tmp.path().join("one").join(&f)).unwrap();
-        let b = std::fs::read(tmp.path().join("two").join(&f)).unwrap();
+    let names = files_in(&dir.join("one"));
+    assert_eq!(names, files_in(&dir.join("two")));
+    for f in &names {
+        let a = std::fs::read(dir.join("one").join(f)).unwrap();
+        let b = std::fs::read(dir.join("two").join(f)).unwrap();
         assert!(a == b, "{f} differs between 1 process and 2 ranks");
     }
+    names
+}
+
+#[test]
+fn two_ranks_write_the_frames_of_one_process() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Observer time advancing, so each frame is traced.
+    let names = sequence_alone_and_on_two_ranks(tmp.path(), "observer_time = [0.0, 1.5]\n");
+    assert_eq!(names.len(), 3, "{names:?}");
     // The frames differ from each other: the ball moved, so each frame was really made.
     let frame = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.png"))).unwrap();
     assert!(frame(0) != frame(2));
@@ -154,43 +164,14 @@ fn two_ranks_write_the_frames_of_one_process() {
 #[test]
 fn two_ranks_write_the_frames_and_data_files_of_one_process() {
     let tmp = tempfile::tempdir().unwrap();
-    write_scene(tmp.path(), "fall.toml", &scene_text(6.0));
     // A fly-through keeping each frame's data file: the observer moves and turns.
-    let script = |out: &str| {
-        let text = format!(
-            "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\n\
-             keep_data = true\n[[keyframe]]\nframe = 0\n[[keyframe]]\nframe = 2\n\
-             [keyframe.observer]\ntime = 1.0\nposition = {{ x = 0.3, y = 0.1, z = 0.0 }}\n\
-             forward = [0, 1, 0]\n"
-        );
-        write_scene(tmp.path(), &format!("{out}.toml"), &text)
-    };
-    let (one, two) = (script("one"), script("two"));
-    let out = Command::new(GODEL)
-        .args(["sequence", &one, "-q"])
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "{}", stderr(&out));
-    // Rank 0 only serves the queue: every frame and data file comes from rank 1.
-    let out = mpirun(&[
-        "-x",
-        "GODEL_MPI_ROOT_WORKS=0",
-        "-n",
-        "2",
-        GODEL,
-        "sequence",
-        &two,
-        "-q",
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    let names = files_in(&tmp.path().join("one"));
+    let names = sequence_alone_and_on_two_ranks(
+        tmp.path(),
+        "keep_data = true\n[[keyframe]]\nframe = 0\n[[keyframe]]\nframe = 2\n\
+         [keyframe.observer]\ntime = 1.0\nposition = { x = 0.3, y = 0.1, z = 0.0 }\n\
+         forward = [0, 1, 0]\n",
+    );
     assert_eq!(names.len(), 6, "{names:?}");
-    assert_eq!(names, files_in(&tmp.path().join("two")));
-    for f in &names {
-        let a = std::fs::read(tmp.path().join("one").join(f)).unwrap();
-        let b = std::fs::read(tmp.path().join("two").join(f)).unwrap();
-        assert!(a == b, "{f} differs between 1 process and 2 ranks");
-    }
     let data = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.exr"))).unwrap();
     assert!(
         data(0) != data(2),

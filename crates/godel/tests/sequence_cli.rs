@@ -11,7 +11,7 @@ use std::process::{Command, Output};
 use datafile::DataFile;
 
 mod common;
-use common::{files_in, godel, png, run_within, stderr};
+use common::{assert_refused, files_in, godel, png, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine; they take well under a second.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);
@@ -162,16 +162,7 @@ fn refused(script_text: &str, needles: &[&str]) {
     // Bounded: before the frame count was bounded, `frames = 1e9` wrote until the disk
     // was full.
     let o = sequence_within(&script);
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(2), "{e}");
-    assert_eq!(e.lines().count(), 1, "{e}");
-    for n in needles {
-        assert!(e.contains(n), "expected {n:?} in {e}");
-    }
-    assert!(
-        !dir.path().join("frames").exists(),
-        "no frames for a bad script"
-    );
+    assert_refused(&o, needles, &dir.path().join("frames"));
 }
 
 #[test]

@@ -49,79 +49,22 @@ fn bench(c: &mut Criterion) {
             .unwrap()
     };
     let (one, two) = (pool(1), pool(2));
-    let cases: [(&str, &str, u32, u32, &str, &rayon::ThreadPool, bool); 8] = [
-        (
-            "bench_static_440x50",
-            "scenes/bench-static.toml",
-            440,
-            50,
-            "exact",
-            &one,
-            true,
-        ),
-        (
-            "bench_static_440x50",
-            "scenes/bench-static.toml",
-            440,
-            50,
-            "exact",
-            &one,
-            false,
-        ),
-        (
-            "bench_static_440x50",
-            "scenes/bench-static.toml",
-            440,
-            50,
-            "numeric",
-            &one,
-            true,
-        ),
-        (
-            "reference_440x50",
-            "scenes/reference.toml",
-            440,
-            50,
-            "exact",
-            &one,
-            true,
-        ),
-        (
-            "reference_440x50",
-            "scenes/reference.toml",
-            440,
-            50,
-            "numeric",
-            &one,
-            true,
-        ),
-        (
-            "reference_2200x250",
-            "scenes/reference.toml",
-            2200,
-            250,
-            "exact",
-            &two,
-            true,
-        ),
-        (
-            "floor_grid_160x90",
-            "scenes/floor-grid.toml",
-            160,
-            90,
-            "numeric",
-            &two,
-            true,
-        ),
-        (
-            "floor_grid_160x90",
-            "scenes/floor-grid.toml",
-            160,
-            90,
-            "exact",
-            &two,
-            true,
-        ),
+    // (label, scene file, width, height, method, threads, with the data file)
+    let (bench, reference, floor) = (
+        "scenes/bench-static.toml",
+        "scenes/reference.toml",
+        "scenes/floor-grid.toml",
+    );
+    #[rustfmt::skip] // one case a line, as a table
+    let cases = [
+        ("bench_static_440x50", bench, 440, 50, "exact", &one, true),
+        ("bench_static_440x50", bench, 440, 50, "exact", &one, false),
+        ("bench_static_440x50", bench, 440, 50, "numeric", &one, true),
+        ("reference_440x50", reference, 440, 50, "exact", &one, true),
+        ("reference_440x50", reference, 440, 50, "numeric", &one, true),
+        ("reference_2200x250", reference, 2200, 250, "exact", &two, true),
+        ("floor_grid_160x90", floor, 160, 90, "numeric", &two, true),
+        ("floor_grid_160x90", floor, 160, 90, "exact", &two, true),
     ];
     for (label, path, w, h, method, pool, datafile) in cases {
         let sc = scene(path, w, h, method);

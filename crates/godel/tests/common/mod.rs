@@ -182,3 +182,20 @@ pub fn shade_lit_pair(data: &Path, dir: &Path, stem: &str) -> (PathBuf, PathBuf)
     }
     (exr, png)
 }
+
+/// Asserts that `o` is a refusal of bad input: exit status 2, one line of stderr holding
+/// every needle, and nothing written at `no_output`.
+#[allow(dead_code)] // used by some test binaries only
+pub fn assert_refused(o: &Output, needles: &[&str], no_output: &Path) {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
+    for n in needles {
+        assert!(e.contains(n), "expected {n:?} in {e}");
+    }
+    assert!(
+        !no_output.exists(),
+        "{} written for bad input",
+        no_output.display()
+    );
+}
