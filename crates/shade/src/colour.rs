@@ -137,6 +137,20 @@ fn srgb8_bins() -> &'static [(u8, f32)] {
 /// except, at most by one step, for values within float rounding of a threshold; NaN → 0.
 #[inline]
 pub fn linear_to_srgb8_fast(x: f32) -> u8 {
+    srgb8_lookup(srgb8_bins(), x)
+}
+
+/// [`linear_to_srgb8_fast`] of every value of `values` into `out` (the table fetched once).
+pub fn linear_to_srgb8_row(values: &[f32], out: &mut [u8]) {
+    let bins = srgb8_bins();
+    for (o, &x) in out.iter_mut().zip(values) {
+        *o = srgb8_lookup(bins, x);
+    }
+}
+
+/// The lookup of [`linear_to_srgb8_fast`] in `bins` ([`srgb8_bins`]).
+#[inline(always)]
+fn srgb8_lookup(bins: &[(u8, f32)], x: f32) -> u8 {
     if x >= 1.0 {
         return 255;
     }
@@ -144,7 +158,7 @@ pub fn linear_to_srgb8_fast(x: f32) -> u8 {
         return 0;
     }
     let bin = ((x.to_bits() >> FAST_SHIFT) - (FAST_MIN.to_bits() >> FAST_SHIFT)) as usize;
-    match srgb8_bins().get(bin) {
+    match bins.get(bin) {
         Some(&(k, step)) => k + u8::from(x >= step),
         None => 255,
     }

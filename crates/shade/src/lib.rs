@@ -28,6 +28,7 @@
 
 pub mod blackbody;
 mod body;
+pub mod channels;
 mod checks;
 pub mod colour;
 mod error;
@@ -46,6 +47,7 @@ pub mod texture_shader;
 pub mod texture_source;
 mod tree;
 
+pub use channels::{Channels, Needs, Sample};
 pub use error::ShadeError;
 pub use frequency_shader::{shade_frequency, Brightness};
 pub use script::{
