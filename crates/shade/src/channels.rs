@@ -136,7 +136,8 @@ impl Channels {
             && full(&self.t_emit, needs.texture_coordinates)
             && full(&self.g, needs.shift)
             && full(&self.cos_i, needs.incidence)
-            && (!needs.lights || (self.lights.len() >= lights && self.lights.iter().all(|p| p.len() == n)))
+            && (!needs.lights
+                || (self.lights.len() >= lights && self.lights.iter().all(|p| p.len() == n)))
     }
 
     /// The size of the picture (W, H): the stored image divided by the supersampling.

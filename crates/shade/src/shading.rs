@@ -41,11 +41,9 @@ use rayon::prelude::*;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
-use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
 use crate::channels::{Channels, Needs, Sample};
-use crate::colour::{
-    display_srgb8, linear_to_srgb8_row, rgb_to_srgb8_fast, tone_map, TONE_KNEE,
-};
+use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
+use crate::colour::{display_srgb8, linear_to_srgb8_row, rgb_to_srgb8_fast, tone_map, TONE_KNEE};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
@@ -610,7 +608,7 @@ impl Shading {
 
     /// The reference squares (frequency layer), drawn into the picture, then the overlay
     /// layer composited over it.
-    fn overlays(&self, w: usize, h: usize, bytes: &mut [u8]) {
+    fn overlays(&self, w: usize, h: usize, bytes: &mut Vec<u8>) {
         let squares = self.frequency && self.reference_squares;
         let shown = self.overlays_shown();
         if shown.is_empty() {
@@ -619,7 +617,11 @@ impl Shading {
         let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) else {
             return;
         };
-        let Some(mut img) = RgbImage::from_raw(wu, hu, bytes.to_vec()) else {
+        if bytes.len() != w * h * 3 {
+            return;
+        }
+        // The picture's buffer itself, not a copy (given back below).
+        let Some(mut img) = RgbImage::from_raw(wu, hu, std::mem::take(bytes)) else {
             return;
         };
         if squares {
@@ -641,7 +643,7 @@ impl Shading {
         if let Some(layer) = shown.draw(wu, hu) {
             composite(&mut img, &layer);
         }
-        bytes.copy_from_slice(img.as_raw());
+        *bytes = img.into_raw();
     }
 }
 

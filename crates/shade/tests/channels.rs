@@ -20,7 +20,12 @@ fn varied(w: usize, h: usize) -> DataFile {
             1 => r.status = RayStatus::StepBudget,
             2 => r.status = RayStatus::NotTraced,
             3 => r.status = RayStatus::WorkLimit,
-            4 => *r = PixelRecord { status: RayStatus::Escaped, ..*r },
+            4 => {
+                *r = PixelRecord {
+                    status: RayStatus::Escaped,
+                    ..*r
+                }
+            }
             5 => r.object = 7, // not an object of the file
             6 => r.g = 0.0,
             7 => r.g = f32::NAN,
@@ -141,14 +146,29 @@ fn missing_channels_give_an_empty_picture() {
         let shading = Shading::new(&data, &settings).expect("valid settings");
         let needs = shading.needs();
         let fewer = [
-            Needs { texture_coordinates: false, ..needs },
-            Needs { shift: false, ..needs },
-            Needs { incidence: false, ..needs },
-            Needs { lights: false, ..needs },
+            Needs {
+                texture_coordinates: false,
+                ..needs
+            },
+            Needs {
+                shift: false,
+                ..needs
+            },
+            Needs {
+                incidence: false,
+                ..needs
+            },
+            Needs {
+                lights: false,
+                ..needs
+            },
         ];
         for less in fewer.into_iter().filter(|l| *l != needs) {
             let channels = Channels::new(&data, less);
-            assert!(channel_path(&shading, &channels).is_empty(), "{name}: {less:?}");
+            assert!(
+                channel_path(&shading, &channels).is_empty(),
+                "{name}: {less:?}"
+            );
         }
     }
 }
