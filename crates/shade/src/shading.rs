@@ -21,7 +21,10 @@
 //! through the display tone curve ([`crate::colour::tone_map`]), then draw the reference
 //! squares and composite the overlay layer ([`crate::layer`]: orientation marks (`grid`),
 //! the travel-time legend, the squares' labels); [`Shading::linear`] gives the colours
-//! before all of that (the EXR output).
+//! before all of that (the EXR output). [`Shading::image_into_with`] gives the same bytes from
+//! a [`Channels`] copy of the data file, made once per file: each sample is coloured by the
+//! same rule ([`Shading::colour`] of a [`crate::channels::Sample`]), rows in three passes
+//! (colours, tone curve over the row, 8-bit encoding).
 //!
 //! Caps, checked with the other settings so that every front end gets them: at most
 //! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
