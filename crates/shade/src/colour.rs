@@ -108,8 +108,8 @@ const FAST_SHIFT: u32 = 16;
 
 /// Per bin of the f32 bit pattern over [FAST_MIN, 1): the 8-bit value at the bin's low end
 /// and the threshold inside the bin where it steps up by one (∞ if none), so that the lookup
-/// is exact with respect to [`srgb8_thresholds`]; then one more entry, (255, ∞), for values
-/// from 1 on.
+/// is exact with respect to [`srgb8_thresholds`]; then one more entry for values from 1 on,
+/// (255, NaN): no value, ∞ included, steps past 255.
 fn srgb8_bins() -> &'static [(u8, f32)] {
     static TABLE: std::sync::OnceLock<Vec<(u8, f32)>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
@@ -128,7 +128,7 @@ fn srgb8_bins() -> &'static [(u8, f32)] {
                     .unwrap_or(f32::INFINITY);
                 (k as u8, step)
             })
-            .chain([(255, f32::INFINITY)])
+            .chain([(255, f32::NAN)])
             .collect()
     })
 }
