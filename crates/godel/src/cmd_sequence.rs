@@ -27,7 +27,7 @@ use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use render::driver::{header, render, NoProgress};
 use scene::Scene;
-use shade::{FrameSource, Script, ShadeSettings, Shading, Timeline};
+use shade::{Channels, FrameSource, Needs, Script, ShadeSettings, Shading, Timeline};
 
 use crate::cmd_shade::settings_error;
 use crate::flight::Flight;
@@ -59,8 +59,12 @@ pub struct SequenceArgs {
 
 /// Where each frame's data comes from, loaded.
 enum Source {
-    /// One data file for every frame.
-    Data(Box<DataFile>),
+    /// One data file for every frame, and its shading channels (copied once, every frame
+    /// shaded from them).
+    Data {
+        data: Box<DataFile>,
+        channels: Box<Channels>,
+    },
     /// A scene traced per frame, each frame's scene from the flight; with `keep_data` the
     /// frame's data file is kept.
     Trace {
@@ -89,7 +93,12 @@ impl Plan {
         let (source, probe) = match &script.source {
             FrameSource::Data(p) => {
                 let data = DataFile::read(p)?;
-                (Source::Data(Box::new(data.clone())), data)
+                let channels = Box::new(Channels::new(&data, Needs::ALL));
+                let source = Source::Data {
+                    data: Box::new(data.clone()),
+                    channels,
+                };
+                (source, data)
             }
             FrameSource::Trace {
                 scene, keep_data, ..
@@ -139,8 +148,8 @@ impl Plan {
     pub fn frame(&self, i: u32) -> anyhow::Result<Frame> {
         let settings = self.timeline.settings_at(i);
         match &self.source {
-            Source::Data(data) => Ok(Frame {
-                image: Shading::new(data, &settings)?.image(data),
+            Source::Data { data, channels } => Ok(Frame {
+                image: Shading::new(data, &settings)?.image_with(channels),
                 data: None,
             }),
             Source::Trace { flight, keep_data } => {

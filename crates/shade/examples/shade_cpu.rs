@@ -1,12 +1,14 @@
 //! CPU time of re-shading the benchmark's synthetic 1920×1080 data file, one shader per run:
 //! wall-clock benchmarks on a shared, loaded machine are noisy, CPU time is not.
 //! `RAYON_NUM_THREADS=1 cargo run --release -p shade --example shade_cpu -- frequency 20`
-//! prints CPU milliseconds per frame (process user + system time / frames).
+//! prints CPU milliseconds per frame (process user + system time / frames), shading from the
+//! file's [`shade::Channels`] (made once, outside the timing); a third argument `records`
+//! shades from the records instead (`Shading::image_into`).
 
 #[path = "../benches/common/mod.rs"]
 mod common;
 
-use shade::Shading;
+use shade::{Channels, Shading};
 
 fn cpu_seconds() -> f64 {
     // utime and stime, fields 14 and 15 of /proc/self/stat, in clock ticks (100 per second).
@@ -29,12 +31,18 @@ fn main() {
         eprintln!("unknown case {which}");
         std::process::exit(2);
     };
+    let records = args.get(3).is_some_and(|a| a == "records");
     let shading = Shading::new(&data, &s).expect("valid settings");
+    let channels = Channels::new(&data, shading.needs());
     let mut buffer = Vec::new();
-    shading.image_into(&data, &mut buffer); // warm-up: tables, pages
+    let shade = |buffer: &mut Vec<u8>| match records {
+        true => shading.image_into(&data, buffer),
+        false => shading.image_into_with(&channels, buffer),
+    };
+    shade(&mut buffer); // warm-up: tables, pages
     let start = cpu_seconds();
     for _ in 0..frames {
-        shading.image_into(&data, &mut buffer);
+        shade(&mut buffer);
     }
     let ms = (cpu_seconds() - start) * 1000.0 / f64::from(frames);
     println!("{which}: {ms:.1} ms CPU per 1920x1080 frame");

@@ -2,8 +2,6 @@
 //! scale, turn about the body axis) and its blinking lamps; the rule is in
 //! [`crate::shading`]'s documentation.
 
-use datafile::record::PixelRecord;
-
 use crate::checks::{colour, finite, invalid, positive};
 use crate::error::ShadeError;
 use crate::settings::Lamp;
@@ -40,10 +38,11 @@ pub(crate) struct PreparedObject {
 }
 
 impl PreparedObject {
-    /// Texture `tex` (or a lamp) at the pixel's moved texture coordinates, emission time `t`.
-    pub(crate) fn sample(&self, tex: &Texture, rec: &PixelRecord, t: f64) -> [f32; 3] {
-        let u = self.scale[0] * f64::from(rec.u) + self.offset[0];
-        let v = self.scale[1] * f64::from(rec.v) + self.offset[1];
+    /// Texture `tex` (or a lamp) at the sample's moved texture coordinates (from body
+    /// coordinates `uv`), emission time `t`.
+    pub(crate) fn sample(&self, tex: &Texture, uv: [f32; 2], t: f64) -> [f32; 3] {
+        let u = self.scale[0] * f64::from(uv[0]) + self.offset[0];
+        let v = self.scale[1] * f64::from(uv[1]) + self.offset[1];
         if !self.lamps.is_empty() {
             let lon = std::f64::consts::TAU * u;
             let lat = std::f64::consts::PI * (v.clamp(0.0, 1.0) - 0.5);

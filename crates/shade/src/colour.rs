@@ -108,7 +108,8 @@ const FAST_SHIFT: u32 = 16;
 
 /// Per bin of the f32 bit pattern over [FAST_MIN, 1): the 8-bit value at the bin's low end
 /// and the threshold inside the bin where it steps up by one (∞ if none), so that the lookup
-/// is exact with respect to [`srgb8_thresholds`].
+/// is exact with respect to [`srgb8_thresholds`]; then one more entry for values from 1 on,
+/// (255, NaN): no value, ∞ included, steps past 255.
 fn srgb8_bins() -> &'static [(u8, f32)] {
     static TABLE: std::sync::OnceLock<Vec<(u8, f32)>> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
@@ -127,6 +128,7 @@ fn srgb8_bins() -> &'static [(u8, f32)] {
                     .unwrap_or(f32::INFINITY);
                 (k as u8, step)
             })
+            .chain([(255, f32::NAN)])
             .collect()
     })
 }
@@ -137,16 +139,31 @@ fn srgb8_bins() -> &'static [(u8, f32)] {
 /// except, at most by one step, for values within float rounding of a threshold; NaN → 0.
 #[inline]
 pub fn linear_to_srgb8_fast(x: f32) -> u8 {
-    if x >= 1.0 {
-        return 255;
+    srgb8_lookup(srgb8_bins(), x)
+}
+
+/// [`linear_to_srgb8_fast`] of every value of `values` into `out` (the table fetched once).
+pub fn linear_to_srgb8_row(values: &[f32], out: &mut [u8]) {
+    let bins = srgb8_bins();
+    for (o, &x) in out.iter_mut().zip(values) {
+        *o = srgb8_lookup(bins, x);
     }
-    if !(x >= FAST_MIN) {
-        return 0;
-    }
-    let bin = ((x.to_bits() >> FAST_SHIFT) - (FAST_MIN.to_bits() >> FAST_SHIFT)) as usize;
-    match srgb8_bins().get(bin) {
+}
+
+/// The lookup of [`linear_to_srgb8_fast`] in `bins` ([`srgb8_bins`]), without branches on
+/// the value: NaN becomes 0; the bin index is clamped to the table, so that values below
+/// [`FAST_MIN`] (negative ones included: their bit pattern is negative as i32) fall in the
+/// first bin, which steps nowhere (0), and values from 1 on in the last entry (255).
+#[inline(always)]
+fn srgb8_lookup(bins: &[(u8, f32)], x: f32) -> u8 {
+    let x = if x.is_nan() { 0.0 } else { x };
+    let first = (FAST_MIN.to_bits() >> FAST_SHIFT) as i32;
+    let bin = ((x.to_bits() as i32) >> FAST_SHIFT) - first;
+    let last = bins.len().saturating_sub(1);
+    let bin = (bin.max(0) as usize).min(last);
+    match bins.get(bin) {
         Some(&(k, step)) => k + u8::from(x >= step),
-        None => 255,
+        None => 0,
     }
 }
 

@@ -7,6 +7,9 @@
 //! - [`Shading`]: settings checked against a data file with textures loaded;
 //!   [`Shading::image`] / [`Shading::image_into`] shade it (texture, frequency, time and light
 //!   layers, combined by multiplication; see [`shading`]).
+//! - [`Channels`]: the channels shading reads, copied once per data file into flat planes;
+//!   [`Shading::image_into_with`] / [`Shading::image_with`] shade from it (the same bytes as
+//!   from the records; the viewer's and `godel sequence`'s path).
 //! - [`Script`], [`Timeline`], [`Track`], [`keyframe_toml`]: sequence scripts with keyframed
 //!   settings, observer and camera.
 //! - [`Texture`]: a runtime texture (checker, gradient, uniform, equirectangular image such as
@@ -28,6 +31,7 @@
 
 pub mod blackbody;
 mod body;
+pub mod channels;
 mod checks;
 pub mod colour;
 mod error;
@@ -46,6 +50,7 @@ pub mod texture_shader;
 pub mod texture_source;
 mod tree;
 
+pub use channels::{Channels, Needs, Sample};
 pub use error::ShadeError;
 pub use frequency_shader::{shade_frequency, Brightness};
 pub use script::{

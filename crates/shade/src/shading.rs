@@ -21,7 +21,10 @@
 //! through the display tone curve ([`crate::colour::tone_map`]), then draw the reference
 //! squares and composite the overlay layer ([`crate::layer`]: orientation marks (`grid`),
 //! the travel-time legend, the squares' labels); [`Shading::linear`] gives the colours
-//! before all of that (the EXR output).
+//! before all of that (the EXR output). [`Shading::image_into_with`] gives the same bytes from
+//! a [`Channels`] copy of the data file, made once per file: each sample is coloured by the
+//! same rule ([`Shading::colour`] of a [`crate::channels::Sample`]), rows in three passes
+//! (colours, tone curve over the row, 8-bit encoding).
 //!
 //! Caps, checked with the other settings so that every front end gets them: at most
 //! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
@@ -41,8 +44,9 @@ use rayon::prelude::*;
 
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
+use crate::channels::{Channels, Needs, Sample};
 use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
-use crate::colour::{display_srgb8, rgb_to_srgb8_fast};
+use crate::colour::{display_srgb8, linear_to_srgb8_row, rgb_to_srgb8_fast, tone_map, TONE_KNEE};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
@@ -53,7 +57,7 @@ use crate::settings::{
     MAX_LIGHT_SOURCES,
 };
 use crate::texture::{ImageTexture, Texture};
-use crate::texture_shader::{displayed, shading_factor, status_colour, BACKGROUND, FAILED};
+use crate::texture_shader::{displayed, shading_factor, status_colour_of, BACKGROUND, FAILED};
 use crate::texture_source::TextureSource;
 
 /// Settings checked against a data file, textures loaded: ready to shade it (or other data
@@ -386,19 +390,126 @@ impl Shading {
         let Some(rec) = data.records.get(i) else {
             return FAILED;
         };
-        if let Some(c) = status_colour(rec, BACKGROUND) {
+        let light = |k: usize| {
+            data.lights
+                .get(k)
+                .and_then(|p| p.get(i))
+                .copied()
+                .unwrap_or(0.0)
+        };
+        self.colour(&Sample::of(rec), light)
+    }
+
+    /// The channels these settings read: what [`Channels::new`] must copy for
+    /// [`Shading::image_into_with`].
+    pub fn needs(&self) -> Needs {
+        let paints = self.texture || self.time || self.light;
+        Needs {
+            texture_coordinates: paints,
+            shift: self.frequency,
+            incidence: !self.light && (self.texture || self.time),
+            lights: self.light,
+        }
+    }
+
+    /// [`Shading::image`] from the channels of a data file ([`Channels`], made once per file):
+    /// the same picture, byte for byte; an empty image if `channels` lacks a channel these
+    /// settings read.
+    pub fn image_with(&self, channels: &Channels) -> RgbImage {
+        let mut bytes = Vec::new();
+        self.image_into_with(channels, &mut bytes);
+        let (w, h) = channels.picture_size();
+        match (u32::try_from(w), u32::try_from(h)) {
+            (Ok(w), Ok(h)) if !bytes.is_empty() => {
+                RgbImage::from_raw(w, h, bytes).unwrap_or_else(|| RgbImage::new(0, 0))
+            }
+            _ => RgbImage::new(0, 0),
+        }
+    }
+
+    /// [`Shading::image_into`] from the channels of a data file: the same bytes. `bytes` is
+    /// left empty if `channels` lacks a channel these settings read ([`Shading::needs`]).
+    /// Rows in parallel, each in three passes: linear colours of the row, the exposure and
+    /// tone curve over the whole row, the 8-bit encoding.
+    pub fn image_into_with(&self, channels: &Channels, bytes: &mut Vec<u8>) {
+        let (w, h) = channels.picture_size();
+        bytes.clear();
+        if w == 0 || h == 0 || !channels.serves(self.needs(), self.lights.len()) {
+            return;
+        }
+        let s = channels.supersample.max(1);
+        bytes.resize(w * h * 3, 0);
+        bytes.par_chunks_mut(w * 3).enumerate().for_each_init(
+            || (vec![0.0f32; w * 3], vec![false; w * 3]),
+            |(row_rgb, hit), (row, out)| {
+                if s == 1 {
+                    self.row_linear(channels, row * channels.width, row_rgb, hit);
+                    tone_row(row_rgb, hit, self.gain);
+                } else {
+                    for (col, px) in row_rgb.chunks_exact_mut(3).enumerate() {
+                        px.copy_from_slice(&self.box_displayed(channels, col, row, s));
+                    }
+                }
+                linear_to_srgb8_row(row_rgb, out);
+            },
+        );
+        self.overlays(w, h, bytes);
+    }
+
+    /// Linear colours of the samples from `start` on into `rgb` (3 values per sample),
+    /// `hit` telling which values get the exposure and tone curve.
+    fn row_linear(&self, channels: &Channels, start: usize, rgb: &mut [f32], hit: &mut [bool]) {
+        let pixels = rgb.chunks_exact_mut(3).zip(hit.chunks_exact_mut(3));
+        for (k, (px, hit)) in pixels.enumerate() {
+            let i = start + k;
+            let sample = channels.sample(i);
+            let c = self.colour(&sample, |l| channels.light(l, i));
+            hit.fill(tone_mapped(&sample, c));
+            px.copy_from_slice(&c);
+        }
+    }
+
+    /// Picture pixel (`col`, `row`) of an anti-aliased file as displayed: each sample as
+    /// displayed, then the box filter (as [`DataFile::box_filter`]).
+    fn box_displayed(&self, channels: &Channels, col: usize, row: usize, s: usize) -> [f32; 3] {
+        let mut sum = [0.0f64; 3];
+        for j in 0..s {
+            for k in 0..s {
+                let i = (s * row + j) * channels.width + s * col + k;
+                let sample = channels.sample(i);
+                let c = self.colour(&sample, |l| channels.light(l, i));
+                let c = if tone_mapped(&sample, c) {
+                    c.map(|x| tone_map(x * self.gain))
+                } else {
+                    c
+                };
+                for (a, b) in sum.iter_mut().zip(c) {
+                    *a += f64::from(b);
+                }
+            }
+        }
+        let n = (s * s) as f64;
+        sum.map(|v| (v / n) as f32)
+    }
+
+    /// Linear RGB of one sample (see the module documentation), `light(k)` giving its value
+    /// of light plane k: the rule both the record path and the channel path use.
+    #[inline]
+    pub fn colour(&self, s: &Sample, light: impl Fn(usize) -> f32) -> [f32; 3] {
+        if let Some(c) = status_colour_of(s.status, s.object, BACKGROUND) {
             return c;
         }
-        let Some(obj) = self.objects.get(rec.object as usize) else {
+        let Some(obj) = self.objects.get(s.object as usize) else {
             return FAILED;
         };
-        let t_emit = f64::from(rec.t_emit);
+        let uv = [s.u, s.v];
+        let t_emit = f64::from(s.t_emit);
         let t = self.observer_time + t_emit;
         let mut c = [1.0f32; 3];
         let mut painted = false;
         let mut coloured = false;
         if self.texture {
-            c = mul(c, obj.sample(&obj.first, rec, t));
+            c = mul(c, obj.sample(&obj.first, uv, t));
             painted = true;
         }
         if self.time {
@@ -406,7 +517,7 @@ impl Shading {
                 TimeMode::Window => {
                     let inside = t_emit >= self.window.0 && t_emit <= self.window.1;
                     let tex = if inside { &obj.second } else { &obj.first };
-                    c = mul(c, obj.sample(tex, rec, t));
+                    c = mul(c, obj.sample(tex, uv, t));
                     painted = true;
                 }
                 TimeMode::Travel => {
@@ -417,7 +528,7 @@ impl Shading {
             }
         }
         if self.frequency {
-            match self.blackbody(f64::from(rec.g), obj) {
+            match self.blackbody(f64::from(s.g), obj) {
                 Some(b) => c = mul(c, b),
                 None => return FAILED,
             }
@@ -425,16 +536,11 @@ impl Shading {
         }
         if self.light {
             if !painted && !coloured {
-                c = obj.sample(&obj.first, rec, t);
+                c = obj.sample(&obj.first, uv, t);
             }
             let mut l = [self.ambient; 3];
             for (k, w) in self.lights.iter().enumerate() {
-                let x = data
-                    .lights
-                    .get(k)
-                    .and_then(|p| p.get(i))
-                    .copied()
-                    .unwrap_or(0.0);
+                let x = light(k);
                 let x = if x.is_finite() { x.max(0.0) } else { 0.0 };
                 for (lc, wc) in l.iter_mut().zip(w) {
                     *lc += wc * x;
@@ -442,7 +548,7 @@ impl Shading {
             }
             c = mul(c, l);
         } else if painted {
-            let f = shading_factor(rec.cos_i);
+            let f = shading_factor(s.cos_i);
             c = c.map(|v| v * f);
         }
         c
@@ -505,7 +611,7 @@ impl Shading {
 
     /// The reference squares (frequency layer), drawn into the picture, then the overlay
     /// layer composited over it.
-    fn overlays(&self, w: usize, h: usize, bytes: &mut [u8]) {
+    fn overlays(&self, w: usize, h: usize, bytes: &mut Vec<u8>) {
         let squares = self.frequency && self.reference_squares;
         let shown = self.overlays_shown();
         if shown.is_empty() {
@@ -514,7 +620,11 @@ impl Shading {
         let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) else {
             return;
         };
-        let Some(mut img) = RgbImage::from_raw(wu, hu, bytes.to_vec()) else {
+        if bytes.len() != w * h * 3 {
+            return;
+        }
+        // The picture's buffer itself, not a copy (given back below).
+        let Some(mut img) = RgbImage::from_raw(wu, hu, std::mem::take(bytes)) else {
             return;
         };
         if squares {
@@ -536,7 +646,7 @@ impl Shading {
         if let Some(layer) = shown.draw(wu, hu) {
             composite(&mut img, &layer);
         }
-        bytes.copy_from_slice(img.as_raw());
+        *bytes = img.into_raw();
     }
 }
 
@@ -552,4 +662,26 @@ fn name_list(names: &[String]) -> String {
 
 fn mul(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+}
+
+/// Whether a sample's colour `c` goes through the exposure and tone curve (as
+/// [`displayed`]: hit samples not coloured as failed).
+#[inline]
+fn tone_mapped(s: &Sample, c: [f32; 3]) -> bool {
+    status_colour_of(s.status, s.object, BACKGROUND).is_none() && c != FAILED
+}
+
+/// [`tone_map`] of `x·gain` for every value of the row that is `hit`, the others
+/// unchanged; written without branches on the values so that the loop vectorises, and equal
+/// to [`tone_map`] bit for bit (the same operations in the same order, then a choice).
+fn tone_row(rgb: &mut [f32], hit: &[bool], gain: f32) {
+    for (x, &hit) in rgb.iter_mut().zip(hit) {
+        let g = *x * gain;
+        let y = (g - TONE_KNEE) / (1.0 - TONE_KNEE);
+        let shoulder = TONE_KNEE + (1.0 - TONE_KNEE) * (y / (1.0 + y));
+        let mut t = if g <= TONE_KNEE { g } else { shoulder };
+        t = if g == f32::INFINITY { 1.0 } else { t };
+        t = if g.is_nan() { 0.0 } else { t };
+        *x = if hit { t } else { *x };
+    }
 }

@@ -109,11 +109,17 @@ pub fn displayed(c: [f32; 3], r: &PixelRecord, gain: f32) -> [f32; 3] {
 /// What a record shows whatever the shader: the failure colours, and `background` where
 /// no object was hit; `None` for a hit, which the shader colours.
 pub fn status_colour(record: &PixelRecord, background: [f32; 3]) -> Option<[f32; 3]> {
-    match record.status {
+    status_colour_of(record.status, record.object, background)
+}
+
+/// [`status_colour`] of a record's status and object index.
+#[inline]
+pub fn status_colour_of(status: RayStatus, object: i32, background: [f32; 3]) -> Option<[f32; 3]> {
+    match status {
         RayStatus::Failed => Some(FAILED),
         RayStatus::StepBudget | RayStatus::WorkLimit => Some(STEP_BUDGET),
         RayStatus::NotTraced => Some(NOT_TRACED),
-        RayStatus::Hit | RayStatus::Escaped => (record.object < 0).then_some(background),
+        RayStatus::Hit | RayStatus::Escaped => (object < 0).then_some(background),
     }
 }
 

@@ -13,7 +13,7 @@ use datafile::record::RayStatus;
 use datafile::DataFile;
 use image::RgbImage;
 use serde::Serialize;
-use shade::{ShadeSettings, Shading, TextureSource};
+use shade::{Channels, Needs, ShadeSettings, Shading, TextureSource};
 
 use crate::limit::WorkLimit;
 
@@ -74,6 +74,8 @@ pub struct ViewerState {
     work: WorkLimit,
     /// The camera of the embedded scene, sized to the data file (for pixel directions).
     camera: Option<scene::Camera>,
+    /// Every shading channel of `data`, copied once: what each frame is shaded from.
+    channels: Channels,
 }
 
 /// One pixel's record as the page shows it.
@@ -165,6 +167,7 @@ impl ViewerState {
             source,
         })?;
         let camera = shade::marks::data_camera(&data);
+        let channels = Channels::new(&data, Needs::ALL);
         Ok(ViewerState {
             path: path.to_path_buf(),
             data,
@@ -172,6 +175,7 @@ impl ViewerState {
             textures,
             work: options.work,
             camera,
+            channels,
         })
     }
 
@@ -217,14 +221,15 @@ impl ViewerState {
         Shading::with_textures(&self.data, settings, &self.textures)
     }
 
-    /// The picture for prepared settings as RGB8 bytes, row 0 first; rows in parallel.
+    /// The picture for prepared settings as RGB8 bytes, row 0 first; rows in parallel, from
+    /// the channels copied at load.
     pub fn shade_rgb(&self, shading: &Shading, bytes: &mut Vec<u8>) {
-        shading.image_into(&self.data, bytes);
+        shading.image_into_with(&self.channels, bytes);
     }
 
     /// The picture for prepared settings.
     pub fn shade(&self, shading: &Shading) -> RgbImage {
-        shading.image(&self.data)
+        shading.image_with(&self.channels)
     }
 
     /// The record of picture pixel (`col`, `row`), or `None` outside the picture. In an

@@ -6,11 +6,11 @@ use datafile::DataFile;
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, TextureChoice, TimeMode};
 
 /// The scene the data file claims to come from: an earth-textured and a checkered ball.
-fn scene() -> String {
+fn scene(w: usize, h: usize) -> String {
     let earth = "{ kind = \"image\", builtin = \"earth\" }";
     format!(
         "name = \"bench\"\n{}{}{}",
-        testkit::pinhole(90.0, 1920, 1080),
+        testkit::pinhole(90.0, w, h),
         testkit::textured_ball_at("earth", 0.2, earth, 5800.0, 1.0, 0.0),
         testkit::textured_ball_at("ball", 0.2, &testkit::checker(8, 16), 4000.0, 1.0, 2.0),
     )
@@ -18,8 +18,13 @@ fn scene() -> String {
 
 /// 1920×1080: two thirds of the pixels hit one of two objects with varied u, v, g, t_emit
 /// and cos_i; two light planes.
+#[allow(dead_code)] // the tests use the smaller `data_of`
 pub fn data() -> DataFile {
-    let (w, h) = (1920usize, 1080usize);
+    data_of(1920, 1080)
+}
+
+/// [`data`] at `w` × `h` (the tests' smaller copies).
+pub fn data_of(w: usize, h: usize) -> DataFile {
     let mut lights: Vec<Vec<f32>> = (0..2).map(|_| Vec::with_capacity(w * h)).collect();
     let records = (0..w * h)
         .map(|i| {
@@ -40,7 +45,7 @@ pub fn data() -> DataFile {
         })
         .collect();
     DataFile {
-        header: testkit::godel_header("bench", &scene(), "pinhole", &["earth", "ball"]),
+        header: testkit::godel_header("bench", &scene(w, h), "pinhole", &["earth", "ball"]),
         width: w,
         height: h,
         records,
