@@ -161,7 +161,8 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
         assert_eq!((header.0, header.1), (96, 16), "{name}");
         bytes
     };
-    let fields: [(&str, fn(&datafile::PixelRecord) -> f32); 4] = [
+    type Field = fn(&datafile::PixelRecord) -> f32;
+    let fields: [(&str, Field); 4] = [
         ("u", |r| r.u),
         ("v", |r| r.v),
         ("g", |r| r.g),

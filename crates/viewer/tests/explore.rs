@@ -92,8 +92,11 @@ fn wait_until(what: &str, mut done: impl FnMut() -> bool) {
     panic!("never happened: {what}");
 }
 
-/// (generation, level, size, −t_emit, g) of the newest frame kept.
-fn latest(explorer: &Explorer) -> Option<(u64, Level, (usize, usize), f32, f32)> {
+/// (generation, level, size, −t_emit, g) of a frame.
+type Seen = (u64, Level, (usize, usize), f32, f32);
+
+/// What the newest frame kept is.
+fn latest(explorer: &Explorer) -> Option<Seen> {
     explorer.latest().map(|f| {
         let r = f.data.records[0];
         (
