@@ -22,8 +22,10 @@ export async function startExplore(viewer) {
   let info;
   try {
     const response = await fetch('/api/explore/info');
-    if (!response.ok) return; // godel view: no explore mode
+    if (!response.ok) return;
     info = await response.json();
+    if (!info.explore) return; // godel view
+
   } catch (_) {
     return;
   }

@@ -2,7 +2,7 @@
 //!
 //! | route | answer |
 //! | --- | --- |
-//! | `GET /api/explore/info` | the scene's observer event, the bound on coordinates, the newest generation (JSON) |
+//! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
 //! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 when it is no longer the newest frame |
@@ -34,8 +34,8 @@ pub struct ExploreState {
     pub explorer: Explorer,
 }
 
-/// The viewer's routes over `viewer` (its first frame) with the explore routes, all answering
-/// what `access` allows.
+/// The explore routes, then (for every other path) the viewer's routes over `viewer` (its
+/// first frame), all answering what `access` allows.
 pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> Router {
     let state = Arc::new(ExploreState {
         viewer: viewer.clone(),
@@ -52,12 +52,13 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
             Arc::new(access.clone()),
             crate::guard::check,
         ));
-    crate::router(viewer, access).merge(explore)
+    explore.fallback_service(crate::router(viewer, access))
 }
 
 async fn info(State(state): State<Arc<ExploreState>>) -> Response {
     let e = &state.explorer;
     let body = serde_json::json!({
+        "explore": true,
         "start": e.start(),
         "bound": e.bound(),
         "generation": e.generation(),

@@ -196,6 +196,14 @@ async fn send(
     (status, json, body.to_vec())
 }
 
+#[tokio::test]
+async fn godel_view_says_it_is_not_explore_mode() {
+    let (status, _, body) = common::send(common::get("/api/explore/info")).await;
+    assert_eq!(status, StatusCode::OK);
+    let answer: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(answer["explore"], false);
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     let explorer = Explorer::new(Fake::default()).unwrap();
@@ -203,7 +211,12 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
     let (status, info, _) = send(&app, common::get("/api/explore/info")).await;
     assert_eq!(status, StatusCode::OK);
+    assert_eq!(info["explore"], true);
     assert_eq!(info["start"]["t"], 0.0);
+    // The viewer's own routes answer behind them.
+    let (status, viewer_info, _) = send(&app, common::get("/api/info")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(viewer_info["width"], common::WIDTH);
     for (body, field) in [
         (r#"{"t": 0, "x": 1e9, "y": 0, "z": 0}"#, "event.x"),
         (r#"{"t": "soon", "x": 0, "y": 0, "z": 0}"#, "event.t"),
