@@ -6,12 +6,13 @@
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
 //! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 when it is no longer the newest frame |
+//! | `GET /api/pixel?col=C&row=R` | as in [`crate::routes`], the record of a pixel of the newest frame |
 //!
 //! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
 //! shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
 //! [`crate::guard::check`]; channels are encoded within the server's bound on work.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
@@ -26,12 +27,41 @@ use crate::api_error::{no_store, ApiError};
 use crate::explore::{Explorer, Level, ObserverEvent};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
-use crate::state::ViewerState;
+use crate::limit::WorkLimit;
+use crate::state::{ViewerOptions, ViewerState};
 
 /// The explore routes' state.
 pub struct ExploreState {
     pub viewer: Arc<ViewerState>,
     pub explorer: Explorer,
+    /// The newest frame prepared as a viewer's data file (for pixel records), made on first
+    /// use: (generation, level, state).
+    prepared: Mutex<Option<(u64, Level, Arc<ViewerState>)>>,
+}
+
+impl ExploreState {
+    /// The newest frame as a [`ViewerState`] (the first frame's before any), prepared once
+    /// per frame with the first frame's texture folders.
+    fn newest(&self) -> Result<Arc<ViewerState>, ApiError> {
+        let Some(frame) = self.explorer.latest() else {
+            return Ok(self.viewer.clone());
+        };
+        let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((generation, level, state)) = prepared.as_ref() {
+            if (*generation, *level) == (frame.generation, frame.level) {
+                return Ok(state.clone());
+            }
+        }
+        let options = ViewerOptions {
+            texture_folders: self.viewer.texture_folders().to_vec(),
+            work: WorkLimit::new(1, 0),
+        };
+        let state = ViewerState::new_with(&self.viewer.path, frame.data.clone(), options)
+            .map_err(|e| ApiError::internal(e.to_string()))?;
+        let state = Arc::new(state);
+        *prepared = Some((frame.generation, frame.level, state.clone()));
+        Ok(state)
+    }
 }
 
 /// The explore routes, then (for every other path) the viewer's routes over `viewer` (its
@@ -40,12 +70,14 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
     let state = Arc::new(ExploreState {
         viewer: viewer.clone(),
         explorer,
+        prepared: Mutex::new(None),
     });
     let explore = Router::new()
         .route("/api/explore/info", get(info))
         .route("/api/explore/event", post(event))
         .route("/api/explore/frame", get(frame))
         .route("/api/explore/channel/{name}", get(channel))
+        .route("/api/pixel", get(pixel))
         .with_state(state)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
         .layer(middleware::from_fn_with_state(
@@ -149,4 +181,14 @@ async fn channel(
         .run(move || channel.encode(&frame.data))
         .await?;
     Ok(crate::gpu_routes::array(bytes))
+}
+
+/// The record of a pixel of the newest frame ([`crate::routes::pixel`] on it).
+async fn pixel(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<crate::routes::PixelQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let viewer = state.viewer.clone();
+    let frame = viewer.work().admit()?.run(move || state.newest()).await??;
+    crate::routes::pixel(State(frame), query).await
 }

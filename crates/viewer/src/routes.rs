@@ -201,12 +201,13 @@ async fn keyframe(
 
 /// `?col=C&row=R`.
 #[derive(Deserialize)]
-struct PixelQuery {
+pub struct PixelQuery {
     col: usize,
     row: usize,
 }
 
-async fn pixel(
+/// `GET /api/pixel`: the record of a pixel of `state`'s data file.
+pub async fn pixel(
     State(state): State<Arc<ViewerState>>,
     query: Result<Query<PixelQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {

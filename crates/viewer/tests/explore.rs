@@ -252,6 +252,14 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     );
     let first = f32::from_le_bytes(bytes[HEADER_LEN..HEADER_LEN + 4].try_into().unwrap());
     assert_eq!(first, -4.0);
+    // Hover records are the newest frame's (the first frame there is a miss).
+    let (status, record, _) = send(&app, common::get("/api/pixel?col=7&row=3")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        (record["status"].as_str(), record["t_emit"].as_f64()),
+        (Some("hit"), Some(-4.0))
+    );
+    assert_eq!(record["g"], 2.0);
     // A frame that is no longer the newest is gone.
     let stale = "/api/explore/channel/t_emit?generation=1&level=coarse";
     assert_eq!(send(&app, common::get(stale)).await.0, StatusCode::GONE);
