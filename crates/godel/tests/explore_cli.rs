@@ -186,3 +186,25 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
         "channel id"
     );
 }
+
+#[test]
+fn a_bad_scene_is_refused_before_serving() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("bad.toml");
+    std::fs::write(
+        &scene,
+        scene_text("time = \"soon\"\nposition = { x = 0.0 }"),
+    )
+    .unwrap();
+    let o = common::godel(&["explore", scene.to_str().unwrap(), "--port", "0"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(o.stdout.is_empty(), "nothing served");
+    assert!(
+        stderr.contains("bad.toml") && stderr.contains("observer.time"),
+        "{stderr}"
+    );
+    let o = common::godel(&["explore", "no-such-scene.toml", "--port", "0"]);
+    assert_ne!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no-such-scene.toml"));
+}
