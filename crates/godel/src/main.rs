@@ -5,8 +5,8 @@
 //! with their cause chain, each cause said once. A closed standard output (`godel … | head`)
 //! ends the command quietly with 0.
 //!
-//! SIGINT, SIGTERM and SIGHUP end every command but `view` (whose server stops gracefully on
-//! its own) through [`exit_on_signals`]: the temporary files of writes under way are
+//! SIGINT, SIGTERM and SIGHUP end every command but `view` and `explore` (whose server stops
+//! gracefully on its own) through [`exit_on_signals`]: the temporary files of writes under way are
 //! removed (`datafile::atomic`) and the process exits with 128 + the signal's number (130 for
 //! Ctrl-C, 143 for SIGTERM), leaving no half-written file behind.
 
@@ -14,6 +14,7 @@ mod args;
 #[cfg(feature = "mpi")]
 mod cluster;
 mod cmd_connect;
+mod cmd_explore;
 mod cmd_geodesic;
 mod cmd_look;
 mod cmd_merge;
@@ -63,6 +64,9 @@ enum Command {
     /// Serve a live web viewer of a data file, shaded on the GPU: shader controls, zoom, pixel
     /// records, saving; a full-sphere file can be looked around and boosted.
     View(cmd_view::ViewArgs),
+    /// The live viewer of a scene whose observer can be moved: each change of event is
+    /// re-traced on the server, a coarse frame first, then the full one.
+    Explore(cmd_explore::ExploreArgs),
     /// Join the part files of `render --part i/N` into the files a single run writes.
     Merge(cmd_merge::MergeArgs),
     /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
@@ -80,6 +84,7 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Shade(args) => cmd_shade::run(args),
         Command::Sequence(args) => cmd_sequence::run(args),
         Command::View(args) => cmd_view::run(args),
+        Command::Explore(args) => cmd_explore::run(args),
         Command::Merge(args) => cmd_merge::run(args),
         Command::Geodesic(args) => cmd_geodesic::run(args),
         Command::Connect(args) => cmd_connect::run(args),
@@ -134,7 +139,7 @@ fn main() -> ExitCode {
             return ExitCode::from(e.exit_code().clamp(0, 255) as u8);
         }
     };
-    if !matches!(cli.command, Command::View(_)) {
+    if !matches!(cli.command, Command::View(_) | Command::Explore(_)) {
         if let Err(e) = exit_on_signals() {
             eprintln!("error: cannot watch for signals: {e}");
             return ExitCode::FAILURE;

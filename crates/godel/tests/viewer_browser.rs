@@ -222,6 +222,8 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     assert!(screenshot.width() >= 800 && screenshot.height() >= 400);
 }
 
+#[path = "viewer_browser/explore.rs"]
+mod explore;
 #[path = "viewer_browser/layers.rs"]
 mod layers;
 #[path = "viewer_browser/look.rs"]

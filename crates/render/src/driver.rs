@@ -28,6 +28,12 @@ use std::time::{Duration, Instant};
 pub trait Progress: Sync {
     /// `pixels` more pixels are done.
     fn advance(&self, pixels: u64);
+    /// True when the caller no longer wants the result: the driver then traces no further
+    /// tile (the tiles under way finish), so a cancelled run ends within one tile's time
+    /// per thread and its sink holds only the tiles done before.
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// A progress consumer that ignores everything.
@@ -268,6 +274,9 @@ impl<'a> Renderer<'a> {
         indices.par_iter().for_each_init(
             || self.scratch(),
             |scratch, &index| {
+                if progress.cancelled() {
+                    return;
+                }
                 let tile = self.trace_tile(index, scratch);
                 let stats = RenderStats::count(&tile.records);
                 progress.advance(tile.records.len() as u64);

@@ -36,7 +36,7 @@ pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
-pub use validate::{MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
+pub use validate::{MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;
 use serde::Deserialize;

@@ -58,6 +58,15 @@ export class Data {
     this.lightPlanes = [];
     this.images = new Map();   // name → {width, height, rgb, y0}
     this.fetched = [];         // [url, bytes, ms] of each array, for the benchmarks
+    this.channelUrl = (name) => `/api/gpu/channel/${name}`;
+  }
+
+  // Explore mode (explore.js): the channels of another frame, from `channelUrl(name)`; the
+  // ones on the GPU are fetched again when a layer needs them.
+  reset(channelUrl) {
+    this.channelUrl = channelUrl;
+    this.loaded.clear();
+    this.lightPlanes = [];
   }
 
   // The scene textures' description and the black-body tables (uploaded here).
@@ -113,7 +122,7 @@ export class Data {
   // Fetches and uploads the channels not yet on the GPU.
   async ensure(names) {
     const missing = this.missing(names);
-    const arrays = await this.arrays(missing.map((n) => `/api/gpu/channel/${n}`));
+    const arrays = await this.arrays(missing.map(this.channelUrl));
     const [width, height] = this.sampleSize();
     missing.forEach((name, i) => {
       const a = arrays[i];

@@ -10,6 +10,7 @@ import { Data, channelsFor, fetchJson } from './data.js';
 import { describeControls, buildControls } from './controls.js';
 import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey } from './uniforms.js';
 import * as L from './look.js';
+import { startExplore } from './explore.js';
 
 const viewer = {
   info: null,      // /api/info
@@ -502,7 +503,22 @@ async function start() {
     saveBody(), 'view.png'));
   $('save-keyframe').addEventListener('click', saveKeyframe);
   layout();
+  startExplore(viewer);
 }
+
+// Explore mode (explore.js): shade a newly traced frame, of `frame.width` × `frame.height`
+// pictures, whose channels come from `channelUrl(name)`; false (try later) while loading.
+viewer.showFrame = (frame, channelUrl) => {
+  if (loading || !data) return false;
+  // A zoomed or panned picture keeps its place on the canvas at the new size.
+  if (!pan.fitted) pan.zoom *= viewer.info.width / frame.width;
+  Object.assign(viewer.info, { width: frame.width, height: frame.height,
+    supersample: frame.supersample });
+  data.reset(channelUrl);
+  layout();
+  changed();
+  return true;
+};
 
 // After a look control: the preset's direction, the projection's field of view.
 function lookChanged() {

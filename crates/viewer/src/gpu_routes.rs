@@ -63,7 +63,7 @@ pub fn router(state: Arc<GpuState>) -> Router {
 }
 
 /// A binary array answer.
-fn array(bytes: Vec<u8>) -> Response {
+pub fn array(bytes: Vec<u8>) -> Response {
     let headers = [
         (
             header::CONTENT_TYPE,

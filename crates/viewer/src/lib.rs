@@ -14,10 +14,14 @@
 //! - [`wire`]: the binary format of the arrays the page uploads as textures; [`gpu`]: what
 //!   they hold (channels, textures, black-body tables).
 //! - The settings the page sends are `shade::ShadeSettings` as JSON.
+//! - [`explore`], [`explore_routes`]: explore mode (`godel explore`), frames re-traced for a
+//!   moved observer by a [`explore::FrameSource`].
 
 pub mod api_error;
 mod assets;
 pub mod encode;
+pub mod explore;
+pub mod explore_routes;
 pub mod gpu;
 pub mod gpu_routes;
 pub mod guard;
@@ -74,6 +78,15 @@ async fn shutdown() {
 /// Ctrl-C or SIGTERM: the command line needs no async code of its own. Requests must name
 /// the address listened on ([`Access::listening_on`]).
 pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io::Result<()> {
+    run_app(listener, |access| router(state, access))
+}
+
+/// [`run`] for any app built from the [`Access`] of `listener` (explore mode:
+/// [`explore_routes::router`]).
+pub fn run_app(
+    listener: std::net::TcpListener,
+    app: impl FnOnce(Access) -> axum::Router,
+) -> std::io::Result<()> {
     let access = Access::listening_on(listener.local_addr()?);
     listener.set_nonblocking(true)?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -83,6 +96,8 @@ pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io:
         .build()?;
     runtime.block_on(async move {
         let listener = tokio::net::TcpListener::from_std(listener)?;
-        serve(listener, state, access).await
+        axum::serve(listener, app(access))
+            .with_graceful_shutdown(shutdown())
+            .await
     })
 }

@@ -9,6 +9,7 @@
 //! | `POST /api/overlay` (settings JSON) | the overlay layer (orientation marks, legend, labels; `shade::layer`) of the picture as an RGBA PNG, 204 when there is nothing to draw |
 //! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
+//! | `GET /api/explore/info` | `{"explore": false}`: not explore mode ([`crate::explore_routes`] answers it there) |
 //! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::look_routes`] |
 //!
 //! Every request first passes [`crate::guard::check`] (Host, Origin, JSON bodies, body size:
@@ -54,6 +55,7 @@ pub fn router(state: Arc<ViewerState>, access: Access) -> Router {
         .route("/api/overlay", post(overlay))
         .route("/api/keyframe", post(keyframe))
         .route("/api/pixel", get(pixel))
+        .route("/api/explore/info", get(not_exploring))
         .with_state(state.clone())
         .merge(crate::gpu_routes::router(Arc::new(
             crate::gpu_routes::GpuState::new(state.clone()),
@@ -100,6 +102,10 @@ async fn blocking<T: Send + 'static>(
     job: impl FnOnce() -> T + Send + 'static,
 ) -> Result<T, ApiError> {
     state.work().admit()?.run(job).await
+}
+
+async fn not_exploring() -> impl IntoResponse {
+    (no_store(), Json(serde_json::json!({ "explore": false })))
 }
 
 async fn info(State(state): State<Arc<ViewerState>>) -> impl IntoResponse {
@@ -195,12 +201,13 @@ async fn keyframe(
 
 /// `?col=C&row=R`.
 #[derive(Deserialize)]
-struct PixelQuery {
+pub struct PixelQuery {
     col: usize,
     row: usize,
 }
 
-async fn pixel(
+/// `GET /api/pixel`: the record of a pixel of `state`'s data file.
+pub async fn pixel(
     State(state): State<Arc<ViewerState>>,
     query: Result<Query<PixelQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {

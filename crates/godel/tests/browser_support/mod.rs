@@ -1,5 +1,5 @@
 //! Helpers of the browser tests (viewer_browser.rs): rendering a scene with `godel render`,
-//! serving it with `godel view --port 0`, running a playwright-core script of tests/browser
+//! serving it with `godel view --port 0` (or a scene with `godel explore --port 0`), running a playwright-core script of tests/browser
 //! against Debian's chromium, and reading the raw pictures the scripts save.
 #![allow(dead_code)]
 
@@ -69,13 +69,23 @@ impl Drop for Server {
 
 /// Starts `godel view DATA --port 0` in `cwd`; returns it and the URL it printed.
 pub fn start_viewer(data: &Path, cwd: &Path) -> (Server, String) {
+    start_server("view", data, cwd)
+}
+
+/// Starts `godel explore SCENE --port 0` in `cwd`; returns it and the URL it printed.
+pub fn start_explore(scene: &Path, cwd: &Path) -> (Server, String) {
+    start_server("explore", scene, cwd)
+}
+
+/// Starts `godel COMMAND FILE --port 0` in `cwd`; returns it and the URL it printed.
+fn start_server(command: &str, file: &Path, cwd: &Path) -> (Server, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(["view", data.to_str().unwrap(), "--port", "0"])
+        .args([command, file.to_str().unwrap(), "--port", "0"])
         .current_dir(cwd)
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
         .spawn()
-        .expect("start godel view");
+        .unwrap_or_else(|e| panic!("start godel {command}: {e}"));
     let stdout = child.stdout.take().unwrap();
     let server = Server(child);
     let (send, receive) = mpsc::channel();
@@ -87,10 +97,10 @@ pub fn start_viewer(data: &Path, cwd: &Path) -> (Server, String) {
     // A deadline against hanging forever, not a speed check.
     let line = receive
         .recv_timeout(Duration::from_secs(120))
-        .expect("godel view printed no URL");
+        .unwrap_or_else(|_| panic!("godel {command} printed no URL"));
     let url = line
         .trim()
-        .strip_prefix("godel view: serving ")
+        .strip_prefix(&format!("godel {command}: serving "))
         .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
         .to_string();
     assert!(

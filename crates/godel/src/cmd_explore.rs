@@ -1,0 +1,239 @@
+//! `godel explore SCENE.toml [--port P] [--host H] [--textures DIR]… [--threads N]`: the live
+//! viewer in explore mode (README, "Exploring"). The page changes the observer's event
+//! (t, x, y, z); the server re-traces the scene from there with the exact tracer of
+//! `godel render` (the `render` crate's driver, on all cores), a coarse frame first (the same
+//! camera with a quarter of the width and height, one ray per pixel), then the full one, which
+//! holds the records `godel render` writes for the scene with that observer. The newest event
+//! wins: older work stops between tiles ([`render::driver::Progress::cancelled`]). Which frames
+//! are kept is decided in the `viewer` crate (`viewer::explore`); this file only traces.
+
+use std::io::Write;
+use std::net::{IpAddr, SocketAddr, TcpListener};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use anyhow::Context;
+use clap::Args;
+use datafile::DataFile;
+use render::driver::{Progress, Renderer};
+use render::plan::Plan;
+use render::tiles::Assembler;
+use scene::Scene;
+use spacetime::Event;
+use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
+
+use crate::args::{thread_pool, usage};
+
+/// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).
+const COARSE_DIVISOR: u32 = 4;
+
+#[derive(Args, Debug)]
+pub struct ExploreArgs {
+    /// Scene file (TOML): the observer starts at its event.
+    pub scene: PathBuf,
+    /// Port to serve on; 0 picks a free one.
+    #[arg(long, default_value_t = 8737)]
+    pub port: u16,
+    /// Address to listen on (the default serves this machine only).
+    #[arg(long, default_value = "127.0.0.1")]
+    pub host: String,
+    /// A folder image textures may come from, besides the scene file's own (repeatable).
+    #[arg(long, value_name = "DIR")]
+    pub textures: Vec<PathBuf>,
+    /// Worker threads for tracing (default: all cores; at most 8 per core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// The scene with its observer moved to `event`; for [`Level::Coarse`] with the camera's
+/// width and height divided by [`COARSE_DIVISOR`] and one ray per pixel.
+pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> Scene {
+    let mut moved = scene.clone();
+    moved.observer.event = Event::new(event.t, event.x, event.y, event.z);
+    if level == Level::Coarse {
+        let (w, h) = (scene.camera.width(), scene.camera.height());
+        moved.camera = scene
+            .camera
+            .with_size((w / COARSE_DIVISOR).max(1), (h / COARSE_DIVISOR).max(1));
+        moved.samples = 1;
+    }
+    moved
+}
+
+/// The exact tracer on a scene, as the frame source of explore mode.
+pub struct SceneFrames {
+    scene: Scene,
+    pool: rayon::ThreadPool,
+}
+
+/// Tells the driver to stop when the explorer cancels the work.
+struct Cancel<'a>(&'a AtomicBool);
+
+impl Progress for Cancel<'_> {
+    fn advance(&self, _pixels: u64) {}
+    fn cancelled(&self) -> bool {
+        self.0.load(Ordering::SeqCst)
+    }
+}
+
+impl SceneFrames {
+    pub fn new(scene: Scene, pool: rayon::ThreadPool) -> SceneFrames {
+        SceneFrames { scene, pool }
+    }
+
+    /// The frame of `scene_at(event, level)`, or `None` once `cancel` is set.
+    pub fn trace(
+        &self,
+        event: ObserverEvent,
+        level: Level,
+        cancel: &AtomicBool,
+    ) -> anyhow::Result<Option<DataFile>> {
+        let scene = scene_at(&self.scene, event, level);
+        let renderer = Renderer::new(&scene)?;
+        let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
+        let stop = Cancel(cancel);
+        self.pool
+            .install(|| renderer.run(&Plan::All, &mut assembler, &stop));
+        if cancel.load(Ordering::SeqCst) {
+            return Ok(None);
+        }
+        Ok(Some(assembler.finish()))
+    }
+}
+
+impl FrameSource for SceneFrames {
+    fn start(&self) -> ObserverEvent {
+        let e = self.scene.observer.event;
+        ObserverEvent {
+            t: e.t,
+            x: e.x,
+            y: e.y,
+            z: e.z,
+        }
+    }
+
+    fn bound(&self) -> f64 {
+        scene::MAX_COORDINATE_PER_A * self.scene.metric.godel_a().unwrap_or(1.0)
+    }
+
+    fn frame(
+        &self,
+        event: ObserverEvent,
+        level: Level,
+        cancel: &AtomicBool,
+    ) -> Result<Option<DataFile>, String> {
+        self.trace(event, level, cancel)
+            .map_err(|e| format!("{e:#}"))
+    }
+}
+
+pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
+    let ip: IpAddr = args.host.parse().map_err(|_| {
+        usage(
+            "--host",
+            format!("'{}' is not an IP address (e.g. 127.0.0.1)", args.host),
+        )
+    })?;
+    let pool = thread_pool(args.threads)?;
+    let scene = Scene::from_file(&args.scene)?;
+    shade::textures_for_scene(&scene)?;
+    let frames = SceneFrames::new(scene, pool);
+    // The viewer starts from the coarse frame at the scene's own event; the page then
+    // receives the explorer's frames.
+    let first = frames
+        .trace(frames.start(), Level::Coarse, &AtomicBool::new(false))?
+        .context("the first frame was cancelled")?;
+    let options = viewer::ViewerOptions {
+        texture_folders: args.textures.clone(),
+        ..viewer::ViewerOptions::default()
+    };
+    let state =
+        viewer::ViewerState::new_with(&args.scene, first, options).map_err(|e| match e {
+            viewer::LoadError::TextureFolder(e) => usage("--textures", e.to_string()),
+            other => other.into(),
+        })?;
+    let start = frames.start();
+    let explorer = Explorer::new(frames).context("cannot start the tracing thread")?;
+    explorer
+        .request(start)
+        .map_err(|why| anyhow::anyhow!("{}: observer: {why}", args.scene.display()))?;
+    let wanted = SocketAddr::new(ip, args.port);
+    let listener = TcpListener::bind(wanted).map_err(|e| match e.kind() {
+        std::io::ErrorKind::AddrInUse => usage(
+            "--port",
+            format!("{wanted} is already in use; choose another port, or 0 for any free one"),
+        ),
+        _ => anyhow::Error::new(e).context(format!("cannot listen on {wanted}")),
+    })?;
+    let addr = listener
+        .local_addr()
+        .context("cannot read the bound address")?;
+    let mut stdout = std::io::stdout();
+    writeln!(stdout, "godel explore: serving http://{addr}/")?;
+    stdout.flush()?;
+    eprintln!(
+        "{}: change the observer's event in the Explore panel; press Ctrl-C to stop",
+        args.scene.display()
+    );
+    let state = Arc::new(state);
+    viewer::run_app(listener, |access| {
+        viewer::explore_routes::router(state, explorer, access)
+    })
+    .context("the viewer's server failed")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small_scene() -> Scene {
+        let text = testkit::ball_ahead(
+            "explore-unit",
+            &testkit::panorama(220.0, 25.0, 16, 8),
+            "ball",
+            r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
+        );
+        Scene::from_str(&text, "explore-unit.toml").unwrap()
+    }
+
+    fn event(t: f64, x: f64) -> ObserverEvent {
+        ObserverEvent {
+            t,
+            x,
+            y: 0.0,
+            z: 0.0,
+        }
+    }
+
+    #[test]
+    fn coarse_is_the_same_camera_smaller_and_full_is_the_scene_moved() {
+        let scene = small_scene();
+        let coarse = scene_at(&scene, event(2.0, 0.3), Level::Coarse);
+        assert_eq!((coarse.camera.width(), coarse.camera.height()), (4, 2));
+        assert_eq!(coarse.camera.kind(), scene.camera.kind());
+        let full = scene_at(&scene, event(2.0, 0.3), Level::Full);
+        assert_eq!(full.observer.event, Event::new(2.0, 0.3, 0.0, 0.0));
+        assert_eq!(full.camera, scene.camera);
+        assert_eq!(full.samples, scene.samples);
+    }
+
+    #[test]
+    fn a_cancelled_trace_gives_nothing() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let frames = SceneFrames::new(small_scene(), pool);
+        let cancelled = AtomicBool::new(true);
+        let traced = frames.trace(event(0.0, 0.0), Level::Full, &cancelled);
+        assert!(traced.unwrap().is_none());
+        let done = frames.trace(event(0.0, 0.0), Level::Coarse, &AtomicBool::new(false));
+        let data = done.unwrap().unwrap();
+        assert_eq!((data.width, data.height), (4, 2));
+        assert!(data
+            .records
+            .iter()
+            .all(|r| r.status != datafile::RayStatus::NotTraced));
+    }
+}

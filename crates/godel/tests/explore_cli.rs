@@ -1,0 +1,210 @@
+//! `godel explore`: the full frame served for an event holds the records `godel render` writes
+//! for the scene with its observer at that event (the channels the page shades, bit for bit),
+//! at the scene's width × height; a bad event gets 400 naming the field.
+
+use std::io::{BufRead, Read, Write};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+mod common;
+
+/// The `godel explore` server, killed when dropped.
+struct Server(std::process::Child);
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// scenes/static-sphere.toml at 48×8 pixels of 2×2 rays, its observer at `observer` (the
+/// lines of the `[observer]` table for time and position).
+fn scene_text(observer: &str) -> String {
+    std::fs::read_to_string(testkit::scenes_dir().join("static-sphere.toml"))
+        .unwrap()
+        .replace("width = 720", "width = 48")
+        .replace("height = 120", "height = 8\nsamples = 4")
+        .replace(
+            "time = 0.0\nposition = { r = 0.0, phi = 0.0, z = 0.0 }",
+            observer,
+        )
+}
+
+/// One HTTP/1.1 request over a fresh connection; returns the status and the body's bytes.
+fn http(port: u16, method: &str, path: &str, body: &str) -> (u16, Vec<u8>) {
+    let mut stream = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    // A deadline against hanging forever, not a speed check.
+    stream
+        .set_read_timeout(Some(Duration::from_secs(60)))
+        .unwrap();
+    let host = format!("127.0.0.1:{port}");
+    let request = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {host}\r\nOrigin: http://{host}\r\n\
+         Content-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        body.len()
+    );
+    stream.write_all(request.as_bytes()).unwrap();
+    let mut answer = Vec::new();
+    stream.read_to_end(&mut answer).unwrap();
+    let split = answer
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("a header");
+    let head = String::from_utf8_lossy(&answer[..split]).to_string();
+    let status = head.split(' ').nth(1).unwrap().parse().unwrap();
+    (status, answer[split + 4..].to_vec())
+}
+
+fn json(bytes: &[u8]) -> serde_json::Value {
+    serde_json::from_slice(bytes).unwrap()
+}
+
+/// Starts `godel explore scene`; returns the server and its port.
+fn explore(scene: &Path) -> (Server, u16) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
+        .args(["explore", scene.to_str().unwrap(), "--port", "0"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let server = Server(child);
+    let mut line = String::new();
+    std::io::BufReader::new(stdout)
+        .read_line(&mut line)
+        .unwrap();
+    assert!(line.starts_with("godel explore: serving http://"), "{line}");
+    let port = line
+        .trim()
+        .trim_end_matches('/')
+        .rsplit(':')
+        .next()
+        .and_then(|p| p.parse().ok())
+        .unwrap_or_else(|| panic!("no port in {line:?}"));
+    (server, port)
+}
+
+/// The f32 samples of a wire array (16-byte header).
+fn floats(bytes: &[u8]) -> Vec<u32> {
+    bytes[viewer::wire::HEADER_LEN..]
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+#[test]
+fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        scene_text("time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }"),
+    )
+    .unwrap();
+    let (_server, port) = explore(&scene);
+
+    // Bad events change nothing and name the field.
+    let (status, body) = http(
+        port,
+        "POST",
+        "/api/explore/event",
+        r#"{"t":0,"x":0,"y":5e6,"z":0}"#,
+    );
+    assert_eq!(status, 400);
+    assert!(json(&body)["error"].as_str().unwrap().contains("event.y"));
+
+    let event = r#"{"t": 1.5, "x": 0.25, "y": -0.125, "z": 0.0625}"#;
+    let (status, body) = http(port, "POST", "/api/explore/event", event);
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    let generation = json(&body)["generation"].as_u64().unwrap();
+    // The first request (the scene's own event) and then this one.
+    assert_eq!(generation, 2);
+    let mut frame = serde_json::Value::Null;
+    for _ in 0..6000 {
+        let (_, body) = http(port, "GET", "/api/explore/frame", "");
+        frame = json(&body)["frame"].clone();
+        if frame["generation"] == generation && frame["level"] == "full" {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(frame["level"], "full", "{frame}");
+    assert_eq!(
+        (frame["width"].as_u64(), frame["height"].as_u64()),
+        (Some(48), Some(8))
+    );
+    assert_eq!(frame["supersample"], 2);
+
+    // godel render of the scene with that observer.
+    let moved = dir.path().join("moved.toml");
+    let observer = "time = 1.5\nposition = { x = 0.25, y = -0.125, z = 0.0625 }";
+    std::fs::write(&moved, scene_text(observer)).unwrap();
+    let out = dir.path().join("out");
+    let o = common::render(&moved, &out, &["-q"]);
+    assert!(o.status.success(), "{o:?}");
+    let rendered = datafile::DataFile::read(&out.join("static-sphere.exr")).unwrap();
+    assert_eq!((rendered.width, rendered.height), (96, 16));
+    let hits = rendered
+        .records
+        .iter()
+        .filter(|r| r.status == datafile::RayStatus::Hit)
+        .count();
+    assert!(hits > 0, "the moved observer still sees the ball");
+
+    let channel = |name: &str| {
+        let path = format!("/api/explore/channel/{name}?generation={generation}&level=full");
+        let (status, bytes) = http(port, "GET", &path, "");
+        assert_eq!(status, 200, "{name}: {}", String::from_utf8_lossy(&bytes));
+        let header = viewer::wire::read_header(&bytes).unwrap();
+        assert_eq!((header.0, header.1), (96, 16), "{name}");
+        bytes
+    };
+    type Field = fn(&datafile::PixelRecord) -> f32;
+    let fields: [(&str, Field); 4] = [
+        ("u", |r| r.u),
+        ("v", |r| r.v),
+        ("g", |r| r.g),
+        ("t_emit", |r| r.t_emit),
+    ];
+    for (name, get) in fields {
+        let served = floats(&channel(name));
+        let expected: Vec<u32> = rendered.records.iter().map(|r| get(r).to_bits()).collect();
+        assert_eq!(served, expected, "channel {name}");
+    }
+    let ids = channel("id");
+    let objects = rendered.header.object_names.len();
+    let expected: Vec<u8> = rendered
+        .records
+        .iter()
+        .map(|r| viewer::gpu::id_code(r, objects) as u8)
+        .collect();
+    assert_eq!(
+        &ids[viewer::wire::HEADER_LEN..],
+        &expected[..],
+        "channel id"
+    );
+}
+
+#[test]
+fn a_bad_scene_is_refused_before_serving() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("bad.toml");
+    std::fs::write(
+        &scene,
+        scene_text("time = \"soon\"\nposition = { x = 0.0 }"),
+    )
+    .unwrap();
+    let o = common::godel(&["explore", scene.to_str().unwrap(), "--port", "0"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(o.stdout.is_empty(), "nothing served");
+    assert!(
+        stderr.contains("bad.toml") && stderr.contains("observer.time"),
+        "{stderr}"
+    );
+    let o = common::godel(&["explore", "no-such-scene.toml", "--port", "0"]);
+    assert_ne!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no-such-scene.toml"));
+}

@@ -1,0 +1,172 @@
+// godel explore: the Explore panel, shown only when the server is in explore mode
+// (crates/viewer/src/explore_routes.rs). The observer's event (t, x, y, z) is sent to the
+// server, which traces it again, a coarse frame first, then the full one; the page polls for
+// the newest frame and swaps its channels in (viewer.showFrame), shading them on the GPU as
+// usual. Requests never block the page: at most one event request is in flight (the newest
+// event waits for it), and a frame of a generation older than the newest request sent is
+// dropped.
+'use strict';
+
+// How often the page asks for the newest frame.
+const POLL_MS = 100;
+// The time slider spans this much on each side of the scene's observer time.
+const T_SPAN = 50;
+// What PageUp/PageDown add to z.
+const Z_STEP = 0.05;
+
+const $ = (id) => document.getElementById(id);
+
+const LEVELS = { coarse: 0, full: 1 };
+
+export async function startExplore(viewer) {
+  let info;
+  try {
+    const response = await fetch('/api/explore/info');
+    if (!response.ok) return;
+    info = await response.json();
+    if (!info.explore) return; // godel view
+
+  } catch (_) {
+    return;
+  }
+  const state = {
+    event: { ...info.start },
+    requested: info.generation, // the newest generation this page asked for
+    shown: null,                // {generation, level} of the frame on the GPU
+    inFlight: false,
+    again: false,
+    playing: false,
+    error: null,
+  };
+  viewer.explore = state;
+  $('explore-panel').hidden = false;
+  const slider = $('explore-t');
+  slider.min = String(info.start.t - T_SPAN);
+  slider.max = String(info.start.t + T_SPAN);
+  const fields = { x: $('explore-x'), y: $('explore-y'), z: $('explore-z') };
+
+  const showEvent = () => {
+    slider.value = String(state.event.t);
+    $('explore-t-value').value = state.event.t.toFixed(2);
+    for (const [k, input] of Object.entries(fields)) input.value = String(state.event[k]);
+  };
+  const status = (text) => { $('explore-status').textContent = text; };
+
+  // Sends the current event; while a request is in flight, the newest event waits for it.
+  async function send() {
+    if (state.inFlight) {
+      state.again = true;
+      return;
+    }
+    state.inFlight = true;
+    try {
+      const response = await fetch('/api/explore/event', {
+        method: 'POST',
+        headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify(state.event),
+      });
+      const answer = await response.json();
+      if (response.ok) {
+        state.requested = Math.max(state.requested, answer.generation);
+        state.error = null;
+      } else {
+        state.error = answer.error || `${response.status}`;
+        status(state.error);
+      }
+    } catch (e) {
+      state.error = `cannot reach the server: ${e.message || e}`;
+      status(state.error);
+    } finally {
+      state.inFlight = false;
+    }
+    if (state.again) {
+      state.again = false;
+      send();
+    }
+  }
+
+  const newer = (frame) => state.shown === null || frame.generation > state.shown.generation
+    || (frame.generation === state.shown.generation
+      && LEVELS[frame.level] > LEVELS[state.shown.level]);
+
+  let polling = false;
+  async function poll() {
+    if (polling) return;
+    polling = true;
+    try {
+      const answer = await (await fetch('/api/explore/frame')).json();
+      const frame = answer.frame;
+      if (answer.error && answer.generation === state.requested) status(answer.error);
+      // A frame of an older generation than the newest request is dropped.
+      if (frame && frame.generation >= state.requested && newer(frame)) {
+        const url = (name) => `/api/explore/channel/${name}?generation=${frame.generation}`
+          + `&level=${frame.level}`;
+        if (viewer.showFrame(frame, url)) {
+          state.shown = { generation: frame.generation, level: frame.level };
+          const e = frame.event;
+          status(`frame ${frame.generation} (${frame.level}, ${frame.width}×${frame.height})`
+            + ` at t = ${e.t.toFixed(2)}, x = ${e.x}, y = ${e.y}, z = ${e.z}`);
+        }
+      }
+    } catch (_) {
+      // The next poll tries again.
+    } finally {
+      polling = false;
+    }
+  }
+  setInterval(poll, POLL_MS);
+
+  // `playing`: sent only once the last request has a frame on the GPU, so that playing never
+  // cancels every trace before it ends (the frame rate is that of the coarse frames).
+  const setT = (t, playing = false) => {
+    const lo = Number(slider.min);
+    const hi = Number(slider.max);
+    if (!Number.isFinite(t)) return;
+    state.event.t = Math.min(hi, Math.max(lo, t));
+    showEvent();
+    const waiting = state.inFlight || state.shown === null || state.shown.generation < state.requested;
+    if (!playing || !waiting) send();
+  };
+  slider.addEventListener('input', () => setT(Number(slider.value)));
+  $('explore-t-value').addEventListener('change', () => setT(Number($('explore-t-value').value)));
+  for (const [k, input] of Object.entries(fields)) {
+    input.addEventListener('change', () => {
+      const v = Number(input.value);
+      if (input.value.trim() === '' || !Number.isFinite(v)) {
+        status(`${k}: not a number`);
+        showEvent();
+        return;
+      }
+      state.event[k] = v;
+      send();
+    });
+  }
+  window.addEventListener('keydown', (event) => {
+    if (event.target instanceof HTMLInputElement && event.target.type !== 'range') return;
+    const dz = { PageUp: Z_STEP, PageDown: -Z_STEP }[event.key];
+    if (dz === undefined) return;
+    event.preventDefault();
+    state.event.z = Math.round((state.event.z + dz) * 1e6) / 1e6;
+    showEvent();
+    send();
+  });
+
+  // Play: t advances at the chosen rate (t per second of the wall clock) while playing.
+  let last = null;
+  function tick(now) {
+    if (!state.playing) return;
+    if (last !== null) {
+      const rate = Number($('explore-rate').value);
+      if (Number.isFinite(rate) && rate !== 0) setT(state.event.t + rate * (now - last) / 1000, true);
+    }
+    last = now;
+    requestAnimationFrame(tick);
+  }
+  $('explore-play').addEventListener('click', () => {
+    state.playing = !state.playing;
+    $('explore-play').textContent = state.playing ? 'Pause' : 'Play';
+    last = null;
+    if (state.playing) requestAnimationFrame(tick);
+  });
+  showEvent();
+}

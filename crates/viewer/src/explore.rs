@@ -1,0 +1,240 @@
+//! Explore mode (`godel explore`, README "Exploring"): the observer's event (t, x, y, z) changes
+//! and the server re-traces the scene from there, progressively. The viewer does not trace: a
+//! [`FrameSource`] (in `godel`, the exact tracer on the scene with its observer moved) makes
+//! each frame; this module decides which frames are made and which are kept.
+//!
+//! - A change of event ([`Explorer::request`]) starts a new *generation*: first a coarse frame
+//!   ([`Level::Coarse`], same camera, fewer pixels), then the full-resolution one
+//!   ([`Level::Full`]).
+//! - The newest request wins: the work of an older generation is cancelled (its cancel flag is
+//!   set; the source stops between tiles) and a frame of an older generation is never kept
+//!   once a newer request has come, so it never replaces a newer one.
+//! - One worker thread traces, one frame at a time (the source may use all cores for it);
+//!   requests only leave the newest event for it, so any number of tabs or requests cost
+//!   one pending slot.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+
+use datafile::DataFile;
+use serde::{Deserialize, Serialize};
+
+/// An event of the observer: coordinate time and pseudo-Cartesian position (the scene file's
+/// `observer.time` and `observer.position = { x, y, z }`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObserverEvent {
+    pub t: f64,
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+impl ObserverEvent {
+    /// The first field that is not a finite number within ±`bound`, with why, or `None`.
+    pub fn refusal(&self, bound: f64) -> Option<String> {
+        let fields = [("t", self.t), ("x", self.x), ("y", self.y), ("z", self.z)];
+        fields.iter().find_map(|&(name, v)| {
+            if !v.is_finite() {
+                Some(format!("event.{name}: {v} is not a finite number"))
+            } else if v.abs() > bound {
+                Some(format!(
+                    "event.{name}: {v} is beyond ±{bound:e}, the scene's bound on coordinates"
+                ))
+            } else {
+                None
+            }
+        })
+    }
+}
+
+/// How finely a frame is traced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Level {
+    /// The same camera with fewer pixels (fast, first).
+    Coarse,
+    /// The scene's own size and samples: what `godel render` writes.
+    Full,
+}
+
+/// What makes the frames: traces the scene seen from an event.
+pub trait FrameSource: Send + Sync + 'static {
+    /// The scene's own observer event (where exploring starts).
+    fn start(&self) -> ObserverEvent;
+    /// The largest |coordinate| an event may have.
+    fn bound(&self) -> f64;
+    /// The frame seen from `event` at `level`; `Ok(None)` when `cancel` was set before it was
+    /// done (the source checks it between tiles); `Err` says why it cannot be traced.
+    fn frame(
+        &self,
+        event: ObserverEvent,
+        level: Level,
+        cancel: &AtomicBool,
+    ) -> Result<Option<DataFile>, String>;
+}
+
+/// A frame made for a request.
+#[derive(Debug)]
+pub struct Frame {
+    pub generation: u64,
+    pub level: Level,
+    pub event: ObserverEvent,
+    pub data: DataFile,
+}
+
+/// What the requests and the worker share.
+#[derive(Default)]
+struct Slots {
+    /// The newest request's generation (0: none yet).
+    generation: u64,
+    /// The event of a request the worker has not started yet.
+    pending: Option<(u64, ObserverEvent)>,
+    /// The cancel flag of the work under way.
+    cancel: Option<Arc<AtomicBool>>,
+    /// The newest frame kept.
+    latest: Option<Arc<Frame>>,
+    /// Why the newest generation could not be traced.
+    error: Option<String>,
+    /// Set when the [`Explorer`] is dropped: the worker ends.
+    closed: bool,
+}
+
+struct Shared {
+    slots: Mutex<Slots>,
+    wake: Condvar,
+    source: Box<dyn FrameSource>,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Slots> {
+        self.slots.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// The explore mode's state: the frame source, the newest request, the newest frame.
+pub struct Explorer {
+    shared: Arc<Shared>,
+}
+
+impl Explorer {
+    /// Starts the worker thread for `source` (nothing is traced before a request).
+    pub fn new(source: impl FrameSource) -> std::io::Result<Explorer> {
+        let shared = Arc::new(Shared {
+            slots: Mutex::new(Slots::default()),
+            wake: Condvar::new(),
+            source: Box::new(source),
+        });
+        let worker = shared.clone();
+        std::thread::Builder::new()
+            .name("explore".into())
+            .spawn(move || work(&worker))?;
+        Ok(Explorer { shared })
+    }
+
+    /// The scene's own observer event.
+    pub fn start(&self) -> ObserverEvent {
+        self.shared.source.start()
+    }
+
+    /// The largest |coordinate| of an event.
+    pub fn bound(&self) -> f64 {
+        self.shared.source.bound()
+    }
+
+    /// Asks for the frames seen from `event`: a new generation (returned), the older one's
+    /// work cancelled. A bad event is refused (the message names the field) and changes
+    /// nothing.
+    pub fn request(&self, event: ObserverEvent) -> Result<u64, String> {
+        if let Some(why) = event.refusal(self.bound()) {
+            return Err(why);
+        }
+        let mut slots = self.shared.lock();
+        slots.generation += 1;
+        let generation = slots.generation;
+        if let Some(cancel) = slots.cancel.take() {
+            cancel.store(true, Ordering::SeqCst);
+        }
+        slots.pending = Some((generation, event));
+        slots.error = None;
+        drop(slots);
+        self.shared.wake.notify_all();
+        Ok(generation)
+    }
+
+    /// The newest request's generation (0 before any).
+    pub fn generation(&self) -> u64 {
+        self.shared.lock().generation
+    }
+
+    /// The newest frame kept: of the newest generation, coarse or full, or of an older one
+    /// until the newest has its first frame.
+    pub fn latest(&self) -> Option<Arc<Frame>> {
+        self.shared.lock().latest.clone()
+    }
+
+    /// Why the newest generation could not be traced, if it could not.
+    pub fn error(&self) -> Option<String> {
+        self.shared.lock().error.clone()
+    }
+}
+
+impl Drop for Explorer {
+    fn drop(&mut self) {
+        let mut slots = self.shared.lock();
+        slots.closed = true;
+        if let Some(cancel) = slots.cancel.take() {
+            cancel.store(true, Ordering::SeqCst);
+        }
+        drop(slots);
+        self.shared.wake.notify_all();
+    }
+}
+
+/// The worker: takes the newest pending event and traces its coarse then its full frame,
+/// keeping each only while its generation is still the newest.
+fn work(shared: &Shared) {
+    loop {
+        let (generation, event, cancel) = {
+            let mut slots = shared.lock();
+            loop {
+                if slots.closed {
+                    return;
+                }
+                if let Some((generation, event)) = slots.pending.take() {
+                    let cancel = Arc::new(AtomicBool::new(false));
+                    slots.cancel = Some(cancel.clone());
+                    break (generation, event, cancel);
+                }
+                slots = shared.wake.wait(slots).unwrap_or_else(|e| e.into_inner());
+            }
+        };
+        for level in [Level::Coarse, Level::Full] {
+            if cancel.load(Ordering::SeqCst) {
+                break;
+            }
+            match shared.source.frame(event, level, &cancel) {
+                Ok(Some(data)) => {
+                    let mut slots = shared.lock();
+                    if slots.generation != generation || cancel.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    slots.latest = Some(Arc::new(Frame {
+                        generation,
+                        level,
+                        event,
+                        data,
+                    }));
+                }
+                Ok(None) => break,
+                Err(why) => {
+                    let mut slots = shared.lock();
+                    if slots.generation == generation {
+                        slots.error = Some(why);
+                    }
+                    break;
+                }
+            }
+        }
+    }
+}

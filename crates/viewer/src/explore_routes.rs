@@ -1,0 +1,194 @@
+//! The routes of explore mode (`godel explore`, [`crate::explore`]), added to the viewer's own:
+//!
+//! | route | answer |
+//! | --- | --- |
+//! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
+//! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
+//! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
+//! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 when it is no longer the newest frame |
+//! | `GET /api/pixel?col=C&row=R` | as in [`crate::routes`], the record of a pixel of the newest frame |
+//!
+//! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
+//! shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
+//! [`crate::guard::check`]; channels are encoded within the server's bound on work.
+
+use std::sync::{Arc, Mutex};
+
+use axum::body::Bytes;
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{DefaultBodyLimit, Path, Query, State};
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{middleware, Json, Router};
+use serde::Deserialize;
+
+use crate::api_error::{no_store, ApiError};
+use crate::explore::{Explorer, Level, ObserverEvent};
+use crate::gpu::Channel;
+use crate::guard::{Access, MAX_BODY_BYTES};
+use crate::limit::WorkLimit;
+use crate::state::{ViewerOptions, ViewerState};
+
+/// The explore routes' state.
+pub struct ExploreState {
+    pub viewer: Arc<ViewerState>,
+    pub explorer: Explorer,
+    /// The newest frame prepared as a viewer's data file (for pixel records), made on first
+    /// use: (generation, level, state).
+    prepared: Mutex<Option<(u64, Level, Arc<ViewerState>)>>,
+}
+
+impl ExploreState {
+    /// The newest frame as a [`ViewerState`] (the first frame's before any), prepared once
+    /// per frame with the first frame's texture folders.
+    fn newest(&self) -> Result<Arc<ViewerState>, ApiError> {
+        let Some(frame) = self.explorer.latest() else {
+            return Ok(self.viewer.clone());
+        };
+        let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((generation, level, state)) = prepared.as_ref() {
+            if (*generation, *level) == (frame.generation, frame.level) {
+                return Ok(state.clone());
+            }
+        }
+        let options = ViewerOptions {
+            texture_folders: self.viewer.texture_folders().to_vec(),
+            work: WorkLimit::new(1, 0),
+        };
+        let state = ViewerState::new_with(&self.viewer.path, frame.data.clone(), options)
+            .map_err(|e| ApiError::internal(e.to_string()))?;
+        let state = Arc::new(state);
+        *prepared = Some((frame.generation, frame.level, state.clone()));
+        Ok(state)
+    }
+}
+
+/// The explore routes, then (for every other path) the viewer's routes over `viewer` (its
+/// first frame), all answering what `access` allows.
+pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> Router {
+    let state = Arc::new(ExploreState {
+        viewer: viewer.clone(),
+        explorer,
+        prepared: Mutex::new(None),
+    });
+    let explore = Router::new()
+        .route("/api/explore/info", get(info))
+        .route("/api/explore/event", post(event))
+        .route("/api/explore/frame", get(frame))
+        .route("/api/explore/channel/{name}", get(channel))
+        .route("/api/pixel", get(pixel))
+        .with_state(state)
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(middleware::from_fn_with_state(
+            Arc::new(access.clone()),
+            crate::guard::check,
+        ));
+    explore.fallback_service(crate::router(viewer, access))
+}
+
+async fn info(State(state): State<Arc<ExploreState>>) -> Response {
+    let e = &state.explorer;
+    let body = serde_json::json!({
+        "explore": true,
+        "start": e.start(),
+        "bound": e.bound(),
+        "generation": e.generation(),
+    });
+    (no_store(), Json(body)).into_response()
+}
+
+async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
+    let mut json = serde_json::Deserializer::from_slice(&body);
+    let event: ObserverEvent = serde_path_to_error::deserialize(&mut json).map_err(|e| {
+        let path = e.path().to_string();
+        if path == "." {
+            ApiError::bad_request(format!("event: {}", e.inner()))
+        } else {
+            ApiError::bad_request(format!("event.{path}: {}", e.inner()))
+        }
+    })?;
+    json.end()
+        .map_err(|e| ApiError::bad_request(format!("event: {e}")))?;
+    let generation = state
+        .explorer
+        .request(event)
+        .map_err(ApiError::bad_request)?;
+    Ok((
+        no_store(),
+        Json(serde_json::json!({ "generation": generation })),
+    )
+        .into_response())
+}
+
+async fn frame(State(state): State<Arc<ExploreState>>) -> Response {
+    let e = &state.explorer;
+    let frame = e.latest().map(|f| {
+        serde_json::json!({
+            "generation": f.generation,
+            "level": f.level,
+            "event": f.event,
+            "width": f.data.picture_size().0,
+            "height": f.data.picture_size().1,
+            "supersample": f.data.supersample(),
+        })
+    });
+    let body = serde_json::json!({
+        "frame": frame,
+        "generation": e.generation(),
+        "error": e.error(),
+    });
+    (no_store(), Json(body)).into_response()
+}
+
+/// `?generation=G&level=coarse|full`.
+#[derive(Deserialize)]
+struct ChannelQuery {
+    generation: u64,
+    level: Level,
+}
+
+async fn channel(
+    State(state): State<Arc<ExploreState>>,
+    Path(name): Path<String>,
+    query: Result<Query<ChannelQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(q) =
+        query.map_err(|e| ApiError::bad_request(format!("channel: {}", e.body_text())))?;
+    let gone = || {
+        ApiError::new(
+            StatusCode::GONE,
+            format!(
+                "frame {} ({:?}) is no longer the newest; ask /api/explore/frame",
+                q.generation, q.level
+            ),
+        )
+    };
+    let frame = state.explorer.latest().ok_or_else(gone)?;
+    if frame.generation != q.generation || frame.level != q.level {
+        return Err(gone());
+    }
+    let Some(channel) = Channel::parse(&name, frame.data.lights.len()) else {
+        return Err(ApiError::new(
+            StatusCode::NOT_FOUND,
+            format!("no channel '{name}'"),
+        ));
+    };
+    let bytes = state
+        .viewer
+        .work()
+        .admit()?
+        .run(move || channel.encode(&frame.data))
+        .await?;
+    Ok(crate::gpu_routes::array(bytes))
+}
+
+/// The record of a pixel of the newest frame ([`crate::routes::pixel`] on it).
+async fn pixel(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<crate::routes::PixelQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let viewer = state.viewer.clone();
+    let frame = viewer.work().admit()?.run(move || state.newest()).await??;
+    crate::routes::pixel(State(frame), query).await
+}

@@ -1,0 +1,266 @@
+//! Explore mode's progression and cancellation (`viewer::explore`), with a frame source whose
+//! frames say which event and level they were made for (t_emit = −t, g = 1 coarse, 2 full)
+//! and whose work can be held at a gate, and its routes (`viewer::explore_routes`).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use axum::body::Body;
+use axum::http::{Request, StatusCode};
+use datafile::DataFile;
+use http_body_util::BodyExt;
+use tower::ServiceExt;
+use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
+use viewer::wire::{read_header, SampleType, HEADER_LEN};
+use viewer::Access;
+
+mod common;
+
+const FULL: (usize, usize) = (common::WIDTH, common::HEIGHT);
+const COARSE: (usize, usize) = (2, 1);
+
+/// The frame source of these tests. Work on an event whose time is in `held` waits (at most
+/// ten seconds) until the gate opens or its cancel flag is set, and then returns its frame
+/// anyway, as a source that ignores cancelling would.
+#[derive(Clone, Default)]
+struct Fake {
+    /// (t, level) of each frame begun, in order.
+    begun: Arc<Mutex<Vec<(f64, Level)>>>,
+    held: Arc<Mutex<Vec<(f64, Level)>>>,
+    gate: Arc<AtomicBool>,
+}
+
+impl Fake {
+    fn begun(&self) -> Vec<(f64, Level)> {
+        self.begun.lock().unwrap().clone()
+    }
+}
+
+fn event(t: f64) -> ObserverEvent {
+    ObserverEvent {
+        t,
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    }
+}
+
+impl FrameSource for Fake {
+    fn start(&self) -> ObserverEvent {
+        event(0.0)
+    }
+    fn bound(&self) -> f64 {
+        100.0
+    }
+    fn frame(
+        &self,
+        event: ObserverEvent,
+        level: Level,
+        cancel: &AtomicBool,
+    ) -> Result<Option<DataFile>, String> {
+        self.begun.lock().unwrap().push((event.t, level));
+        if self.held.lock().unwrap().contains(&(event.t, level)) {
+            for _ in 0..10_000 {
+                if self.gate.load(Ordering::SeqCst) || cancel.load(Ordering::SeqCst) {
+                    break;
+                }
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        }
+        let ((w, h), g) = match level {
+            Level::Coarse => (COARSE, 1.0),
+            Level::Full => (FULL, 2.0),
+        };
+        let record = testkit::hit(0, 0.5, 0.5, g, -event.t as f32, 1.0);
+        let mut data = common::data();
+        data.width = w;
+        data.height = h;
+        data.records = vec![record; w * h];
+        Ok(Some(data))
+    }
+}
+
+/// Waits (at most ten seconds: a guard against hanging, not a speed check) until `done`.
+fn wait_until(what: &str, mut done: impl FnMut() -> bool) {
+    for _ in 0..10_000 {
+        if done() {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    panic!("never happened: {what}");
+}
+
+/// (generation, level, size, −t_emit, g) of a frame.
+type Seen = (u64, Level, (usize, usize), f32, f32);
+
+/// What the newest frame kept is.
+fn latest(explorer: &Explorer) -> Option<Seen> {
+    explorer.latest().map(|f| {
+        let r = f.data.records[0];
+        (
+            f.generation,
+            f.level,
+            (f.data.width, f.data.height),
+            -r.t_emit,
+            r.g,
+        )
+    })
+}
+
+#[test]
+fn a_change_of_event_gives_the_coarse_frame_then_the_full_one() {
+    let fake = Fake::default();
+    fake.held.lock().unwrap().push((3.0, Level::Full));
+    let explorer = Explorer::new(fake.clone()).unwrap();
+    assert_eq!(explorer.request(event(3.0)), Ok(1));
+    // While the full frame is held, the coarse one is what is kept.
+    wait_until("the coarse frame", || latest(&explorer).is_some());
+    assert_eq!(
+        latest(&explorer),
+        Some((1, Level::Coarse, COARSE, 3.0, 1.0))
+    );
+    fake.gate.store(true, Ordering::SeqCst);
+    wait_until("the full frame", || {
+        latest(&explorer).is_some_and(|f| f.1 == Level::Full)
+    });
+    assert_eq!(latest(&explorer), Some((1, Level::Full, FULL, 3.0, 2.0)));
+    assert_eq!(fake.begun(), [(3.0, Level::Coarse), (3.0, Level::Full)]);
+}
+
+#[test]
+fn a_newer_request_cancels_the_older_and_is_never_overwritten_by_it() {
+    let fake = Fake::default();
+    fake.held
+        .lock()
+        .unwrap()
+        .extend([(1.0, Level::Coarse), (2.0, Level::Coarse)]);
+    let explorer = Explorer::new(fake.clone()).unwrap();
+    assert_eq!(explorer.request(event(1.0)), Ok(1));
+    wait_until("the first request's work", || !fake.begun().is_empty());
+    // The second request cancels the first: its coarse frame comes back (the fake ignores
+    // the flag) but is not kept, and its full frame is never begun.
+    assert_eq!(explorer.request(event(2.0)), Ok(2));
+    wait_until("the second request's work", || fake.begun().len() == 2);
+    assert_eq!(
+        latest(&explorer),
+        None,
+        "the older generation's frame was kept"
+    );
+    fake.gate.store(true, Ordering::SeqCst);
+    wait_until("the newer full frame", || {
+        latest(&explorer).is_some_and(|f| f.1 == Level::Full)
+    });
+    assert_eq!(latest(&explorer), Some((2, Level::Full, FULL, 2.0, 2.0)));
+    assert_eq!(
+        fake.begun(),
+        [
+            (1.0, Level::Coarse),
+            (2.0, Level::Coarse),
+            (2.0, Level::Full)
+        ]
+    );
+}
+
+#[test]
+fn bad_events_are_refused_naming_the_field_and_change_nothing() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    let refused = |e: ObserverEvent| explorer.request(e).unwrap_err();
+    let nan = ObserverEvent {
+        y: f64::NAN,
+        ..event(0.0)
+    };
+    assert!(refused(nan).starts_with("event.y:"), "{}", refused(nan));
+    let far = ObserverEvent {
+        z: -200.0,
+        ..event(0.0)
+    };
+    assert!(
+        refused(far).starts_with("event.z: -200"),
+        "{}",
+        refused(far)
+    );
+    assert!(refused(event(f64::INFINITY)).starts_with("event.t:"));
+    assert_eq!(explorer.generation(), 0);
+}
+
+async fn send(
+    app: &axum::Router,
+    request: Request<Body>,
+) -> (StatusCode, serde_json::Value, Vec<u8>) {
+    let response = app.clone().oneshot(request).await.unwrap();
+    let status = response.status();
+    let body = response.into_body().collect().await.unwrap().to_bytes();
+    let json = serde_json::from_slice(&body).unwrap_or(serde_json::Value::Null);
+    (status, json, body.to_vec())
+}
+
+#[tokio::test]
+async fn godel_view_says_it_is_not_explore_mode() {
+    let (status, _, body) = common::send(common::get("/api/explore/info")).await;
+    assert_eq!(status, StatusCode::OK);
+    let answer: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    assert_eq!(answer["explore"], false);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    let app =
+        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let (status, info, _) = send(&app, common::get("/api/explore/info")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(info["explore"], true);
+    assert_eq!(info["start"]["t"], 0.0);
+    // The viewer's own routes answer behind them.
+    let (status, viewer_info, _) = send(&app, common::get("/api/info")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(viewer_info["width"], common::WIDTH);
+    for (body, field) in [
+        (r#"{"t": 0, "x": 1e9, "y": 0, "z": 0}"#, "event.x"),
+        (r#"{"t": "soon", "x": 0, "y": 0, "z": 0}"#, "event.t"),
+        (r#"{"t": 0, "x": 0, "y": 0}"#, "z"),
+        (r#"{"t": 0, "x": 0, "y": 0, "z": 0, "w": 1}"#, "w"),
+    ] {
+        let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{body}");
+        let message = answer["error"].as_str().unwrap();
+        assert!(message.contains(field), "{field} not in {message}");
+    }
+    let body = r#"{"t": 4, "x": 0.5, "y": 0, "z": 0}"#;
+    let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(answer["generation"], 1);
+    let mut frame = serde_json::Value::Null;
+    for _ in 0..10_000 {
+        frame = send(&app, common::get("/api/explore/frame")).await.1["frame"].clone();
+        if frame["level"] == "full" {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(1)).await;
+    }
+    assert_eq!(frame["generation"], 1);
+    assert_eq!(frame["width"], FULL.0);
+    assert_eq!(frame["event"]["x"], 0.5);
+    let url = "/api/explore/channel/t_emit?generation=1&level=full";
+    let (status, _, bytes) = send(&app, common::get(url)).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        read_header(&bytes),
+        Some((FULL.0, FULL.1, SampleType::F32, 1))
+    );
+    let first = f32::from_le_bytes(bytes[HEADER_LEN..HEADER_LEN + 4].try_into().unwrap());
+    assert_eq!(first, -4.0);
+    // Hover records are the newest frame's (the first frame there is a miss).
+    let (status, record, _) = send(&app, common::get("/api/pixel?col=7&row=3")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        (record["status"].as_str(), record["t_emit"].as_f64()),
+        (Some("hit"), Some(-4.0))
+    );
+    assert_eq!(record["g"], 2.0);
+    // A frame that is no longer the newest is gone.
+    let stale = "/api/explore/channel/t_emit?generation=1&level=coarse";
+    assert_eq!(send(&app, common::get(stale)).await.0, StatusCode::GONE);
+}

@@ -1,0 +1,46 @@
+// Explore mode in the browser: waits for the full frame of the scene's own event, moves the
+// time slider to T, waits for the full frame of the new event, and saves both pictures, for
+// the Rust test crates/godel/tests/viewer_browser/explore.rs.
+//
+// usage: node explore.mjs URL OUT_DIR T
+// Writes OUT_DIR/before.rgba and OUT_DIR/after.rgba (+ .json), and prints {before, after,
+// panel_hidden, status, requests, console_errors, error}.
+import { join } from 'node:path';
+import { launch, open, idle, savePicture } from './launch.mjs';
+
+const [url, outDir, t] = process.argv.slice(2);
+if (!url || !outDir || t === undefined) {
+  console.error('usage: node explore.mjs URL OUT_DIR T');
+  process.exit(2);
+}
+const { context, page, requests, consoleErrors } = await launch(outDir);
+
+// The frame on the GPU once it is the full one of a generation after `after`.
+async function fullFrame(after) {
+  await page.waitForFunction((g) => {
+    const e = window.godelViewer.explore;
+    return e && e.shown && e.shown.level === 'full' && e.shown.generation > g;
+  }, after, { timeout: 120000 });
+  await idle(page);
+  return page.evaluate(() => ({ ...window.godelViewer.explore.shown,
+    event: { ...window.godelViewer.explore.event },
+    width: window.godelViewer.info.width, height: window.godelViewer.info.height }));
+}
+
+const result = {};
+try {
+  await open(page, url);
+  result.panel_hidden = await page.evaluate(() => document.getElementById('explore-panel').hidden);
+  result.before = await fullFrame(0);
+  await savePicture(page, join(outDir, 'before.rgba'));
+  await page.locator('#explore-t').fill(t);
+  result.after = await fullFrame(result.before.generation);
+  await savePicture(page, join(outDir, 'after.rgba'));
+  result.status = await page.evaluate(() => document.getElementById('explore-status').textContent);
+  result.error = await page.evaluate(() => window.godelViewer.error);
+  result.requests = requests;
+  result.console_errors = consoleErrors;
+} finally {
+  await context.close();
+}
+console.log(JSON.stringify(result));
