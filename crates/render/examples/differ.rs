@@ -21,15 +21,14 @@ fn main() {
         eprintln!("sizes differ");
         std::process::exit(1);
     }
-    let differ = (a.records.iter().zip(&b.records).enumerate())
-        .filter(|(_, (x, y))| {
-            x.object != y.object || x.status != y.status || (x.t_emit - y.t_emit).abs() > 0.01
-        });
+    let differ = (a.records.iter().zip(&b.records).enumerate()).filter(|(_, (x, y))| {
+        x.object != y.object || x.status != y.status || (x.t_emit - y.t_emit).abs() > 0.01
+    });
     for (i, (x, y)) in differ.take(100) {
         println!(
             "({}, {}): {} {:?} λ {} t_emit {}  vs  {} {:?} λ {} t_emit {}",
-            i % a.width as usize,
-            i / a.width as usize,
+            i % a.width,
+            i / a.width,
             x.object,
             x.status,
             x.lambda,
