@@ -15,7 +15,7 @@
 //! between integration steps, however thin.
 
 use crate::bounds::Aabb;
-use crate::worldline::{WorldPoint, Worldline, WorldlineError};
+use crate::worldline::{LocalPoint, WorldPoint, Worldline, WorldlineError};
 use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
 use spacetime::{normal, Event, FourVector, GeodesicState, Metric, Spacetime};
@@ -159,40 +159,27 @@ impl Target {
                     worldline.tau_guess(s.x.t)
                 };
                 let far = FAR_DISTANCE * metric.godel_a().unwrap_or(1.0) + FAR_RADII * radius;
-                match worldline.localize(metric, s.x, seed, far) {
-                    Some(lp) => {
-                        // Far estimates are shrunk to stay below the true distance: at the
-                        // switch the first-order distance exceeds the second-order one by ~5 %,
-                        // further out by more; the slack grows from 1.1 to FAR_SLACK.
-                        let d1 = norm3(lp.xi);
-                        // (Free fall: the estimate comes from a point that is not simultaneous
-                        // and is never trusted beyond one step, so the full slack at once.)
-                        let slack = match worldline {
-                            Worldline::Rest { .. } => {
-                                1.1 + (FAR_SLACK - 1.1) * ((d1 - far) / far).min(1.0)
-                            }
-                            Worldline::Free(_) => FAR_SLACK,
-                        };
-                        // A far point is outside (beyond R + FAR_DISTANCE·a to first order):
-                        // however large the ball, its estimate stays at least half that margin
-                        // clear, never on the inside (2.95/1.3 once made a false crossing).
-                        let floor = radius + 0.5 * FAR_DISTANCE * metric.godel_a().unwrap_or(1.0);
-                        let d = if lp.exact {
-                            d1
-                        } else {
-                            (d1 / slack).max(floor)
-                        };
-                        // The ray's speed in the rest frame is its energy there, −p·u, which
-                        // is at most E·γ(1 + v) everywhere on the ray (see Worldline::
-                        // speed_factor): a bound valid over any span, not just one step.
-                        let eps_max = s.p.t.abs() * worldline.speed_factor();
-                        Probe {
-                            f: d - radius,
-                            rate: GLOBAL_RATE_MARGIN * eps_max,
-                            // A far match is not simultaneous: the next probe re-seeds from t.
-                            tau: if lp.exact { lp.at.tau } else { f64::NAN },
+                let at = |seed: f64| {
+                    let lp = worldline.localize(metric, s.x, seed, far)?;
+                    Some((
+                        local_probe(metric, *radius, worldline, far, &lp, s),
+                        lp.exact,
+                    ))
+                };
+                match at(seed) {
+                    // A previous match can be a stale seed in free fall: the first-order
+                    // distance from a point far from simultaneous may call "far" (an estimate,
+                    // not a bound) a ray point that lies inside the ball. Then the match from
+                    // the point of equal coordinate time counts too, the nearer one kept.
+                    Some((p, false))
+                        if tau_seed.is_finite() && matches!(worldline, Worldline::Free(_)) =>
+                    {
+                        match at(worldline.tau_guess(s.x.t)) {
+                            Some((q, _)) if q.f < p.f => q,
+                            _ => p,
                         }
                     }
+                    Some((p, _)) => p,
                     None => Probe::FAR,
                 }
             }
@@ -310,6 +297,47 @@ impl Target {
                 })
             }
         }
+    }
+}
+
+/// The probe of a local ball of radius `radius` at the ray state `s`, from its match `lp`
+/// on the worldline (first-order distances beyond `far` are estimates).
+fn local_probe(
+    metric: &Metric,
+    radius: f64,
+    worldline: &Worldline,
+    far: f64,
+    lp: &LocalPoint,
+    s: &GeodesicState,
+) -> Probe {
+    // Far estimates are shrunk to stay below the true distance: at the switch the
+    // first-order distance exceeds the second-order one by ~5 %, further out by more; the
+    // slack grows from 1.1 to FAR_SLACK.
+    let d1 = norm3(lp.xi);
+    // (Free fall: the estimate comes from a point that is not simultaneous and is never
+    // trusted beyond one step, so the full slack at once.)
+    let slack = match worldline {
+        Worldline::Rest { .. } => 1.1 + (FAR_SLACK - 1.1) * ((d1 - far) / far).min(1.0),
+        Worldline::Free(_) => FAR_SLACK,
+    };
+    // A far point is outside (beyond R + FAR_DISTANCE·a to first order): however large the
+    // ball, its estimate stays at least half that margin clear, never on the inside
+    // (2.95/1.3 once made a false crossing).
+    let floor = radius + 0.5 * FAR_DISTANCE * metric.godel_a().unwrap_or(1.0);
+    let d = if lp.exact {
+        d1
+    } else {
+        (d1 / slack).max(floor)
+    };
+    // The ray's speed in the rest frame is its energy there, −p·u, which is at most
+    // E·γ(1 + v) everywhere on the ray (see Worldline::speed_factor): a bound valid over any
+    // span, not just one step.
+    let eps_max = s.p.t.abs() * worldline.speed_factor();
+    Probe {
+        f: d - radius,
+        rate: GLOBAL_RATE_MARGIN * eps_max,
+        // A far match is not simultaneous: the next probe re-seeds from t.
+        tau: if lp.exact { lp.at.tau } else { f64::NAN },
     }
 }
 

@@ -268,12 +268,7 @@ proptest! {
 
 /// The reference scene (a ball falling past the observer at 0.7 c) at 88×10, both tracers.
 fn reference(method: &str) -> scene::Scene {
-    let text = scene::BUILTIN_SCENE_TEXT
-        .replace("width = 880", "width = 88")
-        .replace("height = 100", "height = 10")
-        .replace("samples = 4", "samples = 1")
-        .replace("method = \"numeric\"", &format!("method = \"{method}\""));
-    scene::Scene::from_str(&text, "reference.toml").unwrap()
+    common::reference_scene(method, 88, 10)
 }
 
 /// The comparison can fail: with the reach and time slack of the falling ball cut to a

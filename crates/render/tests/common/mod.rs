@@ -281,3 +281,13 @@ pub fn tracer(sc: &Scene) -> render::tracer::Tracer {
         },
     )
 }
+
+/// The built-in reference scene at `width`×`height` (one ray per pixel), traced by `method`.
+pub fn reference_scene(method: &str, width: u32, height: u32) -> Scene {
+    let text = scene::BUILTIN_SCENE_TEXT
+        .replace("width = 880", &format!("width = {width}"))
+        .replace("height = 100", &format!("height = {height}"))
+        .replace("samples = 4", "samples = 1")
+        .replace("method = \"numeric\"", &format!("method = \"{method}\""));
+    Scene::from_str(&text, "reference.toml").unwrap()
+}
