@@ -7,8 +7,6 @@
 //! wins: older work stops between tiles ([`render::driver::Progress::cancelled`]). Which frames
 //! are kept is decided in the `viewer` crate (`viewer::explore`); this file only traces.
 
-use std::io::Write;
-use std::net::{IpAddr, SocketAddr, TcpListener};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -20,10 +18,10 @@ use render::driver::{Progress, Renderer};
 use render::plan::Plan;
 use render::tiles::Assembler;
 use scene::Scene;
-use spacetime::Event;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 
-use crate::args::{thread_pool, usage};
+use crate::args::thread_pool;
+use crate::serve::{load_error, ServeArgs};
 
 /// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).
 const COARSE_DIVISOR: u32 = 4;
@@ -32,15 +30,8 @@ const COARSE_DIVISOR: u32 = 4;
 pub struct ExploreArgs {
     /// Scene file (TOML): the observer starts at its event.
     pub scene: PathBuf,
-    /// Port to serve on; 0 picks a free one.
-    #[arg(long, default_value_t = 8737)]
-    pub port: u16,
-    /// Address to listen on (the default serves this machine only).
-    #[arg(long, default_value = "127.0.0.1")]
-    pub host: String,
-    /// A folder image textures may come from, besides the scene file's own (repeatable).
-    #[arg(long, value_name = "DIR")]
-    pub textures: Vec<PathBuf>,
+    #[command(flatten)]
+    pub serve: ServeArgs,
     /// Worker threads for tracing (default: all cores; at most 8 per core).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -50,7 +41,7 @@ pub struct ExploreArgs {
 /// width and height divided by [`COARSE_DIVISOR`] and one ray per pixel.
 pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> Scene {
     let mut moved = scene.clone();
-    moved.observer.event = Event::new(event.t, event.x, event.y, event.z);
+    moved.observer.event = event.event();
     if level == Level::Coarse {
         let (w, h) = (scene.camera.width(), scene.camera.height());
         moved.camera = scene
@@ -104,13 +95,7 @@ impl SceneFrames {
 
 impl FrameSource for SceneFrames {
     fn start(&self) -> ObserverEvent {
-        let e = self.scene.observer.event;
-        ObserverEvent {
-            t: e.t,
-            x: e.x,
-            y: e.y,
-            z: e.z,
-        }
+        self.scene.observer.event.into()
     }
 
     fn bound(&self) -> f64 {
@@ -129,12 +114,7 @@ impl FrameSource for SceneFrames {
 }
 
 pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
-    let ip: IpAddr = args.host.parse().map_err(|_| {
-        usage(
-            "--host",
-            format!("'{}' is not an IP address (e.g. 127.0.0.1)", args.host),
-        )
-    })?;
+    let ip = args.serve.ip()?;
     let pool = thread_pool(args.threads)?;
     let scene = Scene::from_file(&args.scene)?;
     shade::textures_for_scene(&scene)?;
@@ -144,34 +124,14 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let first = frames
         .trace(frames.start(), Level::Coarse, &AtomicBool::new(false))?
         .context("the first frame was cancelled")?;
-    let options = viewer::ViewerOptions {
-        texture_folders: args.textures.clone(),
-        ..viewer::ViewerOptions::default()
-    };
-    let state =
-        viewer::ViewerState::new_with(&args.scene, first, options).map_err(|e| match e {
-            viewer::LoadError::TextureFolder(e) => usage("--textures", e.to_string()),
-            other => other.into(),
-        })?;
+    let state = viewer::ViewerState::new_with(&args.scene, first, args.serve.options())
+        .map_err(load_error)?;
     let start = frames.start();
     let explorer = Explorer::new(frames).context("cannot start the tracing thread")?;
     explorer
         .request(start)
         .map_err(|why| anyhow::anyhow!("{}: observer: {why}", args.scene.display()))?;
-    let wanted = SocketAddr::new(ip, args.port);
-    let listener = TcpListener::bind(wanted).map_err(|e| match e.kind() {
-        std::io::ErrorKind::AddrInUse => usage(
-            "--port",
-            format!("{wanted} is already in use; choose another port, or 0 for any free one"),
-        ),
-        _ => anyhow::Error::new(e).context(format!("cannot listen on {wanted}")),
-    })?;
-    let addr = listener
-        .local_addr()
-        .context("cannot read the bound address")?;
-    let mut stdout = std::io::stdout();
-    writeln!(stdout, "godel explore: serving http://{addr}/")?;
-    stdout.flush()?;
+    let listener = args.serve.listen(ip, "explore")?;
     eprintln!(
         "{}: change the observer's event in the Explore panel; press Ctrl-C to stop",
         args.scene.display()
@@ -186,6 +146,7 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use spacetime::Event;
 
     fn small_scene() -> Scene {
         let text = testkit::ball_ahead(

@@ -29,6 +29,7 @@ mod overrides;
 mod plot_isometry;
 mod plot_kit;
 mod progress;
+mod serve;
 mod svg;
 
 use clap::{Parser, Subcommand};

@@ -2,22 +2,14 @@
 //! for the scene with its observer at that event (the channels the page shades, bit for bit),
 //! at the scene's width × height; a bad event gets 400 naming the field.
 
-use std::io::{BufRead, Read, Write};
+use std::io::{Read, Write};
 use std::path::Path;
-use std::process::{Command, Stdio};
+
 use std::time::Duration;
 
 mod common;
 
-/// The `godel explore` server, killed when dropped.
-struct Server(std::process::Child);
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+use common::{port_of, start_server, Server};
 
 /// scenes/static-sphere.toml at 48×8 pixels of 2×2 rays, its observer at `observer` (the
 /// lines of the `[observer]` table for time and position).
@@ -63,27 +55,8 @@ fn json(bytes: &[u8]) -> serde_json::Value {
 
 /// Starts `godel explore scene`; returns the server and its port.
 fn explore(scene: &Path) -> (Server, u16) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(["explore", scene.to_str().unwrap(), "--port", "0"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let stdout = child.stdout.take().unwrap();
-    let server = Server(child);
-    let mut line = String::new();
-    std::io::BufReader::new(stdout)
-        .read_line(&mut line)
-        .unwrap();
-    assert!(line.starts_with("godel explore: serving http://"), "{line}");
-    let port = line
-        .trim()
-        .trim_end_matches('/')
-        .rsplit(':')
-        .next()
-        .and_then(|p| p.parse().ok())
-        .unwrap_or_else(|| panic!("no port in {line:?}"));
-    (server, port)
+    let (server, url) = start_server("explore", scene, scene.parent().unwrap());
+    (server, port_of(&url))
 }
 
 /// The f32 samples of a wire array (16-byte header).

@@ -1,7 +1,7 @@
 //! `godel view` on bad input: every failure comes before anything is served, as one
 //! `error:` line naming the file or flag, with a non-zero exit (2 for flags).
 
-use std::process::{Command, Output};
+use std::process::Output;
 
 mod common;
 use common::godel;
@@ -89,16 +89,6 @@ fn a_texture_folder_that_is_not_one_names_the_flag() {
     fails_with(&o, 2, &["--textures", "no-such-folder"]);
 }
 
-/// The `godel view` server, killed when dropped.
-struct Server(std::process::Child);
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
 /// One HTTP/1.1 request over a fresh connection; returns the status code and the body.
 fn http(port: u16, request: &str) -> (u16, String) {
     use std::io::{Read, Write};
@@ -125,28 +115,10 @@ fn http(port: u16, request: &str) -> (u16, String) {
 /// The running server checks Host against the port it really listens on, and wants JSON.
 #[test]
 fn the_server_answers_only_requests_naming_it() {
-    use std::io::BufRead;
     let dir = tempfile::tempdir().unwrap();
     let exr = small_data_file(dir.path());
-    let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(["view", exr.to_str().unwrap(), "--port", "0"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let stdout = child.stdout.take().unwrap();
-    let _server = Server(child);
-    let mut line = String::new();
-    std::io::BufReader::new(stdout)
-        .read_line(&mut line)
-        .unwrap();
-    let port: u16 = line
-        .trim()
-        .trim_end_matches('/')
-        .rsplit(':')
-        .next()
-        .and_then(|p| p.parse().ok())
-        .unwrap_or_else(|| panic!("no port in {line:?}"));
+    let (_server, url) = common::start_server("view", &exr, dir.path());
+    let port = common::port_of(&url);
     let get = |host: &str| {
         http(
             port,

@@ -15,6 +15,7 @@
 //! tests fail and say so.
 
 mod browser_support;
+mod common;
 
 use browser_support::*;
 use datafile::record::RayStatus;

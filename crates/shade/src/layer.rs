@@ -177,6 +177,32 @@ mod tests {
         );
     }
 
+    /// On a picture too narrow for a title even in 8-pixel type (a 240×60 sequence frame),
+    /// the title is left out rather than cut off at the picture's edge; the rest still shows.
+    #[test]
+    fn titles_too_wide_for_the_picture_are_left_out_not_cut_off() {
+        let (w, h) = (240, 60);
+        assert!(text_width(FREQUENCY_TITLE, 1) > w && text_width(LEGEND_TITLE, 1) > w);
+        for overlays in [
+            Overlays {
+                reference_labels: vec![5800.0, 3500.0],
+                ..Overlays::default()
+            },
+            Overlays {
+                legend: Some((0.0, 12.0)),
+                ..Overlays::default()
+            },
+        ] {
+            let layer = overlays.draw(w, h).unwrap();
+            assert!(ink(&layer, 0, 0, w, h) > 0, "the labels are drawn");
+            assert_eq!(
+                ink(&layer, w - 3, 0, 3, h),
+                0,
+                "no text runs into the right edge"
+            );
+        }
+    }
+
     #[test]
     fn reference_labels_name_the_temperatures_beside_the_squares() {
         let (w, h) = (640, 320);

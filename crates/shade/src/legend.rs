@@ -82,21 +82,30 @@ pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64, above: u32) {
     let x_high = x_bar + bar_w + 3 * s;
     let x_title = x_high + i64::from(text_width(&high, scale)) + 6 * s;
     let fits = |k: u32| x_title + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w);
-    let (tx, ty, ts) = if fits(scale) {
-        (x_title, y, scale)
+    // The title on the line, in smaller type on the line, above the line, or (on pictures
+    // too narrow for it even in the smallest type) left out rather than cut off.
+    let title = if fits(scale) {
+        Some((x_title, y, scale))
     } else if scale > 1 && fits(scale - 1) {
-        (
+        Some((
             x_title,
             y + th - i64::from(text_height(scale - 1)),
             scale - 1,
-        )
+        ))
     } else {
-        (margin, y - th - 3 * s, scale)
+        (1..=scale)
+            .rev()
+            .find(|&k| margin + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w))
+            .map(|k| (margin, y - i64::from(text_height(k)) - 3 * s, k))
     };
     // A dark panel behind it all, so that it reads on any picture and over the marks.
-    let right = x_high + i64::from(text_width(&high, scale));
-    let right = right.max(tx + i64::from(text_width(LEGEND_TITLE, ts))) + 2 * s;
-    let top = ty.min(y) - 2 * s;
+    let mut right = x_high + i64::from(text_width(&high, scale));
+    let mut top = y;
+    if let Some((tx, ty, ts)) = title {
+        right = right.max(tx + i64::from(text_width(LEGEND_TITLE, ts)));
+        top = top.min(ty);
+    }
+    let (right, top) = (right + 2 * s, top - 2 * s);
     fill(img, 0, top, right, y + th + 2 * s - top, [12, 12, 12]);
     let white = [255, 255, 255];
     draw_text(img, margin, y, scale, &low, white);
@@ -105,13 +114,16 @@ pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64, above: u32) {
         fill(img, x_bar + i, y, 1, th, c);
     }
     draw_text(img, x_high, y, scale, &high, white);
-    draw_text(img, tx, ty, ts, LEGEND_TITLE, white);
+    if let Some((tx, ty, ts)) = title {
+        draw_text(img, tx, ty, ts, LEGEND_TITLE, white);
+    }
 }
 
 /// Writes what the reference squares of a `w`×`h` picture show into its overlay layer
 /// `img`: beside them the unshifted colours' temperatures, `g = 1: 5800 K, 3500 K` (one per
 /// square shown, `temperatures` in object order), and below them the frequency title.
-/// Lines too long for the picture are written in smaller type (down to 8-pixel type).
+/// Lines too long for the picture are written in smaller type (down to 8-pixel type); a
+/// line too long even then is left out rather than cut off mid-word.
 pub fn label_reference_squares(img: &mut RgbaImage, temperatures: &[f64]) {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let shown = temperatures.len().min(REFERENCE_SQUARES);
@@ -128,18 +140,19 @@ pub fn label_reference_squares(img: &mut RgbaImage, temperatures: &[f64]) {
         (1..=readable)
             .rev()
             .find(|&k| x + i64::from(text_width(text, k)) <= w as i64)
-            .unwrap_or(1)
     };
     let white = [255, 255, 255];
     let x = (x0 + side + side / 2) as i64;
-    let scale = fitting(x, &text);
-    let th = i64::from(text_height(scale));
-    let y = (y0 as i64 + (side as i64 - th) / 2).max(0);
-    draw_text(img, x, y, scale, &text, white);
+    if let Some(scale) = fitting(x, &text) {
+        let th = i64::from(text_height(scale));
+        let y = (y0 as i64 + (side as i64 - th) / 2).max(0);
+        draw_text(img, x, y, scale, &text, white);
+    }
     // The title under the squares, left-aligned with the first.
     let (first_x, _, _) = reference_square(0, w, h).unwrap_or((x0, y0, side));
     let x = first_x as i64;
-    let scale = fitting(x, FREQUENCY_TITLE);
-    let y = (y0 + side) as i64 + (y0 as i64).max(i64::from(scale) * 2) + i64::from(scale);
-    draw_text(img, x, y, scale, FREQUENCY_TITLE, white);
+    if let Some(scale) = fitting(x, FREQUENCY_TITLE) {
+        let y = (y0 + side) as i64 + (y0 as i64).max(i64::from(scale) * 2) + i64::from(scale);
+        draw_text(img, x, y, scale, FREQUENCY_TITLE, white);
+    }
 }

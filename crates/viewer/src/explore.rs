@@ -30,7 +30,23 @@ pub struct ObserverEvent {
     pub z: f64,
 }
 
+impl From<spacetime::Event> for ObserverEvent {
+    fn from(e: spacetime::Event) -> ObserverEvent {
+        ObserverEvent {
+            t: e.t,
+            x: e.x,
+            y: e.y,
+            z: e.z,
+        }
+    }
+}
+
 impl ObserverEvent {
+    /// The event itself.
+    pub fn event(&self) -> spacetime::Event {
+        spacetime::Event::new(self.t, self.x, self.y, self.z)
+    }
+
     /// The first field that is not a finite number within ±`bound`, with why, or `None`.
     pub fn refusal(&self, bound: f64) -> Option<String> {
         let fields = [("t", self.t), ("x", self.x), ("y", self.y), ("z", self.z)];
@@ -94,6 +110,9 @@ struct Slots {
     cancel: Option<Arc<AtomicBool>>,
     /// The newest frame kept.
     latest: Option<Arc<Frame>>,
+    /// The coarse frame of `latest`'s generation once its full frame replaced it: a page
+    /// that saw the coarse frame may still be fetching its channels.
+    coarse: Option<Arc<Frame>>,
     /// Why the newest generation could not be traced.
     error: Option<String>,
     /// Set when the [`Explorer`] is dropped: the worker ends.
@@ -173,6 +192,18 @@ impl Explorer {
         self.shared.lock().latest.clone()
     }
 
+    /// The frame of `generation` at `level`, while it is the newest frame or the coarse frame
+    /// of the newest frame's generation.
+    pub fn frame(&self, generation: u64, level: Level) -> Option<Arc<Frame>> {
+        let slots = self.shared.lock();
+        let found = [&slots.latest, &slots.coarse]
+            .into_iter()
+            .flatten()
+            .find(|f| f.generation == generation && f.level == level)
+            .cloned();
+        found
+    }
+
     /// Why the newest generation could not be traced, if it could not.
     pub fn error(&self) -> Option<String> {
         self.shared.lock().error.clone()
@@ -219,12 +250,14 @@ fn work(shared: &Shared) {
                     if slots.generation != generation || cancel.load(Ordering::SeqCst) {
                         break;
                     }
-                    slots.latest = Some(Arc::new(Frame {
+                    let frame = Arc::new(Frame {
                         generation,
                         level,
                         event,
                         data,
-                    }));
+                    });
+                    let replaced = slots.latest.replace(frame);
+                    slots.coarse = replaced.filter(|f| f.generation == generation);
                 }
                 Ok(None) => break,
                 Err(why) => {

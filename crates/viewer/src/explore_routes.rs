@@ -5,7 +5,7 @@
 //! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
 //! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
-//! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 when it is no longer the newest frame |
+//! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the coarse frame of the newest's generation |
 //! | `GET /api/pixel?col=C&row=R` | as in [`crate::routes`], the record of a pixel of the newest frame |
 //!
 //! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
@@ -164,10 +164,10 @@ async fn channel(
             ),
         )
     };
-    let frame = state.explorer.latest().ok_or_else(gone)?;
-    if frame.generation != q.generation || frame.level != q.level {
-        return Err(gone());
-    }
+    let frame = state
+        .explorer
+        .frame(q.generation, q.level)
+        .ok_or_else(gone)?;
     let Some(channel) = Channel::parse(&name, frame.data.lights.len()) else {
         return Err(ApiError::new(
             StatusCode::NOT_FOUND,

@@ -260,7 +260,31 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         (Some("hit"), Some(-4.0))
     );
     assert_eq!(record["g"], 2.0);
-    // A frame that is no longer the newest is gone.
-    let stale = "/api/explore/channel/t_emit?generation=1&level=coarse";
-    assert_eq!(send(&app, common::get(stale)).await.0, StatusCode::GONE);
+    // The coarse frame of the newest generation is still served after its full frame (a page
+    // may be fetching it); frames of an older generation are gone once a newer one has a frame.
+    let coarse = "/api/explore/channel/t_emit?generation=1&level=coarse";
+    assert_eq!(send(&app, common::get(coarse)).await.0, StatusCode::OK);
+    let body = r#"{"t": 5, "x": 0.5, "y": 0, "z": 0}"#;
+    let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
+    assert_eq!(
+        (status, answer["generation"].as_u64()),
+        (StatusCode::OK, Some(2))
+    );
+    for _ in 0..10_000 {
+        let frame = send(&app, common::get("/api/explore/frame")).await.1["frame"].clone();
+        if frame["generation"] == 2 {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(1)).await;
+    }
+    for stale in [
+        coarse,
+        "/api/explore/channel/t_emit?generation=1&level=full",
+    ] {
+        assert_eq!(
+            send(&app, common::get(stale)).await.0,
+            StatusCode::GONE,
+            "{stale}"
+        );
+    }
 }

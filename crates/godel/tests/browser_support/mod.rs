@@ -3,11 +3,8 @@
 //! against Debian's chromium, and reading the raw pictures the scripts save.
 #![allow(dead_code)]
 
-use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::sync::mpsc;
-use std::time::Duration;
+use std::process::{Command, Output};
 
 pub fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -57,15 +54,9 @@ pub fn render(dir: &Path, name: &str, text: &str) -> PathBuf {
     dir.join(format!("{name}.exr"))
 }
 
+use crate::common::start_server;
 /// The `godel view` server, killed when dropped.
-pub struct Server(Child);
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
+pub use crate::common::Server;
 
 /// Starts `godel view DATA --port 0` in `cwd`; returns it and the URL it printed.
 pub fn start_viewer(data: &Path, cwd: &Path) -> (Server, String) {
@@ -75,39 +66,6 @@ pub fn start_viewer(data: &Path, cwd: &Path) -> (Server, String) {
 /// Starts `godel explore SCENE --port 0` in `cwd`; returns it and the URL it printed.
 pub fn start_explore(scene: &Path, cwd: &Path) -> (Server, String) {
     start_server("explore", scene, cwd)
-}
-
-/// Starts `godel COMMAND FILE --port 0` in `cwd`; returns it and the URL it printed.
-fn start_server(command: &str, file: &Path, cwd: &Path) -> (Server, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args([command, file.to_str().unwrap(), "--port", "0"])
-        .current_dir(cwd)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::inherit())
-        .spawn()
-        .unwrap_or_else(|e| panic!("start godel {command}: {e}"));
-    let stdout = child.stdout.take().unwrap();
-    let server = Server(child);
-    let (send, receive) = mpsc::channel();
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = BufReader::new(stdout).read_line(&mut line);
-        let _ = send.send(line);
-    });
-    // A deadline against hanging forever, not a speed check.
-    let line = receive
-        .recv_timeout(Duration::from_secs(120))
-        .unwrap_or_else(|_| panic!("godel {command} printed no URL"));
-    let url = line
-        .trim()
-        .strip_prefix(&format!("godel {command}: serving "))
-        .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
-        .to_string();
-    assert!(
-        url.starts_with("http://127.0.0.1:") && url.ends_with('/'),
-        "{url}"
-    );
-    (server, url)
 }
 
 /// Runs `node tests/browser/SCRIPT URL OUT ARGS…` and parses the one JSON object it prints.

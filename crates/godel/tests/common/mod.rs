@@ -199,3 +199,57 @@ pub fn assert_refused(o: &Output, needles: &[&str], no_output: &Path) {
         no_output.display()
     );
 }
+
+/// A running `godel view` or `godel explore`, killed when dropped.
+pub struct Server(std::process::Child);
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Starts `godel COMMAND FILE --port 0` in `cwd`; returns it and the URL it printed
+/// (`http://127.0.0.1:PORT/`).
+pub fn start_server(command: &str, file: &Path, cwd: &Path) -> (Server, String) {
+    use std::io::BufRead;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_godel"))
+        .args([command, file.to_str().unwrap(), "--port", "0"])
+        .current_dir(cwd)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::inherit())
+        .spawn()
+        .unwrap_or_else(|e| panic!("start godel {command}: {e}"));
+    let stdout = child.stdout.take().unwrap();
+    let server = Server(child);
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = std::io::BufReader::new(stdout).read_line(&mut line);
+        let _ = send.send(line);
+    });
+    // A deadline against hanging forever, not a speed check.
+    let line = receive
+        .recv_timeout(std::time::Duration::from_secs(120))
+        .unwrap_or_else(|_| panic!("godel {command} printed no URL"));
+    let url = line
+        .trim()
+        .strip_prefix(&format!("godel {command}: serving "))
+        .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
+        .to_string();
+    assert!(
+        url.starts_with("http://127.0.0.1:") && url.ends_with('/'),
+        "{url}"
+    );
+    (server, url)
+}
+
+/// The port of a URL `http://HOST:PORT/` printed by [`start_server`].
+pub fn port_of(url: &str) -> u16 {
+    url.trim_end_matches('/')
+        .rsplit(':')
+        .next()
+        .and_then(|p| p.parse().ok())
+        .unwrap_or_else(|| panic!("no port in {url:?}"))
+}
