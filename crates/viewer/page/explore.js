@@ -4,8 +4,12 @@
 // the newest frame and swaps its channels in (viewer.showFrame), shading them on the GPU as
 // usual. Requests never block the page: at most one event request is in flight (the newest
 // event waits for it), and a frame of a generation older than the newest request sent is
-// dropped.
+// dropped. The map beside the picture (map.js) follows the event, shows the light ray of the
+// hovered pixel of the frame shown, and moves the observer when its marker is dragged.
+// "Save observer keyframe" downloads a sequence-script keyframe at the event.
 'use strict';
+
+import { createMap } from './map.js';
 
 // How often the page asks for the newest frame.
 const POLL_MS = 100;
@@ -40,6 +44,7 @@ export async function startExplore(viewer) {
   };
   viewer.explore = state;
   $('explore-panel').hidden = false;
+  $('map-panel').hidden = false;
   const slider = $('explore-t');
   slider.min = String(info.start.t - T_SPAN);
   slider.max = String(info.start.t + T_SPAN);
@@ -51,6 +56,21 @@ export async function startExplore(viewer) {
     for (const [k, input] of Object.entries(fields)) input.value = String(state.event[k]);
   };
   const status = (text) => { $('explore-status').textContent = text; };
+  const map = createMap($('map-top'), $('map-side'), $('map-legend'), {
+    status,
+    dragTo: (x, y) => {
+      state.event.x = x;
+      state.event.y = y;
+      moved();
+    },
+  });
+  state.map = map;
+  // The event changed: show it, trace it, map it.
+  const moved = () => {
+    showEvent();
+    send();
+    map.update(state.event);
+  };
 
   // Sends the current event; while a request is in flight, the newest event waits for it.
   async function send() {
@@ -103,6 +123,7 @@ export async function startExplore(viewer) {
           + `&level=${frame.level}`;
         if (viewer.showFrame(frame, url)) {
           state.shown = { generation: frame.generation, level: frame.level };
+          hover(); // the ray of the pixel under the mouse in the new frame
           const e = frame.event;
           status(`frame ${frame.generation} (${frame.level}, ${frame.width}×${frame.height})`
             + ` at t = ${e.t.toFixed(2)}, x = ${e.x}, y = ${e.y}, z = ${e.z}`);
@@ -126,6 +147,7 @@ export async function startExplore(viewer) {
     showEvent();
     const waiting = state.inFlight || state.shown === null || state.shown.generation < state.requested;
     if (!playing || !waiting) send();
+    map.update(state.event);
   };
   slider.addEventListener('input', () => setT(Number(slider.value)));
   $('explore-t-value').addEventListener('change', () => setT(Number($('explore-t-value').value)));
@@ -138,7 +160,7 @@ export async function startExplore(viewer) {
         return;
       }
       state.event[k] = v;
-      send();
+      moved();
     });
   }
   window.addEventListener('keydown', (event) => {
@@ -147,8 +169,7 @@ export async function startExplore(viewer) {
     if (dz === undefined) return;
     event.preventDefault();
     state.event.z = Math.round((state.event.z + dz) * 1e6) / 1e6;
-    showEvent();
-    send();
+    moved();
   });
 
   // Play: t advances at the chosen rate (t per second of the wall clock) while playing.
@@ -168,5 +189,32 @@ export async function startExplore(viewer) {
     last = null;
     if (state.playing) requestAnimationFrame(tick);
   });
+  // Hovering the picture: the light ray of the pixel under the mouse, in the frame shown.
+  let pointer = null;
+  function hover() {
+    if (pointer === null || state.shown === null) return;
+    const pixel = viewer.pixelAt(pointer);
+    if (pixel) map.hover(state.shown, pixel[0], pixel[1]);
+    else map.clearRay();
+  }
+  const image = $('image');
+  image.addEventListener('pointermove', (event) => {
+    pointer = { clientX: event.clientX, clientY: event.clientY };
+    hover();
+  });
+  image.addEventListener('pointerleave', () => {
+    pointer = null;
+    map.clearRay();
+  });
+
+  $('explore-save-keyframe').addEventListener('click', async () => {
+    const blob = await viewer.download('/api/explore/keyframe?frame=0',
+      JSON.stringify(state.event), 'keyframe.toml');
+    if (blob) {
+      $('explore-keyframe').textContent = await blob.text();
+      $('explore-keyframe').hidden = false;
+    }
+  });
   showEvent();
+  map.update(state.event);
 }

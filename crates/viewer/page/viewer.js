@@ -447,6 +447,10 @@ viewer.finish = () => gpu.finish();
 viewer.fetched = () => data.fetched;
 // The WebGL side, for profiling from the console.
 viewer.gpu = () => gpu;
+// The picture pixel [col, row] under a pointer event's clientX, clientY, or null (explore.js).
+viewer.pixelAt = (event) => picturePixel(canvasPoint(event));
+// POSTs `body` to `url` and downloads the answer (explore.js's keyframe).
+viewer.download = download;
 // Canvas pixels per picture pixel (1 when looking around).
 viewer.zoom = () => (lookMode() ? 1 : pan.zoom);
 

@@ -2,7 +2,7 @@
 //! no files beside it and nothing from the internet.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 11] = [
+pub const FILES: [(&str, &str, &str); 12] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -22,6 +22,7 @@ pub const FILES: [(&str, &str, &str); 11] = [
     js("/overlays.js", include_str!("../page/overlays.js")),
     js("/look.js", include_str!("../page/look.js")),
     js("/explore.js", include_str!("../page/explore.js")),
+    js("/map.js", include_str!("../page/map.js")),
 ];
 
 const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {
