@@ -23,8 +23,8 @@ export const COLOURS = {
 };
 const FONT = '12px system-ui, sans-serif';
 // CSS pixels of the two canvases, and the room the axes take around each plot.
-const TOP = { width: 360, height: 360, left: 40, right: 10, top: 26, bottom: 34 };
-const SIDE = { width: 360, height: 220, left: 44, right: 12, top: 26, bottom: 34 };
+const TOP = { width: 360, height: 380, left: 40, right: 10, top: 38, bottom: 32 };
+const SIDE = { width: 380, height: 240, left: 44, right: 12, top: 38, bottom: 32 };
 // How near (CSS pixels) a pointer must come to the observer's marker to pick it up.
 const PICK_PX = 14;
 
@@ -308,7 +308,7 @@ export function createMap(top, side, legend, hooks) {
     const n = ticks(v.cx - v.half, v.cx + v.half, 6);
     const sy = ticks(v.cy - v.half, v.cy + v.half, 6);
     axes(g, TOP, n, sy, (x) => at(x, 0)[0], (y) => at(0, y)[1], 'x / a', 'y / a');
-    text(g, `top view: the x–y plane (r–φ) at z = ${label(event.z)}`, TOP.width / 2, 16,
+    text(g, `top view: the x–y plane (r–φ) at z = ${label(event.z)}`, TOP.width / 2, 15,
       COLOURS.text, 'center');
     g.save();
     g.beginPath();
@@ -377,7 +377,7 @@ export function createMap(top, side, legend, hooks) {
     const sx = (r) => SIDE.left + (r / rMax) * w;
     const sy = (t) => SIDE.top + (1 - (t - t0) / (t1 - t0)) * h;
     axes(g, SIDE, ticks(0, rMax, 6), ticks(t0, t1, 5), sx, sy, 'r / a', 't / a');
-    text(g, 'side view: t against distance r from the observer\u2019s axis', SIDE.width / 2, 16,
+    text(g, 'side view: t against distance r from the observer\u2019s axis', SIDE.width / 2, 15,
       COLOURS.text, 'center');
     g.save();
     g.beginPath();
