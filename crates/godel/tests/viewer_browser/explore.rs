@@ -1,6 +1,9 @@
 //! `godel explore` in the browser: the Explore panel shows, moving the time slider sends the
 //! new event, and the page swaps in the full frame traced for it (the ball in free fall has
-//! moved, so the picture changes), at the scene's size.
+//! moved, so the picture changes), at the scene's size; the map beside the picture
+//! (issue 15) draws the hovered pixel's light ray from the observer to the pixel's emission
+//! event, dragging the observer's marker on it moves the observer's event to the map's point
+//! under the mouse, and "Save observer keyframe" saves a keyframe at that event.
 
 use super::browser_support::*;
 
@@ -48,4 +51,152 @@ fn moving_the_time_slider_shows_the_frame_traced_for_the_new_time() {
     let changed = compare(&before, &after, w).off.len();
     assert!(changed > 0, "the picture did not change with t");
     assert_only_local_requests(&seen, &url);
+}
+
+/// The point `p` ({t, x, y, z, …}) is the event `want` (t, x, y, z) within `tol`.
+fn same_event(p: &serde_json::Value, want: [f64; 4], tol: f64) -> bool {
+    ["t", "x", "y", "z"]
+        .iter()
+        .zip(want)
+        .all(|(k, w)| p[*k].as_f64().is_some_and(|v| (v - w).abs() <= tol))
+}
+
+fn event_of(e: &serde_json::Value) -> [f64; 4] {
+    ["t", "x", "y", "z"].map(|k| e[k].as_f64().unwrap())
+}
+
+/// What the page showed while hovering a pixel at `event`: the map's ray runs from the
+/// observer's event to the emission event of the pixel's record (`/api/pixel`), is drawn on
+/// the map's canvas along its points, and is gone once the mouse leaves the picture.
+fn check_hover(seen: &serde_json::Value, hover: &serde_json::Value, event: [f64; 4]) {
+    let ray = &hover["ray"];
+    let record = &hover["record"];
+    let points = ray["points"].as_array().unwrap();
+    assert!(points.len() >= 2, "{ray}");
+    assert!(same_event(&points[0], event, 1e-3), "{} vs {event:?}", points[0]);
+    assert_eq!(ray["status"], record["status"], "{seen}");
+    if record["status"] == "hit" {
+        let emission = [
+            event[0] + record["t_emit"].as_f64().unwrap(),
+            record["x"].as_f64().unwrap(),
+            record["y"].as_f64().unwrap(),
+            record["z"].as_f64().unwrap(),
+        ];
+        let last = points.last().unwrap();
+        assert!(
+            same_event(last, emission, 1e-3),
+            "last point {last}, record {record}"
+        );
+        assert!(same_event(&ray["emission"], emission, 1e-3), "{ray}");
+        let travel = ray["travel_time"].as_f64().unwrap();
+        assert!((travel - record["travel_time"].as_f64().unwrap()).abs() <= 1e-3);
+    }
+    let before = &hover["ray_pixels_before"];
+    let during = &hover["ray_pixels"];
+    let after = &hover["ray_pixels_after"];
+    assert_eq!(before["total"], 0, "ray colour on the map before hovering");
+    let (inside, near) = (
+        during["inside"].as_u64().unwrap(),
+        during["near"].as_u64().unwrap(),
+    );
+    assert!(
+        inside >= 10 && near * 10 >= inside * 9 && during["total"].as_u64().unwrap() > 50,
+        "the ray is not drawn along its points: {during}"
+    );
+    assert_eq!(after["total"], 0, "the ray stays after leaving the picture");
+}
+
+#[test]
+fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_event() {
+    require_browser_tools();
+    let dir = tempfile::tempdir().unwrap();
+    let text = scene_text();
+    // The ball's pixel whose light took longest: it loops around the observer's axis.
+    let exr = render(dir.path(), "map-test", &text);
+    let data = datafile::DataFile::read(&exr).unwrap();
+    let (col, row) = (0..data.height)
+        .flat_map(|row| (0..data.width).map(move |col| (col, row)))
+        .filter(|&(c, r)| data.record(c, r).object == 0)
+        .max_by(|&a, &b| {
+            let t = |p: (usize, usize)| -data.record(p.0, p.1).t_emit;
+            t(a).total_cmp(&t(b))
+        })
+        .expect("the test scene shows the ball");
+    let scene = dir.path().join("map-test.toml");
+    let (_server, url) = start_explore(&scene, dir.path());
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let (dx, dy) = (60, -40);
+    let args = [col, row].map(|v| v.to_string());
+    let seen = run_script(
+        "map.mjs",
+        &url,
+        &out,
+        &[
+            args[0].clone(),
+            args[1].clone(),
+            dx.to_string(),
+            dy.to_string(),
+        ],
+    );
+    assert_eq!(seen["map_hidden"], false, "{seen}");
+    assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
+    assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+    assert_only_local_requests(&seen, &url);
+    let map = &seen["map"];
+    assert!(map["horizon"].as_array().unwrap().len() > 100, "{map}");
+    assert_eq!(map["objects"][0]["name"], "earth", "{map}");
+
+    // Hovering the ball's pixel at the scene's event.
+    let before = event_of(&seen["before"]["event"]);
+    assert_eq!(before, [0.0; 4]);
+    assert_eq!(seen["hover_before"]["record"]["object_name"], "earth");
+    assert_eq!(seen["hover_before"]["record"]["status"], "hit");
+    check_hover(&seen, &seen["hover_before"], before);
+
+    // Dragging the observer's marker: the new event is the map's point under the drop, the
+    // frame shown is traced there, the fields say so, and the picture changed.
+    let after = event_of(&seen["after"]["event"]);
+    let drop = &seen["drop"];
+    let pixel = drop["pixel"].as_f64().unwrap();
+    assert!(pixel > 0.0 && pixel < 0.1, "{drop}");
+    for (k, i) in [("x", 1), ("y", 2)] {
+        let want = drop[k].as_f64().unwrap();
+        assert!(
+            (after[i] - want).abs() <= pixel,
+            "{k}: {} after the drag, the drop point is at {want}",
+            after[i]
+        );
+        assert!((after[i] - before[i]).abs() > 10.0 * pixel, "{seen}");
+    }
+    assert_eq!((after[0], after[3]), (before[0], before[3]));
+    assert!(same_event(&seen["after"]["frame_event"], after, 0.0), "{seen}");
+    assert!(same_event(&seen["map_after"], after, 0.0), "{seen}");
+    assert_eq!(
+        seen["after"]["fields"],
+        serde_json::json!([after[1], after[2], after[3]])
+    );
+    assert!(seen["after"]["generation"].as_u64() > seen["before"]["generation"].as_u64());
+    let (w, _, pic_before) = read_rgba(&out.join("before.rgba"));
+    let (_, _, pic_after) = read_rgba(&out.join("after.rgba"));
+    assert!(
+        !compare(&pic_before, &pic_after, w).off.is_empty(),
+        "the picture did not change with the observer's place"
+    );
+    // The same pixel hovered at the new event.
+    check_hover(&seen, &seen["hover_after"], after);
+
+    // "Save observer keyframe": a keyframe at the new event, shown and downloaded.
+    let saved = std::fs::read_to_string(out.join("keyframe.toml")).unwrap();
+    assert_eq!(seen["keyframe_shown"].as_str(), Some(saved.as_str()));
+    assert!(seen["keyframe_name"].as_str().unwrap().ends_with(".toml"));
+    let keyframe: toml::Value = toml::from_str(&saved).unwrap();
+    let k = &keyframe["keyframe"][0];
+    assert_eq!(k["frame"].as_integer(), Some(0), "{saved}");
+    let observer = &k["observer"];
+    let number = |v: &toml::Value| v.as_float().or(v.as_integer().map(|i| i as f64));
+    assert_eq!(number(&observer["time"]), Some(after[0]), "{saved}");
+    for (k, i) in [("x", 1), ("y", 2), ("z", 3)] {
+        assert_eq!(number(&observer["position"][k]), Some(after[i]), "{saved}");
+    }
 }
