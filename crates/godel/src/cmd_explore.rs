@@ -14,10 +14,12 @@ use std::sync::Arc;
 use anyhow::Context;
 use clap::Args;
 use datafile::DataFile;
+use datafile::PixelRecord;
 use render::driver::{Progress, Renderer};
+use render::map::{light_ray, map, LightRay, Map};
 use render::plan::Plan;
 use render::tiles::Assembler;
-use scene::Scene;
+use scene::{Scene, TraceMethod};
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 
 use crate::args::thread_pool;
@@ -37,11 +39,13 @@ pub struct ExploreArgs {
     pub threads: Option<usize>,
 }
 
-/// The scene with its observer moved to `event`; for [`Level::Coarse`] with the camera's
-/// width and height divided by [`COARSE_DIVISOR`] and one ray per pixel.
+/// The scene with its observer moved to `event` and traced by the exact tracer (Gödel's
+/// universe; Minkowski space has only the numeric one); for [`Level::Coarse`] with the
+/// camera's width and height divided by [`COARSE_DIVISOR`] and one ray per pixel.
 pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> Scene {
     let mut moved = scene.clone();
     moved.observer.event = event.event();
+    moved.trace.method = TraceMethod::Exact;
     if level == Level::Coarse {
         let (w, h) = (scene.camera.width(), scene.camera.height());
         moved.camera = scene
@@ -111,6 +115,20 @@ impl FrameSource for SceneFrames {
         self.trace(event, level, cancel)
             .map_err(|e| format!("{e:#}"))
     }
+
+    fn map(&self, event: ObserverEvent) -> Result<Map, String> {
+        map(&self.scene, event.event()).map_err(|(name, e)| format!("object {name:?}: {e}"))
+    }
+
+    fn light_ray(&self, event: ObserverEvent, record: &PixelRecord) -> LightRay {
+        light_ray(&self.scene, event.event(), record)
+    }
+
+    fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
+        let mut moved = self.scene.clone();
+        moved.observer.event = event.event();
+        crate::flight::keyframe_text(&moved, frame).map_err(|e| e.to_string())
+    }
 }
 
 pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
@@ -119,18 +137,19 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let scene = Scene::from_file(&args.scene)?;
     shade::textures_for_scene(&scene)?;
     let frames = SceneFrames::new(scene, pool);
-    // The viewer starts from the coarse frame at the scene's own event; the page then
-    // receives the explorer's frames.
-    let first = frames
-        .trace(frames.start(), Level::Coarse, &AtomicBool::new(false))?
-        .context("the first frame was cancelled")?;
-    let state = viewer::ViewerState::new_with(&args.scene, first, args.serve.options())
-        .map_err(load_error)?;
+    // The viewer opens on the explorer's first frame (the coarse one at the scene's own
+    // event); the page then receives the explorer's frames.
     let start = frames.start();
     let explorer = Explorer::new(frames).context("cannot start the tracing thread")?;
     explorer
         .request(start)
         .map_err(|why| anyhow::anyhow!("{}: observer: {why}", args.scene.display()))?;
+    let first = explorer
+        .first_frame()
+        .map_err(|why| anyhow::anyhow!("{}: {why}", args.scene.display()))?;
+    let state =
+        viewer::ViewerState::new_with(&args.scene, first.data.clone(), args.serve.options())
+            .map_err(load_error)?;
     let listener = args.serve.listen(ip, "explore")?;
     eprintln!(
         "{}: change the observer's event in the Explore panel; press Ctrl-C to stop",

@@ -184,6 +184,22 @@ fn section<'a>(table: &'a mut Table, key: &str) -> &'a mut Table {
     }
 }
 
+/// A sequence-script keyframe (TOML) at `frame` with every observer field of `scene`
+/// (time, position as x, y, z, velocity, forward, up) and its camera's fields of view:
+/// what `godel explore` saves for its current observer, so that a fly-through passes there.
+pub fn keyframe_text(scene: &Scene, frame: u32) -> Result<String, toml::ser::Error> {
+    let mut keyframe = Table::new();
+    keyframe.insert("frame".into(), Value::Integer(i64::from(frame)));
+    keyframe.insert("observer".into(), Value::Table(observer_table(scene)));
+    keyframe.insert("camera".into(), Value::Table(camera_table(&scene.camera)));
+    let mut root = Table::new();
+    root.insert(
+        "keyframe".into(),
+        Value::Array(vec![Value::Table(keyframe)]),
+    );
+    toml::to_string(&root)
+}
+
 /// The scene's observer as a keyframe table: every key, position in x, y, z.
 fn observer_table(scene: &Scene) -> Table {
     let o = &scene.observer;

@@ -88,8 +88,8 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
     assert_eq!(status, 400);
     assert!(json(&body)["error"].as_str().unwrap().contains("event.y"));
 
-    let event = r#"{"t": 1.5, "x": 0.25, "y": -0.125, "z": 0.0625}"#;
-    let (status, body) = http(port, "POST", "/api/explore/event", event);
+    let event_json = r#"{"t": 1.5, "x": 0.25, "y": -0.125, "z": 0.0625}"#;
+    let (status, body) = http(port, "POST", "/api/explore/event", event_json);
     assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
     let generation = json(&body)["generation"].as_u64().unwrap();
     // The first request (the scene's own event) and then this one.
@@ -115,7 +115,8 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
     let observer = "time = 1.5\nposition = { x = 0.25, y = -0.125, z = 0.0625 }";
     std::fs::write(&moved, scene_text(observer)).unwrap();
     let out = dir.path().join("out");
-    let o = common::render(&moved, &out, &["-q"]);
+    // Explore traces with the exact tracer.
+    let o = common::render(&moved, &out, &["-q", "--method", "exact"]);
     assert!(o.status.success(), "{o:?}");
     let rendered = datafile::DataFile::read(&out.join("static-sphere.exr")).unwrap();
     assert_eq!((rendered.width, rendered.height), (96, 16));
@@ -158,6 +159,110 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
         &expected[..],
         "channel id"
     );
+
+    // The map's ray of each pixel starts at the observer and ends at the pixel's emission
+    // event in the records of `godel render` (the sample nearest the pixel's centre).
+    let event = [1.5, 0.25, -0.125, 0.0625];
+    let mut hits = 0;
+    for row in 0..8 {
+        for col in 0..48 {
+            let path =
+                format!("/api/explore/ray?generation={generation}&level=full&col={col}&row={row}");
+            let (status, body) = http(port, "GET", &path, "");
+            assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+            let ray = json(&body);
+            let point =
+                |p: &serde_json::Value| ["t", "x", "y", "z"].map(|k| p[k].as_f64().unwrap());
+            let points = ray["points"].as_array().unwrap();
+            assert_eq!(point(&points[0]), event, "({col}, {row})");
+            let r = rendered.records[rendered.index(2 * col + 1, 2 * row + 1)];
+            assert_eq!(
+                ray["status"] == "hit",
+                r.has_emission(),
+                "({col}, {row}): {ray}"
+            );
+            if r.has_emission() {
+                hits += 1;
+                let expected = [
+                    1.5 + f64::from(r.t_emit),
+                    f64::from(r.x),
+                    f64::from(r.y),
+                    f64::from(r.z),
+                ];
+                // (to the last bits that serde_json's float parsing may change)
+                let emission = point(&ray["emission"]);
+                for k in 0..4 {
+                    assert!((emission[k] - expected[k]).abs() < 1e-12, "({col}, {row}): {ray}");
+                }
+                let last = point(points.last().unwrap());
+                for k in 0..4 {
+                    assert!(
+                        (last[k] - expected[k]).abs() < 2e-4,
+                        "({col}, {row}): {ray}"
+                    );
+                }
+                let travel = ray["travel_time"].as_f64().unwrap();
+                assert!((travel + f64::from(r.t_emit)).abs() < 1e-12, "{ray}");
+            }
+        }
+    }
+    assert!(hits > 5, "{hits} hits");
+    let (status, body) = http(
+        port,
+        "GET",
+        &format!("/api/explore/ray?generation={generation}&level=full&col=48&row=0"),
+        "",
+    );
+    assert_eq!(status, 400, "{}", String::from_utf8_lossy(&body));
+
+    // The map for that event: the ball at rest where the scene puts it, the horizon of an
+    // observer off the axis (no circle about it), a bad event refused naming the field.
+    let (status, body) = http(
+        port,
+        "GET",
+        "/api/explore/map?t=1.5&x=0.25&y=-0.125&z=0.0625",
+        "",
+    );
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    let map = json(&body);
+    assert_eq!(map["horizon_radius"], 2.0);
+    assert_eq!(map["horizon"].as_array().unwrap().len(), 256);
+    assert_eq!(map["time_range"], serde_json::json!([-28.5, 1.5]));
+    let ball = &map["objects"][0];
+    assert_eq!(
+        (ball["name"].as_str(), ball["moving"].as_bool()),
+        (Some("ball"), Some(false))
+    );
+    assert_eq!(
+        (ball["at"]["x"].as_f64(), ball["at"]["y"].as_f64()),
+        (Some(1.0), Some(0.0))
+    );
+    let (status, body) = http(port, "GET", "/api/explore/map?t=1.5&x=0&y=5e6&z=0", "");
+    assert_eq!(status, 400);
+    assert!(json(&body)["error"].as_str().unwrap().contains("event.y"));
+
+    // The keyframe saved for the event puts a fly-through's frame there: a one-frame
+    // sequence with it writes the records of `godel render` of that observer.
+    let (status, body) = http(port, "POST", "/api/explore/keyframe?frame=0", event_json);
+    let keyframe = String::from_utf8(body).unwrap();
+    assert_eq!(status, 200, "{keyframe}");
+    assert!(keyframe.contains("[keyframe.observer]"), "{keyframe}");
+    let script = dir.path().join("fly.toml");
+    std::fs::write(
+        &script,
+        format!(
+            "output = \"seq\"\nframes = 1\nfps = 1.0\n[trace]\nscene = \"s.toml\"\n\
+             keep_data = true\n[settings]\nshaders = [\"texture\"]\n{keyframe}"
+        ),
+    )
+    .unwrap();
+    let o = common::godel(&["sequence", script.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{o:?}");
+    let o = common::render(&moved, &out, &["-q"]);
+    assert!(o.status.success(), "{o:?}");
+    let direct = datafile::DataFile::read(&out.join("static-sphere.exr")).unwrap();
+    let framed = datafile::DataFile::read(&dir.path().join("seq/frame_0000.exr")).unwrap();
+    assert_eq!(framed.records, direct.records);
 }
 
 #[test]

@@ -12,6 +12,7 @@
 //! - [`lighting`]: direct light from point sources by shadow rays.
 //! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
 //!   `--part i/N` part files and their merge.
+//! - [`map`]: what the explore map draws (horizon, balls and their tracks, a pixel's ray).
 
 // `!(a < b)` is how this crate writes "not a < b, NaN included" (a NaN must fail the
 // test); per-axis loops over [f64; 3]; `Worldline::Free` is large, and boxing it would
@@ -28,6 +29,7 @@ pub mod driver;
 pub mod falling;
 pub mod intersect;
 pub mod lighting;
+pub mod map;
 pub mod part;
 pub mod plan;
 pub mod reject;

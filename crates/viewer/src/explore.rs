@@ -16,7 +16,8 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 
-use datafile::DataFile;
+use datafile::{DataFile, PixelRecord};
+use render::map::{LightRay, Map};
 use serde::{Deserialize, Serialize};
 
 /// An event of the observer: coordinate time and pseudo-Cartesian position (the scene file's
@@ -88,6 +89,14 @@ pub trait FrameSource: Send + Sync + 'static {
         level: Level,
         cancel: &AtomicBool,
     ) -> Result<Option<DataFile>, String>;
+    /// What the explore map shows for an observer at `event`: its horizon, the balls at its
+    /// time and their tracks ([`render::map`]); `Err` says why it cannot be made.
+    fn map(&self, event: ObserverEvent) -> Result<Map, String>;
+    /// The light ray of the pixel whose record is `record`, in a frame seen from `event`.
+    fn light_ray(&self, event: ObserverEvent, record: &PixelRecord) -> LightRay;
+    /// A sequence-script keyframe (TOML) at `frame` that puts the scene's observer (its
+    /// velocity and axes, the camera's fields of view) at `event`.
+    fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String>;
 }
 
 /// A frame made for a request.
@@ -121,7 +130,10 @@ struct Slots {
 
 struct Shared {
     slots: Mutex<Slots>,
+    /// Wakes the worker (a request, or the end).
     wake: Condvar,
+    /// Wakes those waiting for a frame (a frame kept, or an error).
+    kept: Condvar,
     source: Box<dyn FrameSource>,
 }
 
@@ -142,6 +154,7 @@ impl Explorer {
         let shared = Arc::new(Shared {
             slots: Mutex::new(Slots::default()),
             wake: Condvar::new(),
+            kept: Condvar::new(),
             source: Box::new(source),
         });
         let worker = shared.clone();
@@ -181,6 +194,33 @@ impl Explorer {
         Ok(generation)
     }
 
+    /// Waits until the newest generation has a frame (its coarse one first) and returns it,
+    /// or says why it could not be traced. For the start, before the page asks: the server
+    /// opens on the explorer's own first frame instead of tracing it twice.
+    pub fn first_frame(&self) -> Result<Arc<Frame>, String> {
+        let mut slots = self.shared.lock();
+        loop {
+            if let Some(why) = &slots.error {
+                return Err(why.clone());
+            }
+            if let Some(frame) = slots
+                .latest
+                .as_ref()
+                .filter(|f| f.generation == slots.generation)
+            {
+                return Ok(frame.clone());
+            }
+            if slots.generation == 0 {
+                return Err("no event was asked for".into());
+            }
+            slots = self
+                .shared
+                .kept
+                .wait(slots)
+                .unwrap_or_else(|e| e.into_inner());
+        }
+    }
+
     /// The newest request's generation (0 before any).
     pub fn generation(&self) -> u64 {
         self.shared.lock().generation
@@ -207,6 +247,11 @@ impl Explorer {
     /// Why the newest generation could not be traced, if it could not.
     pub fn error(&self) -> Option<String> {
         self.shared.lock().error.clone()
+    }
+
+    /// The frame source (for the map, light rays and keyframes).
+    pub fn source(&self) -> &dyn FrameSource {
+        self.shared.source.as_ref()
     }
 }
 
@@ -258,12 +303,14 @@ fn work(shared: &Shared) {
                     });
                     let replaced = slots.latest.replace(frame);
                     slots.coarse = replaced.filter(|f| f.generation == generation);
+                    shared.kept.notify_all();
                 }
                 Ok(None) => break,
                 Err(why) => {
                     let mut slots = shared.lock();
                     if slots.generation == generation {
                         slots.error = Some(why);
+                        shared.kept.notify_all();
                     }
                     break;
                 }

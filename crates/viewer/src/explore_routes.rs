@@ -6,6 +6,9 @@
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
 //! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the coarse frame of the newest's generation |
+//! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
+//! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
+//! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
 //! | `GET /api/pixel?col=C&row=R` | as in [`crate::routes`], the record of a pixel of the newest frame |
 //!
 //! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
@@ -17,7 +20,7 @@ use std::sync::{Arc, Mutex};
 use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{DefaultBodyLimit, Path, Query, State};
-use axum::http::StatusCode;
+use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{middleware, Json, Router};
@@ -77,6 +80,9 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/event", post(event))
         .route("/api/explore/frame", get(frame))
         .route("/api/explore/channel/{name}", get(channel))
+        .route("/api/explore/map", get(map))
+        .route("/api/explore/ray", get(ray))
+        .route("/api/explore/keyframe", post(keyframe))
         .route("/api/pixel", get(pixel))
         .with_state(state)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
@@ -98,8 +104,9 @@ async fn info(State(state): State<Arc<ExploreState>>) -> Response {
     (no_store(), Json(body)).into_response()
 }
 
-async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
-    let mut json = serde_json::Deserializer::from_slice(&body);
+/// The event of a request body (`{"t", "x", "y", "z"}`), refused naming the field.
+fn event_body(body: &[u8]) -> Result<ObserverEvent, ApiError> {
+    let mut json = serde_json::Deserializer::from_slice(body);
     let event: ObserverEvent = serde_path_to_error::deserialize(&mut json).map_err(|e| {
         let path = e.path().to_string();
         if path == "." {
@@ -110,6 +117,11 @@ async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Re
     })?;
     json.end()
         .map_err(|e| ApiError::bad_request(format!("event: {e}")))?;
+    Ok(event)
+}
+
+async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
+    let event = event_body(&body)?;
     let generation = state
         .explorer
         .request(event)
@@ -141,6 +153,14 @@ async fn frame(State(state): State<Arc<ExploreState>>) -> Response {
     (no_store(), Json(body)).into_response()
 }
 
+/// The answer for a frame that is no longer kept.
+fn gone(generation: u64, level: Level) -> ApiError {
+    ApiError::new(
+        StatusCode::GONE,
+        format!("frame {generation} ({level:?}) is no longer the newest; ask /api/explore/frame"),
+    )
+}
+
 /// `?generation=G&level=coarse|full`.
 #[derive(Deserialize)]
 struct ChannelQuery {
@@ -155,19 +175,10 @@ async fn channel(
 ) -> Result<Response, ApiError> {
     let Query(q) =
         query.map_err(|e| ApiError::bad_request(format!("channel: {}", e.body_text())))?;
-    let gone = || {
-        ApiError::new(
-            StatusCode::GONE,
-            format!(
-                "frame {} ({:?}) is no longer the newest; ask /api/explore/frame",
-                q.generation, q.level
-            ),
-        )
-    };
     let frame = state
         .explorer
         .frame(q.generation, q.level)
-        .ok_or_else(gone)?;
+        .ok_or_else(|| gone(q.generation, q.level))?;
     let Some(channel) = Channel::parse(&name, frame.data.lights.len()) else {
         return Err(ApiError::new(
             StatusCode::NOT_FOUND,
@@ -191,4 +202,106 @@ async fn pixel(
     let viewer = state.viewer.clone();
     let frame = viewer.work().admit()?.run(move || state.newest()).await??;
     crate::routes::pixel(State(frame), query).await
+}
+
+/// `GET /api/explore/map?t=T&x=X&y=Y&z=Z`.
+async fn map(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<ObserverEvent>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(event) =
+        query.map_err(|e| ApiError::bad_request(format!("map: {}", e.body_text())))?;
+    if let Some(why) = event.refusal(state.explorer.bound()) {
+        return Err(ApiError::bad_request(why));
+    }
+    let work = state.viewer.work().admit()?;
+    let map = work
+        .run(move || state.explorer.source().map(event))
+        .await?
+        .map_err(ApiError::bad_request)?;
+    Ok((no_store(), Json(map)).into_response())
+}
+
+/// `?generation=G&level=L&col=C&row=R`.
+#[derive(Deserialize)]
+struct RayQuery {
+    generation: u64,
+    level: Level,
+    col: usize,
+    row: usize,
+}
+
+/// `GET /api/explore/ray`: the light ray of a pixel of a frame, with the pixel's record.
+async fn ray(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<RayQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("ray: {}", e.body_text())))?;
+    let frame = state
+        .explorer
+        .frame(q.generation, q.level)
+        .ok_or_else(|| gone(q.generation, q.level))?;
+    let Some(i) = crate::state::picture_sample(&frame.data, q.col, q.row) else {
+        let (w, h) = frame.data.picture_size();
+        return Err(ApiError::bad_request(format!(
+            "pixel ({}, {}) is outside the {w}×{h} image",
+            q.col, q.row
+        )));
+    };
+    let work = state.viewer.work().admit()?;
+    let body = work
+        .run(move || {
+            let record = frame.data.records[i];
+            let ray = state.explorer.source().light_ray(frame.event, &record);
+            serde_json::json!({
+                "col": q.col,
+                "row": q.row,
+                "status": crate::state::status_name(record.status),
+                "object": (record.object >= 0).then_some(record.object),
+                "points": ray.points,
+                "emission": ray.emission,
+                "travel_time": ray.travel_time,
+            })
+        })
+        .await?;
+    Ok((no_store(), Json(body)).into_response())
+}
+
+/// `?frame=N` (default 0).
+#[derive(Deserialize)]
+struct KeyframeQuery {
+    #[serde(default)]
+    frame: u32,
+}
+
+/// `POST /api/explore/keyframe?frame=N`: the scene's observer at the body's event, as a
+/// sequence-script keyframe.
+async fn keyframe(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<KeyframeQuery>, QueryRejection>,
+    body: Bytes,
+) -> Result<Response, ApiError> {
+    let Query(q) =
+        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let event = event_body(&body)?;
+    if let Some(why) = event.refusal(state.explorer.bound()) {
+        return Err(ApiError::bad_request(why));
+    }
+    let text = state
+        .explorer
+        .source()
+        .keyframe(event, q.frame)
+        .map_err(ApiError::bad_request)?;
+    let headers = [
+        (
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/toml; charset=utf-8"),
+        ),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+        (
+            header::CONTENT_DISPOSITION,
+            crate::responses::attachment(&state.viewer, "observer-keyframe.toml"),
+        ),
+    ];
+    Ok((headers, text).into_response())
 }

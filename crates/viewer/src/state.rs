@@ -232,16 +232,10 @@ impl ViewerState {
         shading.image_with(&self.channels)
     }
 
-    /// The record of picture pixel (`col`, `row`), or `None` outside the picture. In an
-    /// anti-aliased file (s×s samples per pixel) that is the sample at (⌊s/2⌋, ⌊s/2⌋) of the
-    /// pixel's block, the one nearest its centre.
+    /// The record of picture pixel (`col`, `row`) ([`picture_sample`]), or `None` outside
+    /// the picture.
     pub fn pixel(&self, col: usize, row: usize) -> Option<PixelInfo> {
-        let (w, h) = self.data.picture_size();
-        if col >= w || row >= h {
-            return None;
-        }
-        let s = self.data.supersample();
-        let i = self.data.index(s * col + s / 2, s * row + s / 2);
+        let i = picture_sample(&self.data, col, row)?;
         let r = self.data.records.get(i)?;
         let angles = self.camera.as_ref().and_then(|c| {
             shade::marks::pixel_angles(c, u32::try_from(col).ok()?, u32::try_from(row).ok()?)
@@ -285,4 +279,16 @@ pub fn status_name(status: RayStatus) -> &'static str {
         RayStatus::NotTraced => "not traced",
         RayStatus::WorkLimit => "work limit",
     }
+}
+
+/// The index of the record that stands for picture pixel (`col`, `row`) of `data`, or `None`
+/// outside the picture: in an anti-aliased file (s×s samples per pixel) the sample at
+/// (⌊s/2⌋, ⌊s/2⌋) of the pixel's block, the one nearest its centre.
+pub fn picture_sample(data: &DataFile, col: usize, row: usize) -> Option<usize> {
+    let (w, h) = data.picture_size();
+    if col >= w || row >= h {
+        return None;
+    }
+    let s = data.supersample();
+    Some(data.index(s * col + s / 2, s * row + s / 2))
 }

@@ -8,8 +8,9 @@ use std::time::Duration;
 
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
-use datafile::DataFile;
+use datafile::{DataFile, PixelRecord};
 use http_body_util::BodyExt;
+use render::map::{LightRay, Map, MapPoint};
 use tower::ServiceExt;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
@@ -78,6 +79,42 @@ impl FrameSource for Fake {
         data.height = h;
         data.records = vec![record; w * h];
         Ok(Some(data))
+    }
+    /// A map whose only content is the event it was made for (in `time_range`).
+    fn map(&self, event: ObserverEvent) -> Result<Map, String> {
+        let e = MapPoint {
+            t: event.t,
+            x: event.x,
+            y: event.y,
+            z: event.z,
+            r: 0.0,
+        };
+        Ok(Map {
+            a: Some(1.0),
+            event: e,
+            horizon_radius: Some(2.0),
+            horizon: vec![],
+            time_range: [event.t - 1.0, event.t],
+            objects: vec![],
+        })
+    }
+    /// A "ray" of two points: the event and (t_emit, 0, 0, 0) of the record.
+    fn light_ray(&self, event: ObserverEvent, record: &PixelRecord) -> LightRay {
+        let point = |t| MapPoint {
+            t,
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+            r: 0.0,
+        };
+        LightRay {
+            points: vec![point(event.t), point(f64::from(record.t_emit))],
+            emission: None,
+            travel_time: None,
+        }
+    }
+    fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
+        Ok(format!("frame {frame} at t = {}", event.t))
     }
 }
 
@@ -161,6 +198,17 @@ fn a_newer_request_cancels_the_older_and_is_never_overwritten_by_it() {
             (2.0, Level::Full)
         ]
     );
+}
+
+#[test]
+fn the_first_frame_is_the_newest_generations_coarse_frame_or_its_error() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    assert!(explorer.first_frame().is_err(), "no event asked yet");
+    explorer.request(event(3.0)).unwrap();
+    let first = explorer.first_frame().unwrap();
+    assert_eq!((first.generation, first.event.t), (1, 3.0));
+    // Coarse unless the full frame was already done.
+    assert!(first.level == Level::Coarse || explorer.latest().unwrap().level == Level::Full);
 }
 
 #[test]
@@ -260,6 +308,53 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         (Some("hit"), Some(-4.0))
     );
     assert_eq!(record["g"], 2.0);
+    // The map's ray of a pixel of that frame (the fake's: from the event to t_emit), for the
+    // frame's event; a pixel outside the frame is refused.
+    let ray = "/api/explore/ray?generation=1&level=full&col=7&row=3";
+    let (status, answer, _) = send(&app, common::get(ray)).await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(answer["points"][0]["t"], 4.0);
+    assert_eq!(answer["points"][1]["t"], -4.0);
+    assert_eq!(
+        (answer["status"].as_str(), answer["object"].as_i64()),
+        (Some("hit"), Some(0))
+    );
+    let outside = format!(
+        "/api/explore/ray?generation=1&level=full&col={}&row=0",
+        FULL.0
+    );
+    assert_eq!(
+        send(&app, common::get(&outside)).await.0,
+        StatusCode::BAD_REQUEST
+    );
+    // The map is made for the event asked; bad events are refused naming the field.
+    let (status, map, _) = send(&app, common::get("/api/explore/map?t=4&x=0.5&y=0&z=-1")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        (map["event"]["x"].as_f64(), map["event"]["z"].as_f64()),
+        (Some(0.5), Some(-1.0))
+    );
+    for (query, field) in [
+        ("t=4&x=0&y=NaN&z=0", "event.y"),
+        ("t=4&x=0&y=0&z=1e9", "event.z"),
+        ("t=4&x=0&y=0", "z"),
+    ] {
+        let (status, answer, _) =
+            send(&app, common::get(&format!("/api/explore/map?{query}"))).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{query}");
+        let message = answer["error"].as_str().unwrap();
+        assert!(message.contains(field), "{field} not in {message}");
+    }
+    let (status, _, text) = send(&app, common::post("/api/explore/keyframe?frame=3", body)).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(String::from_utf8(text).unwrap(), "frame 3 at t = 4");
+    let bad = r#"{"t": 4, "x": 0.5, "y": 0}"#;
+    assert_eq!(
+        send(&app, common::post("/api/explore/keyframe", bad))
+            .await
+            .0,
+        StatusCode::BAD_REQUEST
+    );
     // The coarse frame of the newest generation is still served after its full frame (a page
     // may be fetching it); frames of an older generation are gone once a newer one has a frame.
     let coarse = "/api/explore/channel/t_emit?generation=1&level=coarse";
@@ -279,6 +374,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     }
     for stale in [
         coarse,
+        ray,
         "/api/explore/channel/t_emit?generation=1&level=full",
     ] {
         assert_eq!(
