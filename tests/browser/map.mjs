@@ -95,9 +95,14 @@ try {
   await open(page, url);
   result.map_hidden = await page.evaluate(() => document.getElementById('map-panel').hidden);
   result.before = await settled(0);
-  result.map = await page.evaluate(() => window.godelViewer.explore.map.fetched);
+  result.map = await page.evaluate(() => {
+    const m = window.godelViewer.explore.map.fetched;
+    return { horizon_points: m.horizon.length, objects: m.objects.map((o) => o.name) };
+  });
   result.hover_before = await hover(result.before);
   await savePicture(page, join(outDir, 'before.rgba'));
+
+  result.console_errors_before_drag = [...consoleErrors];
 
   // Drag the observer: the map's window stays put while dragging, so the drop point's map
   // coordinates follow from two points of toScreen taken before.

