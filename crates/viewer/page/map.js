@@ -135,18 +135,24 @@ function polyline(g, points, colour, width, dash = []) {
 }
 
 // Arrowheads along a screen polyline, every `every` pixels of its length, pointing from its
-// last point to its first (light runs from the emission to the observer).
-function arrows(g, points, colour, every = 60) {
+// last point to its first (light runs from the emission to the observer); only on the last
+// `reach` pixels before the first point, so that a ray looping many times stays legible.
+function arrows(g, points, colour, every = 60, reach = 420) {
+  const length = (i) => Math.hypot(points[i][0] - points[i - 1][0], points[i][1] - points[i - 1][1]);
+  let total = 0;
+  for (let i = 1; i < points.length; i += 1) total += length(i);
   g.fillStyle = colour;
-  let run = every / 2;
+  let done = 0;              // length from the last point to points[i]
+  let next = every / 2;      // where the next arrow goes, measured from the last point
+  next = Math.max(next, total - reach + every / 2);
   for (let i = points.length - 1; i > 0; i -= 1) {
     const [x0, y0] = points[i];
     const [x1, y1] = points[i - 1];
-    const len = Math.hypot(x1 - x0, y1 - y0);
+    const len = length(i);
     if (len === 0) continue;
     const [ux, uy] = [(x1 - x0) / len, (y1 - y0) / len];
-    let at = every - run;
-    while (at <= len) {
+    while (next <= done + len && next < total - 8) {
+      const at = next - done;
       const [x, y] = [x0 + ux * at, y0 + uy * at];
       g.beginPath();
       g.moveTo(x + ux * 6, y + uy * 6);
@@ -154,9 +160,9 @@ function arrows(g, points, colour, every = 60) {
       g.lineTo(x - ux * 4 + uy * 5, y - uy * 4 - ux * 5);
       g.closePath();
       g.fill();
-      at += every;
+      next += every;
     }
-    run = (run + len) % every;
+    done += len;
   }
 }
 
