@@ -73,7 +73,11 @@ fn check_hover(seen: &serde_json::Value, hover: &serde_json::Value, event: [f64;
     let record = &hover["record"];
     let points = ray["points"].as_array().unwrap();
     assert!(points.len() >= 2, "{ray}");
-    assert!(same_event(&points[0], event, 1e-3), "{} vs {event:?}", points[0]);
+    assert!(
+        same_event(&points[0], event, 1e-3),
+        "{} vs {event:?}",
+        points[0]
+    );
     assert_eq!(ray["status"], record["status"], "{seen}");
     if record["status"] == "hit" {
         let emission = [
@@ -146,7 +150,10 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
     // server answers 410 Gone (the page then takes the next frame). No other error.
     assert_eq!(seen["console_errors_before_drag"], serde_json::json!([]));
     for message in seen["console_errors"].as_array().unwrap() {
-        assert!(message.as_str().unwrap().contains("410 (Gone)"), "{message}");
+        assert!(
+            message.as_str().unwrap().contains("410 (Gone)"),
+            "{message}"
+        );
     }
     assert_only_local_requests(&seen, &url);
     let map = &seen["map"];
@@ -176,7 +183,10 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
         assert!((after[i] - before[i]).abs() > 10.0 * pixel, "{seen}");
     }
     assert_eq!((after[0], after[3]), (before[0], before[3]));
-    assert!(same_event(&seen["after"]["frame_event"], after, 0.0), "{seen}");
+    assert!(
+        same_event(&seen["after"]["frame_event"], after, 0.0),
+        "{seen}"
+    );
     assert!(same_event(&seen["map_after"], after, 0.0), "{seen}");
     let fields: Vec<f64> = seen["after"]["fields"]
         .as_array()
