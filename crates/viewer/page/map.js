@@ -412,7 +412,8 @@ export function createMap(top, side, legend, hooks) {
 
   let legendKey = null;
   function drawLegend(m) {
-    const key = JSON.stringify(m.objects.map((o) => [o.index, o.name, o.moving]));
+    const key = JSON.stringify([m.horizon.length > 1,
+      ...m.objects.map((o) => [o.index, o.name, o.moving])]);
     if (key === legendKey) return;
     legendKey = key;
     const line = (colour, style, words) => {
@@ -425,7 +426,9 @@ export function createMap(top, side, legend, hooks) {
     };
     legend.replaceChildren(
       line(COLOURS.observer, 'solid', 'the observer (drag it on the top view)'),
-      line(COLOURS.horizon, 'dashed', 'its optical horizon, r = 2a: no light from beyond'),
+      ...(m.horizon.length > 1
+        ? [line(COLOURS.horizon, 'dashed', 'its optical horizon, r = 2a: no light from beyond')]
+        : []),
       ...m.objects.map((o) => line(objectColour(o.index), 'solid',
         `${o.name}: worldline track${o.moving ? ' (free fall)' : ''}; disc: at the observer\u2019s t`)),
       line(COLOURS.ray, 'solid', 'light ray of the hovered pixel: from its emission (ring) to '
