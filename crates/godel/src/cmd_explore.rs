@@ -20,10 +20,11 @@ use render::map::{light_ray, map, LightRay, Map};
 use render::plan::Plan;
 use render::tiles::Assembler;
 use scene::Scene;
-use toml::{Table, Value};
+use toml::Table;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 
 use crate::args::{thread_pool, usage};
+use crate::flight::section;
 use crate::serve::{load_error, ServeArgs};
 
 /// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).
@@ -109,20 +110,6 @@ fn edited(scene: &Scene, edit: impl FnOnce(&mut Table)) -> anyhow::Result<Scene>
     edit(&mut table);
     let text = toml::to_string(&table)?;
     Ok(Scene::from_str(&text, &file)?)
-}
-
-/// The table at `key` of `table`, made a table when missing or not one.
-fn section<'a>(table: &'a mut Table, key: &str) -> &'a mut Table {
-    let entry = table
-        .entry(key)
-        .or_insert_with(|| Value::Table(Table::new()));
-    if !entry.is_table() {
-        *entry = Value::Table(Table::new());
-    }
-    match entry {
-        Value::Table(t) => t,
-        _ => unreachable!("made a table just above"),
-    }
 }
 
 /// The exact tracer on a scene, as the frame source of explore mode.
