@@ -19,10 +19,12 @@ use render::driver::{Progress, Renderer};
 use render::map::{light_ray, map, LightRay, Map};
 use render::plan::Plan;
 use render::tiles::Assembler;
-use scene::{Scene, TraceMethod};
+use scene::Scene;
+use toml::Table;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 
-use crate::args::thread_pool;
+use crate::args::{thread_pool, usage};
+use crate::flight::section;
 use crate::serve::{load_error, ServeArgs};
 
 /// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).
@@ -37,23 +39,77 @@ pub struct ExploreArgs {
     /// Worker threads for tracing (default: all cores; at most 8 per core).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Trace the full sphere around the observer, WIDTH × WIDTH/2 pixels of one ray each,
+    /// instead of the scene's camera: the page can then look around, zoom and change the
+    /// velocity instantly between traces (as `godel view` of a sphere file). WIDTH is even,
+    /// 8 to 8192.
+    #[arg(long, value_name = "WIDTH")]
+    pub sphere: Option<u32>,
+}
+
+/// The largest `--sphere` width.
+const MAX_SPHERE_WIDTH: u32 = 8192;
+
+/// The scene with its camera replaced by the full sphere `width` × `width`/2, one ray per
+/// pixel.
+fn with_sphere(scene: &Scene, width: u32) -> anyhow::Result<Scene> {
+    if width % 2 != 0 || !(8..=MAX_SPHERE_WIDTH).contains(&width) {
+        return Err(usage(
+            &format!("--sphere {width}"),
+            format!("the width must be even, from 8 to {MAX_SPHERE_WIDTH}"),
+        ));
+    }
+    edited(scene, |table| {
+        let mut camera = Table::new();
+        camera.insert("kind".into(), "sphere".into());
+        camera.insert("width".into(), i64::from(width).into());
+        camera.insert("height".into(), i64::from(width / 2).into());
+        table.insert("camera".into(), camera.into());
+    })
 }
 
 /// The scene with its observer moved to `event` and traced by the exact tracer (Gödel's
 /// universe; Minkowski space has only the numeric one); for [`Level::Coarse`] with the
 /// camera's width and height divided by [`COARSE_DIVISOR`] and one ray per pixel.
-pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> Scene {
-    let mut moved = scene.clone();
-    moved.observer.event = event.event();
-    moved.trace.method = TraceMethod::Exact;
-    if level == Level::Coarse {
-        let (w, h) = (scene.camera.width(), scene.camera.height());
-        moved.camera = scene
-            .camera
-            .with_size((w / COARSE_DIVISOR).max(1), (h / COARSE_DIVISOR).max(1));
-        moved.samples = 1;
-    }
-    moved
+pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> anyhow::Result<Scene> {
+    let godel = scene.metric.godel_a().is_some();
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    edited(scene, |table| {
+        let observer = section(table, "observer");
+        observer.insert("time".into(), event.t.into());
+        let mut position = Table::new();
+        for (k, v) in [("x", event.x), ("y", event.y), ("z", event.z)] {
+            position.insert(k.into(), v.into());
+        }
+        observer.insert("position".into(), position.into());
+        if godel {
+            section(table, "trace").insert("method".into(), "exact".into());
+        }
+        if level == Level::Coarse {
+            let camera = section(table, "camera");
+            let smaller = |side: u32| i64::from((side / COARSE_DIVISOR).max(1));
+            camera.insert("width".into(), smaller(w).into());
+            camera.insert("height".into(), smaller(h).into());
+            camera.insert("samples".into(), 1.into());
+        }
+    })
+}
+
+/// The scene read again from its text after `edit`, with the usual checks: the data files
+/// embed the scene they were traced from (observer, camera size, method). Relative paths
+/// (image textures) stay relative to the scene file.
+fn edited(scene: &Scene, edit: impl FnOnce(&mut Table)) -> anyhow::Result<Scene> {
+    let file = match &scene.source_path {
+        Some(path) => path.display().to_string(),
+        None => format!("{}.toml", scene.name),
+    };
+    let mut table: Table = scene
+        .source_text
+        .parse()
+        .map_err(|e| anyhow::anyhow!("{file}: cannot re-read the scene: {e}"))?;
+    edit(&mut table);
+    let text = toml::to_string(&table)?;
+    Ok(Scene::from_str(&text, &file)?)
 }
 
 /// The exact tracer on a scene, as the frame source of explore mode.
@@ -84,7 +140,7 @@ impl SceneFrames {
         level: Level,
         cancel: &AtomicBool,
     ) -> anyhow::Result<Option<DataFile>> {
-        let scene = scene_at(&self.scene, event, level);
+        let scene = scene_at(&self.scene, event, level)?;
         let renderer = Renderer::new(&scene)?;
         let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
         let stop = Cancel(cancel);
@@ -134,7 +190,10 @@ impl FrameSource for SceneFrames {
 pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let ip = args.serve.ip()?;
     let pool = thread_pool(args.threads)?;
-    let scene = Scene::from_file(&args.scene)?;
+    let mut scene = Scene::from_file(&args.scene)?;
+    if let Some(width) = args.sphere {
+        scene = with_sphere(&scene, width)?;
+    }
     shade::textures_for_scene(&scene)?;
     let frames = SceneFrames::new(scene, pool);
     // The viewer opens on the explorer's first frame (the coarse one at the scene's own
@@ -189,10 +248,10 @@ mod tests {
     #[test]
     fn coarse_is_the_same_camera_smaller_and_full_is_the_scene_moved() {
         let scene = small_scene();
-        let coarse = scene_at(&scene, event(2.0, 0.3), Level::Coarse);
+        let coarse = scene_at(&scene, event(2.0, 0.3), Level::Coarse).unwrap();
         assert_eq!((coarse.camera.width(), coarse.camera.height()), (4, 2));
         assert_eq!(coarse.camera.kind(), scene.camera.kind());
-        let full = scene_at(&scene, event(2.0, 0.3), Level::Full);
+        let full = scene_at(&scene, event(2.0, 0.3), Level::Full).unwrap();
         assert_eq!(full.observer.event, Event::new(2.0, 0.3, 0.0, 0.0));
         assert_eq!(full.camera, scene.camera);
         assert_eq!(full.samples, scene.samples);

@@ -170,8 +170,8 @@ fn one_line(e: &scene::SceneError) -> String {
     scene::one_line(&e.to_string())
 }
 
-/// The table at `key` of `table`, made a table when missing.
-fn section<'a>(table: &'a mut Table, key: &str) -> &'a mut Table {
+/// The table at `key` of `table`, made a table when missing (or not a table).
+pub fn section<'a>(table: &'a mut Table, key: &str) -> &'a mut Table {
     let entry = table
         .entry(key)
         .or_insert_with(|| Value::Table(Table::new()));

@@ -9,7 +9,7 @@ use std::time::Duration;
 
 mod common;
 
-use common::{port_of, start_server, Server};
+use common::{port_of, start_server, start_server_with, Server};
 
 /// scenes/static-sphere.toml at 48×8 pixels of 2×2 rays, its observer at `observer` (the
 /// lines of the `[observer]` table for time and position).
@@ -192,7 +192,10 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
                 // (to the last bits that serde_json's float parsing may change)
                 let emission = point(&ray["emission"]);
                 for k in 0..4 {
-                    assert!((emission[k] - expected[k]).abs() < 1e-12, "({col}, {row}): {ray}");
+                    assert!(
+                        (emission[k] - expected[k]).abs() < 1e-12,
+                        "({col}, {row}): {ray}"
+                    );
                 }
                 let last = point(points.last().unwrap());
                 for k in 0..4 {
@@ -285,4 +288,56 @@ fn a_bad_scene_is_refused_before_serving() {
     let o = common::godel(&["explore", "no-such-scene.toml", "--port", "0"]);
     assert_ne!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no-such-scene.toml"));
+}
+
+/// `--sphere W`: the frames are the full sphere W × W/2 around the observer, one ray each,
+/// so the page can look around in them; the data file says so (its embedded camera), and
+/// a width that is odd or out of range is refused before anything is traced or served.
+#[test]
+fn explore_sphere_traces_the_full_sphere_the_page_can_look_around_in() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        scene_text("time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }"),
+    )
+    .unwrap();
+    let (server, url) = start_server_with("explore", &scene, dir.path(), &["--sphere", "32"]);
+    let port = port_of(&url);
+    let (status, body) = http(port, "GET", "/api/view", "");
+    assert_eq!(status, 200);
+    let view = json(&body);
+    assert_eq!(view["sphere"], true, "{view}");
+    let mut frame = serde_json::Value::Null;
+    for _ in 0..6000 {
+        frame = json(&http(port, "GET", "/api/explore/frame", "").1)["frame"].clone();
+        if frame["level"] == "full" {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(
+        (
+            frame["width"].as_u64(),
+            frame["height"].as_u64(),
+            frame["supersample"].as_u64()
+        ),
+        (Some(32), Some(16), Some(1)),
+        "{frame}"
+    );
+    drop(server);
+    for bad in ["31", "4", "10000"] {
+        let o = common::godel(&[
+            "explore",
+            scene.to_str().unwrap(),
+            "--port",
+            "0",
+            "--sphere",
+            bad,
+        ]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {stderr}");
+        assert!(o.stdout.is_empty(), "nothing served");
+        assert!(stderr.contains(&format!("--sphere {bad}")), "{stderr}");
+    }
 }

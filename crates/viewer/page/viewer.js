@@ -342,12 +342,16 @@ function hoverAt(event) {
 
 async function fetchHover() {
   if (hoverBusy || hoverWanted === null) return;
-  const wanted = hoverWanted;
+  // In explore mode, the record of the frame on the GPU (not of a newer one still loading).
+  const frame = viewer.explore?.shown ?? null;
+  const wanted = { ...hoverWanted, frame };
   if (hoverShown && JSON.stringify(hoverShown) === JSON.stringify(wanted)) return;
   hoverBusy = true;
   try {
     const [col, row] = wanted.pixel;
-    const response = await fetch(`/api/pixel?col=${col}&row=${row}`);
+    const which = frame ? `&generation=${frame.generation}&level=${frame.level}` : '';
+    const response = await fetch(`/api/pixel?col=${col}&row=${row}${which}`);
+    if (response.status === 410) return; // that frame was replaced meanwhile: hover again
     if (!response.ok) {
       showError(await errorText(response));
       return;

@@ -9,7 +9,7 @@
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
-//! | `GET /api/pixel?col=C&row=R` | as in [`crate::routes`], the record of a pixel of the newest frame |
+//! | `GET /api/pixel?col=C&row=R[&generation=G&level=L]` | as in [`crate::routes`], the record of a pixel of that frame (the one the page shows; 410 once gone) or of the newest frame |
 //!
 //! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
 //! shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
@@ -27,7 +27,7 @@ use axum::{middleware, Json, Router};
 use serde::Deserialize;
 
 use crate::api_error::{no_store, ApiError};
-use crate::explore::{Explorer, Level, ObserverEvent};
+use crate::explore::{Explorer, Frame, Level, ObserverEvent};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::limit::WorkLimit;
@@ -37,16 +37,16 @@ use crate::state::{ViewerOptions, ViewerState};
 pub struct ExploreState {
     pub viewer: Arc<ViewerState>,
     pub explorer: Explorer,
-    /// The newest frame prepared as a viewer's data file (for pixel records), made on first
-    /// use: (generation, level, state).
+    /// The last frame asked for prepared as a viewer's data file (for pixel records), made
+    /// on first use: (generation, level, state).
     prepared: Mutex<Option<(u64, Level, Arc<ViewerState>)>>,
 }
 
 impl ExploreState {
-    /// The newest frame as a [`ViewerState`] (the first frame's before any), prepared once
-    /// per frame with the first frame's texture folders.
-    fn newest(&self) -> Result<Arc<ViewerState>, ApiError> {
-        let Some(frame) = self.explorer.latest() else {
+    /// `frame` (the newest frame when `None`; the first frame's state before any) as a
+    /// [`ViewerState`], prepared once per frame with the first frame's texture folders.
+    fn prepared(&self, frame: Option<Arc<Frame>>) -> Result<Arc<ViewerState>, ApiError> {
+        let Some(frame) = frame.or_else(|| self.explorer.latest()) else {
             return Ok(self.viewer.clone());
         };
         let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
@@ -194,14 +194,47 @@ async fn channel(
     Ok(crate::gpu_routes::array(bytes))
 }
 
-/// The record of a pixel of the newest frame ([`crate::routes::pixel`] on it).
+/// `?col=C&row=R[&generation=G&level=L]`.
+#[derive(Deserialize)]
+struct PixelQuery {
+    col: usize,
+    row: usize,
+    generation: Option<u64>,
+    level: Option<Level>,
+}
+
+/// The record of a pixel ([`crate::routes::pixel`]) of the frame the page shows (`generation`
+/// and `level`; 410 once it is gone), or of the newest frame when the query names none.
 async fn pixel(
     State(state): State<Arc<ExploreState>>,
-    query: Result<Query<crate::routes::PixelQuery>, QueryRejection>,
+    query: Result<Query<PixelQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
+    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("pixel: {}", e.body_text())))?;
+    let shown = match (q.generation, q.level) {
+        (Some(generation), Some(level)) => Some(
+            state
+                .explorer
+                .frame(generation, level)
+                .ok_or_else(|| gone(generation, level))?,
+        ),
+        (None, None) => None,
+        _ => {
+            return Err(ApiError::bad_request(
+                "pixel: give both generation and level, or neither",
+            ))
+        }
+    };
     let viewer = state.viewer.clone();
-    let frame = viewer.work().admit()?.run(move || state.newest()).await??;
-    crate::routes::pixel(State(frame), query).await
+    let frame = viewer
+        .work()
+        .admit()?
+        .run(move || state.prepared(shown))
+        .await??;
+    let pixel = crate::routes::PixelQuery {
+        col: q.col,
+        row: q.row,
+    };
+    crate::routes::pixel(State(frame), Ok(Query(pixel))).await
 }
 
 /// `GET /api/explore/map?t=T&x=X&y=Y&z=Z`.

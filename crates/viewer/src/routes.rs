@@ -202,8 +202,8 @@ async fn keyframe(
 /// `?col=C&row=R`.
 #[derive(Deserialize)]
 pub struct PixelQuery {
-    col: usize,
-    row: usize,
+    pub col: usize,
+    pub row: usize,
 }
 
 /// `GET /api/pixel`: the record of a pixel of `state`'s data file.

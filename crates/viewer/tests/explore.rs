@@ -308,6 +308,22 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         (Some("hit"), Some(-4.0))
     );
     assert_eq!(record["g"], 2.0);
+    // The record of the frame the page shows, named; both or neither of generation, level.
+    let shown = "/api/pixel?col=7&row=3&generation=1&level=full";
+    let (status, record, _) = send(&app, common::get(shown)).await;
+    assert_eq!((status, record["g"].as_f64()), (StatusCode::OK, Some(2.0)));
+    let coarse_record = "/api/pixel?col=1&row=0&generation=1&level=coarse";
+    let (status, record, _) = send(&app, common::get(coarse_record)).await;
+    assert_eq!(
+        (status, record["g"].as_f64()),
+        (StatusCode::OK, Some(1.0)),
+        "{record}"
+    );
+    let half = "/api/pixel?col=7&row=3&generation=1";
+    assert_eq!(
+        send(&app, common::get(half)).await.0,
+        StatusCode::BAD_REQUEST
+    );
     // The map's ray of a pixel of that frame (the fake's: from the event to t_emit), for the
     // frame's event; a pixel outside the frame is refused.
     let ray = "/api/explore/ray?generation=1&level=full&col=7&row=3";
@@ -375,6 +391,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     for stale in [
         coarse,
         ray,
+        shown,
         "/api/explore/channel/t_emit?generation=1&level=full",
     ] {
         assert_eq!(

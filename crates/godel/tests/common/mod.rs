@@ -213,9 +213,20 @@ impl Drop for Server {
 /// Starts `godel COMMAND FILE --port 0` in `cwd`; returns it and the URL it printed
 /// (`http://127.0.0.1:PORT/`).
 pub fn start_server(command: &str, file: &Path, cwd: &Path) -> (Server, String) {
+    start_server_with(command, file, cwd, &[])
+}
+
+/// [`start_server`] with `extra` arguments after the port.
+pub fn start_server_with(
+    command: &str,
+    file: &Path,
+    cwd: &Path,
+    extra: &[&str],
+) -> (Server, String) {
     use std::io::BufRead;
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_godel"))
         .args([command, file.to_str().unwrap(), "--port", "0"])
+        .args(extra)
         .current_dir(cwd)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::inherit())
