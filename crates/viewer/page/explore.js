@@ -45,10 +45,9 @@ export async function startExplore(viewer) {
   viewer.explore = state;
   // The picture keeps the camera's shape: a coarse frame moves nothing below it (the map).
   const camera = viewer.view && viewer.view.view && viewer.view.view.camera;
-  if (camera && camera.width > 0 && camera.height > 0) {
-    viewer.aspect = camera.width / camera.height;
-    viewer.layout();
-  }
+  if (camera && camera.width > 0 && camera.height > 0) viewer.aspect = camera.width / camera.height;
+  viewer.lookShare = 0.4;
+  viewer.layout();
   $('explore-panel').hidden = false;
   $('map-panel').hidden = false;
   const slider = $('explore-t');

@@ -26,6 +26,8 @@ const viewer = {
   error: null,     // the last error message shown
   aspect: null,    // the picture's width / height for the layout (explore: the camera's, so
                    // that coarse frames keep the place of the full ones)
+  lookShare: 0.6,  // the share of the window's height a look-around view takes (explore: less,
+                   // so that the map below stays in view)
 };
 window.godelViewer = viewer;
 
@@ -94,7 +96,7 @@ function layout() {
   if (fixedSize) {
     css = [fixedSize[0] / dpr, fixedSize[1] / dpr];
   } else if (lookMode()) {
-    css = [room, Math.round(Math.min(window.innerHeight * 0.6, room / 2))];
+    css = [room, Math.round(Math.min(window.innerHeight * viewer.lookShare, room / 2))];
   } else {
     const aspect = viewer.aspect;
     const w = Math.min(room, window.innerHeight * 0.6 * aspect);
@@ -457,8 +459,14 @@ viewer.finish = () => gpu.finish();
 viewer.fetched = () => data.fetched;
 // The WebGL side, for profiling from the console.
 viewer.gpu = () => gpu;
-// The picture pixel [col, row] under a pointer event's clientX, clientY, or null (explore.js).
-viewer.pixelAt = (event) => picturePixel(canvasPoint(event));
+// The data pixel [col, row] under a pointer event's clientX, clientY (looking around: the
+// sphere's pixel seen there), or null (explore.js).
+viewer.pixelAt = (event) => {
+  const q = picturePixel(canvasPoint(event));
+  if (!q || !lookMode()) return q;
+  const at = L.lookPixel(picture().look.view, sphere(), q[0], q[1]);
+  return at ? at.source : null;
+};
 // POSTs `body` to `url` and downloads the answer (explore.js's keyframe).
 viewer.download = download;
 // Lays the page out again (explore.js, after setting `aspect`).
