@@ -43,9 +43,7 @@ export async function startExplore(viewer) {
     error: null,
   };
   viewer.explore = state;
-  // The picture keeps the camera's shape: a coarse frame moves nothing below it (the map).
-  const camera = viewer.view && viewer.view.view && viewer.view.view.camera;
-  if (camera && camera.width > 0 && camera.height > 0) viewer.aspect = camera.width / camera.height;
+  // A look-around view leaves room for the map below it.
   viewer.lookShare = 0.4;
   viewer.layout();
   $('explore-panel').hidden = false;
@@ -126,6 +124,9 @@ export async function startExplore(viewer) {
       if (frame && frame.generation >= state.requested && newer(frame)) {
         const url = (name) => `/api/explore/channel/${name}?generation=${frame.generation}`
           + `&level=${frame.level}`;
+        // The picture keeps the shape of the full frames: a coarse frame (its size rounded)
+        // moves nothing below it, such as the map under a dragging mouse.
+        if (frame.level === 'full') viewer.aspect = frame.width / frame.height;
         if (viewer.showFrame(frame, url)) {
           state.shown = { generation: frame.generation, level: frame.level };
           hover(); // the ray of the pixel under the mouse in the new frame

@@ -24,8 +24,8 @@ const viewer = {
   timeline: {},    // ms from navigation start: described, tables, channels (first load)
   record: null,    // the last pixel record shown
   error: null,     // the last error message shown
-  aspect: null,    // the picture's width / height for the layout (explore: the camera's, so
-                   // that coarse frames keep the place of the full ones)
+  aspect: null,    // the picture's width / height for the layout (explore: the full frames',
+                   // so that coarse frames keep their place)
   lookShare: 0.6,  // the share of the window's height a look-around view takes (explore: less,
                    // so that the map below stays in view)
 };
