@@ -539,6 +539,9 @@ viewer.showFrame = (frame, channelUrl) => {
   if (!pan.fitted) pan.zoom *= viewer.info.width / frame.width;
   Object.assign(viewer.info, { width: frame.width, height: frame.height,
     supersample: frame.supersample });
+  // The camera is the same but for its size (coarse or full): hover directions follow.
+  const camera = viewer.view?.view?.camera;
+  if (camera) Object.assign(camera, { width: frame.width, height: frame.height });
   data.reset(channelUrl);
   layout();
   changed();
