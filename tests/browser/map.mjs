@@ -82,6 +82,13 @@ async function hover(frame) {
     return m.ray !== null && m.ray.col === c && m.ray.row === r;
   }, [col, row]);
   seen.ray = await page.evaluate(() => window.godelViewer.explore.map.ray);
+  // The Pixel panel shows the same pixel, with its direction in the frame's camera.
+  await page.waitForFunction(([c, r]) => {
+    const record = window.godelViewer.record;
+    return record !== null && record.col === c && record.row === r;
+  }, [col, row]);
+  seen.direction = await page.evaluate(() => document
+    .querySelector('#record [data-field="direction"]').textContent);
   seen.ray_pixels = await rayPixels();
   // Leaving the picture clears the ray.
   await page.mouse.move(box.x + box.width - 4, box.y + box.height + 6);

@@ -166,6 +166,21 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
     assert_eq!(seen["hover_before"]["record"]["object_name"], "earth");
     assert_eq!(seen["hover_before"]["record"]["status"], "hit");
     check_hover(&seen, &seen["hover_before"], before);
+    // The Pixel panel's direction is the scene camera's for that pixel (the page knows the
+    // full frame's size, though the server started on a coarse frame).
+    let scene = scene::Scene::from_str(&text, "map-test").unwrap();
+    let n = scene
+        .observer
+        .pixel_direction(&scene.camera, col as u32, row as u32)
+        .unwrap();
+    let shown = &seen["hover_before"]["direction"];
+    assert_ne!(shown, "–", "no direction shown for pixel ({col}, {row})");
+    let [az, el] = super::angles(shown);
+    let [want_az, want_el] = super::azimuth_elevation(n);
+    assert!(
+        (az - want_az).abs() < 0.006 && (el - want_el).abs() < 0.006,
+        "direction shown {az}°, {el}°; the camera's {want_az}°, {want_el}°"
+    );
 
     // Dragging the observer's marker: the new event is the map's point under the drop, the
     // frame shown is traced there, the fields say so, and the picture changed.
