@@ -57,6 +57,8 @@ async function errorText(response) {
 
 // ---- what is on the canvas: the picture's size, and where it lies
 
+// Writes the header line about the file (set at start; its size follows explore frames).
+let describe = () => {};
 let fixedSize = null;      // [w, h] canvas pixels set by a script, else the layout decides
 const pan = { zoom: 1, offset: [0, 0], fitted: true };
 
@@ -492,10 +494,13 @@ async function start() {
   const camera = viewer.view.view?.camera;
   const sampledSphere = info.supersample > 1 && camera && (camera.kind === 'sphere'
     || (camera.kind === 'panorama' && camera.h_fov_deg === 360 && camera.v_fov_deg === 180));
-  $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
-    + (info.supersample > 1 ? ` · ${info.supersample}×${info.supersample} rays per pixel` : '')
-    + (viewer.view.sphere ? ' · full sphere: drag to look around' : '')
-    + (sampledSphere ? ` · no looking around: ${viewer.view.sphere_error}` : '');
+  describe = () => {
+    $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
+      + (info.supersample > 1 ? ` · ${info.supersample}×${info.supersample} rays per pixel` : '')
+      + (viewer.view.sphere ? ' · full sphere: drag to look around' : '')
+      + (sampledSphere ? ` · no looking around: ${viewer.view.sphere_error}` : '');
+  };
+  describe();
   try {
     gpu = new Gpu($('image'));
     data = new Data(gpu, info);
@@ -542,6 +547,7 @@ viewer.showFrame = (frame, channelUrl) => {
   // The camera is the same but for its size (coarse or full): hover directions follow.
   const camera = viewer.view?.view?.camera;
   if (camera) Object.assign(camera, { width: frame.width, height: frame.height });
+  describe();
   data.reset(channelUrl);
   layout();
   changed();
