@@ -47,6 +47,8 @@ export async function startExplore(viewer) {
   viewer.lookShare = 0.4;
   viewer.layout();
   $('explore-panel').hidden = false;
+  document.title = 'godel explore';
+  document.querySelector('header h1').textContent = 'godel explore';
   $('map-panel').hidden = false;
   const slider = $('explore-t');
   slider.min = String(info.start.t - T_SPAN);
