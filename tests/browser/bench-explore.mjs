@@ -1,0 +1,166 @@
+// Benchmarks of `godel explore` (issue 15), for BENCHMARKS.md "Explore". Prints one JSON object.
+// Run through scripts/bench-explore.sh, which starts the server.
+//
+// usage: node bench-explore.mjs URL OUT_DIR event [N]
+//          After the first full frame, posts N (default 10) events one after the other and,
+//          for each, times from the POST to /api/explore/frame reporting that generation's
+//          coarse frame and its full frame, polling every 5 ms (the server's times, not the
+//          page's 100 ms poll). Plain fetch, no browser.
+//        node bench-explore.mjs URL OUT_DIR play [SECONDS] [RATE]
+//          In headless chromium: waits for the page's first full frame, sets the play rate
+//          (default: the page's own), clicks Play, and for SECONDS (default 10) records every
+//          frame the page puts on the GPU (window.godelViewer.explore.shown changes) and every
+//          shading pass: frames per second while playing time, and their levels.
+const [url, outDir, mode, arg1, arg2] = process.argv.slice(2);
+if (!url || !outDir || !['event', 'play'].includes(mode)) {
+  console.error('usage: node bench-explore.mjs URL OUT_DIR event [N] | play [SECONDS] [RATE]');
+  process.exit(2);
+}
+
+const POLL_MS = 5;
+// The longest wait for one frame (a full frame of the reference scene takes ~15 s on 2 idle
+// cores); every wait below is bounded by it.
+const FRAME_TIMEOUT_MS = 600000;
+const sleep = (ms) => new Promise((done) => setTimeout(done, ms));
+const base = url.endsWith('/') ? url : `${url}/`;
+
+async function getJson(path) {
+  const response = await fetch(base + path);
+  const body = await response.json();
+  if (!response.ok) throw new Error(`${path}: ${response.status} ${JSON.stringify(body)}`);
+  return body;
+}
+
+// Polls /api/explore/frame until `generation` has its full frame; calls `seen(level, ms)` the
+// first time each level of it is reported (ms from `t0`).
+async function waitFull(generation, t0, seen = () => {}) {
+  const got = new Set();
+  while (performance.now() - t0 < FRAME_TIMEOUT_MS) {
+    const answer = await getJson('api/explore/frame');
+    if (answer.error && answer.generation === generation) {
+      throw new Error(`generation ${generation}: ${answer.error}`);
+    }
+    const frame = answer.frame;
+    if (frame && frame.generation === generation && !got.has(frame.level)) {
+      got.add(frame.level);
+      seen(frame.level, performance.now() - t0, frame);
+    }
+    if (got.has('full')) return;
+    await sleep(POLL_MS);
+  }
+  throw new Error(`generation ${generation}: no full frame within ${FRAME_TIMEOUT_MS} ms`);
+}
+
+const stats = (values) => {
+  const v = values.filter((x) => x !== null).sort((a, b) => a - b);
+  if (v.length === 0) return null;
+  const mid = Math.floor(v.length / 2);
+  const median = v.length % 2 ? v[mid] : (v[mid - 1] + v[mid]) / 2;
+  return { median: Math.round(median), min: Math.round(v[0]), max: Math.round(v[v.length - 1]),
+    n: v.length };
+};
+
+async function eventMode(n) {
+  const info = await getJson('api/explore/info');
+  const t0 = performance.now();
+  await waitFull(info.generation, t0);
+  const result = { mode: 'event', start: info.start, first_full_wait_ms: Math.round(performance.now() - t0) };
+  const runs = [];
+  for (let i = 1; i <= n; i += 1) {
+    // t steps by 0.37; x by a few hundredths: the observer stays near the axis, well
+    // inside the optical horizon (r = 2a), where the scene is valid.
+    const event = { t: info.start.t + 0.37 * i, x: info.start.x + 0.02 * (i % 4),
+      y: info.start.y, z: info.start.z };
+    const posted = performance.now();
+    const response = await fetch(`${base}api/explore/event`, { method: 'POST',
+      headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(event) });
+    const answer = await response.json();
+    if (!response.ok) throw new Error(`POST ${JSON.stringify(event)}: ${JSON.stringify(answer)}`);
+    const run = { event, generation: answer.generation,
+      post_ms: Math.round(performance.now() - posted), coarse_ms: null, full_ms: null };
+    await waitFull(answer.generation, posted, (level, ms, frame) => {
+      run[`${level}_ms`] = Math.round(ms);
+      run[`${level}_size`] = [frame.width, frame.height];
+    });
+    runs.push(run);
+  }
+  result.coarse_ms = stats(runs.map((r) => r.coarse_ms));
+  result.full_ms = stats(runs.map((r) => r.full_ms));
+  result.full_after_coarse_ms = stats(runs.map((r) => (r.coarse_ms === null ? null
+    : r.full_ms - r.coarse_ms)));
+  result.coarse_missed = runs.filter((r) => r.coarse_ms === null).length;
+  result.runs = runs;
+  return result;
+}
+
+async function playMode(seconds, rate) {
+  const { launch, open } = await import('./launch.mjs');
+  const { context, page, consoleErrors } = await launch(outDir);
+  const result = { mode: 'play', seconds };
+  try {
+    await open(page, url);
+    await page.waitForFunction(() => {
+      const e = window.godelViewer.explore;
+      return e && e.shown && e.shown.level === 'full';
+    }, null, { timeout: FRAME_TIMEOUT_MS });
+    if (rate !== undefined) await page.locator('#explore-rate').fill(String(rate));
+    result.rate = Number(await page.locator('#explore-rate').inputValue());
+    // Records, every animation frame, each change of the frame on the GPU and of the shading
+    // passes, with the page's clock.
+    await page.evaluate(() => {
+      const v = window.godelViewer;
+      const log = { shown: [], shadings: [], t0: performance.now(), stop: false };
+      window.benchLog = log;
+      let last = null;
+      let shadings = v.shadings;
+      const watch = (now) => {
+        const s = v.explore.shown;
+        const key = s && `${s.generation}/${s.level}`;
+        if (key !== last) {
+          last = key;
+          log.shown.push({ ms: now - log.t0, generation: s.generation, level: s.level,
+            t: v.explore.event.t });
+        }
+        if (v.shadings !== shadings) {
+          shadings = v.shadings;
+          log.shadings.push(now - log.t0);
+        }
+        if (!log.stop) requestAnimationFrame(watch);
+      };
+      requestAnimationFrame(watch);
+    });
+    const t0 = await page.evaluate(() => window.godelViewer.explore.event.t);
+    const g0 = await page.evaluate(() => window.godelViewer.explore.requested);
+    await page.locator('#explore-play').click();
+    await page.waitForTimeout(seconds * 1000);
+    await page.locator('#explore-play').click();
+    const log = await page.evaluate(() => {
+      window.benchLog.stop = true;
+      return { ...window.benchLog, now: performance.now() - window.benchLog.t0 };
+    });
+    // Frames put on the GPU after Play (the first entry is the full frame already shown).
+    const frames = log.shown.slice(1);
+    const gaps = frames.slice(1).map((f, i) => f.ms - frames[i].ms);
+    result.page_seconds = log.now / 1000;
+    result.frames = frames.length;
+    result.frames_per_second = frames.length / seconds;
+    result.levels = { coarse: frames.filter((f) => f.level === 'coarse').length,
+      full: frames.filter((f) => f.level === 'full').length };
+    result.gap_ms = stats(gaps);
+    result.shading_passes = log.shadings.length;
+    result.requests_sent = (await page.evaluate(() => window.godelViewer.explore.requested)) - g0;
+    result.t_from_to = [t0, await page.evaluate(() => window.godelViewer.explore.event.t)];
+    result.frames_log = frames.map((f) => [Math.round(f.ms), f.generation, f.level]);
+    result.error = await page.evaluate(() => window.godelViewer.error);
+    result.explore_error = await page.evaluate(() => window.godelViewer.explore.error);
+    result.console_errors = consoleErrors;
+  } finally {
+    await context.close();
+  }
+  return result;
+}
+
+const result = mode === 'event'
+  ? await eventMode(Number(arg1 || 10))
+  : await playMode(Number(arg1 || 10), arg2 === undefined ? undefined : Number(arg2));
+console.log(JSON.stringify(result));
