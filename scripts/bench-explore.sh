@@ -15,6 +15,7 @@ seconds=${4:-10}
 rate=${5:-}
 cd "$(dirname "$0")/.."
 root=$(pwd)
+scene=$(realpath "$scene")
 cargo build --release -p godel -q
 work=$(mktemp -d)
 server=""

@@ -5,7 +5,9 @@
 //          After the first full frame, posts N (default 10) events one after the other and,
 //          for each, times from the POST to /api/explore/frame reporting that generation's
 //          coarse frame and its full frame, polling every 5 ms (the server's times, not the
-//          page's 100 ms poll). Plain fetch, no browser.
+//          page's 100 ms poll). Then N times: posts an event, and as soon as its coarse frame
+//          is reported (its full frame under way) posts another: the time to that one's coarse
+//          frame, cancelling included. Plain fetch, no browser.
 //        node bench-explore.mjs URL OUT_DIR play [SECONDS] [RATE]
 //          In headless chromium: waits for the page's first full frame, sets the play rate
 //          (default: the page's own), clicks Play, and for SECONDS (default 10) records every
@@ -31,9 +33,10 @@ async function getJson(path) {
   return body;
 }
 
-// Polls /api/explore/frame until `generation` has its full frame; calls `seen(level, ms)` the
-// first time each level of it is reported (ms from `t0`).
-async function waitFull(generation, t0, seen = () => {}) {
+// Polls /api/explore/frame until `generation` has its frame at level `until` ('coarse' or
+// 'full'); calls `seen(level, ms, frame)` the first time each level of it is reported (ms
+// from `t0`).
+async function waitFor(generation, t0, until, seen = () => {}) {
   const got = new Set();
   while (performance.now() - t0 < FRAME_TIMEOUT_MS) {
     const answer = await getJson('api/explore/frame');
@@ -45,10 +48,18 @@ async function waitFull(generation, t0, seen = () => {}) {
       got.add(frame.level);
       seen(frame.level, performance.now() - t0, frame);
     }
-    if (got.has('full')) return;
+    if (got.has(until) || got.has('full')) return;
     await sleep(POLL_MS);
   }
-  throw new Error(`generation ${generation}: no full frame within ${FRAME_TIMEOUT_MS} ms`);
+  throw new Error(`generation ${generation}: no ${until} frame within ${FRAME_TIMEOUT_MS} ms`);
+}
+
+async function post(event) {
+  const response = await fetch(`${base}api/explore/event`, { method: 'POST',
+    headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(event) });
+  const answer = await response.json();
+  if (!response.ok) throw new Error(`POST ${JSON.stringify(event)}: ${JSON.stringify(answer)}`);
+  return answer.generation;
 }
 
 const stats = (values) => {
@@ -63,22 +74,22 @@ const stats = (values) => {
 async function eventMode(n) {
   const info = await getJson('api/explore/info');
   const t0 = performance.now();
-  await waitFull(info.generation, t0);
-  const result = { mode: 'event', start: info.start, first_full_wait_ms: Math.round(performance.now() - t0) };
+  await waitFor(info.generation, t0, 'full');
+  const result = { mode: 'event', start: info.start,
+    first_full_wait_ms: Math.round(performance.now() - t0) };
+  // t steps by 0.37; x by a few hundredths: the observer stays near the axis, well inside
+  // the optical horizon (r = 2a), where the scene is valid.
+  const eventAt = (i) => ({ t: info.start.t + 0.37 * i, x: info.start.x + 0.02 * (i % 4),
+    y: info.start.y, z: info.start.z });
+  // Idle server: each event posted once the previous one has its full frame.
   const runs = [];
   for (let i = 1; i <= n; i += 1) {
-    // t steps by 0.37; x by a few hundredths: the observer stays near the axis, well
-    // inside the optical horizon (r = 2a), where the scene is valid.
-    const event = { t: info.start.t + 0.37 * i, x: info.start.x + 0.02 * (i % 4),
-      y: info.start.y, z: info.start.z };
+    const event = eventAt(i);
     const posted = performance.now();
-    const response = await fetch(`${base}api/explore/event`, { method: 'POST',
-      headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(event) });
-    const answer = await response.json();
-    if (!response.ok) throw new Error(`POST ${JSON.stringify(event)}: ${JSON.stringify(answer)}`);
-    const run = { event, generation: answer.generation,
-      post_ms: Math.round(performance.now() - posted), coarse_ms: null, full_ms: null };
-    await waitFull(answer.generation, posted, (level, ms, frame) => {
+    const generation = await post(event);
+    const run = { event, generation, post_ms: Math.round(performance.now() - posted),
+      coarse_ms: null, full_ms: null };
+    await waitFor(generation, posted, 'full', (level, ms, frame) => {
       run[`${level}_ms`] = Math.round(ms);
       run[`${level}_size`] = [frame.width, frame.height];
     });
@@ -90,6 +101,23 @@ async function eventMode(n) {
     : r.full_ms - r.coarse_ms)));
   result.coarse_missed = runs.filter((r) => r.coarse_ms === null).length;
   result.runs = runs;
+  // Busy server: an event posted as soon as the previous one has its coarse frame, while its
+  // full frame is being traced (what playing time does): the coarse frame waits for the
+  // cancelled work's tiles under way.
+  const busy = [];
+  for (let i = 1; i <= n; i += 1) {
+    const first = await post(eventAt(n + 2 * i - 1));
+    await waitFor(first, performance.now(), 'coarse');
+    const posted = performance.now();
+    const generation = await post(eventAt(n + 2 * i));
+    let coarse = null;
+    await waitFor(generation, posted, 'coarse', (level, ms) => {
+      if (level === 'coarse') coarse = ms;
+    });
+    busy.push(coarse === null ? null : Math.round(coarse));
+  }
+  result.busy_coarse_ms = stats(busy);
+  result.busy_runs = busy;
   return result;
 }
 
