@@ -6,7 +6,8 @@
 # tests/browser/bench-explore.mjs against it: `event` (time from a POST of a new event to its
 # coarse and its full frame, N_EVENTS events, plain fetch) and `play` (frames per second the
 # page shows while playing time, headless chromium). Prints the two JSON results and the load
-# average before each; the servers it started are stopped at the end.
+# average before each; the servers it started are stopped at the end. BENCH_MODES="play" (or
+# "event") runs only that mode.
 set -euo pipefail
 scene=${1:-scenes/reference.toml}
 threads=${2:-2}
@@ -47,7 +48,7 @@ start() {
 }
 
 cd tests/browser
-for mode in event play; do
+for mode in ${BENCH_MODES:-event play}; do
     start
     echo "# $mode: $(uptime)"
     if [ "$mode" = event ]; then

@@ -137,17 +137,22 @@ async function playMode(seconds, rate) {
     // passes, with the page's clock.
     await page.evaluate(() => {
       const v = window.godelViewer;
-      const log = { shown: [], shadings: [], t0: performance.now(), stop: false };
+      const log = { shown: [], shadings: [], requested: {}, t0: performance.now(), stop: false };
       window.benchLog = log;
       let last = null;
       let shadings = v.shadings;
+      let requested = v.explore.requested;
       const watch = (now) => {
         const s = v.explore.shown;
         const key = s && `${s.generation}/${s.level}`;
         if (key !== last) {
           last = key;
-          log.shown.push({ ms: now - log.t0, generation: s.generation, level: s.level,
-            t: v.explore.event.t });
+          log.shown.push({ ms: now - log.t0, at: Date.now(), generation: s.generation,
+            level: s.level, t: v.explore.event.t });
+        }
+        if (v.explore.requested !== requested) {
+          requested = v.explore.requested;
+          log.requested[requested] = Date.now();
         }
         if (v.shadings !== shadings) {
           shadings = v.shadings;
@@ -159,9 +164,33 @@ async function playMode(seconds, rate) {
     });
     const t0 = await page.evaluate(() => window.godelViewer.explore.event.t);
     const g0 = await page.evaluate(() => window.godelViewer.explore.requested);
+    // Meanwhile this script notes when the server has each frame (wall clock, as the page's
+    // Date.now()), polling every 5 ms: server time vs the page's poll. A frame was made after
+    // the previous poll was sent and before the poll that reports it was answered: the
+    // middle of that interval is taken (its width, under load, is reported).
+    const ready = new Map();
+    const widths = [];
+    let watching = true;
+    const watcher = (async () => {
+      let previous = Date.now();
+      while (watching) {
+        const sent = Date.now();
+        const frame = (await getJson('api/explore/frame')).frame;
+        const answered = Date.now();
+        const key = frame && `${frame.generation}/${frame.level}`;
+        if (key && !ready.has(key)) {
+          ready.set(key, (previous + answered) / 2);
+          widths.push(answered - previous);
+        }
+        previous = sent;
+        await sleep(POLL_MS);
+      }
+    })();
     await page.locator('#explore-play').click();
     await page.waitForTimeout(seconds * 1000);
     await page.locator('#explore-play').click();
+    watching = false;
+    await watcher;
     const log = await page.evaluate(() => {
       window.benchLog.stop = true;
       return { ...window.benchLog, now: performance.now() - window.benchLog.t0 };
@@ -175,6 +204,26 @@ async function playMode(seconds, rate) {
     result.levels = { coarse: frames.filter((f) => f.level === 'coarse').length,
       full: frames.filter((f) => f.level === 'full').length };
     result.gap_ms = stats(gaps);
+    // Per frame: from the page learning its generation (the POST answered) to the server
+    // having the frame, and from there to the page showing it (its 100 ms poll); from a frame
+    // shown to the next event sent (the page's animation frame).
+    const trace = [];
+    const poll = [];
+    const next = [];
+    for (const f of frames) {
+      const asked = log.requested[f.generation];
+      const had = ready.get(`${f.generation}/${f.level}`);
+      if (asked !== undefined && had !== undefined) {
+        trace.push(had - asked);
+        poll.push(f.at - had);
+      }
+      const after = log.requested[f.generation + 1];
+      if (after !== undefined) next.push(after - f.at);
+    }
+    result.server_ms = stats(trace);
+    result.poll_wait_ms = stats(poll);
+    result.server_uncertainty_ms = stats(widths);
+    result.shown_to_next_request_ms = stats(next);
     result.shading_passes = log.shadings.length;
     result.requests_sent = (await page.evaluate(() => window.godelViewer.explore.requested)) - g0;
     result.t_from_to = [t0, await page.evaluate(() => window.godelViewer.explore.event.t)];
