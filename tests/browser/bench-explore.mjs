@@ -11,8 +11,9 @@
 //        node bench-explore.mjs URL OUT_DIR play [SECONDS] [RATE]
 //          In headless chromium: waits for the page's first full frame, sets the play rate
 //          (default: the page's own), clicks Play, and for SECONDS (default 10) records every
-//          frame the page puts on the GPU (window.godelViewer.explore.shown changes) and every
-//          shading pass: frames per second while playing time, and their levels.
+//          frame the page accepts for the GPU (window.godelViewer.explore.shown changes) and
+//          every shading pass (the frame drawn): frames per second while playing time, their
+//          levels, and where a frame's time goes.
 const [url, outDir, mode, arg1, arg2] = process.argv.slice(2);
 if (!url || !outDir || !['event', 'play'].includes(mode)) {
   console.error('usage: node bench-explore.mjs URL OUT_DIR event [N] | play [SECONDS] [RATE]');
@@ -231,7 +232,10 @@ async function playMode(seconds, rate) {
     result.poll_wait_ms = stats(poll);
     result.server_uncertainty_ms = stats(widths);
     result.shown_to_next_send_ms = stats(next);
+    // A frame accepted by the page counts as drawn only with its shading pass: one whose
+    // channels the server no longer serves (410) is never drawn.
     result.shading_passes = log.shadings.length;
+    result.drawn_per_second = log.shadings.length / seconds;
     result.requests_sent = (await page.evaluate(() => window.godelViewer.explore.requested)) - g0;
     result.t_from_to = [t0, await page.evaluate(() => window.godelViewer.explore.event.t)];
     result.frames_log = frames.map((f) => [Math.round(f.ms), f.generation, f.level]);
