@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Benchmarks of `godel explore` (BENCHMARKS.md, "Explore (issue 15)"):
 #   scripts/bench-explore.sh [SCENE] [THREADS] [N_EVENTS] [PLAY_SECONDS] [RATE]
-# (defaults: scenes/reference.toml 2 10 10, the page's own play rate). Builds godel (release),
+# (defaults: scenes/reference.toml 2 10 10, the page's own play rate; an empty SCENE is the
+# default). Builds godel (release),
 # then twice starts `godel explore SCENE --threads THREADS --port 0` and runs
 # tests/browser/bench-explore.mjs against it: `event` (time from a POST of a new event to its
 # coarse and its full frame, N_EVENTS events, plain fetch) and `play` (frames per second the
@@ -9,14 +10,13 @@
 # average before each; the servers it started are stopped at the end. BENCH_MODES="play" (or
 # "event") runs only that mode.
 set -euo pipefail
-scene=${1:-scenes/reference.toml}
+root=$(cd "$(dirname "$0")/.." && pwd)
+scene=$(realpath "${1:-$root/scenes/reference.toml}")
 threads=${2:-2}
 events=${3:-10}
 seconds=${4:-10}
 rate=${5:-}
-cd "$(dirname "$0")/.."
-root=$(pwd)
-scene=$(realpath "$scene")
+cd "$root"
 cargo build --release -p godel -q
 work=$(mktemp -d)
 server=""

@@ -150,7 +150,6 @@ async function playMode(seconds, rate) {
           log.shown.push({ ms: now - log.t0, at: Date.now(), generation: s.generation,
             level: s.level, t: v.explore.event.t });
         }
-
         if (v.shadings !== shadings) {
           shadings = v.shadings;
           log.shadings.push(now - log.t0);
