@@ -11,8 +11,8 @@
 
 import { createMap } from './map.js';
 
-// How often the page asks for the newest frame (a frame waits half of it on average).
-const POLL_MS = 40;
+// How often the page asks for the newest frame.
+const POLL_MS = 100;
 // The time slider spans this much on each side of the scene's observer time.
 const T_SPAN = 50;
 // What PageUp/PageDown add to z.
@@ -153,10 +153,7 @@ export async function startExplore(viewer) {
     if (!Number.isFinite(t)) return;
     state.event.t = Math.min(hi, Math.max(lo, t));
     showEvent();
-    // Not before the last frame is drawn: the next one would make the server drop it while
-    // its channels load, and it would never be seen.
-    const waiting = state.inFlight || state.shown === null || state.shown.generation < state.requested
-      || !viewer.frameDrawn;
+    const waiting = state.inFlight || state.shown === null || state.shown.generation < state.requested;
     if (!playing || !waiting) send();
     map.update(state.event);
   };
