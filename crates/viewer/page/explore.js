@@ -11,8 +11,8 @@
 
 import { createMap } from './map.js';
 
-// How often the page asks for the newest frame.
-const POLL_MS = 100;
+// How often the page asks for the newest frame (a frame waits half of it on average).
+const POLL_MS = 40;
 // The time slider spans this much on each side of the scene's observer time.
 const T_SPAN = 50;
 // What PageUp/PageDown add to z.

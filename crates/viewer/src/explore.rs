@@ -12,6 +12,9 @@
 //! - One worker thread traces, one frame at a time (the source may use all cores for it);
 //!   requests only leave the newest event for it, so any number of tabs or requests cost
 //!   one pending slot.
+//! - Two frames are served: the newest and the one it replaced, whose channels a page that
+//!   has just seen it may still be fetching (while playing, the next event is sent as soon as
+//!   a frame is seen); any older frame is gone (410).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
@@ -119,9 +122,9 @@ struct Slots {
     cancel: Option<Arc<AtomicBool>>,
     /// The newest frame kept.
     latest: Option<Arc<Frame>>,
-    /// The coarse frame of `latest`'s generation once its full frame replaced it: a page
-    /// that saw the coarse frame may still be fetching its channels.
-    coarse: Option<Arc<Frame>>,
+    /// The frame `latest` replaced (the coarse frame of the same generation, or the last frame
+    /// of an older one): a page that saw it may still be fetching its channels.
+    previous: Option<Arc<Frame>>,
     /// Why the newest generation could not be traced.
     error: Option<String>,
     /// Set when the [`Explorer`] is dropped: the worker ends.
@@ -232,11 +235,11 @@ impl Explorer {
         self.shared.lock().latest.clone()
     }
 
-    /// The frame of `generation` at `level`, while it is the newest frame or the coarse frame
-    /// of the newest frame's generation.
+    /// The frame of `generation` at `level`, while it is the newest frame or the one the
+    /// newest replaced.
     pub fn frame(&self, generation: u64, level: Level) -> Option<Arc<Frame>> {
         let slots = self.shared.lock();
-        let found = [&slots.latest, &slots.coarse]
+        let found = [&slots.latest, &slots.previous]
             .into_iter()
             .flatten()
             .find(|f| f.generation == generation && f.level == level)
@@ -301,8 +304,7 @@ fn work(shared: &Shared) {
                         event,
                         data,
                     });
-                    let replaced = slots.latest.replace(frame);
-                    slots.coarse = replaced.filter(|f| f.generation == generation);
+                    slots.previous = slots.latest.replace(frame);
                     shared.kept.notify_all();
                 }
                 Ok(None) => break,

@@ -5,7 +5,7 @@
 //! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
 //! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
-//! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the coarse frame of the newest's generation |
+//! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the one that frame replaced |
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |

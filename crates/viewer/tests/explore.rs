@@ -254,7 +254,10 @@ async fn godel_view_says_it_is_not_explore_mode() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
-    let explorer = Explorer::new(Fake::default()).unwrap();
+    let fake = Fake::default();
+    // Generation 2's full frame waits at the gate until the test opens it.
+    fake.held.lock().unwrap().push((5.0, Level::Full));
+    let explorer = Explorer::new(fake.clone()).unwrap();
     let app =
         viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
     let (status, info, _) = send(&app, common::get("/api/explore/info")).await;
@@ -372,7 +375,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         StatusCode::BAD_REQUEST
     );
     // The coarse frame of the newest generation is still served after its full frame (a page
-    // may be fetching it); frames of an older generation are gone once a newer one has a frame.
+    // may be fetching it): the frame the newest replaced stays, older ones are gone.
     let coarse = "/api/explore/channel/t_emit?generation=1&level=coarse";
     assert_eq!(send(&app, common::get(coarse)).await.0, StatusCode::OK);
     let body = r#"{"t": 5, "x": 0.5, "y": 0, "z": 0}"#;
@@ -381,6 +384,8 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         (status, answer["generation"].as_u64()),
         (StatusCode::OK, Some(2))
     );
+    // Generation 2's coarse frame keeps generation 1's full frame servable (the frame it
+    // replaced, which a playing page may still be loading); its full frame ends that.
     for _ in 0..10_000 {
         let frame = send(&app, common::get("/api/explore/frame")).await.1["frame"].clone();
         if frame["generation"] == 2 {
@@ -388,6 +393,19 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         }
         tokio::time::sleep(Duration::from_millis(1)).await;
     }
+    let full_1 = "/api/explore/channel/t_emit?generation=1&level=full";
+    assert_eq!(send(&app, common::get(full_1)).await.0, StatusCode::OK);
+    assert_eq!(send(&app, common::get(coarse)).await.0, StatusCode::GONE);
+    fake.gate.store(true, Ordering::SeqCst);
+    for _ in 0..10_000 {
+        let frame = send(&app, common::get("/api/explore/frame")).await.1["frame"].clone();
+        if frame["generation"] == 2 && frame["level"] == "full" {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(1)).await;
+    }
+    let replaced = "/api/explore/channel/t_emit?generation=2&level=coarse";
+    assert_eq!(send(&app, common::get(replaced)).await.0, StatusCode::OK);
     for stale in [
         coarse,
         ray,
