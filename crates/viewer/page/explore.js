@@ -88,7 +88,9 @@ export async function startExplore(viewer) {
       const response = await fetch('/api/explore/event', {
         method: 'POST',
         headers: { 'Content-Type': 'application/json' },
-        body: JSON.stringify(state.event),
+        // While playing, coarse frames only: a full frame would be cancelled by the next
+        // time anyway, and would take the cores from its coarse frame.
+        body: JSON.stringify({ ...state.event, refine: !state.playing }),
       });
       const answer = await response.json();
       if (response.ok) {
@@ -145,15 +147,17 @@ export async function startExplore(viewer) {
   }
   setInterval(poll, POLL_MS);
 
-  // `playing`: sent only once the last request has a frame on the GPU, so that playing never
-  // cancels every trace before it ends (the frame rate is that of the coarse frames).
+  // `playing`: sent only once the last request's frame is drawn, so that playing never
+  // cancels every trace before it ends, nor makes the server drop a frame whose channels
+  // are still loading (the frame rate is that of the coarse frames).
   const setT = (t, playing = false) => {
     const lo = Number(slider.min);
     const hi = Number(slider.max);
     if (!Number.isFinite(t)) return;
     state.event.t = Math.min(hi, Math.max(lo, t));
     showEvent();
-    const waiting = state.inFlight || state.shown === null || state.shown.generation < state.requested;
+    const waiting = state.inFlight || state.shown === null
+      || state.shown.generation < state.requested || !viewer.frameDrawn;
     if (!playing || !waiting) send();
     map.update(state.event);
   };
@@ -196,6 +200,7 @@ export async function startExplore(viewer) {
     $('explore-play').textContent = state.playing ? 'Pause' : 'Play';
     last = null;
     if (state.playing) requestAnimationFrame(tick);
+    else send(); // paused: the full frame of where time stopped
   });
   // Hovering the picture: the light ray of the pixel under the mouse, in the frame shown.
   let pointer = null;

@@ -19,6 +19,7 @@ const viewer = {
   look: null,      // the look-around state, for a full-sphere file
   frames: 0,       // pictures drawn on the canvas
   shadings: 0,     // shading passes run
+  frameDrawn: false, // whether the frame last given (explore: showFrame) has been shaded
   frameTimes: [],  // performance.now() of the last frames drawn (at most 600)
   firstPicture: null, // ms from navigation start to the first picture on the canvas
   timeline: {},    // ms from navigation start: described, tables, channels (first load)
@@ -227,6 +228,7 @@ async function draw() {
       gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
         uniforms);
       viewer.shadings += 1;
+      viewer.frameDrawn = true;
       shadeDirty = false;
     }
     const canvas = $('image');
@@ -548,6 +550,7 @@ viewer.showFrame = (frame, channelUrl) => {
   const camera = viewer.view?.view?.camera;
   if (camera) Object.assign(camera, { width: frame.width, height: frame.height });
   describe();
+  viewer.frameDrawn = false; // until its channels are on the GPU and it is shaded
   data.reset(channelUrl);
   layout();
   changed();

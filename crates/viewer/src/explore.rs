@@ -117,7 +117,8 @@ struct Slots {
     /// The newest request's generation (0: none yet).
     generation: u64,
     /// The event of a request the worker has not started yet.
-    pending: Option<(u64, ObserverEvent)>,
+    /// (generation, event, whether its full frame follows the coarse one).
+    pending: Option<(u64, ObserverEvent, bool)>,
     /// The cancel flag of the work under way.
     cancel: Option<Arc<AtomicBool>>,
     /// The newest frame kept.
@@ -181,6 +182,13 @@ impl Explorer {
     /// work cancelled. A bad event is refused (the message names the field) and changes
     /// nothing.
     pub fn request(&self, event: ObserverEvent) -> Result<u64, String> {
+        self.request_levels(event, true)
+    }
+
+    /// [`Explorer::request`], with the full frame only if `refine` (a page that plays time
+    /// asks for coarse frames only: the full one would be cancelled anyway, and tracing it
+    /// would take the cores from the next coarse frame).
+    pub fn request_levels(&self, event: ObserverEvent, refine: bool) -> Result<u64, String> {
         if let Some(why) = event.refusal(self.bound()) {
             return Err(why);
         }
@@ -190,7 +198,7 @@ impl Explorer {
         if let Some(cancel) = slots.cancel.take() {
             cancel.store(true, Ordering::SeqCst);
         }
-        slots.pending = Some((generation, event));
+        slots.pending = Some((generation, event, refine));
         slots.error = None;
         drop(slots);
         self.shared.wake.notify_all();
@@ -270,25 +278,30 @@ impl Drop for Explorer {
     }
 }
 
-/// The worker: takes the newest pending event and traces its coarse then its full frame,
+/// The worker: takes the newest pending event and traces its coarse then (if asked) its full frame,
 /// keeping each only while its generation is still the newest.
 fn work(shared: &Shared) {
     loop {
-        let (generation, event, cancel) = {
+        let (generation, event, refine, cancel) = {
             let mut slots = shared.lock();
             loop {
                 if slots.closed {
                     return;
                 }
-                if let Some((generation, event)) = slots.pending.take() {
+                if let Some((generation, event, refine)) = slots.pending.take() {
                     let cancel = Arc::new(AtomicBool::new(false));
                     slots.cancel = Some(cancel.clone());
-                    break (generation, event, cancel);
+                    break (generation, event, refine, cancel);
                 }
                 slots = shared.wake.wait(slots).unwrap_or_else(|e| e.into_inner());
             }
         };
-        for level in [Level::Coarse, Level::Full] {
+        let levels: &[Level] = if refine {
+            &[Level::Coarse, Level::Full]
+        } else {
+            &[Level::Coarse]
+        };
+        for &level in levels {
             if cancel.load(Ordering::SeqCst) {
                 break;
             }

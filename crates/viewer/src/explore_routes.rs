@@ -3,7 +3,7 @@
 //! | route | answer |
 //! | --- | --- |
 //! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
-//! | `POST /api/explore/event` (`{"t", "x", "y", "z"}`) | starts a new generation for that event: `{"generation": N}`; 400 naming the field for a bad event |
+//! | `POST /api/explore/event` (`{"t", "x", "y", "z"[, "refine": false]}`) | starts a new generation for that event (coarse frame, then the full one unless `refine` is false): `{"generation": N}`; 400 naming the field for a bad event |
 //! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the one that frame replaced |
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
@@ -104,10 +104,27 @@ async fn info(State(state): State<Arc<ExploreState>>) -> Response {
     (no_store(), Json(body)).into_response()
 }
 
-/// The event of a request body (`{"t", "x", "y", "z"}`), refused naming the field.
-fn event_body(body: &[u8]) -> Result<ObserverEvent, ApiError> {
+/// The body of `POST /api/explore/event`: the event, and whether its full frame is wanted
+/// after the coarse one (default yes; a page playing time says no).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EventRequest {
+    t: f64,
+    x: f64,
+    y: f64,
+    z: f64,
+    #[serde(default = "yes")]
+    refine: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// A request body of type `T`, refused naming the field (`event.FIELD`).
+fn parse_body<T: serde::de::DeserializeOwned>(body: &[u8]) -> Result<T, ApiError> {
     let mut json = serde_json::Deserializer::from_slice(body);
-    let event: ObserverEvent = serde_path_to_error::deserialize(&mut json).map_err(|e| {
+    let event: T = serde_path_to_error::deserialize(&mut json).map_err(|e| {
         let path = e.path().to_string();
         if path == "." {
             ApiError::bad_request(format!("event: {}", e.inner()))
@@ -121,10 +138,16 @@ fn event_body(body: &[u8]) -> Result<ObserverEvent, ApiError> {
 }
 
 async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
-    let event = event_body(&body)?;
+    let asked: EventRequest = parse_body(&body)?;
+    let event = ObserverEvent {
+        t: asked.t,
+        x: asked.x,
+        y: asked.y,
+        z: asked.z,
+    };
     let generation = state
         .explorer
-        .request(event)
+        .request_levels(event, asked.refine)
         .map_err(ApiError::bad_request)?;
     Ok((
         no_store(),
@@ -316,7 +339,7 @@ async fn keyframe(
 ) -> Result<Response, ApiError> {
     let Query(q) =
         query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
-    let event = event_body(&body)?;
+    let event: ObserverEvent = parse_body(&body)?;
     if let Some(why) = event.refusal(state.explorer.bound()) {
         return Err(ApiError::bad_request(why));
     }

@@ -201,6 +201,31 @@ fn a_newer_request_cancels_the_older_and_is_never_overwritten_by_it() {
 }
 
 #[test]
+fn an_event_asked_without_refinement_gets_its_coarse_frame_only() {
+    let fake = Fake::default();
+    let explorer = Explorer::new(fake.clone()).unwrap();
+    explorer.request_levels(event(2.0), false).unwrap();
+    let first = explorer.first_frame().unwrap();
+    assert_eq!((first.generation, first.level), (1, Level::Coarse));
+    // A later refined request is traced in full; the unrefined one never was.
+    explorer.request(event(3.0)).unwrap();
+    for _ in 0..10_000 {
+        if explorer.latest().is_some_and(|f| f.level == Level::Full) {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    assert_eq!(
+        fake.begun(),
+        vec![
+            (2.0, Level::Coarse),
+            (3.0, Level::Coarse),
+            (3.0, Level::Full)
+        ]
+    );
+}
+
+#[test]
 fn the_first_frame_is_the_newest_generations_coarse_frame_or_its_error() {
     let explorer = Explorer::new(Fake::default()).unwrap();
     assert!(explorer.first_frame().is_err(), "no event asked yet");
@@ -273,6 +298,10 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         (r#"{"t": "soon", "x": 0, "y": 0, "z": 0}"#, "event.t"),
         (r#"{"t": 0, "x": 0, "y": 0}"#, "z"),
         (r#"{"t": 0, "x": 0, "y": 0, "z": 0, "w": 1}"#, "w"),
+        (
+            r#"{"t": 0, "x": 0, "y": 0, "z": 0, "refine": "no"}"#,
+            "event.refine",
+        ),
     ] {
         let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
         assert_eq!(status, StatusCode::BAD_REQUEST, "{body}");
