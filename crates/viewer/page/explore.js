@@ -147,17 +147,17 @@ export async function startExplore(viewer) {
   }
   setInterval(poll, POLL_MS);
 
-  // `playing`: sent only once the last request's frame is drawn, so that playing never
-  // cancels every trace before it ends, nor makes the server drop a frame whose channels
-  // are still loading (the frame rate is that of the coarse frames).
+  // `playing`: sent only once the last request has a frame on the page, so that playing
+  // never cancels every trace before it ends (the frame rate is that of the coarse frames).
+  // The next coarse frame is traced while the page loads and shades this one: the server
+  // keeps the frame the newest replaced, and the page takes no new frame while loading.
   const setT = (t, playing = false) => {
     const lo = Number(slider.min);
     const hi = Number(slider.max);
     if (!Number.isFinite(t)) return;
     state.event.t = Math.min(hi, Math.max(lo, t));
     showEvent();
-    const waiting = state.inFlight || state.shown === null
-      || state.shown.generation < state.requested || !viewer.frameDrawn;
+    const waiting = state.inFlight || state.shown === null || state.shown.generation < state.requested;
     if (!playing || !waiting) send();
     map.update(state.event);
   };

@@ -19,7 +19,6 @@ const viewer = {
   look: null,      // the look-around state, for a full-sphere file
   frames: 0,       // pictures drawn on the canvas
   shadings: 0,     // shading passes run
-  frameDrawn: false, // whether the frame last given (explore: showFrame) has been shaded
   frameTimes: [],  // performance.now() of the last frames drawn (at most 600)
   firstPicture: null, // ms from navigation start to the first picture on the canvas
   timeline: {},    // ms from navigation start: described, tables, channels (first load)
@@ -60,6 +59,8 @@ async function errorText(response) {
 
 // Writes the header line about the file (set at start; its size follows explore frames).
 let describe = () => {};
+// Explore: whether the frame last given to showFrame has been shaded (or failed to load).
+let frameDrawn = true;
 let fixedSize = null;      // [w, h] canvas pixels set by a script, else the layout decides
 const pan = { zoom: 1, offset: [0, 0], fitted: true };
 
@@ -193,6 +194,7 @@ async function draw() {
       await data.ensure(need);
       await data.ensureImages(images);
     } catch (e) {
+      frameDrawn = true; // nothing more to wait for: the next frame may come
       // Explore: the frame was superseded while its channels loaded (410 Gone); the newer
       // frame comes with the next poll, and no error flashes up meanwhile.
       if (!(viewer.explore && e.status === 410)) {
@@ -228,7 +230,7 @@ async function draw() {
       gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
         uniforms);
       viewer.shadings += 1;
-      viewer.frameDrawn = true;
+      frameDrawn = true;
       shadeDirty = false;
     }
     const canvas = $('image');
@@ -239,6 +241,7 @@ async function draw() {
       gpu.display(pan.offset, pan.zoom);
     }
   } catch (e) {
+    frameDrawn = true;
     showError(e.message);
     return;
   }
@@ -540,8 +543,11 @@ async function start() {
 
 // Explore mode (explore.js): shade a newly traced frame, of `frame.width` × `frame.height`
 // pictures, whose channels come from `channelUrl(name)`; false (try later) while loading.
+// Explore (explore.js): shows another frame, whose channels are at `channelUrl(name)`; false
+// (try again later) while the last one is not drawn yet, so that every frame taken is seen.
 viewer.showFrame = (frame, channelUrl) => {
-  if (loading || !data) return false;
+  if (loading || !data || !frameDrawn) return false;
+  frameDrawn = false;
   // A zoomed or panned picture keeps its place on the canvas at the new size.
   if (!pan.fitted) pan.zoom *= viewer.info.width / frame.width;
   Object.assign(viewer.info, { width: frame.width, height: frame.height,
@@ -550,7 +556,6 @@ viewer.showFrame = (frame, channelUrl) => {
   const camera = viewer.view?.view?.camera;
   if (camera) Object.assign(camera, { width: frame.width, height: frame.height });
   describe();
-  viewer.frameDrawn = false; // until its channels are on the GPU and it is shaded
   data.reset(channelUrl);
   layout();
   changed();
