@@ -1,10 +1,11 @@
 // Explore mode in the browser: waits for the full frame of the scene's own event, moves the
-// time slider to T, waits for the full frame of the new event, and saves both pictures, for
-// the Rust test crates/godel/tests/viewer_browser/explore.rs.
+// time slider to T, waits for the full frame of the new event, and saves both pictures; then
+// plays time for four frames and pauses, for the Rust test
+// crates/godel/tests/viewer_browser/explore.rs.
 //
 // usage: node explore.mjs URL OUT_DIR T
 // Writes OUT_DIR/before.rgba and OUT_DIR/after.rgba (+ .json), and prints {before, after,
-// panel_hidden, status, requests, console_errors, error}.
+// panel_hidden, status, play_log, paused, paused_t, requests, console_errors, error}.
 import { join } from 'node:path';
 import { launch, open, idle, savePicture } from './launch.mjs';
 
@@ -37,6 +38,30 @@ try {
   result.after = await fullFrame(result.before.generation);
   await savePicture(page, join(outDir, 'after.rgba'));
   result.status = await page.evaluate(() => document.getElementById('explore-status').textContent);
+  // Play (rate 2 t per second) until four frames are taken, logging the shading passes run
+  // when each is taken; then Pause, which asks for the full frame of where time stopped.
+  await page.evaluate(() => {
+    const v = window.godelViewer;
+    v.playLog = [];
+    const show = v.showFrame;
+    v.showFrame = (frame, channelUrl) => {
+      const taken = show(frame, channelUrl);
+      if (taken) v.playLog.push({ generation: frame.generation, level: frame.level,
+        t: frame.event.t, shadings: v.shadings });
+      return taken;
+    };
+  });
+  await page.locator('#explore-rate').fill('2');
+  await page.locator('#explore-play').click();
+  await page.waitForFunction(() => window.godelViewer.playLog.length >= 4, null,
+    { timeout: 120000 });
+  await page.locator('#explore-play').click();
+  const pausedAt = await page.evaluate(() => ({ t: window.godelViewer.explore.event.t,
+    generation: window.godelViewer.explore.requested,
+    log: window.godelViewer.playLog.slice() }));
+  result.paused = await fullFrame(pausedAt.generation - 1);
+  result.paused_t = pausedAt.t;
+  result.play_log = pausedAt.log;
   result.error = await page.evaluate(() => window.godelViewer.error);
   result.requests = requests;
   result.console_errors = consoleErrors;

@@ -45,6 +45,23 @@ fn moving_the_time_slider_shows_the_frame_traced_for_the_new_time() {
         seen["status"].as_str().unwrap().contains("t = 1.50"),
         "{seen}"
     );
+    // Playing: coarse frames of later and later times, each drawn (a shading pass) before the
+    // next is taken; Pause brings the full frame of where time stopped.
+    let log = seen["play_log"].as_array().unwrap();
+    assert!(log.len() >= 4, "{seen}");
+    for pair in log.windows(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        assert_eq!(b["level"], "coarse", "{seen}");
+        assert!(b["generation"].as_u64() > a["generation"].as_u64(), "{seen}");
+        assert!(b["t"].as_f64() > a["t"].as_f64(), "{seen}");
+        assert!(
+            b["shadings"].as_u64() > a["shadings"].as_u64(),
+            "a frame was taken before the last one was drawn: {seen}"
+        );
+    }
+    assert_eq!(seen["paused"]["level"], "full", "{seen}");
+    assert_eq!(seen["paused"]["event"]["t"], seen["paused_t"], "{seen}");
+    assert!(seen["paused_t"].as_f64().unwrap() > 1.5, "{seen}");
     let (w, h, before) = read_rgba(&out.join("before.rgba"));
     let (w2, h2, after) = read_rgba(&out.join("after.rgba"));
     assert_eq!((w, h), (w2, h2));
