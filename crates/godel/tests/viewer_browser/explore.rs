@@ -52,7 +52,10 @@ fn moving_the_time_slider_shows_the_frame_traced_for_the_new_time() {
     for pair in log.windows(2) {
         let (a, b) = (&pair[0], &pair[1]);
         assert_eq!(b["level"], "coarse", "{seen}");
-        assert!(b["generation"].as_u64() > a["generation"].as_u64(), "{seen}");
+        assert!(
+            b["generation"].as_u64() > a["generation"].as_u64(),
+            "{seen}"
+        );
         assert!(b["t"].as_f64() > a["t"].as_f64(), "{seen}");
         assert!(
             b["shadings"].as_u64() > a["shadings"].as_u64(),
