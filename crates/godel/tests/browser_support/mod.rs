@@ -54,18 +54,19 @@ pub fn render(dir: &Path, name: &str, text: &str) -> PathBuf {
     dir.join(format!("{name}.exr"))
 }
 
-use crate::common::start_server;
 /// The `godel view` server, killed when dropped.
 pub use crate::common::Server;
+use crate::common::{start_server, start_server_with};
 
 /// Starts `godel view DATA --port 0` in `cwd`; returns it and the URL it printed.
 pub fn start_viewer(data: &Path, cwd: &Path) -> (Server, String) {
     start_server("view", data, cwd)
 }
 
-/// Starts `godel explore SCENE --port 0` in `cwd`; returns it and the URL it printed.
-pub fn start_explore(scene: &Path, cwd: &Path) -> (Server, String) {
-    start_server("explore", scene, cwd)
+/// Starts `godel explore SCENE --port 0` in `cwd`, then `extra` arguments; returns it and the
+/// URL it printed.
+pub fn start_explore(scene: &Path, cwd: &Path, extra: &[&str]) -> (Server, String) {
+    start_server_with("explore", scene, cwd, extra)
 }
 
 /// Runs `node tests/browser/SCRIPT URL OUT ARGS…` and parses the one JSON object it prints.

@@ -3,7 +3,9 @@
 //! moved, so the picture changes), at the scene's size; the map beside the picture
 //! (issue 15) draws the hovered pixel's light ray from the observer to the pixel's emission
 //! event, dragging the observer's marker on it moves the observer's event to the map's point
-//! under the mouse, and "Save observer keyframe" saves a keyframe at that event.
+//! under the mouse, and "Save observer keyframe" saves a keyframe at that event; playing
+//! takes coarse frames, each drawn before the next; with `--sphere` the page looks around
+//! in the traced sphere and keeps the view across events.
 
 use super::browser_support::*;
 
@@ -24,7 +26,7 @@ fn moving_the_time_slider_shows_the_frame_traced_for_the_new_time() {
     let text = scene_text();
     assert!(text.contains("width = 88\n") && text.contains("samples = 1"));
     std::fs::write(&scene, text).unwrap();
-    let (_server, url) = start_explore(&scene, dir.path());
+    let (_server, url) = start_explore(&scene, dir.path(), &[]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
     let seen = run_script("explore.mjs", &url, &out, &["1.5".to_string()]);
@@ -148,7 +150,7 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
         })
         .expect("the test scene shows the ball");
     let scene = dir.path().join("map-test.toml");
-    let (_server, url) = start_explore(&scene, dir.path());
+    let (_server, url) = start_explore(&scene, dir.path(), &[]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
     let (dx, dy) = (60, -40);
@@ -253,4 +255,43 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
     for (k, i) in [("x", 1), ("y", 2), ("z", 3)] {
         assert_eq!(number(&observer["position"][k]), Some(after[i]), "{saved}");
     }
+}
+
+/// `godel explore --sphere 96`: the page looks around in the traced sphere (a drag turns the
+/// view on the GPU and asks the server for no new trace), and a new time is traced and shown
+/// in the same turned view.
+#[test]
+fn with_sphere_the_page_looks_around_and_keeps_the_view_across_events() {
+    require_browser_tools();
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("explore-test.toml");
+    std::fs::write(&scene, scene_text()).unwrap();
+    let (_server, url) = start_explore(&scene, dir.path(), &["--sphere", "96"]);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let seen = run_script("explore-look.mjs", &url, &out, &["1.5".to_string()]);
+    assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
+    assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+    assert!(seen["look"].is_object(), "not looking around: {seen}");
+    let yaw = seen["drag"]["yaw"].as_f64().unwrap();
+    assert!(yaw.abs() > 5.0, "the drag did not turn the view: {seen}");
+    assert!(
+        seen["drag"]["pixels_changed"].as_u64() > Some(100),
+        "{seen}"
+    );
+    let asked: Vec<&str> = seen["drag"]["requests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_str().unwrap())
+        .collect();
+    assert!(
+        asked.iter().all(|r| !r.contains("/api/explore/event")),
+        "turning re-traced: {asked:?}"
+    );
+    assert_eq!(seen["after"]["event"]["t"], 1.5, "{seen}");
+    assert_eq!(seen["after"]["level"], "full", "{seen}");
+    assert_eq!(seen["after"]["look"], true, "{seen}");
+    assert_eq!(seen["after"]["yaw"].as_f64(), Some(yaw), "{seen}");
+    assert!(seen["pixels_changed_by_t"].as_u64() > Some(0), "{seen}");
 }
