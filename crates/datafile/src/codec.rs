@@ -267,7 +267,7 @@ impl DataFile {
                 problem: format!("{s} is not in 1..={}", crate::MAX_SUPERSAMPLE),
             });
         }
-        if self.width % s as usize != 0 || self.height % s as usize != 0 {
+        if !self.width.is_multiple_of(s as usize) || !self.height.is_multiple_of(s as usize) {
             return inconsistent(format!(
                 "image size {}×{} is not a multiple of the supersampling {s}",
                 self.width, self.height

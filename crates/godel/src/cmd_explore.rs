@@ -53,7 +53,7 @@ const MAX_SPHERE_WIDTH: u32 = 8192;
 /// The scene with its camera replaced by the full sphere `width` × `width`/2, one ray per
 /// pixel.
 fn with_sphere(scene: &Scene, width: u32) -> anyhow::Result<Scene> {
-    if width % 2 != 0 || !(8..=MAX_SPHERE_WIDTH).contains(&width) {
+    if !width.is_multiple_of(2) || !(8..=MAX_SPHERE_WIDTH).contains(&width) {
         return Err(usage(
             &format!("--sphere {width}"),
             format!("the width must be even, from 8 to {MAX_SPHERE_WIDTH}"),

@@ -54,7 +54,7 @@ mod tests {
 
     #[test]
     fn rates_are_whole_numbers() {
-        assert_eq!(rate_text(42_013.0142), "42013 px/s");
+        assert_eq!(rate_text(42_013.014_2), "42013 px/s");
         assert_eq!(rate_text(0.4), "0 px/s");
         assert_eq!(rate_text(f64::INFINITY), "– px/s");
         assert_eq!(rate_text(f64::NAN), "– px/s");

@@ -65,7 +65,7 @@ impl GtTable {
 
     /// The bin of temperature `t` (K), `None` outside the table or for non-finite `t`.
     pub fn get(&self, t: f64) -> Option<&GtEntry> {
-        if !(t >= T_MIN && t <= T_MAX) {
+        if !(T_MIN..=T_MAX).contains(&t) {
             return None;
         }
         let bin = (t as f32).to_bits() >> SHIFT;

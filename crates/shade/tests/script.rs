@@ -307,7 +307,7 @@ fn observer_and_camera_tracks_follow_the_keyframes_with_the_easing() {
     assert_eq!(at(6, &["position", "z"]), 2.0);
     assert_eq!(at(10, &["forward", "1"]), 1.0);
     // Linear from keyframe 0 to 1 (frames 2 → 6): a quarter of the way at frame 3.
-    assert_eq!(at(3, &["position", "y"]), 0.25 * -1.0);
+    assert_eq!(at(3, &["position", "y"]), -0.25);
     assert_eq!(at(3, &["forward", "0"]), 1.0 - 0.25);
     // Smooth from keyframe 1 to 2 (frames 6 → 10): time 1 → 3 at s = 1/4.
     let e = 0.25 * 0.25 * (3.0 - 2.0 * 0.25);

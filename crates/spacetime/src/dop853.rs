@@ -7,6 +7,11 @@
 //! The state is a fixed-size array: a step allocates nothing. Dense output costs three extra
 //! right-hand-side evaluations and is computed only when asked for ([`Dop853::dense`]).
 
+// The coefficients are written as published (more digits than an f64 holds; each literal
+// rounds to the f64 nearest the published value), and the component loops index several
+// arrays of the state at once.
+#![allow(clippy::excessive_precision, clippy::needless_range_loop)]
+
 /// An autonomous ODE system y' = f(y) of dimension `N`.
 pub trait OdeSystem<const N: usize> {
     fn rhs(&self, y: &[f64; N]) -> [f64; N];

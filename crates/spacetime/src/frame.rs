@@ -66,9 +66,9 @@ pub fn gram_schmidt_static_frame(metric: &MetricTensor) -> Tetrad {
         // Projections use the signs η_aa: + for e0 (since g(e0,e0) = −1), − for spatial.
         let c0 = g(metric, v, e[0]);
         v = v + c0 * e[0];
-        for j in 1..i {
-            let cj = g(metric, v, e[j]);
-            v = v - cj * e[j];
+        for &ej in &e[1..i] {
+            let cj = g(metric, v, ej);
+            v = v - cj * ej;
         }
         let n = g(metric, v, v).sqrt();
         e[i] = (1.0 / n) * v;

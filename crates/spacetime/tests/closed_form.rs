@@ -12,7 +12,7 @@ fn max_abs(v: [f64; 4]) -> f64 {
 
 /// A random launch: light or a particle (speed 0.05..0.95), future or past, from `at`.
 fn random_launch(rng: &mut Rng, m: &Metric, at: Event, i: usize) -> Geodesic {
-    let speed = if i % 2 == 0 {
+    let speed = if i.is_multiple_of(2) {
         1.0
     } else {
         rng.uniform(0.05, 0.95)

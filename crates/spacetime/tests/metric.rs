@@ -2,6 +2,9 @@
 //! against finite differences, the cylindrical closed forms (docs/physics.md, "The Gödel
 //! metric" and "Frames"), and orthonormality.
 
+// Tensor components are indexed as written in the formulas (g[a][c] g⁻¹[c][b], Γ^μ_ab).
+#![allow(clippy::needless_range_loop)]
+
 mod common;
 use common::Rng;
 use spacetime::*;

@@ -247,6 +247,8 @@ impl Explorer {
     /// newest replaced.
     pub fn frame(&self, generation: u64, level: Level) -> Option<Arc<Frame>> {
         let slots = self.shared.lock();
+        // Bound to a name so that the borrow of the guard ends before the guard is dropped.
+        #[allow(clippy::let_and_return)]
         let found = [&slots.latest, &slots.previous]
             .into_iter()
             .flatten()

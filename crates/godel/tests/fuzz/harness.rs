@@ -99,7 +99,7 @@ impl Fuzz {
     /// Whether a sampled extra check (e.g. the command line) runs for case `index`: about
     /// one case in `every`, and always when a case is replayed alone.
     pub fn sampled(&self, index: u64, every: u64) -> bool {
-        self.only.is_some() || mix(index ^ 0x5eed) % every == 0
+        self.only.is_some() || mix(index ^ 0x5eed).is_multiple_of(every)
     }
 
     fn replay(&self, index: u64) -> String {
