@@ -6,7 +6,7 @@
 // Prints {look, drag: {yaw, pixels_changed, requests}, after: {event, level, yaw, look},
 // pixels_changed_by_t, console_errors, error}.
 import { join } from 'node:path';
-import { launch, open, idle, savePicture, differing } from './launch.mjs';
+import { launch, open, savePicture, differing, fullFrame, dragLeft } from './launch.mjs';
 
 const [url, outDir, t] = process.argv.slice(2);
 if (!url || !outDir || t === undefined) {
@@ -15,31 +15,14 @@ if (!url || !outDir || t === undefined) {
 }
 const { context, page, requests, consoleErrors } = await launch(outDir);
 
-// Waits for the full frame of a generation after `after` on the page.
-async function fullFrame(after) {
-  await page.waitForFunction((g) => {
-    const e = window.godelViewer.explore;
-    return e && e.shown && e.shown.level === 'full' && e.shown.generation > g;
-  }, after, { timeout: 120000 });
-  await idle(page);
-  return page.evaluate(() => ({ ...window.godelViewer.explore.shown,
-    event: { ...window.godelViewer.explore.event } }));
-}
-
 const result = {};
 try {
   await open(page, url);
-  const first = await fullFrame(0);
+  const first = await fullFrame(page, 0);
   result.look = await page.evaluate(() => window.godelViewer.look);
-  // Drag the picture to the left by a quarter of its width, as a user does.
   const before = await savePicture(page, join(outDir, 'look-before.rgba'), {}, 'canvas');
-  const box = await page.locator('#image').boundingBox();
   const requestsBefore = requests.length;
-  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.5);
-  await page.mouse.down();
-  await page.mouse.move(box.x + box.width * 0.35, box.y + box.height * 0.5, { steps: 10 });
-  await page.mouse.up();
-  await idle(page);
+  await dragLeft(page);
   const dragged = await savePicture(page, join(outDir, 'look-dragged.rgba'), {}, 'canvas');
   result.drag = {
     yaw: await page.evaluate(() => window.godelViewer.look.yaw),
@@ -49,7 +32,7 @@ try {
   };
   // A new time: the frame traced for it, seen in the same turned view.
   await page.locator('#explore-t').fill(t);
-  const after = await fullFrame(first.generation);
+  const after = await fullFrame(page, first.generation);
   const moved = await savePicture(page, join(outDir, 'look-after.rgba'), {}, 'canvas');
   result.after = { ...after, yaw: await page.evaluate(() => window.godelViewer.look.yaw),
     look: await page.evaluate(() => window.godelViewer.look !== null) };

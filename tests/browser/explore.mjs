@@ -7,7 +7,7 @@
 // Writes OUT_DIR/before.rgba and OUT_DIR/after.rgba (+ .json), and prints {before, after,
 // panel_hidden, status, play_log, paused, paused_t, requests, console_errors, error}.
 import { join } from 'node:path';
-import { launch, open, idle, savePicture } from './launch.mjs';
+import { launch, open, savePicture, fullFrame } from './launch.mjs';
 
 const [url, outDir, t] = process.argv.slice(2);
 if (!url || !outDir || t === undefined) {
@@ -16,26 +16,14 @@ if (!url || !outDir || t === undefined) {
 }
 const { context, page, requests, consoleErrors } = await launch(outDir);
 
-// The frame on the GPU once it is the full one of a generation after `after`.
-async function fullFrame(after) {
-  await page.waitForFunction((g) => {
-    const e = window.godelViewer.explore;
-    return e && e.shown && e.shown.level === 'full' && e.shown.generation > g;
-  }, after, { timeout: 120000 });
-  await idle(page);
-  return page.evaluate(() => ({ ...window.godelViewer.explore.shown,
-    event: { ...window.godelViewer.explore.event },
-    width: window.godelViewer.info.width, height: window.godelViewer.info.height }));
-}
-
 const result = {};
 try {
   await open(page, url);
   result.panel_hidden = await page.evaluate(() => document.getElementById('explore-panel').hidden);
-  result.before = await fullFrame(0);
+  result.before = await fullFrame(page, 0);
   await savePicture(page, join(outDir, 'before.rgba'));
   await page.locator('#explore-t').fill(t);
-  result.after = await fullFrame(result.before.generation);
+  result.after = await fullFrame(page, result.before.generation);
   await savePicture(page, join(outDir, 'after.rgba'));
   result.status = await page.evaluate(() => document.getElementById('explore-status').textContent);
   // Play (rate 2 t per second) until four frames are taken, logging the shading passes run
@@ -59,7 +47,7 @@ try {
   const pausedAt = await page.evaluate(() => ({ t: window.godelViewer.explore.event.t,
     generation: window.godelViewer.explore.requested,
     log: window.godelViewer.playLog.slice() }));
-  result.paused = await fullFrame(pausedAt.generation - 1);
+  result.paused = await fullFrame(page, pausedAt.generation - 1);
   result.paused_t = pausedAt.t;
   result.play_log = pausedAt.log;
   result.error = await page.evaluate(() => window.godelViewer.error);

@@ -60,3 +60,26 @@ export function differing(a, b) {
   }
   return n + Math.abs(a.length - b.length) / 4;
 }
+
+// Explore: waits until the frame on the GPU is the full one of a generation after `after`;
+// returns it with the page's event and picture size.
+export async function fullFrame(page, after) {
+  await page.waitForFunction((g) => {
+    const e = window.godelViewer.explore;
+    return e && e.shown && e.shown.level === 'full' && e.shown.generation > g;
+  }, after, { timeout: 120000 });
+  await idle(page);
+  return page.evaluate(() => ({ ...window.godelViewer.explore.shown,
+    event: { ...window.godelViewer.explore.event },
+    width: window.godelViewer.info.width, height: window.godelViewer.info.height }));
+}
+
+// Drags the picture to the left by a quarter of its width, as a user does.
+export async function dragLeft(page) {
+  const box = await page.locator('#image').boundingBox();
+  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.5);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.35, box.y + box.height * 0.5, { steps: 10 });
+  await page.mouse.up();
+  await idle(page);
+}

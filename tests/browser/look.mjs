@@ -9,7 +9,7 @@
 // PNG" download of the last case), and prints what it saw as one JSON object.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, idle, savePicture, differing } from './launch.mjs';
+import { launch, open, idle, savePicture, differing, dragLeft } from './launch.mjs';
 
 const [url, outDir, casesFile] = process.argv.slice(2);
 if (!url || !outDir || !casesFile) {
@@ -25,16 +25,10 @@ try {
   await page.evaluate(() => window.godelViewer.setViewSize(160, 120));
   await idle(page);
 
-  // Drag the picture to the left by a quarter of its width, as a user does.
   const before = await savePicture(page, join(outDir, 'drag-before.rgba'), {}, 'canvas');
-  const box = await page.locator('#image').boundingBox();
   const framesBefore = await page.evaluate(() => window.godelViewer.frames);
   const requestsBefore = requests.length;
-  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.5);
-  await page.mouse.down();
-  await page.mouse.move(box.x + box.width * 0.35, box.y + box.height * 0.5, { steps: 10 });
-  await page.mouse.up();
-  await idle(page);
+  await dragLeft(page);
   const after = await savePicture(page, join(outDir, 'drag-after.rgba'),
     { body: JSON.parse(await page.evaluate(() => window.godelViewer.saveBody())) }, 'canvas');
   result.drag = {

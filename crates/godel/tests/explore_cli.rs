@@ -24,6 +24,14 @@ fn scene_text(observer: &str) -> String {
         )
 }
 
+/// Writes [`scene_text`] with the observer at the origin at t = 0 into `dir` as s.toml.
+fn origin_scene(dir: &Path) -> std::path::PathBuf {
+    let scene = dir.join("s.toml");
+    let observer = "time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }";
+    std::fs::write(&scene, scene_text(observer)).unwrap();
+    scene
+}
+
 /// One HTTP/1.1 request over a fresh connection; returns the status and the body's bytes.
 fn http(port: u16, method: &str, path: &str, body: &str) -> (u16, Vec<u8>) {
     let mut stream = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
@@ -53,6 +61,21 @@ fn json(bytes: &[u8]) -> serde_json::Value {
     serde_json::from_slice(bytes).unwrap()
 }
 
+/// The frame `/api/explore/frame` reports once it is the full one of `generation` (any
+/// generation if `None`), or the last one seen after a minute (a deadline, not a speed check).
+fn full_frame(port: u16, generation: Option<u64>) -> serde_json::Value {
+    let mut frame = serde_json::Value::Null;
+    for _ in 0..6000 {
+        frame = json(&http(port, "GET", "/api/explore/frame", "").1)["frame"].clone();
+        let of = generation.is_none_or(|g| frame["generation"] == g);
+        if of && frame["level"] == "full" {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    frame
+}
+
 /// Starts `godel explore scene`; returns the server and its port.
 fn explore(scene: &Path) -> (Server, u16) {
     let (server, url) = start_server("explore", scene, scene.parent().unwrap());
@@ -70,12 +93,7 @@ fn floats(bytes: &[u8]) -> Vec<u32> {
 #[test]
 fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("s.toml");
-    std::fs::write(
-        &scene,
-        scene_text("time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }"),
-    )
-    .unwrap();
+    let scene = origin_scene(dir.path());
     let (_server, port) = explore(&scene);
 
     // Bad events change nothing and name the field.
@@ -94,15 +112,7 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
     let generation = json(&body)["generation"].as_u64().unwrap();
     // The first request (the scene's own event) and then this one.
     assert_eq!(generation, 2);
-    let mut frame = serde_json::Value::Null;
-    for _ in 0..6000 {
-        let (_, body) = http(port, "GET", "/api/explore/frame", "");
-        frame = json(&body)["frame"].clone();
-        if frame["generation"] == generation && frame["level"] == "full" {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
+    let frame = full_frame(port, Some(generation));
     assert_eq!(frame["level"], "full", "{frame}");
     assert_eq!(
         (frame["width"].as_u64(), frame["height"].as_u64()),
@@ -296,26 +306,14 @@ fn a_bad_scene_is_refused_before_serving() {
 #[test]
 fn explore_sphere_traces_the_full_sphere_the_page_can_look_around_in() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("s.toml");
-    std::fs::write(
-        &scene,
-        scene_text("time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }"),
-    )
-    .unwrap();
+    let scene = origin_scene(dir.path());
     let (server, url) = start_server_with("explore", &scene, dir.path(), &["--sphere", "32"]);
     let port = port_of(&url);
     let (status, body) = http(port, "GET", "/api/view", "");
     assert_eq!(status, 200);
     let view = json(&body);
     assert_eq!(view["sphere"], true, "{view}");
-    let mut frame = serde_json::Value::Null;
-    for _ in 0..6000 {
-        frame = json(&http(port, "GET", "/api/explore/frame", "").1)["frame"].clone();
-        if frame["level"] == "full" {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
+    let frame = full_frame(port, None);
     assert_eq!(
         (
             frame["width"].as_u64(),
