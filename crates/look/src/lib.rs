@@ -10,10 +10,20 @@
 //! sphere's record at n with `g` and `lambda` multiplied by D (the tracer normalizes the
 //! photon to unit energy in the observer's own frame), every other field unchanged.
 //!
-//! Main items: [`look`] (the remapping), [`LookView`] (camera, axes, velocity),
-//! [`SphereSource`] (the sphere's pixel geometry: [`SphereSource::position`] and
-//! [`SphereSource::pixel_size`]), [`pixel_look`] (one output pixel: its direction in both
-//! frames and D), [`resolution`] (how far the source's pixels limit the output).
+//! The sphere is read bilinearly within one image of one object and by nearest neighbour at
+//! the edges of objects and images ([`Filter::Smooth`], the default; [`Filter::Nearest`] for
+//! every pixel), with s×s samples per output pixel where asked ([`Sampling`]; module
+//! `sample`).
+//!
+//! Main items: [`look`] (the remapping, smooth, one sample per pixel) and [`look_with`] (any
+//! [`Sampling`]), [`LookView`] (camera, axes, velocity), [`SphereSource`] (the sphere's
+//! pixel geometry: [`SphereSource::position`] and [`SphereSource::pixel_size`]),
+//! [`pixel_look`] (one output pixel: its direction in both frames and D), [`resolution`] (how
+//! far the source's pixels limit the output).
+
+mod sample;
+
+pub use sample::{Filter, SAME_IMAGE_DT, SAME_IMAGE_DUV};
 
 use datafile::{DataFile, DataFileErrorKind, PixelRecord, RayStatus};
 use rayon::prelude::*;
@@ -48,6 +58,24 @@ pub struct SphereSource {
     pub height: usize,
     pub forward: [f64; 3],
     pub up: [f64; 3],
+}
+
+/// How [`look_with`] reads the sphere: the filter, and the samples per output pixel (a square
+/// number s², read at the s×s grid of sub-pixel points where `godel render` traces its
+/// `samples`; the data file keeps every sample, as a render's does).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sampling {
+    pub filter: Filter,
+    pub samples: u32,
+}
+
+impl Default for Sampling {
+    fn default() -> Sampling {
+        Sampling {
+            filter: Filter::Smooth,
+            samples: 1,
+        }
+    }
 }
 
 /// One output pixel of a [`LookView`].
@@ -271,41 +299,65 @@ impl SphereSource {
     /// Index (row-major) of the pixel containing position `p` (from
     /// [`SphereSource::position`]): columns wrap around, rows are clamped at the poles.
     pub fn nearest(&self, p: [f64; 2]) -> usize {
-        let (w, h) = (self.width as i64, self.height as i64);
-        let col = (p[0].floor() as i64).rem_euclid(w);
-        let row = (p[1].floor() as i64).clamp(0, h - 1);
-        (row * w + col) as usize
+        sample::nearest_index(self.width, self.height, p)
     }
 }
 
-/// The data file of `view` at the event of `sphere`, without tracing: each pixel takes the
-/// record of the sphere pixel containing its static-frame direction (nearest neighbour,
-/// for every field; docs/physics.md gives the resulting error bound), with `g` and `lambda`
-/// multiplied by the pixel's Doppler factor. Light planes are carried the same way.
-/// Pixels the camera does not show are `NotTraced`.
+/// The data file of `view` at the event of `sphere`, without tracing, read smoothly with one
+/// sample per pixel ([`look_with`] with the default [`Sampling`]).
+pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
+    look_with(sphere, view, Sampling::default())
+}
+
+/// The data file of `view` at the event of `sphere`, without tracing: each pixel (each of its
+/// s×s samples) takes the sphere's record at its static-frame direction as `sampling.filter`
+/// reads it (module `sample`; docs/physics.md gives the error bounds), with `g` and `lambda`
+/// multiplied by the pixel's Doppler factor. Light planes are carried the same way. Pixels
+/// the camera does not show are `NotTraced`. `sampling.samples` is checked as `[camera]
+/// samples` is (a square number up to 256, at most 5·10⁷ samples in all; errors name
+/// `camera.samples`).
 ///
 /// The header is the sphere's with the camera description replaced, and its scene text
-/// the sphere's with `[camera]` and the observer's `velocity`, `forward` and `up` replaced
-/// (so that shaders and viewers read the result as a normal data file), headed by
-/// [`LOOK_COMMENT`].
-pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
+/// the sphere's with `[camera]` (and its `samples`) and the observer's `velocity`, `forward`
+/// and `up` replaced (so that shaders and viewers read the result as a normal data file),
+/// headed by [`LOOK_COMMENT`].
+pub fn look_with(
+    sphere: &DataFile,
+    view: &LookView,
+    sampling: Sampling,
+) -> Result<DataFile, LookError> {
     view.check()?;
     let source = SphereSource::of(sphere)?;
-    let width = view.camera.width() as usize;
-    let pixels = width * view.camera.height() as usize;
-    // Per pixel: its record and the source pixel it came from (for the light planes).
-    let mut samples = vec![(PixelRecord::miss(RayStatus::NotTraced), None); pixels];
+    let (w, h) = (view.camera.width(), view.camera.height());
+    let s = scene::samples_per_side(i64::from(sampling.samples), w, h)
+        .map_err(|m| view_error("camera.samples", m))?;
+    // The samples are the pixels of the camera s times wider and taller.
+    let samples_view = LookView {
+        camera: view.camera.supersampled(s),
+        ..*view
+    };
+    let width = samples_view.camera.width() as usize;
+    let height = samples_view.camera.height() as usize;
+    // Per sample: its record and the sphere pixels it came from (for the light planes).
+    let mut samples = vec![(PixelRecord::miss(RayStatus::NotTraced), None); width * height];
     samples
         .par_chunks_mut(width)
         .enumerate()
         .for_each(|(row, out)| {
             for (col, slot) in out.iter_mut().enumerate() {
-                if let Some(p) = pixel_look(view, col as u32, row as u32) {
-                    let i = source.nearest(source.position(p.static_dir));
-                    let mut record = boosted(sphere.records[i], p.doppler);
+                if let Some(p) = pixel_look(&samples_view, col as u32, row as u32) {
+                    let at = source.position(p.static_dir);
+                    let taps = sample::taps(
+                        &sphere.records,
+                        source.width,
+                        source.height,
+                        at,
+                        sampling.filter,
+                    );
+                    let mut record = boosted(sample::record(&sphere.records, &taps), p.doppler);
                     // The direction this camera's pixel looks, in the moving observer's frame.
                     record.view = p.own.map(|c| c as f32);
-                    *slot = (record, Some(i));
+                    *slot = (record, Some(taps));
                 }
             }
         });
@@ -315,7 +367,7 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
         .map(|plane| {
             samples
                 .iter()
-                .map(|&(_, i)| i.map_or(0.0, |i| plane[i]))
+                .map(|(_, t)| t.as_ref().map_or(0.0, |t| sample::light(plane, t)))
                 .collect()
         })
         .collect();
@@ -328,6 +380,7 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
         view.forward,
         view.up,
     )
+    .and_then(|t| scene::replace_samples(&t, EMBEDDED, s * s))
     .map_err(LookError::EmbeddedScene)?;
     let text = if text.starts_with(LOOK_COMMENT) {
         text
@@ -337,11 +390,11 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
     let mut header = sphere.header.clone();
     header.scene_text = text;
     header.camera = view.camera.describe();
-    header.supersample = 1;
+    header.supersample = s;
     Ok(DataFile {
         header,
         width,
-        height: view.camera.height() as usize,
+        height,
         records: samples.into_iter().map(|(r, _)| r).collect(),
         lights,
     })

@@ -14,11 +14,14 @@
 //! "forward": [x, y, z], "up": [x, y, z], "velocity": {"speed": 0.5, "direction": [x, y, z]}}`,
 //! with the camera fields of a scene file (`h_fov_deg`, `v_fov_deg` for a panorama,
 //! `fov_deg` for a pinhole or fisheye) and the axes in the moving observer's own frame, the
-//! velocity in the static observer's, as in `godel look`.
+//! velocity in the static observer's, as in `godel look`; an optional `"samples": N` (a
+//! square number, 1 if absent) reads N points per pixel. The sphere is read smoothly, as
+//! `godel look` reads it by default (bilinear within one image of one object).
 //!
 //! Like every route these pass [`crate::guard::check`] (Host, Origin, JSON bodies within
 //! [`crate::MAX_BODY_BYTES`]); a look picture is made within the server's bound on concurrent
-//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] pixels; its settings
+//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] samples (pixels
+//! times samples per pixel); its settings
 //! are prepared as `/api/png`'s ([`ViewerState::prepare`]: caps on lamps and sources, image
 //! textures only from the allowed folders).
 
@@ -29,7 +32,7 @@ use axum::extract::State;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
-use look::{look, LookView, SphereSource};
+use look::{look_with, Filter, LookView, Sampling, SphereSource};
 use scene::{Camera, Scene};
 use serde::{Deserialize, Serialize};
 use shade::{ShadeSettings, Shading};
@@ -180,6 +183,13 @@ pub struct ViewJson {
     pub forward: [f64; 3],
     pub up: [f64; 3],
     pub velocity: VelocityJson,
+    /// Samples per pixel of the look (a square number, `godel look --samples`); 1 if absent.
+    #[serde(default = "one_sample")]
+    pub samples: u32,
+}
+
+fn one_sample() -> u32 {
+    1
 }
 
 /// `GET /api/view`.
@@ -207,6 +217,7 @@ fn view_info(viewer: &ViewerState) -> ViewInfo {
             speed: observer.velocity.speed,
             direction: observer.velocity.direction,
         },
+        samples: 1,
     });
     let (sphere, sphere_error, object_directions) = match (SphereSource::of(data), &read) {
         (Ok(_), Ok((observer, camera))) => {
@@ -272,9 +283,12 @@ struct LookRequest {
     view: ViewJson,
 }
 
-/// The requested view, checked, and the settings prepared for it (orientation marks for
-/// the view's camera).
-fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading), ApiError> {
+/// The requested view, checked, its sampling (smooth, with the view's samples per pixel), and
+/// the settings prepared for it (orientation marks for the view's camera).
+fn prepare_look(
+    viewer: &ViewerState,
+    body: &[u8],
+) -> Result<(LookView, Sampling, Shading), ApiError> {
     let mut json = serde_json::Deserializer::from_slice(body);
     let request: LookRequest = serde_path_to_error::deserialize(&mut json)
         .map_err(|e| ApiError::bad_request(format!("look: {}: {}", e.path(), e.inner())))?;
@@ -289,16 +303,24 @@ fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading)
         ))
     })?;
     let camera = v.camera.camera()?;
-    let pixels = camera.width() as u64 * camera.height() as u64;
+    scene::samples_per_side(i64::from(v.samples), camera.width(), camera.height())
+        .map_err(|m| ApiError::bad_request(format!("view: camera.samples: {m}")))?;
+    let pixels = camera.width() as u64 * camera.height() as u64 * u64::from(v.samples);
     let most = max_look_pixels(viewer);
     if pixels > most {
         return Err(ApiError::bad_request(format!(
-            "view: camera: {}×{} is {pixels} pixels, more than this viewer makes ({most}: the \
-             data file's own count or 3840×2160); use godel look for larger pictures",
+            "view: camera: {}×{} pixels × {} samples is {pixels}, more than this viewer makes \
+             ({most}: the data file's own count or 3840×2160); use godel look for larger \
+             pictures",
             camera.width(),
-            camera.height()
+            camera.height(),
+            v.samples
         )));
     }
+    let sampling = Sampling {
+        filter: Filter::Smooth,
+        samples: v.samples,
+    };
     let look_view = LookView::new(camera, v.forward, v.up, velocity)
         .map_err(|e| ApiError::bad_request(format!("view: {e}")))?;
     // Prepared for the loaded file: the looked file has the same objects, lights and event.
@@ -306,14 +328,14 @@ fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading)
         .prepare(&request.settings)
         .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
     shading.mark_camera(&camera);
-    Ok((look_view, shading))
+    Ok((look_view, sampling, shading))
 }
 
-/// The picture of the requested view, shaded: look, then shade.
+/// The picture of the requested view, shaded: look, then shade (its samples averaged).
 fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
-    let (look_view, shading) = prepare_look(viewer, body)?;
-    let looked =
-        look(&viewer.data, &look_view).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
+    let (look_view, sampling, shading) = prepare_look(viewer, body)?;
+    let looked = look_with(&viewer.data, &look_view, sampling)
+        .map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
     Ok(shading.image(&looked))
 }
 
@@ -322,7 +344,7 @@ async fn overlay(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Res
     let ticket = viewer.work().admit()?;
     ticket
         .run(move || {
-            let (view, shading) = prepare_look(&viewer, &body)?;
+            let (view, _, shading) = prepare_look(&viewer, &body)?;
             crate::responses::overlay_png(
                 shading.overlay(view.camera.width(), view.camera.height()),
             )
