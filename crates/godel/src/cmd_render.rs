@@ -1,6 +1,7 @@
-//! `godel render [SCENE] [-o DIR]`: traces a scene (or the built-in reference scene) and
-//! writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png` (the preview,
-//! shaded with the objects' own textures). Before any tracing: the thread count, the scene,
+//! `godel render [SCENE] [-o DIR | -o FILE.exr | -o FILE.png]`: traces a scene (or the built-in
+//! reference scene) and writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png`
+//! (the preview, shaded with the objects' own textures), or the pair named by `-o`
+//! (`out_pair`). Before any tracing: the thread count, the scene,
 //! its textures and the output folder are checked (`output::prepare`). Both files are
 //! written to temporaries and then renamed together (`output::write_together`), so a failed
 //! or interrupted run leaves no half-written output and never a new EXR beside an old PNG.
@@ -11,7 +12,8 @@
 //! ranks (`cluster.rs`).
 
 use crate::args::thread_pool;
-use crate::output::{check_folder, output_names, prepare, write_outputs};
+use crate::out_pair::OutPair;
+use crate::output::{prepare, write_data_and_preview};
 use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
@@ -31,9 +33,10 @@ square number at most 256, at most 5·10⁷ rays in all; \
 [trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
 writable.
 
-Output: -o names a FOLDER (as for merge); the files in it are NAME.png and NAME.exr, NAME \
-the scene's name or --name. A path ending in .png or .exr is refused (choose the file names \
-with --name). --width, --height, --max-past, --method and --name replace the scene's \
+Output: -o names a FOLDER that receives NAME.exr and NAME.png (NAME the scene's name or \
+--name), or one of the two files itself: -o x.exr or -o x.png writes x.exr and x.png (as \
+merge; shade and look take file names too). With --part, -o is a folder. \
+--width, --height, --max-past, --method and --name replace the scene's \
 camera.width, camera.height, trace.max_past, trace.method and name, checked like the \
 scene file (errors name the flag); the data file embeds the scene as rendered.
 
@@ -43,8 +46,9 @@ temporaries that a killed run left are removed by the next run writing to that f
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,
-    /// Output FOLDER (created if missing): receives NAME.png and NAME.exr.
-    #[arg(short, long, default_value = "out", value_name = "FOLDER")]
+    /// Output FOLDER (created if missing) that receives NAME.exr and NAME.png, or the file
+    /// x.exr or x.png: both are written, the other beside it.
+    #[arg(short, long, default_value = "out", value_name = "FOLDER|FILE")]
     pub output: PathBuf,
     /// Image width in pixels (replaces [camera] width).
     #[arg(long, allow_negative_numbers = true)]
@@ -95,6 +99,22 @@ impl RenderArgs {
     }
 }
 
+/// What `-o` names (a folder, or the data file or preview), refused as a file with `--part`,
+/// whose part files go into a folder.
+fn output_target(args: &RenderArgs, part: bool) -> anyhow::Result<OutPair> {
+    let target = OutPair::parse("--output", &args.output, args.name.is_some())?;
+    if part && target != OutPair::Folder(args.output.clone()) {
+        return Err(crate::args::usage(
+            "--output",
+            format!(
+                "with --part, -o names the folder of the part files, got the file {}",
+                args.output.display()
+            ),
+        ));
+    }
+    Ok(target)
+}
+
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
 /// from any folder; empty for the built-in scene.
 pub fn scene_path_text(path: &Option<PathBuf>) -> String {
@@ -117,15 +137,15 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return under_mpi::run(args);
     }
     let pool = thread_pool(args.threads)?;
-    check_folder("--output", &args.output)?;
+    let target = output_target(&args, part.is_some())?;
     let scene = load_with_overrides(&args.scene, &args.overrides())?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
         Some(part) => vec![part.file_name(&scene.name)],
-        None => output_names(&scene).to_vec(),
+        None => target.names(&scene.name),
     };
-    prepare("--output", &args.output, &outputs)?;
+    prepare("--output", target.folder(), &outputs)?;
     let started = Instant::now();
     let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -141,9 +161,12 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let data = assembler.finish();
     match part {
-        None => write_outputs(&scene, &data, &args.output, args.grid)?,
+        None => {
+            let (exr, png) = target.files(&scene.name);
+            write_data_and_preview(&scene, &data, &exr, &png, args.grid)?
+        }
         Some(part) => {
-            let path = args.output.join(part.file_name(&scene.name));
+            let path = target.folder().join(part.file_name(&scene.name));
             let scene_path = scene_path_text(&args.scene);
             write_part(&path, &data, part, &fingerprint(&scene), &scene_path)?;
             eprintln!("wrote {} (part {part})", path.display());
@@ -173,16 +196,16 @@ mod under_mpi {
         let rank0 = world.rank() == 0;
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
-            check_folder("--output", &args.output)?;
+            let target = output_target(&args, false)?;
             let scene = load_with_overrides(&args.scene, &args.overrides())?;
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare("--output", &args.output, &output_names(&scene))?;
+                prepare("--output", target.folder(), &target.names(&scene.name))?;
             }
-            Ok((pool, scene))
+            Ok((pool, scene, target))
         };
-        let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
+        let (pool, scene, target) = set_up().unwrap_or_else(|e| abort(&world, &e));
         let renderer =
             Renderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
         let started = Instant::now();
@@ -228,7 +251,9 @@ mod under_mpi {
             wall: started.elapsed(),
             ..RenderStats::count(&data.records)
         };
-        write_outputs(&scene, &data, &args.output, args.grid).unwrap_or_else(|e| abort(&world, &e));
+        let (exr, png) = target.files(&scene.name);
+        write_data_and_preview(&scene, &data, &exr, &png, args.grid)
+            .unwrap_or_else(|e| abort(&world, &e));
         let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
         eprintln!(
             "{} ({} ranks; jobs of {per_job} tiles per rank: {})",

@@ -24,6 +24,7 @@ mod cmd_sequence;
 mod cmd_shade;
 mod cmd_view;
 mod flight;
+mod out_pair;
 mod output;
 mod overrides;
 mod plot_isometry;
