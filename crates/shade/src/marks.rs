@@ -51,7 +51,7 @@ const GRID_COLOUR: [u8; 4] = [200, 220, 255, 89];
 const STEPS: [f64; 6] = [5.0, 10.0, 15.0, 30.0, 45.0, 90.0];
 
 /// The label of an angle: `30°`, `−45°` (with the minus sign U+2212).
-pub fn label(deg: f64) -> String {
+fn label(deg: f64) -> String {
     let d = deg.round() as i64;
     if d < 0 {
         format!("−{}°", -d)
