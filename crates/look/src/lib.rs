@@ -8,7 +8,7 @@
 //! along the aberrated direction n ([`spacetime::aberrate`]), and the photon's frequency
 //! is higher by the Doppler factor D = g′/g = γ(1 + n·v). The pixel's record is the
 //! sphere's record at n with `g` and `lambda` multiplied by D (the tracer normalizes the
-//! photon to unit energy in the observer's own frame), every other field unchanged.
+//! photon to unit energy in the observer's own frame), every other field as read there.
 //!
 //! The sphere is read bilinearly within one image of one object and by nearest neighbour at
 //! the edges of objects and images ([`Filter::Smooth`], the default; [`Filter::Nearest`] for

@@ -115,8 +115,7 @@ impl Legend {
         let x_title = x_high + high.width() + 3 * u;
         let cap = cap_height(size);
         let bar = Rect::at(x_bar, y + low.baseline() - cap, bar_w, cap);
-        // The title on the line (bottom-aligned with it, in smaller type if need be), else
-        // above it.
+        // The title on the line (on its baseline, in smaller type if need be), else above it.
         let fits = |x: i64, l: &Label| x + l.width() <= wi;
         let on_line = sizes_from(size)
             .map(|k| Label::new(LEGEND_TITLE, k))

@@ -184,20 +184,31 @@ vec3 falseColour(float s) {
 }
 
 // What shading reads of a record: the object id (0 background, 1 failed, 2 step budget,
-// 3 not traced, 4 + k object k) and the channels.
+// 3 not traced, 4 + k object k) and the channels the compiled layers use (the others 0:
+// software WebGL fetches whatever the code names).
+#define WINDOW (TIME && !TRAVEL)
+#define PAINTS (TEXTURE || WINDOW || LIGHT)
+#define LAMBERT ((TEXTURE || WINDOW) && !LIGHT)
 struct Rec {
   uint id;
   float u, v, g, t, cosI;
 };
 
 Rec recordAt(ivec2 p) {
-  Rec r;
-  r.id = texelFetch(uId, p, 0).r;
+  Rec r = Rec(texelFetch(uId, p, 0).r, 0.0, 0.0, 0.0, 0.0, 0.0);
+#if PAINTS
   r.u = texelFetch(uU, p, 0).r;
   r.v = texelFetch(uV, p, 0).r;
+#endif
+#if FREQUENCY
   r.g = texelFetch(uG, p, 0).r;
+#endif
+#if TIME
   r.t = texelFetch(uT, p, 0).r;
+#endif
+#if LAMBERT
   r.cosI = float(texelFetch(uCos, p, 0).r) / 65535.0;
+#endif
   return r;
 }
 
@@ -214,7 +225,7 @@ void onePixel(ivec2 p) {
   tapN = 1;
 }
 
-#if LOOK
+#if SMOOTH
 // u moved by a whole turn to lie within half a turn of near.
 float unwrapped(float u, float near) { return u - floor(u - near + 0.5); }
 
@@ -243,7 +254,7 @@ Rec tapRecord() { return recordAt(tapP[0]); }
 // Light plane k at the taps: the weighted mean where all are finite, else the heaviest tap's.
 float tapLight(int k) {
   float x = texelFetch(uLight, ivec3(tapP[0], k), 0).r;
-#if LOOK
+#if SMOOTH
   if (tapN == 4) {
     float sum = 0.0, best = -1.0, heaviest = x;
     bool all = true;
@@ -261,8 +272,6 @@ float tapLight(int k) {
 
 // Linear RGB of the taps' record, its frequency shift multiplied by doppler. Which layers run
 // is fixed at compile time (TEXTURE, TIME, TRAVEL, FREQUENCY, LIGHT).
-#define WINDOW (TIME && !TRAVEL)
-#define PAINTS (TEXTURE || WINDOW || LIGHT)
 vec3 shadeRecord(Rec r, float doppler) {
   uint id = r.id;
   if (id < 4u) {
@@ -358,11 +367,13 @@ ivec2 wrapped(float col, float row) {
   return ivec2(c < 0 ? c + uSize.x : c, int(row));
 }
 
-// The taps of the sphere at position (x, y) (crates/look/src/sample.rs): the four pixels
-// whose centres surround it where they show one image of one object (all hits of one object,
-// emission times within 0.5, u on the circle and v within 0.25), else the one it falls in.
+// The taps of the sphere at position (x, y) (crates/look/src/sample.rs): with SMOOTH, the four
+// pixels whose centres surround it where they show one image of one object (all hits of one
+// object, emission times within 0.5, u on the circle and v within 0.25), else (and without
+// SMOOTH, while a drag turns the view) the one it falls in.
 void sphereTaps(vec2 pos) {
   onePixel(wrapped(floor(pos.x), clamp(floor(pos.y), 0.0, float(uSize.y - 1))));
+#if SMOOTH
   vec2 c = pos - 0.5;
   vec2 c0 = floor(c);
   if (c0.y < 0.0 || c0.y + 1.0 > float(uSize.y - 1)) return;
@@ -388,6 +399,7 @@ void sphereTaps(vec2 pos) {
   tapW[1] = f.x * (1.0 - f.y);
   tapW[2] = (1.0 - f.x) * f.y;
   tapW[3] = f.x * f.y;
+#endif
 }
 
 // Sets the taps of the sample at picture position at (pixel corners at integers) and its
@@ -459,12 +471,12 @@ void main() {
 }`;
 
 // The shading program's source for `features`: {texture, time, travel, frequency, light, look,
-// images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
+// smooth, images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
 // supersample (samples per pixel along each side, 1 when absent: a sampled file's, or a
 // look's).
 export function shadeSource(features) {
-  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
-    'overlay'];
+  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'smooth', 'images',
+    'refs', 'overlay'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
   defines.push(`#define CAMERA ${features.camera || 0}`);
   defines.push(`#define SUPERSAMPLE ${features.supersample || 1}`);

@@ -72,6 +72,7 @@ export function featuresFor(settings, info, data, look, uniforms) {
     frequency: on.has('frequency'),
     light: on.has('light'),
     look: Boolean(look),
+    smooth: Boolean(look && look.smooth),
     // Samples per pixel along each side, box-filtered by the shading pass: the file's, or
     // in a look the view's (a sampled sphere is refused as a sphere, as `godel look`
     // refuses it).
