@@ -11,6 +11,7 @@
 //! observer's full sphere; exit 1 for unreadable or damaged files, as `godel shade`.
 
 use crate::args::{parse_vector, usage};
+use crate::inputs::Inputs;
 use crate::output::{prepare, write_data_and_preview};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
@@ -208,6 +209,9 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(std::path::Path::new("."));
     prepare("--output", dir, &names)?;
+    Inputs::new()
+        .add("the sphere", &args.sphere)
+        .refuse_outputs_over_inputs("--output", &[&args.output, &png])?;
 
     let sphere = DataFile::read(&args.sphere)?;
     let read = started.elapsed();

@@ -3,6 +3,7 @@
 //! different renders, a missing or repeated part, or overlapping parts are refused
 //! (`render::part::merge`), and nothing is written then.
 
+use crate::inputs::Inputs;
 use crate::output::write_outputs;
 use clap::Args;
 use render::part::{merge, read_part};
@@ -42,5 +43,11 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     } else {
         Scene::from_str(&data.header.scene_text, &first.scene_path)?
     };
+    let mut inputs = Inputs::new();
+    for part in &args.parts {
+        inputs.add("a part file", part);
+    }
+    let outputs = crate::output::output_names(&scene).map(|n| args.output.join(n));
+    inputs.refuse_outputs_over_inputs("--output", &outputs)?;
     write_outputs(&scene, &data, &args.output, args.grid)
 }

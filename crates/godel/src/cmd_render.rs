@@ -11,6 +11,7 @@
 //! ranks (`cluster.rs`).
 
 use crate::args::thread_pool;
+use crate::inputs::Inputs;
 use crate::output::{check_folder, output_names, prepare, write_outputs};
 use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
@@ -126,6 +127,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         None => output_names(&scene).to_vec(),
     };
     prepare("--output", &args.output, &outputs)?;
+    let paths: Vec<PathBuf> = outputs.iter().map(|n| args.output.join(n)).collect();
+    Inputs::new()
+        .add_scene(&scene)
+        .refuse_outputs_over_inputs("--output", &paths)?;
     let started = Instant::now();
     let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -178,7 +183,12 @@ mod under_mpi {
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare("--output", &args.output, &output_names(&scene))?;
+                let names = output_names(&scene);
+                prepare("--output", &args.output, &names)?;
+                let paths: Vec<PathBuf> = names.iter().map(|n| args.output.join(n)).collect();
+                Inputs::new()
+                    .add_scene(&scene)
+                    .refuse_outputs_over_inputs("--output", &paths)?;
             }
             Ok((pool, scene))
         };

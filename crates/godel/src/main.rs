@@ -24,6 +24,8 @@ mod cmd_sequence;
 mod cmd_shade;
 mod cmd_view;
 mod flight;
+mod inputs;
+mod manifest;
 mod output;
 mod overrides;
 mod plot_isometry;

@@ -120,7 +120,7 @@ fn an_unwritable_output_is_found_before_tracing() {
     let cases: [(&Path, &[&str], &str); 4] = [
         (&file, &[], "cannot create the output folder"),
         (&file, &["--part", "2/3"], "cannot create the output folder"),
-        (&taken, &[], "slow.exr is a directory"),
+        (&taken, &[], "slow.exr: it is a directory"),
         (
             Path::new("/dev/null/out"),
             &[],
