@@ -41,7 +41,9 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let scene = if first.scene_path.is_empty() {
         Scene::builtin()
     } else {
-        Scene::from_str(&data.header.scene_text, &first.scene_path)?
+        // A damaged part (exit 1), not a usage error.
+        Scene::from_str(&data.header.scene_text, &first.scene_path)
+            .map_err(|e| anyhow::anyhow!("the scene embedded in the parts: {e}"))?
     };
     let mut inputs = Inputs::new();
     for part in &args.parts {

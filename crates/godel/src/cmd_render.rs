@@ -139,6 +139,16 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         .iter()
         .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
         .sum();
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        pixels,
+        scene.lights.len(),
+    )?;
     let bar = progress_bar(&scene, pixels, args.quiet);
     let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
     let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));

@@ -26,6 +26,7 @@ mod cmd_view;
 mod flight;
 mod inputs;
 mod manifest;
+mod memory;
 mod output;
 mod overrides;
 mod plot_isometry;
