@@ -279,19 +279,22 @@ fn check_replaceable(path: &Path) -> io::Result<()> {
 /// is not too long, and the temporary file of a write can be created beside it (the folder
 /// exists and is writable). The probe is removed again.
 pub fn check_writable(path: &Path) -> io::Result<()> {
-    check_all_writable(std::slice::from_ref(&path))
+    check_replaceable(path)?;
+    drop(temp_file_for(path)?);
+    Ok(())
 }
 
-/// [`check_writable`] for many paths (every frame of a sequence): each path checked, one
-/// probe per folder.
+/// [`check_writable`] for many paths (every frame of a sequence), one probe per folder; the
+/// error names the path (`PATH: why`).
 pub fn check_all_writable<P: AsRef<Path>>(paths: &[P]) -> io::Result<()> {
     let mut probed = HashSet::new();
     for path in paths {
         let path = path.as_ref();
-        check_replaceable(path)?;
-        if probed.insert(folder_of(path)) {
-            drop(temp_file_for(path)?);
+        let mut checked = check_replaceable(path);
+        if checked.is_ok() && probed.insert(folder_of(path)) {
+            checked = temp_file_for(path).map(drop);
         }
+        checked.map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
     }
     Ok(())
 }

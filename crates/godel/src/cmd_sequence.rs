@@ -43,9 +43,9 @@ regular file of at most 16 MiB; frames 1 to 100000; fps at most 1000; the output
 creatable and writable.
 
 Every frame's output paths are checked before the first frame; an output that is an input of \
-the run (its data file, scene or script) is refused. What an earlier sequence wrote into the \
-folder (named in its manifest .godel-sequence) and this run does not write again - frames \
-beyond its count, data files, sequence.mp4 - is removed first (a note lists them); no other \
+the run (its data file, scene or script) is refused. The files an earlier sequence wrote into the \
+folder (named in its manifest .godel-sequence) and this run does not write again (frames \
+beyond its count, data files, sequence.mp4) are removed first, a note lists them; no other \
 file is ever removed. ffmpeg encodes exactly this run's frames.
 
 Traced sequences may keyframe the observer ([keyframe.observer]: time, position {x, y, z}, \
@@ -375,7 +375,7 @@ pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
         .map_err(|e| bad_output(format!("cannot create the folder {}: {e}", dir.display())))?;
     let outputs = plan.outputs();
     datafile::atomic::check_all_writable(&outputs)
-        .map_err(|e| bad_output(format!("cannot write there: {e}")))?;
+        .map_err(|e| bad_output(format!("cannot write {e}")))?;
     if let Some(why) = plan.inputs.clash(&outputs) {
         return Err(bad_output(why));
     }

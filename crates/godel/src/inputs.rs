@@ -60,7 +60,10 @@ impl Inputs {
     pub fn role_of(&self, output: &Path) -> Option<&'static str> {
         self.files
             .iter()
-            .find(|(_, input)| same_file::is_same_file(input, output).unwrap_or(false))
+            .find(|(_, input)| match (handle(input), handle(output)) {
+                (Some(a), Some(b)) => a == b,
+                _ => false,
+            })
             .map(|(role, _)| *role)
     }
 
@@ -82,7 +85,7 @@ impl Inputs {
         let inputs: Vec<(&str, Handle)> = self
             .files
             .iter()
-            .filter_map(|(role, path)| Some((*role, Handle::from_path(path).ok()?)))
+            .filter_map(|(role, path)| Some((*role, handle(path)?)))
             .collect();
         if inputs.is_empty() {
             return None;
@@ -90,7 +93,7 @@ impl Inputs {
         outputs.iter().find_map(|output| {
             let output = output.as_ref();
             // No file there: nothing is read from it.
-            let handle = Handle::from_path(output).ok()?;
+            let handle = handle(output)?;
             let (role, _) = inputs.iter().find(|(_, input)| *input == handle)?;
             Some(format!(
                 "{} is {role} this run reads; it is never overwritten: write elsewhere",
@@ -98,6 +101,14 @@ impl Inputs {
             ))
         })
     }
+}
+
+/// The identity of the regular file at `path` (through links), `None` for anything else: a
+/// FIFO or device is never opened (opening a FIFO waits for a writer), and no output
+/// replaces one.
+fn handle(path: &Path) -> Option<Handle> {
+    let regular = std::fs::metadata(path).is_ok_and(|m| m.is_file());
+    regular.then(|| Handle::from_path(path).ok()).flatten()
 }
 
 #[cfg(test)]
