@@ -100,7 +100,8 @@ impl Manifest {
     }
 
     /// Writes the manifest anew with the files it names that are still as written (after
-    /// the stale ones were removed), so that it never grows without bound.
+    /// the stale ones were removed), so that it never grows without bound; where none is
+    /// left, there is no manifest (until the run records its first file).
     pub fn rewrite(&self) -> anyhow::Result<()> {
         let lines: String = self
             .files
@@ -108,7 +109,15 @@ impl Manifest {
             .filter(|(name, identity)| Identity::of(&self.dir.join(name)) == Some(**identity))
             .map(|(name, identity)| line(name, *identity))
             .collect();
-        crate::output::write_atomic(&self.dir.join(MANIFEST), lines.as_bytes())
+        let path = self.dir.join(MANIFEST);
+        if lines.is_empty() {
+            return match std::fs::remove_file(&path) {
+                Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(anyhow::Error::new(e)
+                    .context(format!("cannot remove the empty {}", path.display()))),
+                _ => Ok(()),
+            };
+        }
+        crate::output::write_atomic(&path, lines.as_bytes())
     }
 }
 
