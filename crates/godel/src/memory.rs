@@ -26,11 +26,23 @@ pub fn check_writing(flag: &str, what: &str, rays: u64, lights: usize) -> anyhow
     check(flag, what, rays.saturating_mul(writing_bytes(lights)), None)
 }
 
-/// What the work may use: three quarters of the memory the system has available now
-/// (Linux's `MemAvailable`, which counts reclaimable caches), or 4 GiB where that is unknown.
+/// What the work may use: `GODEL_MEMORY_BUDGET` (bytes, e.g. `8e9`) where set — a job under
+/// a memory limit that `/proc/meminfo` does not show (a cgroup) says so there —, else three
+/// quarters of the memory the system has available now (Linux's `MemAvailable`, which counts
+/// reclaimable caches), or 4 GiB where that is unknown.
 pub fn budget() -> u64 {
-    available().map_or(4 << 30, |bytes| bytes / 4 * 3)
+    let set = std::env::var(BUDGET_VARIABLE)
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .filter(|b| b.is_finite() && *b >= 0.0);
+    match set {
+        Some(bytes) => bytes as u64,
+        None => available().map_or(4 << 30, |bytes| bytes / 4 * 3),
+    }
 }
+
+/// The environment variable that sets the [`budget`].
+pub const BUDGET_VARIABLE: &str = "GODEL_MEMORY_BUDGET";
 
 /// `MemAvailable` of /proc/meminfo, in bytes.
 fn available() -> Option<u64> {
@@ -47,17 +59,26 @@ pub fn check(flag: &str, what: &str, needed: u64, fits: Option<String>) -> anyho
     if needed <= budget {
         return Ok(());
     }
-    let gb = |b: u64| b as f64 / 1e9;
     let hint = fits.map(|f| format!("; {f} fits")).unwrap_or_default();
     Err(usage(
         flag,
         format!(
-            "{what} needs about {:.1} GB of memory, more than the {:.1} GB this machine has \
-             available now (three quarters of what is free){hint}",
-            gb(needed),
-            gb(budget)
+            "{what} needs about {} of memory, more than the budget of {} (three quarters of \
+             what this machine has available now, or {BUDGET_VARIABLE}){hint}",
+            bytes(needed),
+            bytes(budget)
         ),
     ))
+}
+
+/// `b` bytes for a message: `2.6 GB`, `340 MB`, `1.2 MB`, `20 kB`.
+fn bytes(b: u64) -> String {
+    match b as f64 {
+        b if b >= 1e9 => format!("{:.1} GB", b / 1e9),
+        b if b >= 1e7 => format!("{:.0} MB", b / 1e6),
+        b if b >= 1e6 => format!("{:.1} MB", b / 1e6),
+        b => format!("{:.0} kB", b / 1e3),
+    }
 }
 
 #[cfg(test)]
@@ -72,5 +93,9 @@ mod tests {
         assert!(text.starts_with("--width: a picture needs about"), "{text}");
         assert!(text.ends_with("; --width 100 fits"), "{text}");
         assert!(record_bytes(2) > record_bytes(0));
+        assert_eq!(bytes(2_600_000_000), "2.6 GB");
+        assert_eq!(bytes(340_000_000), "340 MB");
+        assert_eq!(bytes(1_234_567), "1.2 MB");
+        assert_eq!(bytes(20_000), "20 kB");
     }
 }
