@@ -14,8 +14,9 @@ pub fn record_bytes(lights: usize) -> u64 {
 
 /// Bytes per ray at the peak of writing a data file of `lights` light planes: its records,
 /// the channel planes and the encoded bytes (one 4-byte value per channel each), the
-/// preview's RGB. Measured: 200 bytes per ray for `godel render` and `godel look` of 10⁷
-/// rays without lights (BENCHMARKS.md, "Memory"); three records' worth is a little more.
+/// preview's RGB. Measured: 200 bytes per ray for `godel render` and `godel look` of
+/// 8·10⁶ rays without lights (BENCHMARKS.md, "Memory of look, of the viewer's look pictures,
+/// and of explore"); three records' worth is a little more.
 pub fn writing_bytes(lights: usize) -> u64 {
     3 * record_bytes(lights)
 }
