@@ -282,24 +282,25 @@ fn a_sequence_never_removes_its_input_or_files_it_did_not_write() {
     std::fs::write(fly.join("frame_0003.exr"), b"another render").unwrap();
     let script = dir.path().join("r.toml");
     let write_script = |data: &str, frames: u32| {
-        let text = format!("data = \"{data}\"\noutput = \"fly\"\nframes = {frames}\nmp4 = false\n");
+        let text = format!(
+            "data = \"{data}\"\noutput = \"fly\"\nframes = {frames}\nmp4 = false\n\
+             [settings]\nshaders = [\"frequency\"]\n"
+        );
         std::fs::write(&script, text).unwrap();
     };
+    let expected = [
+        common::MANIFEST,
+        "frame_0000.png",
+        "frame_0001.png",
+        "frame_0002.exr",
+        "frame_0003.exr",
+    ];
     write_script("fly/frame_0002.exr", 2);
     let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("removed"), "{}", stderr(&o));
     let before = std::fs::read(fly.join("frame_0002.exr")).unwrap();
-    assert_eq!(
-        files_in(&fly),
-        [
-            common::MANIFEST,
-            "frame_0000.png",
-            "frame_0001.png",
-            "frame_0002.exr",
-            "frame_0003.exr"
-        ]
-    );
+    assert_eq!(files_in(&fly), expected);
     // Even a data file an earlier sequence wrote is not removed while it is the input.
     common::record_as_sequence_output(&fly, &["frame_0002.exr"]);
     // And a frame the user replaced since its sequence wrote it stays, with a note.
@@ -313,16 +314,7 @@ fn a_sequence_never_removes_its_input_or_files_it_did_not_write() {
         stderr(&o)
     );
     assert_eq!(std::fs::read(fly.join("frame_0002.exr")).unwrap(), before);
-    assert_eq!(
-        files_in(&fly),
-        [
-            common::MANIFEST,
-            "frame_0000.png",
-            "frame_0001.png",
-            "frame_0002.exr",
-            "frame_0003.exr"
-        ]
-    );
+    assert_eq!(files_in(&fly), expected);
 }
 
 /// Issue 24: an output of a sequence that is one of its inputs is refused before any frame.
@@ -335,7 +327,8 @@ fn a_sequence_whose_output_is_its_input_is_refused() {
     let script = dir.path().join("s.toml");
     std::fs::write(
         &script,
-        "data = \"out/frame_0001.png\"\noutput = \"out\"\nframes = 3\nmp4 = false\n",
+        "data = \"out/frame_0001.png\"\noutput = \"out\"\nframes = 3\nmp4 = false\n\
+         [settings]\nshaders = [\"frequency\"]\n",
     )
     .unwrap();
     let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);

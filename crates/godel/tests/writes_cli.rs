@@ -34,31 +34,8 @@ fn ranks_scene_in(dir: &Path) -> (String, PathBuf) {
 /// staged, sends `signal` there, and returns the exit code and the files seen in `out`
 /// while paused.
 fn interrupt_at_the_rename(scene: &str, out: &Path, signal: &str) -> (Option<i32>, Vec<String>) {
-    let mut child = Command::new(GODEL)
-        .args(["render", scene, "-q", "-o", out.to_str().unwrap()])
-        .env("GODEL_PAUSE_BEFORE_RENAME", "600")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let (tx, rx) = mpsc::channel();
-    let err = child.stderr.take().unwrap();
-    std::thread::spawn(move || {
-        for line in BufReader::new(err).lines().map_while(Result::ok) {
-            let _ = tx.send(line);
-        }
-    });
-    let staged = loop {
-        match rx.recv_timeout(NEVER_HANGS) {
-            Ok(line) if line.starts_with("staged: ") => break line,
-            Ok(_) => continue,
-            Err(_) => {
-                let _ = child.kill();
-                panic!("the render never reached its rename");
-            }
-        }
-    };
+    let mut child = spawn_render(scene, out, &[], &[("GODEL_PAUSE_BEFORE_RENAME", "600")]);
+    let staged = wait_for_line(&mut child, "staged: ");
     let seen = files_in(out);
     assert!(
         staged.contains("ranks.exr") && staged.contains("ranks.png"),
@@ -69,20 +46,7 @@ fn interrupt_at_the_rename(scene: &str, out: &Path, signal: &str) -> (Option<i32
         .status()
         .unwrap();
     assert!(sent.success());
-    let code = {
-        let started = std::time::Instant::now();
-        loop {
-            if let Some(status) = child.try_wait().unwrap() {
-                break status.code();
-            }
-            if started.elapsed() > NEVER_HANGS {
-                let _ = child.kill();
-                panic!("the render did not end after {signal}");
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-    };
-    (code, seen)
+    (exit_code(child), seen)
 }
 
 fn is_temporary(name: &str) -> bool {

@@ -75,7 +75,7 @@ fn open_file_limit() -> Option<u64> {
         };
         // SAFETY: getrlimit writes the struct it is given and nothing else.
         let read = unsafe { libc::getrlimit(libc::RLIMIT_NOFILE, &mut limit) } == 0;
-        (read && limit.rlim_cur != libc::RLIM_INFINITY).then_some(limit.rlim_cur as u64)
+        (read && limit.rlim_cur != libc::RLIM_INFINITY).then_some(limit.rlim_cur)
     }
     #[cfg(not(unix))]
     None
