@@ -9,7 +9,7 @@
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
-//! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone), or for the newest frame when the query names none |
+//! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
 //!
 //! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
 //! frame on screen, at its size, never to the first frame the server opened on.
@@ -69,8 +69,9 @@ impl ExploreState {
         Ok(routes)
     }
 
-    /// The frame a request names (`generation` and `level`; 410 once it is gone), or the
-    /// newest when it names none (`None` before any: the first viewer answers).
+    /// The frame a request names (`generation` and `level`; 410 once it is gone), or `None`
+    /// when it names none: then the first frame's viewer answers, whose channels
+    /// `/api/gpu/…` serves and which the page shows until it takes a traced frame.
     fn frame_named(&self, which: FrameQuery) -> Result<Option<Arc<Frame>>, ApiError> {
         match (which.generation, which.level) {
             (Some(generation), Some(level)) => self
@@ -78,7 +79,7 @@ impl ExploreState {
                 .frame(generation, level)
                 .map(Some)
                 .ok_or_else(|| gone(generation, level)),
-            (None, None) => Ok(self.explorer.latest()),
+            (None, None) => Ok(None),
             _ => Err(ApiError::bad_request(
                 "give both generation and level, or neither",
             )),
