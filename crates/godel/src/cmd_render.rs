@@ -20,7 +20,7 @@ use render::driver::Renderer;
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
 use render::tiles::Assembler;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
@@ -105,6 +105,16 @@ pub fn scene_path_text(path: &Option<PathBuf>) -> String {
         .unwrap_or_default()
 }
 
+/// Before tracing: the output folder creatable, the files `names` writable there, and none
+/// of them an input of the run (the scene file, its image textures).
+fn prepare_outputs(dir: &Path, scene: &scene::Scene, names: &[String]) -> anyhow::Result<()> {
+    prepare("--output", dir, names)?;
+    let paths: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    Inputs::new()
+        .add_scene(scene)
+        .refuse_outputs_over_inputs("--output", &paths)
+}
+
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let part = match &args.part {
         Some(text) => Some(
@@ -126,11 +136,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Some(part) => vec![part.file_name(&scene.name)],
         None => output_names(&scene).to_vec(),
     };
-    prepare("--output", &args.output, &outputs)?;
-    let paths: Vec<PathBuf> = outputs.iter().map(|n| args.output.join(n)).collect();
-    Inputs::new()
-        .add_scene(&scene)
-        .refuse_outputs_over_inputs("--output", &paths)?;
+    prepare_outputs(&args.output, &scene, &outputs)?;
     let started = Instant::now();
     let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -193,12 +199,7 @@ mod under_mpi {
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                let names = output_names(&scene);
-                prepare("--output", &args.output, &names)?;
-                let paths: Vec<PathBuf> = names.iter().map(|n| args.output.join(n)).collect();
-                Inputs::new()
-                    .add_scene(&scene)
-                    .refuse_outputs_over_inputs("--output", &paths)?;
+                prepare_outputs(&args.output, &scene, &output_names(&scene))?;
             }
             Ok((pool, scene))
         };
