@@ -4,6 +4,7 @@
 //! different renders, a missing or repeated part, or overlapping parts are refused
 //! (`render::part::merge`), and nothing is written then.
 
+use crate::inputs::Inputs;
 use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
 use clap::Args;
@@ -42,9 +43,16 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let scene = if first.scene_path.is_empty() {
         Scene::builtin()
     } else {
-        Scene::from_str(&data.header.scene_text, &first.scene_path)?
+        // A damaged part (exit 1), not a usage error.
+        Scene::from_str(&data.header.scene_text, &first.scene_path)
+            .map_err(|e| anyhow::anyhow!("the scene embedded in the parts: {e}"))?
     };
     prepare("--output", target.folder(), &target.names(&scene.name))?;
     let (exr, png) = target.files(&scene.name);
+    let mut inputs = Inputs::new();
+    for part in &args.parts {
+        inputs.add("a part file", part);
+    }
+    inputs.refuse_outputs_over_inputs("--output", &[exr.clone(), png.clone()])?;
     write_data_and_preview(&scene, &data, &exr, &png, args.grid)
 }

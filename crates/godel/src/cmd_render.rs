@@ -12,6 +12,7 @@
 //! ranks (`cluster.rs`).
 
 use crate::args::thread_pool;
+use crate::inputs::Inputs;
 use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
 use crate::overrides::{load_with_overrides, Overrides};
@@ -21,7 +22,7 @@ use render::driver::Renderer;
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
 use render::tiles::Assembler;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
@@ -124,6 +125,16 @@ pub fn scene_path_text(path: &Option<PathBuf>) -> String {
         .unwrap_or_default()
 }
 
+/// Before tracing: the output folder creatable, the files `names` writable there, and none
+/// of them an input of the run (the scene file, its image textures).
+fn prepare_outputs(dir: &Path, scene: &scene::Scene, names: &[String]) -> anyhow::Result<()> {
+    prepare("--output", dir, names)?;
+    let paths: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    Inputs::new()
+        .add_scene(scene)
+        .refuse_outputs_over_inputs("--output", &paths)
+}
+
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let part = match &args.part {
         Some(text) => Some(
@@ -145,7 +156,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Some(part) => vec![part.file_name(&scene.name)],
         None => target.names(&scene.name),
     };
-    prepare("--output", target.folder(), &outputs)?;
+    prepare_outputs(target.folder(), &scene, &outputs)?;
     let started = Instant::now();
     let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -154,6 +165,16 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         .iter()
         .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
         .sum();
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        pixels,
+        scene.lights.len(),
+    )?;
     let bar = progress_bar(&scene, pixels, args.quiet);
     let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
     let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
@@ -201,7 +222,7 @@ mod under_mpi {
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare("--output", target.folder(), &target.names(&scene.name))?;
+                prepare_outputs(target.folder(), &scene, &target.names(&scene.name))?;
             }
             Ok((pool, scene, target))
         };

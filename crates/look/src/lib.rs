@@ -16,10 +16,11 @@
 //! `sample`).
 //!
 //! Main items: [`look`] (the remapping, smooth, one sample per pixel) and [`look_with`] (any
-//! [`Sampling`]), [`LookView`] (camera, axes, velocity), [`SphereSource`] (the sphere's
-//! pixel geometry: [`SphereSource::position`] and [`SphereSource::pixel_size`]),
-//! [`pixel_look`] (one output pixel: its direction in both frames and D), [`resolution`] (how
-//! far the source's pixels limit the output).
+//! [`Sampling`]); [`look_rows`] for a band of rows of [`samples_view`], so that a server can
+//! shade a large view band by band in bounded memory; [`LookView`] (camera, axes, velocity),
+//! [`SphereSource`] (the sphere's pixel geometry: [`SphereSource::position`] and
+//! [`SphereSource::pixel_size`]), [`pixel_look`] (one output pixel: its direction in both
+//! frames and D), [`resolution`] (how far the source's pixels limit the output).
 
 mod sample;
 
@@ -144,16 +145,12 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-/// `v` normalized; an error naming `field` for a zero or non-finite vector.
+/// `v` normalized; an error naming `field` for a zero or non-finite vector. Components so
+/// large or small that their squares overflow or vanish are scaled first
+/// ([`spacetime::scaled_unit`]).
 fn unit(field: &'static str, v: [f64; 3]) -> Result<[f64; 3], LookError> {
-    let n = dot(v, v).sqrt();
-    if !(v.iter().all(|c| c.is_finite()) && n > 0.0 && n.is_finite()) {
-        return Err(view_error(
-            field,
-            format!("must be a non-zero direction, got {v:?}"),
-        ));
-    }
-    Ok(v.map(|c| c / n))
+    spacetime::scaled_unit(v)
+        .ok_or_else(|| view_error(field, format!("must be a non-zero direction, got {v:?}")))
 }
 
 impl LookView {
@@ -328,50 +325,10 @@ pub fn look_with(
 ) -> Result<DataFile, LookError> {
     view.check()?;
     let source = SphereSource::of(sphere)?;
-    let (w, h) = (view.camera.width(), view.camera.height());
-    let s = scene::samples_per_side(i64::from(sampling.samples), w, h)
-        .map_err(|m| view_error("camera.samples", m))?;
-    // The samples are the pixels of the camera s times wider and taller.
-    let samples_view = LookView {
-        camera: view.camera.supersampled(s),
-        ..*view
-    };
+    let (samples_view, s) = samples_view(view, sampling.samples)?;
+    let height = samples_view.camera.height();
+    let (records, lights) = look_rows(sphere, &source, &samples_view, sampling.filter, 0..height);
     let width = samples_view.camera.width() as usize;
-    let height = samples_view.camera.height() as usize;
-    // Per sample: its record and the sphere pixels it came from (for the light planes).
-    let mut samples = vec![(PixelRecord::miss(RayStatus::NotTraced), None); width * height];
-    samples
-        .par_chunks_mut(width)
-        .enumerate()
-        .for_each(|(row, out)| {
-            for (col, slot) in out.iter_mut().enumerate() {
-                if let Some(p) = pixel_look(&samples_view, col as u32, row as u32) {
-                    let at = source.position(p.static_dir);
-                    let taps = sample::taps(
-                        &sphere.records,
-                        source.width,
-                        source.height,
-                        at,
-                        sampling.filter,
-                    );
-                    let mut record = boosted(sample::record(&sphere.records, &taps), p.doppler);
-                    // The direction this camera's pixel looks, in the moving observer's frame.
-                    record.view = p.own.map(|c| c as f32);
-                    *slot = (record, Some(taps));
-                }
-            }
-        });
-    let lights = sphere
-        .lights
-        .iter()
-        .map(|plane| {
-            samples
-                .iter()
-                .map(|(_, t)| t.as_ref().map_or(0.0, |t| sample::light(plane, t)))
-                .collect()
-        })
-        .collect();
-
     let text = scene::replace_view(
         &sphere.header.scene_text,
         EMBEDDED,
@@ -394,10 +351,81 @@ pub fn look_with(
     Ok(DataFile {
         header,
         width,
-        height,
-        records: samples.into_iter().map(|(r, _)| r).collect(),
+        height: height as usize,
+        records,
         lights,
     })
+}
+
+/// The view whose pixels are the samples of `view` at `samples` per pixel: the camera s times
+/// wider and taller (s² = `samples`, checked as `[camera] samples` is: a square number up to
+/// 256, at most 5·10⁷ samples in all; errors name `camera.samples`), and s.
+pub fn samples_view(view: &LookView, samples: u32) -> Result<(LookView, u32), LookError> {
+    let (w, h) = (view.camera.width(), view.camera.height());
+    let s = scene::samples_per_side(i64::from(samples), w, h)
+        .map_err(|m| view_error("camera.samples", m))?;
+    let samples_view = LookView {
+        camera: view.camera.supersampled(s),
+        ..*view
+    };
+    Ok((samples_view, s))
+}
+
+/// Rows `rows` of the image [`look_with`] makes of `view` (a [`samples_view`] for several
+/// samples per pixel) from `sphere` (whose geometry is `source`, [`SphereSource::of`]), read
+/// with `filter`: the records, row-major, and each light plane of them. `view` must be
+/// checked ([`LookView::new`]). Memory: one record per pixel, and the sphere pixels each
+/// pixel reads only where the sphere has light planes.
+pub fn look_rows(
+    sphere: &DataFile,
+    source: &SphereSource,
+    view: &LookView,
+    filter: Filter,
+    rows: std::ops::Range<u32>,
+) -> (Vec<PixelRecord>, Vec<Vec<f32>>) {
+    let width = view.camera.width() as usize;
+    let rows = rows.start..rows.end.min(view.camera.height());
+    let pixels = width * rows.len();
+    // The sphere pixels each pixel reads, and where it looks.
+    let show = |col: usize, row: usize| {
+        let p = pixel_look(view, col as u32, rows.start + row as u32)?;
+        let at = source.position(p.static_dir);
+        let taps = sample::taps(&sphere.records, source.width, source.height, at, filter);
+        Some((taps, p))
+    };
+    let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); pixels];
+    records
+        .par_chunks_mut(width.max(1))
+        .enumerate()
+        .for_each(|(row, out)| {
+            for (col, slot) in out.iter_mut().enumerate() {
+                if let Some((taps, p)) = show(col, row) {
+                    let mut record = boosted(sample::record(&sphere.records, &taps), p.doppler);
+                    // The direction this camera's pixel looks, in the moving observer's frame.
+                    record.view = p.own.map(|c| c as f32);
+                    *slot = record;
+                }
+            }
+        });
+    let lights = if sphere.lights.is_empty() {
+        Vec::new()
+    } else {
+        let shown: Vec<Option<sample::Taps>> = (0..pixels)
+            .into_par_iter()
+            .map(|k| show(k % width, k / width).map(|(t, _)| t))
+            .collect();
+        sphere
+            .lights
+            .iter()
+            .map(|plane| {
+                shown
+                    .iter()
+                    .map(|t| t.as_ref().map_or(0.0, |t| sample::light(plane, t)))
+                    .collect()
+            })
+            .collect()
+    };
+    (records, lights)
 }
 
 /// The static observer's record `r` as the moving observer of Doppler factor `doppler`

@@ -21,7 +21,8 @@
 //! Like every route these pass [`crate::guard::check`] (Host, Origin, JSON bodies within
 //! [`crate::MAX_BODY_BYTES`]); a look picture is made within the server's bound on concurrent
 //! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] samples (pixels
-//! times samples per pixel); its settings
+//! times samples per pixel), made in bands of rows so that its memory is its RGB bytes and a
+//! band's records; its settings
 //! are prepared as `/api/png`'s ([`ViewerState::prepare`]: caps on lamps and sources, image
 //! textures only from the allowed folders).
 
@@ -32,7 +33,8 @@ use axum::extract::State;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
-use look::{look_with, Filter, LookView, Sampling, SphereSource};
+use datafile::DataFile;
+use look::{look_rows, samples_view, Filter, LookView, Sampling, SphereSource};
 use scene::{Camera, Scene};
 use serde::{Deserialize, Serialize};
 use shade::{ShadeSettings, Shading};
@@ -309,9 +311,9 @@ fn prepare_look(
     let most = max_look_pixels(viewer);
     if pixels > most {
         return Err(ApiError::bad_request(format!(
-            "view: camera: {}×{} pixels × {} samples is {pixels}, more than this viewer makes \
-             ({most}: the data file's own count or 3840×2160); use godel look for larger \
-             pictures",
+            "view: camera: {}×{} pixels × {} samples per pixel: {pixels} pixels to look up, more \
+             than this viewer makes ({most}: the data file's own count or 3840×2160); use godel \
+             look for larger pictures",
             camera.width(),
             camera.height(),
             v.samples
@@ -331,12 +333,49 @@ fn prepare_look(
     Ok((look_view, sampling, shading))
 }
 
-/// The picture of the requested view, shaded: look, then shade (its samples averaged).
+/// Most samples of a look picture remapped at once: the picture is made in bands of rows,
+/// each band's records (about 80 bytes a sample) shaded and dropped before the next, so a
+/// 3840×2160 view takes its RGB bytes and about 20 MB of records at a time.
+const BAND_PIXELS: usize = 1 << 18;
+
+/// The picture of the requested view, shaded: look, then shade (its samples averaged), band
+/// by band of rows (`look::look_rows`); the overlays drawn once over the whole.
 fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
-    let (look_view, sampling, shading) = prepare_look(viewer, body)?;
-    let looked = look_with(&viewer.data, &look_view, sampling)
-        .map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
-    Ok(shading.image(&looked))
+    let (view, sampling, shading) = prepare_look(viewer, body)?;
+    let bad = |e: look::LookError| ApiError::bad_request(format!("look: {e}"));
+    let source = SphereSource::of(&viewer.data).map_err(bad)?;
+    let (samples, s) = samples_view(&view, sampling.samples).map_err(bad)?;
+    let (w, h) = (view.camera.width(), view.camera.height());
+    let sample_row = w as usize * (s * s) as usize;
+    let band = u32::try_from(BAND_PIXELS / sample_row.max(1))
+        .unwrap_or(u32::MAX)
+        .max(1);
+    let mut rgb = Vec::with_capacity(w as usize * h as usize * 3);
+    let mut rows = Vec::new();
+    let mut header = viewer.data.header.clone();
+    header.supersample = s;
+    for start in (0..h).step_by(band as usize) {
+        let end = start.saturating_add(band).min(h);
+        let (records, lights) = look_rows(
+            &viewer.data,
+            &source,
+            &samples,
+            sampling.filter,
+            s * start..s * end,
+        );
+        let part = DataFile {
+            header: header.clone(),
+            width: (w * s) as usize,
+            height: ((end - start) * s) as usize,
+            records,
+            lights,
+        };
+        shading.image_rows_into(&part, &mut rows);
+        rgb.extend_from_slice(&rows);
+    }
+    shading.draw_overlays(w as usize, h as usize, &mut rgb);
+    image::RgbImage::from_raw(w, h, rgb)
+        .ok_or_else(|| ApiError::internal("the look picture has the wrong size"))
 }
 
 async fn overlay(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {
