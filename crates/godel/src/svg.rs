@@ -18,13 +18,7 @@ pub fn escape(s: &str) -> String {
 
 /// Formats a coordinate compactly (4 decimals, trailing zeros trimmed).
 pub fn f(v: f64) -> String {
-    let s = format!("{v:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_string()
-    } else {
-        s.to_string()
-    }
+    typeface::svg_number(v, 4)
 }
 
 /// An SVG document under construction; elements are appended as text.

@@ -173,7 +173,7 @@ impl Line {
             let ox = x + f64::from(pen);
             let p = |q: ab_glyph::Point| {
                 let (px, py) = (ox + f64::from(q.x) * k, y - f64::from(q.y) * k);
-                format!("{} {}", short(px), short(py))
+                format!("{} {}", svg_number(px, 2), svg_number(py, 2))
             };
             let mut end: Option<ab_glyph::Point> = None;
             for curve in &outline.curves {
@@ -203,9 +203,10 @@ impl Line {
     }
 }
 
-/// A number with at most two decimals, trailing zeros trimmed.
-fn short(v: f64) -> String {
-    let s = format!("{v:.2}");
+/// `v` as an SVG number with at most `decimals` decimals, trailing zeros trimmed (`-0` is
+/// `0`): how the outlines write their coordinates, and the plots theirs.
+pub fn svg_number(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
         "0".into()
