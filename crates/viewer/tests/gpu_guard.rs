@@ -151,7 +151,11 @@ async fn look_pictures_have_a_bounded_size() {
     body["view"]["samples"] = serde_json::json!(4);
     let (status, answer) = send(data(), post("/api/look/png", body.to_string())).await;
     assert_eq!(status, StatusCode::BAD_REQUEST);
-    assert!(error_of(&answer).contains("8337600 pixels"), "{}", error_of(&answer));
+    assert!(
+        error_of(&answer).contains("8337600 pixels"),
+        "{}",
+        error_of(&answer)
+    );
     body["view"]["camera"] = serde_json::json!({"kind": "sphere", "width": 16, "height": 8});
     body["view"]["samples"] = serde_json::json!(3);
     let (status, answer) = send(data(), post("/api/look/png", body.to_string())).await;
