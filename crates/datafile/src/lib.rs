@@ -5,6 +5,8 @@
 //! - The data file ([`DataFile`], [`DataHeader`]): one OpenEXR file per traced image with one
 //!   named channel per record field, read back without re-tracing (see [`attr`] for its
 //!   header attributes, part files of split renders included).
+//! - [`DataFile::planes`]: every channel as a named [`Plane`] of values, NaN where there is
+//!   none, exactly as the file stores them (`planes.rs`).
 //! - Samples (`samples.rs`): an anti-aliased file keeps s×s records per picture pixel;
 //!   [`DataFile::picture_size`], [`DataFile::sample_indices`] and the box filter
 //!   [`DataFile::box_filter`] that every shader applies after colouring each sample.
@@ -16,10 +18,12 @@
 pub mod atomic;
 mod codec;
 mod exr_write;
+mod planes;
 pub mod record;
 mod samples;
 
 pub use codec::*;
 pub use exr_write::exr_bytes;
+pub use planes::{light_channel_name, Plane};
 pub use record::{PixelRecord, RayStatus};
 pub use samples::MAX_SUPERSAMPLE;

@@ -2,11 +2,8 @@
 //! finite and bounded numbers, thread counts, output formats. Every failure is a
 //! [`UsageError`] naming the flag, which `main` turns into exit code 2.
 
-use anyhow::Context;
 use clap::ValueEnum;
-use scene::Scene;
 use std::fmt;
-use std::path::PathBuf;
 
 /// The output formats of `godel geodesic` and `godel connect` (`--format`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -76,50 +73,13 @@ pub fn positive(flag: &str, v: f64) -> anyhow::Result<f64> {
     }
 }
 
-/// Most worker threads per core: more only adds switching and memory, never speed.
-pub const THREADS_PER_CORE: usize = 8;
-
-/// The cores this process may use (affinity and cgroup quotas included; 1 if unknown).
-pub fn cores() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
-}
-
-/// Checks a `--threads` value: at least 1, at most [`THREADS_PER_CORE`] per core.
-pub fn threads(flag: &str, n: usize) -> anyhow::Result<usize> {
-    let cores = cores();
-    let max = THREADS_PER_CORE * cores;
-    if n == 0 {
-        return Err(usage(flag, "must be at least 1"));
-    }
-    if n > max {
-        return Err(usage(
-            flag,
-            format!(
-                "at most {max} ({THREADS_PER_CORE} per core; this machine gives {cores} core(s)), got {n}"
-            ),
-        ));
-    }
-    Ok(n)
-}
-
-/// Loads the scene named on the command line, or the built-in one.
-pub fn load_scene(path: &Option<PathBuf>) -> anyhow::Result<Scene> {
-    Ok(match path {
-        Some(p) => Scene::from_file(p)?,
-        None => Scene::builtin(),
-    })
-}
-
 /// The worker thread pool of `--threads` (checked: 1 to 8 per core).
 pub fn thread_pool(wanted: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
-    let n = match wanted {
-        Some(n) => threads("--threads", n)?,
-        None => 0, // rayon's default: one per core
-    };
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n)
-        .build()
-        .context("cannot start worker threads")
+    use render::threads::ThreadsError;
+    render::threads::thread_pool(wanted).map_err(|e| match e {
+        ThreadsError::Count(message) => usage("--threads", message),
+        e => e.into(),
+    })
 }
 
 #[cfg(test)]
@@ -140,13 +100,13 @@ mod tests {
     }
 
     #[test]
-    fn thread_counts_are_bounded_by_the_cores() {
-        let max = THREADS_PER_CORE * cores();
-        assert_eq!(threads("--threads", 1).unwrap(), 1);
-        assert_eq!(threads("--threads", max).unwrap(), max);
-        for bad in [0, max + 1, 100_000] {
-            let e = threads("--threads", bad).unwrap_err();
+    fn thread_counts_name_the_flag() {
+        let max = render::threads::THREADS_PER_CORE * render::threads::cores();
+        assert_eq!(thread_pool(Some(max)).unwrap().current_num_threads(), max);
+        for bad in [0, max + 1] {
+            let e = thread_pool(Some(bad)).unwrap_err();
             assert!(e.to_string().starts_with("--threads: "), "{e}");
+            assert!(e.is::<UsageError>());
         }
     }
 

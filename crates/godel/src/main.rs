@@ -25,7 +25,6 @@ mod cmd_shade;
 mod cmd_view;
 mod flight;
 mod output;
-mod overrides;
 mod plot_isometry;
 mod plot_kit;
 mod progress;

@@ -12,6 +12,8 @@
 //!   (camera, velocity, camera axes) in scene text, as `godel look` does.
 //!
 //! - [`input`]: the bounded reader every input file of `godel` goes through.
+//! - [`overrides`]: a scene (file, text or built-in) with some fields set for one run
+//!   (`godel render --width …`, the Python module's `render(width=…)`), validated as a file.
 //!
 //! Reading goes in three steps: the TOML text is parsed into a spanned tree (kept to locate
 //! errors), deserialized into raw records (`raw.rs`, unknown fields rejected), then checked
@@ -24,6 +26,7 @@ mod error;
 pub mod input;
 mod model;
 mod objects;
+pub mod overrides;
 mod raw;
 mod validate;
 
