@@ -24,9 +24,9 @@ SCRIPT = textwrap.dedent(
             self.inner, self.total, self.done = inner, total, 0
         def update_to(self, done):
             self.inner.update_to(done)
-            if self.done == 0 and done > 0:
+            first, self.done = self.done == 0 and done > 0, done
+            if first:
                 print("tracing", flush=True)
-            self.done = done
         def close(self):
             self.inner.close()
 
