@@ -45,7 +45,7 @@ class Image:
             channels = {}
             for name, dtype, raw in self._data.planes():
                 values = np.frombuffer(raw, dtype=dtype).reshape(height, width)
-                channels[name] = values.astype(_DTYPES.get(name, np.float32))
+                channels[name] = values.astype(_DTYPES.get(name, np.float32), copy=False)
             self._channels = channels
         return self._channels
 

@@ -137,6 +137,7 @@ def test_connect_equals_the_cli_and_its_rays_land():
         for key in ("departure", "look"):
             assert np.allclose(ray[key], expected[key], atol=1e-9), key
         assert (ray["winding"], ray["branch"]) == (expected["winding"], expected["branch"])
+        assert math.isclose(ray["g"], expected["g"], rel_tol=1e-12)
         assert ray["miss"] < 1e-9 and abs(ray["g"] - 1.0) < 1e-9
         # Independently: the light ray leaving the source along `departure` at the emission
         # event, followed forward for the travel time, arrives at the target.

@@ -24,7 +24,8 @@ use std::io::Write;
 Prints one row per light ray, latest emission first: emission time, travel time, winding \
 (returns to the source's axis before arrival), branch (outbound/inbound half of the loop), \
 direction of departure at the source and of arrival (where to look) at the event, the \
-affine length, the source's area distance D (flux = L/(4πD²)) and the ray's miss distance.
+affine length, the source's area distance D (flux = L/(4πD²)) and the ray's miss distance. \
+JSON adds the frequency ratio g between source and receiver at rest (1, computed).
 
 Example: godel connect --from 0,0,0,0 --to-source 1.2,0.5,0.3")]
 pub struct ConnectArgs {
@@ -111,6 +112,7 @@ fn json_document(ans: &Connections) -> serde_json::Value {
                 "look": c.look,
                 "lambda": c.ray.lambda,
                 "area_distance": c.area_distance,
+                "g": c.g,
                 "miss": c.miss,
             })
         })

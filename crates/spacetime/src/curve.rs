@@ -7,8 +7,11 @@
 //! pseudo-Cartesian coordinates, [`crate::trace`]); `exact` evaluates the closed form through
 //! the origin carried to the start by an isometry ([`ExactGeodesic`]; Grave et al., PRD 80,
 //! 103002 (2009), Sec. III), with its stops solved on the closed form: the axis return at
-//! λ = π/ω, the time limit by root finding (t is monotonic along causal curves since ∂t is
-//! timelike everywhere). In Minkowski spacetime the exact curve is the straight line.
+//! λ = π/ω, the time limit by root finding. (t is monotonic along causal curves where
+//! r < 2a, since there the surfaces of constant t are spacelike: g^tt = −(1 − r²/4a²)/(1 +
+//! r²/4a²) < 0. A curve from off the axis may go beyond; there the root found is a place
+//! where |t − t_start| reaches the limit, not necessarily the first.) In Minkowski spacetime
+//! the exact curve is the straight line.
 //!
 //! Every input is checked here ([`CurveRequest::new`]); a refusal names the input at fault
 //! ([`Input`]), so that each front end names it as its user wrote it.
