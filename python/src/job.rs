@@ -3,7 +3,8 @@
 //!
 //! Everything the command line checks before tracing is checked here, before the thread
 //! starts, with the same messages: the scene (a file, text or the built-in one) with its
-//! overrides (`scene::overrides`), the thread count (`render::threads`) and the textures.
+//! overrides (`scene::overrides`), the thread count (`render::threads`), the textures and
+//! the memory the data file will need (`datafile::memory`).
 //! The trace itself is `render::driver::render` on the checked pool: the very code path of
 //! `godel render`, so the records are the same, bit for bit. The render's progress consumer
 //! counts the pixels done and reports a cancellation, which the driver honours between
@@ -16,7 +17,8 @@ use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
-use render::driver::{render, Progress};
+use render::driver::{plan_pixels, render, Progress};
+use render::plan::Plan;
 use render::threads::{thread_pool, ThreadsError};
 use scene::overrides::{load, LoadError, Overrides, SceneSource, Setting};
 
@@ -93,13 +95,13 @@ impl RenderJob {
             ThreadsError::Count(message) => argument_error("threads", message),
             e => PyRuntimeError::new_err(e.to_string()),
         })?;
-        let source = match (&scene_path, &scene_text) {
-            (Some(path), _) => SceneSource::File(path),
-            (None, Some(text)) => SceneSource::Text {
-                text,
-                name: "<scene text>",
-            },
-            (None, None) => SceneSource::Builtin,
+        let (source, file) = match (&scene_path, &scene_text) {
+            (Some(path), _) => (SceneSource::File(path), path.display().to_string()),
+            (None, Some(text)) => {
+                let name = "<scene text>";
+                (SceneSource::Text { text, name }, name.to_string())
+            }
+            (None, None) => (SceneSource::Builtin, "built-in scene".to_string()),
         };
         let overrides = Overrides {
             width,
@@ -112,8 +114,11 @@ impl RenderJob {
         let scene = load(source, &overrides).map_err(load_error)?;
         // Textures load before tracing, as on the command line: bad input fails fast.
         shade::textures_for_scene(&scene).map_err(value_error)?;
-        let camera = scene.sample_camera();
-        let total = u64::from(camera.width()) * u64::from(camera.height());
+        // Sized against memory before any work, as on the command line.
+        let total = plan_pixels(&scene, &Plan::All);
+        let what = "a data file of this width × height × samples";
+        datafile::memory::check_writing(what, total, scene.lights.len())
+            .map_err(|e| value_error(format!("{file}: camera: {e}")))?;
         let shared = Arc::new(Shared::default());
         let worker = Arc::clone(&shared);
         let name = scene.name.clone();

@@ -12,20 +12,15 @@ use spacetime::{Event, Godel, Metric, TimeDirection};
 
 use crate::errors::argument_error;
 
-/// Checks the Gödel parameter and that every coordinate is finite.
-fn checked(a: f64, named: &[(&str, &[f64])]) -> PyResult<()> {
-    if !(a.is_finite() && a > 0.0) {
-        return Err(argument_error(
-            "a",
-            format!("must be positive and finite, got {a}"),
-        ));
+/// Checks the Gödel parameter and the coordinates (each argument's named components) in the
+/// ranges scenes allow (`scene::ranges`), as the command line does; returns `a`.
+fn checked(a: f64, named: &[(&str, &[&str], &[f64])]) -> PyResult<f64> {
+    let a = scene::ranges::check_a(a).map_err(|e| argument_error("a", e))?;
+    for (keyword, names, values) in named {
+        scene::ranges::check_coordinates(names, values, a)
+            .map_err(|e| argument_error(keyword, e))?;
     }
-    for (keyword, values) in named {
-        if !values.iter().all(|v| v.is_finite()) {
-            return Err(argument_error(keyword, "every component must be finite"));
-        }
-    }
-    Ok(())
+    Ok(a)
 }
 
 /// The keyword argument of each input that `spacetime::curve` checks.
@@ -67,7 +62,11 @@ pub fn geodesic<'py>(
     samples: usize,
     max_past: Option<f64>,
 ) -> PyResult<(String, Columns<'py>)> {
-    checked(a, &[("position", &position), ("time", &[time])])?;
+    let xyz: &[&str] = &["x", "y", "z"];
+    let a = checked(
+        a,
+        &[("position", xyz, &position), ("time", &["t"], &[time])],
+    )?;
     let method = match method {
         "exact" => CurveMethod::Exact,
         "numeric" => CurveMethod::Numeric,
@@ -142,7 +141,15 @@ pub fn connect(
     a: f64,
     windings: u32,
 ) -> PyResult<(f64, Vec<Ray>)> {
-    checked(a, &[("source", &source), ("target", &target)])?;
+    let source_names: &[&str] = &["x", "y", "z"];
+    let target_names: &[&str] = &["t", "x", "y", "z"];
+    let a = checked(
+        a,
+        &[
+            ("source", source_names, &source),
+            ("target", target_names, &target),
+        ],
+    )?;
     if windings > MAX_WINDINGS {
         let message = format!("must be at most {MAX_WINDINGS}, got {windings}");
         return Err(argument_error("windings", message));

@@ -137,3 +137,33 @@ def test_bad_geodesic_and_connect_values():
     assert str(raised.value) == keyword_of(expected, "--windings", "windings")
     with pytest.raises(ValueError, match="^a: must be positive"):
         godel.connect(source=(1, 0, 0), target=(0, 0, 0, 0), a=-1)
+
+
+def test_the_scale_and_coordinates_have_the_ranges_of_scenes():
+    # As `godel geodesic --a 1e-300` and `--at 1e300,…`: the ranges scenes allow.
+    expected = cli_error("geodesic", "--at", "0,0,0,0", "--dir", "1,0,0", "--a", "1e-300")
+    with pytest.raises(ValueError) as raised:
+        godel.geodesic(a=1e-300)
+    assert str(raised.value) == keyword_of(expected, "--a", "a")
+    expected = cli_error("geodesic", "--at", "1e300,0,0,0", "--dir", "1,0,0")
+    with pytest.raises(ValueError) as raised:
+        godel.geodesic(time=1e300)
+    assert str(raised.value) == keyword_of(expected, "--at", "time")
+    with pytest.raises(ValueError, match=r"^position: z = 3e6 is beyond ±1e6"):
+        godel.geodesic(position=(0, 0, 3e6))
+    with pytest.raises(ValueError, match=r"^target: t = -2e6 is beyond ±1e6"):
+        godel.connect(source=(0.5, 0, 0), target=(-2e6, 0, 0, 0))
+    with pytest.raises(ValueError, match=r"^a: 1e300 is outside"):
+        godel.connect(source=(0.5, 0, 0), target=(0, 0, 0, 0), a=1e300)
+    # At the bounds themselves all is well.
+    assert godel.geodesic(time=1e6, samples=2)["t"][0] == 1e6
+    assert godel.connect(source=(0.5, 0, 0), target=(-1e6, 0, 0, 0))
+
+
+def test_a_render_beyond_the_memory_budget_is_refused(monkeypatch, out):
+    monkeypatch.setenv("GODEL_MEMORY_BUDGET", "1000")
+    expected = cli_error("render", "--width", "44", "--height", "5", "-o", str(out))
+    with pytest.raises(ValueError) as raised:
+        godel.render(width=44, height=5, progress=False)
+    assert str(raised.value) == expected
+    assert "needs about" in expected and expected.startswith("built-in scene: camera: ")

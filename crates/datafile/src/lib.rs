@@ -12,12 +12,14 @@
 //!   [`DataFile::box_filter`] that every shader applies after colouring each sample.
 //! - [`exr_bytes`]: an OpenEXR image written into memory, deterministically (the data file's
 //!   and the shaders' linear pictures).
+//! - [`memory`]: work sized against the memory the machine has, before it starts.
 //! - [`atomic`]: every output file is written to a temporary file and renamed, several files
 //!   together where they belong together; temporaries are removed on signals and swept.
 
 pub mod atomic;
 mod codec;
 mod exr_write;
+pub mod memory;
 mod planes;
 pub mod record;
 mod samples;

@@ -69,8 +69,23 @@ pub fn positive(flag: &str, v: f64) -> anyhow::Result<f64> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(usage(flag, format!("must be positive and finite, got {v}")))
+        Err(usage(
+            flag,
+            format!("must be positive and finite, got {}", scene::short(v)),
+        ))
     }
+}
+
+/// Checks the Gödel parameter `--a`: positive, within the range scenes allow
+/// (`scene::ranges`).
+pub fn scale_a(flag: &str, a: f64) -> anyhow::Result<f64> {
+    scene::ranges::check_a(a).map_err(|e| usage(flag, e))
+}
+
+/// Checks the coordinates of an event or position given with `flag` (named `names`, e.g.
+/// `t`, `R`, `phi`, `z`): each within ±1e6·a as in scenes (`scene::ranges`).
+pub fn coordinates(flag: &str, names: &[&str], values: &[f64], a: f64) -> anyhow::Result<()> {
+    scene::ranges::check_coordinates(names, values, a).map_err(|e| usage(flag, e))
 }
 
 /// The worker thread pool of `--threads` (checked: 1 to 8 per core).
@@ -108,6 +123,19 @@ mod tests {
             assert!(e.to_string().starts_with("--threads: "), "{e}");
             assert!(e.is::<UsageError>());
         }
+    }
+
+    #[test]
+    fn the_ranges_of_scenes_name_the_flag() {
+        assert_eq!(scale_a("--a", 2.0).unwrap(), 2.0);
+        let e = scale_a("--a", 1e-300).unwrap_err();
+        assert!(e.to_string().starts_with("--a: 1e-300 is outside"), "{e}");
+        assert!(e.is::<UsageError>());
+        let e = coordinates("--at", &["t", "R"], &[1e300, 0.0], 1.0).unwrap_err();
+        assert!(
+            e.to_string().starts_with("--at: t = 1e300 is beyond"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -11,8 +11,9 @@
 //! The rays with their directions, area distance and miss distance are
 //! `spacetime::connection`'s; this file parses the flags and prints them.
 
-use crate::args::{parse_vector, positive, usage, Format};
+use crate::args::{coordinates, parse_vector, scale_a, usage, Format};
 use anyhow::Context;
+use scene::short;
 use serde_json::json;
 use spacetime::connection::{connections, Connections, MAX_WINDINGS};
 use spacetime::Cylindrical;
@@ -48,15 +49,20 @@ pub struct ConnectArgs {
 
 /// Finds and checks every connecting ray for the arguments.
 pub fn connect(args: &ConnectArgs) -> anyhow::Result<Connections> {
-    let a = positive("--a", args.a)?;
+    let a = scale_a("--a", args.a)?;
     let [t, r, phi, z] = parse_vector::<4>("--from", &args.from)?;
     if r < 0.0 {
-        return Err(usage("--from", format!("R must be ≥ 0, got {r}")));
+        return Err(usage("--from", format!("R must be ≥ 0, got {}", short(r))));
     }
+    coordinates("--from", &["t", "R", "phi", "z"], &[t, r, phi, z], a)?;
     let [sr, sphi, sz] = parse_vector::<3>("--to-source", &args.to_source)?;
     if sr < 0.0 {
-        return Err(usage("--to-source", format!("R must be ≥ 0, got {sr}")));
+        return Err(usage(
+            "--to-source",
+            format!("R must be ≥ 0, got {}", short(sr)),
+        ));
     }
+    coordinates("--to-source", &["R", "phi", "z"], &[sr, sphi, sz], a)?;
     if args.windings > MAX_WINDINGS {
         return Err(usage(
             "--windings",

@@ -11,15 +11,16 @@
 //! ranks (`cluster.rs`).
 
 use crate::args::thread_pool;
+use crate::inputs::Inputs;
 use crate::output::{check_folder, output_names, prepare, write_outputs};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
-use render::driver::render_plan;
+use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
 use scene::overrides::{LoadError, Overrides, SceneSource};
 use scene::Scene;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 #[command(after_help = "\
@@ -119,6 +120,16 @@ pub fn scene_path_text(path: &Option<PathBuf>) -> String {
         .unwrap_or_default()
 }
 
+/// Before tracing: the output folder creatable, the files `names` writable there, and none
+/// of them an input of the run (the scene file, its image textures).
+fn prepare_outputs(dir: &Path, scene: &scene::Scene, names: &[String]) -> anyhow::Result<()> {
+    prepare("--output", dir, names)?;
+    let paths: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    Inputs::new()
+        .add_scene(scene)
+        .refuse_outputs_over_inputs("--output", &paths)
+}
+
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let part = match &args.part {
         Some(text) => Some(
@@ -140,8 +151,18 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Some(part) => vec![part.file_name(&scene.name)],
         None => output_names(&scene).to_vec(),
     };
-    prepare("--output", &args.output, &outputs)?;
+    prepare_outputs(&args.output, &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        plan_pixels(&scene, &plan),
+        scene.lights.len(),
+    )?;
     // The bar's length is set when tracing starts (`Progress::start`).
     let bar = progress_bar(&scene, 0, args.quiet);
     let traced = pool.install(|| render_plan(&scene, &plan, &Bar(bar.clone())));
@@ -186,7 +207,7 @@ mod under_mpi {
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare("--output", &args.output, &output_names(&scene))?;
+                prepare_outputs(&args.output, &scene, &output_names(&scene))?;
             }
             Ok((pool, scene))
         };

@@ -322,6 +322,15 @@ pub fn render(
     render_plan(scene, &Plan::All, progress)
 }
 
+/// The rays (pixels × samples) the tiles of `plan` hold for `scene`: what a render of the
+/// plan traces, known before any work (to size it against memory, to show progress).
+pub fn plan_pixels(scene: &Scene, plan: &Plan) -> u64 {
+    let camera = scene.sample_camera();
+    let all = tiles(camera.width(), camera.height());
+    let pixels = |&k: &usize| (all[k].cols * all[k].rows) as u64;
+    plan.indices(&all).iter().map(pixels).sum()
+}
+
 /// Renders the tiles of `plan` on rayon's thread pool into a data file of the whole image
 /// (pixels of other tiles "not traced"): `godel render` (whole or `--part`), its sequences
 /// and the Python module's `render` all go through here. The wall time counts from the

@@ -12,6 +12,7 @@
 //!   (camera, velocity, camera axes) in scene text, as `godel look` does.
 //!
 //! - [`input`]: the bounded reader every input file of `godel` goes through.
+//! - [`ranges`]: the ranges of `a` and of coordinates, for values given outside a scene.
 //! - [`overrides`]: a scene (file, text or built-in) with some fields set for one run
 //!   (`godel render --width …`, the Python module's `render(width=…)`), validated as a file.
 //!
@@ -27,6 +28,7 @@ pub mod input;
 mod model;
 mod objects;
 pub mod overrides;
+pub mod ranges;
 mod raw;
 mod validate;
 
@@ -39,7 +41,8 @@ pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
-pub use validate::{MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
+pub use spacetime::message::short;
+pub use validate::{A_RANGE, MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;
 use serde::Deserialize;

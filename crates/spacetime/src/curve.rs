@@ -16,6 +16,7 @@
 //! Every input is checked here ([`CurveRequest::new`]); a refusal names the input at fault
 //! ([`Input`]), so that each front end names it as its user wrote it.
 
+use crate::message::short;
 use crate::{
     refine_root, trace, Drift, Event, ExactGeodesic, FourVector, Geodesic, GeodesicKind,
     GeodesicState, Metric, Spacetime, StopReason, TimeDirection, TraceLimits,
@@ -127,7 +128,7 @@ impl CurveRequest {
                 Input::Start,
                 format!(
                     "the metric cannot be evaluated at R = {} (too far from the axis)",
-                    start.r()
+                    short(start.r())
                 ),
             ));
         }
@@ -145,7 +146,10 @@ impl CurveRequest {
         let speed = match speed {
             None => 1.0,
             Some(v) if (0.0..1.0).contains(&v) => v,
-            Some(v) => return Err(refuse(Input::Speed, format!("must be in [0, 1), got {v}"))),
+            Some(v) => {
+                let message = format!("must be in [0, 1), got {}", short(v));
+                return Err(refuse(Input::Speed, message));
+            }
         };
         let limits = match (until_time, metric) {
             (Some(dt), _) if dt.is_finite() && dt > 0.0 => TraceLimits {
@@ -153,7 +157,7 @@ impl CurveRequest {
                 ..Default::default()
             },
             (Some(dt), _) => {
-                let message = format!("must be positive and finite, got {dt}");
+                let message = format!("must be positive and finite, got {}", short(dt));
                 return Err(refuse(Input::UntilTime, message));
             }
             (None, Metric::Godel(g)) => TraceLimits::one_loop(g.a),
@@ -238,7 +242,7 @@ pub fn compute(req: &CurveRequest) -> Result<Curve, CurveError> {
                 let message = format!(
                     "the closed form cannot start this far from the axis (R = {}); \
                      use the numeric method",
-                    at.r()
+                    short(at.r())
                 );
                 refuse(Input::Start, message)
             })?;

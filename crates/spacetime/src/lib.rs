@@ -17,6 +17,8 @@
 //!   any event), [`shadow_rays`] (light rays from a source at rest to an event), and
 //!   [`connection`]: those rays with what an observer measures of them.
 //!
+//! - [`message::short`]: how numbers are written in messages, in every crate.
+//!
 //! Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), Gödel parameter
 //! `a`, optical horizon at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
 //! pseudo-Cartesian x = r cos φ, y = r sin φ.
@@ -33,6 +35,7 @@ mod godel;
 pub mod isometry;
 pub mod killing;
 pub mod measure;
+pub mod message;
 mod metric;
 mod minkowski;
 pub mod normal;
@@ -42,7 +45,7 @@ pub use closed_form::{ExactGeodesic, OriginGeodesic};
 pub use connect::{shadow_rays, shadow_rays_from_axis, source_area_distance_sq, Branch, ShadowRay};
 pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
-pub use frame::{aberrate, boost, gram_schmidt_static_frame, LocalVelocity};
+pub use frame::{aberrate, boost, gram_schmidt_static_frame, scaled_unit, LocalVelocity};
 pub use geodesic::{
     photon_tangent, refine_root, trace, AxisReturn, AxisWatch, Geodesic, GeodesicKind,
     GeodesicState, GeodesicSystem, StopReason, TimeDirection, TraceLimits, TracedGeodesic, STATE,
