@@ -15,15 +15,14 @@ use crate::args::thread_pool;
 use crate::inputs::Inputs;
 use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
-use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
-use render::driver::Renderer;
+use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
-use render::tiles::Assembler;
+use scene::overrides::{LoadError, Overrides, SceneSource};
+use scene::Scene;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 #[derive(Args, Debug)]
 #[command(after_help = "\
@@ -116,6 +115,22 @@ fn output_target(args: &RenderArgs, part: bool) -> anyhow::Result<OutPair> {
     Ok(target)
 }
 
+/// The scene of the arguments with the flags' overrides; a refused override names its flag
+/// (exit 2, as every scene error).
+pub fn load_with_overrides(args: &RenderArgs) -> anyhow::Result<Scene> {
+    let source = match &args.scene {
+        Some(path) => SceneSource::File(path),
+        None => SceneSource::Builtin,
+    };
+    scene::overrides::load(source, &args.overrides()).map_err(|e| match e {
+        LoadError::Scene(e) => e.into(),
+        LoadError::Override { settings, message } => {
+            let flags: Vec<&str> = settings.iter().map(|s| s.flag()).collect();
+            crate::args::usage(&flags.join("/"), message)
+        }
+    })
+}
+
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
 /// from any folder; empty for the built-in scene.
 pub fn scene_path_text(path: &Option<PathBuf>) -> String {
@@ -149,7 +164,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     }
     let pool = thread_pool(args.threads)?;
     let target = output_target(&args, part.is_some())?;
-    let scene = load_with_overrides(&args.scene, &args.overrides())?;
+    let scene = load_with_overrides(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
@@ -157,14 +172,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         None => target.names(&scene.name),
     };
     prepare_outputs(target.folder(), &scene, &outputs)?;
-    let started = Instant::now();
-    let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
-    let pixels: u64 = plan
-        .indices(renderer.tiles())
-        .iter()
-        .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
-        .sum();
     let file = args
         .scene
         .as_ref()
@@ -172,15 +180,14 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     crate::memory::check_writing(
         &format!("{file}: camera"),
         "a data file of this width × height × samples",
-        pixels,
+        plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
-    let bar = progress_bar(&scene, pixels, args.quiet);
-    let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
-    let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
-    stats.wall = started.elapsed();
+    // The bar's length is set when tracing starts (`Progress::start`).
+    let bar = progress_bar(&scene, 0, args.quiet);
+    let traced = pool.install(|| render_plan(&scene, &plan, &Bar(bar.clone())));
     bar.finish_and_clear();
-    let data = assembler.finish();
+    let (data, stats) = traced?;
     match part {
         None => {
             let (exr, png) = target.files(&scene.name);
@@ -205,8 +212,9 @@ mod under_mpi {
     use super::*;
     use crate::cluster::{abort, run_jobs, start};
     use mpi::topology::Communicator;
-    use render::driver::{NoProgress, RenderStats};
-    use render::tiles::{Sink, TileData};
+    use render::driver::{NoProgress, RenderStats, Renderer};
+    use render::tiles::{Assembler, Sink, TileData};
+    use std::time::Instant;
 
     /// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
     const TILES_PER_JOB: usize = 8;
@@ -218,7 +226,7 @@ mod under_mpi {
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
             let target = output_target(&args, false)?;
-            let scene = load_with_overrides(&args.scene, &args.overrides())?;
+            let scene = load_with_overrides(&args)?;
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;

@@ -29,7 +29,6 @@ mod manifest;
 mod memory;
 mod out_pair;
 mod output;
-mod overrides;
 mod plot_isometry;
 mod plot_kit;
 mod progress;
