@@ -31,6 +31,7 @@ pub mod measure;
 mod metric;
 mod minkowski;
 pub mod normal;
+pub mod transport;
 mod vectors;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
