@@ -7,7 +7,8 @@
 // kernel" in docs/physics.md says what that costs).
 //
 // The host prepends `#version 300 es` and three defines: N_OBJECTS and N_LIGHTS (the
-// scene's counts, at least 1 for the array sizes) and DRAW_BUFFERS (render targets per pass).
+// scene's counts, at least 1 for the array sizes) and DRAW_BUFFERS (render targets per pass);
+// benchmarks may add COUNT_PROBES (each sample's probe count in place of view_x).
 //
 // Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
 // vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
@@ -1649,6 +1650,9 @@ void main() {
     for (int i = 0; i < u_two; i++) passes++;
     if (passes != 2) status = WORK_LIMIT;
     if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
+#ifdef COUNT_PROBES
+    slots[2].w = float(PIXEL_PROBES - probes_left);   // benchmarks: the probes in view_x
+#endif
     o0 = slots[u_slot0];
 #if DRAW_BUFFERS > 1
     o1 = slots[u_slot0 + 1];
