@@ -11,6 +11,7 @@
 //! ranks (`cluster.rs`).
 
 use crate::args::thread_pool;
+use crate::inputs::Inputs;
 use crate::output::{check_folder, output_names, prepare, write_outputs};
 use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
@@ -19,7 +20,7 @@ use render::driver::Renderer;
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
 use render::tiles::Assembler;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
@@ -110,6 +111,16 @@ pub fn scene_path_text(path: &Option<PathBuf>) -> String {
         .unwrap_or_default()
 }
 
+/// Before tracing: the output folder creatable, the files `names` writable there, and none
+/// of them an input of the run (the scene file, its image textures).
+fn prepare_outputs(dir: &Path, scene: &scene::Scene, names: &[String]) -> anyhow::Result<()> {
+    prepare("--output", dir, names)?;
+    let paths: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    Inputs::new()
+        .add_scene(scene)
+        .refuse_outputs_over_inputs("--output", &paths)
+}
+
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let part = match &args.part {
         Some(text) => Some(
@@ -137,7 +148,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     if scene.trace.gpu && part.is_some() {
         return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
     }
-    prepare("--output", &args.output, &outputs)?;
+    prepare_outputs(&args.output, &scene, &outputs)?;
     if args.gpu || scene.trace.gpu {
         return render_on_gpu(&scene, &args);
     }
@@ -149,6 +160,16 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         .iter()
         .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
         .sum();
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        pixels,
+        scene.lights.len(),
+    )?;
     let bar = progress_bar(&scene, pixels, args.quiet);
     let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
     let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
@@ -176,6 +197,16 @@ const GPU_ONE_PROCESS: &str =
 fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs) -> anyhow::Result<()> {
     let camera = scene.sample_camera();
     let pixels = u64::from(camera.width()) * u64::from(camera.height());
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        pixels,
+        scene.lights.len(),
+    )?;
     let bar = progress_bar(scene, pixels, args.quiet);
     let done = gpu::render(scene, &Bar(bar.clone()))?;
     bar.finish_and_clear();
@@ -212,7 +243,7 @@ mod under_mpi {
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare("--output", &args.output, &output_names(&scene))?;
+                prepare_outputs(&args.output, &scene, &output_names(&scene))?;
             }
             Ok((pool, scene))
         };

@@ -147,6 +147,9 @@ impl GpuTracer {
                 ctx,
             };
             tracer.set_scene_uniforms();
+            // One sample drawn now: drivers compile shaders for the hardware on first use
+            // (llvmpipe: seconds), which belongs to setting up, not to tracing.
+            tracer.draw(0, 0, 1, 1)?;
             Ok(tracer)
         }
     }
