@@ -272,10 +272,9 @@ vec4 christoffel(vec4 e, vec4 u, vec4 v) {
     return christoffelWith(dX, dY, inverseMetricAt(e), u, v);
 }
 
-// Riemann normal coordinates to second order and first-order transport (docs/physics.md,
-// "Local objects"; spacetime::normal).
+// Riemann normal coordinates to second order (docs/physics.md, "Local objects";
+// spacetime::normal; the first-order transport is written out in restFramePhoton).
 vec4 normalDisplacement(vec4 at, vec4 d) { return d + 0.5 * christoffel(at, d, d); }
-vec4 transportBy(vec4 at, vec4 dx, vec4 v) { return v - christoffel(at, dx, v); }
 
 // ---------------------------------------------------------------------------------------
 // Frames (docs/physics.md, "Frames"; spacetime::frame): the static frame by Gram–Schmidt of
