@@ -113,6 +113,8 @@ const float FAR_SLACK = 1.3;
 const float END_CUT = 1e-6;
 // spacetime::connect: grid cells per winding and branch bracketing the shadow-ray roots.
 const int SHADOW_GRID = 256;
+// Cells of a falling ball's worldline per loop of a pixel ray (fallingLast).
+const int FALL_CELLS = 16;
 const int CELLS_PER_PASS = 16;
 const int MAX_WINDINGS = 10000;
 // render::reject: reach of a ball at rest per radius and per a.
@@ -538,6 +540,7 @@ vec4 oStart[N_OBJECTS];     // free fall: start event; Minkowski: and its veloci
 vec4 oU0[N_OBJECTS];
 float oSpeed[N_OBJECTS];    // γ(1 + v) relative to the static observers
 float oRate[N_OBJECTS];     // free fall: coordinate time per proper time over whole loops
+float oGamma[N_OBJECTS];    // free fall: γ = −u_t, conserved
 
 // The frame a free fall starts with: the static frame there boosted by its velocity.
 mat4 startFrame(int i) {
@@ -568,6 +571,7 @@ void loadObject(int i) {
         oU0[i] = u;
         float gam = -(metricAt(oStart[i]) * u).x;   // γ = −u_t, conserved
         oSpeed[i] = gam + sqrt(max(gam * gam - 1.0, 0.0));
+        oGamma[i] = max(gam, 1.0);
         oRate[i] = u.x;
         if (godel()) {
             Iso to = toOrigin(oStart[i]);
@@ -882,6 +886,120 @@ bool setSearched(vec4 from, OGeo g, float until) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Loop by loop, balls in free fall (render::falling, render::circle; docs/physics.md "Balls
+// in free fall"). In the pixel ray's origin frame the ray's loop j runs along a circle of the
+// disc at times between (j + 1)Δt and jΔt; a ball point lies within static distance reach of
+// its simultaneous centre, and within the time slack S of it. The centre's worldline is cut
+// into cells of proper time (here per loop, at most FALL_CELLS, over the proper times whose
+// time may fall in the loop's window; the CPU cuts the whole worldline once per render):
+// each cell lies within m of its middle point. The last λ of the loop within M = reach + m of
+// a cell whose time lies in the window (its z window and the arc of the ray's circle near the
+// cell, by the hyperbolic law of cosines) is the last λ where the loop must search the ball.
+
+float fbLast[N_OBJECTS];   // per falling ball, for the current loop: that λ from the loop's start
+
+// The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
+// hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when
+// unsure (render::circle::RayCircle::last_within).
+float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
+    if (!(lo <= hi)) return NO_TAU;
+    float a = u_a;
+    float sg = sign(g.e);
+    float big = asinh_(g.rmax / (2.0 * a));
+    vec2 h = vec2(-sg * g.cchi.y, sg * g.cchi.x) * halfTanh(g.rmax / (2.0 * a));
+    float nh = 1.0 - dot(h, h), nw = 1.0 - dot(w, w);
+    float ch = 1.0 + 2.0 * dot(w - h, w - h) / (nh * nw);
+    float sh = sqrt(max(ch * ch - 1.0, 0.0));
+    float num = ch * cosh(big) - coshM;
+    float den = sh * sinh(big);
+    if (!finite(num) || !finite(den)) return hi;
+    if (num <= -den) return hi;     // within m all round the circle
+    if (num > den) return NO_TAU;   // beyond m all round
+    // Single precision: the arc widened by 1e-4 rad (the CPU's 1e-9).
+    float halfArc = acosA(clamp(num / den, -1.0, 1.0)) + 1e-4;
+    float beta = carg(cdiv(w - h, vec2(1.0, 0.0) - cmul(conj2(h), w)));
+    float lret = returnParameter(g);
+    float psiHi = sg * carg(-h) - sg * beta + 2.0 * PI * hi / lret;
+    float r = psiHi - 2.0 * PI * floor(psiHi / (2.0 * PI) + 0.5);
+    float back = abs(r) <= halfArc ? 0.0 : (r > halfArc ? r - halfArc : r + 2.0 * PI - halfArc);
+    float l = hi - back * lret / (2.0 * PI);
+    return l >= lo ? l : NO_TAU;
+}
+
+// The proper time of the falling ball i at which its own origin frame's time is t (its
+// closed form's time rises at least at (1 + p_z²)/γ per proper time), and how far off it
+// may be.
+vec2 ballTimeToTau(int i, float t) {
+    OGeo b = oGeo[i];
+    float low = (1.0 + b.pz * b.pz) / b.e;
+    float tau = t / oRate[i];
+    float off = 0.0;
+    for (int it = 0; it < TIME_STEPS + 1; it++) {
+        vec4 e, k;
+        ogeoAt(b, tau, e, k);
+        off = t - e.x;
+        tau += off / max(k.x, low);
+    }
+    return vec2(tau, abs(off) / low);
+}
+
+// Sets fbLast[i] for loop j of the pixel ray `ray` (NO_TAU: the loop needs no search of the
+// ball), or INF where the test does not apply (Minkowski).
+void fallingLast(int i, int j, Ray ray) {
+    fbLast[i] = INF;
+    if (!godel()) return;
+    float a = u_a;
+    float gam = oGamma[i];
+    float sv = sqrt(max(gam * gam - 1.0, 0.0));
+    float r = oRadius[i];
+    // Reach and time slack (render::falling), widened for single precision.
+    float reach = 1.25 * gam * r + 1e-4 * a;
+    float slack = 1.25 * gam * r * (sv / gam + SQRT2) + 1e-4 * a;
+    float up = gam + SQRT2 * sv;
+    Iso toO = inverseIso(ray.back);
+    vec4 start = applyIso(toO, oStart[i]);
+    // The loop's window of times, and the ball's own time there: the isometry from the
+    // ball's origin frame to the ray's shifts times by at most A (docs/physics.md, "Isometries").
+    float tLo = float(j + 1) * ray.shift.x - slack, tHi = float(j) * ray.shift.x + slack;
+    float wmax = oGeo[i].rmax / sqrt(oGeo[i].rmax * oGeo[i].rmax + 4.0 * a * a);
+    float shiftA = 2.0 * SQRT2 * a * asinA(min(length(disc(start.yz)) * wmax, 1.0));
+    vec2 t1 = ballTimeToTau(i, tLo - start.x - shiftA), t2 = ballTimeToTau(i, tHi - start.x + shiftA);
+    float tau1 = t1.x - t1.y, tau2 = t2.x + t2.y;
+    // z is linear along both: no cell can be near when the ball's z range over [τ1, τ2] is
+    // farther than the reach (plus the cells' extent) from the loop's.
+    float zb1 = start.w + oU0[i].w * tau1, zb2 = start.w + oU0[i].w * tau2;
+    float zr1 = float(j) * ray.shift.y, zr2 = float(j + 1) * ray.shift.y;
+    float zGap = max(max(min(zb1, zb2) - max(zr1, zr2), min(zr1, zr2) - max(zb1, zb2)), 0.0);
+    if (zGap > reach + 0.5 * sv * max(max(r, 1e-3), (tau2 - tau1) / float(FALL_CELLS))) {
+        fbLast[i] = NO_TAU;
+        return;
+    }
+    int cells = int(clamp(ceil((tau2 - tau1) / max(r, 1e-3)), 1.0, float(FALL_CELLS)));
+    float dtau = (tau2 - tau1) / float(cells);
+    float near = reach + 0.5 * sv * dtau;
+    float coshM = cosh(near / a);
+    float sl = slack + 0.5 * up * dtau;
+    float l0 = float(j) * ray.lret, l1 = l0 + ray.lret;
+    float last = NO_TAU;
+    for (int c = 0; c < FALL_CELLS; c++) {
+        if (c >= cells || last >= l1) break;
+        vec4 p = applyIso(toO, worldAt(i, tau1 + (float(c) + 0.5) * dtau).ev);
+        if (p.x < tLo + slack - sl || p.x > tHi - slack + sl) continue;
+        float lo = l0, hi = l1;
+        if (ray.geo.pz == 0.0) {
+            if (abs(p.w) > near) continue;
+        } else {
+            float za = (p.w - near) / ray.geo.pz, zb = (p.w + near) / ray.geo.pz;
+            lo = max(min(za, zb), l0);
+            hi = min(max(za, zb), l1);
+        }
+        float l = lastWithin(ray.geo, disc(p.yz), coshM, max(lo, last), hi);
+        if (l > NO_TAU) last = l;
+    }
+    fbLast[i] = last > NO_TAU ? last - l0 : NO_TAU;
+}
+
+// ---------------------------------------------------------------------------------------
 // The intersection search (render::intersect, render::tracer; docs/physics.md "The
 // intersection search") as one state machine with one probe call: a ray is searched loop by
 // loop (later loops are the first one's copies) and segment by segment; per segment and
@@ -943,6 +1061,12 @@ int qTag, qObj, qLoop;
 float qLambda, qSeed;
 Probe qAnswer;
 vec4 qX;
+
+// Whether the current loop searches object i on a segment starting at λ0 (from the loop's
+// start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
+bool loopSearches(int i, float lambda0) {
+    return !(isFree(i) && ePixel) || lambda0 <= fbLast[i];
+}
 
 void request(int tag, float lambda, float seed) {
     qTag = tag;
@@ -1071,14 +1195,20 @@ void machineStep() {
                 finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
                 return;
             }
-            if (eLoop == 0) break;
             float dz = float(eLoop) * eRay.shift.y;
             if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
             vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
-            bool near = false;
+            bool near = eLoop == 0;
             for (int i = 0; i < N_OBJECTS; i++) {
                 vec3 olo, ohi;
-                if (searched[i] && (!objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi))))) near = true;
+                if (!searched[i]) continue;
+                if (isFree(i) && ePixel) {
+                    // Balls in free fall: searched up to the loop's last λ within their reach.
+                    fallingLast(i, eLoop, eRay);
+                    near = near || fbLast[i] > NO_TAU;
+                } else {
+                    near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
+                }
             }
             if (near) break;
             eLoop++;
@@ -1088,7 +1218,7 @@ void machineStep() {
     }
     if (eMode == M_START) {
         eObj++;
-        while (eObj < N_OBJECTS && !searched[eObj]) eObj++;
+        while (eObj < N_OBJECTS && !(searched[eObj] && loopSearches(eObj, 0.0))) eObj++;
         if (eObj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
         eSeg = 0;
         eMode = M_SEGMENT;
@@ -1143,6 +1273,12 @@ void machineStep() {
         for (eObj++; eObj < N_OBJECTS; eObj++) {
             if (!searched[eObj]) continue;
             Probe p = probeBuf[eStart + eObj];
+            if (!loopSearches(eObj, eLo)) {
+                // Past the ball's last λ within reach in this loop (a later loop probes afresh).
+                probeBuf[N_OBJECTS - eStart + eObj] = p;
+                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                continue;
+            }
             if (eObj == eSkipObj && eLo >= eSkipFrom) {
                 probeBuf[N_OBJECTS - eStart + eObj] = p;
                 probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
