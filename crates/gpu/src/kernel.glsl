@@ -179,7 +179,23 @@ float acosA(float x) { return atan2s(sqrt(max((1.0 - x) * (1.0 + x), 0.0)), x); 
 vec2 cmul(vec2 p, vec2 q) { return vec2(p.x * q.x - p.y * q.y, p.x * q.y + p.y * q.x); }
 vec2 cdiv(vec2 p, vec2 q) { return vec2(p.x * q.x + p.y * q.y, p.y * q.x - p.x * q.y) / dot(q, q); }
 vec2 conj2(vec2 p) { return vec2(p.x, -p.y); }
-vec2 cis(float a) { return vec2(cos(a), sin(a)); }
+// Cosine and sine of our own, for the same reason: Chromium's software WebGL (SwiftShader)
+// computes sin and cos to within 2e-4 only (Vulkan's bound is 2^-11). Cephes' sinf/cosf
+// (S. L. Moshier): reduction by π/4 in three parts (exact for |a| < 8192) to an even octant,
+// minimax polynomials on [−π/4, π/4], error ~1 ulp.
+vec2 cis(float a) {
+    float j = floor(abs(a) * 1.27323954473516);   // 4/π
+    j += mod(j, 2.0);
+    float x = ((abs(a) - j * 0.78515625) - j * 2.4187564849853515625e-4) - j * 3.77489497744594108e-8;
+    float z = x * x;
+    float s = ((-1.9515295891e-4 * z + 8.3321608736e-3) * z - 1.6666654611e-1) * z * x + x;
+    float c = ((2.443315711809948e-5 * z - 1.388731625493765e-3) * z + 4.166664568298827e-2) * z * z - 0.5 * z + 1.0;
+    int q = int(j * 0.5) & 3;   // the quarter turn: (c, s) rotated by q·π/2
+    vec2 r = q == 0 ? vec2(c, s) : (q == 1 ? vec2(-s, c) : (q == 2 ? vec2(-c, -s) : vec2(s, -c)));
+    return vec2(r.x, a < 0.0 ? -r.y : r.y);
+}
+float sinA(float a) { return cis(a).y; }
+float cosA(float a) { return cis(a).x; }
 float carg(vec2 p) { return atan2s(p.y, p.x); }
 bool finite(float v) { return !isnan(v) && abs(v) < 1e38; }   // INF (3e38) counts as infinite
 float asinh_(float x) { return sign(x) * log(abs(x) + sqrt(x * x + 1.0)); }
@@ -326,7 +342,8 @@ vec4 components(mat4 dual, vec4 v) { return vec4(dot(dual[0], v), dot(dual[1], v
 bool cameraDirection(vec2 p, out vec3 d) {
     float w = float(u_size.x), h = float(u_size.y);
     if (u_camera == 0) {
-        float t = tan(radians(0.5 * u_fov.x));
+        vec2 halfFov = cis(radians(0.5 * u_fov.x));
+        float t = halfFov.y / halfFov.x;
         float x = t * (2.0 * p.x / w - 1.0);
         float y = t * (h / w) * (1.0 - 2.0 * p.y / h);
         d = vec3(1.0, x, y) / sqrt(1.0 + x * x + y * y);
@@ -335,7 +352,7 @@ bool cameraDirection(vec2 p, out vec3 d) {
     if (u_camera == 1) {
         float alpha = radians(u_fov.x) * (p.x / w - 0.5);
         float beta = radians(u_fov.y) * (0.5 - p.y / h);
-        d = vec3(cos(beta) * cos(alpha), cos(beta) * sin(alpha), sin(beta));
+        d = vec3(cosA(beta) * cosA(alpha), cosA(beta) * sinA(alpha), sinA(beta));
         return true;
     }
     float dx = 2.0 * p.x / w - 1.0, dy = 1.0 - 2.0 * p.y / h;
@@ -343,7 +360,7 @@ bool cameraDirection(vec2 p, out vec3 d) {
     if (rho > 1.0) return false;
     float theta = rho * radians(0.5 * u_fov.x);
     vec2 sc = rho > 0.0 ? vec2(dx, dy) / rho : vec2(0.0, 1.0);
-    d = vec3(cos(theta), sin(theta) * sc.x, sin(theta) * sc.y);
+    d = vec3(cosA(theta), sinA(theta) * sc.x, sinA(theta) * sc.y);
     return true;
 }
 
@@ -420,7 +437,7 @@ void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
     float a = u_a, e = g.e, w = g.omega, q = g.q;
     float sg = sign(e);
     float th = w * lambda;
-    float s = sin(th), c = cos(th);
+    float s = sinA(th), c = cosA(th);
     float den = c * c + q * s * s;
     float b = (q - 1.0) * s * c;
     float big = th + atan2s(b, den);
@@ -449,7 +466,7 @@ float flowRotation(OGeo g, float lambda) {
     float alpha = sign(g.e) * 2.0 * g.omega * lambda;
     float h = halfTanh(g.rmax / (2.0 * u_a));
     float h2 = h * h;
-    return alpha - 2.0 * atan2s(-h2 * sin(alpha), 1.0 - h2 * cos(alpha));
+    return alpha - 2.0 * atan2s(-h2 * sinA(alpha), 1.0 - h2 * cosA(alpha));
 }
 
 vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
@@ -462,12 +479,12 @@ vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
         c1 = lambda * (1.0 - x * x / 6.0);
         c2 = 0.5 * lambda * lambda * (1.0 - x * x / 12.0);
     } else {
-        c1 = sin(x) / om;
-        c2 = (1.0 - cos(x)) / (om * om);
+        c1 = sinA(x) / om;
+        c2 = (1.0 - cosA(x)) / (om * om);
     }
     vec4 v = w - c1 * aw + c2 * aaw;
     float beta = flowRotation(g, lambda);
-    float cb = cos(beta), sb = sin(beta);
+    float cb = cosA(beta), sb = sinA(beta);
     v = vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w);
     return pushIso(inverseIso(toOrigin(at)), vec4(0.0), v);
 }
@@ -821,8 +838,8 @@ bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until)
     float d2 = alpha0 + sg * 2.0 * PI * hi / lret - carg(mc);
     float dmin = min(d1, d2), dmax = max(d1, d2);
     if (ceil(dmin / (2.0 * PI)) * 2.0 * PI <= dmax) return false;
-    float c1 = cos(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
-    float c2 = cos(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
+    float c1 = cosA(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
+    float c2 = cosA(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
     float cosd = max(c1, c2);
     float x = dhc / a, y = rho / a;
     float coshd = cosh(x) * cosh(y) - sinh(x) * sinh(y) * cosd;
@@ -1418,7 +1435,7 @@ bool surface() {
 
 // Φ(θ) = arctan(q tan θ), continuous.
 float bigPhi(float q, float th) {
-    float s = sin(th), c = cos(th);
+    float s = sinA(th), c = cosA(th);
     return th + atan2s((q - 1.0) * s * c, c * c + q * s * s);
 }
 
@@ -1464,13 +1481,13 @@ vec4 shadowG4(float rho, float zp, vec4 u, int n, bool inbound) {
 // J_χ = ∂φ (docs/physics.md, "Area distance and irradiance").
 float areaDistanceSq(float psi, float chi, float lambda) {
     float a = u_a;
-    float c = cos(psi), s = sin(psi);
+    float c = cosA(psi), s = sinA(psi);
     float w1 = 1.0 + c * c;
     float omega = sqrt(w1) / (2.0 * a);
     float rmax = s / omega;
     float q = sqrt(2.0 / w1);
     float th = omega * lambda;
-    float st = sin(th), ct = cos(th);
+    float st = sinA(th), ct = cosA(th);
     float den2 = ct * ct + q * q * st * st;
     float big = bigPhi(q, th);
     float domega = -c * s / (4.0 * a * a * omega);
@@ -1479,7 +1496,7 @@ float areaDistanceSq(float psi, float chi, float lambda) {
     float dq = -q / omega * domega;
     float dbig = (q * dth + st * ct * dq) / den2;
     float phi = chi + big;
-    vec2 e = vec2(cos(phi), sin(phi));
+    vec2 e = vec2(cosA(phi), sinA(phi));
     float r = rmax * st;
     float dr = drmax * st + rmax * ct * dth;
     vec4 x = vec4(2.0 * SQRT2 * a * big - lambda, r * e, c * lambda);
@@ -1641,7 +1658,7 @@ int shadowRaySetUp() {
     float chi = carg(gP.yz) - big + float(n) * PI;
     float sinpsi = sqrt(max(1.0 - c * c, 0.0));
     vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
-    vec4 tg = vec4(1.0, sinpsi * cos(chi), sinpsi * sin(chi), c);
+    vec4 tg = vec4(1.0, sinpsi * cosA(chi), sinpsi * sinA(chi), c);
     vec4 emission = applyIso(gBack, em);
     if (emission.x < hX.x - u_max_past) return 0;
     // The ray in the source's axis frame: the closed form from the origin, moved by the
