@@ -655,8 +655,20 @@ float tauGuess(int i, float t) {
 // ---------------------------------------------------------------------------------------
 // Localizing a ray point in an object's rest frame (render::worldline::Worldline::localize).
 
+// The second-order normal-coordinate displacement of x from the worldline point p, taken
+// after the isometry that sends p to the origin, and p's four-velocity carried there
+// (render::worldline::origin_coords). Minkowski: the displacement itself.
+void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
+    if (!godel()) { xi = x - p.ev; u = p.u; return; }
+    Iso to = toOrigin(p.ev);
+    vec4 o;
+    applyPush(to, p.ev, p.u, o, u);
+    xi = normalDisplacement(vec4(0.0), applyIso(to, x));
+}
+
 // xi: spatial rest-frame components (at rest); len: their length; disp: the second-order
-// normal-coordinate displacement (free fall, whose components need the body frame).
+// normal-coordinate displacement (free fall: taken at the origin, whose components need the
+// body frame carried there).
 struct Local { WPoint at; vec3 xi; float len; vec4 disp; bool exact; bool ok; };
 
 Local localize(int i, vec4 x, float seed, float far) {
@@ -683,8 +695,8 @@ Local localize(int i, vec4 x, float seed, float far) {
         return lp;
     }
     // Free fall: the first-order simultaneity ξ⁰ = −g(u, Δ) = 0 by the secant method from
-    // the seed, then one Newton step on the second-order ξ⁰, whose Γ is the previous
-    // point's (as on the CPU). One worldline evaluation per pass of the loop.
+    // the seed, then one Newton step on the second-order ξ⁰ taken at the origin (as on the
+    // CPU). One worldline evaluation per pass of the loop.
     // The seed's point first (a far point needs no more, and no loop pass).
     WPoint p = worldAt(i, seed);
     mat4 g = metricAt(p.ev);
@@ -697,20 +709,18 @@ Local localize(int i, vec4 x, float seed, float far) {
         return lp;
     }
     float ta = seed, fa = f0, tau = seed + f0;
-    vec4 xiSecond = vec4(0.0);
     int stage = 1;   // 1 secant, 2 after the Newton step
+    mat4 g0 = metricAt(vec4(0.0));
+    vec4 xi, uo;
     for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
         p = worldAt(i, tau);
-        g = metricAt(p.ev);
         if (stage == 2) break;
+        g = metricAt(p.ev);
         float f = -dotg(g, p.u, x - p.ev);
         bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
         if (done) {
-            xiSecond = normalDisplacement(p.ev, x - p.ev);
-            // Γ of this point for the last displacement, as the CPU does.
-            tau += -dotg(g, p.u, xiSecond);
-            lp.disp = x - p.ev;   // the base point whose Γ is kept: p.ev
-            lp.at = p;
+            originDisplacement(p, x, xi, uo);
+            tau += -dotg(g0, uo, xi);
             stage = 2;
             continue;
         }
@@ -719,14 +729,11 @@ Local localize(int i, vec4 x, float seed, float far) {
         ta = tau; fa = f;
         tau = tau + step_;
     }
-    // ξ at the final point with Γ of the previous one.
-    vec4 base = lp.at.ev;
-    vec4 d = x - p.ev;
-    vec4 xi = d + 0.5 * christoffel(base, d, d);
-    float x0 = -dotg(g, p.u, xi);
+    originDisplacement(p, x, xi, uo);
+    float x0 = -dotg(g0, uo, xi);
     lp.at = p;
     lp.disp = xi;
-    lp.len = sqrt(max(dotg(g, xi, xi) + x0 * x0, 0.0));
+    lp.len = sqrt(max(dotg(g0, xi, xi) + x0 * x0, 0.0));
     lp.exact = true;
     lp.ok = finite(lp.len) && finite(tau);
     return lp;
@@ -735,7 +742,12 @@ Local localize(int i, vec4 x, float seed, float far) {
 // The rest-frame spatial components of a localized ray point, given the body frame there.
 vec3 restComponents(int i, Local lp, mat4 frame) {
     if (isRest(i)) return lp.xi;
-    return components(dualFrame(metricAt(lp.at.ev), frame), lp.disp).yzw;
+    if (godel()) {
+        // The frame carried to the origin, where disp was taken.
+        Iso to = toOrigin(lp.at.ev);
+        for (int c = 0; c < 4; c++) frame[c] = pushIso(to, lp.at.ev, frame[c]);
+    }
+    return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
 }
 
 // ---------------------------------------------------------------------------------------
