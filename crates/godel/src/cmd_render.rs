@@ -78,6 +78,12 @@ pub struct RenderArgs {
     /// array jobs; join the parts with `godel merge`.
     #[arg(long, value_name = "i/N")]
     pub part: Option<String>,
+    /// Trace on the GPU: the exact tracer's kernel in an offscreen OpenGL ES 3 context
+    /// through EGL (Mesa's llvmpipe renders it in software where there is no GPU); the
+    /// same files as a CPU render. As `[trace] gpu = true`. One process: not with --part
+    /// nor under MPI.
+    #[arg(long)]
+    pub gpu: bool,
     /// Rays per pixel, a square number (1, 4, 9, 16, … up to 256) traced on a grid in each
     /// pixel; overrides the scene's `[camera] samples`. Every sample's record is kept in
     /// the data file (see README, "The data file").
@@ -158,6 +164,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         ),
         None => None,
     };
+    if args.gpu && part.is_some() {
+        return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+    }
     #[cfg(feature = "mpi")]
     if part.is_none() && crate::cluster::launched_by_mpi() {
         return under_mpi::run(args);
@@ -171,6 +180,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Some(part) => vec![part.file_name(&scene.name)],
         None => target.names(&scene.name),
     };
+    if scene.trace.gpu && part.is_some() {
+        return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
+    }
     prepare_outputs(target.folder(), &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
     let file = args
@@ -183,6 +195,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
+    if args.gpu || scene.trace.gpu {
+        return render_on_gpu(&scene, &args, &target);
+    }
     // The bar's length is set when tracing starts (`Progress::start`).
     let bar = progress_bar(&scene, 0, args.quiet);
     let traced = pool.install(|| render_plan(&scene, &plan, &Bar(bar.clone())));
@@ -201,6 +216,23 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         }
     }
     eprintln!("{}", stats.summary());
+    Ok(())
+}
+
+/// Why --gpu goes with neither --part nor MPI.
+const GPU_ONE_PROCESS: &str =
+    "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
+
+/// `godel render --gpu`: the whole image traced by the GPU kernel, the same files written.
+fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> anyhow::Result<()> {
+    let camera = scene.sample_camera();
+    let pixels = u64::from(camera.width()) * u64::from(camera.height());
+    let bar = progress_bar(scene, pixels, args.quiet);
+    let done = gpu::render(scene, &Bar(bar.clone()))?;
+    bar.finish_and_clear();
+    let (exr, png) = target.files(&scene.name);
+    write_data_and_preview(scene, &done.data, &exr, &png, args.grid)?;
+    eprintln!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
     Ok(())
 }
 
@@ -227,6 +259,9 @@ mod under_mpi {
             let pool = thread_pool(args.threads)?;
             let target = output_target(&args, false)?;
             let scene = load_with_overrides(&args)?;
+            if args.gpu || scene.trace.gpu {
+                return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+            }
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;

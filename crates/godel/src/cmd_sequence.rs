@@ -172,7 +172,11 @@ impl Plan {
                 let scene = flight
                     .scene_at(i)
                     .map_err(|e| settings_error("sequence", e))?;
-                let (data, _) = render(&scene, &NoProgress)?;
+                // `[trace] gpu = true` traces the frames with the GPU kernel.
+                let data = match scene.trace.gpu {
+                    true => gpu::render(&scene, &NoProgress)?.data,
+                    false => render(&scene, &NoProgress)?.0,
+                };
                 let image = Shading::new(&data, &settings)?.image(&data);
                 let bytes = match keep_data {
                     true => Some(data.to_bytes().map_err(|kind| datafile::DataFileError {

@@ -168,7 +168,7 @@ impl Lighting {
                 continue;
             }
             let from = (ray.emission.t - light.position.t, rejections);
-            if occluded(objects, geo, &ray, from, probes).ok()? {
+            if occluded(objects, geo, &ray, from, hit.target, probes).ok()? {
                 continue;
             }
             sum += light.power * inc.energy * inc.energy * inc.cos / (4.0 * PI * d2);
@@ -193,7 +193,12 @@ impl Lighting {
 
 /// Whether any object blocks `ray` (future-directed from its emission) before it reaches
 /// its end, cut short by [`END_CUT`]. A surface crossing blocks, so a light inside a ball
-/// reaches only the ball's inner surface. Objects whose `rejections` test rejects the ray over
+/// reaches only the ball's inner surface. The lit object (`lit`) is not searched on the last
+/// segment (at most 1/16 of a loop before the lit point): over so short a stretch the ray is
+/// nearly a circle arc, which meets a sphere in two points at most, so light that arrives at
+/// the lit point from outside (cos θ > 0) has not crossed the ball there; searching it would
+/// only bisect the ray's approach to its own end point, at great cost for grazing light,
+/// whose side the first-order incidence cannot tell anyway (docs/physics.md, "Occlusion"). Objects whose `rejections` test rejects the ray over
 /// that stretch are not searched (nothing to search: not occluded); a ball in free fall is
 /// searched only up to the last λ where the ray may be within its reach (docs/physics.md,
 /// "Occlusion"). `t_start`: the emission's time after the light's event of the tests.
@@ -202,12 +207,23 @@ fn occluded(
     geo: ExactGeodesic,
     ray: &ShadowRay,
     (t_start, rejections): (f64, &[Option<Rejection>]),
+    lit: usize,
     probes: &mut Probes,
 ) -> Result<bool, OutOfWork> {
     let metric = objects.metric;
     let end = ray.lambda * (1.0 - END_CUT);
     set_ray(rejections, Some(&geo.origin), t_start, end, probes);
     let l_ret = geo.origin.return_parameter();
+    let per_loop = l_ret / EXACT_SEGMENTS as f64;
+    let n = (end / per_loop).ceil().clamp(1.0, 1e5) as usize;
+    // The lit object is searched up to the last segment only: its whole-ray test over that
+    // stretch may drop it (a lit plane always: z is linear, and the ray meets it at its end).
+    let last = end * (n - 1) as f64 / n as f64;
+    if let Some(r) = rejections.get(lit).and_then(Option::as_ref) {
+        if r.misses(&geo.origin, last) {
+            probes.on_ray[lit] = false;
+        }
+    }
     // One chain of segments with no fresh probe: an object is searched from the start up
     // to its last λ within reach (a stretch searched later would start from other probes).
     for i in 0..probes.loops.len() {
@@ -225,14 +241,15 @@ fn occluded(
         p: metric.lower(ray.emission, ray.tangent),
     };
     let (sys, s0) = GeodesicSystem::new(metric, &start);
-    let per_loop = geo.origin.return_parameter() / EXACT_SEGMENTS as f64;
-    let n = (end / per_loop).ceil().clamp(1.0, 1e5) as usize;
     objects.probe_all(&start, 0.0, probes);
     let mut y0 = s0;
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
         let d = Segment::exact(geo, sys, l0, y0, l1);
         probes.activate(0, l0);
+        if i + 1 == n {
+            probes.active[lit] = false;
+        }
         if objects
             .scan(&d, Shift::default(), l0, l1, probes)?
             .is_some()

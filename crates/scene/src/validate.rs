@@ -292,6 +292,7 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
         max_past: c.positive("trace.max_past", t.max_past.unwrap_or(d.max_past))?,
         tolerance,
         max_steps,
+        gpu: t.gpu.unwrap_or(d.gpu),
     })
 }
 

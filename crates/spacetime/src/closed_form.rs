@@ -81,6 +81,24 @@ impl OriginGeodesic {
         self.cis_chi
     }
 
+    /// The initial tangent's transverse components (kˣ, kʸ) = k⊥ (cos χ, sin χ).
+    pub fn initial_transverse(&self) -> (f64, f64) {
+        let kperp = self.omega * self.r_max;
+        (kperp * self.cis_chi.0, kperp * self.cis_chi.1)
+    }
+
+    /// The rotation about the axis, after the isometry back from the origin, of the flow
+    /// that moves the origin to the point at parameter `lambda` along this geodesic
+    /// (`crate::transport`): β = α − 2 arg(1 − |h|² e^{iα}), α = sgn(E)·2ωλ the angle turned
+    /// about the centre h of the projection's circle.
+    pub fn flow_rotation(&self, lambda: f64) -> f64 {
+        let alpha = self.energy.signum() * 2.0 * self.omega * lambda;
+        let h = (0.5 * (self.r_max / (2.0 * self.a)).asinh()).tanh();
+        let h2 = h * h;
+        let (s, c) = alpha.sin_cos();
+        alpha - 2.0 * (-h2 * s).atan2(1.0 - h2 * c)
+    }
+
     /// The parameter after which the spatial projection is back on the axis: λ = π/ω.
     pub fn return_parameter(&self) -> f64 {
         PI / self.omega

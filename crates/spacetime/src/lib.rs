@@ -39,6 +39,7 @@ pub mod message;
 mod metric;
 mod minkowski;
 pub mod normal;
+pub mod transport;
 mod vectors;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};

@@ -1,0 +1,347 @@
+//! The offscreen host of the kernel: compiles it in a [`Context`], uploads the scene table,
+//! draws the sample grid in tiles (each a short draw, so that no GPU watchdog fires and a
+//! cancelled run stops soon) into float render targets, reads the slots back and turns
+//! them into the data file's records and light planes. No physics here: the kernel does it.
+
+use crate::context::Context;
+use crate::input::{light_channel, KernelInput, TABLE_WIDTH};
+use crate::KERNEL;
+use datafile::record::{PixelRecord, RayStatus};
+use glow::HasContext;
+use render::driver::Progress;
+use std::time::Instant;
+
+/// The fragment kernel's companion: one triangle that covers the viewport.
+const VERTEX: &str = "#version 300 es
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+";
+
+/// Largest side of one draw, in samples (the render targets' size).
+pub const MAX_DRAW_SIDE: u32 = 256;
+/// Smallest side of one draw.
+const MIN_DRAW_SIDE: u32 = 16;
+/// What one draw should take: long enough to keep the GPU busy, short enough for watchdogs,
+/// progress and cancellation.
+const DRAW_SECONDS: f64 = 0.1;
+
+#[derive(Debug, thiserror::Error)]
+pub enum HostError {
+    #[error(transparent)]
+    Context(#[from] crate::context::ContextError),
+    #[error("the GPU kernel did not compile on {renderer}: {log}")]
+    Compile { renderer: String, log: String },
+    #[error("the GPU failed: {0}")]
+    Gl(String),
+}
+
+/// The kernel compiled for one scene, ready to trace it.
+pub struct GpuTracer {
+    ctx: Context,
+    program: glow::Program,
+    table: glow::Texture,
+    framebuffer: glow::Framebuffer,
+    targets: Vec<glow::Texture>,
+    vao: glow::VertexArray,
+    input: KernelInput,
+}
+
+/// What a GPU trace produced: the sample grid's records and light planes.
+pub struct Traced {
+    pub records: Vec<PixelRecord>,
+    pub lights: Vec<Vec<f32>>,
+}
+
+impl GpuTracer {
+    /// Makes a context, compiles the kernel for `input`'s scene and uploads its table.
+    pub fn new(input: KernelInput) -> Result<GpuTracer, HostError> {
+        GpuTracer::with_kernel(input, KERNEL)
+    }
+
+    /// The same with another kernel source (tests hold mutated kernels to the CPU: each
+    /// mutation must be caught).
+    pub fn with_kernel(input: KernelInput, kernel: &str) -> Result<GpuTracer, HostError> {
+        let ctx = Context::new()?;
+        let gl = &ctx.gl;
+        let buffers = ctx.draw_buffers.min(input.slots());
+        let compile_error = |log: String| HostError::Compile {
+            renderer: ctx.renderer.clone(),
+            log,
+        };
+        // SAFETY (this block and the methods below): GL calls on the context current on
+        // this thread, with objects created here and buffers sized for what GL writes.
+        unsafe {
+            let program = gl.create_program().map_err(HostError::Gl)?;
+            let fragment = format!("#version 300 es\n{}{}", input.defines(buffers), kernel);
+            for (kind, source) in [
+                (glow::VERTEX_SHADER, VERTEX.to_string()),
+                (glow::FRAGMENT_SHADER, fragment),
+            ] {
+                let shader = gl.create_shader(kind).map_err(HostError::Gl)?;
+                gl.shader_source(shader, &source);
+                gl.compile_shader(shader);
+                if !gl.get_shader_compile_status(shader) {
+                    return Err(compile_error(gl.get_shader_info_log(shader)));
+                }
+                gl.attach_shader(program, shader);
+            }
+            gl.link_program(program);
+            if !gl.get_program_link_status(program) {
+                return Err(compile_error(gl.get_program_info_log(program)));
+            }
+            let table = gl.create_texture().map_err(HostError::Gl)?;
+            gl.bind_texture(glow::TEXTURE_2D, Some(table));
+            for p in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
+                gl.tex_parameter_i32(glow::TEXTURE_2D, p, glow::NEAREST as i32);
+            }
+            gl.tex_image_2d(
+                glow::TEXTURE_2D,
+                0,
+                glow::RGBA32F as i32,
+                TABLE_WIDTH as i32,
+                input.table_rows as i32,
+                0,
+                glow::RGBA,
+                glow::FLOAT,
+                glow::PixelUnpackData::Slice(Some(f32_bytes(&input.table))),
+            );
+            let framebuffer = gl.create_framebuffer().map_err(HostError::Gl)?;
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
+            let mut targets = Vec::new();
+            for i in 0..buffers {
+                let t = gl.create_texture().map_err(HostError::Gl)?;
+                gl.bind_texture(glow::TEXTURE_2D, Some(t));
+                gl.tex_storage_2d(
+                    glow::TEXTURE_2D,
+                    1,
+                    glow::RGBA32F,
+                    MAX_DRAW_SIDE as i32,
+                    MAX_DRAW_SIDE as i32,
+                );
+                gl.framebuffer_texture_2d(
+                    glow::FRAMEBUFFER,
+                    glow::COLOR_ATTACHMENT0 + i as u32,
+                    glow::TEXTURE_2D,
+                    Some(t),
+                    0,
+                );
+                targets.push(t);
+            }
+            let attachments: Vec<u32> = (0..buffers)
+                .map(|i| glow::COLOR_ATTACHMENT0 + i as u32)
+                .collect();
+            gl.draw_buffers(&attachments);
+            if gl.check_framebuffer_status(glow::FRAMEBUFFER) != glow::FRAMEBUFFER_COMPLETE {
+                return Err(HostError::Gl("float render targets are incomplete".into()));
+            }
+            let vao = gl.create_vertex_array().map_err(HostError::Gl)?;
+            let tracer = GpuTracer {
+                program,
+                table,
+                framebuffer,
+                targets,
+                vao,
+                input,
+                ctx,
+            };
+            tracer.set_scene_uniforms();
+            // One sample drawn now: drivers compile shaders for the hardware on first use
+            // (llvmpipe: seconds), which belongs to setting up, not to tracing.
+            tracer.draw(0, 0, 1, 1)?;
+            Ok(tracer)
+        }
+    }
+
+    /// The GL renderer that traces (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)").
+    pub fn renderer(&self) -> &str {
+        &self.ctx.renderer
+    }
+
+    unsafe fn set_scene_uniforms(&self) {
+        let gl = &self.ctx.gl;
+        let u = &self.input.uniforms;
+        gl.use_program(Some(self.program));
+        let loc = |name: &str| gl.get_uniform_location(self.program, &format!("u_{name}"));
+        gl.uniform_1_f32(loc("a").as_ref(), u.a);
+        gl.uniform_2_f32_slice(loc("obs_t").as_ref(), &u.obs_t);
+        gl.uniform_3_f32_slice(loc("obs_x").as_ref(), &u.obs_x);
+        gl.uniform_4_f32_slice(loc("velocity").as_ref(), &u.velocity);
+        gl.uniform_3_f32_slice(loc("forward").as_ref(), &u.forward);
+        gl.uniform_3_f32_slice(loc("up").as_ref(), &u.up);
+        gl.uniform_1_i32(loc("camera").as_ref(), u.camera);
+        gl.uniform_2_f32_slice(loc("fov").as_ref(), &u.fov);
+        gl.uniform_2_i32_slice(loc("size").as_ref(), &u.size);
+        gl.uniform_1_f32(loc("max_past").as_ref(), u.max_past);
+        gl.uniform_1_i32(loc("max_loops").as_ref(), u.max_loops);
+        gl.uniform_1_i32(loc("lights").as_ref(), u.lights);
+        gl.uniform_1_i32(loc("table").as_ref(), 0);
+        gl.uniform_1_i32(loc("two").as_ref(), 2);
+    }
+
+    /// Traces the whole sample grid, draw by draw, reporting progress in samples; stops
+    /// between draws when `progress` is cancelled (the records not traced stay "not traced").
+    pub fn trace(&self, progress: &dyn Progress) -> Result<Traced, HostError> {
+        let [w, h] = self.input.uniforms.size.map(|v| v as u32);
+        let n = self.input.light_count;
+        let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); (w * h) as usize];
+        let mut lights = vec![vec![0.0f32; (w * h) as usize]; n];
+        // Draws grow or shrink to take about DRAW_SECONDS each: strips of rows, each cut
+        // into draws as wide as the current side.
+        let mut side = 32u32;
+        let mut row0 = 0u32;
+        while row0 < h {
+            let rows = side.min(h - row0);
+            let mut col0 = 0u32;
+            while col0 < w {
+                if progress.cancelled() {
+                    return Ok(Traced { records, lights });
+                }
+                let cols = side.min(w - col0);
+                let started = Instant::now();
+                let slots = self.draw(col0, row0, cols, rows)?;
+                self.collect(
+                    &slots,
+                    (col0, row0, cols, rows),
+                    w,
+                    &mut records,
+                    &mut lights,
+                );
+                progress.advance(u64::from(cols * rows));
+                col0 += cols;
+                let took = started.elapsed().as_secs_f64().max(1e-6);
+                let scale = (DRAW_SECONDS / took).sqrt().clamp(0.5, 2.0);
+                side = ((f64::from(side) * scale) as u32).clamp(MIN_DRAW_SIDE, MAX_DRAW_SIDE);
+            }
+            row0 += rows;
+        }
+        Ok(Traced { records, lights })
+    }
+
+    /// Draws one tile (all passes) and reads its slots back: per slot, cols × rows × 4 floats.
+    fn draw(&self, col0: u32, row0: u32, cols: u32, rows: u32) -> Result<Vec<Vec<f32>>, HostError> {
+        let gl = &self.ctx.gl;
+        let buffers = self.targets.len();
+        let slots = self.input.slots();
+        let mut out = Vec::with_capacity(slots);
+        // SAFETY: see `new`.
+        unsafe {
+            gl.use_program(Some(self.program));
+            gl.bind_vertex_array(Some(self.vao));
+            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D, Some(self.table));
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.framebuffer));
+            gl.viewport(0, 0, cols as i32, rows as i32);
+            let origin = gl.get_uniform_location(self.program, "u_origin");
+            let slot0 = gl.get_uniform_location(self.program, "u_slot0");
+            gl.uniform_2_i32(origin.as_ref(), col0 as i32, row0 as i32);
+            for first in (0..slots).step_by(buffers) {
+                gl.uniform_1_i32(slot0.as_ref(), first as i32);
+                gl.draw_arrays(glow::TRIANGLES, 0, 3);
+                for i in 0..buffers.min(slots - first) {
+                    let mut data = vec![0.0f32; (cols * rows * 4) as usize];
+                    gl.read_buffer(glow::COLOR_ATTACHMENT0 + i as u32);
+                    gl.read_pixels(
+                        0,
+                        0,
+                        cols as i32,
+                        rows as i32,
+                        glow::RGBA,
+                        glow::FLOAT,
+                        glow::PixelPackData::Slice(Some(f32_bytes_mut(&mut data))),
+                    );
+                    out.push(data);
+                }
+            }
+            let err = gl.get_error();
+            if err != glow::NO_ERROR {
+                return Err(HostError::Gl(format!("GL error 0x{err:x} in a draw")));
+            }
+        }
+        Ok(out)
+    }
+
+    /// Turns a tile's slots into records and light values. Framebuffer row j is grid row
+    /// row0 + j (the kernel counts rows from the framebuffer's first).
+    fn collect(
+        &self,
+        slots: &[Vec<f32>],
+        (col0, row0, cols, rows): (u32, u32, u32, u32),
+        width: u32,
+        records: &mut [PixelRecord],
+        lights: &mut [Vec<f32>],
+    ) {
+        for j in 0..rows {
+            for i in 0..cols {
+                let at = ((j * cols + i) * 4) as usize;
+                let slot = |s: usize| &slots[s][at..at + 4];
+                let index = ((row0 + j) * width + col0 + i) as usize;
+                let (s0, s1, s2, s3, s4) = (slot(0), slot(1), slot(2), slot(3), slot(4));
+                let status = RayStatus::from_code(s0[1] as u32).unwrap_or(RayStatus::Failed);
+                let view = [s2[3], s3[3], s4[0]];
+                records[index] = match status {
+                    RayStatus::Hit => PixelRecord {
+                        object: s0[0] as i32,
+                        status,
+                        u: s0[2],
+                        v: s0[3],
+                        g: s1[0],
+                        t_emit: s1[1],
+                        x: s2[0],
+                        y: s2[1],
+                        z: s2[2],
+                        lambda: s1[2],
+                        dir: [s3[0], s3[1], s3[2]],
+                        cos_i: s1[3],
+                        view,
+                    },
+                    RayStatus::NotTraced => PixelRecord::miss(status),
+                    _ => PixelRecord {
+                        view,
+                        ..PixelRecord::miss(status)
+                    },
+                };
+                for (k, plane) in lights.iter_mut().enumerate() {
+                    let (s, c) = light_channel(k);
+                    let v = slot(s)[c];
+                    // The kernel marks a light whose occlusion search ran out of work by a
+                    // negative value (irradiance is never negative): NaN, as the CPU writes.
+                    plane[index] = if status != RayStatus::Hit {
+                        0.0
+                    } else if v < 0.0 {
+                        f32::NAN
+                    } else {
+                        v
+                    };
+                }
+            }
+        }
+    }
+}
+
+impl Drop for GpuTracer {
+    fn drop(&mut self) {
+        let gl = &self.ctx.gl;
+        // SAFETY: deleting objects this tracer created, on its context.
+        unsafe {
+            gl.delete_program(self.program);
+            gl.delete_texture(self.table);
+            for t in &self.targets {
+                gl.delete_texture(*t);
+            }
+            gl.delete_framebuffer(self.framebuffer);
+            gl.delete_vertex_array(self.vao);
+        }
+    }
+}
+
+fn f32_bytes(v: &[f32]) -> &[u8] {
+    // SAFETY: f32 has no padding and any byte pattern of it is readable as u8.
+    unsafe { std::slice::from_raw_parts(v.as_ptr().cast(), std::mem::size_of_val(v)) }
+}
+
+fn f32_bytes_mut(v: &mut [f32]) -> &mut [u8] {
+    // SAFETY: as above; every byte pattern is a valid f32.
+    unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast(), std::mem::size_of_val(v)) }
+}

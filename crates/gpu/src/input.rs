@@ -1,0 +1,216 @@
+//! What the kernel reads, made from a scene: its uniforms and the scene table, and what it
+//! writes: the slots of four channels of each sample's record. The one packer of that
+//! layout, shared by the offscreen host (`crate::host`) and the viewer page (which receives
+//! [`KernelInput`] as JSON and sets the same uniforms).
+//!
+//! Scene table (RGBA32F texels, [`TABLE_WIDTH`] per row): per object [`OBJECT_TEXELS`],
+//!
+//! | texel | ball at rest | ball in free fall | coordinate sphere | plane |
+//! | --- | --- | --- | --- | --- |
+//! | 0 | (0, R, 0, 0) | (1, R, 0, 0) | (2, R, 0, 0) | (3, 0, extent or 0, 0) |
+//! | 1 | (x, y, z, 0) | start (x, y, z), speed | centre (x, y, z, 0) | (0, 0, height, 0) |
+//! | 2 | — | start time (hi, lo, 0, 0) | — | — |
+//! | 3 | — | direction (x, y, z, 0) | — | — |
+//!
+//! (a scene without objects gets one of kind −1, never searched), then per light [`LIGHT_TEXELS`]: (x, y, z, power). Times are split into f32 hi + lo parts,
+//! so that the kernel subtracts the observer's time without losing the digits (f32 has 24
+//! bits; scenes allow times up to 10⁶).
+
+use scene::{Camera, Motion, Scene, Shape};
+use serde::Serialize;
+
+/// Texels per row of the scene table.
+pub const TABLE_WIDTH: usize = 256;
+/// Texels per object and per light.
+pub const OBJECT_TEXELS: usize = 4;
+pub const LIGHT_TEXELS: usize = 1;
+
+/// The output slots of a record, four channels each (see [`slots`]).
+pub const SLOT_CHANNELS: [&str; 20] = [
+    "object", "status", "u", "v", // slot 0
+    "g", "t_emit", "lambda", "cos_i", // slot 1
+    "x", "y", "z", "view_x", // slot 2
+    "dir_x", "dir_y", "dir_z", "view_y", // slot 3
+    "view_z", "light_0", "light_1", "light_2", // slot 4, then four lights per slot
+];
+
+/// Slots a record of a scene with `lights` lights fills: four fixed ones, then view_z and
+/// the lights four channels to a slot.
+pub fn slots(lights: usize) -> usize {
+    4 + (lights.max(1) + 4) / 4
+}
+
+/// Where light `k`'s channel is: (slot, component).
+pub fn light_channel(k: usize) -> (usize, usize) {
+    let c = k + 1;
+    (4 + c / 4, c % 4)
+}
+
+/// The kernel's uniforms (names without the `u_` prefix of the GLSL source).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Uniforms {
+    pub metric: i32,
+    pub a: f32,
+    pub obs_t: [f32; 2],
+    pub obs_x: [f32; 3],
+    pub velocity: [f32; 4],
+    pub forward: [f32; 3],
+    pub up: [f32; 3],
+    pub camera: i32,
+    pub fov: [f32; 2],
+    /// The sample grid's size (the camera's size times the samples per side).
+    pub size: [i32; 2],
+    pub max_past: f32,
+    pub max_loops: i32,
+    pub lights: i32,
+}
+
+/// Everything the kernel needs for one scene.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct KernelInput {
+    pub uniforms: Uniforms,
+    /// The scene table, four floats per texel, [`TABLE_WIDTH`] texels per row (padded).
+    pub table: Vec<f32>,
+    pub table_rows: usize,
+    /// The scene's object and light counts (the kernel's N_OBJECTS and N_LIGHTS are these,
+    /// at least 1).
+    pub objects: usize,
+    pub light_count: usize,
+    /// Which kinds of object the scene has: at rest, in free fall, coordinate spheres,
+    /// planes (the kernel leaves out the code of the others).
+    pub kinds: [bool; 4],
+    /// Samples per side of a pixel.
+    pub supersample: u32,
+}
+
+/// A time as f32 hi + lo, hi + lo ≈ t to ~2⁻⁴⁸ relative.
+pub fn split_time(t: f64) -> [f32; 2] {
+    let hi = t as f32;
+    [hi, (t - f64::from(hi)) as f32]
+}
+
+impl KernelInput {
+    pub fn new(scene: &Scene) -> KernelInput {
+        let obs = scene.observer;
+        let (camera, fov) = match scene.camera {
+            Camera::Pinhole { fov_deg, .. } => (0, [fov_deg as f32, 0.0]),
+            Camera::Panorama {
+                h_fov_deg,
+                v_fov_deg,
+                ..
+            } => (1, [h_fov_deg as f32, v_fov_deg as f32]),
+            Camera::Sphere { .. } => (1, [360.0, 180.0]),
+            Camera::Fisheye { fov_deg, .. } => (2, [fov_deg as f32, 0.0]),
+        };
+        let sample = scene.sample_camera();
+        let f = |v: [f64; 3]| v.map(|c| c as f32);
+        let v = obs.velocity;
+        let uniforms = Uniforms {
+            metric: i32::from(scene.metric.godel_a().is_some()),
+            a: scene.metric.godel_a().unwrap_or(1.0) as f32,
+            obs_t: split_time(obs.event.t),
+            obs_x: f([obs.event.x, obs.event.y, obs.event.z]),
+            velocity: [
+                v.speed as f32,
+                v.direction[0] as f32,
+                v.direction[1] as f32,
+                v.direction[2] as f32,
+            ],
+            forward: f(obs.forward),
+            up: f(obs.up),
+            camera,
+            fov,
+            size: [sample.width() as i32, sample.height() as i32],
+            max_past: scene.trace.max_past as f32,
+            max_loops: scene::MAX_RAY_LOOPS as i32,
+            lights: scene.lights.len() as i32,
+        };
+        let mut texels: Vec<[f32; 4]> = Vec::new();
+        for o in &scene.objects {
+            let mut t = [[0.0f32; 4]; OBJECT_TEXELS];
+            match (o.shape, o.motion) {
+                (Shape::Sphere { radius }, Motion::Rest { position }) => {
+                    t[0] = [0.0, radius as f32, 0.0, 0.0];
+                    t[1] = [position.x as f32, position.y as f32, position.z as f32, 0.0];
+                }
+                (Shape::Sphere { radius }, Motion::Geodesic { start, velocity }) => {
+                    let [hi, lo] = split_time(start.t);
+                    t[0] = [1.0, radius as f32, 0.0, 0.0];
+                    t[1] = [
+                        start.x as f32,
+                        start.y as f32,
+                        start.z as f32,
+                        velocity.speed as f32,
+                    ];
+                    t[2] = [hi, lo, 0.0, 0.0];
+                    let d = f(velocity.direction);
+                    t[3] = [d[0], d[1], d[2], 0.0];
+                }
+                (Shape::CoordinateSphere { center, radius }, _) => {
+                    t[0] = [2.0, radius as f32, 0.0, 0.0];
+                    t[1] = [center[0] as f32, center[1] as f32, center[2] as f32, 0.0];
+                }
+                (Shape::Plane { height, extent }, _) => {
+                    t[0] = [3.0, 0.0, extent.unwrap_or(0.0) as f32, 0.0];
+                    t[1] = [0.0, 0.0, height as f32, 0.0];
+                }
+            }
+            texels.extend(t);
+        }
+        if scene.objects.is_empty() {
+            // The kernel's arrays hold at least one object: one that is never searched.
+            texels.push([-1.0, 0.0, 0.0, 0.0]);
+            texels.extend([[0.0; 4]; OBJECT_TEXELS - 1]);
+        }
+        for l in &scene.lights {
+            let p = l.position;
+            texels.push([p.x as f32, p.y as f32, p.z as f32, l.power as f32]);
+        }
+        let mut kinds = [false; 4];
+        for o in &scene.objects {
+            kinds[match (o.shape, o.motion) {
+                (Shape::Sphere { .. }, Motion::Rest { .. }) => 0,
+                (Shape::Sphere { .. }, Motion::Geodesic { .. }) => 1,
+                (Shape::CoordinateSphere { .. }, _) => 2,
+                (Shape::Plane { .. }, _) => 3,
+            }] = true;
+        }
+        let rows = texels.len().div_ceil(TABLE_WIDTH).max(1);
+        texels.resize(rows * TABLE_WIDTH, [0.0; 4]);
+        KernelInput {
+            uniforms,
+            table: texels.into_iter().flatten().collect(),
+            table_rows: rows,
+            objects: scene.objects.len(),
+            light_count: scene.lights.len(),
+            kinds,
+            supersample: scene.supersample(),
+        }
+    }
+
+    /// The defines the kernel is compiled with, as a source prefix (after `#version`): the
+    /// sizes of its arrays, its render targets, and what the scene has (code for what it lacks
+    /// is left out: a GPU runs both sides of a branch its samples take apart).
+    pub fn defines(&self, draw_buffers: usize) -> String {
+        let flag = |b: bool| u8::from(b);
+        format!(
+            "#define N_OBJECTS {}\n#define N_LIGHTS {}\n#define DRAW_BUFFERS {}\n\
+             #define GODEL {}\n#define HAS_LIGHTS {}\n#define HAS_REST {}\n#define HAS_FREE {}\n\
+             #define HAS_COORD_SPHERE {}\n#define HAS_PLANE {}\n",
+            self.objects.max(1),
+            self.light_count.max(1),
+            draw_buffers,
+            self.uniforms.metric,
+            flag(self.light_count > 0),
+            flag(self.kinds[0]),
+            flag(self.kinds[1]),
+            flag(self.kinds[2]),
+            flag(self.kinds[3]),
+        )
+    }
+
+    /// The slots of this scene's records.
+    pub fn slots(&self) -> usize {
+        slots(self.light_count)
+    }
+}

@@ -1,0 +1,1852 @@
+// godel's exact tracer as one GLSL ES 3.00 fragment kernel: one fragment = one sample of
+// the camera's sample grid, its outputs the data file's channels. It is the twin of the CPU
+// exact tracer (crates/render: tracer.rs, intersect.rs, target.rs, worldline.rs,
+// lighting.rs; crates/spacetime: closed_form.rs, isometry.rs, connect.rs, frame.rs) with the
+// same camera conventions, isometry, closed forms, loop copies, search bounds and statuses;
+// each block cites its section of docs/physics.md. Single precision throughout ("The GPU
+// kernel" in docs/physics.md says what that costs).
+//
+// The host prepends `#version 300 es` and its defines (crates/gpu/src/input.rs,
+// `KernelInput::defines`): N_OBJECTS and N_LIGHTS (the scene's counts, at least 1 for the
+// array sizes), DRAW_BUFFERS (render targets per pass), GODEL (1 for Gödel's metric, 0 for
+// Minkowski's), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
+// scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
+// probe count in place of view_x).
+//
+// Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
+// vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
+// observer's (the metric does not depend on t: a shift of t is an isometry), complex numbers
+// as vec2 (re, im).
+
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+
+// ---------------------------------------------------------------------------------------
+// Inputs. The scene table holds per object OBJECT_TEXELS texels and per light LIGHT_TEXELS
+// (layout written by crates/gpu/src/input.rs, the one packer).
+
+uniform float u_a;           // Gödel parameter a
+uniform vec2 u_obs_t;        // observer time as hi + lo (times of objects are made relative to it)
+uniform vec3 u_obs_x;        // observer position (x, y, z)
+uniform vec4 u_velocity;     // observer speed and unit direction in the static frame
+uniform vec3 u_forward;      // camera axes in the observer's frame
+uniform vec3 u_up;
+uniform int u_camera;        // 0 pinhole, 1 panorama (sphere too), 2 fisheye
+uniform vec2 u_fov;          // degrees: pinhole (fov, −), panorama (h, v), fisheye (fov, −)
+uniform ivec2 u_size;        // the sample grid's width and height
+uniform ivec2 u_origin;      // this draw's first column and row of the sample grid
+uniform float u_max_past;    // follow rays this far into the past
+uniform int u_max_loops;     // loop copies at most (MAX_RAY_LOOPS)
+uniform int u_slot0;         // the first output slot this pass writes
+uniform int u_lights;        // the scene's lights (N_LIGHTS is at least 1)
+uniform int u_two;           // 2: the bound of the loop that detects llvmpipe's loop limit
+uniform sampler2D u_table;   // the scene table, RGBA32F
+
+layout(location = 0) out vec4 o0;
+#if DRAW_BUFFERS > 1
+layout(location = 1) out vec4 o1;
+#endif
+#if DRAW_BUFFERS > 2
+layout(location = 2) out vec4 o2;
+#endif
+#if DRAW_BUFFERS > 3
+layout(location = 3) out vec4 o3;
+#endif
+#if DRAW_BUFFERS > 4
+layout(location = 4) out vec4 o4;
+#endif
+#if DRAW_BUFFERS > 5
+layout(location = 5) out vec4 o5;
+#endif
+#if DRAW_BUFFERS > 6
+layout(location = 6) out vec4 o6;
+#endif
+#if DRAW_BUFFERS > 7
+layout(location = 7) out vec4 o7;
+#endif
+
+const int TABLE_WIDTH = 256;
+const int OBJECT_TEXELS = 4;
+const int LIGHT_TEXELS = 1;
+
+const int KIND_REST = 0;
+const int KIND_FREE = 1;
+const int KIND_COORD_SPHERE = 2;
+const int KIND_PLANE = 3;   // (−1: the placeholder of a scene without objects)
+
+const int HIT = 0;
+const int ESCAPED = 1;
+const int FAILED = 3;
+const int NOT_TRACED = 4;
+const int WORK_LIMIT = 5;
+
+const float PI = 3.14159265358979;
+const float SQRT2 = 1.41421356237310;
+const float NO_TAU = -3.0e38;      // "no matched proper time" (the CPU's NaN)
+const float INF = 3.0e38;
+
+// The intersection search's bounds (render::intersect, docs/physics.md "The intersection
+// search"): halvings of a span, probes per object and span, conservative advancement cap.
+const int SEARCH_DEPTH = 30;
+const int SEARCH_PROBES = 4096;   // the CPU's 131072 is far beyond a GPU's means (see PIXEL_PROBES)
+const float MAX_SKIP = 1.0;
+// Segments per loop of a closed-form ray (render::segment::EXACT_SEGMENTS).
+const int EXACT_SEGMENTS = 16;
+// GPU only: probes per sample, all its searches together. A draw must end soon (GPU watchdogs),
+// and llvmpipe stops every loop of a shader after 65535 passes in all, counted per group of
+// eight samples: a sample over this budget is marked "work limit" (the CPU has no such bound).
+const int PIXEL_PROBES = 8192;
+// Root refinement steps (spacetime::refine_root) and simultaneity steps
+// (render::worldline::SIMULTANEITY_STEPS).
+const int REFINE_STEPS = 100;
+const int SIMULTANEITY_STEPS = 12;
+// Newton steps of a falling ball's proper time at a coordinate time (tauGuess).
+const int TIME_STEPS = 3;
+// render::target: rate margins and the near zone of local objects.
+const float RATE_MARGIN = 1.5;
+const float GLOBAL_RATE_MARGIN = 2.0;
+const float FAR_DISTANCE = 0.25;
+const float FAR_RADII = 1.0;
+const float FAR_SLACK = 1.3;
+// render::lighting: the occlusion test stops this fraction of the ray short of the lit point.
+const float END_CUT = 1e-6;
+// spacetime::connect: grid cells per winding and branch bracketing the shadow-ray roots.
+const int SHADOW_GRID = 256;
+// Cells of a falling ball's worldline per loop of a pixel ray (fallingLast).
+const int FALL_CELLS = 16;
+const int CELLS_PER_PASS = 16;
+const int MAX_WINDINGS = 10000;
+// render::reject: reach of a ball at rest per radius and per a.
+const float REACH_PER_RADIUS = 1.25;
+const float REACH_PER_A = 1e-6;
+
+// GPU only: passes of a search or of the shadow rays' enumeration, and searches per sample
+// (the pixel's and its shadow rays'): far above what the probe budget allows.
+const int MAX_PASSES = 4194304;
+const int MAX_JOBS = 4194304;
+
+int probes_left;   // the pixel's probe budget (PIXEL_PROBES)
+
+// The sample's record: slots of four channels (see `main`).
+const int SLOTS = 4 + (N_LIGHTS + 4) / 4;
+vec4 slots[SLOTS + 8];
+
+
+// ---------------------------------------------------------------------------------------
+// Complex numbers (vec2) and small helpers.
+
+// Arctangents and arcsines of our own: GLSL leaves their precision to the implementation,
+// and Mesa's are approximations (measured on llvmpipe: asin off by 4e-4, atan by 3e-6).
+// Cephes' atanf (S. L. Moshier): range reduction to |t| ≤ tan(π/8) and a minimax
+// polynomial, relative error ~2e-7.
+float atanA(float x) {
+    float ax = abs(x);
+    float y = 0.0, t = ax;
+    if (ax > 2.414213562373095) { y = 0.5 * PI; t = -1.0 / ax; }
+    else if (ax > 0.4142135623730950) { y = 0.25 * PI; t = (ax - 1.0) / (ax + 1.0); }
+    float z = t * t;
+    y += (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z - 3.33329491539e-1) * z * t + t;
+    return x < 0.0 ? -y : y;
+}
+float atan2s(float y, float x) {
+    if (x == 0.0 && y == 0.0) return 0.0;
+    float ax = abs(x), ay = abs(y);
+    float r = ay <= ax ? atanA(ay / ax) : 0.5 * PI - atanA(ax / ay);
+    if (x < 0.0) r = PI - r;
+    return y < 0.0 ? -r : r;
+}
+float asinA(float x) { return atan2s(x, sqrt(max((1.0 - x) * (1.0 + x), 0.0))); }
+// The same, four at a time (the shadow rays' grid).
+vec4 atanA4(vec4 x) {
+    vec4 ax = abs(x);
+    bvec4 big = greaterThan(ax, vec4(2.414213562373095));
+    bvec4 mid = greaterThan(ax, vec4(0.4142135623730950));
+    vec4 t = mix(mix(ax, (ax - 1.0) / (ax + 1.0), mid), -1.0 / max(ax, 1e-30), big);
+    vec4 y = mix(mix(vec4(0.0), vec4(0.25 * PI), mid), vec4(0.5 * PI), big);
+    vec4 z = t * t;
+    y += (((8.05374449538e-2 * z - 1.38776856032e-1) * z + 1.99777106478e-1) * z - 3.33329491539e-1) * z * t + t;
+    return mix(y, -y, lessThan(x, vec4(0.0)));
+}
+// asin of x ∈ [0, 1].
+vec4 asinA4(vec4 x) {
+    vec4 c = sqrt(max((1.0 - x) * (1.0 + x), 0.0));
+    bvec4 low = lessThanEqual(x, c);
+    return mix(0.5 * PI - atanA4(c / max(x, 1e-30)), atanA4(x / max(c, 1e-30)), low);
+}
+float acosA(float x) { return atan2s(sqrt(max((1.0 - x) * (1.0 + x), 0.0)), x); }
+
+vec2 cmul(vec2 p, vec2 q) { return vec2(p.x * q.x - p.y * q.y, p.x * q.y + p.y * q.x); }
+vec2 cdiv(vec2 p, vec2 q) { return vec2(p.x * q.x + p.y * q.y, p.y * q.x - p.x * q.y) / dot(q, q); }
+vec2 conj2(vec2 p) { return vec2(p.x, -p.y); }
+// Cosine and sine of our own, for the same reason: Chromium's software WebGL (SwiftShader)
+// computes sin and cos to within 2e-4 only (Vulkan's bound is 2^-11). Cephes' sinf/cosf
+// (S. L. Moshier): reduction by π/4 in three parts (exact for |a| < 8192) to an even octant,
+// minimax polynomials on [−π/4, π/4], error ~1 ulp.
+vec2 cis(float a) {
+    float j = floor(abs(a) * 1.27323954473516);   // 4/π
+    j += mod(j, 2.0);
+    float x = ((abs(a) - j * 0.78515625) - j * 2.4187564849853515625e-4) - j * 3.77489497744594108e-8;
+    float z = x * x;
+    float s = ((-1.9515295891e-4 * z + 8.3321608736e-3) * z - 1.6666654611e-1) * z * x + x;
+    float c = ((2.443315711809948e-5 * z - 1.388731625493765e-3) * z + 4.166664568298827e-2) * z * z - 0.5 * z + 1.0;
+    int q = int(j * 0.5) & 3;   // the quarter turn: (c, s) rotated by q·π/2
+    vec2 r = q == 0 ? vec2(c, s) : (q == 1 ? vec2(-s, c) : (q == 2 ? vec2(-c, -s) : vec2(s, -c)));
+    return vec2(r.x, a < 0.0 ? -r.y : r.y);
+}
+float sinA(float a) { return cis(a).y; }
+float cosA(float a) { return cis(a).x; }
+float carg(vec2 p) { return atan2s(p.y, p.x); }
+bool finite(float v) { return !isnan(v) && abs(v) < 1e38; }   // INF (3e38) counts as infinite
+float asinh_(float x) { return sign(x) * log(abs(x) + sqrt(x * x + 1.0)); }
+// tanh(asinh(x)/2) = x/(1 + √(1 + x²)): the disc radius |h| of a ray's circle centre.
+float halfTanh(float x) { return x / (1.0 + sqrt(1.0 + x * x)); }
+float acosh_(float x) { return log(x + sqrt(max(x * x - 1.0, 0.0))); }
+float atanh_(float x) { return 0.5 * log((1.0 + x) / (1.0 - x)); }
+
+vec4 tableTexel(int i) { return texelFetch(u_table, ivec2(i % TABLE_WIDTH, i / TABLE_WIDTH), 0); }
+
+// The kinds of object, each false at compile time where the scene has none of it (the host's
+// HAS_* defines): GPUs and llvmpipe run both sides of a branch their samples take apart, so
+// code for kinds a scene lacks would cost every sample.
+int oKind[N_OBJECTS];
+bool isRest(int i) { return HAS_REST != 0 && oKind[i] == KIND_REST; }
+bool isFree(int i) { return HAS_FREE != 0 && oKind[i] == KIND_FREE; }
+bool isCoordSphere(int i) { return HAS_COORD_SPHERE != 0 && oKind[i] == KIND_COORD_SPHERE; }
+bool isPlane(int i) { return HAS_PLANE != 0 && oKind[i] == KIND_PLANE; }
+
+// ---------------------------------------------------------------------------------------
+// The metric (docs/physics.md, "The Gödel metric"; spacetime::godel, spacetime::minkowski).
+
+bool godel() { return GODEL != 0; }
+
+mat4 metricAt(vec4 e) {
+    if (!godel()) return mat4(-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);
+    float a = u_a, x = e.y, y = e.z;
+    float k = 0.25 / (a * a);
+    float m = 1.0 / (4.0 * a * a + x * x + y * y);
+    float gtx = y / (SQRT2 * a), gty = -x / (SQRT2 * a);
+    float gxx = 1.0 - k * y * y - m * x * x;
+    float gxy = (k - m) * x * y;
+    float gyy = 1.0 - k * x * x - m * y * y;
+    return mat4(-1.0, gtx, gty, 0.0,
+                gtx, gxx, gxy, 0.0,
+                gty, gxy, gyy, 0.0,
+                0.0, 0.0, 0.0, 1.0);
+}
+
+mat4 inverseMetricAt(vec4 e) {
+    if (!godel()) return mat4(-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);
+    float a = u_a, x = e.y, y = e.z;
+    float k = 0.25 / (a * a);
+    float c = 1.0 / (1.0 + k * (x * x + y * y));
+    float q = k * (1.0 + c);
+    float gtx = c * y / (SQRT2 * a), gty = -c * x / (SQRT2 * a);
+    return mat4(1.0 - 2.0 * c, gtx, gty, 0.0,
+                gtx, c + q * x * x, q * x * y, 0.0,
+                gty, q * x * y, c + q * y * y, 0.0,
+                0.0, 0.0, 0.0, 1.0);
+}
+
+float dotg(mat4 g, vec4 u, vec4 v) { return dot(u, g * v); }
+
+// The metric's derivatives ∂x g and ∂y g (the others vanish; spacetime::godel,
+// metric_derivatives).
+void metricDerivatives(vec4 e, out mat4 dX, out mat4 dY) {
+    float a = u_a, x = e.y, y = e.z;
+    float k = 0.25 / (a * a);
+    float m = 1.0 / (4.0 * a * a + x * x + y * y);
+    float m2 = m * m;
+    float w = 1.0 / (SQRT2 * a);
+    float dx_xx = 2.0 * m2 * x * x * x - 2.0 * m * x;
+    float dy_xx = -2.0 * k * y + 2.0 * m2 * y * x * x;
+    float dx_xy = (k - m) * y + 2.0 * m2 * x * x * y;
+    float dy_xy = (k - m) * x + 2.0 * m2 * x * y * y;
+    float dx_yy = -2.0 * k * x + 2.0 * m2 * x * y * y;
+    float dy_yy = 2.0 * m2 * y * y * y - 2.0 * m * y;
+    dX = mat4(0.0, 0.0, -w, 0.0,
+              0.0, dx_xx, dx_xy, 0.0,
+              -w, dx_xy, dx_yy, 0.0,
+              0.0, 0.0, 0.0, 0.0);
+    dY = mat4(0.0, w, 0.0, 0.0,
+              w, dy_xx, dy_xy, 0.0,
+              0.0, dy_xy, dy_yy, 0.0,
+              0.0, 0.0, 0.0, 0.0);
+}
+
+// Γ^μ_αβ u^α v^β = ½ g^μν (∂_α g_νβ u^α v^β + ∂_β g_να u^α v^β − ∂_ν g_αβ u^α v^β), from the
+// derivatives and the inverse metric at the point (Minkowski: all zero).
+vec4 christoffelWith(mat4 dX, mat4 dY, mat4 ginv, vec4 u, vec4 v) {
+    mat4 du = u.y * dX + u.z * dY;
+    mat4 dv = v.y * dX + v.z * dY;
+    vec4 low = du * v + dv * u - vec4(0.0, dot(u, dX * v), dot(u, dY * v), 0.0);
+    return 0.5 * (ginv * low);
+}
+
+vec4 christoffel(vec4 e, vec4 u, vec4 v) {
+    if (!godel()) return vec4(0.0);
+    mat4 dX, dY;
+    metricDerivatives(e, dX, dY);
+    return christoffelWith(dX, dY, inverseMetricAt(e), u, v);
+}
+
+// Riemann normal coordinates to second order (docs/physics.md, "Local objects";
+// spacetime::normal; the first-order transport is written out in restFramePhoton).
+vec4 normalDisplacement(vec4 at, vec4 d) { return d + 0.5 * christoffel(at, d, d); }
+
+// ---------------------------------------------------------------------------------------
+// Frames (docs/physics.md, "Frames"; spacetime::frame): the static frame by Gram–Schmidt of
+// (∂t, ∂x, ∂y, ∂z), boosts. A frame is a mat4 whose columns are e0..e3.
+
+mat4 staticFrame(vec4 at) {
+    mat4 g = metricAt(at);
+    mat4 e = mat4(1.0);
+    e[0] = e[0] / sqrt(-dotg(g, e[0], e[0]));
+    for (int i = 1; i < 4; i++) {
+        vec4 v = mat4(1.0)[i];
+        v += dotg(g, v, e[0]) * e[0];
+        for (int j = 1; j < 4; j++) {
+            if (j < i) v -= dotg(g, v, e[j]) * e[j];
+        }
+        e[i] = v / sqrt(dotg(g, v, v));
+    }
+    return e;
+}
+
+// The standard boost: Λ⁰₀ = γ, Λ⁰ᵢ = Λⁱ₀ = γ v nᵢ, Λⁱⱼ = δᵢⱼ + (γ − 1) nᵢ nⱼ.
+mat4 boostFrame(mat4 f, float speed, vec3 n) {
+    float gam = 1.0 / sqrt(1.0 - speed * speed);
+    mat4 out_;
+    out_[0] = f * vec4(gam, gam * speed * n);
+    for (int i = 0; i < 3; i++) {
+        vec3 row = (gam - 1.0) * n[i] * n;
+        row[i] += 1.0;
+        out_[i + 1] = f * vec4(gam * speed * n[i], row);
+    }
+    return out_;
+}
+
+// The dual rows c_a = η_aa g(e_a, ·): frame components of a vector v are dot(c_a, v).
+mat4 dualFrame(mat4 g, mat4 f) {
+    mat4 d;
+    for (int a = 0; a < 4; a++) d[a] = (a == 0 ? -1.0 : 1.0) * (g * f[a]);
+    return d;
+}
+vec4 components(mat4 dual, vec4 v) { return vec4(dot(dual[0], v), dot(dual[1], v), dot(dual[2], v), dot(dual[3], v)); }
+
+// ---------------------------------------------------------------------------------------
+// Cameras (docs/physics.md, "Pixels and cameras"; scene::camera): the unit direction in the
+// camera basis (forward, right, up) at image position (x, y) of the sample grid; false for
+// a fisheye pixel outside its circle.
+
+bool cameraDirection(vec2 p, out vec3 d) {
+    float w = float(u_size.x), h = float(u_size.y);
+    if (u_camera == 0) {
+        vec2 halfFov = cis(radians(0.5 * u_fov.x));
+        float t = halfFov.y / halfFov.x;
+        float x = t * (2.0 * p.x / w - 1.0);
+        float y = t * (h / w) * (1.0 - 2.0 * p.y / h);
+        d = vec3(1.0, x, y) / sqrt(1.0 + x * x + y * y);
+        return true;
+    }
+    if (u_camera == 1) {
+        float alpha = radians(u_fov.x) * (p.x / w - 0.5);
+        float beta = radians(u_fov.y) * (0.5 - p.y / h);
+        d = vec3(cosA(beta) * cosA(alpha), cosA(beta) * sinA(alpha), sinA(beta));
+        return true;
+    }
+    float dx = 2.0 * p.x / w - 1.0, dy = 1.0 - 2.0 * p.y / h;
+    float rho = length(vec2(dx, dy));
+    if (rho > 1.0) return false;
+    float theta = rho * radians(0.5 * u_fov.x);
+    vec2 sc = rho > 0.0 ? vec2(dx, dy) / rho : vec2(0.0, 1.0);
+    d = vec3(cosA(theta), sinA(theta) * sc.x, sinA(theta) * sc.y);
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------
+// Isometries (docs/physics.md, "Isometries"; spacetime::isometry): X ↦ R_rot(T_{P0}(X)) in
+// the disc coordinate w = (x + iy)/√(x² + y² + 4a²).
+
+struct Iso { float t0; vec2 w0; float z0; float rot; };
+
+vec2 disc(vec2 xy) { return xy / sqrt(dot(xy, xy) + 4.0 * u_a * u_a); }
+vec2 fromDisc(vec2 w) { return 2.0 * u_a * w / sqrt(1.0 - dot(w, w)); }
+
+Iso toOrigin(vec4 p) { return Iso(p.x, disc(p.yz), p.w, 0.0); }
+Iso inverseIso(Iso m) { return Iso(-m.t0, -cmul(cis(m.rot), m.w0), -m.z0, -m.rot); }
+bool isTranslation(Iso m) { return m.w0 == vec2(0.0) && m.rot == 0.0; }
+
+// The image of an event and of the tangent vector v there (spacetime::Isometry::apply_push).
+void applyPush(Iso m, vec4 at, vec4 v, out vec4 e, out vec4 k) {
+    if (isTranslation(m)) {
+        e = vec4(at.x - m.t0, at.y, at.z, at.w - m.z0);
+        k = v;
+        return;
+    }
+    float a = u_a;
+    vec2 w = disc(at.yz);
+    vec2 den = vec2(1.0, 0.0) - cmul(conj2(m.w0), w);
+    vec2 rot = cis(m.rot);
+    vec2 w1 = cmul(rot, cdiv(w - m.w0, den));
+    e = vec4(at.x - m.t0 - 2.0 * SQRT2 * a * carg(den), fromDisc(w1), at.w - m.z0);
+    // dw = (dx + i dy)/S − (x + i y)(x dx + y dy)/S³.
+    float s2 = dot(at.yz, at.yz) + 4.0 * a * a;
+    float s = sqrt(s2);
+    float rad = dot(at.yz, v.yz) / (s2 * s);
+    vec2 dw = v.yz / s - at.yz * rad;
+    vec2 dw1 = cmul(rot, cdiv(dw * (1.0 - dot(m.w0, m.w0)), cmul(den, den)));
+    // d(x + iy) = 2a dw/√(1 − |w|²) + 2a w Re(w̄ dw)/(1 − |w|²)^{3/2}.
+    float n = 1.0 - dot(w1, w1);
+    float f = 2.0 * a / sqrt(n);
+    float g = f * dot(w1, dw1) / n;
+    k = vec4(v.x + 2.0 * SQRT2 * a * cdiv(cmul(conj2(m.w0), dw), den).y, f * dw1 + g * w1, v.w);
+}
+
+vec4 applyIso(Iso m, vec4 at) { vec4 e, k; applyPush(m, at, vec4(0.0), e, k); return e; }
+vec4 pushIso(Iso m, vec4 at, vec4 v) { vec4 e, k; applyPush(m, at, v, e, k); return k; }
+
+// ---------------------------------------------------------------------------------------
+// Closed-form geodesics through the origin (docs/physics.md, "Closed forms";
+// spacetime::closed_form): x + iy = r_max sin θ e^{i(χ + sgn(E) Φ(θ))},
+// t = sgn(E) 2√2 a Φ(θ) − E λ, z = p_z λ, θ = ωλ, Φ = arctan(q tan θ) continued.
+
+struct OGeo { float e; float pz; float kappa; vec2 cchi; float omega; float rmax; float q; bool ok; };
+
+OGeo originGeodesic(vec4 k) {
+    OGeo g;
+    float e = k.x;
+    float kp2 = dot(k.yz, k.yz);
+    float kappa = e * e - kp2 - k.w * k.w;
+    g.ok = finite(e) && finite(kp2) && finite(k.w) && e != 0.0 && kappa >= -1e-4 * e * e;
+    kappa = max(kappa, 0.0);
+    g.e = e;
+    g.pz = k.w;
+    g.kappa = kappa;
+    g.omega = sqrt(e * e + kappa + k.w * k.w) / (2.0 * u_a);
+    float kp = sqrt(kp2);
+    g.cchi = kp > 0.0 ? k.yz / kp : vec2(1.0, 0.0);
+    g.rmax = kp / g.omega;
+    g.q = abs(e) / (SQRT2 * u_a * g.omega);
+    return g;
+}
+
+float returnParameter(OGeo g) { return PI / g.omega; }
+
+void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
+    float a = u_a, e = g.e, w = g.omega, q = g.q;
+    float sg = sign(e);
+    float th = w * lambda;
+    float s = sinA(th), c = cosA(th);
+    float den = c * c + q * s * s;
+    float b = (q - 1.0) * s * c;
+    float big = th + atan2s(b, den);
+    float dbig = q / (c * c + q * q * s * s);
+    float n = sqrt(den * den + b * b);
+    float cb = (c * den - s * b) / n, sb = sg * (s * den + c * b) / n;
+    float cp = g.cchi.x * cb - g.cchi.y * sb, sp = g.cchi.y * cb + g.cchi.x * sb;
+    float r = g.rmax * s;
+    ev = vec4(sg * 2.0 * SQRT2 * a * big - e * lambda, r * cp, r * sp, g.pz * lambda);
+    float u = w * g.rmax * c, v = w * g.rmax * sg * dbig * s;
+    tan_ = vec4(sg * 2.0 * SQRT2 * a * w * dbig - e, u * cp - v * sp, u * sp + v * cp, g.pz);
+}
+
+// Parallel transport along the closed form (docs/physics.md, "Parallel transport along closed
+// forms"; spacetime::transport): W(λ) = F_λ* exp(−λA) W with A = ∇ξ at the origin and
+// F_λ = T_{γ(λ)}⁻¹ ∘ R_β(λ).
+vec4 nablaXi(OGeo g, vec4 w) {
+    vec2 kxy = g.omega * g.rmax * g.cchi;
+    float s = 1.0 / (SQRT2 * u_a);
+    float e = g.e * s;
+    kxy *= s;
+    return vec4(w.y * kxy.y - w.z * kxy.x, w.x * kxy.y - w.z * e, -w.x * kxy.x + w.y * e, 0.0);
+}
+
+float flowRotation(OGeo g, float lambda) {
+    float alpha = sign(g.e) * 2.0 * g.omega * lambda;
+    float h = halfTanh(g.rmax / (2.0 * u_a));
+    float h2 = h * h;
+    return alpha - 2.0 * atan2s(-h2 * sinA(alpha), 1.0 - h2 * cosA(alpha));
+}
+
+vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
+    vec4 aw = nablaXi(g, w);
+    vec4 aaw = nablaXi(g, aw);
+    float om = sqrt(g.kappa + g.pz * g.pz) / (SQRT2 * u_a);
+    float x = om * lambda;
+    float c1, c2;
+    if (abs(x) < 1e-2) {
+        c1 = lambda * (1.0 - x * x / 6.0);
+        c2 = 0.5 * lambda * lambda * (1.0 - x * x / 12.0);
+    } else {
+        c1 = sinA(x) / om;
+        c2 = (1.0 - cosA(x)) / (om * om);
+    }
+    vec4 v = w - c1 * aw + c2 * aaw;
+    float beta = flowRotation(g, lambda);
+    float cb = cosA(beta), sb = sinA(beta);
+    v = vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w);
+    return pushIso(inverseIso(toOrigin(at)), vec4(0.0), v);
+}
+
+// ---------------------------------------------------------------------------------------
+// The ray: a closed form carried back from the origin by the observer's isometry (Gödel;
+// "Closed forms", "Isometries"), or a straight line (Minkowski), with loop copies shifted
+// in t and z (render::segment, docs/physics.md "The intersection search").
+
+struct Ray {
+    Iso back;     // from the origin frame to the scene's coordinates (times relative)
+    OGeo geo;     // Gödel: the closed form in the origin frame
+    vec4 x0;      // Minkowski: start event
+    vec4 k0;      // Minkowski: tangent; Gödel: the tangent at the start
+    float lret;   // Gödel: return parameter
+    vec2 shift;   // Gödel: (Δt, Δz) per loop
+};
+
+// The ray's event and tangent at parameter l of loop j.
+void rayAt(Ray r, int j, float l, out vec4 ev, out vec4 k) {
+    if (!godel()) {
+        ev = r.x0 + l * r.k0;
+        k = r.k0;
+        return;
+    }
+    vec4 e0, k0;
+    ogeoAt(r.geo, l, e0, k0);
+    applyPush(r.back, e0, k0, ev, k);
+    ev.x += float(j) * r.shift.x;
+    ev.w += float(j) * r.shift.y;
+}
+
+// The ray through `at` with tangent `k` (Gödel: the exact geodesic; spacetime::ExactGeodesic).
+Ray makeRay(vec4 at, vec4 k) {
+    Ray r;
+    r.x0 = at;
+    r.k0 = k;
+    r.back = Iso(0.0, vec2(0.0), 0.0, 0.0);
+    r.geo.ok = true;
+    r.lret = INF;
+    r.shift = vec2(0.0);
+    if (godel()) {
+        Iso to = toOrigin(at);
+        r.geo = originGeodesic(pushIso(to, at, k));
+        r.back = inverseIso(to);
+        r.lret = returnParameter(r.geo);
+        float sg = sign(r.geo.e);
+        r.shift = vec2(sg * 2.0 * SQRT2 * u_a * PI - r.geo.e * r.lret, r.geo.pz * r.lret);
+    }
+    return r;
+}
+
+
+// ---------------------------------------------------------------------------------------
+// Objects (docs/physics.md, "Local objects"; render::target, render::worldline), read from
+// the table and prepared once per sample, one array per field. GLSL inlines every call, so
+// the heavy functions below each have one call site (two for `localize`), and the kernel
+// stays small enough to compile in seconds.
+
+float oRadius[N_OBJECTS];
+float oExtent[N_OBJECTS];   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
+vec4 oPos[N_OBJECTS];       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
+mat4 oDual[N_OBJECTS];      // at rest: dual rows of the static frame
+mat4 oDX[N_OBJECTS];        // at rest: ∂x g, ∂y g and g⁻¹ at the position (Γ there)
+mat4 oDY[N_OBJECTS];
+mat4 oGinv[N_OBJECTS];
+Iso oBack[N_OBJECTS];       // free fall: from the start's origin frame back
+OGeo oGeo[N_OBJECTS];       // free fall: the closed form in that frame
+vec4 oStart[N_OBJECTS];     // free fall: start event; Minkowski: and its velocity below
+vec4 oU0[N_OBJECTS];
+float oSpeed[N_OBJECTS];    // γ(1 + v) relative to the static observers
+float oRate[N_OBJECTS];     // free fall: coordinate time per proper time over whole loops
+float oGamma[N_OBJECTS];    // free fall: γ = −u_t, conserved
+
+// The frame a free fall starts with: the static frame there boosted by its velocity.
+mat4 startFrame(int i) {
+    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
+    vec4 t3 = tableTexel(OBJECT_TEXELS * i + 3);
+    return boostFrame(staticFrame(oStart[i]), t1.w, t3.xyz);
+}
+
+void loadObject(int i) {
+    vec4 t0 = tableTexel(OBJECT_TEXELS * i);
+    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
+    vec4 t2 = tableTexel(OBJECT_TEXELS * i + 2);
+    oKind[i] = int(t0.x);
+    oRadius[i] = t0.y;
+    oExtent[i] = t0.z;
+    oPos[i] = vec4(0.0, t1.xyz);
+    oSpeed[i] = 1.0;
+    oRate[i] = 1.0;
+    if (isRest(i)) {
+        oDual[i] = dualFrame(metricAt(oPos[i]), staticFrame(oPos[i]));
+        metricDerivatives(oPos[i], oDX[i], oDY[i]);
+        oGinv[i] = inverseMetricAt(oPos[i]);
+        if (!godel()) { oDX[i] = mat4(0.0); oDY[i] = mat4(0.0); }
+    } else if (isFree(i)) {
+        // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
+        oStart[i] = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
+        vec4 u = startFrame(i)[0];
+        oU0[i] = u;
+        float gam = -(metricAt(oStart[i]) * u).x;   // γ = −u_t, conserved
+        oSpeed[i] = gam + sqrt(max(gam * gam - 1.0, 0.0));
+        oGamma[i] = max(gam, 1.0);
+        oRate[i] = u.x;
+        if (godel()) {
+            Iso to = toOrigin(oStart[i]);
+            oGeo[i] = originGeodesic(pushIso(to, oStart[i], u));
+            oBack[i] = inverseIso(to);
+            float lr = returnParameter(oGeo[i]);
+            oRate[i] = (sign(oGeo[i].e) * 2.0 * SQRT2 * u_a * PI - oGeo[i].e * lr) / lr;
+        }
+    }
+}
+
+struct WPoint { float tau; vec4 ev; vec4 u; };
+
+// The worldline point at proper time τ: event and four-velocity (free fall: the closed form
+// carried back from the start's origin frame; Minkowski: a straight line).
+WPoint worldAt(int i, float tau) {
+    WPoint p;
+    p.tau = tau;
+    if (!isFree(i)) {
+        p.ev = vec4(tau, oPos[i].yzw);
+        p.u = vec4(1.0, 0.0, 0.0, 0.0);
+    } else if (!godel()) {
+        p.ev = oStart[i] + tau * oU0[i];
+        p.u = oU0[i];
+    } else {
+        vec4 e0, k0;
+        ogeoAt(oGeo[i], tau, e0, k0);
+        applyPush(oBack[i], e0, k0, p.ev, p.u);
+    }
+    return p;
+}
+
+// The body frame at the worldline point p (free fall: the start frame parallel-transported
+// in closed form; at rest: the static frame).
+mat4 bodyFrame(int i, WPoint p) {
+    if (!isFree(i)) return staticFrame(oPos[i]);
+    mat4 f0 = startFrame(i);
+    if (!godel()) return f0;
+    Iso to = toOrigin(oStart[i]);
+    vec4 e0, k0;
+    ogeoAt(oGeo[i], p.tau, e0, k0);
+    mat4 f;
+    f[0] = p.u;
+    for (int c = 1; c < 4; c++) {
+        vec4 w = transportFromOrigin(oGeo[i], p.tau, e0, pushIso(to, oStart[i], f0[c]));
+        f[c] = pushIso(oBack[i], e0, w);
+    }
+    return f;
+}
+
+// A first guess of the proper time at which the worldline has coordinate time t.
+// A free fall's: the proper time of equal coordinate time (the CPU interpolates it from its
+// integration steps), by Newton steps on t(τ) from the mean rate's guess (dt/dτ = u^t).
+float tauGuess(int i, float t) {
+    if (!isFree(i)) return t;
+    float tau = (t - oStart[i].x) / oRate[i];
+    for (int it = 0; it < TIME_STEPS; it++) {
+        WPoint p = worldAt(i, tau);
+        tau += (t - p.ev.x) / max(p.u.x, 0.05);
+    }
+    return tau;
+}
+
+// ---------------------------------------------------------------------------------------
+// Localizing a ray point in an object's rest frame (render::worldline::Worldline::localize).
+
+// The second-order normal-coordinate displacement of x from the worldline point p, taken
+// after the isometry that sends p to the origin, and p's four-velocity carried there
+// (render::worldline::origin_coords). Minkowski: the displacement itself.
+void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
+    if (!godel()) { xi = x - p.ev; u = p.u; return; }
+    Iso to = toOrigin(p.ev);
+    vec4 o;
+    applyPush(to, p.ev, p.u, o, u);
+    xi = normalDisplacement(vec4(0.0), applyIso(to, x));
+}
+
+// xi: spatial rest-frame components (at rest); len: their length; disp: the second-order
+// normal-coordinate displacement (free fall: taken at the origin, whose components need the
+// body frame carried there).
+struct Local { WPoint at; vec3 xi; float len; vec4 disp; bool exact; bool ok; };
+
+Local localize(int i, vec4 x, float seed, float far) {
+    Local lp;
+    lp.ok = true;
+    lp.disp = vec4(0.0);
+    if (isRest(i)) {
+        // u = ∂t: g(u, Δ) = 0 fixes Δt = g_ti Δxⁱ at first order; then two steps with the
+        // second-order ξ⁰.
+        vec3 dx = x.yzw - oPos[i].yzw;
+        float t = x.x + dot(oDual[i][0].yzw, dx);
+        vec4 xi = components(oDual[i], x - vec4(t, oPos[i].yzw));
+        lp.exact = length(xi.yzw) <= far;
+        if (lp.exact) {
+            for (int it = 0; it < 2; it++) {   // a fixed count, without jumps: unrolled
+                vec4 d = x - vec4(t, oPos[i].yzw);
+                xi = components(oDual[i], d + 0.5 * christoffelWith(oDX[i], oDY[i], oGinv[i], d, d));
+                t += xi.x;
+            }
+        }
+        lp.at = WPoint(t, vec4(t, oPos[i].yzw), vec4(1.0, 0.0, 0.0, 0.0));
+        lp.xi = xi.yzw;
+        lp.len = length(xi.yzw);
+        return lp;
+    }
+    // Free fall: the first-order simultaneity ξ⁰ = −g(u, Δ) = 0 by the secant method from
+    // the seed, then one Newton step on the second-order ξ⁰ taken at the origin (as on the
+    // CPU). One worldline evaluation per pass of the loop.
+    // The seed's point first (a far point needs no more, and no loop pass).
+    WPoint p = worldAt(i, seed);
+    mat4 g = metricAt(p.ev);
+    float f0 = -dotg(g, p.u, x - p.ev);
+    float len0 = sqrt(max(dotg(g, x - p.ev, x - p.ev) + f0 * f0, 0.0));
+    if (len0 > far) {
+        lp.at = p;
+        lp.len = len0;
+        lp.exact = false;
+        return lp;
+    }
+    float ta = seed, fa = f0, tau = seed + f0;
+    int stage = 1;   // 1 secant, 2 after the Newton step
+    mat4 g0 = metricAt(vec4(0.0));
+    vec4 xi, uo;
+    for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
+        p = worldAt(i, tau);
+        if (stage == 2) break;
+        g = metricAt(p.ev);
+        float f = -dotg(g, p.u, x - p.ev);
+        bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
+        if (done) {
+            originDisplacement(p, x, xi, uo);
+            tau += -dotg(g0, uo, xi);
+            stage = 2;
+            continue;
+        }
+        float slope = (f - fa) / (tau - ta);
+        float step_ = (slope < 0.0 && finite(slope)) ? -f / slope : f;
+        ta = tau; fa = f;
+        tau = tau + step_;
+    }
+    originDisplacement(p, x, xi, uo);
+    float x0 = -dotg(g0, uo, xi);
+    lp.at = p;
+    lp.disp = xi;
+    lp.len = sqrt(max(dotg(g0, xi, xi) + x0 * x0, 0.0));
+    lp.exact = true;
+    lp.ok = finite(lp.len) && finite(tau);
+    return lp;
+}
+
+// The rest-frame spatial components of a localized ray point, given the body frame there.
+vec3 restComponents(int i, Local lp, mat4 frame) {
+    if (isRest(i)) return lp.xi;
+    if (godel()) {
+        // The frame carried to the origin, where disp was taken.
+        Iso to = toOrigin(lp.at.ev);
+        for (int c = 0; c < 4; c++) frame[c] = pushIso(to, lp.at.ev, frame[c]);
+    }
+    return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
+}
+
+// ---------------------------------------------------------------------------------------
+// Probes: signed distance f (≤ 0 inside), rate bound |df/dλ| ≤ rate, matched proper time
+// (render::target::Target::probe, docs/physics.md "The intersection search").
+
+struct Probe { float f; float rate; float tau; };
+
+Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
+    probes_left--;
+    int kind = oKind[i];
+    if (isCoordSphere(i)) {
+        return Probe(length(x.yzw - oPos[i].yzw) - oRadius[i], RATE_MARGIN * length(k.yzw), NO_TAU);
+    }
+    if (isPlane(i)) return Probe(x.w - oPos[i].w, RATE_MARGIN * abs(k.w), NO_TAU);
+    float scale = godel() ? u_a : 1.0;
+    float far = FAR_DISTANCE * scale + FAR_RADII * oRadius[i];
+    float floor_ = oRadius[i] + 0.5 * FAR_DISTANCE * scale;
+    float rate = GLOBAL_RATE_MARGIN * abs(pt) * oSpeed[i];
+    float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
+    Local lp = localize(i, x, seed, far);
+    if (!lp.ok) return Probe(INF, 0.0, NO_TAU);
+    float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
+    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - oRadius[i], rate, lp.exact ? lp.at.tau : NO_TAU);
+    // A stale seed may call a point inside a falling ball far: then the point of equal
+    // coordinate time is tried too and the nearer kept.
+    if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
+        Local lq = localize(i, x, tauGuess(i, x.x), far);
+        if (lq.ok) {
+            float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
+            if (dq - oRadius[i] < p.f) p = Probe(dq - oRadius[i], rate, lq.exact ? lq.at.tau : NO_TAU);
+        }
+    }
+    return p;
+}
+
+bool crossed(float fa, float fb) { return (fa > 0.0) != (fb > 0.0); }
+bool excluded(float fa, float fb, float rate, float h) {
+    return !crossed(fa, fb) && (abs(fa) + abs(fb) > rate * h || rate == 0.0);
+}
+bool accepts(int i, vec4 x) {
+    return !isPlane(i) || oExtent[i] <= 0.0 || (abs(x.y) <= oExtent[i] && abs(x.z) <= oExtent[i]);
+}
+
+// A coordinate box around object i (render::target::Target::bounds); false when there is
+// none (free fall: every loop is searched).
+bool objectBox(int i, out vec3 lo, out vec3 hi) {
+    int kind = oKind[i];
+    vec3 c = oPos[i].yzw;
+    float grow;
+    if (isRest(i)) {
+        float r = length(c.xy) + 2.0 * oRadius[i];
+        float s2 = godel() ? pow(r / (2.0 * u_a), 2.0) : 0.0;
+        grow = 2.0 * oRadius[i] * sqrt(1.0 + s2) + 0.05;
+    } else if (isCoordSphere(i)) {
+        grow = oRadius[i] * (1.0 + 1e-6);
+    } else if (isPlane(i)) {
+        float e = oExtent[i] > 0.0 ? oExtent[i] : INF;
+        lo = vec3(-e, -e, c.z);
+        hi = vec3(e, e, c.z);
+        return true;
+    } else {
+        return false;
+    }
+    lo = c - grow;
+    hi = c + grow;
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------
+// Whole-ray rejection of balls at rest and planes (render::reject, docs/physics.md
+// "Whole-ray rejection"): it only drops searches that could not find a crossing.
+
+// Whether the closed-form ray g from the origin, over λ ∈ [from, until], stays farther than
+// the reach from the static ball whose centre is (wc, zc) in the origin frame.
+bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until) {
+    float a = u_a;
+    float lo, hi;
+    if (g.pz == 0.0) {
+        if (abs(zc) > reach) return true;
+        lo = from; hi = until;
+    } else {
+        float l1 = (zc - reach) / g.pz, l2 = (zc + reach) / g.pz;
+        lo = max(min(l1, l2), from);
+        hi = min(max(l1, l2), until);
+    }
+    if (hi < lo) return true;
+    float sg = sign(g.e);
+    vec2 dir = vec2(-sg * g.cchi.y, sg * g.cchi.x);
+    float big = asinh_(g.rmax / (2.0 * a));
+    float rho = a * big;
+    vec2 h = dir * halfTanh(g.rmax / (2.0 * a));
+    vec2 mc = cdiv(wc - h, vec2(1.0, 0.0) - cmul(conj2(h), wc));
+    float dhc = 2.0 * a * atanh_(min(length(mc), 0.9999999));
+    if (abs(dhc - rho) > reach) return true;
+    float lret = returnParameter(g);
+    if (!(hi - lo < lret)) return false;
+    float alpha0 = carg(-h);
+    float d1 = alpha0 + sg * 2.0 * PI * lo / lret - carg(mc);
+    float d2 = alpha0 + sg * 2.0 * PI * hi / lret - carg(mc);
+    float dmin = min(d1, d2), dmax = max(d1, d2);
+    if (ceil(dmin / (2.0 * PI)) * 2.0 * PI <= dmax) return false;
+    float c1 = cosA(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
+    float c2 = cosA(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
+    float cosd = max(c1, c2);
+    float x = dhc / a, y = rho / a;
+    float coshd = cosh(x) * cosh(y) - sinh(x) * sinh(y) * cosd;
+    return a * acosh_(max(coshd, 1.0)) > reach;
+}
+
+bool planeMisses(OGeo g, float z, float from, float until) {
+    float f0 = g.pz * from - z;
+    float f1 = g.pz * until - z, span = abs(g.pz * until);
+    if (!(until < INF)) {
+        f1 = g.pz == 0.0 ? f0 : (g.pz > 0.0 ? INF : -INF);
+        span = 0.0;
+    }
+    float clear = 1e-6 * (1.0 + abs(z) + span);
+    return abs(f0) > clear && abs(f1) > clear && (f0 > 0.0) == (f1 > 0.0);
+}
+
+bool searched[N_OBJECTS];
+// Per object, for the ray being searched: a ball's centre (disc coordinate, z) and a plane's
+// height in the ray's origin frame.
+vec2 oCw[N_OBJECTS];
+float oCz[N_OBJECTS];
+
+// The reach of a ball at rest (render::reject), widened by the rounding of f32 coordinates
+// in the origin frame.
+float reachOf(int i) { return REACH_PER_RADIUS * oRadius[i] + REACH_PER_A * u_a + 1e-4 * u_a; }
+
+// Whether the searched ray g stays clear of object i (a ball at rest or a plane, Gödel's
+// universe) over λ ∈ [from, until]; false when unsure or for other objects.
+bool objectMisses(int i, OGeo g, float from, float until) {
+    if (!godel()) return false;
+    if (isRest(i)) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
+    if (isPlane(i)) return planeMisses(g, oCz[i], from, until);
+    return false;
+}
+
+// Whether a ray from the place of `from` (whose origin-frame closed form is g) may meet
+// object i over λ ∈ [0, until]: sets searched[i].
+void setSearchedUntil(int i, vec4 from, OGeo g, float until) {
+    if (isRest(i)) {
+        vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), oPos[i]);
+        oCw[i] = disc(c.yz);
+        oCz[i] = c.w;
+    } else if (isPlane(i)) {
+        oCz[i] = oPos[i].w - from.w;
+    }
+    searched[i] = oKind[i] >= 0 && !objectMisses(i, g, 0.0, until);
+}
+
+bool anySearched() {
+    bool any = false;
+    for (int i = 0; i < N_OBJECTS; i++) any = any || searched[i];
+    return any;
+}
+
+// Which objects a ray from the place of `from`, searched over λ ∈ [0, until], searches at
+// all; whether any.
+bool setSearched(vec4 from, OGeo g, float until) {
+    for (int i = 0; i < N_OBJECTS; i++) setSearchedUntil(i, from, g, until);
+    return anySearched();
+}
+
+// ---------------------------------------------------------------------------------------
+// Loop by loop, balls in free fall (render::falling, render::circle; docs/physics.md "Balls
+// in free fall"). In the pixel ray's origin frame the ray's loop j runs along a circle of the
+// disc at times between (j + 1)Δt and jΔt; a ball point lies within static distance reach of
+// its simultaneous centre, and within the time slack S of it. The centre's worldline is cut
+// into cells of proper time (here per loop, at most FALL_CELLS, over the proper times whose
+// time may fall in the loop's window; the CPU cuts the whole worldline once per render):
+// each cell lies within m of its middle point. The last λ of the loop within M = reach + m of
+// a cell whose time lies in the window (its z window and the arc of the ray's circle near the
+// cell, by the hyperbolic law of cosines) is the last λ where the loop must search the ball.
+
+float fbLast[N_OBJECTS];   // per falling ball, for the current loop: that λ from the loop's start
+
+// The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
+// hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when
+// unsure (render::circle::RayCircle::last_within).
+float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
+    if (!(lo <= hi)) return NO_TAU;
+    float a = u_a;
+    float sg = sign(g.e);
+    float big = asinh_(g.rmax / (2.0 * a));
+    vec2 h = vec2(-sg * g.cchi.y, sg * g.cchi.x) * halfTanh(g.rmax / (2.0 * a));
+    float nh = 1.0 - dot(h, h), nw = 1.0 - dot(w, w);
+    float ch = 1.0 + 2.0 * dot(w - h, w - h) / (nh * nw);
+    float sh = sqrt(max(ch * ch - 1.0, 0.0));
+    float num = ch * cosh(big) - coshM;
+    float den = sh * sinh(big);
+    if (!finite(num) || !finite(den)) return hi;
+    if (num <= -den) return hi;     // within m all round the circle
+    if (num > den) return NO_TAU;   // beyond m all round
+    // Single precision: the arc widened by 1e-4 rad (the CPU's 1e-9).
+    float halfArc = acosA(clamp(num / den, -1.0, 1.0)) + 1e-4;
+    float beta = carg(cdiv(w - h, vec2(1.0, 0.0) - cmul(conj2(h), w)));
+    float lret = returnParameter(g);
+    float psiHi = sg * carg(-h) - sg * beta + 2.0 * PI * hi / lret;
+    float r = psiHi - 2.0 * PI * floor(psiHi / (2.0 * PI) + 0.5);
+    float back = abs(r) <= halfArc ? 0.0 : (r > halfArc ? r - halfArc : r + 2.0 * PI - halfArc);
+    float l = hi - back * lret / (2.0 * PI);
+    return l >= lo ? l : NO_TAU;
+}
+
+// The proper time of the falling ball i at which its own origin frame's time is t (its
+// closed form's time rises at least at (1 + p_z²)/γ per proper time), and how far off it
+// may be.
+vec2 ballTimeToTau(int i, float t) {
+    OGeo b = oGeo[i];
+    float low = (1.0 + b.pz * b.pz) / b.e;
+    float tau = t / oRate[i];
+    float off = 0.0;
+    for (int it = 0; it < TIME_STEPS + 1; it++) {
+        vec4 e, k;
+        ogeoAt(b, tau, e, k);
+        off = t - e.x;
+        tau += off / max(k.x, low);
+    }
+    return vec2(tau, abs(off) / low);
+}
+
+// Sets fbLast[i] for loop j of the pixel ray `ray` (NO_TAU: the loop needs no search of the
+// ball), or INF where the test does not apply (Minkowski).
+void fallingLast(int i, int j, Ray ray) {
+    fbLast[i] = INF;
+    if (!godel()) return;
+    float a = u_a;
+    float gam = oGamma[i];
+    float sv = sqrt(max(gam * gam - 1.0, 0.0));
+    float r = oRadius[i];
+    // Reach and time slack (render::falling), widened for single precision.
+    float reach = 1.25 * gam * r + 1e-4 * a;
+    float slack = 1.25 * gam * r * (sv / gam + SQRT2) + 1e-4 * a;
+    float up = gam + SQRT2 * sv;
+    Iso toO = inverseIso(ray.back);
+    vec4 start = applyIso(toO, oStart[i]);
+    // The loop's window of times, and the ball's own time there: the isometry from the
+    // ball's origin frame to the ray's shifts times by at most A (docs/physics.md, "Isometries").
+    float tLo = float(j + 1) * ray.shift.x - slack, tHi = float(j) * ray.shift.x + slack;
+    float wmax = oGeo[i].rmax / sqrt(oGeo[i].rmax * oGeo[i].rmax + 4.0 * a * a);
+    float shiftA = 2.0 * SQRT2 * a * asinA(min(length(disc(start.yz)) * wmax, 1.0));
+    vec2 t1 = ballTimeToTau(i, tLo - start.x - shiftA), t2 = ballTimeToTau(i, tHi - start.x + shiftA);
+    float tau1 = t1.x - t1.y, tau2 = t2.x + t2.y;
+    // z is linear along both: no cell can be near when the ball's z range over [τ1, τ2] is
+    // farther than the reach (plus the cells' extent) from the loop's.
+    float zb1 = start.w + oU0[i].w * tau1, zb2 = start.w + oU0[i].w * tau2;
+    float zr1 = float(j) * ray.shift.y, zr2 = float(j + 1) * ray.shift.y;
+    float zGap = max(max(min(zb1, zb2) - max(zr1, zr2), min(zr1, zr2) - max(zb1, zb2)), 0.0);
+    if (zGap > reach + 0.5 * sv * max(max(r, 1e-3), (tau2 - tau1) / float(FALL_CELLS))) {
+        fbLast[i] = NO_TAU;
+        return;
+    }
+    int cells = int(clamp(ceil((tau2 - tau1) / max(r, 1e-3)), 1.0, float(FALL_CELLS)));
+    float dtau = (tau2 - tau1) / float(cells);
+    float near = reach + 0.5 * sv * dtau;
+    float coshM = cosh(near / a);
+    float sl = slack + 0.5 * up * dtau;
+    float l0 = float(j) * ray.lret, l1 = l0 + ray.lret;
+    float last = NO_TAU;
+    for (int c = 0; c < FALL_CELLS; c++) {
+        if (c >= cells || last >= l1) break;
+        vec4 p = applyIso(toO, worldAt(i, tau1 + (float(c) + 0.5) * dtau).ev);
+        if (p.x < tLo + slack - sl || p.x > tHi - slack + sl) continue;
+        float lo = l0, hi = l1;
+        if (ray.geo.pz == 0.0) {
+            if (abs(p.w) > near) continue;
+        } else {
+            float za = (p.w - near) / ray.geo.pz, zb = (p.w + near) / ray.geo.pz;
+            lo = max(min(za, zb), l0);
+            hi = min(max(za, zb), l1);
+        }
+        float l = lastWithin(ray.geo, disc(p.yz), coshM, max(lo, last), hi);
+        if (l > NO_TAU) last = l;
+    }
+    fbLast[i] = last > NO_TAU ? last - l0 : NO_TAU;
+}
+
+// ---------------------------------------------------------------------------------------
+// The intersection search (render::intersect, render::tracer; docs/physics.md "The
+// intersection search") as one state machine with one probe call: a ray is searched loop by
+// loop (later loops are the first one's copies) and segment by segment; per segment and
+// object, conservative advancement from the last probe, else a depth-first bisection that
+// drops spans excluded by the rate bound (at most SEARCH_DEPTH halvings and SEARCH_PROBES
+// probes), and the Illinois refinement of a crossing. The bisection is stackless: spans are
+// dyadic pieces of the searched stretch, so the span after a finished one follows from its
+// depth and index (its start probe is the finished span's end probe; its end is probed
+// again, which the CPU keeps on a stack).
+
+const int M_LOOP = 0;      // at the start of loop eLoop
+const int M_START = 1;     // the loop's start probes, object by object
+const int M_SEGMENT = 2;   // at the start of segment eSeg
+const int M_SCAN = 3;      // the next object of the segment
+const int M_BISECT = 4;    // the span [ba, bb] of object eObj, both end probes known
+const int M_REFINE = 5;    // Illinois steps on a crossing
+const int M_DONE = 6;
+
+// What a requested probe is for.
+const int Q_NONE = 0;
+const int Q_START = 1;     // the loop's start probe of object eObj
+const int Q_END = 2;       // the segment's end probe of object eObj
+const int Q_SPAN = 3;      // the end probe of the span [ba, bb]
+const int Q_REFINE = 4;    // a refinement step at qLambda
+const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's extent)
+
+struct Found { int status; int target; int loop_; float lambda; float tau; };
+
+// The search plan: `loops` copies of a stretch of length `span` cut into `segs` segments;
+// pixel rays stop at the time bound.
+Ray eRay;
+int eLoops, eSegs;
+float eSpan, ePt, eTBound;
+bool ePixel;
+// Shadow rays: the lit object is not searched from eSkipFrom on (its last segment).
+int eSkipObj;
+float eSkipFrom;
+
+// The machine's state.
+int eMode, eLoop, eSeg, eObj;
+float eLo, eHi;
+Found eBest, eResult;
+// The probes at the start and the end of the segment, per object, and the λ where each was
+// taken: two buffers that change roles from segment to segment (no copying).
+Probe probeBuf[2 * N_OBJECTS];
+float probeAt[2 * N_OBJECTS];
+int eStart;   // N_OBJECTS times the start buffer (0 or 1)
+vec3 eBoxLo, eBoxHi;
+// Bisection of one object's stretch [bA, bA + bL]: the span [ba, bb] at depth bDepth and
+// index bIndex, with its end probes bpa, bpb.
+float bA, bL, ba, bb;
+int bDepth, bIndex, bProbes;
+Probe bpa, bpb;
+// Refinement: the bracket and the Illinois side.
+float rlo, rhi, rflo, rfhi;
+int rSide, rIter;
+// The probe requested by a step, and its answer.
+int qTag, qObj, qLoop;
+float qLambda, qSeed;
+Probe qAnswer;
+vec4 qX;
+
+// Whether the current loop searches object i on a segment starting at λ0 (from the loop's
+// start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
+bool loopSearches(int i, float lambda0) {
+    return !(isFree(i) && ePixel) || lambda0 <= fbLast[i];
+}
+
+void request(int tag, float lambda, float seed) {
+    qTag = tag;
+    qObj = eObj;
+    qLoop = eLoop;
+    qLambda = lambda;
+    qSeed = seed;
+}
+
+float loopOffset() { return float(eLoop) * eSpan; }
+
+void finish(int status) {
+    eResult = Found(status, -1, 0, 0.0, NO_TAU);
+    eMode = M_DONE;
+}
+
+// The loop's box, for skipping loops that come near no object (render::segment::loop_bounds):
+// segment ends, grown by a quarter of the longest chord.
+void loopBox() {
+    vec4 x, k, prev;
+    float grow = 0.0;
+    for (int s = 0; s <= eSegs; s++) {
+        rayAt(eRay, 0, eSpan * float(s) / float(eSegs), x, k);
+        if (s == 0) { eBoxLo = x.yzw; eBoxHi = x.yzw; prev = x; }
+        eBoxLo = min(eBoxLo, x.yzw);
+        eBoxHi = max(eBoxHi, x.yzw);
+        grow = max(grow, 0.25 * length(x.yzw - prev.yzw));
+        prev = x;
+    }
+    eBoxLo -= grow;
+    eBoxHi += grow;
+}
+
+void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, float tBound) {
+    eRay = r;
+    eLoops = loops;
+    eSegs = segs;
+    eSpan = span;
+    ePt = pt;
+    ePixel = pixel;
+    eTBound = tBound;
+    eLoop = 0;
+    eMode = M_LOOP;
+    eStart = 0;
+    eSkipObj = -1;
+    eSkipFrom = INF;
+    qTag = Q_NONE;
+    if (loops > 1) loopBox();
+}
+
+// The span after the finished span [ba, bb] of the current bisection: climb while it is a
+// right half, then take the right sibling, whose start probe is bb's and whose end is probed.
+void nextSpan() {
+    // The trailing ones of the index are the levels to climb: 2^k = (i + 1) & −(i + 1).
+    int up = int(log2(float((bIndex + 1) & -(bIndex + 1))) + 0.5);
+    bDepth -= up;
+    bIndex >>= up;
+    if (bDepth <= 0) {
+        eMode = M_SCAN;   // no crossing of this object in the segment
+        return;
+    }
+    if (bProbes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+    bProbes++;
+    bIndex++;
+    bpa = bpb;
+    ba = bb;
+    bb = bA + bL * float(bIndex + 1) / exp2(float(bDepth));
+    request(Q_SPAN, bb, bpa.tau);
+}
+
+// One step of the machine: takes the answer to its last request, then either requests a
+// probe or moves on.
+void machineStep() {
+    int tag = qTag;
+    qTag = Q_NONE;
+    if (tag == Q_START) {
+        probeBuf[eStart + eObj] = qAnswer;
+        probeAt[eStart + eObj] = loopOffset();
+    } else if (tag == Q_END) {
+        probeBuf[N_OBJECTS - eStart + eObj] = qAnswer;
+        probeAt[N_OBJECTS - eStart + eObj] = eHi + loopOffset();
+        bpb = qAnswer;
+        float limit = eBest.status == HIT ? eBest.lambda : eHi;
+        bA = eLo;
+        bL = min(limit, eHi) - eLo;
+        ba = bA;
+        bb = bA + bL;
+        bDepth = 0;
+        bIndex = 0;
+        bProbes = 0;
+        eMode = M_BISECT;
+    } else if (tag == Q_SPAN) {
+        bpb = qAnswer;
+    } else if (tag == Q_ROOT) {
+        if (accepts(eObj, qX)) {
+            if (eBest.status != HIT || qLambda < eBest.lambda) {
+                eBest = Found(HIT, eObj, eLoop, qLambda, qAnswer.tau);
+            }
+            eMode = M_SCAN;
+        } else {
+            eMode = M_BISECT;   // a plane crossed beyond its extent: on with the next span
+            nextSpan();
+            if (eMode != M_SCAN) return;
+        }
+    } else if (tag == Q_REFINE) {
+        float fm = qAnswer.f, m = qLambda;
+        if (fm == 0.0 || rhi - rlo <= 4.0 * 1.1920929e-7 * max(max(abs(rhi), abs(rlo)), 1e-30)) {
+            request(Q_ROOT, m, bpa.tau);
+            return;
+        }
+        if ((fm > 0.0) == (rfhi > 0.0)) {
+            rhi = m; rfhi = fm;
+            if (rSide == 1) rflo *= 0.5;
+            rSide = 1;
+        } else {
+            rlo = m; rflo = fm;
+            if (rSide == -1) rfhi *= 0.5;
+            rSide = -1;
+        }
+    }
+
+    if (eMode == M_LOOP) {
+        // Skip loops whose box meets no searched object's box; stop at the time bound.
+        for (int guard = 0; guard < 1048576; guard++) {
+            if (eLoop >= eLoops) {
+                finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
+                return;
+            }
+            float dz = float(eLoop) * eRay.shift.y;
+            if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
+            vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
+            bool near = eLoop == 0;
+            for (int i = 0; i < N_OBJECTS; i++) {
+                vec3 olo, ohi;
+                if (!searched[i]) continue;
+                if (isFree(i) && ePixel) {
+                    // Balls in free fall: searched up to the loop's last λ within their reach.
+                    fallingLast(i, eLoop, eRay);
+                    near = near || fbLast[i] > NO_TAU;
+                } else {
+                    near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
+                }
+            }
+            if (near) break;
+            eLoop++;
+        }
+        eObj = -1;
+        eMode = M_START;
+    }
+    if (eMode == M_START) {
+        eObj++;
+        while (eObj < N_OBJECTS && !(searched[eObj] && loopSearches(eObj, 0.0))) eObj++;
+        if (eObj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
+        eSeg = 0;
+        eMode = M_SEGMENT;
+    }
+    if (eMode == M_SEGMENT) {
+        eLo = eSpan * float(eSeg) / float(eSegs);
+        eHi = eSpan * float(eSeg + 1) / float(eSegs);
+        eBest = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+        eObj = -1;
+        eMode = M_SCAN;
+    }
+    if (eMode == M_BISECT) {
+        bool finiteBoth = finite(bpa.f) && finite(bpb.f);
+        if (bb > ba && (finite(bpa.f) || finite(bpb.f))) {
+            if (finiteBoth && crossed(bpa.f, bpb.f)) {
+                rlo = ba; rhi = bb; rflo = bpa.f; rfhi = bpb.f;
+                rSide = 0; rIter = 0;
+                eMode = M_REFINE;
+            } else {
+                float rate = max(bpa.rate, bpb.rate);
+                if (!((finiteBoth && excluded(bpa.f, bpb.f, rate, bb - ba)) || bDepth >= SEARCH_DEPTH)) {
+                    // Halve: the earlier half first.
+                    if (bProbes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+                    bProbes++;
+                    bb = 0.5 * (ba + bb);
+                    bDepth++;
+                    bIndex *= 2;
+                    request(Q_SPAN, bb, bpa.tau);
+                    return;
+                }
+                nextSpan();
+                if (eMode != M_SCAN) return;
+            }
+        } else {
+            nextSpan();
+            if (eMode != M_SCAN) return;
+        }
+    }
+    if (eMode == M_REFINE) {
+        if (rIter == REFINE_STEPS) {
+            request(Q_ROOT, 0.5 * (rlo + rhi), bpa.tau);
+            return;
+        }
+        float m = rfhi != rflo ? (rlo * rfhi - rhi * rflo) / (rfhi - rflo) : 0.5 * (rlo + rhi);
+        if (!(m > rlo && m < rhi)) m = 0.5 * (rlo + rhi);
+        rIter++;
+        request(Q_REFINE, m, bpa.tau);
+        return;
+    }
+    if (eMode == M_SCAN) {
+        float off = loopOffset();
+        for (eObj++; eObj < N_OBJECTS; eObj++) {
+            if (!searched[eObj]) continue;
+            Probe p = probeBuf[eStart + eObj];
+            if (!loopSearches(eObj, eLo)) {
+                // Past the ball's last λ within reach in this loop (a later loop probes afresh).
+                probeBuf[N_OBJECTS - eStart + eObj] = p;
+                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                continue;
+            }
+            if (eObj == eSkipObj && eLo >= eSkipFrom) {
+                probeBuf[N_OBJECTS - eStart + eObj] = p;
+                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                continue;
+            }
+            // GPU only: a segment that provably stays clear of a ball at rest or a plane is
+            // not searched ("Whole-ray rejection", applied per segment); its end probe is a
+            // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
+            // plane's height, linear in λ), from which the next segment goes on.
+            if (objectMisses(eObj, eRay.geo, eLo + off, eHi + off)) {
+                float fEnd = isRest(eObj)
+                    ? REACH_PER_RADIUS * oRadius[eObj] / 1.05 - oRadius[eObj]
+                    : eRay.geo.pz * (eHi + off) - oCz[eObj];
+                probeBuf[N_OBJECTS - eStart + eObj] = Probe(fEnd, p.rate, NO_TAU);
+                probeAt[N_OBJECTS - eStart + eObj] = eHi + off;
+                continue;
+            }
+            float at = probeAt[eStart + eObj];
+            float clear = abs(p.f);
+            if (isRest(eObj) && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
+                probeBuf[N_OBJECTS - eStart + eObj] = p;   // provably no crossing of this object within the segment
+                probeAt[N_OBJECTS - eStart + eObj] = at;
+                continue;
+            }
+            // A probe taken before lo still bounds |f| at lo from below (same side).
+            bpa = Probe(p.f - sign(p.f) * p.rate * (eLo + off - at), p.rate, p.tau);
+            request(Q_END, eHi, bpa.tau);
+            return;
+        }
+        // Every object scanned: the segment's earliest crossing ends the search.
+        if (eBest.status == HIT) {
+            eResult = eBest;
+            eMode = M_DONE;
+            return;
+        }
+        if (ePixel) {
+            vec4 x, k;
+            rayAt(eRay, eLoop, eHi, x, k);
+            if (x.x < eTBound) { finish(ESCAPED); return; }
+        }
+        eStart = N_OBJECTS - eStart;   // the end probes start the next segment
+        eSeg++;
+        if (eSeg < eSegs) {
+            eMode = M_SEGMENT;
+        } else {
+            eLoop++;
+            eMode = M_LOOP;
+        }
+    }
+}
+
+// One pass of the machine: the probe it asked for, if any (the kernel's one call of
+// probeObject), then its next step.
+void searchPass() {
+    if (qTag != Q_NONE) {
+        if (probes_left <= 0) { finish(WORK_LIMIT); return; }
+        vec4 k;
+        rayAt(eRay, qLoop, qLambda, qX, k);
+        qAnswer = probeObject(qObj, qX, k, ePt, qSeed);
+    }
+    machineStep();
+}
+
+// ---------------------------------------------------------------------------------------
+// Surfaces (render::target::Target::surface): texture coordinates, the emitter's velocity at
+// the hit point, the photon's direction in the emitter's rest frame, cos_i.
+
+vec2 lonLat(vec3 p) {
+    vec3 n = normalize(p);
+    float u = (atan2s(n.y, n.x) + PI) / (2.0 * PI);
+    float v = 0.5 + asinA(clamp(n.z, -1.0, 1.0)) / PI;
+    return clamp(vec2(u, v), 0.0, 1.0);
+}
+
+// The photon's rest-frame components at the worldline point p, k carried from x to the
+// centre to first order, and the emitter's four-velocity at x
+// (render::target::rest_frame_photon).
+void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit, out vec4 kl) {
+    mat4 dX, dY;
+    metricDerivatives(p.ev, dX, dY);
+    mat4 ginv = inverseMetricAt(p.ev);
+    if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
+    vec4 kn = k - christoffelWith(dX, dY, ginv, p.ev - x, k);
+    kl = components(dualFrame(metricAt(p.ev), frame), kn);
+    uemit = isFree(i) ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
+}
+
+// The hit: what the record and the lights need of it.
+int hTarget;
+vec4 hX, hK;
+WPoint hAt;
+mat4 hFrame;
+vec3 hXi;
+vec4 hUemit;
+vec2 hUV;
+vec3 hDir;
+float hCos;
+
+bool surface() {
+    int i = hTarget;
+    vec4 x = hX, k = hK;
+    hUemit = vec4(1.0, 0.0, 0.0, 0.0);
+    float seed = hAt.tau > NO_TAU ? hAt.tau : tauGuess(i, x.x);
+    hAt = WPoint(x.x, x, hUemit);
+    hFrame = mat4(1.0);
+    if (isRest(i) || isFree(i)) {
+        Local lp = localize(i, x, seed, INF);
+        if (!lp.ok) return false;
+        hAt = lp.at;
+        hFrame = bodyFrame(i, hAt);
+        hXi = restComponents(i, lp, hFrame);
+        vec4 kl;
+        restFramePhoton(i, hAt, hFrame, x, k, hUemit, kl);
+        hUV = lonLat(hXi);
+        hDir = normalize(-kl.yzw);
+        hCos = abs(dot(normalize(hXi), hDir));
+        return true;
+    }
+    // Coordinate objects: static emitters; the photon's direction in the static frame.
+    mat4 f = staticFrame(x);
+    vec4 p = metricAt(x) * (-k);
+    hDir = normalize(vec3(dot(f[1], p), dot(f[2], p), dot(f[3], p)));
+    if (isCoordSphere(i)) {
+        vec3 n = normalize(x.yzw - oPos[i].yzw);
+        hUV = lonLat(n);
+        hCos = abs(dot(n, normalize(-k.yzw)));
+    } else {
+        hUV = oExtent[i] > 0.0 ? 0.5 + x.yz / (2.0 * oExtent[i]) : fract(x.yz);
+        hCos = abs(normalize(-k.yzw).z);
+    }
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------
+// Direct light by shadow rays (render::lighting, spacetime::connect; docs/physics.md "Light
+// rays between a source and an event", "Area distance and irradiance", "Occlusion").
+
+// Φ(θ) = arctan(q tan θ), continuous.
+float bigPhi(float q, float th) {
+    float s = sinA(th), c = cosA(th);
+    return th + atan2s((q - 1.0) * s * c, c * c + q * s * s);
+}
+
+float shadowTheta(float rho, float c, int n, bool inbound) {
+    float rmax = 2.0 * u_a * sqrt((1.0 - c * c) / (1.0 + c * c));
+    float th0 = asinA(min(rho / rmax, 1.0));
+    return float(n) * PI + (inbound ? PI - th0 : th0);
+}
+
+// G(u) = 2a u θ(u)/√(1 + u²) − |z_P|: its roots in u = |c| are the rays of a winding and branch.
+float shadowG(float rho, float zp, float u, int n, bool inbound) {
+    return 2.0 * u_a * u * shadowTheta(rho, u, n, inbound) / sqrt(1.0 + u * u) - abs(zp);
+}
+
+// The first cell of a group of four (pass indices offset..offset+3, cell numbers `cellNo`)
+// whose value g changes sign from `prev` or is an exact zero (except at the join of the
+// branches, which only the outbound branch counts); CELLS_PER_PASS if none. Only the pass's
+// first `count` cells count.
+int firstRoot(vec4 prev, vec4 g, vec4 cellNo, int offset, int count, bool inbound) {
+    vec4 change = vec4(lessThan(prev, vec4(0.0))) * vec4(greaterThan(g, vec4(0.0)))
+                + vec4(greaterThan(prev, vec4(0.0))) * vec4(lessThan(g, vec4(0.0)));
+    vec4 join = inbound ? vec4(equal(cellNo, vec4(float(SHADOW_GRID)))) : vec4(0.0);
+    vec4 zero = vec4(equal(g, vec4(0.0))) * (1.0 - join);
+    vec4 inPass = vec4(lessThan(float(offset) + vec4(0.0, 1.0, 2.0, 3.0), vec4(float(count))));
+    vec4 root = min(change + zero, 1.0) * inPass;
+    if (root.x > 0.0) return offset;
+    if (root.y > 0.0) return offset + 1;
+    if (root.z > 0.0) return offset + 2;
+    if (root.w > 0.0) return offset + 3;
+    return CELLS_PER_PASS;
+}
+
+vec4 shadowG4(float rho, float zp, vec4 u, int n, bool inbound) {
+    vec4 rmax = 2.0 * u_a * sqrt((1.0 - u * u) / (1.0 + u * u));
+    vec4 th0 = asinA4(min(rho / rmax, vec4(1.0)));
+    vec4 th = float(n) * PI + (inbound ? PI - th0 : th0);
+    return 2.0 * u_a * u * th / sqrt(1.0 + u * u) - abs(zp);
+}
+
+// D² = dA/dΩ of the ray with emission direction (ψ, χ) in the source's axis frame, ending at
+// parameter λ (spacetime::source_area_distance_sq): the Jacobi field J_ψ = ∂γ/∂ψ of the
+// closed form, here analytic (a central difference would lose its digits in f32), and
+// J_χ = ∂φ (docs/physics.md, "Area distance and irradiance").
+float areaDistanceSq(float psi, float chi, float lambda) {
+    float a = u_a;
+    float c = cosA(psi), s = sinA(psi);
+    float w1 = 1.0 + c * c;
+    float omega = sqrt(w1) / (2.0 * a);
+    float rmax = s / omega;
+    float q = sqrt(2.0 / w1);
+    float th = omega * lambda;
+    float st = sinA(th), ct = cosA(th);
+    float den2 = ct * ct + q * q * st * st;
+    float big = bigPhi(q, th);
+    float domega = -c * s / (4.0 * a * a * omega);
+    float dth = lambda * domega;
+    float drmax = (c * omega - s * domega) / (omega * omega);
+    float dq = -q / omega * domega;
+    float dbig = (q * dth + st * ct * dq) / den2;
+    float phi = chi + big;
+    vec2 e = vec2(cosA(phi), sinA(phi));
+    float r = rmax * st;
+    float dr = drmax * st + rmax * ct * dth;
+    vec4 x = vec4(2.0 * SQRT2 * a * big - lambda, r * e, c * lambda);
+    vec4 jpsi = vec4(2.0 * SQRT2 * a * dbig, dr * e + r * dbig * vec2(-e.y, e.x), -s * lambda);
+    vec4 jchi = vec4(0.0, -x.z, x.y, 0.0);
+    mat4 g = metricAt(x);
+    float pp = dotg(g, jpsi, jpsi), cc = dotg(g, jchi, jchi), pc = dotg(g, jpsi, jchi);
+    return sqrt(max(pp * cc - pc * pc, 0.0)) / s;
+}
+
+// Incidence of light with future tangent kLight at the hit (render::target::Target::incidence):
+// (cos, energy in the object's frame).
+vec2 incidence(vec4 kLight) {
+    int i = hTarget;
+    vec4 x = hX, view = hK;
+    if (isRest(i) || isFree(i)) {
+        vec4 ue, kl, kv;
+        restFramePhoton(i, hAt, hFrame, x, kLight, ue, kl);
+        restFramePhoton(i, hAt, hFrame, x, view, ue, kv);
+        vec3 n = normalize(hXi);
+        float side = dot(n, -kv.yzw) >= 0.0 ? 1.0 : -1.0;
+        return vec2(-side * dot(n, normalize(kl.yzw)), kl.x);
+    }
+    float energy = -(metricAt(x) * kLight).x;
+    if (isCoordSphere(i)) {
+        vec3 n = normalize(x.yzw - oPos[i].yzw);
+        float side = dot(n, -view.yzw) >= 0.0 ? 1.0 : -1.0;
+        return vec2(-side * dot(n, normalize(kLight.yzw)), energy);
+    }
+    float side = view.w < 0.0 ? 1.0 : -1.0;
+    return vec2(-side * normalize(kLight.yzw).z, energy);
+}
+
+// The shadow rays, light by light: every root of G on a grid of SHADOW_GRID cells per
+// winding and branch (z_P = 0: the in-plane ray only), refined by Illinois steps; a ray is
+// counted unless emitted more than max_past before the hit, arriving from behind, at a
+// caustic, or occluded. The enumeration runs in passes of the kernel's one loop (`main`):
+// a light's set-up, sixteen cells of the grid, one refinement step, or one ray's set-up.
+int gLight, gIdx, gTotal, gCells, gN, gSide, gIter;
+bool gInbound;
+float gU0, gG0, gRho, gCmax, gZp, gPower, gSum, gWeight;
+float gLo, gHi, gFlo, gFhi, gC;
+vec4 gP, gSource;
+Iso gBack;
+bool gFailed;
+
+void setLight(int li, float v);
+
+// Ends the current light: its irradiance (negative: unknown) into its channel.
+void endLight() {
+    setLight(gLight, gFailed ? -1.0 : gSum);
+    gLight++;
+    gIdx = -1;
+}
+
+// Sets up light gLight for the hit; false when no ray of it can count.
+bool startLight() {
+    float a = u_a;
+    vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * gLight);
+    gSource = vec4(0.0, lt.xyz);
+    gPower = lt.w;
+    Iso to = toOrigin(gSource);
+    gBack = inverseIso(to);
+    gP = applyIso(to, hX);
+    gRho = length(gP.yz);
+    gZp = gP.w;
+    gSum = 0.0;
+    gFailed = false;
+    float s2 = pow(gRho / (2.0 * a), 2.0);
+    if (s2 >= 1.0) return false;   // beyond the source's horizon: no ray
+    gCmax = sqrt((1.0 - s2) / (1.0 + s2));
+    // Rays of winding n take at least n·T_ret (the shortest loop time) in the source's
+    // frame, where emission events keep their scene time (the source is on its axis):
+    // windings emitted before the window are not enumerated (the CPU drops their rays).
+    float tret = 2.0 * PI * a * (SQRT2 - 1.0);
+    int windings = int(clamp(floor((gP.x - hX.x + u_max_past) / tret), -1.0, float(MAX_WINDINGS)));
+    if (windings < 0) return false;
+    gCells = gZp == 0.0 ? 1 : SHADOW_GRID;
+    gTotal = (windings + 1) * 2 * gCells;
+    gIdx = 0;
+    return true;
+}
+
+// One pass over up to sixteen cells of the current light's grid: true when it stopped at a
+// root (its bracket [gLo, gHi] set up for refinement, or gC set when exact).
+bool gridPass() {
+    gN = gIdx / (2 * gCells);
+    gInbound = (gIdx / gCells) % 2 == 1;
+    int cell = gIdx % gCells + 1;
+    if (gZp == 0.0) {
+        gIdx++;
+        gC = 0.0;
+        gIter = -1;
+        return true;
+    }
+    if (cell == 1) { gU0 = 0.0; gG0 = -abs(gZp); }
+    // Sixteen cells per pass, in four groups written out (each pass of a loop counts
+    // against llvmpipe's limit).
+    int count = min(CELLS_PER_PASS, gCells - cell + 1);
+    vec4 base = float(cell) + vec4(0.0, 1.0, 2.0, 3.0);
+    vec4 us[4], gs[4];
+    us[0] = gCmax * base / float(SHADOW_GRID);
+    us[1] = gCmax * (base + 4.0) / float(SHADOW_GRID);
+    us[2] = gCmax * (base + 8.0) / float(SHADOW_GRID);
+    us[3] = gCmax * (base + 12.0) / float(SHADOW_GRID);
+    gs[0] = shadowG4(gRho, gZp, us[0], gN, gInbound);
+    gs[1] = shadowG4(gRho, gZp, us[1], gN, gInbound);
+    gs[2] = shadowG4(gRho, gZp, us[2], gN, gInbound);
+    gs[3] = shadowG4(gRho, gZp, us[3], gN, gInbound);
+    int found = min(min(firstRoot(vec4(gG0, gs[0].xyz), gs[0], base, 0, count, gInbound),
+                        firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, gInbound)),
+                    min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, gInbound),
+                        firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, gInbound)));
+    if (found >= CELLS_PER_PASS) {
+        gU0 = us[(count - 1) / 4][(count - 1) % 4];
+        gG0 = gs[(count - 1) / 4][(count - 1) % 4];
+        gIdx += count;
+        return false;
+    }
+    int prev = max(found - 1, 0);
+    gLo = found == 0 ? gU0 : us[prev / 4][prev % 4];
+    gFlo = found == 0 ? gG0 : gs[prev / 4][prev % 4];
+    gHi = us[found / 4][found % 4];
+    gFhi = gs[found / 4][found % 4];
+    gU0 = gHi;
+    gG0 = gFhi;
+    gIdx += found + 1;
+    gSide = 0;
+    gIter = 0;
+    gC = sign(gZp) * gHi;
+    if (gFhi == 0.0) gIter = -1;   // an exact root: no refinement
+    return true;
+}
+
+// One Illinois step on the bracketed root of G (spacetime::refine_root); true when done.
+bool rootStep() {
+    float m = gFhi != gFlo ? (gLo * gFhi - gHi * gFlo) / (gFhi - gFlo) : 0.5 * (gLo + gHi);
+    if (!(m > gLo && m < gHi)) m = 0.5 * (gLo + gHi);
+    gC = sign(gZp) * m;
+    float fm = shadowG(gRho, gZp, m, gN, gInbound);
+    gIter++;
+    if (fm == 0.0 || gHi - gLo <= 4.0 * 1.1920929e-7 * max(gHi, 1e-30) || gIter >= REFINE_STEPS) return true;
+    if ((fm > 0.0) == (gFhi > 0.0)) { gHi = m; gFhi = fm; if (gSide == 1) gFlo *= 0.5; gSide = 1; }
+    else { gLo = m; gFlo = fm; if (gSide == -1) gFhi *= 0.5; gSide = -1; }
+    return false;
+}
+
+// The ray of root gC (spacetime::connect): 0 when it does not count, 1 when it counts
+// unoccluded (gWeight), 2 when its occlusion must be searched (the search is set up).
+int shadowRaySetUp() {
+    float a = u_a;
+    float c = gC;
+    int n = gN;
+    float th = shadowTheta(gRho, c, n, gInbound);
+    float w1 = 1.0 + c * c;
+    float omega = sqrt(w1) / (2.0 * a);
+    float big = bigPhi(sqrt(2.0 / w1), th);
+    float lambda = th / omega;
+    float chi = carg(gP.yz) - big + float(n) * PI;
+    float sinpsi = sqrt(max(1.0 - c * c, 0.0));
+    vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
+    vec4 tg = vec4(1.0, sinpsi * cosA(chi), sinpsi * sinA(chi), c);
+    vec4 emission = applyIso(gBack, em);
+    if (emission.x < hX.x - u_max_past) return 0;
+    // The ray in the source's axis frame: the closed form from the origin, moved by the
+    // emission time, carried back by the source's isometry (its end then lies on the hit
+    // point to the rounding of one map, not of two).
+    Ray r;
+    r.geo = originGeodesic(tg);
+    if (!r.geo.ok) return 0;
+    r.back = gBack;
+    r.back.t0 -= em.x;
+    r.lret = returnParameter(r.geo);
+    r.shift = vec2(0.0);
+    vec4 xe, kEnd;
+    rayAt(r, 0, lambda, xe, kEnd);
+    vec2 inc = incidence(kEnd);
+    if (!(inc.x > 0.0)) return 0;
+    float d2 = areaDistanceSq(acosA(clamp(c, -1.0, 1.0)), chi, lambda);
+    if (!(d2 > 0.0 && finite(d2))) return 0;
+    gWeight = gPower * inc.y * inc.y * inc.x / (4.0 * PI * d2);
+    // Occlusion: the ray from its emission to just before the lit point (END_CUT),
+    // searched for every object it may come near; the lit object up to the last segment
+    // only (render::lighting: that stretch is nearly a circle arc, which meets a sphere in
+    // two points at most, so light arriving at the lit point from outside has not crossed
+    // the ball there); its whole-ray test over that stretch may drop it (a lit plane always:
+    // z is linear, and the ray meets it at its end).
+    float end = lambda * (1.0 - END_CUT);
+    int segs = int(clamp(ceil(end / (r.lret / float(EXACT_SEGMENTS))), 1.0, 1e5));
+    float last = end * float(segs - 1) / float(segs);
+    bool any = setSearched(gSource, r.geo, end);
+    if (searched[hTarget]) {
+        setSearchedUntil(hTarget, gSource, r.geo, last);
+        any = anySearched();
+    }
+    if (!any) return 1;
+    startSearch(r, 1, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
+    eSkipObj = hTarget;
+    eSkipFrom = last;
+    return 2;
+}
+
+// ---------------------------------------------------------------------------------------
+// The record of one sample: slots of four channels (crates/gpu/src/input.rs lists them):
+// 0 (object, status, u, v), 1 (g, t_emit, lambda, cos_i), 2 (x, y, z, view_x),
+// 3 (dir_x, dir_y, dir_z, view_y), 4 (view_z, light_0, light_1, light_2), then four lights each.
+
+
+void setLight(int li, float v) {
+    int c = li + 1;   // channels counted from slot 4's first component (view_z)
+    slots[4 + c / 4][c % 4] = v;
+}
+
+void main() {
+    probes_left = PIXEL_PROBES;
+    ivec2 pix = u_origin + ivec2(gl_FragCoord.xy);
+    for (int s = 0; s < SLOTS + 8; s++) slots[s] = vec4(0.0);
+    vec3 d;
+    int status = NOT_TRACED;
+    if (cameraDirection(vec2(pix) + 0.5, d)) {
+        vec3 right = cross(u_forward, u_up);
+        vec3 n = d.x * u_forward + d.y * right + d.z * u_up;
+        slots[2].w = n.x;
+        slots[3].w = n.y;
+        slots[4].x = n.z;
+        for (int i = 0; i < N_OBJECTS; i++) loadObject(i);
+        vec4 obs = vec4(0.0, u_obs_x);
+        mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
+        vec4 k = frame * vec4(-1.0, n);                 // the past-directed photon
+        float pt = (metricAt(obs) * k).x;               // p_t, conserved
+        Ray r = makeRay(obs, k);
+        float tBound = -u_max_past;
+        bool any = setSearched(obs, r.geo, INF);
+        Found f = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+        bool run = true;
+        if (!r.geo.ok) {
+            f.status = FAILED;
+            run = false;
+        } else if (godel()) {
+            if (!(r.shift.x < 0.0)) { f.status = FAILED; run = false; }
+            // A ray near no object escapes (if it reaches the time bound within the loops).
+            else if (!any) { f.status = float(u_max_loops) * r.shift.x < tBound ? ESCAPED : WORK_LIMIT; run = false; }
+            else startSearch(r, u_max_loops + 1, EXACT_SEGMENTS, r.lret, pt, true, tBound);
+        } else {
+            float lmax = u_max_past / max(abs(k.x), 1e-30);
+            startSearch(r, 1, int(clamp(ceil(lmax), 1.0, 1e5)), lmax, pt, true, tBound);
+        }
+        // The pixel's search, then one search per shadow ray whose occlusion must be
+        // searched, the shadow rays enumerated between the searches.
+        bool finished = false;
+        bool pixelSearch = true;
+        for (int job = 0; job < MAX_JOBS && !finished; job++) {
+            if (run) {
+                for (int pass = 0; pass < MAX_PASSES && eMode != M_DONE; pass++) searchPass();
+                if (eMode != M_DONE) finish(WORK_LIMIT);
+                f = eResult;
+            }
+            run = true;
+            if (pixelSearch) {
+                pixelSearch = false;
+                status = f.status;
+                finished = true;
+                if (f.status != HIT) continue;
+                rayAt(r, f.loop_, f.lambda, hX, hK);
+                hTarget = f.target;
+                hAt.tau = f.tau;
+                bool ok = surface();
+                // g = (p·u_obs)/(p·u_emit), the backward ray's momentum at both ends.
+                float g = dot(frame[0], metricAt(obs) * k) / dot(hUemit, metricAt(hX) * hK);
+                if (hX.x < tBound) { status = ESCAPED; continue; }
+                if (!ok || !(g > 0.0 && finite(g))) { status = FAILED; continue; }
+                slots[0] = vec4(float(hTarget), 0.0, hUV);
+                slots[1] = vec4(g, hX.x, f.lambda + float(f.loop_) * r.lret, hCos);
+                slots[2].xyz = hX.yzw;
+                slots[3].xyz = hDir;
+                if (!godel() || HAS_LIGHTS == 0 || u_lights == 0) continue;
+                finished = false;
+                gLight = 0;
+                gIdx = -1;
+            } else if (f.status == WORK_LIMIT) {
+                gFailed = true;
+            } else if (f.status != HIT) {
+                gSum += gWeight;
+            }
+            // On to the next ray whose occlusion must be searched.
+            finished = true;
+            for (int pass = 0; pass < MAX_PASSES && gLight < u_lights; pass++) {
+                if (gIdx < 0) {
+                    if (!startLight()) endLight();
+                } else if (gIdx >= gTotal || gFailed) {
+                    endLight();
+                    gIdx = -1;
+                } else if (gridPass()) {
+                    for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
+                        if (rootStep()) break;
+                    }
+                    int use = shadowRaySetUp();
+                    if (use == 1) gSum += gWeight;
+                    if (use == 2) { finished = false; break; }
+                }
+            }
+        }
+        if (!finished) {
+            // Out of passes: the pixel is out of work, or the lights not yet summed unknown.
+            if (pixelSearch) status = WORK_LIMIT;
+            for (int li = 0; li < N_LIGHTS; li++) if (li >= gLight && li < u_lights) setLight(li, -1.0);
+        }
+    }
+    // llvmpipe ends every loop of a shader once its loops have run 65535 passes in all (its
+    // loop limiter), silently. A loop that must run twice tells: a sample cut short is marked
+    // as out of work, never written as if complete.
+    int passes = 0;
+    for (int i = 0; i < u_two; i++) passes++;
+    if (passes != 2) status = WORK_LIMIT;
+    if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
+#ifdef COUNT_PROBES
+    slots[2].w = float(PIXEL_PROBES - probes_left);   // benchmarks: the probes in view_x
+#endif
+    o0 = slots[u_slot0];
+#if DRAW_BUFFERS > 1
+    o1 = slots[u_slot0 + 1];
+#endif
+#if DRAW_BUFFERS > 2
+    o2 = slots[u_slot0 + 2];
+#endif
+#if DRAW_BUFFERS > 3
+    o3 = slots[u_slot0 + 3];
+#endif
+#if DRAW_BUFFERS > 4
+    o4 = slots[u_slot0 + 4];
+#endif
+#if DRAW_BUFFERS > 5
+    o5 = slots[u_slot0 + 5];
+#endif
+#if DRAW_BUFFERS > 6
+    o6 = slots[u_slot0 + 6];
+#endif
+#if DRAW_BUFFERS > 7
+    o7 = slots[u_slot0 + 7];
+#endif
+}
