@@ -13,6 +13,7 @@ use http_body_util::BodyExt;
 use render::map::{LightRay, Map, MapPoint};
 use tower::ServiceExt;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
+use viewer::kernel_routes::KernelInput;
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
 use viewer::Access;
 
@@ -115,6 +116,12 @@ impl FrameSource for Fake {
     }
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
         Ok(format!("frame {frame} at t = {}", event.t))
+    }
+    /// The data file's scene with its observer at `event`.
+    fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
+        let mut scene = scene::Scene::from_str(&common::scene(), "fake.toml").unwrap();
+        scene.observer.event = event.event();
+        Ok(KernelInput::new(&scene))
     }
 }
 
