@@ -1,0 +1,83 @@
+// godel view: the frame traced on the GPU. The "Trace on the GPU" switch (or the URL
+// parameter ?trace=gpu) makes the page trace the data file's own scene with the exact
+// tracer's kernel (trace.js, in WebGL2) and shade that frame instead of the file's: every
+// layer and control works on it as on the file's, and the header says how long it took.
+// Switching back fetches the file's channels again. Hover still shows the file's records.
+'use strict';
+
+import { KernelTracer } from './trace.js';
+import { fetchJson } from './data.js';
+
+const $ = (id) => document.getElementById(id);
+
+async function fetchText(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: ${response.status} ${await response.text()}`);
+  return response.text();
+}
+
+export function startTraced(viewer) {
+  const box = $('trace-gpu');
+  const status = $('trace-status');
+  // Explore mode traces on the server (its GPU frames come with a later version).
+  if (viewer.explore) return;
+  $('trace-panel').hidden = false;
+  let tracer = null;
+  let input = null;
+  // The GPU-traced frame: {traced (the slots), ms}; kept for tests to read back.
+  const state = { tracing: false, traced: null, error: null };
+  viewer.traced = state;
+
+  const show = async (on) => {
+    if (state.tracing) return;
+    if (!on) {
+      viewer.showFileFrame();
+      status.textContent = 'showing the data file\u2019s frame';
+      return;
+    }
+    state.tracing = true;
+    state.error = null;
+    viewer.hold(true);
+    try {
+      const gl = viewer.gpu().gl;
+      if (!tracer) tracer = new KernelTracer(gl, await fetchText('/api/gpu/kernel'));
+      if (!input) input = await fetchJson(`/api/gpu/input?draw_buffers=${tracer.maxDrawBuffers}`);
+      status.textContent = 'compiling the kernel…';
+      // Let the status show before the (blocking) compilation.
+      await new Promise((resolve) => { requestAnimationFrame(() => setTimeout(resolve, 0)); });
+      const traced = await tracer.trace(input, {
+        progress: (done, total) => {
+          status.textContent = `tracing on the GPU: ${Math.round(100 * done / total)} %`;
+        },
+      });
+      if (state.traced) state.traced.slots.forEach((t) => gl.deleteTexture(t));
+      state.traced = traced;
+      const channels = tracer.channels(traced, viewer.info.objects.length);
+      const ms = Math.round(traced.traceMs);
+      const rays = traced.width * traced.height;
+      viewer.showTracedFrame(channels, `traced on the GPU in ${ms} ms`);
+      status.textContent = `${rays} rays in ${ms} ms (${Math.round(rays / traced.traceMs * 1e3)}`
+        + ` rays/s; kernel compiled in ${Math.round(traced.compileMs)} ms)`;
+    } catch (e) {
+      state.error = e.message || String(e);
+      viewer.showError(`cannot trace on the GPU: ${state.error}`);
+      status.textContent = 'showing the data file\u2019s frame';
+      box.checked = false;
+      viewer.showFileFrame();
+    } finally {
+      state.tracing = false;
+      viewer.hold(false);
+    }
+  };
+  box.addEventListener('change', () => show(box.checked));
+  // For tests: the traced slots as floats (base64 per slot), and the grid's size.
+  state.readSlots = () => {
+    const slots = tracer.readSlots(state.traced).map((f) => viewer.base64(new Uint8Array(f.buffer)));
+    return { width: state.traced.width, height: state.traced.height, slots,
+      traceMs: state.traced.traceMs, compileMs: state.traced.compileMs };
+  };
+  if (new URLSearchParams(window.location.search).get('trace') === 'gpu') {
+    box.checked = true;
+    show(true);
+  }
+}
