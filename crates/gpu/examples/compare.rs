@@ -33,20 +33,15 @@ fn main() {
         println!("mismatched pixels: {bad:?}");
     }
     if std::env::var("USED").is_ok() {
-        let mut used: Vec<f32> = g
-            .records
-            .iter()
-            .filter(|r| r.status == RayStatus::Hit)
-            .map(|r| r.dir[2])
-            .collect();
-        used.sort_by(f32::total_cmp);
-        if !used.is_empty() {
-            println!(
-                "loop passes used (hit pixels): median {} p90 {} max {}",
-                used[used.len() / 2],
-                used[used.len() * 9 / 10],
-                used[used.len() - 1]
-            );
+        for (c, name) in [(1usize, "probes"), (2, "loop passes")] {
+            let mut v: Vec<f32> = g.records.iter().filter(|r| r.status == RayStatus::Hit).map(|r| r.dir[c]).collect();
+            v.sort_by(f32::total_cmp);
+            if !v.is_empty() {
+                let at = |p: f64| v[((v.len() - 1) as f64 * p) as usize];
+                println!("{name} (hit samples): median {} p90 {} p99 {} max {}", at(0.5), at(0.9), at(0.99), at(1.0));
+                let arg = (0..g.records.len()).filter(|&i| g.records[i].status == RayStatus::Hit).max_by(|&a, &b| g.records[a].dir[c].total_cmp(&g.records[b].dir[c]));
+                println!("  heaviest sample: {arg:?}");
+            }
         }
     }
     if let Ok(i) = std::env::var("PIXEL") {
@@ -65,6 +60,16 @@ fn main() {
                 hits += 1;
                 dg.push(((a.g - b.g) / b.g).abs());
                 dt.push((a.t_emit - b.t_emit).abs() / (1.0 + b.t_emit.abs()));
+            }
+        }
+    }
+    if std::env::var("SHOWG").is_ok() {
+        let mut shown = 0;
+        for i in 0..n {
+            let (a, b) = (&g.records[i], &cpu.records[i]);
+            if a.status == RayStatus::Hit && b.status == RayStatus::Hit && ((a.g - b.g) / b.g).abs() > 1e-3 && shown < 8 {
+                shown += 1;
+                println!("  g px {i}: gpu g {} t {} uv ({}, {}) | cpu g {} t {} uv ({}, {})", a.g, a.t_emit, a.u, a.v, b.g, b.t_emit, b.u, b.v);
             }
         }
     }

@@ -7,7 +7,10 @@ use spacetime::{source_area_distance_sq, ExactGeodesic, Spacetime};
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let text = std::fs::read_to_string(&args[1]).unwrap();
-    let scene = Scene::from_str(&text, &args[1]).unwrap();
+    let mut scene = Scene::from_str(&text, &args[1]).unwrap();
+    if args.len() >= 5 {
+        scene.camera = scene.camera.with_size(args[3].parse().unwrap(), args[4].parse().unwrap());
+    }
     let idx: u32 = args[2].parse().unwrap();
     let cam = scene.sample_camera();
     let (col, row) = (idx % cam.width(), idx / cam.width());
@@ -52,12 +55,24 @@ fn main() {
         if inc.cos > 0.0 {
             sum += e;
         }
-        let mut single = [0f32];
-        let one = Lighting::new(vec![light], scene.trace.max_past);
-        let _ = &one;
+        // The least distance of this ray from each object, sampled finely.
+        let mut fmin = vec![f64::INFINITY; tracer.objects.targets.len()];
+        let steps = 20000;
+        for s in 0..steps {
+            let l = ray.lambda * (s as f64 + 0.5) / steps as f64;
+            let (x, k) = geo.at(l);
+            let st = spacetime::GeodesicState { x, p: m.lower(x, k) };
+            for (i, t) in tracer.objects.targets.iter().enumerate() {
+                if i == hit.target && l > ray.lambda * 0.95 { continue; }
+                fmin[i] = fmin[i].min(t.probe(&m, &st, f64::NAN).f);
+            }
+        }
+        if ray.winding == 5 && ray.branch == spacetime::Branch::Inbound {
+            println!("  ray 5in: emission {:?} tangent {:?} lambda {}", ray.emission, ray.tangent, ray.lambda);
+        }
         println!(
-            "n {} {:?} t_em {:.5} cos {:.6} energy {:.8} d2 {:.6} E {:.6e}",
-            ray.winding, ray.branch, ray.emission.t, inc.cos, inc.energy, d2, e
+            "n {} {:?} t_em {:.5} cos {:.6} energy {:.8} d2 {:.6} E {:.6e} fmin {:?}",
+            ray.winding, ray.branch, ray.emission.t, inc.cos, inc.energy, d2, e, fmin.iter().map(|v| format!("{v:.2e}")).collect::<Vec<_>>()
         );
     }
     let mut out = [0f32];

@@ -114,9 +114,9 @@ const int MAX_WINDINGS = 10000;
 const float REACH_PER_RADIUS = 1.25;
 const float REACH_PER_A = 1e-6;
 
-// GPU only: passes of the search machine per search, and searches per sample (the pixel's
-// and its shadow rays'); both far above what the probe budget allows.
-const int ENGINE_STEPS = 4194304;
+// GPU only: passes of a search or of the shadow rays' enumeration, and searches per sample
+// (the pixel's and its shadow rays'): far above what the probe budget allows.
+const int MAX_PASSES = 4194304;
 const int MAX_JOBS = 4194304;
 
 int probes_left;   // the pixel's probe budget (PIXEL_PROBES)
@@ -718,26 +718,21 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     float far = FAR_DISTANCE * scale + FAR_RADII * oRadius[i];
     float floor_ = oRadius[i] + 0.5 * FAR_DISTANCE * scale;
     float rate = GLOBAL_RATE_MARGIN * abs(pt) * oSpeed[i];
+    float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
+    Local lp = localize(i, x, seed, far);
+    if (!lp.ok) return Probe(INF, 0.0, NO_TAU);
+    float slack = kind == KIND_REST ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
+    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - oRadius[i], rate, lp.exact ? lp.at.tau : NO_TAU);
     // A stale seed may call a point inside a falling ball far: then the point of equal
     // coordinate time is tried too and the nearer kept.
-    Probe best = Probe(INF, 0.0, NO_TAU);
-    float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
-    int attempts = kind == KIND_FREE && tauSeed > NO_TAU ? 2 : 1;
-    for (int attempt = 0; attempt < attempts; attempt++) {
-        Local lp = localize(i, x, seed, far);
-        if (lp.ok) {
-            float d1 = lp.len;
-            float slack = kind == KIND_REST ? 1.1 + (FAR_SLACK - 1.1) * min((d1 - far) / far, 1.0) : FAR_SLACK;
-            float d = lp.exact ? d1 : max(d1 / slack, floor_);
-            Probe p = Probe(d - oRadius[i], rate, lp.exact ? lp.at.tau : NO_TAU);
-            if (attempt == 0 || p.f < best.f) best = p;
-            if (lp.exact || !(tauSeed > NO_TAU) || kind != KIND_FREE) break;
-        } else if (attempt == 0 && !(tauSeed > NO_TAU && kind == KIND_FREE)) {
-            break;
+    if (!lp.exact && tauSeed > NO_TAU && kind == KIND_FREE) {
+        Local lq = localize(i, x, tauGuess(i, x.x), far);
+        if (lq.ok) {
+            float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
+            if (dq - oRadius[i] < p.f) p = Probe(dq - oRadius[i], rate, lq.exact ? lq.at.tau : NO_TAU);
         }
-        seed = tauGuess(i, x.x);
     }
-    return best;
+    return p;
 }
 
 bool crossed(float fa, float fb) { return (fa > 0.0) != (fb > 0.0); }
@@ -777,17 +772,17 @@ bool objectBox(int i, out vec3 lo, out vec3 hi) {
 // Whole-ray rejection of balls at rest and planes (render::reject, docs/physics.md
 // "Whole-ray rejection"): it only drops searches that could not find a crossing.
 
-// Whether the closed-form ray g from the origin, over λ ∈ [0, until], stays farther than
+// Whether the closed-form ray g from the origin, over λ ∈ [from, until], stays farther than
 // the reach from the static ball whose centre is (wc, zc) in the origin frame.
-bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float until) {
+bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until) {
     float a = u_a;
     float lo, hi;
     if (g.pz == 0.0) {
         if (abs(zc) > reach) return true;
-        lo = 0.0; hi = until;
+        lo = from; hi = until;
     } else {
         float l1 = (zc - reach) / g.pz, l2 = (zc + reach) / g.pz;
-        lo = max(min(l1, l2), 0.0);
+        lo = max(min(l1, l2), from);
         hi = min(max(l1, l2), until);
     }
     if (hi < lo) return true;
@@ -814,8 +809,8 @@ bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float until) {
     return a * acosh_(max(coshd, 1.0)) > reach;
 }
 
-bool planeMisses(OGeo g, float z, float until) {
-    float f0 = -z;
+bool planeMisses(OGeo g, float z, float from, float until) {
+    float f0 = g.pz * from - z;
     float f1 = g.pz * until - z, span = abs(g.pz * until);
     if (!(until < INF)) {
         f1 = g.pz == 0.0 ? f0 : (g.pz > 0.0 ? INF : -INF);
@@ -826,20 +821,35 @@ bool planeMisses(OGeo g, float z, float until) {
 }
 
 bool searched[N_OBJECTS];
+// Per object, for the ray being searched: a ball's centre (disc coordinate, z) and a plane's
+// height in the ray's origin frame.
+vec2 oCw[N_OBJECTS];
+float oCz[N_OBJECTS];
+
+// The reach of a ball at rest (render::reject), widened by the rounding of f32 coordinates
+// in the origin frame.
+float reachOf(int i) { return REACH_PER_RADIUS * oRadius[i] + REACH_PER_A * u_a + 1e-4 * u_a; }
+
+// Whether the searched ray g stays clear of object i (a ball at rest or a plane, Gödel's
+// universe) over λ ∈ [from, until]; false when unsure or for other objects.
+bool objectMisses(int i, OGeo g, float from, float until) {
+    if (!godel()) return false;
+    if (oKind[i] == KIND_REST) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
+    if (oKind[i] == KIND_PLANE) return planeMisses(g, oCz[i], from, until);
+    return false;
+}
 
 // Whether a ray from the place of `from` (whose origin-frame closed form is g) may meet
 // object i over λ ∈ [0, until]: sets searched[i].
 void setSearchedUntil(int i, vec4 from, OGeo g, float until) {
-    bool on = oKind[i] >= 0;
-    if (on && godel() && oKind[i] == KIND_REST) {
+    if (oKind[i] == KIND_REST) {
         vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), oPos[i]);
-        // The reach, widened by the rounding of f32 coordinates in the origin frame.
-        float reach = REACH_PER_RADIUS * oRadius[i] + REACH_PER_A * u_a + 1e-4 * u_a;
-        on = !ballMisses(g, disc(c.yz), c.w, reach, until);
-    } else if (on && godel() && oKind[i] == KIND_PLANE) {
-        on = !planeMisses(g, oPos[i].w - from.w, until);
+        oCw[i] = disc(c.yz);
+        oCz[i] = c.w;
+    } else if (oKind[i] == KIND_PLANE) {
+        oCz[i] = oPos[i].w - from.w;
     }
-    searched[i] = on;
+    searched[i] = oKind[i] >= 0 && !objectMisses(i, g, 0.0, until);
 }
 
 bool anySearched() {
@@ -1117,6 +1127,18 @@ void machineStep() {
                 endAt[eObj] = startAt[eObj];
                 continue;
             }
+            // GPU only: a segment that provably stays clear of a ball at rest or a plane is
+            // not searched ("Whole-ray rejection", applied per segment); its end probe is a
+            // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
+            // plane's height, linear in λ), from which the next segment goes on.
+            if (objectMisses(eObj, eRay.geo, eLo + off, eHi + off)) {
+                float fEnd = oKind[eObj] == KIND_REST
+                    ? REACH_PER_RADIUS * oRadius[eObj] / 1.05 - oRadius[eObj]
+                    : eRay.geo.pz * (eHi + off) - oCz[eObj];
+                endProbe[eObj] = Probe(fEnd, p.rate, NO_TAU);
+                endAt[eObj] = eHi + off;
+                continue;
+            }
             float at = startAt[eObj];
             float clear = abs(p.f);
             if (oKind[eObj] == KIND_REST && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
@@ -1154,20 +1176,16 @@ void machineStep() {
     }
 }
 
-// Runs the machine to its end; one probe per pass (the kernel's one call of probeObject).
-Found search() {
-    for (int it = 0; it < ENGINE_STEPS; it++) {
-        if (qTag != Q_NONE) {
-            if (probes_left <= 0) { finish(WORK_LIMIT); break; }
-            vec4 k;
-            rayAt(eRay, qLoop, qLambda, qX, k);
-            qAnswer = probeObject(qObj, qX, k, ePt, qSeed);
-        }
-        machineStep();
-        if (eMode == M_DONE) return eResult;
+// One pass of the machine: the probe it asked for, if any (the kernel's one call of
+// probeObject), then its next step.
+void searchPass() {
+    if (qTag != Q_NONE) {
+        if (probes_left <= 0) { finish(WORK_LIMIT); return; }
+        vec4 k;
+        rayAt(eRay, qLoop, qLambda, qX, k);
+        qAnswer = probeObject(qObj, qX, k, ePt, qSeed);
     }
-    if (eMode != M_DONE) finish(WORK_LIMIT);
-    return eResult;
+    machineStep();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1261,6 +1279,24 @@ float shadowG(float rho, float zp, float u, int n, bool inbound) {
     return 2.0 * u_a * u * shadowTheta(rho, u, n, inbound) / sqrt(1.0 + u * u) - abs(zp);
 }
 
+// The first cell of a group of four (pass indices offset..offset+3, cell numbers `cellNo`)
+// whose value g changes sign from `prev` or is an exact zero (except at the join of the
+// branches, which only the outbound branch counts); CELLS_PER_PASS if none. Only the pass's
+// first `count` cells count.
+int firstRoot(vec4 prev, vec4 g, vec4 cellNo, int offset, int count, bool inbound) {
+    vec4 change = vec4(lessThan(prev, vec4(0.0))) * vec4(greaterThan(g, vec4(0.0)))
+                + vec4(greaterThan(prev, vec4(0.0))) * vec4(lessThan(g, vec4(0.0)));
+    vec4 join = inbound ? vec4(equal(cellNo, vec4(float(SHADOW_GRID)))) : vec4(0.0);
+    vec4 zero = vec4(equal(g, vec4(0.0))) * (1.0 - join);
+    vec4 inPass = vec4(lessThan(float(offset) + vec4(0.0, 1.0, 2.0, 3.0), vec4(float(count))));
+    vec4 root = min(change + zero, 1.0) * inPass;
+    if (root.x > 0.0) return offset;
+    if (root.y > 0.0) return offset + 1;
+    if (root.z > 0.0) return offset + 2;
+    if (root.w > 0.0) return offset + 3;
+    return CELLS_PER_PASS;
+}
+
 vec4 shadowG4(float rho, float zp, vec4 u, int n, bool inbound) {
     vec4 rmax = 2.0 * u_a * sqrt((1.0 - u * u) / (1.0 + u * u));
     vec4 th0 = asinA4(min(rho / rmax, vec4(1.0)));
@@ -1326,15 +1362,15 @@ vec2 incidence(vec4 kLight) {
 // The shadow rays, light by light: every root of G on a grid of SHADOW_GRID cells per
 // winding and branch (z_P = 0: the in-plane ray only), refined by Illinois steps; a ray is
 // counted unless emitted more than max_past before the hit, arriving from behind, at a
-// caustic, or occluded. `nextShadowRay` resumes the enumeration and stops at the next ray
-// whose occlusion must be searched (the kernel's one search call runs it).
-int gLight, gIdx, gTotal, gCells;
+// caustic, or occluded. The enumeration runs in passes of the kernel's one loop (`main`):
+// a light's set-up, sixteen cells of the grid, one refinement step, or one ray's set-up.
+int gLight, gIdx, gTotal, gCells, gN, gSide, gIter;
+bool gInbound;
 float gU0, gG0, gRho, gCmax, gZp, gPower, gSum, gWeight;
+float gLo, gHi, gFlo, gFhi, gC;
 vec4 gP, gSource;
 Iso gBack;
 bool gFailed;
-
-const int WINDINGS_GUARD = 2 * (MAX_WINDINGS + 1) * SHADOW_GRID;
 
 void setLight(int li, float v);
 
@@ -1342,144 +1378,154 @@ void setLight(int li, float v);
 void endLight() {
     setLight(gLight, gFailed ? -1.0 : gSum);
     gLight++;
-    gIdx = 0;
+    gIdx = -1;
 }
 
-bool nextShadowRay() {
+// Sets up light gLight for the hit; false when no ray of it can count.
+bool startLight() {
     float a = u_a;
-    for (int guard = 0; guard < WINDINGS_GUARD; guard++) {
-        if (gLight >= u_lights) return false;
-        if (gIdx == 0) {
-            vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * gLight);
-            gSource = vec4(0.0, lt.xyz);
-            gPower = lt.w;
-            Iso to = toOrigin(gSource);
-            gBack = inverseIso(to);
-            gP = applyIso(to, hX);
-            gRho = length(gP.yz);
-            gZp = gP.w;
-            gSum = 0.0;
-            gFailed = false;
-            float s2 = pow(gRho / (2.0 * a), 2.0);
-            if (s2 >= 1.0) { endLight(); continue; }   // beyond the source's horizon: no ray
-            gCmax = sqrt((1.0 - s2) / (1.0 + s2));
-            // Rays of winding n take at least n·T_ret (the shortest loop time) in the source's
-            // frame, where emission events keep their scene time (the source is on its axis):
-            // windings emitted before the window are not enumerated (the CPU drops their rays).
-            float tret = 2.0 * PI * a * (SQRT2 - 1.0);
-            int windings = int(clamp(floor((gP.x - hX.x + u_max_past) / tret), -1.0, float(MAX_WINDINGS)));
-            if (windings < 0) { endLight(); continue; }
-            gCells = gZp == 0.0 ? 1 : SHADOW_GRID;
-            gTotal = (windings + 1) * 2 * gCells;
-        }
-        if (gIdx >= gTotal || gFailed) { endLight(); continue; }
-        int n = gIdx / (2 * gCells);
-        bool inbound = (gIdx / gCells) % 2 == 1;
-        int cell = gIdx % gCells + 1;
-        float c;
-        if (gZp == 0.0) {
-            gIdx++;
-            c = 0.0;
-        } else {
-            if (cell == 1) { gU0 = 0.0; gG0 = -abs(gZp); }
-            // Sixteen cells per pass (every pass of a loop counts against llvmpipe's limit).
-            int count = min(CELLS_PER_PASS, gCells - cell + 1);
-            vec4 us[4], gs[4];
-            for (int q = 0; q < 4; q++) {
-                us[q] = gCmax * (float(cell + 4 * q) + vec4(0.0, 1.0, 2.0, 3.0)) / float(SHADOW_GRID);
-                gs[q] = shadowG4(gRho, gZp, us[q], n, inbound);
-            }
-            int found = -1;
-            float g0 = gG0;
-            for (int j = 0; j < CELLS_PER_PASS; j++) {
-                float g1 = gs[j / 4][j % 4];
-                bool atJoin = cell + j == SHADOW_GRID && inbound;
-                bool root = (g1 == 0.0 && !atJoin) || (g0 < 0.0 && g1 > 0.0) || (g0 > 0.0 && g1 < 0.0);
-                found = (found < 0 && j < count && root) ? j : found;
-                g0 = g1;
-            }
-            if (found < 0) {
-                gU0 = us[(count - 1) / 4][(count - 1) % 4];
-                gG0 = gs[(count - 1) / 4][(count - 1) % 4];
-                gIdx += count;
-                continue;
-            }
-            int prev = max(found - 1, 0);
-            float u0 = found == 0 ? gU0 : us[prev / 4][prev % 4];
-            g0 = found == 0 ? gG0 : gs[prev / 4][prev % 4];
-            float u1 = us[found / 4][found % 4], g1 = gs[found / 4][found % 4];
-            gU0 = u1;
-            gG0 = g1;
-            gIdx += found + 1;
-            if (g1 == 0.0) {
-                c = sign(gZp) * u1;
-            } else {
-                float lo = u0, hi = u1, flo = g0, fhi = g1, m = 0.5 * (lo + hi);
-                int side = 0;
-                for (int it = 0; it < REFINE_STEPS; it++) {
-                    m = fhi != flo ? (lo * fhi - hi * flo) / (fhi - flo) : 0.5 * (lo + hi);
-                    if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
-                    float fm = shadowG(gRho, gZp, m, n, inbound);
-                    if (fm == 0.0 || hi - lo <= 4.0 * 1.1920929e-7 * max(hi, 1e-30)) break;
-                    if ((fm > 0.0) == (fhi > 0.0)) { hi = m; fhi = fm; if (side == 1) flo *= 0.5; side = 1; }
-                    else { lo = m; flo = fm; if (side == -1) fhi *= 0.5; side = -1; }
-                }
-                c = sign(gZp) * m;
-            }
-        }
-        // The ray for c (spacetime::connect): θ, its emission event and tangent on the axis.
-        float th = shadowTheta(gRho, c, n, inbound);
-        float w1 = 1.0 + c * c;
-        float omega = sqrt(w1) / (2.0 * a);
-        float big = bigPhi(sqrt(2.0 / w1), th);
-        float lambda = th / omega;
-        float chi = carg(gP.yz) - big + float(n) * PI;
-        float sinpsi = sqrt(max(1.0 - c * c, 0.0));
-        vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
-        vec4 tg = vec4(1.0, sinpsi * cos(chi), sinpsi * sin(chi), c);
-        vec4 emission = applyIso(gBack, em);
-        if (emission.x < hX.x - u_max_past) continue;
-        // The ray in the source's axis frame: the closed form from the origin, moved by the
-        // emission time, carried back by the source's isometry (its end then lies on the hit
-        // point to the rounding of one map, not of two).
-        Ray r;
-        r.geo = originGeodesic(tg);
-        if (!r.geo.ok) continue;
-        r.back = gBack;
-        r.back.t0 -= em.x;
-        r.lret = returnParameter(r.geo);
-        r.shift = vec2(0.0);
-        vec4 xe, kEnd;
-        rayAt(r, 0, lambda, xe, kEnd);
-        vec2 inc = incidence(kEnd);
-        if (!(inc.x > 0.0)) continue;
-        float d2 = areaDistanceSq(acosA(clamp(c, -1.0, 1.0)), chi, lambda);
-        if (!(d2 > 0.0 && finite(d2))) continue;
-        gWeight = gPower * inc.y * inc.y * inc.x / (4.0 * PI * d2);
-        // Occlusion: the ray from its emission to just before the lit point (END_CUT),
-        // searched for every object it may come near.
-        float end = lambda * (1.0 - END_CUT);
-        int segs = int(clamp(ceil(end / (r.lret / float(EXACT_SEGMENTS))), 1.0, 1e5));
-        float last = end * float(segs - 1) / float(segs);
-        // The lit object is searched up to the last segment only (see below): its whole-ray
-        // test over that stretch may drop it (a lit plane always: z is linear, and the ray
-        // meets it at its end).
-        bool any = setSearched(gSource, r.geo, end);
-        if (searched[hTarget]) {
-            setSearchedUntil(hTarget, gSource, r.geo, last);
-            any = anySearched();
-        }
-        if (!any) { gSum += gWeight; continue; }
-        float pt = -1.0;   // p_t of the tangent normalized to E = 1 (∂t is carried to ∂t)
-        startSearch(r, 1, segs, end, pt, false, -INF);
-        // The lit ball is not searched on the last segment (render::lighting: that stretch is
-        // nearly a circle arc, which meets a sphere in two points at most, so light arriving
-        // at the lit point from outside has not crossed the ball there).
-        eSkipObj = hTarget;
-        eSkipFrom = last;
+    vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * gLight);
+    gSource = vec4(0.0, lt.xyz);
+    gPower = lt.w;
+    Iso to = toOrigin(gSource);
+    gBack = inverseIso(to);
+    gP = applyIso(to, hX);
+    gRho = length(gP.yz);
+    gZp = gP.w;
+    gSum = 0.0;
+    gFailed = false;
+    float s2 = pow(gRho / (2.0 * a), 2.0);
+    if (s2 >= 1.0) return false;   // beyond the source's horizon: no ray
+    gCmax = sqrt((1.0 - s2) / (1.0 + s2));
+    // Rays of winding n take at least n·T_ret (the shortest loop time) in the source's
+    // frame, where emission events keep their scene time (the source is on its axis):
+    // windings emitted before the window are not enumerated (the CPU drops their rays).
+    float tret = 2.0 * PI * a * (SQRT2 - 1.0);
+    int windings = int(clamp(floor((gP.x - hX.x + u_max_past) / tret), -1.0, float(MAX_WINDINGS)));
+    if (windings < 0) return false;
+    gCells = gZp == 0.0 ? 1 : SHADOW_GRID;
+    gTotal = (windings + 1) * 2 * gCells;
+    gIdx = 0;
+    return true;
+}
+
+// One pass over up to sixteen cells of the current light's grid: true when it stopped at a
+// root (its bracket [gLo, gHi] set up for refinement, or gC set when exact).
+bool gridPass() {
+    gN = gIdx / (2 * gCells);
+    gInbound = (gIdx / gCells) % 2 == 1;
+    int cell = gIdx % gCells + 1;
+    if (gZp == 0.0) {
+        gIdx++;
+        gC = 0.0;
+        gIter = -1;
         return true;
     }
+    if (cell == 1) { gU0 = 0.0; gG0 = -abs(gZp); }
+    // Sixteen cells per pass, in four groups written out (each pass of a loop counts
+    // against llvmpipe's limit).
+    int count = min(CELLS_PER_PASS, gCells - cell + 1);
+    vec4 base = float(cell) + vec4(0.0, 1.0, 2.0, 3.0);
+    vec4 us[4], gs[4];
+    us[0] = gCmax * base / float(SHADOW_GRID);
+    us[1] = gCmax * (base + 4.0) / float(SHADOW_GRID);
+    us[2] = gCmax * (base + 8.0) / float(SHADOW_GRID);
+    us[3] = gCmax * (base + 12.0) / float(SHADOW_GRID);
+    gs[0] = shadowG4(gRho, gZp, us[0], gN, gInbound);
+    gs[1] = shadowG4(gRho, gZp, us[1], gN, gInbound);
+    gs[2] = shadowG4(gRho, gZp, us[2], gN, gInbound);
+    gs[3] = shadowG4(gRho, gZp, us[3], gN, gInbound);
+    int found = min(min(firstRoot(vec4(gG0, gs[0].xyz), gs[0], base, 0, count, gInbound),
+                        firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, gInbound)),
+                    min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, gInbound),
+                        firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, gInbound)));
+    if (found >= CELLS_PER_PASS) {
+        gU0 = us[(count - 1) / 4][(count - 1) % 4];
+        gG0 = gs[(count - 1) / 4][(count - 1) % 4];
+        gIdx += count;
+        return false;
+    }
+    int prev = max(found - 1, 0);
+    gLo = found == 0 ? gU0 : us[prev / 4][prev % 4];
+    gFlo = found == 0 ? gG0 : gs[prev / 4][prev % 4];
+    gHi = us[found / 4][found % 4];
+    gFhi = gs[found / 4][found % 4];
+    gU0 = gHi;
+    gG0 = gFhi;
+    gIdx += found + 1;
+    gSide = 0;
+    gIter = 0;
+    gC = sign(gZp) * gHi;
+    if (gFhi == 0.0) gIter = -1;   // an exact root: no refinement
+    return true;
+}
+
+// One Illinois step on the bracketed root of G (spacetime::refine_root); true when done.
+bool rootStep() {
+    float m = gFhi != gFlo ? (gLo * gFhi - gHi * gFlo) / (gFhi - gFlo) : 0.5 * (gLo + gHi);
+    if (!(m > gLo && m < gHi)) m = 0.5 * (gLo + gHi);
+    gC = sign(gZp) * m;
+    float fm = shadowG(gRho, gZp, m, gN, gInbound);
+    gIter++;
+    if (fm == 0.0 || gHi - gLo <= 4.0 * 1.1920929e-7 * max(gHi, 1e-30) || gIter >= REFINE_STEPS) return true;
+    if ((fm > 0.0) == (gFhi > 0.0)) { gHi = m; gFhi = fm; if (gSide == 1) gFlo *= 0.5; gSide = 1; }
+    else { gLo = m; gFlo = fm; if (gSide == -1) gFhi *= 0.5; gSide = -1; }
     return false;
+}
+
+// The ray of root gC (spacetime::connect): 0 when it does not count, 1 when it counts
+// unoccluded (gWeight), 2 when its occlusion must be searched (the search is set up).
+int shadowRaySetUp() {
+    float a = u_a;
+    float c = gC;
+    int n = gN;
+    float th = shadowTheta(gRho, c, n, gInbound);
+    float w1 = 1.0 + c * c;
+    float omega = sqrt(w1) / (2.0 * a);
+    float big = bigPhi(sqrt(2.0 / w1), th);
+    float lambda = th / omega;
+    float chi = carg(gP.yz) - big + float(n) * PI;
+    float sinpsi = sqrt(max(1.0 - c * c, 0.0));
+    vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
+    vec4 tg = vec4(1.0, sinpsi * cos(chi), sinpsi * sin(chi), c);
+    vec4 emission = applyIso(gBack, em);
+    if (emission.x < hX.x - u_max_past) return 0;
+    // The ray in the source's axis frame: the closed form from the origin, moved by the
+    // emission time, carried back by the source's isometry (its end then lies on the hit
+    // point to the rounding of one map, not of two).
+    Ray r;
+    r.geo = originGeodesic(tg);
+    if (!r.geo.ok) return 0;
+    r.back = gBack;
+    r.back.t0 -= em.x;
+    r.lret = returnParameter(r.geo);
+    r.shift = vec2(0.0);
+    vec4 xe, kEnd;
+    rayAt(r, 0, lambda, xe, kEnd);
+    vec2 inc = incidence(kEnd);
+    if (!(inc.x > 0.0)) return 0;
+    float d2 = areaDistanceSq(acosA(clamp(c, -1.0, 1.0)), chi, lambda);
+    if (!(d2 > 0.0 && finite(d2))) return 0;
+    gWeight = gPower * inc.y * inc.y * inc.x / (4.0 * PI * d2);
+    // Occlusion: the ray from its emission to just before the lit point (END_CUT),
+    // searched for every object it may come near; the lit object up to the last segment
+    // only (render::lighting: that stretch is nearly a circle arc, which meets a sphere in
+    // two points at most, so light arriving at the lit point from outside has not crossed
+    // the ball there); its whole-ray test over that stretch may drop it (a lit plane always:
+    // z is linear, and the ray meets it at its end).
+    float end = lambda * (1.0 - END_CUT);
+    int segs = int(clamp(ceil(end / (r.lret / float(EXACT_SEGMENTS))), 1.0, 1e5));
+    float last = end * float(segs - 1) / float(segs);
+    bool any = setSearched(gSource, r.geo, end);
+    if (searched[hTarget]) {
+        setSearchedUntil(hTarget, gSource, r.geo, last);
+        any = anySearched();
+    }
+    if (!any) return 1;
+    startSearch(r, 1, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
+    eSkipObj = hTarget;
+    eSkipFrom = last;
+    return 2;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1527,34 +1573,65 @@ void main() {
             float lmax = u_max_past / max(abs(k.x), 1e-30);
             startSearch(r, 1, int(clamp(ceil(lmax), 1.0, 1e5)), lmax, pt, true, tBound);
         }
-        // The pixel's search, then one search per shadow ray: one call of `search`.
-        for (int job = 0; job < MAX_JOBS; job++) {
-            if (run) f = search();
+        // The pixel's search, then one search per shadow ray whose occlusion must be
+        // searched, the shadow rays enumerated between the searches.
+        bool finished = false;
+        bool pixelSearch = true;
+        for (int job = 0; job < MAX_JOBS && !finished; job++) {
+            if (run) {
+                for (int pass = 0; pass < MAX_PASSES && eMode != M_DONE; pass++) searchPass();
+                if (eMode != M_DONE) finish(WORK_LIMIT);
+                f = eResult;
+            }
             run = true;
-            if (job == 0) {
+            if (pixelSearch) {
+                pixelSearch = false;
                 status = f.status;
-                if (f.status != HIT) break;
+                finished = true;
+                if (f.status != HIT) continue;
                 rayAt(r, f.loop_, f.lambda, hX, hK);
                 hTarget = f.target;
                 hAt.tau = f.tau;
                 bool ok = surface();
                 // g = (p·u_obs)/(p·u_emit), the backward ray's momentum at both ends.
                 float g = dot(frame[0], metricAt(obs) * k) / dot(hUemit, metricAt(hX) * hK);
-                if (hX.x < tBound) { status = ESCAPED; break; }
-                if (!ok || !(g > 0.0 && finite(g))) { status = FAILED; break; }
+                if (hX.x < tBound) { status = ESCAPED; continue; }
+                if (!ok || !(g > 0.0 && finite(g))) { status = FAILED; continue; }
                 slots[0] = vec4(float(hTarget), 0.0, hUV);
                 slots[1] = vec4(g, hX.x, f.lambda + float(f.loop_) * r.lret, hCos);
                 slots[2].xyz = hX.yzw;
                 slots[3].xyz = hDir;
-                if (!godel() || u_lights == 0) break;
+                if (!godel() || u_lights == 0) continue;
+                finished = false;
                 gLight = 0;
-                gIdx = 0;
+                gIdx = -1;
             } else if (f.status == WORK_LIMIT) {
                 gFailed = true;
             } else if (f.status != HIT) {
                 gSum += gWeight;
             }
-            if (!nextShadowRay()) break;
+            // On to the next ray whose occlusion must be searched.
+            finished = true;
+            for (int pass = 0; pass < MAX_PASSES && gLight < u_lights; pass++) {
+                if (gIdx < 0) {
+                    if (!startLight()) endLight();
+                } else if (gIdx >= gTotal || gFailed) {
+                    endLight();
+                    gIdx = -1;
+                } else if (gridPass()) {
+                    for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
+                        if (rootStep()) break;
+                    }
+                    int use = shadowRaySetUp();
+                    if (use == 1) gSum += gWeight;
+                    if (use == 2) { finished = false; break; }
+                }
+            }
+        }
+        if (!finished) {
+            // Out of passes: the pixel is out of work, or the lights not yet summed unknown.
+            if (pixelSearch) status = WORK_LIMIT;
+            for (int li = 0; li < N_LIGHTS; li++) if (li >= gLight && li < u_lights) setLight(li, -1.0);
         }
     }
     // llvmpipe ends every loop of a shader once its loops have run 65535 passes in all (its
