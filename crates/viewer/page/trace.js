@@ -17,8 +17,10 @@ import { VERTEX } from './shaders.js';
 
 // The kernel's statuses (datafile::record::RayStatus codes).
 const HIT = 0;
-// What one draw should take, and its side's bounds, in samples.
-const DRAW_MS = 60;
+// What one draw should take (each draw is waited for: long enough that the wait costs little,
+// measured on SwiftShader; short enough for GPU watchdogs and a responsive page), and its
+// side's bounds, in samples.
+const DRAW_MS = 250;
 const MIN_SIDE = 8;
 const MAX_SIDE = 256;
 const FIRST_SIDE = 16;

@@ -2,7 +2,8 @@
 // parameter ?trace=gpu) makes the page trace the data file's own scene with the exact
 // tracer's kernel (trace.js, in WebGL2) and shade that frame instead of the file's: every
 // layer and control works on it as on the file's, and the header says how long it took.
-// Switching back fetches the file's channels again. Hover still shows the file's records.
+// Unchecking it stops a trace under way and fetches the file's channels again. Hover still
+// shows the file's records.
 'use strict';
 
 import { KernelTracer } from './trace.js';
@@ -29,7 +30,7 @@ export function startTraced(viewer) {
   viewer.traced = state;
 
   const show = async (on) => {
-    if (state.tracing) return;
+    if (state.tracing) return; // unchecked while tracing: the trace stops after its draw
     if (!on) {
       viewer.showFileFrame();
       status.textContent = 'showing the data file\u2019s frame';
@@ -49,6 +50,7 @@ export function startTraced(viewer) {
         progress: (done, total) => {
           status.textContent = `tracing on the GPU: ${Math.round(100 * done / total)} %`;
         },
+        cancelled: () => !box.checked,
       });
       if (state.traced) state.traced.slots.forEach((t) => gl.deleteTexture(t));
       state.traced = traced;
@@ -59,8 +61,10 @@ export function startTraced(viewer) {
       status.textContent = `${rays} rays in ${ms} ms (${Math.round(rays / traced.traceMs * 1e3)}`
         + ` rays/s; kernel compiled in ${Math.round(traced.compileMs)} ms)`;
     } catch (e) {
-      state.error = e.message || String(e);
-      viewer.showError(`cannot trace on the GPU: ${state.error}`);
+      if (box.checked) {
+        state.error = e.message || String(e);
+        viewer.showError(`cannot trace on the GPU: ${state.error}`);
+      }
       status.textContent = 'showing the data file\u2019s frame';
       box.checked = false;
       viewer.showFileFrame();
