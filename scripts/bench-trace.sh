@@ -33,6 +33,7 @@ trap 'stop; rm -rf "$work"' EXIT
 echo "# cpu: $(uptime)"
 "$godel" render "$scene" --method exact --samples 1 --width "$width" --height "$height" \
     --name bench -o "$work"
+: >"$work/server.log"
 "$godel" view "$work/bench.exr" --port 0 >"$work/server.log" 2>"$work/server.err" &
 server=$!
 url=""

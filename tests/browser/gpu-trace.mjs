@@ -5,9 +5,10 @@
 // usage: node gpu-trace.mjs URL OUT_DIR [URL…] [--shade]
 //   For the K-th URL (`godel view` of a data file) writes OUT_DIR/trace-K.json ({width,
 //   height, slots, traceMs, compileMs, header}) and trace-K-slot-S.f32 (RGBA32F, grid row 0
-//   first). With --shade, also the picture shaded from the traced frame (trace-K-gpu.rgba),
-//   from the file's frame (trace-K-file.rgba), and the canvas showing the traced frame
-//   (trace-K-canvas.rgba), with every layer on. Prints {requests, console_errors}.
+//   first). With --shade, for the first URL also the picture shaded from the traced frame
+//   (trace-0-gpu.rgba), from the file's frame (trace-0-file.rgba), and the canvas showing the
+//   traced frame (trace-0-canvas.rgba), with every layer on. Prints {requests,
+//   console_errors}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, idle, savePicture } from './launch.mjs';
@@ -49,7 +50,7 @@ try {
     writeFileSync(join(outDir, `trace-${k}.json`), JSON.stringify({ width: slots.width,
       height: slots.height, slots: slots.slots.length, traceMs: slots.traceMs,
       compileMs: slots.compileMs, header }));
-    if (shade) {
+    if (shade && k === 0) {
       await page.evaluate(() => {
         const v = window.godelViewer;
         v.settings.shaders = ['texture', 'frequency', 'time', 'light']

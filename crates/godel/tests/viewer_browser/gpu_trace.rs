@@ -8,7 +8,7 @@
 //! samples (docs/physics.md, "The GPU kernel", says why single precision holds these). The
 //! traced slots are read back by the test script only; the page shades them where they are.
 //!
-//! And the traced frame is shaded as a data file's frame is: with every layer on, the page's
+//! And a traced frame is shaded as a data file's frame is: with every layer on, the page's
 //! picture of it equals the `shade` crate's picture of the traced records within one 8-bit
 //! step (the conversion into the shading's channels loses nothing), it is on the canvas, and
 //! it matches the picture of the file's own frame but where the two tracers' records differ.
@@ -22,9 +22,10 @@ use shade::{ShadeSettings, Shading};
 
 /// Example scenes and the sizes they are traced at here (SwiftShader is slow): free fall
 /// with 2×2 samples a pixel, light, a shadow, the observer inside a sphere.
+/// The first is also shaded.
 const CASES: [(&str, u32, u32); 4] = [
-    ("reference", 110, 13),
     ("lit-side", 180, 20),
+    ("reference", 110, 13),
     ("lit-shadow", 180, 20),
     ("surroundings", 120, 30),
 ];
@@ -186,13 +187,15 @@ fn render_and_serve(
 }
 
 #[test]
-fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does() {
+fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades_them() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
     let (files, servers, urls) = render_and_serve(dir.path(), &CASES);
     let out = dir.path().join("browser");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("gpu-trace.mjs", &urls[0], &out, &urls[1..]);
+    let mut args = urls[1..].to_vec();
+    args.push("--shade".into());
+    let seen = run_script("gpu-trace.mjs", &urls[0], &out, &args);
     drop(servers);
     assert_eq!(seen["console_errors"], serde_json::json!([]));
     let requests = seen["requests"].as_array().unwrap();
@@ -246,22 +249,14 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does() {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+    assert_shaded_as_a_files_frame(&out, &files[0]);
 }
 
-#[test]
-fn a_frame_traced_in_the_page_is_shaded_as_a_data_files_frame() {
-    require_browser_tools();
-    let dir = tempfile::tempdir().unwrap();
-    let cases = [("lit-side", 180, 20)];
-    let (files, servers, urls) = render_and_serve(dir.path(), &cases);
-    let out = dir.path().join("browser");
-    std::fs::create_dir(&out).unwrap();
-    let seen = run_script("gpu-trace.mjs", &urls[0], &out, &["--shade".to_string()]);
-    drop(servers);
-    assert_eq!(seen["console_errors"], serde_json::json!([]));
-
-    let data = DataFile::read(&files[0]).unwrap();
-    let (w, h, slots, _) = read_slots(&out, 0);
+/// The frame the script traced first and shaded with every layer on (`--shade`), against the
+/// `shade` crate's picture of its records and the page's picture of the data file `file`.
+fn assert_shaded_as_a_files_frame(out: &Path, file: &Path) {
+    let data = DataFile::read(file).unwrap();
+    let (w, h, slots, _) = read_slots(out, 0);
     let (records, lights) = decode(&slots, w * h, data.lights.len());
     let traced = DataFile {
         records,
