@@ -22,7 +22,8 @@ async function traced() {
     return t && !t.tracing && (t.traced !== null || t.error !== null);
   }, null, { timeout: 0, polling: 200 });
   await idle(page);
-  const error = await page.evaluate(() => window.godelViewer.error);
+  const error = await page.evaluate(() => window.godelViewer.traced?.error
+    ?? window.godelViewer.error);
   if (error !== null) throw new Error(error);
   return page.evaluate(() => {
     const t = window.godelViewer.traced.traced;

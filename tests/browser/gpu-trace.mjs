@@ -8,7 +8,8 @@
 //   first). With --shade, for the first URL also the picture shaded from the traced frame
 //   (trace-0-gpu.rgba), from the file's frame (trace-0-file.rgba), and the canvas showing the
 //   traced frame (trace-0-canvas.rgba), with every layer on. Prints {requests,
-//   console_errors}.
+//   console_errors, without_float_targets}: the latter what the page shows for the first URL
+//   where WebGL2 cannot draw into float textures (EXT_color_buffer_float withheld).
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, idle, savePicture } from './launch.mjs';
@@ -67,6 +68,24 @@ try {
         header: await page.evaluate(() => document.getElementById('file').textContent) });
     }
   }
+  // A WebGL2 that cannot draw into float textures: the page says so, and shows the file's frame.
+  const bare = await context.newPage();
+  await bare.addInitScript(() => {
+    const get = WebGL2RenderingContext.prototype.getExtension;
+    WebGL2RenderingContext.prototype.getExtension = function (name) {
+      return name === 'EXT_color_buffer_float' ? null : get.call(this, name);
+    };
+  });
+  await bare.goto(`${first}?trace=gpu`);
+  await bare.waitForFunction(() => window.godelViewer && window.godelViewer.traced
+    && window.godelViewer.traced.error !== null, null, { timeout: 60000 });
+  await idle(bare);
+  result.without_float_targets = await bare.evaluate(() => ({
+    error: document.getElementById('trace-status').textContent,
+    checked: document.getElementById('trace-gpu').checked,
+    header: document.getElementById('file').textContent,
+    frames: window.godelViewer.frames,
+  }));
   result.requests = requests;
   result.console_errors = consoleErrors;
 } finally {

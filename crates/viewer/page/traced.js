@@ -38,6 +38,7 @@ export function startTraced(viewer) {
     }
     state.tracing = true;
     state.error = null;
+    status.classList.remove('failed');
     viewer.hold(true);
     try {
       const gl = viewer.gpu().gl;
@@ -61,11 +62,15 @@ export function startTraced(viewer) {
       status.textContent = `${rays} rays in ${ms} ms (${Math.round(rays / traced.traceMs * 1e3)}`
         + ` rays/s; kernel compiled in ${Math.round(traced.compileMs)} ms)`;
     } catch (e) {
+      // Said in the panel (the page's error line clears with the next picture drawn).
       if (box.checked) {
         state.error = e.message || String(e);
-        viewer.showError(`cannot trace on the GPU: ${state.error}`);
+        status.textContent = `cannot trace on the GPU: ${state.error}; showing the data `
+          + 'file\u2019s frame';
+        status.classList.add('failed');
+      } else {
+        status.textContent = 'showing the data file\u2019s frame';
       }
-      status.textContent = 'showing the data file\u2019s frame';
       box.checked = false;
       viewer.showFileFrame();
     } finally {

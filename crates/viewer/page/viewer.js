@@ -453,7 +453,6 @@ const base64 = (bytes) => {
 viewer.readPicture = () => { const p = gpu.readShaded(); return { ...p, bytes: base64(p.bytes) }; };
 viewer.readCanvas = () => { const p = gpu.readCanvas(); return { ...p, bytes: base64(p.bytes) }; };
 viewer.base64 = base64;
-viewer.showError = showError;
 // Fixes the canvas at w × h pixels (null: back to the layout).
 viewer.setViewSize = (w, h) => { fixedSize = w ? [w, h] : null; layout(); };
 // The settings and view the server would shade for "Save PNG".

@@ -12,6 +12,7 @@
 //! picture of it equals the `shade` crate's picture of the traced records within one 8-bit
 //! step (the conversion into the shading's channels loses nothing), it is on the canvas, and
 //! it matches the picture of the file's own frame but where the two tracers' records differ.
+//! Where WebGL2 cannot draw into float textures the page says so and shows the file's frame.
 
 use std::path::Path;
 
@@ -250,6 +251,21 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
     }
     assert!(failures.is_empty(), "{failures:#?}");
     assert_shaded_as_a_files_frame(&out, &files[0]);
+
+    // Without float render targets the page says why it cannot trace, and shows the file's
+    // frame.
+    let bare = &seen["without_float_targets"];
+    let error = bare["error"].as_str().unwrap();
+    assert!(
+        error.contains("cannot trace on the GPU") && error.contains("EXT_color_buffer_float"),
+        "{error}"
+    );
+    assert_eq!(bare["checked"], false);
+    assert!(!bare["header"]
+        .as_str()
+        .unwrap()
+        .contains("traced on the GPU"));
+    assert!(bare["frames"].as_u64().unwrap() > 0);
 }
 
 /// The frame the script traced first and shaded with every layer on (`--shade`), against the
