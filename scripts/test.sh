@@ -11,6 +11,10 @@ cd "$(dirname "$0")/.."
 command -v chromium >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null; }
 [ -d tests/browser/node_modules/playwright-core ] || (cd tests/browser && npm ci --silent --no-audit --no-fund)
+# `godel render --gpu` (crates/gpu) loads libEGL at run time; without a GPU, Mesa's llvmpipe
+# renders its OpenGL ES 3 context in software (crates/gpu/tests, crates/godel/tests/gpu_cli.rs).
+dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || { apt-get update -qq \
+    && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null; }
 
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet

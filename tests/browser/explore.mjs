@@ -5,7 +5,9 @@
 //
 // usage: node explore.mjs URL OUT_DIR T
 // Writes OUT_DIR/before.rgba and OUT_DIR/after.rgba (+ .json), and prints {before, after,
-// panel_hidden, status, play_log, paused, paused_t, requests, console_errors, error}.
+// saved (the size of the PNG "Save PNG" downloads after the move), panel_hidden, status,
+// play_log, paused, paused_t, requests, console_errors, error}.
+import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import { launch, open, savePicture, fullFrame } from './launch.mjs';
 
@@ -25,6 +27,11 @@ try {
   await page.locator('#explore-t').fill(t);
   result.after = await fullFrame(page, result.before.generation);
   await savePicture(page, join(outDir, 'after.rgba'));
+  // "Save PNG" of the frame on screen (issue 24: it gave the first coarse frame).
+  const [download] = await Promise.all([page.waitForEvent('download'),
+    page.locator('#save-png').click()]);
+  const png = await readFile(await download.path());
+  result.saved = { width: png.readUInt32BE(16), height: png.readUInt32BE(20) };
   result.status = await page.evaluate(() => document.getElementById('explore-status').textContent);
   // Play (rate 2 t per second) until four frames are taken, logging the shading passes run
   // when each is taken; then Pause, which asks for the full frame of where time stopped.

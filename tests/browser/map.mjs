@@ -70,8 +70,11 @@ const rayPixels = () => page.evaluate(() => {
 // the map's ray, and the ray-coloured pixels of the map before, during and after.
 async function hover(frame) {
   const seen = {};
-  seen.record = await page.evaluate(([c, r]) => fetch(`/api/pixel?col=${c}&row=${r}`)
-    .then((x) => x.json()), [col, row]);
+  // The record of the frame on screen, named as the page names it.
+  seen.record = await page.evaluate(([c, r]) => {
+    const shown = window.godelViewer.frameQuery();
+    return fetch(`/api/pixel${shown ? `${shown}&` : '?'}col=${c}&row=${r}`).then((x) => x.json());
+  }, [col, row]);
   seen.ray_pixels_before = await rayPixels();
   // The picture fills the canvas (fitted).
   const box = await page.locator('#image').boundingBox();

@@ -10,8 +10,18 @@
 //! - [`stage`], [`stage_via_path`], then [`commit_all`]: several files that belong
 //!   together (a render's EXR and PNG) are all written to temporaries first and
 //!   renamed only when every one is complete, one rename right after the other.
-//! - [`check_writable`]: creates and removes the temporary a later write would
-//!   use, so that an unwritable folder or a name too long is found before any work.
+//! - [`check_writable`], [`check_all_writable`]: every target a later write will
+//!   replace, checked before any work: not a folder, not read-only, a name the file
+//!   system takes, in a folder where the temporary can be created (made and removed).
+//!
+//! **One unit.** [`commit_all`] holds an exclusive lock on each target's folder
+//! (`flock` on the folder itself, so no lock file is left behind) while it renames,
+//! so two processes committing into the same names at once end with all the files of
+//! one of them, never a mix. Under the lock every target is checked again, the old
+//! content of each existing target is kept (a hard link under a temporary's name),
+//! and if a rename fails the targets already renamed get their old content back (or
+//! are removed where there was none): the set is replaced whole or not at all. A
+//! read-only target is never replaced (a rename would do it silently).
 //!
 //! Temporary files are named `.NAME.godel-PID-HOST.XXXXXX.tmp` (hidden, beside
 //! the target, so the rename never crosses a file system) and are kept in a
@@ -32,6 +42,14 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
 use tempfile::NamedTempFile;
+
+/// Most bytes of the target's name kept in its temporary's name: a legal name of up to
+/// [`MAX_NAME_BYTES`] still gets a temporary name the file system takes (the rest of it,
+/// `.` `.godel-PID-HOST.XXXXXX.tmp`, adds at most 62 bytes).
+const NAME_BYTES_IN_TEMPORARY: usize = 100;
+
+/// Longest file name, in bytes (NAME_MAX of Linux and most Unix file systems).
+pub const MAX_NAME_BYTES: usize = 255;
 
 /// Temporary files that exist now.
 static LIVE: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
@@ -120,33 +138,164 @@ pub fn stage_via_path(
 }
 
 /// Renames every staged file onto its target, in order, with nothing in between
-/// (and no signal cleanup: it waits until all are renamed). On an error the
-/// temporaries not yet renamed are removed and the error is returned.
+/// (and no signal cleanup: it waits until all are renamed), under the folders' locks:
+/// all the targets are replaced or none is (see the module documentation). On an
+/// error the temporaries are removed, the targets keep their old content, and the
+/// error is returned.
 pub fn commit_all(staged: Vec<Staged>) -> io::Result<()> {
+    commit_all_with(staged, || {})
+}
+
+/// [`commit_all`], calling `between` after each rename but the last (a testing hook:
+/// a pause there shows that no other process can slip its files in between).
+pub fn commit_all_with(staged: Vec<Staged>, between: impl Fn()) -> io::Result<()> {
+    // The folders first: waiting for another process must not hold up the signal
+    // handler, which waits for `COMMIT` (and then removes these temporaries).
+    let _folders = lock_folders(&staged);
     let _renaming = lock(&COMMIT);
-    for mut s in staged {
+    for s in &staged {
+        check_replaceable(&s.target)?;
+    }
+    let mut kept = Vec::with_capacity(staged.len());
+    for s in &staged {
+        kept.push(keep_old(&s.target)?);
+    }
+    let last = staged.len().saturating_sub(1);
+    for (k, mut s) in staged.into_iter().enumerate() {
         if let Some(temp) = s.temp.take() {
             let path = temp.path().to_path_buf();
             // On failure the temporary comes back in the error and is removed with it.
             let result = temp.persist(&s.target).map(|_| ()).map_err(|e| e.error);
             lock(&LIVE).remove(&path);
-            result?;
+            if let Err(e) = result {
+                roll_back(&mut kept[..k]);
+                return Err(e);
+            }
+        }
+        if k < last {
+            between();
         }
     }
     Ok(())
 }
 
-/// Checks that `path` can be written: it is not a directory, and the temporary
-/// file of a write can be created beside it (the folder exists and is writable,
-/// the names are not too long). The probe is removed again.
-pub fn check_writable(path: &Path) -> io::Result<()> {
-    if path.is_dir() {
-        return Err(io::Error::new(
+/// The old content of a target, kept while its set is committed.
+struct Kept {
+    target: PathBuf,
+    /// A hard link to (or copy of) the old file under a temporary's name; `None` where
+    /// the target did not exist. Removed on drop.
+    old: Option<NamedTempFile<()>>,
+}
+
+/// Keeps the old content of `target`, if it exists.
+fn keep_old(target: &Path) -> io::Result<Kept> {
+    if std::fs::symlink_metadata(target).is_err() {
+        return Ok(Kept {
+            target: target.to_path_buf(),
+            old: None,
+        });
+    }
+    let prefix = temp_prefix(target)?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    let old = builder.make_in(folder_of(target), |path| {
+        // A hard link costs nothing; a copy where the file system has none.
+        std::fs::hard_link(target, path).or_else(|_| std::fs::copy(target, path).map(|_| ()))
+    });
+    Ok(Kept {
+        target: target.to_path_buf(),
+        old: Some(old.map_err(without_temp_path)?),
+    })
+}
+
+/// Gives the targets of `renamed` their old content back (removes those that had none).
+/// Best effort: the rename that failed is the error reported.
+fn roll_back(renamed: &mut [Kept]) {
+    for kept in renamed.iter_mut().rev() {
+        match kept.old.take() {
+            Some(old) => {
+                let _ = old.persist(&kept.target);
+            }
+            None => {
+                let _ = std::fs::remove_file(&kept.target);
+            }
+        }
+    }
+}
+
+/// Exclusive locks on the folders of `staged`'s targets, taken in a fixed order (no two
+/// processes wait for each other), held until dropped. A folder that cannot be opened or
+/// locked (a file system without `flock`) is written without: the lock only orders
+/// godel's own processes.
+fn lock_folders(staged: &[Staged]) -> Vec<File> {
+    let folders: BTreeSet<PathBuf> = staged
+        .iter()
+        .map(|s| {
+            let dir = folder_of(&s.target);
+            std::fs::canonicalize(&dir).unwrap_or(dir)
+        })
+        .collect();
+    folders
+        .into_iter()
+        .filter_map(|dir| File::open(dir).ok())
+        .filter(|f| f.lock().is_ok())
+        .collect()
+}
+
+/// Refuses a target that a rename must not replace: a folder, or a read-only file (a
+/// rename replaces it silently, whatever its permissions say); a name longer than the
+/// file system takes.
+fn check_replaceable(path: &Path) -> io::Result<()> {
+    let refuse = |why: String| Err(io::Error::new(io::ErrorKind::InvalidInput, why));
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(
             io::ErrorKind::InvalidInput,
-            format!("{} is a directory", path.display()),
+            format!("{} does not name a file", path.display()),
+        )
+    })?;
+    if name.len() > MAX_NAME_BYTES {
+        return refuse(format!(
+            "the file name is {} bytes long, more than the {MAX_NAME_BYTES} a file system takes",
+            name.len()
         ));
     }
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Ok(());
+    };
+    if meta.is_dir() {
+        return refuse("it is a directory".into());
+    }
+    if meta.is_file() && meta.permissions().readonly() {
+        return refuse(
+            "it is read-only, and a read-only file is never replaced (make it writable, or \
+             write elsewhere)"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Checks that `path` can be written: it is not a directory or a read-only file, its name
+/// is not too long, and the temporary file of a write can be created beside it (the folder
+/// exists and is writable). The probe is removed again.
+pub fn check_writable(path: &Path) -> io::Result<()> {
+    check_replaceable(path)?;
     drop(temp_file_for(path)?);
+    Ok(())
+}
+
+/// [`check_writable`] for many paths (every frame of a sequence), one probe per folder; the
+/// error names the path (`PATH: why`).
+pub fn check_all_writable<P: AsRef<Path>>(paths: &[P]) -> io::Result<()> {
+    let mut probed = HashSet::new();
+    for path in paths {
+        let path = path.as_ref();
+        let mut checked = check_replaceable(path);
+        if checked.is_ok() && probed.insert(folder_of(path)) {
+            checked = temp_file_for(path).map(drop);
+        }
+        checked.map_err(|e| io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
+    }
     Ok(())
 }
 
@@ -179,22 +328,36 @@ impl Staged {
     }
 }
 
-/// A new, registered temporary file in the directory of `path`.
-fn temp_file_for(path: &Path) -> io::Result<Staged> {
-    let dir = match path.parent() {
+/// The folder of `path` (`.` for a bare name).
+fn folder_of(path: &Path) -> PathBuf {
+    match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
         _ => PathBuf::from("."),
-    };
+    }
+}
+
+/// The name prefix of `path`'s temporaries, `.NAME.godel-PID-HOST.` (then `XXXXXX.tmp`),
+/// NAME cut to [`NAME_BYTES_IN_TEMPORARY`] bytes.
+fn temp_prefix(path: &Path) -> io::Result<String> {
     let name = path.file_name().ok_or_else(|| {
         io::Error::new(
             io::ErrorKind::InvalidInput,
             format!("{} does not name a file", path.display()),
         )
     })?;
+    let name = name.to_string_lossy();
+    let mut end = name.len().min(NAME_BYTES_IN_TEMPORARY);
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    Ok(format!(".{}.{}.", &name[..end], owner_tag()))
+}
+
+/// A new, registered temporary file in the directory of `path`.
+fn temp_file_for(path: &Path) -> io::Result<Staged> {
+    let dir = folder_of(path);
+    let prefix = temp_prefix(path)?;
     sweep_once(&dir);
-    let mut prefix = std::ffi::OsString::from(".");
-    prefix.push(name);
-    prefix.push(format!(".{}.", owner_tag()));
     let mut builder = tempfile::Builder::new();
     builder.prefix(&prefix).suffix(".tmp");
     // Temporary files are created private (0600); the output should get the

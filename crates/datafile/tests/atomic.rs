@@ -4,7 +4,8 @@
 //! PNG; `.NAME.XXXXXX.tmp` files stayed forever).
 
 use datafile::atomic::{
-    check_writable, commit_all, live_temporaries, owner_of, stage, write_atomically,
+    check_all_writable, check_writable, commit_all, commit_all_with, live_temporaries, owner_of,
+    stage, write_atomically, MAX_NAME_BYTES,
 };
 use std::io::Write;
 use std::path::Path;
@@ -55,13 +56,16 @@ fn staged_files_appear_only_when_all_are_committed() {
 #[test]
 fn unwritable_targets_are_found_up_front_and_leave_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    // Missing folder, a directory in the target's place, a name too long for its temporary.
+    // Missing folder, a directory in the target's place, a name too long for the file system.
     assert!(check_writable(&dir.path().join("absent/x.png")).is_err());
     std::fs::create_dir(dir.path().join("x.png")).unwrap();
     let e = check_writable(&dir.path().join("x.png")).unwrap_err();
     assert!(e.to_string().contains("is a directory"), "{e}");
-    let long = dir.path().join(format!("{}.png", "n".repeat(240)));
-    assert!(check_writable(&long).is_err());
+    let long = dir
+        .path()
+        .join(format!("{}.png", "n".repeat(MAX_NAME_BYTES - 3)));
+    let e = check_writable(&long).unwrap_err();
+    assert!(e.to_string().contains("256 bytes long"), "{e}");
     assert!(check_writable(&dir.path().join("fine.png")).is_ok());
     assert_eq!(names(dir.path()), ["x.png"]);
     #[cfg(unix)]
@@ -112,4 +116,79 @@ fn temporaries_of_dead_processes_on_this_host_are_swept() {
     let mut expect = vec![alive, elsewhere, foreign, "new.png".to_string()];
     expect.sort();
     assert_eq!(names(&sub), expect);
+}
+
+/// Issue 24: a legal name of 250 bytes was refused because the hidden temporary's name
+/// (the name and 60 more bytes) is longer than the file system takes.
+#[test]
+fn a_long_legal_name_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let name = format!("{}.png", "é".repeat(123)); // 250 bytes, a temporary cut mid-letter
+    assert_eq!(name.len(), 250);
+    let path = dir.path().join(&name);
+    check_writable(&path).unwrap();
+    write_atomically(&path, |f| f.write_all(b"png")).unwrap();
+    assert_eq!(names(dir.path()), [name]);
+}
+
+/// Issue 24: a read-only file was silently replaced by a rename (permissions guard writes
+/// into a file, not its replacement).
+#[cfg(unix)]
+#[test]
+fn a_read_only_target_is_refused_and_kept() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let ro = dir.path().join("kept.png");
+    std::fs::write(&ro, b"mine").unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let e = check_writable(&ro).unwrap_err();
+    assert!(e.to_string().contains("read-only"), "{e}");
+    let e = check_all_writable(&[dir.path().join("fine.exr"), ro.clone()]).unwrap_err();
+    assert!(e.to_string().contains("read-only"), "{e}");
+    // Found again at the commit (it may turn read-only after the check), with nothing renamed.
+    let other = dir.path().join("other.exr");
+    let staged = vec![
+        stage(&other, |f| f.write_all(b"new")).unwrap(),
+        stage(&ro, |f| f.write_all(b"new")).unwrap(),
+    ];
+    let e = commit_all(staged).unwrap_err();
+    assert!(e.to_string().contains("read-only"), "{e}");
+    assert_eq!(std::fs::read(&ro).unwrap(), b"mine");
+    assert_eq!(names(dir.path()), ["kept.png"]);
+}
+
+/// Issue 24: when a later rename of a set fails, the files already renamed get their old
+/// content back (a new file is removed): the set is replaced whole or not at all.
+#[test]
+fn a_failed_rename_rolls_the_set_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let (exr, png, new) = (
+        dir.path().join("a.exr"),
+        dir.path().join("a.png"),
+        dir.path().join("a.json"),
+    );
+    std::fs::write(&exr, b"old exr").unwrap();
+    std::fs::write(&png, b"old png").unwrap();
+    let staged = vec![
+        stage(&exr, |f| f.write_all(b"new exr")).unwrap(),
+        stage(&new, |f| f.write_all(b"new json")).unwrap(),
+        stage(&png, |f| f.write_all(b"new png")).unwrap(),
+    ];
+    // After the first renames, the PNG's place becomes a folder that no rename replaces.
+    let renamed = std::cell::Cell::new(0);
+    let result = commit_all_with(staged, || {
+        renamed.set(renamed.get() + 1);
+        if renamed.get() == 2 {
+            assert_eq!(std::fs::read(&exr).unwrap(), b"new exr");
+            std::fs::remove_file(&png).unwrap();
+            std::fs::create_dir_all(png.join("inside")).unwrap();
+        }
+    });
+    assert!(result.is_err());
+    assert_eq!(std::fs::read(&exr).unwrap(), b"old exr");
+    assert!(!new.exists(), "a file new in the failed set stays");
+    assert_eq!(names(dir.path()), ["a.exr", "a.png"]);
+    assert!(!live_temporaries()
+        .iter()
+        .any(|p| p.parent() == Some(dir.path())));
 }

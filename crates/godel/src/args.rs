@@ -72,8 +72,52 @@ pub fn positive(flag: &str, v: f64) -> anyhow::Result<f64> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(usage(flag, format!("must be positive and finite, got {v}")))
+        Err(usage(
+            flag,
+            format!("must be positive and finite, got {}", scene::short(v)),
+        ))
     }
+}
+
+/// Checks the Gödel parameter `--a`: positive, within the range scenes allow
+/// ([`scene::A_RANGE`]).
+pub fn scale_a(flag: &str, a: f64) -> anyhow::Result<f64> {
+    let a = positive(flag, a)?;
+    let (lo, hi) = scene::A_RANGE;
+    if !(lo..=hi).contains(&a) {
+        return Err(usage(
+            flag,
+            format!(
+                "{} is outside [{lo:e}, {hi:e}], as in scenes (spacetime.a): the metric loses \
+                 the precision of f64 there",
+                scene::short(a)
+            ),
+        ));
+    }
+    Ok(a)
+}
+
+/// Checks the coordinates of an event or position given with `flag` (named `names`, e.g.
+/// `t`, `R`, `phi`, `z`): each within ±[`scene::MAX_COORDINATE_PER_A`]·a as in scenes (an
+/// angle within ±that number of radians).
+pub fn coordinates(flag: &str, names: &[&str], values: &[f64], a: f64) -> anyhow::Result<()> {
+    for (name, &v) in names.iter().zip(values) {
+        let bound = match *name {
+            "phi" => scene::MAX_COORDINATE_PER_A,
+            _ => scene::MAX_COORDINATE_PER_A * a,
+        };
+        if v.abs() > bound {
+            return Err(usage(
+                flag,
+                format!(
+                    "{name} = {} is beyond ±{bound:e}, as in scenes (1e6 times the scale a): \
+                     the tracer loses precision there",
+                    scene::short(v)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Most worker threads per core: more only adds switching and memory, never speed.
@@ -148,6 +192,27 @@ mod tests {
             let e = threads("--threads", bad).unwrap_err();
             assert!(e.to_string().starts_with("--threads: "), "{e}");
         }
+    }
+
+    #[test]
+    fn the_scale_and_coordinates_have_the_ranges_of_scenes() {
+        assert_eq!(scale_a("--a", 2.0).unwrap(), 2.0);
+        for bad in [1e-300, 1e300, 0.0, -1.0] {
+            let e = scale_a("--a", bad).unwrap_err().to_string();
+            assert!(e.starts_with("--a: ") && e.len() < 200, "{e}");
+        }
+        let names = ["t", "R", "phi", "z"];
+        coordinates("--at", &names, &[1e6, 0.5, -1e6, 0.0], 1.0).unwrap();
+        let e = coordinates("--at", &names, &[1e300, 0.0, 0.0, 0.0], 1.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--at: t = 1e300 is beyond ±1e6, as in scenes (1e6 times the scale a): the tracer \
+             loses precision there"
+        );
+        assert!(coordinates("--at", &names, &[0.0, 0.0, 2e6, 0.0], 1.0).is_err());
+        // Lengths scale with a; angles do not.
+        coordinates("--at", &names, &[0.0, 0.0, 0.0, 5e6], 10.0).unwrap();
+        assert!(coordinates("--at", &names, &[0.0, 0.0, 2e6, 0.0], 10.0).is_err());
     }
 
     #[test]

@@ -15,8 +15,9 @@
 //! (the opposite of its propagation). Static source and static receiver see no frequency
 //! shift (g = 1: ∂t is a Killing field of unit norm), so none is printed.
 
-use crate::args::{parse_vector, positive, usage, Format};
+use crate::args::{coordinates, parse_vector, scale_a, usage, Format};
 use anyhow::Context;
+use scene::short;
 use serde_json::json;
 use spacetime::{
     measure, shadow_rays, source_area_distance_sq, Branch, Cylindrical, Event, ExactGeodesic,
@@ -86,15 +87,20 @@ fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
 
 /// Finds and checks every connecting ray for the arguments.
 pub fn connect(args: &ConnectArgs) -> anyhow::Result<Answer> {
-    let a = positive("--a", args.a)?;
+    let a = scale_a("--a", args.a)?;
     let [t, r, phi, z] = parse_vector::<4>("--from", &args.from)?;
     if r < 0.0 {
-        return Err(usage("--from", format!("R must be ≥ 0, got {r}")));
+        return Err(usage("--from", format!("R must be ≥ 0, got {}", short(r))));
     }
+    coordinates("--from", &["t", "R", "phi", "z"], &[t, r, phi, z], a)?;
     let [sr, sphi, sz] = parse_vector::<3>("--to-source", &args.to_source)?;
     if sr < 0.0 {
-        return Err(usage("--to-source", format!("R must be ≥ 0, got {sr}")));
+        return Err(usage(
+            "--to-source",
+            format!("R must be ≥ 0, got {}", short(sr)),
+        ));
     }
+    coordinates("--to-source", &["R", "phi", "z"], &[sr, sphi, sz], a)?;
     if args.windings > 1000 {
         return Err(usage(
             "--windings",

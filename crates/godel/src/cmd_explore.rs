@@ -21,11 +21,12 @@ use render::plan::Plan;
 use render::tiles::Assembler;
 use scene::Scene;
 use toml::Table;
-use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
+use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEMORY};
 use viewer::kernel_routes::KernelInput;
 
 use crate::args::{thread_pool, usage};
 use crate::flight::section;
+use crate::memory;
 use crate::serve::{load_error, ServeArgs};
 
 /// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).
@@ -193,6 +194,47 @@ impl FrameSource for SceneFrames {
     }
 }
 
+/// Bytes explore holds per ray of a full frame, at most: the record in each of the
+/// [`FRAMES_IN_MEMORY`] frames it may have in memory, and the shading channels (about half a
+/// record) of one of them, made when a picture of it is saved.
+fn bytes_per_ray(scene: &Scene) -> u64 {
+    let record = memory::record_bytes(scene.lights.len());
+    FRAMES_IN_MEMORY * record + record / 2
+}
+
+/// Refuses, before anything is traced, frames whose memory explore cannot hold (the
+/// frame's size named: `--sphere W`, or the scene's camera and samples).
+fn check_memory(scene: &Scene, sphere: Option<u32>) -> anyhow::Result<()> {
+    let camera = &scene.camera;
+    let rays = u64::from(camera.width()) * u64::from(camera.height()) * u64::from(scene.samples);
+    let per_ray = bytes_per_ray(scene);
+    let (flag, what, fits) = match sphere {
+        Some(width) => {
+            // The widest sphere within the budget: W × W/2 rays.
+            let most = ((2 * memory::budget() / per_ray) as f64).sqrt() as u32 & !1;
+            let fits = (most >= 8).then(|| format!("--sphere {}", most.min(MAX_SPHERE_WIDTH)));
+            (
+                format!("--sphere {width}"),
+                "exploring a sphere of that width",
+                fits,
+            )
+        }
+        None => (
+            format!(
+                "{}: camera",
+                scene
+                    .source_path
+                    .as_deref()
+                    .unwrap_or(std::path::Path::new(&scene.name))
+                    .display()
+            ),
+            "exploring frames of the scene's camera size and samples",
+            None,
+        ),
+    };
+    memory::check(&flag, what, rays.saturating_mul(per_ray), fits)
+}
+
 pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let ip = args.serve.ip()?;
     let pool = thread_pool(args.threads)?;
@@ -201,6 +243,7 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
         scene = with_sphere(&scene, width)?;
     }
     shade::textures_for_scene(&scene)?;
+    check_memory(&scene, args.sphere)?;
     let frames = SceneFrames::new(scene, pool);
     // The viewer opens on the explorer's first frame (the coarse one at the scene's own
     // event); the page then receives the explorer's frames.

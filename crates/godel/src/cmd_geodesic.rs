@@ -14,9 +14,10 @@
 //! Physics: Gödel, Rev. Mod. Phys. 21, 447 (1949); constants of motion from the Killing fields
 //! ∂t, ∂φ, ∂z; integration in pseudo-Cartesian coordinates by the `spacetime` crate.
 
-use crate::args::{parse_vector, positive, usage, Format};
+use crate::args::{coordinates, parse_vector, positive, scale_a, usage, Format};
 use anyhow::Context;
 use clap::ValueEnum;
+use scene::short;
 use serde_json::json;
 use spacetime::{
     refine_root, trace, ConstantsOfMotion, Cylindrical, Drift, Event, ExactGeodesic, FourVector,
@@ -115,15 +116,21 @@ pub struct Request {
 impl Request {
     /// Checks every value; errors name the flag.
     pub fn from_args(args: &GeodesicArgs) -> anyhow::Result<Request> {
-        let a = positive("--a", args.a)?;
-        let metric = match args.metric {
-            MetricName::Godel => Metric::Godel(Godel::new(a)),
-            MetricName::Minkowski => Metric::Minkowski(Minkowski),
+        let (metric, a) = match args.metric {
+            MetricName::Godel => {
+                let a = scale_a("--a", args.a)?;
+                (Metric::Godel(Godel::new(a)), a)
+            }
+            MetricName::Minkowski => {
+                positive("--a", args.a)?;
+                (Metric::Minkowski(Minkowski), 1.0)
+            }
         };
         let [t, r, phi, z] = parse_vector::<4>("--at", &args.at)?;
         if r < 0.0 {
-            return Err(usage("--at", format!("R must be ≥ 0, got {r}")));
+            return Err(usage("--at", format!("R must be ≥ 0, got {}", short(r))));
         }
+        coordinates("--at", &["t", "R", "phi", "z"], &[t, r, phi, z], a)?;
         let start = Cylindrical { t, r, phi, z };
         let frame = metric.static_frame(start.to_event());
         if !frame.e.iter().all(|e| e.is_finite()) {

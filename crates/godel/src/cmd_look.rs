@@ -8,9 +8,11 @@
 //! resolution limits the result.
 //!
 //! Exit 2 for bad flags (naming the flag) and for a data file that is not a static
-//! observer's full sphere; exit 1 for unreadable or damaged files, as `godel shade`.
+//! observer's full sphere; exit 1 for unreadable or damaged files (their embedded scene
+//! included), as `godel shade`.
 
 use crate::args::{parse_vector, usage};
+use crate::inputs::Inputs;
 use crate::output::{prepare, write_data_and_preview};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
@@ -45,11 +47,11 @@ pub struct LookArgs {
     #[arg(long, allow_hyphen_values = true, value_name = "DEG")]
     pub v_fov: Option<f64>,
     /// Image width in pixels.
-    #[arg(long)]
-    pub width: u32,
+    #[arg(long, allow_negative_numbers = true)]
+    pub width: i64,
     /// Image height in pixels (default: the width for a fisheye, half of it for a sphere).
-    #[arg(long)]
-    pub height: Option<u32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub height: Option<i64>,
     /// Observer velocity SPEED,DX,DY,DZ relative to the static observer, in its frame
     /// (|SPEED| < 1; a negative speed moves against the direction). Default: at rest.
     #[arg(long, allow_hyphen_values = true, value_name = "SPEED,DX,DY,DZ")]
@@ -69,7 +71,8 @@ pub enum CameraKind {
 
 /// The camera of the flags; a field of view given to a camera that has none is an error.
 fn camera(args: &LookArgs) -> anyhow::Result<Camera> {
-    let width = args.width;
+    let width = side("--width", args.width)?;
+    let given_height = args.height.map(|h| side("--height", h)).transpose()?;
     let unused = |flag: &str, given: Option<f64>, what: &str| match given {
         Some(_) => Err(usage(flag, format!("not used by {what}"))),
         None => Ok(()),
@@ -78,7 +81,7 @@ fn camera(args: &LookArgs) -> anyhow::Result<Camera> {
         given.ok_or_else(|| usage(flag, format!("required for a {kind} camera")))
     };
     let height = |default: Option<u32>, kind: &str| {
-        args.height
+        given_height
             .or(default)
             .ok_or_else(|| usage("--height", format!("required for a {kind} camera")))
     };
@@ -132,6 +135,15 @@ fn camera(args: &LookArgs) -> anyhow::Result<Camera> {
     })
 }
 
+/// An image side given with `flag`: a number of pixels, at least 1 (the camera's own checks
+/// bound it above).
+fn side(flag: &str, v: i64) -> anyhow::Result<u32> {
+    if v < 1 {
+        return Err(usage(flag, format!("must be at least 1 pixel, got {v}")));
+    }
+    u32::try_from(v).map_err(|_| usage(flag, format!("{v} pixels is far too many")))
+}
+
 /// `--velocity SPEED,DX,DY,DZ`.
 fn velocity(text: &Option<String>) -> anyhow::Result<LocalVelocity> {
     let Some(text) = text else {
@@ -141,7 +153,10 @@ fn velocity(text: &Option<String>) -> anyhow::Result<LocalVelocity> {
     if speed.abs() >= 1.0 {
         return Err(usage(
             "--velocity",
-            format!("the speed must be below 1 (the speed of light), got {speed}"),
+            format!(
+                "the speed must be below 1 (the speed of light), got {}",
+                scene::short(speed)
+            ),
         ));
     }
     if speed == 0.0 {
@@ -151,9 +166,26 @@ fn velocity(text: &Option<String>) -> anyhow::Result<LocalVelocity> {
     LocalVelocity::new(speed.abs(), [sign * dx, sign * dy, sign * dz]).ok_or_else(|| {
         usage(
             "--velocity",
-            format!("the direction must not be zero, got {dx},{dy},{dz}"),
+            format!(
+                "the direction must not be zero, got {},{},{}",
+                scene::short(dx),
+                scene::short(dy),
+                scene::short(dz)
+            ),
         )
     })
+}
+
+/// A sphere that cannot be looked at: a data file of the wrong kind (not a full sphere, a
+/// moving observer's, anti-aliased) is a usage error (exit 2); a damaged one (its embedded
+/// scene, its records) is a failure to read it (exit 1), as `godel shade` has it.
+fn sphere_error(file: &str, e: LookError) -> anyhow::Error {
+    match e {
+        LookError::EmbeddedScene(_) | LookError::Data(_) | LookError::Inconsistent { .. } => {
+            anyhow::anyhow!("{file}: {e}")
+        }
+        e => usage(file, e.to_string()),
+    }
 }
 
 /// The flag that sets a view field named by `look`.
@@ -208,10 +240,20 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(std::path::Path::new("."));
     prepare("--output", dir, &names)?;
+    Inputs::new()
+        .add("the sphere", &args.sphere)
+        .refuse_outputs_over_inputs("--output", &[&args.output, &png])?;
 
     let sphere = DataFile::read(&args.sphere)?;
     let read = started.elapsed();
-    let source = SphereSource::of(&sphere).map_err(|e| usage(&file, e.to_string()))?;
+    let pixels = u64::from(camera.width()) * u64::from(camera.height());
+    crate::memory::check_writing(
+        "--width",
+        "a view of this width × height",
+        pixels,
+        sphere.lights.len(),
+    )?;
+    let source = SphereSource::of(&sphere).map_err(|e| sphere_error(&file, e))?;
     let view = LookView::new(
         camera,
         forward.unwrap_or(source.forward),
@@ -228,14 +270,17 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
             )
         }
         LookError::View { field, message } => usage(flag_of(field, args.camera), message),
-        e => usage(&file, e.to_string()),
+        e => sphere_error(&file, e),
     })?;
-    let data = look(&sphere, &view).map_err(|e| usage(&file, e.to_string()))?;
+    let data = look(&sphere, &view).map_err(|e| sphere_error(&file, e))?;
     let looked = started.elapsed();
+    // A damaged file (exit 1), not a usage error: the message is kept, the scene error's
+    // exit code is not.
     let scene = Scene::from_str(&data.header.scene_text, "scene embedded in the data file")
+        .map_err(|e| anyhow::anyhow!("{file}: {e}"))
         .context(
-        "the preview is shaded with the sphere's scene (textures resolve from the current folder)",
-    )?;
+            "the preview is shaded with the sphere's scene (textures resolve from the current folder)",
+        )?;
     write_data_and_preview(&scene, &data, &args.output, &png, false)?;
 
     let r = resolution(&source, &view);

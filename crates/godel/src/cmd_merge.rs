@@ -3,6 +3,7 @@
 //! different renders, a missing or repeated part, or overlapping parts are refused
 //! (`render::part::merge`), and nothing is written then.
 
+use crate::inputs::Inputs;
 use crate::output::write_outputs;
 use clap::Args;
 use render::part::{merge, read_part};
@@ -40,7 +41,15 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let scene = if first.scene_path.is_empty() {
         Scene::builtin()
     } else {
-        Scene::from_str(&data.header.scene_text, &first.scene_path)?
+        // A damaged part (exit 1), not a usage error.
+        Scene::from_str(&data.header.scene_text, &first.scene_path)
+            .map_err(|e| anyhow::anyhow!("the scene embedded in the parts: {e}"))?
     };
+    let mut inputs = Inputs::new();
+    for part in &args.parts {
+        inputs.add("a part file", part);
+    }
+    let outputs = crate::output::output_names(&scene).map(|n| args.output.join(n));
+    inputs.refuse_outputs_over_inputs("--output", &outputs)?;
     write_outputs(&scene, &data, &args.output, args.grid)
 }

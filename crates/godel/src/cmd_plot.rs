@@ -6,7 +6,7 @@
 //! The rays are traced numerically (one loop each, `TraceLimits::one_loop`), not drawn from
 //! the closed form. Output: SVG, or PNG rasterized from it (chosen by the `-o` extension).
 
-use crate::args::{positive, usage};
+use crate::args::usage;
 use crate::plot_kit::{
     arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, trace_ray,
     write_figure, Frame, PALETTE,
@@ -255,7 +255,7 @@ pub fn run(args: PlotArgs) -> anyhow::Result<()> {
 }
 
 fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
-    let a = positive("--a", args.a)?;
+    let a = crate::args::scale_a("--a", args.a)?;
     if !(1..=360).contains(&args.rays) {
         return Err(usage(
             "--rays",

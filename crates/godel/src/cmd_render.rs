@@ -11,6 +11,7 @@
 //! ranks (`cluster.rs`).
 
 use crate::args::thread_pool;
+use crate::inputs::Inputs;
 use crate::output::{check_folder, output_names, prepare, write_outputs};
 use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
@@ -19,7 +20,7 @@ use render::driver::Renderer;
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
 use render::tiles::Assembler;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
@@ -74,6 +75,12 @@ pub struct RenderArgs {
     /// array jobs; join the parts with `godel merge`.
     #[arg(long, value_name = "i/N")]
     pub part: Option<String>,
+    /// Trace on the GPU: the exact tracer's kernel in an offscreen OpenGL ES 3 context
+    /// through EGL (Mesa's llvmpipe renders it in software where there is no GPU); the
+    /// same files as a CPU render. As `[trace] gpu = true`. One process: not with --part
+    /// nor under MPI.
+    #[arg(long)]
+    pub gpu: bool,
     /// Rays per pixel, a square number (1, 4, 9, 16, … up to 256) traced on a grid in each
     /// pixel; overrides the scene's `[camera] samples`. Every sample's record is kept in
     /// the data file (see README, "The data file").
@@ -104,6 +111,16 @@ pub fn scene_path_text(path: &Option<PathBuf>) -> String {
         .unwrap_or_default()
 }
 
+/// Before tracing: the output folder creatable, the files `names` writable there, and none
+/// of them an input of the run (the scene file, its image textures).
+fn prepare_outputs(dir: &Path, scene: &scene::Scene, names: &[String]) -> anyhow::Result<()> {
+    prepare("--output", dir, names)?;
+    let paths: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
+    Inputs::new()
+        .add_scene(scene)
+        .refuse_outputs_over_inputs("--output", &paths)
+}
+
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let part = match &args.part {
         Some(text) => Some(
@@ -112,6 +129,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         ),
         None => None,
     };
+    if args.gpu && part.is_some() {
+        return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+    }
     #[cfg(feature = "mpi")]
     if part.is_none() && crate::cluster::launched_by_mpi() {
         return under_mpi::run(args);
@@ -125,7 +145,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Some(part) => vec![part.file_name(&scene.name)],
         None => output_names(&scene).to_vec(),
     };
-    prepare("--output", &args.output, &outputs)?;
+    if scene.trace.gpu && part.is_some() {
+        return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
+    }
+    prepare_outputs(&args.output, &scene, &outputs)?;
+    if args.gpu || scene.trace.gpu {
+        return render_on_gpu(&scene, &args);
+    }
     let started = Instant::now();
     let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -134,6 +160,16 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         .iter()
         .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
         .sum();
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        pixels,
+        scene.lights.len(),
+    )?;
     let bar = progress_bar(&scene, pixels, args.quiet);
     let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
     let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
@@ -150,6 +186,32 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         }
     }
     eprintln!("{}", stats.summary());
+    Ok(())
+}
+
+/// Why --gpu goes with neither --part nor MPI.
+const GPU_ONE_PROCESS: &str =
+    "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
+
+/// `godel render --gpu`: the whole image traced by the GPU kernel, the same files written.
+fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs) -> anyhow::Result<()> {
+    let camera = scene.sample_camera();
+    let pixels = u64::from(camera.width()) * u64::from(camera.height());
+    let file = args
+        .scene
+        .as_ref()
+        .map_or("built-in scene".into(), |p| p.display().to_string());
+    crate::memory::check_writing(
+        &format!("{file}: camera"),
+        "a data file of this width × height × samples",
+        pixels,
+        scene.lights.len(),
+    )?;
+    let bar = progress_bar(scene, pixels, args.quiet);
+    let done = gpu::render(scene, &Bar(bar.clone()))?;
+    bar.finish_and_clear();
+    write_outputs(scene, &done.data, &args.output, args.grid)?;
+    eprintln!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
     Ok(())
 }
 
@@ -175,10 +237,13 @@ mod under_mpi {
             let pool = thread_pool(args.threads)?;
             check_folder("--output", &args.output)?;
             let scene = load_with_overrides(&args.scene, &args.overrides())?;
+            if args.gpu || scene.trace.gpu {
+                return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+            }
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare("--output", &args.output, &output_names(&scene))?;
+                prepare_outputs(&args.output, &scene, &output_names(&scene))?;
             }
             Ok((pool, scene))
         };

@@ -5,10 +5,11 @@
 //! `[trace] keep_data = true` each frame's data file `frame_NNNN.exr` is written together
 //! with its picture (both staged, then renamed one right after the other).
 //!
-//! The output folder holds this run's frames only: before the first frame, numbered frames
-//! beyond this run's count, numbered data files that this run does not write and an earlier
-//! `sequence.mp4` are removed (with a note), and ffmpeg is told the exact frame count, so
-//! the MP4 never shows another run's frames.
+//! Before the first frame: every output path of every frame is checked (writable, not an
+//! input of the run), and what an earlier sequence wrote into the folder that this run does
+//! not write again is removed — files named by the folder's manifest ([`crate::manifest`])
+//! only, never another file; ffmpeg is told the exact frame count, so the MP4 never shows
+//! another run's frames.
 //!
 //! [`Plan`] is built and checked completely before anything is written (the data file read,
 //! every keyframe's settings validated), then each frame is an independent, pure job
@@ -31,6 +32,8 @@ use shade::{Channels, FrameSource, Needs, Script, ShadeSettings, Shading, Timeli
 
 use crate::cmd_shade::settings_error;
 use crate::flight::Flight;
+use crate::inputs::Inputs;
+use crate::manifest::{self, Manifest, MANIFEST};
 use crate::output::write_together;
 
 #[derive(Args, Debug)]
@@ -39,9 +42,11 @@ Limits, checked before the first frame (exit code 2, naming file:line:field): th
 regular file of at most 16 MiB; frames 1 to 100000; fps at most 1000; the output folder \
 creatable and writable.
 
-The output folder holds this run's frames only: numbered frames beyond this run's count, \
-numbered data files this run does not write and an earlier sequence.mp4 are removed first (a \
-note lists them); ffmpeg encodes exactly this run's frames.
+Every frame's output paths are checked before the first frame; an output that is an input of \
+the run (its data file, scene or script) is refused. The files an earlier sequence wrote into the \
+folder (named in its manifest .godel-sequence) and this run does not write again (frames \
+beyond its count, data files, sequence.mp4) are removed first, a note lists them; no other \
+file is ever removed. ffmpeg encodes exactly this run's frames.
 
 Traced sequences may keyframe the observer ([keyframe.observer]: time, position {x, y, z}, \
 velocity, forward, up) and the field of view ([keyframe.camera]); the position moves along a \
@@ -84,14 +89,19 @@ pub struct Plan {
     script: Script,
     source: Source,
     timeline: Timeline,
+    /// What the run reads: never replaced or removed.
+    inputs: Inputs,
 }
 
 impl Plan {
     /// Reads the script and its source and checks every keyframe's settings.
     pub fn new(path: &Path) -> anyhow::Result<Plan> {
         let script = Script::from_file(path).map_err(|e| settings_error("sequence", e))?;
+        let mut inputs = Inputs::new();
+        inputs.add("the sequence script", path);
         let (source, probe) = match &script.source {
             FrameSource::Data(p) => {
+                inputs.add("the data file", p);
                 let data = DataFile::read(p)?;
                 let channels = Box::new(Channels::new(&data, Needs::ALL));
                 let source = Source::Data {
@@ -104,6 +114,7 @@ impl Plan {
                 scene, keep_data, ..
             } => {
                 let s = Scene::from_file(scene)?;
+                inputs.add_scene(&s);
                 // A data file without pixels: the scene's objects and header, for defaults
                 // and validation before anything is traced.
                 let probe = DataFile {
@@ -131,10 +142,15 @@ impl Plan {
                 .map_err(|e| settings_error("sequence", e))
                 .with_context(|| format!("{}: settings of frame {f}", script.file))?;
         }
+        for k in &script.keyframes {
+            inputs.add_settings(&timeline.settings_at(k.frame));
+        }
+        inputs.add_settings(&timeline.settings_at(0));
         Ok(Plan {
             script,
             source,
             timeline,
+            inputs,
         })
     }
 
@@ -156,7 +172,11 @@ impl Plan {
                 let scene = flight
                     .scene_at(i)
                     .map_err(|e| settings_error("sequence", e))?;
-                let (data, _) = render(&scene, &NoProgress)?;
+                // `[trace] gpu = true` traces the frames with the GPU kernel.
+                let data = match scene.trace.gpu {
+                    true => gpu::render(&scene, &NoProgress)?.data,
+                    false => render(&scene, &NoProgress)?.0,
+                };
                 let image = Shading::new(&data, &settings)?.image(&data);
                 let bytes = match keep_data {
                     true => Some(data.to_bytes().map_err(|kind| datafile::DataFileError {
@@ -196,15 +216,41 @@ impl Plan {
         self.script.output.join(format!("frame_{i:04}.exr"))
     }
 
+    /// Every file the run may write, frame by frame, then the MP4 and the manifest.
+    fn outputs(&self) -> Vec<PathBuf> {
+        let frames = (0..self.frames()).flat_map(|i| {
+            let data = self.keeps_data().then(|| self.data_path(i));
+            [self.frame_path(i)].into_iter().chain(data)
+        });
+        let dir = self.output_dir();
+        frames.chain([dir.join(MP4), dir.join(MANIFEST)]).collect()
+    }
+
+    /// Whether a run of this plan writes the file `name` of its folder again (the MP4 is
+    /// removed first either way: made again at the end, or not at all).
+    fn writes(&self, name: &str) -> bool {
+        let frame = |ext: &str| {
+            name.strip_prefix("frame_")
+                .and_then(|n| n.strip_suffix(ext))
+                .and_then(|n| n.parse::<u32>().ok())
+                // Exactly the name this program gives that frame.
+                .filter(|&i| name == format!("frame_{i:04}{ext}") && i < self.frames())
+        };
+        frame(".png").is_some() || (self.keeps_data() && frame(".exr").is_some())
+    }
+
     /// Writes frame `i`: its picture, and its data file beside it when given, both complete
-    /// before either is renamed into place.
+    /// before either is renamed into place; both recorded in the folder's manifest.
     pub fn write_frame(&self, i: u32, image: &RgbImage, data: Option<&[u8]>) -> anyhow::Result<()> {
         let png = self.frame_path(i);
         let Some(exr) = data else {
-            return Ok(shade::write_png(image, &png)?);
+            shade::write_png(image, &png)?;
+            return manifest::record(self.output_dir(), &[&png]);
         };
         let png_bytes = shade::encode_png(image, &png)?;
-        write_together(&[(self.data_path(i), exr), (png, &png_bytes)])
+        let exr_path = self.data_path(i);
+        write_together(&[(exr_path.clone(), exr), (png.clone(), &png_bytes)])?;
+        manifest::record(self.output_dir(), &[&exr_path, &png])
     }
 }
 
@@ -304,39 +350,6 @@ fn encode_mp4(dir: &Path, frames: u32, fps: f64) -> anyhow::Result<PathBuf> {
     Ok(out)
 }
 
-/// Files in `dir` that an earlier run left and this run of `frames` frames would not
-/// replace: numbered frames `frame_NNNN.png` from `frames` on, numbered data files
-/// `frame_NNNN.exr` from `frames` on (all of them when this run keeps no data), and
-/// `sequence.mp4`.
-pub fn stale_outputs(dir: &Path, frames: u32, keep_data: bool) -> Vec<PathBuf> {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return Vec::new();
-    };
-    let mut stale: Vec<PathBuf> = entries
-        .flatten()
-        .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
-        .map(|e| e.path())
-        .filter(|p| {
-            let Some(name) = p.file_name().and_then(|n| n.to_str()) else {
-                return false;
-            };
-            let numbered = |ext: &str| {
-                name.strip_prefix("frame_")
-                    .and_then(|n| n.strip_suffix(ext))
-                    .and_then(|n| n.parse::<u64>().ok())
-                    // Exactly the name this program gives that frame.
-                    .filter(|&i| name == format!("frame_{i:04}{ext}"))
-            };
-            let beyond = |i: u64| i >= u64::from(frames);
-            name == MP4
-                || numbered(".png").is_some_and(beyond)
-                || numbered(".exr").is_some_and(|i| !keep_data || beyond(i))
-        })
-        .collect();
-    stale.sort();
-    stale
-}
-
 pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
     // Under mpirun/srun the frames are spread over the ranks.
     #[cfg(feature = "mpi")]
@@ -355,34 +368,48 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
     finish(&plan, &args, &bar)
 }
 
-/// Before the first frame: creates the output folder and checks that the frames and the
-/// MP4 can be written there (errors located at the script's `output`), removes what an
-/// earlier run left that this run would not replace; the progress bar over the frames.
+/// Before the first frame: creates the output folder, checks every frame's output paths
+/// (writable, not an input of the run; errors located at the script's `output`), removes
+/// what an earlier sequence wrote there that this run does not write again; the progress
+/// bar over the frames.
 pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
     let dir = plan.output_dir();
     let bad_output = |e: String| settings_error("sequence", plan.script.error_at("output", e));
     std::fs::create_dir_all(dir)
         .map_err(|e| bad_output(format!("cannot create the folder {}: {e}", dir.display())))?;
-    let data = plan.keeps_data().then(|| plan.data_path(0));
-    for path in [plan.frame_path(0), dir.join(MP4)].into_iter().chain(data) {
-        datafile::atomic::check_writable(&path)
-            .map_err(|e| bad_output(format!("cannot write {}: {e}", path.display())))?;
+    let outputs = plan.outputs();
+    datafile::atomic::check_all_writable(&outputs)
+        .map_err(|e| bad_output(format!("cannot write {e}")))?;
+    if let Some(why) = plan.inputs.clash(&outputs) {
+        return Err(bad_output(why));
     }
-    let stale = stale_outputs(dir, plan.frames(), plan.keeps_data());
-    for path in &stale {
+    let earlier = Manifest::read(dir);
+    let stale = earlier.stale(|name| plan.writes(name), &plan.inputs);
+    for path in &stale.remove {
         std::fs::remove_file(path)
             .with_context(|| format!("cannot remove {} of an earlier run", path.display()))?;
     }
-    if !stale.is_empty() {
-        let names: Vec<String> = stale
+    earlier.rewrite()?;
+    let names = |paths: &[PathBuf]| -> String {
+        let names: Vec<String> = paths
             .iter()
             .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
             .collect();
+        names.join(", ")
+    };
+    if !stale.remove.is_empty() {
         eprintln!(
             "removed {} file(s) of an earlier run from {}: {}",
-            stale.len(),
+            stale.remove.len(),
             dir.display(),
-            names.join(", ")
+            names(&stale.remove)
+        );
+    }
+    if !stale.changed.is_empty() {
+        eprintln!(
+            "note: left {} file(s) an earlier run wrote that changed since: {}",
+            stale.changed.len(),
+            names(&stale.changed)
         );
     }
     let bar = if args.quiet {
@@ -411,6 +438,7 @@ pub fn finish(plan: &Plan, args: &SequenceArgs, bar: &ProgressBar) -> anyhow::Re
     if plan.script.mp4 && !args.no_mp4 {
         if have_ffmpeg() {
             let mp4 = encode_mp4(dir, n, plan.script.fps)?;
+            manifest::record(dir, &[&mp4])?;
             eprintln!("wrote {}", mp4.display());
         } else {
             eprintln!(
@@ -449,56 +477,6 @@ mod tests {
         assert!(args.iter().position(|a| a == "-start_number").unwrap() < input);
         assert!(args.iter().position(|a| a == "-frames:v").unwrap() > input);
         assert_eq!(args.last().unwrap(), "out/.tmp");
-    }
-
-    #[test]
-    fn stale_outputs_are_frames_beyond_the_count_and_the_mp4() {
-        let dir = tempfile::tempdir().unwrap();
-        for name in [
-            "frame_0000.png",
-            "frame_0003.png",
-            "frame_0004.png",
-            "frame_0009.png",
-            "frame_10000.png",
-            "frame_00004.png", // not a name this program writes
-            "frame_0005.jpg",
-            "frame_0001.exr",
-            "frame_0004.exr",
-            "frame_04.exr", // not a name this program writes
-            "notes.txt",
-            "sequence.mp4",
-        ] {
-            std::fs::write(dir.path().join(name), b"x").unwrap();
-        }
-        let stale = |keep_data| -> Vec<String> {
-            stale_outputs(dir.path(), 4, keep_data)
-                .iter()
-                .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
-                .collect()
-        };
-        assert_eq!(
-            stale(true),
-            [
-                "frame_0004.exr",
-                "frame_0004.png",
-                "frame_0009.png",
-                "frame_10000.png",
-                "sequence.mp4"
-            ]
-        );
-        // Without data kept, every numbered data file is an earlier run's.
-        assert_eq!(
-            stale(false),
-            [
-                "frame_0001.exr",
-                "frame_0004.exr",
-                "frame_0004.png",
-                "frame_0009.png",
-                "frame_10000.png",
-                "sequence.mp4"
-            ]
-        );
-        assert!(stale_outputs(&dir.path().join("absent"), 4, true).is_empty());
     }
 }
 

@@ -15,6 +15,7 @@ use shade::{
 };
 
 use crate::args::{parse_vector, usage};
+use crate::inputs::Inputs;
 use shade::hdr::{encode_exr, write_bytes, PictureFormat};
 
 #[derive(Args, Debug)]
@@ -363,6 +364,12 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
             ),
         )
     })?;
+    let mut inputs = Inputs::new();
+    inputs.add("the data file", &args.data);
+    if let Some(path) = &args.settings {
+        inputs.add("the settings file", path);
+    }
+    inputs.refuse_outputs_over_inputs("--output", &[&args.output])?;
     let data = DataFile::read(&args.data)?;
     let mut settings = ShadeSettings::defaults_for(&data);
     if let Some(path) = &args.settings {
@@ -378,6 +385,9 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
     }
     apply_flags(&args, &data.header.object_names, &mut settings)?;
     unused_flags(&args, &settings.shaders, format)?;
+    inputs
+        .add_settings(&settings)
+        .refuse_outputs_over_inputs("--output", &[&args.output])?;
     let shading = Shading::new(&data, &settings).map_err(|e| {
         let flag = blamed_flag(&args, &e);
         settings_error(flag, e)

@@ -3,13 +3,15 @@
 //! together, and the output folder checked before any work ([`prepare`]), so that a failed
 //! or interrupted run leaves no half-written file and no unwritable folder is found late.
 //!
-//! Testing hook: with `GODEL_PAUSE_BEFORE_RENAME=SECONDS` in the environment,
+//! Testing hooks: with `GODEL_PAUSE_BEFORE_RENAME=SECONDS` in the environment,
 //! [`write_together`] prints `staged: PATH …` on stderr once every file is a complete
 //! temporary and waits that long before renaming, so that tests can interrupt a run exactly
-//! there (crates/godel/tests/writes_cli.rs).
+//! there; with `GODEL_PAUSE_BETWEEN_RENAMES=SECONDS` it prints `renamed: PATH` after each
+//! rename but the last and waits that long, so that tests can race another run or break
+//! the next rename there (crates/godel/tests/writes_cli.rs).
 
 use anyhow::Context;
-use datafile::atomic::{check_writable, commit_all, stage};
+use datafile::atomic::{check_writable, commit_all_with, stage};
 use datafile::DataFile;
 use scene::Scene;
 use std::io::Write;
@@ -30,9 +32,18 @@ pub fn write_together(files: &[(PathBuf, &[u8])]) -> anyhow::Result<()> {
                 .with_context(|| format!("cannot write {}", path.display()))?,
         );
     }
-    pause_for_tests(files);
-    let targets: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    commit_all(staged).with_context(|| format!("cannot write {}", targets.join(" and ")))
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    pause_for_tests("GODEL_PAUSE_BEFORE_RENAME", || {
+        format!("staged: {}", names.join(" "))
+    });
+    let renamed = std::cell::Cell::new(0);
+    let between = || {
+        let name = &names[renamed.get()];
+        renamed.set(renamed.get() + 1);
+        pause_for_tests("GODEL_PAUSE_BETWEEN_RENAMES", || format!("renamed: {name}"));
+    };
+    commit_all_with(staged, between)
+        .with_context(|| format!("cannot write {}", names.join(" and ")))
 }
 
 /// Creates the output folder `dir` and checks that every file in `names` can be written
@@ -118,16 +129,16 @@ pub fn output_names(scene: &Scene) -> [String; 2] {
     [format!("{}.exr", scene.name), format!("{}.png", scene.name)]
 }
 
-/// The testing hook of the module doc.
-fn pause_for_tests(files: &[(PathBuf, &[u8])]) {
-    let Some(seconds) = std::env::var("GODEL_PAUSE_BEFORE_RENAME")
+/// The testing hooks of the module doc: when the variable `var` holds a number of seconds,
+/// prints `line()` on stderr and waits that long.
+fn pause_for_tests(var: &str, line: impl FnOnce() -> String) {
+    let Some(seconds) = std::env::var(var)
         .ok()
         .and_then(|v| v.parse::<f64>().ok())
         .filter(|s| s.is_finite() && *s > 0.0)
     else {
         return;
     };
-    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    eprintln!("staged: {}", names.join(" "));
+    eprintln!("{}", line());
     std::thread::sleep(std::time::Duration::from_secs_f64(seconds.min(3600.0)));
 }

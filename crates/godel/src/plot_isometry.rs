@@ -10,7 +10,7 @@
 //! K_x, K_y move the start along their orbit (for K_x the x axis, to x = 2a sinh(s/2a));
 //! ∂φ rotates the loop about the origin.
 
-use crate::args::{positive, usage};
+use crate::args::usage;
 use crate::plot_kit::{
     arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, tick_label,
     trace_ray, write_figure, Frame, PALETTE,
@@ -246,7 +246,7 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
 
 /// Runs `godel plot isometry`.
 pub fn plot_isometry(args: IsometryPlotArgs) -> anyhow::Result<()> {
-    let a = positive("--a", args.a)?;
+    let a = crate::args::scale_a("--a", args.a)?;
     if !(1..=24).contains(&args.images) {
         return Err(usage(
             "--images",

@@ -475,3 +475,73 @@ fn a_time_bound_out_of_reach_is_reported() {
     ]));
     assert!(out.status.success() && out.stderr.is_empty());
 }
+
+/// Issue 24: `geodesic` and `connect` took t, φ and z up to 1e300 (scenes refuse beyond
+/// ±1e6·a) and printed `travel_time 0`; `geodesic --a 1e-300` said "too far from the axis";
+/// numbers came back with 300 digits. Now the ranges are those of scenes, the messages short.
+#[test]
+fn events_and_the_scale_have_the_ranges_of_scenes() {
+    let cases: [(&[&str], &str); 7] = [
+        (
+            &["geodesic", "--at", "1e300,0,0,0", "--dir", "1,0,0"],
+            "--at: t = 1e300 is beyond ±1e6",
+        ),
+        (
+            &["geodesic", "--at", "0,0,-2e6,0", "--dir", "1,0,0"],
+            "--at: phi = -2e6 is beyond ±1e6",
+        ),
+        (
+            &["geodesic", "--at", "0,0,0,1e300", "--dir", "1,0,0"],
+            "--at: z = 1e300",
+        ),
+        (
+            &[
+                "geodesic", "--at", "0,0,0,0", "--dir", "1,0,0", "--a", "1e-300",
+            ],
+            "--a: 1e-300 is outside [1e-6, 1e6], as in scenes",
+        ),
+        (
+            &["connect", "--from", "1e300,0,0,0", "--to-source", "0.5,0,0"],
+            "--from: t = 1e300 is beyond ±1e6",
+        ),
+        (
+            &["connect", "--from", "0,0,0,0", "--to-source", "0.5,0,3e6"],
+            "--to-source: z = 3e6 is beyond ±1e6",
+        ),
+        (
+            &[
+                "connect",
+                "--from",
+                "0,0,0,0",
+                "--to-source",
+                "0.5,0,0",
+                "--a",
+                "1e300",
+            ],
+            "--a: 1e300 is outside",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = godel(args);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {e}");
+        assert!(e.starts_with(&format!("error: {needle}")), "{args:?}: {e}");
+        assert!(e.len() < 240, "{args:?}: a short message: {e}");
+        assert!(o.stdout.is_empty());
+    }
+    // At the bound itself, and with a small a scaled along, all is well.
+    for args in [
+        &["geodesic", "--at", "1e6,0,0,0", "--dir", "1,0,0"][..],
+        &[
+            "geodesic", "--at", "0,0,0,0", "--dir", "1,0,0", "--a", "1e-6",
+        ],
+        &["connect", "--from", "-1e6,0,0,0", "--to-source", "0.5,0,0"],
+    ] {
+        let o = godel(args);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

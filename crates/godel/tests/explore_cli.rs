@@ -339,3 +339,179 @@ fn explore_sphere_traces_the_full_sphere_the_page_can_look_around_in() {
         assert!(stderr.contains(&format!("--sphere {bad}")), "{stderr}");
     }
 }
+
+/// The RGB pixels and size of a PNG.
+fn png_pixels(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+    let image = image::load_from_memory(bytes)
+        .unwrap_or_else(|e| panic!("not a PNG ({e}): {}", String::from_utf8_lossy(bytes)))
+        .to_rgb8();
+    (image.width(), image.height(), image.into_raw())
+}
+
+/// Moves the observer of the server on `port` to t = 1.5, (0.25, −0.125, 0.0625) and waits
+/// for its full frame; returns the frame's generation.
+fn move_observer(port: u16) -> u64 {
+    let event_json = r#"{"t": 1.5, "x": 0.25, "y": -0.125, "z": 0.0625}"#;
+    let (status, body) = http(port, "POST", "/api/explore/event", event_json);
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    let generation = json(&body)["generation"].as_u64().unwrap();
+    let frame = full_frame(port, Some(generation));
+    assert_eq!(frame["level"], "full", "{frame}");
+    generation
+}
+
+/// The scene of [`origin_scene`] with its observer at the event of [`move_observer`], and
+/// `camera` (the `[camera]` table's lines) in place of its own, as `name` in `dir`.
+fn moved_scene(dir: &Path, name: &str, camera: Option<&str>) -> std::path::PathBuf {
+    let observer = "time = 1.5\nposition = { x = 0.25, y = -0.125, z = 0.0625 }";
+    let mut text = scene_text(observer);
+    if let Some(camera) = camera {
+        let start = text.find("[camera]").unwrap();
+        let end = text.find("[trace]").unwrap();
+        text.replace_range(start..end, &format!("[camera]\n{camera}\n\n"));
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Issue 24: Save PNG, overlays and `/api/info` answered from the first coarse frame at the
+/// scene's start event: after a move, Save PNG gave the start picture at coarse size (12×2
+/// for a 48×8 frame) and the overlay never had the full frame's size. Now they answer for the
+/// frame the request names (the one on screen), at its size.
+#[test]
+fn saved_pictures_overlays_and_info_belong_to_the_frame_on_screen() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = origin_scene(dir.path());
+    let (_server, port) = explore(&scene);
+    let generation = move_observer(port);
+    let shown = format!("?generation={generation}&level=full");
+
+    let (status, body) = http(port, "GET", &format!("/api/info{shown}"), "");
+    assert_eq!(status, 200);
+    let info = json(&body);
+    assert_eq!(
+        (info["width"].as_u64(), info["height"].as_u64()),
+        (Some(48), Some(8)),
+        "{info}"
+    );
+    assert_eq!(info["observer_time"], 1.5, "{info}");
+    let defaults = info["defaults"].clone();
+    // Without a name: the frame the server opened on (the coarse one at the start event,
+    // whose channels /api/gpu serves to a page that has taken no traced frame yet).
+    let (_, body) = http(port, "GET", "/api/info", "");
+    let first = json(&body);
+    assert_eq!(
+        (first["width"].as_u64(), first["observer_time"].as_f64()),
+        (Some(12), Some(0.0)),
+        "{first}"
+    );
+    let settings = defaults.to_string();
+
+    // Save PNG: godel render of the moved observer, then godel shade, pixel for pixel.
+    let moved = moved_scene(dir.path(), "moved.toml", None);
+    let out = dir.path().join("out");
+    let o = common::render(&moved, &out, &["-q", "--method", "exact"]);
+    assert!(o.status.success(), "{o:?}");
+    let shaded = dir.path().join("shaded.png");
+    let o = common::shade(&out.join("static-sphere.exr"), &shaded, &[]);
+    assert!(o.status.success(), "{o:?}");
+    let expected = png_pixels(&std::fs::read(&shaded).unwrap());
+    assert_eq!((expected.0, expected.1), (48, 8));
+    let (status, body) = http(port, "POST", &format!("/api/png{shown}"), &settings);
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    assert_eq!(png_pixels(&body), expected);
+    // The coarse frame of that event, named, at its own size.
+    let coarse = format!("?generation={generation}&level=coarse");
+    let (status, body) = http(port, "POST", &format!("/api/png{coarse}"), &settings);
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    assert_eq!(png_pixels(&body).0, 12);
+
+    // The overlay (orientation marks) has the size of the frame on screen.
+    let mut marked = defaults.clone();
+    marked["grid"] = serde_json::Value::Bool(true);
+    let path = format!("/api/overlay{shown}");
+    let (status, body) = http(port, "POST", &path, &marked.to_string());
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    let layer = image::load_from_memory(&body).unwrap();
+    assert_eq!((layer.width(), layer.height()), (48, 8));
+
+    // A frame that is gone is said to be gone, not answered from another.
+    let (status, _) = http(port, "POST", "/api/png?generation=1&level=full", &settings);
+    assert_eq!(status, 410);
+    let (status, _) = http(
+        port,
+        "POST",
+        &format!("/api/png?generation={generation}"),
+        &settings,
+    );
+    assert_eq!(status, 400);
+}
+
+/// Issue 24: with `--sphere`, looked pictures were made from the first coarse sphere at the
+/// start event. Now a looked PNG of the frame on screen is `godel look` then `godel shade` of
+/// `godel render` of the sphere seen by the moved observer, pixel for pixel.
+#[test]
+fn looked_pictures_belong_to_the_sphere_on_screen() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = origin_scene(dir.path());
+    let (_server, url) = start_server_with("explore", &scene, dir.path(), &["--sphere", "32"]);
+    let port = port_of(&url);
+    let generation = move_observer(port);
+    let (_, body) = http(port, "GET", "/api/info", "");
+    let settings = json(&body)["defaults"].clone();
+    let view = serde_json::json!({
+        "camera": {"kind": "panorama", "h_fov_deg": 360.0, "v_fov_deg": 90.0, "width": 48, "height": 12},
+        "forward": [1.0, 0.0, 0.0],
+        "up": [0.0, 0.0, 1.0],
+        "velocity": {"speed": 0.5, "direction": [0.0, 1.0, 0.0]},
+    });
+    let request = serde_json::json!({ "settings": settings, "view": view }).to_string();
+    let path = format!("/api/look/png?generation={generation}&level=full");
+    let (status, served) = http(port, "POST", &path, &request);
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&served));
+
+    let sphere = moved_scene(
+        dir.path(),
+        "sphere.toml",
+        Some("kind = \"sphere\"\nwidth = 32\nheight = 16"),
+    );
+    let out = dir.path().join("out");
+    let o = common::render(&sphere, &out, &["-q", "--method", "exact"]);
+    assert!(o.status.success(), "{o:?}");
+    let view_exr = dir.path().join("view.exr");
+    let look = common::godel(&[
+        "look",
+        out.join("static-sphere.exr").to_str().unwrap(),
+        "--camera",
+        "panorama",
+        "--h-fov",
+        "360",
+        "--v-fov",
+        "90",
+        "--width",
+        "48",
+        "--height",
+        "12",
+        "--forward",
+        "1,0,0",
+        "--up",
+        "0,0,1",
+        "--velocity",
+        "0.5,0,1,0",
+        "-o",
+        view_exr.to_str().unwrap(),
+    ]);
+    assert!(look.status.success(), "{look:?}");
+    let shaded = dir.path().join("view-shaded.png");
+    let o = common::shade(&view_exr, &shaded, &[]);
+    assert!(o.status.success(), "{o:?}");
+    let expected = png_pixels(&std::fs::read(&shaded).unwrap());
+    let colours: std::collections::BTreeSet<&[u8]> = expected.2.chunks(3).collect();
+    assert!(
+        colours.len() > 2,
+        "the view shows the ball: {} colours",
+        colours.len()
+    );
+    assert_eq!(png_pixels(&served), expected);
+}

@@ -98,8 +98,8 @@ fn keyframes_reproduce_direct_renders_bit_for_bit() {
     let out = dir.path().join("out");
     assert_eq!(
         files_in(&out),
-        (0..5)
-            .flat_map(|i| [format!("frame_{i:04}.exr"), format!("frame_{i:04}.png")])
+        std::iter::once(common::MANIFEST.to_string())
+            .chain((0..5).flat_map(|i| [format!("frame_{i:04}.exr"), format!("frame_{i:04}.png")]))
             .collect::<Vec<_>>()
     );
 
@@ -168,10 +168,18 @@ fn time_eases_between_keyframes_by_the_formula() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     std::fs::create_dir_all(&out).unwrap();
-    // Data files of an earlier, longer run: the one beyond this run's frames goes.
-    for name in ["frame_0003.exr", "frame_0012.exr", "notes.txt"] {
+    // Data files of an earlier, longer run (in its manifest): the one beyond this run's
+    // frames goes; a file of the user's stays, and so does a numbered one no run of godel
+    // wrote here.
+    for name in [
+        "frame_0003.exr",
+        "frame_0012.exr",
+        "frame_0013.exr",
+        "notes.txt",
+    ] {
         std::fs::write(out.join(name), b"old").unwrap();
     }
+    common::record_as_sequence_output(&out, &["frame_0003.exr", "frame_0012.exr"]);
     let (t0, t1, last) = (0.5, 2.5, 8u32);
     let o = run_sequence(
         dir.path(),
@@ -201,6 +209,7 @@ fn time_eases_between_keyframes_by_the_formula() {
     let names = files_in(&out);
     assert!(!names.contains(&"frame_0012.exr".to_string()), "{names:?}");
     assert!(names.contains(&"notes.txt".to_string()), "{names:?}");
+    assert!(names.contains(&"frame_0013.exr".to_string()), "{names:?}");
 
     // A re-run that keeps no data leaves no data file of the earlier run beside its frames.
     let o = run_sequence(
@@ -212,7 +221,13 @@ fn time_eases_between_keyframes_by_the_formula() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(
         files_in(&out),
-        ["frame_0000.png", "frame_0001.png", "notes.txt"]
+        [
+            common::MANIFEST,
+            "frame_0000.png",
+            "frame_0001.png",
+            "frame_0013.exr",
+            "notes.txt"
+        ]
     );
 }
 
@@ -319,4 +334,19 @@ fn bad_keyframes_are_refused_with_file_line_and_field() {
             "frame 2",
         ],
     );
+}
+
+/// Issue 24: a sequence keeping its data whose `frame_0001.png` is a folder failed at frame 1
+/// after writing `frame_0001.exr` (only frame 0 was checked before tracing). Every frame's
+/// paths are checked first: refused with exit 2, nothing traced or written.
+#[test]
+fn every_frames_outputs_are_checked_before_tracing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(out.join("frame_0001.png")).unwrap();
+    let o = run_sequence(dir.path(), "frames = 2\n", "keep_data = true\n", "");
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("frame_0001.png: it is a directory"), "{e}");
+    assert_eq!(files_in(&out), ["frame_0001.png"]);
 }

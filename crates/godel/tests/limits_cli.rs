@@ -120,7 +120,7 @@ fn an_unwritable_output_is_found_before_tracing() {
     let cases: [(&Path, &[&str], &str); 4] = [
         (&file, &[], "cannot create the output folder"),
         (&file, &["--part", "2/3"], "cannot create the output folder"),
-        (&taken, &[], "slow.exr is a directory"),
+        (&taken, &[], "slow.exr: it is a directory"),
         (
             Path::new("/dev/null/out"),
             &[],
@@ -166,4 +166,84 @@ fn help_states_the_limits() {
             assert!(text.contains(n), "godel {cmd} --help lacks {n:?}: {text}");
         }
     }
+}
+
+/// Issue 24: memory was not bounded by the caps (`explore --sphere 8192` reached 8.6 GB after
+/// two events, `godel look` at 20000×2500 took 9.8 GB). Every command sizes its work against
+/// a memory budget before it starts (`GODEL_MEMORY_BUDGET` here stands for a small machine)
+/// and refuses what would not fit, naming what sets the size and, for a sphere, what fits.
+#[test]
+fn work_beyond_the_memory_budget_is_refused_before_it_starts() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = common::lit_scene_text("small", 6.0);
+    let scene = write_scene(tmp.path(), "small.toml", &text);
+    let sphere_text = testkit::godel_scene(
+        "sphere",
+        "[camera]\nkind = \"sphere\"\nwidth = 32\nheight = 16\n",
+        &format!(
+            "{}{}",
+            testkit::trace("exact", 6.0),
+            testkit::ball_at_rest("ball", 0.2, 1.0, 0.0)
+        ),
+    );
+    let sphere_scene = write_scene(tmp.path(), "sphere.toml", &sphere_text);
+    let out = tmp.path().join("out");
+    let o = godel(&["render", &sphere_scene, "-q", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let sphere = out.join("sphere.exr");
+    let refused = out.join("refused");
+    let view = refused.join("v.exr");
+    let small = |args: &[&str]| {
+        run_within(
+            Command::new(GODEL)
+                .args(args)
+                .env("GODEL_MEMORY_BUDGET", "2e4"),
+            NEVER_HANGS,
+        )
+    };
+    let cases: [(Vec<&str>, &str); 3] = [
+        (
+            vec!["render", &scene, "-q", "-o", refused.to_str().unwrap()],
+            "small.toml: camera: a data file of this width × height × samples needs about",
+        ),
+        (
+            vec![
+                "look",
+                sphere.to_str().unwrap(),
+                "--camera",
+                "sphere",
+                "--width",
+                "64",
+                "-o",
+                view.to_str().unwrap(),
+            ],
+            "--width: a view of this width × height needs about",
+        ),
+        (
+            vec!["explore", &sphere_scene, "--port", "0", "--sphere", "64"],
+            "--sphere 64: exploring a sphere of that width needs about",
+        ),
+    ];
+    for (args, start) in cases {
+        let o = small(&args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {e}");
+        assert!(
+            e.starts_with("error: ") && e.contains(start),
+            "{args:?}: {e}"
+        );
+        assert!(e.contains("GODEL_MEMORY_BUDGET"), "{e}");
+        assert!(o.stdout.is_empty(), "nothing served or written: {args:?}");
+    }
+    assert!(files_in(&refused).is_empty());
+    // The budget names the sphere that fits, and that one is explored.
+    let o = small(&["explore", &sphere_scene, "--port", "0", "--sphere", "64"]);
+    let e = stderr(&o);
+    let fits = e
+        .rsplit("--sphere ")
+        .next()
+        .unwrap()
+        .trim_end_matches(" fits\n");
+    let fits: u32 = fits.parse().unwrap_or_else(|_| panic!("{e}"));
+    assert!((8..64).contains(&fits) && fits.is_multiple_of(2), "{e}");
 }

@@ -314,3 +314,78 @@ fn bad_sources_and_flags_are_refused_with_nothing_written() {
         &["--output", ".exr"],
     );
 }
+
+/// Issue 24: `godel look S.exr … -o S.exr` replaced the sphere with a small view; a negative
+/// `--width` got clap's misleading `-- -5` tip; an overflowing velocity direction was called
+/// zero and printed with 300 digits; a damaged embedded scene exited 2, not the documented 1.
+#[test]
+fn inputs_are_kept_and_odd_values_get_accurate_messages() {
+    let tmp = tempfile::tempdir().unwrap();
+    let sphere = sphere_source(tmp.path());
+    let bytes = std::fs::read(&sphere).unwrap();
+    let pin = [
+        "--camera", "pinhole", "--fov", "60", "--width", "16", "--height", "8",
+    ];
+    let o = run_look(&sphere, &sphere, &pin);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("--output") && e.contains("the sphere this run reads"),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&sphere).unwrap(), bytes);
+
+    let out = tmp.path().join("v.exr");
+    for (flag, value) in [("--width", "-5"), ("--height", "-5")] {
+        let mut args: Vec<&str> = pin
+            .chunks(2)
+            .filter(|p| p[0] != flag)
+            .flatten()
+            .copied()
+            .collect();
+        args.extend([flag, value]);
+        let o = run_look(&sphere, &out, &args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{e}");
+        assert!(
+            e.starts_with(&format!("error: {flag}: must be at least 1 pixel, got -5")),
+            "{e}"
+        );
+        assert!(!e.contains("-- -5"), "{e}");
+    }
+    // A direction whose length overflows is still a direction: that of (1, 1, 0).
+    let o = run_look(
+        &sphere,
+        &out,
+        &[&pin[..], &["--velocity", "0.5,1e308,1e308,0"]].concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (observer, _) =
+        Scene::read_view(&DataFile::read(&out).unwrap().header.scene_text, "v").unwrap();
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    for (c, want) in observer.velocity.direction.iter().zip([h, h, 0.0]) {
+        assert!(
+            (c - want).abs() < 1e-12,
+            "{:?}",
+            observer.velocity.direction
+        );
+    }
+    let o = run_look(
+        &sphere,
+        &out,
+        &[&pin[..], &["--velocity", "1e300,1,0,0"]].concat(),
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("got 1e300") && e.len() < 200, "{e}");
+
+    // A data file whose embedded scene is damaged: exit 1 naming the file.
+    let mut damaged = DataFile::read(&sphere).unwrap();
+    damaged.header.scene_text = "name = \"sphere\"\n[camera]\nkind = ".into();
+    let broken = tmp.path().join("broken.exr");
+    damaged.write(&broken).unwrap();
+    let o = run_look(&broken, &out, &pin);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("broken.exr"), "{e}");
+}

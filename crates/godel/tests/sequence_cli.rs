@@ -225,7 +225,8 @@ fn unwritable_outputs_and_odd_inputs_are_refused_before_any_frame() {
 }
 
 /// Issue 10: re-running a sequence with fewer frames into the same folder made an MP4 with
-/// the old frames in it. The earlier run's extra frames and its MP4 are removed first.
+/// the old frames in it. The earlier run's extra frames and its MP4 are removed first — those
+/// its manifest names (issue 24): a file of the user's named like a frame or the MP4 stays.
 #[test]
 fn a_shorter_rerun_leaves_only_its_own_frames() {
     let dir = tempfile::tempdir().unwrap();
@@ -246,9 +247,12 @@ fn a_shorter_rerun_leaves_only_its_own_frames() {
     };
     run(10);
     let out = dir.path().join("out");
-    // An MP4 of the 10 frames (as ffmpeg would have left it) and a file of the user's.
+    // An MP4 of the 10 frames as ffmpeg would have left it (recorded), and files of the
+    // user's, one named like a frame beyond the count.
     std::fs::write(out.join("sequence.mp4"), b"old movie").unwrap();
+    common::record_as_sequence_output(&out, &["sequence.mp4"]);
     std::fs::write(out.join("notes.txt"), b"mine").unwrap();
+    std::fs::write(out.join("frame_0020.png"), b"mine too").unwrap();
     let o = run(4);
     let e = stderr(&o);
     assert!(e.contains("removed 7 file(s) of an earlier run"), "{e}");
@@ -256,11 +260,86 @@ fn a_shorter_rerun_leaves_only_its_own_frames() {
         e.contains("frame_0004.png") && e.contains("sequence.mp4"),
         "{e}"
     );
-    let expect: Vec<String> = (0..4)
-        .map(|i| format!("frame_{i:04}.png"))
-        .chain(["notes.txt".to_string()])
+    let expect: Vec<String> = [common::MANIFEST.to_string()]
+        .into_iter()
+        .chain((0..4).map(|i| format!("frame_{i:04}.png")))
+        .chain(["frame_0020.png".to_string(), "notes.txt".to_string()])
         .collect();
     assert_eq!(files_in(&out), expect);
+}
+
+/// Issue 24: a sequence that re-shades a data file, its output folder being that file's
+/// folder, removed the input and every traced `frame_NNNN.exr` there (and exited 0 with a
+/// note). A sequence removes only what its manifest says an earlier sequence wrote, never its
+/// input, never a file that changed since it was written.
+#[test]
+fn a_sequence_never_removes_its_input_or_files_it_did_not_write() {
+    let dir = tempfile::tempdir().unwrap();
+    let fly = dir.path().join("fly");
+    std::fs::create_dir(&fly).unwrap();
+    // The repro: a render named like a frame, re-shaded into its own folder.
+    std::fs::copy(data_file(dir.path()), fly.join("frame_0002.exr")).unwrap();
+    std::fs::write(fly.join("frame_0003.exr"), b"another render").unwrap();
+    let script = dir.path().join("r.toml");
+    let write_script = |data: &str, frames: u32| {
+        let text = format!(
+            "data = \"{data}\"\noutput = \"fly\"\nframes = {frames}\nmp4 = false\n\
+             [settings]\nshaders = [\"frequency\"]\n"
+        );
+        std::fs::write(&script, text).unwrap();
+    };
+    let expected = [
+        common::MANIFEST,
+        "frame_0000.png",
+        "frame_0001.png",
+        "frame_0002.exr",
+        "frame_0003.exr",
+    ];
+    write_script("fly/frame_0002.exr", 2);
+    let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("removed"), "{}", stderr(&o));
+    let before = std::fs::read(fly.join("frame_0002.exr")).unwrap();
+    assert_eq!(files_in(&fly), expected);
+    // Even a data file an earlier sequence wrote is not removed while it is the input.
+    common::record_as_sequence_output(&fly, &["frame_0002.exr"]);
+    // And a frame the user replaced since its sequence wrote it stays, with a note.
+    std::fs::write(fly.join("frame_0001.png"), b"the user's own picture now").unwrap();
+    write_script("fly/frame_0002.exr", 1);
+    let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("changed since: frame_0001.png"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read(fly.join("frame_0002.exr")).unwrap(), before);
+    assert_eq!(files_in(&fly), expected);
+}
+
+/// Issue 24: an output of a sequence that is one of its inputs is refused before any frame.
+#[test]
+fn a_sequence_whose_output_is_its_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::copy(data_file(dir.path()), out.join("frame_0001.png")).unwrap();
+    let script = dir.path().join("s.toml");
+    std::fs::write(
+        &script,
+        "data = \"out/frame_0001.png\"\noutput = \"out\"\nframes = 3\nmp4 = false\n\
+         [settings]\nshaders = [\"frequency\"]\n",
+    )
+    .unwrap();
+    let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("s.toml") && e.contains("output"), "{e}");
+    assert!(
+        e.contains("frame_0001.png is the data file this run reads"),
+        "{e}"
+    );
+    assert_eq!(files_in(&out), ["frame_0001.png"]);
 }
 
 #[test]

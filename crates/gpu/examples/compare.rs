@@ -16,7 +16,13 @@ fn main() {
     }
     scene.trace.method = TraceMethod::Exact;
     let t = Instant::now();
-    let gpu = gpu::GpuTracer::new(gpu::KernelInput::new(&scene)).unwrap_or_else(|e| panic!("{e}"));
+    let gpu = gpu::GpuTracer::with_kernel(
+        gpu::KernelInput::new(&scene),
+        &std::env::var("KERNEL")
+            .map(|p| std::fs::read_to_string(p).expect("kernel file"))
+            .unwrap_or(gpu::KERNEL.to_string()),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let setup = t.elapsed();
     let t = Instant::now();
     let g = gpu.trace(&NoProgress).expect("trace");
@@ -34,12 +40,25 @@ fn main() {
     }
     if std::env::var("USED").is_ok() {
         for (c, name) in [(1usize, "probes"), (2, "loop passes")] {
-            let mut v: Vec<f32> = g.records.iter().filter(|r| r.status == RayStatus::Hit).map(|r| r.dir[c]).collect();
+            let mut v: Vec<f32> = g
+                .records
+                .iter()
+                .filter(|r| r.status == RayStatus::Hit)
+                .map(|r| r.dir[c])
+                .collect();
             v.sort_by(f32::total_cmp);
             if !v.is_empty() {
                 let at = |p: f64| v[((v.len() - 1) as f64 * p) as usize];
-                println!("{name} (hit samples): median {} p90 {} p99 {} max {}", at(0.5), at(0.9), at(0.99), at(1.0));
-                let arg = (0..g.records.len()).filter(|&i| g.records[i].status == RayStatus::Hit).max_by(|&a, &b| g.records[a].dir[c].total_cmp(&g.records[b].dir[c]));
+                println!(
+                    "{name} (hit samples): median {} p90 {} p99 {} max {}",
+                    at(0.5),
+                    at(0.9),
+                    at(0.99),
+                    at(1.0)
+                );
+                let arg = (0..g.records.len())
+                    .filter(|&i| g.records[i].status == RayStatus::Hit)
+                    .max_by(|&a, &b| g.records[a].dir[c].total_cmp(&g.records[b].dir[c]));
                 println!("  heaviest sample: {arg:?}");
             }
         }
@@ -67,9 +86,16 @@ fn main() {
         let mut shown = 0;
         for i in 0..n {
             let (a, b) = (&g.records[i], &cpu.records[i]);
-            if a.status == RayStatus::Hit && b.status == RayStatus::Hit && ((a.g - b.g) / b.g).abs() > 1e-3 && shown < 8 {
+            if a.status == RayStatus::Hit
+                && b.status == RayStatus::Hit
+                && ((a.g - b.g) / b.g).abs() > 1e-3
+                && shown < 8
+            {
                 shown += 1;
-                println!("  g px {i}: gpu g {} t {} uv ({}, {}) | cpu g {} t {} uv ({}, {})", a.g, a.t_emit, a.u, a.v, b.g, b.t_emit, b.u, b.v);
+                println!(
+                    "  g px {i}: gpu g {} t {} uv ({}, {}) | cpu g {} t {} uv ({}, {})",
+                    a.g, a.t_emit, a.u, a.v, b.g, b.t_emit, b.u, b.v
+                );
             }
         }
     }

@@ -7,8 +7,10 @@
 
 use khronos_egl as egl;
 
-/// The EGL library's file names tried in turn.
+/// The EGL library's file names tried in turn, unless the environment variable [`LIBRARY_VAR`]
+/// names one (a path, for an EGL installed out of the loader's way).
 const LIBRARIES: [&str; 2] = ["libEGL.so.1", "libEGL.so"];
+pub const LIBRARY_VAR: &str = "GODEL_EGL";
 
 /// EGL_PLATFORM_SURFACELESS_MESA and EGL_PLATFORM_DEVICE_EXT.
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
@@ -136,7 +138,11 @@ impl Drop for Context {
 
 fn load() -> Result<Egl, ContextError> {
     let mut errors = Vec::new();
-    for name in LIBRARIES {
+    let names: Vec<String> = match std::env::var(LIBRARY_VAR) {
+        Ok(name) => vec![name],
+        Err(_) => LIBRARIES.iter().map(|s| s.to_string()).collect(),
+    };
+    for name in &names {
         // SAFETY: loading libEGL runs its initializers, as linking it would; its symbols
         // are looked up with their EGL 1.4 signatures by khronos-egl.
         match unsafe { Egl::load_required_from_filename(name) } {

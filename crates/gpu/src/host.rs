@@ -57,6 +57,12 @@ pub struct Traced {
 impl GpuTracer {
     /// Makes a context, compiles the kernel for `input`'s scene and uploads its table.
     pub fn new(input: KernelInput) -> Result<GpuTracer, HostError> {
+        GpuTracer::with_kernel(input, KERNEL)
+    }
+
+    /// The same with another kernel source (tests hold mutated kernels to the CPU: each
+    /// mutation must be caught).
+    pub fn with_kernel(input: KernelInput, kernel: &str) -> Result<GpuTracer, HostError> {
         let ctx = Context::new()?;
         let gl = &ctx.gl;
         let buffers = ctx.draw_buffers.min(input.slots());
@@ -68,10 +74,6 @@ impl GpuTracer {
         // this thread, with objects created here and buffers sized for what GL writes.
         unsafe {
             let program = gl.create_program().map_err(HostError::Gl)?;
-            let kernel = std::env::var("GODEL_KERNEL_EXPERIMENT")
-                .ok()
-                .map(|p| std::fs::read_to_string(p).unwrap())
-                .unwrap_or(KERNEL.to_string());
             let fragment = format!("#version 300 es\n{}{}", input.defines(buffers), kernel);
             for (kind, source) in [
                 (glow::VERTEX_SHADER, VERTEX.to_string()),
@@ -145,6 +147,9 @@ impl GpuTracer {
                 ctx,
             };
             tracer.set_scene_uniforms();
+            // One sample drawn now: drivers compile shaders for the hardware on first use
+            // (llvmpipe: seconds), which belongs to setting up, not to tracing.
+            tracer.draw(0, 0, 1, 1)?;
             Ok(tracer)
         }
     }

@@ -7,7 +7,8 @@
 // kernel" in docs/physics.md says what that costs).
 //
 // The host prepends `#version 300 es` and three defines: N_OBJECTS and N_LIGHTS (the
-// scene's counts, at least 1 for the array sizes) and DRAW_BUFFERS (render targets per pass).
+// scene's counts, at least 1 for the array sizes) and DRAW_BUFFERS (render targets per pass);
+// benchmarks may add COUNT_PROBES (each sample's probe count in place of view_x).
 //
 // Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
 // vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
@@ -98,6 +99,8 @@ const int PIXEL_PROBES = 8192;
 // (render::worldline::SIMULTANEITY_STEPS).
 const int REFINE_STEPS = 100;
 const int SIMULTANEITY_STEPS = 12;
+// Newton steps of a falling ball's proper time at a coordinate time (tauGuess).
+const int TIME_STEPS = 3;
 // render::target: rate margins and the near zone of local objects.
 const float RATE_MARGIN = 1.5;
 const float GLOBAL_RATE_MARGIN = 2.0;
@@ -607,8 +610,16 @@ mat4 bodyFrame(int i, WPoint p) {
 }
 
 // A first guess of the proper time at which the worldline has coordinate time t.
+// A free fall's: the proper time of equal coordinate time (the CPU interpolates it from its
+// integration steps), by Newton steps on t(τ) from the mean rate's guess (dt/dτ = u^t).
 float tauGuess(int i, float t) {
-    return oKind[i] == KIND_FREE ? (t - oStart[i].x) / oRate[i] : t;
+    if (oKind[i] != KIND_FREE) return t;
+    float tau = (t - oStart[i].x) / oRate[i];
+    for (int it = 0; it < TIME_STEPS; it++) {
+        WPoint p = worldAt(i, tau);
+        tau += (t - p.ev.x) / max(p.u.x, 0.05);
+    }
+    return tau;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -643,30 +654,26 @@ Local localize(int i, vec4 x, float seed, float far) {
     }
     // Free fall: the first-order simultaneity ξ⁰ = −g(u, Δ) = 0 by the secant method from
     // the seed, then one Newton step on the second-order ξ⁰, whose Γ is the previous
-    // point's (as on the CPU). One worldline evaluation per pass of this loop.
-    float ta = seed, fa = 0.0, tau = seed;
-    WPoint p;
-    mat4 g;
+    // point's (as on the CPU). One worldline evaluation per pass of the loop.
+    // The seed's point first (a far point needs no more, and no loop pass).
+    WPoint p = worldAt(i, seed);
+    mat4 g = metricAt(p.ev);
+    float f0 = -dotg(g, p.u, x - p.ev);
+    float len0 = sqrt(max(dotg(g, x - p.ev, x - p.ev) + f0 * f0, 0.0));
+    if (len0 > far) {
+        lp.at = p;
+        lp.len = len0;
+        lp.exact = false;
+        return lp;
+    }
+    float ta = seed, fa = f0, tau = seed + f0;
     vec4 xiSecond = vec4(0.0);
-    int stage = 0;   // 0 seed, 1 secant, 2 after the Newton step
-    for (int it = 0; it < SIMULTANEITY_STEPS + 3; it++) {
+    int stage = 1;   // 1 secant, 2 after the Newton step
+    for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
         p = worldAt(i, tau);
         g = metricAt(p.ev);
         if (stage == 2) break;
         float f = -dotg(g, p.u, x - p.ev);
-        if (it == 0) {
-            vec2 first = vec2(f, sqrt(max(dotg(g, x - p.ev, x - p.ev) + f * f, 0.0)));
-            if (first.y > far) {
-                lp.at = p;
-                lp.len = first.y;
-                lp.exact = false;
-                return lp;
-            }
-            ta = tau; fa = f;
-            tau = tau + f;
-            stage = 1;
-            continue;
-        }
         bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
         if (done) {
             xiSecond = normalDisplacement(p.ev, x - p.ev);
@@ -908,10 +915,11 @@ float eSkipFrom;
 int eMode, eLoop, eSeg, eObj;
 float eLo, eHi;
 Found eBest, eResult;
-Probe startProbe[N_OBJECTS];
-float startAt[N_OBJECTS];
-Probe endProbe[N_OBJECTS];
-float endAt[N_OBJECTS];
+// The probes at the start and the end of the segment, per object, and the λ where each was
+// taken: two buffers that change roles from segment to segment (no copying).
+Probe probeBuf[2 * N_OBJECTS];
+float probeAt[2 * N_OBJECTS];
+int eStart;   // N_OBJECTS times the start buffer (0 or 1)
 vec3 eBoxLo, eBoxHi;
 // Bisection of one object's stretch [bA, bA + bL]: the span [ba, bb] at depth bDepth and
 // index bIndex, with its end probes bpa, bpb.
@@ -969,6 +977,7 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
     eTBound = tBound;
     eLoop = 0;
     eMode = M_LOOP;
+    eStart = 0;
     eSkipObj = -1;
     eSkipFrom = INF;
     qTag = Q_NONE;
@@ -978,8 +987,11 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
 // The span after the finished span [ba, bb] of the current bisection: climb while it is a
 // right half, then take the right sibling, whose start probe is bb's and whose end is probed.
 void nextSpan() {
-    while (bDepth > 0 && bIndex % 2 == 1) { bDepth--; bIndex /= 2; }
-    if (bDepth == 0) {
+    // The trailing ones of the index are the levels to climb: 2^k = (i + 1) & −(i + 1).
+    int up = int(log2(float((bIndex + 1) & -(bIndex + 1))) + 0.5);
+    bDepth -= up;
+    bIndex >>= up;
+    if (bDepth <= 0) {
         eMode = M_SCAN;   // no crossing of this object in the segment
         return;
     }
@@ -998,11 +1010,11 @@ void machineStep() {
     int tag = qTag;
     qTag = Q_NONE;
     if (tag == Q_START) {
-        startProbe[eObj] = qAnswer;
-        startAt[eObj] = loopOffset();
+        probeBuf[eStart + eObj] = qAnswer;
+        probeAt[eStart + eObj] = loopOffset();
     } else if (tag == Q_END) {
-        endProbe[eObj] = qAnswer;
-        endAt[eObj] = eHi + loopOffset();
+        probeBuf[N_OBJECTS - eStart + eObj] = qAnswer;
+        probeAt[N_OBJECTS - eStart + eObj] = eHi + loopOffset();
         bpb = qAnswer;
         float limit = eBest.status == HIT ? eBest.lambda : eHi;
         bA = eLo;
@@ -1024,7 +1036,7 @@ void machineStep() {
         } else {
             eMode = M_BISECT;   // a plane crossed beyond its extent: on with the next span
             nextSpan();
-            return;
+            if (eMode != M_SCAN) return;
         }
     } else if (tag == Q_REFINE) {
         float fm = qAnswer.f, m = qLambda;
@@ -1099,11 +1111,11 @@ void machineStep() {
                     return;
                 }
                 nextSpan();
-                return;
+                if (eMode != M_SCAN) return;
             }
         } else {
             nextSpan();
-            return;
+            if (eMode != M_SCAN) return;
         }
     }
     if (eMode == M_REFINE) {
@@ -1121,10 +1133,10 @@ void machineStep() {
         float off = loopOffset();
         for (eObj++; eObj < N_OBJECTS; eObj++) {
             if (!searched[eObj]) continue;
-            Probe p = startProbe[eObj];
+            Probe p = probeBuf[eStart + eObj];
             if (eObj == eSkipObj && eLo >= eSkipFrom) {
-                endProbe[eObj] = p;
-                endAt[eObj] = startAt[eObj];
+                probeBuf[N_OBJECTS - eStart + eObj] = p;
+                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
                 continue;
             }
             // GPU only: a segment that provably stays clear of a ball at rest or a plane is
@@ -1135,15 +1147,15 @@ void machineStep() {
                 float fEnd = oKind[eObj] == KIND_REST
                     ? REACH_PER_RADIUS * oRadius[eObj] / 1.05 - oRadius[eObj]
                     : eRay.geo.pz * (eHi + off) - oCz[eObj];
-                endProbe[eObj] = Probe(fEnd, p.rate, NO_TAU);
-                endAt[eObj] = eHi + off;
+                probeBuf[N_OBJECTS - eStart + eObj] = Probe(fEnd, p.rate, NO_TAU);
+                probeAt[N_OBJECTS - eStart + eObj] = eHi + off;
                 continue;
             }
-            float at = startAt[eObj];
+            float at = probeAt[eStart + eObj];
             float clear = abs(p.f);
             if (oKind[eObj] == KIND_REST && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
-                endProbe[eObj] = p;   // provably no crossing of this object within the segment
-                endAt[eObj] = at;
+                probeBuf[N_OBJECTS - eStart + eObj] = p;   // provably no crossing of this object within the segment
+                probeAt[N_OBJECTS - eStart + eObj] = at;
                 continue;
             }
             // A probe taken before lo still bounds |f| at lo from below (same side).
@@ -1162,10 +1174,7 @@ void machineStep() {
             rayAt(eRay, eLoop, eHi, x, k);
             if (x.x < eTBound) { finish(ESCAPED); return; }
         }
-        for (int i = 0; i < N_OBJECTS; i++) {
-            startProbe[i] = endProbe[i];
-            startAt[i] = endAt[i];
-        }
+        eStart = N_OBJECTS - eStart;   // the end probes start the next segment
         eSeg++;
         if (eSeg < eSegs) {
             eMode = M_SEGMENT;
@@ -1641,6 +1650,9 @@ void main() {
     for (int i = 0; i < u_two; i++) passes++;
     if (passes != 2) status = WORK_LIMIT;
     if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
+#ifdef COUNT_PROBES
+    slots[2].w = float(PIXEL_PROBES - probes_left);   // benchmarks: the probes in view_x
+#endif
     o0 = slots[u_slot0];
 #if DRAW_BUFFERS > 1
     o1 = slots[u_slot0 + 1];

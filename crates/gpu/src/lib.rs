@@ -5,15 +5,18 @@
 //! tracer does (docs/physics.md, "The GPU kernel"), and writes the data file's channels into
 //! float render targets. Two hosts run the same source: [`host::GpuTracer`] here
 //! (`godel render --gpu`: an offscreen EGL / OpenGL ES 3 context, [`context::Context`], with
-//! libEGL loaded at run time) and the viewer's page (WebGL2). [`input::KernelInput`] is the
-//! one packer of what the kernel reads, for both.
+//! libEGL loaded at run time; [`render()`] makes a scene's data file with it) and the
+//! viewer's page (WebGL2). [`input::KernelInput`] is the one packer of what the kernel reads,
+//! for both.
 
 pub mod context;
 pub mod host;
 pub mod input;
+pub mod render;
 
 /// The kernel's source (without `#version` and the defines its host prepends).
 pub const KERNEL: &str = include_str!("kernel.glsl");
 
 pub use host::{GpuTracer, HostError, Traced};
 pub use input::KernelInput;
+pub use render::{render, render_with, GpuRender};

@@ -10,7 +10,9 @@
 //! sphere's record at n with `g` and `lambda` multiplied by D (the tracer normalizes the
 //! photon to unit energy in the observer's own frame), every other field unchanged.
 //!
-//! Main items: [`look`] (the remapping), [`LookView`] (camera, axes, velocity),
+//! Main items: [`look`] (the remapping; [`look_rows`] for a band of its rows, so that a
+//! server can shade a large view band by band in bounded memory), [`LookView`] (camera,
+//! axes, velocity),
 //! [`SphereSource`] (the sphere's pixel geometry: [`SphereSource::position`] and
 //! [`SphereSource::pixel_size`]), [`pixel_look`] (one output pixel: its direction in both
 //! frames and D), [`resolution`] (how far the source's pixels limit the output).
@@ -116,16 +118,12 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-/// `v` normalized; an error naming `field` for a zero or non-finite vector.
+/// `v` normalized; an error naming `field` for a zero or non-finite vector. Components so
+/// large or small that their squares overflow or vanish are scaled first
+/// ([`spacetime::scaled_unit`]).
 fn unit(field: &'static str, v: [f64; 3]) -> Result<[f64; 3], LookError> {
-    let n = dot(v, v).sqrt();
-    if !(v.iter().all(|c| c.is_finite()) && n > 0.0 && n.is_finite()) {
-        return Err(view_error(
-            field,
-            format!("must be a non-zero direction, got {v:?}"),
-        ));
-    }
-    Ok(v.map(|c| c / n))
+    spacetime::scaled_unit(v)
+        .ok_or_else(|| view_error(field, format!("must be a non-zero direction, got {v:?}")))
 }
 
 impl LookView {
@@ -291,35 +289,8 @@ impl SphereSource {
 pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
     view.check()?;
     let source = SphereSource::of(sphere)?;
+    let (records, lights) = look_rows(sphere, &source, view, 0..view.camera.height());
     let width = view.camera.width() as usize;
-    let pixels = width * view.camera.height() as usize;
-    // Per pixel: its record and the source pixel it came from (for the light planes).
-    let mut samples = vec![(PixelRecord::miss(RayStatus::NotTraced), None); pixels];
-    samples
-        .par_chunks_mut(width)
-        .enumerate()
-        .for_each(|(row, out)| {
-            for (col, slot) in out.iter_mut().enumerate() {
-                if let Some(p) = pixel_look(view, col as u32, row as u32) {
-                    let i = source.nearest(source.position(p.static_dir));
-                    let mut record = boosted(sphere.records[i], p.doppler);
-                    // The direction this camera's pixel looks, in the moving observer's frame.
-                    record.view = p.own.map(|c| c as f32);
-                    *slot = (record, Some(i));
-                }
-            }
-        });
-    let lights = sphere
-        .lights
-        .iter()
-        .map(|plane| {
-            samples
-                .iter()
-                .map(|&(_, i)| i.map_or(0.0, |i| plane[i]))
-                .collect()
-        })
-        .collect();
-
     let text = scene::replace_view(
         &sphere.header.scene_text,
         EMBEDDED,
@@ -342,9 +313,57 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
         header,
         width,
         height: view.camera.height() as usize,
-        records: samples.into_iter().map(|(r, _)| r).collect(),
+        records,
         lights,
     })
+}
+
+/// Rows `rows` of the image [`look`] makes of `view` from `sphere` (whose geometry is
+/// `source`, [`SphereSource::of`]): the records, row-major, and each light plane of them.
+/// `view` must be checked ([`LookView::new`]). Memory: one record per pixel, and one index
+/// per pixel only where the sphere has light planes.
+pub fn look_rows(
+    sphere: &DataFile,
+    source: &SphereSource,
+    view: &LookView,
+    rows: std::ops::Range<u32>,
+) -> (Vec<PixelRecord>, Vec<Vec<f32>>) {
+    let width = view.camera.width() as usize;
+    let rows = rows.start..rows.end.min(view.camera.height());
+    let pixels = width * rows.len();
+    // The sphere pixel each pixel shows (for the light planes).
+    let show = |col: usize, row: usize| {
+        let p = pixel_look(view, col as u32, rows.start + row as u32)?;
+        Some((source.nearest(source.position(p.static_dir)), p))
+    };
+    let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); pixels];
+    records
+        .par_chunks_mut(width.max(1))
+        .enumerate()
+        .for_each(|(row, out)| {
+            for (col, slot) in out.iter_mut().enumerate() {
+                if let Some((i, p)) = show(col, row) {
+                    let mut record = boosted(sphere.records[i], p.doppler);
+                    // The direction this camera's pixel looks, in the moving observer's frame.
+                    record.view = p.own.map(|c| c as f32);
+                    *slot = record;
+                }
+            }
+        });
+    let lights = if sphere.lights.is_empty() {
+        Vec::new()
+    } else {
+        let shown: Vec<Option<usize>> = (0..pixels)
+            .into_par_iter()
+            .map(|k| show(k % width, k / width).map(|(i, _)| i))
+            .collect();
+        sphere
+            .lights
+            .iter()
+            .map(|plane| shown.iter().map(|i| i.map_or(0.0, |i| plane[i])).collect())
+            .collect()
+    };
+    (records, lights)
 }
 
 /// The static observer's record `r` as the moving observer of Doppler factor `doppler`

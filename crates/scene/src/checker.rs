@@ -30,7 +30,7 @@ impl Checker<'_> {
         if v > 0.0 {
             Ok(v)
         } else {
-            self.err(path, format!("must be positive, got {v}"))
+            self.err(path, format!("must be positive, got {}", crate::short(v)))
         }
     }
 
@@ -39,7 +39,10 @@ impl Checker<'_> {
         if v >= 0.0 {
             Ok(v)
         } else {
-            self.err(path, format!("must not be negative, got {v}"))
+            self.err(
+                path,
+                format!("must not be negative, got {}", crate::short(v)),
+            )
         }
     }
 
@@ -56,10 +59,14 @@ impl Checker<'_> {
             self.finite(&format!("{path}[{i}]"), *c)?;
         }
         let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return self.err(path, format!("must be a non-zero direction, got {v:?}"));
+        if n > 0.0 && n.is_finite() {
+            return Ok([v[0] / n, v[1] / n, v[2] / n]);
         }
-        Ok([v[0] / n, v[1] / n, v[2] / n])
+        // Components whose squares overflow or vanish (1e200, 1e-200): scaled first.
+        match spacetime::scaled_unit(v) {
+            Some(unit) => Ok(unit),
+            None => self.err(path, format!("must be a non-zero direction, got {v:?}")),
+        }
     }
 
     pub(crate) fn velocity(
@@ -73,7 +80,10 @@ impl Checker<'_> {
         if !(0.0..1.0).contains(&speed) {
             return self.err(
                 &speed_path,
-                format!("must be in [0, 1) (a fraction of light speed), got {speed}"),
+                format!(
+                    "must be in [0, 1) (a fraction of light speed), got {}",
+                    crate::short(speed)
+                ),
             );
         }
         let dir = self.direction(

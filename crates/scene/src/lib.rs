@@ -31,12 +31,12 @@ pub use camera::{
     azimuth_elevation, direction_from, samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES,
 };
 pub use edit::replace_view;
-pub use error::{line_column, line_of_path, one_line, Location, SceneError};
+pub use error::{line_column, line_of_path, one_line, short, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
-pub use validate::{MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
+pub use validate::{A_RANGE, MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;
 use serde::Deserialize;

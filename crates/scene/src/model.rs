@@ -107,6 +107,8 @@ pub struct TraceSettings {
     pub tolerance: f64,
     /// Step budget per ray (1 to 10⁷; default 100000).
     pub max_steps: u64,
+    /// Trace on the GPU with the exact tracer's kernel (`godel render --gpu`; default false).
+    pub gpu: bool,
 }
 
 impl Default for TraceSettings {
@@ -116,6 +118,7 @@ impl Default for TraceSettings {
             max_past: 30.0,
             tolerance: 1e-11,
             max_steps: 100_000,
+            gpu: false,
         }
     }
 }

@@ -102,6 +102,7 @@ pub struct RawTrace {
     pub max_past: Option<f64>,
     pub tolerance: Option<f64>,
     pub max_steps: Option<u64>,
+    pub gpu: Option<bool>,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq)]

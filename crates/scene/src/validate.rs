@@ -37,6 +37,10 @@ pub const MAX_RAY_LOOPS: u64 = 100_000;
 /// beyond it the isometries that carry events to the axis, and f64 times, lose the
 /// precision the tracer needs (an observer at r = 1e9·a sees only NaN).
 pub const MAX_COORDINATE_PER_A: f64 = 1e6;
+/// The Gödel parameter a, smallest and largest: beyond them the metric's terms (r²/a, 1/a²)
+/// overflow or lose the precision of f64 (a = 1e-300 made even the axis unusable).
+pub const A_RANGE: (f64, f64) = (1e-6, 1e6);
+
 /// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
 /// a local object is described in its rest frame to second order in its size (Riemann
 /// normal coordinates), which needs it small against the curvature scale a. Measured
@@ -143,9 +147,22 @@ fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
         return Ok(Metric::Godel(Godel::new(1.0)));
     };
     match s.metric.unwrap_or(MetricName::Godel) {
-        MetricName::Godel => Ok(Metric::Godel(Godel::new(
-            c.positive("spacetime.a", s.a.unwrap_or(1.0))?,
-        ))),
+        MetricName::Godel => {
+            let a = c.positive("spacetime.a", s.a.unwrap_or(1.0))?;
+            if !(A_RANGE.0..=A_RANGE.1).contains(&a) {
+                return c.err(
+                    "spacetime.a",
+                    format!(
+                        "{} is outside [{:e}, {:e}]: the metric loses the precision of f64 there \
+                         (choose the unit of length so that a is moderate)",
+                        crate::short(a),
+                        A_RANGE.0,
+                        A_RANGE.1
+                    ),
+                );
+            }
+            Ok(Metric::Godel(Godel::new(a)))
+        }
         MetricName::Minkowski => {
             c.unused("spacetime.a", &s.a, "by the Minkowski metric")?;
             Ok(Metric::Minkowski(Minkowski))
@@ -275,6 +292,7 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
         max_past: c.positive("trace.max_past", t.max_past.unwrap_or(d.max_past))?,
         tolerance,
         max_steps,
+        gpu: t.gpu.unwrap_or(d.gpu),
     })
 }
 
@@ -362,7 +380,10 @@ fn coordinate_bounds(
         match values.iter().find(|v| v.abs() > bound) {
             Some(v) => c.err(
                 path,
-                format!("{v} is beyond ±{bound:e} (1e6 times the scale a): the tracer loses precision there"),
+                format!(
+                    "{} is beyond ±{bound:e} (1e6 times the scale a): the tracer loses precision there",
+                    crate::short(*v)
+                ),
             ),
             None => Ok(()),
         }

@@ -30,7 +30,8 @@ fn defaults() {
             method: TraceMethod::Numeric,
             max_past: 30.0,
             tolerance: 1e-11,
-            max_steps: 100_000
+            max_steps: 100_000,
+            gpu: false
         }
     );
     assert!(s.objects.is_empty() && s.lights.is_empty());

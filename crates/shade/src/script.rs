@@ -422,10 +422,18 @@ impl Script {
                         format!("must be finite and ≥ 0, got {t}"),
                     ))
                 }
-                _ => {
+                (Some(_), Some(_)) => {
                     return Err(error(
                         &field,
                         "give either `frame` or `time` (seconds), not both".into(),
+                    ))
+                }
+                (None, None) => {
+                    return Err(error(
+                        &field,
+                        "says neither when it is: give `frame` (a frame number) or `time` \
+                         (seconds)"
+                            .into(),
                     ))
                 }
             };

@@ -340,6 +340,15 @@ impl Shading {
     /// anti-aliased file is shaded sample by sample and box-filtered
     /// ([`DataFile::box_filter`]). Overlays (reference squares, legend) included.
     pub fn image_into(&self, data: &DataFile, bytes: &mut Vec<u8>) {
+        self.image_rows_into(data, bytes);
+        let (w, h) = data.picture_size();
+        self.draw_overlays(w, h, bytes);
+    }
+
+    /// [`Shading::image_into`] without the reference squares and the overlay layer: for a
+    /// picture shaded in bands of rows, each band a data file of its own (pixels are shaded
+    /// one by one), over which [`Shading::draw_overlays`] then draws them once.
+    pub fn image_rows_into(&self, data: &DataFile, bytes: &mut Vec<u8>) {
         let (w, h) = data.picture_size();
         bytes.clear();
         if w == 0 || h == 0 || data.records.len() < data.width * data.height {
@@ -357,7 +366,6 @@ impl Shading {
                     px.copy_from_slice(&rgb_to_srgb8_fast(c));
                 }
             });
-        self.overlays(w, h, bytes);
     }
 
     /// Shades `data` into linear, scene-referred RGB (row-major, row 0 at the top) at the
@@ -453,7 +461,7 @@ impl Shading {
                 linear_to_srgb8_row(row_rgb, out);
             },
         );
-        self.overlays(w, h, bytes);
+        self.draw_overlays(w, h, bytes);
     }
 
     /// Linear colours of the samples from `start` on into `rgb` (3 values per sample),
@@ -609,9 +617,9 @@ impl Shading {
         }
     }
 
-    /// The reference squares (frequency layer), drawn into the picture, then the overlay
-    /// layer composited over it.
-    fn overlays(&self, w: usize, h: usize, bytes: &mut Vec<u8>) {
+    /// The reference squares (frequency layer), drawn into the `w` × `h` RGB8 picture
+    /// `bytes`, then the overlay layer composited over it.
+    pub fn draw_overlays(&self, w: usize, h: usize, bytes: &mut Vec<u8>) {
         let squares = self.frequency && self.reference_squares;
         let shown = self.overlays_shown();
         if shown.is_empty() {

@@ -214,9 +214,14 @@ fn sources_frames_and_times_are_checked() {
             "data = \"a\"\nframes = 3\nfps = -1.0\n",
             "fps: must be positive",
         ),
+        // Issue 24: a keyframe with neither was told "give either …, not both".
         (
             "data = \"a\"\nframes = 3\n[[keyframe]]\n",
-            "either `frame` or `time`",
+            "keyframe[0]: says neither when it is: give `frame` (a frame number) or `time`",
+        ),
+        (
+            "data = \"a\"\nframes = 3\n[[keyframe]]\nframe = 1\ntime = 0.5\n",
+            "either `frame` or `time` (seconds), not both",
         ),
     ] {
         let e = script(text).unwrap_err();

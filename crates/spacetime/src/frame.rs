@@ -13,18 +13,46 @@ pub struct LocalVelocity {
     pub direction: [f64; 3],
 }
 
+/// `v` as a unit vector, `None` for a zero or non-finite vector. Where the squares of its
+/// components would overflow or lose precision (lengths beyond 1e150 or below 1e-150), it is
+/// scaled by its largest component first; otherwise it is v/|v| as written.
+pub fn scaled_unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    if !v.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let n = norm(v);
+    if n > 1e-150 && n < 1e150 {
+        return Some(v.map(|c| c / n));
+    }
+    let largest = v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    if largest == 0.0 {
+        return None;
+    }
+    let v = v.map(|c| c / largest);
+    let n = norm(v);
+    Some(v.map(|c| c / n))
+}
+
 impl LocalVelocity {
     pub const REST: LocalVelocity = LocalVelocity {
         speed: 0.0,
         direction: [1.0, 0.0, 0.0],
     };
 
-    /// Velocity from a speed and any non-zero direction (normalized here).
+    /// Velocity from a speed and any non-zero direction (normalized here; a direction
+    /// whose length overflows, such as (1e308, 1e308, 0), through [`scaled_unit`]).
     /// Returns `None` for a zero or non-finite direction or a speed outside [0, 1).
     pub fn new(speed: f64, direction: [f64; 3]) -> Option<Self> {
-        let n = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
-        if !(speed.is_finite() && (0.0..1.0).contains(&speed) && n.is_finite() && n > 0.0) {
+        if !(speed.is_finite() && (0.0..1.0).contains(&speed)) {
             return None;
+        }
+        let n = (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
+        if !(n.is_finite() && n > 0.0) {
+            return Some(LocalVelocity {
+                speed,
+                direction: scaled_unit(direction)?,
+            });
         }
         Some(LocalVelocity {
             speed,

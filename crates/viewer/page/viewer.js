@@ -133,7 +133,7 @@ let held = false;        // the page traces a frame on the GPU (traced.js): noth
 // The overlay layer (orientation marks, legend, labels), drawn by the server for the
 // settings (crates/shade/src/layer.rs) and composited by the shading pass: the key it was
 // made for (overlayKey), its size, whether it draws anything; the one wanted next.
-const overlay = { key: null, size: null, drawn: false, wanted: null, busy: false };
+const overlay = { key: null, size: null, drawn: false, wanted: null, busy: false, stale: false };
 
 function overlayPending() {
   return overlay.busy || (overlay.wanted !== null && overlay.wanted.key !== overlay.key);
@@ -147,7 +147,11 @@ async function fetchOverlay() {
   try {
     const response = await fetch(want.url, { method: 'POST', body: want.body,
       headers: { 'Content-Type': 'application/json' } });
-    if (!response.ok) {
+    if (response.status === 410) {
+      // Explore: that frame was replaced meanwhile; asked again when the next one shows.
+      overlay.drawn = false;
+      overlay.stale = true;
+    } else if (!response.ok) {
       showError(await errorText(response));
       overlay.drawn = false;
     } else if (response.status === 204) {
@@ -221,7 +225,8 @@ async function draw() {
       if (key === null) {
         overlay.wanted = null;
       } else if (key !== overlay.key) {
-        overlay.wanted = { key, url: p.look ? '/api/look/overlay' : '/api/overlay',
+        overlay.wanted = { key,
+          url: (p.look ? '/api/look/overlay' : '/api/overlay') + frameQuery(),
           body: p.look ? JSON.stringify({ settings, view: p.look.view })
             : JSON.stringify(settings) };
         fetchOverlay();
@@ -409,6 +414,13 @@ function showRecord(r, at) {
 
 // ---- saving: the server shades the PNG (look + shade for a turned or boosted view)
 
+// Explore mode: the frame on screen, named in the requests the server answers for it
+// (crates/viewer/src/explore_routes.rs: saved pictures, overlays); '' otherwise.
+function frameQuery() {
+  const f = viewer.explore?.shown;
+  return f ? `?generation=${f.generation}&level=${f.level}` : '';
+}
+
 function saveBody() {
   if (!lookMode()) return JSON.stringify(viewer.settings);
   return JSON.stringify({ settings: viewer.settings, view: picture().look.view });
@@ -455,8 +467,10 @@ viewer.readCanvas = () => { const p = gpu.readCanvas(); return { ...p, bytes: ba
 viewer.base64 = base64;
 // Fixes the canvas at w × h pixels (null: back to the layout).
 viewer.setViewSize = (w, h) => { fixedSize = w ? [w, h] : null; layout(); };
-// The settings and view the server would shade for "Save PNG".
+// The settings and view the server would shade for "Save PNG", and the query naming the
+// frame on screen (explore mode).
 viewer.saveBody = saveBody;
+viewer.frameQuery = frameQuery;
 // Sends `text` to the server as settings, as the page did before it shaded on the GPU: for
 // checking that the server's messages show.
 viewer.sendRaw = async (text) => {
@@ -541,8 +555,8 @@ async function start() {
   canvas.addEventListener('wheel', onWheel, { passive: false });
   canvas.addEventListener('dblclick', () => { if (!lookMode()) { fit(); changed(false); } });
   window.addEventListener('resize', layout);
-  $('save-png').addEventListener('click', () => download(lookMode() ? '/api/look/png' : '/api/png',
-    saveBody(), 'view.png'));
+  $('save-png').addEventListener('click', () => download(
+    (lookMode() ? '/api/look/png' : '/api/png') + frameQuery(), saveBody(), 'view.png'));
   $('save-keyframe').addEventListener('click', saveKeyframe);
   layout();
   await startExplore(viewer);
@@ -564,6 +578,10 @@ viewer.showFrame = (frame, channelUrl) => {
   const camera = viewer.view?.view?.camera;
   if (camera) Object.assign(camera, { width: frame.width, height: frame.height });
   describe();
+  if (overlay.stale) {
+    overlay.key = null;
+    overlay.stale = false;
+  }
   data.reset(channelUrl);
   layout();
   changed();

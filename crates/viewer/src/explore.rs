@@ -14,7 +14,9 @@
 //!   one pending slot.
 //! - Two frames are served: the newest and the one it replaced, whose channels a page that
 //!   has just seen it may still be fetching (while playing, the next event is sent as soon as
-//!   a frame is seen); any older frame is gone (410).
+//!   a frame is seen); any older frame is gone (410). So at most three frames are in memory
+//!   (those two and the one being traced), and a fourth while a viewer state prepared for an
+//!   older one answers a request ([`crate::explore_routes`]): [`FRAMES_IN_MEMORY`].
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
@@ -68,6 +70,10 @@ impl ObserverEvent {
     }
 }
 
+/// The most frames of the scene's full size in memory at once (see the module documentation):
+/// what a command sizes explore's memory by.
+pub const FRAMES_IN_MEMORY: u64 = 4;
+
 /// How finely a frame is traced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -111,7 +117,8 @@ pub struct Frame {
     pub generation: u64,
     pub level: Level,
     pub event: ObserverEvent,
-    pub data: DataFile,
+    /// Shared with the viewer states that answer for this frame (never copied).
+    pub data: Arc<DataFile>,
 }
 
 /// What the requests and the worker share.
@@ -320,7 +327,7 @@ fn work(shared: &Shared) {
                         generation,
                         level,
                         event,
-                        data,
+                        data: Arc::new(data),
                     });
                     slots.previous = slots.latest.replace(frame);
                     shared.kept.notify_all();

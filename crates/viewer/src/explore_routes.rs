@@ -10,7 +10,10 @@
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
 //! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
-//! | `GET /api/pixel?col=C&row=R[&generation=G&level=L]` | as in [`crate::routes`], the record of a pixel of that frame (the one the page shows; 410 once gone) or of the newest frame |
+//! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
+//!
+//! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
+//! frame on screen, at its size, never to the first frame the server opened on.
 //!
 //! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
 //! shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
@@ -20,63 +23,94 @@ use std::sync::{Arc, Mutex};
 
 use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
-use axum::extract::{DefaultBodyLimit, Path, Query, State};
+use axum::extract::{DefaultBodyLimit, Path, Query, Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
-use axum::routing::{get, post};
+use axum::routing::{any, get, post};
 use axum::{middleware, Json, Router};
 use serde::Deserialize;
+use tower::ServiceExt;
 
 use crate::api_error::{no_store, ApiError};
 use crate::explore::{Explorer, Frame, Level, ObserverEvent};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
-use crate::limit::WorkLimit;
 use crate::state::{ViewerOptions, ViewerState};
 
 /// The explore routes' state.
 pub struct ExploreState {
+    /// The first frame's viewer: texture folders, the bound on work, the page's files.
     pub viewer: Arc<ViewerState>,
     pub explorer: Explorer,
-    /// The last frame asked for prepared as a viewer's data file (for pixel records), made
-    /// on first use: (generation, level, state).
-    prepared: Mutex<Option<(u64, Level, Arc<ViewerState>)>>,
+    /// The routes of the last frame asked for, made on first use: (generation, level,
+    /// routes over that frame's viewer state, which shares the frame's data).
+    prepared: Mutex<Option<(u64, Level, Router)>>,
 }
 
 impl ExploreState {
-    /// `frame` (the newest frame when `None`; the first frame's state before any) as a
-    /// [`ViewerState`], prepared once per frame with the first frame's texture folders.
-    fn prepared(&self, frame: Option<Arc<Frame>>) -> Result<Arc<ViewerState>, ApiError> {
-        let Some(frame) = frame.or_else(|| self.explorer.latest()) else {
-            return Ok(self.viewer.clone());
-        };
+    /// The viewer's routes ([`crate::routes::routes`]) over `frame`, prepared once per frame
+    /// with the first frame's texture folders and the server's bound on work.
+    fn routes_for(&self, frame: &Frame) -> Result<Router, ApiError> {
         let mut prepared = self.prepared.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((generation, level, state)) = prepared.as_ref() {
+        if let Some((generation, level, routes)) = prepared.as_ref() {
             if (*generation, *level) == (frame.generation, frame.level) {
-                return Ok(state.clone());
+                return Ok(routes.clone());
             }
         }
+        // The older frame's state goes first: no more than one prepared frame in memory.
+        *prepared = None;
         let options = ViewerOptions {
             texture_folders: self.viewer.texture_folders().to_vec(),
-            work: WorkLimit::new(1, 0),
+            work: self.viewer.work().clone(),
         };
         let state = ViewerState::new_with(&self.viewer.path, frame.data.clone(), options)
             .map_err(|e| ApiError::internal(e.to_string()))?;
-        let state = Arc::new(state);
-        *prepared = Some((frame.generation, frame.level, state.clone()));
-        Ok(state)
+        let routes = crate::routes::routes(Arc::new(state));
+        *prepared = Some((frame.generation, frame.level, routes.clone()));
+        Ok(routes)
+    }
+
+    /// The frame a request names (`generation` and `level`; 410 once it is gone), or `None`
+    /// when it names none: then the first frame's viewer answers, whose channels
+    /// `/api/gpu/…` serves and which the page shows until it takes a traced frame.
+    fn frame_named(&self, which: FrameQuery) -> Result<Option<Arc<Frame>>, ApiError> {
+        match (which.generation, which.level) {
+            (Some(generation), Some(level)) => self
+                .explorer
+                .frame(generation, level)
+                .map(Some)
+                .ok_or_else(|| gone(generation, level)),
+            (None, None) => Ok(None),
+            _ => Err(ApiError::bad_request(
+                "give both generation and level, or neither",
+            )),
+        }
     }
 }
 
-/// The explore routes, then (for every other path) the viewer's routes over `viewer` (its
-/// first frame), all answering what `access` allows.
+/// The viewer's routes that explore mode answers for a frame the request names.
+pub const FRAME_ROUTES: [&str; 10] = [
+    "/api/info",
+    "/api/image",
+    "/api/png",
+    "/api/overlay",
+    "/api/keyframe",
+    "/api/pixel",
+    "/api/view",
+    "/api/look/png",
+    "/api/look/image",
+    "/api/look/overlay",
+];
+
+/// The explore routes and [`FRAME_ROUTES`], then (for every other path) the viewer's routes
+/// over `viewer` (its first frame), all answering what `access` allows.
 pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> Router {
     let state = Arc::new(ExploreState {
         viewer: viewer.clone(),
         explorer,
         prepared: Mutex::new(None),
     });
-    let explore = Router::new()
+    let mut explore = Router::new()
         .route("/api/explore/info", get(info))
         .route("/api/explore/event", post(event))
         .route("/api/explore/frame", get(frame))
@@ -84,8 +118,11 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/map", get(map))
         .route("/api/explore/ray", get(ray))
         .route("/api/explore/keyframe", post(keyframe))
-        .route("/api/pixel", get(pixel))
-        .route("/api/gpu/input", get(kernel_input))
+        .route("/api/gpu/input", get(kernel_input));
+    for path in FRAME_ROUTES {
+        explore = explore.route(path, any(for_frame));
+    }
+    let explore = explore
         .with_state(state)
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
         .layer(middleware::from_fn_with_state(
@@ -93,6 +130,33 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
             crate::guard::check,
         ));
     explore.fallback_service(crate::router(viewer, access))
+}
+
+/// `generation=G&level=L`, both or neither, among a request's other query fields.
+#[derive(Deserialize)]
+struct FrameQuery {
+    generation: Option<u64>,
+    level: Option<Level>,
+}
+
+/// One of [`FRAME_ROUTES`], answered by the viewer's routes over the frame it names.
+async fn for_frame(
+    State(state): State<Arc<ExploreState>>,
+    request: Request,
+) -> Result<Response, ApiError> {
+    let Query(which) = Query::<FrameQuery>::try_from_uri(request.uri())
+        .map_err(|e| ApiError::bad_request(format!("frame: {}", e.body_text())))?;
+    let routes = match state.frame_named(which)? {
+        // Preparing reads the scene's textures: work within the server's bound.
+        Some(frame) => {
+            let explore = state.clone();
+            let work = state.viewer.work().admit()?;
+            work.run(move || explore.routes_for(&frame)).await??
+        }
+        None => crate::routes::routes(state.viewer.clone()),
+    };
+    let response = routes.oneshot(request).await;
+    Ok(response.into_response())
 }
 
 async fn info(State(state): State<Arc<ExploreState>>) -> Response {
@@ -217,49 +281,6 @@ async fn channel(
         .run(move || channel.encode(&frame.data))
         .await?;
     Ok(crate::gpu_routes::array(bytes))
-}
-
-/// `?col=C&row=R[&generation=G&level=L]`.
-#[derive(Deserialize)]
-struct PixelQuery {
-    col: usize,
-    row: usize,
-    generation: Option<u64>,
-    level: Option<Level>,
-}
-
-/// The record of a pixel ([`crate::routes::pixel`]) of the frame the page shows (`generation`
-/// and `level`; 410 once it is gone), or of the newest frame when the query names none.
-async fn pixel(
-    State(state): State<Arc<ExploreState>>,
-    query: Result<Query<PixelQuery>, QueryRejection>,
-) -> Result<Response, ApiError> {
-    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("pixel: {}", e.body_text())))?;
-    let shown = match (q.generation, q.level) {
-        (Some(generation), Some(level)) => Some(
-            state
-                .explorer
-                .frame(generation, level)
-                .ok_or_else(|| gone(generation, level))?,
-        ),
-        (None, None) => None,
-        _ => {
-            return Err(ApiError::bad_request(
-                "pixel: give both generation and level, or neither",
-            ))
-        }
-    };
-    let viewer = state.viewer.clone();
-    let frame = viewer
-        .work()
-        .admit()?
-        .run(move || state.prepared(shown))
-        .await??;
-    let pixel = crate::routes::PixelQuery {
-        col: q.col,
-        row: q.row,
-    };
-    crate::routes::pixel(State(frame), Ok(Query(pixel))).await
 }
 
 /// `GET /api/explore/map?t=T&x=X&y=Y&z=Z`.

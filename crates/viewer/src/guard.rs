@@ -7,6 +7,7 @@
 //! | `Origin`, when sent, is the server's own origin `http://HOST` | 403 |
 //! | a POST body is `Content-Type: application/json` | 415 |
 //! | a POST body is at most [`MAX_BODY_BYTES`] | 413 |
+//! | a POST body arrives within [`BODY_TIMEOUT`] | 408 |
 //!
 //! Why: a page on another site may POST `text/plain` to a local server without a CORS
 //! preflight (the JSON and Origin checks refuse it), and a DNS-rebinding page reaches the
@@ -26,6 +27,10 @@ use crate::api_error::ApiError;
 
 /// Largest request body read (4 MiB: the settings of a few thousand objects).
 pub const MAX_BODY_BYTES: usize = 4 << 20;
+
+/// Longest wait for a request body: a client that sends its body slowly or never does not
+/// hold its connection (and a place under the connection cap) for long.
+pub const BODY_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(30);
 
 /// The host names a local server always answers to.
 const LOCAL_NAMES: [&str; 3] = ["localhost", "127.0.0.1", "[::1]"];
@@ -175,7 +180,18 @@ pub async fn check(State(access): State<Arc<Access>>, request: Request, next: Ne
         return too_large();
     }
     let (parts, body) = request.into_parts();
-    let bytes = match axum::body::to_bytes(body, MAX_BODY_BYTES).await {
+    let read = tokio::time::timeout(BODY_TIMEOUT, axum::body::to_bytes(body, MAX_BODY_BYTES));
+    let Ok(read) = read.await else {
+        return ApiError::new(
+            StatusCode::REQUEST_TIMEOUT,
+            format!(
+                "the request body did not arrive within {} s",
+                BODY_TIMEOUT.as_secs()
+            ),
+        )
+        .into_response();
+    };
+    let bytes = match read {
         Ok(b) => b,
         Err(e) => {
             let inner = e.into_inner();

@@ -8,7 +8,8 @@
 //! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes; image textures
 //!   only from the data file's folder and [`ViewerOptions::texture_folders`].
 //! - [`router`]: the routes (see [`routes`], [`gpu_routes`] and [`look_routes`] for the
-//!   tables), [`serve`]: runs them.
+//!   tables), [`serve`]: runs them within the bounds of [`server`] (header read timeout,
+//!   connection cap, shutdown with a deadline).
 //! - [`Access`]: which `Host` names the server; [`guard`] checks Host, Origin and JSON bodies.
 //! - [`WorkLimit`]: the bound on concurrent shading.
 //! - [`wire`]: the binary format of the arrays the page uploads as textures; [`gpu`]: what
@@ -32,6 +33,7 @@ pub mod limit;
 pub mod look_routes;
 mod responses;
 pub mod routes;
+pub mod server;
 pub mod state;
 pub mod wire;
 
@@ -44,15 +46,20 @@ pub use routes::router;
 pub use state::{LoadError, PixelInfo, ViewerOptions, ViewerState};
 
 /// Serves the viewer on `listener` until Ctrl-C (or SIGTERM), answering what `access`
-/// allows.
+/// allows, within [`server::Bounds::for_this_process`].
 pub async fn serve(
     listener: tokio::net::TcpListener,
     state: Arc<ViewerState>,
     access: Access,
 ) -> std::io::Result<()> {
-    axum::serve(listener, router(state, access))
-        .with_graceful_shutdown(shutdown())
-        .await
+    let app = router(state, access);
+    server::serve(
+        listener,
+        app,
+        server::Bounds::for_this_process(),
+        shutdown(),
+    )
+    .await
 }
 
 /// Resolves on Ctrl-C or SIGTERM.
@@ -85,7 +92,8 @@ pub fn run(listener: std::net::TcpListener, state: Arc<ViewerState>) -> std::io:
 }
 
 /// [`run`] for any app built from the [`Access`] of `listener` (explore mode:
-/// [`explore_routes::router`]).
+/// [`explore_routes::router`]). Returns within about a second of the signal, whatever the
+/// clients do: shading still under way on blocking threads is not waited for.
 pub fn run_app(
     listener: std::net::TcpListener,
     app: impl FnOnce(Access) -> axum::Router,
@@ -97,10 +105,11 @@ pub fn run_app(
         .worker_threads(2)
         .enable_all()
         .build()?;
-    runtime.block_on(async move {
+    let served = runtime.block_on(async move {
         let listener = tokio::net::TcpListener::from_std(listener)?;
-        axum::serve(listener, app(access))
-            .with_graceful_shutdown(shutdown())
-            .await
-    })
+        let bounds = server::Bounds::for_this_process();
+        server::serve(listener, app(access), bounds, shutdown()).await
+    });
+    runtime.shutdown_timeout(std::time::Duration::from_millis(100));
+    served
 }

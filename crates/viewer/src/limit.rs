@@ -17,8 +17,9 @@ use crate::api_error::ApiError;
 /// How many requests may wait for a slot, per slot, by default.
 const WAITING_PER_WORKER: usize = 4;
 
-/// Slots for shading work, and admission to them.
-#[derive(Debug)]
+/// Slots for shading work, and admission to them. A clone shares them (explore mode's
+/// frames share the server's bound).
+#[derive(Clone, Debug)]
 pub struct WorkLimit {
     workers: usize,
     waiting: usize,

@@ -18,7 +18,8 @@
 //!
 //! Like every route these pass [`crate::guard::check`] (Host, Origin, JSON bodies within
 //! [`crate::MAX_BODY_BYTES`]); a look picture is made within the server's bound on concurrent
-//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] pixels; its settings
+//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] pixels, made in
+//! bands of rows so that its memory is its RGB bytes and a band's records; its settings
 //! are prepared as `/api/png`'s ([`ViewerState::prepare`]: caps on lamps and sources, image
 //! textures only from the allowed folders).
 
@@ -29,7 +30,8 @@ use axum::extract::State;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
-use look::{look, LookView, SphereSource};
+use datafile::DataFile;
+use look::{look_rows, LookView, SphereSource};
 use scene::{Camera, Scene};
 use serde::{Deserialize, Serialize};
 use shade::{ShadeSettings, Shading};
@@ -309,12 +311,39 @@ fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading)
     Ok((look_view, shading))
 }
 
-/// The picture of the requested view, shaded: look, then shade.
+/// Most pixels of a look picture remapped at once: the picture is made in bands of rows,
+/// each band's records (about 80 bytes a pixel) shaded and dropped before the next, so a
+/// 3840×2160 view takes its RGB bytes and about 20 MB of records at a time.
+const BAND_PIXELS: usize = 1 << 18;
+
+/// The picture of the requested view, shaded: look, then shade, band by band of rows
+/// (`look::look_rows`); the overlays drawn once over the whole.
 fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
-    let (look_view, shading) = prepare_look(viewer, body)?;
-    let looked =
-        look(&viewer.data, &look_view).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
-    Ok(shading.image(&looked))
+    let (view, shading) = prepare_look(viewer, body)?;
+    let source =
+        SphereSource::of(&viewer.data).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
+    let (w, h) = (view.camera.width(), view.camera.height());
+    let band = u32::try_from(BAND_PIXELS / w.max(1) as usize)
+        .unwrap_or(u32::MAX)
+        .max(1);
+    let mut rgb = Vec::with_capacity(w as usize * h as usize * 3);
+    let mut rows = Vec::new();
+    for start in (0..h).step_by(band as usize) {
+        let end = start.saturating_add(band).min(h);
+        let (records, lights) = look_rows(&viewer.data, &source, &view, start..end);
+        let part = DataFile {
+            header: viewer.data.header.clone(),
+            width: w as usize,
+            height: (end - start) as usize,
+            records,
+            lights,
+        };
+        shading.image_rows_into(&part, &mut rows);
+        rgb.extend_from_slice(&rows);
+    }
+    shading.draw_overlays(w as usize, h as usize, &mut rgb);
+    image::RgbImage::from_raw(w, h, rgb)
+        .ok_or_else(|| ApiError::internal("the look picture has the wrong size"))
 }
 
 async fn overlay(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Response, ApiError> {

@@ -41,6 +41,19 @@ use shade::{ShadeSettings, Shading};
 
 /// The server's routes over one loaded data file, answering requests that `access` allows.
 pub fn router(state: Arc<ViewerState>, access: Access) -> Router {
+    routes(state)
+        // Layers added after the merges cover every route, the GPU and look ones included.
+        // The guard reads POST bodies up to its own cap; the extractors' limit must not be lower.
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(middleware::from_fn_with_state(
+            Arc::new(access),
+            crate::guard::check,
+        ))
+}
+
+/// [`router`] without the guard: for explore mode, which answers some routes for the frame on
+/// screen through these after its own guard ([`crate::explore_routes`]).
+pub fn routes(state: Arc<ViewerState>) -> Router {
     let mut router = Router::new();
     for (path, content_type, body) in crate::assets::FILES {
         router = router.route(
@@ -66,13 +79,6 @@ pub fn router(state: Arc<ViewerState>, access: Access) -> Router {
         .merge(crate::look_routes::router(Arc::new(
             crate::look_routes::LookState::new(state),
         )))
-        // Layers added after the merges cover every route, the GPU and look ones included.
-        // The guard reads POST bodies up to its own cap; the extractors' limit must not be lower.
-        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
-        .layer(middleware::from_fn_with_state(
-            Arc::new(access),
-            crate::guard::check,
-        ))
 }
 
 /// Parses the settings JSON sent by the page and prepares them with the `shade` crate

@@ -8,6 +8,7 @@
 //! the embedded scene's are loaded once, here.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
 
 use datafile::record::RayStatus;
 use datafile::DataFile;
@@ -68,14 +69,16 @@ pub struct ViewerState {
     /// The file as named on the command line (never shown to clients: [`Info::file`] is its
     /// file name).
     pub path: PathBuf,
-    pub data: DataFile,
+    /// Shared, not copied: explore mode serves its frames' data files as they were traced.
+    pub data: Arc<DataFile>,
     defaults: ShadeSettings,
     textures: TextureSource,
     work: WorkLimit,
     /// The camera of the embedded scene, sized to the data file (for pixel directions).
     camera: Option<scene::Camera>,
-    /// Every shading channel of `data`, copied once: what each frame is shaded from.
-    channels: Channels,
+    /// Every shading channel of `data`, copied once on the first picture shaded: what each
+    /// picture is shaded from (a state that only answers hovers never makes it).
+    channels: OnceLock<Channels>,
 }
 
 /// One pixel's record as the page shows it.
@@ -140,7 +143,7 @@ impl ViewerState {
 
     /// Prepares an already-read data file (`path` names it in messages and gives its folder)
     /// with the default options.
-    pub fn new(path: &Path, data: DataFile) -> Result<ViewerState, LoadError> {
+    pub fn new(path: &Path, data: impl Into<Arc<DataFile>>) -> Result<ViewerState, LoadError> {
         ViewerState::new_with(path, data, ViewerOptions::default())
     }
 
@@ -149,9 +152,10 @@ impl ViewerState {
     /// refused before anything is served.
     pub fn new_with(
         path: &Path,
-        data: DataFile,
+        data: impl Into<Arc<DataFile>>,
         options: ViewerOptions,
     ) -> Result<ViewerState, LoadError> {
+        let data = data.into();
         let mut folders = vec![path.parent().unwrap_or(Path::new("")).to_path_buf()];
         folders.extend(options.texture_folders);
         let textures = TextureSource::within(&folders)
@@ -167,7 +171,6 @@ impl ViewerState {
             source,
         })?;
         let camera = shade::marks::data_camera(&data);
-        let channels = Channels::new(&data, Needs::ALL);
         Ok(ViewerState {
             path: path.to_path_buf(),
             data,
@@ -175,8 +178,14 @@ impl ViewerState {
             textures,
             work: options.work,
             camera,
-            channels,
+            channels: OnceLock::new(),
         })
+    }
+
+    /// Every shading channel of the data file, copied on first use.
+    fn channels(&self) -> &Channels {
+        self.channels
+            .get_or_init(|| Channels::new(&self.data, Needs::ALL))
     }
 
     /// The canonical folders image textures may come from (the data file's first).
@@ -230,12 +239,12 @@ impl ViewerState {
     /// The picture for prepared settings as RGB8 bytes, row 0 first; rows in parallel, from
     /// the channels copied at load.
     pub fn shade_rgb(&self, shading: &Shading, bytes: &mut Vec<u8>) {
-        shading.image_into_with(&self.channels, bytes);
+        shading.image_into_with(self.channels(), bytes);
     }
 
     /// The picture for prepared settings.
     pub fn shade(&self, shading: &Shading) -> RgbImage {
-        shading.image_with(&self.channels)
+        shading.image_with(self.channels())
     }
 
     /// The record of picture pixel (`col`, `row`) ([`picture_sample`]), or `None` outside

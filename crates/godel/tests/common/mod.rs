@@ -126,6 +126,33 @@ pub fn run_within(cmd: &mut std::process::Command, limit: std::time::Duration) -
 }
 
 /// Every file in `dir` (none when it does not exist), sorted.
+/// The name of the manifest in which `godel sequence` records the files it writes.
+pub const MANIFEST: &str = ".godel-sequence";
+
+/// Records the files `names` of `dir` in its sequence manifest, as an earlier sequence that
+/// wrote them would have (size and modification time, `crates/godel/src/manifest.rs`).
+pub fn record_as_sequence_output(dir: &Path, names: &[&str]) {
+    use std::io::Write;
+    let mut lines = String::new();
+    for name in names {
+        let meta = std::fs::metadata(dir.join(name)).unwrap();
+        let ns = meta
+            .modified()
+            .unwrap()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos();
+        lines.push_str(&format!("{} {ns} {name}\n", meta.len()));
+    }
+    std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(dir.join(MANIFEST))
+        .unwrap()
+        .write_all(lines.as_bytes())
+        .unwrap();
+}
+
 pub fn files_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = match std::fs::read_dir(dir) {
         Ok(entries) => entries

@@ -135,7 +135,11 @@ pub fn sequence(script: &str, data: &[u8], frames: Option<u32>) -> Result<(), St
     std::fs::write(&path, script).unwrap();
     let out = dir.path().join("frames");
     let expect = match frames {
-        Some(n) => Expect::Files((0..n).map(|i| format!("frame_{i:04}.png")).collect()),
+        Some(n) => Expect::Files(
+            std::iter::once(crate::common::MANIFEST.to_string())
+                .chain((0..n).map(|i| format!("frame_{i:04}.png")))
+                .collect(),
+        ),
         None => Expect::Code(2),
     };
     check(

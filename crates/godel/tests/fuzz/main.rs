@@ -7,7 +7,9 @@
 //! `GODEL_FUZZ_CASES` (default [`harness::DEFAULT_CASES`]) how many over all tests,
 //! `GODEL_FUZZ_CASE=K` replays case K alone (printing it), `GODEL_FUZZ_LIMIT_S` overrides
 //! the limit ([`harness::DEFAULT_LIMIT`]). A sample of the cases also runs the `godel`
-//! binary, with the command line's promises checked (`cli.rs`).
+//! binary, with the command line's promises checked (`cli.rs`); sequences that re-shade a
+//! data file in their own output folder, and outputs that are inputs, run it always
+//! (`reshade_case.rs`).
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -17,6 +19,7 @@ mod fixtures;
 mod gen;
 mod harness;
 mod mutate;
+mod reshade_case;
 mod scene_case;
 mod scenes;
 mod shading_case;
@@ -175,6 +178,37 @@ fn fuzz_sequence_scripts() {
                 return Ok(format!("{outcome} (and CLI)"));
             }
             Ok(outcome)
+        });
+    }
+    fuzz.finish();
+}
+
+/// Sequences that re-shade a data file lying in their own output folder among other files,
+/// run twice (the second time with fewer frames), and outputs that are inputs (issue 24):
+/// through the `godel` binary, every case.
+#[test]
+fn fuzz_sequences_beside_their_data() {
+    let fx = fixtures::get();
+    let mut fuzz = Fuzz::new("fuzz_sequences_beside_their_data", 0.01);
+    for k in fuzz.indices() {
+        let mut g = fuzz.gen(k);
+        // Mostly scripts that run: the point is what a run does to the folder.
+        let f = g.index(fx.data.len());
+        let (objects, lights) = (fx.data[f].objects(), fx.data[f].data.lights.len());
+        let mut text = shading_gen::script(&mut g, "data.exr", &objects, lights);
+        let mut log = Vec::new();
+        if g.chance(0.1) {
+            (text, log) = mutate::text(&mut g, &text, &[]);
+        }
+        let shown = format!("data file {f}; mutations: {}\n{text}", log.join("; "));
+        let over_inputs = g.chance(0.2);
+        fuzz.run(k, &shown, move || {
+            let bytes = &fixtures::get().data[f].bytes;
+            if over_inputs {
+                reshade_case::outputs_over_inputs(&text, bytes)
+            } else {
+                reshade_case::reshade(&mut g, &text, bytes)
+            }
         });
     }
     fuzz.finish();

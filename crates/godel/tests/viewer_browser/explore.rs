@@ -39,6 +39,13 @@ fn moving_the_time_slider_shows_the_frame_traced_for_the_new_time() {
         assert_eq!(seen[frame]["width"], 88, "{seen}");
         assert_eq!(seen[frame]["height"], 10, "{seen}");
     }
+    // Issue 24: Save PNG is the frame on screen's, at its size (it was the first coarse
+    // frame's, 22×2).
+    assert_eq!(
+        seen["saved"],
+        serde_json::json!({"width": 88, "height": 10}),
+        "{seen}"
+    );
     assert!(
         seen["after"]["generation"].as_u64() > seen["before"]["generation"].as_u64(),
         "{seen}"

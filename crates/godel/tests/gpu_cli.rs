@@ -1,0 +1,130 @@
+//! `godel render --gpu` (docs/physics.md, "The GPU kernel"): the same files as a CPU render,
+//! records that agree with the CPU exact tracer's, `[trace] gpu = true` and sequences with it,
+//! the refusal of --part, and one clear sentence where no EGL library can be loaded (with no
+//! file written).
+
+mod common;
+
+use common::{godel, path_arg, render, stderr};
+use datafile::{DataFile, RayStatus};
+use std::path::Path;
+
+const SCENE: &str = "name = \"ball\"\n\
+[spacetime]\nmetric = \"godel\"\na = 1.0\n\
+[observer]\ntime = 0.0\nposition = { r = 0.0, phi = 0.0, z = 0.0 }\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
+[camera]\nkind = \"panorama\"\nh_fov_deg = 360.0\nv_fov_deg = 40.0\nwidth = 180\nheight = 20\n\
+[trace]\nmax_past = 8.0\n\
+[[object]]\nname = \"ball\"\nradius = 0.2\nmotion = { kind = \"rest\", position = { x = 1.0, y = 0.0, z = 0.0 } }\n\
+[[light]]\nposition = { x = 1.0, y = 1.0, z = 0.0 }\npower = 12.0\n";
+
+fn write(dir: &Path, name: &str, text: &str) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn render_gpu_writes_the_files_of_a_cpu_render_with_records_that_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "ball.toml", SCENE);
+    let (gpu, cpu) = (dir.path().join("gpu"), dir.path().join("cpu"));
+    let o = render(&scene, &gpu, &["--gpu", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("on the GPU: "), "{}", stderr(&o));
+    let o = render(&scene, &cpu, &["--method", "exact", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for name in ["ball.png", "ball.exr"] {
+        assert!(gpu.join(name).is_file(), "{name} missing");
+    }
+    let a = DataFile::read(&gpu.join("ball.exr")).unwrap();
+    let b = DataFile::read(&cpu.join("ball.exr")).unwrap();
+    assert_eq!(a.header.method, "gpu");
+    assert_eq!(
+        (a.width, a.height, a.lights.len()),
+        (b.width, b.height, b.lights.len())
+    );
+    let hits = a
+        .records
+        .iter()
+        .filter(|r| r.status == RayStatus::Hit)
+        .count();
+    assert!(hits > 100, "{hits}");
+    for (i, (x, y)) in a.records.iter().zip(&b.records).enumerate() {
+        assert_eq!((x.status, x.object), (y.status, y.object), "sample {i}");
+        if x.status == RayStatus::Hit {
+            assert!(
+                (x.g - y.g).abs() < 1e-5 && (x.t_emit - y.t_emit).abs() < 1e-5,
+                "sample {i}"
+            );
+            let (la, lb) = (a.lights[0][i], b.lights[0][i]);
+            assert!(
+                (la - lb).abs() <= 1e-3 * lb.abs() + 1e-6,
+                "sample {i}: light {la} vs {lb}"
+            );
+        }
+    }
+}
+
+#[test]
+fn trace_gpu_in_the_scene_traces_on_the_gpu_also_in_sequences() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = SCENE.replace("max_past = 8.0\n", "max_past = 8.0\ngpu = true\n");
+    let scene = write(dir.path(), "ball.toml", &text);
+    let o = render(&scene, &dir.path().join("out"), &["-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("on the GPU: "), "{}", stderr(&o));
+    let data = DataFile::read(&dir.path().join("out/ball.exr")).unwrap();
+    assert_eq!(data.header.method, "gpu");
+    let script = write(
+        dir.path(),
+        "seq.toml",
+        "output = \"frames\"\nframes = 2\nmp4 = false\n[trace]\nscene = \"ball.toml\"\nobserver_time = [0.0, 0.5]\nkeep_data = true\n",
+    );
+    let o = godel(&["sequence", path_arg(&script), "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for frame in ["frame_0000", "frame_0001"] {
+        let data = DataFile::read(&dir.path().join(format!("frames/{frame}.exr"))).unwrap();
+        assert_eq!(data.header.method, "gpu", "{frame}");
+    }
+}
+
+#[test]
+fn gpu_and_parts_exclude_each_other() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "ball.toml", SCENE);
+    let o = render(&scene, &dir.path().join("out"), &["--gpu", "--part", "1/2"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--gpu") && stderr(&o).contains("--part"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.path().join("out").exists());
+}
+
+#[test]
+fn without_an_egl_library_gpu_fails_with_one_sentence_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "ball.toml", SCENE);
+    let out = dir.path().join("out");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_godel"))
+        .args([
+            "render",
+            path_arg(&scene),
+            "-o",
+            path_arg(&out),
+            "--gpu",
+            "-q",
+        ])
+        .env("GODEL_EGL", dir.path().join("no-such-libEGL.so.1"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("--gpu needs the EGL library"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&out)
+        .map(|d| d.flatten().collect())
+        .unwrap_or_default();
+    assert!(left.is_empty(), "{left:?}");
+}

@@ -1,0 +1,215 @@
+//! The GPU kernel against the CPU exact tracer (docs/physics.md, "The GPU kernel"): every
+//! example scene and the hard cases (an observer inside a sphere, an off-axis observer moving
+//! at 0.9 c, a = 0.5 and a = 2, 28 images of a falling ball, lit scenes) agree within the
+//! tolerances of single precision; and kernels with one piece of the physics removed (the
+//! loop copies, the isometry, the boost, the free fall, the occlusion) are caught.
+//!
+//! The kernel runs in an offscreen OpenGL ES 3 context: on this machine Mesa's llvmpipe, which
+//! the test command installs.
+
+mod common;
+
+use common::{agreement, example, scene, sized, Agreement};
+use gpu::KERNEL;
+
+/// The agreement of the real kernel on `scene`, asserted.
+fn agrees(scene: &scene::Scene) -> Agreement {
+    let a = agreement(scene, KERNEL);
+    a.assert_holds();
+    a
+}
+
+/// A mutated kernel: `from` replaced by `to` (which must occur, so that the test follows the
+/// kernel's text).
+fn mutated(from: &str, to: &str) -> String {
+    assert!(KERNEL.contains(from), "the kernel no longer has {from:?}");
+    KERNEL.replacen(from, to, 1)
+}
+
+/// A mutation must be caught: its kernel disagrees with the CPU on `scene`.
+fn caught(scene: &scene::Scene, from: &str, to: &str) {
+    let a = agreement(scene, &mutated(from, to));
+    eprintln!("mutation {from:?} → {to:?}: {a:?}");
+    assert!(
+        !a.holds(),
+        "the mutation {from:?} → {to:?} went unnoticed: {a:?}"
+    );
+}
+
+#[test]
+fn the_static_examples_agree() {
+    for (name, w, h) in [
+        ("static-sphere", 440, 50),
+        ("static-sphere-checker", 440, 50),
+        ("static-sphere-closeup", 40, 30),
+        ("beyond-horizon", 220, 25),
+        ("bench-static", 220, 25),
+        ("look-around", 128, 64),
+        ("fly-through", 220, 25),
+    ] {
+        agrees(&sized(example(name), w, h));
+    }
+}
+
+#[test]
+fn the_falling_ball_of_the_reference_scene_agrees() {
+    agrees(&sized(example("reference"), 220, 25));
+}
+
+/// The scene of 28 images of a falling ball, its rays followed 300a into the past (each
+/// image in a later loop copy of its rays), in the band of its panorama where they are.
+fn twenty_eight_images() -> scene::Scene {
+    let mut s = example("moving-sphere-long");
+    s.camera = scene::Camera::Panorama {
+        h_fov_deg: 220.0,
+        v_fov_deg: 3.0,
+        width: 880,
+        height: 12,
+    };
+    s
+}
+
+#[test]
+fn twenty_eight_images_of_a_falling_ball_agree() {
+    let a = agrees(&twenty_eight_images());
+    assert!(a.seen > 100, "{a:?}");
+}
+
+#[test]
+fn the_lit_examples_agree() {
+    for name in ["lit-side", "lit-shadow", "lit-beyond-horizon"] {
+        let a = agrees(&sized(example(name), 360, 40));
+        assert!(a.lit > 100, "{name}: too few lit samples compared: {a:?}");
+    }
+}
+
+#[test]
+fn the_floor_grid_with_its_light_agrees() {
+    let a = agrees(&sized(example("floor-grid"), 128, 72));
+    assert!(a.lit > 1000, "{a:?}");
+    // Few hit events move in single precision: rays grazing the floor after many loops.
+    assert!(a.lit_moved * 100 < a.lit, "{a:?}");
+}
+
+#[test]
+fn an_observer_inside_spheres_sees_their_inner_surfaces_alike() {
+    // The surroundings (a coordinate sphere around the observer), and a local ball at rest
+    // with the observer inside it.
+    agrees(&sized(example("surroundings"), 180, 40));
+    agrees(&scene(&testkit::axis_panorama(
+        "inside-ball",
+        180,
+        20,
+        10.0,
+        &testkit::ball_at_rest("around", 0.3, 0.1, 0.5),
+    )));
+}
+
+/// An observer off the axis at (r, φ) = (0.8, 1.2), moving at 0.9 c, looking at two balls at
+/// rest and a falling one.
+fn off_axis_fast_observer() -> scene::Scene {
+    scene(
+        "name = \"off-axis\"\n\
+         [spacetime]\nmetric = \"godel\"\na = 1.0\n\
+         [observer]\ntime = 3.0\nposition = { r = 0.8, phi = 1.2, z = 0.1 }\n\
+         velocity = { speed = 0.9, direction = [0.3, -1, 0.2] }\n\
+         forward = [1, 0, 0]\nup = [0, 0, 1]\n\
+         [camera]\nkind = \"panorama\"\nh_fov_deg = 360.0\nv_fov_deg = 60.0\nwidth = 240\nheight = 40\n\
+         [trace]\nmax_past = 20.0\n\
+         [[object]]\nname = \"a\"\nradius = 0.2\nmotion = { kind = \"rest\", position = { r = 0.4, phi = 0.0, z = 0.0 } }\n\
+         [[object]]\nname = \"b\"\nradius = 0.15\nmotion = { kind = \"rest\", position = { r = 1.4, phi = 2.5, z = 0.2 } }\n\
+         [[object]]\nname = \"c\"\nradius = 0.1\nmotion = { kind = \"geodesic\", time = 0.0, position = { x = -0.5, y = 0.5, z = 0.0 }, speed = 0.6, direction = [1, 0, 0.3] }\n",
+    )
+}
+
+#[test]
+fn an_off_axis_observer_moving_at_nine_tenths_of_c_agrees() {
+    agrees(&off_axis_fast_observer());
+}
+
+/// Balls at rest at r = a/2 and 1.5a and a falling one in a universe with parameter `a`.
+fn scaled(a: f64) -> scene::Scene {
+    scene(&format!(
+        "name = \"a-{a}\"\n\
+         [spacetime]\nmetric = \"godel\"\na = {a:?}\n\
+         [observer]\ntime = 0.0\nposition = {{ r = 0.0, phi = 0.0, z = 0.0 }}\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
+         [camera]\nkind = \"panorama\"\nh_fov_deg = 360.0\nv_fov_deg = 40.0\nwidth = 240\nheight = 30\n\
+         [trace]\nmax_past = {:?}\n\
+         [[object]]\nname = \"near\"\nradius = {:?}\nmotion = {{ kind = \"rest\", position = {{ r = {:?}, phi = 0.5, z = 0.0 }} }}\n\
+         [[object]]\nname = \"far\"\nradius = {:?}\nmotion = {{ kind = \"rest\", position = {{ r = {:?}, phi = 3.0, z = 0.0 }} }}\n\
+         [[object]]\nname = \"falling\"\nradius = {:?}\nmotion = {{ kind = \"geodesic\", time = 0.0, position = {{ x = {:?}, y = 0.0, z = 0.0 }}, speed = 0.7, direction = [0, 1, 0] }}\n",
+        15.0 * a,
+        0.2 * a,
+        0.5 * a,
+        0.15 * a,
+        1.5 * a,
+        0.15 * a,
+        -a
+    ))
+}
+
+#[test]
+fn universes_with_a_half_and_a_two_agree() {
+    agrees(&scaled(0.5));
+    agrees(&scaled(2.0));
+}
+
+#[test]
+fn minkowski_rays_are_straight_on_both() {
+    agrees(&scene(
+        "name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n\
+         [observer]\ntime = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }\n\
+         velocity = { speed = 0.5, direction = [0, 1, 0] }\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
+         [camera]\nkind = \"pinhole\"\nfov_deg = 90.0\nwidth = 80\nheight = 60\n\
+         [trace]\nmax_past = 20.0\n\
+         [[object]]\nname = \"still\"\nradius = 0.5\nmotion = { kind = \"rest\", position = { x = 3.0, y = 0.5, z = 0.0 } }\n\
+         [[object]]\nname = \"fast\"\nradius = 0.5\nmotion = { kind = \"geodesic\", time = 0.0, position = { x = 4.0, y = -6.0, z = 0.0 }, speed = 0.9, direction = [0, 1, 0] }\n",
+    ));
+}
+
+// Mutations: each kernel below lacks one piece of the physics, and must be caught.
+
+#[test]
+fn a_kernel_without_loop_copies_is_caught() {
+    caught(
+        &twenty_eight_images(),
+        "    ev.x += float(j) * r.shift.x;\n    ev.w += float(j) * r.shift.y;",
+        "",
+    );
+}
+
+#[test]
+fn a_kernel_without_the_observers_isometry_is_caught() {
+    caught(
+        &off_axis_fast_observer(),
+        "        Iso to = toOrigin(at);\n        r.geo = originGeodesic(pushIso(to, at, k));",
+        "        Iso to = Iso(0.0, vec2(0.0), 0.0, 0.0);\n        r.geo = originGeodesic(k);",
+    );
+}
+
+#[test]
+fn a_kernel_without_the_observers_boost_is_caught() {
+    caught(
+        &off_axis_fast_observer(),
+        "mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);",
+        "mat4 frame = staticFrame(obs);",
+    );
+}
+
+#[test]
+fn a_kernel_whose_falling_balls_stand_still_is_caught() {
+    caught(
+        &sized(example("reference"), 220, 25),
+        "    } else if (!godel()) {\n        p.ev = oStart[i] + tau * oU0[i];",
+        "    } else if (true) {\n        p.ev = oStart[i] + vec4(tau, 0.0, 0.0, 0.0);",
+    );
+}
+
+#[test]
+fn a_kernel_without_occlusion_is_caught() {
+    caught(
+        &sized(example("lit-shadow"), 360, 40),
+        "    if (!any) return 1;",
+        "    return 1;",
+    );
+}

@@ -1,0 +1,166 @@
+//! Holding the GPU kernel to the CPU exact tracer (docs/physics.md, "The GPU kernel"): both
+//! trace the same scene, and the records are compared channel by channel with the
+//! tolerances single precision allows.
+
+#![allow(dead_code)]
+
+use datafile::{DataFile, RayStatus};
+use render::driver::{render, NoProgress};
+use scene::{Scene, TraceMethod};
+
+/// How a GPU render agrees with the CPU exact tracer's.
+#[derive(Debug)]
+pub struct Agreement {
+    pub name: String,
+    /// Samples either tracer sees an object in.
+    pub seen: usize,
+    /// Of those, the fraction with the same object and status.
+    pub same: f64,
+    /// |Δg|/g over samples both see the same object in: median and 99.9th percentile.
+    pub g_median: f64,
+    pub g_p999: f64,
+    /// |Δt_emit|/(1 + |t_emit|): 99.9th percentile.
+    pub t_p999: f64,
+    /// Samples with light on either side (per light, pooled) whose hit events agree to
+    /// [`SAME_EVENT`], and the fraction of them within 1e-3 relative (NaN on both sides
+    /// agrees); and the lit samples left out because single precision moved their hit
+    /// event further (a ray grazing a plane after many loops).
+    pub lit: usize,
+    pub light_within: f64,
+    pub lit_moved: usize,
+    /// Whether every sample has the same status on both.
+    pub statuses_equal: bool,
+}
+
+/// The tolerances (docs/physics.md, "The GPU kernel").
+pub const SAME: f64 = 0.995;
+pub const G_MEDIAN: f64 = 1e-4;
+pub const G_P999: f64 = 1e-3;
+pub const T_P999: f64 = 1e-4;
+pub const LIGHT_WITHIN: f64 = 0.999;
+/// Hit events closer than this (coordinate distance, in units of a) count as one point for the
+/// light comparison: light is compared where both lit the same point.
+pub const SAME_EVENT: f32 = 1e-5;
+
+impl Agreement {
+    /// Whether every tolerance holds.
+    pub fn holds(&self) -> bool {
+        if self.seen == 0 {
+            return self.statuses_equal;
+        }
+        self.same >= SAME
+            && self.g_median <= G_MEDIAN
+            && self.g_p999 <= G_P999
+            && self.t_p999 <= T_P999
+            && (self.lit == 0 || self.light_within >= LIGHT_WITHIN)
+    }
+
+    pub fn assert_holds(&self) {
+        eprintln!("{self:?}");
+        assert!(
+            self.holds(),
+            "{}: the GPU kernel disagrees with the CPU: {self:?}",
+            self.name
+        );
+    }
+}
+
+/// A scene file of the repository's scenes/ folder.
+pub fn example(name: &str) -> Scene {
+    let path = testkit::scenes_dir().join(format!("{name}.toml"));
+    Scene::from_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// A scene from its text.
+pub fn scene(text: &str) -> Scene {
+    Scene::from_str(text, "test scene").unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// `scene` at another image size (its samples per pixel kept).
+pub fn sized(mut scene: Scene, width: u32, height: u32) -> Scene {
+    scene.camera = scene.camera.with_size(width, height);
+    scene
+}
+
+/// The GPU render (with the kernel source `kernel`) and the CPU exact render of `scene`.
+pub fn both(scene: &Scene, kernel: &str) -> (DataFile, DataFile) {
+    let gpu = gpu::render_with(scene, kernel, &NoProgress)
+        .unwrap_or_else(|e| panic!("{}: GPU render failed: {e}", scene.name))
+        .data;
+    let mut exact = scene.clone();
+    exact.trace.method = TraceMethod::Exact;
+    exact.trace.gpu = false;
+    let (cpu, _) = render(&exact, &NoProgress).expect("CPU render");
+    (gpu, cpu)
+}
+
+fn quantile(mut v: Vec<f64>, p: f64) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * p).round() as usize]
+}
+
+/// Compares two data files of one scene.
+pub fn compare(name: &str, gpu: &DataFile, cpu: &DataFile) -> Agreement {
+    assert_eq!((gpu.width, gpu.height), (cpu.width, cpu.height));
+    let (mut seen, mut same) = (0usize, 0usize);
+    let statuses_equal = (gpu.records.iter().zip(&cpu.records)).all(|(a, b)| a.status == b.status);
+    let (mut dg, mut dt) = (Vec::new(), Vec::new());
+    for (a, b) in gpu.records.iter().zip(&cpu.records) {
+        let hit = |r: &datafile::PixelRecord| r.status == RayStatus::Hit;
+        if hit(a) || hit(b) {
+            seen += 1;
+            if a.status == b.status && a.object == b.object {
+                same += 1;
+            }
+        }
+        if hit(a) && hit(b) && a.object == b.object {
+            dg.push(((a.g - b.g) / b.g).abs() as f64);
+            dt.push(((a.t_emit - b.t_emit).abs() / (1.0 + b.t_emit.abs())) as f64);
+        }
+    }
+    let (mut lit, mut within, mut lit_moved) = (0usize, 0usize, 0usize);
+    for (pa, pb) in gpu.lights.iter().zip(&cpu.lights) {
+        for i in 0..pa.len() {
+            let (a, b) = (gpu.records[i], cpu.records[i]);
+            if a.status != RayStatus::Hit || b.status != RayStatus::Hit || a.object != b.object {
+                continue;
+            }
+            let (x, y) = (pa[i], pb[i]);
+            if !(x > 0.0 || y > 0.0 || x.is_nan() || y.is_nan()) {
+                continue;
+            }
+            let moved = (a.x - b.x)
+                .abs()
+                .max((a.y - b.y).abs())
+                .max((a.z - b.z).abs());
+            if !(moved <= SAME_EVENT) {
+                lit_moved += 1;
+                continue;
+            }
+            lit += 1;
+            let ok = (x.is_nan() && y.is_nan()) || (x - y).abs() <= 1e-3 * y.abs();
+            within += usize::from(ok);
+        }
+    }
+    Agreement {
+        name: name.to_string(),
+        seen,
+        same: same as f64 / seen.max(1) as f64,
+        g_median: quantile(dg.clone(), 0.5),
+        g_p999: quantile(dg, 0.999),
+        t_p999: quantile(dt, 0.999),
+        lit,
+        light_within: within as f64 / lit.max(1) as f64,
+        lit_moved,
+        statuses_equal,
+    }
+}
+
+/// The agreement of the kernel source `kernel` with the CPU on `scene`.
+pub fn agreement(scene: &Scene, kernel: &str) -> Agreement {
+    let (gpu, cpu) = both(scene, kernel);
+    compare(&scene.name, &gpu, &cpu)
+}
