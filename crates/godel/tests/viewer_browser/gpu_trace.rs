@@ -2,11 +2,12 @@
 //! SwiftShader here) what `godel render --method exact` traces: example scenes at small sizes
 //! — the reference scene (free fall, 2×2 samples a pixel), lit ones (direct light, a shadow
 //! in space and time) and surroundings (the observer inside a sphere) — each against its data
-//! file, with issue 22's tolerances: the same object and status
-//! on ≥ 99.5 % of the samples, |Δg|/g median ≤ 1e-4 and ≤ 1e-3 on 99.9 %, |Δt_emit| ≤
-//! 1e-4·(1 + |t_emit|) on 99.9 %, each light within 1e-3 relative on 99.9 % of the lit
-//! samples (docs/physics.md, "The GPU kernel", says why single precision holds these). The
-//! traced slots are read back by the test script only; the page shades them where they are.
+//! file, measured and held to issue 22's tolerances exactly as the `gpu` crate's own agreement
+//! tests do (crates/gpu/tests/common, included here): the same object and status on ≥ 99.5 %
+//! of the samples either sees an object in, |Δg|/g median ≤ 1e-4 and ≤ 1e-3 on 99.9 %,
+//! |Δt_emit| ≤ 1e-4·(1 + |t_emit|) on 99.9 %, light within 1e-3 relative on 99.9 % of the lit
+//! samples (docs/physics.md, "The GPU kernel"). The traced slots are read back by the test
+//! script only; the page shades them where they are.
 //!
 //! And a traced frame is shaded as a data file's frame is: with every layer on, the page's
 //! picture of it equals the `shade` crate's picture of the traced records within one 8-bit
@@ -17,6 +18,8 @@
 use std::path::Path;
 
 use super::browser_support::*;
+#[path = "../../../gpu/tests/common/mod.rs"]
+mod kernel_agreement;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
@@ -34,100 +37,27 @@ const CASES: [(&str, u32, u32); 4] = [
 /// Channels per slot of a record (gpu::input::SLOT_CHANNELS).
 const SLOT: usize = 4;
 
-/// The records and light planes of a traced frame from its slots (as gpu::host reads them).
-fn decode(slots: &[Vec<f32>], samples: usize, lights: usize) -> (Vec<PixelRecord>, Vec<Vec<f32>>) {
-    let mut records = Vec::with_capacity(samples);
-    let mut planes = vec![Vec::with_capacity(samples); lights];
-    for i in 0..samples {
-        let s = |k: usize| &slots[k][i * SLOT..(i + 1) * SLOT];
-        let status = RayStatus::from_code(s(0)[1] as u32).unwrap_or(RayStatus::Failed);
-        let hit = status == RayStatus::Hit;
-        records.push(if hit {
-            PixelRecord {
-                object: s(0)[0] as i32,
-                status,
-                u: s(0)[2],
-                v: s(0)[3],
-                g: s(1)[0],
-                t_emit: s(1)[1],
-                lambda: s(1)[2],
-                cos_i: s(1)[3],
-                x: s(2)[0],
-                y: s(2)[1],
-                z: s(2)[2],
-                dir: [s(3)[0], s(3)[1], s(3)[2]],
-                view: [s(2)[3], s(3)[3], s(4)[0]],
-            }
-        } else {
-            PixelRecord::miss(status)
-        });
-        for (k, plane) in planes.iter_mut().enumerate() {
-            let c = k + 1; // light k's channel, counted from slot 4's first component
-            let v = s(4 + c / 4)[c % 4];
-            plane.push(if !hit {
-                0.0
-            } else if v < 0.0 {
-                f32::NAN
-            } else {
-                v
-            });
-        }
-    }
-    (records, planes)
-}
-
-/// The `q`-quantile of `v` (sorted in place; NaN counts as largest).
-fn quantile(v: &mut [f64], q: f64) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v.get(((v.len().max(1) - 1) as f64 * q) as usize)
-        .copied()
-        .unwrap_or(0.0)
-}
-
-/// How a traced frame agrees with the exact tracer's.
-#[derive(Debug)]
-struct Agreement {
-    same: f64,
-    hits: usize,
-    dg_median: f64,
-    dg_999: f64,
-    dt_999: f64,
-    lit: usize,
-    light_999: f64,
-}
-
-fn agreement(gpu: &[PixelRecord], gpu_lights: &[Vec<f32>], cpu: &DataFile) -> Agreement {
-    let (mut same, mut dg, mut dt, mut dl) = (0, Vec::new(), Vec::new(), Vec::new());
-    for (i, (a, b)) in gpu.iter().zip(&cpu.records).enumerate() {
-        if a.status != b.status || a.object != b.object {
-            continue;
-        }
-        same += 1;
-        if a.status != RayStatus::Hit {
-            continue;
-        }
-        dg.push(f64::from((a.g - b.g).abs() / b.g));
-        dt.push(f64::from((a.t_emit - b.t_emit).abs()) / (1.0 + f64::from(b.t_emit.abs())));
-        for (plane, cpu_plane) in gpu_lights.iter().zip(&cpu.lights) {
-            let (x, y) = (plane[i], cpu_plane[i]);
-            if x > 0.0 || y > 0.0 || x.is_nan() || y.is_nan() {
-                let e = match (x.is_nan(), y.is_nan()) {
-                    (true, true) => 0.0,
-                    (false, false) => f64::from((x - y).abs() / y.abs().max(1e-6)),
-                    _ => f64::INFINITY,
-                };
-                dl.push(e);
-            }
-        }
-    }
-    Agreement {
-        same: same as f64 / gpu.len() as f64,
-        hits: dg.len(),
-        dg_median: quantile(&mut dg, 0.5),
-        dg_999: quantile(&mut dg, 0.999),
-        dt_999: quantile(&mut dt, 0.999),
-        lit: dl.len(),
-        light_999: quantile(&mut dl, 0.999),
+/// The data file `data` with the records and light planes of a traced frame's slots, read
+/// as the `gpu` crate's host reads them.
+fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
+    let samples = data.width * data.height;
+    let channels =
+        |s: usize, i: usize| -> [f32; 4] { slots[s][i * SLOT..(i + 1) * SLOT].try_into().unwrap() };
+    let records: Vec<PixelRecord> = (0..samples)
+        .map(|i| gpu::host::sample_record(|s| channels(s, i)))
+        .collect();
+    let lights = (0..data.lights.len())
+        .map(|k| {
+            let (s, c) = gpu::input::light_channel(k);
+            (0..samples)
+                .map(|i| gpu::host::light_value(records[i].status, channels(s, i)[c]))
+                .collect()
+        })
+        .collect();
+    DataFile {
+        records,
+        lights,
+        ..data.clone()
     }
 }
 
@@ -213,26 +143,14 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
         let data = DataFile::read(file).unwrap();
         let (w, h, slots, meta) = read_slots(&out, k);
         assert_eq!((w, h), (data.width, data.height), "{}", scene);
-        let (records, lights) = decode(&slots, w * h, data.lights.len());
-        let a = agreement(&records, &lights, &data);
+        let traced = traced_file(&data, &slots);
+        let a = kernel_agreement::compare(scene, &traced, &data);
         eprintln!(
-            "{} {}×{} samples: {:.3} % same object and status; {} hits: |Δg|/g median {:.1e}, \
-             99.9 % {:.1e}; |Δt|/(1+|t|) 99.9 % {:.1e}; {} lit: light 99.9 % {:.1e}; traced in \
-             {:.0} ms (kernel compiled in {:.0} ms)",
-            scene,
-            w,
-            h,
-            100.0 * a.same,
-            a.hits,
-            a.dg_median,
-            a.dg_999,
-            a.dt_999,
-            a.lit,
-            a.light_999,
+            "{a:?}; {w}×{h} samples traced in {:.0} ms (kernel compiled in {:.0} ms)",
             meta["traceMs"].as_f64().unwrap(),
             meta["compileMs"].as_f64().unwrap(),
         );
-        assert!(a.hits > 0, "{}: the scene shows something", scene);
+        assert!(a.seen > 100, "{scene}: the scene shows something");
         assert!(
             meta["header"]
                 .as_str()
@@ -240,13 +158,11 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
                 .contains("traced on the GPU in"),
             "{meta}"
         );
-        let holds = a.same >= 0.995
-            && a.dg_median <= 1e-4
-            && a.dg_999 <= 1e-3
-            && a.dt_999 <= 1e-4
-            && (data.lights.is_empty() || (a.lit > 0 && a.light_999 <= 1e-3));
-        if !holds {
-            failures.push(format!("{}: {a:?}", scene));
+        if data.lights.len() > 0 && a.lit < 100 {
+            failures.push(format!("{scene}: too few lit samples compared: {a:?}"));
+        }
+        if !a.holds() {
+            failures.push(format!("{a:?}"));
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
@@ -273,12 +189,7 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
 fn assert_shaded_as_a_files_frame(out: &Path, file: &Path) {
     let data = DataFile::read(file).unwrap();
     let (w, h, slots, _) = read_slots(out, 0);
-    let (records, lights) = decode(&slots, w * h, data.lights.len());
-    let traced = DataFile {
-        records,
-        lights,
-        ..data.clone()
-    };
+    let traced = traced_file(&data, &slots);
     let meta: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("trace-0-gpu.json")).unwrap()).unwrap();
     let settings: ShadeSettings = serde_json::from_value(meta["settings"].clone()).unwrap();
