@@ -158,7 +158,7 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
                 .contains("traced on the GPU in"),
             "{meta}"
         );
-        if data.lights.len() > 0 && a.lit < 100 {
+        if !data.lights.is_empty() && a.lit < 100 {
             failures.push(format!("{scene}: too few lit samples compared: {a:?}"));
         }
         if !a.holds() {
