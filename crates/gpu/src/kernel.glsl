@@ -6,9 +6,12 @@
 // each block cites its section of docs/physics.md. Single precision throughout ("The GPU
 // kernel" in docs/physics.md says what that costs).
 //
-// The host prepends `#version 300 es` and three defines: N_OBJECTS and N_LIGHTS (the
-// scene's counts, at least 1 for the array sizes) and DRAW_BUFFERS (render targets per pass);
-// benchmarks may add COUNT_PROBES (each sample's probe count in place of view_x).
+// The host prepends `#version 300 es` and its defines (crates/gpu/src/input.rs,
+// `KernelInput::defines`): N_OBJECTS and N_LIGHTS (the scene's counts, at least 1 for the
+// array sizes), DRAW_BUFFERS (render targets per pass), GODEL (1 for Gödel's metric, 0 for
+// Minkowski's), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
+// scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
+// probe count in place of view_x).
 //
 // Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
 // vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
@@ -23,7 +26,6 @@ precision highp sampler2D;
 // Inputs. The scene table holds per object OBJECT_TEXELS texels and per light LIGHT_TEXELS
 // (layout written by crates/gpu/src/input.rs, the one packer).
 
-uniform int u_metric;        // 0 Minkowski, 1 Gödel
 uniform float u_a;           // Gödel parameter a
 uniform vec2 u_obs_t;        // observer time as hi + lo (times of objects are made relative to it)
 uniform vec3 u_obs_x;        // observer position (x, y, z)
@@ -186,10 +188,19 @@ float atanh_(float x) { return 0.5 * log((1.0 + x) / (1.0 - x)); }
 
 vec4 tableTexel(int i) { return texelFetch(u_table, ivec2(i % TABLE_WIDTH, i / TABLE_WIDTH), 0); }
 
+// The kinds of object, each false at compile time where the scene has none of it (the host's
+// HAS_* defines): GPUs and llvmpipe run both sides of a branch their samples take apart, so
+// code for kinds a scene lacks would cost every sample.
+int oKind[N_OBJECTS];
+bool isRest(int i) { return HAS_REST != 0 && oKind[i] == KIND_REST; }
+bool isFree(int i) { return HAS_FREE != 0 && oKind[i] == KIND_FREE; }
+bool isCoordSphere(int i) { return HAS_COORD_SPHERE != 0 && oKind[i] == KIND_COORD_SPHERE; }
+bool isPlane(int i) { return HAS_PLANE != 0 && oKind[i] == KIND_PLANE; }
+
 // ---------------------------------------------------------------------------------------
 // The metric (docs/physics.md, "The Gödel metric"; spacetime::godel, spacetime::minkowski).
 
-bool godel() { return u_metric == 1; }
+bool godel() { return GODEL != 0; }
 
 mat4 metricAt(vec4 e) {
     if (!godel()) return mat4(-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);
@@ -261,10 +272,9 @@ vec4 christoffel(vec4 e, vec4 u, vec4 v) {
     return christoffelWith(dX, dY, inverseMetricAt(e), u, v);
 }
 
-// Riemann normal coordinates to second order and first-order transport (docs/physics.md,
-// "Local objects"; spacetime::normal).
+// Riemann normal coordinates to second order (docs/physics.md, "Local objects";
+// spacetime::normal; the first-order transport is written out in restFramePhoton).
 vec4 normalDisplacement(vec4 at, vec4 d) { return d + 0.5 * christoffel(at, d, d); }
-vec4 transportBy(vec4 at, vec4 dx, vec4 v) { return v - christoffel(at, dx, v); }
 
 // ---------------------------------------------------------------------------------------
 // Frames (docs/physics.md, "Frames"; spacetime::frame): the static frame by Gram–Schmidt of
@@ -515,7 +525,6 @@ Ray makeRay(vec4 at, vec4 k) {
 // the heavy functions below each have one call site (two for `localize`), and the kernel
 // stays small enough to compile in seconds.
 
-int oKind[N_OBJECTS];
 float oRadius[N_OBJECTS];
 float oExtent[N_OBJECTS];   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
 vec4 oPos[N_OBJECTS];       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
@@ -547,12 +556,12 @@ void loadObject(int i) {
     oPos[i] = vec4(0.0, t1.xyz);
     oSpeed[i] = 1.0;
     oRate[i] = 1.0;
-    if (oKind[i] == KIND_REST) {
+    if (isRest(i)) {
         oDual[i] = dualFrame(metricAt(oPos[i]), staticFrame(oPos[i]));
         metricDerivatives(oPos[i], oDX[i], oDY[i]);
         oGinv[i] = inverseMetricAt(oPos[i]);
         if (!godel()) { oDX[i] = mat4(0.0); oDY[i] = mat4(0.0); }
-    } else if (oKind[i] == KIND_FREE) {
+    } else if (isFree(i)) {
         // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
         oStart[i] = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
         vec4 u = startFrame(i)[0];
@@ -577,7 +586,7 @@ struct WPoint { float tau; vec4 ev; vec4 u; };
 WPoint worldAt(int i, float tau) {
     WPoint p;
     p.tau = tau;
-    if (oKind[i] != KIND_FREE) {
+    if (!isFree(i)) {
         p.ev = vec4(tau, oPos[i].yzw);
         p.u = vec4(1.0, 0.0, 0.0, 0.0);
     } else if (!godel()) {
@@ -594,7 +603,7 @@ WPoint worldAt(int i, float tau) {
 // The body frame at the worldline point p (free fall: the start frame parallel-transported
 // in closed form; at rest: the static frame).
 mat4 bodyFrame(int i, WPoint p) {
-    if (oKind[i] != KIND_FREE) return staticFrame(oPos[i]);
+    if (!isFree(i)) return staticFrame(oPos[i]);
     mat4 f0 = startFrame(i);
     if (!godel()) return f0;
     Iso to = toOrigin(oStart[i]);
@@ -613,7 +622,7 @@ mat4 bodyFrame(int i, WPoint p) {
 // A free fall's: the proper time of equal coordinate time (the CPU interpolates it from its
 // integration steps), by Newton steps on t(τ) from the mean rate's guess (dt/dτ = u^t).
 float tauGuess(int i, float t) {
-    if (oKind[i] != KIND_FREE) return t;
+    if (!isFree(i)) return t;
     float tau = (t - oStart[i].x) / oRate[i];
     for (int it = 0; it < TIME_STEPS; it++) {
         WPoint p = worldAt(i, tau);
@@ -633,7 +642,7 @@ Local localize(int i, vec4 x, float seed, float far) {
     Local lp;
     lp.ok = true;
     lp.disp = vec4(0.0);
-    if (oKind[i] == KIND_REST) {
+    if (isRest(i)) {
         // u = ∂t: g(u, Δ) = 0 fixes Δt = g_ti Δxⁱ at first order; then two steps with the
         // second-order ξ⁰.
         vec3 dx = x.yzw - oPos[i].yzw;
@@ -704,7 +713,7 @@ Local localize(int i, vec4 x, float seed, float far) {
 
 // The rest-frame spatial components of a localized ray point, given the body frame there.
 vec3 restComponents(int i, Local lp, mat4 frame) {
-    if (oKind[i] == KIND_REST) return lp.xi;
+    if (isRest(i)) return lp.xi;
     return components(dualFrame(metricAt(lp.at.ev), frame), lp.disp).yzw;
 }
 
@@ -717,10 +726,10 @@ struct Probe { float f; float rate; float tau; };
 Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     probes_left--;
     int kind = oKind[i];
-    if (kind == KIND_COORD_SPHERE) {
+    if (isCoordSphere(i)) {
         return Probe(length(x.yzw - oPos[i].yzw) - oRadius[i], RATE_MARGIN * length(k.yzw), NO_TAU);
     }
-    if (kind == KIND_PLANE) return Probe(x.w - oPos[i].w, RATE_MARGIN * abs(k.w), NO_TAU);
+    if (isPlane(i)) return Probe(x.w - oPos[i].w, RATE_MARGIN * abs(k.w), NO_TAU);
     float scale = godel() ? u_a : 1.0;
     float far = FAR_DISTANCE * scale + FAR_RADII * oRadius[i];
     float floor_ = oRadius[i] + 0.5 * FAR_DISTANCE * scale;
@@ -728,11 +737,11 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
     Local lp = localize(i, x, seed, far);
     if (!lp.ok) return Probe(INF, 0.0, NO_TAU);
-    float slack = kind == KIND_REST ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
+    float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
     Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - oRadius[i], rate, lp.exact ? lp.at.tau : NO_TAU);
     // A stale seed may call a point inside a falling ball far: then the point of equal
     // coordinate time is tried too and the nearer kept.
-    if (!lp.exact && tauSeed > NO_TAU && kind == KIND_FREE) {
+    if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
         Local lq = localize(i, x, tauGuess(i, x.x), far);
         if (lq.ok) {
             float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
@@ -747,7 +756,7 @@ bool excluded(float fa, float fb, float rate, float h) {
     return !crossed(fa, fb) && (abs(fa) + abs(fb) > rate * h || rate == 0.0);
 }
 bool accepts(int i, vec4 x) {
-    return oKind[i] != KIND_PLANE || oExtent[i] <= 0.0 || (abs(x.y) <= oExtent[i] && abs(x.z) <= oExtent[i]);
+    return !isPlane(i) || oExtent[i] <= 0.0 || (abs(x.y) <= oExtent[i] && abs(x.z) <= oExtent[i]);
 }
 
 // A coordinate box around object i (render::target::Target::bounds); false when there is
@@ -756,13 +765,13 @@ bool objectBox(int i, out vec3 lo, out vec3 hi) {
     int kind = oKind[i];
     vec3 c = oPos[i].yzw;
     float grow;
-    if (kind == KIND_REST) {
+    if (isRest(i)) {
         float r = length(c.xy) + 2.0 * oRadius[i];
         float s2 = godel() ? pow(r / (2.0 * u_a), 2.0) : 0.0;
         grow = 2.0 * oRadius[i] * sqrt(1.0 + s2) + 0.05;
-    } else if (kind == KIND_COORD_SPHERE) {
+    } else if (isCoordSphere(i)) {
         grow = oRadius[i] * (1.0 + 1e-6);
-    } else if (kind == KIND_PLANE) {
+    } else if (isPlane(i)) {
         float e = oExtent[i] > 0.0 ? oExtent[i] : INF;
         lo = vec3(-e, -e, c.z);
         hi = vec3(e, e, c.z);
@@ -841,19 +850,19 @@ float reachOf(int i) { return REACH_PER_RADIUS * oRadius[i] + REACH_PER_A * u_a 
 // universe) over λ ∈ [from, until]; false when unsure or for other objects.
 bool objectMisses(int i, OGeo g, float from, float until) {
     if (!godel()) return false;
-    if (oKind[i] == KIND_REST) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
-    if (oKind[i] == KIND_PLANE) return planeMisses(g, oCz[i], from, until);
+    if (isRest(i)) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
+    if (isPlane(i)) return planeMisses(g, oCz[i], from, until);
     return false;
 }
 
 // Whether a ray from the place of `from` (whose origin-frame closed form is g) may meet
 // object i over λ ∈ [0, until]: sets searched[i].
 void setSearchedUntil(int i, vec4 from, OGeo g, float until) {
-    if (oKind[i] == KIND_REST) {
+    if (isRest(i)) {
         vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), oPos[i]);
         oCw[i] = disc(c.yz);
         oCz[i] = c.w;
-    } else if (oKind[i] == KIND_PLANE) {
+    } else if (isPlane(i)) {
         oCz[i] = oPos[i].w - from.w;
     }
     searched[i] = oKind[i] >= 0 && !objectMisses(i, g, 0.0, until);
@@ -1144,7 +1153,7 @@ void machineStep() {
             // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
             // plane's height, linear in λ), from which the next segment goes on.
             if (objectMisses(eObj, eRay.geo, eLo + off, eHi + off)) {
-                float fEnd = oKind[eObj] == KIND_REST
+                float fEnd = isRest(eObj)
                     ? REACH_PER_RADIUS * oRadius[eObj] / 1.05 - oRadius[eObj]
                     : eRay.geo.pz * (eHi + off) - oCz[eObj];
                 probeBuf[N_OBJECTS - eStart + eObj] = Probe(fEnd, p.rate, NO_TAU);
@@ -1153,7 +1162,7 @@ void machineStep() {
             }
             float at = probeAt[eStart + eObj];
             float clear = abs(p.f);
-            if (oKind[eObj] == KIND_REST && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
+            if (isRest(eObj) && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
                 probeBuf[N_OBJECTS - eStart + eObj] = p;   // provably no crossing of this object within the segment
                 probeAt[N_OBJECTS - eStart + eObj] = at;
                 continue;
@@ -1218,7 +1227,7 @@ void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit
     if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
     vec4 kn = k - christoffelWith(dX, dY, ginv, p.ev - x, k);
     kl = components(dualFrame(metricAt(p.ev), frame), kn);
-    uemit = oKind[i] == KIND_FREE ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
+    uemit = isFree(i) ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
 }
 
 // The hit: what the record and the lights need of it.
@@ -1239,7 +1248,7 @@ bool surface() {
     float seed = hAt.tau > NO_TAU ? hAt.tau : tauGuess(i, x.x);
     hAt = WPoint(x.x, x, hUemit);
     hFrame = mat4(1.0);
-    if (oKind[i] == KIND_REST || oKind[i] == KIND_FREE) {
+    if (isRest(i) || isFree(i)) {
         Local lp = localize(i, x, seed, INF);
         if (!lp.ok) return false;
         hAt = lp.at;
@@ -1256,7 +1265,7 @@ bool surface() {
     mat4 f = staticFrame(x);
     vec4 p = metricAt(x) * (-k);
     hDir = normalize(vec3(dot(f[1], p), dot(f[2], p), dot(f[3], p)));
-    if (oKind[i] == KIND_COORD_SPHERE) {
+    if (isCoordSphere(i)) {
         vec3 n = normalize(x.yzw - oPos[i].yzw);
         hUV = lonLat(n);
         hCos = abs(dot(n, normalize(-k.yzw)));
@@ -1350,7 +1359,7 @@ float areaDistanceSq(float psi, float chi, float lambda) {
 vec2 incidence(vec4 kLight) {
     int i = hTarget;
     vec4 x = hX, view = hK;
-    if (oKind[i] == KIND_REST || oKind[i] == KIND_FREE) {
+    if (isRest(i) || isFree(i)) {
         vec4 ue, kl, kv;
         restFramePhoton(i, hAt, hFrame, x, kLight, ue, kl);
         restFramePhoton(i, hAt, hFrame, x, view, ue, kv);
@@ -1359,7 +1368,7 @@ vec2 incidence(vec4 kLight) {
         return vec2(-side * dot(n, normalize(kl.yzw)), kl.x);
     }
     float energy = -(metricAt(x) * kLight).x;
-    if (oKind[i] == KIND_COORD_SPHERE) {
+    if (isCoordSphere(i)) {
         vec3 n = normalize(x.yzw - oPos[i].yzw);
         float side = dot(n, -view.yzw) >= 0.0 ? 1.0 : -1.0;
         return vec2(-side * dot(n, normalize(kLight.yzw)), energy);
@@ -1610,7 +1619,7 @@ void main() {
                 slots[1] = vec4(g, hX.x, f.lambda + float(f.loop_) * r.lret, hCos);
                 slots[2].xyz = hX.yzw;
                 slots[3].xyz = hDir;
-                if (!godel() || u_lights == 0) continue;
+                if (!godel() || HAS_LIGHTS == 0 || u_lights == 0) continue;
                 finished = false;
                 gLight = 0;
                 gIdx = -1;
