@@ -18,37 +18,13 @@ height=$3
 runs=${4:-2}
 cd "$root"
 cargo build --release -p godel -q
-godel="$root/target/release/godel"
-work=$(mktemp -d)
-server=""
-stop() {
-    if [ -n "$server" ]; then
-        kill "$server" 2>/dev/null || true
-        wait "$server" 2>/dev/null || true
-        server=""
-    fi
-}
-trap 'stop; rm -rf "$work"' EXIT
+# shellcheck source=bench-server.sh
+source "$root/scripts/bench-server.sh"
 
 echo "# cpu: $(uptime)"
-"$godel" render "$scene" --method exact --samples 1 --width "$width" --height "$height" \
-    --name bench -o "$work"
-: >"$work/server.log"
-"$godel" view "$work/bench.exr" --port 0 >"$work/server.log" 2>"$work/server.err" &
-server=$!
-url=""
-# Waits (bounded: one minute) for the line with the server's address.
-for _ in $(seq 1 600); do
-    url=$(sed -n 's/^godel view: serving \(http:[^ ]*\)$/\1/p' "$work/server.log")
-    [ -n "$url" ] && break
-    kill -0 "$server" 2>/dev/null || break
-    sleep 0.1
-done
-if [ -z "$url" ]; then
-    echo "the server did not start:" >&2
-    cat "$work/server.err" >&2
-    exit 1
-fi
+"$root/target/release/godel" render "$scene" --method exact --samples 1 \
+    --width "$width" --height "$height" --name bench -o "$work"
+serve view "$work/bench.exr"
 echo "# page: $(uptime)"
 cd tests/browser
 node bench-trace.mjs "$url" "$work" "$runs"
