@@ -13,15 +13,14 @@
 use crate::args::thread_pool;
 use crate::inputs::Inputs;
 use crate::output::{check_folder, output_names, prepare, write_outputs};
-use crate::overrides::{load_with_overrides, Overrides};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
-use render::driver::Renderer;
+use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
-use render::tiles::Assembler;
+use scene::overrides::{LoadError, Overrides, SceneSource};
+use scene::Scene;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 #[derive(Args, Debug)]
 #[command(after_help = "\
@@ -102,6 +101,22 @@ impl RenderArgs {
     }
 }
 
+/// The scene of the arguments with the flags' overrides; a refused override names its flag
+/// (exit 2, as every scene error).
+pub fn load_with_overrides(args: &RenderArgs) -> anyhow::Result<Scene> {
+    let source = match &args.scene {
+        Some(path) => SceneSource::File(path),
+        None => SceneSource::Builtin,
+    };
+    scene::overrides::load(source, &args.overrides()).map_err(|e| match e {
+        LoadError::Scene(e) => e.into(),
+        LoadError::Override { settings, message } => {
+            let flags: Vec<&str> = settings.iter().map(|s| s.flag()).collect();
+            crate::args::usage(&flags.join("/"), message)
+        }
+    })
+}
+
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
 /// from any folder; empty for the built-in scene.
 pub fn scene_path_text(path: &Option<PathBuf>) -> String {
@@ -138,7 +153,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     }
     let pool = thread_pool(args.threads)?;
     check_folder("--output", &args.output)?;
-    let scene = load_with_overrides(&args.scene, &args.overrides())?;
+    let scene = load_with_overrides(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
@@ -149,17 +164,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
     }
     prepare_outputs(&args.output, &scene, &outputs)?;
-    if args.gpu || scene.trace.gpu {
-        return render_on_gpu(&scene, &args);
-    }
-    let started = Instant::now();
-    let renderer = Renderer::new(&scene)?;
     let plan = part.map_or(Plan::All, Plan::Part);
-    let pixels: u64 = plan
-        .indices(renderer.tiles())
-        .iter()
-        .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
-        .sum();
     let file = args
         .scene
         .as_ref()
@@ -167,15 +172,17 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     crate::memory::check_writing(
         &format!("{file}: camera"),
         "a data file of this width × height × samples",
-        pixels,
+        plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
-    let bar = progress_bar(&scene, pixels, args.quiet);
-    let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
-    let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
-    stats.wall = started.elapsed();
+    if args.gpu || scene.trace.gpu {
+        return render_on_gpu(&scene, &args);
+    }
+    // The bar's length is set when tracing starts (`Progress::start`).
+    let bar = progress_bar(&scene, 0, args.quiet);
+    let traced = pool.install(|| render_plan(&scene, &plan, &Bar(bar.clone())));
     bar.finish_and_clear();
-    let data = assembler.finish();
+    let (data, stats) = traced?;
     match part {
         None => write_outputs(&scene, &data, &args.output, args.grid)?,
         Some(part) => {
@@ -197,16 +204,6 @@ const GPU_ONE_PROCESS: &str =
 fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs) -> anyhow::Result<()> {
     let camera = scene.sample_camera();
     let pixels = u64::from(camera.width()) * u64::from(camera.height());
-    let file = args
-        .scene
-        .as_ref()
-        .map_or("built-in scene".into(), |p| p.display().to_string());
-    crate::memory::check_writing(
-        &format!("{file}: camera"),
-        "a data file of this width × height × samples",
-        pixels,
-        scene.lights.len(),
-    )?;
     let bar = progress_bar(scene, pixels, args.quiet);
     let done = gpu::render(scene, &Bar(bar.clone()))?;
     bar.finish_and_clear();
@@ -223,8 +220,9 @@ mod under_mpi {
     use super::*;
     use crate::cluster::{abort, run_jobs, start};
     use mpi::topology::Communicator;
-    use render::driver::{NoProgress, RenderStats};
-    use render::tiles::{Sink, TileData};
+    use render::driver::{NoProgress, RenderStats, Renderer};
+    use render::tiles::{Assembler, Sink, TileData};
+    use std::time::Instant;
 
     /// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
     const TILES_PER_JOB: usize = 8;
@@ -236,7 +234,7 @@ mod under_mpi {
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
             check_folder("--output", &args.output)?;
-            let scene = load_with_overrides(&args.scene, &args.overrides())?;
+            let scene = load_with_overrides(&args)?;
             if args.gpu || scene.trace.gpu {
                 return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
             }

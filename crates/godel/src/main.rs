@@ -28,7 +28,6 @@ mod inputs;
 mod manifest;
 mod memory;
 mod output;
-mod overrides;
 mod plot_isometry;
 mod plot_kit;
 mod progress;

@@ -113,6 +113,8 @@ const float FAR_SLACK = 1.3;
 const float END_CUT = 1e-6;
 // spacetime::connect: grid cells per winding and branch bracketing the shadow-ray roots.
 const int SHADOW_GRID = 256;
+// Cells of a falling ball's worldline per loop of a pixel ray (fallingLast).
+const int FALL_CELLS = 16;
 const int CELLS_PER_PASS = 16;
 const int MAX_WINDINGS = 10000;
 // render::reject: reach of a ball at rest per radius and per a.
@@ -177,7 +179,23 @@ float acosA(float x) { return atan2s(sqrt(max((1.0 - x) * (1.0 + x), 0.0)), x); 
 vec2 cmul(vec2 p, vec2 q) { return vec2(p.x * q.x - p.y * q.y, p.x * q.y + p.y * q.x); }
 vec2 cdiv(vec2 p, vec2 q) { return vec2(p.x * q.x + p.y * q.y, p.y * q.x - p.x * q.y) / dot(q, q); }
 vec2 conj2(vec2 p) { return vec2(p.x, -p.y); }
-vec2 cis(float a) { return vec2(cos(a), sin(a)); }
+// Cosine and sine of our own, for the same reason: Chromium's software WebGL (SwiftShader)
+// computes sin and cos to within 2e-4 only (Vulkan's bound is 2^-11). Cephes' sinf/cosf
+// (S. L. Moshier): reduction by π/4 in three parts (exact for |a| < 8192) to an even octant,
+// minimax polynomials on [−π/4, π/4], error ~1 ulp.
+vec2 cis(float a) {
+    float j = floor(abs(a) * 1.27323954473516);   // 4/π
+    j += mod(j, 2.0);
+    float x = ((abs(a) - j * 0.78515625) - j * 2.4187564849853515625e-4) - j * 3.77489497744594108e-8;
+    float z = x * x;
+    float s = ((-1.9515295891e-4 * z + 8.3321608736e-3) * z - 1.6666654611e-1) * z * x + x;
+    float c = ((2.443315711809948e-5 * z - 1.388731625493765e-3) * z + 4.166664568298827e-2) * z * z - 0.5 * z + 1.0;
+    int q = int(j * 0.5) & 3;   // the quarter turn: (c, s) rotated by q·π/2
+    vec2 r = q == 0 ? vec2(c, s) : (q == 1 ? vec2(-s, c) : (q == 2 ? vec2(-c, -s) : vec2(s, -c)));
+    return vec2(r.x, a < 0.0 ? -r.y : r.y);
+}
+float sinA(float a) { return cis(a).y; }
+float cosA(float a) { return cis(a).x; }
 float carg(vec2 p) { return atan2s(p.y, p.x); }
 bool finite(float v) { return !isnan(v) && abs(v) < 1e38; }   // INF (3e38) counts as infinite
 float asinh_(float x) { return sign(x) * log(abs(x) + sqrt(x * x + 1.0)); }
@@ -324,7 +342,8 @@ vec4 components(mat4 dual, vec4 v) { return vec4(dot(dual[0], v), dot(dual[1], v
 bool cameraDirection(vec2 p, out vec3 d) {
     float w = float(u_size.x), h = float(u_size.y);
     if (u_camera == 0) {
-        float t = tan(radians(0.5 * u_fov.x));
+        vec2 halfFov = cis(radians(0.5 * u_fov.x));
+        float t = halfFov.y / halfFov.x;
         float x = t * (2.0 * p.x / w - 1.0);
         float y = t * (h / w) * (1.0 - 2.0 * p.y / h);
         d = vec3(1.0, x, y) / sqrt(1.0 + x * x + y * y);
@@ -333,7 +352,7 @@ bool cameraDirection(vec2 p, out vec3 d) {
     if (u_camera == 1) {
         float alpha = radians(u_fov.x) * (p.x / w - 0.5);
         float beta = radians(u_fov.y) * (0.5 - p.y / h);
-        d = vec3(cos(beta) * cos(alpha), cos(beta) * sin(alpha), sin(beta));
+        d = vec3(cosA(beta) * cosA(alpha), cosA(beta) * sinA(alpha), sinA(beta));
         return true;
     }
     float dx = 2.0 * p.x / w - 1.0, dy = 1.0 - 2.0 * p.y / h;
@@ -341,7 +360,7 @@ bool cameraDirection(vec2 p, out vec3 d) {
     if (rho > 1.0) return false;
     float theta = rho * radians(0.5 * u_fov.x);
     vec2 sc = rho > 0.0 ? vec2(dx, dy) / rho : vec2(0.0, 1.0);
-    d = vec3(cos(theta), sin(theta) * sc.x, sin(theta) * sc.y);
+    d = vec3(cosA(theta), sinA(theta) * sc.x, sinA(theta) * sc.y);
     return true;
 }
 
@@ -418,7 +437,7 @@ void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
     float a = u_a, e = g.e, w = g.omega, q = g.q;
     float sg = sign(e);
     float th = w * lambda;
-    float s = sin(th), c = cos(th);
+    float s = sinA(th), c = cosA(th);
     float den = c * c + q * s * s;
     float b = (q - 1.0) * s * c;
     float big = th + atan2s(b, den);
@@ -447,7 +466,7 @@ float flowRotation(OGeo g, float lambda) {
     float alpha = sign(g.e) * 2.0 * g.omega * lambda;
     float h = halfTanh(g.rmax / (2.0 * u_a));
     float h2 = h * h;
-    return alpha - 2.0 * atan2s(-h2 * sin(alpha), 1.0 - h2 * cos(alpha));
+    return alpha - 2.0 * atan2s(-h2 * sinA(alpha), 1.0 - h2 * cosA(alpha));
 }
 
 vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
@@ -460,12 +479,12 @@ vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
         c1 = lambda * (1.0 - x * x / 6.0);
         c2 = 0.5 * lambda * lambda * (1.0 - x * x / 12.0);
     } else {
-        c1 = sin(x) / om;
-        c2 = (1.0 - cos(x)) / (om * om);
+        c1 = sinA(x) / om;
+        c2 = (1.0 - cosA(x)) / (om * om);
     }
     vec4 v = w - c1 * aw + c2 * aaw;
     float beta = flowRotation(g, lambda);
-    float cb = cos(beta), sb = sin(beta);
+    float cb = cosA(beta), sb = sinA(beta);
     v = vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w);
     return pushIso(inverseIso(toOrigin(at)), vec4(0.0), v);
 }
@@ -538,6 +557,7 @@ vec4 oStart[N_OBJECTS];     // free fall: start event; Minkowski: and its veloci
 vec4 oU0[N_OBJECTS];
 float oSpeed[N_OBJECTS];    // γ(1 + v) relative to the static observers
 float oRate[N_OBJECTS];     // free fall: coordinate time per proper time over whole loops
+float oGamma[N_OBJECTS];    // free fall: γ = −u_t, conserved
 
 // The frame a free fall starts with: the static frame there boosted by its velocity.
 mat4 startFrame(int i) {
@@ -568,6 +588,7 @@ void loadObject(int i) {
         oU0[i] = u;
         float gam = -(metricAt(oStart[i]) * u).x;   // γ = −u_t, conserved
         oSpeed[i] = gam + sqrt(max(gam * gam - 1.0, 0.0));
+        oGamma[i] = max(gam, 1.0);
         oRate[i] = u.x;
         if (godel()) {
             Iso to = toOrigin(oStart[i]);
@@ -634,8 +655,20 @@ float tauGuess(int i, float t) {
 // ---------------------------------------------------------------------------------------
 // Localizing a ray point in an object's rest frame (render::worldline::Worldline::localize).
 
+// The second-order normal-coordinate displacement of x from the worldline point p, taken
+// after the isometry that sends p to the origin, and p's four-velocity carried there
+// (render::worldline::origin_coords). Minkowski: the displacement itself.
+void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
+    if (!godel()) { xi = x - p.ev; u = p.u; return; }
+    Iso to = toOrigin(p.ev);
+    vec4 o;
+    applyPush(to, p.ev, p.u, o, u);
+    xi = normalDisplacement(vec4(0.0), applyIso(to, x));
+}
+
 // xi: spatial rest-frame components (at rest); len: their length; disp: the second-order
-// normal-coordinate displacement (free fall, whose components need the body frame).
+// normal-coordinate displacement (free fall: taken at the origin, whose components need the
+// body frame carried there).
 struct Local { WPoint at; vec3 xi; float len; vec4 disp; bool exact; bool ok; };
 
 Local localize(int i, vec4 x, float seed, float far) {
@@ -662,8 +695,8 @@ Local localize(int i, vec4 x, float seed, float far) {
         return lp;
     }
     // Free fall: the first-order simultaneity ξ⁰ = −g(u, Δ) = 0 by the secant method from
-    // the seed, then one Newton step on the second-order ξ⁰, whose Γ is the previous
-    // point's (as on the CPU). One worldline evaluation per pass of the loop.
+    // the seed, then one Newton step on the second-order ξ⁰ taken at the origin (as on the
+    // CPU). One worldline evaluation per pass of the loop.
     // The seed's point first (a far point needs no more, and no loop pass).
     WPoint p = worldAt(i, seed);
     mat4 g = metricAt(p.ev);
@@ -676,20 +709,18 @@ Local localize(int i, vec4 x, float seed, float far) {
         return lp;
     }
     float ta = seed, fa = f0, tau = seed + f0;
-    vec4 xiSecond = vec4(0.0);
     int stage = 1;   // 1 secant, 2 after the Newton step
+    mat4 g0 = metricAt(vec4(0.0));
+    vec4 xi, uo;
     for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
         p = worldAt(i, tau);
-        g = metricAt(p.ev);
         if (stage == 2) break;
+        g = metricAt(p.ev);
         float f = -dotg(g, p.u, x - p.ev);
         bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
         if (done) {
-            xiSecond = normalDisplacement(p.ev, x - p.ev);
-            // Γ of this point for the last displacement, as the CPU does.
-            tau += -dotg(g, p.u, xiSecond);
-            lp.disp = x - p.ev;   // the base point whose Γ is kept: p.ev
-            lp.at = p;
+            originDisplacement(p, x, xi, uo);
+            tau += -dotg(g0, uo, xi);
             stage = 2;
             continue;
         }
@@ -698,14 +729,11 @@ Local localize(int i, vec4 x, float seed, float far) {
         ta = tau; fa = f;
         tau = tau + step_;
     }
-    // ξ at the final point with Γ of the previous one.
-    vec4 base = lp.at.ev;
-    vec4 d = x - p.ev;
-    vec4 xi = d + 0.5 * christoffel(base, d, d);
-    float x0 = -dotg(g, p.u, xi);
+    originDisplacement(p, x, xi, uo);
+    float x0 = -dotg(g0, uo, xi);
     lp.at = p;
     lp.disp = xi;
-    lp.len = sqrt(max(dotg(g, xi, xi) + x0 * x0, 0.0));
+    lp.len = sqrt(max(dotg(g0, xi, xi) + x0 * x0, 0.0));
     lp.exact = true;
     lp.ok = finite(lp.len) && finite(tau);
     return lp;
@@ -714,7 +742,12 @@ Local localize(int i, vec4 x, float seed, float far) {
 // The rest-frame spatial components of a localized ray point, given the body frame there.
 vec3 restComponents(int i, Local lp, mat4 frame) {
     if (isRest(i)) return lp.xi;
-    return components(dualFrame(metricAt(lp.at.ev), frame), lp.disp).yzw;
+    if (godel()) {
+        // The frame carried to the origin, where disp was taken.
+        Iso to = toOrigin(lp.at.ev);
+        for (int c = 0; c < 4; c++) frame[c] = pushIso(to, lp.at.ev, frame[c]);
+    }
+    return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -817,8 +850,8 @@ bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until)
     float d2 = alpha0 + sg * 2.0 * PI * hi / lret - carg(mc);
     float dmin = min(d1, d2), dmax = max(d1, d2);
     if (ceil(dmin / (2.0 * PI)) * 2.0 * PI <= dmax) return false;
-    float c1 = cos(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
-    float c2 = cos(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
+    float c1 = cosA(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
+    float c2 = cosA(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
     float cosd = max(c1, c2);
     float x = dhc / a, y = rho / a;
     float coshd = cosh(x) * cosh(y) - sinh(x) * sinh(y) * cosd;
@@ -879,6 +912,120 @@ bool anySearched() {
 bool setSearched(vec4 from, OGeo g, float until) {
     for (int i = 0; i < N_OBJECTS; i++) setSearchedUntil(i, from, g, until);
     return anySearched();
+}
+
+// ---------------------------------------------------------------------------------------
+// Loop by loop, balls in free fall (render::falling, render::circle; docs/physics.md "Balls
+// in free fall"). In the pixel ray's origin frame the ray's loop j runs along a circle of the
+// disc at times between (j + 1)Δt and jΔt; a ball point lies within static distance reach of
+// its simultaneous centre, and within the time slack S of it. The centre's worldline is cut
+// into cells of proper time (here per loop, at most FALL_CELLS, over the proper times whose
+// time may fall in the loop's window; the CPU cuts the whole worldline once per render):
+// each cell lies within m of its middle point. The last λ of the loop within M = reach + m of
+// a cell whose time lies in the window (its z window and the arc of the ray's circle near the
+// cell, by the hyperbolic law of cosines) is the last λ where the loop must search the ball.
+
+float fbLast[N_OBJECTS];   // per falling ball, for the current loop: that λ from the loop's start
+
+// The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
+// hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when
+// unsure (render::circle::RayCircle::last_within).
+float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
+    if (!(lo <= hi)) return NO_TAU;
+    float a = u_a;
+    float sg = sign(g.e);
+    float big = asinh_(g.rmax / (2.0 * a));
+    vec2 h = vec2(-sg * g.cchi.y, sg * g.cchi.x) * halfTanh(g.rmax / (2.0 * a));
+    float nh = 1.0 - dot(h, h), nw = 1.0 - dot(w, w);
+    float ch = 1.0 + 2.0 * dot(w - h, w - h) / (nh * nw);
+    float sh = sqrt(max(ch * ch - 1.0, 0.0));
+    float num = ch * cosh(big) - coshM;
+    float den = sh * sinh(big);
+    if (!finite(num) || !finite(den)) return hi;
+    if (num <= -den) return hi;     // within m all round the circle
+    if (num > den) return NO_TAU;   // beyond m all round
+    // Single precision: the arc widened by 1e-4 rad (the CPU's 1e-9).
+    float halfArc = acosA(clamp(num / den, -1.0, 1.0)) + 1e-4;
+    float beta = carg(cdiv(w - h, vec2(1.0, 0.0) - cmul(conj2(h), w)));
+    float lret = returnParameter(g);
+    float psiHi = sg * carg(-h) - sg * beta + 2.0 * PI * hi / lret;
+    float r = psiHi - 2.0 * PI * floor(psiHi / (2.0 * PI) + 0.5);
+    float back = abs(r) <= halfArc ? 0.0 : (r > halfArc ? r - halfArc : r + 2.0 * PI - halfArc);
+    float l = hi - back * lret / (2.0 * PI);
+    return l >= lo ? l : NO_TAU;
+}
+
+// The proper time of the falling ball i at which its own origin frame's time is t (its
+// closed form's time rises at least at (1 + p_z²)/γ per proper time), and how far off it
+// may be.
+vec2 ballTimeToTau(int i, float t) {
+    OGeo b = oGeo[i];
+    float low = (1.0 + b.pz * b.pz) / b.e;
+    float tau = t / oRate[i];
+    float off = 0.0;
+    for (int it = 0; it < TIME_STEPS + 1; it++) {
+        vec4 e, k;
+        ogeoAt(b, tau, e, k);
+        off = t - e.x;
+        tau += off / max(k.x, low);
+    }
+    return vec2(tau, abs(off) / low);
+}
+
+// Sets fbLast[i] for loop j of the pixel ray `ray` (NO_TAU: the loop needs no search of the
+// ball), or INF where the test does not apply (Minkowski).
+void fallingLast(int i, int j, Ray ray) {
+    fbLast[i] = INF;
+    if (!godel()) return;
+    float a = u_a;
+    float gam = oGamma[i];
+    float sv = sqrt(max(gam * gam - 1.0, 0.0));
+    float r = oRadius[i];
+    // Reach and time slack (render::falling), widened for single precision.
+    float reach = 1.25 * gam * r + 1e-4 * a;
+    float slack = 1.25 * gam * r * (sv / gam + SQRT2) + 1e-4 * a;
+    float up = gam + SQRT2 * sv;
+    Iso toO = inverseIso(ray.back);
+    vec4 start = applyIso(toO, oStart[i]);
+    // The loop's window of times, and the ball's own time there: the isometry from the
+    // ball's origin frame to the ray's shifts times by at most A (docs/physics.md, "Isometries").
+    float tLo = float(j + 1) * ray.shift.x - slack, tHi = float(j) * ray.shift.x + slack;
+    float wmax = oGeo[i].rmax / sqrt(oGeo[i].rmax * oGeo[i].rmax + 4.0 * a * a);
+    float shiftA = 2.0 * SQRT2 * a * asinA(min(length(disc(start.yz)) * wmax, 1.0));
+    vec2 t1 = ballTimeToTau(i, tLo - start.x - shiftA), t2 = ballTimeToTau(i, tHi - start.x + shiftA);
+    float tau1 = t1.x - t1.y, tau2 = t2.x + t2.y;
+    // z is linear along both: no cell can be near when the ball's z range over [τ1, τ2] is
+    // farther than the reach (plus the cells' extent) from the loop's.
+    float zb1 = start.w + oU0[i].w * tau1, zb2 = start.w + oU0[i].w * tau2;
+    float zr1 = float(j) * ray.shift.y, zr2 = float(j + 1) * ray.shift.y;
+    float zGap = max(max(min(zb1, zb2) - max(zr1, zr2), min(zr1, zr2) - max(zb1, zb2)), 0.0);
+    if (zGap > reach + 0.5 * sv * max(max(r, 1e-3), (tau2 - tau1) / float(FALL_CELLS))) {
+        fbLast[i] = NO_TAU;
+        return;
+    }
+    int cells = int(clamp(ceil((tau2 - tau1) / max(r, 1e-3)), 1.0, float(FALL_CELLS)));
+    float dtau = (tau2 - tau1) / float(cells);
+    float near = reach + 0.5 * sv * dtau;
+    float coshM = cosh(near / a);
+    float sl = slack + 0.5 * up * dtau;
+    float l0 = float(j) * ray.lret, l1 = l0 + ray.lret;
+    float last = NO_TAU;
+    for (int c = 0; c < FALL_CELLS; c++) {
+        if (c >= cells || last >= l1) break;
+        vec4 p = applyIso(toO, worldAt(i, tau1 + (float(c) + 0.5) * dtau).ev);
+        if (p.x < tLo + slack - sl || p.x > tHi - slack + sl) continue;
+        float lo = l0, hi = l1;
+        if (ray.geo.pz == 0.0) {
+            if (abs(p.w) > near) continue;
+        } else {
+            float za = (p.w - near) / ray.geo.pz, zb = (p.w + near) / ray.geo.pz;
+            lo = max(min(za, zb), l0);
+            hi = min(max(za, zb), l1);
+        }
+        float l = lastWithin(ray.geo, disc(p.yz), coshM, max(lo, last), hi);
+        if (l > NO_TAU) last = l;
+    }
+    fbLast[i] = last > NO_TAU ? last - l0 : NO_TAU;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -943,6 +1090,12 @@ int qTag, qObj, qLoop;
 float qLambda, qSeed;
 Probe qAnswer;
 vec4 qX;
+
+// Whether the current loop searches object i on a segment starting at λ0 (from the loop's
+// start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
+bool loopSearches(int i, float lambda0) {
+    return !(isFree(i) && ePixel) || lambda0 <= fbLast[i];
+}
 
 void request(int tag, float lambda, float seed) {
     qTag = tag;
@@ -1071,14 +1224,20 @@ void machineStep() {
                 finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
                 return;
             }
-            if (eLoop == 0) break;
             float dz = float(eLoop) * eRay.shift.y;
             if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
             vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
-            bool near = false;
+            bool near = eLoop == 0;
             for (int i = 0; i < N_OBJECTS; i++) {
                 vec3 olo, ohi;
-                if (searched[i] && (!objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi))))) near = true;
+                if (!searched[i]) continue;
+                if (isFree(i) && ePixel) {
+                    // Balls in free fall: searched up to the loop's last λ within their reach.
+                    fallingLast(i, eLoop, eRay);
+                    near = near || fbLast[i] > NO_TAU;
+                } else {
+                    near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
+                }
             }
             if (near) break;
             eLoop++;
@@ -1088,7 +1247,7 @@ void machineStep() {
     }
     if (eMode == M_START) {
         eObj++;
-        while (eObj < N_OBJECTS && !searched[eObj]) eObj++;
+        while (eObj < N_OBJECTS && !(searched[eObj] && loopSearches(eObj, 0.0))) eObj++;
         if (eObj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
         eSeg = 0;
         eMode = M_SEGMENT;
@@ -1143,6 +1302,12 @@ void machineStep() {
         for (eObj++; eObj < N_OBJECTS; eObj++) {
             if (!searched[eObj]) continue;
             Probe p = probeBuf[eStart + eObj];
+            if (!loopSearches(eObj, eLo)) {
+                // Past the ball's last λ within reach in this loop (a later loop probes afresh).
+                probeBuf[N_OBJECTS - eStart + eObj] = p;
+                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                continue;
+            }
             if (eObj == eSkipObj && eLo >= eSkipFrom) {
                 probeBuf[N_OBJECTS - eStart + eObj] = p;
                 probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
@@ -1282,7 +1447,7 @@ bool surface() {
 
 // Φ(θ) = arctan(q tan θ), continuous.
 float bigPhi(float q, float th) {
-    float s = sin(th), c = cos(th);
+    float s = sinA(th), c = cosA(th);
     return th + atan2s((q - 1.0) * s * c, c * c + q * s * s);
 }
 
@@ -1328,13 +1493,13 @@ vec4 shadowG4(float rho, float zp, vec4 u, int n, bool inbound) {
 // J_χ = ∂φ (docs/physics.md, "Area distance and irradiance").
 float areaDistanceSq(float psi, float chi, float lambda) {
     float a = u_a;
-    float c = cos(psi), s = sin(psi);
+    float c = cosA(psi), s = sinA(psi);
     float w1 = 1.0 + c * c;
     float omega = sqrt(w1) / (2.0 * a);
     float rmax = s / omega;
     float q = sqrt(2.0 / w1);
     float th = omega * lambda;
-    float st = sin(th), ct = cos(th);
+    float st = sinA(th), ct = cosA(th);
     float den2 = ct * ct + q * q * st * st;
     float big = bigPhi(q, th);
     float domega = -c * s / (4.0 * a * a * omega);
@@ -1343,7 +1508,7 @@ float areaDistanceSq(float psi, float chi, float lambda) {
     float dq = -q / omega * domega;
     float dbig = (q * dth + st * ct * dq) / den2;
     float phi = chi + big;
-    vec2 e = vec2(cos(phi), sin(phi));
+    vec2 e = vec2(cosA(phi), sinA(phi));
     float r = rmax * st;
     float dr = drmax * st + rmax * ct * dth;
     vec4 x = vec4(2.0 * SQRT2 * a * big - lambda, r * e, c * lambda);
@@ -1505,7 +1670,7 @@ int shadowRaySetUp() {
     float chi = carg(gP.yz) - big + float(n) * PI;
     float sinpsi = sqrt(max(1.0 - c * c, 0.0));
     vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
-    vec4 tg = vec4(1.0, sinpsi * cos(chi), sinpsi * sin(chi), c);
+    vec4 tg = vec4(1.0, sinpsi * cosA(chi), sinpsi * sinA(chi), c);
     vec4 emission = applyIso(gBack, em);
     if (emission.x < hX.x - u_max_past) return 0;
     // The ray in the source's axis frame: the closed form from the origin, moved by the
