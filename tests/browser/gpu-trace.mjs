@@ -4,8 +4,9 @@
 //
 // usage: node gpu-trace.mjs URL OUT_DIR [URL…] [--shade]
 //   For the K-th URL (`godel view` of a data file) writes OUT_DIR/trace-K.json ({width,
-//   height, slots, traceMs, compileMs, header}) and trace-K-slot-S.f32 (RGBA32F, grid row 0
-//   first). With --shade, for the first URL also the picture shaded from the traced frame
+//   height, slots, traceMs, compileMs, source (the kernel as compiled), defines and
+//   drawBuffers (as the server sent them), header}) and trace-K-slot-S.f32 (RGBA32F, grid
+//   row 0 first). With --shade, for the first URL also the picture shaded from the traced frame
 //   (trace-0-gpu.rgba), from the file's frame (trace-0-file.rgba), and the canvas showing the
 //   traced frame (trace-0-canvas.rgba), with every layer on. Prints {requests,
 //   console_errors, without_float_targets}: the latter what the page shows for the first URL
@@ -50,7 +51,8 @@ try {
     const header = await page.evaluate(() => document.getElementById('file').textContent);
     writeFileSync(join(outDir, `trace-${k}.json`), JSON.stringify({ width: slots.width,
       height: slots.height, slots: slots.slots.length, traceMs: slots.traceMs,
-      compileMs: slots.compileMs, header }));
+      compileMs: slots.compileMs, source: slots.source, defines: slots.defines,
+      drawBuffers: slots.drawBuffers, header }));
     if (shade && k === 0) {
       await page.evaluate(() => {
         const v = window.godelViewer;

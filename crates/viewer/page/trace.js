@@ -91,7 +91,7 @@ export class KernelTracer {
     this.kernel = kernel;
     this.maxDrawBuffers = gl.getParameter(gl.MAX_DRAW_BUFFERS);
     this.maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
-    this.programs = new Map(); // kernel programs by defines
+    this.programs = new Map(); // kernel programs and their sources by defines
     this.warm = new Set();     // those that have drawn once
     this.vao = gl.createVertexArray();
     this.convertFloat = null;
@@ -125,11 +125,12 @@ export class KernelTracer {
     return p;
   }
 
-  // The kernel compiled with `defines` (once per distinct defines).
+  // The kernel compiled with `defines` (once per distinct defines): {program, source}, the
+  // source as host.rs compiles it (`#version 300 es`, the defines, the kernel).
   program(defines) {
     if (!this.programs.has(defines)) {
       const source = `#version 300 es\n${defines}${this.kernel}`;
-      this.programs.set(defines, this.compile(source, 'the GPU kernel'));
+      this.programs.set(defines, { program: this.compile(source, 'the GPU kernel'), source });
     }
     return this.programs.get(defines);
   }
@@ -167,7 +168,8 @@ export class KernelTracer {
   }
 
   // Traces the sample grid of `input`: resolves to {width, height, slots (one RGBA32F
-  // texture each, the caller's to delete), compileMs, traceMs}. `progress(done, total)` is
+  // texture each, the caller's to delete), input, source (the kernel's, as compiled),
+  // compileMs, traceMs}. `progress(done, total)` is
   // called after each draw; `cancelled()` (optional) stops between draws (rejects).
   async trace(input, { progress = () => {}, cancelled = () => false } = {}) {
     const gl = this.gl;
@@ -183,7 +185,7 @@ export class KernelTracer {
         + `${this.maxDrawBuffers}`);
     }
     const compileStart = performance.now();
-    const program = this.program(input.defines);
+    const { program, source } = this.program(input.defines);
 
     const table = this.floatTexture(256, input.table_rows);
     gl.bindTexture(gl.TEXTURE_2D, table);
@@ -213,7 +215,7 @@ export class KernelTracer {
 
     gl.useProgram(program);
     const at = (name) => gl.getUniformLocation(program, `u_${name}`);
-    gl.uniform1i(at('metric'), u.metric);
+    // The metric is no uniform: the defines say it (GODEL), as for every other switch.
     gl.uniform1f(at('a'), u.a);
     gl.uniform2fv(at('obs_t'), u.obs_t);
     gl.uniform3fv(at('obs_x'), u.obs_x);
@@ -295,7 +297,8 @@ export class KernelTracer {
       passes.forEach(({ fb }) => gl.deleteFramebuffer(fb));
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     }
-    return { width, height, slots, input, compileMs, traceMs: performance.now() - traceStart };
+    return { width, height, slots, input, source, compileMs,
+      traceMs: performance.now() - traceStart };
   }
 
   // The channels the shading reads, from a traced frame: {id (R32UI), u, v, g, t_emit

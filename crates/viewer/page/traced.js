@@ -79,11 +79,14 @@ export function startTraced(viewer) {
     }
   };
   box.addEventListener('change', () => show(box.checked));
-  // For tests: the traced slots as floats (base64 per slot), and the grid's size.
+  // For tests: the traced slots as floats (base64 per slot), the grid's size, the kernel's
+  // source as compiled and the defines the server sent.
   state.readSlots = () => {
-    const slots = tracer.readSlots(state.traced).map((f) => viewer.base64(new Uint8Array(f.buffer)));
-    return { width: state.traced.width, height: state.traced.height, slots,
-      traceMs: state.traced.traceMs, compileMs: state.traced.compileMs };
+    const t = state.traced;
+    const slots = tracer.readSlots(t).map((f) => viewer.base64(new Uint8Array(f.buffer)));
+    return { width: t.width, height: t.height, slots, traceMs: t.traceMs,
+      compileMs: t.compileMs, source: t.source, defines: t.input.defines,
+      drawBuffers: t.input.draw_buffers };
   };
   if (new URLSearchParams(window.location.search).get('trace') === 'gpu') {
     box.checked = true;

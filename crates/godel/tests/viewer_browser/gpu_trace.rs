@@ -151,6 +151,7 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
             meta["compileMs"].as_f64().unwrap(),
         );
         assert!(a.seen > 100, "{scene}: the scene shows something");
+        assert_compiled_as_the_host_compiles(scene, &data, &meta);
         assert!(
             meta["header"]
                 .as_str()
@@ -182,6 +183,22 @@ fn the_page_traces_example_scenes_on_the_gpu_as_the_exact_tracer_does_and_shades
         .unwrap()
         .contains("traced on the GPU"));
     assert!(bare["frames"].as_u64().unwrap() > 0);
+}
+
+/// The page compiled the kernel with the defines the server sent, and those are the ones
+/// `godel render --gpu` compiles it with for the file's scene (crates/gpu/src/host.rs): the
+/// same specialized source.
+fn assert_compiled_as_the_host_compiles(name: &str, data: &DataFile, meta: &serde_json::Value) {
+    let path = repo_root().join(format!("scenes/{name}.toml"));
+    let scene = scene::Scene::from_str(&data.header.scene_text, path.to_str().unwrap()).unwrap();
+    let buffers = meta["drawBuffers"].as_u64().unwrap() as usize;
+    let defines = gpu::KernelInput::new(&scene).defines(buffers);
+    assert_eq!(meta["defines"].as_str(), Some(defines.as_str()), "{name}");
+    let source = meta["source"].as_str().unwrap();
+    assert!(
+        source == format!("#version 300 es\n{defines}{}", gpu::KERNEL),
+        "{name}: the page compiled another source than #version, the defines and the kernel"
+    );
 }
 
 /// The frame the script traced first and shaded with every layer on (`--shade`), against the
