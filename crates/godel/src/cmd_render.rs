@@ -145,7 +145,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         None => None,
     };
     if args.gpu && part.is_some() {
-        return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+        return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
     }
     #[cfg(feature = "mpi")]
     if part.is_none() && crate::cluster::launched_by_mpi() {
@@ -161,7 +161,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         None => output_names(&scene).to_vec(),
     };
     if scene.trace.gpu && part.is_some() {
-        return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
+        return Err(crate::args::usage("--part", GPU_ONE_PROCESS));
     }
     prepare_outputs(&args.output, &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -236,7 +236,7 @@ mod under_mpi {
             check_folder("--output", &args.output)?;
             let scene = load_with_overrides(&args)?;
             if args.gpu || scene.trace.gpu {
-                return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+                return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
             }
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
