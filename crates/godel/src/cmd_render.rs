@@ -1,6 +1,7 @@
-//! `godel render [SCENE] [-o DIR]`: traces a scene (or the built-in reference scene) and
-//! writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png` (the preview,
-//! shaded with the objects' own textures). Before any tracing: the thread count, the scene,
+//! `godel render [SCENE] [-o DIR | -o FILE.exr | -o FILE.png]`: traces a scene (or the built-in
+//! reference scene) and writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png`
+//! (the preview, shaded with the objects' own textures), or the pair named by `-o`
+//! (`out_pair`). Before any tracing: the thread count, the scene,
 //! its textures and the output folder are checked (`output::prepare`). Both files are
 //! written to temporaries and then renamed together (`output::write_together`), so a failed
 //! or interrupted run leaves no half-written output and never a new EXR beside an old PNG.
@@ -12,7 +13,8 @@
 
 use crate::args::thread_pool;
 use crate::inputs::Inputs;
-use crate::output::{check_folder, output_names, prepare, write_outputs};
+use crate::out_pair::OutPair;
+use crate::output::{prepare, write_data_and_preview};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
 use render::driver::{plan_pixels, render_plan};
@@ -31,9 +33,10 @@ square number at most 256, at most 5·10⁷ rays in all; \
 [trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
 writable.
 
-Output: -o names a FOLDER (as for merge); the files in it are NAME.png and NAME.exr, NAME \
-the scene's name or --name. A path ending in .png or .exr is refused (choose the file names \
-with --name). --width, --height, --max-past, --method and --name replace the scene's \
+Output: -o names a FOLDER that receives NAME.exr and NAME.png (NAME the scene's name or \
+--name), or one of the two files itself: -o x.exr or -o x.png writes x.exr and x.png (as \
+merge; shade and look take file names too). With --part, -o is a folder. \
+--width, --height, --max-past, --method and --name replace the scene's \
 camera.width, camera.height, trace.max_past, trace.method and name, checked like the \
 scene file (errors name the flag); the data file embeds the scene as rendered.
 
@@ -43,8 +46,9 @@ temporaries that a killed run left are removed by the next run writing to that f
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,
-    /// Output FOLDER (created if missing): receives NAME.png and NAME.exr.
-    #[arg(short, long, default_value = "out", value_name = "FOLDER")]
+    /// Output FOLDER (created if missing) that receives NAME.exr and NAME.png, or the file
+    /// x.exr or x.png: both are written, the other beside it.
+    #[arg(short, long, default_value = "out", value_name = "FOLDER|FILE")]
     pub output: PathBuf,
     /// Image width in pixels (replaces [camera] width).
     #[arg(long, allow_negative_numbers = true)]
@@ -101,6 +105,22 @@ impl RenderArgs {
     }
 }
 
+/// What `-o` names (a folder, or the data file or preview), refused as a file with `--part`,
+/// whose part files go into a folder.
+fn output_target(args: &RenderArgs, part: bool) -> anyhow::Result<OutPair> {
+    let target = OutPair::parse("--output", &args.output, args.name.is_some())?;
+    if part && target != OutPair::Folder(args.output.clone()) {
+        return Err(crate::args::usage(
+            "--output",
+            format!(
+                "with --part, -o names the folder of the part files, got the file {}",
+                args.output.display()
+            ),
+        ));
+    }
+    Ok(target)
+}
+
 /// The scene of the arguments with the flags' overrides; a refused override names its flag
 /// (exit 2, as every scene error).
 pub fn load_with_overrides(args: &RenderArgs) -> anyhow::Result<Scene> {
@@ -152,18 +172,18 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return under_mpi::run(args);
     }
     let pool = thread_pool(args.threads)?;
-    check_folder("--output", &args.output)?;
+    let target = output_target(&args, part.is_some())?;
     let scene = load_with_overrides(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
         Some(part) => vec![part.file_name(&scene.name)],
-        None => output_names(&scene).to_vec(),
+        None => target.names(&scene.name),
     };
     if scene.trace.gpu && part.is_some() {
         return Err(crate::args::usage("--part", GPU_ONE_PROCESS));
     }
-    prepare_outputs(&args.output, &scene, &outputs)?;
+    prepare_outputs(target.folder(), &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
     let file = args
         .scene
@@ -176,7 +196,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         scene.lights.len(),
     )?;
     if args.gpu || scene.trace.gpu {
-        return render_on_gpu(&scene, &args);
+        return render_on_gpu(&scene, &args, &target);
     }
     // The bar's length is set when tracing starts (`Progress::start`).
     let bar = progress_bar(&scene, 0, args.quiet);
@@ -184,9 +204,12 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let (data, stats) = traced?;
     match part {
-        None => write_outputs(&scene, &data, &args.output, args.grid)?,
+        None => {
+            let (exr, png) = target.files(&scene.name);
+            write_data_and_preview(&scene, &data, &exr, &png, args.grid)?
+        }
         Some(part) => {
-            let path = args.output.join(part.file_name(&scene.name));
+            let path = target.folder().join(part.file_name(&scene.name));
             let scene_path = scene_path_text(&args.scene);
             write_part(&path, &data, part, &fingerprint(&scene), &scene_path)?;
             eprintln!("wrote {} (part {part})", path.display());
@@ -201,13 +224,14 @@ const GPU_ONE_PROCESS: &str =
     "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
 
 /// `godel render --gpu`: the whole image traced by the GPU kernel, the same files written.
-fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs) -> anyhow::Result<()> {
+fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> anyhow::Result<()> {
     let camera = scene.sample_camera();
     let pixels = u64::from(camera.width()) * u64::from(camera.height());
     let bar = progress_bar(scene, pixels, args.quiet);
     let done = gpu::render(scene, &Bar(bar.clone()))?;
     bar.finish_and_clear();
-    write_outputs(scene, &done.data, &args.output, args.grid)?;
+    let (exr, png) = target.files(&scene.name);
+    write_data_and_preview(scene, &done.data, &exr, &png, args.grid)?;
     eprintln!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
     Ok(())
 }
@@ -233,7 +257,7 @@ mod under_mpi {
         let rank0 = world.rank() == 0;
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
-            check_folder("--output", &args.output)?;
+            let target = output_target(&args, false)?;
             let scene = load_with_overrides(&args)?;
             if args.gpu || scene.trace.gpu {
                 return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
@@ -241,11 +265,11 @@ mod under_mpi {
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare_outputs(&args.output, &scene, &output_names(&scene))?;
+                prepare_outputs(target.folder(), &scene, &target.names(&scene.name))?;
             }
-            Ok((pool, scene))
+            Ok((pool, scene, target))
         };
-        let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
+        let (pool, scene, target) = set_up().unwrap_or_else(|e| abort(&world, &e));
         let renderer =
             Renderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
         let started = Instant::now();
@@ -291,7 +315,9 @@ mod under_mpi {
             wall: started.elapsed(),
             ..RenderStats::count(&data.records)
         };
-        write_outputs(&scene, &data, &args.output, args.grid).unwrap_or_else(|e| abort(&world, &e));
+        let (exr, png) = target.files(&scene.name);
+        write_data_and_preview(&scene, &data, &exr, &png, args.grid)
+            .unwrap_or_else(|e| abort(&world, &e));
         let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
         eprintln!(
             "{} ({} ranks; jobs of {per_job} tiles per rank: {})",

@@ -27,6 +27,7 @@ mod flight;
 mod inputs;
 mod manifest;
 mod memory;
+mod out_pair;
 mod output;
 mod plot_isometry;
 mod plot_kit;

@@ -35,7 +35,7 @@ mod validate;
 pub use camera::{
     azimuth_elevation, direction_from, samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES,
 };
-pub use edit::replace_view;
+pub use edit::{replace_samples, replace_view};
 pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
