@@ -13,10 +13,17 @@
 //! | `u`, `v`, `g`, `t_emit`, `x`, `y`, `z`, `lambda`, `cos_i` | f32 | the field of the same name |
 //! | `dir_x`, `dir_y`, `dir_z` | f32 | `dir[0]`, `dir[1]`, `dir[2]` |
 //! | `view_x`, `view_y`, `view_z` | f32 | `view[0]`, `view[1]`, `view[2]` |
+//! | `pol_x`, `pol_y`, `pol_z` | f32 | `pol[0]`, `pol[1]`, `pol[2]` (where [`DataFile::polarization`]) |
 //! | `light_0`, `light_1`, … | f32 | [`DataFile::lights`]`[k]` |
 //!
+//! *Polarization* came later within format version 2: files written before have no `pol_*`
+//! channels and read with [`DataFile::polarization`] false (all three or none: a file with
+//! one or two of them is refused as damaged). Readers that do not know the channels ignore
+//! them, as any channel not listed here, so the version did not change: every reader of
+//! version 2 reads files with and without them.
+//!
 //! *No value where there is none:* where a record's status is not "hit", the physical
-//! channels (`u` … `cos_i`, `dir_*`, `light_k`) hold NaN, and where a pixel was not traced
+//! channels (`u` … `cos_i`, `dir_*`, `pol_*`, `light_k`) hold NaN, and where a pixel was not traced
 //! `view_*` holds NaN too, so that an analysis that forgets to mask by `status` sees NaN
 //! rather than plausible zeros. Reading turns them back into the in-memory convention of
 //! [`PixelRecord::miss`] (zeros).
@@ -120,6 +127,14 @@ const VIEW_CHANNELS: [(&str, Get, Set); 3] = [
     ("view_z", |r| r.view[2], |r, s| r.view[2] = s),
 ];
 
+/// The polarization channels (NaN in the file where the status is not "hit"; present only in
+/// files with [`DataFile::polarization`]).
+const POLARIZATION_CHANNELS: [(&str, Get, Set); 3] = [
+    ("pol_x", |r| r.pol[0], |r, s| r.pol[0] = s),
+    ("pol_y", |r| r.pol[1], |r, s| r.pol[1] = s),
+    ("pol_z", |r| r.pol[2], |r, s| r.pol[2] = s),
+];
+
 /// Name of the channel holding light plane `k`.
 pub fn light_channel_name(k: usize) -> String {
     format!("light_{k}")
@@ -163,6 +178,10 @@ pub struct DataFile {
     /// One plane per light source, `width * height` values each, same order as
     /// `records`; may be empty.
     pub lights: Vec<Vec<f32>>,
+    /// Whether the records carry the polarization channels (`pol`): true for everything
+    /// this program traces; false for files written before it traced polarization (their
+    /// records' `pol` is zero).
+    pub polarization: bool,
 }
 
 /// What went wrong with a data file, and which file.
@@ -329,6 +348,12 @@ impl DataFile {
             let traced = |r: &PixelRecord| r.status != RayStatus::NotTraced;
             let values = plane(&|r| if traced(r) { get(r) } else { f32::NAN });
             channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
+        }
+        if self.polarization {
+            for (name, get, _) in POLARIZATION_CHANNELS {
+                let values = plane(&|r| physical(r, get(r)));
+                channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
+            }
         }
         for (k, values) in self.lights.iter().enumerate() {
             let name = Text::new_or_panic(light_channel_name(k)); // ASCII
@@ -540,6 +565,20 @@ impl DataFile {
                 }
             }
         }
+        // All three polarization channels or none (a file written before them).
+        let present = POLARIZATION_CHANNELS.map(|(name, _, _)| f32_channel(name));
+        let polarization = present
+            .iter()
+            .any(|c| !matches!(c, Err(DataFileErrorKind::MissingChannel(_))));
+        if polarization {
+            for ((_, _, set), values) in POLARIZATION_CHANNELS.into_iter().zip(present) {
+                for (record, &value) in records.iter_mut().zip(values?) {
+                    if record.has_emission() {
+                        set(record, value);
+                    }
+                }
+            }
+        }
 
         let mut lights = Vec::new();
         while let Ok(values) = f32_channel(&light_channel_name(lights.len())) {
@@ -564,6 +603,7 @@ impl DataFile {
             height,
             records,
             lights,
+            polarization,
         })
     }
 }

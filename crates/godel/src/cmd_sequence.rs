@@ -123,6 +123,8 @@ impl Plan {
                     height: 0,
                     records: Vec::new(),
                     lights: Vec::new(),
+                    // Traced frames carry the polarization channels.
+                    polarization: true,
                 };
                 let flight = Flight::new(&s, &script).map_err(|e| settings_error("sequence", e))?;
                 let source = Source::Trace {

@@ -41,6 +41,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
             .map(|i| testkit::hit(0, 0.3, 0.3, 1.0, -(i as f32) / 2.0, 1.0))
             .collect(),
         lights: vec![vec![1.0; n]; lights],
+        polarization: false,
     };
     let path = dir.join(format!("syn{lights}.exr"));
     data.write(&path).unwrap();

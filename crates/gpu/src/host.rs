@@ -296,6 +296,7 @@ impl GpuTracer {
                         dir: [s3[0], s3[1], s3[2]],
                         cos_i: s1[3],
                         view,
+                        pol: [0.0; 3],
                     },
                     RayStatus::NotTraced => PixelRecord::miss(status),
                     _ => PixelRecord {

@@ -41,6 +41,7 @@ pub fn render_with(
         height: camera.height() as usize,
         records: traced.records,
         lights: traced.lights,
+        polarization: false,
     };
     let stats = RenderStats {
         wall: started.elapsed(),

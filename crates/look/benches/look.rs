@@ -48,6 +48,7 @@ fn sphere() -> DataFile {
                 dir: [0.0, 0.6, 0.8],
                 cos_i: 0.5,
                 view: [0.0, 0.0, 1.0],
+                pol: [1.0, 0.0, 0.0],
             }
         })
         .collect();
@@ -57,6 +58,7 @@ fn sphere() -> DataFile {
         height: h,
         records,
         lights: vec![],
+        polarization: false,
     }
 }
 

@@ -13,6 +13,9 @@
 //! - Gödel's symmetries: [`KillingField`] (the five Killing fields), [`Isometry`] (finite
 //!   isometries and their differentials), [`ExactGeodesic`] (closed-form geodesics through
 //!   any event), [`shadow_rays`] (light rays from a source at rest to an event).
+//! - Parallel transport: along the closed forms ([`transport`]) and integrated with a
+//!   geodesic in any metric ([`propagator`]); what observers measure of a light ray's
+//!   polarization ([`polarization`]).
 //!
 //! Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), Gödel parameter
 //! `a`, optical horizon at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
@@ -31,6 +34,8 @@ pub mod measure;
 mod metric;
 mod minkowski;
 pub mod normal;
+pub mod polarization;
+pub mod propagator;
 pub mod transport;
 mod vectors;
 

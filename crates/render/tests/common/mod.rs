@@ -271,8 +271,7 @@ pub fn tracer(sc: &Scene) -> render::tracer::Tracer {
         .collect();
     Tracer::new(
         Intersector { metric: m, targets },
-        o.event,
-        m.observer_frame(o.event, o.velocity),
+        &o,
         TraceOptions {
             max_past: sc.trace.max_past,
             tolerance: sc.trace.tolerance,
