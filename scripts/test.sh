@@ -20,6 +20,25 @@ dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || { apt-get update
 cargo build --workspace --all-targets --quiet
 cargo test --workspace --no-fail-fast
 
+# --- Python (issue 26): the package in python/ (README, "Python"), installed with
+# `pip install ./python` into a virtual environment under target/ (made when missing, with
+# the test tools installed when missing), then its pytest tests, which compare it with the
+# godel binary built above. maturin builds with the dev profile here, whose artifacts the
+# workspace build above already made (.cargo/config.toml, python/Cargo.toml): only pyo3 and
+# the module itself compile again.
+python3 -c 'import ensurepip, venv' 2>/dev/null || {
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3 python3-venv >/dev/null
+}
+venv=target/python-venv
+[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+"$venv/bin/python" -c 'import maturin, numpy, pytest, OpenEXR, matplotlib, nbclient, nbformat, ipykernel, tqdm' 2>/dev/null \
+    || "$venv/bin/pip" install -q --disable-pip-version-check \
+        'maturin>=1.9.4,<2' numpy pytest OpenEXR matplotlib nbclient nbformat ipykernel tqdm
+PATH="$PWD/$venv/bin:$PATH" MATURIN_PEP517_ARGS="--profile dev" \
+    "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
+"$venv/bin/python" -m pytest -q python/tests
+
 # --- MPI (issue 6): the `mpi` feature needs OpenMPI, and libclang for rsmpi's bindgen.
 # The default build above needs neither; this block installs them when missing and runs
 # the tests that start `mpirun -n 2` (crates/godel/tests/mpi.rs).

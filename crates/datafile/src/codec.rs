@@ -65,6 +65,9 @@ use exr::prelude::{
 
 use crate::atomic::write_atomically;
 use crate::exr_write::exr_bytes;
+use crate::planes::{
+    light_channel_name, Plane, PHYSICAL_CHANNELS, POLARIZATION_CHANNELS, VIEW_CHANNELS,
+};
 use crate::record::{PixelRecord, RayStatus};
 use exr_header::{check_layout, sort_header_attributes};
 
@@ -96,48 +99,6 @@ pub mod attr {
     /// Part files: the scene file's path (empty for the built-in scene), to find its
     /// textures.
     pub const SCENE_PATH: &str = "godel.scene_path";
-}
-
-/// Reading a record field as f32.
-type Get = fn(&PixelRecord) -> f32;
-/// Writing a record field from f32.
-type Set = fn(&mut PixelRecord, f32);
-
-/// The physical f32 channels (NaN in the file where the status is not "hit"), with their
-/// record fields.
-const PHYSICAL_CHANNELS: [(&str, Get, Set); 12] = [
-    ("u", |r| r.u, |r, s| r.u = s),
-    ("v", |r| r.v, |r, s| r.v = s),
-    ("g", |r| r.g, |r, s| r.g = s),
-    ("t_emit", |r| r.t_emit, |r, s| r.t_emit = s),
-    ("x", |r| r.x, |r, s| r.x = s),
-    ("y", |r| r.y, |r, s| r.y = s),
-    ("z", |r| r.z, |r, s| r.z = s),
-    ("lambda", |r| r.lambda, |r, s| r.lambda = s),
-    ("dir_x", |r| r.dir[0], |r, s| r.dir[0] = s),
-    ("dir_y", |r| r.dir[1], |r, s| r.dir[1] = s),
-    ("dir_z", |r| r.dir[2], |r, s| r.dir[2] = s),
-    ("cos_i", |r| r.cos_i, |r, s| r.cos_i = s),
-];
-
-/// The camera ray's direction (NaN in the file where the pixel was not traced).
-const VIEW_CHANNELS: [(&str, Get, Set); 3] = [
-    ("view_x", |r| r.view[0], |r, s| r.view[0] = s),
-    ("view_y", |r| r.view[1], |r, s| r.view[1] = s),
-    ("view_z", |r| r.view[2], |r, s| r.view[2] = s),
-];
-
-/// The polarization channels (NaN in the file where the status is not "hit"; present only in
-/// files with [`DataFile::polarization`]).
-const POLARIZATION_CHANNELS: [(&str, Get, Set); 3] = [
-    ("pol_x", |r| r.pol[0], |r, s| r.pol[0] = s),
-    ("pol_y", |r| r.pol[1], |r, s| r.pol[1] = s),
-    ("pol_z", |r| r.pol[2], |r, s| r.pol[2] = s),
-];
-
-/// Name of the channel holding light plane `k`.
-pub fn light_channel_name(k: usize) -> String {
-    format!("light_{k}")
 }
 
 /// Self-description of a data file: the scene and camera it was traced from.
@@ -332,35 +293,17 @@ impl DataFile {
     pub fn to_bytes_with(&self, extra: &[(&str, String)]) -> Result<Vec<u8>, DataFileErrorKind> {
         self.validate()?;
         let h = &self.header;
-        let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
-
-        let mut channels: Vec<AnyChannel<FlatSamples>> = Vec::new();
-        let objects = plane(&|r| r.object as f32);
-        channels.push(AnyChannel::new("object", FlatSamples::F32(objects)));
-        let status = self.records.iter().map(|r| r.status.code()).collect();
-        channels.push(AnyChannel::new("status", FlatSamples::U32(status)));
-        let physical = |r: &PixelRecord, v: f32| if r.has_emission() { v } else { f32::NAN };
-        for (name, get, _) in PHYSICAL_CHANNELS {
-            let values = plane(&|r| physical(r, get(r)));
-            channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
-        }
-        for (name, get, _) in VIEW_CHANNELS {
-            let traced = |r: &PixelRecord| r.status != RayStatus::NotTraced;
-            let values = plane(&|r| if traced(r) { get(r) } else { f32::NAN });
-            channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
-        }
-        if self.polarization {
-            for (name, get, _) in POLARIZATION_CHANNELS {
-                let values = plane(&|r| physical(r, get(r)));
-                channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
-            }
-        }
-        for (k, values) in self.lights.iter().enumerate() {
-            let name = Text::new_or_panic(light_channel_name(k)); // ASCII
-            let values = self.records.iter().zip(values);
-            let values = values.map(|(r, &v)| physical(r, v)).collect();
-            channels.push(AnyChannel::new(name, FlatSamples::F32(values)));
-        }
+        let channels: Vec<AnyChannel<FlatSamples>> = self
+            .planes()
+            .into_iter()
+            .map(|(name, plane)| {
+                let samples = match plane {
+                    Plane::F32(values) => FlatSamples::F32(values),
+                    Plane::U32(values) => FlatSamples::U32(values),
+                };
+                AnyChannel::new(Text::new_or_panic(name), samples) // ASCII names
+            })
+            .collect();
 
         let mut attributes = LayerAttributes::default();
         let texts = [

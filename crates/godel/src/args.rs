@@ -2,11 +2,8 @@
 //! finite and bounded numbers, thread counts, output formats. Every failure is a
 //! [`UsageError`] naming the flag, which `main` turns into exit code 2.
 
-use anyhow::Context;
 use clap::ValueEnum;
-use scene::Scene;
 use std::fmt;
-use std::path::PathBuf;
 
 /// The output formats of `godel geodesic` and `godel connect` (`--format`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -80,90 +77,24 @@ pub fn positive(flag: &str, v: f64) -> anyhow::Result<f64> {
 }
 
 /// Checks the Gödel parameter `--a`: positive, within the range scenes allow
-/// ([`scene::A_RANGE`]).
+/// (`scene::ranges`).
 pub fn scale_a(flag: &str, a: f64) -> anyhow::Result<f64> {
-    let a = positive(flag, a)?;
-    let (lo, hi) = scene::A_RANGE;
-    if !(lo..=hi).contains(&a) {
-        return Err(usage(
-            flag,
-            format!(
-                "{} is outside [{lo:e}, {hi:e}], as in scenes (spacetime.a): the metric loses \
-                 the precision of f64 there",
-                scene::short(a)
-            ),
-        ));
-    }
-    Ok(a)
+    scene::ranges::check_a(a).map_err(|e| usage(flag, e))
 }
 
 /// Checks the coordinates of an event or position given with `flag` (named `names`, e.g.
-/// `t`, `R`, `phi`, `z`): each within ±[`scene::MAX_COORDINATE_PER_A`]·a as in scenes (an
-/// angle within ±that number of radians).
+/// `t`, `R`, `phi`, `z`): each within ±1e6·a as in scenes (`scene::ranges`).
 pub fn coordinates(flag: &str, names: &[&str], values: &[f64], a: f64) -> anyhow::Result<()> {
-    for (name, &v) in names.iter().zip(values) {
-        let bound = match *name {
-            "phi" => scene::MAX_COORDINATE_PER_A,
-            _ => scene::MAX_COORDINATE_PER_A * a,
-        };
-        if v.abs() > bound {
-            return Err(usage(
-                flag,
-                format!(
-                    "{name} = {} is beyond ±{bound:e}, as in scenes (1e6 times the scale a): \
-                     the tracer loses precision there",
-                    scene::short(v)
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Most worker threads per core: more only adds switching and memory, never speed.
-pub const THREADS_PER_CORE: usize = 8;
-
-/// The cores this process may use (affinity and cgroup quotas included; 1 if unknown).
-pub fn cores() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
-}
-
-/// Checks a `--threads` value: at least 1, at most [`THREADS_PER_CORE`] per core.
-pub fn threads(flag: &str, n: usize) -> anyhow::Result<usize> {
-    let cores = cores();
-    let max = THREADS_PER_CORE * cores;
-    if n == 0 {
-        return Err(usage(flag, "must be at least 1"));
-    }
-    if n > max {
-        return Err(usage(
-            flag,
-            format!(
-                "at most {max} ({THREADS_PER_CORE} per core; this machine gives {cores} core(s)), got {n}"
-            ),
-        ));
-    }
-    Ok(n)
-}
-
-/// Loads the scene named on the command line, or the built-in one.
-pub fn load_scene(path: &Option<PathBuf>) -> anyhow::Result<Scene> {
-    Ok(match path {
-        Some(p) => Scene::from_file(p)?,
-        None => Scene::builtin(),
-    })
+    scene::ranges::check_coordinates(names, values, a).map_err(|e| usage(flag, e))
 }
 
 /// The worker thread pool of `--threads` (checked: 1 to 8 per core).
 pub fn thread_pool(wanted: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
-    let n = match wanted {
-        Some(n) => threads("--threads", n)?,
-        None => 0, // rayon's default: one per core
-    };
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n)
-        .build()
-        .context("cannot start worker threads")
+    use render::threads::ThreadsError;
+    render::threads::thread_pool(wanted).map_err(|e| match e {
+        ThreadsError::Count(message) => usage("--threads", message),
+        e => e.into(),
+    })
 }
 
 #[cfg(test)]
@@ -184,35 +115,27 @@ mod tests {
     }
 
     #[test]
-    fn thread_counts_are_bounded_by_the_cores() {
-        let max = THREADS_PER_CORE * cores();
-        assert_eq!(threads("--threads", 1).unwrap(), 1);
-        assert_eq!(threads("--threads", max).unwrap(), max);
-        for bad in [0, max + 1, 100_000] {
-            let e = threads("--threads", bad).unwrap_err();
+    fn thread_counts_name_the_flag() {
+        let max = render::threads::THREADS_PER_CORE * render::threads::cores();
+        assert_eq!(thread_pool(Some(max)).unwrap().current_num_threads(), max);
+        for bad in [0, max + 1] {
+            let e = thread_pool(Some(bad)).unwrap_err();
             assert!(e.to_string().starts_with("--threads: "), "{e}");
+            assert!(e.is::<UsageError>());
         }
     }
 
     #[test]
-    fn the_scale_and_coordinates_have_the_ranges_of_scenes() {
+    fn the_ranges_of_scenes_name_the_flag() {
         assert_eq!(scale_a("--a", 2.0).unwrap(), 2.0);
-        for bad in [1e-300, 1e300, 0.0, -1.0] {
-            let e = scale_a("--a", bad).unwrap_err().to_string();
-            assert!(e.starts_with("--a: ") && e.len() < 200, "{e}");
-        }
-        let names = ["t", "R", "phi", "z"];
-        coordinates("--at", &names, &[1e6, 0.5, -1e6, 0.0], 1.0).unwrap();
-        let e = coordinates("--at", &names, &[1e300, 0.0, 0.0, 0.0], 1.0).unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "--at: t = 1e300 is beyond ±1e6, as in scenes (1e6 times the scale a): the tracer \
-             loses precision there"
+        let e = scale_a("--a", 1e-300).unwrap_err();
+        assert!(e.to_string().starts_with("--a: 1e-300 is outside"), "{e}");
+        assert!(e.is::<UsageError>());
+        let e = coordinates("--at", &["t", "R"], &[1e300, 0.0], 1.0).unwrap_err();
+        assert!(
+            e.to_string().starts_with("--at: t = 1e300 is beyond"),
+            "{e}"
         );
-        assert!(coordinates("--at", &names, &[0.0, 0.0, 2e6, 0.0], 1.0).is_err());
-        // Lengths scale with a; angles do not.
-        coordinates("--at", &names, &[0.0, 0.0, 0.0, 5e6], 10.0).unwrap();
-        assert!(coordinates("--at", &names, &[0.0, 0.0, 2e6, 0.0], 10.0).is_err());
     }
 
     #[test]

@@ -3,13 +3,9 @@
 //! observer's local frame there, and prints evenly spaced samples of it as CSV or JSON
 //! (JSON adds the constants of motion E, L, p_z, the normalization and their drift).
 //!
-//! Two methods give the same curve: `numeric` integrates the geodesic equations (DOP853 in
-//! pseudo-Cartesian coordinates, `spacetime::trace`); `exact` evaluates the closed form
-//! through the origin carried to the start by an isometry (`spacetime::ExactGeodesic`;
-//! Grave et al., PRD 80, 103002 (2009), Sec. III), with its stops solved on the closed form:
-//! the axis return at λ = π/ω, the time limit by root finding (t is monotonic along causal
-//! curves since ∂t is timelike everywhere). In Minkowski spacetime the exact curve is the
-//! straight line.
+//! The curve itself, by either method (numeric integration or the closed form), and the
+//! checks of the inputs are `spacetime::curve`'s; this file parses the flags, names them in
+//! refusals and writes the samples.
 //!
 //! Physics: Gödel, Rev. Mod. Phys. 21, 447 (1949); constants of motion from the Killing fields
 //! ∂t, ∂φ, ∂z; integration in pseudo-Cartesian coordinates by the `spacetime` crate.
@@ -19,18 +15,13 @@ use anyhow::Context;
 use clap::ValueEnum;
 use scene::short;
 use serde_json::json;
+use spacetime::curve::{compute, stop_name, Curve, CurveError, CurveMethod, CurveRequest, Input};
 use spacetime::{
-    refine_root, trace, ConstantsOfMotion, Cylindrical, Drift, Event, ExactGeodesic, FourVector,
-    Geodesic, GeodesicKind, GeodesicState, Godel, Metric, Minkowski, Spacetime, StopReason,
-    TimeDirection, TraceLimits,
+    ConstantsOfMotion, Cylindrical, GeodesicKind, GeodesicState, Godel, Metric, Minkowski,
+    StopReason, TimeDirection,
 };
 use std::f64::consts::PI;
 use std::io::Write;
-
-/// Default `--until-time` for Minkowski, where rays never come back.
-pub const MINKOWSKI_DEFAULT_UNTIL: f64 = 10.0;
-/// Most samples (`--samples`): each costs ~130 bytes until printed.
-pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// The metrics known on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -98,19 +89,34 @@ pub struct GeodesicArgs {
     pub format: Format,
 }
 
-/// A validated `godel geodesic` request.
+/// A validated `godel geodesic` request: the curve's, and how to print it.
 #[derive(Clone, Debug)]
 pub struct Request {
-    pub metric: Metric,
+    pub curve: CurveRequest,
     pub method: Method,
+    /// The start as given (its φ starts the unwrapped φ column).
     pub start: Cylindrical,
-    pub direction: [f64; 3],
-    /// 1 for light.
-    pub speed: f64,
-    pub time: TimeDirection,
-    pub limits: TraceLimits,
-    pub samples: usize,
     pub format: Format,
+}
+
+/// The flag of each input that `spacetime::curve` checks.
+fn flag(input: Input) -> &'static str {
+    match input {
+        Input::Start => "--at",
+        Input::Direction => "--dir",
+        Input::Speed => "--speed",
+        Input::UntilTime => "--until-time",
+        Input::Samples => "--samples",
+    }
+}
+
+/// A refusal of `spacetime::curve` as a usage error naming the flag; a failed integration
+/// as a plain error (exit 1).
+fn curve_error(e: CurveError) -> anyhow::Error {
+    match e {
+        CurveError::Input { input, message } => usage(flag(input), message),
+        e => e.into(),
+    }
 }
 
 impl Request {
@@ -132,61 +138,29 @@ impl Request {
         }
         coordinates("--at", &["t", "R", "phi", "z"], &[t, r, phi, z], a)?;
         let start = Cylindrical { t, r, phi, z };
-        let frame = metric.static_frame(start.to_event());
-        if !frame.e.iter().all(|e| e.is_finite()) {
-            return Err(usage(
-                "--at",
-                format!("the metric cannot be evaluated at R = {r} (too far from the axis)"),
-            ));
-        }
-        let dir = parse_vector::<3>("--dir", &args.dir)?;
-        // Scale by the largest component first so that huge inputs cannot overflow the norm.
-        let big = dir.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        if big == 0.0 {
-            return Err(usage("--dir", "direction must be non-zero, got 0,0,0"));
-        }
-        let direction = dir.map(|v| v / big);
-        let speed = match args.speed {
-            None => 1.0,
-            Some(v) if (0.0..1.0).contains(&v) => v,
-            Some(v) => return Err(usage("--speed", format!("must be in [0, 1), got {v}"))),
-        };
-        let limits = match (args.until_time, metric) {
-            (Some(dt), _) => TraceLimits {
-                until_time: Some(positive("--until-time", dt)?),
-                ..Default::default()
-            },
-            (None, Metric::Godel(g)) => TraceLimits::one_loop(g.a),
-            (None, Metric::Minkowski(_)) => TraceLimits {
-                until_time: Some(MINKOWSKI_DEFAULT_UNTIL),
-                ..Default::default()
-            },
-        };
-        if args.samples < 2 {
-            return Err(usage(
-                "--samples",
-                format!("must be at least 2, got {}", args.samples),
-            ));
-        }
-        if args.samples > MAX_SAMPLES {
-            return Err(usage(
-                "--samples",
-                format!("at most {MAX_SAMPLES}, got {}", args.samples),
-            ));
-        }
-        Ok(Request {
+        let direction = parse_vector::<3>("--dir", &args.dir)?;
+        let curve = CurveRequest::new(
             metric,
-            method: args.method,
-            start,
+            match args.method {
+                Method::Numeric => CurveMethod::Numeric,
+                Method::Exact => CurveMethod::Exact,
+            },
+            start.to_event(),
             direction,
-            speed,
-            time: if args.past {
+            args.speed,
+            if args.past {
                 TimeDirection::Past
             } else {
                 TimeDirection::Future
             },
-            limits,
-            samples: args.samples,
+            args.until_time,
+            args.samples,
+        )
+        .map_err(curve_error)?;
+        Ok(Request {
+            curve,
+            method: args.method,
+            start,
             format: args.format,
         })
     }
@@ -202,198 +176,6 @@ pub struct Row {
     pub z: f64,
     pub x: f64,
     pub y: f64,
-}
-
-/// A computed geodesic, by either method: samples and how it ended.
-#[derive(Clone, Debug)]
-pub struct Curve {
-    pub kind: GeodesicKind,
-    pub start: GeodesicState,
-    /// `n` samples evenly spaced in the parameter, first at the start, last at the stop.
-    pub samples: Vec<(f64, GeodesicState)>,
-    pub stop: StopReason,
-    pub lambda_end: f64,
-    /// Drift of the constants of motion along the curve.
-    pub drift: Drift,
-    /// Integrator counts (accepted steps, rejected steps, evaluations); numeric only.
-    pub integration: Option<(usize, u64, u64)>,
-}
-
-/// Computes the requested geodesic by its method; a failed integration is an error.
-pub fn compute(req: &Request) -> anyhow::Result<Curve> {
-    let at = req.start.to_event();
-    let frame = req.metric.static_frame(at);
-    let geodesic = Geodesic::launch(&req.metric, at, &frame, req.direction, req.speed, req.time)
-        .filter(|g| g.start.x.is_finite() && g.start.p.is_finite())
-        .ok_or_else(|| usage("--at", "cannot launch a geodesic from this event"))?;
-    let scale = req.metric.godel_a().unwrap_or(1.0);
-    match req.method {
-        Method::Numeric => {
-            let traced = trace(req.metric, &geodesic, &req.limits);
-            if traced.stop.is_failure() {
-                anyhow::bail!(
-                    "integration failed: {} after {} steps at lambda = {}",
-                    traced.stop.describe(),
-                    traced.steps.len(),
-                    traced.lambda_end
-                );
-            }
-            Ok(Curve {
-                kind: traced.kind,
-                start: traced.start,
-                samples: traced.samples(req.samples),
-                stop: traced.stop,
-                lambda_end: traced.lambda_end,
-                drift: Drift::along(&req.metric, &traced, scale),
-                integration: Some((
-                    traced.steps.len(),
-                    traced.rejected_steps,
-                    traced.evaluations,
-                )),
-            })
-        }
-        Method::Exact => {
-            let tangent = geodesic.start.tangent(&req.metric);
-            // The launch succeeded, so the direction is fine: what fails is carrying the
-            // start to the origin in floating point, which loses the null condition far out.
-            let curve = ExactCurve::new(req.metric, at, tangent).ok_or_else(|| {
-                usage(
-                    "--at",
-                    format!(
-                        "the closed form cannot start this far from the axis (R = {}); \
-                         use --method numeric",
-                        req.start.r
-                    ),
-                )
-            })?;
-            let (lambda_end, stop) = curve.stop(&req.limits)?;
-            let n = req.samples;
-            let samples: Vec<(f64, GeodesicState)> = (0..n)
-                .map(|i| {
-                    let lambda = if i == n - 1 {
-                        lambda_end
-                    } else {
-                        lambda_end * i as f64 / (n - 1) as f64
-                    };
-                    (lambda, curve.state(lambda))
-                })
-                .collect();
-            let drift = Drift::over(
-                &req.metric,
-                &geodesic.start,
-                samples.iter().map(|(_, s)| *s),
-                scale,
-            );
-            Ok(Curve {
-                kind: geodesic.kind,
-                start: geodesic.start,
-                samples,
-                stop,
-                lambda_end,
-                drift,
-                integration: None,
-            })
-        }
-    }
-}
-
-/// The closed-form curve of either metric: Gödel's through an isometry, Minkowski's a line.
-enum ExactCurve {
-    Godel {
-        metric: Metric,
-        a: f64,
-        g: ExactGeodesic,
-    },
-    Line {
-        metric: Metric,
-        at: Event,
-        k: FourVector,
-    },
-}
-
-impl ExactCurve {
-    fn new(metric: Metric, at: Event, k: FourVector) -> Option<ExactCurve> {
-        match metric.godel_a() {
-            Some(a) => Some(ExactCurve::Godel {
-                metric,
-                a,
-                g: ExactGeodesic::new(a, at, k)?,
-            }),
-            None => Some(ExactCurve::Line { metric, at, k }),
-        }
-    }
-
-    fn event_and_tangent(&self, lambda: f64) -> (Event, FourVector) {
-        match self {
-            ExactCurve::Godel { g, .. } => g.at(lambda),
-            ExactCurve::Line { at, k, .. } => (
-                Event::new(
-                    at.t + lambda * k.t,
-                    at.x + lambda * k.x,
-                    at.y + lambda * k.y,
-                    at.z + lambda * k.z,
-                ),
-                *k,
-            ),
-        }
-    }
-
-    fn state(&self, lambda: f64) -> GeodesicState {
-        let metric = match self {
-            ExactCurve::Godel { metric, .. } | ExactCurve::Line { metric, .. } => metric,
-        };
-        let (x, k) = self.event_and_tangent(lambda);
-        GeodesicState {
-            x,
-            p: metric.lower(x, k),
-        }
-    }
-
-    /// The parameter where the curve stops under `limits`, and why: the first of the
-    /// return to the starting axis (λ = π/ω, Gödel only, not for curves along the axis),
-    /// |t − t_start| = until_time, and λ = max_affine (as the numeric method).
-    fn stop(&self, limits: &TraceLimits) -> anyhow::Result<(f64, StopReason)> {
-        let axis = match self {
-            ExactCurve::Godel { a, g, .. }
-                if limits.stop_at_axis_return && g.origin.r_max() > 1e-12 * a =>
-            {
-                Some(g.origin.return_parameter())
-            }
-            _ => None,
-        };
-        let time =
-            limits
-                .until_time
-                .map(|dt| match self.parameter_at_time(dt, limits.max_affine) {
-                    Some(lt) => (lt, StopReason::TimeReached),
-                    None => (limits.max_affine, StopReason::AffineLimit),
-                });
-        match (axis, time) {
-            (Some(la), Some((lt, why))) if lt < la => Ok((lt, why)),
-            (Some(la), _) => Ok((la, StopReason::AxisReturn)),
-            (None, Some(stop)) => Ok(stop),
-            (None, None) => anyhow::bail!("the exact method needs --until-time here"),
-        }
-    }
-
-    /// The parameter 0 < λ ≤ `max` with |t(λ) − t(0)| = dt (bracketed by doubling, then
-    /// refined), or `None` when t does not get that far by λ = `max`.
-    fn parameter_at_time(&self, dt: f64, max: f64) -> Option<f64> {
-        let t0 = self.event_and_tangent(0.0).0.t;
-        let f = |lambda: f64| (self.event_and_tangent(lambda).0.t - t0).abs() - dt;
-        let mut hi = dt.min(max);
-        while f(hi) < 0.0 && hi < max {
-            hi = (2.0 * hi).min(max);
-        }
-        let f_hi = f(hi);
-        if f_hi.is_nan() || f_hi < 0.0 {
-            return None; // not reached by λ = max (or not finite there)
-        }
-        if f_hi == 0.0 {
-            return Some(hi);
-        }
-        Some(refine_root(f, 0.0, hi, -dt, f_hi))
-    }
 }
 
 /// `n` evenly spaced samples with φ unwrapped continuously from the start's φ. On the axis
@@ -431,18 +213,6 @@ pub fn rows(metric: &Metric, samples: &[(f64, GeodesicState)], start_phi: f64) -
     out
 }
 
-/// Snake-case name of a stop reason for machine-readable output.
-pub fn stop_name(stop: StopReason) -> &'static str {
-    match stop {
-        StopReason::TimeReached => "time_reached",
-        StopReason::AxisReturn => "axis_return",
-        StopReason::AffineLimit => "affine_limit",
-        StopReason::StepBudget => "step_budget",
-        StopReason::Stalled => "stalled",
-        StopReason::NonFinite => "non_finite",
-    }
-}
-
 /// Shortest round-trip decimal text of `v` (plain for ordinary magnitudes, else exponent).
 fn num(v: f64) -> String {
     let m = v.abs();
@@ -463,7 +233,7 @@ fn write_csv(out: &mut impl Write, rows: &[Row]) -> std::io::Result<()> {
 }
 
 fn json_document(req: &Request, curve: &Curve, rows: &[Row]) -> serde_json::Value {
-    let c = ConstantsOfMotion::of(&req.metric, &curve.start);
+    let c = ConstantsOfMotion::of(&req.curve.metric, &curve.start);
     let d = curve.drift;
     let (steps, rejected, evaluations) = match curve.integration {
         Some((s, r, e)) => (json!(s), json!(r), json!(e)),
@@ -474,14 +244,14 @@ fn json_document(req: &Request, curve: &Curve, rows: &[Row]) -> serde_json::Valu
         .map(|r| json!({"lambda": r.lambda, "t": r.t, "r": r.r, "phi": r.phi, "z": r.z, "x": r.x, "y": r.y}))
         .collect();
     json!({
-        "metric": req.metric.name(),
-        "a": req.metric.godel_a(),
+        "metric": req.curve.metric.name(),
+        "a": req.curve.metric.godel_a(),
         "method": match req.method { Method::Numeric => "numeric", Method::Exact => "exact" },
         "kind": match curve.kind { GeodesicKind::Null => "null", GeodesicKind::Timelike => "timelike" },
-        "speed": req.speed,
-        "time_direction": match req.time { TimeDirection::Future => "future", TimeDirection::Past => "past" },
+        "speed": req.curve.speed,
+        "time_direction": match req.curve.time { TimeDirection::Future => "future", TimeDirection::Past => "past" },
         "start": {"t": req.start.t, "r": req.start.r, "phi": req.start.phi, "z": req.start.z},
-        "direction": req.direction,
+        "direction": req.curve.direction,
         "stop": stop_name(curve.stop),
         "stop_description": curve.stop.describe(),
         "lambda_end": curve.lambda_end,
@@ -497,7 +267,7 @@ fn json_document(req: &Request, curve: &Curve, rows: &[Row]) -> serde_json::Valu
 /// Runs `godel geodesic`, printing to standard output.
 pub fn run(args: GeodesicArgs) -> anyhow::Result<()> {
     let req = Request::from_args(&args)?;
-    let curve = compute(&req)?;
+    let curve = compute(&req.curve).map_err(curve_error)?;
     if let (Some(dt), StopReason::AffineLimit) = (args.until_time, curve.stop) {
         eprintln!(
             "note: stopped at lambda = {} ({}) before |t - T| reached {}",
@@ -506,7 +276,7 @@ pub fn run(args: GeodesicArgs) -> anyhow::Result<()> {
             num(dt)
         );
     }
-    let rows = rows(&req.metric, &curve.samples, req.start.phi);
+    let rows = rows(&req.curve.metric, &curve.samples, req.start.phi);
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     match req.format {

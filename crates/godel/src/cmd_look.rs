@@ -1,6 +1,7 @@
 //! `godel look SPHERE.exr --camera KIND … -o VIEW.exr`: any camera of any observer at the
 //! event of a full-sphere data file, without tracing (`look`; docs/physics.md,
-//! "Observers at one event: aberration and Doppler"). Writes `VIEW.exr` (the data file, whose embedded scene
+//! "Observers at one event: aberration and Doppler"), read smoothly (bilinear within one
+//! image of one object) or by nearest neighbour (`--filter`), with `--samples` per pixel. Writes `VIEW.exr` (the data file, whose embedded scene
 //! is the sphere's with the camera and the observer's velocity and axes replaced) and
 //! `VIEW.png` (the preview, shaded like `godel render`'s), both produced in memory and then
 //! written together as `godel render` writes its pair (`output::write_data_and_preview`);
@@ -17,7 +18,7 @@ use crate::output::{prepare, write_data_and_preview};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use datafile::DataFile;
-use look::{look, resolution, LookError, LookView, SphereSource};
+use look::{look_with, resolution, Filter, LookError, LookView, Sampling, SphereSource};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::PathBuf;
@@ -56,9 +57,29 @@ pub struct LookArgs {
     /// (|SPEED| < 1; a negative speed moves against the direction). Default: at rest.
     #[arg(long, allow_hyphen_values = true, value_name = "SPEED,DX,DY,DZ")]
     pub velocity: Option<String>,
+    /// Samples per pixel, a square number (1, 4, 9, 16, … up to 256) on a grid in each pixel,
+    /// kept in the data file as `godel render --samples` keeps its rays; the preview averages
+    /// them (smooth edges).
+    #[arg(
+        long,
+        default_value_t = 1,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
+    pub samples: i64,
+    /// How the sphere is read: smooth (bilinear within one image of one object, nearest at
+    /// the edges of objects and images) or nearest (every record a traced ray's, unchanged).
+    #[arg(long, value_enum, default_value_t = FilterArg::Smooth)]
+    pub filter: FilterArg,
     /// The data file to write (.exr); the preview goes beside it with the extension .png.
     #[arg(short, long, value_name = "VIEW.exr")]
     pub output: PathBuf,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FilterArg {
+    Smooth,
+    Nearest,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -199,6 +220,7 @@ fn flag_of(field: &str, camera: CameraKind) -> &'static str {
         "camera.height" => "--height",
         "observer.forward" => "--forward",
         "observer.up" => "--up",
+        "camera.samples" => "--samples",
         _ => "--velocity",
     }
 }
@@ -218,6 +240,15 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
     // Flags first, so that a typo is reported before any file is read.
     let camera = camera(&args)?;
     let velocity = velocity(&args.velocity)?;
+    scene::samples_per_side(args.samples, camera.width(), camera.height())
+        .map_err(|m| usage("--samples", m))?;
+    let sampling = Sampling {
+        filter: match args.filter {
+            FilterArg::Smooth => Filter::Smooth,
+            FilterArg::Nearest => Filter::Nearest,
+        },
+        samples: args.samples as u32,
+    };
     let vector = |flag: &str, text: &Option<String>| {
         text.as_ref()
             .map(|t| parse_vector::<3>(flag, t))
@@ -246,11 +277,11 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
 
     let sphere = DataFile::read(&args.sphere)?;
     let read = started.elapsed();
-    let pixels = u64::from(camera.width()) * u64::from(camera.height());
+    let samples = u64::from(camera.width()) * u64::from(camera.height()) * args.samples as u64;
     crate::memory::check_writing(
         "--width",
-        "a view of this width × height",
-        pixels,
+        "a view of this width × height × samples",
+        samples,
         sphere.lights.len(),
     )?;
     let source = SphereSource::of(&sphere).map_err(|e| sphere_error(&file, e))?;
@@ -272,7 +303,10 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         LookError::View { field, message } => usage(flag_of(field, args.camera), message),
         e => sphere_error(&file, e),
     })?;
-    let data = look(&sphere, &view).map_err(|e| sphere_error(&file, e))?;
+    let data = look_with(&sphere, &view, sampling).map_err(|e| match e {
+        LookError::View { field, message } => usage(flag_of(field, args.camera), message),
+        e => sphere_error(&file, e),
+    })?;
     let looked = started.elapsed();
     // A damaged file (exit 1), not a usage error: the message is kept, the scene error's
     // exit code is not.

@@ -1,10 +1,12 @@
 //! `godel merge PART… -o DIR`: joins the part files of `godel render --part i/N` into
-//! `DIR/<name>.exr` and `DIR/<name>.png`, the very files a single run writes. Parts of
+//! `DIR/<name>.exr` and `DIR/<name>.png` (or the pair `-o x.exr` names, `out_pair`), the very
+//! files a single run writes. Parts of
 //! different renders, a missing or repeated part, or overlapping parts are refused
 //! (`render::part::merge`), and nothing is written then.
 
 use crate::inputs::Inputs;
-use crate::output::write_outputs;
+use crate::out_pair::OutPair;
+use crate::output::{prepare, write_data_and_preview};
 use clap::Args;
 use render::part::{merge, read_part};
 use scene::Scene;
@@ -18,9 +20,9 @@ pub struct MergeArgs {
     /// The part files (`<name>.part-i-of-N.exr`), all N of them, in any order.
     #[arg(required = true)]
     pub parts: Vec<PathBuf>,
-    /// Output FOLDER (created if missing): receives NAME.png and NAME.exr; a path ending in
-    /// .png or .exr is refused.
-    #[arg(short, long, default_value = "out", value_name = "FOLDER")]
+    /// Output FOLDER (created if missing) that receives NAME.exr and NAME.png, or the file
+    /// x.exr or x.png: both are written, the other beside it (as `render -o`).
+    #[arg(short, long, default_value = "out", value_name = "FOLDER|FILE")]
     pub output: PathBuf,
     /// Orientation marks on the preview: azimuth/elevation grid with labelled ticks.
     #[arg(long)]
@@ -28,7 +30,7 @@ pub struct MergeArgs {
 }
 
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
-    crate::output::check_folder("--output", &args.output)?;
+    let target = OutPair::parse("--output", &args.output, false)?;
     let parts = args
         .parts
         .iter()
@@ -45,11 +47,12 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
         Scene::from_str(&data.header.scene_text, &first.scene_path)
             .map_err(|e| anyhow::anyhow!("the scene embedded in the parts: {e}"))?
     };
+    prepare("--output", target.folder(), &target.names(&scene.name))?;
+    let (exr, png) = target.files(&scene.name);
     let mut inputs = Inputs::new();
     for part in &args.parts {
         inputs.add("a part file", part);
     }
-    let outputs = crate::output::output_names(&scene).map(|n| args.output.join(n));
-    inputs.refuse_outputs_over_inputs("--output", &outputs)?;
-    write_outputs(&scene, &data, &args.output, args.grid)
+    inputs.refuse_outputs_over_inputs("--output", &[exr.clone(), png.clone()])?;
+    write_data_and_preview(&scene, &data, &exr, &png, args.grid)
 }

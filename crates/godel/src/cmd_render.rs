@@ -1,6 +1,7 @@
-//! `godel render [SCENE] [-o DIR]`: traces a scene (or the built-in reference scene) and
-//! writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png` (the preview,
-//! shaded with the objects' own textures). Before any tracing: the thread count, the scene,
+//! `godel render [SCENE] [-o DIR | -o FILE.exr | -o FILE.png]`: traces a scene (or the built-in
+//! reference scene) and writes `DIR/<name>.exr` (the per-pixel data file) and `DIR/<name>.png`
+//! (the preview, shaded with the objects' own textures), or the pair named by `-o`
+//! (`out_pair`). Before any tracing: the thread count, the scene,
 //! its textures and the output folder are checked (`output::prepare`). Both files are
 //! written to temporaries and then renamed together (`output::write_together`), so a failed
 //! or interrupted run leaves no half-written output and never a new EXR beside an old PNG.
@@ -12,16 +13,16 @@
 
 use crate::args::thread_pool;
 use crate::inputs::Inputs;
-use crate::output::{check_folder, output_names, prepare, write_outputs};
-use crate::overrides::{load_with_overrides, Overrides};
+use crate::out_pair::OutPair;
+use crate::output::{prepare, write_data_and_preview};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
-use render::driver::Renderer;
+use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
-use render::tiles::Assembler;
+use scene::overrides::{LoadError, Overrides, SceneSource};
+use scene::Scene;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 #[derive(Args, Debug)]
 #[command(after_help = "\
@@ -32,9 +33,10 @@ square number at most 256, at most 5·10⁷ rays in all; \
 [trace] tolerance in [1e-14, 1e-3], max_steps at most 10⁷; the output folder creatable and \
 writable.
 
-Output: -o names a FOLDER (as for merge); the files in it are NAME.png and NAME.exr, NAME \
-the scene's name or --name. A path ending in .png or .exr is refused (choose the file names \
-with --name). --width, --height, --max-past, --method and --name replace the scene's \
+Output: -o names a FOLDER that receives NAME.exr and NAME.png (NAME the scene's name or \
+--name), or one of the two files itself: -o x.exr or -o x.png writes x.exr and x.png (as \
+merge; shade and look take file names too). With --part, -o is a folder. \
+--width, --height, --max-past, --method and --name replace the scene's \
 camera.width, camera.height, trace.max_past, trace.method and name, checked like the \
 scene file (errors name the flag); the data file embeds the scene as rendered.
 
@@ -44,8 +46,9 @@ temporaries that a killed run left are removed by the next run writing to that f
 pub struct RenderArgs {
     /// Scene file (TOML); without it, the built-in reference scene.
     pub scene: Option<PathBuf>,
-    /// Output FOLDER (created if missing): receives NAME.png and NAME.exr.
-    #[arg(short, long, default_value = "out", value_name = "FOLDER")]
+    /// Output FOLDER (created if missing) that receives NAME.exr and NAME.png, or the file
+    /// x.exr or x.png: both are written, the other beside it.
+    #[arg(short, long, default_value = "out", value_name = "FOLDER|FILE")]
     pub output: PathBuf,
     /// Image width in pixels (replaces [camera] width).
     #[arg(long, allow_negative_numbers = true)]
@@ -102,6 +105,38 @@ impl RenderArgs {
     }
 }
 
+/// What `-o` names (a folder, or the data file or preview), refused as a file with `--part`,
+/// whose part files go into a folder.
+fn output_target(args: &RenderArgs, part: bool) -> anyhow::Result<OutPair> {
+    let target = OutPair::parse("--output", &args.output, args.name.is_some())?;
+    if part && target != OutPair::Folder(args.output.clone()) {
+        return Err(crate::args::usage(
+            "--output",
+            format!(
+                "with --part, -o names the folder of the part files, got the file {}",
+                args.output.display()
+            ),
+        ));
+    }
+    Ok(target)
+}
+
+/// The scene of the arguments with the flags' overrides; a refused override names its flag
+/// (exit 2, as every scene error).
+pub fn load_with_overrides(args: &RenderArgs) -> anyhow::Result<Scene> {
+    let source = match &args.scene {
+        Some(path) => SceneSource::File(path),
+        None => SceneSource::Builtin,
+    };
+    scene::overrides::load(source, &args.overrides()).map_err(|e| match e {
+        LoadError::Scene(e) => e.into(),
+        LoadError::Override { settings, message } => {
+            let flags: Vec<&str> = settings.iter().map(|s| s.flag()).collect();
+            crate::args::usage(&flags.join("/"), message)
+        }
+    })
+}
+
 /// The scene path stored in part files: absolute, so `godel merge` finds the textures
 /// from any folder; empty for the built-in scene.
 pub fn scene_path_text(path: &Option<PathBuf>) -> String {
@@ -137,29 +172,19 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return under_mpi::run(args);
     }
     let pool = thread_pool(args.threads)?;
-    check_folder("--output", &args.output)?;
-    let scene = load_with_overrides(&args.scene, &args.overrides())?;
+    let target = output_target(&args, part.is_some())?;
+    let scene = load_with_overrides(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
     let outputs = match part {
         Some(part) => vec![part.file_name(&scene.name)],
-        None => output_names(&scene).to_vec(),
+        None => target.names(&scene.name),
     };
     if scene.trace.gpu && part.is_some() {
         return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
     }
-    prepare_outputs(&args.output, &scene, &outputs)?;
-    if args.gpu || scene.trace.gpu {
-        return render_on_gpu(&scene, &args);
-    }
-    let started = Instant::now();
-    let renderer = Renderer::new(&scene)?;
+    prepare_outputs(target.folder(), &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
-    let pixels: u64 = plan
-        .indices(renderer.tiles())
-        .iter()
-        .map(|&k| (renderer.tiles()[k].cols * renderer.tiles()[k].rows) as u64)
-        .sum();
     let file = args
         .scene
         .as_ref()
@@ -167,19 +192,24 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     crate::memory::check_writing(
         &format!("{file}: camera"),
         "a data file of this width × height × samples",
-        pixels,
+        plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
-    let bar = progress_bar(&scene, pixels, args.quiet);
-    let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
-    let mut stats = pool.install(|| renderer.run(&plan, &mut assembler, &Bar(bar.clone())));
-    stats.wall = started.elapsed();
+    if args.gpu || scene.trace.gpu {
+        return render_on_gpu(&scene, &args, &target);
+    }
+    // The bar's length is set when tracing starts (`Progress::start`).
+    let bar = progress_bar(&scene, 0, args.quiet);
+    let traced = pool.install(|| render_plan(&scene, &plan, &Bar(bar.clone())));
     bar.finish_and_clear();
-    let data = assembler.finish();
+    let (data, stats) = traced?;
     match part {
-        None => write_outputs(&scene, &data, &args.output, args.grid)?,
+        None => {
+            let (exr, png) = target.files(&scene.name);
+            write_data_and_preview(&scene, &data, &exr, &png, args.grid)?
+        }
         Some(part) => {
-            let path = args.output.join(part.file_name(&scene.name));
+            let path = target.folder().join(part.file_name(&scene.name));
             let scene_path = scene_path_text(&args.scene);
             write_part(&path, &data, part, &fingerprint(&scene), &scene_path)?;
             eprintln!("wrote {} (part {part})", path.display());
@@ -194,23 +224,14 @@ const GPU_ONE_PROCESS: &str =
     "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
 
 /// `godel render --gpu`: the whole image traced by the GPU kernel, the same files written.
-fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs) -> anyhow::Result<()> {
+fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> anyhow::Result<()> {
     let camera = scene.sample_camera();
     let pixels = u64::from(camera.width()) * u64::from(camera.height());
-    let file = args
-        .scene
-        .as_ref()
-        .map_or("built-in scene".into(), |p| p.display().to_string());
-    crate::memory::check_writing(
-        &format!("{file}: camera"),
-        "a data file of this width × height × samples",
-        pixels,
-        scene.lights.len(),
-    )?;
     let bar = progress_bar(scene, pixels, args.quiet);
     let done = gpu::render(scene, &Bar(bar.clone()))?;
     bar.finish_and_clear();
-    write_outputs(scene, &done.data, &args.output, args.grid)?;
+    let (exr, png) = target.files(&scene.name);
+    write_data_and_preview(scene, &done.data, &exr, &png, args.grid)?;
     eprintln!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
     Ok(())
 }
@@ -223,8 +244,9 @@ mod under_mpi {
     use super::*;
     use crate::cluster::{abort, run_jobs, start};
     use mpi::topology::Communicator;
-    use render::driver::{NoProgress, RenderStats};
-    use render::tiles::{Sink, TileData};
+    use render::driver::{NoProgress, RenderStats, Renderer};
+    use render::tiles::{Assembler, Sink, TileData};
+    use std::time::Instant;
 
     /// Most tiles per job: enough to keep a rank's threads busy, few enough to balance.
     const TILES_PER_JOB: usize = 8;
@@ -235,19 +257,19 @@ mod under_mpi {
         let rank0 = world.rank() == 0;
         let set_up = || -> anyhow::Result<_> {
             let pool = thread_pool(args.threads)?;
-            check_folder("--output", &args.output)?;
-            let scene = load_with_overrides(&args.scene, &args.overrides())?;
+            let target = output_target(&args, false)?;
+            let scene = load_with_overrides(&args)?;
             if args.gpu || scene.trace.gpu {
                 return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
             }
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.
                 shade::textures_for_scene(&scene)?;
-                prepare_outputs(&args.output, &scene, &output_names(&scene))?;
+                prepare_outputs(target.folder(), &scene, &target.names(&scene.name))?;
             }
-            Ok((pool, scene))
+            Ok((pool, scene, target))
         };
-        let (pool, scene) = set_up().unwrap_or_else(|e| abort(&world, &e));
+        let (pool, scene, target) = set_up().unwrap_or_else(|e| abort(&world, &e));
         let renderer =
             Renderer::new(&scene).unwrap_or_else(|e| abort(&world, &anyhow::Error::from(e)));
         let started = Instant::now();
@@ -293,7 +315,9 @@ mod under_mpi {
             wall: started.elapsed(),
             ..RenderStats::count(&data.records)
         };
-        write_outputs(&scene, &data, &args.output, args.grid).unwrap_or_else(|e| abort(&world, &e));
+        let (exr, png) = target.files(&scene.name);
+        write_data_and_preview(&scene, &data, &exr, &png, args.grid)
+            .unwrap_or_else(|e| abort(&world, &e));
         let shares: Vec<String> = per_rank.iter().map(usize::to_string).collect();
         eprintln!(
             "{} ({} ranks; jobs of {per_job} tiles per rank: {})",

@@ -64,33 +64,9 @@ pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Refuses an output FOLDER path that looks like a picture file (ends in .png or .exr):
-/// `render -o pic.png` would otherwise make a folder named pic.png.
-pub fn check_folder(flag: &str, dir: &Path) -> anyhow::Result<()> {
-    if shade::hdr::PictureFormat::from_path(dir).is_some() {
-        return Err(crate::args::usage(
-            flag,
-            format!(
-                "{} looks like a file, but this command writes NAME.png and NAME.exr into a folder: give a folder (and --name to choose NAME)",
-                dir.display()
-            ),
-        ));
-    }
-    Ok(())
-}
-
-/// Writes `DIR/<name>.exr` and `DIR/<name>.png` (the preview with the scene's textures,
-/// lit where the scene has lights, through the display tone curve; with orientation marks
-/// when `grid`): exactly the files of a single run, whoever traced the pixels.
-pub fn write_outputs(scene: &Scene, data: &DataFile, dir: &Path, grid: bool) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let [exr, png] = output_names(scene).map(|n| dir.join(n));
-    write_data_and_preview(scene, data, &exr, &png, grid)
-}
-
 /// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
 /// has lights) to `png`: both made in memory first, then written together
-/// ([`write_together`]). `godel render` and `godel look` write this pair.
+/// ([`write_together`]). `godel render`, `godel merge` and `godel look` write this pair.
 pub fn write_data_and_preview(
     scene: &Scene,
     data: &DataFile,
@@ -122,11 +98,6 @@ pub fn write_data_and_preview(
     ])?;
     eprintln!("wrote {} and {}", png.display(), exr.display());
     Ok(())
-}
-
-/// The files a render writes: `<name>.exr` and `<name>.png`.
-pub fn output_names(scene: &Scene) -> [String; 2] {
-    [format!("{}.exr", scene.name), format!("{}.png", scene.name)]
 }
 
 /// The testing hooks of the module doc: when the variable `var` holds a number of seconds,

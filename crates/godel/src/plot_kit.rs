@@ -5,7 +5,7 @@
 
 use crate::args::usage;
 use crate::output::write_atomic;
-use crate::svg::{f, to_png, Svg};
+use crate::svg::{f, to_png, Svg, Weight};
 use anyhow::Context;
 use spacetime::{trace, Event, Geodesic, Metric, Spacetime, TimeDirection, TraceLimits};
 
@@ -148,12 +148,15 @@ impl Frame {
             r##"fill="#222""##,
             "x / a",
         );
-        s.raw(&format!(
-            r##"<text x="0" y="0" transform="translate({},{}) rotate(-90)" font-family="{}" font-size="17" text-anchor="middle" fill="#222">y / a</text>"##,
-            f(left - 52.0),
-            f(cy),
-            crate::svg::FONT_FAMILY
-        ));
+        s.text_as(
+            (left - 52.0, cy),
+            17.0,
+            Weight::Regular,
+            -90.0,
+            "middle",
+            r##"fill="#222""##,
+            "y / a",
+        );
 
         // Data layer: units of a, y up, clipped to the frame.
         s.raw(&format!(
@@ -201,11 +204,13 @@ impl Frame {
 
 /// The bold "Legend" heading at (`x`, `y`).
 pub fn legend_heading(s: &mut Svg, x: f64, y: f64) {
-    s.text(
+    s.text_as(
         (x, y),
         16.0,
+        Weight::Bold,
+        0.0,
         "start",
-        r##"fill="#222" font-weight="bold""##,
+        r##"fill="#222""##,
         "Legend",
     );
 }

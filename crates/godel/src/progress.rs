@@ -9,6 +9,9 @@ use scene::Scene;
 pub struct Bar(pub ProgressBar);
 
 impl Progress for Bar {
+    fn start(&self, pixels: u64) {
+        self.0.set_length(pixels);
+    }
     fn advance(&self, pixels: u64) {
         self.0.inc(pixels);
     }

@@ -1,14 +1,12 @@
 //! A small SVG writer (just the elements the plots use) and rasterization of an SVG to PNG
-//! with resvg, using the DejaVu Sans font embedded in the binary (assets/fonts, see
-//! assets/NOTICE.md), so that PNG text looks the same on every machine.
+//! with resvg. Text is written as the outlines of the embedded typeface's glyphs (crate
+//! `typeface`: DejaVu Sans), each line a path labelled with its text (`aria-label`), so that
+//! an SVG shows the same type in every browser, editor and PDF converter, whatever fonts
+//! they have, and its PNG is the same picture.
 
 use anyhow::Context;
 use std::fmt::Write;
-
-/// The embedded font; SVG text should ask for [`FONT_FAMILY`].
-const DEJAVU_SANS: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
-/// The CSS font list used in the SVGs: DejaVu Sans first (embedded for PNG), then fallbacks.
-pub const FONT_FAMILY: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
+pub use typeface::Weight;
 
 /// Escapes text for XML content and attribute values.
 pub fn escape(s: &str) -> String {
@@ -20,13 +18,7 @@ pub fn escape(s: &str) -> String {
 
 /// Formats a coordinate compactly (4 decimals, trailing zeros trimmed).
 pub fn f(v: f64) -> String {
-    let s = format!("{v:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_string()
-    } else {
-        s.to_string()
-    }
+    typeface::svg_number(v, 4)
 }
 
 /// An SVG document under construction; elements are appended as text.
@@ -105,15 +97,43 @@ impl Svg {
         ));
     }
 
-    /// Text at (x, y) (baseline), `anchor` = start | middle | end.
-    pub fn text(&mut self, (x, y): (f64, f64), size: f64, anchor: &str, style: &str, text: &str) {
-        self.raw(&format!(
-            r#"<text x="{}" y="{}" font-family="{FONT_FAMILY}" font-size="{}" text-anchor="{anchor}" {style}>{}</text>"#,
-            f(x),
-            f(y),
-            f(size),
-            escape(text)
-        ));
+    /// Text at (x, y) (baseline), `anchor` = start | middle | end, `size` the em size.
+    pub fn text(&mut self, at: (f64, f64), size: f64, anchor: &str, style: &str, text: &str) {
+        self.text_as(at, size, Weight::Regular, 0.0, anchor, style, text);
+    }
+
+    /// Text of a `weight`, turned by `rotate` degrees (clockwise, as SVG) about its anchor
+    /// point at (x, y): the glyphs' outlines as one path.
+    #[allow(clippy::too_many_arguments)]
+    pub fn text_as(
+        &mut self,
+        (x, y): (f64, f64),
+        size: f64,
+        weight: Weight,
+        rotate: f64,
+        anchor: &str,
+        style: &str,
+        text: &str,
+    ) {
+        let line = typeface::Line::new(text, size as f32, weight);
+        let shift = match anchor {
+            "middle" => -0.5 * f64::from(line.advance),
+            "end" => -f64::from(line.advance),
+            _ => 0.0,
+        };
+        let label = escape(text);
+        if rotate == 0.0 {
+            let d = line.svg_path(x + shift, y);
+            self.raw(&format!(r#"<path aria-label="{label}" d="{d}" {style}/>"#));
+        } else {
+            let d = line.svg_path(shift, 0.0);
+            self.raw(&format!(
+                r#"<path aria-label="{label}" transform="translate({},{}) rotate({})" d="{d}" {style}/>"#,
+                f(x),
+                f(y),
+                f(rotate)
+            ));
+        }
     }
 
     /// The complete document.
@@ -132,13 +152,7 @@ impl Svg {
 
 /// Rasterizes an SVG document to PNG bytes at `scale` pixels per SVG unit.
 pub fn to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
-    let mut opt = resvg::usvg::Options::default();
-    {
-        let db = opt.fontdb_mut();
-        db.load_font_data(DEJAVU_SANS.to_vec());
-        db.set_sans_serif_family("DejaVu Sans");
-    }
-    opt.font_family = "DejaVu Sans".to_string();
+    let opt = resvg::usvg::Options::default();
     let tree = resvg::usvg::Tree::from_str(svg, &opt).context("parsing the generated SVG")?;
     let size = tree
         .size()
@@ -168,13 +182,48 @@ mod tests {
     }
 
     #[test]
-    fn text_is_escaped_and_png_renders() {
-        let mut s = Svg::new(40.0, 20.0);
-        s.rect((0.0, 0.0), (40.0, 20.0), r#"fill="white""#);
-        s.text((2.0, 15.0), 12.0, "start", "", "a<b & c");
+    fn text_is_outlined_labelled_and_rendered_without_fonts() {
+        let mut s = Svg::new(120.0, 40.0);
+        s.rect((0.0, 0.0), (120.0, 40.0), r#"fill="white""#);
+        s.text((60.0, 28.0), 20.0, "middle", r#"fill="black""#, "a<b & c");
         let doc = s.finish("t");
-        assert!(doc.contains("a&lt;b &amp; c"));
+        assert!(doc.contains(r#"aria-label="a&lt;b &amp; c""#), "{doc}");
+        assert!(
+            !doc.contains("<text"),
+            "no text element: no font needed to show it"
+        );
         let png = to_png(&doc, 1.0).unwrap();
-        assert_eq!(&png[1..4], b"PNG");
+        let img = image::load_from_memory(&png).unwrap().to_luma8();
+        // Ink centred on x = 60: about as much left of it as right of it.
+        let dark = |x0: u32, x1: u32| {
+            (x0..x1)
+                .flat_map(|x| (0..40).map(move |y| (x, y)))
+                .filter(|&(x, y)| img.get_pixel(x, y).0[0] < 128)
+                .count()
+        };
+        let (left, right) = (dark(0, 60), dark(60, 120));
+        assert!(left > 40 && right > 40, "{left} {right}");
+        assert!(left.abs_diff(right) * 3 < left + right, "{left} {right}");
+        // Anti-aliased: grey edge pixels as well as black ones.
+        assert!(img.pixels().any(|p| (64..192).contains(&p.0[0])));
+    }
+
+    #[test]
+    fn rotated_and_bold_text_turn_about_their_anchor() {
+        let mut s = Svg::new(40.0, 120.0);
+        s.text_as(
+            (20.0, 60.0),
+            16.0,
+            Weight::Bold,
+            -90.0,
+            "middle",
+            "",
+            "y / a",
+        );
+        let doc = s.finish("t");
+        assert!(doc.contains("translate(20,60) rotate(-90)"), "{doc}");
+        let regular = typeface::Line::new("y / a", 16.0, Weight::Regular).advance;
+        let bold = typeface::Line::new("y / a", 16.0, Weight::Bold).advance;
+        assert!(bold > regular);
     }
 }

@@ -1,5 +1,5 @@
-//! The command line without traps (issue 12): `-o` is a folder for render and a file for
-//! shade, and each refuses the other form; render's scene overrides are validated like the
+//! The command line without traps (issue 12): `-o` is a folder or a file name (`x.exr` or
+//! `x.png`, both written) for render and merge, and a file for shade; render's scene overrides are validated like the
 //! scene and name their flag; shade refuses flags no chosen layer reads; negative numbers
 //! reach validation as values; a closed pipe ends quietly with 0; each error is said once;
 //! shade writes linear EXR or tone-mapped PNG by extension and refuses other extensions;
@@ -32,17 +32,66 @@ fn traced(dir: &Path) -> std::path::PathBuf {
     dir.join("lit.exr")
 }
 
+/// One `-o` convention (issue 27): render and merge take a folder or a file name; a file
+/// name `x.exr` or `x.png` writes both, the other beside it.
 #[test]
-fn render_refuses_a_file_name_as_its_folder() {
+fn render_and_merge_take_a_file_name_or_a_folder() {
     let dir = tempfile::tempdir().unwrap();
     let scene = write_scene(dir.path(), "lit.toml", &lit_scene_text("lit", 4.0));
-    let out = dir.path().join("pic.png");
-    let o = godel(&["render", &scene, "-q", "-o", s(&out)]);
+    let folder = dir.path().join("folder");
+    let o = godel(&["render", &scene, "-q", "-o", s(&folder)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let want = datafile::DataFile::read(&folder.join("lit.exr")).unwrap();
+    let preview = std::fs::read(folder.join("lit.png")).unwrap();
+    for given in ["pic.png", "deeper/pic.exr"] {
+        let out = dir.path().join(given);
+        let o = godel(&["render", &scene, "-q", "-o", s(&out)]);
+        assert!(o.status.success(), "{given}: {}", stderr(&o));
+        assert!(out.is_file(), "{given} is a file, not a folder");
+        // The same files as in a folder, under the given name.
+        let data = datafile::DataFile::read(&out.with_extension("exr")).unwrap();
+        assert_eq!(data.records, want.records);
+        assert_eq!(std::fs::read(out.with_extension("png")).unwrap(), preview);
+    }
+    // --name chooses NAME in a folder; beside a file name it is refused, nothing written.
+    let named = dir.path().join("named.png");
+    let o = godel(&["render", &scene, "-q", "-o", s(&named), "--name", "x"]);
+    assert_usage(&o, "--name");
+    assert!(!named.exists() && !named.with_extension("exr").exists());
+    // Part files go into a folder.
+    let o = godel(&["render", &scene, "-q", "--part", "1/2", "-o", s(&named)]);
     assert_usage(&o, "--output");
-    assert!(stderr(&o).contains("--name"), "{}", stderr(&o));
-    assert!(!out.exists(), "no folder named pic.png");
-    let help = godel(&["render", "--help"]);
-    assert!(String::from_utf8_lossy(&help.stdout).contains("-o names a FOLDER"));
+    assert!(!named.exists());
+    // Merge: the same convention.
+    let parts = dir.path().join("parts");
+    for part in ["1/2", "2/2"] {
+        let o = godel(&["render", &scene, "-q", "--part", part, "-o", s(&parts)]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let merged = dir.path().join("merged.exr");
+    let o = godel(&[
+        "merge",
+        s(&parts.join("lit.part-1-of-2.exr")),
+        s(&parts.join("lit.part-2-of-2.exr")),
+        "-o",
+        s(&merged),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        datafile::DataFile::read(&merged).unwrap().records,
+        want.records
+    );
+    assert_eq!(
+        std::fs::read(merged.with_extension("png")).unwrap(),
+        preview
+    );
+    // The help says so.
+    for command in ["render", "merge"] {
+        let help = godel(&[command, "--help"]);
+        let text = String::from_utf8_lossy(&help.stdout);
+        assert!(text.contains("FOLDER|FILE"), "{text}");
+        assert!(text.contains("x.exr or x.png"), "{text}");
+    }
 }
 
 #[test]

@@ -217,7 +217,7 @@ fn work_beyond_the_memory_budget_is_refused_before_it_starts() {
                 "-o",
                 view.to_str().unwrap(),
             ],
-            "--width: a view of this width × height needs about",
+            "--width: a view of this width × height × samples needs about",
         ),
         (
             vec!["explore", &sphere_scene, "--port", "0", "--sphere", "64"],

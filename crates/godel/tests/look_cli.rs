@@ -1,5 +1,6 @@
 //! End-to-end tests of `godel look`: from a full-sphere render it writes VIEW.exr (the very
-//! records of `look::look`, with a header and scene describing the new view) and
+//! records of `look::look`, or of `look::look_with` for `--samples` and `--filter`, with a
+//! header and scene describing the new view) and
 //! VIEW.png, and reports the source's resolution; the scene it embeds renders the same
 //! view when traced; negative flag values are accepted; a file that is not a static
 //! observer's full sphere, a part file and bad flags are refused with the file or flag
@@ -9,7 +10,7 @@ mod common;
 
 use common::{godel, path_arg as s, stderr};
 use datafile::DataFile;
-use look::{look, LookView};
+use look::{look, look_with, Filter, LookView, Sampling};
 use scene::{Camera, Scene};
 use spacetime::LocalVelocity;
 use std::path::{Path, PathBuf};
@@ -86,6 +87,50 @@ fn look_writes_the_view_and_its_preview_and_reports_resolution() {
     assert_eq!(data.header.camera, "pinhole 90°, 64×48");
     let (observer, camera) = Scene::read_view(&data.header.scene_text, "x").unwrap();
     assert_eq!((camera, observer.velocity), (cam, velocity));
+}
+
+#[test]
+fn samples_and_filter_give_the_librarys_records() {
+    let tmp = tempfile::tempdir().unwrap();
+    let sphere = sphere_source(tmp.path());
+    let source = DataFile::read(&sphere).unwrap();
+    let cam = Camera::Pinhole {
+        fov_deg: 90.0,
+        width: 64,
+        height: 48,
+    };
+    let view = LookView::new(
+        cam,
+        [0.7746, 0.6325, 0.0],
+        [0.0, 0.0, 1.0],
+        LocalVelocity::REST,
+    )
+    .unwrap();
+    let flags = "--camera pinhole --fov 90 --width 64 --height 48 --forward 0.7746,0.6325,0";
+    for (filter, extra) in [(Filter::Nearest, " --filter nearest"), (Filter::Smooth, "")] {
+        let out = tmp.path().join(format!("{filter:?}.exr"));
+        look_ok(&sphere, &out, &format!("{flags} --samples 4{extra}"));
+        let data = DataFile::read(&out).unwrap();
+        let want = look_with(&source, &view, Sampling { filter, samples: 4 }).unwrap();
+        assert_eq!(data, want, "{filter:?}");
+        assert_eq!(
+            (data.width, data.height, data.header.supersample),
+            (128, 96, 2)
+        );
+        // The preview is the picture's size: the samples are averaged.
+        let png = image::open(out.with_extension("png")).unwrap();
+        assert_eq!((png.width(), png.height()), (64, 48));
+    }
+    // The two filters differ inside the ball (smooth blends, nearest copies).
+    let [nearest, smooth] = ["Nearest", "Smooth"]
+        .map(|f| DataFile::read(&tmp.path().join(format!("{f}.exr"))).unwrap());
+    let differ = nearest
+        .records
+        .iter()
+        .zip(&smooth.records)
+        .filter(|(a, b)| a.is_hit() && a.object == b.object && a.u != b.u)
+        .count();
+    assert!(differ > 1000, "{differ}");
 }
 
 #[test]
@@ -229,7 +274,10 @@ fn bad_sources_and_flags_are_refused_with_nothing_written() {
     );
     check(look(&src.join("missing.exr"), &pin), 1, &["missing.exr"]);
     // Flags: each case replaces (or adds) one flag of a good pinhole view.
-    let bad: [(&str, &str, &[&str]); 15] = [
+    let bad: [(&str, &str, &[&str]); 18] = [
+        ("--samples", "3", &["--samples", "square number"]),
+        ("--samples", "0", &["--samples", "1..=256"]),
+        ("--filter", "cubic", &["--filter", "cubic"]),
         ("--velocity", "1,1,0,0", &["--velocity", "below 1"]),
         ("--velocity", "-1.5,1,0,0", &["--velocity", "below 1"]),
         ("--velocity", "0.5,0,0,0", &["--velocity", "direction"]),

@@ -10,7 +10,9 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let mut scene = Scene::from_file(&args[1]).unwrap_or_else(|e| panic!("{e}"));
     if let (Some(w), Some(h)) = (args.get(2), args.get(3)) {
-        scene.camera = scene.camera.with_size(w.parse().unwrap(), h.parse().unwrap());
+        scene.camera = scene
+            .camera
+            .with_size(w.parse().unwrap(), h.parse().unwrap());
     }
     let kernel = std::env::var("KERNEL")
         .map(|p| std::fs::read_to_string(p).expect("kernel file"))

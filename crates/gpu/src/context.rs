@@ -6,6 +6,7 @@
 //! draws into framebuffer objects.
 
 use khronos_egl as egl;
+use std::sync::{Mutex, MutexGuard};
 
 /// The EGL library's file names tried in turn, unless the environment variable [`LIBRARY_VAR`]
 /// names one (a path, for an EGL installed out of the loader's way).
@@ -33,6 +34,11 @@ pub enum ContextError {
 
 type Egl = egl::DynamicInstance<egl::EGL1_4>;
 
+/// One context at a time in a process: EGL gives every caller the same display, and
+/// eglTerminate on it (when a context is dropped) takes the driver from under any other
+/// thread's context; Mesa crashed so when tests traced on several threads at once.
+static ONE_CONTEXT: Mutex<()> = Mutex::new(());
+
 /// A current offscreen OpenGL ES 3 context and its GL functions.
 pub struct Context {
     pub gl: glow::Context,
@@ -43,6 +49,8 @@ pub struct Context {
     egl: Egl,
     display: egl::Display,
     context: egl::Context,
+    /// Held while the context lives; dropped after `Drop::drop` has terminated the display.
+    _turn: MutexGuard<'static, ()>,
 }
 
 impl Context {
@@ -50,6 +58,8 @@ impl Context {
     /// thread.
     pub fn new() -> Result<Context, ContextError> {
         use glow::HasContext;
+        // A panic elsewhere while holding it leaves no EGL state behind worth refusing.
+        let turn = ONE_CONTEXT.lock().unwrap_or_else(|e| e.into_inner());
         let egl = load()?;
         let display = open_display(&egl)?;
         let (major, minor) = egl
@@ -120,6 +130,7 @@ impl Context {
             egl,
             display,
             context,
+            _turn: turn,
         };
         if !float_targets {
             return Err(ContextError::NoFloatTargets(ctx.renderer.clone()));

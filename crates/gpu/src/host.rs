@@ -164,7 +164,6 @@ impl GpuTracer {
         let u = &self.input.uniforms;
         gl.use_program(Some(self.program));
         let loc = |name: &str| gl.get_uniform_location(self.program, &format!("u_{name}"));
-        gl.uniform_1_i32(loc("metric").as_ref(), u.metric);
         gl.uniform_1_f32(loc("a").as_ref(), u.a);
         gl.uniform_2_f32_slice(loc("obs_t").as_ref(), &u.obs_t);
         gl.uniform_3_f32_slice(loc("obs_x").as_ref(), &u.obs_x);

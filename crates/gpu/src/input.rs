@@ -76,6 +76,9 @@ pub struct KernelInput {
     /// at least 1).
     pub objects: usize,
     pub light_count: usize,
+    /// Which kinds of object the scene has: at rest, in free fall, coordinate spheres,
+    /// planes (the kernel leaves out the code of the others).
+    pub kinds: [bool; 4],
     /// Samples per side of a pixel.
     pub supersample: u32,
 }
@@ -163,6 +166,15 @@ impl KernelInput {
             let p = l.position;
             texels.push([p.x as f32, p.y as f32, p.z as f32, l.power as f32]);
         }
+        let mut kinds = [false; 4];
+        for o in &scene.objects {
+            kinds[match (o.shape, o.motion) {
+                (Shape::Sphere { .. }, Motion::Rest { .. }) => 0,
+                (Shape::Sphere { .. }, Motion::Geodesic { .. }) => 1,
+                (Shape::CoordinateSphere { .. }, _) => 2,
+                (Shape::Plane { .. }, _) => 3,
+            }] = true;
+        }
         let rows = texels.len().div_ceil(TABLE_WIDTH).max(1);
         texels.resize(rows * TABLE_WIDTH, [0.0; 4]);
         KernelInput {
@@ -171,17 +183,29 @@ impl KernelInput {
             table_rows: rows,
             objects: scene.objects.len(),
             light_count: scene.lights.len(),
+            kinds,
             supersample: scene.supersample(),
         }
     }
 
-    /// The defines the kernel is compiled with, as a source prefix (after `#version`).
+    /// The defines the kernel is compiled with, as a source prefix (after `#version`): the
+    /// sizes of its arrays, its render targets, and what the scene has (code for what it lacks
+    /// is left out: a GPU runs both sides of a branch its samples take apart).
     pub fn defines(&self, draw_buffers: usize) -> String {
+        let flag = |b: bool| u8::from(b);
         format!(
-            "#define N_OBJECTS {}\n#define N_LIGHTS {}\n#define DRAW_BUFFERS {}\n",
+            "#define N_OBJECTS {}\n#define N_LIGHTS {}\n#define DRAW_BUFFERS {}\n\
+             #define GODEL {}\n#define HAS_LIGHTS {}\n#define HAS_REST {}\n#define HAS_FREE {}\n\
+             #define HAS_COORD_SPHERE {}\n#define HAS_PLANE {}\n",
             self.objects.max(1),
             self.light_count.max(1),
-            draw_buffers
+            draw_buffers,
+            self.uniforms.metric,
+            flag(self.light_count > 0),
+            flag(self.kinds[0]),
+            flag(self.kinds[1]),
+            flag(self.kinds[2]),
+            flag(self.kinds[3]),
         )
     }
 

@@ -6,9 +6,12 @@
 // each block cites its section of docs/physics.md. Single precision throughout ("The GPU
 // kernel" in docs/physics.md says what that costs).
 //
-// The host prepends `#version 300 es` and three defines: N_OBJECTS and N_LIGHTS (the
-// scene's counts, at least 1 for the array sizes) and DRAW_BUFFERS (render targets per pass);
-// benchmarks may add COUNT_PROBES (each sample's probe count in place of view_x).
+// The host prepends `#version 300 es` and its defines (crates/gpu/src/input.rs,
+// `KernelInput::defines`): N_OBJECTS and N_LIGHTS (the scene's counts, at least 1 for the
+// array sizes), DRAW_BUFFERS (render targets per pass), GODEL (1 for Gödel's metric, 0 for
+// Minkowski's), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
+// scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
+// probe count in place of view_x).
 //
 // Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
 // vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
@@ -23,7 +26,6 @@ precision highp sampler2D;
 // Inputs. The scene table holds per object OBJECT_TEXELS texels and per light LIGHT_TEXELS
 // (layout written by crates/gpu/src/input.rs, the one packer).
 
-uniform int u_metric;        // 0 Minkowski, 1 Gödel
 uniform float u_a;           // Gödel parameter a
 uniform vec2 u_obs_t;        // observer time as hi + lo (times of objects are made relative to it)
 uniform vec3 u_obs_x;        // observer position (x, y, z)
@@ -111,6 +113,8 @@ const float FAR_SLACK = 1.3;
 const float END_CUT = 1e-6;
 // spacetime::connect: grid cells per winding and branch bracketing the shadow-ray roots.
 const int SHADOW_GRID = 256;
+// Cells of a falling ball's worldline per loop of a pixel ray (fallingLast).
+const int FALL_CELLS = 16;
 const int CELLS_PER_PASS = 16;
 const int MAX_WINDINGS = 10000;
 // render::reject: reach of a ball at rest per radius and per a.
@@ -175,7 +179,23 @@ float acosA(float x) { return atan2s(sqrt(max((1.0 - x) * (1.0 + x), 0.0)), x); 
 vec2 cmul(vec2 p, vec2 q) { return vec2(p.x * q.x - p.y * q.y, p.x * q.y + p.y * q.x); }
 vec2 cdiv(vec2 p, vec2 q) { return vec2(p.x * q.x + p.y * q.y, p.y * q.x - p.x * q.y) / dot(q, q); }
 vec2 conj2(vec2 p) { return vec2(p.x, -p.y); }
-vec2 cis(float a) { return vec2(cos(a), sin(a)); }
+// Cosine and sine of our own, for the same reason: Chromium's software WebGL (SwiftShader)
+// computes sin and cos to within 2e-4 only (Vulkan's bound is 2^-11). Cephes' sinf/cosf
+// (S. L. Moshier): reduction by π/4 in three parts (exact for |a| < 8192) to an even octant,
+// minimax polynomials on [−π/4, π/4], error ~1 ulp.
+vec2 cis(float a) {
+    float j = floor(abs(a) * 1.27323954473516);   // 4/π
+    j += mod(j, 2.0);
+    float x = ((abs(a) - j * 0.78515625) - j * 2.4187564849853515625e-4) - j * 3.77489497744594108e-8;
+    float z = x * x;
+    float s = ((-1.9515295891e-4 * z + 8.3321608736e-3) * z - 1.6666654611e-1) * z * x + x;
+    float c = ((2.443315711809948e-5 * z - 1.388731625493765e-3) * z + 4.166664568298827e-2) * z * z - 0.5 * z + 1.0;
+    int q = int(j * 0.5) & 3;   // the quarter turn: (c, s) rotated by q·π/2
+    vec2 r = q == 0 ? vec2(c, s) : (q == 1 ? vec2(-s, c) : (q == 2 ? vec2(-c, -s) : vec2(s, -c)));
+    return vec2(r.x, a < 0.0 ? -r.y : r.y);
+}
+float sinA(float a) { return cis(a).y; }
+float cosA(float a) { return cis(a).x; }
 float carg(vec2 p) { return atan2s(p.y, p.x); }
 bool finite(float v) { return !isnan(v) && abs(v) < 1e38; }   // INF (3e38) counts as infinite
 float asinh_(float x) { return sign(x) * log(abs(x) + sqrt(x * x + 1.0)); }
@@ -186,10 +206,19 @@ float atanh_(float x) { return 0.5 * log((1.0 + x) / (1.0 - x)); }
 
 vec4 tableTexel(int i) { return texelFetch(u_table, ivec2(i % TABLE_WIDTH, i / TABLE_WIDTH), 0); }
 
+// The kinds of object, each false at compile time where the scene has none of it (the host's
+// HAS_* defines): GPUs and llvmpipe run both sides of a branch their samples take apart, so
+// code for kinds a scene lacks would cost every sample.
+int oKind[N_OBJECTS];
+bool isRest(int i) { return HAS_REST != 0 && oKind[i] == KIND_REST; }
+bool isFree(int i) { return HAS_FREE != 0 && oKind[i] == KIND_FREE; }
+bool isCoordSphere(int i) { return HAS_COORD_SPHERE != 0 && oKind[i] == KIND_COORD_SPHERE; }
+bool isPlane(int i) { return HAS_PLANE != 0 && oKind[i] == KIND_PLANE; }
+
 // ---------------------------------------------------------------------------------------
 // The metric (docs/physics.md, "The Gödel metric"; spacetime::godel, spacetime::minkowski).
 
-bool godel() { return u_metric == 1; }
+bool godel() { return GODEL != 0; }
 
 mat4 metricAt(vec4 e) {
     if (!godel()) return mat4(-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);
@@ -261,10 +290,9 @@ vec4 christoffel(vec4 e, vec4 u, vec4 v) {
     return christoffelWith(dX, dY, inverseMetricAt(e), u, v);
 }
 
-// Riemann normal coordinates to second order and first-order transport (docs/physics.md,
-// "Local objects"; spacetime::normal).
+// Riemann normal coordinates to second order (docs/physics.md, "Local objects";
+// spacetime::normal; the first-order transport is written out in restFramePhoton).
 vec4 normalDisplacement(vec4 at, vec4 d) { return d + 0.5 * christoffel(at, d, d); }
-vec4 transportBy(vec4 at, vec4 dx, vec4 v) { return v - christoffel(at, dx, v); }
 
 // ---------------------------------------------------------------------------------------
 // Frames (docs/physics.md, "Frames"; spacetime::frame): the static frame by Gram–Schmidt of
@@ -314,7 +342,8 @@ vec4 components(mat4 dual, vec4 v) { return vec4(dot(dual[0], v), dot(dual[1], v
 bool cameraDirection(vec2 p, out vec3 d) {
     float w = float(u_size.x), h = float(u_size.y);
     if (u_camera == 0) {
-        float t = tan(radians(0.5 * u_fov.x));
+        vec2 halfFov = cis(radians(0.5 * u_fov.x));
+        float t = halfFov.y / halfFov.x;
         float x = t * (2.0 * p.x / w - 1.0);
         float y = t * (h / w) * (1.0 - 2.0 * p.y / h);
         d = vec3(1.0, x, y) / sqrt(1.0 + x * x + y * y);
@@ -323,7 +352,7 @@ bool cameraDirection(vec2 p, out vec3 d) {
     if (u_camera == 1) {
         float alpha = radians(u_fov.x) * (p.x / w - 0.5);
         float beta = radians(u_fov.y) * (0.5 - p.y / h);
-        d = vec3(cos(beta) * cos(alpha), cos(beta) * sin(alpha), sin(beta));
+        d = vec3(cosA(beta) * cosA(alpha), cosA(beta) * sinA(alpha), sinA(beta));
         return true;
     }
     float dx = 2.0 * p.x / w - 1.0, dy = 1.0 - 2.0 * p.y / h;
@@ -331,7 +360,7 @@ bool cameraDirection(vec2 p, out vec3 d) {
     if (rho > 1.0) return false;
     float theta = rho * radians(0.5 * u_fov.x);
     vec2 sc = rho > 0.0 ? vec2(dx, dy) / rho : vec2(0.0, 1.0);
-    d = vec3(cos(theta), sin(theta) * sc.x, sin(theta) * sc.y);
+    d = vec3(cosA(theta), sinA(theta) * sc.x, sinA(theta) * sc.y);
     return true;
 }
 
@@ -408,7 +437,7 @@ void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
     float a = u_a, e = g.e, w = g.omega, q = g.q;
     float sg = sign(e);
     float th = w * lambda;
-    float s = sin(th), c = cos(th);
+    float s = sinA(th), c = cosA(th);
     float den = c * c + q * s * s;
     float b = (q - 1.0) * s * c;
     float big = th + atan2s(b, den);
@@ -437,7 +466,7 @@ float flowRotation(OGeo g, float lambda) {
     float alpha = sign(g.e) * 2.0 * g.omega * lambda;
     float h = halfTanh(g.rmax / (2.0 * u_a));
     float h2 = h * h;
-    return alpha - 2.0 * atan2s(-h2 * sin(alpha), 1.0 - h2 * cos(alpha));
+    return alpha - 2.0 * atan2s(-h2 * sinA(alpha), 1.0 - h2 * cosA(alpha));
 }
 
 vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
@@ -450,12 +479,12 @@ vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
         c1 = lambda * (1.0 - x * x / 6.0);
         c2 = 0.5 * lambda * lambda * (1.0 - x * x / 12.0);
     } else {
-        c1 = sin(x) / om;
-        c2 = (1.0 - cos(x)) / (om * om);
+        c1 = sinA(x) / om;
+        c2 = (1.0 - cosA(x)) / (om * om);
     }
     vec4 v = w - c1 * aw + c2 * aaw;
     float beta = flowRotation(g, lambda);
-    float cb = cos(beta), sb = sin(beta);
+    float cb = cosA(beta), sb = sinA(beta);
     v = vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w);
     return pushIso(inverseIso(toOrigin(at)), vec4(0.0), v);
 }
@@ -515,7 +544,6 @@ Ray makeRay(vec4 at, vec4 k) {
 // the heavy functions below each have one call site (two for `localize`), and the kernel
 // stays small enough to compile in seconds.
 
-int oKind[N_OBJECTS];
 float oRadius[N_OBJECTS];
 float oExtent[N_OBJECTS];   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
 vec4 oPos[N_OBJECTS];       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
@@ -529,6 +557,7 @@ vec4 oStart[N_OBJECTS];     // free fall: start event; Minkowski: and its veloci
 vec4 oU0[N_OBJECTS];
 float oSpeed[N_OBJECTS];    // γ(1 + v) relative to the static observers
 float oRate[N_OBJECTS];     // free fall: coordinate time per proper time over whole loops
+float oGamma[N_OBJECTS];    // free fall: γ = −u_t, conserved
 
 // The frame a free fall starts with: the static frame there boosted by its velocity.
 mat4 startFrame(int i) {
@@ -547,18 +576,19 @@ void loadObject(int i) {
     oPos[i] = vec4(0.0, t1.xyz);
     oSpeed[i] = 1.0;
     oRate[i] = 1.0;
-    if (oKind[i] == KIND_REST) {
+    if (isRest(i)) {
         oDual[i] = dualFrame(metricAt(oPos[i]), staticFrame(oPos[i]));
         metricDerivatives(oPos[i], oDX[i], oDY[i]);
         oGinv[i] = inverseMetricAt(oPos[i]);
         if (!godel()) { oDX[i] = mat4(0.0); oDY[i] = mat4(0.0); }
-    } else if (oKind[i] == KIND_FREE) {
+    } else if (isFree(i)) {
         // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
         oStart[i] = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
         vec4 u = startFrame(i)[0];
         oU0[i] = u;
         float gam = -(metricAt(oStart[i]) * u).x;   // γ = −u_t, conserved
         oSpeed[i] = gam + sqrt(max(gam * gam - 1.0, 0.0));
+        oGamma[i] = max(gam, 1.0);
         oRate[i] = u.x;
         if (godel()) {
             Iso to = toOrigin(oStart[i]);
@@ -577,7 +607,7 @@ struct WPoint { float tau; vec4 ev; vec4 u; };
 WPoint worldAt(int i, float tau) {
     WPoint p;
     p.tau = tau;
-    if (oKind[i] != KIND_FREE) {
+    if (!isFree(i)) {
         p.ev = vec4(tau, oPos[i].yzw);
         p.u = vec4(1.0, 0.0, 0.0, 0.0);
     } else if (!godel()) {
@@ -594,7 +624,7 @@ WPoint worldAt(int i, float tau) {
 // The body frame at the worldline point p (free fall: the start frame parallel-transported
 // in closed form; at rest: the static frame).
 mat4 bodyFrame(int i, WPoint p) {
-    if (oKind[i] != KIND_FREE) return staticFrame(oPos[i]);
+    if (!isFree(i)) return staticFrame(oPos[i]);
     mat4 f0 = startFrame(i);
     if (!godel()) return f0;
     Iso to = toOrigin(oStart[i]);
@@ -613,7 +643,7 @@ mat4 bodyFrame(int i, WPoint p) {
 // A free fall's: the proper time of equal coordinate time (the CPU interpolates it from its
 // integration steps), by Newton steps on t(τ) from the mean rate's guess (dt/dτ = u^t).
 float tauGuess(int i, float t) {
-    if (oKind[i] != KIND_FREE) return t;
+    if (!isFree(i)) return t;
     float tau = (t - oStart[i].x) / oRate[i];
     for (int it = 0; it < TIME_STEPS; it++) {
         WPoint p = worldAt(i, tau);
@@ -625,15 +655,27 @@ float tauGuess(int i, float t) {
 // ---------------------------------------------------------------------------------------
 // Localizing a ray point in an object's rest frame (render::worldline::Worldline::localize).
 
+// The second-order normal-coordinate displacement of x from the worldline point p, taken
+// after the isometry that sends p to the origin, and p's four-velocity carried there
+// (render::worldline::origin_coords). Minkowski: the displacement itself.
+void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
+    if (!godel()) { xi = x - p.ev; u = p.u; return; }
+    Iso to = toOrigin(p.ev);
+    vec4 o;
+    applyPush(to, p.ev, p.u, o, u);
+    xi = normalDisplacement(vec4(0.0), applyIso(to, x));
+}
+
 // xi: spatial rest-frame components (at rest); len: their length; disp: the second-order
-// normal-coordinate displacement (free fall, whose components need the body frame).
+// normal-coordinate displacement (free fall: taken at the origin, whose components need the
+// body frame carried there).
 struct Local { WPoint at; vec3 xi; float len; vec4 disp; bool exact; bool ok; };
 
 Local localize(int i, vec4 x, float seed, float far) {
     Local lp;
     lp.ok = true;
     lp.disp = vec4(0.0);
-    if (oKind[i] == KIND_REST) {
+    if (isRest(i)) {
         // u = ∂t: g(u, Δ) = 0 fixes Δt = g_ti Δxⁱ at first order; then two steps with the
         // second-order ξ⁰.
         vec3 dx = x.yzw - oPos[i].yzw;
@@ -653,8 +695,8 @@ Local localize(int i, vec4 x, float seed, float far) {
         return lp;
     }
     // Free fall: the first-order simultaneity ξ⁰ = −g(u, Δ) = 0 by the secant method from
-    // the seed, then one Newton step on the second-order ξ⁰, whose Γ is the previous
-    // point's (as on the CPU). One worldline evaluation per pass of the loop.
+    // the seed, then one Newton step on the second-order ξ⁰ taken at the origin (as on the
+    // CPU). One worldline evaluation per pass of the loop.
     // The seed's point first (a far point needs no more, and no loop pass).
     WPoint p = worldAt(i, seed);
     mat4 g = metricAt(p.ev);
@@ -667,20 +709,18 @@ Local localize(int i, vec4 x, float seed, float far) {
         return lp;
     }
     float ta = seed, fa = f0, tau = seed + f0;
-    vec4 xiSecond = vec4(0.0);
     int stage = 1;   // 1 secant, 2 after the Newton step
+    mat4 g0 = metricAt(vec4(0.0));
+    vec4 xi, uo;
     for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
         p = worldAt(i, tau);
-        g = metricAt(p.ev);
         if (stage == 2) break;
+        g = metricAt(p.ev);
         float f = -dotg(g, p.u, x - p.ev);
         bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
         if (done) {
-            xiSecond = normalDisplacement(p.ev, x - p.ev);
-            // Γ of this point for the last displacement, as the CPU does.
-            tau += -dotg(g, p.u, xiSecond);
-            lp.disp = x - p.ev;   // the base point whose Γ is kept: p.ev
-            lp.at = p;
+            originDisplacement(p, x, xi, uo);
+            tau += -dotg(g0, uo, xi);
             stage = 2;
             continue;
         }
@@ -689,14 +729,11 @@ Local localize(int i, vec4 x, float seed, float far) {
         ta = tau; fa = f;
         tau = tau + step_;
     }
-    // ξ at the final point with Γ of the previous one.
-    vec4 base = lp.at.ev;
-    vec4 d = x - p.ev;
-    vec4 xi = d + 0.5 * christoffel(base, d, d);
-    float x0 = -dotg(g, p.u, xi);
+    originDisplacement(p, x, xi, uo);
+    float x0 = -dotg(g0, uo, xi);
     lp.at = p;
     lp.disp = xi;
-    lp.len = sqrt(max(dotg(g, xi, xi) + x0 * x0, 0.0));
+    lp.len = sqrt(max(dotg(g0, xi, xi) + x0 * x0, 0.0));
     lp.exact = true;
     lp.ok = finite(lp.len) && finite(tau);
     return lp;
@@ -704,8 +741,13 @@ Local localize(int i, vec4 x, float seed, float far) {
 
 // The rest-frame spatial components of a localized ray point, given the body frame there.
 vec3 restComponents(int i, Local lp, mat4 frame) {
-    if (oKind[i] == KIND_REST) return lp.xi;
-    return components(dualFrame(metricAt(lp.at.ev), frame), lp.disp).yzw;
+    if (isRest(i)) return lp.xi;
+    if (godel()) {
+        // The frame carried to the origin, where disp was taken.
+        Iso to = toOrigin(lp.at.ev);
+        for (int c = 0; c < 4; c++) frame[c] = pushIso(to, lp.at.ev, frame[c]);
+    }
+    return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -717,10 +759,10 @@ struct Probe { float f; float rate; float tau; };
 Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     probes_left--;
     int kind = oKind[i];
-    if (kind == KIND_COORD_SPHERE) {
+    if (isCoordSphere(i)) {
         return Probe(length(x.yzw - oPos[i].yzw) - oRadius[i], RATE_MARGIN * length(k.yzw), NO_TAU);
     }
-    if (kind == KIND_PLANE) return Probe(x.w - oPos[i].w, RATE_MARGIN * abs(k.w), NO_TAU);
+    if (isPlane(i)) return Probe(x.w - oPos[i].w, RATE_MARGIN * abs(k.w), NO_TAU);
     float scale = godel() ? u_a : 1.0;
     float far = FAR_DISTANCE * scale + FAR_RADII * oRadius[i];
     float floor_ = oRadius[i] + 0.5 * FAR_DISTANCE * scale;
@@ -728,11 +770,11 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
     Local lp = localize(i, x, seed, far);
     if (!lp.ok) return Probe(INF, 0.0, NO_TAU);
-    float slack = kind == KIND_REST ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
+    float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
     Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - oRadius[i], rate, lp.exact ? lp.at.tau : NO_TAU);
     // A stale seed may call a point inside a falling ball far: then the point of equal
     // coordinate time is tried too and the nearer kept.
-    if (!lp.exact && tauSeed > NO_TAU && kind == KIND_FREE) {
+    if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
         Local lq = localize(i, x, tauGuess(i, x.x), far);
         if (lq.ok) {
             float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
@@ -747,7 +789,7 @@ bool excluded(float fa, float fb, float rate, float h) {
     return !crossed(fa, fb) && (abs(fa) + abs(fb) > rate * h || rate == 0.0);
 }
 bool accepts(int i, vec4 x) {
-    return oKind[i] != KIND_PLANE || oExtent[i] <= 0.0 || (abs(x.y) <= oExtent[i] && abs(x.z) <= oExtent[i]);
+    return !isPlane(i) || oExtent[i] <= 0.0 || (abs(x.y) <= oExtent[i] && abs(x.z) <= oExtent[i]);
 }
 
 // A coordinate box around object i (render::target::Target::bounds); false when there is
@@ -756,13 +798,13 @@ bool objectBox(int i, out vec3 lo, out vec3 hi) {
     int kind = oKind[i];
     vec3 c = oPos[i].yzw;
     float grow;
-    if (kind == KIND_REST) {
+    if (isRest(i)) {
         float r = length(c.xy) + 2.0 * oRadius[i];
         float s2 = godel() ? pow(r / (2.0 * u_a), 2.0) : 0.0;
         grow = 2.0 * oRadius[i] * sqrt(1.0 + s2) + 0.05;
-    } else if (kind == KIND_COORD_SPHERE) {
+    } else if (isCoordSphere(i)) {
         grow = oRadius[i] * (1.0 + 1e-6);
-    } else if (kind == KIND_PLANE) {
+    } else if (isPlane(i)) {
         float e = oExtent[i] > 0.0 ? oExtent[i] : INF;
         lo = vec3(-e, -e, c.z);
         hi = vec3(e, e, c.z);
@@ -808,8 +850,8 @@ bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until)
     float d2 = alpha0 + sg * 2.0 * PI * hi / lret - carg(mc);
     float dmin = min(d1, d2), dmax = max(d1, d2);
     if (ceil(dmin / (2.0 * PI)) * 2.0 * PI <= dmax) return false;
-    float c1 = cos(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
-    float c2 = cos(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
+    float c1 = cosA(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
+    float c2 = cosA(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
     float cosd = max(c1, c2);
     float x = dhc / a, y = rho / a;
     float coshd = cosh(x) * cosh(y) - sinh(x) * sinh(y) * cosd;
@@ -841,19 +883,19 @@ float reachOf(int i) { return REACH_PER_RADIUS * oRadius[i] + REACH_PER_A * u_a 
 // universe) over λ ∈ [from, until]; false when unsure or for other objects.
 bool objectMisses(int i, OGeo g, float from, float until) {
     if (!godel()) return false;
-    if (oKind[i] == KIND_REST) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
-    if (oKind[i] == KIND_PLANE) return planeMisses(g, oCz[i], from, until);
+    if (isRest(i)) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
+    if (isPlane(i)) return planeMisses(g, oCz[i], from, until);
     return false;
 }
 
 // Whether a ray from the place of `from` (whose origin-frame closed form is g) may meet
 // object i over λ ∈ [0, until]: sets searched[i].
 void setSearchedUntil(int i, vec4 from, OGeo g, float until) {
-    if (oKind[i] == KIND_REST) {
+    if (isRest(i)) {
         vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), oPos[i]);
         oCw[i] = disc(c.yz);
         oCz[i] = c.w;
-    } else if (oKind[i] == KIND_PLANE) {
+    } else if (isPlane(i)) {
         oCz[i] = oPos[i].w - from.w;
     }
     searched[i] = oKind[i] >= 0 && !objectMisses(i, g, 0.0, until);
@@ -870,6 +912,120 @@ bool anySearched() {
 bool setSearched(vec4 from, OGeo g, float until) {
     for (int i = 0; i < N_OBJECTS; i++) setSearchedUntil(i, from, g, until);
     return anySearched();
+}
+
+// ---------------------------------------------------------------------------------------
+// Loop by loop, balls in free fall (render::falling, render::circle; docs/physics.md "Balls
+// in free fall"). In the pixel ray's origin frame the ray's loop j runs along a circle of the
+// disc at times between (j + 1)Δt and jΔt; a ball point lies within static distance reach of
+// its simultaneous centre, and within the time slack S of it. The centre's worldline is cut
+// into cells of proper time (here per loop, at most FALL_CELLS, over the proper times whose
+// time may fall in the loop's window; the CPU cuts the whole worldline once per render):
+// each cell lies within m of its middle point. The last λ of the loop within M = reach + m of
+// a cell whose time lies in the window (its z window and the arc of the ray's circle near the
+// cell, by the hyperbolic law of cosines) is the last λ where the loop must search the ball.
+
+float fbLast[N_OBJECTS];   // per falling ball, for the current loop: that λ from the loop's start
+
+// The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
+// hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when
+// unsure (render::circle::RayCircle::last_within).
+float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
+    if (!(lo <= hi)) return NO_TAU;
+    float a = u_a;
+    float sg = sign(g.e);
+    float big = asinh_(g.rmax / (2.0 * a));
+    vec2 h = vec2(-sg * g.cchi.y, sg * g.cchi.x) * halfTanh(g.rmax / (2.0 * a));
+    float nh = 1.0 - dot(h, h), nw = 1.0 - dot(w, w);
+    float ch = 1.0 + 2.0 * dot(w - h, w - h) / (nh * nw);
+    float sh = sqrt(max(ch * ch - 1.0, 0.0));
+    float num = ch * cosh(big) - coshM;
+    float den = sh * sinh(big);
+    if (!finite(num) || !finite(den)) return hi;
+    if (num <= -den) return hi;     // within m all round the circle
+    if (num > den) return NO_TAU;   // beyond m all round
+    // Single precision: the arc widened by 1e-4 rad (the CPU's 1e-9).
+    float halfArc = acosA(clamp(num / den, -1.0, 1.0)) + 1e-4;
+    float beta = carg(cdiv(w - h, vec2(1.0, 0.0) - cmul(conj2(h), w)));
+    float lret = returnParameter(g);
+    float psiHi = sg * carg(-h) - sg * beta + 2.0 * PI * hi / lret;
+    float r = psiHi - 2.0 * PI * floor(psiHi / (2.0 * PI) + 0.5);
+    float back = abs(r) <= halfArc ? 0.0 : (r > halfArc ? r - halfArc : r + 2.0 * PI - halfArc);
+    float l = hi - back * lret / (2.0 * PI);
+    return l >= lo ? l : NO_TAU;
+}
+
+// The proper time of the falling ball i at which its own origin frame's time is t (its
+// closed form's time rises at least at (1 + p_z²)/γ per proper time), and how far off it
+// may be.
+vec2 ballTimeToTau(int i, float t) {
+    OGeo b = oGeo[i];
+    float low = (1.0 + b.pz * b.pz) / b.e;
+    float tau = t / oRate[i];
+    float off = 0.0;
+    for (int it = 0; it < TIME_STEPS + 1; it++) {
+        vec4 e, k;
+        ogeoAt(b, tau, e, k);
+        off = t - e.x;
+        tau += off / max(k.x, low);
+    }
+    return vec2(tau, abs(off) / low);
+}
+
+// Sets fbLast[i] for loop j of the pixel ray `ray` (NO_TAU: the loop needs no search of the
+// ball), or INF where the test does not apply (Minkowski).
+void fallingLast(int i, int j, Ray ray) {
+    fbLast[i] = INF;
+    if (!godel()) return;
+    float a = u_a;
+    float gam = oGamma[i];
+    float sv = sqrt(max(gam * gam - 1.0, 0.0));
+    float r = oRadius[i];
+    // Reach and time slack (render::falling), widened for single precision.
+    float reach = 1.25 * gam * r + 1e-4 * a;
+    float slack = 1.25 * gam * r * (sv / gam + SQRT2) + 1e-4 * a;
+    float up = gam + SQRT2 * sv;
+    Iso toO = inverseIso(ray.back);
+    vec4 start = applyIso(toO, oStart[i]);
+    // The loop's window of times, and the ball's own time there: the isometry from the
+    // ball's origin frame to the ray's shifts times by at most A (docs/physics.md, "Isometries").
+    float tLo = float(j + 1) * ray.shift.x - slack, tHi = float(j) * ray.shift.x + slack;
+    float wmax = oGeo[i].rmax / sqrt(oGeo[i].rmax * oGeo[i].rmax + 4.0 * a * a);
+    float shiftA = 2.0 * SQRT2 * a * asinA(min(length(disc(start.yz)) * wmax, 1.0));
+    vec2 t1 = ballTimeToTau(i, tLo - start.x - shiftA), t2 = ballTimeToTau(i, tHi - start.x + shiftA);
+    float tau1 = t1.x - t1.y, tau2 = t2.x + t2.y;
+    // z is linear along both: no cell can be near when the ball's z range over [τ1, τ2] is
+    // farther than the reach (plus the cells' extent) from the loop's.
+    float zb1 = start.w + oU0[i].w * tau1, zb2 = start.w + oU0[i].w * tau2;
+    float zr1 = float(j) * ray.shift.y, zr2 = float(j + 1) * ray.shift.y;
+    float zGap = max(max(min(zb1, zb2) - max(zr1, zr2), min(zr1, zr2) - max(zb1, zb2)), 0.0);
+    if (zGap > reach + 0.5 * sv * max(max(r, 1e-3), (tau2 - tau1) / float(FALL_CELLS))) {
+        fbLast[i] = NO_TAU;
+        return;
+    }
+    int cells = int(clamp(ceil((tau2 - tau1) / max(r, 1e-3)), 1.0, float(FALL_CELLS)));
+    float dtau = (tau2 - tau1) / float(cells);
+    float near = reach + 0.5 * sv * dtau;
+    float coshM = cosh(near / a);
+    float sl = slack + 0.5 * up * dtau;
+    float l0 = float(j) * ray.lret, l1 = l0 + ray.lret;
+    float last = NO_TAU;
+    for (int c = 0; c < FALL_CELLS; c++) {
+        if (c >= cells || last >= l1) break;
+        vec4 p = applyIso(toO, worldAt(i, tau1 + (float(c) + 0.5) * dtau).ev);
+        if (p.x < tLo + slack - sl || p.x > tHi - slack + sl) continue;
+        float lo = l0, hi = l1;
+        if (ray.geo.pz == 0.0) {
+            if (abs(p.w) > near) continue;
+        } else {
+            float za = (p.w - near) / ray.geo.pz, zb = (p.w + near) / ray.geo.pz;
+            lo = max(min(za, zb), l0);
+            hi = min(max(za, zb), l1);
+        }
+        float l = lastWithin(ray.geo, disc(p.yz), coshM, max(lo, last), hi);
+        if (l > NO_TAU) last = l;
+    }
+    fbLast[i] = last > NO_TAU ? last - l0 : NO_TAU;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -934,6 +1090,12 @@ int qTag, qObj, qLoop;
 float qLambda, qSeed;
 Probe qAnswer;
 vec4 qX;
+
+// Whether the current loop searches object i on a segment starting at λ0 (from the loop's
+// start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
+bool loopSearches(int i, float lambda0) {
+    return !(isFree(i) && ePixel) || lambda0 <= fbLast[i];
+}
 
 void request(int tag, float lambda, float seed) {
     qTag = tag;
@@ -1062,14 +1224,20 @@ void machineStep() {
                 finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
                 return;
             }
-            if (eLoop == 0) break;
             float dz = float(eLoop) * eRay.shift.y;
             if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
             vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
-            bool near = false;
+            bool near = eLoop == 0;
             for (int i = 0; i < N_OBJECTS; i++) {
                 vec3 olo, ohi;
-                if (searched[i] && (!objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi))))) near = true;
+                if (!searched[i]) continue;
+                if (isFree(i) && ePixel) {
+                    // Balls in free fall: searched up to the loop's last λ within their reach.
+                    fallingLast(i, eLoop, eRay);
+                    near = near || fbLast[i] > NO_TAU;
+                } else {
+                    near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
+                }
             }
             if (near) break;
             eLoop++;
@@ -1079,7 +1247,7 @@ void machineStep() {
     }
     if (eMode == M_START) {
         eObj++;
-        while (eObj < N_OBJECTS && !searched[eObj]) eObj++;
+        while (eObj < N_OBJECTS && !(searched[eObj] && loopSearches(eObj, 0.0))) eObj++;
         if (eObj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
         eSeg = 0;
         eMode = M_SEGMENT;
@@ -1134,6 +1302,12 @@ void machineStep() {
         for (eObj++; eObj < N_OBJECTS; eObj++) {
             if (!searched[eObj]) continue;
             Probe p = probeBuf[eStart + eObj];
+            if (!loopSearches(eObj, eLo)) {
+                // Past the ball's last λ within reach in this loop (a later loop probes afresh).
+                probeBuf[N_OBJECTS - eStart + eObj] = p;
+                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                continue;
+            }
             if (eObj == eSkipObj && eLo >= eSkipFrom) {
                 probeBuf[N_OBJECTS - eStart + eObj] = p;
                 probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
@@ -1144,7 +1318,7 @@ void machineStep() {
             // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
             // plane's height, linear in λ), from which the next segment goes on.
             if (objectMisses(eObj, eRay.geo, eLo + off, eHi + off)) {
-                float fEnd = oKind[eObj] == KIND_REST
+                float fEnd = isRest(eObj)
                     ? REACH_PER_RADIUS * oRadius[eObj] / 1.05 - oRadius[eObj]
                     : eRay.geo.pz * (eHi + off) - oCz[eObj];
                 probeBuf[N_OBJECTS - eStart + eObj] = Probe(fEnd, p.rate, NO_TAU);
@@ -1153,7 +1327,7 @@ void machineStep() {
             }
             float at = probeAt[eStart + eObj];
             float clear = abs(p.f);
-            if (oKind[eObj] == KIND_REST && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
+            if (isRest(eObj) && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
                 probeBuf[N_OBJECTS - eStart + eObj] = p;   // provably no crossing of this object within the segment
                 probeAt[N_OBJECTS - eStart + eObj] = at;
                 continue;
@@ -1218,7 +1392,7 @@ void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit
     if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
     vec4 kn = k - christoffelWith(dX, dY, ginv, p.ev - x, k);
     kl = components(dualFrame(metricAt(p.ev), frame), kn);
-    uemit = oKind[i] == KIND_FREE ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
+    uemit = isFree(i) ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
 }
 
 // The hit: what the record and the lights need of it.
@@ -1239,7 +1413,7 @@ bool surface() {
     float seed = hAt.tau > NO_TAU ? hAt.tau : tauGuess(i, x.x);
     hAt = WPoint(x.x, x, hUemit);
     hFrame = mat4(1.0);
-    if (oKind[i] == KIND_REST || oKind[i] == KIND_FREE) {
+    if (isRest(i) || isFree(i)) {
         Local lp = localize(i, x, seed, INF);
         if (!lp.ok) return false;
         hAt = lp.at;
@@ -1256,7 +1430,7 @@ bool surface() {
     mat4 f = staticFrame(x);
     vec4 p = metricAt(x) * (-k);
     hDir = normalize(vec3(dot(f[1], p), dot(f[2], p), dot(f[3], p)));
-    if (oKind[i] == KIND_COORD_SPHERE) {
+    if (isCoordSphere(i)) {
         vec3 n = normalize(x.yzw - oPos[i].yzw);
         hUV = lonLat(n);
         hCos = abs(dot(n, normalize(-k.yzw)));
@@ -1273,7 +1447,7 @@ bool surface() {
 
 // Φ(θ) = arctan(q tan θ), continuous.
 float bigPhi(float q, float th) {
-    float s = sin(th), c = cos(th);
+    float s = sinA(th), c = cosA(th);
     return th + atan2s((q - 1.0) * s * c, c * c + q * s * s);
 }
 
@@ -1319,13 +1493,13 @@ vec4 shadowG4(float rho, float zp, vec4 u, int n, bool inbound) {
 // J_χ = ∂φ (docs/physics.md, "Area distance and irradiance").
 float areaDistanceSq(float psi, float chi, float lambda) {
     float a = u_a;
-    float c = cos(psi), s = sin(psi);
+    float c = cosA(psi), s = sinA(psi);
     float w1 = 1.0 + c * c;
     float omega = sqrt(w1) / (2.0 * a);
     float rmax = s / omega;
     float q = sqrt(2.0 / w1);
     float th = omega * lambda;
-    float st = sin(th), ct = cos(th);
+    float st = sinA(th), ct = cosA(th);
     float den2 = ct * ct + q * q * st * st;
     float big = bigPhi(q, th);
     float domega = -c * s / (4.0 * a * a * omega);
@@ -1334,7 +1508,7 @@ float areaDistanceSq(float psi, float chi, float lambda) {
     float dq = -q / omega * domega;
     float dbig = (q * dth + st * ct * dq) / den2;
     float phi = chi + big;
-    vec2 e = vec2(cos(phi), sin(phi));
+    vec2 e = vec2(cosA(phi), sinA(phi));
     float r = rmax * st;
     float dr = drmax * st + rmax * ct * dth;
     vec4 x = vec4(2.0 * SQRT2 * a * big - lambda, r * e, c * lambda);
@@ -1350,7 +1524,7 @@ float areaDistanceSq(float psi, float chi, float lambda) {
 vec2 incidence(vec4 kLight) {
     int i = hTarget;
     vec4 x = hX, view = hK;
-    if (oKind[i] == KIND_REST || oKind[i] == KIND_FREE) {
+    if (isRest(i) || isFree(i)) {
         vec4 ue, kl, kv;
         restFramePhoton(i, hAt, hFrame, x, kLight, ue, kl);
         restFramePhoton(i, hAt, hFrame, x, view, ue, kv);
@@ -1359,7 +1533,7 @@ vec2 incidence(vec4 kLight) {
         return vec2(-side * dot(n, normalize(kl.yzw)), kl.x);
     }
     float energy = -(metricAt(x) * kLight).x;
-    if (oKind[i] == KIND_COORD_SPHERE) {
+    if (isCoordSphere(i)) {
         vec3 n = normalize(x.yzw - oPos[i].yzw);
         float side = dot(n, -view.yzw) >= 0.0 ? 1.0 : -1.0;
         return vec2(-side * dot(n, normalize(kLight.yzw)), energy);
@@ -1496,7 +1670,7 @@ int shadowRaySetUp() {
     float chi = carg(gP.yz) - big + float(n) * PI;
     float sinpsi = sqrt(max(1.0 - c * c, 0.0));
     vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
-    vec4 tg = vec4(1.0, sinpsi * cos(chi), sinpsi * sin(chi), c);
+    vec4 tg = vec4(1.0, sinpsi * cosA(chi), sinpsi * sinA(chi), c);
     vec4 emission = applyIso(gBack, em);
     if (emission.x < hX.x - u_max_past) return 0;
     // The ray in the source's axis frame: the closed form from the origin, moved by the
@@ -1610,7 +1784,7 @@ void main() {
                 slots[1] = vec4(g, hX.x, f.lambda + float(f.loop_) * r.lret, hCos);
                 slots[2].xyz = hX.yzw;
                 slots[3].xyz = hDir;
-                if (!godel() || u_lights == 0) continue;
+                if (!godel() || HAS_LIGHTS == 0 || u_lights == 0) continue;
                 finished = false;
                 gLight = 0;
                 gIdx = -1;

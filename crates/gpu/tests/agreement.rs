@@ -155,6 +155,19 @@ fn universes_with_a_half_and_a_two_agree() {
 }
 
 #[test]
+fn a_fisheye_dome_agrees_also_outside_its_circle() {
+    let mut s = example("static-sphere");
+    s.camera = scene::Camera::Fisheye {
+        fov_deg: 180.0,
+        size: 96,
+    };
+    s.observer.forward = [0.0, 0.0, 1.0];
+    s.observer.up = [1.0, 0.0, 0.0];
+    let a = agrees(&s);
+    assert!(a.statuses_equal, "{a:?}");
+}
+
+#[test]
 fn minkowski_rays_are_straight_on_both() {
     agrees(&scene(
         "name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n\

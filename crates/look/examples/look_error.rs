@@ -1,19 +1,27 @@
-//! Measures `look` against direct renders: for several cameras and observer
-//! velocities, the look of a full-sphere data file is compared with a trace of the same
-//! view (the scene embedded in the sphere file, with the view written in). Prints, per view,
-//! object mismatches on edge and non-edge pixels and the g and t_emit errors of nearest
-//! neighbour and of bilinear interpolation, against the bound |∇f|·δ of docs/physics.md.
+//! Measures `look` against direct renders: for several cameras and observer velocities, the
+//! look of a full-sphere data file is compared with a trace of the same view (the scene
+//! embedded in the sphere file, with the view written in). Prints, per view:
+//!
+//! - object mismatches on edge and non-edge pixels;
+//! - the g and t_emit errors inside objects (hit pixels whose 3×3 source neighbourhood is one
+//!   object and one image) of the nearest-neighbour look and of the smooth look, against the
+//!   bound |∇f|·δ of docs/physics.md for nearest neighbour;
+//! - the pictures' error: the mean and 99th percentile of the 8-bit difference (largest of R,
+//!   G, B) between the preview of each look (nearest, smooth, smooth with 4 and 16 samples) and
+//!   the preview of a direct render with 16 rays per pixel, over all pixels and over the
+//!   pixels at objects' edges; direct renders with 1 and 4 rays per pixel for comparison.
+//!
 //! The views aim at the first image of a ball at rest at r = a seen from the axis (39.2°
 //! left of +x): make SPHERE.exr with `godel render` of the scene `sphere_scene()` in
 //! crates/look/tests/look.rs (the figures in docs/physics.md).
-//! `cargo run -p look --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
+//! `cargo run --release -p look --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
 use common::{FISHEYE, PANORAMA, PINHOLE};
 use datafile::{DataFile, PixelRecord};
-use look::{look, pixel_look, LookView, SphereSource};
+use look::{look_with, pixel_look, Filter, LookView, Sampling, SphereSource};
 use render::driver::{render, NoProgress};
 use scene::{replace_view, Scene};
 use spacetime::LocalVelocity;
@@ -57,17 +65,12 @@ fn idx(s: &SphereSource, col: i64, row: i64) -> Option<usize> {
 
 #[derive(Default)]
 struct Stats {
-    n: usize,
-    worst: f64,
     worst_ratio: f64,
-    sum: f64,
     errs: Vec<f64>,
 }
+
 impl Stats {
     fn add(&mut self, e: f64, bound: f64) {
-        self.n += 1;
-        self.worst = self.worst.max(e);
-        self.sum += e;
         self.errs.push(e);
         if bound > 0.0 {
             self.worst_ratio = self.worst_ratio.max(e / bound);
@@ -75,24 +78,45 @@ impl Stats {
             self.worst_ratio = f64::INFINITY;
         }
     }
-    fn line(&mut self, name: &str) -> String {
+
+    fn quantile(&mut self, p: f64) -> f64 {
         self.errs.sort_by(f64::total_cmp);
-        let q = |p: f64| {
-            self.errs
-                .get(((self.n as f64 * p) as usize).min(self.n.saturating_sub(1)))
-                .copied()
-                .unwrap_or(0.0)
+        let n = self.errs.len();
+        self.errs
+            .get(((n as f64 * p) as usize).min(n.saturating_sub(1)))
+            .copied()
+            .unwrap_or(0.0)
+    }
+
+    fn line(&mut self, name: &str, bound: bool) -> String {
+        let n = self.errs.len();
+        let mean = self.errs.iter().sum::<f64>() / n.max(1) as f64;
+        let ratio = if bound {
+            format!(" max err/bound {:.2}", self.worst_ratio)
+        } else {
+            String::new()
         };
         format!(
-            "{name}: n {} max {:.2e} mean {:.2e} p50 {:.2e} p99 {:.2e} max err/bound {:.2}",
-            self.n,
-            self.worst,
-            self.sum / self.n.max(1) as f64,
-            q(0.5),
-            q(0.99),
-            self.worst_ratio
+            "{name}: n {n} median {:.2e} mean {:.2e} p99 {:.2e} max {:.2e}{ratio}",
+            self.quantile(0.5),
+            mean,
+            self.quantile(0.99),
+            self.quantile(1.0),
         )
     }
+}
+
+/// The preview picture of a data file made from `scene`.
+fn picture(data: &DataFile, scene: &Scene) -> image::RgbImage {
+    shade::preview(data, scene).expect("preview")
+}
+
+/// Largest 8-bit channel difference per pixel between two pictures.
+fn differences(a: &image::RgbImage, b: &image::RgbImage) -> Vec<f64> {
+    a.pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| (0..3).map(|k| p.0[k].abs_diff(q.0[k])).max().unwrap_or(0) as f64)
+        .collect()
 }
 
 fn main() {
@@ -127,6 +151,14 @@ fn main() {
         ),
         ("fisheye 180 0.9c side", FISHEYE, towards, 0.9, side),
     ];
+    let nearest = Sampling {
+        filter: Filter::Nearest,
+        samples: 1,
+    };
+    let smooth = |samples| Sampling {
+        filter: Filter::Smooth,
+        samples,
+    };
     for (name, camera, forward, speed, dir) in views {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {
             continue;
@@ -142,18 +174,31 @@ fn main() {
             view.up,
         )
         .unwrap();
+        let traced = |samples: u32| {
+            let text = scene::replace_samples(&text, "s", samples).unwrap();
+            let scene = Scene::from_str(&text, "s").unwrap();
+            let data = render(&scene, &NoProgress).unwrap().0;
+            (picture(&data, &scene), data)
+        };
         let scene = Scene::from_str(&text, "s").unwrap();
-        let (direct, _) = render(&scene, &NoProgress).unwrap();
-        let looked = look(&sphere, &view).unwrap();
+        let (direct_picture, direct) = traced(1);
+        let looked_nearest = look_with(&sphere, &view, nearest).unwrap();
+        let looked_smooth = look_with(&sphere, &view, smooth(1)).unwrap();
         let (mut edge_mis, mut inner_mis, mut edge, mut inner, mut jumps) = (0, 0, 0, 0, 0);
-        let mut st: [Stats; 4] = Default::default(); // g nearest, g bilinear, t nearest, t bilinear
+        // g nearest, g smooth, t_emit nearest, t_emit smooth.
+        let mut st: [Stats; 4] = Default::default();
+        let mut edge_pixels = vec![false; direct.records.len()];
         for row in 0..camera.height() {
             for col in 0..camera.width() {
                 let Some(p) = pixel_look(&view, col, row) else {
                     continue;
                 };
                 let i = row as usize * camera.width() as usize + col as usize;
-                let (a, b) = (&looked.records[i], &direct.records[i]);
+                let (a, s, b) = (
+                    &looked_nearest.records[i],
+                    &looked_smooth.records[i],
+                    &direct.records[i],
+                );
                 let pos = src.position(p.static_dir);
                 let (c0, r0) = (pos[0].floor() as i64, pos[1].floor() as i64);
                 let centre_rec = sphere.records[src.nearest(pos)];
@@ -168,19 +213,20 @@ fn main() {
                         }
                     }
                 }
+                edge_pixels[i] = is_edge;
                 if is_edge {
                     edge += 1
                 } else {
                     inner += 1
                 }
-                if a.object != b.object || a.status != b.status {
+                if a.object != b.object || a.status != b.status || s.object != b.object {
                     if is_edge {
                         edge_mis += 1
                     } else {
                         inner_mis += 1;
                         eprintln!(
-                            "  inner mismatch at {col},{row}: look {} direct {}",
-                            a.object, b.object
+                            "  inner mismatch at {col},{row}: look {} / {} direct {}",
+                            a.object, s.object, b.object
                         )
                     }
                     continue;
@@ -193,8 +239,8 @@ fn main() {
                     continue;
                 }
                 // Gradient estimate from the 3x3 block around the nearest pixel.
-                let c = centre(&src, c0, r0.clamp(0, src.height as i64 - 1));
                 let r0c = r0.clamp(0, src.height as i64 - 1);
+                let c = centre(&src, c0, r0c);
                 let mut grad = [0.0f64; 2];
                 for dr in -1..=1i64 {
                     for dc in -1..=1i64 {
@@ -211,46 +257,51 @@ fn main() {
                     }
                 }
                 let delta = angle(p.static_dir, c);
-                st[0].add((a.g - b.g).abs() as f64, p.doppler * grad[0] * delta);
-                st[2].add((a.t_emit - b.t_emit).abs() as f64, grad[1] * delta);
-                // Bilinear between the four surrounding pixel centres.
-                let (x, y) = (pos[0] - 0.5, pos[1] - 0.5);
-                let (cx, ry) = (x.floor() as i64, y.floor() as i64);
-                let (fx, fy) = (x - cx as f64, y - ry as f64);
-                let corners = [
-                    (cx, ry, (1.0 - fx) * (1.0 - fy)),
-                    (cx + 1, ry, fx * (1.0 - fy)),
-                    (cx, ry + 1, (1.0 - fx) * fy),
-                    (cx + 1, ry + 1, fx * fy),
-                ];
-                let mut ok = true;
-                let (mut g, mut t, mut dmax) = (0.0, 0.0, 0.0f64);
-                for (cc, rr, w) in corners {
-                    let rr = rr.clamp(0, src.height as i64 - 1);
-                    let j = idx(&src, cc, rr).unwrap();
-                    let rj = &sphere.records[j];
-                    ok &= rj.object == centre_rec.object && rj.is_hit();
-                    g += w * rj.g as f64;
-                    t += w * rj.t_emit as f64;
-                    dmax = dmax.max(angle(p.static_dir, centre(&src, cc, rr)));
-                }
-                if ok {
-                    st[1].add(
-                        (g * p.doppler - b.g as f64).abs(),
-                        p.doppler * grad[0] * dmax,
-                    );
-                    st[3].add((t - b.t_emit as f64).abs(), grad[1] * dmax);
-                }
+                let (bound_g, bound_t) = (p.doppler * grad[0] * delta, grad[1] * delta);
+                st[0].add((a.g - b.g).abs() as f64, bound_g);
+                st[1].add((s.g - b.g).abs() as f64, bound_g);
+                st[2].add((a.t_emit - b.t_emit).abs() as f64, bound_t);
+                st[3].add((s.t_emit - b.t_emit).abs() as f64, bound_t);
             }
         }
         println!("{name}: pixels inner {inner} edge {edge}; object/status mismatches inner {inner_mis} edge {edge_mis}; hits at image boundaries (t_emit jumps > {jump}) {jumps}");
-        for (s, n) in st.iter_mut().zip([
-            "g nearest",
-            "g bilinear",
-            "t_emit nearest",
-            "t_emit bilinear",
-        ]) {
-            println!("  {}", s.line(n));
+        for (s, n) in
+            st.iter_mut()
+                .zip(["g nearest", "g smooth", "t_emit nearest", "t_emit smooth"])
+        {
+            println!("  inside objects, {}", s.line(n, true));
+        }
+        // The pictures against a direct render with 16 rays per pixel.
+        let (truth, _) = traced(16);
+        let report = |what: &str, img: &image::RgbImage| {
+            let d = differences(img, &truth);
+            let mut all = Stats::default();
+            let mut edges = Stats::default();
+            for (k, e) in d.into_iter().enumerate() {
+                all.add(e, 0.0);
+                if edge_pixels[k] {
+                    edges.add(e, 0.0);
+                }
+            }
+            println!(
+                "  picture vs direct 16 rays/px, {what}: all pixels mean {:.2} p99 {:.0}; edge pixels mean {:.2} p99 {:.0}",
+                all.errs.iter().sum::<f64>() / all.errs.len().max(1) as f64,
+                all.quantile(0.99),
+                edges.errs.iter().sum::<f64>() / edges.errs.len().max(1) as f64,
+                edges.quantile(0.99),
+            );
+        };
+        report("direct 1 ray/px", &direct_picture);
+        report("direct 4 rays/px", &traced(4).0);
+        report("look nearest", &picture(&looked_nearest, &scene));
+        report("look smooth", &picture(&looked_smooth, &scene));
+        for samples in [4, 16] {
+            let looked = look_with(&sphere, &view, smooth(samples)).unwrap();
+            let scene = Scene::from_str(&looked.header.scene_text, "s").unwrap();
+            report(
+                &format!("look smooth {samples} samples"),
+                &picture(&looked, &scene),
+            );
         }
     }
 }

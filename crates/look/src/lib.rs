@@ -11,14 +11,23 @@
 //! photon to unit energy in the observer's own frame), and `pol` turned about `dir` by the
 //! angle between the two observers' screen-up directions for that photon
 //! ([`spacetime::polarization::look_rotation`]; docs/physics.md, "Polarization"); every
-//! other field unchanged.
+//! other field as read there.
 //!
-//! Main items: [`look`] (the remapping; [`look_rows`] for a band of its rows, so that a
-//! server can shade a large view band by band in bounded memory), [`LookView`] (camera,
-//! axes, velocity),
+//! The sphere is read bilinearly within one image of one object and by nearest neighbour at
+//! the edges of objects and images ([`Filter::Smooth`], the default; [`Filter::Nearest`] for
+//! every pixel), with s×s samples per output pixel where asked ([`Sampling`]; module
+//! `sample`).
+//!
+//! Main items: [`look`] (the remapping, smooth, one sample per pixel) and [`look_with`] (any
+//! [`Sampling`]); [`look_rows`] for a band of rows of [`samples_view`], so that a server can
+//! shade a large view band by band in bounded memory; [`LookView`] (camera, axes, velocity),
 //! [`SphereSource`] (the sphere's pixel geometry: [`SphereSource::position`] and
 //! [`SphereSource::pixel_size`]), [`pixel_look`] (one output pixel: its direction in both
 //! frames and D), [`resolution`] (how far the source's pixels limit the output).
+
+mod sample;
+
+pub use sample::{Filter, SAME_IMAGE_DT, SAME_IMAGE_DUV};
 
 use datafile::{DataFile, DataFileErrorKind, PixelRecord, RayStatus};
 use rayon::prelude::*;
@@ -54,6 +63,24 @@ pub struct SphereSource {
     pub height: usize,
     pub forward: [f64; 3],
     pub up: [f64; 3],
+}
+
+/// How [`look_with`] reads the sphere: the filter, and the samples per output pixel (a square
+/// number s², read at the s×s grid of sub-pixel points where `godel render` traces its
+/// `samples`; the data file keeps every sample, as a render's does).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sampling {
+    pub filter: Filter,
+    pub samples: u32,
+}
+
+impl Default for Sampling {
+    fn default() -> Sampling {
+        Sampling {
+            filter: Filter::Smooth,
+            samples: 1,
+        }
+    }
 }
 
 /// One output pixel of a [`LookView`].
@@ -273,28 +300,39 @@ impl SphereSource {
     /// Index (row-major) of the pixel containing position `p` (from
     /// [`SphereSource::position`]): columns wrap around, rows are clamped at the poles.
     pub fn nearest(&self, p: [f64; 2]) -> usize {
-        let (w, h) = (self.width as i64, self.height as i64);
-        let col = (p[0].floor() as i64).rem_euclid(w);
-        let row = (p[1].floor() as i64).clamp(0, h - 1);
-        (row * w + col) as usize
+        sample::nearest_index(self.width, self.height, p)
     }
 }
 
-/// The data file of `view` at the event of `sphere`, without tracing: each pixel takes the
-/// record of the sphere pixel containing its static-frame direction (nearest neighbour,
-/// for every field; docs/physics.md gives the resulting error bound), with `g` and `lambda`
-/// multiplied by the pixel's Doppler factor. Light planes are carried the same way.
-/// Pixels the camera does not show are `NotTraced`.
+/// The data file of `view` at the event of `sphere`, without tracing, read smoothly with one
+/// sample per pixel ([`look_with`] with the default [`Sampling`]).
+pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
+    look_with(sphere, view, Sampling::default())
+}
+
+/// The data file of `view` at the event of `sphere`, without tracing: each pixel (each of its
+/// s×s samples) takes the sphere's record at its static-frame direction as `sampling.filter`
+/// reads it (module `sample`; docs/physics.md gives the error bounds), with `g` and `lambda`
+/// multiplied by the pixel's Doppler factor. Light planes are carried the same way. Pixels
+/// the camera does not show are `NotTraced`. `sampling.samples` is checked as `[camera]
+/// samples` is (a square number up to 256, at most 5·10⁷ samples in all; errors name
+/// `camera.samples`).
 ///
 /// The header is the sphere's with the camera description replaced, and its scene text
-/// the sphere's with `[camera]` and the observer's `velocity`, `forward` and `up` replaced
-/// (so that shaders and viewers read the result as a normal data file), headed by
-/// [`LOOK_COMMENT`].
-pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
+/// the sphere's with `[camera]` (and its `samples`) and the observer's `velocity`, `forward`
+/// and `up` replaced (so that shaders and viewers read the result as a normal data file),
+/// headed by [`LOOK_COMMENT`].
+pub fn look_with(
+    sphere: &DataFile,
+    view: &LookView,
+    sampling: Sampling,
+) -> Result<DataFile, LookError> {
     view.check()?;
     let source = SphereSource::of(sphere)?;
-    let (records, lights) = look_rows(sphere, &source, view, 0..view.camera.height());
-    let width = view.camera.width() as usize;
+    let (samples_view, s) = samples_view(view, sampling.samples)?;
+    let height = samples_view.camera.height();
+    let (records, lights) = look_rows(sphere, &source, &samples_view, sampling.filter, 0..height);
+    let width = samples_view.camera.width() as usize;
     let text = scene::replace_view(
         &sphere.header.scene_text,
         EMBEDDED,
@@ -303,6 +341,7 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
         view.forward,
         view.up,
     )
+    .and_then(|t| scene::replace_samples(&t, EMBEDDED, s * s))
     .map_err(LookError::EmbeddedScene)?;
     let text = if text.starts_with(LOOK_COMMENT) {
         text
@@ -312,34 +351,52 @@ pub fn look(sphere: &DataFile, view: &LookView) -> Result<DataFile, LookError> {
     let mut header = sphere.header.clone();
     header.scene_text = text;
     header.camera = view.camera.describe();
-    header.supersample = 1;
+    header.supersample = s;
     Ok(DataFile {
         header,
         width,
-        height: view.camera.height() as usize,
+        height: height as usize,
         records,
         lights,
         polarization: sphere.polarization,
     })
 }
 
-/// Rows `rows` of the image [`look`] makes of `view` from `sphere` (whose geometry is
-/// `source`, [`SphereSource::of`]): the records, row-major, and each light plane of them.
-/// `view` must be checked ([`LookView::new`]). Memory: one record per pixel, and one index
-/// per pixel only where the sphere has light planes.
+/// The view whose pixels are the samples of `view` at `samples` per pixel: the camera s times
+/// wider and taller (s² = `samples`, checked as `[camera] samples` is: a square number up to
+/// 256, at most 5·10⁷ samples in all; errors name `camera.samples`), and s.
+pub fn samples_view(view: &LookView, samples: u32) -> Result<(LookView, u32), LookError> {
+    let (w, h) = (view.camera.width(), view.camera.height());
+    let s = scene::samples_per_side(i64::from(samples), w, h)
+        .map_err(|m| view_error("camera.samples", m))?;
+    let samples_view = LookView {
+        camera: view.camera.supersampled(s),
+        ..*view
+    };
+    Ok((samples_view, s))
+}
+
+/// Rows `rows` of the image [`look_with`] makes of `view` (a [`samples_view`] for several
+/// samples per pixel) from `sphere` (whose geometry is `source`, [`SphereSource::of`]), read
+/// with `filter`: the records, row-major, and each light plane of them. `view` must be
+/// checked ([`LookView::new`]). Memory: one record per pixel, and the sphere pixels each
+/// pixel reads only where the sphere has light planes.
 pub fn look_rows(
     sphere: &DataFile,
     source: &SphereSource,
     view: &LookView,
+    filter: Filter,
     rows: std::ops::Range<u32>,
 ) -> (Vec<PixelRecord>, Vec<Vec<f32>>) {
     let width = view.camera.width() as usize;
     let rows = rows.start..rows.end.min(view.camera.height());
     let pixels = width * rows.len();
-    // The sphere pixel each pixel shows (for the light planes).
+    // The sphere pixels each pixel reads, and where it looks.
     let show = |col: usize, row: usize| {
         let p = pixel_look(view, col as u32, rows.start + row as u32)?;
-        Some((source.nearest(source.position(p.static_dir)), p))
+        let at = source.position(p.static_dir);
+        let taps = sample::taps(&sphere.records, source.width, source.height, at, filter);
+        Some((taps, p))
     };
     let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); pixels];
     records
@@ -347,8 +404,8 @@ pub fn look_rows(
         .enumerate()
         .for_each(|(row, out)| {
             for (col, slot) in out.iter_mut().enumerate() {
-                if let Some((i, p)) = show(col, row) {
-                    let mut record = boosted(sphere.records[i], p.doppler);
+                if let Some((taps, p)) = show(col, row) {
+                    let mut record = boosted(sample::record(&sphere.records, &taps), p.doppler);
                     if sphere.polarization && record.is_hit() {
                         record.pol = polarization(&record, source, view, &p);
                     }
@@ -361,14 +418,19 @@ pub fn look_rows(
     let lights = if sphere.lights.is_empty() {
         Vec::new()
     } else {
-        let shown: Vec<Option<usize>> = (0..pixels)
+        let shown: Vec<Option<sample::Taps>> = (0..pixels)
             .into_par_iter()
-            .map(|k| show(k % width, k / width).map(|(i, _)| i))
+            .map(|k| show(k % width, k / width).map(|(t, _)| t))
             .collect();
         sphere
             .lights
             .iter()
-            .map(|plane| shown.iter().map(|i| i.map_or(0.0, |i| plane[i])).collect())
+            .map(|plane| {
+                shown
+                    .iter()
+                    .map(|t| t.as_ref().map_or(0.0, |t| sample::light(plane, t)))
+                    .collect()
+            })
             .collect()
     };
     (records, lights)

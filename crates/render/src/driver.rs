@@ -25,6 +25,8 @@ use std::time::{Duration, Instant};
 
 /// Receives progress from the driver (the tracer never learns about terminals or MPI).
 pub trait Progress: Sync {
+    /// The run is about to trace `pixels` pixels (samples) in all.
+    fn start(&self, _pixels: u64) {}
     /// `pixels` more pixels are done.
     fn advance(&self, pixels: u64);
     /// True when the caller no longer wants the result: the driver then traces no further
@@ -268,6 +270,8 @@ impl<'a> Renderer<'a> {
         progress: &dyn Progress,
     ) -> RenderStats {
         let indices = plan.indices(&self.tiles);
+        let tile_pixels = |&k: &usize| (self.tiles[k].cols * self.tiles[k].rows) as u64;
+        progress.start(indices.iter().map(tile_pixels).sum());
         let started = Instant::now();
         let shared = Mutex::new((sink, RenderStats::default()));
         indices.par_iter().for_each_init(
@@ -314,10 +318,31 @@ pub fn render(
     scene: &Scene,
     progress: &dyn Progress,
 ) -> Result<(DataFile, RenderStats), RenderError> {
+    render_plan(scene, &Plan::All, progress)
+}
+
+/// The rays (pixels × samples) the tiles of `plan` hold for `scene`: what a render of the
+/// plan traces, known before any work (to size it against memory, to show progress).
+pub fn plan_pixels(scene: &Scene, plan: &Plan) -> u64 {
+    let camera = scene.sample_camera();
+    let all = tiles(camera.width(), camera.height());
+    let pixels = |&k: &usize| (all[k].cols * all[k].rows) as u64;
+    plan.indices(&all).iter().map(pixels).sum()
+}
+
+/// Renders the tiles of `plan` on rayon's thread pool into a data file of the whole image
+/// (pixels of other tiles "not traced"): `godel render` (whole or `--part`), its sequences
+/// and the Python module's `render` all go through here. The wall time counts from the
+/// building of the tracer.
+pub fn render_plan(
+    scene: &Scene,
+    plan: &Plan,
+    progress: &dyn Progress,
+) -> Result<(DataFile, RenderStats), RenderError> {
     let started = Instant::now();
     let renderer = Renderer::new(scene)?;
     let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
-    let mut stats = renderer.run(&Plan::All, &mut assembler, progress);
+    let mut stats = renderer.run(plan, &mut assembler, progress);
     stats.wall = started.elapsed();
     Ok((assembler.finish(), stats))
 }

@@ -13,6 +13,7 @@
 //! - [`lighting`]: direct light from point sources by shadow rays.
 //! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
 //!   `--part i/N` part files and their merge.
+//! - [`threads`]: the worker pool, its size checked (at most 8 threads per core).
 //! - [`map`]: what the explore map draws (horizon, balls and their tracks, a pixel's ray).
 
 // `!(a < b)` is how this crate writes "not a < b, NaN included" (a NaN must fail the
@@ -37,6 +38,7 @@ pub mod polarization;
 pub mod reject;
 pub mod segment;
 pub mod target;
+pub mod threads;
 pub mod tiles;
 pub mod tracer;
 pub mod worldline;

@@ -9,15 +9,18 @@
 //!
 //! A ray point X is matched to the worldline point P(τ) that is simultaneous with it in the
 //! object's rest frame: g(u(τ), ξ) = 0, ξ the displacement X − P in Riemann normal
-//! coordinates at P to second order, ξ^μ = Δx^μ + ½ Γ^μ_αβ Δx^α Δx^β. Newton's method
-//! converges in a few iterations since dξ⁰/dτ = −1 along a geodesic.
+//! coordinates at P to second order, ξ^μ = Δx^μ + ½ Γ^μ_αβ Δx^α Δx^β. At rest the expansion
+//! is taken at P; in free fall after the isometry that sends P to the origin, where it holds
+//! for a boosted ball's whole radius (docs/physics.md "Local objects", "Simultaneity"). The
+//! first-order condition is solved by the secant method (dξ⁰/dτ ≈ −1 along a geodesic), then
+//! one Newton step on the second-order one.
 
 use crate::bounds::Aabb;
 use scene::Motion;
 use spacetime::measure::DualFrame;
 use spacetime::{
-    normal, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Metric,
-    MetricTensor, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
+    normal, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry,
+    Metric, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
 };
 
 /// A worldline point: event, four-velocity and body frame (e[0] = u).
@@ -363,8 +366,8 @@ impl Worldline {
                 // Start inside the integrated range: far points (whose rest-frame "now" may
                 // lie beyond it) still get a finite distance, so no step is skipped.
                 let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
-                let mut p = self.at(metric, tau)?;
-                let mut g = metric.metric(p.event);
+                let p = self.at(metric, tau)?;
+                let g = metric.metric(p.event);
                 let first = local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x);
                 if norm3(&first) > far {
                     // Far: an estimate only (the tracer never lets it vouch for more than
@@ -378,16 +381,18 @@ impl Worldline {
                 // Near: the first-order simultaneity ξ⁰(τ) = −g(u, Δ) = 0 by the secant method,
                 // started with the slope dξ⁰/dτ = −1 of a slow object. For a fast one the
                 // coordinate acceleration of u changes the slope by up to ~γ²|ξ|/a (measured
-                // −2.3 at 0.99 c), where Newton with slope −1 diverges.
-                let xi0_at = |tau: f64| -> Option<(WorldPoint, MetricTensor, f64)> {
+                // −2.3 at 0.99 c), where Newton with slope −1 diverges. (The first-order
+                // condition has one root near the ball; the second-order one can have more,
+                // and a secant on it jumped between them from one ray point to the next.)
+                let xi0_at = |tau: f64| -> Option<(WorldPoint, f64)> {
                     let p = self.at(metric, tau)?;
                     let g = metric.metric(p.event);
                     let xi0 = local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x)[0];
-                    Some((p, g, xi0))
+                    Some((p, xi0))
                 };
                 let (mut ta, mut fa) = (tau, first[0]);
                 tau = (ta + fa).clamp(ff.tau_min, ff.tau_max);
-                let (mut pb, mut gb, mut fb) = xi0_at(tau)?;
+                let (mut pb, mut fb) = xi0_at(tau)?;
                 for _ in 0..SIMULTANEITY_STEPS {
                     if fb.abs() < 1e-12 || tau == ta {
                         break;
@@ -400,20 +405,16 @@ impl Worldline {
                     };
                     (ta, fa) = (tau, fb);
                     tau = (tau + step).clamp(ff.tau_min, ff.tau_max);
-                    (pb, gb, fb) = xi0_at(tau)?;
+                    (pb, fb) = xi0_at(tau)?;
                 }
-                p = pb;
-                g = gb;
-                // Second order near the object: one more Newton step on the full ξ⁰.
-                let gamma = metric.christoffel(p.event);
-                let xi = local_coords(&DualFrame::new(&g, &p.frame), Some(&gamma), p.event, x);
-                tau += xi[0];
-                let p = self.at(metric, tau)?;
-                let g = metric.metric(p.event);
-                let xi = local_coords(&DualFrame::new(&g, &p.frame), Some(&gamma), p.event, x);
+                // Second order near the object, taken at the origin (`origin_coords`): one
+                // more Newton step on its ξ⁰.
+                tau = (tau + origin_coords(metric, &pb, x)[0]).clamp(ff.tau_min, ff.tau_max);
+                let pb = self.at(metric, tau)?;
+                let xb = origin_coords(metric, &pb, x);
                 Some(LocalPoint {
-                    at: p,
-                    xi: [xi[1], xi[2], xi[3]],
+                    at: pb,
+                    xi: [xb[1], xb[2], xb[3]],
                     exact: true,
                 })
             }
@@ -444,6 +445,26 @@ fn local_coords(dual: &DualFrame, gamma: Option<&Christoffel>, p: Event, x: Even
         Some(gamma) => normal::displacement(gamma, d),
         None => d,
     })
+}
+
+/// Rest-frame components of the displacement from the worldline point `p` to `x` in
+/// Riemann normal coordinates to second order, taken after the isometry that sends `p` to
+/// the origin (docs/physics.md "Simultaneity"). There Γ is small and the expansion
+/// holds for displacements up to the largest radius, a/2, even for a boosted ball near the
+/// horizon: at `p` itself a coordinate displacement of ~γ|ξ| at large r once put a point
+/// 1.7 γ|ξ| away (static distance) inside the ball. Minkowski: the displacement itself.
+fn origin_coords(metric: &Metric, p: &WorldPoint, x: Event) -> [f64; 4] {
+    let Some(a) = metric.godel_a() else {
+        let g = metric.metric(p.event);
+        return local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x);
+    };
+    let to = Isometry::to_origin(a, p.event);
+    let o = Event::new(0.0, 0.0, 0.0, 0.0);
+    let frame = Tetrad {
+        e: p.frame.e.map(|e| to.push(p.event, e)),
+    };
+    let dual = DualFrame::new(&metric.metric(o), &frame);
+    local_coords(&dual, Some(&metric.christoffel(o)), o, to.apply(x))
 }
 
 /// Integrates the transported geodesic in the direction `sign` of proper time until `done(t)`.

@@ -1,6 +1,7 @@
 //! Writing a different view into scene text: the camera and the observer's velocity and
 //! camera axes replaced, everything else (objects, comments, layout) kept as written.
-//! `godel look` stores the view it computed this way, so that its data file carries a scene
+//! `godel look` stores the view it computed this way (and its samples per pixel,
+//! [`replace_samples`]), so that its data file carries a scene
 //! that describes it (read it back with [`crate::Scene::read_view`]).
 
 use crate::camera::Camera;
@@ -21,18 +22,8 @@ pub fn replace_view(
     forward: [f64; 3],
     up: [f64; 3],
 ) -> Result<String, SceneError> {
-    let mut doc: DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| SceneError {
-        file: file.to_string(),
-        location: e.span().map(|s| crate::error::line_column(text, s.start)),
-        field: String::new(),
-        message: e.message().to_string(),
-    })?;
-    let not_a_table = |field: &str| SceneError {
-        file: file.to_string(),
-        location: None,
-        field: field.to_string(),
-        message: "is not a table".to_string(),
-    };
+    let mut doc = parse(text, file)?;
+    let not_a_table = |field: &str| not_a_table(file, field);
 
     let observer = table_entry(&mut doc, "observer").ok_or_else(|| not_a_table("observer"))?;
     let mut v = InlineTable::new();
@@ -73,6 +64,38 @@ fn table_entry<'a>(doc: &'a mut DocumentMut, key: &str) -> Option<&'a mut dyn Ta
         .entry(key)
         .or_insert(Item::Table(Table::new()));
     item.as_table_like_mut()
+}
+
+/// `text` with `[camera] samples` set to `samples` (rays, or looked samples, per pixel),
+/// or removed for 1 (the default); everything else kept as written.
+pub fn replace_samples(text: &str, file: &str, samples: u32) -> Result<String, SceneError> {
+    let mut doc = parse(text, file)?;
+    let camera = table_entry(&mut doc, "camera").ok_or_else(|| not_a_table(file, "camera"))?;
+    if samples > 1 {
+        camera.insert("samples", value(i64::from(samples)));
+    } else {
+        camera.remove("samples");
+    }
+    Ok(doc.to_string())
+}
+
+/// The TOML document of `text`; a syntax error located in `file`.
+fn parse(text: &str, file: &str) -> Result<DocumentMut, SceneError> {
+    text.parse().map_err(|e: toml_edit::TomlError| SceneError {
+        file: file.to_string(),
+        location: e.span().map(|s| crate::error::line_column(text, s.start)),
+        field: String::new(),
+        message: e.message().to_string(),
+    })
+}
+
+fn not_a_table(file: &str, field: &str) -> SceneError {
+    SceneError {
+        file: file.to_string(),
+        location: None,
+        field: field.to_string(),
+        message: "is not a table".to_string(),
+    }
 }
 
 fn vector(v: [f64; 3]) -> Array {

@@ -56,17 +56,6 @@ impl fmt::Display for SceneError {
     }
 }
 
-/// `v` as messages show it: plainly where that is short (`0.25`, `-6`), else in scientific
-/// notation (`1e300`, `-2.5e-9`), never the 300 digits of a plain `1e300`.
-pub fn short(v: f64) -> String {
-    let magnitude = v.abs();
-    if v.is_finite() && magnitude != 0.0 && !(1e-4..1e6).contains(&magnitude) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
-}
-
 /// `text` with its control characters escaped (a line break becomes `\n`), for messages
 /// that quote what a user wrote and must stay one line.
 pub fn one_line(text: &str) -> String {
@@ -317,20 +306,5 @@ mod tests {
         let off = text.find("-1").unwrap();
         let e = loc.at_span(Some(off..off + 2), "bad");
         assert_eq!(e.field, "object[1].radius");
-    }
-}
-
-#[cfg(test)]
-mod short_tests {
-    use super::short;
-
-    #[test]
-    fn numbers_in_messages_stay_short() {
-        assert_eq!(short(1e300), "1e300");
-        assert_eq!(short(-2.5e-9), "-2.5e-9");
-        assert_eq!(short(0.25), "0.25");
-        assert_eq!(short(-6.0), "-6");
-        assert_eq!(short(0.0), "0");
-        assert_eq!(short(f64::NAN), "NaN");
     }
 }

@@ -12,6 +12,9 @@
 //!   (camera, velocity, camera axes) in scene text, as `godel look` does.
 //!
 //! - [`input`]: the bounded reader every input file of `godel` goes through.
+//! - [`ranges`]: the ranges of `a` and of coordinates, for values given outside a scene.
+//! - [`overrides`]: a scene (file, text or built-in) with some fields set for one run
+//!   (`godel render --width …`, the Python module's `render(width=…)`), validated as a file.
 //!
 //! Reading goes in three steps: the TOML text is parsed into a spanned tree (kept to locate
 //! errors), deserialized into raw records (`raw.rs`, unknown fields rejected), then checked
@@ -24,18 +27,21 @@ mod error;
 pub mod input;
 mod model;
 mod objects;
+pub mod overrides;
+pub mod ranges;
 mod raw;
 mod validate;
 
 pub use camera::{
     azimuth_elevation, direction_from, samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES,
 };
-pub use edit::replace_view;
-pub use error::{line_column, line_of_path, one_line, short, Location, SceneError};
+pub use edit::{replace_samples, replace_view};
+pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
+pub use spacetime::message::short;
 pub use validate::{A_RANGE, MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;

@@ -1,8 +1,8 @@
-//! `Scene::read_view` and `replace_view`: writing another view into scene text keeps the
-//! rest of the scene (objects, comments), reads back exactly, and reading a view checks
-//! only the observer and the camera.
+//! `Scene::read_view`, `replace_view` and `replace_samples`: writing another view (or samples
+//! per pixel) into scene text keeps the rest of the scene (objects, comments), reads back
+//! exactly, and reading a view checks only the observer and the camera.
 
-use scene::{replace_view, Camera, Scene};
+use scene::{replace_samples, replace_view, Camera, Scene};
 use spacetime::LocalVelocity;
 
 /// A scene with comments, an observer at t = 1.5 off the axis and a sphere camera.
@@ -72,6 +72,26 @@ fn a_replaced_view_reads_back_exactly_and_keeps_the_rest() {
         assert!(text.contains("path = \"does-not-exist.png\""));
         assert!(!text.contains("# the source"), "the old camera is gone");
     }
+}
+
+#[test]
+fn samples_are_written_and_removed_keeping_the_rest() {
+    // The ball's texture must exist for a full read: a checker instead.
+    let base = text().replace(
+        "{ kind = \"image\", path = \"does-not-exist.png\" }",
+        "{ kind = \"checker\", rows = 4, cols = 8 }",
+    );
+    let sixteen = replace_samples(&base, "t.toml", 16).expect("edit");
+    assert!(sixteen.starts_with("# a comment that must survive\n"));
+    let scene = Scene::from_str(&sixteen, "t.toml").expect("valid");
+    assert_eq!((scene.samples, scene.supersample()), (16, 4));
+    assert_eq!(scene.camera.width(), 64);
+    let one = replace_samples(&sixteen, "t.toml", 1).expect("edit");
+    assert!(!one.contains("samples"), "{one}");
+    assert_eq!(Scene::from_str(&one, "t.toml").expect("valid").samples, 1);
+    let bad = replace_samples("[camera\n", "t.toml", 4).unwrap_err();
+    assert_eq!(bad.file, "t.toml");
+    assert!(bad.location.is_some());
 }
 
 #[test]

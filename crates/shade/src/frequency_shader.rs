@@ -115,9 +115,11 @@ pub fn blackbody_colour(g: f64, t: f64, brightness: Brightness) -> Option<[f32; 
 
 /// Where reference square `k` lies in a `width` × `height` image: `(x0, y0, side)` in pixels,
 /// top-left corner, or `None` if it does not fit. The side is min(width, height)/8 clamped to
-/// 8..=16 px; the squares sit side/4 from the top and left edges and side/4 apart.
+/// 8 px at least and 16 px at most, or max(width, height)/120 on pictures wider or taller than
+/// 1920 pixels (32 px at 3840, beside the larger type there); the squares sit side/4 from the
+/// top and left edges and side/4 apart.
 pub fn reference_square(k: usize, width: usize, height: usize) -> Option<(usize, usize, usize)> {
-    let side = (width.min(height) / 8).clamp(8, 16);
+    let side = (width.min(height) / 8).clamp(8, (width.max(height) / 120).max(16));
     let gap = side / 4;
     let x0 = gap + k * (side + gap);
     let y0 = gap;

@@ -1,18 +1,27 @@
 //! The overlay layer: everything drawn over a shaded picture — orientation marks
 //! ([`crate::marks`]), the travel-time legend and the labels of the frequency shader's
-//! reference squares ([`crate::legend`]), all text in the readable type of [`crate::text`] —
+//! reference squares ([`crate::legend`]), all text in the picture's type ([`crate::text`]) —
 //! drawn into one RGBA image of the picture's size, transparent where nothing is drawn.
 //!
-//! `godel shade` composites it over the picture ([`composite`]); the viewer serves it as a
-//! PNG and the page composites it over the picture it shades on the GPU, so both show the
+//! Every piece of text is placed by one layout ([`Overlays::layout`]) on a
+//! [`Board`](crate::placement::Board): the reference squares are blocked first, then the
+//! squares' temperatures, the legend's panel, the squares' title, the azimuth labels and the
+//! elevation labels are placed in that order, each only where it stays inside the picture and keeps a gap to
+//! everything placed before; a label that finds no room is left out. So no two labels or
+//! legends ever overlap or leave the picture, at any size and for any camera.
+//!
+//! `godel shade` composites the layer over the picture ([`composite`]); the viewer serves it as
+//! a PNG and the page composites it over the picture it shades on the GPU, so both show the
 //! same overlays from the same code. Compositing is the usual "over" rule per 8-bit channel:
 //! out = round((layer·α + picture·(255 − α)) / 255), α the layer's alpha.
 
 use image::{RgbImage, RgbaImage};
 use scene::Camera;
 
-use crate::legend::{draw_legend, label_reference_squares};
-use crate::marks::{bottom_band, draw_marks};
+use crate::legend::{reference_labels, reference_rects, Legend, Placed};
+use crate::marks::{bottom_band, draw_grid_and_ticks, mark_labels, Axis, MARK_COLOUR};
+use crate::placement::{Board, Rect};
+use crate::text::{type_size, unit, Label};
 
 /// What the layer shows.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -26,32 +35,115 @@ pub struct Overlays {
     pub reference_labels: Vec<f64>,
 }
 
+/// What a placed piece of the layout is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// The temperatures beside the reference squares, or the title below them.
+    ReferenceLabel,
+    /// The travel-time legend's panel (with everything on it).
+    Legend,
+    /// A label of the orientation marks.
+    Mark(Axis),
+}
+
+/// One placed piece of the layout: what it is, its box, and what it draws.
+#[derive(Clone, Debug)]
+pub struct Piece {
+    pub kind: Kind,
+    pub rect: Rect,
+    art: Art,
+}
+
+#[derive(Clone, Debug)]
+enum Art {
+    Text(Placed),
+    Legend(Box<Legend>),
+}
+
 impl Overlays {
     /// Whether the layer would be empty whatever the picture's size.
     pub fn is_empty(&self) -> bool {
         self.marks.is_none() && self.legend.is_none() && self.reference_labels.is_empty()
     }
 
+    /// Where the text goes on a `width` × `height` picture: every piece that finds room, in
+    /// the order of the module doc. No two pieces come closer than one unit of the type
+    /// (an eighth of its em), none leaves the picture or covers a reference square.
+    pub fn layout(&self, width: u32, height: u32) -> Vec<Piece> {
+        let mut board = Board::new(width, height, unit(type_size(width, height)));
+        let mut pieces = Vec::new();
+        let squares = reference_rects(self.reference_labels.len(), width, height);
+        for r in &squares {
+            board.block(*r);
+        }
+        let mut place = |board: &mut Board, kind, art: Art| {
+            let rect = match &art {
+                Art::Text(p) => p.rect(),
+                Art::Legend(l) => l.panel,
+            };
+            if board.place(rect) {
+                pieces.push(Piece { kind, rect, art });
+            }
+        };
+        // The temperatures, then the legend, then the squares' title (where the two compete
+        // for room, the legend's colour scale says more).
+        let squares_labels = reference_labels(&self.reference_labels, width, height);
+        if let Some(p) = squares_labels.temperatures {
+            place(&mut board, Kind::ReferenceLabel, Art::Text(p));
+        }
+        if let Some((min, max)) = self.legend {
+            // Above the azimuth labels, where there are marks.
+            let above = self.marks.map_or(0, |c| bottom_band(&c, width, height));
+            if let Some(legend) = Legend::new(width, height, min, max, above) {
+                place(&mut board, Kind::Legend, Art::Legend(Box::new(legend)));
+            }
+        }
+        if let Some(p) = squares_labels.title {
+            place(&mut board, Kind::ReferenceLabel, Art::Text(p));
+        }
+        if let Some(camera) = &self.marks {
+            for m in mark_labels(camera, width, height) {
+                let text = Placed {
+                    label: m.label,
+                    x: m.x,
+                    y: m.y,
+                };
+                place(&mut board, Kind::Mark(m.axis), Art::Text(text));
+            }
+        }
+        pieces
+    }
+
     /// The layer for a `width` × `height` picture; `None` when there is nothing to draw.
-    /// Marks first, then the square labels and the legend over them (the legend above the
-    /// marks' azimuth labels).
+    /// The grid and ticks first, then the pieces of [`Overlays::layout`] over them.
     pub fn draw(&self, width: u32, height: u32) -> Option<RgbaImage> {
         if self.is_empty() || width == 0 || height == 0 {
             return None;
         }
         let mut layer = RgbaImage::new(width, height);
         if let Some(camera) = &self.marks {
-            draw_marks(&mut layer, camera);
+            draw_grid_and_ticks(&mut layer, camera);
         }
-        if !self.reference_labels.is_empty() {
-            label_reference_squares(&mut layer, &self.reference_labels);
-        }
-        if let Some((min, max)) = self.legend {
-            // Above the azimuth labels, where there are marks.
-            let above = self.marks.map_or(0, |c| bottom_band(&c, width, height));
-            draw_legend(&mut layer, min, max, above);
+        for piece in self.layout(width, height) {
+            match &piece.art {
+                Art::Text(p) if matches!(piece.kind, Kind::Mark(_)) => {
+                    p.label.draw(&mut layer, p.x, p.y, MARK_COLOUR)
+                }
+                Art::Text(p) => p.draw(&mut layer),
+                Art::Legend(l) => l.draw(&mut layer),
+            }
         }
         Some(layer)
+    }
+}
+
+/// The label of a piece of text (`None` for the legend's panel).
+impl Piece {
+    pub fn label(&self) -> Option<&Label> {
+        match &self.art {
+            Art::Text(p) => Some(&p.label),
+            Art::Legend(_) => None,
+        }
     }
 }
 
@@ -75,23 +167,29 @@ pub fn composite(img: &mut RgbImage, layer: &RgbaImage) {
 mod tests {
     use super::*;
     use crate::legend::{FREQUENCY_TITLE, LEGEND_TITLE};
-    use crate::text::{readable_scale, text_height, text_width};
 
-    /// Opaque white (glyph ink) pixels of `layer` inside the rectangle.
-    fn ink(layer: &RgbaImage, x0: u32, y0: u32, w: u32, h: u32) -> usize {
-        (y0..(y0 + h).min(layer.height()))
-            .flat_map(|y| (x0..(x0 + w).min(layer.width())).map(move |x| (x, y)))
-            .filter(|&(x, y)| layer.get_pixel(x, y).0 == [255, 255, 255, 255])
+    /// White glyph ink (coverage above about 3/4 over the halo) inside the rectangle.
+    fn ink(layer: &RgbaImage, r: Rect) -> usize {
+        (r.y0.max(0)..r.y1.min(i64::from(layer.height())))
+            .flat_map(|y| (r.x0.max(0)..r.x1.min(i64::from(layer.width()))).map(move |x| (x, y)))
+            .filter(|&(x, y)| {
+                let p = layer.get_pixel(x as u32, y as u32).0;
+                p[3] > 200 && p[..3].iter().all(|&c| c >= 200)
+            })
             .count()
+    }
+
+    fn legend_only(min: f64, max: f64) -> Overlays {
+        Overlays {
+            legend: Some((min, max)),
+            ..Overlays::default()
+        }
     }
 
     #[test]
     fn nothing_to_draw_is_no_layer() {
         assert!(Overlays::default().draw(200, 100).is_none());
-        let legend = Overlays {
-            legend: Some((0.0, 5.0)),
-            ..Overlays::default()
-        };
+        let legend = legend_only(0.0, 5.0);
         assert!(legend.draw(0, 100).is_none());
         assert!(legend.draw(200, 100).is_some());
     }
@@ -99,37 +197,39 @@ mod tests {
     #[test]
     fn legend_title_is_written_right_of_the_bar_at_the_bottom() {
         let (w, h) = (1400, 300);
-        let layer = Overlays {
-            legend: Some((0.5, 6.0)),
-            ..Overlays::default()
-        }
-        .draw(w, h)
-        .unwrap();
-        let scale = readable_scale(w, h);
-        let th = text_height(scale);
-        let y = h - 3 * scale - th;
-        // The colour bar on the bottom line: violet at its left end, yellow at its right end.
-        let row: Vec<[u8; 4]> = (0..w).map(|x| layer.get_pixel(x, y + th / 2).0).collect();
-        let violet = row.iter().position(|p| *p == [68, 1, 84, 255]).unwrap() as u32;
-        let yellow = row.iter().rposition(|p| *p == [253, 231, 37, 255]).unwrap() as u32;
-        assert!(
-            violet < yellow && yellow < w / 3,
-            "bar from {violet} to {yellow}"
-        );
-        // Right of the bar and of the range's end ("6"): the title with its unit, all of it
-        // on the bottom line (about 4 × 20 ink pixels a glyph at scale 2).
-        let x = yellow + 4 * scale + text_width("6", scale) + scale;
-        let title = ink(&layer, x, y, w - x, th);
+        let layer = legend_only(0.5, 6.0).draw(w, h).unwrap();
+        let legend = Legend::new(w, h, 0.5, 6.0, 0).unwrap();
+        let (bar, panel) = (legend.bar, legend.panel);
+        // The colour bar: violet at its left end, yellow at its right end, in the left third.
+        let y = ((bar.y0 + bar.y1) / 2) as u32;
+        assert_eq!(layer.get_pixel(bar.x0 as u32, y).0, [68, 1, 84, 255]);
+        assert_eq!(layer.get_pixel(bar.x1 as u32 - 1, y).0, [253, 231, 37, 255]);
+        assert!(bar.x1 < i64::from(w) / 3, "{bar:?}");
+        // The range's ends beside the bar, the title with its unit right of the high end, all
+        // on the bottom line (about 14 ink pixels a glyph at 20-pixel type).
+        let (low, high) = (legend.low.rect(), legend.high.rect());
+        assert!(low.x1 <= bar.x0 && high.x0 >= bar.x1);
+        assert!(ink(&layer, low) > 10 && ink(&layer, high) > 10);
+        let title = legend.title.as_ref().expect("room for the title").rect();
+        assert!(title.x0 > high.x1 && title.x1 <= i64::from(w));
+        assert_eq!(title.y1, high.y1, "on the same line");
         let glyphs = LEGEND_TITLE.chars().filter(|c| *c != ' ').count();
-        assert!(title > glyphs * 40, "title ink at the bottom: {title}");
-        assert!(x + text_width(LEGEND_TITLE, scale) <= w);
-        // Nothing else: the rest of the layer is clear.
-        assert_eq!(
-            ink(&layer, 0, 0, w, y - 3 * scale),
-            0,
-            "nothing above the legend"
+        let title_ink = ink(&layer, title);
+        assert!(
+            title_ink > glyphs * 14,
+            "title ink at the bottom: {title_ink}"
         );
-        assert_eq!(layer.get_pixel(w / 2, h / 2).0[3], 0);
+        // The panel at the bottom-left holds it all; the rest of the layer is clear.
+        assert_eq!((panel.x0, panel.y1 > i64::from(h) - 20), (0, true));
+        assert!([low, high, title, bar]
+            .iter()
+            .all(|r| r.inside(panel.x1, panel.y1)));
+        let above = Rect::at(0, 0, i64::from(w), panel.y0);
+        assert!(layer
+            .enumerate_pixels()
+            .filter(|(x, y, _)| above.near(&Rect::at(i64::from(*x), i64::from(*y), 1, 1), 0))
+            .all(|(_, _, p)| p.0[3] == 0));
+        assert_eq!(layer.get_pixel(w - 1, h / 2).0[3], 0);
     }
 
     #[test]
@@ -141,13 +241,12 @@ mod tests {
             width: w,
             height: h,
         };
-        let with_marks = Overlays {
+        let overlays = Overlays {
             marks: Some(camera),
             legend: Some((0.0, 12.0)),
             ..Overlays::default()
-        }
-        .draw(w, h)
-        .unwrap();
+        };
+        let with_marks = overlays.draw(w, h).unwrap();
         let marks_only = Overlays {
             marks: Some(camera),
             ..Overlays::default()
@@ -166,37 +265,47 @@ mod tests {
                 );
             }
         }
-        // The legend's bar (its violet end) is just above that band.
-        let violet = (0..h)
-            .rev()
-            .find(|&y| (0..w).any(|x| with_marks.get_pixel(x, y).0 == [68, 1, 84, 255]))
-            .unwrap();
-        assert!(
-            violet < h - band && violet + band / 2 > h - band,
-            "bar bottom at {violet}"
-        );
+        // The legend's panel is just above that band, and every azimuth label was placed.
+        let pieces = overlays.layout(w, h);
+        let panel = pieces.iter().find(|p| p.kind == Kind::Legend).unwrap().rect;
+        let floor = i64::from(h - band);
+        assert!(panel.y1 <= floor && panel.y1 + 8 > floor, "{panel:?}");
+        let azimuths = pieces
+            .iter()
+            .filter(|p| p.kind == Kind::Mark(Axis::Azimuth))
+            .count();
+        let ticks = crate::marks::ticks(&camera);
+        let want = ticks.iter().filter(|t| t.axis == Axis::Azimuth).count();
+        assert_eq!(azimuths, want, "−105° to 105° in steps of 15°");
+        assert_eq!(want, 15);
     }
 
-    /// On a picture too narrow for a title even in 8-pixel type (a 240×60 sequence frame),
-    /// the title is left out rather than cut off at the picture's edge; the rest still shows.
+    /// On a picture too narrow for a title even in 10-pixel type (a 160×60 frame), the title
+    /// is left out rather than cut off at the picture's edge; the rest still shows.
     #[test]
     fn titles_too_wide_for_the_picture_are_left_out_not_cut_off() {
-        let (w, h) = (240, 60);
-        assert!(text_width(FREQUENCY_TITLE, 1) > w && text_width(LEGEND_TITLE, 1) > w);
+        let (w, h) = (160, 60);
+        for title in [FREQUENCY_TITLE, LEGEND_TITLE] {
+            assert!(Label::new(title, 10.0).width() > i64::from(w));
+        }
         for overlays in [
             Overlays {
                 reference_labels: vec![5800.0, 3500.0],
                 ..Overlays::default()
             },
-            Overlays {
-                legend: Some((0.0, 12.0)),
-                ..Overlays::default()
-            },
+            legend_only(0.0, 12.0),
         ] {
             let layer = overlays.draw(w, h).unwrap();
-            assert!(ink(&layer, 0, 0, w, h) > 0, "the labels are drawn");
+            assert!(
+                ink(&layer, Rect::at(0, 0, 160, 60)) > 0,
+                "the labels are drawn"
+            );
+            for piece in overlays.layout(w, h) {
+                let text = piece.label().map(|l| l.text.clone()).unwrap_or_default();
+                assert!(text != FREQUENCY_TITLE && text != LEGEND_TITLE, "{text}");
+            }
             assert_eq!(
-                ink(&layer, w - 3, 0, 3, h),
+                ink(&layer, Rect::at(157, 0, 3, 60)),
                 0,
                 "no text runs into the right edge"
             );
@@ -206,56 +315,43 @@ mod tests {
     #[test]
     fn reference_labels_name_the_temperatures_beside_the_squares() {
         let (w, h) = (640, 320);
-        let draw = |temps: &[f64]| {
-            Overlays {
-                reference_labels: temps.to_vec(),
-                ..Overlays::default()
-            }
-            .draw(w, h)
-            .unwrap()
+        let overlays = |temps: &[f64]| Overlays {
+            reference_labels: temps.to_vec(),
+            ..Overlays::default()
         };
-        let layer = draw(&[5800.0, 3500.0]);
-        let (x0, y0, side) =
-            crate::frequency_shader::reference_square(1, w as usize, h as usize).unwrap();
-        let (x0, y0, side) = (x0 as u32, y0 as u32, side as u32);
-        let scale = readable_scale(w, h);
-        let th = text_height(scale);
-        // "g = 1: 5800 K, 3500 K" right of the squares, on their line.
-        let x = x0 + side + side / 2;
-        let tw = text_width("g = 1: 5800 K, 3500 K", scale);
-        let beside = ink(&layer, x, 0, tw, y0 + side + th / 2);
-        assert!(beside > 250, "temperatures beside the squares: {beside}");
+        let layer = overlays(&[5800.0, 3500.0]).draw(w, h).unwrap();
+        let pieces = overlays(&[5800.0, 3500.0]).layout(w, h);
+        let squares = reference_rects(2, w, h);
+        let text = |p: &Piece| p.label().unwrap().text.clone();
         assert_eq!(
-            ink(&layer, x + tw + 2 * scale, 0, w, y0 + side),
-            0,
-            "nothing further"
+            pieces.iter().map(text).collect::<Vec<_>>(),
+            ["g = 1: 5800 K, 3500 K", FREQUENCY_TITLE]
         );
-        // The title below the squares, from the left edge of the first.
-        let (first, _, _) = crate::frequency_shader::reference_square(0, 640, 320).unwrap();
-        let below = ink(
-            &layer,
-            first as u32,
-            y0 + side + 1,
-            text_width(FREQUENCY_TITLE, scale),
-            3 * th,
-        );
-        assert!(below > 400, "title below the squares: {below}");
+        let (temps, title) = (pieces[0].rect, pieces[1].rect);
+        // The temperatures right of the squares, on their line; the title below them, from
+        // the left edge of the first.
+        let mid = (squares[1].y0 + squares[1].y1) / 2;
+        assert!(temps.x0 > squares[1].x1 && temps.y0 < mid && temps.y1 > mid);
+        assert!(ink(&layer, temps) > 100, "{}", ink(&layer, temps));
+        assert!(title.x0 == squares[0].x0 && title.y0 > squares[0].y1);
+        assert!(ink(&layer, title) > 200);
         // The squares themselves are the picture's: the layer leaves them clear.
-        assert_eq!(layer.get_pixel(x0 + 1, y0 + 1).0[3], 0);
+        for s in &squares {
+            assert_eq!(layer.get_pixel(s.x0 as u32 + 1, s.y0 as u32 + 1).0[3], 0);
+        }
         // Another temperature writes another label, at the same place.
-        let other = draw(&[5800.0, 9100.0]);
-        let differ = layer
-            .pixels()
+        let other = overlays(&[5800.0, 9100.0]).draw(w, h).unwrap();
+        let differ: Vec<(i64, i64)> = layer
+            .enumerate_pixels()
             .zip(other.pixels())
-            .enumerate()
-            .filter(|(_, (a, b))| a != b)
-            .map(|(i, _)| (i as u32 % w, i as u32 / w))
-            .collect::<Vec<_>>();
+            .filter(|((_, _, a), b)| a != b)
+            .map(|((x, y, _), _)| (i64::from(x), i64::from(y)))
+            .collect();
         assert!(!differ.is_empty(), "the label names the temperatures");
         assert!(
             differ
                 .iter()
-                .all(|&(px, py)| px >= x && py < y0 + side + th),
+                .all(|&(x, y)| temps.near(&Rect::at(x, y, 1, 1), 0)),
             "only the temperatures change"
         );
     }

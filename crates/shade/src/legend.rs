@@ -1,8 +1,8 @@
 //! False colour for light travel time and its legend: a colour bar in the bottom-left corner
-//! with the range's two ends, a title and the unit written in readable type
+//! with the range's two ends, a title and the unit written in the picture's type
 //! ([`crate::text`]), so that a picture shaded by travel time can be read without the
-//! command that made it; and the label of the frequency shader's reference squares. Both are
-//! drawn into the overlay layer ([`crate::layer`]).
+//! command that made it; and the labels of the frequency shader's reference squares. Both are
+//! laid out here and placed and drawn by the overlay layer ([`crate::layer`]).
 //!
 //! The colour map runs through five stops of the viridis map (dark violet for the shortest
 //! travel time, yellow for the longest), interpolated linearly in linear RGB.
@@ -11,7 +11,8 @@ use image::RgbaImage;
 
 use crate::colour::{rgb_to_srgb8, srgb8_to_linear};
 use crate::frequency_shader::{reference_square, REFERENCE_SQUARES};
-use crate::text::{draw_text, fill, readable_scale, text_height, text_width};
+use crate::placement::Rect;
+use crate::text::{fill, sizes_from, type_size, unit, Label};
 
 /// The viridis stops, 8-bit sRGB.
 const STOPS: [[u8; 3]; 5] = [
@@ -50,109 +51,191 @@ fn label(v: f64) -> String {
 
 /// The legend's title, with the unit: travel time is coordinate time −t_emit, in the
 /// scene's units (those of the Gödel parameter a, with c = 1).
-pub const LEGEND_TITLE: &str = "light travel time -t_emit (units of a, c = 1)";
+pub const LEGEND_TITLE: &str = "light travel time −t_emit (units of a, c = 1)";
 
 /// The title beside the frequency shader's reference squares: what the colours mean.
 pub const FREQUENCY_TITLE: &str = "frequency shift g: black body at g·T";
 
-/// Draws the legend of travel times `min`..`max` into the overlay layer `img`, in its
-/// bottom-left corner, `above` pixels up from the bottom edge (room for orientation marks'
-/// labels): `min`, the colour bar (violet at `min`, yellow at `max`), `max`, and the title
-/// with its unit (on the same line, or above it on narrow pictures), in the readable type of
-/// [`crate::text`], on a dark panel that hides whatever lies beneath. Layers too small for
-/// it (under 48×24 pixels, or with no room above `above`) are left as they are.
-pub fn draw_legend(img: &mut RgbaImage, min: f64, max: f64, above: u32) {
-    let (w, h) = (img.width(), img.height());
-    if w < 48 || h < 24 {
-        return;
+/// A label and the top-left corner of its box.
+#[derive(Clone, Debug)]
+pub struct Placed {
+    pub label: Label,
+    pub x: i64,
+    pub y: i64,
+}
+
+impl Placed {
+    /// The label's box.
+    pub fn rect(&self) -> Rect {
+        Rect::at(self.x, self.y, self.label.width(), self.label.height())
     }
-    let scale = readable_scale(w, h);
-    let s = i64::from(scale);
-    let th = i64::from(text_height(scale));
-    let bar_w = i64::from((w / 5).clamp(40, 256));
-    let margin = 3 * s;
-    let y = i64::from(h) - i64::from(above) - margin - th;
-    if y < 2 * s {
-        return;
-    }
-    // The line: low, bar, high, then the title (in smaller type if need be, or above the
-    // line where it would not fit).
-    let (low, high) = (label(min), label(max));
-    let x_bar = margin + i64::from(text_width(&low, scale)) + 3 * s;
-    let x_high = x_bar + bar_w + 3 * s;
-    let x_title = x_high + i64::from(text_width(&high, scale)) + 6 * s;
-    let fits = |k: u32| x_title + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w);
-    // The title on the line, in smaller type on the line, above the line, or (on pictures
-    // too narrow for it even in the smallest type) left out rather than cut off.
-    let title = if fits(scale) {
-        Some((x_title, y, scale))
-    } else if scale > 1 && fits(scale - 1) {
-        Some((
-            x_title,
-            y + th - i64::from(text_height(scale - 1)),
-            scale - 1,
-        ))
-    } else {
-        (1..=scale)
-            .rev()
-            .find(|&k| margin + i64::from(text_width(LEGEND_TITLE, k)) <= i64::from(w))
-            .map(|k| (margin, y - i64::from(text_height(k)) - 3 * s, k))
-    };
-    // A dark panel behind it all, so that it reads on any picture and over the marks.
-    let mut right = x_high + i64::from(text_width(&high, scale));
-    let mut top = y;
-    if let Some((tx, ty, ts)) = title {
-        right = right.max(tx + i64::from(text_width(LEGEND_TITLE, ts)));
-        top = top.min(ty);
-    }
-    let (right, top) = (right + 2 * s, top - 2 * s);
-    fill(img, 0, top, right, y + th + 2 * s - top, [12, 12, 12]);
-    let white = [255, 255, 255];
-    draw_text(img, margin, y, scale, &low, white);
-    for i in 0..bar_w {
-        let c = rgb_to_srgb8(false_colour(i as f64 / (bar_w - 1) as f64));
-        fill(img, x_bar + i, y, 1, th, c);
-    }
-    draw_text(img, x_high, y, scale, &high, white);
-    if let Some((tx, ty, ts)) = title {
-        draw_text(img, tx, ty, ts, LEGEND_TITLE, white);
+
+    /// Draws the label in white.
+    pub fn draw(&self, img: &mut RgbaImage) {
+        self.label.draw(img, self.x, self.y, [255, 255, 255]);
     }
 }
 
-/// Writes what the reference squares of a `w`×`h` picture show into its overlay layer
-/// `img`: beside them the unshifted colours' temperatures, `g = 1: 5800 K, 3500 K` (one per
-/// square shown, `temperatures` in object order), and below them the frequency title.
-/// Lines too long for the picture are written in smaller type (down to 8-pixel type); a
-/// line too long even then is left out rather than cut off mid-word.
-pub fn label_reference_squares(img: &mut RgbaImage, temperatures: &[f64]) {
-    let (w, h) = (img.width() as usize, img.height() as usize);
-    let shown = temperatures.len().min(REFERENCE_SQUARES);
-    let Some((x0, y0, side)) = (0..shown).rev().find_map(|k| reference_square(k, w, h)) else {
-        return;
+/// Height of the colour bar and of the reference squares' digits: DejaVu Sans's cap height,
+/// 0.73 em.
+fn cap_height(size: f32) -> i64 {
+    (0.73 * size).round() as i64
+}
+
+/// The travel-time legend laid out on a picture: a dark panel in the bottom-left corner with
+/// `min`, the colour bar (violet at `min`, yellow at `max`), `max`, and the title with its unit
+/// (on the same line, in smaller type on it, above it, or, on pictures too narrow for it even
+/// in 10-pixel type, left out rather than cut off).
+#[derive(Clone, Debug)]
+pub struct Legend {
+    /// The panel, which holds everything else.
+    pub panel: Rect,
+    pub low: Placed,
+    pub high: Placed,
+    pub bar: Rect,
+    pub title: Option<Placed>,
+}
+
+impl Legend {
+    /// The legend of travel times `min`..`max` on a `w` × `h` picture, its panel's bottom
+    /// `above` pixels up from the bottom edge (room for orientation marks' labels); `None`
+    /// where the picture has no room for it.
+    pub fn new(w: u32, h: u32, min: f64, max: f64, above: u32) -> Option<Legend> {
+        let size = type_size(w, h);
+        let u = unit(size);
+        let (wi, hi) = (i64::from(w), i64::from(h));
+        let margin = 3 * u;
+        let low = Label::new(&label(min), size);
+        let high = Label::new(&label(max), size);
+        let lh = low.height();
+        let y = hi - i64::from(above) - margin - lh;
+        let bar_w = i64::from((w / 5).clamp(40, 256));
+        let x_bar = margin + low.width() + u;
+        let x_high = x_bar + bar_w + u;
+        let x_title = x_high + high.width() + 3 * u;
+        let cap = cap_height(size);
+        let bar = Rect::at(x_bar, y + low.baseline() - cap, bar_w, cap);
+        // The title on the line (on its baseline, in smaller type if need be), else above it.
+        let fits = |x: i64, l: &Label| x + l.width() <= wi;
+        let on_line = sizes_from(size)
+            .map(|k| Label::new(LEGEND_TITLE, k))
+            .find(|l| fits(x_title, l))
+            .map(|l| (x_title, y + low.baseline() - l.baseline(), l));
+        let title = on_line.or_else(|| {
+            sizes_from(size)
+                .map(|k| Label::new(LEGEND_TITLE, k))
+                .find(|l| fits(margin, l))
+                .map(|l| (margin, y - l.height() - u, l))
+        });
+        let title = title.map(|(x, y, label)| Placed { label, x, y });
+        let low = Placed {
+            label: low,
+            x: margin,
+            y,
+        };
+        let high = Placed {
+            label: high,
+            x: x_high,
+            y,
+        };
+        let right = [Some(&high), title.as_ref()]
+            .into_iter()
+            .flatten()
+            .map(|p| p.rect().x1)
+            .max()
+            .unwrap_or(0);
+        let top = title.as_ref().map_or(y, |t| t.y.min(y));
+        let panel = Rect {
+            x0: 0,
+            y0: top - 2 * u,
+            x1: right + 2 * u,
+            y1: y + lh + 2 * u,
+        };
+        if !panel.inside(wi, hi) || w < 48 || h < 24 {
+            return None;
+        }
+        Some(Legend {
+            panel,
+            low,
+            high,
+            bar,
+            title,
+        })
+    }
+
+    /// Draws the legend into the overlay layer `img`, on its opaque dark panel.
+    pub fn draw(&self, img: &mut RgbaImage) {
+        let p = self.panel;
+        fill(img, p.x0, p.y0, p.x1 - p.x0, p.y1 - p.y0, [12, 12, 12]);
+        self.low.draw(img);
+        let b = self.bar;
+        let n = b.x1 - b.x0;
+        for i in 0..n {
+            let c = rgb_to_srgb8(false_colour(i as f64 / (n - 1).max(1) as f64));
+            fill(img, b.x0 + i, b.y0, 1, b.y1 - b.y0, c);
+        }
+        self.high.draw(img);
+        if let Some(t) = &self.title {
+            t.draw(img);
+        }
+    }
+}
+
+/// The reference squares shown for `count` objects on a `w` × `h` picture (drawn by the
+/// frequency shader into the picture itself: the layer keeps labels off them).
+pub fn reference_rects(count: usize, w: u32, h: u32) -> Vec<Rect> {
+    (0..count.min(REFERENCE_SQUARES))
+        .filter_map(|k| reference_square(k, w as usize, h as usize))
+        .map(|(x, y, side)| Rect::at(x as i64, y as i64, side as i64, side as i64))
+        .collect()
+}
+
+/// What the reference squares of a picture say: beside them the unshifted colours'
+/// temperatures, below them the frequency title.
+#[derive(Clone, Debug, Default)]
+pub struct ReferenceLabels {
+    pub temperatures: Option<Placed>,
+    pub title: Option<Placed>,
+}
+
+/// The labels of the reference squares of a `w`×`h` picture: `g = 1: 5800 K, 3500 K` (one
+/// per square shown, `temperatures` in object order) right of the squares, and the frequency
+/// title below them. A line too long for the picture is written in smaller type (down to 10
+/// pixels) or left out rather than cut off mid-word.
+pub fn reference_labels(temperatures: &[f64], w: u32, h: u32) -> ReferenceLabels {
+    let squares = reference_rects(temperatures.len(), w, h);
+    let (Some(first), Some(last)) = (squares.first(), squares.last()) else {
+        return ReferenceLabels::default();
     };
-    let temps: Vec<String> = temperatures[..shown]
+    let temps: Vec<String> = temperatures[..squares.len()]
         .iter()
         .map(|t| format!("{} K", t.round() as i64))
         .collect();
     let text = format!("g = 1: {}", temps.join(", "));
-    let readable = readable_scale(w as u32, h as u32);
+    let size = type_size(w, h);
     let fitting = |x: i64, text: &str| {
-        (1..=readable)
-            .rev()
-            .find(|&k| x + i64::from(text_width(text, k)) <= w as i64)
+        sizes_from(size)
+            .map(|k| (k, Label::new(text, k)))
+            .find(|(_, l)| x + l.width() <= i64::from(w))
     };
-    let white = [255, 255, 255];
-    let x = (x0 + side + side / 2) as i64;
-    if let Some(scale) = fitting(x, &text) {
-        let th = i64::from(text_height(scale));
-        let y = (y0 as i64 + (side as i64 - th) / 2).max(0);
-        draw_text(img, x, y, scale, &text, white);
-    }
-    // The title under the squares, left-aligned with the first.
-    let (first_x, _, _) = reference_square(0, w, h).unwrap_or((x0, y0, side));
-    let x = first_x as i64;
-    if let Some(scale) = fitting(x, FREQUENCY_TITLE) {
-        let y = (y0 + side) as i64 + (y0 as i64).max(i64::from(scale) * 2) + i64::from(scale);
-        draw_text(img, x, y, scale, FREQUENCY_TITLE, white);
+    let side = last.x1 - last.x0;
+    let x = last.x1 + side / 2;
+    let temperatures = fitting(x, &text).map(|(k, label)| {
+        // The digits centred on the squares.
+        let y = (last.y0 + side / 2 - label.baseline() + cap_height(k) / 2).max(0);
+        Placed { label, x, y }
+    });
+    // The title under the squares and the temperatures, left-aligned with the first square.
+    let below = temperatures
+        .as_ref()
+        .map_or(first.y1, |t| t.rect().y1.max(first.y1));
+    let title = fitting(first.x0, FREQUENCY_TITLE).map(|(k, label)| Placed {
+        label,
+        x: first.x0,
+        y: below + unit(k),
+    });
+    ReferenceLabels {
+        temperatures,
+        title,
     }
 }

@@ -25,7 +25,8 @@
 //! - [`shade_frequency`]: the frequency shader, objects as black bodies at g·T with
 //!   [`Brightness`] normalized or physical, and reference squares of the unshifted colours.
 //! - [`layer`]: the overlay layer (orientation marks, legend, labels) as one RGBA image,
-//!   composited over the picture here and over the GPU's picture by the viewer.
+//!   composited over the picture here and over the GPU's picture by the viewer; its text in
+//!   the embedded typeface ([`text`]), laid out so that no two labels overlap ([`placement`]).
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
 //! - [`ShadeError`]: every error, naming the file or field concerned.
 
@@ -41,6 +42,7 @@ pub mod hdr;
 pub mod layer;
 pub mod legend;
 pub mod marks;
+pub mod placement;
 pub mod script;
 pub mod settings;
 pub mod shading;

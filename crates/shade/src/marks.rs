@@ -16,13 +16,15 @@
 //!   them.
 //!
 //! The tick spacing is the smallest of 5°, 10°, 15°, 30°, 45°, 90° at which labels do not
-//! overlap. The marks are drawn into the RGBA overlay layer ([`crate::layer`]): ticks and
-//! labels opaque, grid lines translucent.
+//! overlap. The grid and the ticks are drawn into the RGBA overlay layer ([`crate::layer`]):
+//! ticks opaque, grid lines translucent; the labels ([`mark_labels`]) are placed by the layer
+//! with every other label, azimuths first, so that none overlaps another or leaves the
+//! picture (a label that finds no room is left out; its tick stays).
 
 use image::{Rgba, RgbaImage};
 use scene::{azimuth_elevation, direction_from, Camera};
 
-use crate::text::{draw_text, fill, readable_scale, text_height, text_width};
+use crate::text::{fill, type_size, unit, Label};
 
 /// Which angle a mark labels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,10 +50,18 @@ pub const MARK_COLOUR: [u8; 3] = [255, 255, 255];
 const GRID_COLOUR: [u8; 4] = [200, 220, 255, 89];
 const STEPS: [f64; 6] = [5.0, 10.0, 15.0, 30.0, 45.0, 90.0];
 
-/// The label of an angle: `30°`, `-45°`.
+/// The label of an angle: `30°`, `−45°` (with the minus sign U+2212).
 fn label(deg: f64) -> String {
-    format!("{}°", deg.round() as i64)
+    let d = deg.round() as i64;
+    if d < 0 {
+        format!("−{}°", -d)
+    } else {
+        format!("{d}°")
+    }
 }
+
+/// The widest label, whose width sets the azimuth spacing.
+const WIDEST: &str = "−180°";
 
 /// Angular extent (degrees) across the image horizontally and vertically.
 fn spans(camera: &Camera) -> (f64, f64) {
@@ -104,11 +114,12 @@ fn pixel(camera: &Camera, x: f64, y: f64) -> Option<(u32, u32)> {
 /// The labelled ticks for `camera` (sized as the picture they are drawn on).
 pub fn ticks(camera: &Camera) -> Vec<Tick> {
     let (w, h) = (camera.width(), camera.height());
-    let scale = readable_scale(w, h);
+    let size = type_size(w, h);
+    let widest = Label::new(WIDEST, size);
     let (h_span, v_span) = spans(camera);
-    let label_px = f64::from(text_width("-180°", scale) + 8 * scale);
+    let label_px = (widest.width() + 4 * unit(size)) as f64;
     let az_step = step(f64::from(w) / h_span, label_px);
-    let el_step = step(f64::from(h) / v_span, 2.5 * f64::from(text_height(scale)));
+    let el_step = step(f64::from(h) / v_span, 1.5 * widest.height() as f64);
     let mut out = Vec::new();
     let mut push = |axis, degrees: f64, pos: Option<(f64, f64)>, edge_y: Option<f64>| {
         let Some((x, y)) = pos else { return };
@@ -211,21 +222,27 @@ fn draw_grid(img: &mut RgbaImage, camera: &Camera, ticks: &[Tick]) {
     }
 }
 
+/// Length in pixels of a tick at type size `size`.
+fn tick_length(size: f32) -> i64 {
+    4 * unit(size) + 2
+}
+
 /// Height in pixels of the band along the bottom edge that the azimuth ticks and labels of
 /// a `width`×`height` picture made with `camera` occupy (0 for a fisheye, whose labels run
-/// along the horizon): where the layer keeps other overlays out.
+/// along the horizon): where the layer puts the legend above.
 pub fn bottom_band(camera: &Camera, width: u32, height: u32) -> u32 {
     if matches!(camera, Camera::Fisheye { .. }) || width < 16 || height < 16 {
         return 0;
     }
-    let s = readable_scale(width, height);
-    // Tick (4s + 2), gap (2s), label line, and a gap above it (s).
-    4 * s + 2 + 2 * s + text_height(s) + s
+    let size = type_size(width, height);
+    let u = unit(size);
+    (tick_length(size) + u + Label::new("0°", size).height() + u) as u32
 }
 
-/// Draws the grid, the ticks and their labels into `img`, the overlay layer of a picture made
-/// with `camera`'s geometry at any size (the camera is resized to the layer).
-pub fn draw_marks(img: &mut RgbaImage, camera: &Camera) {
+/// Draws the grid and the ticks into `img`, the overlay layer of a picture made with
+/// `camera`'s geometry at any size (the camera is resized to the layer). Pictures under
+/// 16×16 pixels get no marks.
+pub fn draw_grid_and_ticks(img: &mut RgbaImage, camera: &Camera) {
     let (w, h) = (img.width(), img.height());
     if w < 16 || h < 16 {
         return;
@@ -233,55 +250,77 @@ pub fn draw_marks(img: &mut RgbaImage, camera: &Camera) {
     let camera = camera.with_size(w, h);
     let ticks = ticks(&camera);
     draw_grid(img, &camera, &ticks);
-    let scale = readable_scale(w, h);
-    let s = i64::from(scale);
-    let len = 4 * s + 2;
+    let size = type_size(w, h);
+    let s = unit(size);
+    let len = tick_length(size);
     let (wi, hi) = (i64::from(w), i64::from(h));
-    let th = i64::from(text_height(scale));
     let fisheye = matches!(camera, Camera::Fisheye { .. });
-    // Labels are placed azimuths first; one that would overlap a placed label is left out
-    // (its tick stays).
-    let mut placed: Vec<[i64; 4]> = Vec::new();
-    let mut label = |img: &mut RgbaImage, x: i64, y: i64, text: &str| {
-        let r = [x, y, x + i64::from(text_width(text, scale)), y + th];
-        let overlaps = placed
-            .iter()
-            .any(|p| r[0] < p[2] + s && p[0] < r[2] + s && r[1] < p[3] && p[1] < r[3]);
-        if !overlaps {
-            draw_text(img, x, y, scale, text, MARK_COLOUR);
-            placed.push(r);
-        }
-    };
     for t in &ticks {
         let (x, y) = (i64::from(t.col), i64::from(t.row));
-        let tw = i64::from(text_width(&t.label, scale));
         match (t.axis, fisheye) {
             (Axis::Azimuth, false) => {
-                fill(img, x - s / 2, hi - len, s.max(1), len, MARK_COLOUR);
-                fill(img, x - s / 2, 0, s.max(1), len, MARK_COLOUR);
-                let lx = (x - tw / 2).clamp(0, (wi - tw).max(0));
-                label(img, lx, hi - len - th - 2 * s, &t.label);
+                fill(img, x - s / 2, hi - len, s, len, MARK_COLOUR);
+                fill(img, x - s / 2, 0, s, len, MARK_COLOUR);
             }
             (Axis::Elevation, false) => {
-                fill(img, 0, y - s / 2, len, s.max(1), MARK_COLOUR);
-                fill(img, wi - len, y - s / 2, len, s.max(1), MARK_COLOUR);
-                let ly = (y - th / 2).clamp(0, (hi - th).max(0));
-                label(img, len + 2 * s, ly, &t.label);
+                fill(img, 0, y - s / 2, len, s, MARK_COLOUR);
+                fill(img, wi - len, y - s / 2, len, s, MARK_COLOUR);
             }
-            (Axis::Azimuth, true) => {
-                fill(img, x - s / 2, y - len / 2, s.max(1), len, MARK_COLOUR);
-                let lx = (x - tw / 2).clamp(0, (wi - tw).max(0));
-                label(img, lx, (y + len).min(hi - th), &t.label);
-            }
-            (Axis::Elevation, true) => {
-                fill(img, x - len / 2, y - s / 2, len, s.max(1), MARK_COLOUR);
-                label(
-                    img,
-                    x + len,
-                    (y - th / 2).clamp(0, (hi - th).max(0)),
-                    &t.label,
-                );
-            }
+            (Axis::Azimuth, true) => fill(img, x - s / 2, y - len / 2, s, len, MARK_COLOUR),
+            (Axis::Elevation, true) => fill(img, x - len / 2, y - s / 2, len, s, MARK_COLOUR),
         }
     }
+}
+
+/// A label of the marks and where it would go: the top-left corner of its box.
+#[derive(Clone, Debug)]
+pub struct MarkLabel {
+    pub axis: Axis,
+    pub label: Label,
+    pub x: i64,
+    pub y: i64,
+}
+
+/// The labels of the ticks of `camera` on a `width` × `height` picture, azimuths first, each
+/// beside its tick: azimuths above the bottom ticks (a fisheye's below its horizon ticks),
+/// elevations right of the left ticks (of its meridian ticks), moved inside the picture
+/// where they would stick out; elevation labels that would reach into the band of the
+/// azimuth labels ([`bottom_band`]) are left out, so that no elevation reads as an azimuth.
+/// Empty under 16×16 pixels.
+pub fn mark_labels(camera: &Camera, width: u32, height: u32) -> Vec<MarkLabel> {
+    if width < 16 || height < 16 {
+        return Vec::new();
+    }
+    let camera = camera.with_size(width, height);
+    let size = type_size(width, height);
+    let s = unit(size);
+    let len = tick_length(size);
+    let (wi, hi) = (i64::from(width), i64::from(height));
+    let fisheye = matches!(camera, Camera::Fisheye { .. });
+    let band = i64::from(bottom_band(&camera, width, height));
+    let mut ticks = ticks(&camera);
+    ticks.sort_by_key(|t| t.axis == Axis::Elevation);
+    ticks
+        .into_iter()
+        .filter_map(|t| {
+            let label = Label::new(&t.label, size);
+            let (lw, lh) = (label.width(), label.height());
+            let (x, y) = (i64::from(t.col), i64::from(t.row));
+            let centred_x = (x - lw / 2).clamp(0, (wi - lw).max(0));
+            let centred_y = (y - lh / 2).clamp(0, (hi - lh).max(0));
+            let (x, y) = match (t.axis, fisheye) {
+                (Axis::Azimuth, false) => (centred_x, hi - len - s - lh),
+                (Axis::Elevation, false) => (len + s, centred_y),
+                (Axis::Azimuth, true) => (centred_x, (y + len / 2 + s).min(hi - lh)),
+                (Axis::Elevation, true) => (x + len / 2 + s, centred_y),
+            };
+            let in_band = t.axis == Axis::Elevation && y + lh > hi - band;
+            (!in_band).then_some(MarkLabel {
+                axis: t.axis,
+                label,
+                x,
+                y,
+            })
+        })
+        .collect()
 }

@@ -4,7 +4,7 @@
 
 use image::RgbaImage;
 use scene::{azimuth_elevation, Camera};
-use shade::marks::{draw_marks, ticks, Axis, MARK_COLOUR};
+use shade::marks::{draw_grid_and_ticks, ticks, Axis, MARK_COLOUR};
 
 fn cameras() -> Vec<Camera> {
     vec![
@@ -77,7 +77,10 @@ fn each_tick_sits_within_a_pixel_of_its_angle() {
                 t.col,
                 t.row
             );
-            assert_eq!(t.label, format!("{}°", t.degrees.round() as i64));
+            // Whole degrees, negative ones with the minus sign U+2212.
+            let d = t.degrees.round() as i64;
+            let sign = if d < 0 { "\u{2212}" } else { "" };
+            assert_eq!(t.label, format!("{sign}{}°", d.abs()));
         }
     }
 }
@@ -106,7 +109,7 @@ fn panorama_ticks_match_the_closed_form_and_are_drawn() {
     assert!(up.row < 50);
 
     let mut img = RgbaImage::new(880, 100);
-    draw_marks(&mut img, &c);
+    draw_grid_and_ticks(&mut img, &c);
     for t in &ts {
         assert_eq!(
             img.get_pixel(t.col, t.row).0[..3],
@@ -124,7 +127,7 @@ fn marks_follow_the_picture_size() {
     let c = cameras()[1];
     let big = c.with_size(1440, 720);
     let mut img = RgbaImage::new(1440, 720);
-    draw_marks(&mut img, &c);
+    draw_grid_and_ticks(&mut img, &c);
     for t in ticks(&big) {
         assert_eq!(
             img.get_pixel(t.col, t.row).0[..3],
@@ -135,6 +138,6 @@ fn marks_follow_the_picture_size() {
     }
     // Too small a picture is left alone.
     let mut tiny = RgbaImage::new(8, 8);
-    draw_marks(&mut tiny, &c);
+    draw_grid_and_ticks(&mut tiny, &c);
     assert!(tiny.pixels().all(|p| p.0 == [0, 0, 0, 0]));
 }

@@ -34,6 +34,16 @@ pub enum Branch {
     Inbound,
 }
 
+impl Branch {
+    /// `outbound` or `inbound`, as printed.
+    pub fn name(self) -> &'static str {
+        match self {
+            Branch::Outbound => "outbound",
+            Branch::Inbound => "inbound",
+        }
+    }
+}
+
 /// One light ray from the source to the target.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadowRay {

@@ -9,13 +9,18 @@
 //! - [`Dop853`]: an adaptive embedded Runge–Kutta 8(5,3) integrator with dense output.
 //! - [`Geodesic`], [`trace`]: a geodesic launched from a local direction, integrated with
 //!   stop conditions, sampled evenly from the dense output.
+//! - [`curve`]: one geodesic from a local direction by either method (numeric or closed
+//!   form), its inputs checked, sampled evenly (`godel geodesic`, the Python module).
 //! - [`ConstantsOfMotion`]: E = −p_t, L = p_φ, p_z and the normalization, with drift reports.
 //! - Gödel's symmetries: [`KillingField`] (the five Killing fields), [`Isometry`] (finite
 //!   isometries and their differentials), [`ExactGeodesic`] (closed-form geodesics through
-//!   any event), [`shadow_rays`] (light rays from a source at rest to an event).
+//!   any event), [`shadow_rays`] (light rays from a source at rest to an event), and
+//!   [`connection`]: those rays with what an observer measures of them.
 //! - Parallel transport: along the closed forms ([`transport`]) and integrated with a
 //!   geodesic in any metric ([`propagator`]); what observers measure of a light ray's
 //!   polarization ([`polarization`]).
+//!
+//! - [`message::short`]: how numbers are written in messages, in every crate.
 //!
 //! Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), Gödel parameter
 //! `a`, optical horizon at r = 2a; user-facing coordinates cylindrical (t, r, φ, z), integration in
@@ -23,7 +28,9 @@
 
 pub mod closed_form;
 pub mod connect;
+pub mod connection;
 mod constants;
+pub mod curve;
 mod dop853;
 mod frame;
 mod geodesic;
@@ -31,6 +38,7 @@ mod godel;
 pub mod isometry;
 pub mod killing;
 pub mod measure;
+pub mod message;
 mod metric;
 mod minkowski;
 pub mod normal;

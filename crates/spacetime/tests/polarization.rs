@@ -66,8 +66,11 @@ fn modulo_k(m: &Godel, x: Event, k: FourVector, w: FourVector) -> [f64; 3] {
     let dir = [kc[1] / kc[0], kc[2] / kc[0], kc[3] / kc[0]];
     let wc = measure::vector_components(&g, &frame, w);
     let a = wc[1] * dir[0] + wc[2] * dir[1] + wc[3] * dir[2];
-    polarization::orthogonal_unit([wc[1] - a * dir[0], wc[2] - a * dir[1], wc[3] - a * dir[2]], dir)
-        .expect("a vector")
+    polarization::orthogonal_unit(
+        [wc[1] - a * dir[0], wc[2] - a * dir[1], wc[3] - a * dir[2]],
+        dir,
+    )
+    .expect("a vector")
 }
 
 /// The propagator integrated with the ray (the numeric tracer's) keeps the invariants to

@@ -5,7 +5,7 @@
 // shader in settings.shaders; 'texture' picks a texture choice (an object with a kind).
 'use strict';
 
-import { PROJECTIONS } from './look.js';
+import { PROJECTIONS, SAMPLES } from './look.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -58,6 +58,8 @@ export function describeControls(info, view) {
           step: 0.01 },
         { id: 'direction', label: 'moving', path: ['preset'], kind: 'select',
           options: presets.map((p) => p[0]), labels: presets.map((p) => p[1]) },
+        { id: 'samples', label: 'samples per pixel', path: ['samples'], kind: 'select',
+          options: SAMPLES },
       ],
     });
   }

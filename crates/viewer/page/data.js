@@ -38,10 +38,12 @@ async function fetchOk(url) {
 export const fetchJson = async (url) => (await fetchOk(url)).json();
 const fetchArray = async (url) => parseArray(await (await fetchOk(url)).arrayBuffer());
 
-// Which channels the layers of `settings` read (as Shading::pixel reads the record).
-export function channelsFor(settings, lights) {
+// Which channels the layers of `settings` read (as Shading::pixel reads the record); looking
+// around (`look`), also those that tell one image from another where the sphere is read
+// smoothly (t_emit, u, v: crates/look/src/sample.rs).
+export function channelsFor(settings, lights, look = false) {
   const on = new Set(settings.shaders);
-  const need = new Set(['id']);
+  const need = new Set(look ? ['id', 'u', 'v', 't_emit'] : ['id']);
   const travel = settings.time.mode === 'travel';
   const paints = on.has('texture') || (on.has('time') && !travel) || on.has('light');
   if (paints) ['u', 'v'].forEach((c) => need.add(c));

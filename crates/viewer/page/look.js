@@ -106,8 +106,13 @@ export function newLook(file) {
     speed: 0,
     preset: 'forward',
     direction: [...file.forward],
+    // Samples per pixel (`godel look --samples`): 2×2 points in each pixel smooth the edges.
+    samples: '4',
   };
 }
+
+// The samples per pixel a look offers.
+export const SAMPLES = ['1', '4', '9', '16'];
 
 // The camera axes of a look in the moving observer's frame (the file's axes turned).
 export function lookAxes(look, file) {
@@ -143,6 +148,7 @@ export function lookView(look, file, width, height) {
     forward,
     up,
     velocity: { speed: look.speed, direction: look.direction },
+    samples: Number(look.samples || 1),
   };
 }
 
@@ -164,7 +170,8 @@ export function presetDirection(preset, look, file, objectDirections) {
 }
 
 // Where output pixel (col, row) of a look looks: its own direction, the static one, D, and the
-// sphere pixel whose record it shows; null outside the camera's picture.
+// sphere pixel its centre falls in (whose record the hover shows); null outside the camera's
+// picture.
 export function lookPixel(view, sphere, col, row) {
   const d = cameraDirection(view.camera, col, row);
   if (!d) return null;

@@ -92,7 +92,8 @@ function normalizeMax(rgb) {
 // ---- reference squares: reference_square(k, width, height)
 
 export function referenceSquare(k, width, height) {
-  const side = Math.min(Math.max(Math.floor(Math.min(width, height) / 8), 8), 16);
+  const most = Math.max(16, Math.floor(Math.max(width, height) / 120));
+  const side = Math.min(Math.max(Math.floor(Math.min(width, height) / 8), 8), most);
   const gap = Math.floor(side / 4);
   const x0 = gap + k * (side + gap);
   const y0 = gap;

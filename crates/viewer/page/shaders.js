@@ -1,8 +1,9 @@
 // godel view: the GLSL ES 3.00 shaders. SHADE_FS reproduces the `shade` crate's per-pixel
 // rule (crates/shade/src/shading.rs: texture, time, frequency and light layers multiplied,
 // the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
-// the `look` crate (camera direction → aberration → nearest sphere pixel, g times the Doppler
-// factor). For an anti-aliased file (s×s samples per pixel) it colours each sample and
+// the `look` crate (camera direction → aberration → the sphere read smoothly: bilinear within
+// one image of one object, nearest elsewhere; g times the Doppler factor), with s×s samples
+// per pixel. For an anti-aliased file (s×s samples per pixel) it colours each sample and
 // averages the linear colours of a pixel's samples before encoding (a box filter). It writes
 // one texel per output pixel into an offscreen RGBA8 texture, row 0 of the picture in
 // texture row 0; the display pass (displaySource) then draws that texture on the
@@ -182,12 +183,97 @@ vec3 falseColour(float s) {
   return a + f * (b - a);
 }
 
-// Linear RGB of data pixel p, its frequency shift multiplied by doppler. Which layers run is
-// fixed at compile time (TEXTURE, TIME, TRAVEL, FREQUENCY, LIGHT).
+// What shading reads of a record: the object id (0 background, 1 failed, 2 step budget,
+// 3 not traced, 4 + k object k) and the channels the compiled layers use (the others 0:
+// software WebGL fetches whatever the code names).
 #define WINDOW (TIME && !TRAVEL)
 #define PAINTS (TEXTURE || WINDOW || LIGHT)
-vec3 shadePixel(ivec2 p, float doppler) {
-  uint id = texelFetch(uId, p, 0).r;
+#define LAMBERT ((TEXTURE || WINDOW) && !LIGHT)
+struct Rec {
+  uint id;
+  float u, v, g, t, cosI;
+};
+
+Rec recordAt(ivec2 p) {
+  Rec r = Rec(texelFetch(uId, p, 0).r, 0.0, 0.0, 0.0, 0.0, 0.0);
+#if PAINTS
+  r.u = texelFetch(uU, p, 0).r;
+  r.v = texelFetch(uV, p, 0).r;
+#endif
+#if FREQUENCY
+  r.g = texelFetch(uG, p, 0).r;
+#endif
+#if TIME
+  r.t = texelFetch(uT, p, 0).r;
+#endif
+#if LAMBERT
+  r.cosI = float(texelFetch(uCos, p, 0).r) / 65535.0;
+#endif
+  return r;
+}
+
+// The data pixels a sample reads and their weights (summing to 1): one pixel, or in look mode
+// four sphere pixels blended bilinearly where they show one image of one object
+// (crates/look/src/sample.rs).
+ivec2 tapP[4];
+float tapW[4];
+int tapN;
+
+void onePixel(ivec2 p) {
+  tapP[0] = p;
+  tapW[0] = 1.0;
+  tapN = 1;
+}
+
+#if SMOOTH
+// u moved by a whole turn to lie within half a turn of near.
+float unwrapped(float u, float near) { return u - floor(u - near + 0.5); }
+
+// The record the taps make: the weighted mean of their fields (u on the circle).
+Rec tapRecord() {
+  Rec r = recordAt(tapP[0]);
+  if (tapN == 1) return r;
+  float u0 = r.u;
+  r.u = 0.0; r.v = 0.0; r.g = 0.0; r.t = 0.0; r.cosI = 0.0;
+  for (int k = 0; k < 4; k++) {
+    Rec o = recordAt(tapP[k]);
+    float w = tapW[k];
+    r.u += w * unwrapped(o.u, u0);
+    r.v += w * o.v;
+    r.g += w * o.g;
+    r.t += w * o.t;
+    r.cosI += w * o.cosI;
+  }
+  r.u -= floor(r.u);
+  return r;
+}
+#else
+Rec tapRecord() { return recordAt(tapP[0]); }
+#endif
+
+// Light plane k at the taps: the weighted mean where all are finite, else the heaviest tap's.
+float tapLight(int k) {
+  float x = texelFetch(uLight, ivec3(tapP[0], k), 0).r;
+#if SMOOTH
+  if (tapN == 4) {
+    float sum = 0.0, best = -1.0, heaviest = x;
+    bool all = true;
+    for (int j = 0; j < 4; j++) {
+      float y = texelFetch(uLight, ivec3(tapP[j], k), 0).r;
+      all = all && finite(y);
+      sum += tapW[j] * y;
+      if (tapW[j] > best) { best = tapW[j]; heaviest = y; }
+    }
+    x = all ? sum : heaviest;
+  }
+#endif
+  return x;
+}
+
+// Linear RGB of the taps' record, its frequency shift multiplied by doppler. Which layers run
+// is fixed at compile time (TEXTURE, TIME, TRAVEL, FREQUENCY, LIGHT).
+vec3 shadeRecord(Rec r, float doppler) {
+  uint id = r.id;
   if (id < 4u) {
     return id == 0u ? BACKGROUND : id == 1u ? FAILED : id == 2u ? STEP_BUDGET : NOT_TRACED;
   }
@@ -195,15 +281,15 @@ vec3 shadePixel(ivec2 p, float doppler) {
   vec3 c = vec3(1.0);
 #if PAINTS
   vec4 move = texelFetch(uObjects, ivec2(0, o), 0);
-  float u = move.x * texelFetch(uU, p, 0).r + move.z;
-  float v = move.y * texelFetch(uV, p, 0).r + move.w;
+  float u = move.x * r.u + move.z;
+  float v = move.y * r.v + move.w;
   vec3 first = sampleTexture(texelFetch(uObjects, ivec2(1, o), 0), u, v);
 #endif
 #if TEXTURE
   c *= first;
 #endif
 #if TIME
-  float t = texelFetch(uT, p, 0).r;
+  float t = r.t;
 #if TRAVEL
   c *= falseColour((-t - uTravelLo) / (uTravelHi - uTravelLo));
 #else
@@ -213,7 +299,7 @@ vec3 shadePixel(ivec2 p, float doppler) {
 #endif
 #if FREQUENCY
   vec4 body = texelFetch(uObjects, ivec2(3, o), 0);
-  float g = texelFetch(uG, p, 0).r * doppler;
+  float g = r.g * doppler;
   if (!finite(g) || g <= 0.0) return FAILED;
   c *= blackbody(g, body.x, body.y);
 #endif
@@ -224,24 +310,24 @@ vec3 shadePixel(ivec2 p, float doppler) {
   vec3 l = vec3(uAmbient);
   for (int k = 0; k < 16; k++) {
     if (k >= uLights) break;
-    float x = texelFetch(uLight, ivec3(p, k), 0).r;
+    float x = tapLight(k);
     x = finite(x) ? max(x, 0.0) : 0.0;
     l += uLightW[k] * x;
   }
   c *= l;
 #elif TEXTURE || WINDOW
-  float cosI = float(texelFetch(uCos, p, 0).r) / 65535.0;
-  c *= 0.25 + 0.75 * cosI;
+  c *= 0.25 + 0.75 * r.cosI;
 #endif
   return c;
 }
 
-// Data pixel p as displayed, in linear light before the 8-bit encoding: hit pixels scaled by
-// 2^ev and put through the tone curve, status colours (display codes) as they are;
+// The taps' record as displayed, in linear light before the 8-bit encoding: hit pixels scaled
+// by 2^ev and put through the tone curve, status colours (display codes) as they are;
 // crates/shade/src/shading.rs and texture_shader.rs (displayed).
-vec3 displayPixel(ivec2 p, float doppler) {
-  vec3 c = shadePixel(p, doppler);
-  if (texelFetch(uId, p, 0).r < 4u || c == FAILED) return c;
+vec3 displayTaps(float doppler) {
+  Rec r = tapRecord();
+  vec3 c = shadeRecord(r, doppler);
+  if (r.id < 4u || c == FAILED) return c;
   c *= uGain;
   return vec3(toneMap(c.r), toneMap(c.g), toneMap(c.b));
 }
@@ -275,11 +361,52 @@ bool pixelDirection(vec2 centre, out vec3 d) {
 #endif
 
 #if LOOK
-// The sphere pixel p that output pixel q shows, and the Doppler factor; false where the camera
-// shows nothing.
-bool lookSource(ivec2 q, out ivec2 p, out float doppler) {
+// Sphere column col wrapped around, row as it is.
+ivec2 wrapped(float col, float row) {
+  int c = int(col) % uSize.x;
+  return ivec2(c < 0 ? c + uSize.x : c, int(row));
+}
+
+// The taps of the sphere at position (x, y) (crates/look/src/sample.rs): with SMOOTH, the four
+// pixels whose centres surround it where they show one image of one object (all hits of one
+// object, emission times within 0.5, u on the circle and v within 0.25), else (and without
+// SMOOTH, while a drag turns the view) the one it falls in.
+void sphereTaps(vec2 pos) {
+  onePixel(wrapped(floor(pos.x), clamp(floor(pos.y), 0.0, float(uSize.y - 1))));
+#if SMOOTH
+  vec2 c = pos - 0.5;
+  vec2 c0 = floor(c);
+  if (c0.y < 0.0 || c0.y + 1.0 > float(uSize.y - 1)) return;
+  vec2 f = c - c0;
+  ivec2 q[4] = ivec2[4](wrapped(c0.x, c0.y), wrapped(c0.x + 1.0, c0.y),
+    wrapped(c0.x, c0.y + 1.0), wrapped(c0.x + 1.0, c0.y + 1.0));
+  uint id = texelFetch(uId, q[0], 0).r;
+  if (id < 4u) return;
+  float u0 = texelFetch(uU, q[0], 0).r;
+  vec3 lo = vec3(1e30), hi = vec3(-1e30);
+  for (int k = 0; k < 4; k++) {
+    if (texelFetch(uId, q[k], 0).r != id) return;
+    vec3 tuv = vec3(texelFetch(uT, q[k], 0).r, unwrapped(texelFetch(uU, q[k], 0).r, u0),
+      texelFetch(uV, q[k], 0).r);
+    lo = min(lo, tuv);
+    hi = max(hi, tuv);
+  }
+  vec3 spread = hi - lo;
+  if (!(spread.x <= 0.5 && spread.y <= 0.25 && spread.z <= 0.25)) return;
+  tapN = 4;
+  for (int k = 0; k < 4; k++) tapP[k] = q[k];
+  tapW[0] = (1.0 - f.x) * (1.0 - f.y);
+  tapW[1] = f.x * (1.0 - f.y);
+  tapW[2] = (1.0 - f.x) * f.y;
+  tapW[3] = f.x * f.y;
+#endif
+}
+
+// Sets the taps of the sample at picture position at (pixel corners at integers) and its
+// Doppler factor; false where the camera shows nothing.
+bool lookSample(vec2 at, out float doppler) {
   vec3 d;
-  if (!pixelDirection(vec2(q) + 0.5, d)) return false;
+  if (!pixelDirection(at, d)) return false;
   vec3 own = d.x * uF + d.y * uR + d.z * uUp;
   // Aberration (look crate, spacetime::aberrate): the static observer's direction n.
   float along = dot(own, uVDir);
@@ -289,8 +416,7 @@ bool lookSource(ivec2 q, out ivec2 p, out float doppler) {
   float beta = asin(clamp(dot(n, uUp0), -1.0, 1.0));
   float x = float(uSize.x) * (alpha / (2.0 * PI) + 0.5);
   float y = float(uSize.y) * (0.5 - beta / PI);
-  int col = int(floor(x)) % uSize.x;
-  p = ivec2(col < 0 ? col + uSize.x : col, clamp(int(floor(y)), 0, uSize.y - 1));
+  sphereTaps(vec2(x, y));
   return true;
 }
 #endif
@@ -305,9 +431,17 @@ bool inside(ivec2 q, ivec4 r) {
 void main() {
   ivec2 q = ivec2(gl_FragCoord.xy);   // row 0 of the picture is texture row 0
 #if LOOK
-  ivec2 p;
-  float doppler;
-  vec3 c = lookSource(q, p, doppler) ? displayPixel(p, doppler) : NOT_TRACED;
+  // s×s samples at the sub-pixel points (col + (i + ½)/s, row + (j + ½)/s), as godel look
+  // --samples reads them; their colours averaged as below.
+  vec3 c = vec3(0.0);
+  for (int j = 0; j < SUPERSAMPLE; j++) {
+    for (int i = 0; i < SUPERSAMPLE; i++) {
+      float doppler;
+      vec2 at = vec2(q) + (vec2(i, j) + 0.5) / float(SUPERSAMPLE);
+      c += lookSample(at, doppler) ? displayTaps(doppler) : NOT_TRACED;
+    }
+  }
+  c /= float(SUPERSAMPLE * SUPERSAMPLE);
 #elif SUPERSAMPLE > 1
   // An anti-aliased file: picture pixel q is the s×s block of samples from s·q; each sample
   // is coloured and tone-mapped, and the linear colours averaged (box filter,
@@ -315,12 +449,14 @@ void main() {
   vec3 c = vec3(0.0);
   for (int j = 0; j < SUPERSAMPLE; j++) {
     for (int i = 0; i < SUPERSAMPLE; i++) {
-      c += displayPixel(q * SUPERSAMPLE + ivec2(i, j), 1.0);
+      onePixel(q * SUPERSAMPLE + ivec2(i, j));
+      c += displayTaps(1.0);
     }
   }
   c /= float(SUPERSAMPLE * SUPERSAMPLE);
 #else
-  vec3 c = displayPixel(q, 1.0);
+  onePixel(q);
+  vec3 c = displayTaps(1.0);
 #endif
   vec4 o = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
 #if REFS
@@ -335,11 +471,12 @@ void main() {
 }`;
 
 // The shading program's source for `features`: {texture, time, travel, frequency, light, look,
-// images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
-// supersample (samples per pixel along each side, 1 when absent).
+// smooth, images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
+// supersample (samples per pixel along each side, 1 when absent: a sampled file's, or a
+// look's).
 export function shadeSource(features) {
-  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'images', 'refs',
-    'overlay'];
+  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'smooth', 'images',
+    'refs', 'overlay'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
   defines.push(`#define CAMERA ${features.camera || 0}`);
   defines.push(`#define SUPERSAMPLE ${features.supersample || 1}`);

@@ -72,9 +72,11 @@ export function featuresFor(settings, info, data, look, uniforms) {
     frequency: on.has('frequency'),
     light: on.has('light'),
     look: Boolean(look),
-    // Samples per pixel along each side, box-filtered by the shading pass (never in a look:
-    // a sampled sphere is refused as a sphere, as `godel look` refuses it).
-    supersample: look ? 1 : info.supersample,
+    smooth: Boolean(look && look.smooth),
+    // Samples per pixel along each side, box-filtered by the shading pass: the file's, or
+    // in a look the view's (a sampled sphere is refused as a sphere, as `godel look`
+    // refuses it).
+    supersample: look ? Math.round(Math.sqrt(look.view.samples)) : info.supersample,
     camera: look ? CAMERAS[look.view.camera.kind] : 0,
     images: imagesFor(settings, info, data).length > 0,
     refs: uniforms.uRef0[1][2] > 0 || uniforms.uRef1[1][2] > 0,

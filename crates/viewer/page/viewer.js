@@ -63,6 +63,7 @@ let describe = () => {};
 let frameDrawn = true;
 let fixedSize = null;      // [w, h] canvas pixels set by a script, else the layout decides
 const pan = { zoom: 1, offset: [0, 0], fitted: true };
+let dragging = null;       // the canvas point of the last pointer move while the button is down
 
 function lookMode() {
   return viewer.look !== null;
@@ -76,7 +77,11 @@ function picture() {
   viewer.look.direction = L.presetDirection(viewer.look.preset, viewer.look, viewer.view.view,
     viewer.view.object_directions);
   const view = L.lookView(viewer.look, viewer.view.view, canvas.width, canvas.height);
-  return { width: view.camera.width, height: view.camera.height, look: { view, sphere: sphere() } };
+  // While the mouse turns the view, one sample per pixel from the nearest sphere pixel (the
+  // frame rate); once it lets go, the chosen samples, read smoothly as `godel look` reads.
+  if (dragging) view.samples = 1;
+  return { width: view.camera.width, height: view.camera.height,
+    look: { view, sphere: sphere(), smooth: !dragging } };
 }
 
 function sphere() {
@@ -185,7 +190,7 @@ async function draw() {
   let need;
   let images;
   try {
-    need = channelsFor(settings, viewer.info.lights);
+    need = channelsFor(settings, viewer.info.lights, lookMode());
     images = imagesFor(settings, viewer.info, data);
   } catch (e) {
     showError(e.message);
@@ -267,8 +272,6 @@ async function draw() {
 viewer.idle = () => !frameQueued && !loading && !shadeDirty && !overlayPending();
 
 // ---- the mouse: drag to turn (look) or pan, wheel to zoom, hover for the record
-
-let dragging = null;
 
 function canvasPoint(event) {
   const canvas = $('image');
@@ -544,7 +547,10 @@ async function start() {
     if (dragging) onDrag(event);
     hoverAt(event);
   });
-  canvas.addEventListener('pointerup', () => { dragging = null; });
+  canvas.addEventListener('pointerup', () => {
+    dragging = null;
+    if (lookMode()) changed();
+  });
   canvas.addEventListener('wheel', onWheel, { passive: false });
   canvas.addEventListener('dblclick', () => { if (!lookMode()) { fit(); changed(false); } });
   window.addEventListener('resize', layout);

@@ -14,12 +14,15 @@
 //! "forward": [x, y, z], "up": [x, y, z], "velocity": {"speed": 0.5, "direction": [x, y, z]}}`,
 //! with the camera fields of a scene file (`h_fov_deg`, `v_fov_deg` for a panorama,
 //! `fov_deg` for a pinhole or fisheye) and the axes in the moving observer's own frame, the
-//! velocity in the static observer's, as in `godel look`.
+//! velocity in the static observer's, as in `godel look`; an optional `"samples": N` (a
+//! square number, 1 if absent) reads N points per pixel. The sphere is read smoothly, as
+//! `godel look` reads it by default (bilinear within one image of one object).
 //!
 //! Like every route these pass [`crate::guard::check`] (Host, Origin, JSON bodies within
 //! [`crate::MAX_BODY_BYTES`]); a look picture is made within the server's bound on concurrent
-//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] pixels, made in
-//! bands of rows so that its memory is its RGB bytes and a band's records; its settings
+//! work ([`crate::limit::WorkLimit`]) and has at most [`max_look_pixels`] samples (pixels
+//! times samples per pixel), made in bands of rows so that its memory is its RGB bytes and a
+//! band's records; its settings
 //! are prepared as `/api/png`'s ([`ViewerState::prepare`]: caps on lamps and sources, image
 //! textures only from the allowed folders).
 
@@ -31,7 +34,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
 use datafile::DataFile;
-use look::{look_rows, LookView, SphereSource};
+use look::{look_rows, samples_view, Filter, LookView, Sampling, SphereSource};
 use scene::{Camera, Scene};
 use serde::{Deserialize, Serialize};
 use shade::{ShadeSettings, Shading};
@@ -182,6 +185,13 @@ pub struct ViewJson {
     pub forward: [f64; 3],
     pub up: [f64; 3],
     pub velocity: VelocityJson,
+    /// Samples per pixel of the look (a square number, `godel look --samples`); 1 if absent.
+    #[serde(default = "one_sample")]
+    pub samples: u32,
+}
+
+fn one_sample() -> u32 {
+    1
 }
 
 /// `GET /api/view`.
@@ -209,6 +219,7 @@ fn view_info(viewer: &ViewerState) -> ViewInfo {
             speed: observer.velocity.speed,
             direction: observer.velocity.direction,
         },
+        samples: 1,
     });
     let (sphere, sphere_error, object_directions) = match (SphereSource::of(data), &read) {
         (Ok(_), Ok((observer, camera))) => {
@@ -274,9 +285,12 @@ struct LookRequest {
     view: ViewJson,
 }
 
-/// The requested view, checked, and the settings prepared for it (orientation marks for
-/// the view's camera).
-fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading), ApiError> {
+/// The requested view, checked, its sampling (smooth, with the view's samples per pixel), and
+/// the settings prepared for it (orientation marks for the view's camera).
+fn prepare_look(
+    viewer: &ViewerState,
+    body: &[u8],
+) -> Result<(LookView, Sampling, Shading), ApiError> {
     let mut json = serde_json::Deserializer::from_slice(body);
     let request: LookRequest = serde_path_to_error::deserialize(&mut json)
         .map_err(|e| ApiError::bad_request(format!("look: {}: {}", e.path(), e.inner())))?;
@@ -291,16 +305,24 @@ fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading)
         ))
     })?;
     let camera = v.camera.camera()?;
-    let pixels = camera.width() as u64 * camera.height() as u64;
+    scene::samples_per_side(i64::from(v.samples), camera.width(), camera.height())
+        .map_err(|m| ApiError::bad_request(format!("view: camera.samples: {m}")))?;
+    let pixels = camera.width() as u64 * camera.height() as u64 * u64::from(v.samples);
     let most = max_look_pixels(viewer);
     if pixels > most {
         return Err(ApiError::bad_request(format!(
-            "view: camera: {}×{} is {pixels} pixels, more than this viewer makes ({most}: the \
-             data file's own count or 3840×2160); use godel look for larger pictures",
+            "view: camera: {}×{} pixels × {} samples per pixel: {pixels} pixels to look up, more \
+             than this viewer makes ({most}: the data file's own count or 3840×2160); use godel \
+             look for larger pictures",
             camera.width(),
-            camera.height()
+            camera.height(),
+            v.samples
         )));
     }
+    let sampling = Sampling {
+        filter: Filter::Smooth,
+        samples: v.samples,
+    };
     let look_view = LookView::new(camera, v.forward, v.up, velocity)
         .map_err(|e| ApiError::bad_request(format!("view: {e}")))?;
     // Prepared for the loaded file: the looked file has the same objects, lights and event.
@@ -308,33 +330,43 @@ fn prepare_look(viewer: &ViewerState, body: &[u8]) -> Result<(LookView, Shading)
         .prepare(&request.settings)
         .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
     shading.mark_camera(&camera);
-    Ok((look_view, shading))
+    Ok((look_view, sampling, shading))
 }
 
-/// Most pixels of a look picture remapped at once: the picture is made in bands of rows,
-/// each band's records (about 80 bytes a pixel) shaded and dropped before the next, so a
+/// Most samples of a look picture remapped at once: the picture is made in bands of rows,
+/// each band's records (about 80 bytes a sample) shaded and dropped before the next, so a
 /// 3840×2160 view takes its RGB bytes and about 20 MB of records at a time.
 const BAND_PIXELS: usize = 1 << 18;
 
-/// The picture of the requested view, shaded: look, then shade, band by band of rows
-/// (`look::look_rows`); the overlays drawn once over the whole.
+/// The picture of the requested view, shaded: look, then shade (its samples averaged), band
+/// by band of rows (`look::look_rows`); the overlays drawn once over the whole.
 fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiError> {
-    let (view, shading) = prepare_look(viewer, body)?;
-    let source =
-        SphereSource::of(&viewer.data).map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
+    let (view, sampling, shading) = prepare_look(viewer, body)?;
+    let bad = |e: look::LookError| ApiError::bad_request(format!("look: {e}"));
+    let source = SphereSource::of(&viewer.data).map_err(bad)?;
+    let (samples, s) = samples_view(&view, sampling.samples).map_err(bad)?;
     let (w, h) = (view.camera.width(), view.camera.height());
-    let band = u32::try_from(BAND_PIXELS / w.max(1) as usize)
+    let sample_row = w as usize * (s * s) as usize;
+    let band = u32::try_from(BAND_PIXELS / sample_row.max(1))
         .unwrap_or(u32::MAX)
         .max(1);
     let mut rgb = Vec::with_capacity(w as usize * h as usize * 3);
     let mut rows = Vec::new();
+    let mut header = viewer.data.header.clone();
+    header.supersample = s;
     for start in (0..h).step_by(band as usize) {
         let end = start.saturating_add(band).min(h);
-        let (records, lights) = look_rows(&viewer.data, &source, &view, start..end);
+        let (records, lights) = look_rows(
+            &viewer.data,
+            &source,
+            &samples,
+            sampling.filter,
+            s * start..s * end,
+        );
         let part = DataFile {
-            header: viewer.data.header.clone(),
-            width: w as usize,
-            height: (end - start) as usize,
+            header: header.clone(),
+            width: (w * s) as usize,
+            height: ((end - start) * s) as usize,
             records,
             lights,
             polarization: viewer.data.polarization,
@@ -352,7 +384,7 @@ async fn overlay(State(state): State<Arc<LookState>>, body: Bytes) -> Result<Res
     let ticket = viewer.work().admit()?;
     ticket
         .run(move || {
-            let (view, shading) = prepare_look(&viewer, &body)?;
+            let (view, _, shading) = prepare_look(&viewer, &body)?;
             crate::responses::overlay_png(
                 shading.overlay(view.camera.width(), view.camera.height()),
             )

@@ -145,6 +145,27 @@ async fn look_pictures_have_a_bounded_size() {
         "{message}"
     );
     assert!(message.contains("godel look"), "{message}");
+    // Samples count: 1930×1080 is within the bound, with 4 samples per pixel it is not; and
+    // samples are a square number.
+    body["view"]["camera"] = serde_json::json!({"kind": "sphere", "width": 1930, "height": 1080});
+    body["view"]["samples"] = serde_json::json!(4);
+    let (status, answer) = send(data(), post("/api/look/png", body.to_string())).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(
+        error_of(&answer).contains("8337600 pixels"),
+        "{}",
+        error_of(&answer)
+    );
+    body["view"]["camera"] = serde_json::json!({"kind": "sphere", "width": 16, "height": 8});
+    body["view"]["samples"] = serde_json::json!(3);
+    let (status, answer) = send(data(), post("/api/look/png", body.to_string())).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(
+        error_of(&answer).starts_with("view: camera.samples: must be a square number"),
+        "{}",
+        error_of(&answer)
+    );
+    body["view"]["samples"] = serde_json::json!(1);
     // The scene's own limits hold too (a side beyond 20000).
     body["view"]["camera"] = serde_json::json!({"kind": "sphere", "width": 40000, "height": 1});
     let (status, answer) = send(data(), post("/api/look/png", body.to_string())).await;

@@ -1,10 +1,12 @@
 //! Looking around a full-sphere data file in the browser, against `godel look` then
-//! `godel shade` of the same view and settings: within one 8-bit step per channel. Excused:
-//! output pixels whose direction falls within 0.01 of a source pixel's width of its edge, where
-//! the nearest-neighbour choice of the GPU's single-precision trigonometry (SwiftShader's is
-//! good to about 1e-3 pixel here) may differ from the CPU's f64: both are the nearest pixel to
-//! within rounding. Also: dragging turns the view without asking the
-//! server, and a boost along +x turns the ball ahead blue and the one behind red.
+//! `godel shade` of the same view, samples per pixel and settings: within one 8-bit step per
+//! channel. Excused: output pixels with a sample whose direction falls within 0.01 of a source
+//! pixel's width of its edge or of the line through its centre, where the choice of the
+//! pixel (nearest neighbour) or of the four pixels (smooth reading) made by the GPU's
+//! single-precision trigonometry (SwiftShader's is good to about 1e-3 pixel here) may differ
+//! from the CPU's f64: both are right to within rounding. Also: dragging turns the view
+//! without asking the server, and a boost along +x turns the ball ahead blue and the one
+//! behind red.
 
 use std::path::Path;
 
@@ -107,6 +109,11 @@ fn look_view(view: &Value) -> LookView {
     .unwrap()
 }
 
+/// The samples per pixel of a saved view.
+fn samples(view: &Value) -> u64 {
+    view["samples"].as_u64().unwrap_or(1)
+}
+
 /// `godel look` of `view` then `godel shade` with `settings`: the picture and the looked data.
 fn godel_look(
     sphere: &Path,
@@ -133,6 +140,7 @@ fn godel_look(
             d[1],
             d[2]
         ),
+        format!("--samples={}", samples(view)),
         format!("--output={}", out.with_extension("exr").display()),
     ];
     for (field, flag) in [
@@ -165,13 +173,28 @@ fn godel_look(
     )
 }
 
-/// Whether output pixel (col, row) looks within 0.01 pixel of a source pixel's edge.
-fn near_source_edge(view: &LookView, sphere: &SphereSource, col: usize, row: usize) -> bool {
-    let Some(p) = pixel_look(view, col as u32, row as u32) else {
-        return false;
+/// Whether a sample of output pixel (col, row) (s×s of them) looks within 0.01 pixel of a
+/// source pixel's edge or of the line through its centre.
+fn near_source_edge(
+    view: &LookView,
+    s: u32,
+    sphere: &SphereSource,
+    col: usize,
+    row: usize,
+) -> bool {
+    let samples = LookView {
+        camera: view.camera.supersampled(s),
+        ..*view
     };
-    let pos = sphere.position(p.static_dir);
-    pos.iter().any(|x| (x - x.round()).abs() < 1e-2)
+    (0..s * s).any(|k| {
+        let (c, r) = (s * col as u32 + k % s, s * row as u32 + k / s);
+        let Some(p) = pixel_look(&samples, c, r) else {
+            return false;
+        };
+        let pos = sphere.position(p.static_dir);
+        pos.iter()
+            .any(|x| (2.0 * x - (2.0 * x).round()).abs() < 2e-2)
+    })
 }
 
 /// Compares a browser picture with `godel look` + `godel shade` of its body; returns
@@ -190,11 +213,12 @@ fn check_against_godel(sphere: &Path, picture: &Path, out: &Path) -> (u8, usize,
         picture.display()
     );
     let view = look_view(&body["view"]);
+    let s = (samples(&body["view"]) as f64).sqrt().round() as u32;
     let source = SphereSource::of(&DataFile::read(sphere).unwrap()).unwrap();
     let c = compare(&gpu, want.as_raw(), w);
     for &(col, row) in &c.off {
         assert!(
-            near_source_edge(&view, &source, col, row),
+            near_source_edge(&view, s, &source, col, row),
             "{}: pixel ({col}, {row}) differs by more than one step from godel look: GPU {:?}, \
              CPU {:?}, source position {:?}",
             picture.display(),
@@ -249,8 +273,14 @@ fn looking_around_on_the_gpu_equals_godel_look() {
     let cases = vec![
         json!({"look": {"projection": "pinhole", "fov": 90, "yaw": 30, "pitch": 10, "speed": 0},
                "settings": with(&[Texture], &|s| s.grid = true)}),
+        json!({"look": {"projection": "pinhole", "fov": 40, "yaw": 0, "pitch": 0, "speed": 0.5,
+                        "preset": "+x", "samples": "1"},
+               "settings": with(&[Texture], &|_| {})}),
+        json!({"look": {"projection": "pinhole", "fov": 40, "yaw": 90, "pitch": 0, "speed": 0,
+                        "samples": "16"},
+               "settings": with(&[Texture, Frequency], &|_| {})}),
         json!({"look": {"projection": "pinhole", "fov": 60, "yaw": -20, "pitch": -5,
-                 "speed": 0.6, "preset": "+x"},
+                 "speed": 0.6, "preset": "+x", "samples": "4"},
         "settings": with(&[Texture, Frequency], &|s| {
             s.brightness = BrightnessMode::Physical;
         })}),

@@ -1,0 +1,103 @@
+//! The data file's channels as named planes of values, exactly as the file stores them
+//! (README.md, "The data file"): what the EXR encoder writes, and what other readers of a
+//! traced image in memory (the Python module) hand out, so that both hold the same numbers.
+//!
+//! *No value where there is none:* the physical channels (`u` … `cos_i`, `dir_*`, `light_k`)
+//! hold NaN where a record's status is not "hit", and `view_*` holds NaN where a pixel was not
+//! traced; `object` (−1 for none) and `status` are always set. The table of channels
+//! ([`PHYSICAL_CHANNELS`], [`VIEW_CHANNELS`], [`POLARIZATION_CHANNELS`]) also says how reading puts each back into a
+//! [`PixelRecord`].
+
+use crate::record::{PixelRecord, RayStatus};
+use crate::DataFile;
+
+/// Reading a record field as f32.
+pub type Get = fn(&PixelRecord) -> f32;
+/// Writing a record field from f32.
+pub type Set = fn(&mut PixelRecord, f32);
+
+/// The physical f32 channels (NaN in the file where the status is not "hit"), with their
+/// record fields.
+pub const PHYSICAL_CHANNELS: [(&str, Get, Set); 12] = [
+    ("u", |r| r.u, |r, s| r.u = s),
+    ("v", |r| r.v, |r, s| r.v = s),
+    ("g", |r| r.g, |r, s| r.g = s),
+    ("t_emit", |r| r.t_emit, |r, s| r.t_emit = s),
+    ("x", |r| r.x, |r, s| r.x = s),
+    ("y", |r| r.y, |r, s| r.y = s),
+    ("z", |r| r.z, |r, s| r.z = s),
+    ("lambda", |r| r.lambda, |r, s| r.lambda = s),
+    ("dir_x", |r| r.dir[0], |r, s| r.dir[0] = s),
+    ("dir_y", |r| r.dir[1], |r, s| r.dir[1] = s),
+    ("dir_z", |r| r.dir[2], |r, s| r.dir[2] = s),
+    ("cos_i", |r| r.cos_i, |r, s| r.cos_i = s),
+];
+
+/// The camera ray's direction (NaN in the file where the pixel was not traced).
+pub const VIEW_CHANNELS: [(&str, Get, Set); 3] = [
+    ("view_x", |r| r.view[0], |r, s| r.view[0] = s),
+    ("view_y", |r| r.view[1], |r, s| r.view[1] = s),
+    ("view_z", |r| r.view[2], |r, s| r.view[2] = s),
+];
+
+/// The polarization channels (NaN in the file where the status is not "hit"; present only in
+/// files with [`DataFile::polarization`]).
+pub const POLARIZATION_CHANNELS: [(&str, Get, Set); 3] = [
+    ("pol_x", |r| r.pol[0], |r, s| r.pol[0] = s),
+    ("pol_y", |r| r.pol[1], |r, s| r.pol[1] = s),
+    ("pol_z", |r| r.pol[2], |r, s| r.pol[2] = s),
+];
+
+/// Name of the channel holding light plane `k`.
+pub fn light_channel_name(k: usize) -> String {
+    format!("light_{k}")
+}
+
+/// The values of one channel, one per record, row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Plane {
+    F32(Vec<f32>),
+    U32(Vec<u32>),
+}
+
+impl DataFile {
+    /// Every channel of the data file with its values as stored: `object` (f32, −1 for
+    /// none), `status` (u32 codes), the physical channels, `view_*`, `pol_*` (where
+    /// [`DataFile::polarization`]) and `light_k`, in that
+    /// order.
+    pub fn planes(&self) -> Vec<(String, Plane)> {
+        let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
+        let physical = |r: &PixelRecord, v: f32| if r.has_emission() { v } else { f32::NAN };
+        let traced = |r: &PixelRecord| r.status != RayStatus::NotTraced;
+        let mut out = vec![
+            (
+                "object".to_string(),
+                Plane::F32(plane(&|r| r.object as f32)),
+            ),
+            (
+                "status".to_string(),
+                Plane::U32(self.records.iter().map(|r| r.status.code()).collect()),
+            ),
+        ];
+        for (name, get, _) in PHYSICAL_CHANNELS {
+            let values = plane(&|r| physical(r, get(r)));
+            out.push((name.to_string(), Plane::F32(values)));
+        }
+        for (name, get, _) in VIEW_CHANNELS {
+            let values = plane(&|r| if traced(r) { get(r) } else { f32::NAN });
+            out.push((name.to_string(), Plane::F32(values)));
+        }
+        if self.polarization {
+            for (name, get, _) in POLARIZATION_CHANNELS {
+                let values = plane(&|r| physical(r, get(r)));
+                out.push((name.to_string(), Plane::F32(values)));
+            }
+        }
+        for (k, values) in self.lights.iter().enumerate() {
+            let values = self.records.iter().zip(values);
+            let values = values.map(|(r, &v)| physical(r, v)).collect();
+            out.push((light_channel_name(k), Plane::F32(values)));
+        }
+        out
+    }
+}

@@ -1,0 +1,101 @@
+//! What `-o` names for the commands that write a data file and its preview (`render`,
+//! `merge`): a FOLDER that receives `NAME.exr` and `NAME.png` (NAME the scene's name or
+//! `--name`), or one of the two files itself, `x.exr` or `x.png`, the other then written
+//! beside it with the other extension — as `shade` and `look` take the file they write.
+
+use crate::args::usage;
+use shade::hdr::PictureFormat;
+use std::path::{Path, PathBuf};
+
+/// Where a data file and its preview go.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum OutPair {
+    /// `FOLDER/NAME.exr` and `FOLDER/NAME.png`.
+    Folder(PathBuf),
+    /// The two files named by `-o x.exr` or `-o x.png`.
+    Files { exr: PathBuf, png: PathBuf },
+}
+
+impl OutPair {
+    /// What `path` (given to `flag`) names: a file when it ends in `.exr` or `.png`, else a
+    /// folder. `name_given` says whether `--name` was given: it chooses NAME in a folder and
+    /// is refused beside a file name, which already says it.
+    pub fn parse(flag: &str, path: &Path, name_given: bool) -> anyhow::Result<OutPair> {
+        if PictureFormat::from_path(path).is_none() {
+            return Ok(OutPair::Folder(path.to_path_buf()));
+        }
+        if name_given {
+            return Err(usage(
+                "--name",
+                format!(
+                    "not used when {flag} names the files ({}); give {flag} a folder to choose NAME",
+                    path.display()
+                ),
+            ));
+        }
+        Ok(OutPair::Files {
+            exr: path.with_extension("exr"),
+            png: path.with_extension("png"),
+        })
+    }
+
+    /// The folder the files go to (`.` for a bare file name).
+    pub fn folder(&self) -> &Path {
+        match self {
+            OutPair::Folder(dir) => dir,
+            OutPair::Files { exr, .. } => exr
+                .parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .unwrap_or(Path::new(".")),
+        }
+    }
+
+    /// The data file and the preview for a scene named `name`.
+    pub fn files(&self, name: &str) -> (PathBuf, PathBuf) {
+        match self {
+            OutPair::Folder(dir) => (
+                dir.join(format!("{name}.exr")),
+                dir.join(format!("{name}.png")),
+            ),
+            OutPair::Files { exr, png } => (exr.clone(), png.clone()),
+        }
+    }
+
+    /// The two files' names within [`OutPair::folder`], for checking them before any work.
+    pub fn names(&self, name: &str) -> Vec<String> {
+        let (exr, png) = self.files(name);
+        [exr, png]
+            .iter()
+            .filter_map(|p| p.file_name())
+            .map(|n| n.to_string_lossy().into_owned())
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folders_and_file_pairs() {
+        let folder = OutPair::parse("--output", Path::new("out"), true).unwrap();
+        assert_eq!(folder.folder(), Path::new("out"));
+        assert_eq!(
+            folder.files("ref"),
+            (PathBuf::from("out/ref.exr"), PathBuf::from("out/ref.png"))
+        );
+        for given in ["pics/x.png", "pics/x.exr", "pics/x.PNG"] {
+            let pair = OutPair::parse("--output", Path::new(given), false).unwrap();
+            assert_eq!(pair.folder(), Path::new("pics"));
+            let (exr, png) = pair.files("ignored");
+            assert_eq!(exr.file_stem().unwrap(), "x");
+            assert_eq!(exr.extension().unwrap(), "exr");
+            assert_eq!(png.extension().unwrap(), "png");
+            assert_eq!(pair.names("ignored"), ["x.exr", "x.png"]);
+        }
+        let bare = OutPair::parse("--output", Path::new("y.exr"), false).unwrap();
+        assert_eq!(bare.folder(), Path::new("."));
+        let e = OutPair::parse("--output", Path::new("y.png"), true).unwrap_err();
+        assert!(e.to_string().contains("--name"), "{e}");
+    }
+}

@@ -1,0 +1,193 @@
+"""godel in Python: see the Gödel universe from inside, from a notebook.
+
+Calls godel's Rust crates directly (no subprocess), through the same code as the ``godel``
+command line, so that the numbers are the command line's, bit for bit:
+
+- :func:`render` traces a scene into an :class:`Image` (``godel render``);
+- :func:`read` reads a data file any ``godel`` command wrote;
+- :class:`Image`: the channels as numpy arrays, :meth:`Image.rgb` / :meth:`Image.hdr`
+  shade it as ``godel shade`` does, :meth:`Image.save` writes the data file;
+- :func:`geodesic`: one light ray or massive particle (``godel geodesic``);
+- :func:`connect`: every light ray from a source at rest to an event (``godel connect``).
+
+Conventions (README.md, docs/physics.md): c = 1, signature (−,+,+,+), Gödel parameter
+``a``, optical horizon at r = 2a, pseudo-Cartesian coordinates (t, x, y, z) with
+x = r cos φ, y = r sin φ. Bad input raises ``ValueError`` with the command line's message,
+naming the file, line and field of a scene, or the keyword argument.
+"""
+
+import os
+from typing import Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _godel, _progress
+from ._image import Image
+
+__all__ = ["Image", "connect", "geodesic", "read", "render"]
+
+SceneLike = Union[str, "os.PathLike[str]", None]
+
+
+def _scene_source(scene: SceneLike) -> Tuple[Optional[str], Optional[str]]:
+    """(path, text) of a scene argument: a path, TOML text (a str with a line break), or None."""
+    if scene is None:
+        return None, None
+    if isinstance(scene, str) and "\n" in scene:
+        return None, scene
+    return os.fspath(scene), None
+
+
+def render(
+    scene: SceneLike = None,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    samples: Optional[int] = None,
+    method: Optional[str] = None,
+    max_past: Optional[float] = None,
+    threads: Optional[int] = None,
+    progress: bool = True,
+) -> Image:
+    """Traces a scene, as ``godel render`` does, and returns its :class:`Image`.
+
+    ``scene`` is a path to a scene file, TOML text (any ``str`` with a line break), or None
+    for the built-in reference scene. ``width``, ``height``, ``samples`` (rays per pixel, a
+    square number), ``method`` (``"numeric"`` or ``"exact"``) and ``max_past`` (how far
+    into the past rays are followed, coordinate time) replace the scene's fields for this
+    render and are checked like the scene file; ``threads`` is the number of worker threads
+    (default: one per core; at most 8 per core). The records are those ``godel render``
+    writes for the same scene and overrides, bit for bit, whatever the thread count.
+
+    ``progress`` shows a progress bar (tqdm's when installed, in Jupyter too, else a plain
+    line on standard error). Ctrl-C (or a notebook's interrupt) stops the render within one
+    tile per thread and raises ``KeyboardInterrupt``. A bad scene or value raises
+    ``ValueError`` with the command line's message (``file:line:column: field: …``).
+    """
+    path, text = _scene_source(scene)
+    job = _godel.RenderJob(path, text, width, height, samples, method, max_past, threads)
+    bar = _progress.bar(job.total, job.name) if progress else None
+    ended = False
+    try:
+        while not job.wait(0.1):
+            if bar is not None:
+                bar.update_to(job.done)
+        ended = True
+    finally:
+        if not ended:
+            # Interrupted (or any other exception): stop tracing, and wait for the tiles
+            # under way so that no work outlives the call.
+            job.cancel()
+            job.wait(None)
+        if bar is not None:
+            bar.update_to(job.done)
+            bar.close()
+    data, summary = job.result()
+    return Image(data, summary)
+
+
+def read(path: Union[str, "os.PathLike[str]"]) -> Image:
+    """Reads a data file that ``godel`` wrote (``godel render``, ``look``, ``merge``, a
+    sequence's ``keep_data``, :meth:`Image.save`). A missing file raises
+    ``FileNotFoundError``, a damaged one ``ValueError``, with the command line's message."""
+    return Image(_godel.Data.read(os.fspath(path)))
+
+
+def geodesic(
+    a: float = 1.0,
+    position: Sequence[float] = (0.0, 0.0, 0.0),
+    time: float = 0.0,
+    direction: Sequence[float] = (1.0, 0.0, 0.0),
+    speed: Optional[float] = None,
+    past: bool = True,
+    method: str = "exact",
+    samples: int = 100,
+    max_past: Optional[float] = None,
+) -> Dict[str, Union[np.ndarray, str]]:
+    """One geodesic of Gödel's universe, as ``godel geodesic`` computes it.
+
+    It starts at the event (``time``, ``position`` = (x, y, z)) along ``direction`` (any
+    non-zero length), given in the local frame of the observer at rest there. Without
+    ``speed`` it is a light ray (affine parameter λ); with ``speed`` in [0, 1) a massive
+    particle of that speed in that frame (λ is its proper time). ``past`` follows it into
+    the past (as godel's rays are traced), else into the future. ``method`` ``"exact"``
+    evaluates the closed form carried by an isometry, ``"numeric"`` integrates the geodesic
+    equations (DOP853); both give the same curve. It stops where |t − time| reaches
+    ``max_past``, or by default after one loop (back on its starting axis, or at the latest
+    after |t − time| = 2√2·π·a).
+
+    Returns ``samples`` points (2 to 1,000,000) evenly spaced in λ, first at the start,
+    last at the stop, as float64 arrays: ``lambda``, ``t``, ``x``, ``y``, ``z``, and
+    ``tangent`` (samples × 4: dt/dλ, dx/dλ, dy/dλ, dz/dλ); and ``stop``, why it stopped
+    (``"axis_return"``, ``"time_reached"``, ``"affine_limit"``).
+    """
+    stop, columns = _godel.geodesic(
+        float(a),
+        _vector(position, 3, "position"),
+        float(time),
+        _vector(direction, 3, "direction"),
+        None if speed is None else float(speed),
+        bool(past),
+        str(method),
+        int(samples),
+        None if max_past is None else float(max_past),
+    )
+    arrays = {name: np.frombuffer(raw, dtype="=f8").copy() for name, raw in columns}
+    tangent = np.stack([arrays.pop(k) for k in ("k_t", "k_x", "k_y", "k_z")], axis=-1)
+    return {**arrays, "tangent": tangent, "stop": stop}
+
+
+def connect(
+    source: Sequence[float],
+    target: Sequence[float],
+    a: float = 1.0,
+    windings: int = 2,
+) -> List[Dict[str, object]]:
+    """Every light ray from a source at rest to an event, as ``godel connect`` finds them.
+
+    ``source`` is the source's position (x, y, z): it is at rest there at all times, so it
+    has no time of its own. ``target`` is the receiving event (t, x, y, z). Rays exist only
+    where the target lies within the source's optical horizon (distance 2a from the
+    source's axis); there are two per winding in the source's plane and more off it,
+    ``windings`` (0 to 1000) counting the loops a ray completes before it arrives.
+
+    Returns one dict per ray, latest emission first: ``t_emit`` (emission time),
+    ``emission`` (the event t, x, y, z), ``travel_time``, ``winding``, ``branch``
+    (``"outbound"`` or ``"inbound"`` half of its loop), ``departure`` (unit direction at
+    the source) and ``look`` (where the receiver at rest sees the source), both in the
+    local frames of observers at rest, ``lambda`` (affine length), ``area_distance`` (the
+    source's area distance D: flux = L·g²/(4πD²)), ``g`` (frequency ratio received/emitted:
+    1 between source and receiver at rest) and ``miss`` (how far the ray, re-evaluated from
+    its emission, lands from the target).
+    """
+    source = tuple(source)
+    if len(source) != 3:
+        raise ValueError(
+            f"source: expected the position (x, y, z) of a source at rest, got {len(source)} "
+            "numbers (a source at rest shines at all times: it has no time of its own)"
+        )
+    if isinstance(windings, bool) or int(windings) != windings or windings < 0:
+        raise ValueError(f"windings: must be a whole number from 0 to 1000, got {windings!r}")
+    _rho, rays = _godel.connect(
+        _vector(source, 3, "source"), _vector(target, 4, "target"), float(a), int(windings)
+    )
+    keys = ("emission", "travel_time", "winding", "branch", "departure", "look", "lambda",
+            "area_distance", "g", "miss")
+    out = []
+    for ray in rays:
+        item = dict(zip(keys, ray))
+        for vector in ("emission", "departure", "look"):
+            item[vector] = np.array(item[vector])
+        item["t_emit"] = float(item["emission"][0])
+        out.append(item)
+    return out
+
+
+def _vector(values: Sequence[float], n: int, keyword: str) -> List[float]:
+    """``values`` as ``n`` floats, or ValueError naming ``keyword``."""
+    try:
+        out = [float(v) for v in values]
+    except (TypeError, ValueError):
+        raise ValueError(f"{keyword}: expected {n} numbers, got {values!r}") from None
+    if len(out) != n:
+        raise ValueError(f"{keyword}: expected {n} numbers, got {len(out)}")
+    return out

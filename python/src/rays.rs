@@ -1,0 +1,183 @@
+//! `geodesic` and `connect`: one geodesic from an event (`spacetime::curve`, as `godel
+//! geodesic`) and every light ray from a source at rest to an event
+//! (`spacetime::connection`, as `godel connect`), computed without holding the GIL. Inputs
+//! are checked by those modules; a refusal names the keyword argument at fault.
+
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::types::PyByteArray;
+use spacetime::connection::{connections, MAX_WINDINGS};
+use spacetime::curve::{compute, stop_name, CurveError, CurveMethod, CurveRequest, Input};
+use spacetime::{Event, Godel, Metric, TimeDirection};
+
+use crate::errors::argument_error;
+
+/// Checks the Gödel parameter and the coordinates (each argument's named components) in the
+/// ranges scenes allow (`scene::ranges`), as the command line does; returns `a`.
+fn checked(a: f64, named: &[(&str, &[&str], &[f64])]) -> PyResult<f64> {
+    let a = scene::ranges::check_a(a).map_err(|e| argument_error("a", e))?;
+    for (keyword, names, values) in named {
+        scene::ranges::check_coordinates(names, values, a)
+            .map_err(|e| argument_error(keyword, e))?;
+    }
+    Ok(a)
+}
+
+/// The keyword argument of each input that `spacetime::curve` checks.
+fn keyword(input: Input) -> &'static str {
+    match input {
+        Input::Start => "position",
+        Input::Direction => "direction",
+        Input::Speed => "speed",
+        Input::UntilTime => "max_past",
+        Input::Samples => "samples",
+    }
+}
+
+fn curve_error(e: CurveError) -> PyErr {
+    match e {
+        CurveError::Input { input, message } => argument_error(keyword(input), message),
+        e => PyRuntimeError::new_err(e.to_string()),
+    }
+}
+
+/// Named columns of native-endian f64 values.
+type Columns<'py> = Vec<(&'static str, Bound<'py, PyByteArray>)>;
+
+/// One geodesic of Gödel's universe; returns the stop reason and the columns (name, bytes of
+/// native f64): lambda, t, x, y, z and the tangent dt/dλ, dx/dλ, dy/dλ, dz/dλ. See
+/// `godel.geodesic`.
+#[pyfunction]
+#[pyo3(signature = (a, position, time, direction, speed, past, method, samples, max_past))]
+#[allow(clippy::too_many_arguments)]
+pub fn geodesic<'py>(
+    py: Python<'py>,
+    a: f64,
+    position: [f64; 3],
+    time: f64,
+    direction: [f64; 3],
+    speed: Option<f64>,
+    past: bool,
+    method: &str,
+    samples: usize,
+    max_past: Option<f64>,
+) -> PyResult<(String, Columns<'py>)> {
+    let xyz: &[&str] = &["x", "y", "z"];
+    let a = checked(
+        a,
+        &[("position", xyz, &position), ("time", &["t"], &[time])],
+    )?;
+    let method = match method {
+        "exact" => CurveMethod::Exact,
+        "numeric" => CurveMethod::Numeric,
+        other => {
+            let message = format!("must be \"exact\" or \"numeric\", got {other:?}");
+            return Err(argument_error("method", message));
+        }
+    };
+    let metric = Metric::Godel(Godel::new(a));
+    let [x, y, z] = position;
+    let request = CurveRequest::new(
+        metric,
+        method,
+        Event::new(time, x, y, z),
+        direction,
+        speed,
+        if past {
+            TimeDirection::Past
+        } else {
+            TimeDirection::Future
+        },
+        max_past,
+        samples,
+    )
+    .map_err(curve_error)?;
+    let curve = py.detach(|| compute(&request)).map_err(curve_error)?;
+    let mut columns: [Vec<f64>; 9] = Default::default();
+    for (lambda, state) in &curve.samples {
+        let e = state.x;
+        let k = state.tangent(&metric);
+        let row = [lambda, &e.t, &e.x, &e.y, &e.z, &k.t, &k.x, &k.y, &k.z];
+        for (column, v) in columns.iter_mut().zip(row) {
+            column.push(*v);
+        }
+    }
+    let names = ["lambda", "t", "x", "y", "z", "k_t", "k_x", "k_y", "k_z"];
+    let out = names
+        .into_iter()
+        .zip(columns)
+        .map(|(name, values)| {
+            let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_ne_bytes()).collect();
+            (name, PyByteArray::new(py, &bytes))
+        })
+        .collect();
+    Ok((stop_name(curve.stop).to_string(), out))
+}
+
+/// One connecting ray as a tuple: emission (t, x, y, z), travel time, winding, branch,
+/// departure (x, y, z), look (x, y, z), lambda, area distance, g, miss.
+type Ray = (
+    [f64; 4],
+    f64,
+    u32,
+    &'static str,
+    [f64; 3],
+    [f64; 3],
+    f64,
+    f64,
+    f64,
+    f64,
+);
+
+/// Every light ray from a source at rest at `source` (x, y, z) to the event `target`
+/// (t, x, y, z), latest emission first; with the event's distance from the source's axis.
+/// See `godel.connect`.
+#[pyfunction]
+#[pyo3(signature = (source, target, a, windings))]
+pub fn connect(
+    py: Python<'_>,
+    source: [f64; 3],
+    target: [f64; 4],
+    a: f64,
+    windings: u32,
+) -> PyResult<(f64, Vec<Ray>)> {
+    let source_names: &[&str] = &["x", "y", "z"];
+    let target_names: &[&str] = &["t", "x", "y", "z"];
+    let a = checked(
+        a,
+        &[
+            ("source", source_names, &source),
+            ("target", target_names, &target),
+        ],
+    )?;
+    if windings > MAX_WINDINGS {
+        let message = format!("must be at most {MAX_WINDINGS}, got {windings}");
+        return Err(argument_error("windings", message));
+    }
+    let [t, x, y, z] = target;
+    let [sx, sy, sz] = source;
+    let (source, event) = (Event::new(0.0, sx, sy, sz), Event::new(t, x, y, z));
+    let found = py
+        .detach(|| connections(a, source, event, windings))
+        .ok_or_else(|| PyRuntimeError::new_err("a connecting ray has no closed form"))?;
+    let rays = found
+        .rays
+        .iter()
+        .map(|c| {
+            let e = c.ray.emission;
+            (
+                [e.t, e.x, e.y, e.z],
+                c.travel_time,
+                c.ray.winding,
+                c.ray.branch.name(),
+                c.departure,
+                c.look,
+                c.ray.lambda,
+                c.area_distance,
+                c.g,
+                c.miss,
+            )
+        })
+        .collect();
+    Ok((found.rho, rays))
+}
