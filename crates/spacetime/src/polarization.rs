@@ -151,13 +151,17 @@ mod tests {
         let (a, b) = ([0.6, 0.8, 0.0], cross([0.6, 0.8, 0.0], dir));
         let p = measured([0.3, a[0], a[1], 0.3], [-0.2, b[0], b[1], -0.2], dir).unwrap();
         assert!(max_diff(p, a) < 1e-15, "{p:?}");
-        // A map that stretches the screen-right by 2 % and shears it by 0.01 rad: the
-        // screen-up turns by half the shear.
+        // A map that keeps the screen-up a = (1, 0, 0) but stretches the screen-right
+        // (exactly a × dir = (0, −1, 0)) by 2 % and turns it by 0.01 rad towards a: pol is
+        // their rotation part, turned by about half of that, atan(1.02 sin 0.01 / (1 + 1.02
+        // cos 0.01)) = 0.00505.
         let (s, c) = (0.01f64).sin_cos();
-        let right = [1.02 * -c * 0.0 + 1.02 * s, 1.02 * c, 0.0];
+        let right = [1.02 * s, -1.02 * c, 0.0];
         let p = measured([0.0, 1.0, 0.0, 0.0], [0.0, right[0], right[1], 0.0], dir).unwrap();
         let turn = p[1].atan2(p[0]);
-        assert!((turn + 0.005).abs() < 1e-4, "turned by {turn}");
+        let expected = (1.02 * s).atan2(1.0 + 1.02 * c);
+        assert!((turn - expected).abs() < 1e-15, "turned by {turn}");
+        assert!((expected - 0.00505).abs() < 1e-5);
     }
 
     fn max_diff(a: [f64; 3], b: [f64; 3]) -> f64 {
