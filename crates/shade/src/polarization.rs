@@ -23,10 +23,10 @@ pub struct PolSample {
     pub dir: [f32; 3],
 }
 
-/// The grid's spacing in pixels on a `w` × `h` picture: about 24 ticks across the shorter
-/// side, never closer than 10 pixels.
+/// The grid's spacing in pixels on a `w` × `h` picture: 16 ticks across the shorter side,
+/// never closer than 12 pixels.
 pub fn tick_spacing(w: usize, h: usize) -> usize {
-    (w.min(h) / 24).max(10)
+    (w.min(h) / 16).max(12)
 }
 
 /// The observed angle χ (radians, in [0, π)) of the sample's light, or `None` where it shows
@@ -80,8 +80,8 @@ pub fn draw_ticks(
             };
             let (dx, dy) = (chi.sin(), -chi.cos());
             let colour = cyclic_colour(chi);
-            // The outline 3 pixels wide, the colour 1 pixel (2 on large grids) over it.
-            let core = if step >= 24 { 1 } else { 0 };
+            // The outline 3 pixels wide (5 on grids of 14 pixels and more), the colour over it.
+            let core = if step >= 14 { 1 } else { 0 };
             for (radius, c) in [(core + 1, OUTLINE), (core, colour)] {
                 let n = (2.0 * half * 2.0).ceil() as i64;
                 for i in 0..=n {
@@ -136,11 +136,11 @@ mod tests {
         let axes = [Some([0.0, 1.0, 0.0])];
         assert!((angle(&s, &axes).unwrap() - FRAC_PI_2).abs() < 1e-12);
         let mut img = RgbImage::new(60, 60);
-        assert_eq!(draw_ticks(&mut img, &|_, _| Some(s), &axes), 36);
-        // The tick at the cell centre (5, 5) of spacing 10: horizontal, cyan core.
+        assert_eq!(draw_ticks(&mut img, &|_, _| Some(s), &axes), 25);
+        // The tick at the cell centre (6, 6) of spacing 12: horizontal, cyan core.
         let colour = cyclic_colour(FRAC_PI_2);
-        assert_eq!(img.get_pixel(8, 5).0, colour);
-        assert_eq!(img.get_pixel(5, 8).0, [0, 0, 0], "nothing above or below");
+        assert_eq!(img.get_pixel(9, 6).0, colour);
+        assert_eq!(img.get_pixel(6, 9).0, [0, 0, 0], "nothing above or below");
         // Unpolarized, or nothing hit: no ticks.
         let mut img = RgbImage::new(60, 60);
         assert_eq!(draw_ticks(&mut img, &|_, _| Some(s), &[None]), 0);
@@ -150,7 +150,7 @@ mod tests {
         // Axis z: along screen-up, a vertical tick.
         let mut img = RgbImage::new(60, 60);
         draw_ticks(&mut img, &|_, _| Some(s), &[Some([0.0, 0.0, 2.0])]);
-        assert_eq!(img.get_pixel(5, 8).0, cyclic_colour(0.0));
-        assert_eq!(img.get_pixel(8, 5).0, [0, 0, 0]);
+        assert_eq!(img.get_pixel(6, 9).0, cyclic_colour(0.0));
+        assert_eq!(img.get_pixel(9, 6).0, [0, 0, 0]);
     }
 }

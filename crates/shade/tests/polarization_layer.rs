@@ -60,7 +60,7 @@ fn ticks_follow_the_observed_angle_on_polarized_objects_only() {
         .unwrap()
         .image(&d);
     let step = tick_spacing(96, 48) as u32;
-    assert_eq!(step, 10);
+    assert_eq!(step, 12);
     // Axis y is the screen-right: a horizontal tick at 90°, cyan, at each cell centre of
     // the ball's half; the moon's half, unpolarized, has no ticks.
     let cyan = cyclic_colour(std::f64::consts::FRAC_PI_2);
