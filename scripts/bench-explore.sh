@@ -18,38 +18,12 @@ seconds=${4:-10}
 rate=${5:-}
 cd "$root"
 cargo build --release -p godel -q
-work=$(mktemp -d)
-server=""
-stop() {
-    if [ -n "$server" ]; then
-        kill "$server" 2>/dev/null || true
-        wait "$server" 2>/dev/null || true
-        server=""
-    fi
-}
-trap 'stop; rm -rf "$work"' EXIT
-
-# Starts the server, waits (bounded: 10 minutes) for the line with its address, sets $url.
-start() {
-    : >"$work/server.log"
-    "$root/target/release/godel" explore "$scene" --threads "$threads" --port 0 \
-        >"$work/server.log" 2>"$work/server.err" &
-    server=$!
-    url=""
-    for _ in $(seq 1 6000); do
-        url=$(sed -n 's/^godel explore: serving \(http:[^ ]*\)$/\1/p' "$work/server.log")
-        [ -n "$url" ] && return 0
-        kill -0 "$server" 2>/dev/null || break
-        sleep 0.1
-    done
-    echo "the server did not start:" >&2
-    cat "$work/server.err" >&2
-    exit 1
-}
+# shellcheck source=bench-server.sh
+source "$root/scripts/bench-server.sh"
 
 cd tests/browser
 for mode in ${BENCH_MODES:-event play}; do
-    start
+    serve explore "$scene" --threads "$threads"
     echo "# $mode: $(uptime)"
     if [ "$mode" = event ]; then
         node bench-explore.mjs "$url" "$work" event "$events"

@@ -22,6 +22,7 @@ use render::tiles::Assembler;
 use scene::Scene;
 use toml::Table;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEMORY};
+use viewer::kernel_routes::KernelInput;
 
 use crate::args::{thread_pool, usage};
 use crate::flight::section;
@@ -185,6 +186,11 @@ impl FrameSource for SceneFrames {
         let mut moved = self.scene.clone();
         moved.observer.event = event.event();
         crate::flight::keyframe_text(&moved, frame).map_err(|e| e.to_string())
+    }
+
+    fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
+        let scene = scene_at(&self.scene, event, Level::Full).map_err(|e| format!("{e:#}"))?;
+        Ok(KernelInput::new(&scene))
     }
 }
 

@@ -165,7 +165,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         None => None,
     };
     if args.gpu && part.is_some() {
-        return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+        return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
     }
     #[cfg(feature = "mpi")]
     if part.is_none() && crate::cluster::launched_by_mpi() {
@@ -181,7 +181,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         None => target.names(&scene.name),
     };
     if scene.trace.gpu && part.is_some() {
-        return Err(crate::args::usage("--part", GPU_ONE_PROCESS).into());
+        return Err(crate::args::usage("--part", GPU_ONE_PROCESS));
     }
     prepare_outputs(target.folder(), &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
@@ -260,7 +260,7 @@ mod under_mpi {
             let target = output_target(&args, false)?;
             let scene = load_with_overrides(&args)?;
             if args.gpu || scene.trace.gpu {
-                return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS).into());
+                return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
             }
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.

@@ -277,47 +277,59 @@ impl GpuTracer {
                 let at = ((j * cols + i) * 4) as usize;
                 let slot = |s: usize| &slots[s][at..at + 4];
                 let index = ((row0 + j) * width + col0 + i) as usize;
-                let (s0, s1, s2, s3, s4) = (slot(0), slot(1), slot(2), slot(3), slot(4));
-                let status = RayStatus::from_code(s0[1] as u32).unwrap_or(RayStatus::Failed);
-                let view = [s2[3], s3[3], s4[0]];
-                records[index] = match status {
-                    RayStatus::Hit => PixelRecord {
-                        object: s0[0] as i32,
-                        status,
-                        u: s0[2],
-                        v: s0[3],
-                        g: s1[0],
-                        t_emit: s1[1],
-                        x: s2[0],
-                        y: s2[1],
-                        z: s2[2],
-                        lambda: s1[2],
-                        dir: [s3[0], s3[1], s3[2]],
-                        cos_i: s1[3],
-                        view,
-                        pol: [0.0; 3],
-                    },
-                    RayStatus::NotTraced => PixelRecord::miss(status),
-                    _ => PixelRecord {
-                        view,
-                        ..PixelRecord::miss(status)
-                    },
-                };
+                let record = sample_record(|s| slot(s).try_into().expect("four channels"));
+                records[index] = record;
                 for (k, plane) in lights.iter_mut().enumerate() {
                     let (s, c) = light_channel(k);
-                    let v = slot(s)[c];
-                    // The kernel marks a light whose occlusion search ran out of work by a
-                    // negative value (irradiance is never negative): NaN, as the CPU writes.
-                    plane[index] = if status != RayStatus::Hit {
-                        0.0
-                    } else if v < 0.0 {
-                        f32::NAN
-                    } else {
-                        v
-                    };
+                    plane[index] = light_value(record.status, slot(s)[c]);
                 }
             }
         }
+    }
+}
+
+/// The record of one sample from its slots (`slot(s)`: the four channels of slot s, as the
+/// kernel writes them: the status in slot 0's second channel; the hit's values only for a hit,
+/// the direction looked along for every traced ray).
+pub fn sample_record(slot: impl Fn(usize) -> [f32; 4]) -> PixelRecord {
+    let (s0, s1, s2, s3, s4) = (slot(0), slot(1), slot(2), slot(3), slot(4));
+    let status = RayStatus::from_code(s0[1] as u32).unwrap_or(RayStatus::Failed);
+    let view = [s2[3], s3[3], s4[0]];
+    match status {
+        RayStatus::Hit => PixelRecord {
+            object: s0[0] as i32,
+            status,
+            u: s0[2],
+            v: s0[3],
+            g: s1[0],
+            t_emit: s1[1],
+            x: s2[0],
+            y: s2[1],
+            z: s2[2],
+            lambda: s1[2],
+            dir: [s3[0], s3[1], s3[2]],
+            cos_i: s1[3],
+            view,
+            pol: [0.0; 3],
+        },
+        RayStatus::NotTraced => PixelRecord::miss(status),
+        _ => PixelRecord {
+            view,
+            ..PixelRecord::miss(status)
+        },
+    }
+}
+
+/// A light's value in the data file from its channel `v` in a sample of `status`: 0 where
+/// nothing was hit; NaN, as the CPU writes, where the occlusion search ran out of work (the
+/// kernel marks that by a negative value: irradiance is never negative).
+pub fn light_value(status: RayStatus, v: f32) -> f32 {
+    if status != RayStatus::Hit {
+        0.0
+    } else if v < 0.0 {
+        f32::NAN
+    } else {
+        v
     }
 }
 

@@ -166,7 +166,7 @@ impl TextureSource {
 
     /// The embedded scene, validated with its relative image paths resolved as
     /// [`TextureSource::scene_textures`] says.
-    fn embedded_scene(&self, text: &str) -> Result<Scene, ShadeError> {
+    pub fn embedded_scene(&self, text: &str) -> Result<Scene, ShadeError> {
         let Some((first, others)) = self.folders.as_deref().and_then(|f| f.split_first()) else {
             return Scene::from_str(text, EMBEDDED).map_err(ShadeError::EmbeddedScene);
         };

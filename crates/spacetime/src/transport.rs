@@ -2,8 +2,8 @@
 //! (docs/physics.md, "Parallel transport along closed forms").
 //!
 //! Every geodesic through the origin is an orbit of one Killing field ξ (its projection on
-//! the disc is a hyperbolic circle run at constant speed): ξ = E ∂t + kˣ Kx + kʸ Ky + p_z ∂z
-//! + (√2 E/a) ∂φ for the initial tangent k = (E, kˣ, kʸ, p_z), the ∂φ part fixed by
+//! the disc is a hyperbolic circle run at constant speed): ξ = E ∂t + kˣ Kx + kʸ Ky +
+//! p_z ∂z + (√2 E/a) ∂φ for the initial tangent k = (E, kˣ, kʸ, p_z), the ∂φ part fixed by
 //! ∇_ξ ξ = 0. A vector Lie-dragged by ξ's flow F_λ changes along the orbit by
 //! D V/dλ = ∇_V ξ, and F_λ commutes with ∇ξ, so the parallel transport of W from the
 //! origin is

@@ -73,6 +73,11 @@ export class Data {
     this.lightPlanes = [];
   }
 
+  // Channels put on the GPU by the page itself (a frame traced there, traced.js).
+  provide(names) {
+    names.forEach((n) => this.loaded.add(n));
+  }
+
   // The scene textures' description and the black-body tables (uploaded here).
   async start() {
     const [textures, blackbody, gt] = await Promise.all([

@@ -11,6 +11,7 @@ import { describeControls, buildControls } from './controls.js';
 import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey } from './uniforms.js';
 import * as L from './look.js';
 import { startExplore } from './explore.js';
+import { startTraced } from './traced.js';
 
 const viewer = {
   info: null,      // /api/info
@@ -59,6 +60,9 @@ async function errorText(response) {
 
 // Writes the header line about the file (set at start; its size follows explore frames).
 let describe = () => {};
+// Where the frame shown comes from, when not from the data file (e.g. "traced on the GPU in
+// 812 ms"): the header says it.
+let frameNote = '';
 // Explore: whether the frame last given to showFrame has been shaded (or failed to load).
 let frameDrawn = true;
 let fixedSize = null;      // [w, h] canvas pixels set by a script, else the layout decides
@@ -129,6 +133,7 @@ function layout() {
 let frameQueued = false;
 let shadeDirty = true;   // the picture must be shaded again (else only displayed)
 let loading = false;     // channels or images are being fetched
+let held = false;        // the page traces a frame on the GPU (traced.js): nothing is drawn
 
 // The overlay layer (orientation marks, legend, labels), drawn by the server for the
 // settings (crates/shade/src/layer.rs) and composited by the shading pass: the key it was
@@ -185,7 +190,7 @@ function changed(shade = true) {
 
 async function draw() {
   frameQueued = false;
-  if (loading || !gpu) return;
+  if (loading || held || !gpu) return;
   const settings = viewer.settings;
   let need;
   let images;
@@ -269,7 +274,7 @@ async function draw() {
 }
 
 // Nothing waiting to be drawn or fetched (for tests and scripts).
-viewer.idle = () => !frameQueued && !loading && !shadeDirty && !overlayPending();
+viewer.idle = () => !frameQueued && !loading && !held && !shadeDirty && !overlayPending();
 
 // ---- the mouse: drag to turn (look) or pan, wheel to zoom, hover for the record
 
@@ -462,6 +467,7 @@ const base64 = (bytes) => {
 // The shaded picture (RGBA, top row first), and the canvas as shown.
 viewer.readPicture = () => { const p = gpu.readShaded(); return { ...p, bytes: base64(p.bytes) }; };
 viewer.readCanvas = () => { const p = gpu.readCanvas(); return { ...p, bytes: base64(p.bytes) }; };
+viewer.base64 = base64;
 // Fixes the canvas at w × h pixels (null: back to the layout).
 viewer.setViewSize = (w, h) => { fixedSize = w ? [w, h] : null; layout(); };
 // The settings and view the server would shade for "Save PNG", and the query naming the
@@ -520,7 +526,8 @@ async function start() {
     $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
       + (info.supersample > 1 ? ` · ${info.supersample}×${info.supersample} rays per pixel` : '')
       + (viewer.view.sphere ? ' · full sphere: drag to look around' : '')
-      + (sampledSphere ? ` · no looking around: ${viewer.view.sphere_error}` : '');
+      + (sampledSphere ? ` · no looking around: ${viewer.view.sphere_error}` : '')
+      + (frameNote ? ` · ${frameNote}` : '');
   };
   describe();
   try {
@@ -558,7 +565,8 @@ async function start() {
     (lookMode() ? '/api/look/png' : '/api/png') + frameQuery(), saveBody(), 'view.png'));
   $('save-keyframe').addEventListener('click', saveKeyframe);
   layout();
-  startExplore(viewer);
+  await startExplore(viewer);
+  startTraced(viewer);
 }
 
 // Explore mode (explore.js): shade a newly traced frame, of `frame.width` × `frame.height`
@@ -584,6 +592,32 @@ viewer.showFrame = (frame, channelUrl) => {
   layout();
   changed();
   return true;
+};
+
+// The frame traced on the GPU (traced.js): while `on`, nothing is drawn; then `channels`
+// (textures named as the data file's channels, gl.js) replace the file's, and `note` says so
+// in the header, until showFileFrame fetches the file's channels again.
+viewer.hold = (on) => {
+  held = on;
+  if (!on) changed();
+};
+viewer.showTracedFrame = (channels, note) => {
+  for (const [name, texture] of Object.entries(channels)) {
+    if (texture) gpu.replace(name, texture);
+  }
+  const names = ['id', 'u', 'v', 'g', 't_emit', 'cos_i'];
+  for (let k = 0; k < viewer.info.lights; k += 1) names.push(`light_${k}`);
+  data.provide(names);
+  frameNote = note;
+  describe();
+  changed();
+};
+viewer.showFileFrame = () => {
+  if (!frameNote) return;
+  data.reset(data.channelUrl);
+  frameNote = '';
+  describe();
+  changed();
 };
 
 // After a look control: the preset's direction, the projection's field of view.

@@ -2,7 +2,7 @@
 //! no files beside it and nothing from the internet.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 12] = [
+pub const FILES: [(&str, &str, &str); 14] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -23,6 +23,8 @@ pub const FILES: [(&str, &str, &str); 12] = [
     js("/look.js", include_str!("../page/look.js")),
     js("/explore.js", include_str!("../page/explore.js")),
     js("/map.js", include_str!("../page/map.js")),
+    js("/trace.js", include_str!("../page/trace.js")),
+    js("/traced.js", include_str!("../page/traced.js")),
 ];
 
 const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {

@@ -106,6 +106,9 @@ pub trait FrameSource: Send + Sync + 'static {
     /// A sequence-script keyframe (TOML) at `frame` that puts the scene's observer (its
     /// velocity and axes, the camera's fields of view) at `event`.
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String>;
+    /// What the GPU kernel reads to trace the full frame seen from `event` (the page's own
+    /// tracer, [`crate::kernel_routes`]); `Err` says why it cannot be made.
+    fn kernel_input(&self, event: ObserverEvent) -> Result<gpu::KernelInput, String>;
 }
 
 /// A frame made for a request.

@@ -9,6 +9,7 @@
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
+//! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
 //! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
 //!
 //! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
@@ -116,7 +117,8 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/channel/{name}", get(channel))
         .route("/api/explore/map", get(map))
         .route("/api/explore/ray", get(ray))
-        .route("/api/explore/keyframe", post(keyframe));
+        .route("/api/explore/keyframe", post(keyframe))
+        .route("/api/gpu/input", get(kernel_input));
     for path in FRAME_ROUTES {
         explore = explore.route(path, any(for_frame));
     }
@@ -381,4 +383,47 @@ async fn keyframe(
         ),
     ];
     Ok((headers, text).into_response())
+}
+
+/// `?t=T&x=X&y=Y&z=Z&draw_buffers=N`, the event all or nothing.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct InputQuery {
+    t: Option<f64>,
+    x: Option<f64>,
+    y: Option<f64>,
+    z: Option<f64>,
+    draw_buffers: Option<usize>,
+}
+
+/// `GET /api/gpu/input` in explore mode: the kernel's input for the scene seen from the
+/// query's event, else from the newest frame's.
+async fn kernel_input(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<InputQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
+    let buffers = crate::kernel_routes::draw_buffers(q.draw_buffers)?;
+    let event = match (q.t, q.x, q.y, q.z) {
+        (Some(t), Some(x), Some(y), Some(z)) => ObserverEvent { t, x, y, z },
+        (None, None, None, None) => state
+            .explorer
+            .latest()
+            .map_or_else(|| state.explorer.start(), |f| f.event),
+        _ => {
+            return Err(ApiError::bad_request(
+                "input: give all of t, x, y and z, or none",
+            ))
+        }
+    };
+    if let Some(why) = event.refusal(state.explorer.bound()) {
+        return Err(ApiError::bad_request(why));
+    }
+    let work = state.viewer.work().admit()?;
+    let input = work
+        .run(move || state.explorer.source().kernel_input(event))
+        .await?
+        .map_err(ApiError::bad_request)?;
+    let page = crate::kernel_routes::PageInput::new(input, buffers);
+    Ok((no_store(), Json(page)).into_response())
 }

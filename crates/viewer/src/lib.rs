@@ -15,6 +15,8 @@
 //! - [`wire`]: the binary format of the arrays the page uploads as textures; [`gpu`]: what
 //!   they hold (channels, textures, black-body tables).
 //! - The settings the page sends are `shade::ShadeSettings` as JSON.
+//! - [`kernel_routes`]: the exact tracer's GPU kernel and its input, for the page to trace a
+//!   frame itself.
 //! - [`explore`], [`explore_routes`]: explore mode (`godel explore`), frames re-traced for a
 //!   moved observer by a [`explore::FrameSource`].
 
@@ -26,6 +28,7 @@ pub mod explore_routes;
 pub mod gpu;
 pub mod gpu_routes;
 pub mod guard;
+pub mod kernel_routes;
 pub mod limit;
 pub mod look_routes;
 mod responses;

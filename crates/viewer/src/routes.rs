@@ -10,7 +10,7 @@
 //! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
 //! | `GET /api/explore/info` | `{"explore": false}`: not explore mode ([`crate::explore_routes`] answers it there) |
-//! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::look_routes`] |
+//! | `GET /api/gpu/…`, `GET /api/view`, `POST /api/look/…` | [`crate::gpu_routes`], [`crate::kernel_routes`], [`crate::look_routes`] |
 //!
 //! Every request first passes [`crate::guard::check`] (Host, Origin, JSON bodies, body size:
 //! 403, 415, 413). Bad requests (malformed or unknown settings, pixel outside the image) get
@@ -72,6 +72,9 @@ pub fn routes(state: Arc<ViewerState>) -> Router {
         .with_state(state.clone())
         .merge(crate::gpu_routes::router(Arc::new(
             crate::gpu_routes::GpuState::new(state.clone()),
+        )))
+        .merge(crate::kernel_routes::router(Arc::new(
+            crate::kernel_routes::KernelState::new(state.clone()),
         )))
         .merge(crate::look_routes::router(Arc::new(
             crate::look_routes::LookState::new(state),

@@ -199,6 +199,12 @@ impl ViewerState {
         self.textures.scene_textures(&self.data)
     }
 
+    /// The scene embedded in the data file, validated with its image paths resolved in the
+    /// allowed folders (as its textures were when the file was loaded).
+    pub fn embedded_scene(&self) -> Result<scene::Scene, shade::ShadeError> {
+        self.textures.embedded_scene(&self.data.header.scene_text)
+    }
+
     /// The bound on concurrent shading work.
     pub fn work(&self) -> &WorkLimit {
         &self.work

@@ -13,6 +13,7 @@ use http_body_util::BodyExt;
 use render::map::{LightRay, Map, MapPoint};
 use tower::ServiceExt;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
+use viewer::kernel_routes::KernelInput;
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
 use viewer::Access;
 
@@ -115,6 +116,12 @@ impl FrameSource for Fake {
     }
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
         Ok(format!("frame {frame} at t = {}", event.t))
+    }
+    /// The data file's scene with its observer at `event`.
+    fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
+        let mut scene = scene::Scene::from_str(&common::scene(), "fake.toml").unwrap();
+        scene.observer.event = event.event();
+        Ok(KernelInput::new(&scene))
     }
 }
 
@@ -443,5 +450,55 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
             StatusCode::GONE,
             "{stale}"
         );
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    let app =
+        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    // Before any frame: the scene's own event.
+    let (status, input, _) = send(&app, common::get("/api/gpu/input")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(input["uniforms"]["obs_t"], serde_json::json!([0.0, 0.0]));
+    // t = 2.1 is no f32: its hi and lo parts carry it.
+    let url = "/api/gpu/input?t=2.1&x=0.25&y=-0.5&z=0.125&draw_buffers=8";
+    let (status, input, _) = send(&app, common::get(url)).await;
+    assert_eq!(status, StatusCode::OK);
+    let t = &input["uniforms"]["obs_t"];
+    // JSON carries each f32 in its shortest form: read as f32, as WebGL's uniforms take it.
+    let part = |k: usize| f64::from(t[k].as_f64().unwrap() as f32);
+    let (hi, lo) = (part(0), part(1));
+    assert_eq!(hi, f64::from(2.1f32));
+    assert!(lo != 0.0 && (hi + lo - 2.1).abs() < 1e-12, "{hi} + {lo}");
+    assert_eq!(
+        input["uniforms"]["obs_x"],
+        serde_json::json!([0.25, -0.5, 0.125])
+    );
+    assert_eq!(input["draw_buffers"], 5);
+    // Else the newest frame's event.
+    let body = r#"{"t": 4, "x": 0.5, "y": 0, "z": 0}"#;
+    let (status, _, _) = send(&app, common::post("/api/explore/event", body)).await;
+    assert_eq!(status, StatusCode::OK);
+    for _ in 0..10_000 {
+        let frame = send(&app, common::get("/api/explore/frame")).await.1["frame"].clone();
+        if frame["event"]["t"] == 4.0 {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(1)).await;
+    }
+    let (_, input, _) = send(&app, common::get("/api/gpu/input")).await;
+    assert_eq!(input["uniforms"]["obs_t"][0], 4.0);
+    assert_eq!(input["uniforms"]["obs_x"][0], 0.5);
+    for (query, needle) in [
+        ("?t=1&x=0", "all of t, x, y and z"),
+        ("?t=1&x=1e9&y=0&z=0", "event.x"),
+        ("?t=1&x=0&y=0&z=0&draw_buffers=0", "draw_buffers"),
+    ] {
+        let (status, answer, _) = send(&app, common::get(&format!("/api/gpu/input{query}"))).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{query}");
+        let message = answer["error"].as_str().unwrap();
+        assert!(message.contains(needle), "{query}: {message}");
     }
 }

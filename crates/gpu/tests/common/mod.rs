@@ -136,7 +136,8 @@ pub fn compare(name: &str, gpu: &DataFile, cpu: &DataFile) -> Agreement {
                 .abs()
                 .max((a.y - b.y).abs())
                 .max((a.z - b.z).abs());
-            if !(moved <= SAME_EVENT) {
+            // NaN counts as moved.
+            if moved.is_nan() || moved > SAME_EVENT {
                 lit_moved += 1;
                 continue;
             }

@@ -1,0 +1,391 @@
+// godel view: the exact tracer on the GPU, in the page. Runs the kernel of crates/gpu
+// (kernel.glsl, served at /api/gpu/kernel) in WebGL2 as crates/gpu/src/host.rs runs it
+// offscreen: compiled after `#version 300 es` and the input's defines, the scene table
+// uploaded as RGBA32F texels, the sample grid drawn tile by tile (each draw short, so that no
+// GPU watchdog fires and the page stays responsive) into float render targets: one RGBA32F
+// texture per slot of four channels of a record. A conversion pass then writes the channels
+// the shading reads (crates/viewer/src/gpu.rs: id, u, v, g, t_emit, cos_i, the light planes)
+// into textures: the frame never leaves the GPU.
+//
+// Reusable: `new KernelTracer(gl, kernelSource)`, `await tracer.trace(input)` with an input
+// as /api/gpu/input sends it (crates/viewer/src/kernel_routes.rs: uniforms, table, slots,
+// light_channels, draw_buffers, defines), whose uniforms the caller may change (the
+// observer's event, …) between traces; `tracer.channels(traced, objects)` gives the textures.
+'use strict';
+
+import { VERTEX } from './shaders.js';
+
+// The kernel's statuses (datafile::record::RayStatus codes).
+const HIT = 0;
+// What one draw should take (each draw is waited for: long enough that the wait costs little,
+// measured on SwiftShader; short enough for GPU watchdogs and a responsive page), and its
+// side's bounds, in samples.
+const DRAW_MS = 250;
+const MIN_SIDE = 8;
+const MAX_SIDE = 256;
+const FIRST_SIDE = 16;
+// A NaN as bits: the value of a light whose occlusion search ran out of work (host.rs).
+const NAN_BITS = '0x7fc00000u';
+
+// The conversion pass: each output channel from the slots, as host.rs's `collect` reads a
+// record and crates/viewer/src/gpu.rs (`Channel::encode`, `id_code`) encodes it for the page.
+const CONVERT_HEAD = `#version 300 es
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+uniform sampler2D u_record;   // slot 0: object, status, u, v
+uniform sampler2D u_slot;     // the slot holding the channel
+uniform int u_component;
+`;
+
+const CONVERT_FLOAT = `${CONVERT_HEAD}
+uniform bool u_light;         // a light: negative (out of work) is NaN
+out vec4 o;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  bool hit = int(texelFetch(u_record, p, 0).y) == ${HIT};
+  float v = texelFetch(u_slot, p, 0)[u_component];
+  if (u_light && v < 0.0) v = uintBitsToFloat(${NAN_BITS});
+  o = vec4(hit ? v : 0.0, 0.0, 0.0, 0.0);
+}`;
+
+const CONVERT_UINT = `${CONVERT_HEAD}
+uniform int u_objects;
+uniform bool u_id;            // the id (else cos_i, 16 bits)
+out uvec4 o;
+// viewer::gpu::id_code: 0 background, 1 failed, 2 step budget or work limit, 3 not traced,
+// 4 + k object k.
+uint idCode(int object, int status) {
+  if (status == 2 || status == 5) return 2u;
+  if (status == 4) return 3u;
+  if (status != 0 && status != 1) return 1u;
+  if (object < 0) return 0u;
+  return object < u_objects ? 4u + uint(object) : 1u;
+}
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 record = texelFetch(u_record, p, 0);
+  int status = int(record.y);
+  if (u_id) {
+    o = uvec4(idCode(int(record.x), status), 0u, 0u, 0u);
+  } else {
+    float c = texelFetch(u_slot, p, 0)[u_component];
+    c = status == ${HIT} && !isnan(c) ? clamp(c, 0.0, 1.0) : 0.0;
+    o = uvec4(uint(floor(c * 65535.0 + 0.5)), 0u, 0u, 0u);
+  }
+}`;
+
+// Where each channel the shading reads lies in a record: [slot, component]
+// (gpu::input::SLOT_CHANNELS).
+const FLOAT_CHANNELS = { u: [0, 2], v: [0, 3], g: [1, 0], t_emit: [1, 1] };
+const COS_I = [1, 3];
+
+export class KernelTracer {
+  // `kernel`: the source of /api/gpu/kernel. Throws, saying why, where WebGL2 cannot run it.
+  constructor(gl, kernel) {
+    if (!gl.getExtension('EXT_color_buffer_float')) {
+      throw new Error('this browser\u2019s WebGL2 cannot draw into float textures '
+        + '(EXT_color_buffer_float is missing): the page cannot trace on the GPU here');
+    }
+    this.gl = gl;
+    this.kernel = kernel;
+    this.maxDrawBuffers = gl.getParameter(gl.MAX_DRAW_BUFFERS);
+    this.maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
+    this.programs = new Map(); // kernel programs and their sources by defines
+    this.warm = new Set();     // those that have drawn once
+    this.vao = gl.createVertexArray();
+    this.convertFloat = null;
+    this.convertUint = null;
+  }
+
+  compile(fragment, what) {
+    const gl = this.gl;
+    const shader = (type, source) => {
+      const s = gl.createShader(type);
+      gl.shaderSource(s, source);
+      gl.compileShader(s);
+      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) {
+        const log = gl.getShaderInfoLog(s);
+        gl.deleteShader(s);
+        throw new Error(`${what} did not compile: ${log}`);
+      }
+      return s;
+    };
+    const p = gl.createProgram();
+    const [v, f] = [shader(gl.VERTEX_SHADER, VERTEX), shader(gl.FRAGMENT_SHADER, fragment)];
+    gl.attachShader(p, v);
+    gl.attachShader(p, f);
+    gl.linkProgram(p);
+    gl.deleteShader(v);
+    gl.deleteShader(f);
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) {
+      if (gl.isContextLost()) throw new Error(`the GPU context was lost while compiling ${what}`);
+      throw new Error(`${what} did not link: ${gl.getProgramInfoLog(p)}`);
+    }
+    return p;
+  }
+
+  // The kernel compiled with `defines` (once per distinct defines): {program, source}, the
+  // source as host.rs compiles it (`#version 300 es`, the defines, the kernel).
+  program(defines) {
+    if (!this.programs.has(defines)) {
+      const source = `#version 300 es\n${defines}${this.kernel}`;
+      this.programs.set(defines, { program: this.compile(source, 'the GPU kernel'), source });
+    }
+    return this.programs.get(defines);
+  }
+
+  floatTexture(width, height) {
+    const gl = this.gl;
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, width, height);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    return t;
+  }
+
+  // Resolves once the GPU has done everything asked of it, without blocking the page.
+  finished() {
+    const gl = this.gl;
+    const sync = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl.flush();
+    return new Promise((resolve, reject) => {
+      const poll = () => {
+        if (gl.isContextLost()) {
+          reject(new Error('the GPU context was lost while tracing'));
+          return;
+        }
+        if (gl.getSyncParameter(sync, gl.SYNC_STATUS) !== gl.SIGNALED) {
+          setTimeout(poll, 1);
+          return;
+        }
+        gl.deleteSync(sync);
+        resolve();
+      };
+      poll();
+    });
+  }
+
+  // Traces the sample grid of `input`: resolves to {width, height, slots (one RGBA32F
+  // texture each, the caller's to delete), input, source (the kernel's, as compiled),
+  // compileMs, traceMs}. `progress(done, total)` is
+  // called after each draw; `cancelled()` (optional) stops between draws (rejects).
+  async trace(input, { progress = () => {}, cancelled = () => false } = {}) {
+    const gl = this.gl;
+    const u = input.uniforms;
+    const [width, height] = u.size;
+    if (width > this.maxSize || height > this.maxSize) {
+      throw new Error(`the sample grid is ${width}×${height}; this browser\u2019s WebGL `
+        + `textures are at most ${this.maxSize}×${this.maxSize}`);
+    }
+    const buffers = input.draw_buffers;
+    if (buffers > this.maxDrawBuffers) {
+      throw new Error(`the input asks for ${buffers} render targets; this WebGL2 has `
+        + `${this.maxDrawBuffers}`);
+    }
+    const compileStart = performance.now();
+    const { program, source } = this.program(input.defines);
+
+    const table = this.floatTexture(256, input.table_rows);
+    gl.bindTexture(gl.TEXTURE_2D, table);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 256, input.table_rows, gl.RGBA, gl.FLOAT,
+      Float32Array.from(input.table));
+    const slots = [];
+    for (let s = 0; s < input.slots; s += 1) slots.push(this.floatTexture(width, height));
+    // One framebuffer per pass: the slots [first, first + buffers).
+    const passes = [];
+    for (let first = 0; first < input.slots; first += buffers) {
+      const fb = gl.createFramebuffer();
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      const attachments = [];
+      for (let i = 0; i < buffers && first + i < input.slots; i += 1) {
+        gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D,
+          slots[first + i], 0);
+        attachments.push(gl.COLOR_ATTACHMENT0 + i);
+      }
+      // The kernel writes `buffers` outputs; those past the last slot go nowhere.
+      while (attachments.length < buffers) attachments.push(gl.NONE);
+      gl.drawBuffers(attachments);
+      if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) {
+        throw new Error('this WebGL2 cannot draw into the float render targets');
+      }
+      passes.push({ fb, first });
+    }
+
+    gl.useProgram(program);
+    const at = (name) => gl.getUniformLocation(program, `u_${name}`);
+    // The metric is no uniform: the defines say it (GODEL), as for every other switch.
+    gl.uniform1f(at('a'), u.a);
+    gl.uniform2fv(at('obs_t'), u.obs_t);
+    gl.uniform3fv(at('obs_x'), u.obs_x);
+    gl.uniform4fv(at('velocity'), u.velocity);
+    gl.uniform3fv(at('forward'), u.forward);
+    gl.uniform3fv(at('up'), u.up);
+    gl.uniform1i(at('camera'), u.camera);
+    gl.uniform2fv(at('fov'), u.fov);
+    gl.uniform2iv(at('size'), u.size);
+    gl.uniform1f(at('max_past'), u.max_past);
+    gl.uniform1i(at('max_loops'), u.max_loops);
+    gl.uniform1i(at('lights'), u.lights);
+    gl.uniform1i(at('table'), 0);
+    // The bound of the loop that tells a sample cut short by a loop limiter (kernel.glsl).
+    gl.uniform1i(at('two'), 2);
+    // The render targets cover the whole grid and a draw's viewport is its tile, so
+    // gl_FragCoord is already the sample's place in the grid.
+    gl.uniform2i(at('origin'), 0, 0);
+    const slot0 = at('slot0');
+    const bind = () => {
+      gl.useProgram(program);
+      gl.activeTexture(gl.TEXTURE0);
+      gl.bindTexture(gl.TEXTURE_2D, table);
+      gl.bindVertexArray(this.vao);
+      gl.enable(gl.SCISSOR_TEST);
+    };
+    bind();
+
+    const total = width * height;
+    let done = 0;
+    let side = FIRST_SIDE;
+    let compileMs = 0;
+    let traceStart = 0;
+    try {
+      // Drivers compile a program when it first draws (SwiftShader: seconds for this kernel):
+      // one sample drawn and waited for first counts as compiling, not as tracing.
+      if (!this.warm.has(program)) {
+        gl.viewport(0, 0, 1, 1);
+        gl.scissor(0, 0, 1, 1);
+        gl.bindFramebuffer(gl.FRAMEBUFFER, passes[0].fb);
+        gl.uniform1i(slot0, 0);
+        gl.drawArrays(gl.TRIANGLES, 0, 3);
+        await this.finished();
+        this.warm.add(program);
+      }
+      compileMs = performance.now() - compileStart;
+      traceStart = performance.now();
+      for (let row0 = 0; row0 < height;) {
+        const rows = Math.min(side, height - row0);
+        for (let col0 = 0; col0 < width;) {
+          if (cancelled()) throw new Error('tracing was cancelled');
+          const cols = Math.min(side, width - col0);
+          const started = performance.now();
+          bind(); // the page may have drawn while this tracer waited
+          gl.viewport(col0, row0, cols, rows);
+          gl.scissor(col0, row0, cols, rows);
+          for (const { fb, first } of passes) {
+            gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+            gl.uniform1i(slot0, first);
+            gl.drawArrays(gl.TRIANGLES, 0, 3);
+          }
+          await this.finished();
+          done += cols * rows;
+          col0 += cols;
+          progress(done, total);
+          // The next draw's side, for about DRAW_MS a draw.
+          const took = Math.max(performance.now() - started, 0.1);
+          const scale = Math.min(2, Math.max(0.5, Math.sqrt(DRAW_MS / took)));
+          side = Math.round(Math.min(MAX_SIDE, Math.max(MIN_SIDE, side * scale)));
+        }
+        row0 += rows;
+      }
+    } catch (e) {
+      slots.forEach((t) => gl.deleteTexture(t));
+      throw e;
+    } finally {
+      gl.disable(gl.SCISSOR_TEST);
+      gl.deleteTexture(table);
+      passes.forEach(({ fb }) => gl.deleteFramebuffer(fb));
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    }
+    return { width, height, slots, input, source, compileMs,
+      traceMs: performance.now() - traceStart };
+  }
+
+  // The channels the shading reads, from a traced frame: {id (R32UI), u, v, g, t_emit
+  // (R32F), cos_i (R16UI), light (R32F array, a layer per light; null without lights)},
+  // new textures the caller owns. `objects`: how many objects the scene has.
+  channels(traced, objects) {
+    const gl = this.gl;
+    const { width, height, slots, input } = traced;
+    if (!this.convertFloat) {
+      this.convertFloat = this.compile(CONVERT_FLOAT, 'the channel conversion');
+      this.convertUint = this.compile(CONVERT_UINT, 'the channel conversion');
+    }
+    const target = (internal) => {
+      const t = gl.createTexture();
+      gl.bindTexture(gl.TEXTURE_2D, t);
+      gl.texStorage2D(gl.TEXTURE_2D, 1, internal, width, height);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+      return t;
+    };
+    const fb = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+    gl.viewport(0, 0, width, height);
+    gl.bindVertexArray(this.vao);
+    // Draws `program` into `attach()`'s target, reading slot `slot` component `component`.
+    const pass = (program, [slot, component], set, attach) => {
+      attach();
+      gl.drawBuffers([gl.COLOR_ATTACHMENT0]);
+      gl.useProgram(program);
+      gl.activeTexture(gl.TEXTURE0);
+      gl.bindTexture(gl.TEXTURE_2D, slots[0]);
+      gl.uniform1i(gl.getUniformLocation(program, 'u_record'), 0);
+      gl.activeTexture(gl.TEXTURE1);
+      gl.bindTexture(gl.TEXTURE_2D, slots[slot]);
+      gl.uniform1i(gl.getUniformLocation(program, 'u_slot'), 1);
+      gl.uniform1i(gl.getUniformLocation(program, 'u_component'), component);
+      set((name) => gl.getUniformLocation(program, name));
+      gl.drawArrays(gl.TRIANGLES, 0, 3);
+    };
+    const into = (texture) => () => gl.framebufferTexture2D(gl.FRAMEBUFFER,
+      gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+    const out = {};
+    for (const [name, where] of Object.entries(FLOAT_CHANNELS)) {
+      out[name] = target(gl.R32F);
+      pass(this.convertFloat, where, (loc) => gl.uniform1i(loc('u_light'), 0), into(out[name]));
+    }
+    out.id = target(gl.R32UI);
+    pass(this.convertUint, [0, 0], (loc) => {
+      gl.uniform1i(loc('u_id'), 1);
+      gl.uniform1i(loc('u_objects'), objects);
+    }, into(out.id));
+    out.cos_i = target(gl.R16UI);
+    pass(this.convertUint, COS_I, (loc) => gl.uniform1i(loc('u_id'), 0), into(out.cos_i));
+    out.light = null;
+    const lights = input.light_channels.length;
+    if (lights > 0) {
+      const t = gl.createTexture();
+      gl.bindTexture(gl.TEXTURE_2D_ARRAY, t);
+      gl.texStorage3D(gl.TEXTURE_2D_ARRAY, 1, gl.R32F, width, height, lights);
+      gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+      input.light_channels.forEach((where, k) => {
+        pass(this.convertFloat, where, (loc) => gl.uniform1i(loc('u_light'), 1),
+          () => gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, t, 0, k));
+      });
+      out.light = t;
+    }
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(fb);
+    return out;
+  }
+
+  // The traced slots as floats (for tests; the page itself never reads them back): one
+  // Float32Array of width × height × 4 per slot, grid row 0 first.
+  readSlots(traced) {
+    const gl = this.gl;
+    const fb = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+    const out = traced.slots.map((t) => {
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
+      gl.readBuffer(gl.COLOR_ATTACHMENT0);
+      const data = new Float32Array(traced.width * traced.height * 4);
+      gl.readPixels(0, 0, traced.width, traced.height, gl.RGBA, gl.FLOAT, data);
+      return data;
+    });
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(fb);
+    return out;
+  }
+}
