@@ -312,7 +312,7 @@ fn files_without_polarization_channels_read_and_half_of_them_is_refused() {
     let dir = temp_dir();
     let without = |image: &mut exr::image::FlatImage| {
         let list = &mut image.layer_data[0].channel_data.list;
-        list.retain(|c| !["pol_x", "pol_y", "pol_z"].iter().any(|n| c.name.eq(*n)));
+        list.retain(|c| !["pol_x", "pol_y", "pol_z"].iter().any(|n| c.name.eq(n)));
     };
     let path = edited(dir.path(), "old.exr", without);
     let old = DataFile::read(&path).unwrap();
