@@ -11,13 +11,12 @@
 //!   that dropped the transport fails.
 
 mod common;
-use common::{render_scene, scene, tracer};
+use common::{render_scene, scene, scene_file, tracer};
 use spacetime::measure::vector_components;
 use spacetime::{
     photon_tangent, Dop853, Event, FourVector, Metric, OdeSystem, Spacetime, StepOutcome,
     TimeDirection, Tolerances,
 };
-use std::path::Path;
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
@@ -49,26 +48,6 @@ fn across(v: [f64; 3], d: [f64; 3]) -> [f64; 3] {
     unit([0, 1, 2].map(|i| v[i] - a * d[i]))
 }
 
-/// An example scene with its camera resized, one ray per pixel, traced by `method`.
-fn example(name: &str, method: &str, width: u32, height: u32) -> scene::Scene {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes")
-        .join(name);
-    let text = std::fs::read_to_string(p).unwrap();
-    let text: String = text
-        .lines()
-        .map(|l| match l.split('=').next().map(str::trim) {
-            Some("width") => format!("width = {width}"),
-            Some("height") => format!("height = {height}"),
-            Some("method") | Some("samples") => String::new(),
-            _ => l.to_string(),
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-        .replace("[trace]", &format!("[trace]\nmethod = \"{method}\""));
-    scene(&text)
-}
-
 /// Exact and numeric tracers on the example scenes: wherever both hit the same object, the
 /// three channels agree to 1e-5, and every hit's `pol` is a unit vector orthogonal to `dir`.
 #[test]
@@ -83,8 +62,8 @@ fn exact_and_numeric_tracers_agree_on_the_polarization() {
         ("surroundings.toml", 60, 30),
         ("lit-shadow.toml", 180, 20),
     ] {
-        let (num, _) = render_scene(&example(name, "numeric", w, h));
-        let (exa, _) = render_scene(&example(name, "exact", w, h));
+        let (num, _) = render_scene(&scene_file(name, "numeric", w, h));
+        let (exa, _) = render_scene(&scene_file(name, "exact", w, h));
         assert!(num.polarization && exa.polarization);
         let mut both = 0;
         for (a, b) in num.records.iter().zip(&exa.records) {
