@@ -24,9 +24,11 @@ class Image:
     - ``status`` (uint8): 0 hit, 1 nothing within ``max_past``, 2 step budget spent,
       3 integration failed, 4 not traced, 5 work limit;
     - float32: ``u``, ``v``, ``g``, ``t_emit``, ``x``, ``y``, ``z``, ``lambda``, ``dir_x``,
-      ``dir_y``, ``dir_z``, ``cos_i``, ``view_x``, ``view_y``, ``view_z`` and ``light_0``,
-      ``light_1``, … (one per light), NaN where the data file holds NaN: the physical
-      channels where nothing was hit, ``view_*`` where nothing was traced.
+      ``dir_y``, ``dir_z``, ``cos_i``, ``view_x``, ``view_y``, ``view_z``, ``pol_x``,
+      ``pol_y``, ``pol_z`` (the pixel's screen-up carried back to the emitter, in its body
+      axes; docs/physics.md, "Polarization") and ``light_0``, ``light_1``, … (one per light),
+      NaN where the data file holds NaN: the physical channels where nothing was hit,
+      ``view_*`` where nothing was traced.
 
     ``image["g"]`` is ``image.channels["g"]``. Row 0 is the top row.
     """

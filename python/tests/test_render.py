@@ -88,6 +88,13 @@ def test_channels_follow_the_data_file_conventions():
     view = np.stack([image[f"view_{c}"] for c in "xyz"], axis=-1)
     assert np.allclose(np.linalg.norm(view, axis=-1), 1.0, atol=1e-6)
     assert (image["t_emit"][hit] < 0).all() and (g[hit] > 0).all()
+    # The polarization channels: a unit vector orthogonal to the emission direction where
+    # the ray hit, NaN elsewhere (issue 25).
+    pol = np.stack([image[f"pol_{c}"] for c in "xyz"], axis=-1)
+    dirs = np.stack([image[f"dir_{c}"] for c in "xyz"], axis=-1)
+    assert np.isnan(pol[~hit]).all()
+    assert np.allclose(np.linalg.norm(pol[hit], axis=-1), 1.0, atol=1e-6)
+    assert np.allclose(np.sum(pol[hit] * dirs[hit], axis=-1), 0.0, atol=1e-6)
     assert "width = 176" in image.scene and "height = 20" in image.scene
     assert "0 failed" in image.summary
 

@@ -13,10 +13,17 @@
 //! | `u`, `v`, `g`, `t_emit`, `x`, `y`, `z`, `lambda`, `cos_i` | f32 | the field of the same name |
 //! | `dir_x`, `dir_y`, `dir_z` | f32 | `dir[0]`, `dir[1]`, `dir[2]` |
 //! | `view_x`, `view_y`, `view_z` | f32 | `view[0]`, `view[1]`, `view[2]` |
+//! | `pol_x`, `pol_y`, `pol_z` | f32 | `pol[0]`, `pol[1]`, `pol[2]` (where [`DataFile::polarization`]) |
 //! | `light_0`, `light_1`, … | f32 | [`DataFile::lights`]`[k]` |
 //!
+//! *Polarization* came later within format version 2: files written before have no `pol_*`
+//! channels and read with [`DataFile::polarization`] false (all three or none: a file with
+//! one or two of them is refused as damaged). Readers that do not know the channels ignore
+//! them, as any channel not listed here, so the version did not change: every reader of
+//! version 2 reads files with and without them.
+//!
 //! *No value where there is none:* where a record's status is not "hit", the physical
-//! channels (`u` … `cos_i`, `dir_*`, `light_k`) hold NaN, and where a pixel was not traced
+//! channels (`u` … `cos_i`, `dir_*`, `pol_*`, `light_k`) hold NaN, and where a pixel was not traced
 //! `view_*` holds NaN too, so that an analysis that forgets to mask by `status` sees NaN
 //! rather than plausible zeros. Reading turns them back into the in-memory convention of
 //! [`PixelRecord::miss`] (zeros).
@@ -58,7 +65,9 @@ use exr::prelude::{
 
 use crate::atomic::write_atomically;
 use crate::exr_write::exr_bytes;
-use crate::planes::{light_channel_name, Plane, PHYSICAL_CHANNELS, VIEW_CHANNELS};
+use crate::planes::{
+    light_channel_name, Plane, PHYSICAL_CHANNELS, POLARIZATION_CHANNELS, VIEW_CHANNELS,
+};
 use crate::record::{PixelRecord, RayStatus};
 use exr_header::{check_layout, sort_header_attributes};
 
@@ -130,6 +139,10 @@ pub struct DataFile {
     /// One plane per light source, `width * height` values each, same order as
     /// `records`; may be empty.
     pub lights: Vec<Vec<f32>>,
+    /// Whether the records carry the polarization channels (`pol`): true for everything
+    /// this program traces; false for files written before it traced polarization (their
+    /// records' `pol` is zero).
+    pub polarization: bool,
 }
 
 /// What went wrong with a data file, and which file.
@@ -495,6 +508,20 @@ impl DataFile {
                 }
             }
         }
+        // All three polarization channels or none (a file written before them).
+        let present = POLARIZATION_CHANNELS.map(|(name, _, _)| f32_channel(name));
+        let polarization = present
+            .iter()
+            .any(|c| !matches!(c, Err(DataFileErrorKind::MissingChannel(_))));
+        if polarization {
+            for ((_, _, set), values) in POLARIZATION_CHANNELS.into_iter().zip(present) {
+                for (record, &value) in records.iter_mut().zip(values?) {
+                    if record.has_emission() {
+                        set(record, value);
+                    }
+                }
+            }
+        }
 
         let mut lights = Vec::new();
         while let Ok(values) = f32_channel(&light_channel_name(lights.len())) {
@@ -519,6 +546,7 @@ impl DataFile {
             height,
             records,
             lights,
+            polarization,
         })
     }
 }

@@ -5,7 +5,7 @@
 //! *No value where there is none:* the physical channels (`u` … `cos_i`, `dir_*`, `light_k`)
 //! hold NaN where a record's status is not "hit", and `view_*` holds NaN where a pixel was not
 //! traced; `object` (−1 for none) and `status` are always set. The table of channels
-//! ([`PHYSICAL_CHANNELS`], [`VIEW_CHANNELS`]) also says how reading puts each back into a
+//! ([`PHYSICAL_CHANNELS`], [`VIEW_CHANNELS`], [`POLARIZATION_CHANNELS`]) also says how reading puts each back into a
 //! [`PixelRecord`].
 
 use crate::record::{PixelRecord, RayStatus};
@@ -40,6 +40,14 @@ pub const VIEW_CHANNELS: [(&str, Get, Set); 3] = [
     ("view_z", |r| r.view[2], |r, s| r.view[2] = s),
 ];
 
+/// The polarization channels (NaN in the file where the status is not "hit"; present only in
+/// files with [`DataFile::polarization`]).
+pub const POLARIZATION_CHANNELS: [(&str, Get, Set); 3] = [
+    ("pol_x", |r| r.pol[0], |r, s| r.pol[0] = s),
+    ("pol_y", |r| r.pol[1], |r, s| r.pol[1] = s),
+    ("pol_z", |r| r.pol[2], |r, s| r.pol[2] = s),
+];
+
 /// Name of the channel holding light plane `k`.
 pub fn light_channel_name(k: usize) -> String {
     format!("light_{k}")
@@ -54,7 +62,8 @@ pub enum Plane {
 
 impl DataFile {
     /// Every channel of the data file with its values as stored: `object` (f32, −1 for
-    /// none), `status` (u32 codes), the physical channels, `view_*` and `light_k`, in that
+    /// none), `status` (u32 codes), the physical channels, `view_*`, `pol_*` (where
+    /// [`DataFile::polarization`]) and `light_k`, in that
     /// order.
     pub fn planes(&self) -> Vec<(String, Plane)> {
         let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
@@ -77,6 +86,12 @@ impl DataFile {
         for (name, get, _) in VIEW_CHANNELS {
             let values = plane(&|r| if traced(r) { get(r) } else { f32::NAN });
             out.push((name.to_string(), Plane::F32(values)));
+        }
+        if self.polarization {
+            for (name, get, _) in POLARIZATION_CHANNELS {
+                let values = plane(&|r| physical(r, get(r)));
+                out.push((name.to_string(), Plane::F32(values)));
+            }
         }
         for (k, values) in self.lights.iter().enumerate() {
             let values = self.records.iter().zip(values);

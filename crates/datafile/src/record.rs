@@ -92,6 +92,12 @@ pub struct PixelRecord {
     /// observer's event boosted by its velocity; on the axis e1, e2, e3 = ∂x, ∂y, ∂z).
     /// Set for every traced ray, hit or not; zero for a pixel not traced.
     pub view: [f32; 3],
+    /// The polarization channels: the observer's screen-up direction at this pixel (the
+    /// camera's up projected orthogonal to `view`), parallel-transported back along the ray
+    /// to the emission event and expressed in the emitter's rest frame (body axes, as
+    /// `dir`): a unit vector orthogonal to `dir` (docs/physics.md, "Polarization"). Zero
+    /// where the data file has no polarization channels ([`crate::DataFile::polarization`]).
+    pub pol: [f32; 3],
 }
 
 impl PixelRecord {
@@ -119,12 +125,13 @@ impl PixelRecord {
             dir: [0.0; 3],
             cos_i: 0.0,
             view: [0.0; 3],
+            pol: [0.0; 3],
         }
     }
 
     /// Whether the record holds an emission event (status hit): the fields u, v, g,
-    /// t_emit, x, y, z, lambda, dir and cos_i (and the light planes) mean something only
-    /// then, and the data file stores NaN in them otherwise.
+    /// t_emit, x, y, z, lambda, dir, cos_i and pol (and the light planes) mean something
+    /// only then, and the data file stores NaN in them otherwise.
     pub const fn has_emission(&self) -> bool {
         matches!(self.status, RayStatus::Hit)
     }

@@ -65,6 +65,7 @@ fn random_file(width: usize, height: usize, lights: usize, seed: u64) -> DataFil
                 dir: [rng.f32(), rng.f32(), rng.f32()],
                 cos_i: rng.f32(),
                 view: [rng.f32(), rng.f32(), rng.f32()],
+                pol: [rng.f32(), rng.f32(), rng.f32()],
             }
         })
         .collect();
@@ -97,6 +98,7 @@ fn random_file(width: usize, height: usize, lights: usize, seed: u64) -> DataFil
         height,
         records,
         lights,
+        polarization: true,
     }
 }
 
@@ -303,6 +305,54 @@ fn missing_channel_is_named() {
     assert!(kind.to_string().contains("`g`"));
 }
 
+/// Files written before the polarization channels read as they did, with `polarization` false
+/// and zero `pol`, and write back without them; a file with only some of the three is damaged.
+#[test]
+fn files_without_polarization_channels_read_and_half_of_them_is_refused() {
+    let dir = temp_dir();
+    let without = |image: &mut exr::image::FlatImage| {
+        let list = &mut image.layer_data[0].channel_data.list;
+        list.retain(|c| !["pol_x", "pol_y", "pol_z"].iter().any(|n| c.name.eq(n)));
+    };
+    let path = edited(dir.path(), "old.exr", without);
+    let old = DataFile::read(&path).unwrap();
+    assert!(!old.polarization);
+    assert!(old.records.iter().all(|r| r.pol == [0.0; 3]));
+    let mut expected = random_file(7, 3, 2, 10);
+    expected.polarization = false;
+    expected.records.iter_mut().for_each(|r| r.pol = [0.0; 3]);
+    assert_eq!(old, expected, "every other channel as written");
+    let again = DataFile::from_bytes(&old.to_bytes().unwrap()).unwrap();
+    assert_eq!(again, old);
+    let rewritten = dir.path().join("rewritten.exr");
+    old.write(&rewritten).unwrap();
+    let image = exr::prelude::read_all_flat_layers_from_file(&rewritten).unwrap();
+    assert!(!image.layer_data[0]
+        .channel_data
+        .list
+        .iter()
+        .any(|c| c.name.to_string().starts_with("pol_")));
+    // One of the three missing: refused, naming it.
+    let path = edited(dir.path(), "no_pol_y.exr", |image| {
+        image.layer_data[0]
+            .channel_data
+            .list
+            .retain(|c| !c.name.eq("pol_y"));
+    });
+    let kind = read_kind(&path);
+    assert!(
+        matches!(&kind, DataFileErrorKind::MissingChannel(c) if c == "pol_y"),
+        "{kind}"
+    );
+    let path = edited(dir.path(), "pol_u32.exr", |image| {
+        *channel(image, "pol_z") = FlatSamples::U32(vec![0; 21]);
+    });
+    assert!(matches!(
+        read_kind(&path),
+        DataFileErrorKind::ChannelType { .. }
+    ));
+}
+
 #[test]
 fn wrong_channel_type_is_reported() {
     let dir = temp_dir();
@@ -463,7 +513,7 @@ fn records_without_a_hit_store_nan_in_the_physical_channels() {
     };
     let physical = [
         "u", "v", "g", "t_emit", "x", "y", "z", "lambda", "dir_x", "dir_y", "dir_z", "cos_i",
-        "light_0", "light_1",
+        "pol_x", "pol_y", "pol_z", "light_0", "light_1",
     ];
     for name in physical {
         for (i, v) in plane(name).iter().enumerate() {

@@ -123,6 +123,9 @@ impl Plan {
                     height: 0,
                     records: Vec::new(),
                     lights: Vec::new(),
+                    // Frames traced on the CPU carry the polarization channels; the GPU
+                    // kernel does not write them yet.
+                    polarization: !s.trace.gpu,
                 };
                 let flight = Flight::new(&s, &script).map_err(|e| settings_error("sequence", e))?;
                 let source = Source::Trace {

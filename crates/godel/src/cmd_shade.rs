@@ -38,8 +38,9 @@ pub struct ShadeArgs {
     /// Output picture FILE: .png (for display) or .exr (linear HDR).
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
-    /// Shader layers, multiplied: texture, frequency, time, light (comma-separated or repeated,
-    /// e.g. `frequency,time`).
+    /// Shader layers, multiplied: texture, frequency, time, light; polarization draws ticks
+    /// along the observed polarization over them (comma-separated or repeated, e.g.
+    /// `frequency,time` or `texture,polarization`).
     #[arg(long, value_delimiter = ',', value_parser = parse_shader)]
     pub shader: Vec<ShaderKind>,
     /// A settings file (TOML; any subset of the settings fields).
@@ -271,7 +272,9 @@ fn unused_flags(
         has(ShaderKind::Time),
         has(ShaderKind::Light),
     );
-    let paints = has(ShaderKind::Texture) || time || light;
+    // The polarization layer alone draws over the texture layer.
+    let alone = shaders == [ShaderKind::Polarization];
+    let paints = has(ShaderKind::Texture) || time || light || alone;
     let (f, t, l, p) = ("frequency", "time", "light", "texture, time or light");
     let checks = [
         ("--temperature", !args.temperature.is_empty(), freq, f),

@@ -29,6 +29,7 @@ fn data_file(dir: &Path) -> PathBuf {
         height: 1,
         records: vec![testkit::hit(0, 0.0, 0.0, 1.0, -1.0, 1.0); 4],
         lights: vec![],
+        polarization: false,
     };
     let path = dir.join("syn.exr");
     data.write(&path).unwrap();

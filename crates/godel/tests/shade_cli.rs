@@ -41,6 +41,7 @@ fn synthetic(dir: &Path, lights: usize) -> PathBuf {
             .map(|i| testkit::hit(0, 0.3, 0.3, 1.0, -(i as f32) / 2.0, 1.0))
             .collect(),
         lights: vec![vec![1.0; n]; lights],
+        polarization: false,
     };
     let path = dir.join(format!("syn{lights}.exr"));
     data.write(&path).unwrap();
@@ -322,4 +323,38 @@ fn a_settings_file_sets_any_field() {
     assert!(o.status.success(), "{}", stderr(&o));
     // 1.0 through the display tone curve (0.9) is sRGB 243.
     assert_eq!(png(&out).get_pixel(0, 0).0, [0, 243, 0]);
+}
+
+/// Issue 25: the polarization layer draws ticks over the texture layer where the scene
+/// polarizes an object's light, and refuses a data file without the `pol_*` channels (one
+/// written by the GPU tracer, or before them) with no output.
+#[test]
+fn polarization_layer_draws_ticks_and_needs_the_channels() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("small.toml");
+    std::fs::write(
+        &scene,
+        small_scene() + "polarization = { axis = [0, 0, 1] }\n",
+    )
+    .unwrap();
+    let o = render(&scene, dir.path(), &["-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let data = dir.path().join("small.exr");
+    let (tex, pol) = (dir.path().join("tex.png"), dir.path().join("pol.png"));
+    for (out, shader) in [(&tex, "texture"), (&pol, "texture,polarization")] {
+        let o = shade(&data, out, &["--shader", shader]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let (a, b) = (png(&tex), png(&pol));
+    let changed = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+    assert!(changed > 20, "{changed} pixels changed");
+    // Alone, the layer draws over the texture layer.
+    let alone = dir.path().join("alone.png");
+    let o = shade(&data, &alone, &["--shader", "polarization"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(png(&alone), b);
+    let old = synthetic(dir.path(), 0);
+    let out = dir.path().join("sub").join("none.png");
+    std::fs::create_dir(out.parent().unwrap()).unwrap();
+    refused(&old, &["--shader", "polarization"], &out, 2, &["pol_x"]);
 }

@@ -49,6 +49,7 @@ fn sphere() -> DataFile {
                 dir: [0.0, 0.6, 0.8],
                 cos_i: 0.5,
                 view: [0.0, 0.0, 1.0],
+                pol: [1.0, 0.0, 0.0],
             }
         })
         .collect();
@@ -58,6 +59,7 @@ fn sphere() -> DataFile {
         height: h,
         records,
         lights: vec![],
+        polarization: false,
     }
 }
 

@@ -8,7 +8,10 @@
 //! along the aberrated direction n ([`spacetime::aberrate`]), and the photon's frequency
 //! is higher by the Doppler factor D = g′/g = γ(1 + n·v). The pixel's record is the
 //! sphere's record at n with `g` and `lambda` multiplied by D (the tracer normalizes the
-//! photon to unit energy in the observer's own frame), every other field as read there.
+//! photon to unit energy in the observer's own frame), and `pol` turned about `dir` by the
+//! angle between the two observers' screen-up directions for that photon
+//! ([`spacetime::polarization::look_rotation`]; docs/physics.md, "Polarization"); every
+//! other field as read there.
 //!
 //! The sphere is read bilinearly within one image of one object and by nearest neighbour at
 //! the edges of objects and images ([`Filter::Smooth`], the default; [`Filter::Nearest`] for
@@ -29,6 +32,7 @@ pub use sample::{Filter, SAME_IMAGE_DT, SAME_IMAGE_DUV};
 use datafile::{DataFile, DataFileErrorKind, PixelRecord, RayStatus};
 use rayon::prelude::*;
 use scene::{Camera, Observer, Scene, SceneError};
+use spacetime::polarization::{look_rotation, turned};
 use spacetime::{aberrate, LocalVelocity};
 use std::f64::consts::{PI, TAU};
 
@@ -354,6 +358,7 @@ pub fn look_with(
         height: height as usize,
         records,
         lights,
+        polarization: sphere.polarization,
     })
 }
 
@@ -401,6 +406,9 @@ pub fn look_rows(
             for (col, slot) in out.iter_mut().enumerate() {
                 if let Some((taps, p)) = show(col, row) {
                     let mut record = boosted(sample::record(&sphere.records, &taps), p.doppler);
+                    if sphere.polarization && record.is_hit() {
+                        record.pol = polarization(&record, source, view, &p);
+                    }
                     // The direction this camera's pixel looks, in the moving observer's frame.
                     record.view = p.own.map(|c| c as f32);
                     *slot = record;
@@ -426,6 +434,27 @@ pub fn look_rows(
             .collect()
     };
     (records, lights)
+}
+
+/// The record `r`'s polarization channels for the pixel `p` of `view`: the static observer's
+/// screen basis at the photon's direction turned into this pixel's screen-up.
+fn polarization(
+    r: &PixelRecord,
+    source: &SphereSource,
+    view: &LookView,
+    p: &PixelLook,
+) -> [f32; 3] {
+    let turn = look_rotation(
+        view.velocity,
+        p.own,
+        view.up,
+        view.forward,
+        p.static_dir,
+        source.up,
+        source.forward,
+    );
+    let (pol, dir) = (r.pol.map(f64::from), r.dir.map(f64::from));
+    turned(pol, dir, turn).map(|c| c as f32)
 }
 
 /// The static observer's record `r` as the moving observer of Doppler factor `doppler`

@@ -12,7 +12,8 @@
 //! docs/physics.md), so an image boundary is never taken for an image.
 //!
 //! Interpolated records are the weighted means of the four records, field by field (u on the
-//! circle, the photon direction renormalized), so their fields still belong together to first
+//! circle, the photon direction renormalized, the polarization made orthogonal to it again
+//! and renormalized), so their fields still belong together to first
 //! order in the pixel size; `object` and `status` are the four's common values. Light planes
 //! are interpolated with the same weights where all four values are finite.
 
@@ -167,6 +168,16 @@ pub fn record(records: &[PixelRecord], t: &Taps) -> PixelRecord {
     let n = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
     if n > 0.0 {
         out.dir = dir.map(|c| (c / n) as f32);
+    }
+    // The polarization channels: the mean made orthogonal to the mean direction again and
+    // renormalized (all zero in files without them, and left so).
+    let pol = [0, 1, 2].map(|k| f64::from(mean(&|r| f64::from(r.pol[k]))));
+    let d = out.dir.map(f64::from);
+    let along = pol[0] * d[0] + pol[1] * d[1] + pol[2] * d[2];
+    let pol = [0, 1, 2].map(|k| pol[k] - along * d[k]);
+    let m = (pol[0] * pol[0] + pol[1] * pol[1] + pol[2] * pol[2]).sqrt();
+    if m > 0.0 {
+        out.pol = pol.map(|c| (c / m) as f32);
     }
     out
 }

@@ -118,15 +118,32 @@ fn centre(src: &SphereSource, col: i64, row: i64) -> [f64; 3] {
 
 /// What the source knows around a static direction: whether the 3×3 block of pixels
 /// around the one containing it mixes objects or statuses (an edge pixel) or images of one
-/// object (a t_emit jump), the largest finite-difference gradients of g, t_emit and λ there
-/// (per radian), and the angle δ from the direction to the containing pixel's centre.
+/// object (a t_emit jump), the largest finite-difference gradients of g, t_emit, λ and the
+/// polarization channels there (per radian), and the angle δ from the direction to the
+/// containing pixel's centre.
 struct Around {
     edge: bool,
     jump: bool,
     grad_g: f64,
     grad_t: f64,
     grad_l: f64,
+    /// Of pol and of pol × dir (the transported screen-right, which the turn mixes in).
+    grad_pol: f64,
     delta: f64,
+}
+
+fn pol(r: &PixelRecord) -> [f64; 3] {
+    r.pol.map(f64::from)
+}
+
+/// pol × dir: the transported screen-right.
+fn right(r: &PixelRecord) -> [f64; 3] {
+    let (p, d) = (pol(r), r.dir.map(f64::from));
+    [
+        p[1] * d[2] - p[2] * d[1],
+        p[2] * d[0] - p[0] * d[2],
+        p[0] * d[1] - p[1] * d[0],
+    ]
 }
 
 fn around(src: &SphereSource, data: &DataFile, n: [f64; 3]) -> Around {
@@ -143,6 +160,7 @@ fn around(src: &SphereSource, data: &DataFile, n: [f64; 3]) -> Around {
         grad_g: 0.0,
         grad_t: 0.0,
         grad_l: 0.0,
+        grad_pol: 0.0,
         delta: angle(n, here),
     };
     for dr in -1..=1i64 {
@@ -159,6 +177,10 @@ fn around(src: &SphereSource, data: &DataFile, n: [f64; 3]) -> Around {
             a.grad_g = a.grad_g.max((o.g - me.g).abs() as f64 / ang);
             a.grad_t = a.grad_t.max((o.t_emit - me.t_emit).abs() as f64 / ang);
             a.grad_l = a.grad_l.max((o.lambda - me.lambda).abs() as f64 / ang);
+            let (po, pm, ro, rm) = (pol(&o), pol(&me), right(&o), right(&me));
+            let dp = (0..3).fold(0.0f64, |m, i| m.max((po[i] - pm[i]).abs()));
+            let dr = (0..3).fold(0.0f64, |m, i| m.max((ro[i] - rm[i]).abs()));
+            a.grad_pol = a.grad_pol.max(dp.max(dr) / ang);
         }
     }
     a
@@ -301,6 +323,18 @@ fn compare_inside_objects(
             assert!(
                 dl <= bound_l,
                 "{name} ({col}, {row}): |Δλ| {dl} > {bound_l}"
+            );
+            // The polarization channels: the source's screen-up and screen-right transported
+            // (pol, pol × dir), mixed by the turn between the two observers' screen-up at the
+            // pixel's own direction (docs/physics.md, "Polarization"): off by their
+            // gradients times δ.
+            let bound_p = 1.5 * s.grad_pol * s.delta + 2e-6;
+            let dp = (0..3).fold(0.0f32, |m, i| m.max((a.pol[i] - b.pol[i]).abs())) as f64;
+            assert!(
+                dp <= bound_p,
+                "{name} ({col}, {row}): |Δpol| {dp} > {bound_p}: {:?} {:?}",
+                a.pol,
+                b.pol
             );
             let resting_ball = a.object == RESTING;
             if resting_ball {

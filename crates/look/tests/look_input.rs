@@ -35,6 +35,7 @@ fn synthetic(text: &str, width: usize, height: usize) -> DataFile {
         height,
         records: vec![PixelRecord::MISS; width * height],
         lights: vec![],
+        polarization: false,
     };
     for (i, r) in d.records.iter_mut().enumerate() {
         r.t_emit = -(i as f32);

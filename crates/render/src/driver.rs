@@ -20,7 +20,6 @@ use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, FORMAT_VERSION};
 use rayon::prelude::*;
 use scene::{Camera, Scene, TraceMethod};
-use spacetime::Spacetime;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -142,7 +141,6 @@ impl<'a> Renderer<'a> {
     pub fn new(scene: &'a Scene) -> Result<Renderer<'a>, RenderError> {
         let m = scene.metric;
         let obs = scene.observer;
-        let frame = m.observer_frame(obs.event, obs.velocity);
         // Worldlines cover the traced time range plus a margin for the objects' own size,
         // and with lights the range of their shadow rays (emitted up to max_past before a
         // hit).
@@ -172,7 +170,7 @@ impl<'a> Renderer<'a> {
             exact: scene.trace.method == TraceMethod::Exact,
         };
         let objects = Intersector { metric: m, targets };
-        let tracer = Tracer::new(objects, obs.event, frame, options);
+        let tracer = Tracer::new(objects, &obs, options);
         let lighting = Lighting::new(
             scene.lights.iter().map(LightSource::from_scene).collect(),
             tracer.max_past(),
@@ -211,6 +209,7 @@ impl<'a> Renderer<'a> {
             height: h,
             records: vec![PixelRecord::miss(RayStatus::NotTraced); w * h],
             lights: vec![],
+            polarization: true,
         }
     }
 

@@ -3,7 +3,8 @@
 //! - [`driver`]: [`driver::Renderer`] traces the tiles of a plan and hands each to a
 //!   [`tiles::Sink`] (the data-file [`tiles::Assembler`] of an image or a part; a list of
 //!   tiles for MPI).
-//! - [`tracer`]: one pixel's backward light ray, numeric or exact, and its record.
+//! - [`tracer`]: one pixel's backward light ray, numeric or exact, and its record;
+//!   [`polarization`]: the pixel's polarization vector carried along it.
 //! - [`intersect`]: the bounded intersection search shared by pixel and shadow rays, over
 //!   the [`segment`]s of a ray; [`target`]: the objects' signed distances and surfaces;
 //!   [`worldline`]: the objects' worldlines and body frames; [`bounds`]: boxes;
@@ -33,6 +34,7 @@ pub mod lighting;
 pub mod map;
 pub mod part;
 pub mod plan;
+pub mod polarization;
 pub mod reject;
 pub mod segment;
 pub mod target;

@@ -18,6 +18,7 @@ use crate::bounds::Aabb;
 use crate::worldline::{LocalPoint, WorldPoint, Worldline, WorldlineError};
 use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
+use spacetime::polarization::measured;
 use spacetime::{normal, Event, FourVector, GeodesicState, Metric, Spacetime};
 use std::f64::consts::PI;
 
@@ -78,6 +79,9 @@ pub struct Surface {
     /// Cosine between the surface normal on the side the photon leaves (outward, or
     /// inward for an inner surface seen from inside) and `dir`; ≥ 0.
     pub cos_i: f64,
+    /// The polarization vector measured in the object's frame: a unit vector orthogonal to
+    /// `dir` (docs/physics.md, "Polarization").
+    pub pol: [f64; 3],
 }
 
 impl Target {
@@ -245,8 +249,16 @@ impl Target {
         }
     }
 
-    /// Surface data at a hit state `s`.
-    pub fn surface(&self, metric: &Metric, s: &GeodesicState, tau_seed: f64) -> Option<Surface> {
+    /// Surface data at a hit state `s`, with the pixel's screen-up and screen-right `screen`
+    /// transported there; `None` where the rest frame cannot be matched or they measure as no
+    /// polarization vector.
+    pub fn surface(
+        &self,
+        metric: &Metric,
+        s: &GeodesicState,
+        tau_seed: f64,
+        screen: [FourVector; 2],
+    ) -> Option<Surface> {
         let k = metric.raise(s.x, s.p);
         match self {
             Target::LocalSphere { worldline, .. } => {
@@ -260,6 +272,8 @@ impl Target {
                 let (u, v) = lon_lat(lp.xi);
                 let dir = normalize3([-kl[1], -kl[2], -kl[3]]);
                 let n = normalize3(lp.xi);
+                let [fl, rl] =
+                    screen.map(|v| rest_frame_photon(metric, worldline, &lp.at, s.x, v).1);
                 Some(Surface {
                     u,
                     v,
@@ -267,6 +281,7 @@ impl Target {
                     dir,
                     // The normal on the side the photon leaves (inward for an inner surface).
                     cos_i: dot3(n, dir).abs(),
+                    pol: measured(fl, rl, dir)?,
                 })
             }
             Target::CoordinateSphere { center, .. } => {
@@ -279,6 +294,7 @@ impl Target {
                     emitter_velocity: FourVector::new(1.0, 0.0, 0.0, 0.0),
                     dir,
                     cos_i: dot3(n, normalize3([-k.x, -k.y, -k.z])).abs(),
+                    pol: static_polarization(metric, s.x, screen, dir)?,
                 })
             }
             Target::Plane { extent, .. } => {
@@ -294,6 +310,7 @@ impl Target {
                     emitter_velocity: FourVector::new(1.0, 0.0, 0.0, 0.0),
                     dir,
                     cos_i: kn[2].abs(),
+                    pol: static_polarization(metric, s.x, screen, dir)?,
                 })
             }
         }
@@ -440,6 +457,20 @@ fn viewer_side(n: [f64; 3], photon: [f64; 3]) -> f64 {
     } else {
         -1.0
     }
+}
+
+/// The record's `pol` from the pixel's screen-up and screen-right `screen` at `x`, measured by
+/// the static observer there, for a photon travelling along `dir` in its frame (coordinate
+/// objects: their body axes are the static frame's).
+fn static_polarization(
+    metric: &Metric,
+    x: Event,
+    screen: [FourVector; 2],
+    dir: [f64; 3],
+) -> Option<[f64; 3]> {
+    let (g, frame) = (metric.metric(x), metric.static_frame(x));
+    let [f, r] = screen.map(|v| vector_components(&g, &frame, v));
+    measured(f, r, dir)
 }
 
 /// Unit direction of propagation of the photon (−k) in the static frame at `x`.

@@ -24,16 +24,20 @@
 //! ray may be within its reach (`crate::falling`, docs/physics.md "Balls in free fall"):
 //! only a loop's start probes afresh, so only a loop's end may go unsearched.
 //!
-//! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]).
+//! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]); its
+//! polarization is the pixel's screen-up carried back to the hit (`crate::polarization`:
+//! in closed form for the exact tracer, integrated with the ray for the numeric one).
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
+use crate::polarization::{self, RayPlace};
 use crate::reject::{set_ray, Rejection, NUMERIC_TOLERANCE};
 use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
 use datafile::record::{PixelRecord, RayStatus};
+use scene::Observer;
 use spacetime::measure::frequency_ratio;
 use spacetime::{
-    photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
-    OdeSystem, Spacetime, StepOutcome, Tetrad, TimeDirection, Tolerances,
+    photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, FourVector, GeodesicState,
+    GeodesicSystem, OdeSystem, Spacetime, StepOutcome, Tetrad, TimeDirection, Tolerances,
 };
 
 /// Everything a pixel's ray needs, built once per render and shared by all threads.
@@ -42,6 +46,9 @@ pub struct Tracer {
     pub objects: Intersector,
     observer: Event,
     frame: Tetrad,
+    /// The camera's axes in the observer's frame (for the pixels' screen-up).
+    up: [f64; 3],
+    forward: [f64; 3],
     /// Rays stop at coordinate time observer.t − max_past.
     t_bound: f64,
     tol: Tolerances,
@@ -89,10 +96,13 @@ pub struct Traced {
 
 /// How a stretch of the ray ended.
 enum End {
-    /// A crossing in segment `segment` of the stored ones, moved by `shift`.
+    /// A crossing in segment `segment` of the stored ones, moved by `shift`: `loops` whole
+    /// loops of parameter `period` each (0 and 0 in the first loop).
     Hit {
         segment: usize,
         shift: Shift,
+        loops: u64,
+        period: f64,
         crossing: Crossing,
     },
     Miss(RayStatus),
@@ -105,7 +115,13 @@ enum FirstLoop {
 }
 
 impl Tracer {
-    pub fn new(objects: Intersector, observer: Event, frame: Tetrad, opt: TraceOptions) -> Tracer {
+    /// The tracer of the pixels of `observer`'s camera among `objects`.
+    pub fn new(objects: Intersector, observer: &Observer, opt: TraceOptions) -> Tracer {
+        let frame = objects
+            .metric
+            .observer_frame(observer.event, observer.velocity);
+        let observer_axes = (observer.up, observer.forward);
+        let observer = observer.event;
         let godel = objects.metric.godel_a().is_some();
         let exact = opt.exact && godel;
         let rejections = objects
@@ -121,6 +137,8 @@ impl Tracer {
             objects,
             observer,
             frame,
+            up: observer_axes.0,
+            forward: observer_axes.1,
             t_bound: observer.t - opt.max_past,
             tol: Tolerances {
                 rtol: opt.tolerance,
@@ -226,8 +244,19 @@ impl Tracer {
             End::Hit {
                 segment,
                 shift,
+                loops,
+                period,
                 crossing,
-            } => self.record(&start, &segments[segment], shift, crossing),
+            } => {
+                let f = polarization::screen(&self.frame, self.up, self.forward, n);
+                let place = RayPlace {
+                    lambda: crossing.lambda,
+                    loops,
+                    period,
+                };
+                let f = self.transport(&start, geo.as_ref(), f, place, shift);
+                self.record(&start, &segments[segment], shift, crossing, f)
+            }
             End::Miss(status) => Traced {
                 record: PixelRecord::miss(status),
                 hit: None,
@@ -328,6 +357,8 @@ impl Tracer {
             Ok(Some(crossing)) => Some(End::Hit {
                 segment: segments.len() - 1,
                 shift: Shift::default(),
+                loops: 0,
+                period: 0.0,
                 crossing,
             }),
             Ok(None) => None,
@@ -406,8 +437,8 @@ impl Tracer {
         let loop_box = loop_bounds(segments);
         // Scene validation keeps max_past within MAX_RAY_LOOPS loops of the shortest period;
         // the bound here holds whatever the period of this ray turned out to be.
-        for k in 1..=scene::MAX_RAY_LOOPS {
-            let shift = period.times(k as f64);
+        for loops in 1..=scene::MAX_RAY_LOOPS {
+            let shift = period.times(loops as f64);
             // Skip a loop that comes near no object (boxes in coordinates, at its times).
             let (t_hi, t_lo) = (t0 + shift.dt, t0 + shift.dt + period.dt);
             if t_hi < self.t_bound {
@@ -416,7 +447,7 @@ impl Tracer {
             let here = loop_box.shifted_z(shift.dz);
             let metric = &self.objects.metric;
             // Objects this loop searches at all (`crate::reject`), and whose box it meets.
-            let k = k as usize;
+            let k = loops as usize;
             if !probes.activate(k, 0.0)
                 || !(self.objects.targets.iter().zip(&probes.active))
                     .any(|(t, &on)| on && t.bounds(metric, t_lo, t_hi).intersects(&here))
@@ -437,6 +468,8 @@ impl Tracer {
                         return End::Hit {
                             segment: i,
                             shift,
+                            loops,
+                            period: period.dl,
                             crossing,
                         }
                     }
@@ -452,8 +485,45 @@ impl Tracer {
         End::Miss(RayStatus::WorkLimit)
     }
 
-    /// The record of a crossing found in segment `d` moved by `shift`.
-    fn record(&self, start: &GeodesicState, d: &Segment, shift: Shift, h: Crossing) -> Traced {
+    /// The pixel's screen-up and screen-right, transported along the pixel's ray to the hit at
+    /// `place` (moved by `shift`): in closed form along the exact ray `geo`, else integrated
+    /// with the ray (`None` if that fails).
+    fn transport(
+        &self,
+        start: &GeodesicState,
+        geo: Option<&ExactGeodesic>,
+        screen: [FourVector; 2],
+        place: RayPlace,
+        shift: Shift,
+    ) -> Option<[FourVector; 2]> {
+        match geo.filter(|_| self.exact) {
+            Some(geo) => Some(polarization::exact(
+                geo,
+                self.observer,
+                screen,
+                place.lambda + shift.dl,
+            )),
+            None => polarization::integrated(
+                self.objects.metric,
+                start,
+                screen,
+                place,
+                self.tol,
+                transport_steps(self.max_steps),
+            ),
+        }
+    }
+
+    /// The record of a crossing found in segment `d` moved by `shift`, with the pixel's
+    /// screen-up and screen-right `screen` transported to it (`None`: the transport failed).
+    fn record(
+        &self,
+        start: &GeodesicState,
+        d: &Segment,
+        shift: Shift,
+        h: Crossing,
+        screen: Option<[FourVector; 2]>,
+    ) -> Traced {
         let miss = |status| Traced {
             record: PixelRecord::miss(status),
             hit: None,
@@ -463,7 +533,10 @@ impl Tracer {
             return miss(RayStatus::Escaped);
         }
         let metric = &self.objects.metric;
-        let Some(surf) = self.objects.targets[h.target].surface(metric, &s, h.tau) else {
+        let Some(screen) = screen else {
+            return miss(RayStatus::Failed);
+        };
+        let Some(surf) = self.objects.targets[h.target].surface(metric, &s, h.tau, screen) else {
             return miss(RayStatus::Failed);
         };
         let g = frequency_ratio(self.frame.e[0], start.p, surf.emitter_velocity, s.p);
@@ -487,6 +560,7 @@ impl Tracer {
                 dir: surf.dir.map(|c| c as f32),
                 cos_i: surf.cos_i as f32,
                 view: [0.0; 3],
+                pol: surf.pol.map(|c| c as f32),
             },
             hit: Some(HitPoint {
                 state: s,
@@ -495,4 +569,12 @@ impl Tracer {
             }),
         }
     }
+}
+
+/// The step budget of the propagator integrated along a ray the numeric tracer traced within
+/// `max_steps`: the same ray with 16 more components in the error norm may take a few more
+/// steps (rays that hit the ball around the observer within a budget of 1 or 2 steps were
+/// marked failed), so four times the budget and 64 steps more, still fixed in advance.
+fn transport_steps(max_steps: u64) -> u64 {
+    max_steps.saturating_mul(4).saturating_add(64)
 }

@@ -4,29 +4,7 @@
 //! direct light too.
 
 mod common;
-use common::{render_scene, scene};
-use std::path::Path;
-
-fn scene_file(name: &str, method: &str, width: u32, height: u32) -> scene::Scene {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes")
-        .join(name);
-    let text = std::fs::read_to_string(p).unwrap();
-    let text: String = text
-        .lines()
-        .map(|l| match l.split('=').next().map(str::trim) {
-            Some("width") => format!("width = {width}"),
-            Some("height") => format!("height = {height}"),
-            Some("method") => String::new(),
-            // One ray per pixel: the tracers are compared ray by ray, samples add only cost.
-            Some("samples") => String::new(),
-            _ => l.to_string(),
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-        .replace("[trace]", &format!("[trace]\nmethod = \"{method}\""));
-    scene(&text)
-}
+use common::{render_scene, scene_file};
 
 #[test]
 fn exact_and_numeric_tracers_agree_pixel_by_pixel() {

@@ -82,6 +82,7 @@ fn regression_probes_are_lower_bounds_and_the_distance_obeys_the_rate() {
             texture: scene::TextureSpec::Gradient,
             temperature: 5800.0,
             motion,
+            polarization: None,
         };
         let target = Target::new(m, &object, -12.0, 1.0).unwrap();
         let Target::LocalSphere { worldline, .. } = &target else {

@@ -208,6 +208,10 @@ pub struct Object {
     /// Black-body temperature in kelvin (> 0; default [`DEFAULT_TEMPERATURE`]).
     pub temperature: f64,
     pub motion: Motion,
+    /// The axis of the object's linear polarization, a unit vector in its body axes (those
+    /// of the data file's `dir` and `pol`): the light leaves polarized along the axis
+    /// projected orthogonal to its direction (degree 1). `None`: unpolarized.
+    pub polarization: Option<[f64; 3]>,
 }
 
 /// A point light at rest.

@@ -2,7 +2,7 @@
 //! textures, each failure located at the offending value. Part of `validate.rs`.
 //!
 //! Defaults: frame local, texture a checker with 8 rows and 16 columns, temperature 5800 K,
-//! checker rows 8 and cols 16 when only one is given, geodesic start time 0.
+//! checker rows 8 and cols 16 when only one is given, geodesic start time 0, unpolarized.
 
 use crate::checker::{Checker, Result};
 use crate::model::*;
@@ -103,6 +103,10 @@ pub(crate) fn object(c: &Checker, path: &str, o: RawObject, base_dir: &Path) -> 
         &p("temperature"),
         o.temperature.unwrap_or(DEFAULT_TEMPERATURE),
     )?;
+    let polarization = match o.polarization {
+        Some(pol) => Some(c.direction(&p("polarization.axis"), pol.axis)?),
+        None => None,
+    };
     Ok(Object {
         name: o.name,
         frame,
@@ -110,6 +114,7 @@ pub(crate) fn object(c: &Checker, path: &str, o: RawObject, base_dir: &Path) -> 
         texture,
         temperature,
         motion,
+        polarization,
     })
 }
 

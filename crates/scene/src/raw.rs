@@ -136,6 +136,14 @@ pub struct RawObject {
     pub temperature: Option<f64>,
     /// Local objects only.
     pub motion: Option<RawMotion>,
+    pub polarization: Option<RawPolarization>,
+}
+
+/// How an object's light is polarized: linearly, along a body axis.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPolarization {
+    pub axis: [f64; 3],
 }
 
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq)]

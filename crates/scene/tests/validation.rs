@@ -303,3 +303,29 @@ fn output_names_that_make_hidden_or_odd_files_are_refused() {
         assert_eq!(Scene::from_str(&text, "test.toml").unwrap().name, good);
     }
 }
+
+/// Issue 25: an object's light may be linearly polarized along a body axis
+/// (`polarization = { axis = [x, y, z] }`, normalized), or unpolarized (no field); a bad axis
+/// or an unknown field in it is refused with file, line and field.
+#[test]
+fn polarization_axis_is_a_direction_or_absent() {
+    let ball = "[[object]]\nname = \"b\"\nradius = 0.5\nmotion = { kind = \"rest\", position = { x = 2.0, y = 0.0, z = 0.0 } }\n";
+    assert_eq!(scene(ball).unwrap().objects[0].polarization, None);
+    let s = scene(&format!("{ball}polarization = {{ axis = [0, 3, 4] }}\n")).unwrap();
+    assert_eq!(s.objects[0].polarization, Some([0.0, 0.6, 0.8]));
+    for (bad, field) in [
+        ("{ axis = [0, 0, 0] }", "object[0].polarization.axis"),
+        ("{ axis = [nan, 0, 1] }", "object[0].polarization.axis[0]"),
+    ] {
+        let e = err(&format!("{ball}polarization = {bad}\n"));
+        assert_eq!(e.field, field, "{bad}: {e}");
+        assert_eq!(e.line(), Some(10), "{bad}: {e}");
+        assert!(e.to_string().contains("test.toml"), "{e}");
+    }
+    for bad in ["{ axis = [0, 1] }", "{ axes = [0, 0, 1] }", "\"linear\""] {
+        let e = err(&format!("{ball}polarization = {bad}\n"));
+        assert_eq!(e.line(), Some(10), "{bad}: {e}");
+        assert!(e.to_string().contains("test.toml"), "{e}");
+        assert!(e.to_string().contains("polarization"), "{bad}: {e}");
+    }
+}

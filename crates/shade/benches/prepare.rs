@@ -27,6 +27,7 @@ fn data(n: usize) -> DataFile {
         height: 1,
         records: vec![PixelRecord::MISS; 4],
         lights: Vec::new(),
+        polarization: false,
     }
 }
 

@@ -1,5 +1,5 @@
 //! [`Channels`]: a compact, channel-major copy of the data-file channels that shading reads
-//! (status, object, u, v, g, t_emit, cos_i, the light planes), made once per data file so
+//! (status, object, u, v, g, t_emit, cos_i, the light planes, pol and dir), made once per data file so
 //! that re-shading it streams a few flat planes instead of whole pixel records; and
 //! [`Sample`], the values of one sample that the colour rule of [`crate::shading`] reads,
 //! taken from a record or from the planes (so both paths colour with the same rule).
@@ -21,6 +21,8 @@ pub struct Needs {
     pub incidence: bool,
     /// The light planes.
     pub lights: bool,
+    /// pol and dir (the polarization layer).
+    pub polarization: bool,
 }
 
 impl Needs {
@@ -30,6 +32,7 @@ impl Needs {
         shift: true,
         incidence: true,
         lights: true,
+        polarization: true,
     };
 }
 
@@ -50,6 +53,10 @@ pub struct Channels {
     pub cos_i: Vec<f32>,
     /// One plane per light channel of the file (empty without [`Needs::lights`]).
     pub lights: Vec<Vec<f32>>,
+    /// The polarization channels and the emission direction (empty without
+    /// [`Needs::polarization`]).
+    pub pol: Vec<[f32; 3]>,
+    pub dir: Vec<[f32; 3]>,
 }
 
 /// One sample's values as the colour rule reads them.
@@ -112,6 +119,16 @@ impl Channels {
             } else {
                 Vec::new()
             },
+            pol: if needs.polarization {
+                records.iter().map(|r| r.pol).collect()
+            } else {
+                Vec::new()
+            },
+            dir: if needs.polarization {
+                records.iter().map(|r| r.dir).collect()
+            } else {
+                Vec::new()
+            },
         }
     }
 
@@ -138,6 +155,7 @@ impl Channels {
             && full(&self.cos_i, needs.incidence)
             && (!needs.lights
                 || (self.lights.len() >= lights && self.lights.iter().all(|p| p.len() == n)))
+            && (!needs.polarization || (self.pol.len() == n && self.dir.len() == n))
     }
 
     /// The size of the picture (W, H): the stored image divided by the supersampling.
@@ -164,6 +182,15 @@ impl Channels {
             g: at(&self.g),
             t_emit: at(&self.t_emit),
             cos_i: at(&self.cos_i),
+        }
+    }
+
+    /// What the polarization layer reads of sample `i` (zeros where not held).
+    pub fn polarization(&self, i: usize) -> crate::polarization::PolSample {
+        crate::polarization::PolSample {
+            object: self.object.get(i).copied().unwrap_or(-1),
+            pol: self.pol.get(i).copied().unwrap_or_default(),
+            dir: self.dir.get(i).copied().unwrap_or_default(),
         }
     }
 

@@ -48,6 +48,20 @@ pub(crate) fn colour(field: &str, c: [f64; 3]) -> Result<[f32; 3], ShadeError> {
     Ok(c.map(|v| v as f32))
 }
 
+/// `v` normalized: finite components, not all zero (the polarization axis).
+pub(crate) fn direction(field: &str, v: [f64; 3]) -> Result<[f64; 3], ShadeError> {
+    for (i, c) in v.iter().enumerate() {
+        finite(&format!("{field}[{i}]"), *c)?;
+    }
+    match spacetime::scaled_unit(v) {
+        Some(unit) => Ok(unit),
+        None => Err(invalid(
+            field,
+            format!("must be a non-zero direction, got {v:?}"),
+        )),
+    }
+}
+
 /// The first of `keys` that is not among `known`, or `None`: one pass over each through a
 /// hash set, so that the settings of 100,000 objects are checked in linear time (a search of
 /// the name list per key was quadratic).

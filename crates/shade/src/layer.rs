@@ -30,6 +30,8 @@ pub struct Overlays {
     pub marks: Option<Camera>,
     /// The travel-time legend for this range (travel_min, travel_max).
     pub legend: Option<(f64, f64)>,
+    /// The polarization layer's legend (above the travel-time legend where both show).
+    pub polarization: bool,
     /// Labels of the reference squares: the temperatures (K) of the objects whose unshifted
     /// colours they show, in object order; empty for no squares.
     pub reference_labels: Vec<f64>,
@@ -63,7 +65,10 @@ enum Art {
 impl Overlays {
     /// Whether the layer would be empty whatever the picture's size.
     pub fn is_empty(&self) -> bool {
-        self.marks.is_none() && self.legend.is_none() && self.reference_labels.is_empty()
+        self.marks.is_none()
+            && self.legend.is_none()
+            && !self.polarization
+            && self.reference_labels.is_empty()
     }
 
     /// Where the text goes on a `width` × `height` picture: every piece that finds room, in
@@ -91,10 +96,16 @@ impl Overlays {
         if let Some(p) = squares_labels.temperatures {
             place(&mut board, Kind::ReferenceLabel, Art::Text(p));
         }
+        // Above the azimuth labels, where there are marks.
+        let mut above = self.marks.map_or(0, |c| bottom_band(&c, width, height));
         if let Some((min, max)) = self.legend {
-            // Above the azimuth labels, where there are marks.
-            let above = self.marks.map_or(0, |c| bottom_band(&c, width, height));
             if let Some(legend) = Legend::new(width, height, min, max, above) {
+                above = u32::try_from(i64::from(height) - legend.panel.y0).unwrap_or(above);
+                place(&mut board, Kind::Legend, Art::Legend(Box::new(legend)));
+            }
+        }
+        if self.polarization {
+            if let Some(legend) = Legend::polarization(width, height, above) {
                 place(&mut board, Kind::Legend, Art::Legend(Box::new(legend)));
             }
         }

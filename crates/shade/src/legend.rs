@@ -1,4 +1,5 @@
-//! False colour for light travel time and its legend: a colour bar in the bottom-left corner
+//! False colour for light travel time and its legend (and the polarization layer's legend,
+//! laid out alike): a colour bar in the bottom-left corner
 //! with the range's two ends, a title and the unit written in the picture's type
 //! ([`crate::text`]), so that a picture shaded by travel time can be read without the
 //! command that made it; and the labels of the frequency shader's reference squares. Both are
@@ -12,6 +13,7 @@ use image::RgbaImage;
 use crate::colour::{rgb_to_srgb8, srgb8_to_linear};
 use crate::frequency_shader::{reference_square, REFERENCE_SQUARES};
 use crate::placement::Rect;
+use crate::polarization::cyclic_colour;
 use crate::text::{fill, sizes_from, type_size, unit, Label};
 
 /// The viridis stops, 8-bit sRGB.
@@ -53,6 +55,18 @@ fn label(v: f64) -> String {
 /// scene's units (those of the Gödel parameter a, with c = 1).
 pub const LEGEND_TITLE: &str = "light travel time −t_emit (units of a, c = 1)";
 
+/// The polarization legend's title: the angle of the observed polarization on the picture.
+pub const POLARIZATION_TITLE: &str = "polarization angle from up towards right";
+
+/// The colours of a legend's bar.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    /// Travel time ([`false_colour`]).
+    Travel,
+    /// Polarization angle ([`crate::polarization::cyclic_colour`]).
+    Polarization,
+}
+
 /// The title beside the frequency shader's reference squares: what the colours mean.
 pub const FREQUENCY_TITLE: &str = "frequency shift g: black body at g·T";
 
@@ -90,6 +104,8 @@ fn cap_height(size: f32) -> i64 {
 pub struct Legend {
     /// The panel, which holds everything else.
     pub panel: Rect,
+    /// What the bar's colours are.
+    pub scale: Scale,
     pub low: Placed,
     pub high: Placed,
     pub bar: Rect,
@@ -101,12 +117,33 @@ impl Legend {
     /// `above` pixels up from the bottom edge (room for orientation marks' labels); `None`
     /// where the picture has no room for it.
     pub fn new(w: u32, h: u32, min: f64, max: f64, above: u32) -> Option<Legend> {
+        let (low, high) = (label(min), label(max));
+        Legend::with(w, h, (&low, &high), LEGEND_TITLE, Scale::Travel, above)
+    }
+
+    /// The polarization layer's legend ([`crate::polarization`]): the cyclic colour map of the
+    /// observed angle from 0° to 180°, laid out as [`Legend::new`].
+    pub fn polarization(w: u32, h: u32, above: u32) -> Option<Legend> {
+        let title = POLARIZATION_TITLE;
+        Legend::with(w, h, ("0°", "180°"), title, Scale::Polarization, above)
+    }
+
+    /// A legend with the bar's ends labelled `ends`, the title `title` and the colours of
+    /// `scale`.
+    fn with(
+        w: u32,
+        h: u32,
+        ends: (&str, &str),
+        title_text: &str,
+        scale: Scale,
+        above: u32,
+    ) -> Option<Legend> {
         let size = type_size(w, h);
         let u = unit(size);
         let (wi, hi) = (i64::from(w), i64::from(h));
         let margin = 3 * u;
-        let low = Label::new(&label(min), size);
-        let high = Label::new(&label(max), size);
+        let low = Label::new(ends.0, size);
+        let high = Label::new(ends.1, size);
         let lh = low.height();
         let y = hi - i64::from(above) - margin - lh;
         let bar_w = i64::from((w / 5).clamp(40, 256));
@@ -118,12 +155,12 @@ impl Legend {
         // The title on the line (on its baseline, in smaller type if need be), else above it.
         let fits = |x: i64, l: &Label| x + l.width() <= wi;
         let on_line = sizes_from(size)
-            .map(|k| Label::new(LEGEND_TITLE, k))
+            .map(|k| Label::new(title_text, k))
             .find(|l| fits(x_title, l))
             .map(|l| (x_title, y + low.baseline() - l.baseline(), l));
         let title = on_line.or_else(|| {
             sizes_from(size)
-                .map(|k| Label::new(LEGEND_TITLE, k))
+                .map(|k| Label::new(title_text, k))
                 .find(|l| fits(margin, l))
                 .map(|l| (margin, y - l.height() - u, l))
         });
@@ -156,6 +193,7 @@ impl Legend {
         }
         Some(Legend {
             panel,
+            scale,
             low,
             high,
             bar,
@@ -171,7 +209,11 @@ impl Legend {
         let b = self.bar;
         let n = b.x1 - b.x0;
         for i in 0..n {
-            let c = rgb_to_srgb8(false_colour(i as f64 / (n - 1).max(1) as f64));
+            let s = i as f64 / (n - 1).max(1) as f64;
+            let c = match self.scale {
+                Scale::Travel => rgb_to_srgb8(false_colour(s)),
+                Scale::Polarization => cyclic_colour(s * std::f64::consts::PI),
+            };
             fill(img, b.x0 + i, b.y0, 1, b.y1 - b.y0, c);
         }
         self.high.draw(img);

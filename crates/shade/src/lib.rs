@@ -27,6 +27,8 @@
 //! - [`layer`]: the overlay layer (orientation marks, legend, labels) as one RGBA image,
 //!   composited over the picture here and over the GPU's picture by the viewer; its text in
 //!   the embedded typeface ([`text`]), laid out so that no two labels overlap ([`placement`]).
+//! - [`polarization`]: the polarization layer's ticks along the observed polarization,
+//!   coloured by its angle (legend in the overlay layer).
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
 //! - [`ShadeError`]: every error, naming the file or field concerned.
 
@@ -43,6 +45,7 @@ pub mod layer;
 pub mod legend;
 pub mod marks;
 pub mod placement;
+pub mod polarization;
 pub mod script;
 pub mod settings;
 pub mod shading;

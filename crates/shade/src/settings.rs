@@ -60,15 +60,19 @@ pub enum ShaderKind {
     Time,
     /// Direct light from the data file's `light_k` channels.
     Light,
+    /// Ticks along the observed polarization of polarized objects, over the other layers
+    /// (over the texture layer when alone; [`crate::polarization`]).
+    Polarization,
 }
 
 impl ShaderKind {
     /// Every kind, in the order used in messages.
-    pub const ALL: [ShaderKind; 4] = [
+    pub const ALL: [ShaderKind; 5] = [
         ShaderKind::Texture,
         ShaderKind::Frequency,
         ShaderKind::Time,
         ShaderKind::Light,
+        ShaderKind::Polarization,
     ];
 
     /// The lowercase name used in files and on the command line.
@@ -78,6 +82,7 @@ impl ShaderKind {
             ShaderKind::Frequency => "frequency",
             ShaderKind::Time => "time",
             ShaderKind::Light => "light",
+            ShaderKind::Polarization => "polarization",
         }
     }
 }
@@ -89,7 +94,7 @@ impl FromStr for ShaderKind {
             .into_iter()
             .find(|k| k.name() == s.trim())
             .ok_or_else(|| {
-                format!("unknown shader '{s}' (expected texture, frequency, time or light)")
+                format!("unknown shader '{s}' (expected texture, frequency, time, light or polarization)")
             })
     }
 }
@@ -230,6 +235,10 @@ pub struct ObjectSettings {
     /// Blinking lamps.
     #[serde(default)]
     pub lamps: Vec<Lamp>,
+    /// The body axis the object's light is linearly polarized along (polarization layer);
+    /// `None`: unpolarized. Defaults to the scene's `polarization = { axis = … }`.
+    #[serde(default)]
+    pub polarization: Option<[f64; 3]>,
 }
 
 /// The time layer.
@@ -323,6 +332,7 @@ impl ObjectSettings {
             rotation_deg: 0.0,
             temperature,
             lamps: Vec::new(),
+            polarization: None,
         }
     }
 }
@@ -350,11 +360,21 @@ impl ShadeSettings {
             .iter()
             .enumerate()
             .map(|(k, name)| {
-                let t = scene_objects
-                    .get(k)
+                let o = scene_objects.get(k);
+                let t = o
                     .and_then(|o| number(o.get("temperature")))
                     .unwrap_or(DEFAULT_TEMPERATURE);
-                (name.clone(), ObjectSettings::new(t))
+                let axis = o
+                    .and_then(|o| o.get("polarization"))
+                    .and_then(|p| p.get("axis"))
+                    .and_then(|c| c.as_array())
+                    .and_then(|c| {
+                        let v: Vec<f64> = c.iter().filter_map(|x| number(Some(x))).collect();
+                        <[f64; 3]>::try_from(v).ok()
+                    });
+                let mut settings = ObjectSettings::new(t);
+                settings.polarization = axis;
+                (name.clone(), settings)
             })
             .collect();
         let scene_lights = array("light");

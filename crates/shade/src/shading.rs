@@ -45,13 +45,14 @@ use rayon::prelude::*;
 use crate::blackbody::table;
 use crate::body::{prepare_lamp, PreparedObject};
 use crate::channels::{Channels, Needs, Sample};
-use crate::checks::{colour, finite, first_unknown, invalid, non_negative, positive};
+use crate::checks::{colour, direction, finite, first_unknown, invalid, non_negative, positive};
 use crate::colour::{display_srgb8, linear_to_srgb8_row, rgb_to_srgb8_fast, tone_map, TONE_KNEE};
 use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
 use crate::layer::{composite, Overlays};
 use crate::legend::false_colour;
+use crate::polarization::{draw_ticks, PolSample};
 use crate::settings::{
     BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
     MAX_LIGHT_SOURCES,
@@ -83,6 +84,10 @@ pub struct Shading {
     gain: f32,
     /// The camera, for orientation marks (`grid`); `None` without them.
     marks: Option<scene::Camera>,
+    /// The polarization layer, and each object's polarization axis (unit; `None`:
+    /// unpolarized).
+    polarization: bool,
+    axes: Vec<Option<[f64; 3]>>,
 }
 
 /// Most exposure compensation, in stops either way.
@@ -113,6 +118,16 @@ impl Shading {
             }
         }
         let has = |k: ShaderKind| settings.shaders.contains(&k);
+        // The polarization layer alone draws its ticks over the texture layer.
+        let texture_layer =
+            has(ShaderKind::Texture) || settings.shaders.as_slice() == [ShaderKind::Polarization];
+        if has(ShaderKind::Polarization) && !data.polarization {
+            return Err(invalid(
+                "shaders",
+                "the polarization shader needs the data file's pol_x, pol_y, pol_z channels \
+                 (this file was traced without them: render it again)",
+            ));
+        }
         let names = &data.header.object_names;
         if let Some(name) = first_unknown(names, settings.objects.keys()) {
             return Err(invalid(
@@ -202,7 +217,7 @@ impl Shading {
         }
 
         // The scene's own textures, only when a layer paints textures.
-        let paints = has(ShaderKind::Texture) || has(ShaderKind::Time) || has(ShaderKind::Light);
+        let paints = texture_layer || has(ShaderKind::Time) || has(ShaderKind::Light);
         // The data file's defaults only for objects the settings leave out (reading them
         // parses the embedded scene: the page sends every object, and skips that).
         let defaults =
@@ -212,6 +227,7 @@ impl Shading {
         // Each image file decoded once, however many objects show it.
         let mut images = HashMap::new();
         let mut objects = Vec::with_capacity(names.len());
+        let mut axes = Vec::with_capacity(names.len());
         for (k, name) in names.iter().enumerate() {
             let o = settings
                 .objects
@@ -285,6 +301,10 @@ impl Shading {
                     }
                 })
             };
+            axes.push(match o.polarization {
+                Some(axis) => Some(direction(&format!("{field}.polarization"), axis)?),
+                None => None,
+            });
             let first = load(&o.texture, "texture")?;
             let second = if has(ShaderKind::Time) {
                 load(&o.window_texture, "window_texture")?
@@ -302,7 +322,7 @@ impl Shading {
             });
         }
         Ok(Shading {
-            texture: has(ShaderKind::Texture),
+            texture: texture_layer,
             frequency: has(ShaderKind::Frequency),
             time: has(ShaderKind::Time),
             light: has(ShaderKind::Light),
@@ -318,6 +338,8 @@ impl Shading {
             observer_time: data.header.observer_time,
             gain: 2f64.powf(ev) as f32,
             marks,
+            polarization: has(ShaderKind::Polarization),
+            axes,
         })
     }
 
@@ -342,7 +364,40 @@ impl Shading {
     pub fn image_into(&self, data: &DataFile, bytes: &mut Vec<u8>) {
         self.image_rows_into(data, bytes);
         let (w, h) = data.picture_size();
+        let s = data.supersample().max(1);
+        self.draw_ticks(w, h, bytes, &|col, row| {
+            let r = data
+                .records
+                .get(data.width * (s * row + s / 2) + s * col + s / 2)?;
+            Some(PolSample {
+                object: if r.is_hit() { r.object } else { -1 },
+                pol: r.pol,
+                dir: r.dir,
+            })
+        });
         self.draw_overlays(w, h, bytes);
+    }
+
+    /// The polarization layer's ticks over the picture in `bytes` (w × h RGB8), each cell read
+    /// at the sample `at(col, row)` of its centre pixel; nothing without the layer.
+    fn draw_ticks(
+        &self,
+        w: usize,
+        h: usize,
+        bytes: &mut Vec<u8>,
+        at: &dyn Fn(usize, usize) -> Option<PolSample>,
+    ) {
+        if !self.polarization || bytes.len() != w * h * 3 {
+            return;
+        }
+        let (Ok(wu), Ok(hu)) = (u32::try_from(w), u32::try_from(h)) else {
+            return;
+        };
+        // The picture's buffer itself, not a copy (given back below).
+        if let Some(mut img) = RgbImage::from_raw(wu, hu, std::mem::take(bytes)) {
+            draw_ticks(&mut img, at, &self.axes);
+            *bytes = img.into_raw();
+        }
     }
 
     /// [`Shading::image_into`] without the reference squares and the overlay layer: for a
@@ -417,6 +472,7 @@ impl Shading {
             shift: self.frequency,
             incidence: !self.light && (self.texture || self.time),
             lights: self.light,
+            polarization: self.polarization,
         }
     }
 
@@ -461,6 +517,15 @@ impl Shading {
                 linear_to_srgb8_row(row_rgb, out);
             },
         );
+        self.draw_ticks(w, h, bytes, &|col, row| {
+            let i = channels.width * (s * row + s / 2) + s * col + s / 2;
+            let p = channels.polarization(i);
+            let hit = channels.sample(i).status == datafile::RayStatus::Hit;
+            Some(PolSample {
+                object: if hit { p.object } else { -1 },
+                ..p
+            })
+        });
         self.draw_overlays(w, h, bytes);
     }
 
@@ -595,6 +660,7 @@ impl Shading {
         Overlays {
             marks: self.marks,
             legend: legend.then_some(self.travel),
+            polarization: self.polarization && self.axes.iter().any(Option::is_some),
             reference_labels: if squares {
                 self.objects.iter().map(|o| o.temperature).collect()
             } else {

@@ -47,6 +47,7 @@ fn synthetic() -> DataFile {
         height,
         records,
         lights: Vec::new(),
+        polarization: false,
     }
 }
 

@@ -20,6 +20,7 @@ fn data(lights: Vec<Vec<f32>>) -> DataFile {
         height: 1,
         records: vec![hit, hit, hit, PixelRecord::MISS],
         lights,
+        polarization: false,
     }
 }
 

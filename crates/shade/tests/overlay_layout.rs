@@ -97,6 +97,7 @@ fn everything(camera: Camera) -> Overlays {
     Overlays {
         marks: Some(camera),
         legend: Some((0.0, 12.5)),
+        polarization: true,
         reference_labels: vec![5800.0, 3500.0],
     }
 }

@@ -20,6 +20,7 @@ fn data() -> DataFile {
         height: 1,
         records: vec![PixelRecord::MISS],
         lights: vec![],
+        polarization: false,
     }
 }
 

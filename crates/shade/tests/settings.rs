@@ -29,6 +29,7 @@ fn data(lights: usize) -> DataFile {
         height: h,
         records,
         lights: vec![vec![0.5; w * h]; lights],
+        polarization: false,
     }
 }
 

@@ -258,6 +258,7 @@ fn synthetic() -> DataFile {
         height: 2,
         records,
         lights: Vec::new(),
+        polarization: false,
     }
 }
 

@@ -59,6 +59,7 @@ fn synthetic() -> DataFile {
         height: h,
         records,
         lights: vec![],
+        polarization: false,
     }
 }
 
@@ -69,6 +70,7 @@ fn one_pixel(rec: PixelRecord, lights: Vec<f32>) -> DataFile {
         height: 1,
         records: vec![rec],
         lights: lights.into_iter().map(|l| vec![l]).collect(),
+        polarization: false,
     }
 }
 
@@ -173,6 +175,7 @@ fn time_window_is_decided_by_t_emit_alone() {
         height: 1,
         records,
         lights: vec![],
+        polarization: false,
     };
     let s = with(&data, |s| {
         s.shaders = vec![ShaderKind::Time];

@@ -201,6 +201,7 @@ fn data(texture: &str) -> DataFile {
             PixelRecord::MISS,
         ],
         lights: Vec::new(),
+        polarization: false,
     }
 }
 

@@ -16,6 +16,9 @@
 //!   isometries and their differentials), [`ExactGeodesic`] (closed-form geodesics through
 //!   any event), [`shadow_rays`] (light rays from a source at rest to an event), and
 //!   [`connection`]: those rays with what an observer measures of them.
+//! - Parallel transport: along the closed forms ([`transport`]) and integrated with a
+//!   geodesic in any metric ([`propagator`]); what observers measure of a light ray's
+//!   polarization ([`polarization`]).
 //!
 //! - [`message::short`]: how numbers are written in messages, in every crate.
 //!
@@ -39,6 +42,8 @@ pub mod message;
 mod metric;
 mod minkowski;
 pub mod normal;
+pub mod polarization;
+pub mod propagator;
 pub mod transport;
 mod vectors;
 

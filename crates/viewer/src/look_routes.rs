@@ -369,6 +369,7 @@ fn shade_look(viewer: &ViewerState, body: &[u8]) -> Result<image::RgbImage, ApiE
             height: ((end - start) * s) as usize,
             records,
             lights,
+            polarization: viewer.data.polarization,
         };
         shading.image_rows_into(&part, &mut rows);
         rgb.extend_from_slice(&rows);

@@ -18,6 +18,29 @@ pub fn scene(text: &str) -> Scene {
     Scene::from_str(text, "test.toml").unwrap_or_else(|e| panic!("{e}\n{text}"))
 }
 
+/// The example scene `scenes/NAME` with its camera resized to `width` × `height`, one ray per
+/// pixel (the tracers are compared ray by ray: samples add only cost), traced by `method`.
+pub fn scene_file(name: &str, method: &str, width: u32, height: u32) -> scene::Scene {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(name);
+    let text = std::fs::read_to_string(p).unwrap();
+    let text: String = text
+        .lines()
+        .map(|l| match l.split('=').next().map(str::trim) {
+            Some("width") => format!("width = {width}"),
+            Some("height") => format!("height = {height}"),
+            Some("method") => String::new(),
+            // One ray per pixel: the tracers are compared ray by ray, samples add only cost.
+            Some("samples") => String::new(),
+            _ => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        .replace("[trace]", &format!("[trace]\nmethod = \"{method}\""));
+    scene(&text)
+}
+
 /// Renders on the current rayon pool.
 pub fn render_scene(s: &Scene) -> (DataFile, RenderStats) {
     render(s, &NoProgress).expect("render")
@@ -271,8 +294,7 @@ pub fn tracer(sc: &Scene) -> render::tracer::Tracer {
         .collect();
     Tracer::new(
         Intersector { metric: m, targets },
-        o.event,
-        m.observer_frame(o.event, o.velocity),
+        &o,
         TraceOptions {
             max_past: sc.trace.max_past,
             tolerance: sc.trace.tolerance,

@@ -50,6 +50,7 @@ pub fn data_of(w: usize, h: usize) -> DataFile {
         height: h,
         records,
         lights,
+        polarization: false,
     }
 }
 

@@ -35,5 +35,6 @@ pub fn data(width: usize, height: usize) -> DataFile {
         height,
         records,
         lights: Vec::new(),
+        polarization: false,
     }
 }

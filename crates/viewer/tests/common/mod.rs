@@ -59,6 +59,7 @@ pub fn data() -> DataFile {
         height: HEIGHT,
         records,
         lights: Vec::new(),
+        polarization: false,
     }
 }
 

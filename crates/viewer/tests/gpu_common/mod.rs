@@ -86,6 +86,7 @@ pub fn data() -> DataFile {
         height: H,
         records,
         lights: vec![light],
+        polarization: false,
     }
 }
 
