@@ -20,7 +20,7 @@ use scene::Motion;
 use spacetime::measure::DualFrame;
 use spacetime::{
     normal, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry,
-    Metric, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
+    Metric, MetricTensor, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
 };
 
 /// A worldline point: event, four-velocity and body frame (e[0] = u).
@@ -67,6 +67,8 @@ pub struct FreeFall {
     tau_max: f64,
     /// Position boxes on a grid in coordinate time (see [`TimeBoxes`]).
     boxes: TimeBoxes,
+    /// The metric and Γ at the origin, where [`origin_coords`] expands (once, not per probe).
+    origin: (MetricTensor, Christoffel),
 }
 
 /// Boxes around a worldline's positions, one per cell of a uniform grid in coordinate
@@ -214,6 +216,7 @@ impl Worldline {
                     tau_min,
                     tau_max,
                     boxes,
+                    origin: (metric.metric(ORIGIN), metric.christoffel(ORIGIN)),
                 }))
             }
         }
@@ -409,9 +412,10 @@ impl Worldline {
                 }
                 // Second order near the object, taken at the origin (`origin_coords`): one
                 // more Newton step on its ξ⁰.
-                tau = (tau + origin_coords(metric, &pb, x)[0]).clamp(ff.tau_min, ff.tau_max);
+                tau = (tau + origin_coords(metric, &ff.origin, &pb, x)[0])
+                    .clamp(ff.tau_min, ff.tau_max);
                 let pb = self.at(metric, tau)?;
-                let xb = origin_coords(metric, &pb, x);
+                let xb = origin_coords(metric, &ff.origin, &pb, x);
                 Some(LocalPoint {
                     at: pb,
                     xi: [xb[1], xb[2], xb[3]],
@@ -453,19 +457,26 @@ fn local_coords(dual: &DualFrame, gamma: Option<&Christoffel>, p: Event, x: Even
 /// holds for displacements up to the largest radius, a/2, even for a boosted ball near the
 /// horizon: at `p` itself a coordinate displacement of ~γ|ξ| at large r once put a point
 /// 1.7 γ|ξ| away (static distance) inside the ball. Minkowski: the displacement itself.
-fn origin_coords(metric: &Metric, p: &WorldPoint, x: Event) -> [f64; 4] {
+fn origin_coords(
+    metric: &Metric,
+    origin: &(MetricTensor, Christoffel),
+    p: &WorldPoint,
+    x: Event,
+) -> [f64; 4] {
     let Some(a) = metric.godel_a() else {
         let g = metric.metric(p.event);
         return local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x);
     };
     let to = Isometry::to_origin(a, p.event);
-    let o = Event::new(0.0, 0.0, 0.0, 0.0);
     let frame = Tetrad {
         e: p.frame.e.map(|e| to.push(p.event, e)),
     };
-    let dual = DualFrame::new(&metric.metric(o), &frame);
-    local_coords(&dual, Some(&metric.christoffel(o)), o, to.apply(x))
+    let dual = DualFrame::new(&origin.0, &frame);
+    local_coords(&dual, Some(&origin.1), ORIGIN, to.apply(x))
 }
+
+/// The event at the origin of the coordinates.
+const ORIGIN: Event = Event::new(0.0, 0.0, 0.0, 0.0);
 
 /// Integrates the transported geodesic in the direction `sign` of proper time until `done(t)`.
 fn integrate(

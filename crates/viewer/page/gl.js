@@ -33,6 +33,34 @@ function formatOf(gl, data, components) {
   return [gl.R32UI, integer, gl.UNSIGNED_INT];
 }
 
+// A program of the full-screen vertex shader and `fragment`; `what` names it in errors. The
+// shading here and the traced frames (trace.js) compile through this one function.
+export function linkProgram(gl, fragment, what) {
+  const shader = (type, source) => {
+    const s = gl.createShader(type);
+    gl.shaderSource(s, source);
+    gl.compileShader(s);
+    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) {
+      const log = gl.getShaderInfoLog(s);
+      gl.deleteShader(s);
+      throw new Error(`${what} did not compile: ${log}`);
+    }
+    return s;
+  };
+  const p = gl.createProgram();
+  const [v, f] = [shader(gl.VERTEX_SHADER, VERTEX), shader(gl.FRAGMENT_SHADER, fragment)];
+  gl.attachShader(p, v);
+  gl.attachShader(p, f);
+  gl.linkProgram(p);
+  gl.deleteShader(v);
+  gl.deleteShader(f);
+  if (!gl.getProgramParameter(p, gl.LINK_STATUS)) {
+    if (gl.isContextLost()) throw new Error(`the GPU context was lost while compiling ${what}`);
+    throw new Error(`${what} did not link: ${gl.getProgramInfoLog(p)}`);
+  }
+  return p;
+}
+
 export class Gpu {
   constructor(canvas) {
     const gl = canvas.getContext('webgl2', { antialias: false, alpha: false, depth: false,
@@ -61,24 +89,7 @@ export class Gpu {
   }
 
   program(fragment) {
-    const gl = this.gl;
-    const compile = (type, source) => {
-      const s = gl.createShader(type);
-      gl.shaderSource(s, source);
-      gl.compileShader(s);
-      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) {
-        throw new Error(`shader: ${gl.getShaderInfoLog(s)}`);
-      }
-      return s;
-    };
-    const p = gl.createProgram();
-    gl.attachShader(p, compile(gl.VERTEX_SHADER, VERTEX));
-    gl.attachShader(p, compile(gl.FRAGMENT_SHADER, fragment));
-    gl.linkProgram(p);
-    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) {
-      throw new Error(`shader program: ${gl.getProgramInfoLog(p)}`);
-    }
-    return p;
+    return linkProgram(this.gl, fragment, 'a shading program');
   }
 
   checkSize(width, height, what) {

@@ -13,7 +13,7 @@
 // observer's event, …) between traces; `tracer.channels(traced, objects)` gives the textures.
 'use strict';
 
-import { VERTEX } from './shaders.js';
+import { linkProgram } from './gl.js';
 
 // The kernel's statuses (datafile::record::RayStatus codes).
 const HIT = 0;
@@ -98,39 +98,12 @@ export class KernelTracer {
     this.convertUint = null;
   }
 
-  compile(fragment, what) {
-    const gl = this.gl;
-    const shader = (type, source) => {
-      const s = gl.createShader(type);
-      gl.shaderSource(s, source);
-      gl.compileShader(s);
-      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) {
-        const log = gl.getShaderInfoLog(s);
-        gl.deleteShader(s);
-        throw new Error(`${what} did not compile: ${log}`);
-      }
-      return s;
-    };
-    const p = gl.createProgram();
-    const [v, f] = [shader(gl.VERTEX_SHADER, VERTEX), shader(gl.FRAGMENT_SHADER, fragment)];
-    gl.attachShader(p, v);
-    gl.attachShader(p, f);
-    gl.linkProgram(p);
-    gl.deleteShader(v);
-    gl.deleteShader(f);
-    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) {
-      if (gl.isContextLost()) throw new Error(`the GPU context was lost while compiling ${what}`);
-      throw new Error(`${what} did not link: ${gl.getProgramInfoLog(p)}`);
-    }
-    return p;
-  }
-
   // The kernel compiled with `defines` (once per distinct defines): {program, source}, the
   // source as host.rs compiles it (`#version 300 es`, the defines, the kernel).
   program(defines) {
     if (!this.programs.has(defines)) {
       const source = `#version 300 es\n${defines}${this.kernel}`;
-      this.programs.set(defines, { program: this.compile(source, 'the GPU kernel'), source });
+      this.programs.set(defines, { program: linkProgram(this.gl, source, 'the GPU kernel'), source });
     }
     return this.programs.get(defines);
   }
@@ -308,8 +281,8 @@ export class KernelTracer {
     const gl = this.gl;
     const { width, height, slots, input } = traced;
     if (!this.convertFloat) {
-      this.convertFloat = this.compile(CONVERT_FLOAT, 'the channel conversion');
-      this.convertUint = this.compile(CONVERT_UINT, 'the channel conversion');
+      this.convertFloat = linkProgram(this.gl, CONVERT_FLOAT, 'the channel conversion');
+      this.convertUint = linkProgram(this.gl, CONVERT_UINT, 'the channel conversion');
     }
     const target = (internal) => {
       const t = gl.createTexture();
