@@ -45,6 +45,7 @@ pub mod normal;
 pub mod polarization;
 pub mod propagator;
 pub mod transport;
+pub mod worldline;
 mod vectors;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
