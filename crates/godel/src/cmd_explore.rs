@@ -21,7 +21,9 @@ use render::plan::Plan;
 use render::tiles::Assembler;
 use scene::Scene;
 use toml::Table;
-use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEMORY};
+use viewer::explore::{
+    Explorer, FrameSource, Level, ObserverEvent, Velocity, View, FRAMES_IN_MEMORY,
+};
 use viewer::kernel_routes::KernelInput;
 
 use crate::args::{thread_pool, usage};
@@ -95,6 +97,55 @@ pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> anyhow::Re
             camera.insert("samples".into(), 1.into());
         }
     })
+}
+
+/// The scene with its observer and camera those of `view` (the flying page's): every field
+/// the view has replaces the scene's, the camera's kind and fields of view as a whole.
+pub fn scene_of_view(scene: &Scene, view: &View) -> anyhow::Result<Scene> {
+    let godel = scene.metric.godel_a().is_some();
+    edited(scene, |table| {
+        let observer = section(table, "observer");
+        observer.insert("time".into(), view.time.into());
+        let p = view.position;
+        let mut position = Table::new();
+        for (k, v) in [("x", p.x), ("y", p.y), ("z", p.z)] {
+            position.insert(k.into(), v.into());
+        }
+        observer.insert("position".into(), position.into());
+        let mut velocity = Table::new();
+        velocity.insert("speed".into(), view.velocity.speed.into());
+        velocity.insert("direction".into(), vector(view.velocity.direction));
+        observer.insert("velocity".into(), velocity.into());
+        observer.insert("forward".into(), vector(view.forward));
+        observer.insert("up".into(), vector(view.up));
+        let camera = section(table, "camera");
+        for key in ["kind", "fov_deg", "h_fov_deg", "v_fov_deg", "samples"] {
+            camera.remove(key);
+        }
+        let c = &view.camera;
+        camera.insert("kind".into(), c.kind.clone().into());
+        for (key, v) in [
+            ("fov_deg", c.fov_deg),
+            ("h_fov_deg", c.h_fov_deg),
+            ("v_fov_deg", c.v_fov_deg),
+        ] {
+            if let Some(v) = v {
+                camera.insert(key.into(), v.into());
+            }
+        }
+        camera.insert("width".into(), i64::from(c.width).into());
+        camera.insert("height".into(), i64::from(c.height).into());
+        if let Some(n) = c.samples {
+            camera.insert("samples".into(), i64::from(n).into());
+        }
+        if godel {
+            section(table, "trace").insert("method".into(), "exact".into());
+        }
+    })
+}
+
+fn vector(v: [f64; 3]) -> toml::Value {
+    toml::Value::Array(v.iter().map(|&c| c.into()).collect())
 }
 
 /// The scene read again from its text after `edit`, with the usual checks: the data files
@@ -191,6 +242,39 @@ impl FrameSource for SceneFrames {
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
         let scene = scene_at(&self.scene, event, Level::Full).map_err(|e| format!("{e:#}"))?;
         Ok(KernelInput::new(&scene))
+    }
+
+    fn view_input(&self, view: &View) -> Result<KernelInput, String> {
+        let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
+        Ok(KernelInput::new(&scene))
+    }
+
+    fn fall(
+        &self,
+        event: ObserverEvent,
+        velocity: Velocity,
+        tau: f64,
+    ) -> Result<(ObserverEvent, Velocity), String> {
+        let v = if velocity.speed == 0.0 {
+            Some(spacetime::LocalVelocity::REST)
+        } else {
+            spacetime::LocalVelocity::new(velocity.speed, velocity.direction)
+        }
+        .ok_or_else(|| {
+            format!(
+                "velocity: speed {} must be in [0, 1) with a non-zero finite direction {:?}",
+                velocity.speed, velocity.direction
+            )
+        })?;
+        let (to, w) = spacetime::worldline::fall(&self.scene.metric, event.event(), v, tau)
+            .ok_or_else(|| format!("the observer's free fall over tau = {tau} is not finite"))?;
+        Ok((
+            to.into(),
+            Velocity {
+                speed: w.speed,
+                direction: w.direction,
+            },
+        ))
     }
 }
 
@@ -304,6 +388,37 @@ mod tests {
         assert_eq!(full.observer.event, Event::new(2.0, 0.3, 0.0, 0.0));
         assert_eq!(full.camera, scene.camera);
         assert_eq!(full.samples, scene.samples);
+    }
+
+    #[test]
+    fn a_view_replaces_the_observer_and_camera_and_a_bad_one_names_its_field() {
+        let scene = small_scene();
+        let view: View = serde_json::from_value(serde_json::json!({
+            "time": 1.5, "position": {"x": 0.2, "y": -0.1, "z": 0.3},
+            "velocity": {"speed": 0.6, "direction": [0, 1, 0]},
+            "forward": [0, 1, 0], "up": [0, 0, 1],
+            "camera": {"kind": "pinhole", "fov_deg": 70, "width": 12, "height": 6, "samples": 4},
+        }))
+        .unwrap();
+        let moved = scene_of_view(&scene, &view).unwrap();
+        let o = moved.observer;
+        assert_eq!(o.event, Event::new(1.5, 0.2, -0.1, 0.3));
+        assert_eq!(
+            (o.velocity.speed, o.velocity.direction),
+            (0.6, [0.0, 1.0, 0.0])
+        );
+        assert_eq!((o.forward, o.up), ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]));
+        assert_eq!(moved.camera.kind(), "pinhole");
+        assert_eq!((moved.camera.width(), moved.camera.height()), (12, 6));
+        assert_eq!(moved.supersample(), 2);
+        let mut bad = view.clone();
+        bad.camera.h_fov_deg = Some(90.0);
+        let e = format!("{:#}", scene_of_view(&scene, &bad).unwrap_err());
+        assert!(e.contains("h_fov_deg"), "{e}");
+        bad = view.clone();
+        bad.velocity.speed = 1.5;
+        let e = format!("{:#}", scene_of_view(&scene, &bad).unwrap_err());
+        assert!(e.contains("speed"), "{e}");
     }
 
     #[test]

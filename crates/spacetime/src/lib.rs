@@ -45,8 +45,8 @@ pub mod normal;
 pub mod polarization;
 pub mod propagator;
 pub mod transport;
-pub mod worldline;
 mod vectors;
+pub mod worldline;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
 pub use connect::{shadow_rays, shadow_rays_from_axis, source_area_distance_sq, Branch, ShadowRay};

@@ -42,7 +42,12 @@ pub fn fall(
     let (event, tangent) = match metric.godel_a() {
         Some(a) => ExactGeodesic::new(a, at, u)?.at(tau),
         None => (
-            Event::new(at.t + tau * u.t, at.x + tau * u.x, at.y + tau * u.y, at.z + tau * u.z),
+            Event::new(
+                at.t + tau * u.t,
+                at.x + tau * u.x,
+                at.y + tau * u.y,
+                at.z + tau * u.z,
+            ),
             u,
         ),
     };
@@ -90,9 +95,11 @@ mod tests {
         assert!(close(e.x, at.x, 1e-12) && close(e.y, at.y, 1e-12), "{e:?}");
         assert!(close(w.speed, 0.6, 1e-9), "{w:?}");
         // The static observers (the dust) fall freely: t = τ.
-        let (e, w) = fall(&metric, at, LocalVelocity::REST, 3.0)
-            .unwrap();
-        assert!(close(e.t, at.t + 3.0, 1e-12) && close(e.x, at.x, 1e-12), "{e:?}");
+        let (e, w) = fall(&metric, at, LocalVelocity::REST, 3.0).unwrap();
+        assert!(
+            close(e.t, at.t + 3.0, 1e-12) && close(e.x, at.x, 1e-12),
+            "{e:?}"
+        );
         assert!(w.speed < 1e-9);
     }
 
@@ -105,7 +112,12 @@ mod tests {
         let u = metric.observer_frame(e, w).e[0];
         assert!(close(metric.dot(e, u, u), -1.0, 1e-9));
         let (back, w0) = fall(&metric, e, w, -1.5).unwrap();
-        for (a, b) in [(back.t, at.t), (back.x, at.x), (back.y, at.y), (back.z, at.z)] {
+        for (a, b) in [
+            (back.t, at.t),
+            (back.x, at.x),
+            (back.y, at.y),
+            (back.z, at.z),
+        ] {
             assert!(close(a, b, 1e-9), "{back:?}");
         }
         assert!(close(w0.speed, 0.5, 1e-9), "{w0:?}");
@@ -113,6 +125,9 @@ mod tests {
         let flat = Metric::Minkowski(Minkowski);
         let (e, _) = fall(&flat, at, v, 2.0).unwrap();
         let gv = 2.0 * 0.5 / 0.75f64.sqrt() / 2f64.sqrt();
-        assert!(close(e.x, 0.3 + gv, 1e-12) && close(e.y, 0.1 + gv, 1e-12), "{e:?}");
+        assert!(
+            close(e.x, 0.3 + gv, 1e-12) && close(e.y, 0.1 + gv, 1e-12),
+            "{e:?}"
+        );
     }
 }

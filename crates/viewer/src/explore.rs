@@ -70,6 +70,68 @@ impl ObserverEvent {
     }
 }
 
+/// A view of the flying page (page/fly.js, `viewer.explore.view()`): the observer and the
+/// camera with exactly the fields of the scene file's `[observer]` and `[camera]` (README,
+/// "Scenes"), so that a scene with these fields traces the view. The camera's size and
+/// samples are the scene's full ones.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct View {
+    pub time: f64,
+    pub position: Position,
+    pub velocity: Velocity,
+    pub forward: [f64; 3],
+    pub up: [f64; 3],
+    pub camera: ViewCamera,
+}
+
+/// `observer.position`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Position {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+/// `observer.velocity`: relative to the static observer, in its frame.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Velocity {
+    pub speed: f64,
+    pub direction: [f64; 3],
+}
+
+/// `[camera]`: the kind and its fields of view, the size and samples.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViewCamera {
+    pub kind: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fov_deg: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub h_fov_deg: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub v_fov_deg: Option<f64>,
+    pub width: u32,
+    pub height: u32,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<u32>,
+}
+
+impl View {
+    /// The observer's event.
+    pub fn event(&self) -> ObserverEvent {
+        let p = self.position;
+        ObserverEvent {
+            t: self.time,
+            x: p.x,
+            y: p.y,
+            z: p.z,
+        }
+    }
+}
+
 /// The most frames of the scene's full size in memory at once (see the module documentation):
 /// what a command sizes explore's memory by.
 pub const FRAMES_IN_MEMORY: u64 = 4;
@@ -109,6 +171,18 @@ pub trait FrameSource: Send + Sync + 'static {
     /// What the GPU kernel reads to trace the full frame seen from `event` (the page's own
     /// tracer, [`crate::kernel_routes`]); `Err` says why it cannot be made.
     fn kernel_input(&self, event: ObserverEvent) -> Result<gpu::KernelInput, String>;
+    /// What the GPU kernel reads to trace `view` (the scene with the view's observer and
+    /// camera fields); `Err` says why, naming the field.
+    fn view_input(&self, view: &View) -> Result<gpu::KernelInput, String>;
+    /// Where an observer at `event` moving with `velocity` is after `tau` of its proper time
+    /// when it falls freely, and its velocity there (`spacetime::worldline::fall`); `Err`
+    /// says why not.
+    fn fall(
+        &self,
+        event: ObserverEvent,
+        velocity: Velocity,
+        tau: f64,
+    ) -> Result<(ObserverEvent, Velocity), String>;
 }
 
 /// A frame made for a request.

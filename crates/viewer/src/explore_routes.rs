@@ -10,6 +10,8 @@
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
 //! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
+//! | `POST /api/explore/input?draw_buffers=N` (a [`View`]: `{"time", "position", "velocity", "forward", "up", "camera"}`) | what the GPU kernel reads to trace that view (the flying page's, page/fly.js); 400 naming the field for a bad view |
+//! | `POST /api/explore/move` (`{"time", "position", "velocity", "tau"}`) | where that observer is after `tau` of its proper time falling freely, and its velocity there: `{"time", "position", "velocity"}`; 400 naming the field for bad input |
 //! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
 //!
 //! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
@@ -32,7 +34,7 @@ use serde::Deserialize;
 use tower::ServiceExt;
 
 use crate::api_error::{no_store, ApiError};
-use crate::explore::{Explorer, Frame, Level, ObserverEvent};
+use crate::explore::{Explorer, Frame, Level, ObserverEvent, Position, Velocity, View};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::state::{ViewerOptions, ViewerState};
@@ -118,7 +120,9 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/map", get(map))
         .route("/api/explore/ray", get(ray))
         .route("/api/explore/keyframe", post(keyframe))
-        .route("/api/gpu/input", get(kernel_input));
+        .route("/api/gpu/input", get(kernel_input))
+        .route("/api/explore/input", post(view_input))
+        .route("/api/explore/move", post(fall));
     for path in FRAME_ROUTES {
         explore = explore.route(path, any(for_frame));
     }
@@ -189,17 +193,22 @@ fn yes() -> bool {
 
 /// A request body of type `T`, refused naming the field (`event.FIELD`).
 fn parse_body<T: serde::de::DeserializeOwned>(body: &[u8]) -> Result<T, ApiError> {
+    parse_named(body, "event")
+}
+
+/// A request body of type `T`, refused naming the field (`NAME.FIELD`).
+fn parse_named<T: serde::de::DeserializeOwned>(body: &[u8], name: &str) -> Result<T, ApiError> {
     let mut json = serde_json::Deserializer::from_slice(body);
     let event: T = serde_path_to_error::deserialize(&mut json).map_err(|e| {
         let path = e.path().to_string();
         if path == "." {
-            ApiError::bad_request(format!("event: {}", e.inner()))
+            ApiError::bad_request(format!("{name}: {}", e.inner()))
         } else {
-            ApiError::bad_request(format!("event.{path}: {}", e.inner()))
+            ApiError::bad_request(format!("{name}.{path}: {}", e.inner()))
         }
     })?;
     json.end()
-        .map_err(|e| ApiError::bad_request(format!("event: {e}")))?;
+        .map_err(|e| ApiError::bad_request(format!("{name}: {e}")))?;
     Ok(event)
 }
 
@@ -426,4 +435,78 @@ async fn kernel_input(
         .map_err(ApiError::bad_request)?;
     let page = crate::kernel_routes::PageInput::new(input, buffers);
     Ok((no_store(), Json(page)).into_response())
+}
+
+/// `POST /api/explore/input?draw_buffers=N`: the kernel's input for the body's view.
+async fn view_input(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<crate::kernel_routes::InputQuery>, QueryRejection>,
+    body: Bytes,
+) -> Result<Response, ApiError> {
+    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
+    let buffers = crate::kernel_routes::draw_buffers(q.draw_buffers)?;
+    let view: View = parse_named(&body, "view")?;
+    if let Some(why) = view.event().refusal(state.explorer.bound()) {
+        return Err(ApiError::bad_request(why));
+    }
+    let work = state.viewer.work().admit()?;
+    let input = work
+        .run(move || state.explorer.source().view_input(&view))
+        .await?
+        .map_err(ApiError::bad_request)?;
+    let page = crate::kernel_routes::PageInput::new(input, buffers);
+    Ok((no_store(), Json(page)).into_response())
+}
+
+/// The most proper time one `/api/explore/move` spans (either way): a page asks each
+/// animation frame for a few hundredths.
+const MAX_TAU: f64 = 1e3;
+
+/// The body of `POST /api/explore/move`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MoveRequest {
+    time: f64,
+    position: Position,
+    velocity: Velocity,
+    tau: f64,
+}
+
+/// `POST /api/explore/move`: the observer after `tau` of its proper time in free fall.
+async fn fall(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
+    let asked: MoveRequest = parse_named(&body, "move")?;
+    let p = asked.position;
+    let at = ObserverEvent {
+        t: asked.time,
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    };
+    let bound = state.explorer.bound();
+    if let Some(why) = at.refusal(bound) {
+        return Err(ApiError::bad_request(why));
+    }
+    if !(asked.tau.is_finite() && asked.tau.abs() <= MAX_TAU) {
+        return Err(ApiError::bad_request(format!(
+            "move.tau: {} is not a finite number within ±{MAX_TAU}",
+            asked.tau
+        )));
+    }
+    let (to, velocity) = state
+        .explorer
+        .source()
+        .fall(at, asked.velocity, asked.tau)
+        .map_err(ApiError::bad_request)?;
+    if let Some(why) = to.refusal(bound) {
+        return Err(ApiError::bad_request(format!(
+            "after tau = {}: {why}",
+            asked.tau
+        )));
+    }
+    let body = serde_json::json!({
+        "time": to.t,
+        "position": { "x": to.x, "y": to.y, "z": to.z },
+        "velocity": velocity,
+    });
+    Ok((no_store(), Json(body)).into_response())
 }

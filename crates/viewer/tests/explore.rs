@@ -12,7 +12,7 @@ use datafile::{DataFile, PixelRecord};
 use http_body_util::BodyExt;
 use render::map::{LightRay, Map, MapPoint};
 use tower::ServiceExt;
-use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
+use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, Velocity, View};
 use viewer::kernel_routes::KernelInput;
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
 use viewer::Access;
@@ -122,6 +122,27 @@ impl FrameSource for Fake {
         let mut scene = scene::Scene::from_str(&common::scene(), "fake.toml").unwrap();
         scene.observer.event = event.event();
         Ok(KernelInput::new(&scene))
+    }
+    /// The data file's scene with its observer at the view's event and its velocity.
+    fn view_input(&self, view: &View) -> Result<KernelInput, String> {
+        let mut scene = scene::Scene::from_str(&common::scene(), "fake.toml").unwrap();
+        scene.observer.event = view.event().event();
+        scene.observer.velocity.speed = view.velocity.speed;
+        Ok(KernelInput::new(&scene))
+    }
+    /// Moves t by tau, x by speed × tau, keeps the velocity.
+    fn fall(
+        &self,
+        event: ObserverEvent,
+        velocity: Velocity,
+        tau: f64,
+    ) -> Result<(ObserverEvent, Velocity), String> {
+        let to = ObserverEvent {
+            t: event.t + tau,
+            x: event.x + velocity.speed * tau,
+            ..event
+        };
+        Ok((to, velocity))
     }
 }
 
@@ -500,5 +521,76 @@ async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
         assert_eq!(status, StatusCode::BAD_REQUEST, "{query}");
         let message = answer["error"].as_str().unwrap();
         assert!(message.contains(needle), "{query}: {message}");
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_why() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    let app =
+        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let view = serde_json::json!({
+        "time": 2.5, "position": {"x": 0.25, "y": -0.5, "z": 0.125},
+        "velocity": {"speed": 0.5, "direction": [1, 0, 0]},
+        "forward": [1, 0, 0], "up": [0, 0, 1],
+        "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
+    });
+    let (status, input, _) = send(
+        &app,
+        common::post("/api/explore/input?draw_buffers=8", &view.to_string()),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{input}");
+    assert_eq!(input["uniforms"]["obs_t"][0], 2.5);
+    assert_eq!(
+        input["uniforms"]["obs_x"],
+        serde_json::json!([0.25, -0.5, 0.125])
+    );
+    assert_eq!(input["uniforms"]["velocity"][0], 0.5);
+    assert_eq!(input["draw_buffers"], 5);
+    let step = r#"{"time": 1, "position": {"x": 0, "y": 0, "z": 0},
+        "velocity": {"speed": 0.5, "direction": [1, 0, 0]}, "tau": 2}"#;
+    let (status, moved, _) = send(&app, common::post("/api/explore/move", step)).await;
+    assert_eq!(status, StatusCode::OK, "{moved}");
+    assert_eq!(moved["time"], 3.0);
+    assert_eq!(moved["position"]["x"], 1.0);
+    assert_eq!(moved["velocity"]["speed"], 0.5);
+    let mut unknown = view.clone();
+    unknown["camera"]["zoom"] = 2.into();
+    let mut far = view.clone();
+    far["position"]["y"] = 1e9.into();
+    for (url, body, needle) in [
+        (
+            "/api/explore/input",
+            unknown.to_string(),
+            "view.camera.zoom: unknown field `zoom`",
+        ),
+        ("/api/explore/input", far.to_string(), "event.y"),
+        (
+            "/api/explore/input?draw_buffers=0",
+            view.to_string(),
+            "draw_buffers",
+        ),
+        (
+            "/api/explore/move",
+            step.replace("\"tau\": 2", "\"tau\": 1e9"),
+            "move.tau",
+        ),
+        (
+            "/api/explore/move",
+            step.replace("\"tau\": 2", "\"tau\": \"x\""),
+            "move.tau",
+        ),
+        (
+            "/api/explore/move",
+            step.replace("\"time\": 1", "\"time\": 1e300"),
+            "event.t",
+        ),
+        ("/api/explore/move", step.replace(", \"tau\": 2", ""), "tau"),
+    ] {
+        let (status, answer, _) = send(&app, common::post(url, &body)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{url} {body}");
+        let message = answer["error"].as_str().unwrap();
+        assert!(message.contains(needle), "{url}: {message}");
     }
 }
