@@ -127,7 +127,7 @@ async function playMode(seconds, rate) {
   const { context, page, consoleErrors } = await launch(outDir);
   const result = { mode: 'play', seconds };
   try {
-    await open(page, url);
+    await open(page, `${base}?trace=server`);
     await page.waitForFunction(() => {
       const e = window.godelViewer.explore;
       return e && e.shown && e.shown.level === 'full';

@@ -7,9 +7,14 @@
 // dropped. The map beside the picture (map.js) follows the event, shows the light ray of the
 // hovered pixel of the frame shown, and moves the observer when its marker is dragged.
 // "Save observer keyframe" downloads a sequence-script keyframe at the event.
+//
+// Where the GPU kernel can trace the scene in this browser, the page traces every frame
+// itself and flies (fly.js); `?trace=server` (or a browser that cannot) keeps the server's
+// frames, and the status line says why.
 'use strict';
 
 import { createMap } from './map.js';
+import { startFly } from './fly.js';
 
 // How often the page asks for the newest frame (a frame waits half of it on average).
 const POLL_MS = 40;
@@ -79,6 +84,10 @@ export async function startExplore(viewer) {
 
   // Sends the current event; while a request is in flight, the newest event waits for it.
   async function send() {
+    if (state.fly) {
+      state.setEvent(state.event);
+      return;
+    }
     if (state.inFlight) {
       state.again = true;
       return;
@@ -145,7 +154,7 @@ export async function startExplore(viewer) {
       polling = false;
     }
   }
-  setInterval(poll, POLL_MS);
+  setInterval(() => { if (!state.fly) poll(); }, POLL_MS);
 
   // `playing`: sent only once the last request has a frame on the page, so that playing
   // never cancels every trace before it ends (the frame rate is that of the coarse frames).
@@ -230,4 +239,16 @@ export async function startExplore(viewer) {
   });
   showEvent();
   map.update(state.event);
+  // The fields follow the flight.
+  state.showEvent = (e) => {
+    state.event = { ...e };
+    showEvent();
+  };
+  if (new URLSearchParams(window.location.search).get('trace') === 'server') {
+    status('tracing on the server (?trace=server)');
+  } else if (await startFly(viewer, state, map, status)) {
+    // Time runs with the flight's own controls (proper time), not the server's Play.
+    $('explore-play').hidden = true;
+    $('explore-rate').parentElement.hidden = true;
+  }
 }

@@ -143,8 +143,9 @@ export class KernelTracer {
   // Traces the sample grid of `input`: resolves to {width, height, slots (one RGBA32F
   // texture each, the caller's to delete), input, source (the kernel's, as compiled),
   // compileMs, traceMs}. `progress(done, total)` is
-  // called after each draw; `cancelled()` (optional) stops between draws (rejects).
-  async trace(input, { progress = () => {}, cancelled = () => false } = {}) {
+  // called after each draw; `cancelled()` (optional) stops between draws (rejects). `whole`:
+  // the grid in one draw (a small frame while flying, fly.js: no wait between tiles).
+  async trace(input, { progress = () => {}, cancelled = () => false, whole = false } = {}) {
     const gl = this.gl;
     const u = input.uniforms;
     const [width, height] = u.size;
@@ -219,7 +220,7 @@ export class KernelTracer {
 
     const total = width * height;
     let done = 0;
-    let side = FIRST_SIDE;
+    let side = whole ? Math.max(width, height) : FIRST_SIDE;
     let compileMs = 0;
     let traceStart = 0;
     try {
@@ -250,14 +251,16 @@ export class KernelTracer {
             gl.uniform1i(slot0, first);
             gl.drawArrays(gl.TRIANGLES, 0, 3);
           }
-          await this.finished();
+          // One draw of the whole grid is not waited for: its frame is shaded in the same
+          // animation frame, the GPU working through it in order.
+          if (!whole) await this.finished();
           done += cols * rows;
           col0 += cols;
           progress(done, total);
           // The next draw's side, for about DRAW_MS a draw.
           const took = Math.max(performance.now() - started, 0.1);
           const scale = Math.min(2, Math.max(0.5, Math.sqrt(DRAW_MS / took)));
-          side = Math.round(Math.min(MAX_SIDE, Math.max(MIN_SIDE, side * scale)));
+          if (!whole) side = Math.round(Math.min(MAX_SIDE, Math.max(MIN_SIDE, side * scale)));
         }
         row0 += rows;
       }

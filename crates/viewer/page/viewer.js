@@ -601,7 +601,16 @@ viewer.hold = (on) => {
   held = on;
   if (!on) changed();
 };
-viewer.showTracedFrame = (channels, note) => {
+// `size` ({width, height, supersample}, explore's flight: fly.js): the traced frame's, where
+// it is not the file's.
+viewer.showTracedFrame = (channels, note, size = null) => {
+  if (size) {
+    if (!pan.fitted) pan.zoom *= viewer.info.width / size.width;
+    Object.assign(viewer.info, size);
+    const camera = viewer.view?.view?.camera;
+    if (camera) Object.assign(camera, { width: size.width, height: size.height });
+    layout();
+  }
   for (const [name, texture] of Object.entries(channels)) {
     if (texture) gpu.replace(name, texture);
   }

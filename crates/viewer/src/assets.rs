@@ -2,7 +2,7 @@
 //! no files beside it and nothing from the internet.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 14] = [
+pub const FILES: [(&str, &str, &str); 15] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -25,6 +25,7 @@ pub const FILES: [(&str, &str, &str); 14] = [
     js("/map.js", include_str!("../page/map.js")),
     js("/trace.js", include_str!("../page/trace.js")),
     js("/traced.js", include_str!("../page/traced.js")),
+    js("/fly.js", include_str!("../page/fly.js")),
 ];
 
 const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {

@@ -29,7 +29,12 @@ fn moving_the_time_slider_shows_the_frame_traced_for_the_new_time() {
     let (_server, url) = start_explore(&scene, dir.path(), &[]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("explore.mjs", &url, &out, &["1.5".to_string()]);
+    let seen = run_script(
+        "explore.mjs",
+        &server_frames(&url),
+        &out,
+        &["1.5".to_string()],
+    );
     assert_eq!(seen["panel_hidden"], false, "{seen}");
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
@@ -164,7 +169,7 @@ fn the_map_shows_the_hovered_pixels_ray_and_dragging_the_observer_moves_the_even
     let args = [col, row].map(|v| v.to_string());
     let seen = run_script(
         "map.mjs",
-        &url,
+        &server_frames(&url),
         &out,
         &[
             args[0].clone(),
@@ -276,7 +281,12 @@ fn with_sphere_the_page_looks_around_and_keeps_the_view_across_events() {
     let (_server, url) = start_explore(&scene, dir.path(), &["--sphere", "96"]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("explore-look.mjs", &url, &out, &["1.5".to_string()]);
+    let seen = run_script(
+        "explore-look.mjs",
+        &server_frames(&url),
+        &out,
+        &["1.5".to_string()],
+    );
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
     assert!(seen["look"].is_object(), "not looking around: {seen}");
@@ -301,4 +311,10 @@ fn with_sphere_the_page_looks_around_and_keeps_the_view_across_events() {
     assert_eq!(seen["after"]["look"], true, "{seen}");
     assert_eq!(seen["after"]["yaw"].as_f64(), Some(yaw), "{seen}");
     assert!(seen["pixels_changed_by_t"].as_u64() > Some(0), "{seen}");
+}
+
+/// The page on the server's frames (`?trace=server`): what these tests check. The page's own
+/// GPU frames are tested in viewer_browser/fly.rs.
+fn server_frames(url: &str) -> String {
+    format!("{url}?trace=server")
 }

@@ -19,7 +19,7 @@ use std::path::Path;
 
 use super::browser_support::*;
 #[path = "../../../gpu/tests/common/mod.rs"]
-mod kernel_agreement;
+pub(super) mod kernel_agreement;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
@@ -39,7 +39,7 @@ const SLOT: usize = 4;
 
 /// The data file `data` with the records and light planes of a traced frame's slots, read
 /// as the `gpu` crate's host reads them.
-fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
+pub(super) fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
     let samples = data.width * data.height;
     let channels =
         |s: usize, i: usize| -> [f32; 4] { slots[s][i * SLOT..(i + 1) * SLOT].try_into().unwrap() };

@@ -1,0 +1,150 @@
+//! Flying in `godel explore` (issue 23, page/fly.js), in headless Chromium (WebGL2 on
+//! SwiftShader): the page traces its own frames with the GPU kernel, and
+//!
+//! - its kernel uniforms for the view on screen are the server's for that view
+//!   (`POST /api/explore/input`, from the scene file's fields: one home for them);
+//! - holding R moves the observer along its up axis (+z here) by γ v τ in γ τ of coordinate
+//!   time for the proper time τ it moved, at the speed v of the speed control
+//!   (spacetime::worldline: exact along z in Gödel's universe);
+//! - while it moves, a frame is traced in every animation frame (counted by the test's own
+//!   requestAnimationFrame loop; shaded in every other one so far), at fewer pixels than the
+//!   full frame;
+//! - at rest the frame reaches the scene's full size, and equals `godel render --gpu` of a
+//!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common).
+
+use super::browser_support::*;
+use super::gpu_trace::{kernel_agreement, traced_file};
+use datafile::DataFile;
+
+/// The reference scene (a ball in free fall past the observer) at 88×10 pixels, one ray each.
+fn scene_text() -> String {
+    std::fs::read_to_string(repo_root().join("scenes/reference.toml"))
+        .unwrap()
+        .replace("width = 880", "width = 88")
+        .replace("height = 100", "height = 10")
+        .replace("samples = 4", "samples = 1")
+}
+
+/// The scene with the observer and camera fields of a view (`viewer.explore.view()`).
+fn scene_of_view(text: &str, view: &serde_json::Value) -> String {
+    let mut table: toml::Table = text.parse().unwrap();
+    let as_toml =
+        |v: &serde_json::Value| -> toml::Value { serde_json::from_value(v.clone()).unwrap() };
+    let observer = table["observer"].as_table_mut().unwrap();
+    for key in ["time", "position", "velocity", "forward", "up"] {
+        observer.insert(key.into(), as_toml(&view[key]));
+    }
+    table.insert("camera".into(), as_toml(&view["camera"]));
+    toml::to_string(&table).unwrap()
+}
+
+#[test]
+fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render_gpu_traces() {
+    require_browser_tools();
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("fly-test.toml");
+    let text = scene_text();
+    assert!(text.contains("width = 88\n") && text.contains("samples = 1"));
+    std::fs::write(&scene, &text).unwrap();
+    let (server, url) = start_explore(&scene, dir.path(), &[]);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let seen = run_script("fly.mjs", &url, &out, &[]);
+    drop(server);
+    assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
+    assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+    assert_only_local_requests(&seen, &url);
+
+    // One home for the uniforms: the page's are the server's for the same view.
+    assert_eq!(seen["uniforms_page"], seen["uniforms_server"], "{seen}");
+
+    // Holding R: along +z (the observer's up) by γ v τ, in γ τ.
+    let (start, moved) = (&seen["start"], &seen["moved"]);
+    assert_eq!(start["up"], serde_json::json!([0, 0, 1]));
+    let tau = seen["tau"].as_f64().unwrap();
+    let v = seen["speed"].as_f64().unwrap();
+    assert!(tau > 0.0 && v > 0.0, "{seen}");
+    let gamma = 1.0 / (1.0 - v * v).sqrt();
+    let f =
+        |w: &serde_json::Value, path: &[&str]| path.iter().fold(w, |w, k| &w[*k]).as_f64().unwrap();
+    let dz = f(moved, &["position", "z"]) - f(start, &["position", "z"]);
+    let dt = f(moved, &["time"]) - f(start, &["time"]);
+    assert!(
+        (dz - gamma * v * tau).abs() < 1e-9 * (1.0 + dz.abs()),
+        "Δz {dz}, γvτ {}",
+        gamma * v * tau
+    );
+    assert!(
+        (dt - gamma * tau).abs() < 1e-9 * (1.0 + dt.abs()),
+        "Δt {dt}, γτ {}",
+        gamma * tau
+    );
+    for k in ["x", "y"] {
+        assert_eq!(moved["position"][k], start["position"][k], "{seen}");
+    }
+
+    // Every animation frame while moving draws a traced frame, smaller than the full one.
+    let rafs = seen["rafs"].as_u64().unwrap();
+    let traced = seen["traced_moving"].as_u64().unwrap();
+    let drawn = seen["drawn"].as_u64().unwrap();
+    assert!(rafs >= 40, "{seen}");
+    assert!(
+        traced + 2 >= rafs && traced <= rafs + 2,
+        "{traced} traced in {rafs} animation frames"
+    );
+    assert!(
+        drawn + 2 >= rafs,
+        "{drawn} pictures drawn in {rafs} animation frames"
+    );
+    for size in seen["moving_sizes"].as_array().unwrap() {
+        assert_eq!(size[2], false, "{seen}");
+        assert!(
+            size[0].as_u64().unwrap() < 88 || size[1].as_u64().unwrap() <= 10,
+            "{seen}"
+        );
+    }
+    assert!(
+        seen["moving_header"]
+            .as_str()
+            .unwrap()
+            .contains("traced on the GPU · "),
+        "{seen}"
+    );
+
+    // At rest: the full size, and what `godel render --gpu` traces for the view.
+    assert_eq!(seen["rest"]["width"], 88, "{seen}");
+    assert_eq!(seen["rest"]["height"], 10, "{seen}");
+    assert_eq!(seen["rest"]["traced"]["full"], true, "{seen}");
+    assert!(
+        seen["header"]
+            .as_str()
+            .unwrap()
+            .contains("88×10 traced on the GPU in"),
+        "{seen}"
+    );
+    let view_scene = dir.path().join("fly-view.toml");
+    std::fs::write(&view_scene, scene_of_view(&text, moved)).unwrap();
+    let rendered = godel(&[
+        "render",
+        "--gpu",
+        view_scene.to_str().unwrap(),
+        "-q",
+        "-o",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(rendered.status.success(), "{rendered:?}");
+    let data = DataFile::read(&dir.path().join("fly-view.exr")).unwrap();
+    let slots: Vec<Vec<f32>> = (0..seen["rest"]["slots"].as_u64().unwrap())
+        .map(|s| {
+            std::fs::read(out.join(format!("fly-slot-{s}.f32")))
+                .unwrap()
+                .chunks_exact(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect()
+        })
+        .collect();
+    let page = traced_file(&data, &slots);
+    let a = kernel_agreement::compare("fly", &page, &data);
+    assert!(a.seen > 50, "the view shows the ball: {a:?}");
+    assert!(a.holds(), "{a:?}");
+}

@@ -1,0 +1,407 @@
+// godel explore: flying, with every frame traced in this page on the GPU (the exact tracer's
+// kernel, trace.js) — no server round trip per frame. The view (`viewer.explore.view()`) is
+// the observer and camera with exactly the scene file's `[observer]` and `[camera]` fields
+// (README "Scenes"), so that a scene with them traces the frame shown; `godel-view` events
+// (and `viewer.explore.onView`) announce each change.
+//
+// The kernel's uniforms are the view's fields as they are (crates/gpu/src/input.rs,
+// `KernelInput::new`: the time split into f32 hi + lo, the velocity as speed and direction,
+// the axes in the observer's frame); the scene table and defines come once from the server.
+// The browser test checks the page's uniforms against the server's for the same view
+// (POST /api/explore/input).
+//
+// Flight: W/S, A/D, R/F (Space/Shift) give the observer a velocity of the chosen speed along
+// its forward, right and up axes (aberration and Doppler follow: it is the kernel's observer
+// velocity); the observer moves along the geodesic of its 4-velocity by the proper time the
+// rate gives (POST /api/explore/move, spacetime::worldline: at most one request in flight,
+// proper time accumulating meanwhile, so the page never waits for it); "fall freely" keeps
+// the velocity the geodesic carries instead of the controls'. Dragging turns, Q/E roll, the
+// wheel zooms (pointer and wheel events: touch and trackpads too).
+//
+// Dynamic resolution: while the view changes, each animation frame traces a smaller grid of
+// one sample per pixel, its pixel count steered so that a frame takes about TARGET_MS; at
+// rest the page traces the scene's full size and samples, in tiles (cancelled by the next
+// change).
+'use strict';
+
+import { KernelTracer } from './trace.js';
+import { fetchJson } from './data.js';
+import { cross, dot, normalize } from './look.js';
+
+const $ = (id) => document.getElementById(id);
+
+// The frame time aimed at while moving (15 frames/s and more).
+const TARGET_MS = 50;
+// The fewest pixels a moving frame has (its width), and the smoothing of its size.
+const MIN_WIDTH = 16;
+// Radians per CSS pixel dragged (times the field of view's share), roll per second.
+const ROLL_PER_S = 1.0;
+// Proper time added per animation frame at most (a stalled tab does not jump).
+const MAX_DT = 0.1;
+
+const KEYS = {
+  KeyW: [1, 0, 0], KeyS: [-1, 0, 0], KeyD: [0, 1, 0], KeyA: [0, -1, 0],
+  KeyR: [0, 0, 1], Space: [0, 0, 1], KeyF: [0, 0, -1], ShiftLeft: [0, 0, -1],
+  ShiftRight: [0, 0, -1],
+};
+
+// A time as f32 hi + lo (gpu::input::split_time).
+export function splitTime(t) {
+  const hi = Math.fround(t);
+  return [hi, Math.fround(t - hi)];
+}
+
+// Rodrigues: `v` turned by `angle` about the unit axis `k`.
+function turn(v, k, angle) {
+  const c = Math.cos(angle);
+  const s = Math.sin(angle);
+  const kv = cross(k, v);
+  const d = dot(k, v) * (1 - c);
+  return v.map((x, i) => x * c + kv[i] * s + k[i] * d);
+}
+
+// The kernel's uniforms for `view` traced on a `width` × `height` grid (gpu::input::Uniforms
+// from KernelInput::new), the scene's own ones (`base`: metric, a, max_past, …) otherwise.
+export function uniformsFor(base, view, width, height) {
+  const c = view.camera;
+  const fov = c.kind === 'panorama' ? [c.h_fov_deg, c.v_fov_deg]
+    : c.kind === 'sphere' ? [360, 180] : [c.fov_deg, 0];
+  const p = view.position;
+  return { ...base, obs_t: splitTime(view.time), obs_x: [p.x, p.y, p.z].map(Math.fround),
+    velocity: [view.velocity.speed, ...view.velocity.direction].map(Math.fround),
+    forward: view.forward.map(Math.fround), up: view.up.map(Math.fround),
+    fov: fov.map(Math.fround), size: [width, height] };
+}
+
+// Starts flying in explore mode; false where the kernel cannot trace the scene here (the
+// reason is shown and the server's frames stay).
+export async function startFly(viewer, explore, map, status) {
+  if (viewer.look) {
+    status('tracing on the server: a full sphere (--sphere) is looked around in, not flown');
+    return false;
+  }
+  const gl = viewer.gpu().gl;
+  let tracer;
+  let input;
+  let sceneView;
+  try {
+    tracer = new KernelTracer(gl, await (await fetch('/api/gpu/kernel')).text());
+    input = await fetchJson(`/api/gpu/input?draw_buffers=${tracer.maxDrawBuffers}`);
+    sceneView = (await fetchJson('/api/view')).view;
+  } catch (e) {
+    status(`tracing on the server: ${e.message || e}`);
+    return false;
+  }
+  if (!sceneView) {
+    status('tracing on the server: the scene has no camera view the page can fly');
+    return false;
+  }
+  const ss = input.supersample;
+  const [fullW, fullH] = [input.uniforms.size[0] / ss, input.uniforms.size[1] / ss];
+  const c = sceneView.camera;
+  const camera = { kind: c.kind, width: fullW, height: fullH, samples: ss * ss };
+  for (const k of ['fov_deg', 'h_fov_deg', 'v_fov_deg']) if (c[k] !== undefined) camera[k] = c[k];
+  const s = explore.event;
+  const fly = {
+    view: {
+      time: s.t, position: { x: s.x, y: s.y, z: s.z },
+      velocity: { speed: sceneView.velocity.speed, direction: [...sceneView.velocity.direction] },
+      forward: normalize(sceneView.forward), up: normalize(sceneView.up), camera,
+    },
+    keys: new Set(),
+    speed: 0.5,
+    rate: 1,
+    playing: false,
+    fall: false,
+    pendingTau: 0,
+    moving: false,       // in flight: a request for the observer's motion is under way
+    version: 0,          // bumped by every change of the view
+    traced: null,        // {version, width, height, full} of the frame shown
+    busy: false,         // a moving frame's trace is under way (it waits only to compile)
+    refining: false,     // a full frame's trace is under way (a change cancels it)
+    slots: null,         // the full frame's slots (for tests)
+    tauMoved: 0,         // proper time the observer has moved (for tests)
+    width: Math.min(fullW, 160), // the moving frames' width
+    rafs: 0,             // animation frames while the view changed
+    drawn: 0,            // frames traced and shown
+    frameMs: [],         // wall times of the last frames shown
+    log: [],             // for tests: {version, width, height, full, rafs}
+    error: null,
+  };
+  explore.fly = fly;
+  explore.view = () => structuredClone(fly.view);
+  explore.onView = null;
+  explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, width, height);
+  // For tests: the full frame's slots as floats (base64 per slot).
+  explore.readSlots = () => {
+    const t = fly.slots;
+    return { width: t.width, height: t.height,
+      slots: tracer.readSlots(t).map((f) => viewer.base64(new Uint8Array(f.buffer))) };
+  };
+  $('fly-panel').hidden = false;
+
+  const changed = () => {
+    fly.version += 1;
+    const v = structuredClone(fly.view);
+    if (typeof explore.onView === 'function') explore.onView(v);
+    window.dispatchEvent(new CustomEvent('godel-view', { detail: v }));
+  };
+  const event = () => ({ t: fly.view.time, ...fly.view.position });
+  const right = () => cross(fly.view.forward, fly.view.up);
+
+  // The velocity the keys give (in the observer's axes), or null where none is held.
+  const keyVelocity = () => {
+    let d = [0, 0, 0];
+    const axes = [fly.view.forward, right(), fly.view.up];
+    for (const k of fly.keys) {
+      const a = KEYS[k];
+      for (let i = 0; i < 3; i += 1) d = d.map((x, j) => x + a[i] * axes[i][j]);
+    }
+    const n = Math.hypot(...d);
+    return n > 1e-9 ? { speed: fly.speed, direction: d.map((x) => x / n) } : null;
+  };
+
+  // The observer's motion over the proper time accumulated: one request at a time.
+  async function move() {
+    if (fly.moving || fly.pendingTau === 0) return;
+    const tau = fly.pendingTau;
+    fly.pendingTau = 0;
+    fly.moving = true;
+    const v = fly.view;
+    try {
+      const response = await fetch('/api/explore/move', {
+        method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ time: v.time, position: v.position, velocity: v.velocity, tau }),
+      });
+      const answer = await response.json();
+      if (!response.ok) throw new Error(answer.error || `${response.status}`);
+      v.time = answer.time;
+      v.position = answer.position;
+      if (fly.fall) v.velocity = answer.velocity;
+      fly.tauMoved += tau;
+      fly.error = null;
+      changed();
+      map.update(event());
+      explore.showEvent(event());
+    } catch (e) {
+      fly.error = e.message || String(e);
+      fly.playing = false;
+      fly.keys.clear();
+      status(`cannot move the observer: ${fly.error}`);
+    } finally {
+      fly.moving = false;
+    }
+  }
+
+  // Shows a traced frame (its slots kept for tests only while it is the full one).
+  function show(traced, version, full, note) {
+    const channels = tracer.channels(traced, viewer.info.objects.length);
+    if (fly.slots) fly.slots.slots.forEach((t) => gl.deleteTexture(t));
+    fly.slots = null;
+    if (full) fly.slots = traced;
+    else traced.slots.forEach((t) => gl.deleteTexture(t));
+    const [pw, ph] = full ? [fullW, fullH] : [traced.width, traced.height];
+    viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
+      supersample: full ? ss : 1 });
+    fly.drawn += 1;
+    fly.traced = { version, width: pw, height: ph, full };
+    fly.log.push({ version, width: pw, height: ph, full, rafs: fly.rafs, drawn: fly.drawn });
+    if (fly.log.length > 2000) fly.log.shift();
+  }
+  const failed = (e) => {
+    fly.error = e.message || String(e);
+    status(`cannot trace on the GPU: ${fly.error}`);
+  };
+
+  // The view changed: a smaller frame of one sample per pixel, in one draw that is not waited
+  // for (the kernel compiles on the first). Its width is steered by the time between
+  // animation frames towards TARGET_MS.
+  async function traceMoving(frameMs) {
+    if (frameMs > 0 && fly.drawn > 0) {
+      const scale = Math.min(1.25, Math.max(0.8, Math.sqrt(TARGET_MS / frameMs)));
+      fly.width = Math.min(fullW, Math.max(MIN_WIDTH, fly.width * scale));
+    }
+    const w = Math.max(Math.min(MIN_WIDTH, fullW), Math.min(fullW, Math.round(fly.width)));
+    const h = Math.max(1, Math.round(w * fullH / fullW));
+    const version = fly.version;
+    fly.busy = true;
+    try {
+      const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
+        fly.view, w, h) }, { whole: true });
+      const now = performance.now();
+      fly.frameMs.push(now);
+      if (fly.frameMs.length > 30) fly.frameMs.shift();
+      const n = fly.frameMs.length;
+      const fps = n > 1 ? (n - 1) * 1000 / (now - fly.frameMs[0]) : 0;
+      show(traced, version, false, (pw, ph) => `${pw}×${ph} traced on the GPU · `
+        + `${fps.toFixed(0)} frames/s`);
+    } catch (e) {
+      failed(e);
+    } finally {
+      fly.busy = false;
+    }
+  }
+
+  // At rest: the full size and samples, in tiles; the next change cancels it.
+  async function traceFull() {
+    const version = fly.version;
+    fly.refining = true;
+    const started = performance.now();
+    try {
+      const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
+        fly.view, fullW * ss, fullH * ss) }, { cancelled: () => fly.version !== version });
+      const ms = Math.round(performance.now() - started);
+      fly.frameMs = [];
+      show(traced, version, true, (pw, ph) => `${pw}×${ph}`
+        + `${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`);
+    } catch (e) {
+      if (fly.version === version) failed(e);
+    } finally {
+      fly.refining = false;
+    }
+  }
+
+  let last = null;
+  // Asked for again after the frame is traced, so that the next animation frame shades it
+  // (viewer.js's draw, asked for meanwhile) before tracing the next.
+  function tick(now) {
+    try {
+      step(now);
+    } finally {
+      requestAnimationFrame(tick);
+    }
+  }
+  function step(now) {
+    const frameMs = last === null ? 0 : now - last;
+    const dt = Math.min(MAX_DT, frameMs / 1000);
+    last = now;
+    const v = fly.view;
+    // Roll.
+    const roll = (fly.keys.has('KeyE') ? 1 : 0) - (fly.keys.has('KeyQ') ? 1 : 0);
+    if (roll !== 0 && dt > 0) {
+      v.up = normalize(turn(v.up, v.forward, roll * ROLL_PER_S * dt));
+      changed();
+    }
+    // The velocity: the keys', the geodesic's when falling, else at rest.
+    const keyed = keyVelocity();
+    if (keyed) {
+      if (keyed.speed !== v.velocity.speed || keyed.direction.some((x, i) => x !== v.velocity.direction[i])) {
+        v.velocity = keyed;
+        changed();
+      }
+    } else if (!fly.fall && v.velocity.speed !== 0) {
+      v.velocity = { speed: 0, direction: v.velocity.direction };
+      changed();
+    }
+    // Proper time runs while playing (at the rate) and while a key moves the observer.
+    const running = fly.playing || keyed !== null;
+    if (running && dt > 0) {
+      fly.pendingTau += (fly.playing ? fly.rate : Math.abs(fly.rate) || 1) * dt;
+      move();
+    } else if (!running) {
+      fly.pendingTau = 0;
+    }
+    if (fly.error !== null) return;
+    // While time runs every animation frame is traced (the observer's newest event may not
+    // be back from the server yet: then the same view again).
+    const stale = fly.traced === null || fly.traced.version !== fly.version;
+    if (stale || (running && fly.traced.full === false)) {
+      fly.rafs += 1;
+      if (!fly.busy) traceMoving(frameMs);
+    } else if (!fly.traced.full && !fly.busy && !fly.refining && !running && !fly.moving) {
+      traceFull();
+    }
+  }
+
+  // ---- the controls
+  const typing = (e) => e.target instanceof HTMLInputElement && e.target.type !== 'range'
+    && e.target.type !== 'checkbox';
+  window.addEventListener('keydown', (e) => {
+    if (typing(e)) return;
+    if (e.code in KEYS || e.code === 'KeyQ' || e.code === 'KeyE') {
+      fly.keys.add(e.code);
+      e.preventDefault();
+    }
+  });
+  window.addEventListener('keyup', (e) => { fly.keys.delete(e.code); });
+  window.addEventListener('blur', () => fly.keys.clear());
+
+  const canvas = $('image');
+  const picture = canvas.parentElement;
+  let drag = null;
+  // Captured before the viewer's own pan and zoom of the picture (viewer.js).
+  picture.addEventListener('pointerdown', (e) => {
+    if (e.target !== canvas) return;
+    e.stopPropagation();
+    drag = [e.clientX, e.clientY];
+    canvas.setPointerCapture(e.pointerId);
+  }, true);
+  picture.addEventListener('pointermove', (e) => {
+    if (!drag || e.target !== canvas) return;
+    e.stopPropagation();
+    const fov = (camera.fov_deg || camera.h_fov_deg || 360) * Math.PI / 180;
+    const perPx = fov / Math.max(canvas.clientWidth, 1);
+    const [dx, dy] = [e.clientX - drag[0], e.clientY - drag[1]];
+    drag = [e.clientX, e.clientY];
+    const v = fly.view;
+    // Drag the world: right turns the view left; up tilts it down.
+    const yawed = turn(v.forward, v.up, dx * perPx);
+    const r = normalize(cross(yawed, v.up));
+    v.forward = normalize(turn(yawed, r, dy * perPx));
+    v.up = normalize(cross(r, v.forward));
+    changed();
+  }, true);
+  const endDrag = (e) => {
+    if (drag && e.target === canvas) e.stopPropagation();
+    drag = null;
+  };
+  picture.addEventListener('pointerup', endDrag, true);
+  picture.addEventListener('pointercancel', endDrag, true);
+  picture.addEventListener('wheel', (e) => {
+    if (e.target !== canvas || camera.kind === 'sphere') return;
+    e.preventDefault();
+    e.stopPropagation();
+    const f = Math.exp(e.deltaY * 0.001);
+    const clamp = (x, hi) => Math.min(hi, Math.max(1, x));
+    if (camera.kind === 'panorama') {
+      const h = clamp(camera.h_fov_deg * f, 360);
+      camera.v_fov_deg = clamp(camera.v_fov_deg * h / camera.h_fov_deg, 180);
+      camera.h_fov_deg = h;
+    } else {
+      camera.fov_deg = clamp(camera.fov_deg * f, camera.kind === 'pinhole' ? 170 : 360);
+    }
+    changed();
+  }, { capture: true, passive: false });
+
+  const speed = $('fly-speed');
+  const rate = $('fly-rate');
+  const sync = () => {
+    $('fly-speed-value').textContent = `${fly.speed.toFixed(2)} c`;
+    $('fly-play').textContent = fly.playing ? 'Pause' : 'Play';
+  };
+  speed.addEventListener('input', () => { fly.speed = Number(speed.value); sync(); });
+  rate.addEventListener('change', () => {
+    const r = Number(rate.value);
+    if (rate.value.trim() === '' || !Number.isFinite(r)) {
+      status('rate: not a number');
+      rate.value = String(fly.rate);
+      return;
+    }
+    fly.rate = r;
+  });
+  $('fly-play').addEventListener('click', () => { fly.playing = !fly.playing; sync(); });
+  $('fly-reverse').addEventListener('click', () => { fly.rate = -fly.rate; rate.value = String(fly.rate); });
+  $('fly-fall').addEventListener('change', () => { fly.fall = $('fly-fall').checked; });
+  speed.value = String(fly.speed);
+  rate.value = String(fly.rate);
+  sync();
+  // The event fields and the map move the observer too.
+  explore.setEvent = (e) => {
+    fly.view.time = e.t;
+    fly.view.position = { x: e.x, y: e.y, z: e.z };
+    changed();
+  };
+  changed();
+  requestAnimationFrame(tick);
+  return true;
+}

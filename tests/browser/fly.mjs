@@ -1,0 +1,96 @@
+// Flying in explore mode (fly.js), for the Rust test crates/godel/tests/viewer_browser/fly.rs:
+// waits for the full frame at rest; compares the page's kernel uniforms with the server's for
+// the view (POST /api/explore/input); holds R (up) until the observer has moved a while,
+// counting animation frames (its own requestAnimationFrame loop) and the pictures the page
+// draws meanwhile; lets go, waits for the full frame at rest and saves its slots and view.
+//
+// usage: node fly.mjs URL OUT_DIR
+// Writes OUT_DIR/fly-slot-S.f32 (RGBA32F, grid row 0 first) and prints {start, moved, tau,
+// speed, uniforms_page, uniforms_server, rafs, drawn, traced_moving, moving_sizes, rest,
+// header, requests, console_errors, error}.
+import { writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { launch, open } from './launch.mjs';
+
+const [url, outDir] = process.argv.slice(2);
+if (!url || !outDir) {
+  console.error('usage: node fly.mjs URL OUT_DIR');
+  process.exit(2);
+}
+const { context, page, requests, consoleErrors } = await launch(outDir, { width: 1200, height: 900 });
+// The full frame of the view as it is now, at rest.
+const atRest = () => page.waitForFunction(() => {
+  const f = window.godelViewer.explore?.fly;
+  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
+}, null, { timeout: 0 });
+
+const result = {};
+try {
+  await open(page, url);
+  await atRest();
+  result.start = await page.evaluate(() => window.godelViewer.explore.view());
+  const compare = await page.evaluate(async () => {
+    const e = window.godelViewer.explore;
+    const v = e.view();
+    const response = await fetch('/api/explore/input', { method: 'POST',
+      headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(v) });
+    const server = await response.json();
+    const ss = server.supersample;
+    return { page: e.uniforms(v.camera.width * ss, v.camera.height * ss),
+      server: server.uniforms };
+  });
+  result.uniforms_page = compare.page;
+  result.uniforms_server = compare.server;
+  result.speed = await page.evaluate(() => window.godelViewer.explore.fly.speed);
+  // Hold R, counting animation frames and pictures drawn from the first moving frame on.
+  await page.evaluate(() => {
+    const v = window.godelViewer;
+    v.testRafs = 0;
+    v.counting = false;
+    const count = () => {
+      if (v.counting) v.testRafs += 1;
+      if (v.counting !== null) requestAnimationFrame(count);
+    };
+    requestAnimationFrame(count);
+  });
+  await page.keyboard.down('KeyR');
+  await page.waitForFunction(() => window.godelViewer.explore.fly.tauMoved > 0, null,
+    { timeout: 0 });
+  const before = await page.evaluate(() => {
+    const v = window.godelViewer;
+    v.counting = true;
+    return { frames: v.frames, drawn: v.explore.fly.drawn };
+  });
+  await page.waitForFunction(() => window.godelViewer.testRafs >= 40, null, { timeout: 0 });
+  const after = await page.evaluate(() => {
+    const v = window.godelViewer;
+    v.counting = null;
+    return { frames: v.frames, drawn: v.explore.fly.drawn, rafs: v.testRafs,
+      header: document.getElementById('file').textContent,
+      sizes: v.explore.fly.log.slice(-10).map((l) => [l.width, l.height, l.full]) };
+  });
+  await page.keyboard.up('KeyR');
+  result.rafs = after.rafs;
+  result.drawn = after.frames - before.frames;
+  result.traced_moving = after.drawn - before.drawn;
+  result.moving_sizes = after.sizes;
+  result.moving_header = after.header;
+  await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null, { timeout: 0 });
+  await atRest();
+  result.moved = await page.evaluate(() => window.godelViewer.explore.view());
+  result.tau = await page.evaluate(() => window.godelViewer.explore.fly.tauMoved);
+  const slots = await page.evaluate(() => window.godelViewer.explore.readSlots());
+  slots.slots.forEach((b64, s) => writeFileSync(join(outDir, `fly-slot-${s}.f32`),
+    Buffer.from(b64, 'base64')));
+  result.rest = { width: slots.width, height: slots.height, slots: slots.slots.length,
+    traced: await page.evaluate(() => window.godelViewer.explore.fly.traced) };
+  result.header = await page.evaluate(() => document.getElementById('file').textContent);
+  await page.screenshot({ path: join(outDir, 'fly.png') });
+  result.error = await page.evaluate(() => window.godelViewer.error
+    || window.godelViewer.explore.fly.error);
+  result.requests = requests;
+  result.console_errors = consoleErrors;
+} finally {
+  await context.close();
+}
+console.log(JSON.stringify(result));
