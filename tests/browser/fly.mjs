@@ -1,6 +1,6 @@
 // Flying in explore mode (fly.js), for the Rust test crates/godel/tests/viewer_browser/fly.rs:
 // waits for the full frame at rest; compares the page's kernel uniforms with the server's for
-// the view (POST /api/explore/input); holds R (up) until the observer has moved a while,
+// the view (POST /api/explore/input); with "fall freely" on, holds R (up) until the observer has moved a while,
 // counting animation frames (its own requestAnimationFrame loop) and the pictures the page
 // draws meanwhile; lets go, waits for the full frame at rest and saves its slots and view.
 //
@@ -53,6 +53,8 @@ try {
     };
     requestAnimationFrame(count);
   });
+  // Falling freely: the velocity R gives stays once it is let go (the geodesic's).
+  await page.check('#fly-fall');
   await page.keyboard.down('KeyR');
   await page.waitForFunction(() => window.godelViewer.explore.fly.tauMoved > 0, null,
     { timeout: 0 });

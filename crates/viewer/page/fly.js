@@ -262,16 +262,16 @@ export async function startFly(viewer, explore, map, status) {
   }
 
   let last = null;
-  // Asked for again after the frame is traced, so that the next animation frame shades it
-  // (viewer.js's draw, asked for meanwhile) before tracing the next.
-  function tick(now) {
+  // Asked for again after the frame is traced and shown, so that the next animation frame
+  // shades it (viewer.js's draw, asked for by showing it) before tracing the next.
+  async function tick(now) {
     try {
-      step(now);
+      await step(now);
     } finally {
       requestAnimationFrame(tick);
     }
   }
-  function step(now) {
+  async function step(now) {
     const frameMs = last === null ? 0 : now - last;
     const dt = Math.min(MAX_DT, frameMs / 1000);
     last = now;
@@ -307,7 +307,9 @@ export async function startFly(viewer, explore, map, status) {
     const stale = fly.traced === null || fly.traced.version !== fly.version;
     if (stale || (running && fly.traced.full === false)) {
       fly.rafs += 1;
-      if (!fly.busy) traceMoving(frameMs);
+      // Waited for: it resolves in this task once the kernel is compiled (one draw, no
+      // fence), so that the shading asked for comes in the next animation frame.
+      if (!fly.busy) await traceMoving(frameMs);
     } else if (!fly.traced.full && !fly.busy && !fly.refining && !running && !fly.moving) {
       traceFull();
     }

@@ -3,12 +3,11 @@
 //!
 //! - its kernel uniforms for the view on screen are the server's for that view
 //!   (`POST /api/explore/input`, from the scene file's fields: one home for them);
-//! - holding R moves the observer along its up axis (+z here) by γ v τ in γ τ of coordinate
+//! - with "fall freely" on, holding R moves the observer along its up axis (+z here) by γ v τ in γ τ of coordinate
 //!   time for the proper time τ it moved, at the speed v of the speed control
 //!   (spacetime::worldline: exact along z in Gödel's universe);
-//! - while it moves, a frame is traced in every animation frame (counted by the test's own
-//!   requestAnimationFrame loop; shaded in every other one so far), at fewer pixels than the
-//!   full frame;
+//! - while it moves, a frame is traced and drawn in every animation frame (counted by the
+//!   test's own requestAnimationFrame loop), at fewer pixels than the full frame;
 //! - at rest the frame reaches the scene's full size, and equals `godel render --gpu` of a
 //!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common).
 
@@ -82,6 +81,14 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     for k in ["x", "y"] {
         assert_eq!(moved["position"][k], start["position"][k], "{seen}");
     }
+    // Falling freely, it keeps the velocity R gave it (along z, the geodesic's own): the
+    // frame at rest below is a moving observer's (aberration and Doppler).
+    assert!(
+        (f(moved, &["velocity", "speed"]) - v).abs() < 1e-9,
+        "{seen}"
+    );
+    let d = &moved["velocity"]["direction"];
+    assert!((d[2].as_f64().unwrap() - 1.0).abs() < 1e-9, "{seen}");
 
     // Every animation frame while moving draws a traced frame, smaller than the full one.
     let rafs = seen["rafs"].as_u64().unwrap();
@@ -124,16 +131,18 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     );
     let view_scene = dir.path().join("fly-view.toml");
     std::fs::write(&view_scene, scene_of_view(&text, moved)).unwrap();
+    let rendered_dir = dir.path().join("rendered");
+    std::fs::create_dir(&rendered_dir).unwrap();
     let rendered = godel(&[
         "render",
         "--gpu",
         view_scene.to_str().unwrap(),
         "-q",
         "-o",
-        dir.path().to_str().unwrap(),
+        rendered_dir.to_str().unwrap(),
     ]);
     assert!(rendered.status.success(), "{rendered:?}");
-    let data = DataFile::read(&dir.path().join("fly-view.exr")).unwrap();
+    let data = DataFile::read(&rendered_dir.join("reference.exr")).unwrap();
     let slots: Vec<Vec<f32>> = (0..seen["rest"]["slots"].as_u64().unwrap())
         .map(|s| {
             std::fs::read(out.join(format!("fly-slot-{s}.f32")))
