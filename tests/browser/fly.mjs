@@ -22,7 +22,7 @@ const { context, page, requests, consoleErrors } = await launch(outDir, { width:
 const atRest = () => page.waitForFunction(() => {
   const f = window.godelViewer.explore?.fly;
   return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
-}, null, { timeout: 0 });
+}, null, { timeout: 180000 });
 
 const result = {};
 try {
@@ -55,15 +55,20 @@ try {
   });
   // Falling freely: the velocity R gives stays once it is let go (the geodesic's).
   await page.check('#fly-fall');
+  // A fifth of a second of proper time per second: the observer stays near the ball however
+  // slowly this machine draws the 40 frames counted.
+  await page.locator('#fly-rate').fill('0.2');
+  await page.locator('#fly-rate').dispatchEvent('change');
+  await page.locator('#fly-rate').blur(); // the keys go to the page, not the field
   await page.keyboard.down('KeyR');
   await page.waitForFunction(() => window.godelViewer.explore.fly.tauMoved > 0, null,
-    { timeout: 0 });
+    { timeout: 180000 });
   const before = await page.evaluate(() => {
     const v = window.godelViewer;
     v.counting = true;
     return { frames: v.frames, drawn: v.explore.fly.drawn };
   });
-  await page.waitForFunction(() => window.godelViewer.testRafs >= 40, null, { timeout: 0 });
+  await page.waitForFunction(() => window.godelViewer.testRafs >= 40, null, { timeout: 180000 });
   const after = await page.evaluate(() => {
     const v = window.godelViewer;
     v.counting = null;
@@ -77,7 +82,7 @@ try {
   result.traced_moving = after.drawn - before.drawn;
   result.moving_sizes = after.sizes;
   result.moving_header = after.header;
-  await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null, { timeout: 0 });
+  await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null, { timeout: 180000 });
   await atRest();
   result.moved = await page.evaluate(() => window.godelViewer.explore.view());
   result.tau = await page.evaluate(() => window.godelViewer.explore.fly.tauMoved);

@@ -154,6 +154,6 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
         .collect();
     let page = traced_file(&data, &slots);
     let a = kernel_agreement::compare("fly", &page, &data);
-    assert!(a.seen > 50, "the view shows the ball: {a:?}");
+    assert!(a.seen > 50, "the view shows the ball: {a:?} {moved}");
     assert!(a.holds(), "{a:?}");
 }
