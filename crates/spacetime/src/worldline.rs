@@ -20,7 +20,7 @@ pub fn local_velocity(metric: &Metric, at: Event, u: FourVector) -> Option<Local
     let gamma = -metric.dot(at, u, e[0]);
     let p = [1, 2, 3].map(|i| metric.dot(at, u, e[i]) / gamma);
     let speed = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-    if !(gamma >= 1.0 - 1e-9) || !speed.is_finite() || speed >= 1.0 {
+    if gamma.is_nan() || gamma < 1.0 - 1e-9 || !speed.is_finite() || speed >= 1.0 {
         return None;
     }
     if speed == 0.0 {
