@@ -10,7 +10,7 @@
 use super::browser_support::*;
 
 /// The reference scene (a ball in free fall past the observer) at 88×10 pixels, one ray each.
-fn scene_text() -> String {
+pub(super) fn scene_text() -> String {
     std::fs::read_to_string(repo_root().join("scenes/reference.toml"))
         .unwrap()
         .replace("width = 880", "width = 88")

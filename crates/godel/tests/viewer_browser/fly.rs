@@ -12,17 +12,9 @@
 //!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common).
 
 use super::browser_support::*;
+use super::explore::scene_text;
 use super::gpu_trace::{kernel_agreement, traced_file};
 use datafile::DataFile;
-
-/// The reference scene (a ball in free fall past the observer) at 88×10 pixels, one ray each.
-fn scene_text() -> String {
-    std::fs::read_to_string(repo_root().join("scenes/reference.toml"))
-        .unwrap()
-        .replace("width = 880", "width = 88")
-        .replace("height = 100", "height = 10")
-        .replace("samples = 4", "samples = 1")
-}
 
 /// The scene with the observer and camera fields of a view (`viewer.explore.view()`).
 fn scene_of_view(text: &str, view: &serde_json::Value) -> String {

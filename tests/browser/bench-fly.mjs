@@ -1,0 +1,48 @@
+// Frames per second while flying (scripts/bench-fly.sh): waits for the full frame at rest,
+// holds W for FRAMES animation frames, then lets go and waits for the full frame again.
+// usage: node bench-fly.mjs URL OUT_DIR FRAMES
+// Prints {size, frames, seconds, frames_per_s, moving_sizes (median, smallest, largest
+// width×height), full_ms (from letting go to the full frame shown)}.
+import { launch, open } from './launch.mjs';
+
+const [url, outDir, frames] = process.argv.slice(2);
+if (!url || !outDir || !frames) {
+  console.error('usage: node bench-fly.mjs URL OUT_DIR FRAMES');
+  process.exit(2);
+}
+const n = Number(frames);
+const { context, page } = await launch(outDir, { width: 1400, height: 900 });
+const atRest = () => page.waitForFunction(() => {
+  const f = window.godelViewer.explore?.fly;
+  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
+}, null, { timeout: 600000 });
+try {
+  await open(page, url);
+  await atRest();
+  const size = await page.evaluate(() => window.godelViewer.explore.view().camera);
+  await page.keyboard.down('KeyW');
+  await page.waitForFunction(() => window.godelViewer.explore.fly.tauMoved > 0, null,
+    { timeout: 600000 });
+  const start = await page.evaluate(() => [performance.now(), window.godelViewer.frames,
+    window.godelViewer.explore.fly.log.length]);
+  await page.waitForFunction((k) => window.godelViewer.frames >= k, start[1] + n,
+    { timeout: 600000 });
+  const end = await page.evaluate((s) => [performance.now(), window.godelViewer.frames,
+    window.godelViewer.explore.fly.log.slice(-(window.godelViewer.explore.fly.log.length - s))
+      .map((l) => [l.width, l.height])], start[2]);
+  await page.keyboard.up('KeyW');
+  const let_go = await page.evaluate(() => performance.now());
+  await atRest();
+  const full = await page.evaluate(() => performance.now());
+  const sizes = end[2].sort((a, b) => a[0] - b[0]);
+  const seconds = (end[0] - start[0]) / 1000;
+  const s = (p) => (p ? `${p[0]}×${p[1]}` : null);
+  console.log(JSON.stringify({ size: `${size.width}×${size.height}`, frames: end[1] - start[1],
+    seconds: Number(seconds.toFixed(2)),
+    frames_per_s: Number(((end[1] - start[1]) / seconds).toFixed(1)),
+    moving_sizes: { median: s(sizes[sizes.length >> 1]), smallest: s(sizes[0]),
+      largest: s(sizes[sizes.length - 1]) },
+    full_ms: Math.round(full - let_go) }));
+} finally {
+  await context.close();
+}
