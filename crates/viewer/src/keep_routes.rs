@@ -163,6 +163,8 @@ async fn start(State(state): State<Arc<KeepState>>, body: Bytes) -> Result<Respo
 /// `GET /api/explore/exact`: the newest render's state.
 async fn status(State(state): State<Arc<KeepState>>) -> Response {
     let job = state.newest().map(|job| {
+        // Before the outcome's lock, which `state` takes too.
+        let job_state = job.state();
         let outcome = job.outcome.lock().unwrap_or_else(|e| e.into_inner());
         let (error, summary, files) = match &*outcome {
             Some(Ok(r)) => (None, Some(r.summary.clone()), true),
@@ -172,7 +174,7 @@ async fn status(State(state): State<Arc<KeepState>>) -> Response {
         let url = |kind: &str| files.then(|| format!("/api/explore/exact/{}/{kind}", job.id));
         serde_json::json!({
             "id": job.id,
-            "state": job.state(),
+            "state": job_state,
             "done": job.done.load(Ordering::SeqCst),
             "total": job.total.load(Ordering::SeqCst),
             "seconds": *job.seconds.lock().unwrap_or_else(|e| e.into_inner()),
@@ -209,11 +211,12 @@ async fn file(
                 format!("exact render {id} is not the newest; ask /api/explore/exact"),
             )
         })?;
+    let job_state = job.state();
     let outcome = job.outcome.lock().unwrap_or_else(|e| e.into_inner());
     let Some(Ok(rendered)) = &*outcome else {
         return Err(ApiError::new(
             StatusCode::NOT_FOUND,
-            format!("exact render {id} has no files (it is {:?})", job.state()),
+            format!("exact render {id} has no files (it is {job_state:?})"),
         ));
     };
     let (bytes, content_type) = match kind.as_str() {
