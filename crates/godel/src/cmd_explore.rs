@@ -25,8 +25,8 @@ use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEM
 use viewer::kernel_routes::KernelInput;
 
 use crate::args::{thread_pool, usage};
-use crate::scene_edit::section;
 use crate::memory;
+use crate::scene_edit::section;
 use crate::serve::{load_error, ServeArgs};
 
 /// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).

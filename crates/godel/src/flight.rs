@@ -163,7 +163,9 @@ impl Flight {
             return Err(at(&format!("observer.{f}"), m));
         }
         scene.map_err(|e| match e {
-            EditError::Scene(e) if e.field.starts_with("observer") || e.field.starts_with("camera") => {
+            EditError::Scene(e)
+                if e.field.starts_with("observer") || e.field.starts_with("camera") =>
+            {
                 at(&e.field, e.message.clone())
             }
             EditError::Scene(e) => self.script.error_at("trace.scene", one_line(&e)),

@@ -64,7 +64,11 @@ impl SceneKeeper {
                 camera.insert(k.into(), v.into());
             }
             let c = &view.camera;
-            for (k, v) in [("width", c.width), ("height", c.height), ("samples", c.samples)] {
+            for (k, v) in [
+                ("width", c.width),
+                ("height", c.height),
+                ("samples", c.samples),
+            ] {
                 camera.insert(k.into(), i64::from(v).into());
             }
             table.insert("camera".into(), Value::Table(camera));
@@ -121,7 +125,9 @@ struct JobProgress<'a>(&'a ExactJob);
 
 impl Progress for JobProgress<'_> {
     fn start(&self, pixels: u64) {
-        self.0.total.store(pixels, std::sync::atomic::Ordering::SeqCst);
+        self.0
+            .total
+            .store(pixels, std::sync::atomic::Ordering::SeqCst);
     }
     fn advance(&self, pixels: u64) {
         self.0
@@ -271,5 +277,85 @@ impl Keeper for SceneKeeper {
             shade::Script::parse(&text, script_path).map_err(|e| format!("recording: {e}"))?;
         crate::flight::Flight::new(&self.scene, &script).map_err(|e| format!("recording: {e}"))?;
         Ok(text)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use viewer::keep::RecordedView;
+
+    fn keeper() -> SceneKeeper {
+        let dir = std::env::temp_dir().join(format!("godel-keep-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("keep-unit.toml");
+        let text = testkit::ball_ahead(
+            "keep-unit",
+            &testkit::panorama(220.0, 25.0, 16, 8),
+            "ball",
+            r#"{ kind = "uniform", color = [0.2, 0.4, 0.6] }"#,
+        );
+        std::fs::write(&path, text).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        SceneKeeper::new(Scene::from_file(&path).unwrap(), pool)
+    }
+
+    #[test]
+    fn a_bad_view_is_refused_naming_its_field() {
+        let k = keeper();
+        let mut view = k.own_view();
+        view.velocity.speed = 1.5;
+        let e = k.check(&view).unwrap_err();
+        assert!(e.starts_with("view.velocity.speed: "), "{e}");
+        let mut view = k.own_view();
+        view.camera.width = 0;
+        let e = k.check(&view).unwrap_err();
+        assert!(e.starts_with("view.camera.width: "), "{e}");
+        let mut view = k.own_view();
+        view.camera.h_fov_deg = None;
+        let e = k.check(&view).unwrap_err();
+        assert!(e.starts_with("view.camera"), "{e}");
+        k.check(&k.own_view()).unwrap();
+    }
+
+    #[test]
+    fn a_recorded_keyframe_is_the_scene_of_its_view() {
+        let k = keeper();
+        let mut moved = k.own_view();
+        moved.time = 1.25;
+        moved.position.x = 0.3;
+        moved.velocity.speed = 0.4;
+        moved.forward = [0.0, 1.0, 0.0];
+        moved.camera.h_fov_deg = Some(180.0);
+        let recording = Recording {
+            keyframes: vec![
+                RecordedView {
+                    seconds: 0.0,
+                    view: k.own_view(),
+                },
+                RecordedView {
+                    seconds: 0.5,
+                    view: moved.clone(),
+                },
+            ],
+        };
+        let frames = recording.frames().unwrap();
+        assert_eq!(frames, [0, 12]);
+        let text = k.script(&recording, &frames).unwrap();
+        let script = shade::Script::parse(&text, Path::new("flight.toml")).unwrap();
+        assert_eq!(script.frames, 13);
+        let flight = crate::flight::Flight::new(&k.scene, &script).unwrap();
+        let direct = k.scene_of(&moved).unwrap();
+        let frame = flight.scene_at(12).unwrap();
+        assert_eq!(frame.observer, direct.observer);
+        assert_eq!(frame.camera, direct.camera);
+        // A camera kind the scene has not cannot be keyframed.
+        let mut other = recording.clone();
+        other.keyframes[1].view.camera.kind = "sphere".into();
+        let e = k.script(&other, &frames).unwrap_err();
+        assert!(e.starts_with("keyframes[1].view.camera.kind: "), "{e}");
     }
 }

@@ -32,8 +32,8 @@ mod out_pair;
 mod output;
 mod plot_isometry;
 mod plot_kit;
-mod scene_edit;
 mod progress;
+mod scene_edit;
 mod serve;
 mod svg;
 

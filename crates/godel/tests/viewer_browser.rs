@@ -225,10 +225,10 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
 
 #[path = "viewer_browser/explore.rs"]
 mod explore;
-#[path = "viewer_browser/keep.rs"]
-mod keep;
 #[path = "viewer_browser/gpu_trace.rs"]
 mod gpu_trace;
+#[path = "viewer_browser/keep.rs"]
+mod keep;
 #[path = "viewer_browser/layers.rs"]
 mod layers;
 #[path = "viewer_browser/look.rs"]

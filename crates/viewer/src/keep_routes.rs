@@ -202,15 +202,12 @@ async fn file(
     State(state): State<Arc<KeepState>>,
     Path((id, kind)): Path<(u64, String)>,
 ) -> Result<Response, ApiError> {
-    let job = state
-        .newest()
-        .filter(|j| j.id == id)
-        .ok_or_else(|| {
-            ApiError::new(
-                StatusCode::GONE,
-                format!("exact render {id} is not the newest; ask /api/explore/exact"),
-            )
-        })?;
+    let job = state.newest().filter(|j| j.id == id).ok_or_else(|| {
+        ApiError::new(
+            StatusCode::GONE,
+            format!("exact render {id} is not the newest; ask /api/explore/exact"),
+        )
+    })?;
     let job_state = job.state();
     let outcome = job.outcome.lock().unwrap_or_else(|e| e.into_inner());
     let Some(Ok(rendered)) = &*outcome else {

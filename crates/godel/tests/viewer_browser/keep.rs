@@ -53,7 +53,11 @@ fn scene_of_view(view: &serde_json::Value) -> String {
 
 /// `godel render --method exact` of the scene of `view`, written into `dir` as
 /// `NAME.png`, `NAME.exr`; returns the two files' paths.
-fn render_view(dir: &Path, name: &str, view: &serde_json::Value) -> (std::path::PathBuf, std::path::PathBuf) {
+fn render_view(
+    dir: &Path,
+    name: &str,
+    view: &serde_json::Value,
+) -> (std::path::PathBuf, std::path::PathBuf) {
     let scene = dir.join(format!("{name}.toml"));
     std::fs::write(&scene, scene_of_view(view)).unwrap();
     let out = dir.join(name);
