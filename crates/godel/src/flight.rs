@@ -26,6 +26,7 @@
 
 use scene::{Camera, Scene};
 use shade::{FrameSource, Script, Section, ShadeError, Track};
+use spacetime::{Event, LocalVelocity};
 use toml::{Table, Value};
 
 use crate::scene_edit::{edited, section, EditError};
@@ -197,20 +198,30 @@ pub fn keyframe_text(scene: &Scene, frame: u32) -> Result<String, toml::ser::Err
 /// The scene's observer as a keyframe table: every key, position in x, y, z.
 fn observer_table(scene: &Scene) -> Table {
     let o = &scene.observer;
-    let e = o.event;
+    observer_fields(o.event, o.velocity, o.forward, o.up)
+}
+
+/// An observer as a scene's (and a keyframe's) `[observer]` table: every key, position in
+/// x, y, z.
+pub fn observer_fields(
+    e: Event,
+    velocity: LocalVelocity,
+    forward: [f64; 3],
+    up: [f64; 3],
+) -> Table {
     let mut position = Table::new();
     for (k, v) in [("x", e.x), ("y", e.y), ("z", e.z)] {
         position.insert(k.into(), Value::Float(v));
     }
-    let mut velocity = Table::new();
-    velocity.insert("speed".into(), Value::Float(o.velocity.speed));
-    velocity.insert("direction".into(), vector(o.velocity.direction));
+    let mut v = Table::new();
+    v.insert("speed".into(), Value::Float(velocity.speed));
+    v.insert("direction".into(), vector(velocity.direction));
     let mut t = Table::new();
     t.insert("time".into(), Value::Float(e.t));
     t.insert("position".into(), Value::Table(position));
-    t.insert("velocity".into(), Value::Table(velocity));
-    t.insert("forward".into(), vector(o.forward));
-    t.insert("up".into(), vector(o.up));
+    t.insert("velocity".into(), Value::Table(v));
+    t.insert("forward".into(), vector(forward));
+    t.insert("up".into(), vector(up));
     t
 }
 

@@ -24,6 +24,9 @@ use viewer::keep::{
     CameraView, ExactJob, Keeper, Position, Recording, Rendered, Velocity, View, RECORD_FPS,
 };
 
+use spacetime::{Event, LocalVelocity};
+
+use crate::flight::observer_fields;
 use crate::scene_edit::{edited, section, EditError};
 
 /// The keeper of explore mode: the scene as read from its file, and the exact tracer's pool.
@@ -90,22 +93,13 @@ impl SceneKeeper {
 
 /// The view's observer as a scene's (and a keyframe's) `[observer]` table.
 fn observer_table(view: &View) -> Table {
-    let vector = |v: [f64; 3]| Value::Array(v.iter().map(|&c| Value::Float(c)).collect());
     let p = view.position;
-    let mut position = Table::new();
-    for (k, v) in [("x", p.x), ("y", p.y), ("z", p.z)] {
-        position.insert(k.into(), Value::Float(v));
-    }
-    let mut velocity = Table::new();
-    velocity.insert("speed".into(), Value::Float(view.velocity.speed));
-    velocity.insert("direction".into(), vector(view.velocity.direction));
-    let mut t = Table::new();
-    t.insert("time".into(), Value::Float(view.time));
-    t.insert("position".into(), Value::Table(position));
-    t.insert("velocity".into(), Value::Table(velocity));
-    t.insert("forward".into(), vector(view.forward));
-    t.insert("up".into(), vector(view.up));
-    t
+    let velocity = LocalVelocity {
+        speed: view.velocity.speed,
+        direction: view.velocity.direction,
+    };
+    let event = Event::new(view.time, p.x, p.y, p.z);
+    observer_fields(event, velocity, view.forward, view.up)
 }
 
 /// The fields of view a camera view gives (keys among `shade::CAMERA_KEYS`).
