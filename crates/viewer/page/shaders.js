@@ -443,7 +443,7 @@ vec3 cyclicColour(float chi) {
 // Rust's f64::round: halves away from zero.
 float roundAway(float x) { return sign(x) * floor(abs(x) + 0.5); }
 
-// The observed angle χ in [0, π) at the sample of picture pixel `cell` (the sample nearest
+// The observed angle χ in [0, π) at the sample of picture pixel "cell" (the sample nearest
 // its centre), false where it shows no object with polarized light or its light runs along
 // the axis: χ = atan2(ê·(pol × dir), ê·pol) (spacetime::polarization::observed_angle).
 bool observedAngle(ivec2 cell, out float chi) {
