@@ -167,7 +167,11 @@ fn cases(data: &DataFile) -> Vec<ShadeSettings> {
         s.objects.get_mut("globe").unwrap().polarization = Some([1.0, 0.0, 0.0]);
     }));
     cases.push(with(&|s| {
-        s.shaders = vec![ShaderKind::Texture, ShaderKind::Time, ShaderKind::Polarization];
+        s.shaders = vec![
+            ShaderKind::Texture,
+            ShaderKind::Time,
+            ShaderKind::Polarization,
+        ];
         s.objects.get_mut("globe").unwrap().polarization = Some([0.3, 0.4, -0.5]);
     }));
     cases.push(with(&|s| {
@@ -311,11 +315,13 @@ fn check_layers(width: usize, height: usize, s: usize) {
 
     // The polarization cases draw ticks: the page must draw them to pass.
     let mut ticked = 0;
-    for (k, settings) in (cases.iter().enumerate())
-        .filter(|(_, s)| s.shaders.contains(&ShaderKind::Polarization))
+    for (k, settings) in
+        (cases.iter().enumerate()).filter(|(_, s)| s.shaders.contains(&ShaderKind::Polarization))
     {
         let mut bare = settings.clone();
-        bare.objects.values_mut().for_each(|o| o.polarization = None);
+        bare.objects
+            .values_mut()
+            .for_each(|o| o.polarization = None);
         let a = Shading::new(&data, settings).unwrap().image(&data);
         let b = Shading::new(&data, &bare).unwrap().image(&data);
         let c = compare(a.as_raw(), b.as_raw(), width);
