@@ -19,7 +19,7 @@ use std::path::Path;
 
 use super::browser_support::*;
 #[path = "../../../gpu/tests/common/mod.rs"]
-mod kernel_agreement;
+pub(super) mod kernel_agreement;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};

@@ -12,9 +12,7 @@
 //!   new axis), and the page neither traces again nor asks the server for anything.
 
 use super::browser_support::*;
-use super::gpu_trace::{read_slots, traced_file};
-#[path = "../../../gpu/tests/common/mod.rs"]
-mod kernel_agreement;
+use super::gpu_trace::{kernel_agreement, read_slots, traced_file};
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
 
