@@ -10,7 +10,7 @@
 // Prints {requests, console_errors, requests_while_turning, traces_before, traces_after}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, idle, savePicture } from './launch.mjs';
+import { launch, open, idle, savePicture, traced } from './launch.mjs';
 
 const [url, outDir, azimuth] = process.argv.slice(2);
 if (!url || !outDir || azimuth === undefined) {
@@ -37,13 +37,7 @@ try {
   await savePicture(page, join(outDir, 'file.rgba'), { settings: await settings(page) });
 
   await page.check('#trace-gpu');
-  await page.waitForFunction(() => {
-    const t = window.godelViewer.traced;
-    return t && !t.tracing && (t.traced !== null || t.error !== null);
-  }, null, { timeout: 0 });
-  await idle(page);
-  const error = await page.evaluate(() => window.godelViewer.traced.error);
-  if (error !== null) throw new Error(`the page could not trace on the GPU: ${error}`);
+  await traced(page);
   const slots = await page.evaluate(() => window.godelViewer.traced.readSlots());
   slots.slots.forEach((b64, s) => writeFileSync(join(outDir, `trace-0-slot-${s}.f32`),
     Buffer.from(b64, 'base64')));

@@ -85,7 +85,7 @@ pub(super) fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, 
 
 /// Renders each case with the exact tracer and serves it; returns the data files' paths,
 /// the servers and their URLs.
-fn render_and_serve(
+pub(super) fn render_and_serve(
     dir: &Path,
     cases: &[(&str, u32, u32)],
 ) -> (Vec<std::path::PathBuf>, Vec<Server>, Vec<String>) {

@@ -12,7 +12,7 @@
 //!   new axis), and the page neither traces again nor asks the server for anything.
 
 use super::browser_support::*;
-use super::gpu_trace::{kernel_agreement, read_slots, traced_file};
+use super::gpu_trace::{kernel_agreement, read_slots, render_and_serve, traced_file};
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
 
@@ -24,23 +24,9 @@ const AZIMUTH: f64 = -60.0;
 fn the_pages_polarization_layer_equals_godel_shade_and_its_axis_control_reshades_only() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
-    let scene = repo_root().join("scenes/polarization.toml");
-    let rendered = godel(&[
-        "render",
-        scene.to_str().unwrap(),
-        "--method",
-        "exact",
-        "--width",
-        "240",
-        "--height",
-        "80",
-        "-q",
-        "-o",
-        dir.path().to_str().unwrap(),
-    ]);
-    assert!(rendered.status.success(), "{rendered:?}");
-    let exr = dir.path().join("polarization.exr");
-    let data = DataFile::read(&exr).unwrap();
+    let (files, servers, urls) = render_and_serve(dir.path(), &[("polarization", 240, 80)]);
+    let (exr, url) = (&files[0], &urls[0]);
+    let data = DataFile::read(exr).unwrap();
     let cli_png = dir.path().join("cli.png");
     let shaded = godel(&[
         "shade",
@@ -52,13 +38,12 @@ fn the_pages_polarization_layer_equals_godel_shade_and_its_axis_control_reshades
     ]);
     assert!(shaded.status.success(), "{shaded:?}");
 
-    let (server, url) = start_viewer(&exr, dir.path());
     let out = dir.path().join("browser");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("polarization.mjs", &url, &out, &[AZIMUTH.to_string()]);
-    drop(server);
+    let seen = run_script("polarization.mjs", url, &out, &[AZIMUTH.to_string()]);
+    drop(servers);
     assert_eq!(seen["console_errors"], serde_json::json!([]));
-    assert_only_local_requests(&seen, &url);
+    assert_only_local_requests(&seen, url);
     let settings_of = |name: &str| -> ShadeSettings {
         let meta: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join(format!("{name}.json"))).unwrap())
