@@ -1750,7 +1750,7 @@ int shadowRaySetUp() {
 // ---------------------------------------------------------------------------------------
 // The record of one sample: slots of four channels (crates/gpu/src/input.rs lists them):
 // 0 (object, status, u, v), 1 (g, t_emit, lambda, cos_i), 2 (x, y, z, view_x),
-// 3 (dir_x, dir_y, dir_z, view_y), 4 (view_z, light_0, light_1, light_2), then four lights each.
+// 3 (dir_x, dir_y, dir_z, view_y), 4 (view_z, pol_x, pol_y, pol_z), then four lights each from 5.
 
 
 void setLight(int li, float v) {

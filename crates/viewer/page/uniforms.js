@@ -173,7 +173,7 @@ export function overlayKey(settings, info, p) {
   const t = settings.time;
   const legend = on.has('time') && t.mode === 'travel' && t.legend;
   const squares = on.has('frequency') && settings.reference_squares && info.objects.length > 0;
-  const polarization = polarizationLayer(settings, info);
+  const polarization = polarizationLayer(settings, info, Boolean(p.look));
   if (!legend && !squares && !settings.grid && !polarization) return null;
   const temperature = (name) => (settings.objects[name] || info.defaults.objects[name]).temperature;
   return JSON.stringify({
