@@ -41,9 +41,7 @@ pub fn render_with(
         height: camera.height() as usize,
         records: traced.records,
         lights: traced.lights,
-        // The kernel does not write the polarization channels (issue 25) yet: the file says
-        // so, and the polarization layer refuses it.
-        polarization: false,
+        polarization: true,
     };
     let stats = RenderStats {
         wall: started.elapsed(),

@@ -19,7 +19,7 @@ use std::path::Path;
 
 use super::browser_support::*;
 #[path = "../../../gpu/tests/common/mod.rs"]
-mod kernel_agreement;
+pub(super) mod kernel_agreement;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
@@ -39,7 +39,7 @@ const SLOT: usize = 4;
 
 /// The data file `data` with the records and light planes of a traced frame's slots, read
 /// as the `gpu` crate's host reads them.
-fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
+pub(super) fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
     let samples = data.width * data.height;
     let channels =
         |s: usize, i: usize| -> [f32; 4] { slots[s][i * SLOT..(i + 1) * SLOT].try_into().unwrap() };
@@ -62,7 +62,7 @@ fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
 }
 
 /// Reads the slots the script saved for URL number `k`: (width, height, slots).
-fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, serde_json::Value) {
+pub(super) fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, serde_json::Value) {
     let meta: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join(format!("trace-{k}.json"))).unwrap())
             .unwrap();
@@ -85,7 +85,7 @@ fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, serde_json:
 
 /// Renders each case with the exact tracer and serves it; returns the data files' paths,
 /// the servers and their URLs.
-fn render_and_serve(
+pub(super) fn render_and_serve(
     dir: &Path,
     cases: &[(&str, u32, u32)],
 ) -> (Vec<std::path::PathBuf>, Vec<Server>, Vec<String>) {
