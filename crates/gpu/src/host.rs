@@ -35,6 +35,8 @@ pub enum HostError {
     Compile { renderer: String, log: String },
     #[error("the GPU failed: {0}")]
     Gl(String),
+    #[error(transparent)]
+    Check(#[from] crate::check::CheckError),
 }
 
 /// The kernel compiled for one scene, ready to trace it.
