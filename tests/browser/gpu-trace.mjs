@@ -13,7 +13,7 @@
 //   where WebGL2 cannot draw into float textures (EXT_color_buffer_float withheld).
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, idle, savePicture } from './launch.mjs';
+import { launch, idle, savePicture, traced } from './launch.mjs';
 
 const args = process.argv.slice(2);
 const shade = args.includes('--shade');
@@ -23,21 +23,6 @@ if (!first || !outDir) {
   process.exit(2);
 }
 const urls = [first, ...more];
-
-// Waits until the page has traced (or failed to trace) on the GPU; throws its error.
-async function traced(page) {
-  await page.waitForFunction(() => window.godelViewer.error !== null
-    || window.godelViewer.traced !== undefined, null, { timeout: 60000 });
-  const shown = await page.evaluate(() => window.godelViewer.error);
-  if (shown !== null) throw new Error(`the viewer shows an error: ${shown}`);
-  await page.waitForFunction(() => {
-    const t = window.godelViewer.traced;
-    return t && !t.tracing && (t.traced !== null || t.error !== null);
-  }, null, { timeout: 0 });
-  await idle(page);
-  const error = await page.evaluate(() => window.godelViewer.traced.error);
-  if (error !== null) throw new Error(`the page could not trace on the GPU: ${error}`);
-}
 
 const { context, page, requests, consoleErrors } = await launch(outDir, { width: 1200, height: 800 });
 const result = {};

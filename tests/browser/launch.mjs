@@ -46,6 +46,22 @@ export async function open(page, url) {
   if (error !== null) throw new Error(`the viewer shows an error: ${error}`);
 }
 
+// Waits until the page has traced (or failed to trace) on the GPU (traced.js); throws its
+// error.
+export async function traced(page) {
+  await page.waitForFunction(() => window.godelViewer.error !== null
+    || window.godelViewer.traced !== undefined, null, { timeout: 60000 });
+  const shown = await page.evaluate(() => window.godelViewer.error);
+  if (shown !== null) throw new Error(`the viewer shows an error: ${shown}`);
+  await page.waitForFunction(() => {
+    const t = window.godelViewer.traced;
+    return t && !t.tracing && (t.traced !== null || t.error !== null);
+  }, null, { timeout: 0 });
+  await idle(page);
+  const error = await page.evaluate(() => window.godelViewer.traced.error);
+  if (error !== null) throw new Error(`the page could not trace on the GPU: ${error}`);
+}
+
 // Writes the page's shaded picture (or the canvas: which = 'canvas') to PATH (raw RGBA, top row
 // first) and its size and `extra` to PATH with .json; returns the size and the bytes.
 export async function savePicture(page, path, extra = {}, which = 'picture') {

@@ -27,8 +27,8 @@ use viewer::explore::{
 use viewer::kernel_routes::KernelInput;
 
 use crate::args::{thread_pool, usage};
-use crate::flight::section;
 use crate::memory;
+use crate::scene_edit::section;
 use crate::serve::{load_error, ServeArgs};
 
 /// The coarse frame's width and height are the scene's divided by this (at least 1 pixel).
@@ -156,13 +156,7 @@ fn edited(scene: &Scene, edit: impl FnOnce(&mut Table)) -> anyhow::Result<Scene>
         Some(path) => path.display().to_string(),
         None => format!("{}.toml", scene.name),
     };
-    let mut table: Table = scene
-        .source_text
-        .parse()
-        .map_err(|e| anyhow::anyhow!("{file}: cannot re-read the scene: {e}"))?;
-    edit(&mut table);
-    let text = toml::to_string(&table)?;
-    Ok(Scene::from_str(&text, &file)?)
+    Ok(crate::scene_edit::edited(&scene.source_text, &file, edit)?)
 }
 
 /// The exact tracer on a scene, as the frame source of explore mode.
@@ -323,6 +317,8 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let ip = args.serve.ip()?;
     let pool = thread_pool(args.threads)?;
     let mut scene = Scene::from_file(&args.scene)?;
+    // "Render exactly" and "Record" keep views of the scene as written (issue 23).
+    let keeper = crate::keep::SceneKeeper::new(scene.clone(), thread_pool(args.threads)?);
     if let Some(width) = args.sphere {
         scene = with_sphere(&scene, width)?;
     }
@@ -349,7 +345,8 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     );
     let state = Arc::new(state);
     viewer::run_app(listener, |access| {
-        viewer::explore_routes::router(state, explorer, access)
+        let keep = viewer::keep_routes::router(keeper, state.work().clone(), access.clone());
+        viewer::explore_routes::router(state, explorer, access).merge(keep)
     })
     .context("the viewer's server failed")
 }

@@ -26,7 +26,10 @@
 
 use scene::{Camera, Scene};
 use shade::{FrameSource, Script, Section, ShadeError, Track};
+use spacetime::{Event, LocalVelocity};
 use toml::{Table, Value};
+
+use crate::scene_edit::{edited, section, EditError};
 
 /// The observer fields written into the scene when a keyframe sets one of them: position
 /// as a whole, velocity as a whole, forward and up together.
@@ -120,68 +123,60 @@ impl Flight {
             return Scene::from_str(&self.text, &self.name)
                 .map_err(|e| self.script.error_at("trace.scene", one_line(&e)));
         }
-        let mut table: Table = self.text.parse().map_err(|e| {
-            self.script
-                .error_at("trace.scene", format!("{}: {e}", self.name))
-        })?;
-        let observer = section(&mut table, "observer");
-        if let Value::Table(o) = self.observer.at(frame) {
-            for key in &self.observer_keys {
-                if let Some(v) = o.get(*key) {
-                    observer.insert(key.to_string(), v.clone());
+        let mut failed = None;
+        let scene = edited(&self.text, &self.name, |table| {
+            let observer = section(table, "observer");
+            if let Value::Table(o) = self.observer.at(frame) {
+                for key in &self.observer_keys {
+                    if let Some(v) = o.get(*key) {
+                        observer.insert(key.to_string(), v.clone());
+                    }
+                }
+                if self.observer_keys.contains(&"forward") {
+                    match axes(&o) {
+                        Ok((forward, up)) => {
+                            observer.insert("forward".into(), vector(forward));
+                            observer.insert("up".into(), vector(up));
+                        }
+                        Err(e) => failed = Some(e),
+                    }
                 }
             }
-            if self.observer_keys.contains(&"forward") {
-                let (forward, up) = axes(&o).map_err(|(f, m)| at(&format!("observer.{f}"), m))?;
-                observer.insert("forward".into(), vector(forward));
-                observer.insert("up".into(), vector(up));
+            if let Some([t0, t1]) = self.observer_time {
+                // As the sequence has always done: linear from the first frame to the last.
+                let s = if self.frames > 1 {
+                    f64::from(frame) / f64::from(self.frames - 1)
+                } else {
+                    0.0
+                };
+                observer.insert("time".into(), Value::Float(t0 + s * (t1 - t0)));
             }
-        }
-        if let Some([t0, t1]) = self.observer_time {
-            // As the sequence has always done: linear from the first frame to the last.
-            let s = if self.frames > 1 {
-                f64::from(frame) / f64::from(self.frames - 1)
-            } else {
-                0.0
-            };
-            observer.insert("time".into(), Value::Float(t0 + s * (t1 - t0)));
-        }
-        let camera = section(&mut table, "camera");
-        if let Value::Table(c) = self.camera.at(frame) {
-            for key in &self.camera_keys {
-                if let Some(v) = c.get(key) {
-                    camera.insert(key.clone(), v.clone());
+            let camera = section(table, "camera");
+            if let Value::Table(c) = self.camera.at(frame) {
+                for key in &self.camera_keys {
+                    if let Some(v) = c.get(key) {
+                        camera.insert(key.clone(), v.clone());
+                    }
                 }
             }
+        });
+        if let Some((f, m)) = failed {
+            return Err(at(&format!("observer.{f}"), m));
         }
-        let text = toml::to_string(&table)
-            .map_err(|e| self.script.error_at("trace.scene", e.to_string()))?;
-        Scene::from_str(&text, &self.name).map_err(|e| {
-            if e.field.starts_with("observer") || e.field.starts_with("camera") {
+        scene.map_err(|e| match e {
+            EditError::Scene(e)
+                if e.field.starts_with("observer") || e.field.starts_with("camera") =>
+            {
                 at(&e.field, e.message.clone())
-            } else {
-                self.script.error_at("trace.scene", one_line(&e))
             }
+            EditError::Scene(e) => self.script.error_at("trace.scene", one_line(&e)),
+            EditError::Text(why) => self.script.error_at("trace.scene", why),
         })
     }
 }
 
 fn one_line(e: &scene::SceneError) -> String {
     scene::one_line(&e.to_string())
-}
-
-/// The table at `key` of `table`, made a table when missing (or not a table).
-pub fn section<'a>(table: &'a mut Table, key: &str) -> &'a mut Table {
-    let entry = table
-        .entry(key)
-        .or_insert_with(|| Value::Table(Table::new()));
-    if !entry.is_table() {
-        *entry = Value::Table(Table::new());
-    }
-    match entry {
-        Value::Table(t) => t,
-        _ => unreachable!("made a table just above"),
-    }
 }
 
 /// A sequence-script keyframe (TOML) at `frame` with every observer field of `scene`
@@ -203,20 +198,30 @@ pub fn keyframe_text(scene: &Scene, frame: u32) -> Result<String, toml::ser::Err
 /// The scene's observer as a keyframe table: every key, position in x, y, z.
 fn observer_table(scene: &Scene) -> Table {
     let o = &scene.observer;
-    let e = o.event;
+    observer_fields(o.event, o.velocity, o.forward, o.up)
+}
+
+/// An observer as a scene's (and a keyframe's) `[observer]` table: every key, position in
+/// x, y, z.
+pub fn observer_fields(
+    e: Event,
+    velocity: LocalVelocity,
+    forward: [f64; 3],
+    up: [f64; 3],
+) -> Table {
     let mut position = Table::new();
     for (k, v) in [("x", e.x), ("y", e.y), ("z", e.z)] {
         position.insert(k.into(), Value::Float(v));
     }
-    let mut velocity = Table::new();
-    velocity.insert("speed".into(), Value::Float(o.velocity.speed));
-    velocity.insert("direction".into(), vector(o.velocity.direction));
+    let mut v = Table::new();
+    v.insert("speed".into(), Value::Float(velocity.speed));
+    v.insert("direction".into(), vector(velocity.direction));
     let mut t = Table::new();
     t.insert("time".into(), Value::Float(e.t));
     t.insert("position".into(), Value::Table(position));
-    t.insert("velocity".into(), Value::Table(velocity));
-    t.insert("forward".into(), vector(o.forward));
-    t.insert("up".into(), vector(o.up));
+    t.insert("velocity".into(), Value::Table(v));
+    t.insert("forward".into(), vector(forward));
+    t.insert("up".into(), vector(up));
     t
 }
 

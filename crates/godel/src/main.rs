@@ -25,6 +25,7 @@ mod cmd_shade;
 mod cmd_view;
 mod flight;
 mod inputs;
+mod keep;
 mod manifest;
 mod memory;
 mod out_pair;
@@ -32,6 +33,7 @@ mod output;
 mod plot_isometry;
 mod plot_kit;
 mod progress;
+mod scene_edit;
 mod serve;
 mod svg;
 

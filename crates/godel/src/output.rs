@@ -65,8 +65,9 @@ pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
 }
 
 /// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene
-/// has lights) to `png`: both made in memory first, then written together
-/// ([`write_together`]). `godel render`, `godel merge` and `godel look` write this pair.
+/// has lights) to `png`: both made in memory first ([`data_and_preview`]), then written
+/// together ([`write_together`]). `godel render`, `godel merge` and `godel look` write this
+/// pair.
 pub fn write_data_and_preview(
     scene: &Scene,
     data: &DataFile,
@@ -74,6 +75,24 @@ pub fn write_data_and_preview(
     png: &Path,
     grid: bool,
 ) -> anyhow::Result<()> {
+    let (exr_bytes, png_bytes) = data_and_preview(scene, data, exr, png, grid)?;
+    write_together(&[
+        (exr.to_path_buf(), &exr_bytes),
+        (png.to_path_buf(), &png_bytes),
+    ])?;
+    eprintln!("wrote {} and {}", png.display(), exr.display());
+    Ok(())
+}
+
+/// The bytes of the data file and of its preview that [`write_data_and_preview`] writes to
+/// `exr` and `png` (named in messages): explore's exact renders offer the same two files.
+pub fn data_and_preview(
+    scene: &Scene,
+    data: &DataFile,
+    exr: &Path,
+    png: &Path,
+    grid: bool,
+) -> anyhow::Result<(Vec<u8>, Vec<u8>)> {
     let textures = shade::textures_for_scene(scene)?;
     let png_bytes = {
         let mut image = shade::texture_shader::preview_with_textures(data, &textures, scene);
@@ -92,12 +111,7 @@ pub fn write_data_and_preview(
         path: exr.to_path_buf(),
         kind,
     })?;
-    write_together(&[
-        (exr.to_path_buf(), &exr_bytes),
-        (png.to_path_buf(), &png_bytes),
-    ])?;
-    eprintln!("wrote {} and {}", png.display(), exr.display());
-    Ok(())
+    Ok((exr_bytes, png_bytes))
 }
 
 /// The testing hooks of the module doc: when the variable `var` holds a number of seconds,

@@ -43,6 +43,8 @@ fn render_gpu_writes_the_files_of_a_cpu_render_with_records_that_agree() {
         (a.width, a.height, a.lights.len()),
         (b.width, b.height, b.lights.len())
     );
+    // The file declares the polarization channels (read back from the EXR), as a CPU one.
+    assert!(a.polarization && b.polarization);
     let hits = a
         .records
         .iter()
@@ -56,6 +58,10 @@ fn render_gpu_writes_the_files_of_a_cpu_render_with_records_that_agree() {
                 (x.g - y.g).abs() < 1e-5 && (x.t_emit - y.t_emit).abs() < 1e-5,
                 "sample {i}"
             );
+            let dp = (0..3)
+                .map(|c| (x.pol[c] - y.pol[c]).abs())
+                .fold(0.0, f32::max);
+            assert!(dp < 1e-4, "sample {i}: pol {:?} vs {:?}", x.pol, y.pol);
             let (la, lb) = (a.lights[0][i], b.lights[0][i]);
             assert!(
                 (la - lb).abs() <= 1e-3 * lb.abs() + 1e-6,

@@ -9,6 +9,8 @@
 //! - every layer combination shaded on the GPU equals the `shade` crate within one 8-bit step;
 //! - looking around a full sphere (drag, projections, velocity) equals `godel look` then
 //!   `godel shade` within one step, and a boost turns the ball ahead blue, the one behind red;
+//! - the polarization layer's ticks equal `godel shade`'s, on the file's frame and on a frame
+//!   traced in the page, and its axis control re-shades without tracing or asking anything;
 //! - the page asks nothing of any server but its own.
 //!
 //! Chromium and the npm packages are installed by `bash scripts/test.sh`; without them these
@@ -229,7 +231,11 @@ mod explore;
 mod fly;
 #[path = "viewer_browser/gpu_trace.rs"]
 mod gpu_trace;
+#[path = "viewer_browser/keep.rs"]
+mod keep;
 #[path = "viewer_browser/layers.rs"]
 mod layers;
 #[path = "viewer_browser/look.rs"]
 mod look;
+#[path = "viewer_browser/polarization.rs"]
+mod polarization;

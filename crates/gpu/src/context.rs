@@ -55,7 +55,8 @@ pub struct Context {
 
 impl Context {
     /// Loads libEGL, opens a display and makes an OpenGL ES 3.0 context current on this
-    /// thread.
+    /// thread. Waits while another context of this process lives ([`ONE_CONTEXT`]): a
+    /// thread that holds one must drop it before asking for another.
     pub fn new() -> Result<Context, ContextError> {
         use glow::HasContext;
         // A panic elsewhere while holding it leaves no EGL state behind worth refusing.

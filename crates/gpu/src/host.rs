@@ -35,6 +35,8 @@ pub enum HostError {
     Compile { renderer: String, log: String },
     #[error("the GPU failed: {0}")]
     Gl(String),
+    #[error(transparent)]
+    Check(#[from] crate::check::CheckError),
 }
 
 /// The kernel compiled for one scene, ready to trace it.
@@ -310,7 +312,7 @@ pub fn sample_record(slot: impl Fn(usize) -> [f32; 4]) -> PixelRecord {
             dir: [s3[0], s3[1], s3[2]],
             cos_i: s1[3],
             view,
-            pol: [0.0; 3],
+            pol: [s4[1], s4[2], s4[3]],
         },
         RayStatus::NotTraced => PixelRecord::miss(status),
         _ => PixelRecord {

@@ -26,24 +26,24 @@ pub const OBJECT_TEXELS: usize = 4;
 pub const LIGHT_TEXELS: usize = 1;
 
 /// The output slots of a record, four channels each (see [`slots`]).
-pub const SLOT_CHANNELS: [&str; 20] = [
+pub const SLOT_CHANNELS: [&str; 24] = [
     "object", "status", "u", "v", // slot 0
     "g", "t_emit", "lambda", "cos_i", // slot 1
     "x", "y", "z", "view_x", // slot 2
     "dir_x", "dir_y", "dir_z", "view_y", // slot 3
-    "view_z", "light_0", "light_1", "light_2", // slot 4, then four lights per slot
+    "view_z", "pol_x", "pol_y", "pol_z", // slot 4
+    "light_0", "light_1", "light_2", "light_3", // slot 5, then four lights per slot
 ];
 
-/// Slots a record of a scene with `lights` lights fills: four fixed ones, then view_z and
-/// the lights four channels to a slot.
+/// Slots a record of a scene with `lights` lights fills: five fixed ones, then the lights
+/// four channels to a slot.
 pub fn slots(lights: usize) -> usize {
-    4 + (lights.max(1) + 4) / 4
+    5 + lights.div_ceil(4)
 }
 
 /// Where light `k`'s channel is: (slot, component).
 pub fn light_channel(k: usize) -> (usize, usize) {
-    let c = k + 1;
-    (4 + c / 4, c % 4)
+    (5 + k / 4, k % 4)
 }
 
 /// The kernel's uniforms (names without the `u_` prefix of the GLSL source).

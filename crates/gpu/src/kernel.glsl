@@ -128,8 +128,9 @@ const int MAX_JOBS = 4194304;
 
 int probes_left;   // the pixel's probe budget (PIXEL_PROBES)
 
-// The sample's record: slots of four channels (see `main`).
-const int SLOTS = 4 + (N_LIGHTS + 4) / 4;
+// The sample's record: slots of four channels (see `main`): four fixed ones, then view_z
+// and the polarization, then the lights four to a slot.
+const int SLOTS = 5 + (N_LIGHTS + 3) / 4;
 vec4 slots[SLOTS + 8];
 
 
@@ -1405,6 +1406,39 @@ vec4 hUemit;
 vec2 hUV;
 vec3 hDir;
 float hCos;
+vec4 hScreen[2];   // the pixel's screen-up and screen-right, transported to the hit
+vec3 hPol;
+
+// The record's `pol` from the frame components of the transported screen-up f and
+// screen-right r, for a photon travelling along dir in that frame (docs/physics.md,
+// "Polarization", "What an observer measures" and "The data file's channels";
+// spacetime::polarization::measured): each measured as its spatial part less its part along
+// dir (a, b), pol the rotation part a + dir × b made orthogonal to dir and unit; false where
+// that vanishes.
+bool measurePolarization(vec4 f, vec4 r, vec3 dir) {
+    vec3 a = f.yzw - dot(f.yzw, dir) * dir;
+    vec3 b = r.yzw - dot(r.yzw, dir) * dir;
+    vec3 v = a + cross(dir, b);
+    v -= dot(v, dir) * dir;
+    float len = length(v);
+    hPol = v / len;
+    return len > 1e-6 && finite(len);
+}
+
+// The screen vectors at x carried to the worldline point p to first order and measured in
+// its body frame, as the photon in restFramePhoton (render::target::Target::surface).
+bool restFramePolarization(WPoint p, mat4 frame, vec4 x) {
+    mat4 dX, dY;
+    metricDerivatives(p.ev, dX, dY);
+    mat4 ginv = inverseMetricAt(p.ev);
+    if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
+    mat4 dual = dualFrame(metricAt(p.ev), frame);
+    vec4 c[2];
+    for (int j = 0; j < 2; j++) {
+        c[j] = components(dual, hScreen[j] - christoffelWith(dX, dY, ginv, p.ev - x, hScreen[j]));
+    }
+    return measurePolarization(c[0], c[1], hDir);
+}
 
 bool surface() {
     int i = hTarget;
@@ -1424,7 +1458,7 @@ bool surface() {
         hUV = lonLat(hXi);
         hDir = normalize(-kl.yzw);
         hCos = abs(dot(normalize(hXi), hDir));
-        return true;
+        return restFramePolarization(hAt, hFrame, x);
     }
     // Coordinate objects: static emitters; the photon's direction in the static frame.
     mat4 f = staticFrame(x);
@@ -1438,7 +1472,9 @@ bool surface() {
         hUV = oExtent[i] > 0.0 ? 0.5 + x.yz / (2.0 * oExtent[i]) : fract(x.yz);
         hCos = abs(normalize(-k.yzw).z);
     }
-    return true;
+    // Their body axes are the static frame's.
+    mat4 dual = dualFrame(metricAt(x), f);
+    return measurePolarization(components(dual, hScreen[0]), components(dual, hScreen[1]), hDir);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1714,12 +1750,40 @@ int shadowRaySetUp() {
 // ---------------------------------------------------------------------------------------
 // The record of one sample: slots of four channels (crates/gpu/src/input.rs lists them):
 // 0 (object, status, u, v), 1 (g, t_emit, lambda, cos_i), 2 (x, y, z, view_x),
-// 3 (dir_x, dir_y, dir_z, view_y), 4 (view_z, light_0, light_1, light_2), then four lights each.
+// 3 (dir_x, dir_y, dir_z, view_y), 4 (view_z, pol_x, pol_y, pol_z), then four lights each from 5.
 
 
 void setLight(int li, float v) {
-    int c = li + 1;   // channels counted from slot 4's first component (view_z)
-    slots[4 + c / 4][c % 4] = v;
+    slots[5 + li / 4][li % 4] = v;
+}
+
+// The pixel's screen-up and screen-right (docs/physics.md, "Polarization", "The pixel's
+// screen"; render::polarization::screen): the camera's up projected orthogonal to the
+// pixel's direction n (forward where n is along up), and n × that, as vectors of the
+// observer's frame.
+void pixelScreen(mat4 frame, vec3 n) {
+    vec3 s = u_up - dot(u_up, n) * n;
+    if (dot(s, s) < 1e-12) s = u_forward - dot(u_forward, n) * n;
+    s = normalize(s);
+    hScreen[0] = frame * vec4(0.0, s);
+    hScreen[1] = frame * vec4(0.0, cross(n, s));
+}
+
+// The screen vectors parallel-transported along the pixel's ray r from the observer `obs` to
+// the hit at `within` into a loop, `lambda` in all (render::polarization::exact): pushed to
+// the origin by the observer's isometry, transported there in closed form over the whole
+// parameter ("Parallel transport along closed forms") and pushed back. The ray's event in
+// its origin frame is taken at `within`: later loops retrace the first shifted in t and z,
+// which moves no vector. Minkowski: components are kept (Cartesian coordinates, no Γ).
+void transportScreen(Ray r, vec4 obs, float within, float lambda) {
+    if (!godel()) return;
+    vec4 e0, k0;
+    ogeoAt(r.geo, within, e0, k0);
+    Iso to = toOrigin(obs);
+    for (int j = 0; j < 2; j++) {
+        vec4 w = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[j]));
+        hScreen[j] = pushIso(r.back, e0, w);
+    }
 }
 
 void main() {
@@ -1773,6 +1837,9 @@ void main() {
                 finished = true;
                 if (f.status != HIT) continue;
                 rayAt(r, f.loop_, f.lambda, hX, hK);
+                float lambda = f.lambda + float(f.loop_) * r.lret;
+                pixelScreen(frame, n);
+                transportScreen(r, obs, f.lambda, lambda);
                 hTarget = f.target;
                 hAt.tau = f.tau;
                 bool ok = surface();
@@ -1781,9 +1848,10 @@ void main() {
                 if (hX.x < tBound) { status = ESCAPED; continue; }
                 if (!ok || !(g > 0.0 && finite(g))) { status = FAILED; continue; }
                 slots[0] = vec4(float(hTarget), 0.0, hUV);
-                slots[1] = vec4(g, hX.x, f.lambda + float(f.loop_) * r.lret, hCos);
+                slots[1] = vec4(g, hX.x, lambda, hCos);
                 slots[2].xyz = hX.yzw;
                 slots[3].xyz = hDir;
+                slots[4].yzw = hPol;
                 if (!godel() || HAS_LIGHTS == 0 || u_lights == 0) continue;
                 finished = false;
                 gLight = 0;

@@ -7,8 +7,9 @@
 //! (`godel render --gpu`: an offscreen EGL / OpenGL ES 3 context, [`context::Context`], with
 //! libEGL loaded at run time; [`render()`] makes a scene's data file with it) and the
 //! viewer's page (WebGL2). [`input::KernelInput`] is the one packer of what the kernel reads,
-//! for both.
+//! for both. [`check`] holds every GPU render to the CPU exact tracer on a few samples.
 
+pub mod check;
 pub mod context;
 pub mod host;
 pub mod input;

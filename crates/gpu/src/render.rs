@@ -17,12 +17,19 @@ pub struct GpuRender {
     pub renderer: String,
 }
 
-/// Traces `scene` with the kernel in an offscreen context (made here, released at the end).
+/// Traces `scene` with the kernel in an offscreen context (made here, released at the end),
+/// and holds the trace to the CPU exact tracer on a few samples ([`crate::check`]): a driver
+/// that runs the kernel wrongly is an error, not a data file.
 pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<GpuRender, HostError> {
-    render_with(scene, crate::KERNEL, progress)
+    let done = render_with(scene, crate::KERNEL, progress)?;
+    if !progress.cancelled() {
+        crate::check::against_cpu(scene, &done.data.records, &done.renderer)?;
+    }
+    Ok(done)
 }
 
-/// The same with another kernel source (see [`GpuTracer::with_kernel`]).
+/// The same with another kernel source (see [`GpuTracer::with_kernel`]), unchecked: tests
+/// hold mutated kernels to the CPU themselves.
 pub fn render_with(
     scene: &Scene,
     kernel: &str,
@@ -41,9 +48,7 @@ pub fn render_with(
         height: camera.height() as usize,
         records: traced.records,
         lights: traced.lights,
-        // The kernel does not write the polarization channels (issue 25) yet: the file says
-        // so, and the polarization layer refuses it.
-        polarization: false,
+        polarization: true,
     };
     let stats = RenderStats {
         wall: started.elapsed(),

@@ -1,8 +1,9 @@
 //! The GPU kernel against the CPU exact tracer (docs/physics.md, "The GPU kernel"): every
 //! example scene and the hard cases (an observer inside a sphere, an off-axis observer moving
 //! at 0.9 c, a = 0.5 and a = 2, 28 images of a falling ball, lit scenes) agree within the
-//! tolerances of single precision; and kernels with one piece of the physics removed (the
-//! loop copies, the isometry, the boost, the free fall, the occlusion) are caught.
+//! tolerances of single precision, the polarization channels included; and kernels with one
+//! piece of the physics removed (the loop copies, the isometry, the boost, the free fall, the
+//! occlusion, the polarization's parallel transport) are caught.
 //!
 //! The kernel runs in an offscreen OpenGL ES 3 context: on this machine Mesa's llvmpipe, which
 //! the test command installs.
@@ -224,5 +225,16 @@ fn a_kernel_without_occlusion_is_caught() {
         &sized(example("lit-shadow"), 360, 40),
         "    if (!any) return 1;",
         "    return 1;",
+    );
+}
+
+#[test]
+fn a_kernel_without_the_polarization_transport_is_caught() {
+    // The screen vectors carried by the isometries alone, not transported along the ray: the
+    // moving off-axis observer and its falling ball.
+    caught(
+        &off_axis_fast_observer(),
+        "vec4 w = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[j]));",
+        "vec4 w = pushIso(to, obs, hScreen[j]);",
     );
 }

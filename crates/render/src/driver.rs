@@ -222,7 +222,7 @@ impl<'a> Renderer<'a> {
     /// light per light source.
     pub fn trace_tile(&self, index: usize, scratch: &mut Scratch) -> TileData {
         let tile = self.tiles[index];
-        let (scene, n) = (self.scene, self.lighting.lights.len());
+        let n = self.lighting.lights.len();
         let pixels = (tile.cols * tile.rows) as usize;
         let mut records = Vec::with_capacity(pixels);
         let mut lights = vec![vec![0.0f32; pixels]; n];
@@ -232,32 +232,42 @@ impl<'a> Renderer<'a> {
         scratch.reset_first_step();
         for row in tile.row0..tile.row0 + tile.rows {
             for col in tile.col0..tile.col0 + tile.cols {
-                let record = match scene.observer.pixel_direction(&self.camera, col, row) {
-                    Some(dir) => {
-                        let traced = self.tracer.trace(dir, scratch);
-                        if n > 0 {
-                            let objects = &self.tracer.objects;
-                            let hit = traced.hit.as_ref();
-                            self.lighting
-                                .illuminate(objects, hit, &mut scratch.probes, &mut lit);
-                            for (plane, &v) in lights.iter_mut().zip(&lit) {
-                                plane[records.len()] = v;
-                            }
-                        }
-                        PixelRecord {
-                            view: dir.map(|c| c as f32),
-                            ..traced.record
-                        }
-                    }
-                    None => PixelRecord::miss(RayStatus::NotTraced),
-                };
-                records.push(record);
+                let at = records.len();
+                records.push(self.trace_sample(col, row, scratch, &mut lit));
+                for (plane, &v) in lights.iter_mut().zip(&lit) {
+                    plane[at] = v;
+                }
             }
         }
         TileData {
             index,
             records,
             lights,
+        }
+    }
+
+    /// Traces sample (`col`, `row`) of the sample grid: its record, and in `lit` (one value
+    /// per light source; 0 for a sample outside the camera's field) its direct light.
+    pub fn trace_sample(
+        &self,
+        col: u32,
+        row: u32,
+        scratch: &mut Scratch,
+        lit: &mut [f32],
+    ) -> PixelRecord {
+        lit.fill(0.0);
+        let Some(dir) = self.scene.observer.pixel_direction(&self.camera, col, row) else {
+            return PixelRecord::miss(RayStatus::NotTraced);
+        };
+        let traced = self.tracer.trace(dir, scratch);
+        if !self.lighting.lights.is_empty() {
+            let hit = traced.hit.as_ref();
+            self.lighting
+                .illuminate(&self.tracer.objects, hit, &mut scratch.probes, lit);
+        }
+        PixelRecord {
+            view: dir.map(|c| c as f32),
+            ..traced.record
         }
     }
 

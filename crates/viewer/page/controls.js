@@ -2,14 +2,36 @@
 // (kind, path into its target object, range) and reads its input into the target on change:
 // the settings (the `shade` crate's ShadeSettings) or, for a full-sphere file, the look.
 // Kinds: 'range' and 'select' set a value; 'check' a boolean; 'layer' adds or removes a
-// shader in settings.shaders; 'texture' picks a texture choice (an object with a kind).
+// shader in settings.shaders; 'texture' picks a texture choice (an object with a kind);
+// 'polarized' and 'axis' (a range: the azimuth or elevation of the axis) set an object's
+// polarization axis (a unit vector in its body axes, or null: unpolarized).
 'use strict';
 
 import { PROJECTIONS, SAMPLES } from './look.js';
 
 const $ = (id) => document.getElementById(id);
 
-export const LAYERS = ['texture', 'frequency', 'time', 'light'];
+export const LAYERS = ['texture', 'frequency', 'time', 'light', 'polarization'];
+
+// ---- polarization axes: azimuth (x towards y) and elevation (towards z), degrees
+
+export function axisAngles(axis) {
+  const [x, y, z] = axis;
+  const deg = 180 / Math.PI;
+  return [Math.atan2(y, x) * deg, Math.atan2(z, Math.hypot(x, y)) * deg];
+}
+
+export function axisFrom([azimuth, elevation]) {
+  const rad = Math.PI / 180;
+  const c = Math.cos(elevation * rad);
+  return [c * Math.cos(azimuth * rad), c * Math.sin(azimuth * rad), Math.sin(elevation * rad)];
+}
+
+// The last axis each object had, so that switching its polarization off and on keeps it.
+const lastAxis = new Map();
+const DEFAULT_AXIS = [1, 0, 0];
+const axisOf = (target, c) => getPath(target, c.path) || lastAxis.get(c.axis) || DEFAULT_AXIS;
+const axisValue = (target, c) => Math.round(axisAngles(axisOf(target, c))[c.part] / c.step) * c.step;
 
 // A texture choice of each kind, as the shade crate reads it.
 const TEXTURES = {
@@ -67,7 +89,9 @@ export function describeControls(info, view) {
     title: 'Shader layers (multiplied)',
     controls: LAYERS.map((layer) => ({
       id: `layer-${layer}`, label: layer, kind: 'layer', layer,
-      disabled: layer === 'light' && info.lights === 0,
+      // Polarization: a file with the pol_* channels, shaded as it is (not looked around).
+      disabled: (layer === 'light' && info.lights === 0)
+        || (layer === 'polarization' && (!info.polarization || Boolean(view && view.sphere))),
     })),
   }, {
     title: 'Picture',
@@ -131,6 +155,15 @@ export function describeControls(info, view) {
           min: -180, max: 180, step: 0.5 },
         { id: `temperature-${k}`, label: 'temperature (K)', path: path('temperature'),
           kind: 'range', min: 1000, max: 20000, step: 10 },
+        // The emitter's polarization axis (polarization layer): re-shaded, never re-traced.
+        { id: `polarized-${k}`, label: 'light polarized', path: path('polarization'),
+          kind: 'polarized', axis: `axis-${k}` },
+        { id: `axis-azimuth-${k}`, label: 'polarization axis azimuth (°)',
+          path: path('polarization'), kind: 'axis', part: 0, axis: `axis-${k}`, box: `polarized-${k}`,
+          min: -180, max: 180, step: 0.5 },
+        { id: `axis-elevation-${k}`, label: 'polarization axis elevation (°)',
+          path: path('polarization'), kind: 'axis', part: 1, axis: `axis-${k}`, box: `polarized-${k}`,
+          min: -90, max: 90, step: 0.5 },
       ],
     });
   });
@@ -151,10 +184,16 @@ function inputFor(c, target) {
       input.append(new Option(current.kind, current.kind));
     }
     input.value = c.kind === 'texture' ? current.kind : current;
-  } else if (c.kind === 'check' || c.kind === 'layer') {
+  } else if (c.kind === 'check' || c.kind === 'layer' || c.kind === 'polarized') {
     input = document.createElement('input');
     input.type = 'checkbox';
-    input.checked = c.kind === 'layer' ? target.shaders.includes(c.layer) : getPath(target, c.path);
+    input.checked = c.kind === 'layer' ? target.shaders.includes(c.layer)
+      : Boolean(getPath(target, c.path));
+  } else if (c.kind === 'axis') {
+    input = document.createElement('input');
+    input.type = 'range';
+    for (const key of ['min', 'max', 'step']) input[key] = c[key];
+    input.value = axisValue(target, c);
   } else {
     input = document.createElement('input');
     input.type = c.kind;
@@ -174,6 +213,16 @@ function apply(c, input, target) {
     target.shaders = LAYERS.filter((layer) => on.has(layer));
   } else if (c.kind === 'check') {
     setPath(target, c.path, input.checked);
+  } else if (c.kind === 'polarized') {
+    setPath(target, c.path, input.checked ? axisOf(target, c) : null);
+  } else if (c.kind === 'axis') {
+    const angles = axisAngles(axisOf(target, c));
+    angles[c.part] = Number(input.value);
+    const axis = axisFrom(angles);
+    lastAxis.set(c.axis, axis);
+    setPath(target, c.path, axis);
+    // Turning the axis polarizes the object's light.
+    $(c.box).checked = true;
   } else if (c.kind === 'texture') {
     setPath(target, c.path, structuredClone(TEXTURES[input.value]));
   } else if (c.kind === 'select') {
@@ -204,10 +253,11 @@ export function buildControls(groups, targets, changed) {
       const input = inputFor(c, targets[name]);
       const output = document.createElement('output');
       output.htmlFor = c.id;
-      output.value = c.kind === 'range' ? input.value : '';
-      input.addEventListener(c.kind === 'range' ? 'input' : 'change', () => {
+      const ranged = c.kind === 'range' || c.kind === 'axis';
+      output.value = ranged ? input.value : '';
+      input.addEventListener(ranged ? 'input' : 'change', () => {
         apply(c, input, targets[name]);
-        if (c.kind === 'range') output.value = input.value;
+        if (ranged) output.value = input.value;
         changed(name);
       });
       form.append(label, input, output);
@@ -223,6 +273,16 @@ export function buildControls(groups, targets, changed) {
       }
       const value = getPath(target, c.path);
       if (value === undefined) continue;
+      if (c.kind === 'polarized') {
+        input.checked = Boolean(value);
+        continue;
+      }
+      if (c.kind === 'axis') {
+        if (value) lastAxis.set(c.axis, value);
+        input.value = axisValue(target, c);
+        output.value = input.value;
+        continue;
+      }
       if (c.kind === 'check') input.checked = value;
       else if (c.kind === 'texture') input.value = value.kind in TEXTURES ? value.kind : '';
       else input.value = value;

@@ -38,19 +38,36 @@ async function fetchOk(url) {
 export const fetchJson = async (url) => (await fetchOk(url)).json();
 const fetchArray = async (url) => parseArray(await (await fetchOk(url)).arrayBuffer());
 
+// Whether the settings show the texture layer: named, or the polarization layer alone, which
+// draws its ticks over it (crates/shade/src/shading.rs).
+export function textureLayer(settings) {
+  const s = settings.shaders;
+  return s.includes('texture') || (s.length === 1 && s[0] === 'polarization');
+}
+
+// Whether the settings' polarization layer draws anything on the data file's own pixels (not
+// looking around): some object's light polarized.
+export function polarizationLayer(settings, info, look = false) {
+  return !look && settings.shaders.includes('polarization')
+    && info.objects.some((name) => (settings.objects[name] || info.defaults.objects[name])
+      .polarization);
+}
+
 // Which channels the layers of `settings` read (as Shading::pixel reads the record); looking
 // around (`look`), also those that tell one image from another where the sphere is read
 // smoothly (t_emit, u, v: crates/look/src/sample.rs).
-export function channelsFor(settings, lights, look = false) {
+export function channelsFor(settings, info, look = false) {
   const on = new Set(settings.shaders);
   const need = new Set(look ? ['id', 'u', 'v', 't_emit'] : ['id']);
   const travel = settings.time.mode === 'travel';
-  const paints = on.has('texture') || (on.has('time') && !travel) || on.has('light');
+  const texture = textureLayer(settings);
+  const paints = texture || (on.has('time') && !travel) || on.has('light');
   if (paints) ['u', 'v'].forEach((c) => need.add(c));
-  if ((on.has('texture') || (on.has('time') && !travel)) && !on.has('light')) need.add('cos_i');
+  if ((texture || (on.has('time') && !travel)) && !on.has('light')) need.add('cos_i');
   if (on.has('time')) need.add('t_emit');
   if (on.has('frequency')) need.add('g');
-  if (on.has('light')) for (let k = 0; k < lights; k += 1) need.add(`light_${k}`);
+  if (on.has('light')) for (let k = 0; k < info.lights; k += 1) need.add(`light_${k}`);
+  if (polarizationLayer(settings, info, look)) ['pol', 'dir'].forEach((c) => need.add(c));
   return [...need];
 }
 

@@ -6,7 +6,8 @@
 // event waits for it), and a frame of a generation older than the newest request sent is
 // dropped. The map beside the picture (map.js) follows the event, shows the light ray of the
 // hovered pixel of the frame shown, and moves the observer when its marker is dragged.
-// "Save observer keyframe" downloads a sequence-script keyframe at the event.
+// "Save observer keyframe" downloads a sequence-script keyframe at the event; `state.view()`
+// is the view on screen for "Render exactly" and "Record" (keep.js).
 //
 // Where the GPU kernel can trace the scene in this browser, the page traces every frame
 // itself and flies (fly.js); `?trace=server` (or a browser that cannot) keeps the server's
@@ -15,6 +16,7 @@
 
 import { createMap } from './map.js';
 import { startFly } from './fly.js';
+import { startKeep } from './keep.js';
 
 // How often the page asks for the newest frame (a frame waits half of it on average).
 const POLL_MS = 40;
@@ -48,6 +50,11 @@ export async function startExplore(viewer) {
     error: null,
   };
   viewer.explore = state;
+  // The view on screen as the scene file's fields (keep.js renders and records it): the
+  // scene's own observer and camera, moved to the event.
+  const own = (await (await fetch('/api/explore/view')).json()).view;
+  state.view = () => ({ ...structuredClone(own), time: state.event.t,
+    position: { x: state.event.x, y: state.event.y, z: state.event.z } });
   // A look-around view leaves room for the map below it.
   viewer.lookShare = 0.4;
   viewer.layout();
@@ -251,4 +258,5 @@ export async function startExplore(viewer) {
     $('explore-play').hidden = true;
     $('explore-rate').parentElement.hidden = true;
   }
+  startKeep(viewer);
 }

@@ -222,6 +222,7 @@ export class Gpu {
       ['uId', 'id', 'uint'], ['uU', 'u', 'float'], ['uV', 'v', 'float'], ['uG', 'g', 'float'],
       ['uT', 't_emit', 'float'], ['uCos', 'cos_i', 'uint'], ['uObjects', 'objects', 'float'],
       ['uGt', 'gt', 'float'], ['uAtlas', 'atlas', 'float'], ['uOverlay', 'overlay', 'rgba'],
+      ['uPol', 'pol', 'float'], ['uDir', 'dir', 'float'],
     ];
     samplers.forEach(([uniform, name, kind], unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);

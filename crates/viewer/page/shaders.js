@@ -7,7 +7,10 @@
 // averages the linear colours of a pixel's samples before encoding (a box filter). It writes
 // one texel per output pixel into an offscreen RGBA8 texture, row 0 of the picture in
 // texture row 0; the display pass (displaySource) then draws that texture on the
-// canvas, scaled with trilinear filtering.
+// canvas, scaled with trilinear filtering. The polarization layer's ticks are drawn over the
+// shaded pixels as crates/shade/src/polarization.rs draws them (each output pixel takes the
+// colour of the last tick that covers it, in the crate's drawing order), from the file's
+// pol and dir channels and each object's axis: a new axis re-shades, never re-traces.
 //
 // The layers, look mode, image textures and samples per pixel are chosen when the program is
 // compiled (shadeSource): software WebGL (SwiftShader) runs every branch of a shader for
@@ -30,7 +33,9 @@ uniform usampler2D uId;       // 0 background, 1 failed, 2 step budget, 3 not tr
 uniform sampler2D uU, uV, uG, uT;
 uniform usampler2D uCos;      // round(65535 clamp(cos_i, 0, 1))
 uniform sampler2DArray uLight;
-uniform sampler2D uObjects;   // per object (row): moves, first texture, second texture, (T, Y(T))
+uniform sampler2D uObjects;   // per object (row): moves, first texture, second texture, (T, Y(T)), polarization axis (x, y, z, on)
+uniform sampler2D uPol, uDir; // pol_x, pol_y, pol_z and dir_x, dir_y, dir_z (polarization layer)
+uniform int uTickStep;        // the polarization layer's grid spacing, pixels
 uniform sampler2D uGt;        // g·T table, 1024 bins a row: rows [0, n) unit colour + Y, [n, 2n) normalized
 uniform sampler2D uAtlas;     // image textures (linear RGB, decoded as the CPU does), stacked
 uniform sampler2D uOverlay;   // the overlay layer (marks, legend, labels), RGBA, picture size
@@ -421,6 +426,77 @@ bool lookSample(vec2 at, out float doppler) {
 }
 #endif
 
+#if POLARIZATION
+// The polarization layer (docs/physics.md, "Polarization"; crates/shade/src/polarization.rs).
+
+// The cyclic colour map at χ (period π: the hue circle at 2χ), as 8-bit sRGB / 255
+// (polarization.rs, cyclic_colour).
+vec3 cyclicColour(float chi) {
+  float h = mod(2.0 * chi, 2.0 * PI) / (2.0 * PI) * 6.0;
+  float x = 1.0 - abs(mod(h, 2.0) - 1.0);
+  int k = int(h);
+  vec3 c = k == 0 ? vec3(1.0, x, 0.0) : k == 1 ? vec3(x, 1.0, 0.0) : k == 2 ? vec3(0.0, 1.0, x)
+    : k == 3 ? vec3(0.0, x, 1.0) : k == 4 ? vec3(x, 0.0, 1.0) : vec3(1.0, 0.0, x);
+  return floor((0.15 + 0.85 * c) * 255.0 + 0.5) / 255.0;
+}
+
+// Rust's f64::round: halves away from zero.
+float roundAway(float x) { return sign(x) * floor(abs(x) + 0.5); }
+
+// The observed angle χ in [0, π) at the sample of picture pixel "cell" (the sample nearest
+// its centre), false where it shows no object with polarized light or its light runs along
+// the axis: χ = atan2(ê·(pol × dir), ê·pol) (spacetime::polarization::observed_angle).
+bool observedAngle(ivec2 cell, out float chi) {
+  ivec2 p = cell * SUPERSAMPLE + SUPERSAMPLE / 2;
+  uint id = texelFetch(uId, p, 0).r;
+  if (id < 4u) return false;
+  vec4 axis = texelFetch(uObjects, ivec2(4, int(id - 4u)), 0);
+  if (axis.w == 0.0) return false;
+  vec3 pol = texelFetch(uPol, p, 0).xyz, dir = texelFetch(uDir, p, 0).xyz;
+  vec3 e = axis.xyz - dot(axis.xyz, dir) * dir;
+  float len = length(e);
+  if (!(len > 1e-6)) return false;
+  e /= len;
+  chi = atan(dot(e, cross(pol, dir)), dot(e, pol));
+  if (chi < 0.0) chi += PI;
+  if (chi >= PI) chi -= PI;
+  return true;
+}
+
+// Pixel q under the ticks of the grid cells near it, drawn in the crate's order (rows, then
+// columns; each tick's dark outline, then its colour): the colour of the last to cover q, or
+// c. A tick runs 0.4 spacings either way along (sin χ, −cos χ) (y down), plotted at
+// 4·0.8·spacing + 1 points as squares of half-width 1 (outline 2; 0 and 1 on grids under
+// 14 pixels), so only the cells within a spacing of q can reach it.
+vec3 ticks(ivec2 q, vec3 c) {
+  int spacing = uTickStep;
+  float half_ = 0.4 * float(spacing);
+  int n = int(ceil(4.0 * half_));
+  int core = spacing >= 14 ? 1 : 0;
+  ivec2 first = (q - spacing / 2) / spacing;
+  for (int j = first.y - 1; j <= first.y + 1; j++) {
+    int cy = spacing / 2 + j * spacing;
+    if (j < 0 || cy >= uOut.y) continue;
+    for (int i = first.x - 1; i <= first.x + 1; i++) {
+      int cx = spacing / 2 + i * spacing;
+      float chi;
+      if (i < 0 || cx >= uOut.x || !observedAngle(ivec2(cx, cy), chi)) continue;
+      vec2 d = vec2(sin(chi), -cos(chi));
+      int near = 1000000;
+      for (int k = 0; k <= n; k++) {
+        float t = -half_ + 2.0 * half_ * float(k) / float(n);
+        ivec2 at = ivec2(roundAway(float(cx) + t * d.x), roundAway(float(cy) + t * d.y));
+        ivec2 off = abs(q - at);
+        near = min(near, max(off.x, off.y));
+      }
+      if (near <= core + 1) c = vec3(20.0 / 255.0);
+      if (near <= core) c = cyclicColour(chi);
+    }
+  }
+  return c;
+}
+#endif
+
 bool inside(ivec2 q, ivec4 r) {
   return q.x >= r.x && q.y >= r.y && q.x < r.x + r.z && q.y < r.y + r.w;
 }
@@ -459,6 +535,9 @@ void main() {
   vec3 c = displayTaps(1.0);
 #endif
   vec4 o = vec4(srgbEncode8(c.r), srgbEncode8(c.g), srgbEncode8(c.b), 1.0);
+#if POLARIZATION
+  o.rgb = ticks(q, o.rgb);
+#endif
 #if REFS
   if (inside(q, uRef0)) o = vec4(uRefColour0, 1.0);
   if (inside(q, uRef1)) o = vec4(uRefColour1, 1.0);
@@ -470,13 +549,13 @@ void main() {
   outColour = o;
 }`;
 
-// The shading program's source for `features`: {texture, time, travel, frequency, light, look,
-// smooth, images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
+// The shading program's source for `features`: {texture, time, travel, frequency, light,
+// polarization, look, smooth, images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
 // supersample (samples per pixel along each side, 1 when absent: a sampled file's, or a
 // look's).
 export function shadeSource(features) {
-  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'look', 'smooth', 'images',
-    'refs', 'overlay'];
+  const names = ['texture', 'time', 'travel', 'frequency', 'light', 'polarization', 'look',
+    'smooth', 'images', 'refs', 'overlay'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
   defines.push(`#define CAMERA ${features.camera || 0}`);
   defines.push(`#define SUPERSAMPLE ${features.supersample || 1}`);

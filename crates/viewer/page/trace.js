@@ -4,8 +4,8 @@
 // uploaded as RGBA32F texels, the sample grid drawn tile by tile (each draw short, so that no
 // GPU watchdog fires and the page stays responsive) into float render targets: one RGBA32F
 // texture per slot of four channels of a record. A conversion pass then writes the channels
-// the shading reads (crates/viewer/src/gpu.rs: id, u, v, g, t_emit, cos_i, the light planes)
-// into textures: the frame never leaves the GPU.
+// the shading reads (crates/viewer/src/gpu.rs: id, u, v, g, t_emit, cos_i, pol, dir, the light
+// planes) into textures: the frame never leaves the GPU.
 //
 // Reusable: `new KernelTracer(gl, kernelSource)`, `await tracer.trace(input)` with an input
 // as /api/gpu/input sends it (crates/viewer/src/kernel_routes.rs: uniforms, table, slots,
@@ -49,6 +49,18 @@ void main() {
   o = vec4(hit ? v : 0.0, 0.0, 0.0, 0.0);
 }`;
 
+// Three channels of a slot from `u_component` on (pol, dir), RGBA32F (RGB32F cannot be drawn
+// into), zeros where nothing was hit.
+const CONVERT_VECTOR = `${CONVERT_HEAD}
+out vec4 o;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  bool hit = int(texelFetch(u_record, p, 0).y) == ${HIT};
+  vec4 s = texelFetch(u_slot, p, 0);
+  vec3 v = u_component == 0 ? s.xyz : s.yzw;
+  o = hit ? vec4(v, 0.0) : vec4(0.0);
+}`;
+
 const CONVERT_UINT = `${CONVERT_HEAD}
 uniform int u_objects;
 uniform bool u_id;            // the id (else cos_i, 16 bits)
@@ -79,6 +91,8 @@ void main() {
 // (gpu::input::SLOT_CHANNELS).
 const FLOAT_CHANNELS = { u: [0, 2], v: [0, 3], g: [1, 0], t_emit: [1, 1] };
 const COS_I = [1, 3];
+// Three channels from the slot's first or second component.
+const VECTOR_CHANNELS = { dir: [3, 0], pol: [4, 1] };
 
 export class KernelTracer {
   // `kernel`: the source of /api/gpu/kernel. Throws, saying why, where WebGL2 cannot run it.
@@ -96,6 +110,7 @@ export class KernelTracer {
     this.vao = gl.createVertexArray();
     this.convertFloat = null;
     this.convertUint = null;
+    this.convertVector = null;
   }
 
   // The kernel compiled with `defines` (once per distinct defines): {program, source}, the
@@ -278,7 +293,8 @@ export class KernelTracer {
   }
 
   // The channels the shading reads, from a traced frame: {id (R32UI), u, v, g, t_emit
-  // (R32F), cos_i (R16UI), light (R32F array, a layer per light; null without lights)},
+  // (R32F), cos_i (R16UI), pol and dir (RGBA32F), light (R32F array, a layer per light; null
+  // without lights)},
   // new textures the caller owns. `objects`: how many objects the scene has.
   channels(traced, objects) {
     const gl = this.gl;
@@ -286,6 +302,7 @@ export class KernelTracer {
     if (!this.convertFloat) {
       this.convertFloat = linkProgram(this.gl, CONVERT_FLOAT, 'the channel conversion');
       this.convertUint = linkProgram(this.gl, CONVERT_UINT, 'the channel conversion');
+      this.convertVector = linkProgram(this.gl, CONVERT_VECTOR, 'the channel conversion');
     }
     const target = (internal) => {
       const t = gl.createTexture();
@@ -328,6 +345,10 @@ export class KernelTracer {
     }, into(out.id));
     out.cos_i = target(gl.R16UI);
     pass(this.convertUint, COS_I, (loc) => gl.uniform1i(loc('u_id'), 0), into(out.cos_i));
+    for (const [name, where] of Object.entries(VECTOR_CHANNELS)) {
+      out[name] = target(gl.RGBA32F);
+      pass(this.convertVector, where, () => {}, into(out[name]));
+    }
     out.light = null;
     const lights = input.light_channels.length;
     if (lights > 0) {

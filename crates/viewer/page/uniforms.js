@@ -5,6 +5,7 @@
 
 import { referenceSquare, linearToSrgb8, toneMap, LINEAR_STOPS, windowBounds } from './overlays.js';
 import { cross } from './look.js';
+import { textureLayer, polarizationLayer } from './data.js';
 
 // The texture a choice names, as (kind, a, b, c) for the shader, and the image it needs.
 function textureOf(choice, k, data) {
@@ -38,10 +39,14 @@ export function imagesFor(settings, info, data) {
   return [...names];
 }
 
-// The object table: 4 RGBA32F texels per object (one row each; one row of zeros when the
-// file has no objects).
+// Texels per object in the object table.
+export const OBJECT_TEXELS = 5;
+
+// The object table: OBJECT_TEXELS RGBA32F texels per object (one row each; one row of zeros
+// when the file has no objects): texture moves, first and second texture, (T, Y(T)), and the
+// polarization axis (x, y, z, 1), (0, 0, 0, 0) for unpolarized light.
 export function objectTable(settings, info, data) {
-  const table = new Float32Array(Math.max(info.objects.length, 1) * 16);
+  const table = new Float32Array(Math.max(info.objects.length, 1) * 4 * OBJECT_TEXELS);
   const bb = data.blackbody;
   info.objects.forEach((name, k) => {
     const o = settings.objects[name] || info.defaults.objects[name];
@@ -51,11 +56,16 @@ export function objectTable(settings, info, data) {
       const image = data.images.get(t.image);
       return [3, image.y0, image.width, image.height];
     };
+    const axis = o.polarization;
+    if (axis && !(axis.every(Number.isFinite) && axis.some((c) => c !== 0))) {
+      throw new Error(`objects.${name}.polarization must be a non-zero direction`);
+    }
     table.set([
       o.scale_u, o.scale_v, o.offset_u - o.rotation_deg / 360, o.offset_v,
       ...texel(o.texture), ...texel(o.window_texture),
       o.temperature, bb.luminance(o.temperature), 0, 0,
-    ], k * 16);
+      ...(axis ? [...axis, 1] : [0, 0, 0, 0]),
+    ], k * 4 * OBJECT_TEXELS);
   });
   return table;
 }
@@ -66,11 +76,12 @@ const CAMERAS = { pinhole: 0, panorama: 1, sphere: 1, fisheye: 2 };
 export function featuresFor(settings, info, data, look, uniforms) {
   const on = new Set(settings.shaders);
   return {
-    texture: on.has('texture'),
+    texture: textureLayer(settings),
     time: on.has('time'),
     travel: settings.time.mode === 'travel',
     frequency: on.has('frequency'),
     light: on.has('light'),
+    polarization: polarizationLayer(settings, info, Boolean(look)),
     look: Boolean(look),
     smooth: Boolean(look && look.smooth),
     // Samples per pixel along each side, box-filtered by the shading pass: the file's, or
@@ -128,6 +139,8 @@ export function uniformsFor(settings, info, data, width, height, look) {
     uLnY: ['f4', [bb.ln_y[0], bb.ln_y[1], bb.ln_y[nodes - 2], bb.ln_y[nodes - 1]]],
     uSize: ['i2', [info.width, info.height]],
     uOut: ['i2', [width, height]],
+    // The polarization layer's grid (crates/shade/src/polarization.rs, tick_spacing).
+    uTickStep: ['i', Math.max(Math.floor(Math.min(width, height) / 16), 12)],
   };
   if (look) Object.assign(u, lookUniforms(look.view, look.sphere));
   // Reference squares of the first two objects' unshifted colours (frequency layer).
@@ -153,19 +166,21 @@ export function uniformsFor(settings, info, data, width, height, look) {
 }
 
 // What the server's overlay layer (crates/shade/src/layer.rs: orientation marks, travel-time
-// legend, reference-square labels) depends on for these settings and picture, as a string;
-// null when it draws nothing. Shading::overlays_shown decides the same.
+// and polarization legends, reference-square labels) depends on for these settings and
+// picture, as a string; null when it draws nothing. Shading::overlays_shown decides the same.
 export function overlayKey(settings, info, p) {
   const on = new Set(settings.shaders);
   const t = settings.time;
   const legend = on.has('time') && t.mode === 'travel' && t.legend;
   const squares = on.has('frequency') && settings.reference_squares && info.objects.length > 0;
-  if (!legend && !squares && !settings.grid) return null;
+  const polarization = polarizationLayer(settings, info, Boolean(p.look));
+  if (!legend && !squares && !settings.grid && !polarization) return null;
   const temperature = (name) => (settings.objects[name] || info.defaults.objects[name]).temperature;
   return JSON.stringify({
     size: [p.width, p.height],
     marks: settings.grid ? (p.look ? p.look.view.camera : 'file') : null,
     legend: legend ? [t.travel_min, t.travel_max] : null,
+    polarization,
     squares: squares ? info.objects.slice(0, 2).map(temperature) : null,
   });
 }

@@ -8,7 +8,8 @@
 import { Gpu } from './gl.js';
 import { Data, channelsFor, fetchJson } from './data.js';
 import { describeControls, buildControls } from './controls.js';
-import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey } from './uniforms.js';
+import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TEXELS }
+  from './uniforms.js';
 import * as L from './look.js';
 import { startExplore } from './explore.js';
 import { startTraced } from './traced.js';
@@ -195,7 +196,7 @@ async function draw() {
   let need;
   let images;
   try {
-    need = channelsFor(settings, viewer.info.lights, lookMode());
+    need = channelsFor(settings, viewer.info, lookMode());
     images = imagesFor(settings, viewer.info, data);
   } catch (e) {
     showError(e.message);
@@ -241,7 +242,7 @@ async function draw() {
         && overlay.size[0] === p.width && overlay.size[1] === p.height;
       uniforms.uOverlayOn = ['i', shown ? 1 : 0];
       const table = objectTable(settings, viewer.info, data);
-      gpu.uploadFloatRgba('objects', 4, table.length / 16, table);
+      gpu.uploadFloatRgba('objects', OBJECT_TEXELS, table.length / (4 * OBJECT_TEXELS), table);
       gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
         uniforms);
       viewer.shadings += 1;
@@ -614,7 +615,7 @@ viewer.showTracedFrame = (channels, note, size = null) => {
   for (const [name, texture] of Object.entries(channels)) {
     if (texture) gpu.replace(name, texture);
   }
-  const names = ['id', 'u', 'v', 'g', 't_emit', 'cos_i'];
+  const names = ['id', 'u', 'v', 'g', 't_emit', 'cos_i', 'pol', 'dir'];
   for (let k = 0; k < viewer.info.lights; k += 1) names.push(`light_${k}`);
   data.provide(names);
   frameNote = note;

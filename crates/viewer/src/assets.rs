@@ -2,7 +2,7 @@
 //! no files beside it and nothing from the internet.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 15] = [
+pub const FILES: [(&str, &str, &str); 16] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -22,6 +22,7 @@ pub const FILES: [(&str, &str, &str); 15] = [
     js("/overlays.js", include_str!("../page/overlays.js")),
     js("/look.js", include_str!("../page/look.js")),
     js("/explore.js", include_str!("../page/explore.js")),
+    js("/keep.js", include_str!("../page/keep.js")),
     js("/map.js", include_str!("../page/map.js")),
     js("/trace.js", include_str!("../page/trace.js")),
     js("/traced.js", include_str!("../page/traced.js")),

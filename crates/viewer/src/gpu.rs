@@ -10,6 +10,7 @@
 //! | `id` | u8, u16 or u32 (the smallest that holds them) | what the pixel shows: [`ID_BACKGROUND`], [`ID_FAILED`], [`ID_STEP_BUDGET`], [`ID_NOT_TRACED`], or [`ID_FIRST_OBJECT`] + k for object k (as `shade`'s `status_colour` decides) |
 //! | `u`, `v`, `g`, `t_emit`, `light_K` | f32 | the data file's values, unchanged |
 //! | `cos_i` | u16 | round(65535·clamp(cos_i, 0, 1)), NaN as 0: all the Lambert factor reads |
+//! | `pol`, `dir` | f32, three components | (pol_x, pol_y, pol_z) and (dir_x, dir_y, dir_z): what the polarization layer reads (zeros in a file without the pol_* channels, whose info says so) |
 
 use datafile::DataFile;
 use datafile::{PixelRecord, RayStatus};
@@ -40,11 +41,14 @@ pub enum Channel {
     G,
     TEmit,
     CosI,
+    Pol,
+    Dir,
     Light(usize),
 }
 
 impl Channel {
-    /// The channel of a name on the wire (`id`, `u`, `v`, `g`, `t_emit`, `cos_i`, `light_K`);
+    /// The channel of a name on the wire (`id`, `u`, `v`, `g`, `t_emit`, `cos_i`, `pol`,
+    /// `dir`, `light_K`);
     /// `None` for any other name or a light the file does not have.
     pub fn parse(name: &str, lights: usize) -> Option<Channel> {
         Some(match name {
@@ -54,6 +58,8 @@ impl Channel {
             "g" => Channel::G,
             "t_emit" => Channel::TEmit,
             "cos_i" => Channel::CosI,
+            "pol" => Channel::Pol,
+            "dir" => Channel::Dir,
             _ => {
                 let k: usize = name.strip_prefix("light_")?.parse().ok()?;
                 if k >= lights || name != format!("light_{k}") {
@@ -96,6 +102,14 @@ impl Channel {
                 let mut a = Array::new(w, h, SampleType::U16, 1);
                 for r in records {
                     a.push_u16((shade::colour::clamp01(r.cos_i) * 65535.0).round() as u16);
+                }
+                a.finish()
+            }
+            Channel::Pol | Channel::Dir => {
+                let mut a = Array::new(w, h, SampleType::F32, 3);
+                for r in records {
+                    let v = if self == Channel::Pol { r.pol } else { r.dir };
+                    v.into_iter().for_each(|c| a.push_f32(c));
                 }
                 a.finish()
             }

@@ -89,7 +89,9 @@ async fn channel(
             .collect::<String>();
         return Err(ApiError::new(
             StatusCode::NOT_FOUND,
-            format!("no channel '{name}' (this file has id, u, v, g, t_emit, cos_i{lights})"),
+            format!(
+                "no channel '{name}' (this file has id, u, v, g, t_emit, cos_i, pol, dir{lights})"
+            ),
         ));
     };
     let viewer = state.viewer.clone();

@@ -18,7 +18,8 @@
 //! - [`kernel_routes`]: the exact tracer's GPU kernel and its input, for the page to trace a
 //!   frame itself.
 //! - [`explore`], [`explore_routes`]: explore mode (`godel explore`), frames re-traced for a
-//!   moved observer by a [`explore::FrameSource`].
+//!   moved observer by a [`explore::FrameSource`]; [`keep`], [`keep_routes`]: its *Render
+//!   exactly* and *Record* (made by a [`keep::Keeper`]).
 
 pub mod api_error;
 mod assets;
@@ -28,6 +29,8 @@ pub mod explore_routes;
 pub mod gpu;
 pub mod gpu_routes;
 pub mod guard;
+pub mod keep;
+pub mod keep_routes;
 pub mod kernel_routes;
 pub mod limit;
 pub mod look_routes;

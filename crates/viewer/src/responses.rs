@@ -61,10 +61,13 @@ pub fn png_download(bytes: Vec<u8>, disposition: HeaderValue) -> Response {
 
 /// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).
 pub fn attachment(state: &ViewerState, extension: &str) -> HeaderValue {
-    let stem: String = state
-        .data
-        .header
-        .scene_name
+    attachment_named(&state.data.header.scene_name, extension)
+}
+
+/// `attachment; filename="STEM.EXTENSION"`, the stem made safe (ASCII letters, digits, `-`
+/// and `_`; `view` when nothing is left).
+pub fn attachment_named(stem: &str, extension: &str) -> HeaderValue {
+    let stem: String = stem
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' || c == '_' {

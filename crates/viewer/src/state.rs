@@ -125,6 +125,8 @@ pub struct Info {
     pub supersample: usize,
     pub objects: Vec<String>,
     pub lights: usize,
+    /// Whether the file has the polarization channels (pol_x, pol_y, pol_z).
+    pub polarization: bool,
     pub observer_time: f64,
     pub defaults: ShadeSettings,
 }
@@ -224,6 +226,7 @@ impl ViewerState {
             supersample: self.data.supersample(),
             objects: h.object_names.clone(),
             lights: self.data.lights.len(),
+            polarization: self.data.polarization,
             observer_time: h.observer_time,
             defaults: self.defaults.clone(),
         }

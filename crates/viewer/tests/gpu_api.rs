@@ -39,6 +39,9 @@ async fn channels_hold_the_data_files_values_exactly() {
             ..PixelRecord::MISS
         };
         d.records[4] = PixelRecord::miss(RayStatus::WorkLimit);
+        for (i, r) in d.records.iter_mut().enumerate() {
+            r.pol = [0.25 * i as f32, -(i as f32), 0.5];
+        }
         d
     };
     let d = data();
@@ -52,6 +55,22 @@ async fn channels_hold_the_data_files_values_exactly() {
         assert_eq!(status, StatusCode::OK, "{name}");
         let got = samples(&body, SampleType::F32, 1, (W, H));
         let want: Vec<u32> = d.records.iter().map(|r| get_value(r).to_bits()).collect();
+        assert_eq!(got, want, "{name}");
+    }
+    // pol and dir: three components a sample, as the polarization layer reads them.
+    for (name, get_value) in [
+        (
+            "pol",
+            (|r: &PixelRecord| r.pol) as fn(&PixelRecord) -> [f32; 3],
+        ),
+        ("dir", |r| r.dir),
+    ] {
+        let (status, body) = send(data(), get(&format!("/api/gpu/channel/{name}"))).await;
+        assert_eq!(status, StatusCode::OK, "{name}");
+        let got = samples(&body, SampleType::F32, 3, (W, H));
+        let want: Vec<u32> = (d.records.iter())
+            .flat_map(|r| get_value(r).map(f32::to_bits))
+            .collect();
         assert_eq!(got, want, "{name}");
     }
     let (_, body) = send(data(), get("/api/gpu/channel/light_0")).await;

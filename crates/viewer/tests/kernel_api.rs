@@ -68,7 +68,7 @@ async fn the_input_is_the_embedded_scene_packed_by_the_gpu_crate() {
         got["uniforms"]["size"],
         serde_json::json!([common::WIDTH, common::HEIGHT])
     );
-    // No light: four fixed slots and one for view_z (and the lights there would be).
+    // No light: five fixed slots (the fifth: view_z and the polarization).
     assert_eq!(got["slots"], 5);
     assert_eq!(got["light_channels"], serde_json::json!([]));
     // Eight render targets asked for, five used: one pass writes the whole record.
@@ -94,7 +94,7 @@ async fn the_input_is_the_embedded_scene_packed_by_the_gpu_crate() {
 
 #[tokio::test]
 async fn light_channels_follow_the_records_slots() {
-    // Five lights: light k is channel k + 1 counted from slot 4's first component (view_z).
+    // Five lights: light k is channel k counted from slot 5's first component.
     let lights: String = (0..5)
         .map(|k| format!("[[light]]\nposition = {{ x = 1.0, y = {k}.0, z = 0.0 }}\npower = 2.0\n"))
         .collect();
@@ -104,10 +104,10 @@ async fn light_channels_follow_the_records_slots() {
     let got = json(&body);
     assert_eq!(got["light_count"], 5);
     assert_eq!(got["uniforms"]["lights"], 5);
-    assert_eq!(got["slots"], 6);
+    assert_eq!(got["slots"], 7);
     assert_eq!(
         got["light_channels"],
-        serde_json::json!([[4, 1], [4, 2], [4, 3], [5, 0], [5, 1]])
+        serde_json::json!([[5, 0], [5, 1], [5, 2], [5, 3], [6, 0]])
     );
     // Each light's position and power in the table, after the object's four texels.
     let table = got["table"].as_array().unwrap();

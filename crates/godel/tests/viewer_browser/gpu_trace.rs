@@ -62,7 +62,7 @@ pub(super) fn traced_file(data: &DataFile, slots: &[Vec<f32>]) -> DataFile {
 }
 
 /// Reads the slots the script saved for URL number `k`: (width, height, slots).
-fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, serde_json::Value) {
+pub(super) fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, serde_json::Value) {
     let meta: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join(format!("trace-{k}.json"))).unwrap())
             .unwrap();
@@ -85,7 +85,7 @@ fn read_slots(out: &Path, k: usize) -> (usize, usize, Vec<Vec<f32>>, serde_json:
 
 /// Renders each case with the exact tracer and serves it; returns the data files' paths,
 /// the servers and their URLs.
-fn render_and_serve(
+pub(super) fn render_and_serve(
     dir: &Path,
     cases: &[(&str, u32, u32)],
 ) -> (Vec<std::path::PathBuf>, Vec<Server>, Vec<String>) {

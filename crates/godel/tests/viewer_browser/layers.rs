@@ -4,8 +4,10 @@
 //! edge, where the GPU's f32 arithmetic may pick the neighbouring cell (the CPU computes the
 //! coordinate in f64); the test counts them and requires them to be rare. The same holds for
 //! an anti-aliased file (every sample shaded, then box-filtered). The cases include exposure
-//! compensation (`ev`) and the overlay layer (orientation marks, legend, square labels) that
-//! the page fetches from the server and composites over its shading.
+//! compensation (`ev`), the overlay layer (orientation marks, legend, square labels) that
+//! the page fetches from the server and composites over its shading, and the polarization
+//! layer (issue 25): its ticks, drawn by the page from the file's pol and dir channels and
+//! each object's axis, equal the crate's on every pixel within one step.
 
 use super::browser_support::*;
 use datafile::DataFile;
@@ -148,6 +150,30 @@ fn cases(data: &DataFile) -> Vec<ShadeSettings> {
         s.grid = true;
         s.ev = 0.7;
     }));
+    // The polarization layer: alone (over the texture layer), over the frequency and light
+    // layers, and with one object polarized only; the axes in the objects' body axes.
+    cases.push(with(&|s| {
+        s.shaders = vec![ShaderKind::Polarization];
+        s.objects.get_mut("ball").unwrap().polarization = Some([1.0, 1.0, 0.0]);
+        s.objects.get_mut("globe").unwrap().polarization = Some([0.0, 0.0, 2.0]);
+    }));
+    cases.push(with(&|s| {
+        s.shaders = vec![
+            ShaderKind::Frequency,
+            ShaderKind::Light,
+            ShaderKind::Polarization,
+        ];
+        s.objects.get_mut("ball").unwrap().polarization = Some([0.2, -1.0, 0.7]);
+        s.objects.get_mut("globe").unwrap().polarization = Some([1.0, 0.0, 0.0]);
+    }));
+    cases.push(with(&|s| {
+        s.shaders = vec![
+            ShaderKind::Texture,
+            ShaderKind::Time,
+            ShaderKind::Polarization,
+        ];
+        s.objects.get_mut("globe").unwrap().polarization = Some([0.3, 0.4, -0.5]);
+    }));
     cases.push(with(&|s| {
         s.shaders = vec![ShaderKind::Light];
         s.light.ambient = 0.4;
@@ -286,6 +312,27 @@ fn check_layers(width: usize, height: usize, s: usize) {
             c.off.len()
         );
     }
+
+    // The polarization cases draw ticks: the page must draw them to pass.
+    let mut ticked = 0;
+    for (k, settings) in
+        (cases.iter().enumerate()).filter(|(_, s)| s.shaders.contains(&ShaderKind::Polarization))
+    {
+        let mut bare = settings.clone();
+        bare.objects
+            .values_mut()
+            .for_each(|o| o.polarization = None);
+        let a = Shading::new(&data, settings).unwrap().image(&data);
+        let b = Shading::new(&data, &bare).unwrap().image(&data);
+        let c = compare(a.as_raw(), b.as_raw(), width);
+        assert!(
+            c.off.len() * 200 > width * height,
+            "case {k}: ticks change {} pixels",
+            c.off.len()
+        );
+        ticked += 1;
+    }
+    assert_eq!(ticked, 3);
 
     let (mut worst, mut worst_excused, mut excused) = (0, 0, 0);
     for (k, settings) in cases.iter().enumerate() {

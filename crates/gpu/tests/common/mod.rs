@@ -21,6 +21,12 @@ pub struct Agreement {
     pub g_p999: f64,
     /// |Δt_emit|/(1 + |t_emit|): 99.9th percentile.
     pub t_p999: f64,
+    /// The polarization channels pol_x, pol_y, pol_z (unit vectors): the largest difference
+    /// of a component per sample, over samples both see the same object in: median, 99.9th
+    /// percentile and largest.
+    pub pol_median: f64,
+    pub pol_p999: f64,
+    pub pol_max: f64,
     /// Samples with light on either side (per light, pooled) whose hit events agree to
     /// [`SAME_EVENT`], and the fraction of them within 1e-3 relative (NaN on both sides
     /// agrees); and the lit samples left out because single precision moved their hit
@@ -37,6 +43,7 @@ pub const SAME: f64 = 0.995;
 pub const G_MEDIAN: f64 = 1e-4;
 pub const G_P999: f64 = 1e-3;
 pub const T_P999: f64 = 1e-4;
+pub const POL_P999: f64 = 1e-4;
 pub const LIGHT_WITHIN: f64 = 0.999;
 /// Hit events closer than this (coordinate distance, in units of a) count as one point for the
 /// light comparison: light is compared where both lit the same point.
@@ -52,6 +59,7 @@ impl Agreement {
             && self.g_median <= G_MEDIAN
             && self.g_p999 <= G_P999
             && self.t_p999 <= T_P999
+            && self.pol_p999 <= POL_P999
             && (self.lit == 0 || self.light_within >= LIGHT_WITHIN)
     }
 
@@ -107,7 +115,7 @@ pub fn compare(name: &str, gpu: &DataFile, cpu: &DataFile) -> Agreement {
     assert_eq!((gpu.width, gpu.height), (cpu.width, cpu.height));
     let (mut seen, mut same) = (0usize, 0usize);
     let statuses_equal = (gpu.records.iter().zip(&cpu.records)).all(|(a, b)| a.status == b.status);
-    let (mut dg, mut dt) = (Vec::new(), Vec::new());
+    let (mut dg, mut dt, mut dp) = (Vec::new(), Vec::new(), Vec::new());
     for (a, b) in gpu.records.iter().zip(&cpu.records) {
         let hit = |r: &datafile::PixelRecord| r.status == RayStatus::Hit;
         if hit(a) || hit(b) {
@@ -119,6 +127,15 @@ pub fn compare(name: &str, gpu: &DataFile, cpu: &DataFile) -> Agreement {
         if hit(a) && hit(b) && a.object == b.object {
             dg.push(((a.g - b.g) / b.g).abs() as f64);
             dt.push(((a.t_emit - b.t_emit).abs() / (1.0 + b.t_emit.abs())) as f64);
+            let d = (0..3)
+                .map(|i| (a.pol[i] - b.pol[i]).abs())
+                .fold(0.0, f32::max);
+            // NaN counts as a disagreement.
+            dp.push(if d.is_nan() {
+                f64::INFINITY
+            } else {
+                f64::from(d)
+            });
         }
     }
     let (mut lit, mut within, mut lit_moved) = (0usize, 0usize, 0usize);
@@ -153,6 +170,9 @@ pub fn compare(name: &str, gpu: &DataFile, cpu: &DataFile) -> Agreement {
         g_median: quantile(dg.clone(), 0.5),
         g_p999: quantile(dg, 0.999),
         t_p999: quantile(dt, 0.999),
+        pol_median: quantile(dp.clone(), 0.5),
+        pol_p999: quantile(dp.clone(), 0.999),
+        pol_max: dp.into_iter().fold(0.0, f64::max),
         lit,
         light_within: within as f64 / lit.max(1) as f64,
         lit_moved,
