@@ -204,6 +204,13 @@ export async function startFly(viewer, explore, map, status) {
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
       supersample: full ? ss : 1 });
     fly.drawn += 1;
+    if (full) {
+      // The panel's line said which server frame was shown: now it says where this one is seen from.
+      const v = fly.view;
+      const p = v.position;
+      status(`frame traced in this browser at t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, `
+        + `y = ${p.y.toFixed(3)}, z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
+    }
     fly.traced = { version, width: pw, height: ph, full };
     fly.log.push({ version, width: pw, height: ph, full, rafs: fly.rafs, drawn: fly.drawn });
     if (fly.log.length > 2000) fly.log.shift();
