@@ -45,6 +45,12 @@ try {
         t: frame.event.t, shadings: v.shadings });
       return taken;
     };
+    // The log as it was when Pause was clicked: the frames of the Pause's own request (the
+    // same t, traced again) may come before the test reads it.
+    v.playLogAtPause = null;
+    document.getElementById('explore-play').addEventListener('click', () => {
+      if (v.playLog.length >= 4 && v.playLogAtPause === null) v.playLogAtPause = v.playLog.slice();
+    }, { capture: true });
   });
   await page.locator('#explore-rate').fill('2');
   await page.locator('#explore-play').click();
@@ -53,7 +59,7 @@ try {
   await page.locator('#explore-play').click();
   const pausedAt = await page.evaluate(() => ({ t: window.godelViewer.explore.event.t,
     generation: window.godelViewer.explore.requested,
-    log: window.godelViewer.playLog.slice() }));
+    log: window.godelViewer.playLogAtPause }));
   result.paused = await fullFrame(page, pausedAt.generation - 1);
   result.paused_t = pausedAt.t;
   result.play_log = pausedAt.log;

@@ -21,10 +21,9 @@ use render::plan::Plan;
 use render::tiles::Assembler;
 use scene::Scene;
 use toml::Table;
-use viewer::explore::{
-    Explorer, FrameSource, Level, ObserverEvent, Velocity, View, FRAMES_IN_MEMORY,
-};
+use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEMORY};
 use viewer::kernel_routes::KernelInput;
+use viewer::view::{Velocity, View};
 
 use crate::args::{thread_pool, usage};
 use crate::memory;
@@ -99,53 +98,14 @@ pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> anyhow::Re
     })
 }
 
-/// The scene with its observer and camera those of `view` (the flying page's): every field
-/// the view has replaces the scene's, the camera's kind and fields of view as a whole.
+/// The scene with its observer and camera those of `view` (the flying page's), as
+/// *Render exactly* makes it ([`crate::keep::scene_of_view`]).
 pub fn scene_of_view(scene: &Scene, view: &View) -> anyhow::Result<Scene> {
-    let godel = scene.metric.godel_a().is_some();
-    edited(scene, |table| {
-        let observer = section(table, "observer");
-        observer.insert("time".into(), view.time.into());
-        let p = view.position;
-        let mut position = Table::new();
-        for (k, v) in [("x", p.x), ("y", p.y), ("z", p.z)] {
-            position.insert(k.into(), v.into());
-        }
-        observer.insert("position".into(), position.into());
-        let mut velocity = Table::new();
-        velocity.insert("speed".into(), view.velocity.speed.into());
-        velocity.insert("direction".into(), vector(view.velocity.direction));
-        observer.insert("velocity".into(), velocity.into());
-        observer.insert("forward".into(), vector(view.forward));
-        observer.insert("up".into(), vector(view.up));
-        let camera = section(table, "camera");
-        for key in ["kind", "fov_deg", "h_fov_deg", "v_fov_deg", "samples"] {
-            camera.remove(key);
-        }
-        let c = &view.camera;
-        camera.insert("kind".into(), c.kind.clone().into());
-        for (key, v) in [
-            ("fov_deg", c.fov_deg),
-            ("h_fov_deg", c.h_fov_deg),
-            ("v_fov_deg", c.v_fov_deg),
-        ] {
-            if let Some(v) = v {
-                camera.insert(key.into(), v.into());
-            }
-        }
-        camera.insert("width".into(), i64::from(c.width).into());
-        camera.insert("height".into(), i64::from(c.height).into());
-        if let Some(n) = c.samples {
-            camera.insert("samples".into(), i64::from(n).into());
-        }
-        if godel {
-            section(table, "trace").insert("method".into(), "exact".into());
-        }
-    })
-}
-
-fn vector(v: [f64; 3]) -> toml::Value {
-    toml::Value::Array(v.iter().map(|&c| c.into()).collect())
+    let file = match &scene.source_path {
+        Some(path) => path.display().to_string(),
+        None => format!("{}.toml", scene.name),
+    };
+    crate::keep::scene_of_view(scene, &file, view).map_err(anyhow::Error::msg)
 }
 
 /// The scene read again from its text after `edit`, with the usual checks: the data files

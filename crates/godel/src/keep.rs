@@ -20,9 +20,8 @@ use render::driver::{render_plan, Progress};
 use render::plan::Plan;
 use scene::{Camera, Scene};
 use toml::{Table, Value};
-use viewer::keep::{
-    CameraView, ExactJob, Keeper, Position, Recording, Rendered, Velocity, View, RECORD_FPS,
-};
+use viewer::keep::{ExactJob, Keeper, Recording, Rendered, RECORD_FPS};
+use viewer::view::{CameraView, Position, Velocity, View};
 
 use spacetime::{Event, LocalVelocity};
 
@@ -58,37 +57,45 @@ impl SceneKeeper {
 
     /// The scene seen in `view`, refused naming the view's field (`view.FIELD: why`).
     pub fn scene_of(&self, view: &View) -> Result<Scene, String> {
-        let godel = self.scene.metric.godel_a().is_some();
-        edited(&self.scene.source_text, &self.file, |table| {
-            table.insert("observer".into(), Value::Table(observer_table(view)));
-            let mut camera = Table::new();
-            camera.insert("kind".into(), view.camera.kind.clone().into());
-            for (k, v) in fields_of_view(&view.camera) {
-                camera.insert(k.into(), v.into());
-            }
-            let c = &view.camera;
-            for (k, v) in [
-                ("width", c.width),
-                ("height", c.height),
-                ("samples", c.samples),
-            ] {
-                camera.insert(k.into(), i64::from(v).into());
-            }
-            table.insert("camera".into(), Value::Table(camera));
-            let trace = section(table, "trace");
-            if godel {
-                trace.insert("method".into(), "exact".into());
-            }
-            trace.remove("gpu");
-        })
-        .map_err(|e| match e {
-            EditError::Scene(e) => {
-                let field = e.field.strip_prefix("observer.").unwrap_or(&e.field);
-                format!("view.{field}: {}", scene::one_line(&e.message))
-            }
-            EditError::Text(why) => why,
-        })
+        scene_of_view(&self.scene, &self.file, view)
     }
+}
+
+/// The scene `scene` (read from `file`) seen in `view`: its `[observer]` and `[camera]`
+/// those of the view, the exact tracer in Gödel's universe, not on the GPU; refused naming the
+/// view's field (`view.FIELD: why`). The one home of a view's scene: explore's kernel input
+/// and moves, *Render exactly* and *Record*.
+pub fn scene_of_view(scene: &Scene, file: &str, view: &View) -> Result<Scene, String> {
+    let godel = scene.metric.godel_a().is_some();
+    edited(&scene.source_text, file, |table| {
+        table.insert("observer".into(), Value::Table(observer_table(view)));
+        let mut camera = Table::new();
+        camera.insert("kind".into(), view.camera.kind.clone().into());
+        for (k, v) in fields_of_view(&view.camera) {
+            camera.insert(k.into(), v.into());
+        }
+        let c = &view.camera;
+        for (k, v) in [
+            ("width", c.width),
+            ("height", c.height),
+            ("samples", c.samples),
+        ] {
+            camera.insert(k.into(), i64::from(v).into());
+        }
+        table.insert("camera".into(), Value::Table(camera));
+        let trace = section(table, "trace");
+        if godel {
+            trace.insert("method".into(), "exact".into());
+        }
+        trace.remove("gpu");
+    })
+    .map_err(|e| match e {
+        EditError::Scene(e) => {
+            let field = e.field.strip_prefix("observer.").unwrap_or(&e.field);
+            format!("view.{field}: {}", scene::one_line(&e.message))
+        }
+        EditError::Text(why) => why,
+    })
 }
 
 /// The view's observer as a scene's (and a keyframe's) `[observer]` table.

@@ -25,6 +25,8 @@ use datafile::{DataFile, PixelRecord};
 use render::map::{LightRay, Map};
 use serde::{Deserialize, Serialize};
 
+use crate::view::{Velocity, View};
+
 /// An event of the observer: coordinate time and pseudo-Cartesian position (the scene file's
 /// `observer.time` and `observer.position = { x, y, z }`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -70,61 +72,12 @@ impl ObserverEvent {
     }
 }
 
-/// A view of the flying page (page/fly.js, `viewer.explore.view()`): the observer and the
-/// camera with exactly the fields of the scene file's `[observer]` and `[camera]` (README,
-/// "Scenes"), so that a scene with these fields traces the view. The camera's size and
-/// samples are the scene's full ones.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct View {
-    pub time: f64,
-    pub position: Position,
-    pub velocity: Velocity,
-    pub forward: [f64; 3],
-    pub up: [f64; 3],
-    pub camera: ViewCamera,
-}
-
-/// `observer.position`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Position {
-    pub x: f64,
-    pub y: f64,
-    pub z: f64,
-}
-
-/// `observer.velocity`: relative to the static observer, in its frame.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Velocity {
-    pub speed: f64,
-    pub direction: [f64; 3],
-}
-
-/// `[camera]`: the kind and its fields of view, the size and samples.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ViewCamera {
-    pub kind: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub fov_deg: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub h_fov_deg: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub v_fov_deg: Option<f64>,
-    pub width: u32,
-    pub height: u32,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub samples: Option<u32>,
-}
-
-impl View {
-    /// The observer's event.
-    pub fn event(&self) -> ObserverEvent {
-        let p = self.position;
+impl ObserverEvent {
+    /// The event of `view`'s observer.
+    pub fn of_view(view: &View) -> ObserverEvent {
+        let p = view.position;
         ObserverEvent {
-            t: self.time,
+            t: view.time,
             x: p.x,
             y: p.y,
             z: p.z,

@@ -34,10 +34,11 @@ use serde::Deserialize;
 use tower::ServiceExt;
 
 use crate::api_error::{no_store, ApiError};
-use crate::explore::{Explorer, Frame, Level, ObserverEvent, Position, Velocity, View};
+use crate::explore::{Explorer, Frame, Level, ObserverEvent};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::state::{ViewerOptions, ViewerState};
+use crate::view::{Position, Velocity, View};
 
 /// The explore routes' state.
 pub struct ExploreState {
@@ -446,7 +447,7 @@ async fn view_input(
     let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
     let buffers = crate::kernel_routes::draw_buffers(q.draw_buffers)?;
     let view: View = parse_named(&body, "view")?;
-    if let Some(why) = view.event().refusal(state.explorer.bound()) {
+    if let Some(why) = ObserverEvent::of_view(&view).refusal(state.explorer.bound()) {
         return Err(ApiError::bad_request(why));
     }
     let work = state.viewer.work().admit()?;

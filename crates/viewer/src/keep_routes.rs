@@ -29,8 +29,9 @@ use axum::{middleware, Json, Router};
 
 use crate::api_error::{no_store, ApiError};
 use crate::guard::{Access, MAX_BODY_BYTES};
-use crate::keep::{ExactJob, JobState, Keeper, Recording, View, MAX_KEYFRAMES, RECORD_FPS};
+use crate::keep::{ExactJob, JobState, Keeper, Recording, MAX_KEYFRAMES, RECORD_FPS};
 use crate::limit::WorkLimit;
+use crate::view::View;
 
 /// The keep routes' state: the keeper, the newest exact render.
 struct KeepState {

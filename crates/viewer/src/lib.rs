@@ -38,6 +38,7 @@ mod responses;
 pub mod routes;
 pub mod server;
 pub mod state;
+pub mod view;
 pub mod wire;
 
 use std::sync::Arc;

@@ -12,8 +12,9 @@ use datafile::{DataFile, PixelRecord};
 use http_body_util::BodyExt;
 use render::map::{LightRay, Map, MapPoint};
 use tower::ServiceExt;
-use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, Velocity, View};
+use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 use viewer::kernel_routes::KernelInput;
+use viewer::view::{Velocity, View};
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
 use viewer::Access;
 
@@ -126,7 +127,7 @@ impl FrameSource for Fake {
     /// The data file's scene with its observer at the view's event and its velocity.
     fn view_input(&self, view: &View) -> Result<KernelInput, String> {
         let mut scene = scene::Scene::from_str(&common::scene(), "fake.toml").unwrap();
-        scene.observer.event = view.event().event();
+        scene.observer.event = ObserverEvent::of_view(view).event();
         scene.observer.velocity.speed = view.velocity.speed;
         Ok(KernelInput::new(&scene))
     }

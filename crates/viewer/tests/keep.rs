@@ -12,9 +12,8 @@ use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use http_body_util::BodyExt;
 use tower::ServiceExt;
-use viewer::keep::{
-    CameraView, ExactJob, Keeper, Position, Recording, Rendered, Velocity, View, MAX_KEYFRAMES,
-};
+use viewer::keep::{ExactJob, Keeper, Recording, Rendered, MAX_KEYFRAMES};
+use viewer::view::{CameraView, Position, Velocity, View};
 use viewer::{Access, WorkLimit};
 
 mod common;
