@@ -53,23 +53,26 @@ pub fn against_cpu(
     exact.trace.method = TraceMethod::Exact;
     let cpu = Renderer::new(&exact)?;
     let width = cpu.sample_camera().width() as usize;
-    let hits: Vec<usize> = (0..records.len())
-        .filter(|&i| records[i].status == RayStatus::Hit)
-        .collect();
-    let others: Vec<usize> = (0..records.len())
-        .filter(|&i| !matches!(records[i].status, RayStatus::Hit | RayStatus::NotTraced))
-        .collect();
+    // The two sides by a predicate each, counted first: the strides follow, without a list
+    // of indices as long as the image (up to `scene::camera::MAX_RAYS`).
+    let hit = |r: &PixelRecord| r.status == RayStatus::Hit;
+    let other = |r: &PixelRecord| !matches!(r.status, RayStatus::Hit | RayStatus::NotTraced);
     let mut scratch = cpu.scratch();
     let mut lit = vec![0.0f32; scene.lights.len()];
     let (mut checked, mut differ, mut first) = (0, 0, None);
-    for side in [&hits, &others] {
-        let stride = side.len().div_ceil(CHECKS_PER_SIDE).max(1);
-        for &i in side.iter().step_by(stride) {
-            let (col, row) = ((i % width) as u32, (i / width) as u32);
-            let gpu = &records[i];
+    for side in [&hit as &dyn Fn(&PixelRecord) -> bool, &other] {
+        let count = records.iter().filter(|r| side(r)).count();
+        let stride = count.div_ceil(CHECKS_PER_SIDE).max(1);
+        let chosen = records
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| side(r))
+            .step_by(stride);
+        for (i, gpu) in chosen {
             if gpu.status == RayStatus::WorkLimit {
                 continue;
             }
+            let (col, row) = ((i % width) as u32, (i / width) as u32);
             let cpu = cpu.trace_sample(col, row, &mut scratch, &mut lit);
             checked += 1;
             if gpu.status != cpu.status || gpu.object != cpu.object {
