@@ -52,8 +52,19 @@ try {
   await page.locator('#explore-x').dispatchEvent('change');
   await sleep(400);
   await page.locator('#keep-record').click();
-  await page.waitForFunction(() => window.godelViewer.keep.script !== null, null,
-    { timeout: 60000 });
+  // The script, or the server's refusal in the status line (named in the error).
+  await page.waitForFunction(() => window.godelViewer.keep.script !== null
+    || !document.getElementById('keep-record-status').textContent.startsWith('recording'),
+  null, { timeout: 60000 }).catch(async (e) => {
+    const line = await page.evaluate(() => document.getElementById('keep-record-status')
+      .textContent);
+    throw new Error(`no script after Stop (${e.message}); the record status: ${line}`);
+  });
+  const script = await page.evaluate(() => window.godelViewer.keep.script);
+  if (script === null) {
+    throw new Error(`Stop gave no script: ${await page.evaluate(
+      () => document.getElementById('keep-record-status').textContent)}`);
+  }
   await download('#keep-script', join(outDir, 'flight.toml'));
   result.keyframes = await page.evaluate(() => window.godelViewer.keep.keyframes);
   result.record_status = await page.evaluate(

@@ -18,12 +18,19 @@ const BUSY_RETRIES = 20;
 
 const sleep = (ms) => new Promise((resolve) => { setTimeout(resolve, ms); });
 
-async function fetchOk(url) {
-  let response = await fetch(url);
+// `fetch(url, init)`, asked again while the server answers 503 (busy), at most BUSY_RETRIES
+// times.
+export async function fetchPatiently(url, init) {
+  let response = await fetch(url, init);
   for (let k = 1; response.status === 503 && k <= BUSY_RETRIES; k += 1) {
     await sleep(50 * k);
-    response = await fetch(url);
+    response = await fetch(url, init);
   }
+  return response;
+}
+
+async function fetchOk(url) {
+  const response = await fetchPatiently(url);
   if (!response.ok) {
     const text = await response.text();
     let message = text;

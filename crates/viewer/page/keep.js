@@ -13,6 +13,8 @@
 //   `godel sequence`, linked for download.
 'use strict';
 
+import { fetchPatiently } from './data.js';
+
 const $ = (id) => document.getElementById(id);
 
 // At most one keyframe per this many seconds of wall-clock time.
@@ -31,7 +33,8 @@ async function errorOf(response) {
   }
 }
 
-const postJson = (url, body) => fetch(url, {
+// A busy server (503: its shading slots taken by other tabs or frames) is asked again.
+const postJson = (url, body) => fetchPatiently(url, {
   method: 'POST',
   headers: { 'Content-Type': 'application/json' },
   body: JSON.stringify(body),
