@@ -98,6 +98,30 @@ try {
   result.rest = { width: slots.width, height: slots.height, slots: slots.slots.length,
     traced: await page.evaluate(() => window.godelViewer.explore.fly.traced) };
   result.header = await page.evaluate(() => document.getElementById('file').textContent);
+  // Hover the first pixel that hits an object (rows from the top, as the slots): the map
+  // shows its light ray, the record read from the frame traced here.
+  const target = await page.evaluate(() => {
+    const v = window.godelViewer;
+    const slots = v.explore.readSlots();
+    const bytes = Uint8Array.from(atob(slots.slots[0]), (c) => c.charCodeAt(0));
+    const s0 = new Float32Array(bytes.buffer);
+    for (let i = 0; i < slots.width * slots.height; i += 1) {
+      if (s0[4 * i + 1] !== 0) continue; // the status: not a hit
+      const [col, row] = [i % slots.width, Math.floor(i / slots.width)];
+      const rect = document.getElementById('image').getBoundingClientRect();
+      const point = { clientX: rect.left + (col + 0.5) * rect.width / slots.width,
+        clientY: rect.top + (row + 0.5) * rect.height / slots.height };
+      return { col, row, x: point.clientX, y: point.clientY, at: v.pixelAt(point) };
+    }
+    return null;
+  });
+  result.hovered = target;
+  if (target) {
+    await page.mouse.move(target.x, target.y);
+    await page.waitForFunction(() => window.godelViewer.explore.map.ray !== null, null,
+      { timeout: 60000 });
+    result.ray = await page.evaluate(() => window.godelViewer.explore.map.ray);
+  }
   await page.screenshot({ path: join(outDir, 'fly.png') });
   result.error = await page.evaluate(() => window.godelViewer.error
     || window.godelViewer.explore.fly.error);

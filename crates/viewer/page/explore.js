@@ -221,11 +221,15 @@ export async function startExplore(viewer) {
   // Hovering the picture: the light ray of the pixel under the mouse, in the frame shown.
   let pointer = null;
   function hover() {
-    if (pointer === null || state.shown === null) return;
+    if (pointer === null) return;
     const pixel = viewer.pixelAt(pointer);
-    if (pixel) map.hover(state.shown, pixel[0], pixel[1]);
+    // Flying: the frame traced in this page (fly.js reads the pixel's record from it).
+    const traced = pixel && state.fly ? state.hoverRay(pixel[0], pixel[1]) : null;
+    if (traced) map.hoverTraced(traced);
+    else if (pixel && !state.fly && state.shown !== null) map.hover(state.shown, pixel[0], pixel[1]);
     else map.clearRay();
   }
+  state.hover = hover;
   const image = $('image');
   image.addEventListener('pointermove', (event) => {
     pointer = { clientX: event.clientX, clientY: event.clientY };

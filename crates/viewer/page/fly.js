@@ -121,7 +121,8 @@ export async function startFly(viewer, explore, map, status) {
     refining: false,     // a full frame's trace is under way (a change cancels it)
     slots: null,         // the full frame's slots (for tests)
     tauMoved: 0,         // proper time the observer has moved (for tests)
-    width: Math.min(fullW, 160), // the moving frames' width
+    width: Math.min(fullW, MIN_WIDTH), // the moving frames' width
+    raysPerMs: null,     // the kernel's speed here, from the last full frame
     rafs: 0,             // animation frames while the view changed
     drawn: 0,            // frames traced and shown
     frameMs: [],         // wall times of the last frames shown
@@ -132,6 +133,33 @@ export async function startFly(viewer, explore, map, status) {
   explore.view = () => structuredClone(fly.view);
   explore.onView = null;
   explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, width, height);
+  // The light ray of pixel (col, row) of the frame shown (map.js's hover): the record is
+  // read from the frame's slots in this page, the ray's path made by the server from it
+  // (POST /api/explore/lightray). Null outside the frame; the load answers null once the
+  // frame is gone.
+  explore.hoverRay = (col, row) => {
+    const traced = fly.slots;
+    if (!traced) return null;
+    const s = fly.slotsSupersample;
+    const [x, y] = [s * col + (s >> 1), s * row + (s >> 1)];
+    if (x >= traced.width || y >= traced.height) return null;
+    const view = fly.slotsView;
+    return {
+      key: `${fly.drawn} ${col} ${row}`,
+      load: async () => {
+        if (fly.slots !== traced) return null;
+        const slots = tracer.readSample(traced, x, y).slice(0, 5)
+          .map((f) => Array.from(f, (v) => (Number.isNaN(v) ? null : v)));
+        const response = await fetch('/api/explore/lightray', {
+          method: 'POST', headers: { 'Content-Type': 'application/json' },
+          body: JSON.stringify({ view, slots }),
+        });
+        const answer = await response.json();
+        if (!response.ok) throw new Error(answer.error || `${response.status}`);
+        return { ...answer, col, row };
+      },
+    };
+  };
   // For tests: the full frame's slots as floats (base64 per slot).
   explore.readSlots = () => {
     const t = fly.slots;
@@ -193,13 +221,14 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
-  // Shows a traced frame (its slots kept for tests only while it is the full one).
-  function show(traced, version, full, note) {
+  // Shows a traced frame of `view`; its slots are kept until the next one (the hovered
+  // pixel's record is read from them).
+  function show(traced, view, version, full, note) {
     const channels = tracer.channels(traced, viewer.info.objects.length);
     if (fly.slots) fly.slots.slots.forEach((t) => gl.deleteTexture(t));
-    fly.slots = null;
-    if (full) fly.slots = traced;
-    else traced.slots.forEach((t) => gl.deleteTexture(t));
+    fly.slots = traced;
+    fly.slotsView = view;
+    fly.slotsSupersample = full ? ss : 1;
     const [pw, ph] = full ? [fullW, fullH] : [traced.width, traced.height];
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
       supersample: full ? ss : 1 });
@@ -212,6 +241,7 @@ export async function startFly(viewer, explore, map, status) {
         + `y = ${p.y.toFixed(3)}, z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
     }
     fly.traced = { version, width: pw, height: ph, full };
+    explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
     fly.log.push({ version, width: pw, height: ph, full, rafs: fly.rafs, drawn: fly.drawn });
     if (fly.log.length > 2000) fly.log.shift();
   }
@@ -228,9 +258,16 @@ export async function startFly(viewer, explore, map, status) {
       const scale = Math.min(1.25, Math.max(0.8, Math.sqrt(TARGET_MS / frameMs)));
       fly.width = Math.min(fullW, Math.max(MIN_WIDTH, fly.width * scale));
     }
+    // The frame rate steers by the time between animation frames, which lags the GPU's work
+    // (a frame is not waited for): never more rays than the GPU traces in TARGET_MS.
+    if (fly.raysPerMs !== null) {
+      const most = Math.sqrt(fly.raysPerMs * TARGET_MS * fullW / fullH);
+      fly.width = Math.max(MIN_WIDTH, Math.min(fly.width, most));
+    }
     const w = Math.max(Math.min(MIN_WIDTH, fullW), Math.min(fullW, Math.round(fly.width)));
     const h = Math.max(1, Math.round(w * fullH / fullW));
     const version = fly.version;
+    const view = structuredClone(fly.view);
     fly.busy = true;
     try {
       const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
@@ -240,7 +277,7 @@ export async function startFly(viewer, explore, map, status) {
       if (fly.frameMs.length > 30) fly.frameMs.shift();
       const n = fly.frameMs.length;
       const fps = n > 1 ? (n - 1) * 1000 / (now - fly.frameMs[0]) : 0;
-      show(traced, version, false, (pw, ph) => `${pw}×${ph} traced on the GPU · `
+      show(traced, view, version, false, (pw, ph) => `${pw}×${ph} traced on the GPU · `
         + `${fps.toFixed(0)} frames/s`);
     } catch (e) {
       failed(e);
@@ -252,14 +289,16 @@ export async function startFly(viewer, explore, map, status) {
   // At rest: the full size and samples, in tiles; the next change cancels it.
   async function traceFull() {
     const version = fly.version;
+    const view = structuredClone(fly.view);
     fly.refining = true;
     const started = performance.now();
     try {
       const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
         fly.view, fullW * ss, fullH * ss) }, { cancelled: () => fly.version !== version });
       const ms = Math.round(performance.now() - started);
+      fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
       fly.frameMs = [];
-      show(traced, version, true, (pw, ph) => `${pw}×${ph}`
+      show(traced, view, version, true, (pw, ph) => `${pw}×${ph}`
         + `${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`);
     } catch (e) {
       if (fly.version === version) failed(e);

@@ -265,13 +265,14 @@ export function createMap(top, side, legend, hooks) {
       map.fetched = answer;
       map.draw();
     });
-  const wantRay = latest((w) => getJson(`/api/explore/ray?generation=${w.generation}`
-    + `&level=${w.level}&col=${w.col}&row=${w.row}`), (w, answer, error) => {
+  const wantRay = latest((w) => (w.load ? w.load() : getJson(`/api/explore/ray?generation=`
+    + `${w.generation}&level=${w.level}&col=${w.col}&row=${w.row}`)), (w, answer, error) => {
     if (w !== rayWish) return; // the mouse left the picture meanwhile, or moved on
     if (error) {
       if (error.status !== 410) hooks.status(`ray: ${error.message}`);
       return;
     }
+    if (answer === null) return; // a traced frame replaced meanwhile
     map.ray = answer;
     map.draw();
   });
@@ -288,6 +289,12 @@ export function createMap(top, side, legend, hooks) {
     if (rayWish && JSON.stringify(rayWish) === JSON.stringify(w)) return;
     rayWish = w;
     wantRay(w);
+  };
+  // A pixel of a frame traced in the page is hovered: `ray` is fly.js's {key, load}.
+  map.hoverTraced = (ray) => {
+    if (rayWish && rayWish.key === ray.key) return;
+    rayWish = ray;
+    wantRay(ray);
   };
   map.clearRay = () => {
     rayWish = null;

@@ -368,8 +368,26 @@ export class KernelTracer {
     return out;
   }
 
-  // The traced slots as floats (for tests; the page itself never reads them back): one
-  // Float32Array of width × height × 4 per slot, grid row 0 first.
+  // One sample's four channels of every slot (the hovered pixel's record, fly.js): a
+  // Float32Array(4) per slot.
+  readSample(traced, x, y) {
+    const gl = this.gl;
+    const fb = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+    const out = traced.slots.map((t) => {
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
+      gl.readBuffer(gl.COLOR_ATTACHMENT0);
+      const data = new Float32Array(4);
+      gl.readPixels(x, y, 1, 1, gl.RGBA, gl.FLOAT, data);
+      return data;
+    });
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(fb);
+    return out;
+  }
+
+  // The traced slots as floats (for tests): one Float32Array of width × height × 4 per
+  // slot, grid row 0 first.
   readSlots(traced) {
     const gl = this.gl;
     const fb = gl.createFramebuffer();

@@ -9,7 +9,9 @@
 //! - while it moves, a frame is traced and drawn in every animation frame (counted by the
 //!   test's own requestAnimationFrame loop), at fewer pixels than the full frame;
 //! - at rest the frame reaches the scene's full size, and equals `godel render --gpu` of a
-//!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common).
+//!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common);
+//! - hovering a pixel of the frame at rest draws on the map the light ray that
+//!   render::map makes from `godel render --gpu`'s record of that pixel.
 
 use super::browser_support::*;
 use super::explore::scene_text;
@@ -148,4 +150,36 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     let a = kernel_agreement::compare("fly", &page, &data);
     assert!(a.seen > 50, "the view shows the ball: {a:?} {moved}");
     assert!(a.holds(), "{a:?}");
+
+    // Hovering a pixel of the frame traced in the page: the map's light ray is the one
+    // render::map makes from `godel render --gpu`'s record of that pixel, seen from the view.
+    let hovered = &seen["hovered"];
+    let (col, row) = (
+        hovered["col"].as_u64().unwrap() as usize,
+        hovered["row"].as_u64().unwrap() as usize,
+    );
+    assert_eq!(hovered["at"], serde_json::json!([col, row]), "{seen}");
+    let ray = &seen["ray"];
+    assert_eq!(ray["status"], "hit", "{seen}");
+    let scene = scene::Scene::from_str(&scene_of_view(&text, moved), "fly-view.toml").unwrap();
+    let expected = render::map::light_ray(
+        &scene,
+        scene.observer.event,
+        &data.records[data.index(col, row)],
+    );
+    let points = ray["points"].as_array().unwrap();
+    assert_eq!(points.len(), expected.points.len(), "{seen}");
+    let close = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() < 2e-3;
+    for (p, e) in points.iter().zip(&expected.points) {
+        assert!(
+            close(&p["t"], e.t) && close(&p["x"], e.x) && close(&p["y"], e.y),
+            "{p} against {e:?}"
+        );
+    }
+    let emission = expected.emission.expect("a hit has an emission event");
+    assert!(close(&ray["emission"]["t"], emission.t), "{seen}");
+    assert!(
+        close(&ray["travel_time"], expected.travel_time.unwrap()),
+        "{seen}"
+    );
 }
