@@ -119,7 +119,7 @@ export async function startFly(viewer, explore, map, status) {
     traced: null,        // {version, width, height, full} of the frame shown
     busy: false,         // a moving frame's trace is under way (it waits only to compile)
     refining: false,     // a full frame's trace is under way (a change cancels it)
-    slots: null,         // the full frame's slots (for tests)
+    slots: null,         // the slots of the frame shown (hover, tests)
     tauMoved: 0,         // proper time the observer has moved (for tests)
     width: Math.min(fullW, MIN_WIDTH), // the moving frames' width
     raysPerMs: null,     // the kernel's speed here, from the last full frame
@@ -160,7 +160,7 @@ export async function startFly(viewer, explore, map, status) {
       },
     };
   };
-  // For tests: the full frame's slots as floats (base64 per slot).
+  // For tests: the shown frame's slots as floats (base64 per slot).
   explore.readSlots = () => {
     const t = fly.slots;
     return { width: t.width, height: t.height,
