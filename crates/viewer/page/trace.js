@@ -368,17 +368,17 @@ export class KernelTracer {
     return out;
   }
 
-  // One sample's four channels of every slot (the hovered pixel's record, fly.js): a
-  // Float32Array(4) per slot.
-  readSample(traced, x, y) {
+  // The traced slots' floats over the rectangle (x, y, width, height) of the sample grid:
+  // one Float32Array of width × height × 4 per slot, grid row y first.
+  readRect(traced, x, y, width, height) {
     const gl = this.gl;
     const fb = gl.createFramebuffer();
     gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
     const out = traced.slots.map((t) => {
       gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
       gl.readBuffer(gl.COLOR_ATTACHMENT0);
-      const data = new Float32Array(4);
-      gl.readPixels(x, y, 1, 1, gl.RGBA, gl.FLOAT, data);
+      const data = new Float32Array(width * height * 4);
+      gl.readPixels(x, y, width, height, gl.RGBA, gl.FLOAT, data);
       return data;
     });
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
@@ -386,21 +386,13 @@ export class KernelTracer {
     return out;
   }
 
-  // The traced slots as floats (for tests): one Float32Array of width × height × 4 per
-  // slot, grid row 0 first.
+  // One sample's four channels of every slot (the hovered pixel's record, fly.js).
+  readSample(traced, x, y) {
+    return this.readRect(traced, x, y, 1, 1);
+  }
+
+  // The traced slots as floats (for tests), the whole grid.
   readSlots(traced) {
-    const gl = this.gl;
-    const fb = gl.createFramebuffer();
-    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-    const out = traced.slots.map((t) => {
-      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
-      gl.readBuffer(gl.COLOR_ATTACHMENT0);
-      const data = new Float32Array(traced.width * traced.height * 4);
-      gl.readPixels(0, 0, traced.width, traced.height, gl.RGBA, gl.FLOAT, data);
-      return data;
-    });
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.deleteFramebuffer(fb);
-    return out;
+    return this.readRect(traced, 0, 0, traced.width, traced.height);
   }
 }
