@@ -167,6 +167,11 @@ export async function startFly(viewer, explore, map, status) {
       slots: tracer.readSlots(t).map((f) => viewer.base64(new Uint8Array(f.buffer))) };
   };
   $('fly-panel').hidden = false;
+  // The server traces its own frames of the first event (coarse, then full, on all cores):
+  // unseen while the page flies, so its full frame is given up (the newest request wins,
+  // and asks for the coarse frame only) and leaves the cores to this page's GPU.
+  fetch('/api/explore/event', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ ...explore.event, refine: false }) }).catch(() => {});
 
   const changed = () => {
     fly.version += 1;
