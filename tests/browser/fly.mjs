@@ -2,12 +2,13 @@
 // waits for the full frame at rest; compares the page's kernel uniforms with the server's for
 // the view (POST /api/explore/input); with "fall freely" on, holds R (up) until the observer has moved a while,
 // counting animation frames (its own requestAnimationFrame loop) and the pictures the page
-// draws meanwhile; lets go, waits for the full frame at rest and saves its slots and view.
+// draws meanwhile; lets go, waits for the full frame at rest and saves its slots and view;
+// hovers a hit pixel and one that hit nothing and keeps the map's light rays.
 //
 // usage: node fly.mjs URL OUT_DIR
 // Writes OUT_DIR/fly-slot-S.f32 (RGBA32F, grid row 0 first) and prints {start, moved, tau,
 // speed, uniforms_page, uniforms_server, rafs, drawn, traced_moving, moving_sizes, rest,
-// header, requests, console_errors, error}.
+// header, hovered, ray, hovered_miss, ray_miss, requests, console_errors, error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, open } from './launch.mjs';
@@ -98,15 +99,15 @@ try {
   result.rest = { width: slots.width, height: slots.height, slots: slots.slots.length,
     traced: await page.evaluate(() => window.godelViewer.explore.fly.traced) };
   result.header = await page.evaluate(() => document.getElementById('file').textContent);
-  // Hover the first pixel that hits an object (rows from the top, as the slots): the map
-  // shows its light ray, the record read from the frame traced here.
-  const target = await page.evaluate(() => {
+  // Hover the first pixel of status `code` (rows from the top, as the slots): the map shows
+  // its light ray, the record read from the frame traced here, its path traced by the kernel.
+  const pick = (code) => page.evaluate((code) => {
     const v = window.godelViewer;
     const slots = v.explore.readSlots();
     const bytes = Uint8Array.from(atob(slots.slots[0]), (c) => c.charCodeAt(0));
     const s0 = new Float32Array(bytes.buffer);
     for (let i = 0; i < slots.width * slots.height; i += 1) {
-      if (s0[4 * i + 1] !== 0) continue; // the status: not a hit
+      if (s0[4 * i + 1] !== code) continue;
       const [col, row] = [i % slots.width, Math.floor(i / slots.width)];
       const rect = document.getElementById('image').getBoundingClientRect();
       const point = { clientX: rect.left + (col + 0.5) * rect.width / slots.width,
@@ -114,14 +115,21 @@ try {
       return { col, row, x: point.clientX, y: point.clientY, at: v.pixelAt(point) };
     }
     return null;
-  });
-  result.hovered = target;
-  if (target) {
+  }, code);
+  const hover = async (target) => {
+    if (!target) return null;
     await page.mouse.move(target.x, target.y);
-    await page.waitForFunction(() => window.godelViewer.explore.map.ray !== null, null,
-      { timeout: 60000 });
-    result.ray = await page.evaluate(() => window.godelViewer.explore.map.ray);
-  }
+    await page.waitForFunction(([col, row]) => {
+      const ray = window.godelViewer.explore.map.ray;
+      return ray !== null && ray.col === col && ray.row === row;
+    }, target.at, { timeout: 60000 });
+    return page.evaluate(() => window.godelViewer.explore.map.ray);
+  };
+  // A hit (status 0), then a ray that hit nothing (status 1, escaped).
+  result.hovered = await pick(0);
+  result.ray = await hover(result.hovered);
+  result.hovered_miss = await pick(1);
+  result.ray_miss = await hover(result.hovered_miss);
   await page.screenshot({ path: join(outDir, 'fly.png') });
   result.error = await page.evaluate(() => window.godelViewer.error
     || window.godelViewer.explore.fly.error);

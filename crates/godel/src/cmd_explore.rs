@@ -187,11 +187,6 @@ impl FrameSource for SceneFrames {
         light_ray(&self.scene, event.event(), record)
     }
 
-    fn view_light_ray(&self, view: &View, record: &PixelRecord) -> Result<LightRay, String> {
-        let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
-        Ok(light_ray(&scene, scene.observer.event, record))
-    }
-
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
         let mut moved = self.scene.clone();
         moved.observer.event = event.event();

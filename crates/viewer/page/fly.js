@@ -25,6 +25,7 @@
 'use strict';
 
 import { KernelTracer } from './trace.js';
+import { tracedLightRay } from './lightray.js';
 import { fetchJson } from './data.js';
 import { cross, dot, normalize } from './look.js';
 
@@ -133,10 +134,10 @@ export async function startFly(viewer, explore, map, status) {
   explore.view = () => structuredClone(fly.view);
   explore.onView = null;
   explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, width, height);
-  // The light ray of pixel (col, row) of the frame shown (map.js's hover): the record is
-  // read from the frame's slots in this page, the ray's path made by the server from it
-  // (POST /api/explore/lightray). Null outside the frame; the load answers null once the
-  // frame is gone.
+  // The light ray of pixel (col, row) of the frame shown (map.js's hover), made in this page:
+  // the record is read from the frame's slots and its path traced by the kernel's closed
+  // forms (lightray.js), no server call. Null outside the frame; the load answers null once
+  // the frame is gone.
   explore.hoverRay = (col, row) => {
     const traced = fly.slots;
     if (!traced) return null;
@@ -148,15 +149,11 @@ export async function startFly(viewer, explore, map, status) {
       key: `${fly.drawn} ${col} ${row}`,
       load: async () => {
         if (fly.slots !== traced) return null;
-        const slots = tracer.readSample(traced, x, y).slice(0, 5)
-          .map((f) => Array.from(f, (v) => (Number.isNaN(v) ? null : v)));
-        const response = await fetch('/api/explore/lightray', {
-          method: 'POST', headers: { 'Content-Type': 'application/json' },
-          body: JSON.stringify({ view, slots }),
-        });
-        const answer = await response.json();
-        if (!response.ok) throw new Error(answer.error || `${response.status}`);
-        return { ...answer, col, row };
+        const slots = tracer.readSample(traced, x, y).slice(0, 5);
+        const kernel = { ...input, uniforms: uniformsFor(input.uniforms, view, traced.width,
+          traced.height) };
+        const event = { t: view.time, ...view.position };
+        return { ...tracedLightRay(tracer, kernel, event, slots), col, row };
       },
     };
   };

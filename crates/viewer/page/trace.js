@@ -133,6 +133,29 @@ export class KernelTracer {
     return t;
   }
 
+  // Sets the input's uniforms `u` (a view's, crates/viewer/src/kernel_routes.rs) on
+  // `program`, in use.
+  setUniforms(program, u) {
+    const gl = this.gl;
+    const at = (name) => gl.getUniformLocation(program, `u_${name}`);
+    // The metric is no uniform: the defines say it (GODEL), as for every other switch.
+    gl.uniform1f(at('a'), u.a);
+    gl.uniform2fv(at('obs_t'), u.obs_t);
+    gl.uniform3fv(at('obs_x'), u.obs_x);
+    gl.uniform4fv(at('velocity'), u.velocity);
+    gl.uniform3fv(at('forward'), u.forward);
+    gl.uniform3fv(at('up'), u.up);
+    gl.uniform1i(at('camera'), u.camera);
+    gl.uniform2fv(at('fov'), u.fov);
+    gl.uniform2iv(at('size'), u.size);
+    gl.uniform1f(at('max_past'), u.max_past);
+    gl.uniform1i(at('max_loops'), u.max_loops);
+    gl.uniform1i(at('lights'), u.lights);
+    gl.uniform1i(at('table'), 0);
+    // The bound of the loop that tells a sample cut short by a loop limiter (kernel.glsl).
+    gl.uniform1i(at('two'), 2);
+  }
+
   // Resolves once the GPU has done everything asked of it, without blocking the page.
   finished() {
     const gl = this.gl;
@@ -203,27 +226,11 @@ export class KernelTracer {
     }
 
     gl.useProgram(program);
-    const at = (name) => gl.getUniformLocation(program, `u_${name}`);
-    // The metric is no uniform: the defines say it (GODEL), as for every other switch.
-    gl.uniform1f(at('a'), u.a);
-    gl.uniform2fv(at('obs_t'), u.obs_t);
-    gl.uniform3fv(at('obs_x'), u.obs_x);
-    gl.uniform4fv(at('velocity'), u.velocity);
-    gl.uniform3fv(at('forward'), u.forward);
-    gl.uniform3fv(at('up'), u.up);
-    gl.uniform1i(at('camera'), u.camera);
-    gl.uniform2fv(at('fov'), u.fov);
-    gl.uniform2iv(at('size'), u.size);
-    gl.uniform1f(at('max_past'), u.max_past);
-    gl.uniform1i(at('max_loops'), u.max_loops);
-    gl.uniform1i(at('lights'), u.lights);
-    gl.uniform1i(at('table'), 0);
-    // The bound of the loop that tells a sample cut short by a loop limiter (kernel.glsl).
-    gl.uniform1i(at('two'), 2);
+    this.setUniforms(program, u);
     // The render targets cover the whole grid and a draw's viewport is its tile, so
     // gl_FragCoord is already the sample's place in the grid.
-    gl.uniform2i(at('origin'), 0, 0);
-    const slot0 = at('slot0');
+    gl.uniform2i(gl.getUniformLocation(program, 'u_origin'), 0, 0);
+    const slot0 = gl.getUniformLocation(program, 'u_slot0');
     const bind = () => {
       gl.useProgram(program);
       gl.activeTexture(gl.TEXTURE0);

@@ -2,7 +2,7 @@
 //! no files beside it and nothing from the internet.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 16] = [
+pub const FILES: [(&str, &str, &str); 17] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -27,6 +27,7 @@ pub const FILES: [(&str, &str, &str); 16] = [
     js("/trace.js", include_str!("../page/trace.js")),
     js("/traced.js", include_str!("../page/traced.js")),
     js("/fly.js", include_str!("../page/fly.js")),
+    js("/lightray.js", include_str!("../page/lightray.js")),
 ];
 
 const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {

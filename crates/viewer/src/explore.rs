@@ -118,9 +118,6 @@ pub trait FrameSource: Send + Sync + 'static {
     fn map(&self, event: ObserverEvent) -> Result<Map, String>;
     /// The light ray of the pixel whose record is `record`, in a frame seen from `event`.
     fn light_ray(&self, event: ObserverEvent, record: &PixelRecord) -> LightRay;
-    /// The light ray of the sample whose record is `record` in a frame the page traced of
-    /// `view` (the view's observer, velocity included); `Err` says why, naming the field.
-    fn view_light_ray(&self, view: &View, record: &PixelRecord) -> Result<LightRay, String>;
     /// A sequence-script keyframe (TOML) at `frame` that puts the scene's observer (its
     /// velocity and axes, the camera's fields of view) at `event`.
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String>;

@@ -11,7 +11,6 @@
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
 //! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
 //! | `POST /api/explore/input?draw_buffers=N` (a [`View`]: `{"time", "position", "velocity", "forward", "up", "camera"}`) | what the GPU kernel reads to trace that view (the flying page's, page/fly.js); 400 naming the field for a bad view |
-//! | `POST /api/explore/lightray` (`{"view": View, "slots": [[s0…], …, [s4…]]}`: the five fixed kernel slots of one sample of a frame the page traced of that view, as [`gpu::host::sample_record`] reads them; null for NaN) | the light ray of that sample, as `/api/explore/ray` answers; 400 naming the field |
 //! | `POST /api/explore/move` (`{"time", "position", "velocity", "tau"}`) | where that observer is after `tau` of its proper time falling freely, and its velocity there: `{"time", "position", "velocity"}`; 400 naming the field for bad input |
 //! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
 //!
@@ -124,8 +123,7 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/keyframe", post(keyframe))
         .route("/api/gpu/input", get(kernel_input))
         .route("/api/explore/input", post(view_input))
-        .route("/api/explore/move", post(fall))
-        .route("/api/explore/lightray", post(view_light_ray));
+        .route("/api/explore/move", post(fall));
     for path in FRAME_ROUTES {
         explore = explore.route(path, any(for_frame));
     }
@@ -510,42 +508,6 @@ async fn fall(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Res
         "time": to.t,
         "position": { "x": to.x, "y": to.y, "z": to.z },
         "velocity": velocity,
-    });
-    Ok((no_store(), Json(body)).into_response())
-}
-
-/// The body of `POST /api/explore/lightray`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightRayRequest {
-    view: View,
-    /// The kernel's fixed slots of the sample (JSON has no NaN: null stands for it).
-    slots: [[Option<f32>; 4]; 5],
-}
-
-/// `POST /api/explore/lightray`: the light ray of a sample the page traced on the GPU, from
-/// the record its slots hold (read in the page: no frame of the server's is involved).
-async fn view_light_ray(
-    State(state): State<Arc<ExploreState>>,
-    body: Bytes,
-) -> Result<Response, ApiError> {
-    let asked: LightRayRequest = parse_named(&body, "lightray")?;
-    if let Some(why) = ObserverEvent::of_view(&asked.view).refusal(state.explorer.bound()) {
-        return Err(ApiError::bad_request(format!("lightray.view: {why}")));
-    }
-    let slots = asked.slots.map(|s| s.map(|v| v.unwrap_or(f32::NAN)));
-    let record = gpu::host::sample_record(|k| slots[k]);
-    let work = state.viewer.work().admit()?;
-    let ray = work
-        .run(move || state.explorer.source().view_light_ray(&asked.view, &record))
-        .await?
-        .map_err(|why| ApiError::bad_request(format!("lightray.{why}")))?;
-    let body = serde_json::json!({
-        "status": crate::state::status_name(record.status),
-        "object": (record.object >= 0).then_some(record.object),
-        "points": ray.points,
-        "emission": ray.emission,
-        "travel_time": ray.travel_time,
     });
     Ok((no_store(), Json(body)).into_response())
 }

@@ -115,10 +115,6 @@ impl FrameSource for Fake {
             travel_time: None,
         }
     }
-    /// As `light_ray`, from the view's event.
-    fn view_light_ray(&self, view: &View, record: &PixelRecord) -> Result<LightRay, String> {
-        Ok(self.light_ray(ObserverEvent::of_view(view), record))
-    }
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
         Ok(format!("frame {frame} at t = {}", event.t))
     }
@@ -560,15 +556,6 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
     assert_eq!(moved["time"], 3.0);
     assert_eq!(moved["position"]["x"], 1.0);
     assert_eq!(moved["velocity"]["speed"], 0.5);
-    // The light ray of a sample the page traced: the record read from its slots (object 0
-    // hit, t_emit −2.5), the stand-in's ray from the view's event to t_emit.
-    let slots = r#"[[0, 0, 0.5, 0.5], [1, -2.5, 3, 1], [0, 0, 0, 1], [0, 0, 0, 0], [0, 0, 0, 0]]"#;
-    let lightray = format!(r#"{{"view": {view}, "slots": {slots}}}"#);
-    let (status, ray, _) = send(&app, common::post("/api/explore/lightray", &lightray)).await;
-    assert_eq!(status, StatusCode::OK, "{ray}");
-    assert_eq!((&ray["status"], &ray["object"]), (&"hit".into(), &0.into()));
-    assert_eq!(ray["points"][0]["t"], view["time"]);
-    assert_eq!(ray["points"][1]["t"], -2.5);
     let mut unknown = view.clone();
     unknown["camera"]["zoom"] = 2.into();
     let mut far = view.clone();
@@ -601,21 +588,6 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
             "event.t",
         ),
         ("/api/explore/move", step.replace(", \"tau\": 2", ""), "tau"),
-        (
-            "/api/explore/lightray",
-            lightray.replace(", [0, 0, 0, 0]]", "]"),
-            "lightray.slots",
-        ),
-        (
-            "/api/explore/lightray",
-            format!(r#"{{"view": {far}, "slots": {slots}}}"#),
-            "lightray.view: event.y",
-        ),
-        (
-            "/api/explore/lightray",
-            lightray.replace("\"slots\"", "\"slot\""),
-            "unknown field `slot`",
-        ),
     ] {
         let (status, answer, _) = send(&app, common::post(url, &body)).await;
         assert_eq!(status, StatusCode::BAD_REQUEST, "{url} {body}");

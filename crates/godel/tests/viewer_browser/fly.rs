@@ -10,8 +10,9 @@
 //!   test's own requestAnimationFrame loop), at fewer pixels than the full frame;
 //! - at rest the frame reaches the scene's full size, and equals `godel render --gpu` of a
 //!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common);
-//! - hovering a pixel of the frame at rest draws on the map the light ray that
-//!   render::map makes from `godel render --gpu`'s record of that pixel.
+//! - hovering a pixel of the frame at rest (a hit, and one that hit nothing) draws on the
+//!   map the light ray that render::map makes from `godel render --gpu`'s record of that
+//!   pixel, traced in the page by the kernel (no server call).
 
 use super::browser_support::*;
 use super::explore::scene_text;
@@ -151,35 +152,56 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     assert!(a.seen > 50, "the view shows the ball: {a:?} {moved}");
     assert!(a.holds(), "{a:?}");
 
-    // Hovering a pixel of the frame traced in the page: the map's light ray is the one
-    // render::map makes from `godel render --gpu`'s record of that pixel, seen from the view.
-    let hovered = &seen["hovered"];
-    let (col, row) = (
-        hovered["col"].as_u64().unwrap() as usize,
-        hovered["row"].as_u64().unwrap() as usize,
-    );
-    assert_eq!(hovered["at"], serde_json::json!([col, row]), "{seen}");
-    let ray = &seen["ray"];
-    assert_eq!(ray["status"], "hit", "{seen}");
-    let scene = scene::Scene::from_str(&scene_of_view(&text, moved), "fly-view.toml").unwrap();
-    let expected = render::map::light_ray(
-        &scene,
-        scene.observer.event,
-        &data.records[data.index(col, row)],
-    );
-    let points = ray["points"].as_array().unwrap();
-    assert_eq!(points.len(), expected.points.len(), "{seen}");
-    let close = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() < 2e-3;
-    for (p, e) in points.iter().zip(&expected.points) {
+    // Hovering a pixel of the frame traced in the page: the map's light ray, traced in the
+    // page by the kernel, is the one render::map makes from `godel render --gpu`'s record of
+    // that pixel, seen from the view; for a hit and for a ray that hit nothing (drawn to the
+    // past limit). No ray was asked of the server.
+    for r in seen["requests"].as_array().unwrap() {
+        let r = r.as_str().unwrap();
         assert!(
-            close(&p["t"], e.t) && close(&p["x"], e.x) && close(&p["y"], e.y),
-            "{p} against {e:?}"
+            !r.contains("/api/explore/ray") && !r.contains("/api/explore/lightray"),
+            "{r}"
         );
     }
-    let emission = expected.emission.expect("a hit has an emission event");
-    assert!(close(&ray["emission"]["t"], emission.t), "{seen}");
-    assert!(
-        close(&ray["travel_time"], expected.travel_time.unwrap()),
-        "{seen}"
-    );
+    let scene = scene::Scene::from_str(&scene_of_view(&text, moved), "fly-view.toml").unwrap();
+    let close = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() < 2e-3;
+    for (hovered, ray, status) in [
+        ("hovered", "ray", "hit"),
+        ("hovered_miss", "ray_miss", "escaped"),
+    ] {
+        let hovered = &seen[hovered];
+        let (col, row) = (
+            hovered["col"].as_u64().unwrap() as usize,
+            hovered["row"].as_u64().unwrap() as usize,
+        );
+        assert_eq!(hovered["at"], serde_json::json!([col, row]), "{seen}");
+        let ray = &seen[ray];
+        assert_eq!(ray["status"], status, "{seen}");
+        let record = &data.records[data.index(col, row)];
+        let expected = render::map::light_ray(&scene, scene.observer.event, record);
+        let points = ray["points"].as_array().unwrap();
+        assert!(expected.points.len() > 2, "{expected:?}");
+        assert_eq!(points.len(), expected.points.len(), "{status}: {seen}");
+        for (p, e) in points.iter().zip(&expected.points) {
+            assert!(
+                close(&p["t"], e.t)
+                    && close(&p["x"], e.x)
+                    && close(&p["y"], e.y)
+                    && close(&p["z"], e.z)
+                    && close(&p["r"], e.r),
+                "{status}: {p} against {e:?}"
+            );
+        }
+        match expected.emission {
+            Some(emission) => {
+                assert!(close(&ray["emission"]["t"], emission.t), "{seen}");
+                assert!(close(&ray["emission"]["r"], emission.r), "{seen}");
+                assert!(
+                    close(&ray["travel_time"], expected.travel_time.unwrap()),
+                    "{seen}"
+                );
+            }
+            None => assert_eq!(ray["emission"], serde_json::Value::Null, "{seen}"),
+        }
+    }
 }

@@ -1,0 +1,95 @@
+// godel explore: the light ray of one sample of a frame traced in this page, for the map
+// (map.js), made in the page without the server. The sample's record is read from the
+// frame's slots (the five fixed slots, as gpu::host::sample_record reads them) and its path
+// is traced by the GPU kernel's own closed forms: crates/gpu/src/kernel.glsl compiled with
+// RAY_PATH, the twin of render::map::light_ray (docs/physics.md, "The explore map"). The
+// answer has the fields of the server's /api/explore/ray: status, object, points
+// [{t, x, y, z, r}] from the observer into the past, emission, travel_time.
+'use strict';
+
+// datafile::RayStatus by code, with the names crates/viewer/src/state.rs gives them.
+const STATUS = ['hit', 'escaped', 'step budget', 'failed', 'not traced', 'work limit'];
+const HIT = 0;
+const NOT_TRACED = 4;
+// Points per row of the target the points are drawn into.
+const ROW = 64;
+
+// The light ray of the sample whose slots are `slots` (five arrays of four floats), in a
+// frame traced with the kernel input `input` ({defines, draw_buffers, uniforms} of the view
+// the frame shows) from the observer's event `event` ({t, x, y, z}).
+export function tracedLightRay(tracer, input, event, slots) {
+  const [s0, s1, s2, s3, s4] = slots;
+  const code = s0[1];
+  const hit = code === HIT;
+  const answer = {
+    status: STATUS[code] ?? 'failed',
+    object: hit && s0[0] >= 0 ? s0[0] : null,
+    points: [],
+    emission: null,
+    travel_time: null,
+  };
+  // The direction the pixel's ray was launched along (none where it was not traced).
+  const n = [s2[3], s3[3], s4[0]];
+  const length = Math.hypot(...n);
+  if (code === NOT_TRACED || !(length > 0 && Number.isFinite(length))) return answer;
+  const lambda = s1[2];
+  const withHit = hit && Number.isFinite(lambda);
+
+  const gl = tracer.gl;
+  const { program } = tracer.program(`${input.defines}#define RAY_PATH 1\n`);
+  const at = (name) => gl.getUniformLocation(program, `u_${name}`);
+  const fb = gl.createFramebuffer();
+  // Draws slot `slot` of the kernel on a `width` × `height` target: its floats, row by row.
+  const draw = (width, height, slot, points, end) => {
+    const target = tracer.floatTexture(width, height);
+    try {
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0);
+      const buffers = [gl.COLOR_ATTACHMENT0];
+      while (buffers.length < input.draw_buffers) buffers.push(gl.NONE);
+      gl.drawBuffers(buffers);
+      gl.useProgram(program);
+      tracer.setUniforms(program, input.uniforms);
+      gl.uniform4f(at('ray'), n[0], n[1], n[2], end);
+      gl.uniform3f(at('emission'), s2[0], s2[1], s2[2]);
+      gl.uniform1i(at('points'), points);
+      gl.uniform1i(at('row'), ROW);
+      gl.uniform1i(at('slot0'), slot);
+      gl.bindVertexArray(tracer.vao);
+      gl.disable(gl.SCISSOR_TEST);
+      gl.viewport(0, 0, width, height);
+      gl.drawArrays(gl.TRIANGLES, 0, 3);
+      gl.readBuffer(gl.COLOR_ATTACHMENT0);
+      const data = new Float32Array(width * height * 4);
+      gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, data);
+      return data;
+    } finally {
+      gl.deleteTexture(target);
+    }
+  };
+  try {
+    // The end parameter, the number of points after the observer's and the emission
+    // event's distance from the observer's axis.
+    const [end, count, emissionR, ok] = draw(1, 1, 0, 0, withHit ? lambda : -1);
+    if (ok !== 1) return answer;
+    const width = Math.min(count, ROW);
+    const height = Math.ceil(count / ROW);
+    const events = draw(width, height, 0, count, end);
+    const radii = draw(width, height, 1, count, end);
+    // The first point is the observer's event itself, as render::map draws it.
+    answer.points.push({ ...event, r: 0 });
+    for (let i = 0; i < count; i += 1) {
+      const k = 4 * i;
+      answer.points.push({ t: event.t + events[k], x: events[k + 1], y: events[k + 2],
+        z: events[k + 3], r: radii[k] });
+    }
+    if (withHit) {
+      answer.emission = { t: event.t + s1[1], x: s2[0], y: s2[1], z: s2[2], r: emissionR };
+      answer.travel_time = -s1[1];
+    }
+    return answer;
+  } finally {
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(fb);
+  }
+}
