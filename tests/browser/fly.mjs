@@ -8,7 +8,7 @@
 // usage: node fly.mjs URL OUT_DIR
 // Writes OUT_DIR/fly-slot-S.f32 (RGBA32F, grid row 0 first) and prints {start, moved, tau,
 // speed, uniforms_page, uniforms_server, rafs, drawn, traced_moving, moving_sizes, rest,
-// header, hovered, ray, hovered_miss, ray_miss, requests, console_errors, error}.
+// header, keyframe, hovered, ray, hovered_miss, ray_miss, requests, console_errors, error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, open } from './launch.mjs';
@@ -125,6 +125,12 @@ try {
     }, target.at, { timeout: 60000 });
     return page.evaluate(() => window.godelViewer.explore.map.ray);
   };
+  // Save observer keyframe: the view flown (its velocity from falling freely).
+  await page.click('#explore-save-keyframe');
+  await page.waitForFunction(() => !document.getElementById('explore-keyframe').hidden, null,
+    { timeout: 60000 });
+  result.keyframe = await page.evaluate(() =>
+    document.getElementById('explore-keyframe').textContent);
   // A hit (status 0), then a ray that hit nothing (status 1, escaped).
   result.hovered = await pick(0);
   result.ray = await hover(result.hovered);

@@ -193,6 +193,11 @@ impl FrameSource for SceneFrames {
         crate::flight::keyframe_text(&moved, frame).map_err(|e| e.to_string())
     }
 
+    fn view_keyframe(&self, view: &View, frame: u32) -> Result<String, String> {
+        let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
+        crate::flight::keyframe_text(&scene, frame).map_err(|e| e.to_string())
+    }
+
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
         let scene = scene_at(&self.scene, event, Level::Full).map_err(|e| format!("{e:#}"))?;
         Ok(KernelInput::new(&scene))
@@ -375,6 +380,43 @@ mod tests {
         bad = view.clone();
         bad.velocity.speed = 1.5;
         let e = format!("{:#}", scene_of_view(&scene, &bad).unwrap_err());
+        assert!(e.contains("speed"), "{e}");
+    }
+
+    #[test]
+    fn a_view_keyframe_holds_the_flown_velocity_axes_and_field_of_view() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let frames = SceneFrames::new(small_scene(), pool);
+        let view: View = serde_json::from_value(serde_json::json!({
+            "time": 1.5, "position": {"x": 0.2, "y": -0.1, "z": 0.3},
+            "velocity": {"speed": 0.6, "direction": [0, 1, 0]},
+            "forward": [0, 1, 0], "up": [0, 0, 1],
+            "camera": {"kind": "pinhole", "fov_deg": 70, "width": 12, "height": 6, "samples": 4},
+        }))
+        .unwrap();
+        let text = frames.view_keyframe(&view, 3).unwrap();
+        let table: toml::Table = text.parse().unwrap();
+        let k = &table["keyframe"][0];
+        assert_eq!(k["frame"].as_integer(), Some(3), "{text}");
+        let o = &k["observer"];
+        assert_eq!(o["time"].as_float(), Some(1.5), "{text}");
+        assert_eq!(o["position"]["y"].as_float(), Some(-0.1), "{text}");
+        assert_eq!(o["velocity"]["speed"].as_float(), Some(0.6), "{text}");
+        let direction: Vec<f64> = o["velocity"]["direction"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_float().unwrap())
+            .collect();
+        assert_eq!(direction, [0.0, 1.0, 0.0], "{text}");
+        assert_eq!(o["forward"][1].as_float(), Some(1.0), "{text}");
+        assert_eq!(k["camera"]["fov_deg"].as_float(), Some(70.0), "{text}");
+        let mut bad = view.clone();
+        bad.velocity.speed = 1.5;
+        let e = frames.view_keyframe(&bad, 0).unwrap_err();
         assert!(e.contains("speed"), "{e}");
     }
 

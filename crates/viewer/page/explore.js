@@ -241,8 +241,13 @@ export async function startExplore(viewer) {
   });
 
   $('explore-save-keyframe').addEventListener('click', async () => {
-    const blob = await viewer.download('/api/explore/keyframe?frame=0',
-      JSON.stringify(state.event), 'keyframe.toml');
+    // Flying: the view on screen, with the velocity, axes and fields of view flown; else the
+    // scene's observer at the panel's event.
+    const blob = state.fly
+      ? await viewer.download('/api/explore/view-keyframe?frame=0', JSON.stringify(state.view()),
+        'keyframe.toml')
+      : await viewer.download('/api/explore/keyframe?frame=0', JSON.stringify(state.event),
+        'keyframe.toml');
     if (blob) {
       $('explore-keyframe').textContent = await blob.text();
       $('explore-keyframe').hidden = false;

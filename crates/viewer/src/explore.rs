@@ -121,6 +121,10 @@ pub trait FrameSource: Send + Sync + 'static {
     /// A sequence-script keyframe (TOML) at `frame` that puts the scene's observer (its
     /// velocity and axes, the camera's fields of view) at `event`.
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String>;
+    /// A sequence-script keyframe (TOML) at `frame` with the observer and camera fields of
+    /// `view` (a flight's: its velocity and axes, not the scene's); `Err` says why, naming
+    /// the field.
+    fn view_keyframe(&self, view: &View, frame: u32) -> Result<String, String>;
     /// What the GPU kernel reads to trace the full frame seen from `event` (the page's own
     /// tracer, [`crate::kernel_routes`]); `Err` says why it cannot be made.
     fn kernel_input(&self, event: ObserverEvent) -> Result<gpu::KernelInput, String>;

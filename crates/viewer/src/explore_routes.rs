@@ -9,6 +9,7 @@
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
+//! | `POST /api/explore/view-keyframe?frame=N` ([`View`]) | a sequence-script keyframe (TOML download) with the view's observer (event, velocity, axes) and fields of view (a flight's); 400 naming the field |
 //! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
 //! | `POST /api/explore/input?draw_buffers=N` (a [`View`]: `{"time", "position", "velocity", "forward", "up", "camera"}`) | what the GPU kernel reads to trace that view (the flying page's, page/fly.js); 400 naming the field for a bad view |
 //! | `POST /api/explore/move` (`{"time", "position", "velocity", "tau"}`) | where that observer is after `tau` of its proper time falling freely, and its velocity there: `{"time", "position", "velocity"}`; 400 naming the field for bad input |
@@ -121,6 +122,7 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/map", get(map))
         .route("/api/explore/ray", get(ray))
         .route("/api/explore/keyframe", post(keyframe))
+        .route("/api/explore/view-keyframe", post(view_keyframe))
         .route("/api/gpu/input", get(kernel_input))
         .route("/api/explore/input", post(view_input))
         .route("/api/explore/move", post(fall));
@@ -381,6 +383,34 @@ async fn keyframe(
         .source()
         .keyframe(event, q.frame)
         .map_err(ApiError::bad_request)?;
+    Ok(keyframe_download(&state, text))
+}
+
+/// `POST /api/explore/view-keyframe?frame=N`: the observer and camera fields of the body's
+/// view (a flight's: its event, velocity and axes, fields of view) as a sequence-script
+/// keyframe.
+async fn view_keyframe(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<KeyframeQuery>, QueryRejection>,
+    body: Bytes,
+) -> Result<Response, ApiError> {
+    let Query(q) =
+        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let view: View = parse_named(&body, "view")?;
+    if let Some(why) = ObserverEvent::of_view(&view).refusal(state.explorer.bound()) {
+        return Err(ApiError::bad_request(why));
+    }
+    let work = state.viewer.work().admit()?;
+    let source = state.clone();
+    let text = work
+        .run(move || source.explorer.source().view_keyframe(&view, q.frame))
+        .await?
+        .map_err(ApiError::bad_request)?;
+    Ok(keyframe_download(&state, text))
+}
+
+/// A keyframe's text as a TOML download.
+fn keyframe_download(state: &ExploreState, text: String) -> Response {
     let headers = [
         (
             header::CONTENT_TYPE,
@@ -392,7 +422,7 @@ async fn keyframe(
             crate::responses::attachment(&state.viewer, "observer-keyframe.toml"),
         ),
     ];
-    Ok((headers, text).into_response())
+    (headers, text).into_response()
 }
 
 /// `?t=T&x=X&y=Y&z=Z&draw_buffers=N`, the event all or nothing.

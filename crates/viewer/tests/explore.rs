@@ -118,6 +118,13 @@ impl FrameSource for Fake {
     fn keyframe(&self, event: ObserverEvent, frame: u32) -> Result<String, String> {
         Ok(format!("frame {frame} at t = {}", event.t))
     }
+    /// As `keyframe`, with the view's speed.
+    fn view_keyframe(&self, view: &View, frame: u32) -> Result<String, String> {
+        Ok(format!(
+            "frame {frame} at t = {} moving at {}",
+            view.time, view.velocity.speed
+        ))
+    }
     /// The data file's scene with its observer at `event`.
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
         let mut scene = scene::Scene::from_str(&common::scene(), "fake.toml").unwrap();
@@ -556,6 +563,15 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
     assert_eq!(moved["time"], 3.0);
     assert_eq!(moved["position"]["x"], 1.0);
     assert_eq!(moved["velocity"]["speed"], 0.5);
+    // The keyframe of a flown view: its own event and velocity (the stand-in writes both).
+    let (status, _, text) = send(
+        &app,
+        common::post("/api/explore/view-keyframe?frame=2", &view.to_string()),
+    )
+    .await;
+    let text = String::from_utf8(text).unwrap();
+    assert_eq!(status, StatusCode::OK, "{text}");
+    assert_eq!(text, "frame 2 at t = 2.5 moving at 0.5");
     let mut unknown = view.clone();
     unknown["camera"]["zoom"] = 2.into();
     let mut far = view.clone();
@@ -567,6 +583,12 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
             "view.camera.zoom: unknown field `zoom`",
         ),
         ("/api/explore/input", far.to_string(), "event.y"),
+        (
+            "/api/explore/view-keyframe",
+            unknown.to_string(),
+            "view.camera.zoom: unknown field `zoom`",
+        ),
+        ("/api/explore/view-keyframe", far.to_string(), "event.y"),
         (
             "/api/explore/input?draw_buffers=0",
             view.to_string(),

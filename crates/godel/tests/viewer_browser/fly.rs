@@ -10,6 +10,7 @@
 //!   test's own requestAnimationFrame loop), at fewer pixels than the full frame;
 //! - at rest the frame reaches the scene's full size, and equals `godel render --gpu` of a
 //!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common);
+//! - "Save observer keyframe" gives the view flown (the velocity it fell with);
 //! - hovering a pixel of the frame at rest (a hit, and one that hit nothing) draws on the
 //!   map the light ray that render::map makes from `godel render --gpu`'s record of that
 //!   pixel, traced in the page by the kernel (no server call).
@@ -151,6 +152,19 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     let a = kernel_agreement::compare("fly", &page, &data);
     assert!(a.seen > 50, "the view shows the ball: {a:?} {moved}");
     assert!(a.holds(), "{a:?}");
+
+    // Save observer keyframe while flying: the view on screen, the velocity it fell with.
+    let keyframe: toml::Table = seen["keyframe"].as_str().unwrap().parse().unwrap();
+    let observer = &keyframe["keyframe"][0]["observer"];
+    let number = |v: &toml::Value| v.as_float().unwrap();
+    assert_eq!(number(&observer["time"]), moved["time"].as_f64().unwrap());
+    assert_eq!(
+        number(&observer["position"]["z"]),
+        moved["position"]["z"].as_f64().unwrap()
+    );
+    let speed = moved["velocity"]["speed"].as_f64().unwrap();
+    assert!(speed > 0.0, "{moved}");
+    assert_eq!(number(&observer["velocity"]["speed"]), speed, "{keyframe}");
 
     // Hovering a pixel of the frame traced in the page: the map's light ray, traced in the
     // page by the kernel, is the one render::map makes from `godel render --gpu`'s record of
