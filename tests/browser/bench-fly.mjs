@@ -4,7 +4,8 @@
 // at most FULL_BOUND_S.
 // usage: node bench-fly.mjs URL OUT_DIR FRAMES
 // Prints {size, frames, seconds, frames_per_s, moving_sizes (median, smallest, largest
-// width×height), full_ms (from letting go to the full frame shown; null past the bound)}.
+// width×height), full_ms (from letting go to the full frame shown; null past the bound),
+// hover_ms (the centre pixel's light ray made in the page: first, then again)}.
 import { launch, open } from './launch.mjs';
 
 const [url, outDir, frames] = process.argv.slice(2);
@@ -42,6 +43,20 @@ try {
   const let_go = await page.evaluate(() => performance.now());
   const full = await atRest(FULL_BOUND_S * 1000).then(
     () => page.evaluate(() => performance.now()), () => null);
+  // The hovered pixel's light ray in the page (hovered.js): the centre pixel of the frame
+  // shown, the first time (compiling the kernel's RAY_PATH variant) and the next.
+  const hoverMs = await page.evaluate(async () => {
+    const e = window.godelViewer.explore;
+    const t = e.fly.traced;
+    const times = [];
+    for (let i = 0; i < 2; i += 1) {
+      const started = performance.now();
+      const ray = e.hoverRay(t.width >> 1, t.height >> 1);
+      if (ray) await ray.load();
+      times.push(Math.round(performance.now() - started));
+    }
+    return times;
+  });
   const sizes = end[2].sort((a, b) => a[0] - b[0]);
   const seconds = (end[0] - start[0]) / 1000;
   const s = (p) => (p ? `${p[0]}×${p[1]}` : null);
@@ -50,7 +65,7 @@ try {
     frames_per_s: Number(((end[1] - start[1]) / seconds).toFixed(1)),
     moving_sizes: { median: s(sizes[sizes.length >> 1]), smallest: s(sizes[0]),
       largest: s(sizes[sizes.length - 1]) },
-    full_ms: full === null ? null : Math.round(full - let_go) }));
+    full_ms: full === null ? null : Math.round(full - let_go), hover_ms: hoverMs }));
 } finally {
   await context.close();
 }

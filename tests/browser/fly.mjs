@@ -3,12 +3,13 @@
 // the view (POST /api/explore/input); with "fall freely" on, holds R (up) until the observer has moved a while,
 // counting animation frames (its own requestAnimationFrame loop) and the pictures the page
 // draws meanwhile; lets go, waits for the full frame at rest and saves its slots and view;
-// hovers a hit pixel and one that hit nothing and keeps the map's light rays.
+// hovers a hit pixel and one that hit nothing and keeps the map's light rays and the
+// record panel's records.
 //
 // usage: node fly.mjs URL OUT_DIR
 // Writes OUT_DIR/fly-slot-S.f32 (RGBA32F, grid row 0 first) and prints {start, moved, tau,
 // speed, uniforms_page, uniforms_server, rafs, drawn, traced_moving, moving_sizes, rest,
-// header, keyframe, hovered, ray, hovered_miss, ray_miss, requests, console_errors, error}.
+// header, keyframe, hovered, ray, record, hovered_miss, ray_miss, record_miss, requests, console_errors, error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, open } from './launch.mjs';
@@ -116,14 +117,17 @@ try {
     }
     return null;
   }, code);
+  // The map's light ray and the record panel's record of the hovered pixel.
   const hover = async (target) => {
-    if (!target) return null;
+    if (!target) return [null, null];
     await page.mouse.move(target.x, target.y);
     await page.waitForFunction(([col, row]) => {
-      const ray = window.godelViewer.explore.map.ray;
-      return ray !== null && ray.col === col && ray.row === row;
+      const v = window.godelViewer;
+      const ray = v.explore.map.ray;
+      return ray !== null && ray.col === col && ray.row === row
+        && v.record && v.record.col === col && v.record.row === row;
     }, target.at, { timeout: 60000 });
-    return page.evaluate(() => window.godelViewer.explore.map.ray);
+    return page.evaluate(() => [window.godelViewer.explore.map.ray, window.godelViewer.record]);
   };
   // Save observer keyframe: the view flown (its velocity from falling freely).
   await page.click('#explore-save-keyframe');
@@ -133,9 +137,9 @@ try {
     document.getElementById('explore-keyframe').textContent);
   // A hit (status 0), then a ray that hit nothing (status 1, escaped).
   result.hovered = await pick(0);
-  result.ray = await hover(result.hovered);
+  [result.ray, result.record] = await hover(result.hovered);
   result.hovered_miss = await pick(1);
-  result.ray_miss = await hover(result.hovered_miss);
+  [result.ray_miss, result.record_miss] = await hover(result.hovered_miss);
   await page.screenshot({ path: join(outDir, 'fly.png') });
   result.error = await page.evaluate(() => window.godelViewer.error
     || window.godelViewer.explore.fly.error);

@@ -70,8 +70,9 @@ enum Command {
     /// Serve a live web viewer of a data file, shaded on the GPU: shader controls, zoom, pixel
     /// records, saving; a full-sphere file can be looked around and boosted.
     View(cmd_view::ViewArgs),
-    /// The live viewer of a scene whose observer can be moved: each change of event is
-    /// re-traced on the server, a coarse frame first, then the full one.
+    /// The live viewer of a scene whose observer can be moved and flown: where the browser's
+    /// WebGL2 runs the GPU kernel the page traces every frame itself; otherwise each change
+    /// of event is traced on the server, a coarse frame first, then the full one.
     Explore(cmd_explore::ExploreArgs),
     /// Join the part files of `render --part i/N` into the files a single run writes.
     Merge(cmd_merge::MergeArgs),

@@ -25,7 +25,7 @@
 'use strict';
 
 import { KernelTracer } from './trace.js';
-import { tracedLightRay } from './lightray.js';
+import { sampleRecord, tracedLightRay } from './hovered.js';
 import { fetchJson } from './data.js';
 import { cross, dot, normalize } from './look.js';
 
@@ -134,16 +134,34 @@ export async function startFly(viewer, explore, map, status) {
   explore.view = () => structuredClone(fly.view);
   explore.onView = null;
   explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, width, height);
-  // The light ray of pixel (col, row) of the frame shown (map.js's hover), made in this page:
-  // the record is read from the frame's slots and its path traced by the kernel's closed
-  // forms (lightray.js), no server call. Null outside the frame; the load answers null once
-  // the frame is gone.
-  explore.hoverRay = (col, row) => {
+  // The sample that stands for pixel (col, row) of the frame shown (the one nearest the
+  // pixel's centre, as the server's picture_sample), or null outside the frame.
+  const sampleOf = (col, row) => {
     const traced = fly.slots;
     if (!traced) return null;
     const s = fly.slotsSupersample;
     const [x, y] = [s * col + (s >> 1), s * row + (s >> 1)];
-    if (x >= traced.width || y >= traced.height) return null;
+    return x < traced.width && y < traced.height ? [x, y] : null;
+  };
+  // The record of pixel (col, row) of the frame shown (viewer.js's hover), read from the
+  // frame's slots (hovered.js), as /api/pixel answers for the server's frames; null outside.
+  explore.hoverRecord = (col, row) => {
+    const at = sampleOf(col, row);
+    if (!at) return null;
+    const slots = tracer.readSample(fly.slots, at[0], at[1]);
+    return { col, row, ...sampleRecord(slots, input, viewer.info.objects) };
+  };
+  // Which frame the hovered records are of (it changes with every frame shown).
+  explore.hoverFrame = () => fly.drawn;
+  // The light ray of pixel (col, row) of the frame shown (map.js's hover), made in this page:
+  // the record is read from the frame's slots and its path traced by the kernel's closed
+  // forms (hovered.js), no server call. Null outside the frame; the load answers null once
+  // the frame is gone.
+  explore.hoverRay = (col, row) => {
+    const at = sampleOf(col, row);
+    if (!at) return null;
+    const [x, y] = at;
+    const traced = fly.slots;
     const view = fly.slotsView;
     return {
       key: `${fly.drawn} ${col} ${row}`,

@@ -365,10 +365,20 @@ function hoverAt(event) {
 
 async function fetchHover() {
   if (hoverBusy || hoverWanted === null) return;
+  // Flying (fly.js): the record is read from the frame the page traced, no server call.
+  const flying = viewer.explore?.hoverRecord;
   // In explore mode, the record of the frame on the GPU (not of a newer one still loading).
-  const frame = viewer.explore?.shown ?? null;
+  const frame = flying ? viewer.explore.hoverFrame() : viewer.explore?.shown ?? null;
   const wanted = { ...hoverWanted, frame };
   if (hoverShown && JSON.stringify(hoverShown) === JSON.stringify(wanted)) return;
+  if (flying) {
+    const r = viewer.explore.hoverRecord(...wanted.pixel);
+    if (r) {
+      showRecord(r, wanted);
+      hoverShown = wanted;
+    }
+    return;
+  }
   hoverBusy = true;
   try {
     const [col, row] = wanted.pixel;

@@ -27,7 +27,7 @@ pub const FILES: [(&str, &str, &str); 17] = [
     js("/trace.js", include_str!("../page/trace.js")),
     js("/traced.js", include_str!("../page/traced.js")),
     js("/fly.js", include_str!("../page/fly.js")),
-    js("/lightray.js", include_str!("../page/lightray.js")),
+    js("/hovered.js", include_str!("../page/hovered.js")),
 ];
 
 const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {

@@ -1,9 +1,10 @@
-// godel explore: the light ray of one sample of a frame traced in this page, for the map
-// (map.js), made in the page without the server. The sample's record is read from the
-// frame's slots (the five fixed slots, as gpu::host::sample_record reads them) and its path
-// is traced by the GPU kernel's own closed forms: crates/gpu/src/kernel.glsl compiled with
-// RAY_PATH, the twin of render::map::light_ray (docs/physics.md, "The explore map"). The
-// answer has the fields of the server's /api/explore/ray: status, object, points
+// godel explore: the hovered sample of a frame traced in this page (flying), read and shown
+// without the server. Its record is read from the frame's slots (the kernel's layout,
+// gpu::host::sample_record and light_value), with the fields the server's /api/pixel gives
+// for its own frames (crates/viewer/src/state.rs, `pixel`). Its light ray, for the map
+// (map.js), is traced by the GPU kernel's own closed forms: crates/gpu/src/kernel.glsl
+// compiled with RAY_PATH, the twin of render::map::light_ray (docs/physics.md, "The explore
+// map"), with the fields of the server's /api/explore/ray: status, object, points
 // [{t, x, y, z, r}] from the observer into the past, emission, travel_time.
 'use strict';
 
@@ -13,6 +14,37 @@ const HIT = 0;
 const NOT_TRACED = 4;
 // Points per row of the target the points are drawn into.
 const ROW = 64;
+
+// The record of the sample whose slots are `slots` (arrays of four floats, every slot of
+// the kernel `input`, whose `light_channels` say where each light is), as /api/pixel
+// answers it; `objects`: the scene's object names.
+export function sampleRecord(slots, input, objects) {
+  const [s0, s1, s2] = slots;
+  const code = s0[1];
+  const hit = code === HIT;
+  const object = hit ? s0[0] : -1;
+  // The fields of a miss mean nothing (NaN in the data file, null in JSON); a light out of
+  // work is NaN (negative in the kernel, gpu::host::light_value), 0 where nothing was hit.
+  const field = (v) => (hit ? v : null);
+  const light = ([slot, component]) => {
+    const v = slots[slot][component];
+    return hit ? (v < 0 ? null : v) : 0;
+  };
+  return {
+    object,
+    object_name: objects[object] ?? null,
+    status: STATUS[code] ?? 'failed',
+    u: field(s0[2]),
+    v: field(s0[3]),
+    g: field(s1[0]),
+    t_emit: field(s1[1]),
+    travel_time: hit ? 0 - s1[1] : null,
+    x: field(s2[0]),
+    y: field(s2[1]),
+    z: field(s2[2]),
+    lights: input.light_channels.map(light),
+  };
+}
 
 // The light ray of the sample whose slots are `slots` (five arrays of four floats), in a
 // frame traced with the kernel input `input` ({defines, draw_buffers, uniforms} of the view
