@@ -16,21 +16,12 @@ scene=$(realpath "$1")
 frames=${4:-120}
 cd "$root"
 cargo build -p godel -q
-work=$(mktemp -d)
-server=""
-trap '[ -n "$server" ] && kill "$server" 2>/dev/null; wait 2>/dev/null; rm -rf "$work"' EXIT
+godel="$root/target/debug/godel"
+# shellcheck source=bench-server.sh
+source "$root/scripts/bench-server.sh"
 sed -e "s/^width = .*/width = $2/" -e "s/^height = .*/height = $3/" \
     -e "s/^samples = .*/samples = 1/" "$scene" >"$work/bench.toml"
-"$root/target/debug/godel" explore "$work/bench.toml" --port 0 >"$work/server.log" 2>"$work/server.err" &
-server=$!
-url=""
-for _ in $(seq 1 3000); do
-    url=$(sed -n 's/^godel explore: serving \(http:[^ ]*\)$/\1/p' "$work/server.log")
-    [ -n "$url" ] && break
-    kill -0 "$server" 2>/dev/null || break
-    sleep 0.1
-done
-[ -n "$url" ] || { echo "the server did not start:" >&2; cat "$work/server.err" >&2; exit 1; }
+serve explore "$work/bench.toml"
 echo "# $(uptime)"
 cd tests/browser
 node bench-fly.mjs "$url" "$work" "$frames"

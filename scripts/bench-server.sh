@@ -1,5 +1,6 @@
-# Sourced by the benchmark scripts (bench-explore.sh, bench-trace.sh): a work folder, and one
-# `godel` server at a time (release build), stopped and the folder removed on exit.
+# Sourced by the scripts that run a browser against a server (bench-explore.sh, bench-trace.sh,
+# bench-fly.sh, flight-picture.sh): a work folder, and one `godel` server at a time (the
+# release build, or $godel where the script sets it), stopped and the folder removed on exit.
 #   serve COMMAND ARGS…   starts `godel COMMAND ARGS… --port 0`, waits (bounded: 10 minutes)
 #                         for the line with its address and sets $url; exits if it fails
 #   stop                  stops the server started last
@@ -16,7 +17,7 @@ trap 'stop; rm -rf "$work"' EXIT
 
 serve() {
     : >"$work/server.log"
-    "$root/target/release/godel" "$@" --port 0 >"$work/server.log" 2>"$work/server.err" &
+    "${godel:-$root/target/release/godel}" "$@" --port 0 >"$work/server.log" 2>"$work/server.err" &
     server=$!
     url=""
     for _ in $(seq 1 6000); do

@@ -14,19 +14,10 @@ speed=${2:-0.6}
 until=${3:-0.9}
 cd "$root"
 cargo build -p godel -q
-work=$(mktemp -d)
-server=""
-trap '[ -n "$server" ] && kill "$server" 2>/dev/null; wait 2>/dev/null; rm -rf "$work"' EXIT
-"$root/target/debug/godel" explore "$root/scenes/reference.toml" --port 0 >"$work/server.log" 2>"$work/server.err" &
-server=$!
-url=""
-for _ in $(seq 1 3000); do
-    url=$(sed -n 's/^godel explore: serving \(http:[^ ]*\)$/\1/p' "$work/server.log")
-    [ -n "$url" ] && break
-    kill -0 "$server" 2>/dev/null || break
-    sleep 0.1
-done
-[ -n "$url" ] || { echo "the server did not start:" >&2; cat "$work/server.err" >&2; exit 1; }
+godel="$root/target/debug/godel"
+# shellcheck source=bench-server.sh
+source "$root/scripts/bench-server.sh"
+serve explore "$root/scenes/reference.toml"
 cd tests/browser
 node flight-picture.mjs "$url" "$work" "$work/flight.png" "$speed" "$until"
 mv "$work/flight.png" "$out"

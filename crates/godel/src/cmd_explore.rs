@@ -352,16 +352,30 @@ mod tests {
         assert_eq!(full.samples, scene.samples);
     }
 
-    #[test]
-    fn a_view_replaces_the_observer_and_camera_and_a_bad_one_names_its_field() {
-        let scene = small_scene();
-        let view: View = serde_json::from_value(serde_json::json!({
+    /// A view flown away from the small scene's observer: moving, turned, another camera.
+    fn flown_view() -> View {
+        serde_json::from_value(serde_json::json!({
             "time": 1.5, "position": {"x": 0.2, "y": -0.1, "z": 0.3},
             "velocity": {"speed": 0.6, "direction": [0, 1, 0]},
             "forward": [0, 1, 0], "up": [0, 0, 1],
             "camera": {"kind": "pinhole", "fov_deg": 70, "width": 12, "height": 6, "samples": 4},
         }))
-        .unwrap();
+        .unwrap()
+    }
+
+    /// The small scene's frames, traced on one thread.
+    fn one_thread_frames() -> SceneFrames {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        SceneFrames::new(small_scene(), pool)
+    }
+
+    #[test]
+    fn a_view_replaces_the_observer_and_camera_and_a_bad_one_names_its_field() {
+        let scene = small_scene();
+        let view = flown_view();
         let moved = scene_of_view(&scene, &view).unwrap();
         let o = moved.observer;
         assert_eq!(o.event, Event::new(1.5, 0.2, -0.1, 0.3));
@@ -385,18 +399,8 @@ mod tests {
 
     #[test]
     fn a_view_keyframe_holds_the_flown_velocity_axes_and_field_of_view() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
-        let frames = SceneFrames::new(small_scene(), pool);
-        let view: View = serde_json::from_value(serde_json::json!({
-            "time": 1.5, "position": {"x": 0.2, "y": -0.1, "z": 0.3},
-            "velocity": {"speed": 0.6, "direction": [0, 1, 0]},
-            "forward": [0, 1, 0], "up": [0, 0, 1],
-            "camera": {"kind": "pinhole", "fov_deg": 70, "width": 12, "height": 6, "samples": 4},
-        }))
-        .unwrap();
+        let frames = one_thread_frames();
+        let view = flown_view();
         let text = frames.view_keyframe(&view, 3).unwrap();
         let table: toml::Table = text.parse().unwrap();
         let k = &table["keyframe"][0];
@@ -422,11 +426,7 @@ mod tests {
 
     #[test]
     fn a_cancelled_trace_gives_nothing() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
-        let frames = SceneFrames::new(small_scene(), pool);
+        let frames = one_thread_frames();
         let cancelled = AtomicBool::new(true);
         let traced = frames.trace(event(0.0, 0.0), Level::Full, &cancelled);
         assert!(traced.unwrap().is_none());

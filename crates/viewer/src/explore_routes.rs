@@ -372,8 +372,7 @@ async fn keyframe(
     query: Result<Query<KeyframeQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let Query(q) =
-        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let q = keyframe_query(query)?;
     let event: ObserverEvent = parse_body(&body)?;
     if let Some(why) = event.refusal(state.explorer.bound()) {
         return Err(ApiError::bad_request(why));
@@ -394,8 +393,7 @@ async fn view_keyframe(
     query: Result<Query<KeyframeQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let Query(q) =
-        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let q = keyframe_query(query)?;
     let view: View = parse_named(&body, "view")?;
     if let Some(why) = ObserverEvent::of_view(&view).refusal(state.explorer.bound()) {
         return Err(ApiError::bad_request(why));
@@ -407,6 +405,15 @@ async fn view_keyframe(
         .await?
         .map_err(ApiError::bad_request)?;
     Ok(keyframe_download(&state, text))
+}
+
+/// The keyframe routes' `?frame=N`.
+fn keyframe_query(
+    query: Result<Query<KeyframeQuery>, QueryRejection>,
+) -> Result<KeyframeQuery, ApiError> {
+    let Query(q) =
+        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    Ok(q)
 }
 
 /// A keyframe's text as a TOML download.
