@@ -4,12 +4,13 @@
 // counting animation frames (its own requestAnimationFrame loop) and the pictures the page
 // draws meanwhile; lets go, waits for the full frame at rest and saves its slots and view;
 // hovers a hit pixel and one that hit nothing and keeps the map's light rays and the
-// record panel's records.
+// record panel's records; drags the picture by touch and zooms with the wheel.
 //
 // usage: node fly.mjs URL OUT_DIR
 // Writes OUT_DIR/fly-slot-S.f32 (RGBA32F, grid row 0 first) and prints {start, moved, tau,
 // speed, uniforms_page, uniforms_server, rafs, drawn, traced_moving, moving_sizes, rest,
-// header, keyframe, hovered, ray, record, hovered_miss, ray_miss, record_miss, requests, console_errors, error}.
+// header, keyframe, hovered, ray, record, hovered_miss, ray_miss, record_miss, before_touch,
+// touch {dx, width, after}, wheel, requests, console_errors, error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, open } from './launch.mjs';
@@ -140,6 +141,28 @@ try {
   [result.ray, result.record] = await hover(result.hovered);
   result.hovered_miss = await pick(1);
   [result.ray_miss, result.record_miss] = await hover(result.hovered_miss);
+  // A touch drag across the picture (real touch input: pointer events of type touch), then
+  // one wheel step: the view turns about its up axis by the drag's share of the field of
+  // view, and the wheel zooms.
+  const box = await page.evaluate(() => {
+    const r = document.getElementById('image').getBoundingClientRect();
+    return { x: r.left + r.width / 2, y: r.top + r.height / 2, width: r.width };
+  });
+  result.before_touch = await page.evaluate(() => window.godelViewer.explore.view());
+  const cdp = await context.newCDPSession(page);
+  const touch = (type, x) => cdp.send('Input.dispatchTouchEvent', { type,
+    touchPoints: type === 'touchEnd' ? [] : [{ x, y: box.y }] });
+  const DRAG_PX = 40;
+  await touch('touchStart', box.x);
+  for (let k = 1; k <= 4; k += 1) await touch('touchMove', box.x + (DRAG_PX * k) / 4);
+  await touch('touchEnd', box.x + DRAG_PX);
+  result.touch = { dx: DRAG_PX, width: box.width,
+    after: await page.evaluate(() => window.godelViewer.explore.view()) };
+  await page.mouse.move(box.x, box.y);
+  await page.mouse.wheel(0, 100);
+  await page.waitForFunction((h) => window.godelViewer.explore.view().camera.h_fov_deg !== h,
+    result.touch.after.camera.h_fov_deg, { timeout: 60000 });
+  result.wheel = await page.evaluate(() => window.godelViewer.explore.view());
   await page.screenshot({ path: join(outDir, 'fly.png') });
   result.error = await page.evaluate(() => window.godelViewer.error
     || window.godelViewer.explore.fly.error);

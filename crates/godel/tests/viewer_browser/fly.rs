@@ -13,7 +13,9 @@
 //! - "Save observer keyframe" gives the view flown (the velocity it fell with);
 //! - hovering a pixel of the frame at rest (a hit, and one that hit nothing) shows its
 //!   record, the one `godel render --gpu` writes, and draws on the map the light ray that
-//!   render::map makes from that record, both made in the page (no server call).
+//!   render::map makes from that record, both made in the page (no server call);
+//! - a touch drag turns the view about its up axis by the drag's share of the field of
+//!   view, and a wheel step zooms.
 
 use super::browser_support::*;
 use super::explore::scene_text;
@@ -241,5 +243,40 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
             }
             None => assert_eq!(ray["emission"], serde_json::Value::Null, "{seen}"),
         }
+    }
+
+    // A touch drag of dx CSS pixels to the right (pointer events of type touch) turns the
+    // view left about its up axis by dx times the field of view per pixel; one wheel step of
+    // 100 zooms out by e^0.1 (fly.js), keeping the panorama's aspect.
+    let vector = |v: &serde_json::Value| -> [f64; 3] {
+        let v = v.as_array().unwrap();
+        [0, 1, 2].map(|i| v[i].as_f64().unwrap())
+    };
+    let (before, touch) = (&seen["before_touch"], &seen["touch"]);
+    let (f0, up) = (vector(&before["forward"]), vector(&before["up"]));
+    let f1 = vector(&touch["after"]["forward"]);
+    let angle = touch["dx"].as_f64().unwrap() * before["camera"]["h_fov_deg"].as_f64().unwrap()
+        / touch["width"].as_f64().unwrap()
+        * std::f64::consts::PI
+        / 180.0;
+    // Rodrigues: f0 turned by `angle` about `up` (f0 ⟂ up).
+    let cross = [
+        up[1] * f0[2] - up[2] * f0[1],
+        up[2] * f0[0] - up[0] * f0[2],
+        up[0] * f0[1] - up[1] * f0[0],
+    ];
+    for i in 0..3 {
+        let expected = f0[i] * angle.cos() + cross[i] * angle.sin();
+        assert!(
+            (f1[i] - expected).abs() < 1e-9,
+            "{f1:?} against turned {f0:?}: {seen}"
+        );
+    }
+    assert!(angle > 0.1, "{seen}");
+    let fov = |v: &serde_json::Value, k: &str| v["camera"][k].as_f64().unwrap();
+    let zoomed = &seen["wheel"];
+    for k in ["h_fov_deg", "v_fov_deg"] {
+        let ratio = fov(zoomed, k) / fov(&touch["after"], k);
+        assert!((ratio - 0.1f64.exp()).abs() < 1e-9, "{k}: {ratio}");
     }
 }
