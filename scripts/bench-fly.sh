@@ -5,7 +5,8 @@
 # pixel, and runs tests/browser/bench-fly.mjs in headless chromium (software WebGL2): holds W
 # for FRAMES animation frames (default 120) and prints the frames/s, the sizes the dynamic
 # resolution chose, and the time to the full frame once at rest. Prints the load average
-# before; the server it started is stopped and its folder removed.
+# before; the server it started is stopped and its folder removed. BENCH_HOVER=1 keeps the
+# pointer on the picture while flying (the hovered pixel's record and light ray every frame).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ $# -lt 3 ]; then

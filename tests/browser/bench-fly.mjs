@@ -2,7 +2,7 @@
 // (at 640×360 and less, for the full frame at rest, which also measures the kernel's speed
 // there), holds W for FRAMES animation frames, then lets go and waits for the full frame,
 // at most FULL_BOUND_S.
-// usage: node bench-fly.mjs URL OUT_DIR FRAMES
+// usage: [BENCH_HOVER=1] node bench-fly.mjs URL OUT_DIR FRAMES
 // Prints {size, frames, seconds, frames_per_s, moving_sizes (median, smallest, largest
 // width×height), full_ms (from letting go to the full frame shown; null past the bound),
 // hover_ms (the centre pixel's light ray made in the page: first, then again)}.
@@ -28,6 +28,15 @@ try {
   } else {
     await page.waitForFunction(() => window.godelViewer.explore?.fly?.drawn > 0, null,
       { timeout: 600000 });
+  }
+  // BENCH_HOVER=1: the pointer rests on the picture's centre while flying, so that every
+  // frame also reads the hovered record back and traces its light ray (hovered.js).
+  if (process.env.BENCH_HOVER === '1') {
+    const c = await page.evaluate(() => {
+      const r = document.getElementById('image').getBoundingClientRect();
+      return [r.left + r.width / 2, r.top + r.height / 2];
+    });
+    await page.mouse.move(c[0], c[1]);
   }
   await page.keyboard.down('KeyW');
   await page.waitForFunction(() => window.godelViewer.explore.fly.tauMoved > 0, null,

@@ -144,11 +144,12 @@ export async function startFly(viewer, explore, map, status) {
     return x < traced.width && y < traced.height ? [x, y] : null;
   };
   // The record of pixel (col, row) of the frame shown (viewer.js's hover), read from the
-  // frame's slots (hovered.js), as /api/pixel answers for the server's frames; null outside.
-  explore.hoverRecord = (col, row) => {
+  // frame's slots (hovered.js), as /api/pixel answers for the server's frames; resolves to
+  // null outside.
+  explore.hoverRecord = async (col, row) => {
     const at = sampleOf(col, row);
     if (!at) return null;
-    const slots = tracer.readSample(fly.slots, at[0], at[1]);
+    const slots = await tracer.readSample(fly.slots, at[0], at[1]);
     return { col, row, ...sampleRecord(slots, input, viewer.info.objects) };
   };
   // Which frame the hovered records are of (it changes with every frame shown).
@@ -167,11 +168,11 @@ export async function startFly(viewer, explore, map, status) {
       key: `${fly.drawn} ${col} ${row}`,
       load: async () => {
         if (fly.slots !== traced) return null;
-        const slots = tracer.readSample(traced, x, y).slice(0, 5);
+        const slots = await tracer.readSample(traced, x, y);
         const kernel = { ...input, uniforms: uniformsFor(input.uniforms, view, traced.width,
           traced.height) };
         const event = { t: view.time, ...view.position };
-        return { ...tracedLightRay(tracer, kernel, event, slots), col, row };
+        return { ...(await tracedLightRay(tracer, kernel, event, slots)), col, row };
       },
     };
   };

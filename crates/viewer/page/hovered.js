@@ -46,10 +46,11 @@ export function sampleRecord(slots, input, objects) {
   };
 }
 
-// The light ray of the sample whose slots are `slots` (five arrays of four floats), in a
-// frame traced with the kernel input `input` ({defines, draw_buffers, uniforms} of the view
-// the frame shows) from the observer's event `event` ({t, x, y, z}).
-export function tracedLightRay(tracer, input, event, slots) {
+// The light ray of the sample whose slots are `slots` (its first five arrays of four floats
+// are read), in a frame traced with the kernel input `input` ({defines, draw_buffers,
+// uniforms} of the view the frame shows) from the observer's event `event` ({t, x, y, z}):
+// resolves once the GPU has traced it, without blocking the page.
+export async function tracedLightRay(tracer, input, event, slots) {
   const [s0, s1, s2, s3, s4] = slots;
   const code = s0[1];
   const hit = code === HIT;
@@ -70,10 +71,11 @@ export function tracedLightRay(tracer, input, event, slots) {
   const gl = tracer.gl;
   const { program } = tracer.program(`${input.defines}#define RAY_PATH 1\n`);
   const at = (name) => gl.getUniformLocation(program, `u_${name}`);
-  const fb = gl.createFramebuffer();
-  // Draws slot `slot` of the kernel on a `width` × `height` target: its floats, row by row.
-  const draw = (width, height, slot, points, end) => {
+  // Draws slot `slot` of the kernel on a `width` × `height` target: resolves to its floats,
+  // row by row (read back without blocking the page).
+  const draw = async (width, height, slot, points, end) => {
     const target = tracer.floatTexture(width, height);
+    const fb = gl.createFramebuffer();
     try {
       gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
       gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0);
@@ -91,37 +93,31 @@ export function tracedLightRay(tracer, input, event, slots) {
       gl.disable(gl.SCISSOR_TEST);
       gl.viewport(0, 0, width, height);
       gl.drawArrays(gl.TRIANGLES, 0, 3);
-      gl.readBuffer(gl.COLOR_ATTACHMENT0);
-      const data = new Float32Array(width * height * 4);
-      gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, data);
-      return data;
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      return (await tracer.readLater([target], 0, 0, width, height))[0];
     } finally {
+      gl.deleteFramebuffer(fb);
       gl.deleteTexture(target);
     }
   };
-  try {
-    // The end parameter, the number of points after the observer's and the emission
-    // event's distance from the observer's axis.
-    const [end, count, emissionR, ok] = draw(1, 1, 0, 0, withHit ? lambda : -1);
-    if (ok !== 1) return answer;
-    const width = Math.min(count, ROW);
-    const height = Math.ceil(count / ROW);
-    const events = draw(width, height, 0, count, end);
-    const radii = draw(width, height, 1, count, end);
-    // The first point is the observer's event itself, as render::map draws it.
-    answer.points.push({ ...event, r: 0 });
-    for (let i = 0; i < count; i += 1) {
-      const k = 4 * i;
-      answer.points.push({ t: event.t + events[k], x: events[k + 1], y: events[k + 2],
-        z: events[k + 3], r: radii[k] });
-    }
-    if (withHit) {
-      answer.emission = { t: event.t + s1[1], x: s2[0], y: s2[1], z: s2[2], r: emissionR };
-      answer.travel_time = -s1[1];
-    }
-    return answer;
-  } finally {
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.deleteFramebuffer(fb);
+  // The end parameter, the number of points after the observer's and the emission event's
+  // distance from the observer's axis.
+  const [end, count, emissionR, ok] = await draw(1, 1, 0, 0, withHit ? lambda : -1);
+  if (ok !== 1) return answer;
+  const width = Math.min(count, ROW);
+  const height = Math.ceil(count / ROW);
+  const [events, radii] = await Promise.all([draw(width, height, 0, count, end),
+    draw(width, height, 1, count, end)]);
+  // The first point is the observer's event itself, as render::map draws it.
+  answer.points.push({ ...event, r: 0 });
+  for (let i = 0; i < count; i += 1) {
+    const k = 4 * i;
+    answer.points.push({ t: event.t + events[k], x: events[k + 1], y: events[k + 2],
+      z: events[k + 3], r: radii[k] });
   }
+  if (withHit) {
+    answer.emission = { t: event.t + s1[1], x: s2[0], y: s2[1], z: s2[2], r: emissionR };
+    answer.travel_time = -s1[1];
+  }
+  return answer;
 }

@@ -393,9 +393,43 @@ export class KernelTracer {
     return out;
   }
 
-  // One sample's four channels of every slot (the hovered pixel's record, fly.js).
+  // The floats of `width` × `height` texels of each of `textures` from (x, y), read back
+  // without blocking the page (a pixel-pack buffer, then a fence: the frame in flight goes
+  // on being traced meanwhile): resolves to one Float32Array of width × height × 4 per
+  // texture, grid row y first.
+  async readLater(textures, x, y, width, height) {
+    const gl = this.gl;
+    const bytes = width * height * 16;
+    const buffer = gl.createBuffer();
+    const fb = gl.createFramebuffer();
+    try {
+      gl.bindBuffer(gl.PIXEL_PACK_BUFFER, buffer);
+      gl.bufferData(gl.PIXEL_PACK_BUFFER, bytes * textures.length, gl.STREAM_READ);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      textures.forEach((t, k) => {
+        gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
+        gl.readBuffer(gl.COLOR_ATTACHMENT0);
+        gl.readPixels(x, y, width, height, gl.RGBA, gl.FLOAT, k * bytes);
+      });
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+      await this.finished();
+      const all = new Float32Array(width * height * 4 * textures.length);
+      gl.bindBuffer(gl.PIXEL_PACK_BUFFER, buffer);
+      gl.getBufferSubData(gl.PIXEL_PACK_BUFFER, 0, all);
+      gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+      return textures.map((_, k) => all.subarray(k * width * height * 4,
+        (k + 1) * width * height * 4));
+    } finally {
+      gl.deleteFramebuffer(fb);
+      gl.deleteBuffer(buffer);
+    }
+  }
+
+  // One sample's four channels of every slot (the hovered pixel's record, fly.js), read back
+  // without blocking the page.
   readSample(traced, x, y) {
-    return this.readRect(traced, x, y, 1, 1);
+    return this.readLater(traced.slots, x, y, 1, 1);
   }
 
   // The traced slots as floats (for tests), the whole grid.

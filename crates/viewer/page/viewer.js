@@ -371,28 +371,28 @@ async function fetchHover() {
   const frame = flying ? viewer.explore.hoverFrame() : viewer.explore?.shown ?? null;
   const wanted = { ...hoverWanted, frame };
   if (hoverShown && JSON.stringify(hoverShown) === JSON.stringify(wanted)) return;
-  if (flying) {
-    const r = viewer.explore.hoverRecord(...wanted.pixel);
-    if (r) {
-      showRecord(r, wanted);
-      hoverShown = wanted;
-    }
-    return;
-  }
   hoverBusy = true;
   try {
     const [col, row] = wanted.pixel;
-    const which = frame ? `&generation=${frame.generation}&level=${frame.level}` : '';
-    const response = await fetch(`/api/pixel?col=${col}&row=${row}${which}`);
-    if (response.status === 410) return; // that frame was replaced meanwhile: hover again
-    if (!response.ok) {
-      showError(await errorText(response));
-      return;
+    let record;
+    if (flying) {
+      record = await viewer.explore.hoverRecord(col, row);
+      if (record === null) return; // outside the frame shown
+    } else {
+      const which = frame ? `&generation=${frame.generation}&level=${frame.level}` : '';
+      const response = await fetch(`/api/pixel?col=${col}&row=${row}${which}`);
+      if (response.status === 410) return; // that frame was replaced meanwhile: hover again
+      if (!response.ok) {
+        showError(await errorText(response));
+        return;
+      }
+      record = await response.json();
     }
-    showRecord(await response.json(), wanted);
+    showRecord(record, wanted);
     hoverShown = wanted;
   } catch (e) {
-    showError(`cannot reach the viewer's server: ${e}`);
+    showError(flying ? `cannot read the hovered record: ${e.message || e}`
+      : `cannot reach the viewer's server: ${e}`);
   } finally {
     hoverBusy = false;
   }
