@@ -7,7 +7,7 @@
 // width×height), full_ms (from letting go to the full frame shown; null past the bound),
 // hover_ms (the centre pixel's light ray made in the page: first, then again),
 // start_full_ms (up to 640×360: the full frame of the scene's own view, before flying)}.
-import { launch, open } from './launch.mjs';
+import { launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, frames] = process.argv.slice(2);
 if (!url || !outDir || !frames) {
@@ -17,16 +17,13 @@ if (!url || !outDir || !frames) {
 const n = Number(frames);
 const { context, page } = await launch(outDir, { width: 1400, height: 900 });
 const FULL_BOUND_S = 90;
-const atRest = (timeout = 600000) => page.waitForFunction(() => {
-  const f = window.godelViewer.explore?.fly;
-  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
-}, null, { timeout });
+const rest = (timeout = 600000) => atRest(page, timeout);
 try {
   await open(page, url);
   const size = await page.evaluate(() => window.godelViewer.explore.view().camera);
   let startFull = null;
   if (size.width * size.height <= 640 * 360) {
-    await atRest();
+    await rest();
     // The header's "… traced on the GPU in T ms" of the scene's own view, before flying.
     startFull = await page.evaluate(() => document.getElementById('file').textContent);
   } else {
@@ -54,7 +51,7 @@ try {
       .map((l) => [l.width, l.height])], start[2]);
   await page.keyboard.up('KeyW');
   const let_go = await page.evaluate(() => performance.now());
-  const full = await atRest(FULL_BOUND_S * 1000).then(
+  const full = await rest(FULL_BOUND_S * 1000).then(
     () => page.evaluate(() => performance.now()), () => null);
   // The hovered pixel's light ray in the page (hovered.js): the centre pixel of the frame
   // shown, the first time (compiling the kernel's RAY_PATH variant) and the next.

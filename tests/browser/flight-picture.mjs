@@ -5,7 +5,7 @@
 // observer's axis) until the map shows its light ray, and saves the page as OUT.png.
 // usage: node flight-picture.mjs URL OUT_DIR OUT.png SPEED UNTIL
 // Prints {view, hovered, full_ms}.
-import { launch, open } from './launch.mjs';
+import { launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, out, speed, until] = process.argv.slice(2);
 if (!url || !outDir || !out || !speed || !until) {
@@ -15,10 +15,7 @@ if (!url || !outDir || !out || !speed || !until) {
 // Bounds on each wait: the full frame of the reference scene takes about 40 s here.
 const WAIT_MS = 600000;
 const { context, page } = await launch(outDir, { width: 1400, height: 790 });
-const atRest = () => page.waitForFunction(() => {
-  const f = window.godelViewer.explore?.fly;
-  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
-}, null, { timeout: WAIT_MS });
+const rest = () => atRest(page, WAIT_MS);
 try {
   await open(page, url);
   await page.waitForFunction(() => window.godelViewer.explore?.fly?.drawn > 0, null,
@@ -35,7 +32,7 @@ try {
   const letGo = Date.now();
   await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null,
     { timeout: WAIT_MS });
-  await atRest();
+  await rest();
   const fullMs = Date.now() - letGo;
   const target = await page.evaluate(() => {
     const v = window.godelViewer;

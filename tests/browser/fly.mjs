@@ -13,7 +13,7 @@
 // touch {dx, width, after}, wheel, requests, console_errors, error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open } from './launch.mjs';
+import { launch, open, atRest } from './launch.mjs';
 
 const [url, outDir] = process.argv.slice(2);
 if (!url || !outDir) {
@@ -21,16 +21,13 @@ if (!url || !outDir) {
   process.exit(2);
 }
 const { context, page, requests, consoleErrors } = await launch(outDir, { width: 1200, height: 900 });
-// The full frame of the view as it is now, at rest.
-const atRest = () => page.waitForFunction(() => {
-  const f = window.godelViewer.explore?.fly;
-  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
-}, null, { timeout: 180000 });
+// The full frame of the view as it is now, at rest (at most 3 minutes).
+const rest = () => atRest(page, 180000);
 
 const result = {};
 try {
   await open(page, url);
-  await atRest();
+  await rest();
   result.start = await page.evaluate(() => window.godelViewer.explore.view());
   const compare = await page.evaluate(async () => {
     const e = window.godelViewer.explore;
@@ -92,7 +89,7 @@ try {
   result.moving_sizes = after.sizes;
   result.moving_header = after.header;
   await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null, { timeout: 180000 });
-  await atRest();
+  await rest();
   result.moved = await page.evaluate(() => window.godelViewer.explore.view());
   result.tau = await page.evaluate(() => window.godelViewer.explore.fly.tauMoved);
   const slots = await page.evaluate(() => window.godelViewer.explore.readSlots());

@@ -105,3 +105,10 @@ export async function dragLeft(page) {
   await page.mouse.up();
   await idle(page);
 }
+
+// Flying (fly.js): waits until the page shows the full frame of the view as it is now, at
+// rest (no move of the observer under way), at most `timeout` ms.
+export const atRest = (page, timeout) => page.waitForFunction(() => {
+  const f = window.godelViewer.explore?.fly;
+  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
+}, null, { timeout });

@@ -143,13 +143,23 @@ export async function startFly(viewer, explore, map, status) {
     const [x, y] = [s * col + (s >> 1), s * row + (s >> 1)];
     return x < traced.width && y < traced.height ? [x, y] : null;
   };
+  // The slots of sample (x, y) of the frame `traced`, read back once for the record panel
+  // and the map's ray of the same hover.
+  let lastRead = { traced: null, x: -1, y: -1, slots: null };
+  const readHovered = (traced, x, y) => {
+    const r = lastRead;
+    if (r.traced !== traced || r.x !== x || r.y !== y) {
+      lastRead = { traced, x, y, slots: tracer.readSample(traced, x, y) };
+    }
+    return lastRead.slots;
+  };
   // The record of pixel (col, row) of the frame shown (viewer.js's hover), read from the
   // frame's slots (hovered.js), as /api/pixel answers for the server's frames; resolves to
   // null outside.
   explore.hoverRecord = async (col, row) => {
     const at = sampleOf(col, row);
     if (!at) return null;
-    const slots = await tracer.readSample(fly.slots, at[0], at[1]);
+    const slots = await readHovered(fly.slots, at[0], at[1]);
     return { col, row, ...sampleRecord(slots, input, viewer.info.objects) };
   };
   // Which frame the hovered records are of (it changes with every frame shown).
@@ -161,18 +171,15 @@ export async function startFly(viewer, explore, map, status) {
   explore.hoverRay = (col, row) => {
     const at = sampleOf(col, row);
     if (!at) return null;
-    const [x, y] = at;
     const traced = fly.slots;
     const view = fly.slotsView;
     return {
       key: `${fly.drawn} ${col} ${row}`,
       load: async () => {
         if (fly.slots !== traced) return null;
-        const slots = await tracer.readSample(traced, x, y);
-        const kernel = { ...input, uniforms: uniformsFor(input.uniforms, view, traced.width,
-          traced.height) };
+        const slots = await readHovered(traced, at[0], at[1]);
         const event = { t: view.time, ...view.position };
-        return { ...(await tracedLightRay(tracer, kernel, event, slots)), col, row };
+        return { ...(await tracedLightRay(tracer, traced.input, event, slots)), col, row };
       },
     };
   };

@@ -46,40 +46,41 @@ export function sampleRecord(slots, input, objects) {
   };
 }
 
-// The light ray of the sample whose slots are `slots` (its first five arrays of four floats
-// are read), in a frame traced with the kernel input `input` ({defines, draw_buffers,
-// uniforms} of the view the frame shows) from the observer's event `event` ({t, x, y, z}):
-// resolves once the GPU has traced it, without blocking the page.
+// The light ray of the sample whose slots are `slots` (every slot of the kernel `input`), in
+// a frame traced with `input` (trace.js's `traced.input`: {defines, draw_buffers,
+// uniforms, light_channels}) from the observer's event `event` ({t, x, y, z}): resolves once
+// the GPU has traced it, without blocking the page.
 export async function tracedLightRay(tracer, input, event, slots) {
-  const [s0, s1, s2, s3, s4] = slots;
-  const code = s0[1];
-  const hit = code === HIT;
+  const record = sampleRecord(slots, input, []);
   const answer = {
-    status: STATUS[code] ?? 'failed',
-    object: hit && s0[0] >= 0 ? s0[0] : null,
+    status: record.status,
+    object: record.object >= 0 ? record.object : null,
     points: [],
     emission: null,
     travel_time: null,
   };
   // The direction the pixel's ray was launched along (none where it was not traced).
+  const [s0, s1, s2, s3, s4] = slots;
   const n = [s2[3], s3[3], s4[0]];
   const length = Math.hypot(...n);
-  if (code === NOT_TRACED || !(length > 0 && Number.isFinite(length))) return answer;
-  const lambda = s1[2];
-  const withHit = hit && Number.isFinite(lambda);
+  if (s0[1] === NOT_TRACED || !(length > 0 && Number.isFinite(length))) return answer;
+  const withHit = s0[1] === HIT && Number.isFinite(s1[2]);
 
+  if (input.draw_buffers < 2) throw new Error('the light ray needs two render targets a draw');
   const gl = tracer.gl;
   const { program } = tracer.program(`${input.defines}#define RAY_PATH 1\n`);
   const at = (name) => gl.getUniformLocation(program, `u_${name}`);
-  // Draws slot `slot` of the kernel on a `width` × `height` target: resolves to its floats,
-  // row by row (read back without blocking the page).
-  const draw = async (width, height, slot, points, end) => {
-    const target = tracer.floatTexture(width, height);
+  // Draws the kernel's first `outputs` slots on `width` × `height` targets: resolves to
+  // their floats, row by row (read back without blocking the page).
+  const draw = async (width, height, outputs, points, end) => {
+    const targets = Array.from({ length: outputs }, () => tracer.floatTexture(width, height));
     const fb = gl.createFramebuffer();
     try {
       gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0);
-      const buffers = [gl.COLOR_ATTACHMENT0];
+      const buffers = targets.map((t, k) => {
+        gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + k, gl.TEXTURE_2D, t, 0);
+        return gl.COLOR_ATTACHMENT0 + k;
+      });
       while (buffers.length < input.draw_buffers) buffers.push(gl.NONE);
       gl.drawBuffers(buffers);
       gl.useProgram(program);
@@ -88,26 +89,27 @@ export async function tracedLightRay(tracer, input, event, slots) {
       gl.uniform3f(at('emission'), s2[0], s2[1], s2[2]);
       gl.uniform1i(at('points'), points);
       gl.uniform1i(at('row'), ROW);
-      gl.uniform1i(at('slot0'), slot);
+      gl.uniform1i(at('slot0'), 0);
       gl.bindVertexArray(tracer.vao);
       gl.disable(gl.SCISSOR_TEST);
       gl.viewport(0, 0, width, height);
       gl.drawArrays(gl.TRIANGLES, 0, 3);
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-      return (await tracer.readLater([target], 0, 0, width, height))[0];
+      return await tracer.readLater(targets, 0, 0, width, height);
     } finally {
       gl.deleteFramebuffer(fb);
-      gl.deleteTexture(target);
+      targets.forEach((t) => gl.deleteTexture(t));
     }
   };
   // The end parameter, the number of points after the observer's and the emission event's
   // distance from the observer's axis.
-  const [end, count, emissionR, ok] = await draw(1, 1, 0, 0, withHit ? lambda : -1);
+  const [[end, count, emissionR, ok]] = await draw(1, 1, 1, 0, withHit ? s1[2] : -1);
   if (ok !== 1) return answer;
   const width = Math.min(count, ROW);
   const height = Math.ceil(count / ROW);
-  const [events, radii] = await Promise.all([draw(width, height, 0, count, end),
-    draw(width, height, 1, count, end)]);
+  // Each point's event (slot 0) and distance from the observer's axis (slot 1), in one draw
+  // (WebGL2 has at least four draw buffers).
+  const [events, radii] = await draw(width, height, 2, count, end);
   // The first point is the observer's event itself, as render::map draws it.
   answer.points.push({ ...event, r: 0 });
   for (let i = 0; i < count; i += 1) {
@@ -116,8 +118,9 @@ export async function tracedLightRay(tracer, input, event, slots) {
       z: events[k + 3], r: radii[k] });
   }
   if (withHit) {
-    answer.emission = { t: event.t + s1[1], x: s2[0], y: s2[1], z: s2[2], r: emissionR };
-    answer.travel_time = -s1[1];
+    answer.emission = { t: event.t + record.t_emit, x: record.x, y: record.y, z: record.z,
+      r: emissionR };
+    answer.travel_time = record.travel_time;
   }
   return answer;
 }
