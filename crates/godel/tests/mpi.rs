@@ -5,6 +5,7 @@
 //! while tracing ends the job non-zero with nothing written.
 #![cfg(feature = "mpi")]
 
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -13,10 +14,23 @@ use common::{files_in, stderr, write_scene};
 
 const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 
-/// `mpirun` with the flags a test machine needs (root in CI, fewer cores than ranks).
-fn mpirun(args: &[&str]) -> Output {
-    Command::new("mpirun")
+/// An `mpirun` with the flags a test machine needs (root in CI, fewer cores than ranks).
+/// Its session folder lies in the test's own `dir`: OpenMPI makes it under TMPDIR, and two
+/// jobs started at once under /tmp race to create the same `/tmp/ompi.HOST.UID` ("File
+/// exists"), failing or hanging one of them.
+fn mpirun_command(dir: &Path) -> Command {
+    let session = dir.join("mpi-session");
+    std::fs::create_dir_all(&session).unwrap();
+    let mut command = Command::new("mpirun");
+    command
         .args(["--allow-run-as-root", "--oversubscribe"])
+        .env("TMPDIR", session);
+    command
+}
+
+/// Runs `mpirun` (see `mpirun_command`) to its end.
+fn mpirun(dir: &Path, args: &[&str]) -> Output {
+    mpirun_command(dir)
         .args(args)
         .output()
         .expect("run mpirun (is OpenMPI installed? scripts/test.sh installs it)")
@@ -42,18 +56,21 @@ fn two_ranks_write_the_bytes_of_one_process() {
     // that every tile surely travels from rank 1.
     for (root_works, dir) in [("1", "two"), ("0", "two-remote")] {
         let two = tmp.path().join(dir);
-        let out = mpirun(&[
-            "-x",
-            &format!("GODEL_MPI_ROOT_WORKS={root_works}"),
-            "-n",
-            "2",
-            GODEL,
-            "render",
-            &scene,
-            "-q",
-            "-o",
-            two.to_str().unwrap(),
-        ]);
+        let out = mpirun(
+            tmp.path(),
+            &[
+                "-x",
+                &format!("GODEL_MPI_ROOT_WORKS={root_works}"),
+                "-n",
+                "2",
+                GODEL,
+                "render",
+                &scene,
+                "-q",
+                "-o",
+                two.to_str().unwrap(),
+            ],
+        );
         let err = stderr(&out);
         assert!(out.status.success(), "{err}");
         assert!(err.contains("(2 ranks;"), "{err}");
@@ -83,10 +100,13 @@ fn a_rank_with_a_bad_scene_fails_the_job_and_is_named() {
     let dir = tmp.path().join("out");
     let o = dir.to_str().unwrap();
     // Rank 0 reads a good scene, rank 1 a bad one (as if its node saw another file).
-    let out = mpirun(&[
-        "-n", "1", GODEL, "render", &good, "-q", "-o", o, ":", "-n", "1", GODEL, "render", &bad,
-        "-q", "-o", o,
-    ]);
+    let out = mpirun(
+        tmp.path(),
+        &[
+            "-n", "1", GODEL, "render", &good, "-q", "-o", o, ":", "-n", "1", GODEL, "render",
+            &bad, "-q", "-o", o,
+        ],
+    );
     let err = stderr(&out);
     assert!(!out.status.success(), "the job succeeded: {err}");
     assert!(err.contains("godel: rank 1: "), "{err}");
@@ -101,10 +121,13 @@ fn a_rank_with_another_scene_fails_the_job_and_is_named() {
     let b = write_scene(tmp.path(), "b.toml", &scene_text(7.0));
     let dir = tmp.path().join("out");
     let o = dir.to_str().unwrap();
-    let out = mpirun(&[
-        "-n", "1", GODEL, "render", &a, "-q", "-o", o, ":", "-n", "1", GODEL, "render", &b, "-q",
-        "-o", o,
-    ]);
+    let out = mpirun(
+        tmp.path(),
+        &[
+            "-n", "1", GODEL, "render", &a, "-q", "-o", o, ":", "-n", "1", GODEL, "render", &b,
+            "-q", "-o", o,
+        ],
+    );
     let err = stderr(&out);
     assert!(!out.status.success(), "the job succeeded: {err}");
     assert!(err.contains("rank 1 read a different scene"), "{err}");
@@ -115,7 +138,7 @@ fn a_rank_with_another_scene_fails_the_job_and_is_named() {
 /// (into `one/`) and once on 2 ranks (into `two/`), rank 0 only serving the queue so that
 /// every frame comes from rank 1; asserts both runs wrote the same file names with the same
 /// bytes and returns the names.
-fn sequence_alone_and_on_two_ranks(dir: &std::path::Path, trace: &str) -> Vec<String> {
+fn sequence_alone_and_on_two_ranks(dir: &Path, trace: &str) -> Vec<String> {
     write_scene(dir, "fall.toml", &scene_text(6.0));
     let script = |out: &str| {
         let text = format!(
@@ -129,16 +152,19 @@ fn sequence_alone_and_on_two_ranks(dir: &std::path::Path, trace: &str) -> Vec<St
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
-    let out = mpirun(&[
-        "-x",
-        "GODEL_MPI_ROOT_WORKS=0",
-        "-n",
-        "2",
-        GODEL,
-        "sequence",
-        &two,
-        "-q",
-    ]);
+    let out = mpirun(
+        dir,
+        &[
+            "-x",
+            "GODEL_MPI_ROOT_WORKS=0",
+            "-n",
+            "2",
+            GODEL,
+            "sequence",
+            &two,
+            "-q",
+        ],
+    );
     assert!(out.status.success(), "{}", stderr(&out));
     let names = files_in(&dir.join("one"));
     assert_eq!(names, files_in(&dir.join("two")));
@@ -219,6 +245,29 @@ fn process_with(vars: &[&str]) -> Option<u32> {
     None
 }
 
+/// Every process whose environment holds `var`, with its command line (diagnostics).
+fn tagged(var: &str) -> Vec<(u32, String)> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir("/proc").unwrap().flatten() {
+        let Ok(pid) = entry.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(env) = std::fs::read(entry.path().join("environ")) else {
+            continue;
+        };
+        if env.split(|&b| b == 0).any(|e| e == var.as_bytes()) {
+            let cmd = std::fs::read(entry.path().join("cmdline")).unwrap_or_default();
+            let env: Vec<String> = env
+                .split(|&b| b == 0)
+                .map(|e| String::from_utf8_lossy(e).into_owned())
+                .filter(|e| e.starts_with("OMPI_COMM_WORLD"))
+                .collect();
+            found.push((pid, format!("{} {env:?}", String::from_utf8_lossy(&cmd))));
+        }
+    }
+    found
+}
+
 /// CPU time (user + system) of process `pid` so far, in clock ticks.
 fn cpu_ticks(pid: u32) -> Option<u64> {
     let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
@@ -253,8 +302,7 @@ fn a_rank_killed_while_tracing_fails_the_job_and_nothing_is_written() {
     let out = tmp.path().join("out");
     // Marks this test's ranks among all processes of the machine.
     let tag = format!("GODEL_TEST_JOB={}", tmp.path().display());
-    let mut job = Command::new("mpirun")
-        .args(["--allow-run-as-root", "--oversubscribe"])
+    let mut job = mpirun_command(tmp.path())
         .args(["-x", &tag, "-x", "GODEL_MPI_ROOT_WORKS=0", "-n", "2", GODEL])
         .args(["render", &scene, "-q", "-o", out.to_str().unwrap()])
         .stdin(Stdio::null())
@@ -262,9 +310,21 @@ fn a_rank_killed_while_tracing_fails_the_job_and_nothing_is_written() {
         .stderr(Stdio::piped())
         .spawn()
         .expect("run mpirun (is OpenMPI installed? scripts/test.sh installs it)");
-    let rank1 = wait_for("rank 1 to start", || {
-        process_with(&[&tag, "OMPI_COMM_WORLD_RANK=1"])
-    });
+    let started = Instant::now();
+    let rank1 = loop {
+        if let Some(pid) = process_with(&[&tag, "OMPI_COMM_WORLD_RANK=1"]) {
+            break pid;
+        }
+        if started.elapsed() > NEVER_HANGS || job.try_wait().unwrap().is_some() {
+            let _ = job.kill();
+            let status = job.wait().unwrap();
+            let mut err = String::new();
+            std::io::Read::read_to_string(&mut job.stderr.take().unwrap(), &mut err).unwrap();
+            let ranks: Vec<(u32, String)> = tagged(&tag);
+            panic!("rank 1 never seen; job {status}, tagged processes {ranks:?}, stderr: {err}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
     // Well into its work: a second of CPU time (100 ticks) is far past start-up.
     wait_for("rank 1 to trace", || cpu_ticks(rank1).filter(|&t| t >= 100));
     let killed = Command::new("kill")
@@ -299,18 +359,21 @@ fn limits_are_checked_before_tracing_under_mpi() {
         (good.to_str().unwrap(), "100000", ": --threads: at most "),
     ];
     for (out, threads, needle) in cases {
-        let o = mpirun(&[
-            "-n",
-            "2",
-            GODEL,
-            "render",
-            &scene,
-            "-q",
-            "-o",
-            out,
-            "--threads",
-            threads,
-        ]);
+        let o = mpirun(
+            tmp.path(),
+            &[
+                "-n",
+                "2",
+                GODEL,
+                "render",
+                &scene,
+                "-q",
+                "-o",
+                out,
+                "--threads",
+                threads,
+            ],
+        );
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(needle), "{err}");
