@@ -2,7 +2,7 @@
 # Frames per second while flying in `godel explore` (BENCHMARKS.md, "Flying in the page"):
 #   scripts/bench-fly.sh SCENE WIDTH HEIGHT [FRAMES]
 # Builds godel (the dev profile, optimized), explores SCENE at WIDTH × HEIGHT with one ray a
-# pixel, and runs tests/browser/bench-fly.mjs in headless chromium (software WebGL2): holds W
+# pixel (BENCH_SAMPLES=N: N rays, a square number), and runs tests/browser/bench-fly.mjs in headless chromium (software WebGL2): holds W
 # for FRAMES animation frames (default 120) and prints the frames/s, the sizes the dynamic
 # resolution chose, and the time to the full frame once at rest. Prints the load average
 # before; the server it started is stopped and its folder removed. BENCH_HOVER=1 keeps the
@@ -21,7 +21,7 @@ godel="$root/target/debug/godel"
 # shellcheck source=bench-server.sh
 source "$root/scripts/bench-server.sh"
 sed -e "s/^width = .*/width = $2/" -e "s/^height = .*/height = $3/" \
-    -e "s/^samples = .*/samples = 1/" "$scene" >"$work/bench.toml"
+    -e "s/^samples = .*/samples = ${BENCH_SAMPLES:-1}/" "$scene" >"$work/bench.toml"
 serve explore "$work/bench.toml"
 echo "# $(uptime)"
 cd tests/browser

@@ -5,8 +5,10 @@
 // usage: [BENCH_HOVER=1] node bench-fly.mjs URL OUT_DIR FRAMES
 // Prints {size, frames, seconds, frames_per_s, moving_sizes (median, smallest, largest
 // width×height), full_ms (from letting go to the full frame shown; null past the bound),
-// hover_ms (the centre pixel's light ray made in the page: first, then again),
-// start_full_ms (up to 640×360: the full frame of the scene's own view, before flying)}.
+// size_ms (from letting go to the full size at one sample a pixel, where the scene has more
+// samples), hover_ms (the centre pixel's light ray made in the page: first, then again),
+// start_full_ms and start_size_ms (up to 640×360: the same for the scene's own view, before
+// flying, from its coming to rest)}.
 import { launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, frames] = process.argv.slice(2);
@@ -24,8 +26,13 @@ try {
   let startFull = null;
   if (size.width * size.height <= 640 * 360) {
     await rest();
-    // The header's "… traced on the GPU in T ms" of the scene's own view, before flying.
-    startFull = await page.evaluate(() => document.getElementById('file').textContent);
+    // The frames at rest of the scene's own view, before flying (fly.js's log).
+    startFull = await page.evaluate(() => {
+      const f = window.godelViewer.explore.fly;
+      const log = f.log.filter((l) => l.version === f.traced.version);
+      const ms = (level) => (log.find((l) => l.level === level) || {}).ms ?? null;
+      return { size: ms('size'), full: ms('full') };
+    });
   } else {
     await page.waitForFunction(() => window.godelViewer.explore?.fly?.drawn > 0, null,
       { timeout: 600000 });
@@ -53,6 +60,15 @@ try {
   const let_go = await page.evaluate(() => performance.now());
   const full = await rest(FULL_BOUND_S * 1000).then(
     () => page.evaluate(() => performance.now()), () => null);
+  // The frames at rest after letting go.
+  const atRestLog = await page.evaluate(() => {
+    const f = window.godelViewer.explore.fly;
+    return f.log.filter((l) => l.version === f.version);
+  });
+  const atSize = (log, from) => {
+    const l = log.find((e) => e.level === 'size');
+    return l ? Math.round(l.at - from) : null;
+  };
   // The hovered pixel's light ray in the page (hovered.js): the centre pixel of the frame
   // shown, the first time (compiling the kernel's RAY_PATH variant) and the next.
   const hoverMs = await page.evaluate(async () => {
@@ -79,8 +95,9 @@ try {
     frames_per_s: Number(((end[1] - start[1]) / seconds).toFixed(1)),
     moving_sizes: { median: s(sizes[sizes.length >> 1]), smallest: s(sizes[0]),
       largest: s(sizes[sizes.length - 1]) },
-    full_ms: full === null ? null : Math.round(full - let_go), hover_ms: hoverMs,
-    start_full_ms: startFull && Number((/in (\d+) ms/.exec(startFull) || [])[1]) }));
+    full_ms: full === null ? null : Math.round(full - let_go), size_ms: atSize(atRestLog, let_go),
+    hover_ms: hoverMs, start_full_ms: startFull && startFull.full,
+    start_size_ms: startFull && startFull.size }));
 } finally {
   await context.close();
 }

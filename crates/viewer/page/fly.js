@@ -20,8 +20,8 @@
 //
 // Dynamic resolution: while the view changes, each animation frame traces a smaller grid of
 // one sample per pixel, its pixel count steered so that a frame takes about TARGET_MS; at
-// rest the page traces the scene's full size and samples, in tiles (cancelled by the next
-// change).
+// rest the page traces the scene's full size at one sample per pixel, then (where the scene
+// asks for more) its full samples, in tiles (either cancelled by the next change).
 'use strict';
 
 import { KernelTracer } from './trace.js';
@@ -117,7 +117,7 @@ export async function startFly(viewer, explore, map, status) {
     pendingTau: 0,
     moving: false,       // in flight: a request for the observer's motion is under way
     version: 0,          // bumped by every change of the view
-    traced: null,        // {version, width, height, full} of the frame shown
+    traced: null,        // {version, width, height, level, full} of the frame shown
     busy: false,         // a moving frame's trace is under way (it waits only to compile)
     refining: false,     // a full frame's trace is under way (a change cancels it)
     slots: null,         // the slots of the frame shown (hover, tests)
@@ -127,7 +127,9 @@ export async function startFly(viewer, explore, map, status) {
     rafs: 0,             // animation frames while the view changed
     drawn: 0,            // frames traced and shown
     frameMs: [],         // wall times of the last frames shown
-    log: [],             // for tests: {version, width, height, full, rafs}
+    log: [],             // for tests and benches: {version, width, height, level, full, rafs,
+                         // drawn, at (performance.now() when shown), ms (at rest: since the
+                         // view came to rest)}
     error: null,
   };
   explore.fly = fly;
@@ -252,9 +254,12 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
-  // Shows a traced frame of `view`; its slots are kept until the next one (the hovered
-  // pixel's record is read from them).
-  function show(traced, view, version, full, note) {
+  // Shows a traced frame of `view` at `level`: 'moving' (fewer pixels, one sample), 'size'
+  // (the full size, one sample) or 'full' (the full size and samples). Its slots are kept
+  // until the next one (the hovered pixel's record is read from them). `ms`: at rest, the
+  // time since the view came to rest.
+  function show(traced, view, version, level, note, ms = null) {
+    const full = level === 'full';
     const channels = tracer.channels(traced, viewer.info.objects.length);
     if (fly.slots) fly.slots.slots.forEach((t) => gl.deleteTexture(t));
     fly.slots = traced;
@@ -271,10 +276,13 @@ export async function startFly(viewer, explore, map, status) {
       status(`frame traced in this browser at t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, `
         + `y = ${p.y.toFixed(3)}, z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
     }
-    fly.traced = { version, width: pw, height: ph, full };
+    fly.traced = { version, width: pw, height: ph, level, full };
     explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
-    fly.log.push({ version, width: pw, height: ph, full, rafs: fly.rafs, drawn: fly.drawn });
+    fly.log.push({ version, width: pw, height: ph, level, full, rafs: fly.rafs, drawn: fly.drawn,
+      at: performance.now(), ms });
     if (fly.log.length > 2000) fly.log.shift();
+    // For tests: called while this frame's slots are the ones `readSlots` reads.
+    if (typeof explore.onShown === 'function') explore.onShown(level);
   }
   const failed = (e) => {
     fly.error = e.message || String(e);
@@ -308,7 +316,7 @@ export async function startFly(viewer, explore, map, status) {
       if (fly.frameMs.length > 30) fly.frameMs.shift();
       const n = fly.frameMs.length;
       const fps = n > 1 ? (n - 1) * 1000 / (now - fly.frameMs[0]) : 0;
-      show(traced, view, version, false, (pw, ph) => `${pw}×${ph} traced on the GPU · `
+      show(traced, view, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the GPU · `
         + `${fps.toFixed(0)} frames/s`);
     } catch (e) {
       failed(e);
@@ -317,20 +325,30 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
-  // At rest: the full size and samples, in tiles; the next change cancels it.
+  // At rest: the full size, in tiles; the next change cancels it. Where the scene asks for
+  // ss × ss samples a pixel, one sample a pixel comes first (ss² times fewer rays), so that
+  // the full size is seen soon; then the full samples.
   async function traceFull() {
     const version = fly.version;
     const view = structuredClone(fly.view);
+    const cancelled = () => fly.version !== version;
+    const atSize = (s) => ({ ...input, uniforms: uniformsFor(input.uniforms, view,
+      fullW * s, fullH * s) });
     fly.refining = true;
     const started = performance.now();
     try {
-      const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
-        fly.view, fullW * ss, fullH * ss) }, { cancelled: () => fly.version !== version });
+      if (ss > 1) {
+        const traced = await tracer.trace(atSize(1), { cancelled });
+        const ms = Math.round(performance.now() - started);
+        show(traced, view, version, 'size', (pw, ph) => `${pw}×${ph} traced on the GPU in `
+          + `${ms} ms · refining to ${ss * ss} samples a pixel`, ms);
+      }
+      const traced = await tracer.trace(atSize(ss), { cancelled });
       const ms = Math.round(performance.now() - started);
       fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
       fly.frameMs = [];
-      show(traced, view, version, true, (pw, ph) => `${pw}×${ph}`
-        + `${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`);
+      show(traced, view, version, 'full', (pw, ph) => `${pw}×${ph}`
+        + `${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`, ms);
     } catch (e) {
       if (fly.version === version) failed(e);
     } finally {

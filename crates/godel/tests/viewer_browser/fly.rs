@@ -141,15 +141,7 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     ]);
     assert!(rendered.status.success(), "{rendered:?}");
     let data = DataFile::read(&rendered_dir.join("reference.exr")).unwrap();
-    let slots: Vec<Vec<f32>> = (0..seen["rest"]["slots"].as_u64().unwrap())
-        .map(|s| {
-            std::fs::read(out.join(format!("fly-slot-{s}.f32")))
-                .unwrap()
-                .chunks_exact(4)
-                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-                .collect()
-        })
-        .collect();
+    let slots = saved_slots(&out, "fly", seen["rest"]["slots"].as_u64().unwrap());
     let page = traced_file(&data, &slots);
     let a = kernel_agreement::compare("fly", &page, &data);
     assert!(a.seen > 50, "the view shows the ball: {a:?} {moved}");
@@ -272,4 +264,92 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
         let ratio = fov(zoomed, k) / fov(&touch["after"], k);
         assert!((ratio - 0.1f64.exp()).abs() < 1e-9, "{k}: {ratio}");
     }
+}
+
+/// Reads the `count` slots a script saved as `OUT/PREFIX-slot-S.f32` (RGBA32F).
+fn saved_slots(out: &std::path::Path, prefix: &str, count: u64) -> Vec<Vec<f32>> {
+    (0..count)
+        .map(|s| {
+            std::fs::read(out.join(format!("{prefix}-slot-{s}.f32")))
+                .unwrap()
+                .chunks_exact(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect()
+        })
+        .collect()
+}
+
+/// At rest on a scene of 4 samples a pixel, the page first shows the full size at one sample
+/// a pixel, which is what `godel render --gpu` traces for the view at one sample, and then
+/// the full samples.
+#[test]
+fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
+    require_browser_tools();
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("rest-test.toml");
+    let text = scene_text().replace("samples = 1", "samples = 4");
+    assert!(text.contains("width = 88\n") && text.contains("samples = 4"));
+    std::fs::write(&scene, &text).unwrap();
+    let (server, url) = start_explore(&scene, dir.path(), &[]);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let seen = run_script("fly-rest.mjs", &url, &out, &[]);
+    drop(server);
+    assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
+    assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+
+    // The final view's frames: the full size at one sample, then the full samples (2×2).
+    let levels: Vec<&str> = (seen["log"].as_array().unwrap().iter())
+        .map(|l| l["level"].as_str().unwrap())
+        .collect();
+    assert_eq!(levels, ["size", "full"], "{seen}");
+    let log = &seen["log"];
+    assert!(log[0]["at"].as_f64() <= log[1]["at"].as_f64(), "{seen}");
+    for l in log.as_array().unwrap() {
+        assert_eq!(
+            (&l["width"], &l["height"]),
+            (&88.into(), &10.into()),
+            "{seen}"
+        );
+    }
+    let shown = &seen["shown"];
+    assert_eq!(shown[0]["level"], "size", "{seen}");
+    assert_eq!(
+        (&shown[0]["width"], &shown[0]["height"]),
+        (&88.into(), &10.into())
+    );
+    assert_eq!(shown[1]["level"], "full", "{seen}");
+    assert_eq!(
+        (&shown[1]["width"], &shown[1]["height"]),
+        (&176.into(), &20.into())
+    );
+    let header = seen["header"].as_str().unwrap();
+    assert!(
+        header.contains("88×10 · 4 samples a pixel traced on the GPU in"),
+        "{header}"
+    );
+
+    // The one-sample frame is `godel render --gpu` of the view at one sample a pixel.
+    let mut view = seen["view"].clone();
+    assert_eq!(view["camera"]["samples"], 4, "{seen}");
+    view["camera"]["samples"] = 1.into();
+    let view_scene = dir.path().join("rest-view.toml");
+    std::fs::write(&view_scene, scene_of_view(&text, &view)).unwrap();
+    let rendered_dir = dir.path().join("rendered");
+    std::fs::create_dir(&rendered_dir).unwrap();
+    let rendered = godel(&[
+        "render",
+        "--gpu",
+        view_scene.to_str().unwrap(),
+        "-q",
+        "-o",
+        rendered_dir.to_str().unwrap(),
+    ]);
+    assert!(rendered.status.success(), "{rendered:?}");
+    let data = DataFile::read(&rendered_dir.join("reference.exr")).unwrap();
+    let slots = saved_slots(&out, "rest-size", shown[0]["slots"].as_u64().unwrap());
+    let page = traced_file(&data, &slots);
+    let a = kernel_agreement::compare("rest", &page, &data);
+    assert!(a.seen > 50, "the view shows the ball: {a:?}");
+    assert!(a.holds(), "{a:?}");
 }
