@@ -1,15 +1,29 @@
 // At rest in explore mode (fly.js), for the Rust test crates/godel/tests/viewer_browser/fly.rs,
 // on a scene of several samples a pixel: after a wheel turn (zooming in), the page
 // first shows the full size at one sample a pixel, then the full samples. Saves the slots of
-// both frames as they are shown.
+// both frames as they are shown, and compares the canvas as shown while the full samples are
+// traced (the one-sample frame drawn between their draws) with the canvas before the wheel
+// and after the full samples.
 //
 // usage: node fly-rest.mjs URL OUT_DIR
 // Writes OUT_DIR/rest-LEVEL-slot-S.f32 (LEVEL size or full; RGBA32F, grid row 0 first) and
 // prints {view, shown: [{level, width, height, slots}], log (the frames of the final view),
-// header, console_errors, error}.
+// canvas {drawn_while_refining, pixels, size_to_full, size_to_before, full_to_before}
+// (pixels of the canvas differing by more than 40 in a channel), header, console_errors,
+// error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { launch, open, atRest } from './launch.mjs';
+
+// Pixels whose RGB differ by more than 40 in a channel between two canvases (RGBA, base64).
+function apart(a, b) {
+  const [x, y] = [Buffer.from(a, 'base64'), Buffer.from(b, 'base64')];
+  let n = 0;
+  for (let i = 0; i < Math.min(x.length, y.length); i += 4) {
+    if ([0, 1, 2].some((c) => Math.abs(x[i + c] - y[i + c]) > 40)) n += 1;
+  }
+  return n;
+}
 
 const [url, outDir] = process.argv.slice(2);
 if (!url || !outDir) {
@@ -24,23 +38,42 @@ try {
   await open(page, url);
   await rest();
   // Every frame at rest from now on, its slots read while they are the ones shown.
-  await page.evaluate(() => {
-    const e = window.godelViewer.explore;
+  const before = await page.evaluate(() => {
+    const v = window.godelViewer;
+    const e = v.explore;
     e.testShown = [];
     e.onShown = (level) => {
       if (level !== 'moving') e.testShown.push({ level, ...e.readSlots() });
+      if (level === 'size') e.testSizeFrames = v.frames;
     };
+    return v.readCanvas();
   });
   const box = await page.evaluate(() => {
     const r = document.getElementById('image').getBoundingClientRect();
     return { x: r.left + r.width / 2, y: r.top + r.height / 2 };
   });
-  const before = await page.evaluate(() => window.godelViewer.explore.fly.version);
+  const version = await page.evaluate(() => window.godelViewer.explore.fly.version);
   await page.mouse.move(box.x, box.y);
   await page.mouse.wheel(0, -300); // zooms in (e^-0.3): the ball grows
-  await page.waitForFunction((v) => window.godelViewer.explore.fly.version > v, before,
+  await page.waitForFunction((v) => window.godelViewer.explore.fly.version > v, version,
     { timeout: 60000 });
+  // The canvas once the one-sample frame is drawn, while the full samples are traced.
+  await page.waitForFunction(() => {
+    const v = window.godelViewer;
+    const e = v.explore;
+    if (e.fly.traced?.level === 'full') return true;
+    if (e.testSizeFrames === undefined || v.frames <= e.testSizeFrames) return false;
+    e.testSizeCanvas = { refining: e.fly.refining, ...v.readCanvas() };
+    return true;
+  }, null, { timeout: 180000, polling: 'raf' });
   await rest();
+  const [sized, full] = await page.evaluate(() => [window.godelViewer.explore.testSizeCanvas,
+    window.godelViewer.readCanvas()]);
+  result.canvas = { drawn_while_refining: sized?.refining ?? false,
+    pixels: full.width * full.height,
+    size_to_full: sized ? apart(sized.bytes, full.bytes) : null,
+    size_to_before: sized ? apart(sized.bytes, before.bytes) : null,
+    full_to_before: apart(full.bytes, before.bytes) };
   const seen = await page.evaluate(() => {
     const e = window.godelViewer.explore;
     e.onShown = null;

@@ -269,7 +269,7 @@ export async function startFly(viewer, explore, map, status) {
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
       supersample: full ? ss : 1 });
     fly.drawn += 1;
-    if (full) {
+    if (level !== 'moving') {
       // The panel's line said which server frame was shown: now it says where this one is seen from.
       const v = fly.view;
       const p = v.position;

@@ -238,6 +238,12 @@ export class KernelTracer {
       gl.bindVertexArray(this.vao);
       gl.enable(gl.SCISSOR_TEST);
     };
+    // Before each wait: the page draws its picture meanwhile (viewer.js, on the default
+    // framebuffer), which must not be clipped to this tracer's tile.
+    const unbind = () => {
+      gl.disable(gl.SCISSOR_TEST);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    };
     bind();
 
     const total = width * height;
@@ -254,6 +260,7 @@ export class KernelTracer {
         gl.bindFramebuffer(gl.FRAMEBUFFER, passes[0].fb);
         gl.uniform1i(slot0, 0);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
+        unbind();
         await this.finished();
         this.warm.add(program);
       }
@@ -275,6 +282,7 @@ export class KernelTracer {
           }
           // One draw of the whole grid is not waited for: its frame is shaded in the same
           // animation frame, the GPU working through it in order.
+          unbind();
           if (!whole) await this.finished();
           done += cols * rows;
           col0 += cols;
@@ -290,10 +298,9 @@ export class KernelTracer {
       slots.forEach((t) => gl.deleteTexture(t));
       throw e;
     } finally {
-      gl.disable(gl.SCISSOR_TEST);
+      unbind();
       gl.deleteTexture(table);
       passes.forEach(({ fb }) => gl.deleteFramebuffer(fb));
-      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     }
     return { width, height, slots, input, source, compileMs,
       traceMs: performance.now() - traceStart };

@@ -328,6 +328,20 @@ fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
         header.contains("88×10 · 4 samples a pixel traced on the GPU in"),
         "{header}"
     );
+    // The one-sample frame is on the canvas while the full samples are traced: the canvas
+    // then is near the final one, not the one before the wheel (the page's picture drawn
+    // between the tracer's tiles was once clipped to the tile).
+    let canvas = &seen["canvas"];
+    assert_eq!(canvas["drawn_while_refining"], true, "{seen}");
+    let n = |k: &str| canvas[k].as_u64().unwrap();
+    assert!(
+        n("full_to_before") > 100,
+        "the wheel changed the picture: {canvas}"
+    );
+    assert!(
+        n("size_to_full") * 2 < n("size_to_before"),
+        "the canvas while refining: {canvas}"
+    );
 
     // The one-sample frame is `godel render --gpu` of the view at one sample a pixel.
     let mut view = seen["view"].clone();
