@@ -123,7 +123,7 @@ export async function startFly(viewer, explore, map, status) {
     slots: null,         // the slots of the frame shown (hover, tests)
     tauMoved: 0,         // proper time the observer has moved (for tests)
     width: Math.min(fullW, MIN_WIDTH), // the moving frames' width
-    raysPerMs: null,     // the kernel's speed here, from the last full frame
+    raysPerMs: null,     // the kernel's speed here, from the last frame at rest
     rafs: 0,             // animation frames while the view changed
     drawn: 0,            // frames traced and shown
     frameMs: [],         // wall times of the last frames shown
@@ -340,6 +340,7 @@ export async function startFly(viewer, explore, map, status) {
       if (ss > 1) {
         const traced = await tracer.trace(atSize(1), { cancelled });
         const ms = Math.round(performance.now() - started);
+        fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
         show(traced, view, version, 'size', (pw, ph) => `${pw}×${ph} traced on the GPU in `
           + `${ms} ms · refining to ${ss * ss} samples a pixel`, ms);
       }
