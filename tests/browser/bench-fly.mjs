@@ -5,10 +5,11 @@
 // usage: [BENCH_HOVER=1] node bench-fly.mjs URL OUT_DIR FRAMES
 // Prints {size, frames, seconds, frames_per_s, moving_sizes (median, smallest, largest
 // width×height), full_ms (from letting go to the full frame shown; null past the bound),
-// size_ms (from letting go to the full size at one sample a pixel, where the scene has more
-// samples), hover_ms (the centre pixel's light ray made in the page: first, then again),
-// start_full_ms and start_size_ms (up to 640×360: the same for the scene's own view, before
-// flying, from its coming to rest)}.
+// half_ms and size_ms (from letting go to the frame of half the size, and to the full size
+// at one sample a pixel, where the page traces them: fly.js traceFull), hover_ms (the centre
+// pixel's light ray made in the page: first, then again), start_half_ms, start_size_ms and
+// start_full_ms (up to 640×360: the same for the scene's own view, before flying, from its
+// coming to rest)}.
 import { launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, frames] = process.argv.slice(2);
@@ -31,7 +32,7 @@ try {
       const f = window.godelViewer.explore.fly;
       const log = f.log.filter((l) => l.version === f.traced.version);
       const ms = (level) => (log.find((l) => l.level === level) || {}).ms ?? null;
-      return { size: ms('size'), full: ms('full') };
+      return { half: ms('half'), size: ms('size'), full: ms('full') };
     });
   } else {
     await page.waitForFunction(() => window.godelViewer.explore?.fly?.drawn > 0, null,
@@ -65,9 +66,9 @@ try {
     const f = window.godelViewer.explore.fly;
     return f.log.filter((l) => l.version === f.version);
   });
-  const atSize = (log, from) => {
-    const l = log.find((e) => e.level === 'size');
-    return l ? Math.round(l.at - from) : null;
+  const shownAt = (level) => {
+    const l = atRestLog.find((e) => e.level === level);
+    return l ? Math.round(l.at - let_go) : null;
   };
   // The hovered pixel's light ray in the page (hovered.js): the centre pixel of the frame
   // shown, the first time (compiling the kernel's RAY_PATH variant) and the next.
@@ -95,9 +96,9 @@ try {
     frames_per_s: Number(((end[1] - start[1]) / seconds).toFixed(1)),
     moving_sizes: { median: s(sizes[sizes.length >> 1]), smallest: s(sizes[0]),
       largest: s(sizes[sizes.length - 1]) },
-    full_ms: full === null ? null : Math.round(full - let_go), size_ms: atSize(atRestLog, let_go),
-    hover_ms: hoverMs, start_full_ms: startFull && startFull.full,
-    start_size_ms: startFull && startFull.size }));
+    full_ms: full === null ? null : Math.round(full - let_go), half_ms: shownAt('half'),
+    size_ms: shownAt('size'), hover_ms: hoverMs, start_half_ms: startFull && startFull.half,
+    start_size_ms: startFull && startFull.size, start_full_ms: startFull && startFull.full }));
 } finally {
   await context.close();
 }

@@ -1,13 +1,15 @@
 // At rest in explore mode (fly.js), for the Rust test crates/godel/tests/viewer_browser/fly.rs,
-// on a scene of several samples a pixel: after a wheel turn (zooming in), the page
-// first shows the full size at one sample a pixel, then the full samples. Saves the slots of
-// both frames as they are shown, and compares the canvas as shown while the full samples are
+// on a scene of several samples a pixel: after a wheel turn (zooming in), the page shows
+// the full size at one sample a pixel (after half the size, where the kernel's speed asks for
+// it), then the full samples. Saves the slots of the frames at rest as they are shown, and compares the canvas as shown while the full samples are
 // traced (the one-sample frame drawn between their draws) with the canvas before the wheel
 // and after the full samples.
 //
 // usage: node fly-rest.mjs URL OUT_DIR
-// Writes OUT_DIR/rest-LEVEL-slot-S.f32 (LEVEL size or full; RGBA32F, grid row 0 first) and
-// prints {view, shown: [{level, width, height, slots}], log (the frames of the final view),
+// Writes OUT_DIR/rest-LEVEL-slot-S.f32 (LEVEL half, size or full; RGBA32F, grid row 0 first) and
+// prints {view, start_log (the frames at rest of the scene's own view), rays_per_ms (the
+// kernel's speed the page measured before the wheel), shown: [{level, width, height, slots}],
+// log (the frames at rest of the final view),
 // canvas {drawn_while_refining, pixels, size_to_full, size_to_before, full_to_before}
 // (pixels of the canvas differing by more than 40 in a channel), header, console_errors,
 // error}.
@@ -37,6 +39,10 @@ const result = {};
 try {
   await open(page, url);
   await rest();
+  [result.start_log, result.rays_per_ms] = await page.evaluate(() => {
+    const f = window.godelViewer.explore.fly;
+    return [f.log.filter((l) => l.version === f.version && l.level !== 'moving'), f.raysPerMs];
+  });
   // Every frame at rest from now on, its slots read while they are the ones shown.
   const before = await page.evaluate(() => {
     const v = window.godelViewer;

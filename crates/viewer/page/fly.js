@@ -20,8 +20,8 @@
 //
 // Dynamic resolution: while the view changes, each animation frame traces a smaller grid of
 // one sample per pixel, its pixel count steered so that a frame takes about TARGET_MS; at
-// rest the page traces the scene's full size at one sample per pixel, then (where the scene
-// asks for more) its full samples, in tiles (either cancelled by the next change).
+// rest the page traces the scene's full size in steps (half size, full size at one sample a
+// pixel, full samples: traceFull), in tiles, each cancelled by the next change.
 'use strict';
 
 import { KernelTracer } from './trace.js';
@@ -35,6 +35,9 @@ const $ = (id) => document.getElementById(id);
 const TARGET_MS = 50;
 // The fewest pixels a moving frame has (its width), and the smoothing of its size.
 const MIN_WIDTH = 16;
+// At rest, a frame of half the width and height comes first where the full size would take
+// longer than this (at the kernel's last measured speed; always before the first).
+const QUICK_MS = 1000;
 // Radians per CSS pixel dragged (times the field of view's share), roll per second.
 const ROLL_PER_S = 1.0;
 // Proper time added per animation frame at most (a stalled tab does not jump).
@@ -254,8 +257,9 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
-  // Shows a traced frame of `view` at `level`: 'moving' (fewer pixels, one sample), 'size'
-  // (the full size, one sample) or 'full' (the full size and samples). Its slots are kept
+  // Shows a traced frame of `view` at `level`: 'moving' (fewer pixels, one sample), 'half'
+  // (half the full width and height, one sample), 'size' (the full size, one sample) or
+  // 'full' (the full size and samples). Its slots are kept
   // until the next one (the hovered pixel's record is read from them). `ms`: at rest, the
   // time since the view came to rest.
   function show(traced, view, version, level, note, ms = null) {
@@ -325,31 +329,36 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
-  // At rest: the full size, in tiles; the next change cancels it. Where the scene asks for
-  // ss × ss samples a pixel, one sample a pixel comes first (ss² times fewer rays), so that
-  // the full size is seen soon; then the full samples.
+  // At rest: the full size, in tiles, in up to three steps, each shown as it comes (the next
+  // change cancels them): half the width and height at one sample a pixel where the full size
+  // would take more than QUICK_MS (a quarter of its rays), the full size at one sample a pixel
+  // where the scene asks for ss × ss (ss² times fewer rays), then the full samples.
   async function traceFull() {
     const version = fly.version;
     const view = structuredClone(fly.view);
     const cancelled = () => fly.version !== version;
-    const atSize = (s) => ({ ...input, uniforms: uniformsFor(input.uniforms, view,
-      fullW * s, fullH * s) });
+    const steps = [];
+    const [halfW, halfH] = [Math.round(fullW / 2), Math.max(1, Math.round(fullH / 2))];
+    if (halfW >= MIN_WIDTH
+      && (fly.raysPerMs === null || (fullW * fullH) / fly.raysPerMs > QUICK_MS)) {
+      steps.push(['half', halfW, halfH]);
+    }
+    if (ss > 1) steps.push(['size', fullW, fullH]);
+    steps.push(['full', fullW * ss, fullH * ss]);
     fly.refining = true;
     const started = performance.now();
     try {
-      if (ss > 1) {
-        const traced = await tracer.trace(atSize(1), { cancelled });
+      for (const [level, w, h] of steps) {
+        const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
+          view, w, h) }, { cancelled });
         const ms = Math.round(performance.now() - started);
         fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
-        show(traced, view, version, 'size', (pw, ph) => `${pw}×${ph} traced on the GPU in `
-          + `${ms} ms · refining to ${ss * ss} samples a pixel`, ms);
+        const next = level === 'half' ? `${fullW}×${fullH}` : `${ss * ss} samples a pixel`;
+        show(traced, view, version, level, (pw, ph) => (level === 'full'
+          ? `${pw}×${ph}${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`
+          : `${pw}×${ph} traced on the GPU in ${ms} ms · refining to ${next}`), ms);
       }
-      const traced = await tracer.trace(atSize(ss), { cancelled });
-      const ms = Math.round(performance.now() - started);
-      fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
       fly.frameMs = [];
-      show(traced, view, version, 'full', (pw, ph) => `${pw}×${ph}`
-        + `${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`, ms);
     } catch (e) {
       if (fly.version === version) failed(e);
     } finally {

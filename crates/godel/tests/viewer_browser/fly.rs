@@ -279,9 +279,10 @@ fn saved_slots(out: &std::path::Path, prefix: &str, count: u64) -> Vec<Vec<f32>>
         .collect()
 }
 
-/// At rest on a scene of 4 samples a pixel, the page first shows the full size at one sample
-/// a pixel, which is what `godel render --gpu` traces for the view at one sample, and then
-/// the full samples.
+/// At rest on a scene of 4 samples a pixel, the page shows half the size first (at the
+/// scene's own view, before it knows the kernel's speed), then the full size at one sample a
+/// pixel, which is what `godel render --gpu` traces for the view at one sample, and then the
+/// full samples; the canvas shows each while the next is traced.
 #[test]
 fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     require_browser_tools();
@@ -298,21 +299,39 @@ fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
 
-    // The final view's frames: the full size at one sample, then the full samples (2×2).
-    let levels: Vec<&str> = (seen["log"].as_array().unwrap().iter())
-        .map(|l| l["level"].as_str().unwrap())
-        .collect();
-    assert_eq!(levels, ["size", "full"], "{seen}");
-    let log = &seen["log"];
-    assert!(log[0]["at"].as_f64() <= log[1]["at"].as_f64(), "{seen}");
-    for l in log.as_array().unwrap() {
-        assert_eq!(
-            (&l["width"], &l["height"]),
-            (&88.into(), &10.into()),
-            "{seen}"
-        );
+    // The frames at rest, in the order shown: (level, width, height) of each.
+    let frames = |log: &serde_json::Value| -> Vec<(String, u64, u64)> {
+        let log = log.as_array().unwrap();
+        for pair in log.windows(2) {
+            assert!(pair[0]["at"].as_f64() <= pair[1]["at"].as_f64(), "{seen}");
+        }
+        (log.iter())
+            .map(|l| {
+                let n = |k: &str| l[k].as_u64().unwrap();
+                (l["level"].as_str().unwrap().into(), n("width"), n("height"))
+            })
+            .collect()
+    };
+    let (half, size, full) = (
+        ("half".to_string(), 44, 5),
+        ("size".to_string(), 88, 10),
+        ("full".to_string(), 88, 10),
+    );
+    // The scene's own view, before the kernel's speed is known: half the size first.
+    assert_eq!(
+        frames(&seen["start_log"]),
+        [half.clone(), size.clone(), full.clone()]
+    );
+    // After the wheel: half the size only where the full size would take over QUICK_MS
+    // (fly.js, 1 s) at the speed measured before.
+    let rays_per_ms = seen["rays_per_ms"].as_f64().unwrap();
+    let mut expected = vec![size, full];
+    if 88.0 * 10.0 / rays_per_ms > 1000.0 {
+        expected.insert(0, half);
     }
-    let shown = &seen["shown"];
+    assert_eq!(frames(&seen["log"]), expected, "{seen}");
+    // The slots of the last two frames: one sample a pixel, then 2×2.
+    let shown = &seen["shown"].as_array().unwrap()[expected.len() - 2..];
     assert_eq!(shown[0]["level"], "size", "{seen}");
     assert_eq!(
         (&shown[0]["width"], &shown[0]["height"]),
