@@ -2,15 +2,20 @@
 # Frames per second while flying in `godel explore` (BENCHMARKS.md, "Flying in the page"):
 #   scripts/bench-fly.sh SCENE WIDTH HEIGHT [FRAMES]
 # Builds godel (the dev profile, optimized), explores SCENE at WIDTH × HEIGHT with one ray a
-# pixel (BENCH_SAMPLES=N: N rays, a square number), and runs tests/browser/bench-fly.mjs in headless chromium (software WebGL2): holds W
-# for FRAMES animation frames (default 120) and prints the frames/s, the sizes the dynamic
-# resolution chose, and the time to the full frame once at rest. Prints the load average
+# pixel (BENCH_SAMPLES=N: N, a square number, in place of the scene's `samples` line), and
+# runs tests/browser/bench-fly.mjs in headless chromium (software WebGL2): holds W for FRAMES
+# animation frames (default 120) and prints the frames/s, the sizes the dynamic resolution
+# chose, and the times to the steps at rest and the full frame. Prints the load average
 # before; the server it started is stopped and its folder removed. BENCH_HOVER=1 keeps the
 # pointer on the picture while flying (the hovered pixel's record and light ray every frame).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ $# -lt 3 ]; then
     echo "usage: scripts/bench-fly.sh SCENE WIDTH HEIGHT [FRAMES]" >&2
+    exit 2
+fi
+if ! [[ ${BENCH_SAMPLES:-1} =~ ^[1-9][0-9]*$ ]]; then
+    echo "BENCH_SAMPLES must be a whole number of rays a pixel, not '$BENCH_SAMPLES'" >&2
     exit 2
 fi
 scene=$(realpath "$1")

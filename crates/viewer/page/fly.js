@@ -132,7 +132,7 @@ export async function startFly(viewer, explore, map, status) {
     frameMs: [],         // wall times of the last frames shown
     log: [],             // for tests and benches: {version, width, height, level, full, rafs,
                          // drawn, at (performance.now() when shown), ms (at rest: since the
-                         // view came to rest)}
+                         // first step began, traceFull)}
     error: null,
   };
   explore.fly = fly;
@@ -259,9 +259,8 @@ export async function startFly(viewer, explore, map, status) {
 
   // Shows a traced frame of `view` at `level`: 'moving' (fewer pixels, one sample), 'half'
   // (half the full width and height, one sample), 'size' (the full size, one sample) or
-  // 'full' (the full size and samples). Its slots are kept
-  // until the next one (the hovered pixel's record is read from them). `ms`: at rest, the
-  // time since the view came to rest.
+  // 'full' (the full size and samples). Its slots are kept until the next one (the hovered
+  // pixel's record is read from them). `ms`: at rest, the time since its steps began.
   function show(traced, view, version, level, note, ms = null) {
     const full = level === 'full';
     const channels = tracer.channels(traced, viewer.info.objects.length);
