@@ -127,25 +127,8 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
             .contains("88×10 traced on the GPU in"),
         "{seen}"
     );
-    let view_scene = dir.path().join("fly-view.toml");
-    std::fs::write(&view_scene, scene_of_view(&text, moved)).unwrap();
-    let rendered_dir = dir.path().join("rendered");
-    std::fs::create_dir(&rendered_dir).unwrap();
-    let rendered = godel(&[
-        "render",
-        "--gpu",
-        view_scene.to_str().unwrap(),
-        "-q",
-        "-o",
-        rendered_dir.to_str().unwrap(),
-    ]);
-    assert!(rendered.status.success(), "{rendered:?}");
-    let data = DataFile::read(&rendered_dir.join("reference.exr")).unwrap();
     let slots = saved_slots(&out, "fly", seen["rest"]["slots"].as_u64().unwrap());
-    let page = traced_file(&data, &slots);
-    let a = kernel_agreement::compare("fly", &page, &data);
-    assert!(a.seen > 50, "the view shows the ball: {a:?} {moved}");
-    assert!(a.holds(), "{a:?}");
+    let data = compare_with_render_gpu(dir.path(), "fly", &scene_of_view(&text, moved), &slots);
 
     // Save observer keyframe while flying: the view on screen, the velocity it fell with.
     let keyframe: toml::Table = seen["keyframe"].as_str().unwrap().parse().unwrap();
@@ -266,6 +249,36 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     }
 }
 
+/// Renders `scene_text` (a view flown) with `godel render --gpu` into `dir/NAME-rendered` and
+/// asserts that the page's `slots` of that view agree with it within issue 22's tolerances,
+/// on a view that shows the ball; returns the rendered data file.
+fn compare_with_render_gpu(
+    dir: &std::path::Path,
+    name: &str,
+    scene_text: &str,
+    slots: &[Vec<f32>],
+) -> DataFile {
+    let view_scene = dir.join(format!("{name}-view.toml"));
+    std::fs::write(&view_scene, scene_text).unwrap();
+    let rendered_dir = dir.join(format!("{name}-rendered"));
+    std::fs::create_dir(&rendered_dir).unwrap();
+    let rendered = godel(&[
+        "render",
+        "--gpu",
+        view_scene.to_str().unwrap(),
+        "-q",
+        "-o",
+        rendered_dir.to_str().unwrap(),
+    ]);
+    assert!(rendered.status.success(), "{rendered:?}");
+    let data = DataFile::read(&rendered_dir.join("reference.exr")).unwrap();
+    let page = traced_file(&data, slots);
+    let a = kernel_agreement::compare(name, &page, &data);
+    assert!(a.seen > 50, "the view shows the ball: {a:?} {scene_text}");
+    assert!(a.holds(), "{a:?}");
+    data
+}
+
 /// Reads the `count` slots a script saved as `OUT/PREFIX-slot-S.f32` (RGBA32F).
 fn saved_slots(out: &std::path::Path, prefix: &str, count: u64) -> Vec<Vec<f32>> {
     (0..count)
@@ -366,23 +379,6 @@ fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     let mut view = seen["view"].clone();
     assert_eq!(view["camera"]["samples"], 4, "{seen}");
     view["camera"]["samples"] = 1.into();
-    let view_scene = dir.path().join("rest-view.toml");
-    std::fs::write(&view_scene, scene_of_view(&text, &view)).unwrap();
-    let rendered_dir = dir.path().join("rendered");
-    std::fs::create_dir(&rendered_dir).unwrap();
-    let rendered = godel(&[
-        "render",
-        "--gpu",
-        view_scene.to_str().unwrap(),
-        "-q",
-        "-o",
-        rendered_dir.to_str().unwrap(),
-    ]);
-    assert!(rendered.status.success(), "{rendered:?}");
-    let data = DataFile::read(&rendered_dir.join("reference.exr")).unwrap();
     let slots = saved_slots(&out, "rest-size", shown[0]["slots"].as_u64().unwrap());
-    let page = traced_file(&data, &slots);
-    let a = kernel_agreement::compare("rest", &page, &data);
-    assert!(a.seen > 50, "the view shows the ball: {a:?}");
-    assert!(a.holds(), "{a:?}");
+    compare_with_render_gpu(dir.path(), "rest", &scene_of_view(&text, &view), &slots);
 }
