@@ -1,9 +1,11 @@
 // At rest in explore mode (fly.js), for the Rust test crates/godel/tests/viewer_browser/fly.rs,
 // on a scene of several samples a pixel: after a wheel turn (zooming in), the page shows
 // the full size at one sample a pixel (after half the size, where the kernel's speed asks for
-// it), then the full samples. Saves the slots of the frames at rest as they are shown, and compares the canvas as shown while the full samples are
-// traced (the one-sample frame drawn between their draws) with the canvas before the wheel
-// and after the full samples.
+// it), then the full samples. Saves the slots of the frames at rest as they are shown, and
+// compares the canvas as shown while the full samples are traced (the one-sample frame drawn
+// between their draws) with the canvas before the wheel and after the full samples. The
+// server's own first frame is held back, so that the page's frames replace it while its
+// channels load.
 //
 // usage: node fly-rest.mjs URL OUT_DIR
 // Writes OUT_DIR/rest-LEVEL-slot-S.f32 (LEVEL half, size or full; RGBA32F, grid row 0 first) and
@@ -37,6 +39,14 @@ const rest = () => atRest(page, 180000);
 
 const result = {};
 try {
+  // The server's own first frame comes late (its channels held back 12 s): the page's traced
+  // frames are shown while they load, and must win without an error (data.js ensure).
+  await page.route('**/api/explore/channel/**', async (route) => {
+    if (route.request().url().includes('generation=1&')) {
+      await new Promise((resolve) => { setTimeout(resolve, 12000); });
+    }
+    await route.continue();
+  });
   await open(page, url);
   await rest();
   [result.start_log, result.rays_per_ms] = await page.evaluate(() => {

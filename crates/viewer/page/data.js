@@ -87,6 +87,7 @@ export class Data {
     this.images = new Map();   // name → {width, height, rgb, y0}
     this.fetched = [];         // [url, bytes, ms] of each array, for the benchmarks
     this.channelUrl = (name) => `/api/gpu/channel/${name}`;
+    this.epoch = 0;            // bumped whenever the frame whose channels are loaded changes
   }
 
   // Explore mode (explore.js): the channels of another frame, from `channelUrl(name)`; the
@@ -95,11 +96,13 @@ export class Data {
     this.channelUrl = channelUrl;
     this.loaded.clear();
     this.lightPlanes = [];
+    this.epoch += 1;
   }
 
   // Channels put on the GPU by the page itself (a frame traced there, traced.js).
   provide(names) {
     names.forEach((n) => this.loaded.add(n));
+    this.epoch += 1;
   }
 
   // The scene textures' description and the black-body tables (uploaded here).
@@ -152,10 +155,14 @@ export class Data {
     return out;
   }
 
-  // Fetches and uploads the channels not yet on the GPU.
+  // Fetches and uploads the channels not yet on the GPU. Channels of a frame replaced while
+  // they loaded (explore: a frame traced in the page, fly.js) are dropped: the caller asks
+  // again for the frame shown now.
   async ensure(names) {
     const missing = this.missing(names);
+    const epoch = this.epoch;
     const arrays = await this.arrays(missing.map(this.channelUrl));
+    if (this.epoch !== epoch) return;
     const [width, height] = this.sampleSize();
     missing.forEach((name, i) => {
       const a = arrays[i];

@@ -133,7 +133,10 @@ function layout() {
 
 let frameQueued = false;
 let shadeDirty = true;   // the picture must be shaded again (else only displayed)
-let loading = false;     // channels or images are being fetched
+let loading = null;      // the frame (data.js epoch) whose channels or images are being fetched
+// Whether the frame shown is still loading: a load for a frame replaced meanwhile (a frame
+// traced in the page, fly.js) holds nothing up, and its channels are dropped (data.js).
+const loadingNow = () => loading !== null && data !== null && loading === data.epoch;
 let held = false;        // the page traces a frame on the GPU (traced.js): nothing is drawn
 
 // The overlay layer (orientation marks, legend, labels), drawn by the server for the
@@ -191,7 +194,7 @@ function changed(shade = true) {
 
 async function draw() {
   frameQueued = false;
-  if (loading || held || !gpu) return;
+  if (loadingNow() || held || !gpu) return;
   const settings = viewer.settings;
   let need;
   let images;
@@ -203,21 +206,23 @@ async function draw() {
     return;
   }
   if (data.missing(need).length || images.some((n) => !data.images.has(n))) {
-    loading = true;
+    const epoch = data.epoch;
+    loading = epoch;
     $('status').textContent = 'loading the data file\u2019s channels…';
     try {
       await data.ensure(need);
       await data.ensureImages(images);
     } catch (e) {
-      frameDrawn = true; // nothing more to wait for: the next frame may come
-      // Explore: the frame was superseded while its channels loaded (410 Gone); the newer
-      // frame comes with the next poll, and no error flashes up meanwhile.
-      if (!(viewer.explore && e.status === 410)) {
+      // Nothing more to wait for: the next frame may come (unless another frame came meanwhile).
+      if (data.epoch === epoch) frameDrawn = true;
+      // Explore: the frame was superseded while its channels loaded (410 Gone, or replaced by
+      // a frame traced in the page); the newer frame comes, and no error flashes up meanwhile.
+      if (!(viewer.explore && (e.status === 410 || data.epoch !== epoch))) {
         showError(`cannot load the data for the GPU: ${e.message}`);
       }
       return;
     } finally {
-      loading = false;
+      if (loading === epoch) loading = null;
     }
     if (!viewer.timeline.channels) viewer.timeline.channels = performance.now();
     changed();
@@ -275,7 +280,7 @@ async function draw() {
 }
 
 // Nothing waiting to be drawn or fetched (for tests and scripts).
-viewer.idle = () => !frameQueued && !loading && !held && !shadeDirty && !overlayPending();
+viewer.idle = () => !frameQueued && !loadingNow() && !held && !shadeDirty && !overlayPending();
 
 // ---- the mouse: drag to turn (look) or pan, wheel to zoom, hover for the record
 
@@ -585,7 +590,7 @@ async function start() {
 // Explore (explore.js): shows another frame, whose channels are at `channelUrl(name)`; false
 // (try again later) while the last one is not drawn yet, so that every frame taken is seen.
 viewer.showFrame = (frame, channelUrl) => {
-  if (loading || !data || !frameDrawn) return false;
+  if (loadingNow() || !data || !frameDrawn) return false;
   frameDrawn = false;
   // A zoomed or panned picture keeps its place on the canvas at the new size.
   if (!pan.fitted) pan.zoom *= viewer.info.width / frame.width;

@@ -295,7 +295,8 @@ fn saved_slots(out: &std::path::Path, prefix: &str, count: u64) -> Vec<Vec<f32>>
 /// At rest on a scene of 4 samples a pixel, the page shows half the size first (at the
 /// scene's own view, before it knows the kernel's speed), then the full size at one sample a
 /// pixel, which is what `godel render --gpu` traces for the view at one sample, and then the
-/// full samples; the canvas shows each while the next is traced.
+/// full samples; the canvas shows each while the next is traced, also while the server's
+/// own first frame, held back by the script, still loads (its channels are dropped then).
 #[test]
 fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     require_browser_tools();
