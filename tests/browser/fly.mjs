@@ -80,7 +80,7 @@ try {
     v.counting = null;
     return { frames: v.frames, drawn: v.explore.fly.drawn, rafs: v.testRafs,
       header: document.getElementById('file').textContent,
-      sizes: v.explore.fly.log.slice(-10).map((l) => [l.width, l.height, l.full]) };
+      sizes: v.explore.fly.log.slice(-10).map((l) => [l.width, l.height, l.level]) };
   });
   await page.keyboard.up('KeyR');
   result.rafs = after.rafs;

@@ -110,5 +110,5 @@ export async function dragLeft(page) {
 // rest (no move of the observer under way), at most `timeout` ms.
 export const atRest = (page, timeout) => page.waitForFunction(() => {
   const f = window.godelViewer.explore?.fly;
-  return f && f.traced && f.traced.full && f.traced.version === f.version && !f.moving;
+  return f && f.traced && f.traced.level === 'full' && f.traced.version === f.version && !f.moving;
 }, null, { timeout });

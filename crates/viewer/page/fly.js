@@ -120,7 +120,7 @@ export async function startFly(viewer, explore, map, status) {
     pendingTau: 0,
     moving: false,       // in flight: a request for the observer's motion is under way
     version: 0,          // bumped by every change of the view
-    traced: null,        // {version, width, height, level, full} of the frame shown
+    traced: null,        // {version, width, height, level} of the frame shown
     busy: false,         // a moving frame's trace is under way (it waits only to compile)
     refining: false,     // a full frame's trace is under way (a change cancels it)
     slots: null,         // the slots of the frame shown (hover, tests)
@@ -130,7 +130,7 @@ export async function startFly(viewer, explore, map, status) {
     rafs: 0,             // animation frames while the view changed
     drawn: 0,            // frames traced and shown
     frameMs: [],         // wall times of the last frames shown
-    log: [],             // for tests and benches: {version, width, height, level, full, rafs,
+    log: [],             // for tests and benches: {version, width, height, level, rafs,
                          // drawn, at (performance.now() when shown), ms (at rest: since the
                          // first step began, traceFull)}
     error: null,
@@ -279,9 +279,9 @@ export async function startFly(viewer, explore, map, status) {
       status(`frame traced in this browser at t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, `
         + `y = ${p.y.toFixed(3)}, z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
     }
-    fly.traced = { version, width: pw, height: ph, level, full };
+    fly.traced = { version, width: pw, height: ph, level };
     explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
-    fly.log.push({ version, width: pw, height: ph, level, full, rafs: fly.rafs, drawn: fly.drawn,
+    fly.log.push({ version, width: pw, height: ph, level, rafs: fly.rafs, drawn: fly.drawn,
       at: performance.now(), ms });
     if (fly.log.length > 2000) fly.log.shift();
     // For tests: called while this frame's slots are the ones `readSlots` reads.
@@ -409,12 +409,12 @@ export async function startFly(viewer, explore, map, status) {
     // While time runs every animation frame is traced (the observer's newest event may not
     // be back from the server yet: then the same view again).
     const stale = fly.traced === null || fly.traced.version !== fly.version;
-    if (stale || (running && fly.traced.full === false)) {
+    if (stale || (running && fly.traced.level !== 'full')) {
       fly.rafs += 1;
       // Waited for: it resolves in this task once the kernel is compiled (one draw, no
       // fence), so that the shading asked for comes in the next animation frame.
       if (!fly.busy) await traceMoving(frameMs);
-    } else if (!fly.traced.full && !fly.busy && !fly.refining && !running && !fly.moving) {
+    } else if (fly.traced.level !== 'full' && !fly.busy && !fly.refining && !running && !fly.moving) {
       traceFull();
     }
   }
