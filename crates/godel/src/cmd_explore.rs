@@ -290,8 +290,9 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     shade::textures_for_scene(&scene)?;
     check_memory(&scene, args.sphere)?;
     let frames = SceneFrames::new(scene, pool);
-    // The viewer opens on the explorer's first frame (the coarse one at the scene's own
-    // event); the page then receives the explorer's frames.
+    // The viewer opens on the explorer's first frame at the scene's own event (the coarse
+    // one, or the full one where that is already done); the page then receives the
+    // explorer's frames.
     let start = frames.start();
     let explorer = Explorer::new(frames).context("cannot start the tracing thread")?;
     explorer

@@ -397,13 +397,15 @@ fn saved_pictures_overlays_and_info_belong_to_the_frame_on_screen() {
     );
     assert_eq!(info["observer_time"], 1.5, "{info}");
     let defaults = info["defaults"].clone();
-    // Without a name: the frame the server opened on (the coarse one at the start event,
-    // whose channels /api/gpu serves to a page that has taken no traced frame yet).
+    // Without a name: the frame the server opened on (whose channels /api/gpu serves to a
+    // page that has taken no traced frame yet), at the start event: its coarse frame, or its
+    // full one where that was done before the server took its first frame (Explorer::
+    // first_frame takes the newest of the first request; seen once in CI).
     let (_, body) = http(port, "GET", "/api/info", "");
     let first = json(&body);
-    assert_eq!(
-        (first["width"].as_u64(), first["observer_time"].as_f64()),
-        (Some(12), Some(0.0)),
+    assert_eq!(first["observer_time"].as_f64(), Some(0.0), "{first}");
+    assert!(
+        [Some(12), Some(48)].contains(&first["width"].as_u64()),
         "{first}"
     );
     let settings = defaults.to_string();
