@@ -13,7 +13,9 @@ command line, so that the numbers are the command line's, bit for bit:
 Conventions (README.md, docs/physics.md): c = 1, signature (−,+,+,+), Gödel parameter
 ``a``, optical horizon at r = 2a, pseudo-Cartesian coordinates (t, x, y, z) with
 x = r cos φ, y = r sin φ. Bad input raises ``ValueError`` with the command line's message,
-naming the file, line and field of a scene, or the keyword argument.
+naming the file, line and field of a scene, or the keyword argument (an empty path too); a
+file that cannot be read or written raises ``OSError``: ``FileNotFoundError`` when missing,
+``IsADirectoryError`` for a folder.
 """
 
 import os
@@ -61,7 +63,9 @@ def render(
     ``progress`` shows a progress bar (tqdm's when installed, in Jupyter too, else a plain
     line on standard error). Ctrl-C (or a notebook's interrupt) stops the render within one
     tile per thread and raises ``KeyboardInterrupt``. A bad scene or value raises
-    ``ValueError`` with the command line's message (``file:line:column: field: …``).
+    ``ValueError`` with the command line's message (``file:line:column: field: …``), as
+    does an empty ``scene`` path; a scene file (or an image texture it names) that is
+    missing raises ``FileNotFoundError``, a folder in its place ``IsADirectoryError``.
     """
     path, text = _scene_source(scene)
     job = _godel.RenderJob(path, text, width, height, samples, method, max_past, threads)
@@ -88,7 +92,8 @@ def render(
 def read(path: Union[str, "os.PathLike[str]"]) -> Image:
     """Reads a data file that ``godel`` wrote (``godel render``, ``look``, ``merge``, a
     sequence's ``keep_data``, :meth:`Image.save`). A missing file raises
-    ``FileNotFoundError``, a damaged one ``ValueError``, with the command line's message."""
+    ``FileNotFoundError``, a damaged one ``ValueError``, with the command line's message; a
+    folder raises ``IsADirectoryError``, an empty path ``ValueError``."""
     return Image(_godel.Data.read(os.fspath(path)))
 
 

@@ -109,7 +109,8 @@ class Image:
     def save(self, path: Union[str, os.PathLike]) -> None:
         """Writes the data file to ``path`` (``.exr``), through a temporary file and a
         rename: the same bytes as ``godel render`` writes for this image, readable by every
-        ``godel`` command."""
+        ``godel`` command. A folder raises ``IsADirectoryError``, an empty path
+        ``ValueError``, a missing folder ``FileNotFoundError``."""
         self._data.save(os.fspath(path))
 
     def __repr__(self) -> str:

@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyByteArray;
 use shade::{ShadeError, ShadeSettings, Shading};
 
-use crate::errors::{data_file_error, value_error};
+use crate::errors::{data_file_error, file_argument, value_error};
 
 /// A traced image (use `godel.Image`, which wraps it).
 #[pyclass(module = "godel._godel", frozen)]
@@ -41,6 +41,7 @@ impl Data {
     /// Reads a data file that `godel` wrote (not a part file: merge parts first).
     #[staticmethod]
     fn read(py: Python<'_>, path: PathBuf) -> PyResult<Data> {
+        file_argument("path", &path, "a data file")?;
         let data = py
             .detach(|| DataFile::read(&path))
             .map_err(data_file_error)?;
@@ -49,6 +50,7 @@ impl Data {
 
     /// Writes the data file to `path` (through a temporary file and a rename).
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        file_argument("path", &path, "the name of the data file to write (.exr)")?;
         py.detach(|| self.data.write(&path))
             .map_err(data_file_error)
     }

@@ -10,7 +10,7 @@
 //! counts the pixels done and reports a cancellation, which the driver honours between
 //! tiles: a cancelled render stops within one tile per thread.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::Duration;
@@ -23,7 +23,7 @@ use render::threads::{thread_pool, ThreadsError};
 use scene::overrides::{load, LoadError, Overrides, SceneSource, Setting};
 
 use crate::data::Data;
-use crate::errors::{argument_error, value_error};
+use crate::errors::{argument_error, file_argument, io_error, value_error};
 
 /// What the render thread hands back: the traced image and the summary line, or why not.
 type Outcome = Result<(datafile::DataFile, String), String>;
@@ -65,9 +65,15 @@ pub struct RenderJob {
 }
 
 /// A scene refused with its overrides, as `godel render` says it, the overrides named by
-/// their keyword arguments (`width: camera.width: …`).
-fn load_error(e: LoadError) -> PyErr {
-    value_error(e.describe(Setting::keyword))
+/// their keyword arguments (`width: camera.width: …`): a `ValueError`, or for a scene file
+/// (`path`) that is missing or out of reach the `OSError` of its kind (`FileNotFoundError`).
+fn load_error(e: LoadError, path: Option<&Path>) -> PyErr {
+    let message = e.describe(Setting::keyword);
+    // A file whose metadata cannot be read could not be read either: that was the failure.
+    match path.map(std::fs::metadata) {
+        Some(Err(missing)) if matches!(e, LoadError::Scene(_)) => io_error(&missing, message),
+        _ => value_error(message),
+    }
 }
 
 #[pymethods]
@@ -95,6 +101,9 @@ impl RenderJob {
             ThreadsError::Count(message) => argument_error("threads", message),
             e => PyRuntimeError::new_err(e.to_string()),
         })?;
+        if let Some(path) = &scene_path {
+            file_argument("scene", path, "a scene file")?;
+        }
         let (source, file) = match (&scene_path, &scene_text) {
             (Some(path), _) => (SceneSource::File(path), path.display().to_string()),
             (None, Some(text)) => {
@@ -111,7 +120,7 @@ impl RenderJob {
             samples,
             name: None,
         };
-        let scene = load(source, &overrides).map_err(load_error)?;
+        let scene = load(source, &overrides).map_err(|e| load_error(e, scene_path.as_deref()))?;
         // Textures load before tracing, as on the command line: bad input fails fast.
         shade::textures_for_scene(&scene).map_err(value_error)?;
         // Sized against memory before any work, as on the command line.

@@ -167,3 +167,57 @@ def test_a_render_beyond_the_memory_budget_is_refused(monkeypatch, out):
         godel.render(width=44, height=5, progress=False)
     assert str(raised.value) == expected
     assert "needs about" in expected and expected.startswith("built-in scene: camera: ")
+
+
+# --- Files (issue 36): a missing file, a folder or an empty path given where a file belongs.
+
+
+def test_a_missing_scene_file_is_file_not_found_with_the_cli_message(out):
+    missing = out / "missing.toml"
+    expected = cli_error("render", str(missing), "-o", str(out / "pics"))
+    for overrides in ({}, {"width": 44}):
+        with pytest.raises(FileNotFoundError) as raised:
+            godel.render(missing, progress=False, **overrides)
+        assert str(raised.value) == expected
+
+
+def test_a_folder_where_a_file_belongs_is_called_a_folder(out):
+    image = godel.render(width=44, height=5, progress=False)
+    named_exr = out / "pics.exr"
+    named_exr.mkdir()
+    to_write = "the name of the data file to write (.exr)"
+    cases = [
+        (lambda: godel.render(out, progress=False), out, "a scene file"),
+        (lambda: godel.render(out, width=44, progress=False), out, "a scene file"),
+        (lambda: godel.read(out), out, "a data file"),
+        (lambda: godel.read(named_exr), named_exr, "a data file"),
+        (lambda: image.save(out), out, to_write),
+        (lambda: image.save(named_exr), named_exr, to_write),
+    ]
+    for call, folder, what in cases:
+        with pytest.raises(IsADirectoryError) as raised:
+            call()
+        assert str(raised.value) == f"{folder}: is a folder, not {what}"
+    # Nothing written, the folder left as it was.
+    assert [p.name for p in out.iterdir()] == ["pics.exr"]
+    assert not any(named_exr.iterdir())
+
+
+def test_an_empty_path_names_its_argument():
+    image = godel.render(width=44, height=5, progress=False)
+    with pytest.raises(ValueError, match=r"^scene: an empty path, not a scene file$"):
+        godel.render("", progress=False)
+    with pytest.raises(ValueError, match=r"^path: an empty path, not a data file$"):
+        godel.read("")
+    with pytest.raises(ValueError, match=r"^path: an empty path, not the name of the data file"):
+        image.save("")
+
+
+def test_a_missing_texture_is_refused_as_part_of_its_input(out):
+    # A file named inside the input is that input's mistake, as on the command line: the
+    # scene's (scenes/bad/missing-texture-file.toml above) and the shade settings'.
+    image = godel.render(width=44, height=5, progress=False)
+    missing = out / "no-such-image.png"
+    with pytest.raises(ValueError) as raised:
+        image.rgb(objects={"earth": {"texture": {"kind": "image", "path": str(missing)}}})
+    assert str(raised.value).startswith(f"image texture {missing}: "), str(raised.value)
