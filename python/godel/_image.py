@@ -107,10 +107,14 @@ class Image:
         return np.frombuffer(raw, dtype="=f4").reshape(height, width, 3).copy()
 
     def save(self, path: Union[str, os.PathLike]) -> None:
-        """Writes the data file to ``path`` (``.exr``), through a temporary file and a
-        rename: the same bytes as ``godel render`` writes for this image, readable by every
-        ``godel`` command. A folder raises ``IsADirectoryError``, an empty path
-        ``ValueError``, a missing folder ``FileNotFoundError``."""
+        """Writes the data file to ``path``, through a temporary file and a rename: the same
+        bytes as ``godel render`` writes for this image, readable by every ``godel`` command.
+
+        ``path`` must end in ``.exr``, as a data file's name on the command line: any other
+        name (``x.png`` is a picture's: see :meth:`rgb`, :meth:`hdr`) or an empty one raises
+        ``ValueError``, a folder ``IsADirectoryError``, a missing folder
+        ``FileNotFoundError``. A save that fails leaves no file behind, and an existing
+        file at ``path`` as it was."""
         self._data.save(os.fspath(path))
 
     def __repr__(self) -> str:

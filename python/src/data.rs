@@ -9,9 +9,10 @@ use std::path::PathBuf;
 use datafile::{DataFile, Plane};
 use pyo3::prelude::*;
 use pyo3::types::PyByteArray;
+use shade::hdr::PictureFormat;
 use shade::{ShadeError, ShadeSettings, Shading};
 
-use crate::errors::{data_file_error, file_argument, value_error};
+use crate::errors::{argument_error, data_file_error, file_argument, value_error};
 
 /// A traced image (use `godel.Image`, which wraps it).
 #[pyclass(module = "godel._godel", frozen)]
@@ -48,9 +49,19 @@ impl Data {
         Ok(Data { data })
     }
 
-    /// Writes the data file to `path` (through a temporary file and a rename).
+    /// Writes the data file to `path` (through a temporary file and a rename). The name must
+    /// end in `.exr`, in any case: the rule by which the command line's `-o` tells a data
+    /// file's name (`PictureFormat::from_path`; `.png` is a picture's).
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        file_argument("path", &path, "the name of the data file to write (.exr)")?;
+        let what = "the name of the data file to write (.exr)";
+        file_argument("path", &path, what)?;
+        if PictureFormat::from_path(&path) != Some(PictureFormat::Exr) {
+            let message = format!(
+                "must name the data file to write (.exr), got {}; rgb() and hdr() give pictures",
+                path.display()
+            );
+            return Err(argument_error("path", message));
+        }
         py.detach(|| self.data.write(&path))
             .map_err(data_file_error)
     }

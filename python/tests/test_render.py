@@ -147,3 +147,27 @@ def test_render_without_a_scene_is_the_builtin_reference():
                              progress=False)
     for name, values in image.channels.items():
         assert same_bits(values, reference[name]), name
+
+
+def test_save_takes_a_data_file_name_and_leaves_nothing_when_it_fails(out):
+    # Issue 36: save("x.png") wrote an EXR into x.png. The data file's name ends in .exr, in
+    # any case, as the command line's -o takes it (and writes it under the name given).
+    image = godel.render(width=44, height=5, progress=False)
+    mine = out / "mine.png"
+    mine.write_bytes(b"a picture of mine")
+    for name in ("x.png", "mine.png", "x", "x.exr.part", "x.tiff"):
+        with pytest.raises(ValueError) as raised:
+            image.save(out / name)
+        assert str(raised.value) == (
+            f"path: must name the data file to write (.exr), got {out / name}; "
+            "rgb() and hdr() give pictures"
+        )
+    with pytest.raises(FileNotFoundError):
+        image.save(out / "no-such-folder" / "x.exr")
+    assert [p.name for p in out.iterdir()] == ["mine.png"]  # no temporary either
+    assert mine.read_bytes() == b"a picture of mine"
+    for name in ("x.exr", "y.EXR"):
+        image.save(out / name)
+        assert same_bits(godel.read(out / name)["g"], image["g"])
+    assert filecmp.cmp(out / "x.exr", out / "y.EXR", shallow=False)
+    assert sorted(p.name for p in out.iterdir()) == ["mine.png", "x.exr", "y.EXR"]
