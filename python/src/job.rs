@@ -123,7 +123,9 @@ impl RenderJob {
         let scene = load(source, &overrides).map_err(|e| load_error(e, scene_path.as_deref()))?;
         // Textures load before tracing, as on the command line: bad input fails fast.
         shade::textures_for_scene(&scene).map_err(value_error)?;
-        // Sized against memory before any work, as on the command line.
+        // Sized against memory before any work, as on the command line; a bad
+        // GODEL_MEMORY_BUDGET is named as such, not as the scene's camera.
+        datafile::memory::budget().map_err(value_error)?;
         let total = plan_pixels(&scene, &Plan::All);
         let what = "a data file of this width × height × samples";
         datafile::memory::check_writing(what, total, scene.lights.len())

@@ -6,7 +6,7 @@
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyByteArray;
-use spacetime::connection::{connections, MAX_WINDINGS};
+use spacetime::connection::{connections, on_the_source_axis, MAX_WINDINGS};
 use spacetime::curve::{compute, stop_name, CurveError, CurveMethod, CurveRequest, Input};
 use spacetime::{Event, Godel, Metric, TimeDirection};
 
@@ -157,6 +157,10 @@ pub fn connect(
     let [t, x, y, z] = target;
     let [sx, sy, sz] = source;
     let (source, event) = (Event::new(0.0, sx, sy, sz), Event::new(t, x, y, z));
+    // Not single rays there, but cones of them: refused, as `godel connect` does.
+    if let Some(why) = on_the_source_axis(a, source, event) {
+        return Err(argument_error("target", why));
+    }
     let found = py
         .detach(|| connections(a, source, event, windings))
         .ok_or_else(|| PyRuntimeError::new_err("a connecting ray has no closed form"))?;

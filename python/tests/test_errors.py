@@ -169,6 +169,26 @@ def test_a_render_beyond_the_memory_budget_is_refused(monkeypatch, out):
     assert "needs about" in expected and expected.startswith("built-in scene: camera: ")
 
 
+def test_a_memory_budget_that_is_not_one_is_named(monkeypatch, out):
+    # Issue 36: ignored silently before; now refused as the command line refuses it.
+    monkeypatch.setenv("GODEL_MEMORY_BUDGET", "abc")
+    expected = cli_error("render", "--width", "44", "--height", "5", "-o", str(out))
+    assert expected == 'GODEL_MEMORY_BUDGET: must be a number of bytes from 0 to 1e18 ' \
+        '(e.g. 8e9), got "abc"'
+    with pytest.raises(ValueError) as raised:
+        godel.render(width=44, height=5, progress=False)
+    assert str(raised.value) == expected
+
+
+def test_connect_refuses_an_event_on_the_source_axis():
+    # Issue 36: the source at the event gave a ray of travel time 0 in an arbitrary direction.
+    for target, why in [((2.0, 0.7, 0.1, 0.3), "the source is at the event's place"),
+                        ((2.0, 0.7, 0.1, 1.3), "the event is on the source's axis")]:
+        with pytest.raises(ValueError, match=f"^target: {why}"):
+            godel.connect(source=(0.7, 0.1, 0.3), target=target)
+    assert godel.connect(source=(0.7, 0.1, 0.3), target=(2.0, 0.75, 0.1, 0.3))
+
+
 # --- Files (issue 36): a missing file, a folder or an empty path given where a file belongs.
 
 

@@ -15,10 +15,12 @@
 //! - [`memory`]: work sized against the memory the machine has, before it starts.
 //! - [`atomic`]: every output file is written to a temporary file and renamed, several files
 //!   together where they belong together; temporaries are removed on signals and swept.
+//! - [`folders`]: output folders a run creates, removed again where a failed run left them empty.
 
 pub mod atomic;
 mod codec;
 mod exr_write;
+pub mod folders;
 pub mod memory;
 mod planes;
 pub mod record;

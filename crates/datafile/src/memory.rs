@@ -28,17 +28,41 @@ pub fn check_writing(what: &str, rays: u64, lights: usize) -> Result<(), String>
 /// What the work may use: `GODEL_MEMORY_BUDGET` (bytes, e.g. `8e9`) where set — a job under
 /// a memory limit that `/proc/meminfo` does not show (a cgroup) says so there —, else three
 /// quarters of the memory the system has available now (Linux's `MemAvailable`, which counts
-/// reclaimable caches), or 4 GiB where that is unknown.
-pub fn budget() -> u64 {
-    let set = std::env::var(BUDGET_VARIABLE)
-        .ok()
+/// reclaimable caches), or 4 GiB where that is unknown. A variable set to anything but a
+/// number of bytes from 0 to [`MOST_BUDGET`] is refused (a message naming it), never ignored:
+/// a typo would otherwise size the work by a budget the user did not ask for. Empty is unset.
+pub fn budget() -> Result<u64, BadBudget> {
+    let Some(text) = std::env::var_os(BUDGET_VARIABLE).filter(|v| !v.is_empty()) else {
+        return Ok(available().map_or(4 << 30, |bytes| bytes / 4 * 3));
+    };
+    let shown = text.to_string_lossy();
+    text.to_str()
         .and_then(|v| v.trim().parse::<f64>().ok())
-        .filter(|b| b.is_finite() && *b >= 0.0);
-    match set {
-        Some(bytes) => bytes as u64,
-        None => available().map_or(4 << 30, |bytes| bytes / 4 * 3),
+        .filter(|b| (0.0..=MOST_BUDGET).contains(b))
+        .map(|b| b as u64)
+        .ok_or_else(|| BadBudget {
+            reason: format!(
+                "must be a number of bytes from 0 to {MOST_BUDGET:e} (e.g. 8e9), got {shown:?}"
+            ),
+        })
+}
+
+/// A [`BUDGET_VARIABLE`] that is not a budget: displayed as `GODEL_MEMORY_BUDGET: reason`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BadBudget {
+    pub reason: String,
+}
+
+impl std::fmt::Display for BadBudget {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{BUDGET_VARIABLE}: {}", self.reason)
     }
 }
+
+impl std::error::Error for BadBudget {}
+
+/// The largest budget [`BUDGET_VARIABLE`] may set, in bytes (an exabyte): more is a typo.
+pub const MOST_BUDGET: f64 = 1e18;
 
 /// The environment variable that sets the [`budget`].
 pub const BUDGET_VARIABLE: &str = "GODEL_MEMORY_BUDGET";
@@ -52,9 +76,9 @@ fn available() -> Option<u64> {
 }
 
 /// Refuses work that needs `needed` bytes when the [`budget`] is less, saying what the work
-/// is (`what`) and, when given, what would fit (`fits`).
+/// is (`what`) and, when given, what would fit (`fits`); refuses a bad [`BUDGET_VARIABLE`].
 pub fn check(what: &str, needed: u64, fits: Option<String>) -> Result<(), String> {
-    let budget = budget();
+    let budget = budget().map_err(|e| e.to_string())?;
     if needed <= budget {
         return Ok(());
     }

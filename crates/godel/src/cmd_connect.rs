@@ -15,7 +15,7 @@ use crate::args::{coordinates, parse_vector, scale_a, usage, Format};
 use anyhow::Context;
 use scene::short;
 use serde_json::json;
-use spacetime::connection::{connections, Connections, MAX_WINDINGS};
+use spacetime::connection::{connections, on_the_source_axis, Connections, MAX_WINDINGS};
 use spacetime::Cylindrical;
 use std::io::Write;
 
@@ -77,6 +77,10 @@ pub fn connect(args: &ConnectArgs) -> anyhow::Result<Connections> {
         z: sz,
     }
     .to_event();
+    // Not single rays there, but cones of them: refused rather than one arbitrary member.
+    if let Some(why) = on_the_source_axis(a, source, event) {
+        return Err(usage("--from/--to-source", why.to_string()));
+    }
     connections(a, source, event, args.windings).context("a connecting ray has no closed form")
 }
 

@@ -254,7 +254,7 @@ fn check_memory(scene: &Scene, sphere: Option<u32>) -> anyhow::Result<()> {
     let (flag, what, fits) = match sphere {
         Some(width) => {
             // The widest sphere within the budget: W × W/2 rays.
-            let most = ((2 * memory::budget() / per_ray) as f64).sqrt() as u32 & !1;
+            let most = ((2 * memory::budget()? / per_ray) as f64).sqrt() as u32 & !1;
             let fits = (most >= 8).then(|| format!("--sphere {}", most.min(MAX_SPHERE_WIDTH)));
             (
                 format!("--sphere {width}"),

@@ -8,8 +8,8 @@
 
 use crate::args::usage;
 use crate::plot_kit::{
-    arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, trace_ray,
-    write_figure, Frame, PALETTE,
+    arrowhead, caption, legend_heading, legend_text, palette_swatches, prepare_figure_output,
+    trace_ray, write_figure, Frame, PALETTE,
 };
 use crate::svg::f;
 use spacetime::{Event, Godel, Metric};
@@ -268,7 +268,7 @@ fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
             format!("must be between 0 and 360, got {}", args.tilted),
         ));
     }
-    let png = output_is_png(&args.output)?;
+    let png = prepare_figure_output(&args.output)?;
     let rays = trace_fan(a, args.rays, args.tilted)?;
     let svg = figure(a, &rays, args.rays, args.tilted);
     write_figure(&args.output, svg, png)

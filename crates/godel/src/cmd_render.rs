@@ -16,6 +16,7 @@ use crate::inputs::Inputs;
 use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
 use crate::progress::{progress_bar, Bar};
+use anyhow::Context;
 use clap::Args;
 use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
@@ -219,6 +220,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// What asked for the GPU when the command line did not (`--gpu`): the scene's
+/// `[trace] gpu = true`, named with its file (`None`: the built-in scene), for messages.
+pub fn gpu_in_scene(file: Option<&Path>) -> String {
+    let file = file.map_or("the built-in scene".into(), |p| p.display().to_string());
+    format!("{file}: [trace] gpu = true")
+}
+
 /// Why --gpu goes with neither --part nor MPI.
 const GPU_ONE_PROCESS: &str =
     "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
@@ -228,7 +236,11 @@ fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> a
     let camera = scene.sample_camera();
     let pixels = u64::from(camera.width()) * u64::from(camera.height());
     let bar = progress_bar(scene, pixels, args.quiet);
-    let done = gpu::render(scene, &Bar(bar.clone()))?;
+    let asked_by = match args.gpu {
+        true => "--gpu".to_string(),
+        false => gpu_in_scene(scene.source_path.as_deref()),
+    };
+    let done = gpu::render(scene, &Bar(bar.clone())).context(asked_by)?;
     bar.finish_and_clear();
     let (exr, png) = target.files(&scene.name);
     write_data_and_preview(scene, &done.data, &exr, &png, args.grid)?;

@@ -177,7 +177,14 @@ impl Plan {
                     .map_err(|e| settings_error("sequence", e))?;
                 // `[trace] gpu = true` traces the frames with the GPU kernel.
                 let data = match scene.trace.gpu {
-                    true => gpu::render(&scene, &NoProgress)?.data,
+                    true => {
+                        let file = match &self.script.source {
+                            FrameSource::Trace { scene, .. } => Some(scene.as_path()),
+                            FrameSource::Data(_) => None,
+                        };
+                        let asked_by = crate::cmd_render::gpu_in_scene(file);
+                        gpu::render(&scene, &NoProgress).context(asked_by)?.data
+                    }
                     false => render(&scene, &NoProgress)?.0,
                 };
                 let image = Shading::new(&data, &settings)?.image(&data);
@@ -378,7 +385,7 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
 pub fn start(plan: &Plan, args: &SequenceArgs) -> anyhow::Result<ProgressBar> {
     let dir = plan.output_dir();
     let bad_output = |e: String| settings_error("sequence", plan.script.error_at("output", e));
-    std::fs::create_dir_all(dir)
+    datafile::folders::create_folder(dir)
         .map_err(|e| bad_output(format!("cannot create the folder {}: {e}", dir.display())))?;
     let outputs = plan.outputs();
     datafile::atomic::check_all_writable(&outputs)

@@ -391,6 +391,7 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
     inputs
         .add_settings(&settings)
         .refuse_outputs_over_inputs("--output", &[&args.output])?;
+    crate::output::prepare_file("--output", &args.output)?;
     let shading = Shading::new(&data, &settings).map_err(|e| {
         let flag = blamed_flag(&args, &e);
         settings_error(flag, e)

@@ -8,7 +8,8 @@
 //! SIGINT, SIGTERM and SIGHUP end every command but `view` and `explore` (whose server stops
 //! gracefully on its own) through [`exit_on_signals`]: the temporary files of writes under way are
 //! removed (`datafile::atomic`) and the process exits with 128 + the signal's number (130 for
-//! Ctrl-C, 143 for SIGTERM), leaving no half-written file behind.
+//! Ctrl-C, 143 for SIGTERM), leaving no half-written file behind. A run that fails or is
+//! interrupted also removes the output folders it created and left empty (`datafile::folders`).
 
 mod args;
 #[cfg(feature = "mpi")]
@@ -114,6 +115,7 @@ fn exit_on_signals() -> std::io::Result<()> {
                 if removed > 0 {
                     eprintln!("godel: interrupted; removed {removed} temporary file(s)");
                 }
+                datafile::folders::remove_created_folders_left_empty();
                 std::process::exit(128 + signal);
             }
         })?;
@@ -155,6 +157,8 @@ fn main() -> ExitCode {
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
+            // A failed run writes nothing: not even the folders it made for its output.
+            datafile::folders::remove_created_folders_left_empty();
             // A reader that stops early (`godel … | head`) is no failure: end quietly, as
             // other Unix tools do.
             if err.chain().any(|c| {

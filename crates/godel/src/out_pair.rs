@@ -1,7 +1,8 @@
 //! What `-o` names for the commands that write a data file and its preview (`render`,
 //! `merge`): a FOLDER that receives `NAME.exr` and `NAME.png` (NAME the scene's name or
-//! `--name`), or one of the two files itself, `x.exr` or `x.png`, the other then written
-//! beside it with the other extension — as `shade` and `look` take the file they write.
+//! `--name`), or one of the two files itself, `x.exr` or `x.png` (any case: the name given is
+//! the name written), the other then written beside it with the other extension in the same
+//! case — as `shade` and `look` take the file they write.
 
 use crate::args::usage;
 use shade::hdr::PictureFormat;
@@ -21,9 +22,9 @@ impl OutPair {
     /// folder. `name_given` says whether `--name` was given: it chooses NAME in a folder and
     /// is refused beside a file name, which already says it.
     pub fn parse(flag: &str, path: &Path, name_given: bool) -> anyhow::Result<OutPair> {
-        if PictureFormat::from_path(path).is_none() {
+        let Some(format) = PictureFormat::from_path(path) else {
             return Ok(OutPair::Folder(path.to_path_buf()));
-        }
+        };
         if name_given {
             return Err(usage(
                 "--name",
@@ -33,9 +34,24 @@ impl OutPair {
                 ),
             ));
         }
-        Ok(OutPair::Files {
-            exr: path.with_extension("exr"),
-            png: path.with_extension("png"),
+        // The file named is written under that very name (`pic.EXR`); its partner takes the
+        // other extension in the same case (`pic.PNG`).
+        let upper = path
+            .extension()
+            .is_some_and(|e| e.to_string_lossy().chars().all(|c| c.is_ascii_uppercase()));
+        let partner = |ext: &str| match upper {
+            true => path.with_extension(ext.to_ascii_uppercase()),
+            false => path.with_extension(ext),
+        };
+        Ok(match format {
+            PictureFormat::Exr => OutPair::Files {
+                exr: path.to_path_buf(),
+                png: partner("png"),
+            },
+            PictureFormat::Png => OutPair::Files {
+                exr: partner("exr"),
+                png: path.to_path_buf(),
+            },
         })
     }
 
@@ -84,14 +100,25 @@ mod tests {
             folder.files("ref"),
             (PathBuf::from("out/ref.exr"), PathBuf::from("out/ref.png"))
         );
-        for given in ["pics/x.png", "pics/x.exr", "pics/x.PNG"] {
+        for given in ["pics/x.png", "pics/x.exr"] {
             let pair = OutPair::parse("--output", Path::new(given), false).unwrap();
             assert_eq!(pair.folder(), Path::new("pics"));
-            let (exr, png) = pair.files("ignored");
-            assert_eq!(exr.file_stem().unwrap(), "x");
-            assert_eq!(exr.extension().unwrap(), "exr");
-            assert_eq!(png.extension().unwrap(), "png");
             assert_eq!(pair.names("ignored"), ["x.exr", "x.png"]);
+        }
+        // Issue 36: `-o pic.EXR` wrote pic.exr, not the name given.
+        for (given, names) in [
+            ("pics/x.PNG", ["x.EXR", "x.PNG"]),
+            ("pics/x.EXR", ["x.EXR", "x.PNG"]),
+            ("pics/x.Exr", ["x.Exr", "x.png"]),
+            ("pics/x.pNg", ["x.exr", "x.pNg"]),
+        ] {
+            let pair = OutPair::parse("--output", Path::new(given), false).unwrap();
+            assert_eq!(pair.names("ignored"), names, "{given}");
+            let (exr, png) = pair.files("ignored");
+            assert!(
+                exr == Path::new(given) || png == Path::new(given),
+                "{given}"
+            );
         }
         let bare = OutPair::parse("--output", Path::new("y.exr"), false).unwrap();
         assert_eq!(bare.folder(), Path::new("."));

@@ -46,10 +46,11 @@ pub fn write_together(files: &[(PathBuf, &[u8])]) -> anyhow::Result<()> {
         .with_context(|| format!("cannot write {}", names.join(" and ")))
 }
 
-/// Creates the output folder `dir` and checks that every file in `names` can be written
-/// there, before any work; failures are usage errors naming `flag`.
+/// Creates the output folder `dir` (and missing parents: removed again if the run fails,
+/// `datafile::folders`) and checks that every file in `names` can be written there, before
+/// any work; failures are usage errors naming `flag`.
 pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| {
+    datafile::folders::create_folder(dir).map_err(|e| {
         crate::args::usage(
             flag,
             format!("cannot create the output folder {}: {e}", dir.display()),
@@ -62,6 +63,16 @@ pub fn prepare(flag: &str, dir: &Path, names: &[String]) -> anyhow::Result<()> {
         })?;
     }
     Ok(())
+}
+
+/// [`prepare`] for one file `path` (its folder `.` where it names none).
+pub fn prepare_file(flag: &str, path: &Path) -> anyhow::Result<()> {
+    let folder = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    prepare(flag, folder, &Vec::from_iter(name))
 }
 
 /// Writes the data file to `exr` and its preview (the scene's textures, lit where the scene

@@ -12,8 +12,8 @@
 
 use crate::args::usage;
 use crate::plot_kit::{
-    arrowhead, caption, legend_heading, legend_text, output_is_png, palette_swatches, tick_label,
-    trace_ray, write_figure, Frame, PALETTE,
+    arrowhead, caption, legend_heading, legend_text, palette_swatches, prepare_figure_output,
+    tick_label, trace_ray, write_figure, Frame, PALETTE,
 };
 use crate::svg::f;
 use clap::ValueEnum;
@@ -265,7 +265,7 @@ pub fn plot_isometry(args: IsometryPlotArgs) -> anyhow::Result<()> {
             format!("must be finite, got {}", args.angle),
         ));
     }
-    let png = output_is_png(&args.output)?;
+    let png = prepare_figure_output(&args.output)?;
     let chi = args.angle.to_radians();
     let metric = Metric::Godel(Godel::new(a));
     let (events, _) = trace_ray(metric, a, [chi.cos(), chi.sin(), 0.0])?;

@@ -1,10 +1,10 @@
 //! Pieces both figures of `godel plot` draw with: the palette, a light ray from the origin
-//! sampled for drawing, tick labels, arrowheads, the output type chosen by the extension,
-//! the shared layout (canvas, frame, clipped data layer in units of a, horizon, legend,
-//! caption) and writing the figure.
+//! sampled for drawing, tick labels, arrowheads, the output checked before any work and its
+//! type chosen by the extension, the shared layout (canvas, frame, clipped data layer in units
+//! of a, horizon, legend, caption) and writing the figure.
 
 use crate::args::usage;
-use crate::output::write_atomic;
+use crate::output::{prepare_file, write_atomic};
 use crate::svg::{f, to_png, Svg, Weight};
 use anyhow::Context;
 use spacetime::{trace, Event, Geodesic, Metric, Spacetime, TimeDirection, TraceLimits};
@@ -52,20 +52,26 @@ pub fn arrowhead(p: (f64, f64), d: (f64, f64), len: f64) -> [(f64, f64); 3] {
     [p, (bx - w * uy, by + w * ux), (bx + w * uy, by - w * ux)]
 }
 
-/// Whether a figure goes to PNG (`.png`) or SVG (`.svg`); any other name is an error.
-pub fn output_is_png(output: &std::path::Path) -> anyhow::Result<bool> {
+/// Before any work: whether a figure goes to PNG (`.png`) or SVG (`.svg`), any other name a
+/// usage error; the folder created where missing (as `render` does) and the file checked
+/// writable, refusals naming `--output` (exit 2, as every command's).
+pub fn prepare_figure_output(output: &std::path::Path) -> anyhow::Result<bool> {
     let ext = output
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("svg") => Ok(false),
-        Some("png") => Ok(true),
-        _ => Err(usage(
-            "--output",
-            format!("must end in .svg or .png, got {}", output.display()),
-        )),
-    }
+    let png = match ext.as_deref() {
+        Some("svg") => false,
+        Some("png") => true,
+        _ => {
+            return Err(usage(
+                "--output",
+                format!("must end in .svg or .png, got {}", output.display()),
+            ))
+        }
+    };
+    prepare_file("--output", output)?;
+    Ok(png)
 }
 
 /// The layout both figures share: a white 1040 × 660 canvas, a square frame of 520 pixels at

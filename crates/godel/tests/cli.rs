@@ -388,8 +388,41 @@ fn plot_rejects_bad_input_and_leaves_no_file() {
         assert!(err.contains(flag), "{err}");
     }
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
-    let out = godel(&["plot", "geodesics", "-o", "/nonexistent-dir/g.svg"]);
-    assert_eq!(out.status.code(), Some(1));
+    // Issue 36: an output that cannot be written failed after the work with exit 1, where
+    // render refuses it before any work with exit 2; now as render: a folder where the file
+    // goes, or a file where a folder must be created.
+    std::fs::create_dir(dir.path().join("taken.svg")).unwrap();
+    std::fs::write(dir.path().join("file"), b"x").unwrap();
+    for bad in ["taken.svg", "file/sub/g.svg"] {
+        let path = dir.path().join(bad);
+        let out = godel(&["plot", "geodesics", "-o", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.starts_with("error: --output: cannot"), "{bad}: {err}");
+    }
+    let mut left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["file", "taken.svg"]);
+}
+
+/// Issue 36: `plot -o a/b/c.svg` failed where `render` creates missing folders.
+#[test]
+fn plot_creates_the_missing_folders_of_its_output() {
+    let dir = tempfile::tempdir().unwrap();
+    for figure in ["geodesics", "isometry"] {
+        let path = dir.path().join(figure).join("b/c.svg");
+        let out = godel(&["plot", figure, "-o", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{figure}: {err}");
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            svg.starts_with("<svg") || svg.starts_with("<?xml"),
+            "{figure}"
+        );
+    }
 }
 
 /// Issue 10: `--samples 4000000000` aborted with SIGABRT after trying to allocate 288 GB.

@@ -53,6 +53,14 @@ fn render_and_merge_take_a_file_name_or_a_folder() {
         assert_eq!(data.records, want.records);
         assert_eq!(std::fs::read(out.with_extension("png")).unwrap(), preview);
     }
+    // Issue 36: `-o pic.EXR` wrote pic.exr and pic.png: the name given is the name written,
+    // its partner in the same case.
+    let upper = dir.path().join("upper");
+    let o = godel(&["render", &scene, "-q", "-o", s(&upper.join("pic.EXR"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(files_in(&upper), ["pic.EXR", "pic.PNG"]);
+    let data = datafile::DataFile::read(&upper.join("pic.EXR")).unwrap();
+    assert_eq!(data.records, want.records);
     // --name chooses NAME in a folder; beside a file name it is refused, nothing written.
     let named = dir.path().join("named.png");
     let o = godel(&["render", &scene, "-q", "-o", s(&named), "--name", "x"]);
@@ -264,19 +272,21 @@ fn each_error_is_said_once() {
     assert_eq!(err.matches("os error").count(), 1, "{err}");
     assert_eq!(err.matches("missing.exr").count(), 1, "{err}");
 
-    // A picture into a folder that does not exist: the path once, the cause once.
+    // A picture into a folder that cannot be made (a file is in the way): the path once, the
+    // cause once. (A folder that does not exist yet is made: issue 36.)
     let data = traced(dir.path());
+    std::fs::write(dir.path().join("no"), b"a file").unwrap();
     let out = dir.path().join("no").join("such").join("x.png");
     let o = godel(&["shade", s(&data), "-o", s(&out)]);
     let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.matches("os error").count(), 1, "{err}");
     assert_eq!(
         err.matches(".godel-").count(),
         0,
         "no temporary named: {err}"
     );
-    assert_eq!(err.matches("x.png").count(), 1, "{err}");
+    assert_eq!(err.matches("no/such").count(), 1, "{err}");
 }
 
 #[test]
@@ -289,6 +299,16 @@ fn shade_output_type_follows_the_extension() {
         assert_usage(&o, "--output");
         assert!(!out.exists());
     }
+    // Issue 36: missing folders are created, as render's; an output that cannot be written
+    // is refused before shading (exit 2).
+    let deep = dir.path().join("a/b/x.png");
+    let o = godel(&["shade", s(&data_path), "-o", s(&deep)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(image::open(&deep).is_ok());
+    std::fs::write(dir.path().join("file"), b"x").unwrap();
+    let blocked = dir.path().join("file/x.png");
+    let o = godel(&["shade", s(&data_path), "-o", s(&blocked)]);
+    assert_usage(&o, "--output");
     let (exr, png) = shade_lit_pair(&data_path, dir.path(), "x");
     // The EXR holds float R, G, B; the PNG is the same colours through the display
     // transform (tone curve, sRGB) on every hit pixel.

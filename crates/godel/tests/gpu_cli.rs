@@ -108,8 +108,71 @@ fn gpu_and_parts_exclude_each_other() {
     assert!(!dir.path().join("out").exists());
 }
 
+/// Without an EGL library each way of asking for the GPU fails with one sentence that names
+/// what asked (`--gpu`, or the scene's `[trace] gpu = true`, also in a sequence: issue 36
+/// found the sequence blaming `--gpu`), and writes nothing: not even the output folder it
+/// created (issue 36 found it left empty).
 #[test]
 fn without_an_egl_library_gpu_fails_with_one_sentence_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "ball.toml", SCENE);
+    let in_scene = SCENE.replace("max_past = 8.0\n", "max_past = 8.0\ngpu = true\n");
+    let gpu_scene = write(dir.path(), "gpu.toml", &in_scene);
+    let script = write(
+        dir.path(),
+        "seq.toml",
+        "output = \"new/frames\"\nframes = 2\nmp4 = false\n[trace]\nscene = \"gpu.toml\"\nobserver_time = [0.0, 0.5]\n",
+    );
+    let out = dir.path().join("new/out");
+    let cases: [(Vec<&str>, String); 3] = [
+        (
+            vec![
+                "render",
+                path_arg(&scene),
+                "-o",
+                path_arg(&out),
+                "--gpu",
+                "-q",
+            ],
+            "error: --gpu: tracing on the GPU needs the EGL library".into(),
+        ),
+        (
+            vec!["render", path_arg(&gpu_scene), "-o", path_arg(&out), "-q"],
+            format!(
+                "error: {}: [trace] gpu = true: tracing on the GPU needs the EGL library",
+                gpu_scene.display()
+            ),
+        ),
+        (
+            vec!["sequence", path_arg(&script), "-q"],
+            format!(
+                "error: frame 0: {}: [trace] gpu = true: tracing on the GPU needs the EGL library",
+                gpu_scene.display()
+            ),
+        ),
+    ];
+    for (args, start) in cases {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_godel"))
+            .args(&args)
+            .env("GODEL_EGL", dir.path().join("no-such-libEGL.so.1"))
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with(&start), "{args:?}: {err}");
+        assert!(!err.contains("--gpu") || args.contains(&"--gpu"), "{err}");
+        assert!(
+            !dir.path().join("new").exists(),
+            "{args:?}: a folder was left"
+        );
+    }
+}
+
+/// Issue 36: an empty `GODEL_EGL` loaded the godel binary itself as the EGL library
+/// ("undefined symbol: eglChooseConfig"); empty means unset, the default library.
+#[test]
+fn an_empty_godel_egl_is_the_default_library() {
     let dir = tempfile::tempdir().unwrap();
     let scene = write(dir.path(), "ball.toml", SCENE);
     let out = dir.path().join("out");
@@ -122,15 +185,13 @@ fn without_an_egl_library_gpu_fails_with_one_sentence_and_writes_nothing() {
             "--gpu",
             "-q",
         ])
-        .env("GODEL_EGL", dir.path().join("no-such-libEGL.so.1"))
+        .args(["--width", "36", "--height", "4"])
+        .env("GODEL_EGL", "")
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let err = stderr(&o);
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.contains("--gpu needs the EGL library"), "{err}");
-    let left: Vec<_> = std::fs::read_dir(&out)
-        .map(|d| d.flatten().collect())
-        .unwrap_or_default();
-    assert!(left.is_empty(), "{left:?}");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        DataFile::read(&out.join("ball.exr")).unwrap().header.method,
+        "gpu"
+    );
 }

@@ -247,3 +247,44 @@ fn work_beyond_the_memory_budget_is_refused_before_it_starts() {
     let fits: u32 = fits.parse().unwrap_or_else(|_| panic!("{e}"));
     assert!((8..64).contains(&fits) && fits.is_multiple_of(2), "{e}");
 }
+
+/// Issue 36: a `GODEL_MEMORY_BUDGET` that is not a budget (`abc`, `-5`, 10²³) was ignored
+/// silently, the work then sized by the machine's memory. It is refused before any work,
+/// with a message naming the variable and no output (not even the folder `-o` named);
+/// empty means unset.
+#[test]
+fn a_memory_budget_that_is_not_one_is_refused_naming_the_variable() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = write_scene(
+        tmp.path(),
+        "small.toml",
+        &common::lit_scene_text("small", 6.0),
+    );
+    let out = tmp.path().join("new/out");
+    let render_with = |budget: &str| {
+        run_within(
+            Command::new(GODEL)
+                .args(["render", &scene, "-q", "-o", out.to_str().unwrap()])
+                .args(["--width", "8", "--height", "2"])
+                .env("GODEL_MEMORY_BUDGET", budget),
+            NEVER_HANGS,
+        )
+    };
+    for bad in ["abc", "-5", "99999999999999999999999", "nan", "inf", "8 GB"] {
+        let o = render_with(bad);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {e}");
+        assert!(
+            e.starts_with("error: GODEL_MEMORY_BUDGET: must be a number of bytes")
+                && e.contains(&format!("got {bad:?}")),
+            "{bad}: {e}"
+        );
+        assert!(!tmp.path().join("new").exists(), "{bad}: a folder was left");
+    }
+    for good in ["", "8e9", " 1000000000 "] {
+        let o = render_with(good);
+        assert!(o.status.success(), "{good:?}: {}", stderr(&o));
+        assert_eq!(files_in(&out), ["small.exr", "small.png"], "{good:?}");
+        std::fs::remove_dir_all(tmp.path().join("new")).unwrap();
+    }
+}

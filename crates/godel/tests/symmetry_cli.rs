@@ -225,6 +225,48 @@ fn connect_counts_and_the_horizon() {
     }
 }
 
+/// Issue 36: with the source at the event's place, `connect` printed a ray of travel time 0
+/// in an arbitrary direction. It is refused (exit 2, naming both flags, nothing printed),
+/// as is an event elsewhere on the source's axis,
+/// at any time of the event and wherever the two are given, in either coordinate form of the
+/// same place; a source a little away still gets its rays.
+#[test]
+fn connect_refuses_the_source_at_the_event() {
+    for (from, source) in [
+        ("0,0,0,0", "0,0,0"),
+        ("-3.5,0.7,1.2,0.4", "0.7,1.2,0.4"),
+        ("2,1.1,-0.3,0", "1.1,5.983185307179586,0"),
+        ("1,0,0,0.2", "0,2.5,0.2"),
+    ] {
+        let o = godel(&["connect", "--from", from, "--to-source", source]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{from} {source}: {err}");
+        assert!(
+            err.starts_with("error: --from/--to-source: the source is at the event's place"),
+            "{err}"
+        );
+        assert!(o.stdout.is_empty());
+    }
+    // On the source's axis elsewhere: cones of rays, every azimuth at once (it printed a ray
+    // of travel time 0 that missed the event by 1).
+    let o = godel(&["connect", "--from", "0,0,0,1", "--to-source", "0,0,0"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("the event is on the source's axis"), "{err}");
+    let doc = json(&[
+        "connect",
+        "--from",
+        "0,0.7,1.2,0.4",
+        "--to-source",
+        "0.71,1.2,0.4",
+        "--format",
+        "json",
+    ]);
+    let rays = doc["rays"].as_array().unwrap();
+    assert!(!rays.is_empty());
+    assert!(rays.iter().all(|r| num(r, "travel_time") > 0.0));
+}
+
 /// The points of each `<g id="image-k" data-s="S">` polyline of the figure.
 fn images(svg: &str) -> Vec<(f64, Vec<(f64, f64)>)> {
     svg.split("<g id=\"image-")

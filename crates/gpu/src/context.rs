@@ -9,7 +9,7 @@ use khronos_egl as egl;
 use std::sync::{Mutex, MutexGuard};
 
 /// The EGL library's file names tried in turn, unless the environment variable [`LIBRARY_VAR`]
-/// names one (a path, for an EGL installed out of the loader's way).
+/// names one (a path, for an EGL installed out of the loader's way; empty is unset).
 const LIBRARIES: [&str; 2] = ["libEGL.so.1", "libEGL.so"];
 pub const LIBRARY_VAR: &str = "GODEL_EGL";
 
@@ -17,17 +17,18 @@ pub const LIBRARY_VAR: &str = "GODEL_EGL";
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
 const PLATFORM_DEVICE_EXT: egl::Enum = 0x313F;
 
-/// Why no context could be made: each says in one sentence what `--gpu` needs.
+/// Why no context could be made: each says in one sentence what tracing on the GPU needs
+/// (the caller says what asked for it: `--gpu`, or a scene's `[trace] gpu = true`).
 #[derive(Debug, thiserror::Error)]
 pub enum ContextError {
-    #[error("--gpu needs the EGL library (libEGL.so.1) with OpenGL ES 3, and none could be loaded ({0}); install Mesa's EGL (Debian: libegl1 libegl-mesa0 libgles2), or a GPU driver that brings one")]
+    #[error("tracing on the GPU needs the EGL library (libEGL.so.1) with OpenGL ES 3, and none could be loaded ({0}); install Mesa's EGL (Debian: libegl1 libegl-mesa0 libgles2), or a GPU driver that brings one")]
     NoLibrary(String),
-    #[error("--gpu found the EGL library but no display it could initialize ({0}); install Mesa's EGL (Debian: libegl-mesa0) for its software renderer llvmpipe")]
+    #[error("tracing on the GPU found the EGL library but no display it could initialize ({0}); install Mesa's EGL (Debian: libegl-mesa0) for its software renderer llvmpipe")]
     NoDisplay(String),
-    #[error("--gpu could not create an OpenGL ES 3 context on {display} ({why})")]
+    #[error("tracing on the GPU could not create an OpenGL ES 3 context on {display} ({why})")]
     NoContext { display: String, why: String },
     #[error(
-        "--gpu needs float render targets (GL_EXT_color_buffer_float), which {0} does not offer"
+        "tracing on the GPU needs float render targets (GL_EXT_color_buffer_float), which {0} does not offer"
     )]
     NoFloatTargets(String),
 }
@@ -150,9 +151,10 @@ impl Drop for Context {
 
 fn load() -> Result<Egl, ContextError> {
     let mut errors = Vec::new();
+    // Empty is unset: dlopen("") would load the running program itself as "libEGL".
     let names: Vec<String> = match std::env::var(LIBRARY_VAR) {
-        Ok(name) => vec![name],
-        Err(_) => LIBRARIES.iter().map(|s| s.to_string()).collect(),
+        Ok(name) if !name.trim().is_empty() => vec![name],
+        _ => LIBRARIES.iter().map(|s| s.to_string()).collect(),
     };
     for name in &names {
         // SAFETY: loading libEGL runs its initializers, as linking it would; its symbols

@@ -60,6 +60,50 @@ impl Connections {
     }
 }
 
+/// Why the rays from a source to an event on the source's own axis are not single rays:
+/// there (ρ = 0 after the isometry that moves the source to the axis) the azimuth χ of
+/// emission is free (docs/physics.md, "Light rays between a source and an event"), so light
+/// reaches the event along whole cones of directions, every azimuth at once; at the source's
+/// own place the event also sees it with travel time 0. [`connections`] would list one
+/// arbitrary member of each cone, so its callers refuse these events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OnTheSourceAxis {
+    /// The event at the source's place (any time).
+    AtTheSource,
+    /// The event above or below the source, on its axis.
+    OnItsAxis,
+}
+
+impl std::fmt::Display for OnTheSourceAxis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            OnTheSourceAxis::AtTheSource => {
+                "the source is at the event's place: the event sees it with travel time 0, and \
+                 the light it sent earlier in its plane returns to it from every direction of \
+                 that plane after each loop, not along single rays; put the source elsewhere"
+            }
+            OnTheSourceAxis::OnItsAxis => {
+                "the event is on the source's axis (ρ = 0): light from the source reaches it \
+                 along whole cones of directions, every azimuth at once, not along single rays; \
+                 move the event off the axis"
+            }
+        })
+    }
+}
+
+/// Whether `event` lies on the axis of a source at rest at `source` (x, y, z; its t ignored)
+/// in Gödel's universe of parameter `a`, to the float rounding of the isometry (10⁻¹² a).
+pub fn on_the_source_axis(a: f64, source: Event, event: Event) -> Option<OnTheSourceAxis> {
+    let source = Event::new(0.0, source.x, source.y, source.z);
+    let moved = Isometry::to_origin(a, source).apply(event);
+    let here = 1e-12 * a;
+    match (moved.r() > here, moved.z.abs() > here) {
+        (true, _) => None,
+        (false, false) => Some(OnTheSourceAxis::AtTheSource),
+        (false, true) => Some(OnTheSourceAxis::OnItsAxis),
+    }
+}
+
 /// Local spatial components of `v` in the static frame at `at`, normalized.
 fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
     let frame = metric.static_frame(at);
@@ -70,8 +114,8 @@ fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
 
 /// Every light ray, up to `windings` windings, from a source at rest at `source` (x, y, z;
 /// its t ignored) to `event` in Gödel's universe of parameter `a`. The inputs are the
-/// caller's to check (a > 0, finite coordinates, `windings` ≤ [`MAX_WINDINGS`]); `None` if a
-/// ray found has no closed form (it always has).
+/// caller's to check (a > 0, finite coordinates, `windings` ≤ [`MAX_WINDINGS`], the event
+/// not [`on_the_source_axis`]); `None` if a ray found has no closed form (it always has).
 pub fn connections(a: f64, source: Event, event: Event, windings: u32) -> Option<Connections> {
     let source = Event::new(0.0, source.x, source.y, source.z);
     let metric = Godel::new(a);
@@ -138,5 +182,30 @@ mod tests {
         );
         let far = far.unwrap();
         assert!(!far.within_horizon() && far.rays.is_empty());
+    }
+
+    /// The source's axis is the curve the source's isometry sends to the coordinate axis:
+    /// off the coordinate axis it is not a vertical line, so the check must go through it.
+    #[test]
+    fn events_on_the_source_axis_are_found_through_its_isometry() {
+        let a = 1.3;
+        let source = Event::new(0.0, 1.1, -0.6, 0.35);
+        let at = |t: f64, z: f64| Event::new(t, 1.1, -0.6, z);
+        assert_eq!(
+            on_the_source_axis(a, source, at(-7.0, 0.35)),
+            Some(OnTheSourceAxis::AtTheSource)
+        );
+        // The axis maps to the axis with z shifted: the same x, y at another z is on it.
+        assert_eq!(
+            on_the_source_axis(a, source, at(2.0, 1.0)),
+            Some(OnTheSourceAxis::OnItsAxis)
+        );
+        let off = Event::new(0.0, 1.1 + 1e-9, -0.6, 0.35);
+        assert_eq!(on_the_source_axis(a, source, off), None);
+        // An event a little off the axis still gets rays that land.
+        let near = Event::new(0.0, 1.1 + 1e-3, -0.6, 0.35);
+        let c = connections(a, source, near, 1).unwrap();
+        assert!(!c.rays.is_empty());
+        assert!(c.rays.iter().all(|r| r.miss < 1e-9 && r.travel_time > 0.0));
     }
 }
