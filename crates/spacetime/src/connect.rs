@@ -14,8 +14,9 @@
 //!
 //! s = ρ/2a, so rays exist only for ρ < 2a (ρ = 2a tangentially). Then λ = θ/ω, the
 //! emission azimuth is χ = φ_P − Φ(θ) + nπ and the emission time t_P − (2√2 a Φ(θ) − λ).
-//! F is solved per (n, b) by bracketing on a grid in |c| and refining; for z_P = 0 the
-//! only root is c = 0 (in-plane rays, exactly two per winding).
+//! F is solved per (n, b) by bracketing on a grid in |c| and refining in ψ (which resolves
+//! the nearly vertical rays near the axis); for z_P = 0 the only root is c = 0 (in-plane
+//! rays, exactly two per winding).
 //!
 //! A source at rest elsewhere is reduced to this case by the isometry T_S sending it to the
 //! origin ([`crate::isometry`]): its worldline goes to the axis worldline with t unchanged.
@@ -67,9 +68,11 @@ fn big_phi(q: f64, th: f64) -> f64 {
     th + ((q - 1.0) * s * c).atan2(c * c + q * s * s)
 }
 
-/// θ(c) of a winding and branch for a target at distance `rho` (needs |c| ≤ c_max).
-fn theta(a: f64, rho: f64, c: f64, n: u32, b: Branch) -> f64 {
-    let r_max = 2.0 * a * ((1.0 - c * c) / (1.0 + c * c)).sqrt();
+/// θ of a winding and branch for a target at distance `rho`, for the ray leaving at angle ψ
+/// to the z axis given as (cos ψ, sin ψ) = (c, σ) (needs r_max ≥ ρ). r_max = 2a σ/√(1 + c²)
+/// is the closed form's 2a √((1 − c²)/(1 + c²)) without the cancellation in 1 − c².
+fn theta(a: f64, rho: f64, (c, sigma): (f64, f64), n: u32, b: Branch) -> f64 {
+    let r_max = 2.0 * a * sigma / (1.0 + c * c).sqrt();
     let th0 = (rho / r_max).min(1.0).asin();
     n as f64 * PI
         + match b {
@@ -78,20 +81,20 @@ fn theta(a: f64, rho: f64, c: f64, n: u32, b: Branch) -> f64 {
         }
 }
 
-/// The ray for emission angle cosine `c` (signed), winding and branch.
-fn ray(a: f64, target: Event, c: f64, n: u32, b: Branch) -> ShadowRay {
+/// The ray leaving at angle ψ to the z axis, given as (c, σ) = (cos ψ, sin ψ) with c signed
+/// (toward the target's side), for a winding and branch.
+fn ray(a: f64, target: Event, (c, sigma): (f64, f64), n: u32, b: Branch) -> ShadowRay {
     let rho = target.r();
-    let th = theta(a, rho, c, n, b);
+    let th = theta(a, rho, (c, sigma), n, b);
     let w1 = 1.0 + c * c;
     let omega = w1.sqrt() / (2.0 * a);
     let q = (2.0 / w1).sqrt();
     let big = big_phi(q, th);
     let lambda = th / omega;
     let chi = target.phi() - big + n as f64 * PI;
-    let sin_psi = (1.0 - c * c).max(0.0).sqrt();
     ShadowRay {
         emission: Event::new(target.t - (2.0 * SQRT_2 * a * big - lambda), 0.0, 0.0, 0.0),
-        tangent: FourVector::new(1.0, sin_psi * chi.cos(), sin_psi * chi.sin(), c),
+        tangent: FourVector::new(1.0, sigma * chi.cos(), sigma * chi.sin(), c),
         lambda,
         winding: n,
         branch: b,
@@ -101,37 +104,66 @@ fn ray(a: f64, target: Event, c: f64, n: u32, b: Branch) -> ShadowRay {
 /// All light rays from the source at rest on the axis (r = 0, z = 0) of the Gödel metric
 /// with parameter `a` to `target`, with windings 0..=`max_winding`, latest emission first.
 /// Empty when the target lies at or beyond the horizon distance ρ ≥ 2a.
+///
+/// The roots are bracketed on the grid of [`GRID`] cells in |c| ∈ [0, c_max] and refined in
+/// the angle ψ = arccos |c|: near the axis (ρ ≪ a) the ray that climbs almost along z has
+/// 1 − |c| ~ ρ²/a², below what f64 resolves of c near 1 (at ρ = 10⁻⁹ a it missed the target
+/// by 1.2 a), while ψ ~ ρ/a is resolved, and c, sin ψ and r_max follow from ψ without
+/// cancellation. The grid's last point is ψ_min, where r_max = ρ, from s = ρ/2a directly.
 pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<ShadowRay> {
     let rho = target.r();
-    let s2 = (rho / (2.0 * a)).powi(2);
-    if !target.is_finite() || s2 >= 1.0 {
+    let s = rho / (2.0 * a);
+    if !target.is_finite() || s * s >= 1.0 {
         return Vec::new();
     }
-    let c_max = ((1.0 - s2) / (1.0 + s2)).sqrt();
+    // c_max² = (1 − s²)/(1 + s²) and sin²ψ_min = 2s²/(1 + s²).
+    let c_max = ((1.0 - s * s) / (1.0 + s * s)).sqrt();
+    let psi_min = (s * SQRT_2).atan2((1.0 - s * s).sqrt());
     let zp = target.z;
+    let sign = zp.signum();
+    // Grid point i: |c| = c_max i/GRID as (c, σ), the last one (c_max, sin ψ_min) exactly; the
+    // points' ψ only where a root is refined.
+    let point = |i: usize| match i {
+        GRID => (c_max, psi_min.sin()),
+        _ => {
+            let c = c_max * i as f64 / GRID as f64;
+            (c, (1.0 - c * c).sqrt())
+        }
+    };
+    let psi_of = |i: usize| match i {
+        GRID => psi_min,
+        _ => (c_max * i as f64 / GRID as f64).acos(),
+    };
     let mut out = Vec::new();
     for n in 0..=max_winding {
         for b in [Branch::Outbound, Branch::Inbound] {
             if zp == 0.0 {
-                out.push(ray(a, target, 0.0, n, b));
+                out.push(ray(a, target, (0.0, 1.0), n, b));
                 continue;
             }
-            // G(u) = 2a u θ(u)/√(1+u²) − |z_P| for u = |c| ∈ (0, c_max]; G(0) < 0.
-            let g = |u: f64| 2.0 * a * u * theta(a, rho, u, n, b) / (1.0 + u * u).sqrt() - zp.abs();
-            let mut u0 = 0.0;
-            let mut g0 = g(0.0);
+            // G = 2a |c| θ/√(1+c²) − |z_P| for |c| ∈ [0, c_max], as (c, σ) and as ψ; G(0) < 0.
+            let g_at = |(c, sigma): (f64, f64)| {
+                2.0 * a * c * theta(a, rho, (c, sigma), n, b) / (1.0 + c * c).sqrt() - zp.abs()
+            };
+            let g = |psi: f64| {
+                let (sigma, c) = psi.sin_cos();
+                g_at((c, sigma))
+            };
+            let signed = |(c, sigma): (f64, f64)| (sign * c, sigma);
+            let mut g0 = g_at(point(0));
             for i in 1..=GRID {
-                let u1 = c_max * i as f64 / GRID as f64;
-                let g1 = g(u1);
+                let g1 = g_at(point(i));
                 // A root exactly at c_max belongs to both branches: count it once.
                 let at_join = i == GRID && b == Branch::Inbound;
                 if g1 == 0.0 && !at_join {
-                    out.push(ray(a, target, zp.signum() * u1, n, b));
+                    out.push(ray(a, target, signed(point(i)), n, b));
                 } else if g0 < 0.0 && g1 > 0.0 || g0 > 0.0 && g1 < 0.0 {
-                    let u = refine_root(g, u0, u1, g0, g1);
-                    out.push(ray(a, target, zp.signum() * u, n, b));
+                    // ψ falls as |c| grows: the cell is [ψ_i, ψ_(i−1)].
+                    let psi = refine_root(g, psi_of(i), psi_of(i - 1), g1, g0);
+                    let (sigma, c) = psi.sin_cos();
+                    out.push(ray(a, target, signed((c, sigma)), n, b));
                 }
-                (u0, g0) = (u1, g1);
+                g0 = g1;
             }
         }
     }
