@@ -156,7 +156,10 @@ pub struct DataFileError {
 /// What went wrong, without the file name.
 #[derive(Debug, thiserror::Error)]
 pub enum DataFileErrorKind {
-    #[error("input/output error: {0}")]
+    /// The operating system's word, as it is ("No such file or directory (os error 2)",
+    /// "not a regular file (a directory)"): a prefix such as "input/output error" made a
+    /// folder given for a data file read like a disk fault.
+    #[error("{0}")]
     Io(std::io::Error),
     #[error("not an OpenEXR file (wrong magic number)")]
     NotExr,

@@ -14,12 +14,14 @@
 
 use crate::args::{parse_vector, usage};
 use crate::inputs::Inputs;
+use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use datafile::DataFile;
 use look::{look_with, resolution, Filter, LookError, LookView, Sampling, SphereSource};
 use scene::{Camera, Scene};
+use shade::hdr::PictureFormat;
 use spacetime::LocalVelocity;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -228,15 +230,18 @@ fn flag_of(field: &str, camera: CameraKind) -> &'static str {
 pub fn run(args: LookArgs) -> anyhow::Result<()> {
     let started = Instant::now();
     let file = args.sphere.display().to_string();
-    if args.output.extension().is_none_or(|e| e != "exr") {
-        return Err(usage(
+    // As render's `-o x.exr` (any case), the preview beside it in the same case.
+    let is_exr = PictureFormat::from_path(&args.output) == Some(PictureFormat::Exr);
+    let png = match OutPair::parse("--output", &args.output, false)? {
+        OutPair::Files { png, .. } if is_exr => png,
+        _ => return Err(usage(
             "--output",
             format!(
                 "must name the data file to write (.exr), got {}; the preview goes beside it as .png",
                 args.output.display()
             ),
-        ));
-    }
+        )),
+    };
     // Flags first, so that a typo is reported before any file is read.
     let camera = camera(&args)?;
     let velocity = velocity(&args.velocity)?;
@@ -259,7 +264,6 @@ pub fn run(args: LookArgs) -> anyhow::Result<()> {
         vector("--up", &args.up)?,
     );
 
-    let png = args.output.with_extension("png");
     let names: Vec<String> = [&args.output, &png]
         .iter()
         .filter_map(|p| p.file_name())

@@ -271,6 +271,15 @@ fn each_error_is_said_once() {
     assert_ne!(o.status.code(), Some(0));
     assert_eq!(err.matches("os error").count(), 1, "{err}");
     assert_eq!(err.matches("missing.exr").count(), 1, "{err}");
+    // A folder given for the data file: said as it is, not as an input/output fault (issue 36).
+    let o = godel(&["shade", s(dir.path()), "-o", s(&dir.path().join("x.png"))]);
+    let err = stderr(&o);
+    assert_ne!(o.status.code(), Some(0));
+    assert!(
+        err.ends_with(": not a regular file (a directory)\n"),
+        "{err}"
+    );
+    assert!(!err.contains("input/output"), "{err}");
 
     // A picture into a folder that cannot be made (a file is in the way): the path once, the
     // cause once. (A folder that does not exist yet is made: issue 36.)

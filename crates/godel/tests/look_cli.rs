@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{godel, path_arg as s, stderr};
+use common::{files_in, godel, path_arg as s, stderr};
 use datafile::DataFile;
 use look::{look, look_with, Filter, LookView, Sampling};
 use scene::{Camera, Scene};
@@ -87,6 +87,18 @@ fn look_writes_the_view_and_its_preview_and_reports_resolution() {
     assert_eq!(data.header.camera, "pinhole 90°, 64×48");
     let (observer, camera) = Scene::read_view(&data.header.scene_text, "x").unwrap();
     assert_eq!((camera, observer.velocity), (cam, velocity));
+    // Issue 36: `-o` takes `.exr` in any case, as render's, the preview in the same case
+    // (look refused `VIEW.EXR`).
+    let upper = tmp.path().join("upper/VIEW.EXR");
+    look_ok(
+        &sphere,
+        &upper,
+        "--camera pinhole --fov 90 --width 16 --height 12",
+    );
+    assert_eq!(
+        files_in(&tmp.path().join("upper")),
+        ["VIEW.EXR", "VIEW.PNG"]
+    );
 }
 
 #[test]
