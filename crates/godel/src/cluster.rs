@@ -41,6 +41,8 @@ pub fn launched_by_mpi() -> bool {
 pub fn abort(world: &SimpleCommunicator, err: &anyhow::Error) -> ! {
     let chain: Vec<String> = err.chain().map(|c| c.to_string()).collect();
     eprintln!("godel: rank {}: {}", world.rank(), chain.join(": "));
+    // As a failed run outside MPI: no output folder of this rank's making left behind.
+    datafile::folders::remove_created_folders_left_empty();
     let code = if err
         .chain()
         .any(|c| c.is::<crate::args::UsageError>() || c.is::<scene::SceneError>())
