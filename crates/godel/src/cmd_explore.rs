@@ -26,6 +26,7 @@ use viewer::kernel_routes::KernelInput;
 use viewer::view::{Velocity, View};
 
 use crate::args::{thread_pool, usage};
+use crate::keep::file_of;
 use crate::memory;
 use crate::scene_edit::section;
 use crate::serve::{load_error, ServeArgs};
@@ -101,22 +102,18 @@ pub fn scene_at(scene: &Scene, event: ObserverEvent, level: Level) -> anyhow::Re
 /// The scene with its observer and camera those of `view` (the flying page's), as
 /// *Render exactly* makes it ([`crate::keep::scene_of_view`]).
 pub fn scene_of_view(scene: &Scene, view: &View) -> anyhow::Result<Scene> {
-    let file = match &scene.source_path {
-        Some(path) => path.display().to_string(),
-        None => format!("{}.toml", scene.name),
-    };
-    crate::keep::scene_of_view(scene, &file, view).map_err(anyhow::Error::msg)
+    crate::keep::scene_of_view(scene, &file_of(scene), view).map_err(anyhow::Error::msg)
 }
 
 /// The scene read again from its text after `edit`, with the usual checks: the data files
 /// embed the scene they were traced from (observer, camera size, method). Relative paths
 /// (image textures) stay relative to the scene file.
 fn edited(scene: &Scene, edit: impl FnOnce(&mut Table)) -> anyhow::Result<Scene> {
-    let file = match &scene.source_path {
-        Some(path) => path.display().to_string(),
-        None => format!("{}.toml", scene.name),
-    };
-    Ok(crate::scene_edit::edited(&scene.source_text, &file, edit)?)
+    Ok(crate::scene_edit::edited(
+        &scene.source_text,
+        &file_of(scene),
+        edit,
+    )?)
 }
 
 /// The exact tracer on a scene, as the frame source of explore mode.
@@ -283,7 +280,7 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let pool = thread_pool(args.threads)?;
     let mut scene = Scene::from_file(&args.scene)?;
     // "Render exactly" and "Record" keep views of the scene as written (issue 23).
-    let keeper = crate::keep::SceneKeeper::new(scene.clone(), thread_pool(args.threads)?);
+    let keeper = crate::keep::SceneKeeper::new(scene.clone(), thread_pool(args.threads)?)?;
     if let Some(width) = args.sphere {
         scene = with_sphere(&scene, width)?;
     }

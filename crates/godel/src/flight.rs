@@ -20,6 +20,14 @@
 //! with that observer; a frame whose scene is refused names `keyframe[i].FIELD` of the
 //! script (i: the keyframe at or after that frame). [`Flight::new`] checks every frame.
 //!
+//! The scene's text is read once. What a frame changes is its `[observer]` and `[camera]`,
+//! whose checks read nothing of the scene but its name and `[spacetime]` (the bound on
+//! coordinates); the rest passed the same checks when the scene was read. So
+//! [`Flight::new`] checks each frame in a scene of just those ([`view_part`]): its work is
+//! the frame count times a small scene's, whatever the size of the scene (a recorded flight
+//! of an hour is 86,401 frames, `godel explore`'s *Record*), and a frame equal to the one
+//! checked before it (a pause) is not checked again.
+//!
 //! What the interpolated fields mean is the scene's: the event in the coordinates
 //! (t, x, y, z) of docs/physics.md "Conventions", the velocity relative to the static observer
 //! there and the camera axes in the observer's frame ("Frames", "Pixels and cameras").
@@ -29,7 +37,7 @@ use shade::{FrameSource, Script, Section, ShadeError, Track};
 use spacetime::{Event, LocalVelocity};
 use toml::{Table, Value};
 
-use crate::scene_edit::{edited, section, EditError};
+use crate::scene_edit::{edited_table, section, table_of, EditError};
 
 /// The observer fields written into the scene when a keyframe sets one of them: position
 /// as a whole, velocity as a whole, forward and up together.
@@ -44,6 +52,9 @@ pub struct Flight {
     /// The scene as written, and its path for messages and relative image paths.
     text: String,
     name: String,
+    /// The scene read as a table (once), and its part a frame's fields are checked in.
+    table: Table,
+    part: Table,
     /// The script (for located errors).
     script: Script,
     observer_time: Option<[f64; 2]>,
@@ -82,12 +93,17 @@ impl Flight {
             .filter(|k| set(Section::Camera, k))
             .map(|k| k.to_string())
             .collect();
+        let name = scene
+            .source_path
+            .as_ref()
+            .map_or_else(|| scene.name.clone(), |p| p.display().to_string());
+        let table = table_of(&scene.source_text, &name)
+            .map_err(|e| script.error_at("trace.scene", e.to_string()))?;
         let flight = Flight {
             text: scene.source_text.clone(),
-            name: scene
-                .source_path
-                .as_ref()
-                .map_or_else(|| scene.name.clone(), |p| p.display().to_string()),
+            name,
+            part: view_part(&table),
+            table,
             script: script.clone(),
             observer_time,
             frames: script.frames,
@@ -97,11 +113,17 @@ impl Flight {
             camera_keys,
         };
         // The keyframes first, so that a bad keyframe is named as such, then every frame in
-        // between (an interpolated up may meet forward). Bounded by the frame count.
+        // between (an interpolated up may meet forward), each in the scene's part its fields
+        // are checked in (module documentation). Bounded by the frame count.
         if !(flight.observer_keys.is_empty() && flight.camera_keys.is_empty()) {
             let keyframes = script.keyframes.iter().map(|k| k.frame);
+            let mut checked: Option<FrameFields> = None;
             for f in keyframes.chain(0..script.frames) {
-                flight.scene_at(f)?;
+                let fields = flight.fields(f);
+                if checked.as_ref() != Some(&fields) {
+                    flight.scene_of(f, flight.edited(f, &fields, flight.part.clone())?)?;
+                    checked = Some(fields);
+                }
             }
         }
         Ok(flight)
@@ -109,13 +131,6 @@ impl Flight {
 
     /// The scene of frame `frame`.
     pub fn scene_at(&self, frame: u32) -> Result<Scene, ShadeError> {
-        let towards = self.script.keyframe_towards(frame).unwrap_or(0);
-        let at = |field: &str, message: String| {
-            self.script.error_at(
-                &format!("keyframe[{towards}].{field}"),
-                format!("{message} (frame {frame})"),
-            )
-        };
         if self.observer_keys.is_empty()
             && self.camera_keys.is_empty()
             && self.observer_time.is_none()
@@ -123,56 +138,107 @@ impl Flight {
             return Scene::from_str(&self.text, &self.name)
                 .map_err(|e| self.script.error_at("trace.scene", one_line(&e)));
         }
-        let mut failed = None;
-        let scene = edited(&self.text, &self.name, |table| {
-            let observer = section(table, "observer");
-            if let Value::Table(o) = self.observer.at(frame) {
-                for key in &self.observer_keys {
-                    if let Some(v) = o.get(*key) {
-                        observer.insert(key.to_string(), v.clone());
-                    }
-                }
-                if self.observer_keys.contains(&"forward") {
-                    match axes(&o) {
-                        Ok((forward, up)) => {
-                            observer.insert("forward".into(), vector(forward));
-                            observer.insert("up".into(), vector(up));
-                        }
-                        Err(e) => failed = Some(e),
-                    }
-                }
-            }
-            if let Some([t0, t1]) = self.observer_time {
-                // As the sequence has always done: linear from the first frame to the last.
-                let s = if self.frames > 1 {
-                    f64::from(frame) / f64::from(self.frames - 1)
-                } else {
-                    0.0
-                };
-                observer.insert("time".into(), Value::Float(t0 + s * (t1 - t0)));
-            }
-            let camera = section(table, "camera");
-            if let Value::Table(c) = self.camera.at(frame) {
-                for key in &self.camera_keys {
-                    if let Some(v) = c.get(key) {
-                        camera.insert(key.clone(), v.clone());
-                    }
-                }
-            }
+        let fields = self.fields(frame);
+        self.scene_of(frame, self.edited(frame, &fields, self.table.clone())?)
+    }
+
+    /// What frame `frame` writes into the scene.
+    fn fields(&self, frame: u32) -> FrameFields {
+        let time = self.observer_time.map(|[t0, t1]| {
+            // As the sequence has always done: linear from the first frame to the last.
+            let s = if self.frames > 1 {
+                f64::from(frame) / f64::from(self.frames - 1)
+            } else {
+                0.0
+            };
+            t0 + s * (t1 - t0)
         });
-        if let Some((f, m)) = failed {
-            return Err(at(&format!("observer.{f}"), m));
+        FrameFields {
+            observer: self.observer.at(frame),
+            camera: self.camera.at(frame),
+            time,
         }
-        scene.map_err(|e| match e {
+    }
+
+    /// `table` (the scene's, or its [`view_part`]) with `fields`, frame `frame`'s, written in.
+    fn edited(
+        &self,
+        frame: u32,
+        fields: &FrameFields,
+        mut table: Table,
+    ) -> Result<Table, ShadeError> {
+        let observer = section(&mut table, "observer");
+        if let Value::Table(o) = &fields.observer {
+            for key in &self.observer_keys {
+                if let Some(v) = o.get(*key) {
+                    observer.insert(key.to_string(), v.clone());
+                }
+            }
+            if self.observer_keys.contains(&"forward") {
+                let (forward, up) =
+                    axes(o).map_err(|(f, m)| self.error_at(frame, &format!("observer.{f}"), m))?;
+                observer.insert("forward".into(), vector(forward));
+                observer.insert("up".into(), vector(up));
+            }
+        }
+        if let Some(time) = fields.time {
+            observer.insert("time".into(), Value::Float(time));
+        }
+        let camera = section(&mut table, "camera");
+        if let Value::Table(c) = &fields.camera {
+            for key in &self.camera_keys {
+                if let Some(v) = c.get(key) {
+                    camera.insert(key.clone(), v.clone());
+                }
+            }
+        }
+        Ok(table)
+    }
+
+    /// The scene of the edited table of frame `frame`, read with the usual checks; a refusal
+    /// names the keyframe's field.
+    fn scene_of(&self, frame: u32, table: Table) -> Result<Scene, ShadeError> {
+        edited_table(table, &self.name, |_| {}).map_err(|e| match e {
             EditError::Scene(e)
                 if e.field.starts_with("observer") || e.field.starts_with("camera") =>
             {
-                at(&e.field, e.message.clone())
+                self.error_at(frame, &e.field, e.message.clone())
             }
             EditError::Scene(e) => self.script.error_at("trace.scene", one_line(&e)),
             EditError::Text(why) => self.script.error_at("trace.scene", why),
         })
     }
+
+    /// An error at `keyframe[i].FIELD` of the script, i the keyframe frame `frame` moves
+    /// towards.
+    fn error_at(&self, frame: u32, field: &str, message: String) -> ShadeError {
+        let towards = self.script.keyframe_towards(frame).unwrap_or(0);
+        self.script.error_at(
+            &format!("keyframe[{towards}].{field}"),
+            format!("{message} (frame {frame})"),
+        )
+    }
+}
+
+/// What a frame writes into the scene: the observer's and the camera's tables of the tracks
+/// (only the keys some keyframe sets are written), and the time of `[trace] observer_time`.
+#[derive(PartialEq)]
+struct FrameFields {
+    observer: Value,
+    camera: Value,
+    time: Option<f64>,
+}
+
+/// The part of a scene's table (`table`) that a frame's or a view's `[observer]` and
+/// `[camera]` are checked in: those two tables as written and what their checks read (the
+/// scene's name and `[spacetime]`). A scene with other observer and camera fields passes the
+/// usual checks exactly when its part with those fields does and the scene as written did
+/// (no other check reads the observer or the camera).
+pub fn view_part(table: &Table) -> Table {
+    ["name", "spacetime", "observer", "camera"]
+        .into_iter()
+        .filter_map(|key| Some((key.to_string(), table.get(key)?.clone())))
+        .collect()
 }
 
 fn one_line(e: &scene::SceneError) -> String {

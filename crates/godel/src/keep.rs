@@ -11,7 +11,10 @@
 //!   scene` the scene file (absolute path), one `[[keyframe]]` per recorded view at its frame
 //!   with every observer field and the camera's fields of view, linear easing; frames at the
 //!   scene's own size and samples. The text is read back by the script parser and every
-//!   frame's scene checked (`flight::Flight::new`) before it is given.
+//!   frame's scene checked (`flight::Flight::new`) before it is given. The scene's text is
+//!   read once, and each view and frame checked in the part of it that its fields' checks
+//!   read (`flight::view_part`): a recording's work is its keyframe and frame counts
+//!   (bounded by `viewer::keep`) times a small scene's, whatever the scene's size.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -25,8 +28,8 @@ use viewer::view::{CameraView, Position, Velocity, View};
 
 use spacetime::{Event, LocalVelocity};
 
-use crate::flight::observer_fields;
-use crate::scene_edit::{edited, section, EditError};
+use crate::flight::{observer_fields, view_part};
+use crate::scene_edit::{edited_table, section, table_of, EditError};
 
 /// The keeper of explore mode: the scene as read from its file, and the exact tracer's pool.
 pub struct SceneKeeper {
@@ -34,30 +37,47 @@ pub struct SceneKeeper {
     /// The scene file, as messages name it, and absolute (for scripts saved anywhere).
     file: String,
     absolute: Option<PathBuf>,
+    /// The scene read as a table (once), and its part a view's fields are checked in.
+    table: Table,
+    part: Table,
     pool: rayon::ThreadPool,
 }
 
 impl SceneKeeper {
-    pub fn new(scene: Scene, pool: rayon::ThreadPool) -> SceneKeeper {
-        let file = match &scene.source_path {
-            Some(path) => path.display().to_string(),
-            None => format!("{}.toml", scene.name),
-        };
+    pub fn new(scene: Scene, pool: rayon::ThreadPool) -> Result<SceneKeeper, EditError> {
+        let file = file_of(&scene);
         let absolute = scene
             .source_path
             .as_ref()
             .and_then(|p| std::path::absolute(p).ok());
-        SceneKeeper {
+        let table = table_of(&scene.source_text, &file)?;
+        Ok(SceneKeeper {
+            part: view_part(&table),
+            table,
             scene,
             file,
             absolute,
             pool,
-        }
+        })
     }
 
     /// The scene seen in `view`, refused naming the view's field (`view.FIELD: why`).
     pub fn scene_of(&self, view: &View) -> Result<Scene, String> {
-        scene_of_view(&self.scene, &self.file, view)
+        view_in(self.table.clone(), &self.scene, &self.file, view)
+    }
+
+    /// Whether the scene seen in `view` passes the usual checks (as [`SceneKeeper::scene_of`]
+    /// does), checked in the scene's part the view's fields are checked in.
+    fn check_fields(&self, view: &View) -> Result<(), String> {
+        view_in(self.part.clone(), &self.scene, &self.file, view).map(drop)
+    }
+}
+
+/// The scene's file as messages name it (relative image paths are relative to it).
+pub fn file_of(scene: &Scene) -> String {
+    match &scene.source_path {
+        Some(path) => path.display().to_string(),
+        None => format!("{}.toml", scene.name),
     }
 }
 
@@ -66,8 +86,14 @@ impl SceneKeeper {
 /// view's field (`view.FIELD: why`). The one home of a view's scene: explore's kernel input
 /// and moves, *Render exactly* and *Record*.
 pub fn scene_of_view(scene: &Scene, file: &str, view: &View) -> Result<Scene, String> {
+    let table = table_of(&scene.source_text, file).map_err(|e| e.to_string())?;
+    view_in(table, scene, file, view)
+}
+
+/// [`scene_of_view`] made from `table`: `scene`'s own table or its [`view_part`].
+fn view_in(table: Table, scene: &Scene, file: &str, view: &View) -> Result<Scene, String> {
     let godel = scene.metric.godel_a().is_some();
-    edited(&scene.source_text, file, |table| {
+    edited_table(table, file, |table| {
         table.insert("observer".into(), Value::Table(observer_table(view)));
         let mut camera = Table::new();
         camera.insert("kind".into(), view.camera.kind.clone().into());
@@ -237,7 +263,7 @@ impl Keeper for SceneKeeper {
                     k.view.camera.kind
                 ));
             }
-            self.scene_of(&k.view)
+            self.check_fields(&k.view)
                 .map_err(|why| format!("keyframes[{i}].{why}"))?;
             let mut keyframe = Table::new();
             keyframe.insert("frame".into(), i64::from(frame).into());
@@ -301,7 +327,7 @@ mod tests {
             .num_threads(1)
             .build()
             .unwrap();
-        SceneKeeper::new(Scene::from_file(&path).unwrap(), pool)
+        SceneKeeper::new(Scene::from_file(&path).unwrap(), pool).unwrap()
     }
 
     #[test]

@@ -31,9 +31,22 @@ impl std::error::Error for EditError {}
 /// The scene text `text` (read from `file`: messages and relative image paths) after `edit`,
 /// read again with the usual checks.
 pub fn edited(text: &str, file: &str, edit: impl FnOnce(&mut Table)) -> Result<Scene, EditError> {
-    let mut table: Table = text
-        .parse()
-        .map_err(|e| EditError::Text(format!("{file}: cannot re-read the scene: {e}")))?;
+    edited_table(table_of(text, file)?, file, edit)
+}
+
+/// The scene text `text` (read from `file`) as a table, to edit many times over
+/// ([`edited_table`]) having read it once.
+pub fn table_of(text: &str, file: &str) -> Result<Table, EditError> {
+    text.parse()
+        .map_err(|e| EditError::Text(format!("{file}: cannot re-read the scene: {e}")))
+}
+
+/// [`edited`] of a scene already read as a table ([`table_of`]).
+pub fn edited_table(
+    mut table: Table,
+    file: &str,
+    edit: impl FnOnce(&mut Table),
+) -> Result<Scene, EditError> {
     edit(&mut table);
     let text = toml::to_string(&table).map_err(|e| EditError::Text(format!("{file}: {e}")))?;
     Scene::from_str(&text, file).map_err(EditError::Scene)

@@ -517,3 +517,56 @@ fn looked_pictures_belong_to_the_sphere_on_screen() {
     );
     assert_eq!(png_pixels(&served), expected);
 }
+
+/// Issue 36: a recording of two keyframes an hour apart (86,401 frames, 0.6 KB) cost seconds
+/// of CPU each (its scene parsed again for every frame), on the slots that shading and the
+/// other routes share: one more of them than the machine has cores kept
+/// `/api/explore/view-keyframe` waiting 16–57 s. Now recordings are made into scripts on a
+/// slot of their own, each frame checked in a small part of the scene: the other routes
+/// answer at once (a bound of a second where they take milliseconds), and the recordings
+/// still get their scripts (or 503 once too many wait).
+#[test]
+fn recordings_of_an_hour_do_not_hold_up_the_other_routes() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = origin_scene(dir.path());
+    let (_server, port) = explore(&scene);
+    let (status, body) = http(port, "GET", "/api/explore/view", "");
+    assert_eq!(status, 200);
+    let view = json(&body)["view"].clone();
+    let keyframes =
+        [(0, &view), (3600, &view)].map(|(s, v)| serde_json::json!({"seconds": s, "view": v}));
+    let recording = serde_json::json!({ "keyframes": keyframes }).to_string();
+    // As many as the server has slots for shading (one per core), and one more.
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let recorders: Vec<_> = (0..=cores)
+        .map(|_| {
+            let recording = recording.clone();
+            std::thread::spawn(move || http(port, "POST", "/api/explore/record", &recording))
+        })
+        .collect();
+    // Time for every recording to arrive and start (milliseconds here).
+    std::thread::sleep(Duration::from_millis(500));
+    let started = std::time::Instant::now();
+    let path = "/api/explore/view-keyframe?frame=0";
+    let (status, body) = http(port, "POST", path, &view.to_string());
+    let waited = started.elapsed();
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    assert!(
+        waited < Duration::from_secs(1),
+        "view-keyframe took {waited:?}"
+    );
+    let mut scripts = 0;
+    for recorder in recorders {
+        let (status, body) = recorder.join().unwrap();
+        let text = String::from_utf8_lossy(&body);
+        match status {
+            200 => {
+                assert!(text.contains("frames = 86401"), "{text}");
+                scripts += 1;
+            }
+            503 => assert!(text.contains("busy"), "{text}"),
+            _ => panic!("record answered {status}: {text}"),
+        }
+    }
+    assert!(scripts > 0, "no recording got its script");
+}

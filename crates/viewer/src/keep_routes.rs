@@ -14,8 +14,11 @@
 //! keeper's); the files of only the newest one are kept, in memory, and dropped when the next
 //! starts (nothing is written to disk); the render is checked against the memory budget
 //! before it starts, and cancelled when the server stops (the routes' state is dropped).
-//! Bodies pass [`crate::guard::check`] (JSON, at most [`MAX_BODY_BYTES`]); checks and scripts
-//! run within the server's bound on work ([`crate::WorkLimit`]).
+//! Bodies pass [`crate::guard::check`] (JSON, at most [`MAX_BODY_BYTES`]); checks run within
+//! the server's bound on work ([`crate::WorkLimit`]). A recording's script is made on a slot
+//! of its own, one at a time with [`SCRIPTS_WAITING`] more waiting (then 503): its work is
+//! bounded ([`Recording::frames`]) but may take seconds for an hour's flight, and no shading
+//! or other route of the server waits for it.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -33,10 +36,15 @@ use crate::keep::{ExactJob, JobState, Keeper, Recording, MAX_KEYFRAMES, RECORD_F
 use crate::limit::WorkLimit;
 use crate::view::View;
 
+/// How many recordings may wait while one is made into a script.
+pub const SCRIPTS_WAITING: usize = 4;
+
 /// The keep routes' state: the keeper, the newest exact render.
 struct KeepState {
     keeper: Arc<dyn Keeper>,
     work: WorkLimit,
+    /// The slot recordings are made into scripts on (apart from `work`).
+    scripts: WorkLimit,
     newest: Mutex<Option<Arc<ExactJob>>>,
     jobs: AtomicU64,
 }
@@ -65,6 +73,7 @@ pub fn router(keeper: impl Keeper, work: WorkLimit, access: Access) -> Router {
     let state = Arc::new(KeepState {
         keeper: Arc::new(keeper),
         work,
+        scripts: WorkLimit::of("recordings being made into scripts", 1, SCRIPTS_WAITING),
         newest: Mutex::new(None),
         jobs: AtomicU64::new(0),
     });
@@ -244,7 +253,7 @@ async fn record(State(state): State<Arc<KeepState>>, body: Bytes) -> Result<Resp
     let frames = recording.frames().map_err(ApiError::bad_request)?;
     let keeper = state.keeper.clone();
     let text = state
-        .work
+        .scripts
         .admit()?
         .run(move || keeper.script(&recording, &frames))
         .await?

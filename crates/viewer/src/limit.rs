@@ -21,6 +21,8 @@ const WAITING_PER_WORKER: usize = 4;
 /// frames share the server's bound).
 #[derive(Clone, Debug)]
 pub struct WorkLimit {
+    /// What the jobs are, for the busy answer ("pictures being shaded").
+    work: &'static str,
     workers: usize,
     waiting: usize,
     admitted: Arc<Semaphore>,
@@ -37,8 +39,15 @@ pub struct Ticket {
 impl WorkLimit {
     /// `workers` jobs at once (at least 1), `waiting` more admitted to wait for them.
     pub fn new(workers: usize, waiting: usize) -> WorkLimit {
+        WorkLimit::of("pictures being shaded", workers, waiting)
+    }
+
+    /// [`WorkLimit::new`] for jobs that `work` names in the busy answer (a plural: "recordings
+    /// being made into scripts").
+    pub fn of(work: &'static str, workers: usize, waiting: usize) -> WorkLimit {
         let workers = workers.max(1);
         WorkLimit {
+            work,
             workers,
             waiting,
             admitted: Arc::new(Semaphore::new(workers + waiting)),
@@ -66,8 +75,8 @@ impl WorkLimit {
             ApiError::new(
                 StatusCode::SERVICE_UNAVAILABLE,
                 format!(
-                    "the viewer is busy ({} pictures being shaded, {} waiting): try again",
-                    self.workers, self.waiting
+                    "the viewer is busy ({} {}, {} waiting): try again",
+                    self.workers, self.work, self.waiting
                 ),
             )
         })?;
