@@ -20,6 +20,7 @@ use render::map::{light_ray, map, LightRay, Map};
 use render::plan::Plan;
 use render::tiles::Assembler;
 use scene::Scene;
+use spacetime::message::short;
 use toml::Table;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEMORY};
 use viewer::kernel_routes::KernelInput;
@@ -219,11 +220,17 @@ impl FrameSource for SceneFrames {
         .ok_or_else(|| {
             format!(
                 "velocity: speed {} must be in [0, 1) with a non-zero finite direction {:?}",
-                velocity.speed, velocity.direction
+                short(velocity.speed),
+                velocity.direction
             )
         })?;
         let (to, w) = spacetime::worldline::fall(&self.scene.metric, event.event(), v, tau)
-            .ok_or_else(|| format!("the observer's free fall over tau = {tau} is not finite"))?;
+            .ok_or_else(|| {
+                format!(
+                    "tau: the observer's free fall over tau = {} is not finite",
+                    short(tau)
+                )
+            })?;
         Ok((
             to.into(),
             Velocity {

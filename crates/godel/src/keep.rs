@@ -258,13 +258,13 @@ impl Keeper for SceneKeeper {
         for (i, (k, &frame)) in recording.keyframes.iter().zip(frames).enumerate() {
             if k.view.camera.kind != kind {
                 return Err(format!(
-                    "keyframes[{i}].view.camera.kind: a sequence traces the scene's own {kind} \
-                     camera, not {:?}",
+                    "recording.keyframes[{i}].view.camera.kind: a sequence traces the scene's \
+                     own {kind} camera, not {:?}",
                     k.view.camera.kind
                 ));
             }
             self.check_fields(&k.view)
-                .map_err(|why| format!("keyframes[{i}].{why}"))?;
+                .map_err(|why| format!("recording.keyframes[{i}].{why}"))?;
             let mut keyframe = Table::new();
             keyframe.insert("frame".into(), i64::from(frame).into());
             keyframe.insert("observer".into(), Value::Table(observer_table(&k.view)));
@@ -383,6 +383,9 @@ mod tests {
         let mut other = recording.clone();
         other.keyframes[1].view.camera.kind = "sphere".into();
         let e = k.script(&other, &frames).unwrap_err();
-        assert!(e.starts_with("keyframes[1].view.camera.kind: "), "{e}");
+        assert!(
+            e.starts_with("recording.keyframes[1].view.camera.kind: "),
+            "{e}"
+        );
     }
 }

@@ -252,7 +252,10 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
     );
     let (status, body) = http(port, "GET", "/api/explore/map?t=1.5&x=0&y=5e6&z=0", "");
     assert_eq!(status, 400);
-    assert!(json(&body)["error"].as_str().unwrap().contains("event.y"));
+    assert!(json(&body)["error"]
+        .as_str()
+        .unwrap()
+        .contains("map.y: 5e6"));
 
     // The keyframe saved for the event puts a fly-through's frame there: a one-frame
     // sequence with it writes the records of `godel render` of that observer.
@@ -569,4 +572,40 @@ fn recordings_of_an_hour_do_not_hold_up_the_other_routes() {
         }
     }
     assert!(scripts > 0, "no recording got its script");
+}
+
+/// Issue 36: explore's refusals named `velocity:` without the route's name and printed 1e308
+/// with its 309 digits (the source's and the scene's checks behind the routes), and a bad
+/// render number in `/api/explore/exact/N/FILE` was answered in plain text. Now each names
+/// the field as the request wrote it, in short, as JSON.
+#[test]
+fn explore_refusals_name_what_the_request_wrote_in_short() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = origin_scene(dir.path());
+    let (_server, port) = explore(&scene);
+    let (status, body) = http(port, "GET", "/api/explore/view", "");
+    assert_eq!(status, 200);
+    let mut view = json(&body)["view"].clone();
+    view["camera"]["h_fov_deg"] = 1e308.into();
+    let fov = "view.camera.h_fov_deg: must be in (0, 360] degrees, got 1e308";
+    let step = r#"{"time": 1, "position": {"x": 0, "y": 0, "z": 0},
+        "velocity": {"speed": 1e308, "direction": [1, 0, 0]}, "tau": 2}"#;
+    for (path, body, want) in [
+        ("/api/explore/view-keyframe", view.to_string(), fov),
+        ("/api/explore/exact", view.to_string(), fov),
+        (
+            "/api/explore/move",
+            step.to_string(),
+            "move.velocity: speed 1e308 must be in [0, 1)",
+        ),
+    ] {
+        let (status, answer) = http(port, "POST", path, &body);
+        assert_eq!(status, 400, "{path}");
+        let error = json(&answer)["error"].as_str().unwrap().to_string();
+        assert!(error.starts_with(want), "{path}: {error}");
+    }
+    let (status, answer) = http(port, "GET", "/api/explore/exact/abc/png", "");
+    assert_eq!(status, 400);
+    let error = json(&answer)["error"].as_str().unwrap().to_string();
+    assert!(error.starts_with("exact: `abc` is not"), "{error}");
 }

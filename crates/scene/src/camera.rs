@@ -130,7 +130,10 @@ impl Camera {
                 let close = if max_inclusive { "]" } else { ")" };
                 Err((
                     field,
-                    format!("must be in (0, {max}{close} degrees, got {v}"),
+                    format!(
+                        "must be in (0, {max}{close} degrees, got {}",
+                        crate::short(v)
+                    ),
                 ))
             }
         };

@@ -1,6 +1,8 @@
 //! [`ApiError`]: an error answer of the viewer's API, a status and a message sent to the page
-//! as `{"error": "..."}`, never cached.
+//! as `{"error": "..."}`, never cached; and the refusals of what a request sent, naming it as
+//! the request wrote it ([`json_body`], [`path_error`]).
 
+use axum::extract::rejection::PathRejection;
 use axum::http::{header, HeaderName, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
@@ -39,4 +41,37 @@ impl IntoResponse for ApiError {
 /// API answers change with every request: never cache them.
 pub fn no_store() -> [(HeaderName, &'static str); 1] {
     [(header::CACHE_CONTROL, "no-store")]
+}
+
+/// A JSON request body of type `T`, refused (400) naming what the request wrote:
+/// `NAME.FIELD: why` for a field (`view.camera.width`, `recording.keyframes[2].seconds`),
+/// `NAME: why` for the body as a whole (not JSON, cut short, more after it). Where the body
+/// ends or breaks before the parser knew which field it was in, the name stops at the last
+/// field it knew (never a guessed `?`).
+pub fn json_body<T: serde::de::DeserializeOwned>(body: &[u8], name: &str) -> Result<T, ApiError> {
+    let mut json = serde_json::Deserializer::from_slice(body);
+    let value = serde_path_to_error::deserialize(&mut json).map_err(|e| {
+        let mut at = name.to_string();
+        for segment in e.path().iter() {
+            match segment {
+                serde_path_to_error::Segment::Seq { index } => at += &format!("[{index}]"),
+                serde_path_to_error::Segment::Map { key } => at += &format!(".{key}"),
+                serde_path_to_error::Segment::Enum { variant } => at += &format!(".{variant}"),
+                serde_path_to_error::Segment::Unknown => break,
+            }
+        }
+        ApiError::bad_request(format!("{at}: {}", e.inner()))
+    })?;
+    json.end()
+        .map_err(|e| ApiError::bad_request(format!("{name}: {e}")))?;
+    Ok(value)
+}
+
+/// A path segment of a route that could not be read (`/api/explore/channel/%FF`), as JSON
+/// like every other refusal (axum's own answer is plain text): `NAME: why`.
+pub fn path_error(name: &str, rejection: PathRejection) -> ApiError {
+    ApiError::new(
+        rejection.status(),
+        format!("{name}: {}", rejection.body_text()),
+    )
 }

@@ -24,6 +24,7 @@ use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use datafile::{DataFile, PixelRecord};
 use render::map::{LightRay, Map};
 use serde::{Deserialize, Serialize};
+use spacetime::message::short;
 
 use crate::view::{Velocity, View};
 
@@ -55,22 +56,48 @@ impl ObserverEvent {
         spacetime::Event::new(self.t, self.x, self.y, self.z)
     }
 
-    /// The first field that is not a finite number within ±`bound`, with why, or `None`.
+    /// The first of t, x, y, z that is not a finite number within ±`bound`: its index and why
+    /// (`1e7 is beyond ±1e6, …`).
+    pub fn out_of_bounds(&self, bound: f64) -> Option<(usize, String)> {
+        [self.t, self.x, self.y, self.z]
+            .iter()
+            .enumerate()
+            .find_map(|(i, &v)| {
+                if !v.is_finite() {
+                    Some((i, format!("{v} is not a finite number")))
+                } else if v.abs() > bound {
+                    Some((
+                        i,
+                        format!(
+                            "{} is beyond ±{bound:e}, the scene's bound on coordinates",
+                            short(v)
+                        ),
+                    ))
+                } else {
+                    None
+                }
+            })
+    }
+
+    /// The first field that is not a finite number within ±`bound`, as `event.FIELD: why`
+    /// (the fields of `/api/explore/event`), or `None`.
     pub fn refusal(&self, bound: f64) -> Option<String> {
-        let fields = [("t", self.t), ("x", self.x), ("y", self.y), ("z", self.z)];
-        fields.iter().find_map(|&(name, v)| {
-            if !v.is_finite() {
-                Some(format!("event.{name}: {v} is not a finite number"))
-            } else if v.abs() > bound {
-                Some(format!(
-                    "event.{name}: {v} is beyond ±{bound:e}, the scene's bound on coordinates"
-                ))
-            } else {
-                None
-            }
-        })
+        self.refusal_as(bound, "event", EVENT_FIELDS)
+    }
+
+    /// [`ObserverEvent::refusal`] naming the numbers as the request wrote them:
+    /// `REQUEST.FIELD: why` (`view.position.x: …`).
+    pub fn refusal_as(&self, bound: f64, request: &str, fields: [&str; 4]) -> Option<String> {
+        self.out_of_bounds(bound)
+            .map(|(i, why)| format!("{request}.{}: {why}", fields[i]))
     }
 }
+
+/// How a request names an event's t, x, y, z: as an event (`/api/explore/event`, the map's
+/// query) …
+pub const EVENT_FIELDS: [&str; 4] = ["t", "x", "y", "z"];
+/// … or as a view's time and position ([`View`], `/api/explore/move`).
+pub const VIEW_FIELDS: [&str; 4] = ["time", "position.x", "position.y", "position.z"];
 
 impl ObserverEvent {
     /// The event of `view`'s observer.
@@ -133,7 +160,7 @@ pub trait FrameSource: Send + Sync + 'static {
     fn view_input(&self, view: &View) -> Result<gpu::KernelInput, String>;
     /// Where an observer at `event` moving with `velocity` is after `tau` of its proper time
     /// when it falls freely, and its velocity there (`spacetime::worldline::fall`); `Err`
-    /// says why not.
+    /// says why not, naming the field (`velocity: …`, `tau: …`; the route adds its own name).
     fn fall(
         &self,
         event: ObserverEvent,

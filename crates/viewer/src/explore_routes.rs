@@ -25,17 +25,18 @@
 use std::sync::{Arc, Mutex};
 
 use axum::body::Bytes;
-use axum::extract::rejection::QueryRejection;
+use axum::extract::rejection::{PathRejection, QueryRejection};
 use axum::extract::{DefaultBodyLimit, Path, Query, Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{any, get, post};
 use axum::{middleware, Json, Router};
 use serde::Deserialize;
+use spacetime::message::short;
 use tower::ServiceExt;
 
-use crate::api_error::{no_store, ApiError};
-use crate::explore::{Explorer, Frame, Level, ObserverEvent};
+use crate::api_error::{json_body, no_store, path_error, ApiError};
+use crate::explore::{Explorer, Frame, Level, ObserverEvent, EVENT_FIELDS, VIEW_FIELDS};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::state::{ViewerOptions, ViewerState};
@@ -194,29 +195,8 @@ fn yes() -> bool {
     true
 }
 
-/// A request body of type `T`, refused naming the field (`event.FIELD`).
-fn parse_body<T: serde::de::DeserializeOwned>(body: &[u8]) -> Result<T, ApiError> {
-    parse_named(body, "event")
-}
-
-/// A request body of type `T`, refused naming the field (`NAME.FIELD`).
-fn parse_named<T: serde::de::DeserializeOwned>(body: &[u8], name: &str) -> Result<T, ApiError> {
-    let mut json = serde_json::Deserializer::from_slice(body);
-    let event: T = serde_path_to_error::deserialize(&mut json).map_err(|e| {
-        let path = e.path().to_string();
-        if path == "." {
-            ApiError::bad_request(format!("{name}: {}", e.inner()))
-        } else {
-            ApiError::bad_request(format!("{name}.{path}: {}", e.inner()))
-        }
-    })?;
-    json.end()
-        .map_err(|e| ApiError::bad_request(format!("{name}: {e}")))?;
-    Ok(event)
-}
-
 async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
-    let asked: EventRequest = parse_body(&body)?;
+    let asked: EventRequest = json_body(&body, "event")?;
     let event = ObserverEvent {
         t: asked.t,
         x: asked.x,
@@ -271,9 +251,10 @@ struct ChannelQuery {
 
 async fn channel(
     State(state): State<Arc<ExploreState>>,
-    Path(name): Path<String>,
+    name: Result<Path<String>, PathRejection>,
     query: Result<Query<ChannelQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
+    let Path(name) = name.map_err(|e| path_error("channel", e))?;
     let Query(q) =
         query.map_err(|e| ApiError::bad_request(format!("channel: {}", e.body_text())))?;
     let frame = state
@@ -302,7 +283,7 @@ async fn map(
 ) -> Result<Response, ApiError> {
     let Query(event) =
         query.map_err(|e| ApiError::bad_request(format!("map: {}", e.body_text())))?;
-    if let Some(why) = event.refusal(state.explorer.bound()) {
+    if let Some(why) = event.refusal_as(state.explorer.bound(), "map", EVENT_FIELDS) {
         return Err(ApiError::bad_request(why));
     }
     let work = state.viewer.work().admit()?;
@@ -373,7 +354,7 @@ async fn keyframe(
     body: Bytes,
 ) -> Result<Response, ApiError> {
     let q = keyframe_query(query)?;
-    let event: ObserverEvent = parse_body(&body)?;
+    let event: ObserverEvent = json_body(&body, "event")?;
     if let Some(why) = event.refusal(state.explorer.bound()) {
         return Err(ApiError::bad_request(why));
     }
@@ -394,10 +375,7 @@ async fn view_keyframe(
     body: Bytes,
 ) -> Result<Response, ApiError> {
     let q = keyframe_query(query)?;
-    let view: View = parse_named(&body, "view")?;
-    if let Some(why) = ObserverEvent::of_view(&view).refusal(state.explorer.bound()) {
-        return Err(ApiError::bad_request(why));
-    }
+    let view = view_body(&state, &body)?;
     let work = state.viewer.work().admit()?;
     let source = state.clone();
     let text = work
@@ -463,7 +441,7 @@ async fn kernel_input(
             ))
         }
     };
-    if let Some(why) = event.refusal(state.explorer.bound()) {
+    if let Some(why) = event.refusal_as(state.explorer.bound(), "input", EVENT_FIELDS) {
         return Err(ApiError::bad_request(why));
     }
     let work = state.viewer.work().admit()?;
@@ -483,10 +461,7 @@ async fn view_input(
 ) -> Result<Response, ApiError> {
     let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
     let buffers = crate::kernel_routes::draw_buffers(q.draw_buffers)?;
-    let view: View = parse_named(&body, "view")?;
-    if let Some(why) = ObserverEvent::of_view(&view).refusal(state.explorer.bound()) {
-        return Err(ApiError::bad_request(why));
-    }
+    let view = view_body(&state, &body)?;
     let work = state.viewer.work().admit()?;
     let input = work
         .run(move || state.explorer.source().view_input(&view))
@@ -494,6 +469,17 @@ async fn view_input(
         .map_err(ApiError::bad_request)?;
     let page = crate::kernel_routes::PageInput::new(input, buffers);
     Ok((no_store(), Json(page)).into_response())
+}
+
+/// The view a request's body sends, its event within the scene's bound; refused naming the
+/// field as the view has it (`view.time`, `view.position.x`).
+fn view_body(state: &ExploreState, body: &[u8]) -> Result<View, ApiError> {
+    let view: View = json_body(body, "view")?;
+    let event = ObserverEvent::of_view(&view);
+    match event.refusal_as(state.explorer.bound(), "view", VIEW_FIELDS) {
+        Some(why) => Err(ApiError::bad_request(why)),
+        None => Ok(view),
+    }
 }
 
 /// The most proper time one `/api/explore/move` spans (either way): a page asks each
@@ -512,7 +498,7 @@ struct MoveRequest {
 
 /// `POST /api/explore/move`: the observer after `tau` of its proper time in free fall.
 async fn fall(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
-    let asked: MoveRequest = parse_named(&body, "move")?;
+    let asked: MoveRequest = json_body(&body, "move")?;
     let p = asked.position;
     let at = ObserverEvent {
         t: asked.time,
@@ -521,24 +507,25 @@ async fn fall(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Res
         z: p.z,
     };
     let bound = state.explorer.bound();
-    if let Some(why) = at.refusal(bound) {
+    if let Some(why) = at.refusal_as(bound, "move", VIEW_FIELDS) {
         return Err(ApiError::bad_request(why));
     }
     if !(asked.tau.is_finite() && asked.tau.abs() <= MAX_TAU) {
         return Err(ApiError::bad_request(format!(
             "move.tau: {} is not a finite number within ±{MAX_TAU}",
-            asked.tau
+            short(asked.tau)
         )));
     }
     let (to, velocity) = state
         .explorer
         .source()
         .fall(at, asked.velocity, asked.tau)
-        .map_err(ApiError::bad_request)?;
-    if let Some(why) = to.refusal(bound) {
+        .map_err(|why| ApiError::bad_request(format!("move.{why}")))?;
+    if let Some((i, why)) = to.out_of_bounds(bound) {
         return Err(ApiError::bad_request(format!(
-            "after tau = {}: {why}",
-            asked.tau
+            "move.tau: after tau = {}, {} {why}",
+            short(asked.tau),
+            VIEW_FIELDS[i]
         )));
     }
     let body = serde_json::json!({

@@ -16,6 +16,7 @@
 
 use std::sync::{Arc, OnceLock};
 
+use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, State};
 use axum::http::{header, HeaderName, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
@@ -23,7 +24,7 @@ use axum::routing::get;
 use axum::{Json, Router};
 use shade::{ImageTexture, Texture};
 
-use crate::api_error::{no_store, ApiError};
+use crate::api_error::{no_store, path_error, ApiError};
 use crate::gpu::{self, Channel, GpuTexture};
 use crate::state::ViewerState;
 
@@ -80,8 +81,9 @@ pub fn array(bytes: Vec<u8>) -> Response {
 
 async fn channel(
     State(state): State<Arc<GpuState>>,
-    Path(name): Path<String>,
+    name: Result<Path<String>, PathRejection>,
 ) -> Result<Response, ApiError> {
+    let Path(name) = name.map_err(|e| path_error("channel", e))?;
     let data = &state.viewer.data;
     let Some(channel) = Channel::parse(&name, data.lights.len()) else {
         let lights = (0..data.lights.len())
@@ -117,8 +119,9 @@ async fn textures(State(state): State<Arc<GpuState>>) -> Result<Response, ApiErr
 
 async fn image(
     State(state): State<Arc<GpuState>>,
-    Path(name): Path<String>,
+    name: Result<Path<String>, PathRejection>,
 ) -> Result<Response, ApiError> {
+    let Path(name) = name.map_err(|e| path_error("image", e))?;
     let image = if name == gpu::EARTH {
         ImageTexture::earth().map_err(|e| ApiError::internal(e.to_string()))?
     } else {

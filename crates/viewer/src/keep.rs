@@ -15,6 +15,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
+use spacetime::message::short;
 
 use crate::view::View;
 
@@ -45,34 +46,35 @@ pub struct Recording {
 }
 
 impl Recording {
-    /// The frames of the keyframes at [`RECORD_FPS`], or why not (`keyframes[i].FIELD: …`):
+    /// The frames of the keyframes at [`RECORD_FPS`], or why not
+    /// (`recording.keyframes[i].FIELD: …`):
     /// at least one and at most [`MAX_KEYFRAMES`] keyframes, seconds from 0 to
     /// [`MAX_SECONDS`] on distinct, increasing frames, every view's numbers finite.
     pub fn frames(&self) -> Result<Vec<u32>, String> {
         let n = self.keyframes.len();
         if n == 0 || n > MAX_KEYFRAMES {
             return Err(format!(
-                "keyframes: a recording has 1 to {MAX_KEYFRAMES} keyframes, got {n}"
+                "recording.keyframes: a recording has 1 to {MAX_KEYFRAMES} keyframes, got {n}"
             ));
         }
         let mut frames: Vec<u32> = Vec::with_capacity(n);
         for (i, k) in self.keyframes.iter().enumerate() {
             if let Some(why) = k.view.refusal() {
-                return Err(format!("keyframes[{i}].{why}"));
+                return Err(format!("recording.keyframes[{i}].{why}"));
             }
             if !(k.seconds.is_finite() && (0.0..=MAX_SECONDS).contains(&k.seconds)) {
                 return Err(format!(
-                    "keyframes[{i}].seconds: must be from 0 to {MAX_SECONDS}, got {}",
-                    k.seconds
+                    "recording.keyframes[{i}].seconds: must be from 0 to {MAX_SECONDS}, got {}",
+                    short(k.seconds)
                 ));
             }
             let frame = (k.seconds * RECORD_FPS).round() as u32;
             if let Some(&before) = frames.last() {
                 if frame <= before {
                     return Err(format!(
-                        "keyframes[{i}].seconds: {} s is frame {frame}, not after keyframe \
-                         {}'s frame {before} (at {RECORD_FPS} frames per second)",
-                        k.seconds,
+                        "recording.keyframes[{i}].seconds: {} s is frame {frame}, not after \
+                         keyframe {}'s frame {before} (at {RECORD_FPS} frames per second)",
+                        short(k.seconds),
                         i - 1
                     ));
                 }
@@ -109,7 +111,7 @@ pub trait Keeper: Send + Sync + 'static {
     fn render(&self, view: &View, job: &ExactJob) -> Result<Option<Rendered>, String>;
     /// The sequence script (TOML) of `recording`, each keyframe at its frame of `frames`, read
     /// back by the sequence-script parser before it is given. `Err` names the field
-    /// (`keyframes[i].view.FIELD`).
+    /// (`recording.keyframes[i].view.FIELD: …`, or `recording: …` for the whole).
     fn script(&self, recording: &Recording, frames: &[u32]) -> Result<String, String>;
 }
 

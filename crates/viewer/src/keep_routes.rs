@@ -8,7 +8,7 @@
 //! | `GET /api/explore/exact` | the newest exact render: `{"job": {"id", "state", "done", "total", "seconds", "error", "summary", "png", "exr"}}` (`job` null before any; `png`, `exr`: the files' URLs once done) |
 //! | `POST /api/explore/exact/cancel` (`{}`) | cancels the render under way (it stops between tiles) |
 //! | `GET /api/explore/exact/{N}/{png,exr}` | a file of render N (download); 410 once a newer render has started |
-//! | `POST /api/explore/record` ([`Recording`]) | the sequence script of that flight (TOML download); 400 naming the field (`keyframes[i].…`) |
+//! | `POST /api/explore/record` ([`Recording`]) | the sequence script of that flight (TOML download); 400 naming the field (`recording.keyframes[i].…`) |
 //!
 //! Bounds: one exact render at a time, on a thread of its own (the tracer's pool is the
 //! keeper's); the files of only the newest one are kept, in memory, and dropped when the next
@@ -24,13 +24,14 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 use axum::body::Bytes;
+use axum::extract::rejection::PathRejection;
 use axum::extract::{DefaultBodyLimit, Path, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{middleware, Json, Router};
 
-use crate::api_error::{no_store, ApiError};
+use crate::api_error::{json_body, no_store, path_error, ApiError};
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::keep::{ExactJob, JobState, Keeper, Recording, MAX_KEYFRAMES, RECORD_FPS};
 use crate::limit::WorkLimit;
@@ -91,23 +92,6 @@ pub fn router(keeper: impl Keeper, work: WorkLimit, access: Access) -> Router {
         ))
 }
 
-/// A JSON body of type `T`, refused naming the field (`WHAT.FIELD: why`).
-fn parse<T: serde::de::DeserializeOwned>(what: &str, body: &[u8]) -> Result<T, ApiError> {
-    let mut json = serde_json::Deserializer::from_slice(body);
-    let value: T = serde_path_to_error::deserialize(&mut json).map_err(|e| {
-        let path = e.path().to_string();
-        let at = if path == "." {
-            what.to_string()
-        } else {
-            format!("{what}.{path}")
-        };
-        ApiError::bad_request(format!("{at}: {}", e.inner()))
-    })?;
-    json.end()
-        .map_err(|e| ApiError::bad_request(format!("{what}: {e}")))?;
-    Ok(value)
-}
-
 async fn own_view(State(state): State<Arc<KeepState>>) -> Response {
     let body = serde_json::json!({
         "view": state.keeper.own_view(),
@@ -119,7 +103,7 @@ async fn own_view(State(state): State<Arc<KeepState>>) -> Response {
 
 /// `POST /api/explore/exact`: checks the view, then renders it on a thread of its own.
 async fn start(State(state): State<Arc<KeepState>>, body: Bytes) -> Result<Response, ApiError> {
-    let view: View = parse("view", &body)?;
+    let view: View = json_body(&body, "view")?;
     if let Some(why) = view.refusal() {
         return Err(ApiError::bad_request(why));
     }
@@ -210,8 +194,14 @@ async fn cancel(State(state): State<Arc<KeepState>>) -> Response {
 /// `GET /api/explore/exact/{id}/{png|exr}`: a file of the newest render.
 async fn file(
     State(state): State<Arc<KeepState>>,
-    Path((id, kind)): Path<(u64, String)>,
+    path: Result<Path<(String, String)>, PathRejection>,
 ) -> Result<Response, ApiError> {
+    let Path((id, kind)) = path.map_err(|e| path_error("exact", e))?;
+    let id: u64 = id.parse().map_err(|_| {
+        ApiError::bad_request(format!(
+            "exact: `{id}` is not the number of a render (/api/explore/exact/N/png or …/exr)"
+        ))
+    })?;
     let job = state.newest().filter(|j| j.id == id).ok_or_else(|| {
         ApiError::new(
             StatusCode::GONE,
@@ -249,7 +239,7 @@ async fn file(
 
 /// `POST /api/explore/record`: the sequence script of a recorded flight.
 async fn record(State(state): State<Arc<KeepState>>, body: Bytes) -> Result<Response, ApiError> {
-    let recording: Recording = parse("recording", &body)?;
+    let recording: Recording = json_body(&body, "recording")?;
     let frames = recording.frames().map_err(ApiError::bad_request)?;
     let keeper = state.keeper.clone();
     let text = state

@@ -416,8 +416,8 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         (Some(0.5), Some(-1.0))
     );
     for (query, field) in [
-        ("t=4&x=0&y=NaN&z=0", "event.y"),
-        ("t=4&x=0&y=0&z=1e9", "event.z"),
+        ("t=4&x=0&y=NaN&z=0", "map.y: NaN is not a finite number"),
+        ("t=4&x=0&y=0&z=1e9", "map.z: 1e9 is beyond"),
         ("t=4&x=0&y=0", "z"),
     ] {
         let (status, answer, _) =
@@ -522,7 +522,7 @@ async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
     assert_eq!(input["uniforms"]["obs_x"][0], 0.5);
     for (query, needle) in [
         ("?t=1&x=0", "all of t, x, y and z"),
-        ("?t=1&x=1e9&y=0&z=0", "event.x"),
+        ("?t=1&x=1e9&y=0&z=0", "input.x: 1e9 is beyond"),
         ("?t=1&x=0&y=0&z=0&draw_buffers=0", "draw_buffers"),
     ] {
         let (status, answer, _) = send(&app, common::get(&format!("/api/gpu/input{query}"))).await;
@@ -582,13 +582,21 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
             unknown.to_string(),
             "view.camera.zoom: unknown field `zoom`",
         ),
-        ("/api/explore/input", far.to_string(), "event.y"),
+        (
+            "/api/explore/input",
+            far.to_string(),
+            "view.position.y: 1e9 is beyond",
+        ),
         (
             "/api/explore/view-keyframe",
             unknown.to_string(),
             "view.camera.zoom: unknown field `zoom`",
         ),
-        ("/api/explore/view-keyframe", far.to_string(), "event.y"),
+        (
+            "/api/explore/view-keyframe",
+            far.to_string(),
+            "view.position.y: 1e9 is beyond",
+        ),
         (
             "/api/explore/input?draw_buffers=0",
             view.to_string(),
@@ -607,7 +615,7 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
         (
             "/api/explore/move",
             step.replace("\"time\": 1", "\"time\": 1e300"),
-            "event.t",
+            "move.time: 1e300 is beyond",
         ),
         ("/api/explore/move", step.replace(", \"tau\": 2", ""), "tau"),
     ] {
@@ -615,5 +623,105 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
         assert_eq!(status, StatusCode::BAD_REQUEST, "{url} {body}");
         let message = answer["error"].as_str().unwrap();
         assert!(message.contains(needle), "{url}: {message}");
+    }
+}
+
+/// Issue 36: the refusals named what the request did not write: `event.t` for a view's or a
+/// move's `time`, `view.?` for a body cut short; they printed 1e308 with its 309 digits; a
+/// channel name that is not UTF-8 got axum's plain-text answer. Each refusal now names the
+/// field as the request wrote it, with the route's name, numbers in short form, as JSON.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn refusals_name_what_the_request_wrote_in_short() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    let app =
+        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let view = serde_json::json!({
+        "time": 1e308, "position": {"x": 0, "y": 0, "z": 0},
+        "velocity": {"speed": 0.5, "direction": [1, 0, 0]},
+        "forward": [1, 0, 0], "up": [0, 0, 1],
+        "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
+    })
+    .to_string();
+    let step = |time: &str, tau: &str| {
+        format!(
+            r#"{{"time": {time}, "position": {{"x": 0, "y": 0, "z": 0}},
+            "velocity": {{"speed": 0.5, "direction": [1, 0, 0]}}, "tau": {tau}}}"#
+        )
+    };
+    let beyond = "is beyond ±1e2, the scene's bound on coordinates";
+    let posts = [
+        (
+            "view-keyframe",
+            view.clone(),
+            format!("view.time: 1e308 {beyond}"),
+        ),
+        ("input", view, format!("view.time: 1e308 {beyond}")),
+        (
+            "move",
+            step("-1e308", "2"),
+            format!("move.time: -1e308 {beyond}"),
+        ),
+        (
+            "move",
+            step("1", "1e308"),
+            "move.tau: 1e308 is not a finite number within ±1000".into(),
+        ),
+        // The stand-in falls along t: t = 99 + 5 is out of bounds.
+        (
+            "move",
+            step("99", "5"),
+            format!("move.tau: after tau = 5, time 104 {beyond}"),
+        ),
+        (
+            "event",
+            r#"{"t": 1e308, "x": 0, "y": 0, "z": 0}"#.into(),
+            format!("event.t: 1e308 {beyond}"),
+        ),
+        (
+            "view-keyframe",
+            r#"{"time": 1, "posi"#.into(),
+            "view: EOF while parsing a string at line 1 column 17".into(),
+        ),
+        (
+            "input",
+            r#"{"time": 1, "position": {"x": 1"#.into(),
+            "view.position: EOF while parsing an object".into(),
+        ),
+        (
+            "move",
+            r#"{"time": 1, "velocity": {"spe"#.into(),
+            "move.velocity: EOF while parsing a string".into(),
+        ),
+        (
+            "event",
+            r#"{"t": 1, "x"#.into(),
+            "event: EOF while parsing a string".into(),
+        ),
+    ];
+    for (route, body, want) in posts {
+        let url = format!("/api/explore/{route}");
+        let (status, answer, _) = send(&app, common::post(&url, &body)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{url} {body}");
+        let message = answer["error"].as_str().unwrap();
+        assert!(
+            message.starts_with(&want),
+            "{url}: {message} (wanted {want})"
+        );
+    }
+    let (status, answer, _) = send(&app, common::get("/api/explore/map?t=0&x=1e308&y=0&z=0")).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert_eq!(answer["error"], format!("map.x: 1e308 {beyond}"));
+    // A name that is not UTF-8, in the explore routes and the viewer's own.
+    for url in [
+        "/api/explore/channel/%FF?generation=1&level=full",
+        "/api/gpu/channel/%FF",
+        "/api/gpu/image/%FF",
+    ] {
+        let (status, answer, body) = send(&app, common::get(url)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{url}");
+        let message = answer["error"].as_str();
+        let message =
+            message.unwrap_or_else(|| panic!("{url}: {}", String::from_utf8_lossy(&body)));
+        assert!(message.contains("Invalid UTF-8"), "{url}: {message}");
     }
 }

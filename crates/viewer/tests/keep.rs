@@ -287,15 +287,18 @@ async fn recordings_are_bounded_and_their_keyframes_on_increasing_frames() {
     );
     let many: Vec<serde_json::Value> = (0..=MAX_KEYFRAMES).map(|i| (i as f64).into()).collect();
     let cases = [
-        (recording(&[]), "keyframes: a recording has 1 to"),
-        (recording(&many), "keyframes: a recording has 1 to"),
+        (recording(&[]), "recording.keyframes: a recording has 1 to"),
+        (
+            recording(&many),
+            "recording.keyframes: a recording has 1 to",
+        ),
         (
             recording(&[0.into(), 0.5.into(), 0.51.into()]),
-            "keyframes[2].seconds: 0.51 s is frame 12, not after keyframe 1's frame 12",
+            "recording.keyframes[2].seconds: 0.51 s is frame 12, not after keyframe 1's frame 12",
         ),
         (
             recording(&[(-1).into()]),
-            "keyframes[0].seconds: must be from 0",
+            "recording.keyframes[0].seconds: must be from 0",
         ),
         (
             recording(&[serde_json::Value::Null]),
@@ -311,5 +314,55 @@ async fn recordings_are_bounded_and_their_keyframes_on_increasing_frames() {
         assert_eq!(status, StatusCode::BAD_REQUEST, "{want}");
         let error = common::error_of(&answer);
         assert!(error.starts_with(want), "{error} (wanted {want})");
+    }
+}
+
+/// Issue 36: a body cut short was named `view.?` or `recording.keyframes[0].?`, 1e308 seconds
+/// printed with 309 digits, and a render's number that is not one got axum's plain-text
+/// answer. Now the name stops at the last field the request wrote, numbers are short, and
+/// every refusal is JSON naming the route.
+#[tokio::test]
+async fn refusals_name_what_the_request_wrote_in_short() {
+    let fake = Fake::default();
+    let app = app(&fake);
+    let cases = [
+        (
+            "/api/explore/exact",
+            r#"{"time": 1, "position": {"x": 1"#.to_string(),
+            "view.position: EOF while parsing an object",
+        ),
+        (
+            "/api/explore/record",
+            r#"{"keyframes": [{"seconds": 0, "vi"#.to_string(),
+            "recording.keyframes[0]: EOF while parsing a string",
+        ),
+        (
+            "/api/explore/record",
+            r#"{"keyf"#.to_string(),
+            "recording: EOF while parsing a string",
+        ),
+        (
+            "/api/explore/record",
+            recording(&[1e308.into()]),
+            "recording.keyframes[0].seconds: must be from 0 to 3600, got 1e308",
+        ),
+    ];
+    for (url, body, want) in cases {
+        let (status, answer, _) = send(&app, common::post(url, &body)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{want}");
+        let error = common::error_of(&answer);
+        assert!(error.starts_with(want), "{error} (wanted {want})");
+    }
+    for (url, want) in [
+        (
+            "/api/explore/exact/abc/png",
+            "exact: `abc` is not the number of a render",
+        ),
+        ("/api/explore/exact/1/%FF", "exact: Invalid URL"),
+    ] {
+        let (status, answer, _) = send(&app, common::get(url)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{url}");
+        let error = common::error_of(&answer);
+        assert!(error.starts_with(want), "{url}: {error}");
     }
 }
