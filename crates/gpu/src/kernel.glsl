@@ -13,6 +13,14 @@
 // scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
 // probe count in place of view_x).
 //
+// Rules, so that no conforming driver can run it two ways (docs/physics.md, "The GPU kernel";
+// crates/gpu/tests/kernel_rules.rs checks them on this text): arrays, matrices and vectors
+// are stored into only at constant indices (constants, or the index of a loop with constant
+// bounds whose body is a few stores: a store at a runtime index i is such a loop storing where
+// j == i); no NaN is tested (finite() reads the bits) or made on purpose; floats become ints
+// only through toInt; every variable gets a value where it is declared, every out parameter
+// first thing in its function.
+//
 // Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
 // vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
 // observer's (the metric does not depend on t: a shift of t is an isometry), complex numbers
@@ -93,6 +101,8 @@ const int SEARCH_PROBES = 4096;   // the CPU's 131072 is far beyond a GPU's mean
 const float MAX_SKIP = 1.0;
 // Segments per loop of a closed-form ray (render::segment::EXACT_SEGMENTS).
 const int EXACT_SEGMENTS = 16;
+// GPU only: segments of a Minkowski ray or a shadow ray at most.
+const int MAX_SEGMENTS = 100000;
 // GPU only: probes per sample, all its searches together. A draw must end soon (GPU watchdogs),
 // and llvmpipe stops every loop of a shader after 65535 passes in all, counted per group of
 // eight samples: a sample over this budget is marked "work limit" (the CPU has no such bound).
@@ -126,7 +136,7 @@ const float REACH_PER_A = 1e-6;
 const int MAX_PASSES = 4194304;
 const int MAX_JOBS = 4194304;
 
-int probes_left;   // the pixel's probe budget (PIXEL_PROBES)
+int probes_left = 0;   // the pixel's probe budget (PIXEL_PROBES)
 
 // The sample's record: slots of four channels (see `main`): four fixed ones, then view_z
 // and the polarization, then the lights four to a slot.
@@ -136,6 +146,14 @@ vec4 slots[SLOTS + 8];
 
 // ---------------------------------------------------------------------------------------
 // Complex numbers (vec2) and small helpers.
+
+// Finite, and below 1e38 (INF, 3e38, counts as infinite), told by the bits: the magnitude's
+// bit pattern orders as the value does, and NaN's and infinity's lie above 1e38's. No isnan:
+// a compiler that assumes no NaN may fold it away.
+bool finite(float v) { return (floatBitsToUint(v) & 0x7fffffffu) < 0x7e967699u; }
+// A float made an int in [lo, hi] (a count, an index): GLSL leaves the conversion of values
+// outside int's range undefined, so v is clamped first, and a v that is not finite gives lo.
+int toInt(float v, int lo, int hi) { return finite(v) ? int(clamp(v, float(lo), float(hi))) : lo; }
 
 // Arctangents and arcsines of our own: GLSL leaves their precision to the implementation,
 // and Mesa's are approximations (measured on llvmpipe: asin off by 4e-4, atan by 3e-6).
@@ -191,14 +209,13 @@ vec2 cis(float a) {
     float z = x * x;
     float s = ((-1.9515295891e-4 * z + 8.3321608736e-3) * z - 1.6666654611e-1) * z * x + x;
     float c = ((2.443315711809948e-5 * z - 1.388731625493765e-3) * z + 4.166664568298827e-2) * z * z - 0.5 * z + 1.0;
-    int q = int(j * 0.5) & 3;   // the quarter turn: (c, s) rotated by q·π/2
+    int q = toInt(mod(j * 0.5, 4.0), 0, 3);   // the quarter turn: (c, s) rotated by q·π/2
     vec2 r = q == 0 ? vec2(c, s) : (q == 1 ? vec2(-s, c) : (q == 2 ? vec2(-c, -s) : vec2(s, -c)));
     return vec2(r.x, a < 0.0 ? -r.y : r.y);
 }
 float sinA(float a) { return cis(a).y; }
 float cosA(float a) { return cis(a).x; }
 float carg(vec2 p) { return atan2s(p.y, p.x); }
-bool finite(float v) { return !isnan(v) && abs(v) < 1e38; }   // INF (3e38) counts as infinite
 float asinh_(float x) { return sign(x) * log(abs(x) + sqrt(x * x + 1.0)); }
 // tanh(asinh(x)/2) = x/(1 + √(1 + x²)): the disc radius |h| of a ray's circle centre.
 float halfTanh(float x) { return x / (1.0 + sqrt(1.0 + x * x)); }
@@ -206,15 +223,6 @@ float acosh_(float x) { return log(x + sqrt(max(x * x - 1.0, 0.0))); }
 float atanh_(float x) { return 0.5 * log((1.0 + x) / (1.0 - x)); }
 
 vec4 tableTexel(int i) { return texelFetch(u_table, ivec2(i % TABLE_WIDTH, i / TABLE_WIDTH), 0); }
-
-// The kinds of object, each false at compile time where the scene has none of it (the host's
-// HAS_* defines): GPUs and llvmpipe run both sides of a branch their samples take apart, so
-// code for kinds a scene lacks would cost every sample.
-int oKind[N_OBJECTS];
-bool isRest(int i) { return HAS_REST != 0 && oKind[i] == KIND_REST; }
-bool isFree(int i) { return HAS_FREE != 0 && oKind[i] == KIND_FREE; }
-bool isCoordSphere(int i) { return HAS_COORD_SPHERE != 0 && oKind[i] == KIND_COORD_SPHERE; }
-bool isPlane(int i) { return HAS_PLANE != 0 && oKind[i] == KIND_PLANE; }
 
 // ---------------------------------------------------------------------------------------
 // The metric (docs/physics.md, "The Gödel metric"; spacetime::godel, spacetime::minkowski).
@@ -254,6 +262,7 @@ float dotg(mat4 g, vec4 u, vec4 v) { return dot(u, g * v); }
 // The metric's derivatives ∂x g and ∂y g (the others vanish; spacetime::godel,
 // metric_derivatives).
 void metricDerivatives(vec4 e, out mat4 dX, out mat4 dY) {
+    dX = mat4(0.0); dY = mat4(0.0);
     float a = u_a, x = e.y, y = e.z;
     float k = 0.25 / (a * a);
     float m = 1.0 / (4.0 * a * a + x * x + y * y);
@@ -286,7 +295,7 @@ vec4 christoffelWith(mat4 dX, mat4 dY, mat4 ginv, vec4 u, vec4 v) {
 
 vec4 christoffel(vec4 e, vec4 u, vec4 v) {
     if (!godel()) return vec4(0.0);
-    mat4 dX, dY;
+    mat4 dX = mat4(0.0), dY = mat4(0.0);
     metricDerivatives(e, dX, dY);
     return christoffelWith(dX, dY, inverseMetricAt(e), u, v);
 }
@@ -301,23 +310,26 @@ vec4 normalDisplacement(vec4 at, vec4 d) { return d + 0.5 * christoffel(at, d, d
 
 mat4 staticFrame(vec4 at) {
     mat4 g = metricAt(at);
-    mat4 e = mat4(1.0);
-    e[0] = e[0] / sqrt(-dotg(g, e[0], e[0]));
-    for (int i = 1; i < 4; i++) {
-        vec4 v = mat4(1.0)[i];
-        v += dotg(g, v, e[0]) * e[0];
-        for (int j = 1; j < 4; j++) {
-            if (j < i) v -= dotg(g, v, e[j]) * e[j];
-        }
-        e[i] = v / sqrt(dotg(g, v, v));
-    }
-    return e;
+    vec4 e0 = vec4(1.0, 0.0, 0.0, 0.0);
+    e0 = e0 / sqrt(-dotg(g, e0, e0));
+    vec4 v = vec4(0.0, 1.0, 0.0, 0.0);
+    v += dotg(g, v, e0) * e0;
+    vec4 e1 = v / sqrt(dotg(g, v, v));
+    v = vec4(0.0, 0.0, 1.0, 0.0);
+    v += dotg(g, v, e0) * e0;
+    v -= dotg(g, v, e1) * e1;
+    vec4 e2 = v / sqrt(dotg(g, v, v));
+    v = vec4(0.0, 0.0, 0.0, 1.0);
+    v += dotg(g, v, e0) * e0;
+    v -= dotg(g, v, e1) * e1;
+    v -= dotg(g, v, e2) * e2;
+    return mat4(e0, e1, e2, v / sqrt(dotg(g, v, v)));
 }
 
 // The standard boost: Λ⁰₀ = γ, Λ⁰ᵢ = Λⁱ₀ = γ v nᵢ, Λⁱⱼ = δᵢⱼ + (γ − 1) nᵢ nⱼ.
 mat4 boostFrame(mat4 f, float speed, vec3 n) {
     float gam = 1.0 / sqrt(1.0 - speed * speed);
-    mat4 out_;
+    mat4 out_ = mat4(0.0);
     out_[0] = f * vec4(gam, gam * speed * n);
     for (int i = 0; i < 3; i++) {
         vec3 row = (gam - 1.0) * n[i] * n;
@@ -329,7 +341,7 @@ mat4 boostFrame(mat4 f, float speed, vec3 n) {
 
 // The dual rows c_a = η_aa g(e_a, ·): frame components of a vector v are dot(c_a, v).
 mat4 dualFrame(mat4 g, mat4 f) {
-    mat4 d;
+    mat4 d = mat4(0.0);
     for (int a = 0; a < 4; a++) d[a] = (a == 0 ? -1.0 : 1.0) * (g * f[a]);
     return d;
 }
@@ -341,6 +353,7 @@ vec4 components(mat4 dual, vec4 v) { return vec4(dot(dual[0], v), dot(dual[1], v
 // a fisheye pixel outside its circle.
 
 bool cameraDirection(vec2 p, out vec3 d) {
+    d = vec3(0.0);
     float w = float(u_size.x), h = float(u_size.y);
     if (u_camera == 0) {
         vec2 halfFov = cis(radians(0.5 * u_fov.x));
@@ -370,6 +383,8 @@ bool cameraDirection(vec2 p, out vec3 d) {
 // the disc coordinate w = (x + iy)/√(x² + y² + 4a²).
 
 struct Iso { float t0; vec2 w0; float z0; float rot; };
+// The identity, and the value of every Iso before it is set (no variable is read unset).
+const Iso NO_ISO = Iso(0.0, vec2(0.0), 0.0, 0.0);
 
 vec2 disc(vec2 xy) { return xy / sqrt(dot(xy, xy) + 4.0 * u_a * u_a); }
 vec2 fromDisc(vec2 w) { return 2.0 * u_a * w / sqrt(1.0 - dot(w, w)); }
@@ -380,6 +395,7 @@ bool isTranslation(Iso m) { return m.w0 == vec2(0.0) && m.rot == 0.0; }
 
 // The image of an event and of the tangent vector v there (spacetime::Isometry::apply_push).
 void applyPush(Iso m, vec4 at, vec4 v, out vec4 e, out vec4 k) {
+    e = vec4(0.0); k = vec4(0.0);
     if (isTranslation(m)) {
         e = vec4(at.x - m.t0, at.y, at.z, at.w - m.z0);
         k = v;
@@ -404,8 +420,8 @@ void applyPush(Iso m, vec4 at, vec4 v, out vec4 e, out vec4 k) {
     k = vec4(v.x + 2.0 * SQRT2 * a * cdiv(cmul(conj2(m.w0), dw), den).y, f * dw1 + g * w1, v.w);
 }
 
-vec4 applyIso(Iso m, vec4 at) { vec4 e, k; applyPush(m, at, vec4(0.0), e, k); return e; }
-vec4 pushIso(Iso m, vec4 at, vec4 v) { vec4 e, k; applyPush(m, at, v, e, k); return k; }
+vec4 applyIso(Iso m, vec4 at) { vec4 e = vec4(0.0), k = vec4(0.0); applyPush(m, at, vec4(0.0), e, k); return e; }
+vec4 pushIso(Iso m, vec4 at, vec4 v) { vec4 e = vec4(0.0), k = vec4(0.0); applyPush(m, at, v, e, k); return k; }
 
 // ---------------------------------------------------------------------------------------
 // Closed-form geodesics through the origin (docs/physics.md, "Closed forms";
@@ -413,9 +429,10 @@ vec4 pushIso(Iso m, vec4 at, vec4 v) { vec4 e, k; applyPush(m, at, v, e, k); ret
 // t = sgn(E) 2√2 a Φ(θ) − E λ, z = p_z λ, θ = ωλ, Φ = arctan(q tan θ) continued.
 
 struct OGeo { float e; float pz; float kappa; vec2 cchi; float omega; float rmax; float q; bool ok; };
+const OGeo NO_OGEO = OGeo(0.0, 0.0, 0.0, vec2(0.0), 0.0, 0.0, 0.0, false);
 
 OGeo originGeodesic(vec4 k) {
-    OGeo g;
+    OGeo g = NO_OGEO;
     float e = k.x;
     float kp2 = dot(k.yz, k.yz);
     float kappa = e * e - kp2 - k.w * k.w;
@@ -435,6 +452,7 @@ OGeo originGeodesic(vec4 k) {
 float returnParameter(OGeo g) { return PI / g.omega; }
 
 void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
+    ev = vec4(0.0); tan_ = vec4(0.0);
     float a = u_a, e = g.e, w = g.omega, q = g.q;
     float sg = sign(e);
     float th = w * lambda;
@@ -475,7 +493,7 @@ vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
     vec4 aaw = nablaXi(g, aw);
     float om = sqrt(g.kappa + g.pz * g.pz) / (SQRT2 * u_a);
     float x = om * lambda;
-    float c1, c2;
+    float c1 = 0.0, c2 = 0.0;
     if (abs(x) < 1e-2) {
         c1 = lambda * (1.0 - x * x / 6.0);
         c2 = 0.5 * lambda * lambda * (1.0 - x * x / 12.0);
@@ -503,15 +521,17 @@ struct Ray {
     float lret;   // Gödel: return parameter
     vec2 shift;   // Gödel: (Δt, Δz) per loop
 };
+const Ray NO_RAY = Ray(NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0), 0.0, vec2(0.0));
 
 // The ray's event and tangent at parameter l of loop j.
 void rayAt(Ray r, int j, float l, out vec4 ev, out vec4 k) {
+    ev = vec4(0.0); k = vec4(0.0);
     if (!godel()) {
         ev = r.x0 + l * r.k0;
         k = r.k0;
         return;
     }
-    vec4 e0, k0;
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(r.geo, l, e0, k0);
     applyPush(r.back, e0, k0, ev, k);
     ev.x += float(j) * r.shift.x;
@@ -520,7 +540,7 @@ void rayAt(Ray r, int j, float l, out vec4 ev, out vec4 k) {
 
 // The ray through `at` with tangent `k` (Gödel: the exact geodesic; spacetime::ExactGeodesic).
 Ray makeRay(vec4 at, vec4 k) {
-    Ray r;
+    Ray r = NO_RAY;
     r.x0 = at;
     r.k0 = k;
     r.back = Iso(0.0, vec2(0.0), 0.0, 0.0);
@@ -541,83 +561,140 @@ Ray makeRay(vec4 at, vec4 k) {
 
 // ---------------------------------------------------------------------------------------
 // Objects (docs/physics.md, "Local objects"; render::target, render::worldline), read from
-// the table and prepared once per sample, one array per field. GLSL inlines every call, so
-// the heavy functions below each have one call site (two for `localize`), and the kernel
-// stays small enough to compile in seconds.
+// the table and prepared once per sample. GLSL inlines every call, so the heavy functions
+// below each have one call site (two for `localize`), and the kernel stays small enough to
+// compile in seconds.
 
-float oRadius[N_OBJECTS];
-float oExtent[N_OBJECTS];   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
-vec4 oPos[N_OBJECTS];       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
-mat4 oDual[N_OBJECTS];      // at rest: dual rows of the static frame
-mat4 oDX[N_OBJECTS];        // at rest: ∂x g, ∂y g and g⁻¹ at the position (Γ there)
-mat4 oDY[N_OBJECTS];
-mat4 oGinv[N_OBJECTS];
-Iso oBack[N_OBJECTS];       // free fall: from the start's origin frame back
-OGeo oGeo[N_OBJECTS];       // free fall: the closed form in that frame
-vec4 oStart[N_OBJECTS];     // free fall: start event; Minkowski: and its velocity below
-vec4 oU0[N_OBJECTS];
-float oSpeed[N_OBJECTS];    // γ(1 + v) relative to the static observers
-float oRate[N_OBJECTS];     // free fall: coordinate time per proper time over whole loops
-float oGamma[N_OBJECTS];    // free fall: γ = −u_t, conserved
+struct Object {
+    int kind;
+    float radius;
+    float extent;   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
+    vec4 pos;       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
+    mat4 dual;      // at rest: dual rows of the static frame
+    mat4 dX;        // at rest: ∂x g, ∂y g and g⁻¹ at the position (Γ there)
+    mat4 dY;
+    mat4 ginv;
+    Iso back;       // free fall: from the start's origin frame back
+    OGeo geo;       // free fall: the closed form in that frame
+    vec4 start;     // free fall: start event; Minkowski: and its velocity below
+    vec4 u0;
+    float speed;    // γ(1 + v) relative to the static observers
+    float rate;     // free fall: coordinate time per proper time over whole loops
+    float gamma;    // free fall: γ = −u_t, conserved
+};
+Object objs[N_OBJECTS];
 
-// The frame a free fall starts with: the static frame there boosted by its velocity.
-mat4 startFrame(int i) {
-    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
-    vec4 t3 = tableTexel(OBJECT_TEXELS * i + 3);
-    return boostFrame(staticFrame(oStart[i]), t1.w, t3.xyz);
+// The kinds of object, each false at compile time where the scene has none of it (the host's
+// HAS_* defines): GPUs and llvmpipe run both sides of a branch their samples take apart, so
+// code for kinds a scene lacks would cost every sample.
+bool restKind(int kind) { return HAS_REST != 0 && kind == KIND_REST; }
+bool freeKind(int kind) { return HAS_FREE != 0 && kind == KIND_FREE; }
+bool isRest(int i) { return restKind(objs[i].kind); }
+bool isFree(int i) { return freeKind(objs[i].kind); }
+bool isCoordSphere(int i) { return HAS_COORD_SPHERE != 0 && objs[i].kind == KIND_COORD_SPHERE; }
+bool isPlane(int i) { return HAS_PLANE != 0 && objs[i].kind == KIND_PLANE; }
+
+// Per object, for the ray being searched: whether it is searched at all (setSearched), a
+// ball's centre (disc coordinate, z) and a plane's height in the ray's origin frame, and a
+// falling ball's last λ within reach in the current loop, from the loop's start (fallingLast).
+bool searched[N_OBJECTS];
+vec2 oCw[N_OBJECTS];
+float oCz[N_OBJECTS];
+float fbLast[N_OBJECTS];
+
+// The stores into the per-object arrays, each at the constant indices of a loop whose body
+// is the store alone, which compilers unroll: never at the runtime index i (drivers have
+// stored at the wrong index; docs/physics.md, "The GPU kernel").
+void storeObject(int i, Object o) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) objs[j] = o;
+    }
 }
-
-void loadObject(int i) {
-    vec4 t0 = tableTexel(OBJECT_TEXELS * i);
-    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
-    vec4 t2 = tableTexel(OBJECT_TEXELS * i + 2);
-    oKind[i] = int(t0.x);
-    oRadius[i] = t0.y;
-    oExtent[i] = t0.z;
-    oPos[i] = vec4(0.0, t1.xyz);
-    oSpeed[i] = 1.0;
-    oRate[i] = 1.0;
-    if (isRest(i)) {
-        oDual[i] = dualFrame(metricAt(oPos[i]), staticFrame(oPos[i]));
-        metricDerivatives(oPos[i], oDX[i], oDY[i]);
-        oGinv[i] = inverseMetricAt(oPos[i]);
-        if (!godel()) { oDX[i] = mat4(0.0); oDY[i] = mat4(0.0); }
-    } else if (isFree(i)) {
-        // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
-        oStart[i] = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
-        vec4 u = startFrame(i)[0];
-        oU0[i] = u;
-        float gam = -(metricAt(oStart[i]) * u).x;   // γ = −u_t, conserved
-        oSpeed[i] = gam + sqrt(max(gam * gam - 1.0, 0.0));
-        oGamma[i] = max(gam, 1.0);
-        oRate[i] = u.x;
-        if (godel()) {
-            Iso to = toOrigin(oStart[i]);
-            oGeo[i] = originGeodesic(pushIso(to, oStart[i], u));
-            oBack[i] = inverseIso(to);
-            float lr = returnParameter(oGeo[i]);
-            oRate[i] = (sign(oGeo[i].e) * 2.0 * SQRT2 * u_a * PI - oGeo[i].e * lr) / lr;
+void storeSearched(int i, bool s, vec2 cw, float cz) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) {
+            searched[j] = s;
+            oCw[j] = cw;
+            oCz[j] = cz;
         }
     }
 }
+void storeFallingLast(int i, float last) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) fbLast[j] = last;
+    }
+}
+
+// The frame a free fall that starts at `start` starts with: the static frame there boosted by
+// its velocity.
+mat4 startFrame(int i, vec4 start) {
+    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
+    vec4 t3 = tableTexel(OBJECT_TEXELS * i + 3);
+    return boostFrame(staticFrame(start), t1.w, t3.xyz);
+}
+
+// Object i, read from the table and prepared (zero where its kind has no use for a field).
+Object loadObject(int i) {
+    vec4 t0 = tableTexel(OBJECT_TEXELS * i);
+    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
+    vec4 t2 = tableTexel(OBJECT_TEXELS * i + 2);
+    Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), mat4(0.0),
+                      mat4(0.0), mat4(0.0), mat4(0.0), NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0),
+                      1.0, 1.0, 1.0);
+    if (restKind(o.kind)) {
+        o.dual = dualFrame(metricAt(o.pos), staticFrame(o.pos));
+        metricDerivatives(o.pos, o.dX, o.dY);
+        o.ginv = inverseMetricAt(o.pos);
+        if (!godel()) { o.dX = mat4(0.0); o.dY = mat4(0.0); }
+    } else if (freeKind(o.kind)) {
+        // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
+        o.start = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
+        vec4 u = startFrame(i, o.start)[0];
+        o.u0 = u;
+        float gam = -(metricAt(o.start) * u).x;   // γ = −u_t, conserved
+        o.speed = gam + sqrt(max(gam * gam - 1.0, 0.0));
+        o.gamma = max(gam, 1.0);
+        o.rate = u.x;
+        if (godel()) {
+            Iso to = toOrigin(o.start);
+            o.geo = originGeodesic(pushIso(to, o.start, u));
+            o.back = inverseIso(to);
+            float lr = returnParameter(o.geo);
+            o.rate = (sign(o.geo.e) * 2.0 * SQRT2 * u_a * PI - o.geo.e * lr) / lr;
+        }
+    }
+    return o;
+}
+
+// Every object into objs, and the per-ray arrays cleared.
+void loadObjects() {
+    for (int i = 0; i < N_OBJECTS; i++) {
+        searched[i] = false;
+        oCw[i] = vec2(0.0);
+        oCz[i] = 0.0;
+        fbLast[i] = NO_TAU;
+    }
+    for (int i = 0; i < N_OBJECTS; i++) storeObject(i, loadObject(i));
+}
 
 struct WPoint { float tau; vec4 ev; vec4 u; };
+const WPoint NO_WPOINT = WPoint(0.0, vec4(0.0), vec4(0.0));
 
 // The worldline point at proper time τ: event and four-velocity (free fall: the closed form
 // carried back from the start's origin frame; Minkowski: a straight line).
 WPoint worldAt(int i, float tau) {
-    WPoint p;
+    WPoint p = NO_WPOINT;
     p.tau = tau;
     if (!isFree(i)) {
-        p.ev = vec4(tau, oPos[i].yzw);
+        p.ev = vec4(tau, objs[i].pos.yzw);
         p.u = vec4(1.0, 0.0, 0.0, 0.0);
     } else if (!godel()) {
-        p.ev = oStart[i] + tau * oU0[i];
-        p.u = oU0[i];
+        p.ev = objs[i].start + tau * objs[i].u0;
+        p.u = objs[i].u0;
     } else {
-        vec4 e0, k0;
-        ogeoAt(oGeo[i], tau, e0, k0);
-        applyPush(oBack[i], e0, k0, p.ev, p.u);
+        vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+        ogeoAt(objs[i].geo, tau, e0, k0);
+        applyPush(objs[i].back, e0, k0, p.ev, p.u);
     }
     return p;
 }
@@ -625,19 +702,16 @@ WPoint worldAt(int i, float tau) {
 // The body frame at the worldline point p (free fall: the start frame parallel-transported
 // in closed form; at rest: the static frame).
 mat4 bodyFrame(int i, WPoint p) {
-    if (!isFree(i)) return staticFrame(oPos[i]);
-    mat4 f0 = startFrame(i);
+    if (!isFree(i)) return staticFrame(objs[i].pos);
+    mat4 f0 = startFrame(i, objs[i].start);
     if (!godel()) return f0;
-    Iso to = toOrigin(oStart[i]);
-    vec4 e0, k0;
-    ogeoAt(oGeo[i], p.tau, e0, k0);
-    mat4 f;
-    f[0] = p.u;
-    for (int c = 1; c < 4; c++) {
-        vec4 w = transportFromOrigin(oGeo[i], p.tau, e0, pushIso(to, oStart[i], f0[c]));
-        f[c] = pushIso(oBack[i], e0, w);
-    }
-    return f;
+    Iso to = toOrigin(objs[i].start);
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+    ogeoAt(objs[i].geo, p.tau, e0, k0);
+    vec4 w1 = transportFromOrigin(objs[i].geo, p.tau, e0, pushIso(to, objs[i].start, f0[1]));
+    vec4 w2 = transportFromOrigin(objs[i].geo, p.tau, e0, pushIso(to, objs[i].start, f0[2]));
+    vec4 w3 = transportFromOrigin(objs[i].geo, p.tau, e0, pushIso(to, objs[i].start, f0[3]));
+    return mat4(p.u, pushIso(objs[i].back, e0, w1), pushIso(objs[i].back, e0, w2), pushIso(objs[i].back, e0, w3));
 }
 
 // A first guess of the proper time at which the worldline has coordinate time t.
@@ -645,7 +719,7 @@ mat4 bodyFrame(int i, WPoint p) {
 // integration steps), by Newton steps on t(τ) from the mean rate's guess (dt/dτ = u^t).
 float tauGuess(int i, float t) {
     if (!isFree(i)) return t;
-    float tau = (t - oStart[i].x) / oRate[i];
+    float tau = (t - objs[i].start.x) / objs[i].rate;
     for (int it = 0; it < TIME_STEPS; it++) {
         WPoint p = worldAt(i, tau);
         tau += (t - p.ev.x) / max(p.u.x, 0.05);
@@ -660,9 +734,10 @@ float tauGuess(int i, float t) {
 // after the isometry that sends p to the origin, and p's four-velocity carried there
 // (render::worldline::origin_coords). Minkowski: the displacement itself.
 void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
+    xi = vec4(0.0); u = vec4(0.0);
     if (!godel()) { xi = x - p.ev; u = p.u; return; }
     Iso to = toOrigin(p.ev);
-    vec4 o;
+    vec4 o = vec4(0.0);
     applyPush(to, p.ev, p.u, o, u);
     xi = normalDisplacement(vec4(0.0), applyIso(to, x));
 }
@@ -671,26 +746,27 @@ void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
 // normal-coordinate displacement (free fall: taken at the origin, whose components need the
 // body frame carried there).
 struct Local { WPoint at; vec3 xi; float len; vec4 disp; bool exact; bool ok; };
+const Local NO_LOCAL = Local(NO_WPOINT, vec3(0.0), 0.0, vec4(0.0), false, false);
 
 Local localize(int i, vec4 x, float seed, float far) {
-    Local lp;
+    Local lp = NO_LOCAL;
     lp.ok = true;
     lp.disp = vec4(0.0);
     if (isRest(i)) {
         // u = ∂t: g(u, Δ) = 0 fixes Δt = g_ti Δxⁱ at first order; then two steps with the
         // second-order ξ⁰.
-        vec3 dx = x.yzw - oPos[i].yzw;
-        float t = x.x + dot(oDual[i][0].yzw, dx);
-        vec4 xi = components(oDual[i], x - vec4(t, oPos[i].yzw));
+        vec3 dx = x.yzw - objs[i].pos.yzw;
+        float t = x.x + dot(objs[i].dual[0].yzw, dx);
+        vec4 xi = components(objs[i].dual, x - vec4(t, objs[i].pos.yzw));
         lp.exact = length(xi.yzw) <= far;
         if (lp.exact) {
             for (int it = 0; it < 2; it++) {   // a fixed count, without jumps: unrolled
-                vec4 d = x - vec4(t, oPos[i].yzw);
-                xi = components(oDual[i], d + 0.5 * christoffelWith(oDX[i], oDY[i], oGinv[i], d, d));
+                vec4 d = x - vec4(t, objs[i].pos.yzw);
+                xi = components(objs[i].dual, d + 0.5 * christoffelWith(objs[i].dX, objs[i].dY, objs[i].ginv, d, d));
                 t += xi.x;
             }
         }
-        lp.at = WPoint(t, vec4(t, oPos[i].yzw), vec4(1.0, 0.0, 0.0, 0.0));
+        lp.at = WPoint(t, vec4(t, objs[i].pos.yzw), vec4(1.0, 0.0, 0.0, 0.0));
         lp.xi = xi.yzw;
         lp.len = length(xi.yzw);
         return lp;
@@ -712,7 +788,7 @@ Local localize(int i, vec4 x, float seed, float far) {
     float ta = seed, fa = f0, tau = seed + f0;
     int stage = 1;   // 1 secant, 2 after the Newton step
     mat4 g0 = metricAt(vec4(0.0));
-    vec4 xi, uo;
+    vec4 xi = vec4(0.0), uo = vec4(0.0);
     for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
         p = worldAt(i, tau);
         if (stage == 2) break;
@@ -746,7 +822,8 @@ vec3 restComponents(int i, Local lp, mat4 frame) {
     if (godel()) {
         // The frame carried to the origin, where disp was taken.
         Iso to = toOrigin(lp.at.ev);
-        for (int c = 0; c < 4; c++) frame[c] = pushIso(to, lp.at.ev, frame[c]);
+        frame = mat4(pushIso(to, lp.at.ev, frame[0]), pushIso(to, lp.at.ev, frame[1]),
+                     pushIso(to, lp.at.ev, frame[2]), pushIso(to, lp.at.ev, frame[3]));
     }
     return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
 }
@@ -756,30 +833,32 @@ vec3 restComponents(int i, Local lp, mat4 frame) {
 // (render::target::Target::probe, docs/physics.md "The intersection search").
 
 struct Probe { float f; float rate; float tau; };
+const Probe NO_PROBE = Probe(0.0, 0.0, 0.0);
+// Nothing known of the object here (the CPU's infinite distance).
+const Probe FAR = Probe(INF, 0.0, NO_TAU);
 
 Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     probes_left--;
-    int kind = oKind[i];
     if (isCoordSphere(i)) {
-        return Probe(length(x.yzw - oPos[i].yzw) - oRadius[i], RATE_MARGIN * length(k.yzw), NO_TAU);
+        return Probe(length(x.yzw - objs[i].pos.yzw) - objs[i].radius, RATE_MARGIN * length(k.yzw), NO_TAU);
     }
-    if (isPlane(i)) return Probe(x.w - oPos[i].w, RATE_MARGIN * abs(k.w), NO_TAU);
+    if (isPlane(i)) return Probe(x.w - objs[i].pos.w, RATE_MARGIN * abs(k.w), NO_TAU);
     float scale = godel() ? u_a : 1.0;
-    float far = FAR_DISTANCE * scale + FAR_RADII * oRadius[i];
-    float floor_ = oRadius[i] + 0.5 * FAR_DISTANCE * scale;
-    float rate = GLOBAL_RATE_MARGIN * abs(pt) * oSpeed[i];
+    float far = FAR_DISTANCE * scale + FAR_RADII * objs[i].radius;
+    float floor_ = objs[i].radius + 0.5 * FAR_DISTANCE * scale;
+    float rate = GLOBAL_RATE_MARGIN * abs(pt) * objs[i].speed;
     float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
     Local lp = localize(i, x, seed, far);
-    if (!lp.ok) return Probe(INF, 0.0, NO_TAU);
+    if (!lp.ok) return FAR;
     float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
-    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - oRadius[i], rate, lp.exact ? lp.at.tau : NO_TAU);
+    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, rate, lp.exact ? lp.at.tau : NO_TAU);
     // A stale seed may call a point inside a falling ball far: then the point of equal
     // coordinate time is tried too and the nearer kept.
     if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
         Local lq = localize(i, x, tauGuess(i, x.x), far);
         if (lq.ok) {
             float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
-            if (dq - oRadius[i] < p.f) p = Probe(dq - oRadius[i], rate, lq.exact ? lq.at.tau : NO_TAU);
+            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, rate, lq.exact ? lq.at.tau : NO_TAU);
         }
     }
     return p;
@@ -790,23 +869,23 @@ bool excluded(float fa, float fb, float rate, float h) {
     return !crossed(fa, fb) && (abs(fa) + abs(fb) > rate * h || rate == 0.0);
 }
 bool accepts(int i, vec4 x) {
-    return !isPlane(i) || oExtent[i] <= 0.0 || (abs(x.y) <= oExtent[i] && abs(x.z) <= oExtent[i]);
+    return !isPlane(i) || objs[i].extent <= 0.0 || (abs(x.y) <= objs[i].extent && abs(x.z) <= objs[i].extent);
 }
 
 // A coordinate box around object i (render::target::Target::bounds); false when there is
 // none (free fall: every loop is searched).
 bool objectBox(int i, out vec3 lo, out vec3 hi) {
-    int kind = oKind[i];
-    vec3 c = oPos[i].yzw;
-    float grow;
+    lo = vec3(0.0); hi = vec3(0.0);
+    vec3 c = objs[i].pos.yzw;
+    float grow = 0.0;
     if (isRest(i)) {
-        float r = length(c.xy) + 2.0 * oRadius[i];
+        float r = length(c.xy) + 2.0 * objs[i].radius;
         float s2 = godel() ? pow(r / (2.0 * u_a), 2.0) : 0.0;
-        grow = 2.0 * oRadius[i] * sqrt(1.0 + s2) + 0.05;
+        grow = 2.0 * objs[i].radius * sqrt(1.0 + s2) + 0.05;
     } else if (isCoordSphere(i)) {
-        grow = oRadius[i] * (1.0 + 1e-6);
+        grow = objs[i].radius * (1.0 + 1e-6);
     } else if (isPlane(i)) {
-        float e = oExtent[i] > 0.0 ? oExtent[i] : INF;
+        float e = objs[i].extent > 0.0 ? objs[i].extent : INF;
         lo = vec3(-e, -e, c.z);
         hi = vec3(e, e, c.z);
         return true;
@@ -826,7 +905,7 @@ bool objectBox(int i, out vec3 lo, out vec3 hi) {
 // the reach from the static ball whose centre is (wc, zc) in the origin frame.
 bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until) {
     float a = u_a;
-    float lo, hi;
+    float lo = 0.0, hi = 0.0;
     if (g.pz == 0.0) {
         if (abs(zc) > reach) return true;
         lo = from; hi = until;
@@ -845,7 +924,7 @@ bool ballMisses(OGeo g, vec2 wc, float zc, float reach, float from, float until)
     float dhc = 2.0 * a * atanh_(min(length(mc), 0.9999999));
     if (abs(dhc - rho) > reach) return true;
     float lret = returnParameter(g);
-    if (!(hi - lo < lret)) return false;
+    if (!finite(hi - lo) || !(hi - lo < lret)) return false;
     float alpha0 = carg(-h);
     float d1 = alpha0 + sg * 2.0 * PI * lo / lret - carg(mc);
     float d2 = alpha0 + sg * 2.0 * PI * hi / lret - carg(mc);
@@ -870,49 +949,42 @@ bool planeMisses(OGeo g, float z, float from, float until) {
     return abs(f0) > clear && abs(f1) > clear && (f0 > 0.0) == (f1 > 0.0);
 }
 
-bool searched[N_OBJECTS];
-// Per object, for the ray being searched: a ball's centre (disc coordinate, z) and a plane's
-// height in the ray's origin frame.
-vec2 oCw[N_OBJECTS];
-float oCz[N_OBJECTS];
-
 // The reach of a ball at rest (render::reject), widened by the rounding of f32 coordinates
 // in the origin frame.
-float reachOf(int i) { return REACH_PER_RADIUS * oRadius[i] + REACH_PER_A * u_a + 1e-4 * u_a; }
+float reachOf(int i) { return REACH_PER_RADIUS * objs[i].radius + REACH_PER_A * u_a + 1e-4 * u_a; }
 
 // Whether the searched ray g stays clear of object i (a ball at rest or a plane, Gödel's
 // universe) over λ ∈ [from, until]; false when unsure or for other objects.
-bool objectMisses(int i, OGeo g, float from, float until) {
+// cw, cz: the ball's centre or the plane's height in the ray's origin frame (oCw, oCz).
+bool missesAt(int i, OGeo g, vec2 cw, float cz, float from, float until) {
     if (!godel()) return false;
-    if (isRest(i)) return ballMisses(g, oCw[i], oCz[i], reachOf(i), from, until);
-    if (isPlane(i)) return planeMisses(g, oCz[i], from, until);
+    if (isRest(i)) return ballMisses(g, cw, cz, reachOf(i), from, until);
+    if (isPlane(i)) return planeMisses(g, cz, from, until);
     return false;
 }
+bool objectMisses(int i, OGeo g, float from, float until) { return missesAt(i, g, oCw[i], oCz[i], from, until); }
 
-// Whether a ray from the place of `from` (whose origin-frame closed form is g) may meet
-// object i over λ ∈ [0, until]: sets searched[i].
-void setSearchedUntil(int i, vec4 from, OGeo g, float until) {
-    if (isRest(i)) {
-        vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), oPos[i]);
-        oCw[i] = disc(c.yz);
-        oCz[i] = c.w;
-    } else if (isPlane(i)) {
-        oCz[i] = oPos[i].w - from.w;
-    }
-    searched[i] = oKind[i] >= 0 && !objectMisses(i, g, 0.0, until);
-}
-
-bool anySearched() {
+// Which objects a ray from the place of `from` (whose origin-frame closed form is g),
+// searched over λ ∈ [0, until], may meet: sets searched (object `skip`: only if it may also
+// over [0, skipUntil]), oCw and oCz; whether any.
+bool setSearched(vec4 from, OGeo g, float until, int skip, float skipUntil) {
     bool any = false;
-    for (int i = 0; i < N_OBJECTS; i++) any = any || searched[i];
+    for (int i = 0; i < N_OBJECTS; i++) {
+        vec2 cw = vec2(0.0);
+        float cz = 0.0;
+        if (isRest(i)) {
+            vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), objs[i].pos);
+            cw = disc(c.yz);
+            cz = c.w;
+        } else if (isPlane(i)) {
+            cz = objs[i].pos.w - from.w;
+        }
+        bool s = objs[i].kind >= 0 && !missesAt(i, g, cw, cz, 0.0, until)
+            && (i != skip || !missesAt(i, g, cw, cz, 0.0, skipUntil));
+        storeSearched(i, s, cw, cz);
+        any = any || s;
+    }
     return any;
-}
-
-// Which objects a ray from the place of `from`, searched over λ ∈ [0, until], searches at
-// all; whether any.
-bool setSearched(vec4 from, OGeo g, float until) {
-    for (int i = 0; i < N_OBJECTS; i++) setSearchedUntil(i, from, g, until);
-    return anySearched();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -926,13 +998,11 @@ bool setSearched(vec4 from, OGeo g, float until) {
 // a cell whose time lies in the window (its z window and the arc of the ray's circle near the
 // cell, by the hyperbolic law of cosines) is the last λ where the loop must search the ball.
 
-float fbLast[N_OBJECTS];   // per falling ball, for the current loop: that λ from the loop's start
-
 // The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
 // hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when
 // unsure (render::circle::RayCircle::last_within).
 float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
-    if (!(lo <= hi)) return NO_TAU;
+    if (!finite(lo) || !finite(hi) || !(lo <= hi)) return NO_TAU;
     float a = u_a;
     float sg = sign(g.e);
     float big = asinh_(g.rmax / (2.0 * a));
@@ -960,12 +1030,12 @@ float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
 // closed form's time rises at least at (1 + p_z²)/γ per proper time), and how far off it
 // may be.
 vec2 ballTimeToTau(int i, float t) {
-    OGeo b = oGeo[i];
+    OGeo b = objs[i].geo;
     float low = (1.0 + b.pz * b.pz) / b.e;
-    float tau = t / oRate[i];
+    float tau = t / objs[i].rate;
     float off = 0.0;
     for (int it = 0; it < TIME_STEPS + 1; it++) {
-        vec4 e, k;
+        vec4 e = vec4(0.0), k = vec4(0.0);
         ogeoAt(b, tau, e, k);
         off = t - e.x;
         tau += off / max(k.x, low);
@@ -973,38 +1043,37 @@ vec2 ballTimeToTau(int i, float t) {
     return vec2(tau, abs(off) / low);
 }
 
-// Sets fbLast[i] for loop j of the pixel ray `ray` (NO_TAU: the loop needs no search of the
-// ball), or INF where the test does not apply (Minkowski).
-void fallingLast(int i, int j, Ray ray) {
-    fbLast[i] = INF;
-    if (!godel()) return;
+// The falling ball i's last λ within reach in loop j of the pixel ray `ray`, from the loop's
+// start (NO_TAU: the loop needs no search of the ball), or INF where the test does not apply
+// (Minkowski).
+float fallingLast(int i, int j, Ray ray) {
+    if (!godel()) return INF;
     float a = u_a;
-    float gam = oGamma[i];
+    float gam = objs[i].gamma;
     float sv = sqrt(max(gam * gam - 1.0, 0.0));
-    float r = oRadius[i];
+    float r = objs[i].radius;
     // Reach and time slack (render::falling), widened for single precision.
     float reach = 1.25 * gam * r + 1e-4 * a;
     float slack = 1.25 * gam * r * (sv / gam + SQRT2) + 1e-4 * a;
     float up = gam + SQRT2 * sv;
     Iso toO = inverseIso(ray.back);
-    vec4 start = applyIso(toO, oStart[i]);
+    vec4 start = applyIso(toO, objs[i].start);
     // The loop's window of times, and the ball's own time there: the isometry from the
     // ball's origin frame to the ray's shifts times by at most A (docs/physics.md, "Isometries").
     float tLo = float(j + 1) * ray.shift.x - slack, tHi = float(j) * ray.shift.x + slack;
-    float wmax = oGeo[i].rmax / sqrt(oGeo[i].rmax * oGeo[i].rmax + 4.0 * a * a);
+    float wmax = objs[i].geo.rmax / sqrt(objs[i].geo.rmax * objs[i].geo.rmax + 4.0 * a * a);
     float shiftA = 2.0 * SQRT2 * a * asinA(min(length(disc(start.yz)) * wmax, 1.0));
     vec2 t1 = ballTimeToTau(i, tLo - start.x - shiftA), t2 = ballTimeToTau(i, tHi - start.x + shiftA);
     float tau1 = t1.x - t1.y, tau2 = t2.x + t2.y;
     // z is linear along both: no cell can be near when the ball's z range over [τ1, τ2] is
     // farther than the reach (plus the cells' extent) from the loop's.
-    float zb1 = start.w + oU0[i].w * tau1, zb2 = start.w + oU0[i].w * tau2;
+    float zb1 = start.w + objs[i].u0.w * tau1, zb2 = start.w + objs[i].u0.w * tau2;
     float zr1 = float(j) * ray.shift.y, zr2 = float(j + 1) * ray.shift.y;
     float zGap = max(max(min(zb1, zb2) - max(zr1, zr2), min(zr1, zr2) - max(zb1, zb2)), 0.0);
     if (zGap > reach + 0.5 * sv * max(max(r, 1e-3), (tau2 - tau1) / float(FALL_CELLS))) {
-        fbLast[i] = NO_TAU;
-        return;
+        return NO_TAU;
     }
-    int cells = int(clamp(ceil((tau2 - tau1) / max(r, 1e-3)), 1.0, float(FALL_CELLS)));
+    int cells = toInt(ceil((tau2 - tau1) / max(r, 1e-3)), 1, FALL_CELLS);
     float dtau = (tau2 - tau1) / float(cells);
     float near = reach + 0.5 * sv * dtau;
     float coshM = cosh(near / a);
@@ -1026,7 +1095,7 @@ void fallingLast(int i, int j, Ray ray) {
         float l = lastWithin(ray.geo, disc(p.yz), coshM, max(lo, last), hi);
         if (l > NO_TAU) last = l;
     }
-    fbLast[i] = last > NO_TAU ? last - l0 : NO_TAU;
+    return last > NO_TAU ? last - l0 : NO_TAU;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1057,45 +1126,66 @@ const int Q_REFINE = 4;    // a refinement step at qLambda
 const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's extent)
 
 struct Found { int status; int target; int loop_; float lambda; float tau; };
+const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
 
 // The search plan: `loops` copies of a stretch of length `span` cut into `segs` segments;
 // pixel rays stop at the time bound.
-Ray eRay;
-int eLoops, eSegs;
-float eSpan, ePt, eTBound;
-bool ePixel;
+Ray eRay = NO_RAY;
+int eLoops = 0, eSegs = 0;
+float eSpan = 0.0, ePt = 0.0, eTBound = 0.0;
+bool ePixel = false;
 // Shadow rays: the lit object is not searched from eSkipFrom on (its last segment).
-int eSkipObj;
-float eSkipFrom;
+int eSkipObj = 0;
+float eSkipFrom = 0.0;
 
 // The machine's state.
-int eMode, eLoop, eSeg, eObj;
-float eLo, eHi;
-Found eBest, eResult;
+int eMode = 0, eLoop = 0, eSeg = 0, eObj = 0;
+float eLo = 0.0, eHi = 0.0;
+Found eBest = NO_FOUND, eResult = NO_FOUND;
 // The probes at the start and the end of the segment, per object, and the λ where each was
-// taken: two buffers that change roles from segment to segment (no copying).
-Probe probeBuf[2 * N_OBJECTS];
-float probeAt[2 * N_OBJECTS];
-int eStart;   // N_OBJECTS times the start buffer (0 or 1)
-vec3 eBoxLo, eBoxHi;
+// taken. Two arrays, written only at constant indices (setEndProbe; the end probes become
+// the next segment's start probes by a copy): drivers that store at a runtime index into
+// one buffer of both went wrong (docs/physics.md, "The GPU kernel").
+Probe startProbe[N_OBJECTS], endProbe[N_OBJECTS];
+float startAt[N_OBJECTS], endAt[N_OBJECTS];
+vec3 eBoxLo = vec3(0.0), eBoxHi = vec3(0.0);
 // Bisection of one object's stretch [bA, bA + bL]: the span [ba, bb] at depth bDepth and
 // index bIndex, with its end probes bpa, bpb.
-float bA, bL, ba, bb;
-int bDepth, bIndex, bProbes;
-Probe bpa, bpb;
+float bA = 0.0, bL = 0.0, ba = 0.0, bb = 0.0;
+int bDepth = 0, bIndex = 0, bProbes = 0;
+Probe bpa = NO_PROBE, bpb = NO_PROBE;
 // Refinement: the bracket and the Illinois side.
-float rlo, rhi, rflo, rfhi;
-int rSide, rIter;
+float rlo = 0.0, rhi = 0.0, rflo = 0.0, rfhi = 0.0;
+int rSide = 0, rIter = 0;
 // The probe requested by a step, and its answer.
-int qTag, qObj, qLoop;
-float qLambda, qSeed;
-Probe qAnswer;
-vec4 qX;
+int qTag = 0, qObj = 0, qLoop = 0;
+float qLambda = 0.0, qSeed = 0.0;
+Probe qAnswer = NO_PROBE;
+vec4 qX = vec4(0.0);
 
 // Whether the current loop searches object i on a segment starting at λ0 (from the loop's
 // start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
 bool loopSearches(int i, float lambda0) {
     return !(isFree(i) && ePixel) || lambda0 <= fbLast[i];
+}
+
+// Object i's probe at the segment's start, or at its end, taken at λ = at: stored at the
+// loop's constant indices, never at the runtime index i.
+void setStartProbe(int i, Probe p, float at) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) {
+            startProbe[j] = p;
+            startAt[j] = at;
+        }
+    }
+}
+void setEndProbe(int i, Probe p, float at) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) {
+            endProbe[j] = p;
+            endAt[j] = at;
+        }
+    }
 }
 
 void request(int tag, float lambda, float seed) {
@@ -1116,7 +1206,7 @@ void finish(int status) {
 // The loop's box, for skipping loops that come near no object (render::segment::loop_bounds):
 // segment ends, grown by a quarter of the longest chord.
 void loopBox() {
-    vec4 x, k, prev;
+    vec4 x = vec4(0.0), k = vec4(0.0), prev = vec4(0.0);
     float grow = 0.0;
     for (int s = 0; s <= eSegs; s++) {
         rayAt(eRay, 0, eSpan * float(s) / float(eSegs), x, k);
@@ -1140,10 +1230,17 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
     eTBound = tBound;
     eLoop = 0;
     eMode = M_LOOP;
-    eStart = 0;
     eSkipObj = -1;
     eSkipFrom = INF;
     qTag = Q_NONE;
+    for (int i = 0; i < N_OBJECTS; i++) {
+        startProbe[i] = NO_PROBE;
+        endProbe[i] = NO_PROBE;
+        startAt[i] = 0.0;
+        endAt[i] = 0.0;
+    }
+    eBoxLo = vec3(0.0);
+    eBoxHi = vec3(0.0);
     if (loops > 1) loopBox();
 }
 
@@ -1151,7 +1248,7 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
 // right half, then take the right sibling, whose start probe is bb's and whose end is probed.
 void nextSpan() {
     // The trailing ones of the index are the levels to climb: 2^k = (i + 1) & −(i + 1).
-    int up = int(log2(float((bIndex + 1) & -(bIndex + 1))) + 0.5);
+    int up = toInt(log2(float((bIndex + 1) & -(bIndex + 1))) + 0.5, 0, SEARCH_DEPTH);
     bDepth -= up;
     bIndex >>= up;
     if (bDepth <= 0) {
@@ -1173,11 +1270,9 @@ void machineStep() {
     int tag = qTag;
     qTag = Q_NONE;
     if (tag == Q_START) {
-        probeBuf[eStart + eObj] = qAnswer;
-        probeAt[eStart + eObj] = loopOffset();
+        setStartProbe(eObj, qAnswer, loopOffset());
     } else if (tag == Q_END) {
-        probeBuf[N_OBJECTS - eStart + eObj] = qAnswer;
-        probeAt[N_OBJECTS - eStart + eObj] = eHi + loopOffset();
+        setEndProbe(eObj, qAnswer, eHi + loopOffset());
         bpb = qAnswer;
         float limit = eBest.status == HIT ? eBest.lambda : eHi;
         bA = eLo;
@@ -1230,12 +1325,13 @@ void machineStep() {
             vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
             bool near = eLoop == 0;
             for (int i = 0; i < N_OBJECTS; i++) {
-                vec3 olo, ohi;
+                vec3 olo = vec3(0.0), ohi = vec3(0.0);
                 if (!searched[i]) continue;
                 if (isFree(i) && ePixel) {
                     // Balls in free fall: searched up to the loop's last λ within their reach.
-                    fallingLast(i, eLoop, eRay);
-                    near = near || fbLast[i] > NO_TAU;
+                    float last = fallingLast(i, eLoop, eRay);
+                    storeFallingLast(i, last);
+                    near = near || last > NO_TAU;
                 } else {
                     near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
                 }
@@ -1293,7 +1389,7 @@ void machineStep() {
             return;
         }
         float m = rfhi != rflo ? (rlo * rfhi - rhi * rflo) / (rfhi - rflo) : 0.5 * (rlo + rhi);
-        if (!(m > rlo && m < rhi)) m = 0.5 * (rlo + rhi);
+        if (!finite(m) || !(m > rlo && m < rhi)) m = 0.5 * (rlo + rhi);
         rIter++;
         request(Q_REFINE, m, bpa.tau);
         return;
@@ -1302,16 +1398,15 @@ void machineStep() {
         float off = loopOffset();
         for (eObj++; eObj < N_OBJECTS; eObj++) {
             if (!searched[eObj]) continue;
-            Probe p = probeBuf[eStart + eObj];
+            Probe p = startProbe[eObj];
+            float at = startAt[eObj];
             if (!loopSearches(eObj, eLo)) {
                 // Past the ball's last λ within reach in this loop (a later loop probes afresh).
-                probeBuf[N_OBJECTS - eStart + eObj] = p;
-                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                setEndProbe(eObj, p, at);
                 continue;
             }
             if (eObj == eSkipObj && eLo >= eSkipFrom) {
-                probeBuf[N_OBJECTS - eStart + eObj] = p;
-                probeAt[N_OBJECTS - eStart + eObj] = probeAt[eStart + eObj];
+                setEndProbe(eObj, p, at);
                 continue;
             }
             // GPU only: a segment that provably stays clear of a ball at rest or a plane is
@@ -1320,17 +1415,14 @@ void machineStep() {
             // plane's height, linear in λ), from which the next segment goes on.
             if (objectMisses(eObj, eRay.geo, eLo + off, eHi + off)) {
                 float fEnd = isRest(eObj)
-                    ? REACH_PER_RADIUS * oRadius[eObj] / 1.05 - oRadius[eObj]
+                    ? REACH_PER_RADIUS * objs[eObj].radius / 1.05 - objs[eObj].radius
                     : eRay.geo.pz * (eHi + off) - oCz[eObj];
-                probeBuf[N_OBJECTS - eStart + eObj] = Probe(fEnd, p.rate, NO_TAU);
-                probeAt[N_OBJECTS - eStart + eObj] = eHi + off;
+                setEndProbe(eObj, Probe(fEnd, p.rate, NO_TAU), eHi + off);
                 continue;
             }
-            float at = probeAt[eStart + eObj];
             float clear = abs(p.f);
             if (isRest(eObj) && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
-                probeBuf[N_OBJECTS - eStart + eObj] = p;   // provably no crossing of this object within the segment
-                probeAt[N_OBJECTS - eStart + eObj] = at;
+                setEndProbe(eObj, p, at);   // provably no crossing of this object within the segment
                 continue;
             }
             // A probe taken before lo still bounds |f| at lo from below (same side).
@@ -1345,11 +1437,14 @@ void machineStep() {
             return;
         }
         if (ePixel) {
-            vec4 x, k;
+            vec4 x = vec4(0.0), k = vec4(0.0);
             rayAt(eRay, eLoop, eHi, x, k);
             if (x.x < eTBound) { finish(ESCAPED); return; }
         }
-        eStart = N_OBJECTS - eStart;   // the end probes start the next segment
+        for (int i = 0; i < N_OBJECTS; i++) {   // the end probes start the next segment
+            startProbe[i] = endProbe[i];
+            startAt[i] = endAt[i];
+        }
         eSeg++;
         if (eSeg < eSegs) {
             eMode = M_SEGMENT;
@@ -1365,9 +1460,16 @@ void machineStep() {
 void searchPass() {
     if (qTag != Q_NONE) {
         if (probes_left <= 0) { finish(WORK_LIMIT); return; }
-        vec4 k;
+        vec4 k = vec4(0.0);
         rayAt(eRay, qLoop, qLambda, qX, k);
         qAnswer = probeObject(qObj, qX, k, ePt, qSeed);
+        // A probe answers a finite distance or FAR (INF, the CPU's infinity: nothing known);
+        // anything else (a driver's NaN) ends the search, and the sample is marked failed:
+        // no search goes on from a value it cannot order.
+        if (!(finite(qAnswer.f) || qAnswer.f == INF) || !finite(qAnswer.rate)) {
+            finish(FAILED);
+            return;
+        }
     }
     machineStep();
 }
@@ -1387,7 +1489,8 @@ vec2 lonLat(vec3 p) {
 // centre to first order, and the emitter's four-velocity at x
 // (render::target::rest_frame_photon).
 void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit, out vec4 kl) {
-    mat4 dX, dY;
+    uemit = vec4(0.0); kl = vec4(0.0);
+    mat4 dX = mat4(0.0), dY = mat4(0.0);
     metricDerivatives(p.ev, dX, dY);
     mat4 ginv = inverseMetricAt(p.ev);
     if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
@@ -1397,17 +1500,17 @@ void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit
 }
 
 // The hit: what the record and the lights need of it.
-int hTarget;
-vec4 hX, hK;
-WPoint hAt;
-mat4 hFrame;
-vec3 hXi;
-vec4 hUemit;
-vec2 hUV;
-vec3 hDir;
-float hCos;
-vec4 hScreen[2];   // the pixel's screen-up and screen-right, transported to the hit
-vec3 hPol;
+int hTarget = 0;
+vec4 hX = vec4(0.0), hK = vec4(0.0);
+WPoint hAt = NO_WPOINT;
+mat4 hFrame = mat4(0.0);
+vec3 hXi = vec3(0.0);
+vec4 hUemit = vec4(0.0);
+vec2 hUV = vec2(0.0);
+vec3 hDir = vec3(0.0);
+float hCos = 0.0;
+vec4 hScreen[2] = vec4[2](vec4(0.0), vec4(0.0));   // the pixel's screen-up and screen-right, transported to the hit
+vec3 hPol = vec3(0.0);
 
 // The record's `pol` from the frame components of the transported screen-up f and
 // screen-right r, for a photon travelling along dir in that frame (docs/physics.md,
@@ -1421,23 +1524,21 @@ bool measurePolarization(vec4 f, vec4 r, vec3 dir) {
     vec3 v = a + cross(dir, b);
     v -= dot(v, dir) * dir;
     float len = length(v);
-    hPol = v / len;
+    hPol = v / max(len, 1e-30);
     return len > 1e-6 && finite(len);
 }
 
 // The screen vectors at x carried to the worldline point p to first order and measured in
 // its body frame, as the photon in restFramePhoton (render::target::Target::surface).
 bool restFramePolarization(WPoint p, mat4 frame, vec4 x) {
-    mat4 dX, dY;
+    mat4 dX = mat4(0.0), dY = mat4(0.0);
     metricDerivatives(p.ev, dX, dY);
     mat4 ginv = inverseMetricAt(p.ev);
     if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
     mat4 dual = dualFrame(metricAt(p.ev), frame);
-    vec4 c[2];
-    for (int j = 0; j < 2; j++) {
-        c[j] = components(dual, hScreen[j] - christoffelWith(dX, dY, ginv, p.ev - x, hScreen[j]));
-    }
-    return measurePolarization(c[0], c[1], hDir);
+    vec4 up = components(dual, hScreen[0] - christoffelWith(dX, dY, ginv, p.ev - x, hScreen[0]));
+    vec4 right = components(dual, hScreen[1] - christoffelWith(dX, dY, ginv, p.ev - x, hScreen[1]));
+    return measurePolarization(up, right, hDir);
 }
 
 bool surface() {
@@ -1453,7 +1554,7 @@ bool surface() {
         hAt = lp.at;
         hFrame = bodyFrame(i, hAt);
         hXi = restComponents(i, lp, hFrame);
-        vec4 kl;
+        vec4 kl = vec4(0.0);
         restFramePhoton(i, hAt, hFrame, x, k, hUemit, kl);
         hUV = lonLat(hXi);
         hDir = normalize(-kl.yzw);
@@ -1465,11 +1566,11 @@ bool surface() {
     vec4 p = metricAt(x) * (-k);
     hDir = normalize(vec3(dot(f[1], p), dot(f[2], p), dot(f[3], p)));
     if (isCoordSphere(i)) {
-        vec3 n = normalize(x.yzw - oPos[i].yzw);
+        vec3 n = normalize(x.yzw - objs[i].pos.yzw);
         hUV = lonLat(n);
         hCos = abs(dot(n, normalize(-k.yzw)));
     } else {
-        hUV = oExtent[i] > 0.0 ? 0.5 + x.yz / (2.0 * oExtent[i]) : fract(x.yz);
+        hUV = objs[i].extent > 0.0 ? 0.5 + x.yz / (2.0 * objs[i].extent) : fract(x.yz);
         hCos = abs(normalize(-k.yzw).z);
     }
     // Their body axes are the static frame's.
@@ -1561,7 +1662,7 @@ vec2 incidence(vec4 kLight) {
     int i = hTarget;
     vec4 x = hX, view = hK;
     if (isRest(i) || isFree(i)) {
-        vec4 ue, kl, kv;
+        vec4 ue = vec4(0.0), kl = vec4(0.0), kv = vec4(0.0);
         restFramePhoton(i, hAt, hFrame, x, kLight, ue, kl);
         restFramePhoton(i, hAt, hFrame, x, view, ue, kv);
         vec3 n = normalize(hXi);
@@ -1570,7 +1671,7 @@ vec2 incidence(vec4 kLight) {
     }
     float energy = -(metricAt(x) * kLight).x;
     if (isCoordSphere(i)) {
-        vec3 n = normalize(x.yzw - oPos[i].yzw);
+        vec3 n = normalize(x.yzw - objs[i].pos.yzw);
         float side = dot(n, -view.yzw) >= 0.0 ? 1.0 : -1.0;
         return vec2(-side * dot(n, normalize(kLight.yzw)), energy);
     }
@@ -1583,15 +1684,21 @@ vec2 incidence(vec4 kLight) {
 // counted unless emitted more than max_past before the hit, arriving from behind, at a
 // caustic, or occluded. The enumeration runs in passes of the kernel's one loop (`main`):
 // a light's set-up, sixteen cells of the grid, one refinement step, or one ray's set-up.
-int gLight, gIdx, gTotal, gCells, gN, gSide, gIter;
-bool gInbound;
-float gU0, gG0, gRho, gCmax, gZp, gPower, gSum, gWeight;
-float gLo, gHi, gFlo, gFhi, gC;
-vec4 gP, gSource;
-Iso gBack;
-bool gFailed;
+int gLight = 0, gIdx = 0, gTotal = 0, gCells = 0, gN = 0, gSide = 0, gIter = 0;
+bool gInbound = false;
+float gU0 = 0.0, gG0 = 0.0, gRho = 0.0, gCmax = 0.0, gZp = 0.0, gPower = 0.0, gSum = 0.0, gWeight = 0.0;
+float gLo = 0.0, gHi = 0.0, gFlo = 0.0, gFhi = 0.0, gC = 0.0;
+vec4 gP = vec4(0.0), gSource = vec4(0.0);
+Iso gBack = NO_ISO;
+bool gFailed = false;
 
-void setLight(int li, float v);
+// Light li's channel (slot 5 + li / 4, component li % 4): stored at the loop's constant
+// indices, never at the runtime index li.
+void setLight(int li, float v) {
+    for (int k = 0; k < N_LIGHTS; k++) {
+        if (k == li) slots[5 + k / 4][k % 4] = v;
+    }
+}
 
 // Ends the current light: its irradiance (negative: unknown) into its channel.
 void endLight() {
@@ -1620,7 +1727,7 @@ bool startLight() {
     // frame, where emission events keep their scene time (the source is on its axis):
     // windings emitted before the window are not enumerated (the CPU drops their rays).
     float tret = 2.0 * PI * a * (SQRT2 - 1.0);
-    int windings = int(clamp(floor((gP.x - hX.x + u_max_past) / tret), -1.0, float(MAX_WINDINGS)));
+    int windings = toInt(floor((gP.x - hX.x + u_max_past) / tret), -1, MAX_WINDINGS);
     if (windings < 0) return false;
     gCells = gZp == 0.0 ? 1 : SHADOW_GRID;
     gTotal = (windings + 1) * 2 * gCells;
@@ -1645,7 +1752,8 @@ bool gridPass() {
     // against llvmpipe's limit).
     int count = min(CELLS_PER_PASS, gCells - cell + 1);
     vec4 base = float(cell) + vec4(0.0, 1.0, 2.0, 3.0);
-    vec4 us[4], gs[4];
+    vec4 us[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    vec4 gs[4] = us;
     us[0] = gCmax * base / float(SHADOW_GRID);
     us[1] = gCmax * (base + 4.0) / float(SHADOW_GRID);
     us[2] = gCmax * (base + 8.0) / float(SHADOW_GRID);
@@ -1682,7 +1790,7 @@ bool gridPass() {
 // One Illinois step on the bracketed root of G (spacetime::refine_root); true when done.
 bool rootStep() {
     float m = gFhi != gFlo ? (gLo * gFhi - gHi * gFlo) / (gFhi - gFlo) : 0.5 * (gLo + gHi);
-    if (!(m > gLo && m < gHi)) m = 0.5 * (gLo + gHi);
+    if (!finite(m) || !(m > gLo && m < gHi)) m = 0.5 * (gLo + gHi);
     gC = sign(gZp) * m;
     float fm = shadowG(gRho, gZp, m, gN, gInbound);
     gIter++;
@@ -1712,17 +1820,17 @@ int shadowRaySetUp() {
     // The ray in the source's axis frame: the closed form from the origin, moved by the
     // emission time, carried back by the source's isometry (its end then lies on the hit
     // point to the rounding of one map, not of two).
-    Ray r;
+    Ray r = NO_RAY;
     r.geo = originGeodesic(tg);
     if (!r.geo.ok) return 0;
     r.back = gBack;
     r.back.t0 -= em.x;
     r.lret = returnParameter(r.geo);
     r.shift = vec2(0.0);
-    vec4 xe, kEnd;
+    vec4 xe = vec4(0.0), kEnd = vec4(0.0);
     rayAt(r, 0, lambda, xe, kEnd);
     vec2 inc = incidence(kEnd);
-    if (!(inc.x > 0.0)) return 0;
+    if (!finite(inc.x) || !(inc.x > 0.0)) return 0;
     float d2 = areaDistanceSq(acosA(clamp(c, -1.0, 1.0)), chi, lambda);
     if (!(d2 > 0.0 && finite(d2))) return 0;
     gWeight = gPower * inc.y * inc.y * inc.x / (4.0 * PI * d2);
@@ -1733,13 +1841,9 @@ int shadowRaySetUp() {
     // the ball there); its whole-ray test over that stretch may drop it (a lit plane always:
     // z is linear, and the ray meets it at its end).
     float end = lambda * (1.0 - END_CUT);
-    int segs = int(clamp(ceil(end / (r.lret / float(EXACT_SEGMENTS))), 1.0, 1e5));
+    int segs = toInt(ceil(end / (r.lret / float(EXACT_SEGMENTS))), 1, MAX_SEGMENTS);
     float last = end * float(segs - 1) / float(segs);
-    bool any = setSearched(gSource, r.geo, end);
-    if (searched[hTarget]) {
-        setSearchedUntil(hTarget, gSource, r.geo, last);
-        any = anySearched();
-    }
+    bool any = setSearched(gSource, r.geo, end, hTarget, last);
     if (!any) return 1;
     startSearch(r, 1, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
     eSkipObj = hTarget;
@@ -1751,11 +1855,6 @@ int shadowRaySetUp() {
 // The record of one sample: slots of four channels (crates/gpu/src/input.rs lists them):
 // 0 (object, status, u, v), 1 (g, t_emit, lambda, cos_i), 2 (x, y, z, view_x),
 // 3 (dir_x, dir_y, dir_z, view_y), 4 (view_z, pol_x, pol_y, pol_z), then four lights each from 5.
-
-
-void setLight(int li, float v) {
-    slots[5 + li / 4][li % 4] = v;
-}
 
 // The pixel's screen-up and screen-right (docs/physics.md, "Polarization", "The pixel's
 // screen"; render::polarization::screen): the camera's up projected orthogonal to the
@@ -1777,13 +1876,13 @@ void pixelScreen(mat4 frame, vec3 n) {
 // which moves no vector. Minkowski: components are kept (Cartesian coordinates, no Γ).
 void transportScreen(Ray r, vec4 obs, float within, float lambda) {
     if (!godel()) return;
-    vec4 e0, k0;
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(r.geo, within, e0, k0);
     Iso to = toOrigin(obs);
-    for (int j = 0; j < 2; j++) {
-        vec4 w = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[j]));
-        hScreen[j] = pushIso(r.back, e0, w);
-    }
+    vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[0]));
+    vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[1]));
+    hScreen[0] = pushIso(r.back, e0, up);
+    hScreen[1] = pushIso(r.back, e0, right);
 }
 
 // The outputs: slots [u_slot0, u_slot0 + DRAW_BUFFERS) of `slots`.
@@ -1817,7 +1916,7 @@ void main() {
     probes_left = PIXEL_PROBES;
     ivec2 pix = u_origin + ivec2(gl_FragCoord.xy);
     for (int s = 0; s < SLOTS + 8; s++) slots[s] = vec4(0.0);
-    vec3 d;
+    vec3 d = vec3(0.0);
     int status = NOT_TRACED;
     if (cameraDirection(vec2(pix) + 0.5, d)) {
         vec3 right = cross(u_forward, u_up);
@@ -1825,27 +1924,27 @@ void main() {
         slots[2].w = n.x;
         slots[3].w = n.y;
         slots[4].x = n.z;
-        for (int i = 0; i < N_OBJECTS; i++) loadObject(i);
+        loadObjects();
         vec4 obs = vec4(0.0, u_obs_x);
         mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
         vec4 k = frame * vec4(-1.0, n);                 // the past-directed photon
         float pt = (metricAt(obs) * k).x;               // p_t, conserved
         Ray r = makeRay(obs, k);
         float tBound = -u_max_past;
-        bool any = setSearched(obs, r.geo, INF);
+        bool any = setSearched(obs, r.geo, INF, -1, INF);
         Found f = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
         bool run = true;
         if (!r.geo.ok) {
             f.status = FAILED;
             run = false;
         } else if (godel()) {
-            if (!(r.shift.x < 0.0)) { f.status = FAILED; run = false; }
+            if (!finite(r.shift.x) || !(r.shift.x < 0.0)) { f.status = FAILED; run = false; }
             // A ray near no object escapes (if it reaches the time bound within the loops).
             else if (!any) { f.status = float(u_max_loops) * r.shift.x < tBound ? ESCAPED : WORK_LIMIT; run = false; }
             else startSearch(r, u_max_loops + 1, EXACT_SEGMENTS, r.lret, pt, true, tBound);
         } else {
             float lmax = u_max_past / max(abs(k.x), 1e-30);
-            startSearch(r, 1, int(clamp(ceil(lmax), 1.0, 1e5)), lmax, pt, true, tBound);
+            startSearch(r, 1, toInt(ceil(lmax), 1, MAX_SEGMENTS), lmax, pt, true, tBound);
         }
         // The pixel's search, then one search per shadow ray whose occlusion must be
         // searched, the shadow rays enumerated between the searches.
@@ -1883,7 +1982,7 @@ void main() {
                 finished = false;
                 gLight = 0;
                 gIdx = -1;
-            } else if (f.status == WORK_LIMIT) {
+            } else if (f.status == WORK_LIMIT || f.status == FAILED) {   // occlusion unknown
                 gFailed = true;
             } else if (f.status != HIT) {
                 gSum += gWeight;
@@ -1909,7 +2008,9 @@ void main() {
         if (!finished) {
             // Out of passes: the pixel is out of work, or the lights not yet summed unknown.
             if (pixelSearch) status = WORK_LIMIT;
-            for (int li = 0; li < N_LIGHTS; li++) if (li >= gLight && li < u_lights) setLight(li, -1.0);
+            for (int li = 0; li < N_LIGHTS; li++) {
+                if (li >= gLight && li < u_lights) slots[5 + li / 4][li % 4] = -1.0;
+            }
         }
     }
     // llvmpipe ends every loop of a shader once its loops have run 65535 passes in all (its
@@ -1948,7 +2049,7 @@ const float POINTS_PER_LOOP = 96.0;
 const int MAX_RAY_POINTS = 4096;
 const int MAP_SEARCH_STEPS = 200;
 
-vec4 rayEvent(Ray r, float l) { vec4 ev, k; rayAt(r, 0, l, ev, k); return ev; }
+vec4 rayEvent(Ray r, float l) { vec4 ev = vec4(0.0), k = vec4(0.0); rayAt(r, 0, l, ev, k); return ev; }
 
 // The parameter at which the past-directed ray reaches relative time t (t decreases along
 // it): doubling, then bisection, each bounded.
@@ -1972,7 +2073,7 @@ void main() {
     vec4 obs = vec4(0.0, u_obs_x);
     mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
     Ray r = makeRay(obs, frame * vec4(-1.0, normalize(u_ray.xyz)));
-    if (!r.geo.ok || (godel() && !(r.shift.x < 0.0))) {
+    if (!r.geo.ok || (godel() && (!finite(r.shift.x) || !(r.shift.x < 0.0)))) {
         slots[0] = vec4(-1.0);   // no closed form: no path
     } else if (u_points == 0) {
         float end = u_ray.w >= 0.0 ? u_ray.w : parameterAtTime(r, -u_max_past);
@@ -1987,7 +2088,7 @@ void main() {
         float l = u_ray.w * float(i) / float(u_points);
         if (godel()) {
             // In the origin frame the distance from the observer's axis is the cylindrical r.
-            vec4 e0, k0;
+            vec4 e0 = vec4(0.0), k0 = vec4(0.0);
             ogeoAt(r.geo, l, e0, k0);
             slots[0] = applyIso(r.back, e0);
             slots[1] = vec4(length(e0.yz), 0.0, 0.0, 0.0);

@@ -170,15 +170,7 @@ fn a_fisheye_dome_agrees_also_outside_its_circle() {
 
 #[test]
 fn minkowski_rays_are_straight_on_both() {
-    agrees(&scene(
-        "name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n\
-         [observer]\ntime = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }\n\
-         velocity = { speed = 0.5, direction = [0, 1, 0] }\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
-         [camera]\nkind = \"pinhole\"\nfov_deg = 90.0\nwidth = 80\nheight = 60\n\
-         [trace]\nmax_past = 20.0\n\
-         [[object]]\nname = \"still\"\nradius = 0.5\nmotion = { kind = \"rest\", position = { x = 3.0, y = 0.5, z = 0.0 } }\n\
-         [[object]]\nname = \"fast\"\nradius = 0.5\nmotion = { kind = \"geodesic\", time = 0.0, position = { x = 4.0, y = -6.0, z = 0.0 }, speed = 0.9, direction = [0, 1, 0] }\n",
-    ));
+    agrees(&scene(common::MINKOWSKI_TWO_BALLS));
 }
 
 // Mutations: each kernel below lacks one piece of the physics, and must be caught.
@@ -214,8 +206,8 @@ fn a_kernel_without_the_observers_boost_is_caught() {
 fn a_kernel_whose_falling_balls_stand_still_is_caught() {
     caught(
         &sized(example("reference"), 220, 25),
-        "    } else if (!godel()) {\n        p.ev = oStart[i] + tau * oU0[i];",
-        "    } else if (true) {\n        p.ev = oStart[i] + vec4(tau, 0.0, 0.0, 0.0);",
+        "    } else if (!godel()) {\n        p.ev = objs[i].start + tau * objs[i].u0;",
+        "    } else if (true) {\n        p.ev = objs[i].start + vec4(tau, 0.0, 0.0, 0.0);",
     );
 }
 
@@ -234,7 +226,8 @@ fn a_kernel_without_the_polarization_transport_is_caught() {
     // moving off-axis observer and its falling ball.
     caught(
         &off_axis_fast_observer(),
-        "vec4 w = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[j]));",
-        "vec4 w = pushIso(to, obs, hScreen[j]);",
+        "    vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[0]));\n    \
+         vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[1]));",
+        "    vec4 up = pushIso(to, obs, hScreen[0]);\n    vec4 right = pushIso(to, obs, hScreen[1]);",
     );
 }

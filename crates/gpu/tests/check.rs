@@ -33,8 +33,8 @@ fn a_correct_trace_passes_and_a_wrong_one_is_refused() {
     }
     // Balls at rest moved up by 0.15 a: the samples along their edges change.
     let moved = gpu::KERNEL.replace(
-        "oPos[i] = vec4(0.0, t1.xyz);",
-        "oPos[i] = vec4(0.0, t1.xyz + vec3(0.0, 0.0, 0.15));",
+        "t0.y, t0.z, vec4(0.0, t1.xyz),",
+        "t0.y, t0.z, vec4(0.0, t1.xyz + vec3(0.0, 0.0, 0.15)),",
     );
     assert_ne!(moved, gpu::KERNEL, "the mutation applies");
     for (name, w, h) in [("static-sphere", 160, 20), ("lit-shadow", 180, 20)] {

@@ -92,16 +92,52 @@ pub fn sized(mut scene: Scene, width: u32, height: u32) -> Scene {
     scene
 }
 
-/// The GPU render (with the kernel source `kernel`) and the CPU exact render of `scene`.
-pub fn both(scene: &Scene, kernel: &str) -> (DataFile, DataFile) {
-    let gpu = gpu::render_with(scene, kernel, &NoProgress)
+/// The GPU render of `scene` with the kernel source `kernel`, unchecked.
+pub fn gpu_render(scene: &Scene, kernel: &str) -> gpu::GpuRender {
+    gpu::render_with(scene, kernel, &NoProgress)
         .unwrap_or_else(|e| panic!("{}: GPU render failed: {e}", scene.name))
-        .data;
+}
+
+/// The CPU exact render of `scene`.
+pub fn cpu_render(scene: &Scene) -> DataFile {
     let mut exact = scene.clone();
     exact.trace.method = TraceMethod::Exact;
     exact.trace.gpu = false;
-    let (cpu, _) = render(&exact, &NoProgress).expect("CPU render");
-    (gpu, cpu)
+    render(&exact, &NoProgress).expect("CPU render").0
+}
+
+/// The GPU render (with the kernel source `kernel`) and the CPU exact render of `scene`.
+pub fn both(scene: &Scene, kernel: &str) -> (DataFile, DataFile) {
+    (gpu_render(scene, kernel).data, cpu_render(scene))
+}
+
+/// Minkowski space, an observer moving at 0.5 c, a ball at rest and one moving at 0.9 c (the
+/// scene on which an NVIDIA driver saw every sample hit the second ball).
+pub const MINKOWSKI_TWO_BALLS: &str = "name = \"flat\"\n[spacetime]\nmetric = \"minkowski\"\n\
+     [observer]\ntime = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }\n\
+     velocity = { speed = 0.5, direction = [0, 1, 0] }\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
+     [camera]\nkind = \"pinhole\"\nfov_deg = 90.0\nwidth = 80\nheight = 60\n\
+     [trace]\nmax_past = 20.0\n\
+     [[object]]\nname = \"still\"\nradius = 0.5\nmotion = { kind = \"rest\", position = { x = 3.0, y = 0.5, z = 0.0 } }\n\
+     [[object]]\nname = \"fast\"\nradius = 0.5\nmotion = { kind = \"geodesic\", time = 0.0, position = { x = 4.0, y = -6.0, z = 0.0 }, speed = 0.9, direction = [0, 1, 0] }\n";
+
+/// An observer off the axis moving at 0.6 c, a ball at rest, a falling ball, a floor and a
+/// light, at `width` × `height`: a scene with everything the kernel's search and shadow rays
+/// do, on which softpipe disagreed with the CPU on a quarter of the samples before the
+/// kernel stored at constant indices only.
+pub fn off_axis_lit_floor(width: u32, height: u32) -> Scene {
+    scene(&format!(
+        "name = \"off-axis-lit-floor\"\n\
+         [spacetime]\nmetric = \"godel\"\na = 1.0\n\
+         [observer]\ntime = 2.0\nposition = {{ r = 0.6, phi = 0.8, z = 0.4 }}\n\
+         velocity = {{ speed = 0.6, direction = [0.2, -1, 0.1] }}\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
+         [camera]\nkind = \"panorama\"\nh_fov_deg = 360.0\nv_fov_deg = 90.0\nwidth = {width}\nheight = {height}\n\
+         [trace]\nmax_past = 10.0\n\
+         [[object]]\nname = \"rest\"\nradius = 0.2\nmotion = {{ kind = \"rest\", position = {{ r = 0.9, phi = 0.0, z = 0.0 }} }}\n\
+         [[object]]\nname = \"falling\"\nradius = 0.15\nmotion = {{ kind = \"geodesic\", time = 0.0, position = {{ x = -0.5, y = 0.5, z = 0.0 }}, speed = 0.8, direction = [1, 0, 0.2] }}\n\
+         [[object]]\nname = \"floor\"\nframe = \"coordinates\"\nshape = \"plane\"\nheight = -0.5\nextent = 3.0\n\
+         [[light]]\nposition = {{ r = 0.5, phi = 2.0, z = 0.6 }}\npower = 2.0\n"
+    ))
 }
 
 fn quantile(mut v: Vec<f64>, p: f64) -> f64 {
