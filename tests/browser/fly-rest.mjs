@@ -1,5 +1,6 @@
 // At rest in explore mode (fly.js), for the Rust test crates/godel/tests/viewer_browser/fly.rs,
-// on a scene of several samples a pixel: after a wheel turn (zooming in), the page shows
+// on a scene of several samples a pixel: saves the first full frame (the scene's own view and
+// velocity), stops the observer (X), then after a wheel turn (zooming in), the page shows
 // the full size at one sample a pixel (after half the size, where the kernel's speed asks for
 // it), then the full samples. Saves the slots of the frames at rest as they are shown, and
 // compares the canvas as shown while the full samples are traced (the one-sample frame drawn
@@ -8,9 +9,13 @@
 // channels load.
 //
 // usage: node fly-rest.mjs URL OUT_DIR
-// Writes OUT_DIR/rest-LEVEL-slot-S.f32 (LEVEL half, size or full; RGBA32F, grid row 0 first) and
-// prints {view, start_log (the frames at rest of the scene's own view), rays_per_ms (the
-// kernel's speed the page measured before the wheel), shown: [{level, width, height, slots}],
+// Writes OUT_DIR/rest-LEVEL-slot-S.f32 (LEVEL half, size or full; RGBA32F, grid row 0 first),
+// OUT_DIR/start-full-slot-S.f32 (the first full frame, of the scene's own view) and
+// prints {view, start_view, start {width, height, slots} (the first full frame),
+// stopped_view (the view once X, Stop, was pressed: then the wheel turns), check {done, last,
+// refused} (the page's checks of its tracer),
+// start_log (the frames at rest of the scene's own view), rays_per_ms (the
+// kernel's speed the page measured before the wheel, once stopped), shown: [{level, width, height, slots}],
 // log (the frames at rest of the final view),
 // canvas {drawn_while_refining, pixels, size_to_full, size_to_before, full_to_before}
 // (pixels of the canvas differing by more than 40 in a channel), header, console_errors,
@@ -49,10 +54,25 @@ try {
   });
   await open(page, url);
   await rest();
-  [result.start_log, result.rays_per_ms] = await page.evaluate(() => {
-    const f = window.godelViewer.explore.fly;
-    return [f.log.filter((l) => l.version === f.version && l.level !== 'moving'), f.raysPerMs];
+  let start;
+  [result.start_log, result.start_view, start] = await page.evaluate(() => {
+    const e = window.godelViewer.explore;
+    const f = e.fly;
+    return [f.log.filter((l) => l.version === f.version && l.level !== 'moving'), e.view(),
+      e.readSlots()];
   });
+  // The first full frame, of the scene's own view.
+  start.slots.forEach((b64, k) => writeFileSync(join(outDir, `start-full-slot-${k}.f32`),
+    Buffer.from(b64, 'base64')));
+  result.start = { width: start.width, height: start.height, slots: start.slots.length };
+  // Stop (X): the observer at rest, the rest of the script as on a scene at rest.
+  const stopped = await page.evaluate(() => window.godelViewer.explore.fly.version);
+  await page.keyboard.press('KeyX');
+  await page.waitForFunction((v) => window.godelViewer.explore.fly.version > v, stopped,
+    { timeout: 60000 });
+  await rest();
+  [result.stopped_view, result.rays_per_ms] = await page.evaluate(() => [
+    window.godelViewer.explore.view(), window.godelViewer.explore.fly.raysPerMs]);
   // Every frame at rest from now on, its slots read while they are the ones shown.
   const before = await page.evaluate(() => {
     const v = window.godelViewer;
@@ -105,6 +125,14 @@ try {
     s.slots.forEach((b64, k) => writeFileSync(join(outDir, `rest-${s.level}-slot-${k}.f32`),
       Buffer.from(b64, 'base64')));
     return { level: s.level, width: s.width, height: s.height, slots: s.slots.length };
+  });
+  // The page's checks of its tracer against the server's CPU tracer (the first frame's, and
+  // one at most every few seconds after).
+  await page.waitForFunction(() => !window.godelViewer.explore.fly.check.busy, null,
+    { timeout: 60000 });
+  result.check = await page.evaluate(() => {
+    const f = window.godelViewer.explore.fly;
+    return { done: f.check.done, last: f.check.last, refused: f.refused };
   });
   result.header = await page.evaluate(() => document.getElementById('file').textContent);
   result.error = await page.evaluate(() => window.godelViewer.error

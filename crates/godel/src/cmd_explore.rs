@@ -13,8 +13,10 @@ use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
+use datafile::record::RayStatus;
 use datafile::DataFile;
 use datafile::PixelRecord;
+use gpu::check::CheckError;
 use render::driver::{Progress, Renderer};
 use render::map::{light_ray, map, LightRay, Map};
 use render::plan::Plan;
@@ -24,6 +26,7 @@ use spacetime::message::short;
 use toml::Table;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent, FRAMES_IN_MEMORY};
 use viewer::kernel_routes::KernelInput;
+use viewer::page_check::{CheckedSample, Verdict};
 use viewer::view::{Velocity, View};
 
 use crate::args::{thread_pool, usage};
@@ -50,6 +53,11 @@ pub struct ExploreArgs {
     /// 8 to 8192.
     #[arg(long, value_name = "WIDTH")]
     pub sphere: Option<u32>,
+    /// Give the page this GLSL source of the GPU kernel instead of godel's own (to try a
+    /// change or a driver: the page checks its frames against the CPU exact tracer, and
+    /// traces on the server where they disagree).
+    #[arg(long, value_name = "FILE")]
+    pub kernel: Option<PathBuf>,
 }
 
 /// The largest `--sphere` width.
@@ -196,6 +204,53 @@ impl FrameSource for SceneFrames {
         crate::flight::keyframe_text(&scene, frame).map_err(|e| e.to_string())
     }
 
+    fn check(
+        &self,
+        view: &View,
+        samples: &[CheckedSample],
+        renderer: &str,
+    ) -> Result<Verdict, String> {
+        let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
+        let (grid, own) = (scene.sample_camera(), self.scene.sample_camera());
+        let (w, h) = (grid.width(), grid.height());
+        // A grid no larger than the scene's own frames (which explore holds anyway).
+        let cells = |c: &scene::Camera| u64::from(c.width()) * u64::from(c.height());
+        if cells(&grid) > cells(&own) {
+            return Err(format!(
+                "check.view.camera: {w}×{h} samples, more than the scene's {}×{}",
+                own.width(),
+                own.height()
+            ));
+        }
+        let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); cells(&grid) as usize];
+        for (k, s) in samples.iter().enumerate() {
+            if s.x >= w || s.y >= h {
+                return Err(format!(
+                    "check.samples[{k}]: ({}, {}) is outside the {w}×{h} samples",
+                    s.x, s.y
+                ));
+            }
+            records[s.y as usize * w as usize + s.x as usize] = s.record;
+        }
+        // The records the page did not send are `not traced`: gpu::check passes them over.
+        Ok(match gpu::check::against_cpu(&scene, &records, renderer) {
+            Ok(()) => Verdict::Agree,
+            Err(CheckError::Disagrees {
+                checked,
+                differ,
+                col,
+                row,
+                gpu,
+                cpu,
+                ..
+            }) => Verdict::Disagree(format!(
+                "it disagrees with the CPU exact tracer on {differ} of {checked} samples \
+                 (e.g. sample column {col}, row {row}: GPU {gpu}, CPU {cpu})"
+            )),
+            Err(e @ CheckError::Setup(_)) => Verdict::Unchecked(e.to_string()),
+        })
+    }
+
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
         let scene = scene_at(&self.scene, event, Level::Full).map_err(|e| format!("{e:#}"))?;
         Ok(KernelInput::new(&scene))
@@ -293,6 +348,15 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     }
     shade::textures_for_scene(&scene)?;
     check_memory(&scene, args.sphere)?;
+    let kernel = match &args.kernel {
+        Some(path) => Some(std::fs::read_to_string(path).map_err(|e| {
+            usage(
+                &format!("--kernel {}", path.display()),
+                format!("cannot read the kernel source: {e}"),
+            )
+        })?),
+        None => None,
+    };
     let frames = SceneFrames::new(scene, pool);
     // The viewer opens on the explorer's first frame at the scene's own event (the coarse
     // one, or the full one where that is already done); the page then receives the
@@ -316,7 +380,7 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
     let state = Arc::new(state);
     viewer::run_app(listener, |access| {
         let keep = viewer::keep_routes::router(keeper, state.work().clone(), access.clone());
-        viewer::explore_routes::router(state, explorer, access).merge(keep)
+        viewer::explore_routes::router(state, explorer, access, kernel).merge(keep)
     })
     .context("the viewer's server failed")
 }

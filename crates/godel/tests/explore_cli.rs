@@ -301,6 +301,24 @@ fn a_bad_scene_is_refused_before_serving() {
     let o = common::godel(&["explore", "no-such-scene.toml", "--port", "0"]);
     assert_ne!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no-such-scene.toml"));
+    // A kernel source (`--kernel FILE`) that cannot be read: refused naming the flag.
+    let good = origin_scene(dir.path());
+    let missing = dir.path().join("no-such-kernel.glsl");
+    let o = common::godel(&[
+        "explore",
+        good.to_str().unwrap(),
+        "--port",
+        "0",
+        "--kernel",
+        missing.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(o.stdout.is_empty(), "nothing served");
+    assert!(
+        stderr.contains("--kernel") && stderr.contains("no-such-kernel.glsl"),
+        "{stderr}"
+    );
 }
 
 /// `--sphere W`: the frames are the full sphere W × W/2 around the observer, one ray each,

@@ -237,5 +237,7 @@ mod keep;
 mod layers;
 #[path = "viewer_browser/look.rs"]
 mod look;
+#[path = "viewer_browser/page_check.rs"]
+mod page_check;
 #[path = "viewer_browser/polarization.rs"]
 mod polarization;

@@ -11,7 +11,8 @@
 //
 // Where the GPU kernel can trace the scene in this browser, the page traces every frame
 // itself and flies (fly.js); `?trace=server` (or a browser that cannot) keeps the server's
-// frames, and the status line says why.
+// frames, and the status line says why; so does a page whose tracer disagrees with the
+// server's CPU tracer (fly.js checks it), from then on, and its header says why.
 'use strict';
 
 import { createMap } from './map.js';
@@ -53,8 +54,9 @@ export async function startExplore(viewer) {
   // The view on screen as the scene file's fields (keep.js renders and records it): the
   // scene's own observer and camera, moved to the event.
   const own = (await (await fetch('/api/explore/view')).json()).view;
-  state.view = () => ({ ...structuredClone(own), time: state.event.t,
+  const serverView = () => ({ ...structuredClone(own), time: state.event.t,
     position: { x: state.event.x, y: state.event.y, z: state.event.z } });
+  state.view = serverView;
   // A look-around view leaves room for the map below it.
   viewer.lookShare = 0.4;
   viewer.layout();
@@ -259,6 +261,21 @@ export async function startExplore(viewer) {
   state.showEvent = (e) => {
     state.event = { ...e };
     showEvent();
+  };
+  // The page's tracer was refused (fly.js checks it against the server's CPU tracer): the
+  // server's frames from now on, of the event flown to, coarse then full; `note` says why in
+  // the header.
+  state.traceOnServer = (note) => {
+    state.refused = note;
+    state.fly = null;
+    for (const k of ['hoverRecord', 'hoverFrame', 'hoverRay', 'readSlots', 'uniforms']) delete state[k];
+    state.view = serverView;
+    $('explore-play').hidden = false;
+    $('explore-rate').parentElement.hidden = false;
+    viewer.noteFrames(note);
+    status(note);
+    state.shown = null;
+    send();
   };
   if (new URLSearchParams(window.location.search).get('trace') === 'server') {
     status('tracing on the server (?trace=server)');

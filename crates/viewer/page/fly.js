@@ -10,13 +10,22 @@
 // The browser test checks the page's uniforms against the server's for the same view
 // (POST /api/explore/input).
 //
-// Flight: W/S, A/D, R/F (Space/Shift) give the observer a velocity of the chosen speed along
-// its forward, right and up axes (aberration and Doppler follow: it is the kernel's observer
-// velocity); the observer moves along the geodesic of its 4-velocity by the proper time the
-// rate gives (POST /api/explore/move, spacetime::worldline: at most one request in flight,
-// proper time accumulating meanwhile, so the page never waits for it); "fall freely" keeps
-// the velocity the geodesic carries instead of the controls'. Dragging turns, Q/E roll, the
-// wheel zooms (pointer and wheel events: touch and trackpads too).
+// Flight starts from the scene's observer: its event, axes and velocity (a scene's moving
+// observer is seen moving, as `godel render` sees it). W/S, A/D, R/F (Space/Shift) give the
+// observer a velocity of the chosen speed along its forward, right and up axes while held
+// (aberration and Doppler follow: it is the kernel's observer velocity); letting go of them
+// stops it (speed 0), and Stop (or X) does at any time; otherwise the velocity stays, the
+// scene's included. The observer moves along the geodesic of its 4-velocity by the proper
+// time the rate gives (POST /api/explore/move, spacetime::worldline: at most one request in
+// flight, proper time accumulating meanwhile, so the page never waits for it); "fall freely"
+// keeps the velocity the geodesic carries instead (also once the keys are let go). Dragging
+// turns, Q/E roll, the wheel zooms (pointer and wheel events: touch and trackpads too).
+//
+// The page checks what it shows (crates/viewer/src/page_check.rs): the first frame traced,
+// then a frame at most every CHECK_EVERY_MS while the view changes, sends a few of its samples
+// (status and object) to the server, which traces them again with the CPU exact tracer; where
+// they disagree (a driver that runs the kernel wrongly), the page stops tracing and shows the
+// server's frames (explore.js), the header naming the renderer refused and why.
 //
 // Dynamic resolution: while the view changes, each animation frame traces a smaller grid of
 // one sample per pixel, its pixel count steered so that a frame takes about TARGET_MS; at
@@ -25,7 +34,7 @@
 'use strict';
 
 import { KernelTracer } from './trace.js';
-import { sampleRecord, tracedLightRay } from './hovered.js';
+import { STATUS, sampleRecord, tracedLightRay } from './hovered.js';
 import { fetchJson } from './data.js';
 import { cross, dot, normalize } from './look.js';
 
@@ -42,6 +51,10 @@ const QUICK_MS = 1000;
 const ROLL_PER_S = 1.0;
 // Proper time added per animation frame at most (a stalled tab does not jump).
 const MAX_DT = 0.1;
+// The page's check of its tracer: at most one frame in this many ms (the first always), and
+// at most this many of its samples among those that hit, and as many among the others.
+const CHECK_EVERY_MS = 5000;
+const CHECK_PER_SIDE = 24;
 
 const KEYS = {
   KeyW: [1, 0, 0], KeyS: [-1, 0, 0], KeyD: [0, 1, 0], KeyA: [0, -1, 0],
@@ -113,6 +126,7 @@ export async function startFly(viewer, explore, map, status) {
       forward: normalize(sceneView.forward), up: normalize(sceneView.up), camera,
     },
     keys: new Set(),
+    keyed: false,        // the keys set the velocity (letting go of them stops the observer)
     speed: 0.5,
     rate: 1,
     playing: false,
@@ -134,6 +148,8 @@ export async function startFly(viewer, explore, map, status) {
                          // drawn, at (performance.now() when shown), ms (at rest: since the
                          // first step began, traceFull)}
     error: null,
+    check: { at: null, busy: false, done: 0, last: null }, // the checks of frames traced
+    refused: null,       // why this page's tracer was refused (then the server traces)
   };
   explore.fly = fly;
   explore.view = () => structuredClone(fly.view);
@@ -262,6 +278,7 @@ export async function startFly(viewer, explore, map, status) {
   // 'full' (the full size and samples). Its slots are kept until the next one (the hovered
   // pixel's record is read from them). `ms`: at rest, the time since its steps began.
   function show(traced, view, version, level, note, ms = null) {
+    if (fly.refused) return; // a trace that was under way: the server's frames are shown now
     const full = level === 'full';
     const channels = tracer.channels(traced, viewer.info.objects.length);
     if (fly.slots) fly.slots.slots.forEach((t) => gl.deleteTexture(t));
@@ -286,6 +303,70 @@ export async function startFly(viewer, explore, map, status) {
     if (fly.log.length > 2000) fly.log.shift();
     // For tests: called while this frame's slots are the ones `readSlots` reads.
     if (typeof explore.onShown === 'function') explore.onShown(level);
+    checkFrame(traced, view);
+  }
+
+  // The GPU's name, for the check and the header (the unmasked one where the browser says it).
+  const debugInfo = gl.getExtension('WEBGL_debug_renderer_info');
+  const renderer = String(debugInfo ? gl.getParameter(debugInfo.UNMASKED_RENDERER_WEBGL)
+    : gl.getParameter(gl.RENDERER));
+
+  // Up to CHECK_PER_SIDE samples among the hits of slot 0 (`s0`: status and object of each
+  // sample, the kernel's layout) and as many among the others traced, at a fixed stride, as
+  // gpu::check chooses its own; as the server reads them.
+  const chooseSamples = (s0, width) => {
+    const count = s0.length / 4;
+    const code = (i) => s0[4 * i + 1];
+    const sides = [(c) => c === 0, (c) => c !== 0 && STATUS[c] !== 'not traced'];
+    return sides.flatMap((side) => {
+      const all = [];
+      for (let i = 0; i < count; i += 1) if (side(code(i))) all.push(i);
+      const stride = Math.max(1, Math.ceil(all.length / CHECK_PER_SIDE));
+      return all.filter((_, k) => k % stride === 0).map((i) => ({
+        x: i % width, y: Math.floor(i / width), status: STATUS[code(i)] ?? 'failed',
+        object: code(i) === 0 ? Math.round(s0[4 * i]) : -1 }));
+    });
+  };
+
+  // Checks the frame `traced` of `view` just shown, where one is due (the first, then one
+  // every CHECK_EVERY_MS at most, one at a time; frames of one sample a pixel, the check's
+  // grid): its samples are read now, before a newer frame frees them.
+  async function checkFrame(traced, view) {
+    const now = performance.now();
+    if (fly.check.busy || (fly.check.at !== null && now - fly.check.at < CHECK_EVERY_MS)
+      || traced.width * traced.height > fullW * fullH) return;
+    fly.check.busy = true;
+    fly.check.at = now;
+    try {
+      const [s0] = await tracer.readLater([traced.slots[0]], 0, 0, traced.width, traced.height);
+      const samples = chooseSamples(s0, traced.width);
+      if (samples.length === 0) return;
+      const camera = { ...view.camera, width: traced.width, height: traced.height, samples: 1 };
+      const response = await fetch('/api/explore/check', {
+        method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ view: { ...view, camera }, renderer, samples }),
+      });
+      const answer = await response.json();
+      if (!response.ok) throw new Error(answer.error || `${response.status}`);
+      fly.check.last = answer;
+      fly.check.done += 1;
+      if (answer.verdict === 'disagree') {
+        explore.refusedCheck = answer;
+        refuse(answer.reason);
+      }
+    } catch (e) {
+      fly.check.last = { verdict: 'failed', reason: e.message || String(e) };
+    } finally {
+      fly.check.busy = false;
+    }
+  }
+
+  // The tracer here disagrees with the CPU: this page traces no more, the server does.
+  function refuse(reason) {
+    fly.refused = `the GPU renderer ${renderer} was refused: ${reason}`;
+    fly.keys.clear();
+    $('fly-panel').hidden = true;
+    explore.traceOnServer(`${fly.refused}; frames traced on the server`);
   }
   const failed = (e) => {
     fly.error = e.message || String(e);
@@ -372,10 +453,11 @@ export async function startFly(viewer, explore, map, status) {
     try {
       await step(now);
     } finally {
-      requestAnimationFrame(tick);
+      if (!fly.refused) requestAnimationFrame(tick);
     }
   }
   async function step(now) {
+    if (fly.refused) return;
     const frameMs = last === null ? 0 : now - last;
     const dt = Math.min(MAX_DT, frameMs / 1000);
     last = now;
@@ -386,16 +468,18 @@ export async function startFly(viewer, explore, map, status) {
       v.up = normalize(turn(v.up, v.forward, roll * ROLL_PER_S * dt));
       changed();
     }
-    // The velocity: the keys', the geodesic's when falling, else at rest.
+    // The velocity: the keys' while held; once they are let go, at rest (the geodesic's when
+    // falling); otherwise as it was (the scene's, until a key or Stop changes it).
     const keyed = keyVelocity();
     if (keyed) {
+      fly.keyed = true;
       if (keyed.speed !== v.velocity.speed || keyed.direction.some((x, i) => x !== v.velocity.direction[i])) {
         v.velocity = keyed;
         changed();
       }
-    } else if (!fly.fall && v.velocity.speed !== 0) {
-      v.velocity = { speed: 0, direction: v.velocity.direction };
-      changed();
+    } else if (fly.keyed) {
+      fly.keyed = false;
+      if (!fly.fall) stop();
     }
     // Proper time runs while playing (at the rate) and while a key moves the observer.
     const running = fly.playing || keyed !== null;
@@ -419,12 +503,23 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
+  // Stop: the observer at rest where it is (its direction kept for the next speed).
+  function stop() {
+    const v = fly.view;
+    if (v.velocity.speed === 0) return;
+    v.velocity = { speed: 0, direction: v.velocity.direction };
+    changed();
+  }
+
   // ---- the controls
   const typing = (e) => e.target instanceof HTMLInputElement && e.target.type !== 'range'
     && e.target.type !== 'checkbox';
   window.addEventListener('keydown', (e) => {
-    if (typing(e)) return;
-    if (e.code in KEYS || e.code === 'KeyQ' || e.code === 'KeyE') {
+    if (typing(e) || fly.refused) return;
+    if (e.code === 'KeyX') {
+      stop();
+      e.preventDefault();
+    } else if (e.code in KEYS || e.code === 'KeyQ' || e.code === 'KeyE') {
       fly.keys.add(e.code);
       e.preventDefault();
     }
@@ -437,7 +532,7 @@ export async function startFly(viewer, explore, map, status) {
   let drag = null;
   // Captured before the viewer's own pan and zoom of the picture (viewer.js).
   picture.addEventListener('pointerdown', (e) => {
-    if (e.target !== canvas) return;
+    if (e.target !== canvas || fly.refused) return;
     e.stopPropagation();
     drag = [e.clientX, e.clientY];
     canvas.setPointerCapture(e.pointerId);
@@ -464,7 +559,7 @@ export async function startFly(viewer, explore, map, status) {
   picture.addEventListener('pointerup', endDrag, true);
   picture.addEventListener('pointercancel', endDrag, true);
   picture.addEventListener('wheel', (e) => {
-    if (e.target !== canvas || camera.kind === 'sphere') return;
+    if (e.target !== canvas || camera.kind === 'sphere' || fly.refused) return;
     e.preventDefault();
     e.stopPropagation();
     const f = Math.exp(e.deltaY * 0.001);
@@ -497,6 +592,7 @@ export async function startFly(viewer, explore, map, status) {
   });
   $('fly-play').addEventListener('click', () => { fly.playing = !fly.playing; sync(); });
   $('fly-reverse').addEventListener('click', () => { fly.rate = -fly.rate; rate.value = String(fly.rate); });
+  $('fly-stop').addEventListener('click', stop);
   $('fly-fall').addEventListener('change', () => { fly.fall = $('fly-fall').checked; });
   speed.value = String(fly.speed);
   rate.value = String(fly.rate);

@@ -9,7 +9,7 @@
 'use strict';
 
 // datafile::RayStatus by code, with the names crates/viewer/src/state.rs gives them.
-const STATUS = ['hit', 'escaped', 'step budget', 'failed', 'not traced', 'work limit'];
+export const STATUS = ['hit', 'escaped', 'step budget', 'failed', 'not traced', 'work limit'];
 const HIT = 0;
 const NOT_TRACED = 4;
 // Points per row of the target the points are drawn into.

@@ -637,6 +637,12 @@ viewer.showTracedFrame = (channels, note, size = null) => {
   describe();
   changed();
 };
+// Explore's frames from the server after the page's tracer was refused (explore.js): `note`
+// stays in the header for every frame shown.
+viewer.noteFrames = (note) => {
+  frameNote = note;
+  describe();
+};
 viewer.showFileFrame = () => {
   if (!frameNote) return;
   data.reset(data.channelUrl);

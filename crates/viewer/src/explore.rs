@@ -158,6 +158,15 @@ pub trait FrameSource: Send + Sync + 'static {
     /// What the GPU kernel reads to trace `view` (the scene with the view's observer and
     /// camera fields); `Err` says why, naming the field.
     fn view_input(&self, view: &View) -> Result<gpu::KernelInput, String>;
+    /// Holds the page's GPU records of `samples` (cells of `view`'s sample grid, traced by the
+    /// page's `renderer`) to the CPU exact tracer, as `godel render --gpu` holds its own
+    /// (`gpu::check`); `Err` says why the request is wrong, naming the field.
+    fn check(
+        &self,
+        view: &View,
+        samples: &[crate::page_check::CheckedSample],
+        renderer: &str,
+    ) -> Result<crate::page_check::Verdict, String>;
     /// Where an observer at `event` moving with `velocity` is after `tau` of its proper time
     /// when it falls freely, and its velocity there (`spacetime::worldline::fall`); `Err`
     /// says why not, naming the field (`velocity: …`, `tau: …`; the route adds its own name).

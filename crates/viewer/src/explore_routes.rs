@@ -13,6 +13,8 @@
 //! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
 //! | `POST /api/explore/input?draw_buffers=N` (a [`View`]: `{"time", "position", "velocity", "forward", "up", "camera"}`) | what the GPU kernel reads to trace that view (the flying page's, page/fly.js); 400 naming the field for a bad view |
 //! | `POST /api/explore/move` (`{"time", "position", "velocity", "tau"}`) | where that observer is after `tau` of its proper time falling freely, and its velocity there: `{"time", "position", "velocity"}`; 400 naming the field for bad input |
+//! | `POST /api/explore/check` | the page's samples traced again by the CPU exact tracer: whether its GPU agrees ([`crate::page_check`]) |
+//! | `GET /api/gpu/kernel` | the kernel's source the page traces with: the `gpu` crate's, or the one `godel explore --kernel FILE` serves (as in [`crate::kernel_routes`]) |
 //! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
 //!
 //! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
@@ -50,6 +52,8 @@ pub struct ExploreState {
     /// The routes of the last frame asked for, made on first use: (generation, level,
     /// routes over that frame's viewer state, which shares the frame's data).
     prepared: Mutex<Option<(u64, Level, Router)>>,
+    /// The kernel source served to the page: the `gpu` crate's unless another is given.
+    kernel: Arc<str>,
 }
 
 impl ExploreState {
@@ -108,12 +112,19 @@ pub const FRAME_ROUTES: [&str; 10] = [
 ];
 
 /// The explore routes and [`FRAME_ROUTES`], then (for every other path) the viewer's routes
-/// over `viewer` (its first frame), all answering what `access` allows.
-pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> Router {
+/// over `viewer` (its first frame), all answering what `access` allows. `kernel`: the GPU
+/// kernel's source the page is given instead of the `gpu` crate's (`godel explore --kernel`).
+pub fn router(
+    viewer: Arc<ViewerState>,
+    explorer: Explorer,
+    access: Access,
+    kernel: Option<String>,
+) -> Router {
     let state = Arc::new(ExploreState {
         viewer: viewer.clone(),
         explorer,
         prepared: Mutex::new(None),
+        kernel: kernel.map_or_else(|| Arc::from(gpu::KERNEL), Arc::from),
     });
     let mut explore = Router::new()
         .route("/api/explore/info", get(info))
@@ -126,7 +137,9 @@ pub fn router(viewer: Arc<ViewerState>, explorer: Explorer, access: Access) -> R
         .route("/api/explore/view-keyframe", post(view_keyframe))
         .route("/api/gpu/input", get(kernel_input))
         .route("/api/explore/input", post(view_input))
-        .route("/api/explore/move", post(fall));
+        .route("/api/explore/move", post(fall))
+        .route("/api/explore/check", post(crate::page_check::check))
+        .route("/api/gpu/kernel", get(kernel_text));
     for path in FRAME_ROUTES {
         explore = explore.route(path, any(for_frame));
     }
@@ -165,6 +178,11 @@ async fn for_frame(
     };
     let response = routes.oneshot(request).await;
     Ok(response.into_response())
+}
+
+/// `GET /api/gpu/kernel` in explore mode: the kernel source given, else the `gpu` crate's.
+async fn kernel_text(State(state): State<Arc<ExploreState>>) -> Response {
+    crate::kernel_routes::kernel_source(&state.kernel)
 }
 
 async fn info(State(state): State<Arc<ExploreState>>) -> Response {

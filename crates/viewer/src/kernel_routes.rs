@@ -134,11 +134,16 @@ pub fn router(state: Arc<KernelState>) -> Router {
 }
 
 async fn kernel() -> Response {
+    kernel_source(gpu::KERNEL)
+}
+
+/// The answer of `GET /api/gpu/kernel`: `source` as text, never cached.
+pub fn kernel_source(source: &str) -> Response {
     let headers = [
         (header::CONTENT_TYPE, "text/plain; charset=utf-8"),
         (header::CACHE_CONTROL, "no-store"),
     ];
-    (headers, gpu::KERNEL).into_response()
+    (headers, source.to_string()).into_response()
 }
 
 async fn input(

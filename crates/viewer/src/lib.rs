@@ -19,7 +19,8 @@
 //!   frame itself.
 //! - [`explore`], [`explore_routes`]: explore mode (`godel explore`), frames re-traced for a
 //!   moved observer by a [`explore::FrameSource`]; [`keep`], [`keep_routes`]: its *Render
-//!   exactly* and *Record* (made by a [`keep::Keeper`]).
+//!   exactly* and *Record* (made by a [`keep::Keeper`]); [`page_check`]: the flying page's
+//!   samples held to the CPU exact tracer before its GPU is trusted.
 
 pub mod api_error;
 mod assets;
@@ -34,6 +35,7 @@ pub mod keep_routes;
 pub mod kernel_routes;
 pub mod limit;
 pub mod look_routes;
+pub mod page_check;
 mod responses;
 pub mod routes;
 pub mod server;

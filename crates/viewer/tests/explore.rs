@@ -8,12 +8,14 @@ use std::time::Duration;
 
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
+use datafile::record::RayStatus;
 use datafile::{DataFile, PixelRecord};
 use http_body_util::BodyExt;
 use render::map::{LightRay, Map, MapPoint};
 use tower::ServiceExt;
 use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 use viewer::kernel_routes::KernelInput;
+use viewer::page_check::{CheckedSample, Verdict, MAX_CHECK_BYTES, MAX_CHECK_SAMPLES};
 use viewer::view::{Velocity, View};
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
 use viewer::Access;
@@ -137,6 +139,26 @@ impl FrameSource for Fake {
         scene.observer.event = ObserverEvent::of_view(view).event();
         scene.observer.velocity.speed = view.velocity.speed;
         Ok(KernelInput::new(&scene))
+    }
+    /// Agrees where every sample is a hit on object 0; else names the first other one.
+    fn check(
+        &self,
+        _view: &View,
+        samples: &[CheckedSample],
+        renderer: &str,
+    ) -> Result<Verdict, String> {
+        Ok(
+            match samples
+                .iter()
+                .find(|s| s.record.status != RayStatus::Hit || s.record.object != 0)
+            {
+                None => Verdict::Agree,
+                Some(s) => Verdict::Disagree(format!(
+                    "{renderer}: sample ({}, {}) {:?}",
+                    s.x, s.y, s.record.status
+                )),
+            },
+        )
     }
     /// Moves t by tau, x by speed × tau, keeps the velocity.
     fn fall(
@@ -319,8 +341,12 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     // Generation 2's full frame waits at the gate until the test opens it.
     fake.held.lock().unwrap().push((5.0, Level::Full));
     let explorer = Explorer::new(fake.clone()).unwrap();
-    let app =
-        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let app = viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        None,
+    );
     let (status, info, _) = send(&app, common::get("/api/explore/info")).await;
     assert_eq!(status, StatusCode::OK);
     assert_eq!(info["explore"], true);
@@ -485,8 +511,12 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
     let explorer = Explorer::new(Fake::default()).unwrap();
-    let app =
-        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let app = viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        None,
+    );
     // Before any frame: the scene's own event.
     let (status, input, _) = send(&app, common::get("/api/gpu/input")).await;
     assert_eq!(status, StatusCode::OK);
@@ -535,8 +565,12 @@ async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_why() {
     let explorer = Explorer::new(Fake::default()).unwrap();
-    let app =
-        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let app = viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        None,
+    );
     let view = serde_json::json!({
         "time": 2.5, "position": {"x": 0.25, "y": -0.5, "z": 0.125},
         "velocity": {"speed": 0.5, "direction": [1, 0, 0]},
@@ -633,8 +667,12 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn refusals_name_what_the_request_wrote_in_short() {
     let explorer = Explorer::new(Fake::default()).unwrap();
-    let app =
-        viewer::explore_routes::router(common::state(), explorer, Access::local(common::PORT));
+    let app = viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        None,
+    );
     let view = serde_json::json!({
         "time": 1e308, "position": {"x": 0, "y": 0, "z": 0},
         "velocity": {"speed": 0.5, "direction": [1, 0, 0]},
@@ -724,4 +762,87 @@ async fn refusals_name_what_the_request_wrote_in_short() {
             message.unwrap_or_else(|| panic!("{url}: {}", String::from_utf8_lossy(&body)));
         assert!(message.contains("Invalid UTF-8"), "{url}: {message}");
     }
+}
+
+/// The page's check (`POST /api/explore/check`, viewer::page_check): the samples sent reach the
+/// frame source as records (status and object) with the renderer's name, its verdict comes
+/// back; a bad status, a hit without its object, no samples or too many, a body over the cap
+/// and an event beyond the bound are refused naming the field; the kernel served is the one
+/// given to the router.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_page_check_hands_its_samples_to_the_source_and_bad_ones_say_why() {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    let app = viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        Some("void main() {} // served".into()),
+    );
+    let (status, _, kernel) = send(&app, common::get("/api/gpu/kernel")).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(kernel, b"void main() {} // served");
+    let body = |samples: serde_json::Value| {
+        serde_json::json!({
+            "view": {
+                "time": 0.5, "position": {"x": 0, "y": 0, "z": 0},
+                "velocity": {"speed": 0.6, "direction": [0, 1, 0]},
+                "forward": [1, 0, 0], "up": [0, 0, 1],
+                "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
+            },
+            "renderer": "SwiftShader",
+            "samples": samples,
+        })
+        .to_string()
+    };
+    let hit = serde_json::json!({"x": 1, "y": 2, "status": "hit", "object": 0});
+    let (status, answer, _) = send(
+        &app,
+        common::post("/api/explore/check", &body(serde_json::json!([hit]))),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(
+        answer,
+        serde_json::json!({"verdict": "agree", "checked": 1, "reason": null})
+    );
+    let escaped = serde_json::json!({"x": 3, "y": 0, "status": "escaped", "object": -1});
+    let (status, answer, _) = send(
+        &app,
+        common::post(
+            "/api/explore/check",
+            &body(serde_json::json!([hit, escaped])),
+        ),
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(answer["verdict"], "disagree");
+    assert_eq!(answer["reason"], "SwiftShader: sample (3, 0) Escaped");
+    let many = serde_json::Value::Array(vec![hit.clone(); MAX_CHECK_SAMPLES + 1]);
+    let far = body(serde_json::json!([hit])).replace("\"time\":0.5", "\"time\":1e9");
+    for (request, needle) in [
+        (
+            body(serde_json::json!([{"x": 1, "y": 2, "status": "lost", "object": 0}])),
+            "check.samples[0].status: \"lost\"",
+        ),
+        (
+            body(serde_json::json!([{"x": 1, "y": 2, "status": "hit", "object": -1}])),
+            "check.samples[0].object",
+        ),
+        (body(serde_json::json!([])), "check.samples: 0 samples"),
+        (body(many), "check.samples: 129 samples"),
+        (far, "check.view.time"),
+        (
+            body(serde_json::json!([{"x": 1, "y": 2, "status": "hit"}])),
+            "object",
+        ),
+    ] {
+        let (status, answer, _) = send(&app, common::post("/api/explore/check", &request)).await;
+        assert_eq!(status, StatusCode::BAD_REQUEST, "{request}");
+        let message = answer["error"].as_str().unwrap();
+        assert!(message.contains(needle), "{message}");
+    }
+    let padded =
+        body(serde_json::json!([hit])).replace("SwiftShader", &"x".repeat(MAX_CHECK_BYTES));
+    let (status, answer, _) = send(&app, common::post("/api/explore/check", &padded)).await;
+    assert_eq!(status, StatusCode::PAYLOAD_TOO_LARGE, "{answer}");
 }

@@ -292,18 +292,26 @@ fn saved_slots(out: &std::path::Path, prefix: &str, count: u64) -> Vec<Vec<f32>>
         .collect()
 }
 
-/// At rest on a scene of 4 samples a pixel, the page shows half the size first (at the
-/// scene's own view, before it knows the kernel's speed), then the full size at one sample a
-/// pixel, which is what `godel render --gpu` traces for the view at one sample, and then the
-/// full samples; the canvas shows each while the next is traced, also while the server's
-/// own first frame, held back by the script, still loads (its channels are dropped then).
+/// At rest on a scene of 4 samples a pixel whose observer moves (0.6 c, sideways), the
+/// page's first full frame is `godel render --gpu` of the scene itself: flying starts from
+/// the scene's observer, velocity included (issue 32, point 7: it was flown at rest); Stop
+/// (X) then stops it. The page shows half the size first (at the scene's own view, before it knows the kernel's
+/// speed), then the full size at one sample a pixel, which is what `godel render --gpu`
+/// traces for the view at one sample, and then the full samples; the canvas shows each while
+/// the next is traced, also while the server's own first frame, held back by the script,
+/// still loads (its channels are dropped then).
 #[test]
 fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("rest-test.toml");
-    let text = scene_text().replace("samples = 1", "samples = 4");
+    let still = "velocity = { speed = 0.0, direction = [1, 0, 0] }";
+    let moving = "velocity = { speed = 0.6, direction = [0, 1, 0] }";
+    let text = scene_text()
+        .replace("samples = 1", "samples = 4")
+        .replace(still, moving);
     assert!(text.contains("width = 88\n") && text.contains("samples = 4"));
+    assert!(text.contains(moving), "{text}");
     std::fs::write(&scene, &text).unwrap();
     let (server, url) = start_explore(&scene, dir.path(), &[]);
     let out = dir.path().join("out");
@@ -312,6 +320,30 @@ fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     drop(server);
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+
+    // The first full frame is the scene's own view, its observer moving: what `godel render
+    // --gpu` traces for the scene (176×20 samples).
+    let start_view = &seen["start_view"];
+    assert_eq!(start_view["velocity"]["speed"], 0.6, "{seen}");
+    assert_eq!(
+        (&seen["start"]["width"], &seen["start"]["height"]),
+        (&176.into(), &20.into()),
+        "{seen}"
+    );
+    let slots = saved_slots(&out, "start-full", seen["start"]["slots"].as_u64().unwrap());
+    compare_with_render_gpu(dir.path(), "start", &text, &slots);
+    // Stop (X) sets the speed to 0, the direction kept; the rest is at rest.
+    let stopped = &seen["stopped_view"]["velocity"];
+    assert_eq!(stopped["speed"], 0.0, "{seen}");
+    assert_eq!(stopped["direction"], serde_json::json!([0, 1, 0]), "{seen}");
+    assert_eq!(seen["view"]["velocity"]["speed"], 0.0, "{seen}");
+
+    // The page checked its tracer against the CPU exact tracer: the real kernel agrees.
+    let check = &seen["check"];
+    assert!(check["done"].as_u64().unwrap() >= 1, "{seen}");
+    assert_eq!(check["last"]["verdict"], "agree", "{seen}");
+    assert!(check["last"]["checked"].as_u64().unwrap() >= 8, "{seen}");
+    assert_eq!(check["refused"], serde_json::Value::Null, "{seen}");
 
     // The frames at rest, in the order shown: (level, width, height) of each.
     let frames = |log: &serde_json::Value| -> Vec<(String, u64, u64)> {
