@@ -209,8 +209,11 @@ vec2 cis(float a) {
     float z = x * x;
     float s = ((-1.9515295891e-4 * z + 8.3321608736e-3) * z - 1.6666654611e-1) * z * x + x;
     float c = ((2.443315711809948e-5 * z - 1.388731625493765e-3) * z + 4.166664568298827e-2) * z * z - 0.5 * z + 1.0;
-    int q = toInt(mod(j * 0.5, 4.0), 0, 3);   // the quarter turn: (c, s) rotated by q·π/2
-    vec2 r = q == 0 ? vec2(c, s) : (q == 1 ? vec2(-s, c) : (q == 2 ? vec2(-c, -s) : vec2(s, -c)));
+    // The quarter turn q: (c, s) rotated by q·π/2, chosen by comparing floats (no conversion
+    // to int, no branch: cis is inlined at every call, and SwiftShader took minutes to compile
+    // the kernel with a toInt here).
+    float q = mod(j * 0.5, 4.0);
+    vec2 r = q < 0.5 ? vec2(c, s) : (q < 1.5 ? vec2(-s, c) : (q < 2.5 ? vec2(-c, -s) : vec2(s, -c)));
     return vec2(r.x, a < 0.0 ? -r.y : r.y);
 }
 float sinA(float a) { return cis(a).y; }
