@@ -2,11 +2,11 @@
 //! construction or caught both by the agreement comparison with the CPU exact tracer and by
 //! the check every GPU render passes (docs/physics.md, "The GPU kernel").
 //!
-//! - Stores lost: the probe buffers' stores dropped, as softpipe and an NVIDIA driver lost the
-//!   earlier kernel's stores at runtime indices (today's kernel has none of those:
-//!   `kernel_rules.rs`): caught.
+//! - Stores lost: the probe buffers' stores dropped (softpipe misplaced the earlier kernel's
+//!   stores at runtime indices, and dropping those gives an NVIDIA driver's wrong records;
+//!   today's kernel has no such store: `kernel_rules.rs`): caught.
 //! - A NaN-blind finiteness test (as a compiler that assumes no NaN makes of `isnan`): no
-//!   record changes, since no NaN reaches a finiteness test.
+//!   record changes, since no NaN reaches a finiteness test on this scene.
 //! - A probe answering NaN (inside the objects, or at one probe in eight): caught, and no
 //!   record is wrong: the search stops at the NaN and marks its sample failed.
 
