@@ -164,9 +164,9 @@ pub trait FrameSource: Send + Sync + 'static {
     fn check(
         &self,
         view: &View,
-        samples: &[crate::page_check::CheckedSample],
+        samples: &[CheckedSample],
         renderer: &str,
-    ) -> Result<crate::page_check::Verdict, String>;
+    ) -> Result<Verdict, String>;
     /// Where an observer at `event` moving with `velocity` is after `tau` of its proper time
     /// when it falls freely, and its velocity there (`spacetime::worldline::fall`); `Err`
     /// says why not, naming the field (`velocity: …`, `tau: …`; the route adds its own name).
@@ -411,4 +411,24 @@ fn work(shared: &Shared) {
             }
         }
     }
+}
+
+/// What the CPU exact tracer says of the page's samples.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// They agree within `gpu::check`'s tolerance.
+    Agree,
+    /// They do not: why (how many differ, and the first).
+    Disagree(String),
+    /// The CPU tracer cannot trace them (this scene has no exact tracer): why.
+    Unchecked(String),
+}
+
+/// One sample the page traced: its cell of the view's sample grid and the kernel's record
+/// (status and object; the check compares nothing else).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CheckedSample {
+    pub x: u32,
+    pub y: u32,
+    pub record: PixelRecord,
 }

@@ -138,7 +138,7 @@ pub fn router(
         .route("/api/gpu/input", get(kernel_input))
         .route("/api/explore/input", post(view_input))
         .route("/api/explore/move", post(fall))
-        .route("/api/explore/check", post(crate::page_check::check))
+        .route("/api/explore/check", post(check))
         .route("/api/gpu/kernel", get(kernel_text));
     for path in FRAME_ROUTES {
         explore = explore.route(path, any(for_frame));
@@ -552,4 +552,16 @@ async fn fall(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Res
         "velocity": velocity,
     });
     Ok((no_store(), Json(body)).into_response())
+}
+
+/// `POST /api/explore/check`: the page's samples traced again by the CPU ([`crate::page_check`]).
+async fn check(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Response, ApiError> {
+    let asked = crate::page_check::request(&body, state.explorer.bound())?;
+    let checked = asked.samples.len();
+    let work = state.viewer.work().admit()?;
+    let verdict = work
+        .run(move || (state.explorer.source()).check(&asked.view, &asked.samples, &asked.renderer))
+        .await?
+        .map_err(ApiError::bad_request)?;
+    Ok(crate::page_check::answer(verdict, checked))
 }

@@ -15,10 +15,6 @@
 //! for a miss). Bounded: at most [`MAX_CHECK_SAMPLES`] samples and [`MAX_CHECK_BYTES`] of body,
 //! traced on the server's work pool within its limits ([`crate::limit`]).
 
-use std::sync::Arc;
-
-use axum::body::Bytes;
-use axum::extract::State;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::Json;
@@ -27,8 +23,8 @@ use datafile::PixelRecord;
 use serde::Deserialize;
 
 use crate::api_error::{json_body, no_store, ApiError};
+pub use crate::explore::{CheckedSample, Verdict};
 use crate::explore::{ObserverEvent, VIEW_FIELDS};
-use crate::explore_routes::ExploreState;
 use crate::state::status_name;
 use crate::view::View;
 
@@ -38,26 +34,6 @@ pub const MAX_CHECK_SAMPLES: usize = 128;
 pub const MAX_CHECK_BYTES: usize = 32 << 10;
 /// The longest renderer name kept (WebGL's `RENDERER` string), in characters.
 const MAX_RENDERER_CHARS: usize = 200;
-
-/// What the CPU exact tracer says of the page's samples.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Verdict {
-    /// They agree within `gpu::check`'s tolerance.
-    Agree,
-    /// They do not: why (how many differ, and the first).
-    Disagree(String),
-    /// The CPU tracer cannot trace them (this scene has no exact tracer): why.
-    Unchecked(String),
-}
-
-/// One sample the page traced: its cell of the view's sample grid and the kernel's record
-/// (status and object; the check compares nothing else).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CheckedSample {
-    pub x: u32,
-    pub y: u32,
-    pub record: PixelRecord,
-}
 
 /// The body of `POST /api/explore/check`.
 #[derive(Deserialize)]
@@ -111,11 +87,17 @@ fn sample(k: usize, s: &SampleJson) -> Result<CheckedSample, String> {
     })
 }
 
-/// `POST /api/explore/check`.
-pub async fn check(
-    State(state): State<Arc<ExploreState>>,
-    body: Bytes,
-) -> Result<Response, ApiError> {
+/// A request of `POST /api/explore/check`, checked: the view, the renderer's name (cut to
+/// [`MAX_RENDERER_CHARS`]) and the samples.
+pub struct Checked {
+    pub view: View,
+    pub renderer: String,
+    pub samples: Vec<CheckedSample>,
+}
+
+/// The body of `POST /api/explore/check` read and checked (events within `bound`); a refusal
+/// names the field, or is 413 for a body over [`MAX_CHECK_BYTES`].
+pub fn request(body: &[u8], bound: f64) -> Result<Checked, ApiError> {
     if body.len() > MAX_CHECK_BYTES {
         return Err(ApiError::new(
             StatusCode::PAYLOAD_TOO_LARGE,
@@ -125,7 +107,7 @@ pub async fn check(
             ),
         ));
     }
-    let asked: CheckRequest = json_body(&body, "check")?;
+    let asked: CheckRequest = json_body(body, "check")?;
     if asked.samples.is_empty() || asked.samples.len() > MAX_CHECK_SAMPLES {
         return Err(ApiError::bad_request(format!(
             "check.samples: {} samples, give 1 to {MAX_CHECK_SAMPLES}",
@@ -134,25 +116,27 @@ pub async fn check(
     }
     let renderer: String = asked.renderer.chars().take(MAX_RENDERER_CHARS).collect();
     let event = ObserverEvent::of_view(&asked.view);
-    if let Some(why) = event.refusal_as(state.explorer.bound(), "check.view", VIEW_FIELDS) {
+    if let Some(why) = event.refusal_as(bound, "check.view", VIEW_FIELDS) {
         return Err(ApiError::bad_request(why));
     }
     let samples = (asked.samples.iter().enumerate())
         .map(|(k, s)| sample(k, s))
         .collect::<Result<Vec<_>, _>>()
         .map_err(ApiError::bad_request)?;
-    let checked = samples.len();
-    let view = asked.view;
-    let work = state.viewer.work().admit()?;
-    let verdict = work
-        .run(move || state.explorer.source().check(&view, &samples, &renderer))
-        .await?
-        .map_err(ApiError::bad_request)?;
+    Ok(Checked {
+        view: asked.view,
+        renderer,
+        samples,
+    })
+}
+
+/// The answer of `POST /api/explore/check` for `checked` samples.
+pub fn answer(verdict: Verdict, checked: usize) -> Response {
     let (verdict, reason) = match verdict {
         Verdict::Agree => ("agree", None),
         Verdict::Disagree(why) => ("disagree", Some(why)),
         Verdict::Unchecked(why) => ("unchecked", Some(why)),
     };
     let body = serde_json::json!({ "verdict": verdict, "checked": checked, "reason": reason });
-    Ok((no_store(), Json(body)).into_response())
+    (no_store(), Json(body)).into_response()
 }
