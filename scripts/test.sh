@@ -15,6 +15,9 @@ command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninterac
 # renders its OpenGL ES 3 context in software (crates/gpu/tests, crates/godel/tests/gpu_cli.rs).
 dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || { apt-get update -qq \
     && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null; }
+# Khronos' reference GLSL compiler checks every kernel a host builds (crates/gpu/tests/glslang.rs).
+command -v glslangValidator >/dev/null || { apt-get update -qq \
+    && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq glslang-tools >/dev/null; }
 
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet

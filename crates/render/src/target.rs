@@ -481,7 +481,7 @@ fn static_direction(metric: &Metric, x: Event, k: FourVector) -> [f64; 3] {
 
 /// Body longitude/latitude as texture coordinates: u = (φ + π)/2π from e1 toward e2,
 /// v = ½ + asin(n·e3)/π (v = 1 at the north pole e3).
-fn lon_lat(p: [f64; 3]) -> (f64, f64) {
+pub fn lon_lat(p: [f64; 3]) -> (f64, f64) {
     let n = normalize3(p);
     let u = (n[1].atan2(n[0]) + PI) / (2.0 * PI);
     let v = 0.5 + n[2].clamp(-1.0, 1.0).asin() / PI;

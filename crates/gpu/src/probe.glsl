@@ -1,0 +1,121 @@
+
+// ---------------------------------------------------------------------------------------
+// The probe entry point (appended after the kernel, compiled with `#define PROBE PROBE_…` in
+// place of the pixel kernel; docs/physics.md "The GPU kernel"): one fragment evaluates one
+// group of the kernel's functions on the arguments of its texels of u_args, and writes the
+// results to its first PROBE_SLOTS slots. crates/gpu/src/probe.rs is its host,
+// crates/gpu/tests/probes.rs holds each function to its Rust twin in f64.
+#ifdef PROBE
+#define PROBE_ELEMENTARY 1
+#define PROBE_METRIC 2
+#define PROBE_CHRISTOFFEL 3
+#define PROBE_FRAME 4
+#define PROBE_CAMERA 5
+#define PROBE_ISOMETRY 6
+#define PROBE_CLOSED_FORM 7
+#define PROBE_TRANSPORT 8
+#define PROBE_SHADOW 9
+#define PROBE_REJECT 10
+#define PROBE_SURFACE 11
+
+uniform sampler2D u_args;   // RGBA32F: fragment (x, y) reads texels (x·ARG_TEXELS + j, y)
+const int ARG_TEXELS = 4;
+
+vec4 arg(int j) {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    return texelFetch(u_args, ivec2(p.x * ARG_TEXELS + j, p.y), 0);
+}
+float flag(bool b) { return b ? 1.0 : 0.0; }
+
+void main() {
+    for (int s = 0; s < slots.length(); s++) slots[s] = vec4(0.0);
+    vec4 a0 = arg(0), a1 = arg(1), a2 = arg(2), a3 = arg(3);
+#if PROBE == PROBE_ELEMENTARY
+    // a0 = (x, y, x′, s) for atanA(x), atan2s(y, x′), asinA(s), acosA(s); a1.x an angle;
+    // a1.yzw arguments of asinh_, acosh_ (≥ 1) and atanh_ (|·| < 1); a2 for atanA4, a3
+    // (in [0, 1]) for asinA4, a1.y for halfTanh.
+    slots[0] = vec4(atanA(a0.x), atan2s(a0.y, a0.z), asinA(a0.w), acosA(a0.w));
+    slots[1] = vec4(cis(a1.x), sinA(a1.x), cosA(a1.x));
+    slots[2] = atanA4(a2);
+    slots[3] = asinA4(a3);
+    slots[4] = vec4(asinh_(a1.y), acosh_(a1.z), atanh_(a1.w), halfTanh(a1.y));
+#elif PROBE == PROBE_METRIC
+    // g and g⁻¹ at the event a0, by columns.
+    mat4 g = metricAt(a0), gi = inverseMetricAt(a0);
+    slots[0] = g[0]; slots[1] = g[1]; slots[2] = g[2]; slots[3] = g[3];
+    slots[4] = gi[0]; slots[5] = gi[1]; slots[6] = gi[2]; slots[7] = gi[3];
+#elif PROBE == PROBE_CHRISTOFFEL
+    // Γ(u, v) and Γ(u, u) at a0 for u = a1, v = a2; the normal-coordinate displacement of a1.
+    slots[0] = christoffel(a0, a1, a2);
+    slots[1] = christoffel(a0, a1, a1);
+    slots[2] = normalDisplacement(a0, a1);
+#elif PROBE == PROBE_FRAME
+    // The static frame at a0, and it boosted to speed a1.x along the unit a1.yzw, by columns.
+    mat4 f = staticFrame(a0);
+    mat4 b = boostFrame(f, a1.x, a1.yzw);
+    slots[0] = f[0]; slots[1] = f[1]; slots[2] = f[2]; slots[3] = f[3];
+    slots[4] = b[0]; slots[5] = b[1]; slots[6] = b[2]; slots[7] = b[3];
+#elif PROBE == PROBE_CAMERA
+    // The camera direction at image position a0.xy (the camera in the uniforms), and whether
+    // there is one.
+    vec3 d = vec3(0.0);
+    bool ok = cameraDirection(a0.xy, d);
+    slots[0] = vec4(d, flag(ok));
+#elif PROBE == PROBE_ISOMETRY
+    // T = R_{a1.x} ∘ T_{a0}: its parameters, the image of the event a2 and the vector a3 under
+    // it, its inverse's parameters and the image of (a2, a3) under the inverse.
+    Iso to = toOrigin(a0);
+    Iso m = Iso(to.t0, to.w0, to.z0, a1.x);
+    vec4 e = vec4(0.0), k = vec4(0.0);
+    applyPush(m, a2, a3, e, k);
+    Iso inv = inverseIso(m);
+    vec4 ie = vec4(0.0), ik = vec4(0.0);
+    applyPush(inv, a2, a3, ie, ik);
+    slots[0] = vec4(to.t0, to.w0, to.z0);
+    slots[1] = e; slots[2] = k;
+    slots[3] = vec4(inv.t0, inv.w0, inv.z0);
+    slots[4] = vec4(inv.rot, 0.0, 0.0, 0.0);
+    slots[5] = ie; slots[6] = ik;
+#elif PROBE == PROBE_CLOSED_FORM
+    // The closed form from the origin with tangent a0 at λ = a1.x: (ok, λ_ret, β(λ), 0), the
+    // event and the tangent.
+    OGeo g = originGeodesic(a0);
+    vec4 ev = vec4(0.0), tan_ = vec4(0.0);
+    ogeoAt(g, a1.x, ev, tan_);
+    slots[0] = vec4(flag(g.ok), returnParameter(g), flowRotation(g, a1.x), 0.0);
+    slots[1] = ev; slots[2] = tan_;
+#elif PROBE == PROBE_TRANSPORT
+    // The vector a2 at the origin transported along the closed form with tangent a0 to λ = a1.x.
+    OGeo g = originGeodesic(a0);
+    vec4 ev = vec4(0.0), tan_ = vec4(0.0);
+    ogeoAt(g, a1.x, ev, tan_);
+    slots[0] = transportFromOrigin(g, a1.x, ev, a2);
+#elif PROBE == PROBE_SHADOW
+    // For a target at ρ = a0.w = 2a·s (s = a1.x, the least angle reaching it ψ_min = a1.y, its
+    // height z_P = a1.z; the light's set-up sets these): θ and G of the ray leaving at ψ = a0.x
+    // to the z axis, winding a0.y, inbound where a0.z > ½, and G at the four |c| of a3 (the
+    // last one the grid's last point, c_max); D² of the ray leaving the axis at (ψ, χ) = a2.xy,
+    // ending at λ = a2.z; Φ(θ) for q = a1.w, θ = a2.w.
+    gS = a1.x;
+    gPsiMin = a1.y;
+    gZp = a1.z;
+    int n = toInt(a0.y, 0, MAX_WINDINGS);
+    bool inbound = a0.z > 0.5;
+    slots[0] = vec4(shadowTheta(a0.x, n, inbound), shadowG(a0.x, n, inbound),
+                    areaDistanceSq(a2.x, a2.y, a2.z), bigPhi(a1.w, a2.w));
+    slots[1] = shadowG4(a0.w, a1.z, a3, vec4(0.0, 1.0, 2.0, float(SHADOW_GRID)), n, inbound);
+#elif PROBE == PROBE_REJECT
+    // For the closed form from the origin with tangent a0 over λ ∈ [a2.x, a2.y]: whether it
+    // misses the ball of centre (w, z) = (a1.xy, a1.z) and reach a1.w, and the plane z = a2.z.
+    OGeo g = originGeodesic(a0);
+    slots[0] = vec4(flag(ballMisses(g, a1.xy, a1.z, a1.w, a2.x, a2.y)),
+                    flag(planeMisses(g, a2.z, a2.x, a2.y)), flag(g.ok), 0.0);
+#elif PROBE == PROBE_SURFACE
+    // The texture coordinates of the direction a0.xyz.
+    slots[0] = vec4(lonLat(a0.xyz), 0.0, 0.0);
+#else
+#error unknown PROBE
+#endif
+    writeSlots();
+}
+#endif
