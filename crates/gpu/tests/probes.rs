@@ -1,0 +1,1167 @@
+//! The kernel tested in pieces (docs/physics.md, "The GPU kernel"): each group of the
+//! kernel's functions, compiled with the `PROBE` entry point (`src/probe.glsl`), evaluated on
+//! a few hundred seeded inputs with their edge cases, and held to its Rust twin in f64.
+//!
+//! Tolerances: the inputs are f32 (the twin gets the same f32 values, widened), so only the
+//! kernel's own rounding counts: f32 rounds each operation to 2⁻²⁴ relative (half of
+//! [`ULP`]), and a function of a few dozen operations ends within a few ULP of the size of
+//! the terms it adds. Each tolerance is K·ULP times that size, the size written out per
+//! function (where cancellation or an ill-conditioned step makes it larger, it says so), with
+//! K a small constant; the worst ratio of error to tolerance is printed per function.
+
+mod common;
+
+use gpu::input::{KernelInput, Uniforms};
+use gpu::probe::{Args, Function, Prober, Results};
+use render::reject::{static_distance, Rejection, StaticBall};
+use render::target::Target;
+use render::worldline::Worldline;
+use scene::{Camera, Motion, Scene};
+use spacetime::isometry::disc;
+use spacetime::transport::transport_from_origin;
+use spacetime::{
+    boost, gram_schmidt_static_frame, shadow_rays_from_axis, source_area_distance_sq, Branch,
+    Event, FourVector, Godel, Isometry, LocalVelocity, Metric, Minkowski, OriginGeodesic,
+    ShadowRay, Spacetime,
+};
+use std::f64::consts::{PI, SQRT_2};
+
+/// f32's machine epsilon, 2⁻²³: twice the largest relative rounding of one operation.
+const ULP: f64 = f32::EPSILON as f64;
+/// The kernel's INF (a bound that is not one).
+const INF: f32 = 3.0e38;
+
+/// Seeded random numbers (SplitMix64): the same inputs on every run.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [lo, hi).
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// A random unit vector.
+    fn unit(&mut self) -> [f64; 3] {
+        let z = self.range(-1.0, 1.0);
+        let phi = self.range(-PI, PI);
+        let s = (1.0 - z * z).sqrt();
+        [s * phi.cos(), s * phi.sin(), z]
+    }
+}
+
+/// `v` as the kernel reads it: rounded to f32, widened back (the twin's input).
+fn f(v: f64) -> f64 {
+    f64::from(v as f32)
+}
+fn f4(v: [f64; 4]) -> [f64; 4] {
+    v.map(f)
+}
+fn texel(v: [f64; 4]) -> [f32; 4] {
+    v.map(|c| c as f32)
+}
+fn event(v: [f64; 4]) -> Event {
+    Event::new(v[0], v[1], v[2], v[3])
+}
+fn vector(v: [f64; 4]) -> FourVector {
+    FourVector::new(v[0], v[1], v[2], v[3])
+}
+
+/// The worst error of one function's outputs, as a fraction of their tolerances.
+struct Compare {
+    name: &'static str,
+    worst: f64,
+    at: String,
+    count: usize,
+}
+
+impl Compare {
+    fn new(name: &'static str) -> Compare {
+        Compare {
+            name,
+            worst: 0.0,
+            at: String::new(),
+            count: 0,
+        }
+    }
+
+    /// Notes the kernel's `got` against the twin's `want` within `tol` (NaN: never within).
+    fn value(&mut self, got: f32, want: f64, tol: f64, what: impl Fn() -> String) {
+        self.count += 1;
+        let err = (f64::from(got) - want).abs();
+        let ratio = if err == 0.0 {
+            0.0
+        } else if (err / tol).is_nan() {
+            f64::INFINITY
+        } else {
+            err / tol
+        };
+        if ratio > self.worst || self.at.is_empty() {
+            self.worst = self.worst.max(ratio);
+            self.at = format!(
+                "{}: kernel {got:e}, twin {want:e}, tolerance {tol:e}",
+                what()
+            );
+        }
+    }
+
+    /// Notes a yes/no answer that must be the twin's.
+    fn same(&mut self, got: f32, want: bool, what: impl Fn() -> String) {
+        self.value(got, f64::from(u8::from(want)), 0.5, what);
+    }
+
+    fn assert(&self) {
+        eprintln!(
+            "{}: {} values, worst error {:.3} of its tolerance ({})",
+            self.name, self.count, self.worst, self.at
+        );
+        assert!(self.count > 0, "{}: nothing compared", self.name);
+        assert!(
+            self.worst <= 1.0,
+            "{}: the kernel differs from its Rust twin beyond f32's tolerance at {}",
+            self.name,
+            self.at
+        );
+    }
+}
+
+/// A scene's kernel input (the defines and uniforms a host gives the kernel): Gödel's
+/// universe with parameter a = 1 or Minkowski space.
+fn input(godel: bool) -> KernelInput {
+    KernelInput::new(&scene(godel))
+}
+
+fn scene(godel: bool) -> Scene {
+    if godel {
+        common::example("static-sphere")
+    } else {
+        common::scene(common::MINKOWSKI_TWO_BALLS)
+    }
+}
+
+/// The uniforms with Gödel's parameter `a` (already an f32).
+fn with_a(input: &KernelInput, a: f64) -> Uniforms {
+    Uniforms {
+        a: a as f32,
+        ..input.uniforms.clone()
+    }
+}
+
+/// Evaluates `function` compiled for `input` on `args`.
+fn run(
+    input: &KernelInput,
+    function: Function,
+    uniforms: &Uniforms,
+    args: &[Args],
+) -> Vec<Results> {
+    let prober = Prober::new(input, function).unwrap_or_else(|e| panic!("{function:?}: {e}"));
+    prober
+        .eval(uniforms, args)
+        .unwrap_or_else(|e| panic!("{function:?}: {e}"))
+}
+
+/// Gödel parameters the physics probes run at (exact in f32).
+const AS: [f64; 3] = [0.5, 1.0, 2.0];
+
+/// An event at distance up to `r_max`·a from the axis (some on it), t and z of a few a.
+fn random_event(rng: &mut Rng, a: f64, r_max: f64, i: usize) -> [f64; 4] {
+    let r = if i.is_multiple_of(10) {
+        0.0
+    } else {
+        rng.range(0.0, r_max * a)
+    };
+    let phi = rng.range(-PI, PI);
+    f4([
+        rng.range(-10.0, 10.0),
+        r * phi.cos(),
+        r * phi.sin(),
+        rng.range(-5.0, 5.0) * a,
+    ])
+}
+
+#[test]
+fn elementary_functions_match_std() {
+    let mut rng = Rng(1);
+    let mut args: Vec<Args> = Vec::new();
+    // Edge cases first: zeros, ±1, the range-reduction boundaries tan(π/8), tan(3π/8), large
+    // and tiny magnitudes, angles at multiples of π/4 and up to the reduction's limit 8192.
+    let edges = [
+        0.0, 1.0, -1.0, 0.41421356, 2.41421356, 1e-6, -1e-6, 1e6, -3e4, 0.5,
+    ];
+    let angles = [
+        0.0,
+        PI / 4.0,
+        -PI / 2.0,
+        PI,
+        3.0 * PI / 4.0,
+        8000.0,
+        -8191.0,
+        1e-7,
+    ];
+    for i in 0..400 {
+        let pick = |rng: &mut Rng, edge: f64| {
+            if i < edges.len() {
+                edge
+            } else {
+                let m = 10f64.powf(rng.range(-6.0, 6.0));
+                if rng.range(0.0, 1.0) < 0.5 {
+                    -m
+                } else {
+                    m
+                }
+            }
+        };
+        let x = pick(&mut rng, edges[i % edges.len()]);
+        // atan2s: points at every angle and radius, the axes included (no −0: the kernel
+        // and Rust place −0 differently at ±π, and the kernel is never given one).
+        let (y2, x2) = match i {
+            0 => (0.0, 0.0),
+            1 => (0.0, -1.0),
+            2 => (1.0, 0.0),
+            3 => (-1.0, 0.0),
+            4 => (0.0, 1.0),
+            _ => {
+                let t = rng.range(-PI, PI);
+                let r = 10f64.powf(rng.range(-4.0, 4.0));
+                (r * t.sin(), r * t.cos())
+            }
+        };
+        let s = if i < 5 {
+            [0.0, 1.0, -1.0, 0.5, -0.999][i]
+        } else {
+            rng.range(-1.0, 1.0)
+        };
+        let angle = if i < angles.len() {
+            angles[i]
+        } else if i.is_multiple_of(4) {
+            rng.range(-8000.0, 8000.0)
+        } else {
+            rng.range(-20.0, 20.0)
+        };
+        let hyperbolic = pick(&mut rng, edges[(i + 3) % edges.len()]);
+        let cosh_arg = if i < 3 {
+            [1.0, 1.0 + 1e-6, 1e5][i]
+        } else {
+            1.0 + 10f64.powf(rng.range(-6.0, 4.0))
+        };
+        let tanh_arg = if i < 3 {
+            [0.0, 0.9999999, -0.5][i]
+        } else {
+            rng.range(-0.9999, 0.9999)
+        };
+        let lanes = [0; 4].map(|_| pick(&mut rng, x));
+        let unit = [0; 4].map(|_| if i < 2 { i as f64 } else { rng.range(0.0, 1.0) });
+        args.push([
+            texel([x, y2, x2, s]),
+            texel([angle, hyperbolic, cosh_arg, tanh_arg]),
+            texel(lanes),
+            texel(unit),
+        ]);
+    }
+    let input = input(true);
+    let out = run(&input, Function::Elementary, &input.uniforms, &args);
+    let mut atan = Compare::new("atanA");
+    let mut atan2 = Compare::new("atan2s");
+    let mut asin = Compare::new("asinA");
+    let mut acos = Compare::new("acosA");
+    let mut cis = Compare::new("cis, sinA, cosA");
+    let mut atan4 = Compare::new("atanA4");
+    let mut asin4 = Compare::new("asinA4");
+    let mut asinh = Compare::new("asinh_");
+    let mut acosh = Compare::new("acosh_");
+    let mut atanh = Compare::new("atanh_");
+    let mut half = Compare::new("halfTanh");
+    for (a, r) in args.iter().zip(&out) {
+        let [x, y2, x2, s] = a[0].map(f64::from);
+        let [angle, h, ch, th] = a[1].map(f64::from);
+        let w = || format!("{a:?}");
+        // Cephes' atanf: ~2·10⁻⁷ relative; the arcsines add a square root and a division.
+        atan.value(r[0][0], x.atan(), 4.0 * ULP * x.atan().abs(), w);
+        atan2.value(r[0][1], y2.atan2(x2), 4.0 * ULP * y2.atan2(x2).abs(), w);
+        asin.value(r[0][2], s.asin(), 4.0 * ULP * s.asin().abs(), w);
+        acos.value(r[0][3], s.acos(), 4.0 * ULP * s.acos().abs(), w);
+        // The reduction by π/4 in three parts is exact for |a| < 8192: ~1 ULP of 1.
+        let (sn, cs) = angle.sin_cos();
+        for (got, want) in [(r[1][0], cs), (r[1][1], sn), (r[1][2], sn), (r[1][3], cs)] {
+            cis.value(got, want, 2.0 * ULP, w);
+        }
+        for (k, lane) in a[2].iter().enumerate() {
+            let want = f64::from(*lane).atan();
+            atan4.value(r[2][k], want, 4.0 * ULP * want.abs(), w);
+        }
+        for (k, lane) in a[3].iter().enumerate() {
+            let want = f64::from(*lane).asin();
+            asin4.value(r[3][k], want, 4.0 * ULP * want.abs(), w);
+        }
+        // log(|x| + √(x² + 1)) near 0 ends within an ULP of 1, not of the value.
+        asinh.value(r[4][0], h.asinh(), 4.0 * ULP * (1.0 + h.asinh().abs()), w);
+        // x² − 1 cancels near x = 1: its rounding ULP·x² moves acosh by ULP·x/√(x² − 1).
+        let cancel = if ch > 1.0 {
+            ch / (ch * ch - 1.0).sqrt()
+        } else {
+            0.0
+        };
+        acosh.value(
+            r[4][1],
+            ch.acosh(),
+            4.0 * ULP * (1.0 + ch.acosh() + cancel),
+            w,
+        );
+        atanh.value(r[4][2], th.atanh(), 4.0 * ULP * (1.0 + th.atanh().abs()), w);
+        let want = (0.5 * h.asinh()).tanh();
+        half.value(r[4][3], want, 4.0 * ULP * want.abs(), w);
+    }
+    for c in [
+        atan, atan2, asin, acos, cis, atan4, asin4, asinh, acosh, atanh, half,
+    ] {
+        c.assert();
+    }
+}
+
+/// A case of a physics probe: Gödel's a and three four-vectors (inputs, f32 already).
+type Case = (f64, [f64; 4], [f64; 4], [f64; 4]);
+
+/// Events at up to 3a from the axis for each a, with two random vectors.
+fn events_and_vectors(seed: u64) -> Vec<Case> {
+    let mut rng = Rng(seed);
+    let mut out = Vec::new();
+    for &a in &AS {
+        for i in 0..100 {
+            let e = random_event(&mut rng, a, 3.0, i);
+            let u = f4([0; 4].map(|_| rng.range(-2.0, 2.0)));
+            let v = f4([0; 4].map(|_| rng.range(-2.0, 2.0)));
+            out.push((a, e, u, v));
+        }
+    }
+    out
+}
+
+/// Runs `function` once per a over the cases of `events_and_vectors` (a first).
+fn run_per_a(
+    input: &KernelInput,
+    function: Function,
+    cases: &[Case],
+    args: impl Fn(&Case) -> Args,
+) -> Vec<Results> {
+    let prober = Prober::new(input, function).unwrap_or_else(|e| panic!("{function:?}: {e}"));
+    let mut out = Vec::new();
+    for &a in &AS {
+        let batch: Vec<Args> = cases.iter().filter(|c| c.0 == a).map(&args).collect();
+        out.extend(
+            prober
+                .eval(&with_a(input, a), &batch)
+                .unwrap_or_else(|e| panic!("{function:?}: {e}")),
+        );
+    }
+    out
+}
+
+fn metric_of(godel: bool, a: f64) -> Metric {
+    if godel {
+        Metric::Godel(Godel::new(a))
+    } else {
+        Metric::Minkowski(Minkowski)
+    }
+}
+
+/// g and g⁻¹: each component within 8 ULP of the size of its terms, which grow as
+/// (x² + y²)/4a² away from the axis.
+fn metric_matches(godel: bool) {
+    let cases = events_and_vectors(2);
+    let input = input(godel);
+    let out = run_per_a(&input, Function::Metric, &cases, |c| {
+        [texel(c.1), [0.0; 4], [0.0; 4], [0.0; 4]]
+    });
+    let mut g = Compare::new("metricAt");
+    let mut gi = Compare::new("inverseMetricAt");
+    for ((a, e, _, _), r) in cases.iter().zip(&out) {
+        let m = metric_of(godel, *a);
+        let (want, want_inv) = (m.metric(event(*e)), m.inverse_metric(event(*e)));
+        let size = 1.0 + (e[1] * e[1] + e[2] * e[2]) / (4.0 * a * a);
+        for col in 0..4 {
+            for row in 0..4 {
+                let w = || format!("a = {a}, event {e:?}, [{col}][{row}]");
+                g.value(r[col][row], want[col][row], 4.0 * ULP * size, w);
+                gi.value(r[4 + col][row], want_inv[col][row], 4.0 * ULP * size, w);
+            }
+        }
+    }
+    g.assert();
+    gi.assert();
+}
+
+#[test]
+fn the_metric_and_its_inverse_match_spacetime_godel() {
+    metric_matches(true);
+}
+
+#[test]
+fn the_metric_and_its_inverse_match_spacetime_minkowski() {
+    metric_matches(false);
+}
+
+#[test]
+fn christoffel_and_normal_displacement_match_spacetime() {
+    let cases = events_and_vectors(3);
+    let input = input(true);
+    let out = run_per_a(&input, Function::Christoffel, &cases, |c| {
+        [texel(c.1), texel(c.2), texel(c.3), [0.0; 4]]
+    });
+    let mut gamma = Compare::new("christoffel");
+    let mut normal = Compare::new("normalDisplacement");
+    for ((a, e, u, v), r) in cases.iter().zip(&out) {
+        let g = Godel::new(*a).christoffel(event(*e));
+        let contract = |u: &[f64; 4], v: &[f64; 4]| {
+            std::array::from_fn::<f64, 4, _>(|mu| {
+                (0..4)
+                    .flat_map(|i| (0..4).map(move |j| (i, j)))
+                    .map(|(i, j)| g[mu][i][j] * u[i] * v[j])
+                    .sum()
+            })
+        };
+        let (uv, uu) = (contract(u, v), contract(u, u));
+        let xi = spacetime::normal::displacement(&g, *u);
+        // Γ ~ (1 + (x² + y²)/a²)/a: the metric's derivatives times its inverse, summed over
+        // the components of u and v (|u|, |v| ≤ 2·2).
+        let r2 = (e[1] * e[1] + e[2] * e[2]) / (a * a);
+        let size = (1.0 + r2) / a * 16.0;
+        for mu in 0..4 {
+            let w = || format!("a = {a}, event {e:?}, u {u:?}, v {v:?}, μ = {mu}");
+            gamma.value(r[0][mu], uv[mu], 4.0 * ULP * size, w);
+            gamma.value(r[1][mu], uu[mu], 4.0 * ULP * size, w);
+            normal.value(r[2][mu], xi[mu], 4.0 * ULP * (size + 2.0), w);
+        }
+    }
+    gamma.assert();
+    normal.assert();
+}
+
+/// The static frame at events up to 3a from the axis, and it boosted to speeds up to 0.95
+/// in random directions: each column within K ULP of γ²(1 + (x² + y²)/4a²) (the frame's
+/// components grow as the metric's; 1 − v² loses v²/(1 − v²) ULP, the boost multiplies by γ).
+fn frames_match(godel: bool) {
+    let mut rng = Rng(4);
+    let cases = events_and_vectors(4)
+        .into_iter()
+        .enumerate()
+        .map(|(i, (a, e, _, _))| {
+            let speed = if i.is_multiple_of(7) {
+                0.0
+            } else {
+                rng.range(0.0, 0.95)
+            };
+            let n = rng.unit();
+            (a, e, f4([speed, n[0], n[1], n[2]]), [0.0; 4])
+        })
+        .collect::<Vec<_>>();
+    let input = input(godel);
+    let out = run_per_a(&input, Function::Frame, &cases, |c| {
+        [texel(c.1), texel(c.2), [0.0; 4], [0.0; 4]]
+    });
+    let mut stat = Compare::new("staticFrame");
+    let mut boosted = Compare::new("boostFrame");
+    for ((a, e, v, _), r) in cases.iter().zip(&out) {
+        let m = metric_of(godel, *a);
+        let frame = gram_schmidt_static_frame(&m.metric(event(*e)));
+        let velocity = LocalVelocity::new(v[0], [v[1], v[2], v[3]]).expect("a velocity");
+        let moved = boost(&frame, velocity);
+        let size = 1.0 + (e[1] * e[1] + e[2] * e[2]) / (4.0 * a * a);
+        let gamma2 = 1.0 / (1.0 - v[0] * v[0]);
+        for col in 0..4 {
+            let (fc, bc) = (frame.e[col].to_array(), moved.e[col].to_array());
+            for row in 0..4 {
+                let w = || format!("a = {a}, event {e:?}, velocity {v:?}, [{col}][{row}]");
+                stat.value(r[col][row], fc[row], 4.0 * ULP * size, w);
+                boosted.value(r[4 + col][row], bc[row], 4.0 * ULP * size * gamma2, w);
+            }
+        }
+    }
+    stat.assert();
+    boosted.assert();
+}
+
+#[test]
+fn static_and_boosted_frames_match_spacetime_frame_godel() {
+    frames_match(true);
+}
+
+#[test]
+fn static_and_boosted_frames_match_spacetime_frame_minkowski() {
+    frames_match(false);
+}
+
+#[test]
+fn camera_directions_match_scene_camera() {
+    let cameras = [
+        Camera::Pinhole {
+            fov_deg: 60.0,
+            width: 80,
+            height: 60,
+        },
+        Camera::Pinhole {
+            fov_deg: 150.0,
+            width: 33,
+            height: 101,
+        },
+        Camera::Panorama {
+            h_fov_deg: 360.0,
+            v_fov_deg: 90.0,
+            width: 120,
+            height: 30,
+        },
+        Camera::Panorama {
+            h_fov_deg: 100.0,
+            v_fov_deg: 170.0,
+            width: 7,
+            height: 50,
+        },
+        Camera::Sphere {
+            width: 64,
+            height: 32,
+        },
+        Camera::Fisheye {
+            fov_deg: 180.0,
+            size: 41,
+        },
+        Camera::Fisheye {
+            fov_deg: 360.0,
+            size: 64,
+        },
+    ];
+    let input = input(true);
+    let prober = Prober::new(&input, Function::Camera).expect("compiles");
+    let mut rng = Rng(5);
+    let mut dir = Compare::new("cameraDirection");
+    for camera in cameras {
+        let mut scene = scene(true);
+        scene.camera = camera;
+        let uniforms = KernelInput::new(&scene).uniforms;
+        let grid = scene.sample_camera();
+        let (w, h) = (f64::from(grid.width()), f64::from(grid.height()));
+        // Corners, the centre, the border, then anywhere (a fisheye's corners lie outside).
+        let mut points = vec![
+            (0.0, 0.0),
+            (w, h),
+            (0.5 * w, 0.5 * h),
+            (0.5, 0.5),
+            (w, 0.5 * h),
+        ];
+        points.extend((0..200).map(|_| (rng.range(0.0, w), rng.range(0.0, h))));
+        let points: Vec<(f64, f64)> = points.into_iter().map(|(x, y)| (f(x), f(y))).collect();
+        let args: Vec<Args> = points
+            .iter()
+            .map(|&(x, y)| [texel([x, y, 0.0, 0.0]), [0.0; 4], [0.0; 4], [0.0; 4]])
+            .collect();
+        let out = prober.eval(&uniforms, &args).expect("evaluates");
+        for (&(x, y), r) in points.iter().zip(&out) {
+            let want = grid.direction_at(x, y);
+            let what = || format!("{camera:?} at ({x}, {y})");
+            // A fisheye's circle is decided by a rounded radius: skip positions at its rim.
+            if let Camera::Fisheye { .. } = camera {
+                let rho = (2.0 * x / w - 1.0).hypot(1.0 - 2.0 * y / h);
+                if (rho - 1.0).abs() < 1e-5 {
+                    continue;
+                }
+            }
+            dir.same(r[0][3], want.is_some(), what);
+            // Angles of up to 2π from a few roundings: 16 ULP of 1.
+            for (k, c) in want.unwrap_or([0.0; 3]).iter().enumerate() {
+                dir.value(r[0][k], *c, 8.0 * ULP, what);
+            }
+        }
+    }
+    dir.assert();
+}
+
+#[test]
+fn isometries_match_spacetime_isometry() {
+    let mut rng = Rng(6);
+    let mut cases = Vec::new();
+    for &a in &AS {
+        for i in 0..100 {
+            let p0 = random_event(&mut rng, a, 3.0, i);
+            // One in ten a pure translation (no disc point, no rotation): its own branch.
+            let rot = if i.is_multiple_of(10) {
+                0.0
+            } else {
+                f(rng.range(-2.0 * PI, 2.0 * PI))
+            };
+            let at = random_event(&mut rng, a, 3.0, i + 1);
+            let v = f4([0; 4].map(|_| rng.range(-2.0, 2.0)));
+            cases.push((a, p0, [rot, 0.0, 0.0, 0.0], at, v));
+        }
+    }
+    let input = input(true);
+    let prober = Prober::new(&input, Function::Isometry).expect("compiles");
+    let mut out = Vec::new();
+    for &a in &AS {
+        let batch: Vec<Args> = cases
+            .iter()
+            .filter(|c| c.0 == a)
+            .map(|c| [texel(c.1), texel(c.2), texel(c.3), texel(c.4)])
+            .collect();
+        out.extend(prober.eval(&with_a(&input, a), &batch).expect("evaluates"));
+    }
+    let mut to = Compare::new("toOrigin");
+    let mut apply = Compare::new("applyPush");
+    let mut inverse = Compare::new("inverseIso");
+    for ((a, p0, rot, at, v), r) in cases.iter().zip(&out) {
+        let m = Isometry::to_origin(*a, event(*p0)).then_rotate(rot[0]);
+        let inv = m.inverse();
+        let (e, k) = m.apply_push(event(*at), vector(*v));
+        let (ie, ik) = inv.apply_push(event(*at), vector(*v));
+        let w = || {
+            format!(
+                "a = {a}, p0 {p0:?}, rotation {}, at {at:?}, v {v:?}",
+                rot[0]
+            )
+        };
+        // Parameters: disc coordinates (< 1) and shifts, a few roundings each.
+        let params = |r: [f32; 4], iso: &Isometry, c: &mut Compare| {
+            let want = [iso.t0, iso.w0.re, iso.w0.im, iso.z0];
+            for k in 0..4 {
+                c.value(r[k], want[k], 4.0 * ULP * (1.0 + want[k].abs()), w);
+            }
+        };
+        params(r[0], &Isometry::to_origin(*a, event(*p0)), &mut to);
+        params(r[3], &inv, &mut inverse);
+        inverse.value(
+            r[4][0],
+            inv.rotation,
+            4.0 * ULP * (1.0 + inv.rotation.abs()),
+            w,
+        );
+        // The disc map's conditioning: x + iy = 2a w/√(1 − |w|²) grows as 1/(1 − |w|²) =
+        // (r² + 4a²)/4a² at the image and at the source; times the values' size and the
+        // times' (t includes 2√2 a arg(…)).
+        let cond = |p: [f64; 4]| 1.0 + (p[1] * p[1] + p[2] * p[2]) / (4.0 * a * a);
+        let check = |got_e: [f32; 4], got_k: [f32; 4], e: Event, k: FourVector, c: &mut Compare| {
+            let (e, k) = (e.to_array(), k.to_array());
+            let scale = cond(*at) * cond(e) * cond(*p0) * 8.0 * ULP;
+            let vsize = v.iter().map(|c| c.abs()).sum::<f64>();
+            for i in 0..4 {
+                c.value(
+                    got_e[i],
+                    e[i],
+                    scale * (1.0 + at[0].abs() + e[i].abs() + a),
+                    w,
+                );
+                c.value(got_k[i], k[i], scale * (vsize + k[i].abs()), w);
+            }
+        };
+        check(r[1], r[2], e, k, &mut apply);
+        check(r[5], r[6], ie, ik, &mut apply);
+    }
+    to.assert();
+    apply.assert();
+    inverse.assert();
+}
+
+/// A light ray's tangent at the origin (|E| = 1, either sign, E² ≥ k⊥² + p_z² so that f32
+/// rounding never makes it spacelike) or a particle's (κ = 1), with its edge cases: along z,
+/// in the plane z = 0.
+fn random_tangent(rng: &mut Rng, i: usize) -> [f64; 4] {
+    let mut n = rng.unit();
+    if i.is_multiple_of(11) {
+        n = [0.0, 0.0, if i.is_multiple_of(2) { 1.0 } else { -1.0 }];
+    } else if i % 11 == 1 {
+        let l = n[0].hypot(n[1]);
+        n = [n[0] / l, n[1] / l, 0.0];
+    }
+    let sign = if i.is_multiple_of(3) { 1.0 } else { -1.0 };
+    let p = if i.is_multiple_of(5) {
+        rng.range(0.1, 3.0)
+    } else {
+        1.0
+    };
+    let s = [f(p * n[0]), f(p * n[1]), f(p * n[2])];
+    let p2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+    let kappa = if i.is_multiple_of(5) { 1.0 } else { 0.0 };
+    // The smallest f32 E with E² ≥ p² + κ.
+    let mut e = (p2 + kappa).sqrt() as f32;
+    for _ in 0..4 {
+        if f64::from(e) * f64::from(e) < p2 + kappa {
+            e = e.next_up();
+        }
+    }
+    [sign * f64::from(e), s[0], s[1], s[2]]
+}
+
+#[test]
+fn closed_forms_match_spacetime_closed_form() {
+    let mut rng = Rng(7);
+    let mut cases = Vec::new();
+    for &a in &AS {
+        for i in 0..100 {
+            let k = random_tangent(&mut rng, i);
+            let geo = OriginGeodesic::new(a, vector(k)).expect("a causal tangent");
+            let ret = geo.return_parameter();
+            // λ from −2 to 4 loops, and λ = 0, half and whole loops.
+            let lambda = match i % 8 {
+                0 => 0.0,
+                1 => 0.5 * ret,
+                2 => ret,
+                _ => rng.range(-2.0 * ret, 4.0 * ret),
+            };
+            cases.push((a, k, [f(lambda), 0.0, 0.0, 0.0], [0.0; 4]));
+        }
+        // Not causal, or no energy: no closed form on either side.
+        cases.push((a, [1.0, 1.0, 1.0, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0; 4]));
+        cases.push((a, [0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0; 4]));
+    }
+    let input = input(true);
+    let out = run_per_a(&input, Function::ClosedForm, &cases, |c| {
+        [texel(c.1), texel(c.2), [0.0; 4], [0.0; 4]]
+    });
+    let mut origin = Compare::new("originGeodesic");
+    let mut at = Compare::new("ogeoAt");
+    let mut ret = Compare::new("returnParameter");
+    let mut flow = Compare::new("flowRotation");
+    for ((a, k, l, _), r) in cases.iter().zip(&out) {
+        let lambda = l[0];
+        let geo = OriginGeodesic::new(*a, vector(*k));
+        let w = || format!("a = {a}, k {k:?}, λ = {lambda}");
+        origin.same(r[0][0], geo.is_some(), w);
+        let Some(geo) = geo else { continue };
+        let lr = geo.return_parameter();
+        ret.value(r[0][1], lr, 4.0 * ULP * lr, w);
+        // θ = ωλ and the angles made from it grow with λ: their rounding is ULP·θ.
+        let theta = (lambda / lr * PI).abs();
+        let beta = geo.flow_rotation(lambda);
+        flow.value(r[0][2], beta, 4.0 * ULP * (1.0 + theta + beta.abs()), w);
+        let (e, t) = geo.at(lambda);
+        let (e, t) = (e.to_array(), t.to_array());
+        // t = sgn(E) 2√2 a Φ − Eλ: terms of size a·θ and |E λ|; x, y: r_max (≤ 2a for
+        // light) times the angle's rounding.
+        let size = 1.0
+            + a * theta
+            + (k[0] * lambda).abs()
+            + geo.r_max() * (1.0 + theta)
+            + (k[3] * lambda).abs();
+        let tsize = k.iter().map(|c| c.abs()).sum::<f64>() * (1.0 + theta);
+        for i in 0..4 {
+            at.value(r[1][i], e[i], 4.0 * ULP * size, w);
+            at.value(r[2][i], t[i], 4.0 * ULP * tsize, w);
+        }
+    }
+    origin.assert();
+    at.assert();
+    ret.assert();
+    flow.assert();
+}
+
+#[test]
+fn transport_matches_spacetime_transport() {
+    let mut rng = Rng(8);
+    let mut cases = Vec::new();
+    for &a in &AS {
+        for i in 0..100 {
+            let k = random_tangent(&mut rng, i);
+            let geo = OriginGeodesic::new(a, vector(k)).expect("a causal tangent");
+            let lambda = if i.is_multiple_of(9) {
+                0.0
+            } else {
+                rng.range(0.0, 3.0 * geo.return_parameter())
+            };
+            let v = f4([0; 4].map(|_| rng.range(-1.0, 1.0)));
+            cases.push((a, k, [f(lambda), 0.0, 0.0, 0.0], v));
+        }
+    }
+    let input = input(true);
+    let out = run_per_a(&input, Function::Transport, &cases, |c| {
+        [texel(c.1), texel(c.2), texel(c.3), [0.0; 4]]
+    });
+    let mut tr = Compare::new("transportFromOrigin");
+    for ((a, k, l, v), r) in cases.iter().zip(&out) {
+        let geo = OriginGeodesic::new(*a, vector(*k)).expect("a causal tangent");
+        let (_, want) = transport_from_origin(&geo, l[0], vector(*v));
+        let want = want.to_array();
+        // exp(−λA) of a light ray is nearly a null rotation, whose components grow as
+        // (λ|A|)², |A| ~ (|E| + k⊥ + |p_z|)/(√2 a), each rounded to ULP; the isometry back
+        // from within r_max ≤ 2a of the axis (1/(1 − |w|²) ≤ 2) adds a few ULP.
+        let s = l[0].abs() * (k[0].abs() + k[1].hypot(k[2]) + k[3].abs()) / (SQRT_2 * a);
+        let size = v.iter().map(|c| c.abs()).sum::<f64>() * (1.0 + s) * (1.0 + s);
+        let w = || format!("a = {a}, k {k:?}, λ = {}, w {v:?}", l[0]);
+        for i in 0..4 {
+            tr.value(r[0][i], want[i], 8.0 * ULP * size, w);
+        }
+    }
+    tr.assert();
+}
+
+/// The light ray leaving the axis at angle ψ to the z axis with E = 1 (ψ ∈ (0, π/2]).
+fn axis_ray(a: f64, psi: f64) -> OriginGeodesic {
+    OriginGeodesic::new(a, FourVector::new(1.0, psi.sin(), 0.0, psi.cos())).expect("a light ray")
+}
+
+/// One case of the shadow probe: its four argument texels (f32 already) and Gödel's a.
+struct ShadowCase {
+    a: f64,
+    args: [[f64; 4]; 4],
+}
+
+#[test]
+fn shadow_rays_match_spacetime_connect() {
+    let mut rng = Rng(9);
+    // shadowTheta, shadowG, shadowG4, bigPhi: for a target at ρ, the ray leaving at ψ ≥ ψ_min
+    // (its r_max ≥ ρ), a winding and a branch, against the closed form of that ray at the
+    // parameter λ = θ/ω the kernel gives.
+    let mut cases = Vec::new();
+    for &a in &AS {
+        for i in 0..100usize {
+            let rho = f(if i == 0 {
+                1e-4 * a
+            } else {
+                rng.range(0.0, 1.99) * a
+            });
+            // The light's set-up: s = ρ/2a and ψ_min, where r_max = ρ (sin²ψ_min = 2s²/(1 + s²)).
+            let s = f(rho / (2.0 * a));
+            let psi_min = f((s * SQRT_2).atan2((1.0 - s * s).sqrt()));
+            // ψ from the reach to π/2, the reach itself and π/2 included.
+            let psi = match i % 10 {
+                1 => psi_min,
+                2 => f(PI / 2.0),
+                _ => f(rng.range(psi_min, PI / 2.0)),
+            };
+            let n = (i % 4) as f64;
+            let inbound = if i.is_multiple_of(2) { 1.0 } else { 0.0 };
+            let zp = f(rng.range(-8.0, 8.0) * a);
+            let c = f(rng.range(0.0, 1.0));
+            let q = f((2.0 / (1.0 + c * c)).sqrt());
+            let theta = f(rng.range(-10.0, 10.0));
+            // Grid points: three anywhere below c_max = cos ψ_min, then c_max.
+            let c_max = f(psi_min.cos());
+            let lanes = [0; 3].map(|_| f(rng.range(0.0, c_max)));
+            cases.push(ShadowCase {
+                a,
+                args: [
+                    [psi, n, inbound, rho],
+                    [s, psi_min, zp, q],
+                    [0.0, 0.0, 0.0, theta],
+                    [lanes[0], lanes[1], lanes[2], c_max],
+                ],
+            });
+        }
+        // areaDistanceSq: the rays of spacetime::shadow_rays_from_axis to targets within the
+        // horizon, two windings, given as (ψ, χ, λ).
+        for _ in 0..25 {
+            let rho = rng.range(0.05, 1.9) * a;
+            let phi = rng.range(-PI, PI);
+            let z = rng.range(-4.0, 4.0) * a;
+            let target = Event::new(0.0, rho * phi.cos(), rho * phi.sin(), z);
+            for ray in shadow_rays_from_axis(a, target, 2) {
+                let k = ray.tangent;
+                let psi = f(k.x.hypot(k.y).atan2(k.z));
+                let chi = f(k.y.atan2(k.x));
+                let area = [psi, chi, f(ray.lambda), 0.0];
+                cases.push(ShadowCase {
+                    a,
+                    args: [[0.0; 4], [0.0; 4], area, [0.0; 4]],
+                });
+            }
+        }
+    }
+    let input = input(true);
+    let prober = Prober::new(&input, Function::Shadow).expect("compiles");
+    let mut theta_c = Compare::new("shadowTheta");
+    let mut g_c = Compare::new("shadowG, shadowG4");
+    let mut phi_c = Compare::new("bigPhi");
+    let mut area = Compare::new("areaDistanceSq");
+    for &a in &AS {
+        let batch: Vec<&ShadowCase> = cases.iter().filter(|c| c.a == a).collect();
+        let args: Vec<Args> = batch.iter().map(|c| c.args.map(texel)).collect();
+        let out = prober.eval(&with_a(&input, a), &args).expect("evaluates");
+        for (c, r) in batch.iter().zip(&out) {
+            let [[psi, n, inbound, rho], [_, _, zp, q], [area_psi, chi, lambda, theta], lanes] =
+                c.args;
+            let w = || format!("a = {a}, arguments {:?}", c.args);
+            if area_psi > 0.0 {
+                // D² against spacetime::source_area_distance_sq of the ray from the origin.
+                let tangent = FourVector::new(
+                    1.0,
+                    area_psi.sin() * chi.cos(),
+                    area_psi.sin() * chi.sin(),
+                    area_psi.cos(),
+                );
+                let ray = ShadowRay {
+                    emission: Event::new(0.0, 0.0, 0.0, 0.0),
+                    tangent,
+                    lambda,
+                    winding: 0,
+                    branch: Branch::Outbound,
+                };
+                let want = source_area_distance_sq(a, Event::new(0.0, 0.0, 0.0, 0.0), &ray);
+                // D² ~ λ² near the source: a determinant of Jacobi fields of size λ(1 + θ)
+                // each, which cancels near a refocusing; the twin's central difference adds
+                // ~10⁻¹⁰ relative.
+                let th = lambda * (1.0 + area_psi.cos().powi(2)).sqrt() / (2.0 * a);
+                let tol = 8.0 * ULP * (want.abs() + lambda * lambda) * (1.0 + th);
+                area.value(r[0][2], want, tol, w);
+                continue;
+            }
+            // θ: the ray reaches distance ρ at λ = θ/ω (r = r_max sin θ: dr/dθ ≤ r_max, θ up
+            // to 4π rounded to ULP·θ), in winding n, on its branch.
+            let geo = axis_ray(a, psi);
+            let omega = PI / geo.return_parameter();
+            let th = f64::from(r[0][0]);
+            let (e, _) = geo.at(th / omega);
+            theta_c.value(e.r() as f32, rho, 4.0 * ULP * geo.r_max() * (1.0 + th), w);
+            // Outbound: θ ∈ [nπ, nπ + π/2]; inbound: [nπ + π/2, (n + 1)π] (to rounding).
+            let start = (2.0 * n + inbound) * PI / 2.0;
+            let on_branch = th >= start - 1e-5 && th <= start + PI / 2.0 + 1e-5;
+            theta_c.same(f32::from(u8::from(on_branch)), true, w);
+            // G = the height at that λ minus |z_P| (c ≥ 0: the ray climbs as c λ).
+            let g_tol = 4.0 * ULP * (1.0 + zp.abs() + e.z.abs() * (1.0 + th));
+            g_c.value(r[0][1], e.z - zp.abs(), g_tol, w);
+            // shadowG4 at |c| = u: the same from θ₀ = asin(ρ/r_max(u)), or π/2 at the grid's
+            // last point c_max, where r_max = ρ (asin's slope 1/√(1 − (ρ/r_max)²) there).
+            for (k, u) in lanes.iter().enumerate() {
+                let g = axis_ray(a, u.acos());
+                let ratio = (rho / g.r_max()).min(1.0);
+                let th0 = if k == 3 { PI / 2.0 } else { ratio.asin() };
+                let th = n * PI + if inbound > 0.5 { PI - th0 } else { th0 };
+                let (e, _) = g.at(th / (PI / g.return_parameter()));
+                let slope = if k == 3 {
+                    1.0
+                } else {
+                    1.0 / (1.0 - ratio * ratio).max(1e-12).sqrt()
+                };
+                let tol = 4.0 * ULP * (1.0 + zp.abs() + e.z.abs() * (1.0 + th) * slope);
+                g_c.value(r[1][k], e.z - zp.abs(), tol, || {
+                    format!("{}, lane {k}", w())
+                });
+            }
+            // Φ(θ): from the closed form's t = 2√2 a Φ − λ of the light ray with this q
+            // (E = 1, q² = 2/(1 + c²)).
+            let cq = (2.0 / (q * q) - 1.0).clamp(0.0, 1.0).sqrt();
+            let g = axis_ray(a, cq.acos());
+            let l = theta / (PI / g.return_parameter());
+            let (e, _) = g.at(l);
+            let want = (e.t + l) / (2.0 * SQRT_2 * a);
+            phi_c.value(r[0][3], want, 2.0 * ULP * (1.0 + 2.0 * theta.abs()), w);
+        }
+    }
+    theta_c.assert();
+    g_c.assert();
+    phi_c.assert();
+    area.assert();
+}
+
+#[test]
+fn rejections_are_safe_and_match_render_reject() {
+    let mut rng = Rng(10);
+    struct Case {
+        a: f64,
+        k: [f64; 4],
+        centre: [f64; 3],
+        reach: f64,
+        from: f64,
+        until: f64,
+        plane: f64,
+    }
+    let mut cases = Vec::new();
+    for &a in &AS {
+        for i in 0..120 {
+            // Past-directed light rays, as the kernel's pixel rays.
+            let mut k = random_tangent(&mut rng, 5 * i + 1);
+            k[0] = -k[0].abs();
+            let geo = OriginGeodesic::new(a, vector(k)).expect("a light ray");
+            let ret = geo.return_parameter();
+            let r = rng.range(0.0, 3.0) * a;
+            let phi = rng.range(-PI, PI);
+            let centre = [
+                f(r * phi.cos()),
+                f(r * phi.sin()),
+                f(rng.range(-4.0, 4.0) * a),
+            ];
+            let reach = f(rng.range(0.05, 0.6) * a);
+            let from = if i % 4 == 3 {
+                f(rng.range(0.0, ret))
+            } else {
+                0.0
+            };
+            let until = if i.is_multiple_of(3) {
+                f64::from(INF)
+            } else {
+                f(from + rng.range(0.0, 3.0 * ret))
+            };
+            let plane = if i.is_multiple_of(10) {
+                0.0
+            } else {
+                f(rng.range(-6.0, 6.0) * a)
+            };
+            cases.push(Case {
+                a,
+                k,
+                centre,
+                reach,
+                from,
+                until,
+                plane,
+            });
+        }
+    }
+    let input = input(true);
+    let prober = Prober::new(&input, Function::Reject).expect("compiles");
+    let mut ball_safe = Compare::new("ballMisses: safe");
+    let mut ball_same = 0usize;
+    let mut ball_rust = 0usize;
+    let mut plane_safe = Compare::new("planeMisses: safe");
+    let mut plane_same = Compare::new("planeMisses: as render::reject");
+    let mut balls = 0usize;
+    let mut glsl_misses = 0usize;
+    for &a in &AS {
+        let batch: Vec<&Case> = cases.iter().filter(|c| c.a == a).collect();
+        let args: Vec<Args> = batch
+            .iter()
+            .map(|c| {
+                let w = disc(a, c.centre[0], c.centre[1]);
+                [
+                    texel(c.k),
+                    texel([w.re, w.im, c.centre[2], c.reach]),
+                    texel([c.from, c.until, c.plane, 0.0]),
+                    [0.0; 4],
+                ]
+            })
+            .collect();
+        let out = prober.eval(&with_a(&input, a), &args).expect("evaluates");
+        for (c, r) in batch.iter().zip(&out) {
+            let geo = OriginGeodesic::new(a, vector(c.k)).expect("a light ray");
+            let until = if c.until >= f64::from(INF) {
+                f64::INFINITY
+            } else {
+                c.until
+            };
+            let w = || {
+                format!(
+                    "a = {a}, k {:?}, centre {:?}, reach {}, λ ∈ [{}, {until}], plane z = {}",
+                    c.k, c.centre, c.reach, c.from, c.plane
+                )
+            };
+            // The ball: where the kernel says it misses, the ray sampled every 10⁻³ a of
+            // static distance (the static speed of a light ray of E = 1 is 1) over the λ
+            // window where |p_z λ − z_C| ≤ reach (one loop of it: later loops retrace it)
+            // stays beyond the reach, less the sampling's half step and f32 rounding.
+            let misses = r[0][0] > 0.5;
+            balls += 1;
+            glsl_misses += usize::from(misses);
+            if misses {
+                let (mut lo, mut hi) = (c.from, until);
+                if geo.pz != 0.0 {
+                    let (l1, l2) = (
+                        (c.centre[2] - c.reach) / geo.pz,
+                        (c.centre[2] + c.reach) / geo.pz,
+                    );
+                    lo = lo.max(l1.min(l2));
+                    hi = hi.min(l1.max(l2));
+                }
+                hi = hi.min(lo + geo.return_parameter());
+                // (An empty window: no λ within reach in z.)
+                let mut nearest = f64::INFINITY;
+                if hi >= lo {
+                    let steps = ((hi - lo) / (1e-3 * a)).ceil().clamp(1.0, 1e5) as usize;
+                    for s in 0..=steps {
+                        let l = lo + (hi - lo) * s as f64 / steps as f64;
+                        let (e, _) = geo.at(l);
+                        nearest = nearest.min(static_distance(a, [e.x, e.y, e.z], c.centre));
+                    }
+                }
+                let short = (c.reach - nearest).max(0.0);
+                ball_safe.value(short as f32, 0.0, 1e-3 * a, w);
+            }
+            // render::reject decides the same for rays searched from λ = 0 (its window).
+            if c.from == 0.0 {
+                let radius =
+                    (c.reach - render::reject::REACH_PER_A * a) / render::reject::REACH_PER_RADIUS;
+                let target = Target::LocalSphere {
+                    radius,
+                    worldline: Worldline::new(
+                        Metric::Godel(Godel::new(a)),
+                        &Motion::Rest {
+                            position: Event::new(0.0, c.centre[0], c.centre[1], c.centre[2]),
+                        },
+                        0.0,
+                        0.0,
+                    )
+                    .expect("a worldline at rest"),
+                };
+                let ball =
+                    StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target).expect("a ball");
+                ball_rust += 1;
+                ball_same += usize::from(ball.misses(&geo, until) == misses);
+                let plane = Rejection::Plane { z: c.plane }.misses(&geo, until);
+                plane_same.same(r[0][1], plane, w);
+            }
+            // The plane: where the kernel says it misses, p_z λ − z keeps one side at both
+            // ends of the window (it is linear in λ).
+            if r[0][1] > 0.5 {
+                let f0 = geo.pz * c.from - c.plane;
+                let f1 = if until.is_finite() {
+                    geo.pz * until - c.plane
+                } else {
+                    geo.pz * 1e30 - c.plane
+                };
+                let apart = f0 != 0.0 && (f0 > 0.0) == (f1 > 0.0);
+                plane_safe.same(f32::from(u8::from(apart)), true, w);
+            }
+        }
+    }
+    // Not vacuous: the kernel rejects as render::reject does but for a few rays at the edge
+    // of the reach, and it rejects a good share of the rays at all.
+    eprintln!("ballMisses: {glsl_misses} of {balls} rays missed; the same as render::reject on {ball_same} of {ball_rust}");
+    assert!(
+        glsl_misses * 4 >= balls,
+        "the kernel rejects too few rays to test: {glsl_misses} of {balls}"
+    );
+    assert!(
+        ball_same as f64 >= 0.98 * ball_rust as f64,
+        "ballMisses decides unlike render::reject on {} of {ball_rust} rays",
+        ball_rust - ball_same
+    );
+    ball_safe.assert();
+    plane_safe.assert();
+    plane_same.assert();
+}
+
+#[test]
+fn texture_coordinates_match_render_target() {
+    let mut rng = Rng(11);
+    let mut dirs: Vec<[f64; 3]> = vec![
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+        [-1.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [3.0, -4.0, 12.0],
+        [1e-3, 2e-3, -5e-4],
+    ];
+    dirs.extend((0..300usize).map(|i| {
+        let u = rng.unit();
+        let s = 10f64.powf(rng.range(-3.0, 3.0)) * if i.is_multiple_of(5) { 1.0 } else { 0.2 };
+        u.map(|c| c * s)
+    }));
+    let dirs: Vec<[f64; 3]> = dirs.into_iter().map(|d| d.map(f)).collect();
+    let args: Vec<Args> = dirs
+        .iter()
+        .map(|d| [texel([d[0], d[1], d[2], 0.0]), [0.0; 4], [0.0; 4], [0.0; 4]])
+        .collect();
+    let input = input(true);
+    let out = run(&input, Function::Surface, &input.uniforms, &args);
+    let mut uv = Compare::new("lonLat");
+    for (d, r) in dirs.iter().zip(&out) {
+        let (u, v) = render::target::lon_lat(*d);
+        let w = || format!("direction {d:?}");
+        // Angles over 2π and π of a normalization and an arctangent: a few ULP of 1; v's
+        // arcsine near the poles multiplies n_z's rounding by 1/√(1 − n_z²).
+        let nz = d[2] / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let pole = 1.0 / (1.0 - nz * nz).max(1e-30).sqrt();
+        uv.value(r[0][0], u, 4.0 * ULP, w);
+        uv.value(r[0][1], v, 4.0 * ULP * (1.0 + pole), w);
+    }
+    uv.assert();
+}
