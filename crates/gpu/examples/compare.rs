@@ -108,12 +108,13 @@ fn main() {
         }
     };
     println!(
-        "{}: {} samples on {}, gpu {:.3}s (+{:.3}s setup), cpu {:.3}s",
+        "{}: {} samples on {}, gpu {:.3}s (+{:.3}s setup, {} rounds), cpu {:.3}s",
         args[1],
         n,
         gpu.renderer(),
         tg.as_secs_f64(),
         setup.as_secs_f64(),
+        g.rounds,
         tc.as_secs_f64()
     );
     println!(

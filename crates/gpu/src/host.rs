@@ -1,10 +1,14 @@
 //! The offscreen host of the kernel: compiles it in a [`Context`], uploads the scene table,
-//! draws the sample grid in tiles (each a short draw, so that no GPU watchdog fires and a
-//! cancelled run stops soon) into float render targets, reads the slots back and turns
-//! them into the data file's records and light planes. No physics here: the kernel does it.
+//! draws the sample grid in tiles, each tile in rounds (docs/physics.md, "The GPU kernel",
+//! "Rounds": each round takes every sample of the tile on from its last checkpoint, so that no
+//! draw runs long, no GPU watchdog fires and a cancelled run stops soon) into the layers of
+//! float array textures, reads the slots back and turns them into the data file's records and
+//! light planes. No physics here: the kernel does it.
 
 use crate::context::Context;
-use crate::input::{light_channel, KernelInput, TABLE_WIDTH};
+use crate::input::{
+    light_channel, KernelInput, Uniforms, PHASE_DONE, ROUND_SLOT0, STATE_SLOTS, TABLE_WIDTH,
+};
 use crate::KERNEL;
 use datafile::record::{PixelRecord, RayStatus};
 use glow::HasContext;
@@ -26,6 +30,13 @@ const MIN_DRAW_SIDE: u32 = 16;
 /// What one draw should take: long enough to keep the GPU busy, short enough for watchdogs,
 /// progress and cancellation.
 const DRAW_SECONDS: f64 = 0.1;
+/// Passes per sample in a tile's first round (the kernel halves or doubles a sample's budget
+/// from round to round as its work needs).
+pub const FIRST_BUDGET: i32 = 512;
+/// Rounds per tile at most: a sample not finished after them is marked "work limit". Far
+/// above what a sample needs (each round takes it at least to its next checkpoint, unless
+/// llvmpipe's loop limit cuts the round).
+pub const MAX_ROUNDS: u32 = 4096;
 
 #[derive(Debug, thiserror::Error)]
 pub enum HostError {
@@ -45,15 +56,38 @@ pub struct GpuTracer {
     program: glow::Program,
     table: glow::Texture,
     framebuffer: glow::Framebuffer,
-    targets: Vec<glow::Texture>,
+    /// Two array textures of a tile's slots, one layer per slot: a round reads one and writes
+    /// the other.
+    layers: [glow::Texture; 2],
+    buffers: usize,
     vao: glow::VertexArray,
     input: KernelInput,
+}
+
+/// How a trace cuts its work: the side of its tiles (None: each about DRAW_SECONDS), and the
+/// passes per sample of a tile's first round. The records do not depend on it
+/// (docs/physics.md, "Rounds").
+#[derive(Clone, Copy, Debug)]
+pub struct Tiling {
+    pub side: Option<u32>,
+    pub first_budget: i32,
+}
+
+impl Default for Tiling {
+    fn default() -> Tiling {
+        Tiling {
+            side: None,
+            first_budget: FIRST_BUDGET,
+        }
+    }
 }
 
 /// What a GPU trace produced: the sample grid's records and light planes.
 pub struct Traced {
     pub records: Vec<PixelRecord>,
     pub lights: Vec<Vec<f32>>,
+    /// Rounds drawn, all tiles together (docs/physics.md, "Rounds").
+    pub rounds: u64,
 }
 
 impl GpuTracer {
@@ -67,83 +101,22 @@ impl GpuTracer {
     pub fn with_kernel(input: KernelInput, kernel: &str) -> Result<GpuTracer, HostError> {
         let ctx = Context::new()?;
         let gl = &ctx.gl;
-        let buffers = ctx.draw_buffers.min(input.slots());
-        let compile_error = |log: String| HostError::Compile {
-            renderer: ctx.renderer.clone(),
-            log,
-        };
+        let all = input.slots() + STATE_SLOTS;
+        let buffers = input.draw_buffers(ctx.draw_buffers);
         // SAFETY (this block and the methods below): GL calls on the context current on
         // this thread, with objects created here and buffers sized for what GL writes.
         unsafe {
-            let program = gl.create_program().map_err(HostError::Gl)?;
-            let fragment = format!("#version 300 es\n{}{}", input.defines(buffers), kernel);
-            for (kind, source) in [
-                (glow::VERTEX_SHADER, VERTEX.to_string()),
-                (glow::FRAGMENT_SHADER, fragment),
-            ] {
-                let shader = gl.create_shader(kind).map_err(HostError::Gl)?;
-                gl.shader_source(shader, &source);
-                gl.compile_shader(shader);
-                if !gl.get_shader_compile_status(shader) {
-                    return Err(compile_error(gl.get_shader_info_log(shader)));
-                }
-                gl.attach_shader(program, shader);
-            }
-            gl.link_program(program);
-            if !gl.get_program_link_status(program) {
-                return Err(compile_error(gl.get_program_info_log(program)));
-            }
-            let table = gl.create_texture().map_err(HostError::Gl)?;
-            gl.bind_texture(glow::TEXTURE_2D, Some(table));
-            for p in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
-                gl.tex_parameter_i32(glow::TEXTURE_2D, p, glow::NEAREST as i32);
-            }
-            gl.tex_image_2d(
-                glow::TEXTURE_2D,
-                0,
-                glow::RGBA32F as i32,
-                TABLE_WIDTH as i32,
-                input.table_rows as i32,
-                0,
-                glow::RGBA,
-                glow::FLOAT,
-                glow::PixelUnpackData::Slice(Some(f32_bytes(&input.table))),
-            );
+            let program = compile(&ctx, &fragment_source(&input, buffers, kernel))?;
+            let table = float_texture(gl, TABLE_WIDTH, input.table_rows, &input.table)?;
             let framebuffer = gl.create_framebuffer().map_err(HostError::Gl)?;
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
-            let mut targets = Vec::new();
-            for i in 0..buffers {
-                let t = gl.create_texture().map_err(HostError::Gl)?;
-                gl.bind_texture(glow::TEXTURE_2D, Some(t));
-                gl.tex_storage_2d(
-                    glow::TEXTURE_2D,
-                    1,
-                    glow::RGBA32F,
-                    MAX_DRAW_SIDE as i32,
-                    MAX_DRAW_SIDE as i32,
-                );
-                gl.framebuffer_texture_2d(
-                    glow::FRAMEBUFFER,
-                    glow::COLOR_ATTACHMENT0 + i as u32,
-                    glow::TEXTURE_2D,
-                    Some(t),
-                    0,
-                );
-                targets.push(t);
-            }
-            let attachments: Vec<u32> = (0..buffers)
-                .map(|i| glow::COLOR_ATTACHMENT0 + i as u32)
-                .collect();
-            gl.draw_buffers(&attachments);
-            if gl.check_framebuffer_status(glow::FRAMEBUFFER) != glow::FRAMEBUFFER_COMPLETE {
-                return Err(HostError::Gl("float render targets are incomplete".into()));
-            }
+            let layers = [slot_layers(gl, all)?, slot_layers(gl, all)?];
             let vao = gl.create_vertex_array().map_err(HostError::Gl)?;
             let tracer = GpuTracer {
                 program,
                 table,
                 framebuffer,
-                targets,
+                layers,
+                buffers,
                 vao,
                 input,
                 ctx,
@@ -151,7 +124,7 @@ impl GpuTracer {
             tracer.set_scene_uniforms();
             // One sample drawn now: drivers compile shaders for the hardware on first use
             // (llvmpipe: seconds), which belongs to setting up, not to tracing.
-            tracer.draw(0, 0, 1, 1)?;
+            tracer.draw(0, 0, 1, 1, &render::driver::NoProgress, &mut 0)?;
             Ok(tracer)
         }
     }
@@ -163,46 +136,55 @@ impl GpuTracer {
 
     unsafe fn set_scene_uniforms(&self) {
         let gl = &self.ctx.gl;
-        let u = &self.input.uniforms;
-        gl.use_program(Some(self.program));
-        let loc = |name: &str| gl.get_uniform_location(self.program, &format!("u_{name}"));
-        gl.uniform_1_f32(loc("a").as_ref(), u.a);
-        gl.uniform_2_f32_slice(loc("obs_t").as_ref(), &u.obs_t);
-        gl.uniform_3_f32_slice(loc("obs_x").as_ref(), &u.obs_x);
-        gl.uniform_4_f32_slice(loc("velocity").as_ref(), &u.velocity);
-        gl.uniform_3_f32_slice(loc("forward").as_ref(), &u.forward);
-        gl.uniform_3_f32_slice(loc("up").as_ref(), &u.up);
-        gl.uniform_1_i32(loc("camera").as_ref(), u.camera);
-        gl.uniform_2_f32_slice(loc("fov").as_ref(), &u.fov);
-        gl.uniform_2_i32_slice(loc("size").as_ref(), &u.size);
-        gl.uniform_1_f32(loc("max_past").as_ref(), u.max_past);
-        gl.uniform_1_i32(loc("max_loops").as_ref(), u.max_loops);
-        gl.uniform_1_i32(loc("lights").as_ref(), u.lights);
-        gl.uniform_1_i32(loc("table").as_ref(), 0);
-        gl.uniform_1_i32(loc("two").as_ref(), 2);
+        set_uniforms(gl, self.program, &self.input.uniforms);
+        let loc = |name: &str| gl.get_uniform_location(self.program, name);
+        gl.uniform_1_i32(loc("u_prev").as_ref(), 1);
     }
 
     /// Traces the whole sample grid, draw by draw, reporting progress in samples; stops
     /// between draws when `progress` is cancelled (the records not traced stay "not traced").
     pub fn trace(&self, progress: &dyn Progress) -> Result<Traced, HostError> {
+        self.trace_with(progress, Tiling::default())
+    }
+
+    /// The same, the work cut as `tiling` says (the records do not depend on it).
+    pub fn trace_with(&self, progress: &dyn Progress, tiling: Tiling) -> Result<Traced, HostError> {
         let [w, h] = self.input.uniforms.size.map(|v| v as u32);
+        // SAFETY: see `new`.
+        unsafe {
+            let gl = &self.ctx.gl;
+            gl.use_program(Some(self.program));
+            let budget = gl.get_uniform_location(self.program, "u_budget");
+            gl.uniform_1_i32(budget.as_ref(), tiling.first_budget);
+        }
         let n = self.input.light_count;
         let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); (w * h) as usize];
         let mut lights = vec![vec![0.0f32; (w * h) as usize]; n];
         // Draws grow or shrink to take about DRAW_SECONDS each: strips of rows, each cut
         // into draws as wide as the current side.
-        let mut side = 32u32;
+        let mut side = tiling.side.unwrap_or(32).clamp(1, MAX_DRAW_SIDE);
+        let mut rounds = 0;
         let mut row0 = 0u32;
         while row0 < h {
             let rows = side.min(h - row0);
             let mut col0 = 0u32;
             while col0 < w {
                 if progress.cancelled() {
-                    return Ok(Traced { records, lights });
+                    return Ok(Traced {
+                        records,
+                        lights,
+                        rounds,
+                    });
                 }
                 let cols = side.min(w - col0);
                 let started = Instant::now();
-                let slots = self.draw(col0, row0, cols, rows)?;
+                let Some(slots) = self.draw(col0, row0, cols, rows, progress, &mut rounds)? else {
+                    return Ok(Traced {
+                        records,
+                        lights,
+                        rounds,
+                    });
+                };
                 self.collect(
                     &slots,
                     (col0, row0, cols, rows),
@@ -214,54 +196,132 @@ impl GpuTracer {
                 col0 += cols;
                 let took = started.elapsed().as_secs_f64().max(1e-6);
                 let scale = (DRAW_SECONDS / took).sqrt().clamp(0.5, 2.0);
-                side = ((f64::from(side) * scale) as u32).clamp(MIN_DRAW_SIDE, MAX_DRAW_SIDE);
+                if tiling.side.is_none() {
+                    side = ((f64::from(side) * scale) as u32).clamp(MIN_DRAW_SIDE, MAX_DRAW_SIDE);
+                }
             }
             row0 += rows;
         }
-        Ok(Traced { records, lights })
+        Ok(Traced {
+            records,
+            lights,
+            rounds,
+        })
     }
 
-    /// Draws one tile (all passes) and reads its slots back: per slot, cols × rows × 4 floats.
-    fn draw(&self, col0: u32, row0: u32, cols: u32, rows: u32) -> Result<Vec<Vec<f32>>, HostError> {
-        let gl = &self.ctx.gl;
-        let buffers = self.targets.len();
+    /// Traces one tile in rounds until each of its samples is finished (or MAX_ROUNDS), then
+    /// makes its records and reads their slots back: per slot, cols × rows × 4 floats. None
+    /// when `progress` is cancelled between rounds.
+    fn draw(
+        &self,
+        col0: u32,
+        row0: u32,
+        cols: u32,
+        rows: u32,
+        progress: &dyn Progress,
+        rounds: &mut u64,
+    ) -> Result<Option<Vec<Vec<f32>>>, HostError> {
+        let tile = (col0, row0, cols, rows);
         let slots = self.input.slots();
-        let mut out = Vec::with_capacity(slots);
+        let all = slots + STATE_SLOTS;
+        let mut from = 0;
         // SAFETY: see `new`.
         unsafe {
-            gl.use_program(Some(self.program));
-            gl.bind_vertex_array(Some(self.vao));
-            gl.active_texture(glow::TEXTURE0);
-            gl.bind_texture(glow::TEXTURE_2D, Some(self.table));
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.framebuffer));
-            gl.viewport(0, 0, cols as i32, rows as i32);
-            let origin = gl.get_uniform_location(self.program, "u_origin");
-            let slot0 = gl.get_uniform_location(self.program, "u_slot0");
-            gl.uniform_2_i32(origin.as_ref(), col0 as i32, row0 as i32);
-            for first in (0..slots).step_by(buffers) {
-                gl.uniform_1_i32(slot0.as_ref(), first as i32);
-                gl.draw_arrays(glow::TRIANGLES, 0, 3);
-                for i in 0..buffers.min(slots - first) {
-                    let mut data = vec![0.0f32; (cols * rows * 4) as usize];
-                    gl.read_buffer(glow::COLOR_ATTACHMENT0 + i as u32);
-                    gl.read_pixels(
-                        0,
-                        0,
-                        cols as i32,
-                        rows as i32,
-                        glow::RGBA,
-                        glow::FLOAT,
-                        glow::PixelPackData::Slice(Some(f32_bytes_mut(&mut data))),
-                    );
-                    out.push(data);
+            for round in 0..MAX_ROUNDS {
+                if progress.cancelled() {
+                    return Ok(None);
+                }
+                self.pass(tile, round.min(1) as i32, 0, from, ROUND_SLOT0..all)?;
+                *rounds += 1;
+                from = 1 - from;
+                let progress = self.read_layer(from, slots, cols, rows)?;
+                if progress.chunks(4).all(|p| p[0] == PHASE_DONE) {
+                    break;
                 }
             }
-            let err = gl.get_error();
-            if err != glow::NO_ERROR {
-                return Err(HostError::Gl(format!("GL error 0x{err:x} in a draw")));
-            }
+            // The finishing draw (a sample still unfinished is written as out of work).
+            self.pass(tile, 1, 1, from, 0..slots)?;
+            let read = (0..slots).map(|s| self.read_layer(1 - from, s, cols, rows));
+            read.collect::<Result<_, _>>().map(Some)
         }
-        Ok(out)
+    }
+
+    /// One round (`finish` 0) or the finishing draw (1) of a tile: reads the slots in array
+    /// texture `from`, writes the layers `write` of the other, as many draws as there are
+    /// render targets for them.
+    unsafe fn pass(
+        &self,
+        (col0, row0, cols, rows): (u32, u32, u32, u32),
+        round: i32,
+        finish: i32,
+        from: usize,
+        write: std::ops::Range<usize>,
+    ) -> Result<(), HostError> {
+        let gl = &self.ctx.gl;
+        gl.use_program(Some(self.program));
+        gl.bind_vertex_array(Some(self.vao));
+        gl.active_texture(glow::TEXTURE0);
+        gl.bind_texture(glow::TEXTURE_2D, Some(self.table));
+        gl.active_texture(glow::TEXTURE1);
+        gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(self.layers[from]));
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.framebuffer));
+        gl.viewport(0, 0, cols as i32, rows as i32);
+        let loc = |name: &str| gl.get_uniform_location(self.program, name);
+        gl.uniform_2_i32(loc("u_origin").as_ref(), col0 as i32, row0 as i32);
+        gl.uniform_1_i32(loc("u_round").as_ref(), round);
+        gl.uniform_1_i32(loc("u_finish").as_ref(), finish);
+        let to = self.layers[1 - from];
+        for first in write.clone().step_by(self.buffers) {
+            let count = self.buffers.min(write.end - first);
+            let mut attachments = Vec::with_capacity(self.buffers);
+            for i in 0..self.buffers {
+                let attachment = glow::COLOR_ATTACHMENT0 + i as u32;
+                let texture = (i < count).then_some(to);
+                let layer = (first + i.min(count - 1)) as i32;
+                gl.framebuffer_texture_layer(glow::FRAMEBUFFER, attachment, texture, 0, layer);
+                attachments.push(if i < count { attachment } else { glow::NONE });
+            }
+            gl.draw_buffers(&attachments);
+            if gl.check_framebuffer_status(glow::FRAMEBUFFER) != glow::FRAMEBUFFER_COMPLETE {
+                return Err(HostError::Gl("float render targets are incomplete".into()));
+            }
+            gl.uniform_1_i32(loc("u_slot0").as_ref(), first as i32);
+            gl.draw_arrays(glow::TRIANGLES, 0, 3);
+        }
+        gl_error(gl, "in a draw")
+    }
+
+    /// Layer `slot` of array texture `which` over the tile: cols × rows × 4 floats.
+    unsafe fn read_layer(
+        &self,
+        which: usize,
+        slot: usize,
+        cols: u32,
+        rows: u32,
+    ) -> Result<Vec<f32>, HostError> {
+        let gl = &self.ctx.gl;
+        let texture = Some(self.layers[which]);
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.framebuffer));
+        gl.framebuffer_texture_layer(
+            glow::FRAMEBUFFER,
+            glow::COLOR_ATTACHMENT0,
+            texture,
+            0,
+            slot as i32,
+        );
+        gl.read_buffer(glow::COLOR_ATTACHMENT0);
+        let mut data = vec![0.0f32; (cols * rows * 4) as usize];
+        gl.read_pixels(
+            0,
+            0,
+            cols as i32,
+            rows as i32,
+            glow::RGBA,
+            glow::FLOAT,
+            glow::PixelPackData::Slice(Some(f32_bytes_mut(&mut data))),
+        );
+        gl_error(gl, "reading a tile")?;
+        Ok(data)
     }
 
     /// Turns a tile's slots into records and light values. Framebuffer row j is grid row
@@ -342,8 +402,8 @@ impl Drop for GpuTracer {
         unsafe {
             gl.delete_program(self.program);
             gl.delete_texture(self.table);
-            for t in &self.targets {
-                gl.delete_texture(*t);
+            for t in self.layers {
+                gl.delete_texture(t);
             }
             gl.delete_framebuffer(self.framebuffer);
             gl.delete_vertex_array(self.vao);
@@ -351,12 +411,137 @@ impl Drop for GpuTracer {
     }
 }
 
+/// The fragment shader's source as a host compiles it: `#version 300 es`, the scene's defines
+/// ([`KernelInput::defines`] for `buffers` render targets), then `kernel` (the kernel's source,
+/// with what an entry point adds).
+pub fn fragment_source(input: &KernelInput, buffers: usize, kernel: &str) -> String {
+    format!("#version 300 es\n{}{}", input.defines(buffers), kernel)
+}
+
+/// Compiles and links `fragment` with the full-viewport vertex shader on `ctx`.
+///
+/// # Safety
+/// `ctx` must be current on this thread.
+pub(crate) unsafe fn compile(ctx: &Context, fragment: &str) -> Result<glow::Program, HostError> {
+    let gl = &ctx.gl;
+    let compile_error = |log: String| HostError::Compile {
+        renderer: ctx.renderer.clone(),
+        log,
+    };
+    let program = gl.create_program().map_err(HostError::Gl)?;
+    for (kind, source) in [
+        (glow::VERTEX_SHADER, VERTEX),
+        (glow::FRAGMENT_SHADER, fragment),
+    ] {
+        let shader = gl.create_shader(kind).map_err(HostError::Gl)?;
+        gl.shader_source(shader, source);
+        gl.compile_shader(shader);
+        if !gl.get_shader_compile_status(shader) {
+            return Err(compile_error(gl.get_shader_info_log(shader)));
+        }
+        gl.attach_shader(program, shader);
+    }
+    gl.link_program(program);
+    if !gl.get_program_link_status(program) {
+        return Err(compile_error(gl.get_program_info_log(program)));
+    }
+    Ok(program)
+}
+
+/// An RGBA32F texture of `width` × `rows` texels read with texelFetch (`data`: four floats a
+/// texel, row by row), left bound to TEXTURE_2D.
+///
+/// # Safety
+/// A context must be current on this thread, `gl` its functions.
+pub(crate) unsafe fn float_texture(
+    gl: &glow::Context,
+    width: usize,
+    rows: usize,
+    data: &[f32],
+) -> Result<glow::Texture, HostError> {
+    assert_eq!(data.len(), width * rows * 4, "a texture's data fills it");
+    let texture = gl.create_texture().map_err(HostError::Gl)?;
+    gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+    for p in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
+        gl.tex_parameter_i32(glow::TEXTURE_2D, p, glow::NEAREST as i32);
+    }
+    gl.tex_image_2d(
+        glow::TEXTURE_2D,
+        0,
+        glow::RGBA32F as i32,
+        width as i32,
+        rows as i32,
+        0,
+        glow::RGBA,
+        glow::FLOAT,
+        glow::PixelUnpackData::Slice(Some(f32_bytes(data))),
+    );
+    Ok(texture)
+}
+
+/// An RGBA32F array texture of `layers` layers of MAX_DRAW_SIDE² texels: a tile's slots.
+///
+/// # Safety
+/// A context must be current on this thread, `gl` its functions.
+unsafe fn slot_layers(gl: &glow::Context, layers: usize) -> Result<glow::Texture, HostError> {
+    let texture = gl.create_texture().map_err(HostError::Gl)?;
+    gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(texture));
+    for p in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
+        gl.tex_parameter_i32(glow::TEXTURE_2D_ARRAY, p, glow::NEAREST as i32);
+    }
+    let side = MAX_DRAW_SIDE as i32;
+    gl.tex_storage_3d(
+        glow::TEXTURE_2D_ARRAY,
+        1,
+        glow::RGBA32F,
+        side,
+        side,
+        layers as i32,
+    );
+    gl_error(gl, "making the render targets")?;
+    Ok(texture)
+}
+
+/// The GL error, if any, as a [`HostError`] saying `when`.
+///
+/// # Safety
+/// A context must be current on this thread, `gl` its functions.
+unsafe fn gl_error(gl: &glow::Context, when: &str) -> Result<(), HostError> {
+    match gl.get_error() {
+        glow::NO_ERROR => Ok(()),
+        err => Err(HostError::Gl(format!("GL error 0x{err:x} {when}"))),
+    }
+}
+
+/// Sets the kernel's scene uniforms `u` (and the table's texture unit, 0) on `program`.
+///
+/// # Safety
+/// A context must be current on this thread, `gl` its functions, `program` linked on it.
+pub(crate) unsafe fn set_uniforms(gl: &glow::Context, program: glow::Program, u: &Uniforms) {
+    gl.use_program(Some(program));
+    let loc = |name: &str| gl.get_uniform_location(program, &format!("u_{name}"));
+    gl.uniform_1_f32(loc("a").as_ref(), u.a);
+    gl.uniform_2_f32_slice(loc("obs_t").as_ref(), &u.obs_t);
+    gl.uniform_3_f32_slice(loc("obs_x").as_ref(), &u.obs_x);
+    gl.uniform_4_f32_slice(loc("velocity").as_ref(), &u.velocity);
+    gl.uniform_3_f32_slice(loc("forward").as_ref(), &u.forward);
+    gl.uniform_3_f32_slice(loc("up").as_ref(), &u.up);
+    gl.uniform_1_i32(loc("camera").as_ref(), u.camera);
+    gl.uniform_2_f32_slice(loc("fov").as_ref(), &u.fov);
+    gl.uniform_2_i32_slice(loc("size").as_ref(), &u.size);
+    gl.uniform_1_f32(loc("max_past").as_ref(), u.max_past);
+    gl.uniform_1_i32(loc("max_loops").as_ref(), u.max_loops);
+    gl.uniform_1_i32(loc("lights").as_ref(), u.lights);
+    gl.uniform_1_i32(loc("table").as_ref(), 0);
+    gl.uniform_1_i32(loc("two").as_ref(), 2);
+}
+
 fn f32_bytes(v: &[f32]) -> &[u8] {
     // SAFETY: f32 has no padding and any byte pattern of it is readable as u8.
     unsafe { std::slice::from_raw_parts(v.as_ptr().cast(), std::mem::size_of_val(v)) }
 }
 
-fn f32_bytes_mut(v: &mut [f32]) -> &mut [u8] {
+pub(crate) fn f32_bytes_mut(v: &mut [f32]) -> &mut [u8] {
     // SAFETY: as above; every byte pattern is a valid f32.
     unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast(), std::mem::size_of_val(v)) }
 }

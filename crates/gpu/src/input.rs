@@ -41,6 +41,17 @@ pub fn slots(lights: usize) -> usize {
     5 + lights.div_ceil(4)
 }
 
+/// The slots of a sample's progress between rounds, after the record's (the kernel's
+/// `Progress`: phase, budget, probes and status first).
+pub const STATE_SLOTS: usize = 4;
+
+/// The progress slot's phase of a finished sample.
+pub const PHASE_DONE: f32 = 2.0;
+
+/// The first slot a round writes: the lights' (the record's five fixed slots are made from
+/// the final progress by the finishing draw).
+pub const ROUND_SLOT0: usize = 5;
+
 /// Where light `k`'s channel is: (slot, component).
 pub fn light_channel(k: usize) -> (usize, usize) {
     (5 + k / 4, k % 4)
@@ -212,5 +223,13 @@ impl KernelInput {
     /// The slots of this scene's records.
     pub fn slots(&self) -> usize {
         slots(self.light_count)
+    }
+
+    /// Render targets a pass of this scene's kernel uses where `available` can be bound:
+    /// enough for its widest pass (the finishing draw writes the record's slots, a round the
+    /// lights' and the progress's), at least 1.
+    pub fn draw_buffers(&self, available: usize) -> usize {
+        let widest = self.slots().max(self.slots() + STATE_SLOTS - ROUND_SLOT0);
+        available.clamp(1, widest)
     }
 }

@@ -50,6 +50,13 @@ uniform int u_slot0;         // the first output slot this pass writes
 uniform int u_lights;        // the scene's lights (N_LIGHTS is at least 1)
 uniform int u_two;           // 2: the bound of the loop that detects llvmpipe's loop limit
 uniform sampler2D u_table;   // the scene table, RGBA32F
+// Rounds (main): 0 in a tile's first round (nothing to read), then 1; u_finish 1 in the draw
+// that writes the records; u_budget: passes per sample in the first round; u_prev: the
+// previous round's slots of this tile, one layer per slot.
+uniform int u_round;
+uniform int u_finish;
+uniform int u_budget;
+uniform highp sampler2DArray u_prev;
 
 layout(location = 0) out vec4 o0;
 #if DRAW_BUFFERS > 1
@@ -97,16 +104,16 @@ const float INF = 3.0e38;
 // The intersection search's bounds (render::intersect, docs/physics.md "The intersection
 // search"): halvings of a span, probes per object and span, conservative advancement cap.
 const int SEARCH_DEPTH = 30;
-const int SEARCH_PROBES = 4096;   // the CPU's 131072 is far beyond a GPU's means (see PIXEL_PROBES)
+const int SEARCH_PROBES = 131072;
 const float MAX_SKIP = 1.0;
 // Segments per loop of a closed-form ray (render::segment::EXACT_SEGMENTS).
 const int EXACT_SEGMENTS = 16;
 // GPU only: segments of a Minkowski ray or a shadow ray at most.
 const int MAX_SEGMENTS = 100000;
-// GPU only: probes per sample, all its searches together. A draw must end soon (GPU watchdogs),
-// and llvmpipe stops every loop of a shader after 65535 passes in all, counted per group of
-// eight samples: a sample over this budget is marked "work limit" (the CPU has no such bound).
-const int PIXEL_PROBES = 8192;
+// Probes per sample, all its searches together: a count kept exactly in f32 between rounds,
+// far above what the other bounds allow (the CPU has no such bound; the search's own bounds
+// end a search first).
+const int PIXEL_PROBES = 16777215;
 // Root refinement steps (spacetime::refine_root) and simultaneity steps
 // (render::worldline::SIMULTANEITY_STEPS).
 const int REFINE_STEPS = 100;
@@ -131,17 +138,23 @@ const int MAX_WINDINGS = 10000;
 const float REACH_PER_RADIUS = 1.25;
 const float REACH_PER_A = 1e-6;
 
-// GPU only: passes of a search or of the shadow rays' enumeration, and searches per sample
-// (the pixel's and its shadow rays'): far above what the probe budget allows.
-const int MAX_PASSES = 4194304;
-const int MAX_JOBS = 4194304;
+// GPU only: passes of one round of a sample (main): the first round's u_budget, halved
+// after a round that llvmpipe's loop limit cut short, doubled after one that reached no
+// checkpoint; a sample whose work between two checkpoints takes more than MAX_BUDGET passes
+// is marked "work limit".
+const int MIN_BUDGET = 8;
+const int MAX_BUDGET = 1048576;
 
 int probes_left = 0;   // the pixel's probe budget (PIXEL_PROBES)
 
-// The sample's record: slots of four channels (see `main`): four fixed ones, then view_z
-// and the polarization, then the lights four to a slot.
-const int SLOTS = 5 + (N_LIGHTS + 3) / 4;
-vec4 slots[SLOTS + 8];
+// The sample's slots of four channels (see `main`): the record's five fixed ones, its lights
+// four to a slot (none without lights, as the host counts them: crates/gpu/src/input.rs), then
+// the sample's progress (STATE_SLOTS, carried from round to round).
+const int RECORD_SLOTS = 5 + (HAS_LIGHTS != 0 ? (N_LIGHTS + 3) / 4 : 0);
+const int STATE = RECORD_SLOTS;
+const int STATE_SLOTS = 4;
+const int ALL_SLOTS = RECORD_SLOTS + STATE_SLOTS;
+vec4 slots[ALL_SLOTS + 8];
 
 
 // ---------------------------------------------------------------------------------------
@@ -1317,30 +1330,31 @@ void machineStep() {
     }
 
     if (eMode == M_LOOP) {
-        // Skip loops whose box meets no searched object's box; stop at the time bound.
-        for (int guard = 0; guard < 1048576; guard++) {
-            if (eLoop >= eLoops) {
-                finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
-                return;
+        // Skip a loop whose box meets no searched object's box, one loop a pass (each loop's
+        // start is a checkpoint of the sample's rounds: main); stop at the time bound.
+        if (eLoop >= eLoops) {
+            finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
+            return;
+        }
+        float dz = float(eLoop) * eRay.shift.y;
+        if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
+        vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
+        bool near = eLoop == 0;
+        for (int i = 0; i < N_OBJECTS; i++) {
+            vec3 olo = vec3(0.0), ohi = vec3(0.0);
+            if (!searched[i]) continue;
+            if (isFree(i) && ePixel) {
+                // Balls in free fall: searched up to the loop's last λ within their reach.
+                float last = fallingLast(i, eLoop, eRay);
+                storeFallingLast(i, last);
+                near = near || last > NO_TAU;
+            } else {
+                near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
             }
-            float dz = float(eLoop) * eRay.shift.y;
-            if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
-            vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
-            bool near = eLoop == 0;
-            for (int i = 0; i < N_OBJECTS; i++) {
-                vec3 olo = vec3(0.0), ohi = vec3(0.0);
-                if (!searched[i]) continue;
-                if (isFree(i) && ePixel) {
-                    // Balls in free fall: searched up to the loop's last λ within their reach.
-                    float last = fallingLast(i, eLoop, eRay);
-                    storeFallingLast(i, last);
-                    near = near || last > NO_TAU;
-                } else {
-                    near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
-                }
-            }
-            if (near) break;
+        }
+        if (!near) {
             eLoop++;
+            return;
         }
         eObj = -1;
         eMode = M_START;
@@ -1585,21 +1599,44 @@ bool surface() {
 // Direct light by shadow rays (render::lighting, spacetime::connect; docs/physics.md "Light
 // rays between a source and an event", "Area distance and irradiance", "Occlusion").
 
+// The shadow rays, light by light: every root of G on a grid of SHADOW_GRID cells per
+// winding and branch (z_P = 0: the in-plane ray only), refined by Illinois steps; a ray is
+// counted unless emitted more than max_past before the hit, arriving from behind, at a
+// caustic, or occluded. The enumeration runs in passes of the kernel's one loop (`main`):
+// a light's set-up, sixteen cells of the grid, one refinement step, or one ray's set-up.
+int gLight = 0, gIdx = 0, gTotal = 0, gCells = 0, gN = 0, gSide = 0, gIter = 0;
+bool gInbound = false;
+float gU0 = 0.0, gG0 = 0.0, gRho = 0.0, gCmax = 0.0, gZp = 0.0, gPower = 0.0, gSum = 0.0, gWeight = 0.0;
+// The root's bracket in ψ = arccos |c| and G there, and the root's ψ; the hit's distance from
+// the source's axis over 2a, and the least ψ that reaches it.
+float gLo = 0.0, gHi = 0.0, gFlo = 0.0, gFhi = 0.0, gPsi = 0.0, gS = 0.0, gPsiMin = 0.0;
+vec4 gP = vec4(0.0), gSource = vec4(0.0);
+Iso gBack = NO_ISO;
+bool gFailed = false;
+
 // Φ(θ) = arctan(q tan θ), continuous.
 float bigPhi(float q, float th) {
     float s = sinA(th), c = cosA(th);
     return th + atan2s((q - 1.0) * s * c, c * c + q * s * s);
 }
 
-float shadowTheta(float rho, float c, int n, bool inbound) {
-    float rmax = 2.0 * u_a * sqrt((1.0 - c * c) / (1.0 + c * c));
-    float th0 = asinA(min(rho / rmax, 1.0));
+// θ of a winding and branch for the ray leaving at angle ψ to the z axis, for the target at
+// ρ = 2a s (gS) whose reach ψ_min (gPsiMin, where r_max = ρ) the light's set-up made: sin θ₀ =
+// ρ/r_max = s√(1 + c²)/sin ψ, and cos θ₀ from σ² − s²(1 + c²) = (1 + s²) sin(ψ − ψ_min)
+// sin(ψ + ψ_min), without the cancellation of r_max − ρ near the reach, where asin's slope
+// would turn f32's rounding of ρ/r_max into an error of θ near √ε (spacetime::connect refines
+// in ψ for the same reason in f64).
+float shadowTheta(float psi, int n, bool inbound) {
+    float c = cosA(psi);
+    float d = (1.0 + gS * gS) * sinA(psi - gPsiMin) * sinA(psi + gPsiMin);
+    float th0 = atan2s(gS * sqrt(1.0 + c * c), sqrt(max(d, 0.0)));
     return float(n) * PI + (inbound ? PI - th0 : th0);
 }
 
-// G(u) = 2a u θ(u)/√(1 + u²) − |z_P|: its roots in u = |c| are the rays of a winding and branch.
-float shadowG(float rho, float zp, float u, int n, bool inbound) {
-    return 2.0 * u_a * u * shadowTheta(rho, u, n, inbound) / sqrt(1.0 + u * u) - abs(zp);
+// G(ψ) = 2a c θ/√(1 + c²) − |z_P|, c = cos ψ: its roots are the rays of a winding and branch.
+float shadowG(float psi, int n, bool inbound) {
+    float c = cosA(psi);
+    return 2.0 * u_a * c * shadowTheta(psi, n, inbound) / sqrt(1.0 + c * c) - abs(gZp);
 }
 
 // The first cell of a group of four (pass indices offset..offset+3, cell numbers `cellNo`)
@@ -1620,9 +1657,12 @@ int firstRoot(vec4 prev, vec4 g, vec4 cellNo, int offset, int count, bool inboun
     return CELLS_PER_PASS;
 }
 
-vec4 shadowG4(float rho, float zp, vec4 u, int n, bool inbound) {
+// G at four grid points u of cell numbers cellNo (the last one, u = c_max, reaches ρ exactly:
+// θ₀ = π/2 there, as the CPU has it, not asin of a rounded ratio near 1).
+vec4 shadowG4(float rho, float zp, vec4 u, vec4 cellNo, int n, bool inbound) {
     vec4 rmax = 2.0 * u_a * sqrt((1.0 - u * u) / (1.0 + u * u));
-    vec4 th0 = asinA4(min(rho / rmax, vec4(1.0)));
+    vec4 th0 = mix(asinA4(min(rho / rmax, vec4(1.0))), vec4(0.5 * PI),
+                   equal(cellNo, vec4(float(SHADOW_GRID))));
     vec4 th = float(n) * PI + (inbound ? PI - th0 : th0);
     return 2.0 * u_a * u * th / sqrt(1.0 + u * u) - abs(zp);
 }
@@ -1682,18 +1722,6 @@ vec2 incidence(vec4 kLight) {
     return vec2(-side * normalize(kLight.yzw).z, energy);
 }
 
-// The shadow rays, light by light: every root of G on a grid of SHADOW_GRID cells per
-// winding and branch (z_P = 0: the in-plane ray only), refined by Illinois steps; a ray is
-// counted unless emitted more than max_past before the hit, arriving from behind, at a
-// caustic, or occluded. The enumeration runs in passes of the kernel's one loop (`main`):
-// a light's set-up, sixteen cells of the grid, one refinement step, or one ray's set-up.
-int gLight = 0, gIdx = 0, gTotal = 0, gCells = 0, gN = 0, gSide = 0, gIter = 0;
-bool gInbound = false;
-float gU0 = 0.0, gG0 = 0.0, gRho = 0.0, gCmax = 0.0, gZp = 0.0, gPower = 0.0, gSum = 0.0, gWeight = 0.0;
-float gLo = 0.0, gHi = 0.0, gFlo = 0.0, gFhi = 0.0, gC = 0.0;
-vec4 gP = vec4(0.0), gSource = vec4(0.0);
-Iso gBack = NO_ISO;
-bool gFailed = false;
 
 // Light li's channel (slot 5 + li / 4, component li % 4): stored at the loop's constant
 // indices, never at the runtime index li.
@@ -1710,8 +1738,10 @@ void endLight() {
     gIdx = -1;
 }
 
-// Sets up light gLight for the hit; false when no ray of it can count.
-bool startLight() {
+// Light gLight's geometry for the hit: the source's isometry, the hit in the source's frame,
+// the grid's size; false when no ray of it can count. A function of gLight and the hit alone
+// (a round that resumes a light makes it again).
+bool lightGeometry() {
     float a = u_a;
     vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * gLight);
     gSource = vec4(0.0, lt.xyz);
@@ -1721,11 +1751,11 @@ bool startLight() {
     gP = applyIso(to, hX);
     gRho = length(gP.yz);
     gZp = gP.w;
-    gSum = 0.0;
-    gFailed = false;
-    float s2 = pow(gRho / (2.0 * a), 2.0);
+    gS = gRho / (2.0 * a);
+    float s2 = gS * gS;
     if (s2 >= 1.0) return false;   // beyond the source's horizon: no ray
     gCmax = sqrt((1.0 - s2) / (1.0 + s2));
+    gPsiMin = atan2s(gS * SQRT2, sqrt(1.0 - s2));   // sin²ψ_min = 2s²/(1 + s²)
     // Rays of winding n take at least n·T_ret (the shortest loop time) in the source's
     // frame, where emission events keep their scene time (the source is on its axis):
     // windings emitted before the window are not enumerated (the CPU drops their rays).
@@ -1734,19 +1764,27 @@ bool startLight() {
     if (windings < 0) return false;
     gCells = gZp == 0.0 ? 1 : SHADOW_GRID;
     gTotal = (windings + 1) * 2 * gCells;
+    return true;
+}
+
+// Sets up light gLight for the hit; false when no ray of it can count.
+bool startLight() {
+    gSum = 0.0;
+    gFailed = false;
+    if (!lightGeometry()) return false;
     gIdx = 0;
     return true;
 }
 
 // One pass over up to sixteen cells of the current light's grid: true when it stopped at a
-// root (its bracket [gLo, gHi] set up for refinement, or gC set when exact).
+// root (its bracket [gLo, gHi] in ψ set up for refinement, or gPsi set when exact).
 bool gridPass() {
     gN = gIdx / (2 * gCells);
     gInbound = (gIdx / gCells) % 2 == 1;
     int cell = gIdx % gCells + 1;
     if (gZp == 0.0) {
         gIdx++;
-        gC = 0.0;
+        gPsi = 0.5 * PI;
         gIter = -1;
         return true;
     }
@@ -1761,10 +1799,10 @@ bool gridPass() {
     us[1] = gCmax * (base + 4.0) / float(SHADOW_GRID);
     us[2] = gCmax * (base + 8.0) / float(SHADOW_GRID);
     us[3] = gCmax * (base + 12.0) / float(SHADOW_GRID);
-    gs[0] = shadowG4(gRho, gZp, us[0], gN, gInbound);
-    gs[1] = shadowG4(gRho, gZp, us[1], gN, gInbound);
-    gs[2] = shadowG4(gRho, gZp, us[2], gN, gInbound);
-    gs[3] = shadowG4(gRho, gZp, us[3], gN, gInbound);
+    gs[0] = shadowG4(gRho, gZp, us[0], base, gN, gInbound);
+    gs[1] = shadowG4(gRho, gZp, us[1], base + 4.0, gN, gInbound);
+    gs[2] = shadowG4(gRho, gZp, us[2], base + 8.0, gN, gInbound);
+    gs[3] = shadowG4(gRho, gZp, us[3], base + 12.0, gN, gInbound);
     int found = min(min(firstRoot(vec4(gG0, gs[0].xyz), gs[0], base, 0, count, gInbound),
                         firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, gInbound)),
                     min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, gInbound),
@@ -1775,18 +1813,25 @@ bool gridPass() {
         gIdx += count;
         return false;
     }
+    // The cell [u0, u1] of the root, as the bracket [ψ(u1), ψ(u0)] in ψ = arccos u (ψ falls
+    // as u grows; the grid's last point is ψ_min exactly, as on the CPU).
     int prev = max(found - 1, 0);
-    gLo = found == 0 ? gU0 : us[prev / 4][prev % 4];
-    gFlo = found == 0 ? gG0 : gs[prev / 4][prev % 4];
-    gHi = us[found / 4][found % 4];
-    gFhi = gs[found / 4][found % 4];
-    gU0 = gHi;
-    gG0 = gFhi;
+    float u0 = found == 0 ? gU0 : us[prev / 4][prev % 4];
+    float g0 = found == 0 ? gG0 : gs[prev / 4][prev % 4];
+    float u1 = us[found / 4][found % 4];
+    float g1 = gs[found / 4][found % 4];
+    bool last = cell + found == SHADOW_GRID;
+    gLo = last ? gPsiMin : acosA(u1);
+    gFlo = g1;
+    gHi = acosA(u0);
+    gFhi = g0;
+    gU0 = u1;
+    gG0 = g1;
     gIdx += found + 1;
     gSide = 0;
     gIter = 0;
-    gC = sign(gZp) * gHi;
-    if (gFhi == 0.0) gIter = -1;   // an exact root: no refinement
+    gPsi = gLo;
+    if (g1 == 0.0) gIter = -1;   // an exact root: no refinement
     return true;
 }
 
@@ -1794,8 +1839,8 @@ bool gridPass() {
 bool rootStep() {
     float m = gFhi != gFlo ? (gLo * gFhi - gHi * gFlo) / (gFhi - gFlo) : 0.5 * (gLo + gHi);
     if (!finite(m) || !(m > gLo && m < gHi)) m = 0.5 * (gLo + gHi);
-    gC = sign(gZp) * m;
-    float fm = shadowG(gRho, gZp, m, gN, gInbound);
+    gPsi = m;
+    float fm = shadowG(m, gN, gInbound);
     gIter++;
     if (fm == 0.0 || gHi - gLo <= 4.0 * 1.1920929e-7 * max(gHi, 1e-30) || gIter >= REFINE_STEPS) return true;
     if ((fm > 0.0) == (gFhi > 0.0)) { gHi = m; gFhi = fm; if (gSide == 1) gFlo *= 0.5; gSide = 1; }
@@ -1803,19 +1848,19 @@ bool rootStep() {
     return false;
 }
 
-// The ray of root gC (spacetime::connect): 0 when it does not count, 1 when it counts
+// The ray of root gPsi (spacetime::connect): 0 when it does not count, 1 when it counts
 // unoccluded (gWeight), 2 when its occlusion must be searched (the search is set up).
 int shadowRaySetUp() {
     float a = u_a;
-    float c = gC;
+    float c = sign(gZp) * cosA(gPsi);
     int n = gN;
-    float th = shadowTheta(gRho, c, n, gInbound);
+    float th = shadowTheta(gPsi, n, gInbound);
     float w1 = 1.0 + c * c;
     float omega = sqrt(w1) / (2.0 * a);
     float big = bigPhi(sqrt(2.0 / w1), th);
     float lambda = th / omega;
     float chi = carg(gP.yz) - big + float(n) * PI;
-    float sinpsi = sqrt(max(1.0 - c * c, 0.0));
+    float sinpsi = sinA(gPsi);
     vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
     vec4 tg = vec4(1.0, sinpsi * cosA(chi), sinpsi * sinA(chi), c);
     vec4 emission = applyIso(gBack, em);
@@ -1834,7 +1879,7 @@ int shadowRaySetUp() {
     rayAt(r, 0, lambda, xe, kEnd);
     vec2 inc = incidence(kEnd);
     if (!finite(inc.x) || !(inc.x > 0.0)) return 0;
-    float d2 = areaDistanceSq(acosA(clamp(c, -1.0, 1.0)), chi, lambda);
+    float d2 = areaDistanceSq(c < 0.0 ? PI - gPsi : gPsi, chi, lambda);
     if (!(d2 > 0.0 && finite(d2))) return 0;
     gWeight = gPower * inc.y * inc.y * inc.x / (4.0 * PI * d2);
     // Occlusion: the ray from its emission to just before the lit point (END_CUT),
@@ -1914,118 +1959,268 @@ void writeSlots() {
 #endif
 }
 
-#ifndef RAY_PATH
+// ---------------------------------------------------------------------------------------
+// Rounds (docs/physics.md, "The GPU kernel", "Rounds"). A sample is traced in rounds of draws
+// (crates/gpu/src/host.rs; the page's trace.js): each round goes on from where the previous
+// one left the sample, for at most its budget of passes, and keeps what it finished up to the
+// last checkpoint it reached: the start of each loop of the pixel's search, the search's end,
+// and each step of the shadow rays' enumeration. At a checkpoint the sample's state is a few
+// numbers (Progress), written into its state slots; the next round makes everything else
+// again from them, and the searches are memoryless there (a loop probes its objects afresh).
+// So a record does not depend on how its work was cut into rounds: not on draw sizes, the
+// driver's grouping of samples, timing or load. llvmpipe ends every loop of a shader once its
+// loops have run 65535 passes in all, per group of samples and silently: a round cut short
+// so is told by a last loop that must run twice, and dropped (the sample runs it again with
+// half the budget).
+
+const int PH_PIXEL = 0;    // the pixel's search, at the start of loop `counter`
+const int PH_LIGHTS = 1;   // the shadow rays: light `counter`, grid index `idx` (with u0, g0)
+const int PH_DONE = 2;     // finished with `status`
+// Ints kept in f32 between rounds: exact up to 2^24.
+const int MAX_COUNT = 16777215;
+
+struct Progress {
+    int phase; int budget; int probes; int status;
+    int counter; int idx; float u0; float g0;
+    float sum;   // the current light's sum so far (−1: unknown, one of its searches ran out of work)
+    Found hit;   // the pixel's hit (PH_LIGHTS; PH_DONE with status HIT)
+};
+
+Progress readProgress() {
+    vec4 s0 = slots[STATE], s1 = slots[STATE + 1], s2 = slots[STATE + 2], s3 = slots[STATE + 3];
+    return Progress(toInt(s0.x, PH_PIXEL, PH_DONE), toInt(s0.y, MIN_BUDGET, MAX_BUDGET),
+                    toInt(s0.z, 0, PIXEL_PROBES), toInt(s0.w, HIT, WORK_LIMIT),
+                    toInt(s1.x, 0, MAX_COUNT), toInt(s1.y, -1, MAX_COUNT), s1.z, s1.w, s2.x,
+                    Found(HIT, toInt(s2.y, -1, N_OBJECTS), toInt(s2.z, 0, MAX_COUNT), s2.w, s3.x));
+}
+
+void writeProgress(Progress p) {
+    slots[STATE] = vec4(float(p.phase), float(p.budget), float(p.probes), float(p.status));
+    slots[STATE + 1] = vec4(float(p.counter), float(p.idx), p.u0, p.g0);
+    slots[STATE + 2] = vec4(p.sum, float(p.hit.target), float(p.hit.loop_), p.hit.lambda);
+    slots[STATE + 3] = vec4(p.hit.tau, 0.0, 0.0, 0.0);
+}
+
+// Checkpoints: the start of loop `loop` of the pixel's search; a step of the shadow rays
+// (the enumeration's state); the end.
+Progress atLoop(Progress p, int loop) {
+    p.phase = PH_PIXEL;
+    p.counter = loop;
+    p.probes = probes_left;
+    return p;
+}
+Progress atLightStep(Progress p, Found hit) {
+    p.phase = PH_LIGHTS;
+    p.counter = gLight;
+    p.idx = gIdx;
+    p.u0 = gU0;
+    p.g0 = gG0;
+    p.sum = gFailed ? -1.0 : gSum;
+    p.hit = hit;
+    p.probes = probes_left;
+    return p;
+}
+Progress atEnd(Progress p, int status, Found hit) {
+    p.phase = PH_DONE;
+    p.status = status;
+    p.hit = hit;
+    p.probes = probes_left;
+    return p;
+}
+
+// Starts the pixel's search along r; -1, or the sample's status where no search is needed.
+int startPixel(Ray r, vec4 obs, float pt, float tBound) {
+    bool any = setSearched(obs, r.geo, INF, -1, INF);
+    if (!r.geo.ok) return FAILED;
+    if (godel()) {
+        if (!finite(r.shift.x) || !(r.shift.x < 0.0)) return FAILED;
+        // A ray near no object escapes (if it reaches the time bound within the loops).
+        if (!any) return float(u_max_loops) * r.shift.x < tBound ? ESCAPED : WORK_LIMIT;
+        startSearch(r, u_max_loops + 1, EXACT_SEGMENTS, r.lret, pt, true, tBound);
+    } else {
+        float lmax = u_max_past / max(abs(r.k0.x), 1e-30);
+        startSearch(r, 1, toInt(ceil(lmax), 1, MAX_SEGMENTS), lmax, pt, true, tBound);
+    }
+    return -1;
+}
+
+// The pixel's hit f: its event, body frame, surface and shift (h*, which the lights use) and
+// the record's slots; its status (escaped where the hit lies before the time bound, failed
+// where it has no surface or shift).
+int takeHit(Found f, Ray r, mat4 frame, vec3 n, vec4 obs, vec4 k, float tBound) {
+    rayAt(r, f.loop_, f.lambda, hX, hK);
+    float lambda = f.lambda + float(f.loop_) * r.lret;
+    pixelScreen(frame, n);
+    transportScreen(r, obs, f.lambda, lambda);
+    hTarget = f.target;
+    hAt.tau = f.tau;
+    bool ok = surface();
+    // g = (p·u_obs)/(p·u_emit), the backward ray's momentum at both ends.
+    float g = dot(frame[0], metricAt(obs) * k) / dot(hUemit, metricAt(hX) * hK);
+    if (hX.x < tBound) return ESCAPED;
+    if (!ok || !(g > 0.0 && finite(g))) return FAILED;
+    slots[0] = vec4(float(hTarget), 0.0, hUV);
+    slots[1] = vec4(g, hX.x, lambda, hCos);
+    slots[2].xyz = hX.yzw;
+    slots[3].xyz = hDir;
+    slots[4].yzw = hPol;
+    return HIT;
+}
+
+#if !defined(RAY_PATH) && !defined(PROBE)
+// One round of one sample (u_finish 0: its lights' and progress slots), or its record from
+// its final progress (u_finish 1: the record's slots).
 void main() {
-    probes_left = PIXEL_PROBES;
-    ivec2 pix = u_origin + ivec2(gl_FragCoord.xy);
-    for (int s = 0; s < SLOTS + 8; s++) slots[s] = vec4(0.0);
+    ivec2 frag = ivec2(gl_FragCoord.xy);
+    ivec2 pix = u_origin + frag;
+    for (int s = 0; s < ALL_SLOTS + 8; s++) slots[s] = vec4(0.0);
+    // The previous round's lights and progress (the record's fixed slots are made again).
+    if (u_round > 0) {
+        for (int layer = 5; layer < ALL_SLOTS; layer++) slots[layer] = texelFetch(u_prev, ivec3(frag, layer), 0);
+    }
+    vec4 saved[ALL_SLOTS + 8] = slots;   // what a round cut short writes back
+    // (No ?: between structures: WebGL forbids it.)
+    Progress at = Progress(PH_PIXEL, clamp(u_budget, MIN_BUDGET, MAX_BUDGET), PIXEL_PROBES,
+                           NOT_TRACED, 0, -1, 0.0, 0.0, 0.0, NO_FOUND);
+    if (u_round > 0) at = readProgress();
+    if (u_finish == 0 && at.phase == PH_DONE) {   // finished in an earlier round: kept as it is
+        writeSlots();
+        return;
+    }
+    probes_left = at.probes;
+    Progress cp = at;   // the last checkpoint reached
+    bool moved = false; // whether it lies past the round's start
+
     vec3 d = vec3(0.0);
-    int status = NOT_TRACED;
-    if (cameraDirection(vec2(pix) + 0.5, d)) {
-        vec3 right = cross(u_forward, u_up);
-        vec3 n = d.x * u_forward + d.y * right + d.z * u_up;
-        slots[2].w = n.x;
-        slots[3].w = n.y;
-        slots[4].x = n.z;
-        loadObjects();
-        vec4 obs = vec4(0.0, u_obs_x);
-        mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
-        vec4 k = frame * vec4(-1.0, n);                 // the past-directed photon
-        float pt = (metricAt(obs) * k).x;               // p_t, conserved
-        Ray r = makeRay(obs, k);
-        float tBound = -u_max_past;
-        bool any = setSearched(obs, r.geo, INF, -1, INF);
-        Found f = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
-        bool run = true;
-        if (!r.geo.ok) {
-            f.status = FAILED;
-            run = false;
-        } else if (godel()) {
-            if (!finite(r.shift.x) || !(r.shift.x < 0.0)) { f.status = FAILED; run = false; }
-            // A ray near no object escapes (if it reaches the time bound within the loops).
-            else if (!any) { f.status = float(u_max_loops) * r.shift.x < tBound ? ESCAPED : WORK_LIMIT; run = false; }
-            else startSearch(r, u_max_loops + 1, EXACT_SEGMENTS, r.lret, pt, true, tBound);
+    bool traced = cameraDirection(vec2(pix) + 0.5, d);
+    vec3 right = cross(u_forward, u_up);
+    vec3 n = d.x * u_forward + d.y * right + d.z * u_up;
+    slots[2].w = n.x;
+    slots[3].w = n.y;
+    slots[4].x = n.z;
+    loadObjects();
+    vec4 obs = vec4(0.0, u_obs_x);
+    mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
+    vec4 k = frame * vec4(-1.0, n);                 // the past-directed photon
+    float pt = (metricAt(obs) * k).x;               // p_t, conserved
+    Ray r = makeRay(obs, k);
+    float tBound = -u_max_past;
+
+    if (u_finish != 0) {
+        int status = !traced ? NOT_TRACED : at.phase == PH_DONE ? at.status : WORK_LIMIT;
+        if (status == HIT) status = takeHit(at.hit, r, frame, n, obs, k, tBound);
+        if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
+#ifdef COUNT_PROBES
+        slots[2].w = float(PIXEL_PROBES - at.probes);   // benchmarks: the probes in view_x
+#endif
+        writeSlots();
+        return;
+    }
+
+    bool searching = false;
+    bool pixelSearch = false;
+    Found hit = at.hit;
+    if (!traced) {
+        cp = atEnd(at, NOT_TRACED, NO_FOUND);
+    } else if (at.phase == PH_PIXEL) {
+        int decided = startPixel(r, obs, pt, tBound);
+        if (decided >= 0) {
+            cp = atEnd(at, decided, NO_FOUND);
         } else {
-            float lmax = u_max_past / max(abs(k.x), 1e-30);
-            startSearch(r, 1, toInt(ceil(lmax), 1, MAX_SEGMENTS), lmax, pt, true, tBound);
+            eLoop = at.counter;
+            searching = true;
+            pixelSearch = true;
         }
-        // The pixel's search, then one search per shadow ray whose occlusion must be
-        // searched, the shadow rays enumerated between the searches.
-        bool finished = false;
-        bool pixelSearch = true;
-        for (int job = 0; job < MAX_JOBS && !finished; job++) {
-            if (run) {
-                for (int pass = 0; pass < MAX_PASSES && eMode != M_DONE; pass++) searchPass();
-                if (eMode != M_DONE) finish(WORK_LIMIT);
-                f = eResult;
+    } else if (at.phase == PH_LIGHTS) {
+        takeHit(hit, r, frame, n, obs, k, tBound);
+        gLight = at.counter;
+        gIdx = at.idx;
+        gU0 = at.u0;
+        gG0 = at.g0;
+        gFailed = at.sum < 0.0;
+        gSum = max(at.sum, 0.0);
+        if (gIdx >= 0 && gLight < u_lights) lightGeometry();
+    }
+    if (cp.phase == PH_DONE) moved = true;
+
+    // The passes: the pixel's search, then the shadow rays light by light, each step of their
+    // enumeration a checkpoint, the search of one ray's occlusion between two steps.
+    int spent = 0;
+    for (int pass = 0; pass < MAX_BUDGET && cp.phase != PH_DONE && spent < at.budget; pass++) {
+        spent++;
+        if (searching) {
+            if (pixelSearch && eMode == M_LOOP && qTag == Q_NONE) {
+                moved = moved || eLoop > at.counter;
+                cp = atLoop(cp, eLoop);
             }
-            run = true;
+            searchPass();
+            if (eMode != M_DONE) continue;
+            searching = false;
+            Found f = eResult;
             if (pixelSearch) {
                 pixelSearch = false;
-                status = f.status;
-                finished = true;
-                if (f.status != HIT) continue;
-                rayAt(r, f.loop_, f.lambda, hX, hK);
-                float lambda = f.lambda + float(f.loop_) * r.lret;
-                pixelScreen(frame, n);
-                transportScreen(r, obs, f.lambda, lambda);
-                hTarget = f.target;
-                hAt.tau = f.tau;
-                bool ok = surface();
-                // g = (p·u_obs)/(p·u_emit), the backward ray's momentum at both ends.
-                float g = dot(frame[0], metricAt(obs) * k) / dot(hUemit, metricAt(hX) * hK);
-                if (hX.x < tBound) { status = ESCAPED; continue; }
-                if (!ok || !(g > 0.0 && finite(g))) { status = FAILED; continue; }
-                slots[0] = vec4(float(hTarget), 0.0, hUV);
-                slots[1] = vec4(g, hX.x, lambda, hCos);
-                slots[2].xyz = hX.yzw;
-                slots[3].xyz = hDir;
-                slots[4].yzw = hPol;
-                if (!godel() || HAS_LIGHTS == 0 || u_lights == 0) continue;
-                finished = false;
+                int status = f.status == HIT ? takeHit(f, r, frame, n, obs, k, tBound) : f.status;
+                moved = true;
+                if (status != HIT || !godel() || HAS_LIGHTS == 0 || u_lights == 0) {
+                    cp = atEnd(cp, status, f);
+                    break;
+                }
+                hit = f;
                 gLight = 0;
                 gIdx = -1;
-            } else if (f.status == WORK_LIMIT || f.status == FAILED) {   // occlusion unknown
+                gSum = 0.0;
+                gFailed = false;
+                cp = atLightStep(cp, hit);
+                continue;
+            }
+            if (f.status == WORK_LIMIT || f.status == FAILED) {   // occlusion unknown
                 gFailed = true;
             } else if (f.status != HIT) {
                 gSum += gWeight;
             }
-            // On to the next ray whose occlusion must be searched.
-            finished = true;
-            for (int pass = 0; pass < MAX_PASSES && gLight < u_lights; pass++) {
-                if (gIdx < 0) {
-                    if (!startLight()) endLight();
-                } else if (gIdx >= gTotal || gFailed) {
-                    endLight();
-                    gIdx = -1;
-                } else if (gridPass()) {
-                    for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
-                        if (rootStep()) break;
-                    }
-                    int use = shadowRaySetUp();
-                    if (use == 1) gSum += gWeight;
-                    if (use == 2) { finished = false; break; }
-                }
-            }
+            continue;
         }
-        if (!finished) {
-            // Out of passes: the pixel is out of work, or the lights not yet summed unknown.
-            if (pixelSearch) status = WORK_LIMIT;
-            for (int li = 0; li < N_LIGHTS; li++) {
-                if (li >= gLight && li < u_lights) slots[5 + li / 4][li % 4] = -1.0;
+        // A step of the shadow rays' enumeration: a light's set-up or end, sixteen cells of
+        // its grid, or a root's refinement and its ray's set-up (and then its search).
+        moved = moved || spent > 1;
+        cp = atLightStep(cp, hit);
+        if (gLight >= u_lights) {
+            cp = atEnd(cp, HIT, hit);
+            break;
+        }
+        if (gIdx < 0) {
+            if (!startLight()) endLight();
+        } else if (gIdx >= gTotal || gFailed) {
+            endLight();
+        } else if (gridPass()) {
+            for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
+                spent++;
+                if (rootStep()) break;
             }
+            int use = shadowRaySetUp();
+            if (use == 1) gSum += gWeight;
+            if (use == 2) searching = true;
         }
     }
-    // llvmpipe ends every loop of a shader once its loops have run 65535 passes in all (its
-    // loop limiter), silently. A loop that must run twice tells: a sample cut short is marked
-    // as out of work, never written as if complete.
+
+    // llvmpipe's loop limit: a loop that must run twice tells whether this round was cut.
     int passes = 0;
     for (int i = 0; i < u_two; i++) passes++;
-    if (passes != 2) status = WORK_LIMIT;
-    if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
-#ifdef COUNT_PROBES
-    slots[2].w = float(PIXEL_PROBES - probes_left);   // benchmarks: the probes in view_x
-#endif
+    Progress next = cp;
+    next.budget = at.budget;
+    if (passes != 2) {
+        // Cut short: nothing of this round is kept; again with half the budget.
+        slots = saved;
+        next = at;
+        next.budget = max(at.budget / 2, MIN_BUDGET);
+    } else if (!moved) {
+        // No checkpoint reached: more passes next round, up to MAX_BUDGET; beyond that the
+        // pixel's search is out of work, or the light's occlusion unknown.
+        if (at.budget < MAX_BUDGET) next.budget = min(at.budget * 2, MAX_BUDGET);
+        else if (at.phase == PH_LIGHTS) next.sum = -1.0;
+        else next = atEnd(at, WORK_LIMIT, NO_FOUND);
+    }
+    writeProgress(next);
     writeSlots();
 }
 #endif
@@ -2072,7 +2267,7 @@ float parameterAtTime(Ray r, float t) {
 }
 
 void main() {
-    for (int s = 0; s < SLOTS + 8; s++) slots[s] = vec4(0.0);
+    for (int s = 0; s < ALL_SLOTS + 8; s++) slots[s] = vec4(0.0);
     vec4 obs = vec4(0.0, u_obs_x);
     mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
     Ray r = makeRay(obs, frame * vec4(-1.0, normalize(u_ray.xyz)));

@@ -13,11 +13,12 @@ pub mod check;
 pub mod context;
 pub mod host;
 pub mod input;
+pub mod probe;
 pub mod render;
 
 /// The kernel's source (without `#version` and the defines its host prepends).
 pub const KERNEL: &str = include_str!("kernel.glsl");
 
-pub use host::{GpuTracer, HostError, Traced};
+pub use host::{GpuTracer, HostError, Tiling, Traced};
 pub use input::KernelInput;
 pub use render::{render, render_with, GpuRender};

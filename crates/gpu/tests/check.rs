@@ -72,3 +72,30 @@ fn two_percent_and_at_least_two_disagreements_are_allowed() {
     assert_eq!(allowed(100), 2);
     assert_eq!(allowed(256), 5);
 }
+
+#[test]
+fn samples_the_gpu_left_out_of_work_are_disagreements() {
+    // The kernel's bounds are the CPU's: a sample out of work where the CPU finished is
+    // wrong, as a wrong hit is (docs/physics.md, "Bounds of a GPU").
+    let scene = scene("static-sphere", 160, 20);
+    let mut exact = scene.clone();
+    exact.trace.method = scene::TraceMethod::Exact;
+    let (cpu, _) = render::driver::render(&exact, &NoProgress).expect("CPU render");
+    against_cpu(&scene, &cpu.records, "the CPU").expect("the CPU's own records pass");
+    let mut records = cpu.records.clone();
+    for r in records.iter_mut().step_by(10) {
+        *r = datafile::PixelRecord::miss(datafile::RayStatus::WorkLimit);
+    }
+    match against_cpu(&scene, &records, "a GPU") {
+        Err(CheckError::Disagrees {
+            differ,
+            checked,
+            gpu,
+            ..
+        }) => {
+            assert!(differ > allowed(checked), "{differ} of {checked}");
+            assert_eq!(gpu, "out of work (work limit)");
+        }
+        other => panic!("samples out of work pass the check: {other:?}"),
+    }
+}

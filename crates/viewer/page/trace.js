@@ -2,8 +2,11 @@
 // (kernel.glsl, served at /api/gpu/kernel) in WebGL2 as crates/gpu/src/host.rs runs it
 // offscreen: compiled after `#version 300 es` and the input's defines, the scene table
 // uploaded as RGBA32F texels, the sample grid drawn tile by tile (each draw short, so that no
-// GPU watchdog fires and the page stays responsive) into float render targets: one RGBA32F
-// texture per slot of four channels of a record. A conversion pass then writes the channels
+// GPU watchdog fires and the page stays responsive), each tile in rounds (docs/physics.md,
+// "Rounds": a round takes each sample on from its last checkpoint, reading the previous
+// round's progress from one array texture and writing it into the other) until every sample
+// is finished, then the records into float render targets: one RGBA32F texture per slot of
+// four channels of a record. A conversion pass then writes the channels
 // the shading reads (crates/viewer/src/gpu.rs: id, u, v, g, t_emit, cos_i, pol, dir, the light
 // planes) into textures: the frame never leaves the GPU.
 //
@@ -123,6 +126,17 @@ export class KernelTracer {
     return this.programs.get(defines);
   }
 
+  // An RGBA32F array texture of `layers` layers (a round's slots, one layer each).
+  arrayTexture(width, height, layers) {
+    const gl = this.gl;
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, t);
+    gl.texStorage3D(gl.TEXTURE_2D_ARRAY, 1, gl.RGBA32F, width, height, layers);
+    gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    return t;
+  }
+
   floatTexture(width, height) {
     const gl = this.gl;
     const t = gl.createTexture();
@@ -152,7 +166,8 @@ export class KernelTracer {
     gl.uniform1i(at('max_loops'), u.max_loops);
     gl.uniform1i(at('lights'), u.lights);
     gl.uniform1i(at('table'), 0);
-    // The bound of the loop that tells a sample cut short by a loop limiter (kernel.glsl).
+    gl.uniform1i(at('prev'), 1);
+    // The bound of the loop that tells a round cut short by a loop limiter (kernel.glsl).
     gl.uniform1i(at('two'), 2);
   }
 
@@ -181,8 +196,8 @@ export class KernelTracer {
   // Traces the sample grid of `input`: resolves to {width, height, slots (one RGBA32F
   // texture each, the caller's to delete), input, source (the kernel's, as compiled),
   // compileMs, traceMs}. `progress(done, total)` is
-  // called after each draw; `cancelled()` (optional) stops between draws (rejects). `whole`:
-  // the grid in one draw (a small frame while flying, fly.js: no wait between tiles).
+  // called after each tile; `cancelled()` (optional) stops between draws (rejects). `whole`:
+  // the grid in one tile (a small frame while flying, fly.js: no wait between tiles).
   async trace(input, { progress = () => {}, cancelled = () => false, whole = false } = {}) {
     const gl = this.gl;
     const u = input.uniforms;
@@ -224,6 +239,39 @@ export class KernelTracer {
       }
       passes.push({ fb, first });
     }
+    // The rounds' slots: two array textures (a round reads one, writes the other), for each
+    // a framebuffer per pass of a round (the layers [first, first + buffers) from the first
+    // light slot on) and one on the progress's first layer, read after each round.
+    const all = input.slots + input.state_slots;
+    const layers = [0, 1].map(() => this.arrayTexture(width, height, all));
+    const framebuffers = [];
+    const roundPasses = layers.map((texture) => {
+      const list = [];
+      for (let first = input.round_slot0; first < all; first += buffers) {
+        const fb = gl.createFramebuffer();
+        framebuffers.push(fb);
+        gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+        const attachments = [];
+        for (let i = 0; i < buffers && first + i < all; i += 1) {
+          gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, texture, 0, first + i);
+          attachments.push(gl.COLOR_ATTACHMENT0 + i);
+        }
+        while (attachments.length < buffers) attachments.push(gl.NONE);
+        gl.drawBuffers(attachments);
+        if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) {
+          throw new Error('this WebGL2 cannot draw into float array textures');
+        }
+        list.push({ fb, first });
+      }
+      return list;
+    });
+    const progressFbs = layers.map((texture) => {
+      const fb = gl.createFramebuffer();
+      framebuffers.push(fb);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, texture, 0, input.slots);
+      return fb;
+    });
 
     gl.useProgram(program);
     this.setUniforms(program, u);
@@ -231,12 +279,27 @@ export class KernelTracer {
     // gl_FragCoord is already the sample's place in the grid.
     gl.uniform2i(gl.getUniformLocation(program, 'u_origin'), 0, 0);
     const slot0 = gl.getUniformLocation(program, 'u_slot0');
-    const bind = () => {
+    const round = gl.getUniformLocation(program, 'u_round');
+    const finish = gl.getUniformLocation(program, 'u_finish');
+    gl.uniform1i(gl.getUniformLocation(program, 'u_budget'), input.first_budget);
+    const bind = (from) => {
       gl.useProgram(program);
       gl.activeTexture(gl.TEXTURE0);
       gl.bindTexture(gl.TEXTURE_2D, table);
+      gl.activeTexture(gl.TEXTURE1);
+      gl.bindTexture(gl.TEXTURE_2D_ARRAY, layers[from]);
       gl.bindVertexArray(this.vao);
       gl.enable(gl.SCISSOR_TEST);
+    };
+    // One round of a tile (or its finishing draw): reads layers[from], writes `targets`.
+    const draw = (targets, roundNo, finishing) => {
+      gl.uniform1i(round, roundNo > 0 ? 1 : 0);
+      gl.uniform1i(finish, finishing ? 1 : 0);
+      for (const { fb, first } of targets) {
+        gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+        gl.uniform1i(slot0, first);
+        gl.drawArrays(gl.TRIANGLES, 0, 3);
+      }
     };
     // Before each wait: the page draws its picture meanwhile (viewer.js, on the default
     // framebuffer), which must not be clipped to this tracer's tile.
@@ -244,7 +307,7 @@ export class KernelTracer {
       gl.disable(gl.SCISSOR_TEST);
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     };
-    bind();
+    bind(0);
 
     const total = width * height;
     let done = 0;
@@ -257,9 +320,7 @@ export class KernelTracer {
       if (!this.warm.has(program)) {
         gl.viewport(0, 0, 1, 1);
         gl.scissor(0, 0, 1, 1);
-        gl.bindFramebuffer(gl.FRAMEBUFFER, passes[0].fb);
-        gl.uniform1i(slot0, 0);
-        gl.drawArrays(gl.TRIANGLES, 0, 3);
+        draw(roundPasses[1].slice(0, 1), 0, false);
         unbind();
         await this.finished();
         this.warm.add(program);
@@ -272,16 +333,33 @@ export class KernelTracer {
           if (cancelled()) throw new Error('tracing was cancelled');
           const cols = Math.min(side, width - col0);
           const started = performance.now();
-          bind(); // the page may have drawn while this tracer waited
+          // Rounds until every sample of the tile is finished (a sample left unfinished is
+          // written as out of work), each round's progress read back.
+          let from = 0;
+          const phases = new Float32Array(cols * rows * 4);
+          for (let r = 0; r < input.max_rounds; r += 1) {
+            if (r > 0 && cancelled()) throw new Error('tracing was cancelled');
+            bind(from); // the page may have drawn while this tracer waited
+            gl.viewport(col0, row0, cols, rows);
+            gl.scissor(col0, row0, cols, rows);
+            draw(roundPasses[1 - from], r, false);
+            from = 1 - from;
+            gl.bindFramebuffer(gl.FRAMEBUFFER, progressFbs[from]);
+            gl.readPixels(col0, row0, cols, rows, gl.RGBA, gl.FLOAT, phases);
+            let finished = true;
+            for (let i = 0; i < phases.length; i += 4) {
+              if (phases[i] !== input.phase_done) { finished = false; break; }
+            }
+            unbind();
+            if (finished) break;
+            if (!whole) await this.finished();
+          }
+          bind(from);
           gl.viewport(col0, row0, cols, rows);
           gl.scissor(col0, row0, cols, rows);
-          for (const { fb, first } of passes) {
-            gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-            gl.uniform1i(slot0, first);
-            gl.drawArrays(gl.TRIANGLES, 0, 3);
-          }
-          // One draw of the whole grid is not waited for: its frame is shaded in the same
-          // animation frame, the GPU working through it in order.
+          draw(passes, 1, true);
+          // The finishing draw of the whole grid is not waited for: its frame is shaded in
+          // the same animation frame, the GPU working through it in order.
           unbind();
           if (!whole) await this.finished();
           done += cols * rows;
@@ -301,6 +379,8 @@ export class KernelTracer {
       unbind();
       gl.deleteTexture(table);
       passes.forEach(({ fb }) => gl.deleteFramebuffer(fb));
+      framebuffers.forEach((fb) => gl.deleteFramebuffer(fb));
+      layers.forEach((t) => gl.deleteTexture(t));
     }
     return { width, height, slots, input, source, compileMs,
       traceMs: performance.now() - traceStart };

@@ -45,15 +45,29 @@ pub struct PageInput {
     pub draw_buffers: usize,
     /// The source prefix after `#version 300 es` ([`KernelInput::defines`]).
     pub defines: String,
+    /// The rounds a tile is traced in (docs/physics.md, "Rounds"; the page runs them as
+    /// [`gpu::host`] does): the progress's slots after the record's, the first slot a round
+    /// writes, the progress's phase of a finished sample, the first round's budget of passes,
+    /// and the rounds at most.
+    pub state_slots: usize,
+    pub round_slot0: usize,
+    pub phase_done: f32,
+    pub first_budget: i32,
+    pub max_rounds: u32,
 }
 
 impl PageInput {
     /// The page's input for `input`, drawn with at most `draw_buffers` targets per pass.
     pub fn new(input: KernelInput, draw_buffers: usize) -> PageInput {
         let slots = input.slots();
-        let draw_buffers = draw_buffers.clamp(1, KERNEL_OUTPUTS).min(slots);
+        let draw_buffers = input.draw_buffers(draw_buffers.min(KERNEL_OUTPUTS));
         PageInput {
             slots,
+            state_slots: gpu::input::STATE_SLOTS,
+            round_slot0: gpu::input::ROUND_SLOT0,
+            phase_done: gpu::input::PHASE_DONE,
+            first_budget: gpu::host::FIRST_BUDGET,
+            max_rounds: gpu::host::MAX_ROUNDS,
             light_channels: (0..input.light_count)
                 .map(|k| {
                     let (s, c) = gpu::input::light_channel(k);

@@ -1,0 +1,100 @@
+//! The kernel's rounds (docs/physics.md, "The GPU kernel", "Bounds of a GPU" and "Rounds"): a
+//! sample is traced in rounds, each taking it on from its last checkpoint, so its record does
+//! not depend on how its work is cut (tile sizes, budgets of passes, llvmpipe's loop limit,
+//! timing), and the GPU has no bound the CPU exact tracer has not: on lit floors seen by a
+//! moving off-axis observer, with a ball falling at 0.8 c, for a from 0.5 to 2 and max_past up
+//! to 30, it marks `work limit` no more often than the CPU (before the rounds, such a scene at
+//! 360×70 had hundreds of GPU samples out of work, the CPU none, and two runs differed).
+
+mod common;
+
+use common::{agreement, lit_floor};
+use datafile::PixelRecord;
+use gpu::{GpuTracer, KernelInput, Tiling, Traced, KERNEL};
+use render::driver::NoProgress;
+
+/// A record as bits (NaN and −0 told apart): equal bits, equal bytes in the data file.
+fn bits(r: &PixelRecord) -> Vec<u32> {
+    let floats = [
+        r.u, r.v, r.g, r.t_emit, r.x, r.y, r.z, r.lambda, r.cos_i, r.dir[0], r.dir[1], r.dir[2],
+        r.view[0], r.view[1], r.view[2], r.pol[0], r.pol[1], r.pol[2],
+    ];
+    let mut v = vec![r.object as u32, r.status as u32];
+    v.extend(floats.map(f32::to_bits));
+    v
+}
+
+fn same_bytes(a: &Traced, b: &Traced) -> bool {
+    let records = |t: &Traced| t.records.iter().map(bits).collect::<Vec<_>>();
+    let lights = |t: &Traced| {
+        (t.lights.iter())
+            .map(|l| l.iter().map(|v| v.to_bits()).collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+    };
+    records(a) == records(b) && lights(a) == lights(b)
+}
+
+#[test]
+fn records_do_not_depend_on_tiles_or_budgets() {
+    // The scene of two runs, two pictures: a lit floor, a ball falling at 0.8 c,
+    // a = 1.5, max_past 25, an off-axis observer at 0.6 c.
+    let scene = lit_floor(1.5, 25.0, 36, 9);
+    let tracer = GpuTracer::new(KernelInput::new(&scene)).expect("a GPU context");
+    let cuts = [
+        // Many small tiles and rounds of 8 passes: a sample crosses many rounds, and
+        // llvmpipe groups it with other neighbours.
+        Tiling {
+            side: Some(5),
+            first_budget: 8,
+        },
+        // One tile of the whole grid, long rounds: llvmpipe's loop limit cuts them.
+        Tiling {
+            side: Some(64),
+            first_budget: 1 << 16,
+        },
+        Tiling::default(),
+    ];
+    let traced: Vec<Traced> = (cuts.iter())
+        .map(|&t| tracer.trace_with(&NoProgress, t).expect("trace"))
+        .collect();
+    let rounds: Vec<u64> = traced.iter().map(|t| t.rounds).collect();
+    eprintln!("rounds: {rounds:?}");
+    // The work was cut differently: many more rounds with small budgets and tiles.
+    assert!(rounds[0] > 4 * rounds[1], "rounds {rounds:?}");
+    let hits = (traced[0].records.iter())
+        .filter(|r| r.status == datafile::RayStatus::Hit)
+        .count();
+    assert!(hits > 50, "the scene shows its objects: {hits} hits");
+    for (t, cut) in traced[1..].iter().zip(&cuts[1..]) {
+        assert!(
+            same_bytes(&traced[0], t),
+            "the records of {cut:?} differ from those of {:?}",
+            cuts[0]
+        );
+    }
+}
+
+#[test]
+fn lit_floors_are_out_of_work_on_the_gpu_no_more_often_than_on_the_cpu() {
+    for (a, max_past) in [(0.5, 30.0), (1.0, 10.0), (1.5, 25.0), (2.0, 30.0)] {
+        let scene = lit_floor(a, max_past, 40, 10);
+        let m = agreement(&scene, KERNEL);
+        eprintln!("a = {a}, max_past = {max_past}: {m:?}");
+        assert!(
+            m.work_limit[0] <= m.work_limit[1],
+            "work limit (GPU, CPU): {:?}",
+            m.work_limit
+        );
+        // The same objects, shifts and times as everywhere. The light is not held to the
+        // example scenes' 99.9 % within 1e-3 here: after twenty and more windings (a = 0.5,
+        // max_past 30) a few lit samples differ where a shadow ray grazes a ball or two roots
+        // meet near a caustic (D ~ 0.1), which f32 and f64 resolve apart (docs/physics.md,
+        // "The GPU kernel"); the figures are printed above.
+        assert!(m.same >= common::SAME || m.differ <= 1, "{m:?}");
+        assert!(
+            m.g_median <= common::G_MEDIAN && m.g_p999 <= common::G_P999,
+            "{m:?}"
+        );
+        assert!(m.t_p999 <= common::T_P999, "{m:?}");
+    }
+}
