@@ -25,7 +25,14 @@ fn main() {
     .unwrap_or_else(|e| panic!("{e}"));
     let setup = t.elapsed();
     let t = Instant::now();
-    let g = gpu.trace(&NoProgress).expect("trace");
+    // BUDGET=N, SIDE=N: cut the work so (the records must not change).
+    let env = |name: &str| std::env::var(name).ok().map(|v| v.parse().expect(name));
+    let mut tiling = gpu::Tiling::default();
+    tiling.side = env("SIDE");
+    if let Some(b) = env("BUDGET") {
+        tiling.first_budget = b as i32;
+    }
+    let g = gpu.trace_with(&NoProgress, tiling).expect("trace");
     let tg = t.elapsed();
     let t = Instant::now();
     let (cpu, _) = render(&scene, &NoProgress).expect("cpu");

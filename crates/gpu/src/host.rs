@@ -6,9 +6,7 @@
 //! light planes. No physics here: the kernel does it.
 
 use crate::context::Context;
-use crate::input::{
-    light_channel, KernelInput, Uniforms, PHASE_DONE, ROUND_SLOT0, STATE_SLOTS, TABLE_WIDTH,
-};
+use crate::input::{light_channel, KernelInput, Uniforms, PHASE_DONE, TABLE_WIDTH};
 use crate::KERNEL;
 use datafile::record::{PixelRecord, RayStatus};
 use glow::HasContext;
@@ -32,7 +30,7 @@ const MIN_DRAW_SIDE: u32 = 16;
 const DRAW_SECONDS: f64 = 0.1;
 /// Passes per sample in a tile's first round (the kernel halves or doubles a sample's budget
 /// from round to round as its work needs).
-pub const FIRST_BUDGET: i32 = 512;
+pub const FIRST_BUDGET: i32 = 2048;
 /// Rounds per tile at most: a sample not finished after them is marked "work limit". Far
 /// above what a sample needs (each round takes it at least to its next checkpoint, unless
 /// llvmpipe's loop limit cuts the round).
@@ -101,7 +99,6 @@ impl GpuTracer {
     pub fn with_kernel(input: KernelInput, kernel: &str) -> Result<GpuTracer, HostError> {
         let ctx = Context::new()?;
         let gl = &ctx.gl;
-        let all = input.slots() + STATE_SLOTS;
         let buffers = input.draw_buffers(ctx.draw_buffers);
         // SAFETY (this block and the methods below): GL calls on the context current on
         // this thread, with objects created here and buffers sized for what GL writes.
@@ -109,7 +106,8 @@ impl GpuTracer {
             let program = compile(&ctx, &fragment_source(&input, buffers, kernel))?;
             let table = float_texture(gl, TABLE_WIDTH, input.table_rows, &input.table)?;
             let framebuffer = gl.create_framebuffer().map_err(HostError::Gl)?;
-            let layers = [slot_layers(gl, all)?, slot_layers(gl, all)?];
+            let plan = input.round_plan(buffers);
+            let layers = [slot_layers(gl, plan.layers)?, slot_layers(gl, plan.layers)?];
             let vao = gl.create_vertex_array().map_err(HostError::Gl)?;
             let tracer = GpuTracer {
                 program,
@@ -223,32 +221,45 @@ impl GpuTracer {
     ) -> Result<Option<Vec<Vec<f32>>>, HostError> {
         let tile = (col0, row0, cols, rows);
         let slots = self.input.slots();
-        let all = slots + STATE_SLOTS;
+        let plan = self.input.round_plan(self.buffers);
         let mut from = 0;
+        let mut phases = Vec::new();
         // SAFETY: see `new`.
         unsafe {
             for round in 0..MAX_ROUNDS {
                 if progress.cancelled() {
                     return Ok(None);
                 }
-                self.pass(tile, round.min(1) as i32, 0, from, ROUND_SLOT0..all)?;
+                self.pass(tile, round.min(1) as i32, 0, from, plan.rounds.clone())?;
                 *rounds += 1;
                 from = 1 - from;
-                let progress = self.read_layer(from, slots, cols, rows)?;
-                if progress.chunks(4).all(|p| p[0] == PHASE_DONE) {
+                phases = self.read_layer(from, slots, cols, rows)?;
+                if phases.chunks(4).all(|p| p[0] == PHASE_DONE) {
                     break;
                 }
             }
-            // The finishing draw (a sample still unfinished is written as out of work).
-            self.pass(tile, 1, 1, from, 0..slots)?;
-            let read = (0..slots).map(|s| self.read_layer(1 - from, s, cols, rows));
-            read.collect::<Result<_, _>>().map(Some)
+            // The record's slots: the rounds' own, or a finishing draw's.
+            if let Some(finish) = plan.finish {
+                self.pass(tile, 1, 1, from, finish)?;
+                from = 1 - from;
+            }
+            let mut read = (0..slots)
+                .map(|s| self.read_layer(from, s, cols, rows))
+                .collect::<Result<Vec<_>, _>>()?;
+            // A sample still unfinished after MAX_ROUNDS is out of work.
+            for (i, p) in phases.chunks(4).enumerate() {
+                if p[0] != PHASE_DONE {
+                    let code = RayStatus::WorkLimit as u32 as f32;
+                    read[0][4 * i..4 * i + 4].copy_from_slice(&[-1.0, code, 0.0, 0.0]);
+                }
+            }
+            Ok(Some(read))
         }
     }
 
     /// One round (`finish` 0) or the finishing draw (1) of a tile: reads the slots in array
-    /// texture `from`, writes the layers `write` of the other, as many draws as there are
-    /// render targets for them.
+    /// texture `from`, writes the layers `write` of the other, each draw into `buffers` layers
+    /// from its first (the same render targets for every draw).
     unsafe fn pass(
         &self,
         (col0, row0, cols, rows): (u32, u32, u32, u32),
@@ -270,16 +281,14 @@ impl GpuTracer {
         gl.uniform_2_i32(loc("u_origin").as_ref(), col0 as i32, row0 as i32);
         gl.uniform_1_i32(loc("u_round").as_ref(), round);
         gl.uniform_1_i32(loc("u_finish").as_ref(), finish);
-        let to = self.layers[1 - from];
-        for first in write.clone().step_by(self.buffers) {
-            let count = self.buffers.min(write.end - first);
-            let mut attachments = Vec::with_capacity(self.buffers);
-            for i in 0..self.buffers {
-                let attachment = glow::COLOR_ATTACHMENT0 + i as u32;
-                let texture = (i < count).then_some(to);
-                let layer = (first + i.min(count - 1)) as i32;
-                gl.framebuffer_texture_layer(glow::FRAMEBUFFER, attachment, texture, 0, layer);
-                attachments.push(if i < count { attachment } else { glow::NONE });
+        let to = Some(self.layers[1 - from]);
+        let attachments: Vec<u32> = (0..self.buffers)
+            .map(|i| glow::COLOR_ATTACHMENT0 + i as u32)
+            .collect();
+        for first in write.step_by(self.buffers) {
+            for (i, &attachment) in attachments.iter().enumerate() {
+                let layer = (first + i) as i32;
+                gl.framebuffer_texture_layer(glow::FRAMEBUFFER, attachment, to, 0, layer);
             }
             gl.draw_buffers(&attachments);
             if gl.check_framebuffer_status(glow::FRAMEBUFFER) != glow::FRAMEBUFFER_COMPLETE {

@@ -18,6 +18,7 @@
 
 use scene::{Camera, Motion, Scene, Shape};
 use serde::Serialize;
+use std::ops::Range;
 
 /// Texels per row of the scene table.
 pub const TABLE_WIDTH: usize = 256;
@@ -43,18 +44,28 @@ pub fn slots(lights: usize) -> usize {
 
 /// The slots of a sample's progress between rounds, after the record's (the kernel's
 /// `Progress`: phase, budget, probes and status first).
-pub const STATE_SLOTS: usize = 4;
+pub const STATE_SLOTS: usize = 3;
 
 /// The progress slot's phase of a finished sample.
 pub const PHASE_DONE: f32 = 2.0;
 
-/// The first slot a round writes: the lights' (the record's five fixed slots are made from
-/// the final progress by the finishing draw).
+/// The first slot a round writes where it cannot write them all: the lights' (the record's five
+/// fixed slots are then made from the final progress by a finishing draw).
 pub const ROUND_SLOT0: usize = 5;
 
 /// Where light `k`'s channel is: (slot, component).
 pub fn light_channel(k: usize) -> (usize, usize) {
     (5 + k / 4, k % 4)
+}
+
+/// How a host draws a tile: each round writes the slots `rounds`; where they are not all the
+/// slots, a finishing draw then writes the record's, `finish`. The array textures of a tile's
+/// slots have `layers` layers.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RoundPlan {
+    pub rounds: Range<usize>,
+    pub finish: Option<Range<usize>>,
+    pub layers: usize,
 }
 
 /// The kernel's uniforms (names without the `u_` prefix of the GLSL source).
@@ -225,11 +236,29 @@ impl KernelInput {
         slots(self.light_count)
     }
 
-    /// Render targets a pass of this scene's kernel uses where `available` can be bound:
-    /// enough for its widest pass (the finishing draw writes the record's slots, a round the
-    /// lights' and the progress's), at least 1.
+    /// Render targets a draw of this scene's kernel uses where `available` can be bound:
+    /// enough for all its slots (a round then writes them in one draw), at least 1.
     pub fn draw_buffers(&self, available: usize) -> usize {
-        let widest = self.slots().max(self.slots() + STATE_SLOTS - ROUND_SLOT0);
-        available.clamp(1, widest)
+        available.clamp(1, self.slots() + STATE_SLOTS)
+    }
+
+    /// How a host draws a tile's rounds with `buffers` render targets (docs/physics.md,
+    /// "Rounds"): every draw binds `buffers` layers from its first slot, so that every draw
+    /// has the same targets (drivers compile a shader again for each set of targets).
+    pub fn round_plan(&self, buffers: usize) -> RoundPlan {
+        let slots = self.slots();
+        let all = slots + STATE_SLOTS;
+        let (rounds, finish) = if all <= buffers {
+            (0..all, None)
+        } else {
+            (ROUND_SLOT0..all, Some(0..slots))
+        };
+        let end = |r: &Range<usize>| r.start + r.len().div_ceil(buffers) * buffers;
+        let layers = end(&rounds).max(finish.as_ref().map_or(0, end));
+        RoundPlan {
+            rounds,
+            finish,
+            layers,
+        }
     }
 }

@@ -152,7 +152,7 @@ int probes_left = 0;   // the pixel's probe budget (PIXEL_PROBES)
 // the sample's progress (STATE_SLOTS, carried from round to round).
 const int RECORD_SLOTS = 5 + (HAS_LIGHTS != 0 ? (N_LIGHTS + 3) / 4 : 0);
 const int STATE = RECORD_SLOTS;
-const int STATE_SLOTS = 4;
+const int STATE_SLOTS = 3;
 const int ALL_SLOTS = RECORD_SLOTS + STATE_SLOTS;
 vec4 slots[ALL_SLOTS + 8];
 
@@ -1144,15 +1144,18 @@ const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's exte
 struct Found { int status; int target; int loop_; float lambda; float tau; };
 const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
 
-// The search plan: `loops` copies of a stretch of length `span` cut into `segs` segments;
-// pixel rays stop at the time bound.
+// The search plan: `loops` copies of a stretch of length `span` cut into `segs` segments
+// (a Gödel pixel ray's loops), or, where eCont, `loops` stretches one after the other of the
+// ray's eTotal segments (a straight ray, a shadow ray: cut so that each stretch's start is a
+// checkpoint of the rounds, main); pixel rays stop at the time bound.
 Ray eRay = NO_RAY;
-int eLoops = 0, eSegs = 0;
+int eLoops = 0, eSegs = 0, eTotal = 0;
+bool eCont = false;
 float eSpan = 0.0, ePt = 0.0, eTBound = 0.0;
 bool ePixel = false;
-// Shadow rays: the lit object is not searched from eSkipFrom on (its last segment).
+// Shadow rays: the lit object is not searched from segment eSkipSeg on (its last).
 int eSkipObj = 0;
-float eSkipFrom = 0.0;
+int eSkipSeg = 0;
 
 // The machine's state.
 int eMode = 0, eLoop = 0, eSeg = 0, eObj = 0;
@@ -1214,6 +1217,13 @@ void request(int tag, float lambda, float seed) {
 
 float loopOffset() { return float(eLoop) * eSpan; }
 
+// The searched ray's event and tangent at parameter l of loop (or stretch) j.
+void searchRayAt(int j, float l, out vec4 ev, out vec4 k) {
+    ev = vec4(0.0); k = vec4(0.0);
+    if (eCont) rayAt(eRay, 0, l + float(j) * eSpan, ev, k);
+    else rayAt(eRay, j, l, ev, k);
+}
+
 void finish(int status) {
     eResult = Found(status, -1, 0, 0.0, NO_TAU);
     eMode = M_DONE;
@@ -1244,10 +1254,12 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
     ePt = pt;
     ePixel = pixel;
     eTBound = tBound;
+    eCont = false;
+    eTotal = loops * segs;
     eLoop = 0;
     eMode = M_LOOP;
     eSkipObj = -1;
-    eSkipFrom = INF;
+    eSkipSeg = MAX_SEGMENTS + 1;
     qTag = Q_NONE;
     for (int i = 0; i < N_OBJECTS; i++) {
         startProbe[i] = NO_PROBE;
@@ -1258,6 +1270,16 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
     eBoxLo = vec3(0.0);
     eBoxHi = vec3(0.0);
     if (loops > 1) loopBox();
+}
+
+// A search of the ray r over λ ∈ [0, length] in `total` segments, as stretches of
+// EXACT_SEGMENTS segments one after the other (searchRayAt).
+void startLongSearch(Ray r, int total, float length, float pt, bool pixel, float tBound) {
+    int loops = (total + EXACT_SEGMENTS - 1) / EXACT_SEGMENTS;
+    startSearch(r, 1, EXACT_SEGMENTS, length * float(EXACT_SEGMENTS) / float(total), pt, pixel, tBound);
+    eLoops = loops;
+    eCont = true;
+    eTotal = total;
 }
 
 // The span after the finished span [ba, bb] of the current bisection: climb while it is a
@@ -1339,7 +1361,7 @@ void machineStep() {
         float dz = float(eLoop) * eRay.shift.y;
         if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
         vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
-        bool near = eLoop == 0;
+        bool near = eLoop == 0 || eCont;   // the box is of copies of the first loop
         for (int i = 0; i < N_OBJECTS; i++) {
             vec3 olo = vec3(0.0), ohi = vec3(0.0);
             if (!searched[i]) continue;
@@ -1367,6 +1389,7 @@ void machineStep() {
         eMode = M_SEGMENT;
     }
     if (eMode == M_SEGMENT) {
+        if (eLoop * eSegs + eSeg >= eTotal) { finish(ESCAPED); return; }   // a long search's end
         eLo = eSpan * float(eSeg) / float(eSegs);
         eHi = eSpan * float(eSeg + 1) / float(eSegs);
         eBest = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
@@ -1422,7 +1445,7 @@ void machineStep() {
                 setEndProbe(eObj, p, at);
                 continue;
             }
-            if (eObj == eSkipObj && eLo >= eSkipFrom) {
+            if (eObj == eSkipObj && eLoop * eSegs + eSeg >= eSkipSeg) {
                 setEndProbe(eObj, p, at);
                 continue;
             }
@@ -1450,12 +1473,14 @@ void machineStep() {
         // Every object scanned: the segment's earliest crossing ends the search.
         if (eBest.status == HIT) {
             eResult = eBest;
+            // A long search's hit as a parameter from the ray's start.
+            if (eCont) eResult = Found(HIT, eBest.target, 0, eBest.lambda + loopOffset(), eBest.tau);
             eMode = M_DONE;
             return;
         }
         if (ePixel) {
             vec4 x = vec4(0.0), k = vec4(0.0);
-            rayAt(eRay, eLoop, eHi, x, k);
+            searchRayAt(eLoop, eHi, x, k);
             if (x.x < eTBound) { finish(ESCAPED); return; }
         }
         for (int i = 0; i < N_OBJECTS; i++) {   // the end probes start the next segment
@@ -1478,7 +1503,7 @@ void searchPass() {
     if (qTag != Q_NONE) {
         if (probes_left <= 0) { finish(WORK_LIMIT); return; }
         vec4 k = vec4(0.0);
-        rayAt(eRay, qLoop, qLambda, qX, k);
+        searchRayAt(qLoop, qLambda, qX, k);
         qAnswer = probeObject(qObj, qX, k, ePt, qSeed);
         // A probe answers a finite distance or FAR (INF, the CPU's infinity: nothing known);
         // anything else (a driver's NaN) ends the search, and the sample is marked failed:
@@ -1788,7 +1813,13 @@ bool gridPass() {
         gIter = -1;
         return true;
     }
-    if (cell == 1) { gU0 = 0.0; gG0 = -abs(gZp); }
+    // The grid's point before the pass's first cell and G there, made again in every pass
+    // (never carried from the last): a pass that a later round resumes starts from the same
+    // values as one that follows its predecessor in the same round.
+    gU0 = gCmax * float(cell - 1) / float(SHADOW_GRID);
+    gG0 = cell == 1
+        ? -abs(gZp)
+        : shadowG4(gRho, gZp, vec4(gU0), vec4(float(cell - 1)), gN, gInbound).x;
     // Sixteen cells per pass, in four groups written out (each pass of a loop counts
     // against llvmpipe's limit).
     int count = min(CELLS_PER_PASS, gCells - cell + 1);
@@ -1808,8 +1839,6 @@ bool gridPass() {
                     min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, gInbound),
                         firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, gInbound)));
     if (found >= CELLS_PER_PASS) {
-        gU0 = us[(count - 1) / 4][(count - 1) % 4];
-        gG0 = gs[(count - 1) / 4][(count - 1) % 4];
         gIdx += count;
         return false;
     }
@@ -1825,8 +1854,6 @@ bool gridPass() {
     gFlo = g1;
     gHi = acosA(u0);
     gFhi = g0;
-    gU0 = u1;
-    gG0 = g1;
     gIdx += found + 1;
     gSide = 0;
     gIter = 0;
@@ -1893,9 +1920,9 @@ int shadowRaySetUp() {
     float last = end * float(segs - 1) / float(segs);
     bool any = setSearched(gSource, r.geo, end, hTarget, last);
     if (!any) return 1;
-    startSearch(r, 1, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
+    startLongSearch(r, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
     eSkipObj = hTarget;
-    eSkipFrom = last;
+    eSkipSeg = segs - 1;
     return 2;
 }
 
@@ -1934,28 +1961,38 @@ void transportScreen(Ray r, vec4 obs, float within, float lambda) {
 }
 
 // The outputs: slots [u_slot0, u_slot0 + DRAW_BUFFERS) of `slots`.
+// Whether main's round was cut short by llvmpipe's loop limit: it then writes the previous
+// round's slots (zeros in a first round) and its progress.
+bool roundCut = false;
+
+vec4 slotOut(int layer) {
+    if (!roundCut || layer >= STATE) return slots[layer];
+    ivec2 frag = ivec2(gl_FragCoord.xy);
+    return u_round > 0 ? texelFetch(u_prev, ivec3(frag, layer), 0) : vec4(0.0);
+}
+
 void writeSlots() {
-    o0 = slots[u_slot0];
+    o0 = slotOut(u_slot0);
 #if DRAW_BUFFERS > 1
-    o1 = slots[u_slot0 + 1];
+    o1 = slotOut(u_slot0 + 1);
 #endif
 #if DRAW_BUFFERS > 2
-    o2 = slots[u_slot0 + 2];
+    o2 = slotOut(u_slot0 + 2);
 #endif
 #if DRAW_BUFFERS > 3
-    o3 = slots[u_slot0 + 3];
+    o3 = slotOut(u_slot0 + 3);
 #endif
 #if DRAW_BUFFERS > 4
-    o4 = slots[u_slot0 + 4];
+    o4 = slotOut(u_slot0 + 4);
 #endif
 #if DRAW_BUFFERS > 5
-    o5 = slots[u_slot0 + 5];
+    o5 = slotOut(u_slot0 + 5);
 #endif
 #if DRAW_BUFFERS > 6
-    o6 = slots[u_slot0 + 6];
+    o6 = slotOut(u_slot0 + 6);
 #endif
 #if DRAW_BUFFERS > 7
-    o7 = slots[u_slot0 + 7];
+    o7 = slotOut(u_slot0 + 7);
 #endif
 }
 
@@ -1974,31 +2011,40 @@ void writeSlots() {
 // half the budget).
 
 const int PH_PIXEL = 0;    // the pixel's search, at the start of loop `counter`
-const int PH_LIGHTS = 1;   // the shadow rays: light `counter`, grid index `idx` (with u0, g0)
+const int PH_LIGHTS = 1;   // the shadow rays: light `counter`, grid index `idx`; `sub` ≥ 0: in
+                           // the occlusion search of the step's ray, at the start of stretch `sub`
 const int PH_DONE = 2;     // finished with `status`
 // Ints kept in f32 between rounds: exact up to 2^24.
 const int MAX_COUNT = 16777215;
 
 struct Progress {
     int phase; int budget; int probes; int status;
-    int counter; int idx; float u0; float g0;
+    int counter; int idx; int sub;
     float sum;   // the current light's sum so far (−1: unknown, one of its searches ran out of work)
     Found hit;   // the pixel's hit (PH_LIGHTS; PH_DONE with status HIT)
 };
 
 Progress readProgress() {
-    vec4 s0 = slots[STATE], s1 = slots[STATE + 1], s2 = slots[STATE + 2], s3 = slots[STATE + 3];
+    vec4 s0 = slots[STATE], s1 = slots[STATE + 1], s2 = slots[STATE + 2];
     return Progress(toInt(s0.x, PH_PIXEL, PH_DONE), toInt(s0.y, MIN_BUDGET, MAX_BUDGET),
                     toInt(s0.z, 0, PIXEL_PROBES), toInt(s0.w, HIT, WORK_LIMIT),
-                    toInt(s1.x, 0, MAX_COUNT), toInt(s1.y, -1, MAX_COUNT), s1.z, s1.w, s2.x,
-                    Found(HIT, toInt(s2.y, -1, N_OBJECTS), toInt(s2.z, 0, MAX_COUNT), s2.w, s3.x));
+                    toInt(s1.x, 0, MAX_COUNT), toInt(s1.y, -1, MAX_COUNT), toInt(s2.w, -1, MAX_COUNT), s1.z,
+                    Found(HIT, toInt(s1.w, -1, N_OBJECTS), toInt(s2.x, 0, MAX_COUNT), s2.y, s2.z));
 }
 
 void writeProgress(Progress p) {
     slots[STATE] = vec4(float(p.phase), float(p.budget), float(p.probes), float(p.status));
-    slots[STATE + 1] = vec4(float(p.counter), float(p.idx), p.u0, p.g0);
-    slots[STATE + 2] = vec4(p.sum, float(p.hit.target), float(p.hit.loop_), p.hit.lambda);
-    slots[STATE + 3] = vec4(p.hit.tau, 0.0, 0.0, 0.0);
+    slots[STATE + 1] = vec4(float(p.counter), float(p.idx), p.sum, float(p.hit.target));
+    slots[STATE + 2] = vec4(float(p.hit.loop_), p.hit.lambda, p.hit.tau, float(p.sub));
+}
+
+// Whether the checkpoint p lies after q (the order of the work: phase, loop or light, grid
+// index, stretch).
+bool after(Progress p, Progress q) {
+    if (p.phase != q.phase) return p.phase > q.phase;
+    if (p.counter != q.counter) return p.counter > q.counter;
+    if (p.idx != q.idx) return p.idx > q.idx;
+    return p.sub > q.sub;
 }
 
 // Checkpoints: the start of loop `loop` of the pixel's search; a step of the shadow rays
@@ -2009,12 +2055,16 @@ Progress atLoop(Progress p, int loop) {
     p.probes = probes_left;
     return p;
 }
+Progress atStretch(Progress step, int stretch) {
+    step.sub = stretch;
+    step.probes = probes_left;
+    return step;
+}
 Progress atLightStep(Progress p, Found hit) {
     p.phase = PH_LIGHTS;
     p.counter = gLight;
     p.idx = gIdx;
-    p.u0 = gU0;
-    p.g0 = gG0;
+    p.sub = -1;
     p.sum = gFailed ? -1.0 : gSum;
     p.hit = hit;
     p.probes = probes_left;
@@ -2039,7 +2089,7 @@ int startPixel(Ray r, vec4 obs, float pt, float tBound) {
         startSearch(r, u_max_loops + 1, EXACT_SEGMENTS, r.lret, pt, true, tBound);
     } else {
         float lmax = u_max_past / max(abs(r.k0.x), 1e-30);
-        startSearch(r, 1, toInt(ceil(lmax), 1, MAX_SEGMENTS), lmax, pt, true, tBound);
+        startLongSearch(r, toInt(ceil(lmax), 1, MAX_SEGMENTS), lmax, pt, true, tBound);
     }
     return -1;
 }
@@ -2067,21 +2117,32 @@ int takeHit(Found f, Ray r, mat4 frame, vec3 n, vec4 obs, vec4 k, float tBound) 
     return HIT;
 }
 
+// The record's status slot, for a sample finished with `status` after its probes (the hit's
+// other slots are takeHit's).
+void finishRecord(int status, int probes) {
+    if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
+#ifdef COUNT_PROBES
+    slots[2].w = float(PIXEL_PROBES - probes);   // benchmarks: the probes in view_x
+#endif
+}
+
 #if !defined(RAY_PATH) && !defined(PROBE)
-// One round of one sample (u_finish 0: its lights' and progress slots), or its record from
-// its final progress (u_finish 1: the record's slots).
+// One round of one sample (u_finish 0: its progress, its lights', and its record once it is
+// finished), or its record from its final progress (u_finish 1: where the host's render
+// targets cannot take every slot in one draw, its rounds write only the lights' and the
+// progress's slots, and this draw the record's).
 void main() {
     ivec2 frag = ivec2(gl_FragCoord.xy);
     ivec2 pix = u_origin + frag;
     for (int s = 0; s < ALL_SLOTS + 8; s++) slots[s] = vec4(0.0);
-    // The previous round's lights and progress (the record's fixed slots are made again).
+    // The previous round's slots: the record (of a sample finished before), the lights and
+    // the progress.
     if (u_round > 0) {
-        for (int layer = 5; layer < ALL_SLOTS; layer++) slots[layer] = texelFetch(u_prev, ivec3(frag, layer), 0);
+        for (int layer = 0; layer < ALL_SLOTS; layer++) slots[layer] = texelFetch(u_prev, ivec3(frag, layer), 0);
     }
-    vec4 saved[ALL_SLOTS + 8] = slots;   // what a round cut short writes back
     // (No ?: between structures: WebGL forbids it.)
     Progress at = Progress(PH_PIXEL, clamp(u_budget, MIN_BUDGET, MAX_BUDGET), PIXEL_PROBES,
-                           NOT_TRACED, 0, -1, 0.0, 0.0, 0.0, NO_FOUND);
+                           NOT_TRACED, 0, -1, -1, 0.0, NO_FOUND);
     if (u_round > 0) at = readProgress();
     if (u_finish == 0 && at.phase == PH_DONE) {   // finished in an earlier round: kept as it is
         writeSlots();
@@ -2106,20 +2167,13 @@ void main() {
     Ray r = makeRay(obs, k);
     float tBound = -u_max_past;
 
-    if (u_finish != 0) {
-        int status = !traced ? NOT_TRACED : at.phase == PH_DONE ? at.status : WORK_LIMIT;
-        if (status == HIT) status = takeHit(at.hit, r, frame, n, obs, k, tBound);
-        if (status != HIT) slots[0] = vec4(-1.0, float(status), 0.0, 0.0);
-#ifdef COUNT_PROBES
-        slots[2].w = float(PIXEL_PROBES - at.probes);   // benchmarks: the probes in view_x
-#endif
-        writeSlots();
-        return;
-    }
-
+    // The finishing draw's status (a hit's slots are made again by takeHit below).
+    int finished = !traced ? NOT_TRACED : at.phase == PH_DONE ? at.status : WORK_LIMIT;
     bool searching = false;
     bool pixelSearch = false;
+    int resume = -1;   // the stretch at which the restored step's occlusion search goes on
     Found hit = at.hit;
+    Progress step = at;   // the current step of the shadow rays, as a checkpoint
     if (!traced) {
         cp = atEnd(at, NOT_TRACED, NO_FOUND);
     } else if (at.phase == PH_PIXEL) {
@@ -2132,45 +2186,77 @@ void main() {
             pixelSearch = true;
         }
     } else if (at.phase == PH_LIGHTS) {
-        takeHit(hit, r, frame, n, obs, k, tBound);
         gLight = at.counter;
         gIdx = at.idx;
-        gU0 = at.u0;
-        gG0 = at.g0;
         gFailed = at.sum < 0.0;
         gSum = max(at.sum, 0.0);
-        if (gIdx >= 0 && gLight < u_lights) lightGeometry();
+        resume = at.sub;
     }
     if (cp.phase == PH_DONE) moved = true;
+    // The hit is taken (takeHit: its event, surface, shift and record slots) at the top of the
+    // loop below, its one call site (GLSL inlines every call: one copy of the surface's code
+    // keeps the kernel's compilation short): for the finishing draw, for a round that resumes
+    // the lights, and once the pixel's search has found it (`fresh`).
+    bool take = u_finish != 0 ? finished == HIT : traced && at.phase == PH_LIGHTS;
+    bool fresh = false;
 
     // The passes: the pixel's search, then the shadow rays light by light, each step of their
-    // enumeration a checkpoint, the search of one ray's occlusion between two steps.
+    // enumeration a checkpoint, the search of one ray's occlusion between two steps. A
+    // search's passes run in a loop of their own: llvmpipe runs every statement of a loop's
+    // body on each pass, masked, so the enumeration's code stays out of the search's loop.
     int spent = 0;
-    for (int pass = 0; pass < MAX_BUDGET && cp.phase != PH_DONE && spent < at.budget; pass++) {
-        spent++;
-        if (searching) {
-            if (pixelSearch && eMode == M_LOOP && qTag == Q_NONE) {
-                moved = moved || eLoop > at.counter;
-                cp = atLoop(cp, eLoop);
+    for (int job = 0; job < MAX_BUDGET && (take || (u_finish == 0 && cp.phase != PH_DONE && spent < at.budget)); job++) {
+        if (take) {
+            take = false;
+            int status = takeHit(hit, r, frame, n, obs, k, tBound);
+            if (u_finish != 0) {
+                finished = status;
+                break;
             }
-            searchPass();
-            if (eMode != M_DONE) continue;
-            searching = false;
-            Found f = eResult;
-            if (pixelSearch) {
-                pixelSearch = false;
-                int status = f.status == HIT ? takeHit(f, r, frame, n, obs, k, tBound) : f.status;
+            if (fresh) {
+                fresh = false;
                 moved = true;
                 if (status != HIT || !godel() || HAS_LIGHTS == 0 || u_lights == 0) {
-                    cp = atEnd(cp, status, f);
+                    cp = atEnd(cp, status, hit);
                     break;
                 }
-                hit = f;
                 gLight = 0;
                 gIdx = -1;
                 gSum = 0.0;
                 gFailed = false;
                 cp = atLightStep(cp, hit);
+            } else if (gIdx >= 0 && gLight < u_lights) {
+                lightGeometry();   // a resumed light's, from the hit just taken
+            }
+            continue;
+        }
+        if (searching) {
+            for (int pass = 0; pass < MAX_BUDGET && eMode != M_DONE && spent < at.budget; pass++) {
+                spent++;
+                if (eMode == M_LOOP && qTag == Q_NONE) {
+                    // A loop's or a stretch's start: a checkpoint (none before the round's start).
+                    Progress p = atStretch(step, eLoop);   // (no ?: of structures in WebGL)
+                    if (pixelSearch) p = atLoop(cp, eLoop);
+                    if (!after(at, p)) {
+                        moved = moved || after(p, at);
+                        cp = p;
+                    }
+                }
+                searchPass();
+            }
+            if (eMode != M_DONE) break;   // the round's budget is spent
+            searching = false;
+            Found f = eResult;
+            if (pixelSearch) {
+                pixelSearch = false;
+                if (f.status != HIT) {
+                    moved = true;
+                    cp = atEnd(cp, f.status, f);
+                    break;
+                }
+                hit = f;
+                take = true;
+                fresh = true;
                 continue;
             }
             if (f.status == WORK_LIMIT || f.status == FAILED) {   // occlusion unknown
@@ -2180,27 +2266,47 @@ void main() {
             }
             continue;
         }
-        // A step of the shadow rays' enumeration: a light's set-up or end, sixteen cells of
-        // its grid, or a root's refinement and its ray's set-up (and then its search).
-        moved = moved || spent > 1;
-        cp = atLightStep(cp, hit);
-        if (gLight >= u_lights) {
-            cp = atEnd(cp, HIT, hit);
-            break;
-        }
-        if (gIdx < 0) {
-            if (!startLight()) endLight();
-        } else if (gIdx >= gTotal || gFailed) {
-            endLight();
-        } else if (gridPass()) {
-            for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
-                spent++;
-                if (rootStep()) break;
+#if HAS_LIGHTS != 0
+        // Steps of the shadow rays' enumeration, in a loop of their own until one needs an
+        // occlusion search: a light's set-up or end, sixteen cells of its grid, or a root's
+        // refinement and its ray's set-up.
+        for (int pass = 0; pass < MAX_BUDGET && !searching && spent < at.budget; pass++) {
+            spent++;
+            step = atLightStep(cp, hit);
+            if (!after(at, step)) {
+                moved = moved || after(step, at);
+                cp = step;
             }
-            int use = shadowRaySetUp();
-            if (use == 1) gSum += gWeight;
-            if (use == 2) searching = true;
+            if (gLight >= u_lights) {
+                cp = atEnd(cp, HIT, hit);
+                break;
+            }
+            if (gIdx < 0) {
+                if (!startLight()) endLight();
+            } else if (gIdx >= gTotal || gFailed) {
+                endLight();
+            } else if (gridPass()) {
+                for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
+                    spent++;
+                    if (rootStep()) break;
+                }
+                int use = shadowRaySetUp();
+                if (use == 1) gSum += gWeight;
+                if (use == 2) {
+                    searching = true;
+                    if (resume >= 0) eLoop = resume;   // the restored step's search, where it was
+                    resume = -1;
+                }
+            }
         }
+        if (!searching && cp.phase != PH_DONE) break;   // the round's budget is spent
+#endif
+    }
+
+    if (u_finish != 0) {
+        finishRecord(finished, at.probes);
+        writeSlots();
+        return;
     }
 
     // llvmpipe's loop limit: a loop that must run twice tells whether this round was cut.
@@ -2210,7 +2316,7 @@ void main() {
     next.budget = at.budget;
     if (passes != 2) {
         // Cut short: nothing of this round is kept; again with half the budget.
-        slots = saved;
+        roundCut = true;
         next = at;
         next.budget = max(at.budget / 2, MIN_BUDGET);
     } else if (!moved) {
@@ -2220,6 +2326,9 @@ void main() {
         else if (at.phase == PH_LIGHTS) next.sum = -1.0;
         else next = atEnd(at, WORK_LIMIT, NO_FOUND);
     }
+    // A sample finished in this round: its record (a hit's slots are the hit's, made by
+    // takeHit in this round).
+    if (passes == 2 && next.phase == PH_DONE) finishRecord(next.status, next.probes);
     writeProgress(next);
     writeSlots();
 }

@@ -319,6 +319,31 @@ impl Glsl {
 
     /// Names the kernel must not use: NaN tests (which a compiler that assumes no NaN may
     /// fold away) and bit casts to float (which make NaN and infinity).
+    /// The conditional expressions (`c ? a : b`) whose branch is a structure's constructor or
+    /// a call of a function returning one, after the `?` or the `:` (variables are not told
+    /// apart: the kernel's names are not scoped here). WebGL (ANGLE) refuses them, where
+    /// GLSL ES 3.00 allows them.
+    fn struct_conditionals(&self) -> Vec<String> {
+        let t = &self.t;
+        let structs: Vec<&String> = (self.types.iter())
+            .filter(|s| !BUILTIN_TYPES.contains(&s.as_str()))
+            .collect();
+        let mut valued: Vec<&str> = structs.iter().map(|s| s.as_str()).collect();
+        for i in 1..t.len().saturating_sub(1) {
+            if structs.contains(&&t[i - 1]) && is_word(&t[i]) && t[i + 1] == "(" {
+                valued.push(&t[i]); // a function returning a structure
+            }
+        }
+        let mut bad = Vec::new();
+        for i in 0..t.len().saturating_sub(2) {
+            let call = t[i + 2] == "(";
+            if (t[i] == "?" || t[i] == ":") && valued.contains(&t[i + 1].as_str()) && call {
+                bad.push(format!("{} {}", t[i], t[i + 1]));
+            }
+        }
+        bad
+    }
+
     fn nan_words(&self) -> Vec<String> {
         let forbidden = ["isnan", "isinf", "intBitsToFloat", "uintBitsToFloat"];
         self.t
@@ -524,6 +549,19 @@ fn stores_at_runtime_indices_are_found() {
             "c in `m [ c ]`",
         ]
     );
+}
+
+#[test]
+fn the_kernel_has_no_conditional_of_structures() {
+    let bad = Glsl::new(KERNEL).struct_conditionals();
+    assert!(
+        bad.is_empty(),
+        "?: of structures (WebGL refuses them): {bad:?}"
+    );
+    // The forms the kernel had: a function's result and a constructor.
+    let old = "struct P { int a; };\nP f(int i) { return P(i); }\n\
+               void g(bool b) { P p = b ? f(1) : f(2); P q = b ? p : P(0); float x = b ? 1.0 : 2.0; }\n";
+    assert_eq!(Glsl::new(old).struct_conditionals(), ["? f", ": f", ": P"]);
 }
 
 #[test]

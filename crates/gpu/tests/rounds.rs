@@ -80,21 +80,21 @@ fn lit_floors_are_out_of_work_on_the_gpu_no_more_often_than_on_the_cpu() {
         let scene = lit_floor(a, max_past, 40, 10);
         let m = agreement(&scene, KERNEL);
         eprintln!("a = {a}, max_past = {max_past}: {m:?}");
-        assert!(
-            m.work_limit[0] <= m.work_limit[1],
-            "work limit (GPU, CPU): {:?}",
-            m.work_limit
-        );
-        // The same objects, shifts and times as everywhere. The light is not held to the
-        // example scenes' 99.9 % within 1e-3 here: after twenty and more windings (a = 0.5,
-        // max_past 30) a few lit samples differ where a shadow ray grazes a ball or two roots
-        // meet near a caustic (D ~ 0.1), which f32 and f64 resolve apart (docs/physics.md,
-        // "The GPU kernel"); the figures are printed above.
+        let [gpu, cpu] = m.work_limit;
+        assert!(gpu <= cpu, "work limit: GPU {gpu}, CPU {cpu}");
+        if a >= 1.0 {
+            m.assert_holds();
+            continue;
+        }
+        // a = 0.5, max_past 30: twenty and more windings. The same objects, shifts and times
+        // as everywhere, but 4 of 68 lit samples differ in light by 0.4 to 9 %: two where a
+        // shadow ray grazes a ball (without the balls they agree), two where two roots meet
+        // near a caustic (area distance 0.085), which f32 and f64 resolve apart
+        // (docs/physics.md, "The GPU kernel"); the polarization's 99.9th percentile is 1.1e-4.
         assert!(m.same >= common::SAME || m.differ <= 1, "{m:?}");
-        assert!(
-            m.g_median <= common::G_MEDIAN && m.g_p999 <= common::G_P999,
-            "{m:?}"
-        );
-        assert!(m.t_p999 <= common::T_P999, "{m:?}");
+        let g = m.g_median <= common::G_MEDIAN && m.g_p999 <= common::G_P999;
+        assert!(g && m.t_p999 <= common::T_P999, "{m:?}");
+        let pol = m.pol_p999 <= 2.0 * common::POL_P999;
+        assert!(m.light_within >= 0.9 && pol, "{m:?}");
     }
 }

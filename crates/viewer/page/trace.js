@@ -20,6 +20,7 @@ import { linkProgram } from './gl.js';
 
 // The kernel's statuses (datafile::record::RayStatus codes).
 const HIT = 0;
+const WORK_LIMIT = 5;
 // What one draw should take (each draw is waited for: long enough that the wait costs little,
 // measured on SwiftShader; short enough for GPU watchdogs and a responsive page), and its
 // side's bounds, in samples.
@@ -220,43 +221,30 @@ export class KernelTracer {
       Float32Array.from(input.table));
     const slots = [];
     for (let s = 0; s < input.slots; s += 1) slots.push(this.floatTexture(width, height));
-    // One framebuffer per pass: the slots [first, first + buffers).
-    const passes = [];
-    for (let first = 0; first < input.slots; first += buffers) {
-      const fb = gl.createFramebuffer();
-      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-      const attachments = [];
-      for (let i = 0; i < buffers && first + i < input.slots; i += 1) {
-        gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D,
-          slots[first + i], 0);
-        attachments.push(gl.COLOR_ATTACHMENT0 + i);
-      }
-      // The kernel writes `buffers` outputs; those past the last slot go nowhere.
-      while (attachments.length < buffers) attachments.push(gl.NONE);
-      gl.drawBuffers(attachments);
-      if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) {
-        throw new Error('this WebGL2 cannot draw into the float render targets');
-      }
-      passes.push({ fb, first });
-    }
-    // The rounds' slots: two array textures (a round reads one, writes the other), for each
-    // a framebuffer per pass of a round (the layers [first, first + buffers) from the first
-    // light slot on) and one on the progress's first layer, read after each round.
-    const all = input.slots + input.state_slots;
-    const layers = [0, 1].map(() => this.arrayTexture(width, height, all));
     const framebuffers = [];
-    const roundPasses = layers.map((texture) => {
+    const framebuffer = () => {
+      const fb = gl.createFramebuffer();
+      framebuffers.push(fb);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      return fb;
+    };
+    // The rounds' slots (docs/physics.md, "Rounds"; host.rs draws them alike): two array
+    // textures, a round reading one and writing the other; the draws of a round (and of a
+    // finishing draw, where the plan has one) each write `buffers` layers from its first
+    // slot, so that every draw has the same render targets (a driver compiles a shader again
+    // for each set). Then one framebuffer on each array's progress layer, read after each
+    // round, and one per record slot of each array and per slot texture, for the copy.
+    const { plan } = input;
+    const layers = [0, 1].map(() => this.arrayTexture(width, height, plan.layers));
+    const drawsInto = (texture, range) => {
       const list = [];
-      for (let first = input.round_slot0; first < all; first += buffers) {
-        const fb = gl.createFramebuffer();
-        framebuffers.push(fb);
-        gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      for (let first = range.start; first < range.end; first += buffers) {
+        const fb = framebuffer();
         const attachments = [];
-        for (let i = 0; i < buffers && first + i < all; i += 1) {
+        for (let i = 0; i < buffers; i += 1) {
           gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, texture, 0, first + i);
           attachments.push(gl.COLOR_ATTACHMENT0 + i);
         }
-        while (attachments.length < buffers) attachments.push(gl.NONE);
         gl.drawBuffers(attachments);
         if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) {
           throw new Error('this WebGL2 cannot draw into float array textures');
@@ -264,12 +252,19 @@ export class KernelTracer {
         list.push({ fb, first });
       }
       return list;
-    });
-    const progressFbs = layers.map((texture) => {
-      const fb = gl.createFramebuffer();
-      framebuffers.push(fb);
-      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-      gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, texture, 0, input.slots);
+    };
+    const roundDraws = layers.map((texture) => drawsInto(texture, plan.rounds));
+    const finishDraws = plan.finish ? layers.map((texture) => drawsInto(texture, plan.finish)) : null;
+    const layerFb = (texture, layer) => {
+      const fb = framebuffer();
+      gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, texture, 0, layer);
+      return fb;
+    };
+    const progressFbs = layers.map((texture) => layerFb(texture, input.slots));
+    const recordFbs = layers.map((texture) => slots.map((_, s) => layerFb(texture, s)));
+    const slotFbs = slots.map((texture) => {
+      const fb = framebuffer();
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
       return fb;
     });
 
@@ -320,7 +315,7 @@ export class KernelTracer {
       if (!this.warm.has(program)) {
         gl.viewport(0, 0, 1, 1);
         gl.scissor(0, 0, 1, 1);
-        draw(roundPasses[1].slice(0, 1), 0, false);
+        draw(roundDraws[1].slice(0, 1), 0, false);
         unbind();
         await this.finished();
         this.warm.add(program);
@@ -342,7 +337,7 @@ export class KernelTracer {
             bind(from); // the page may have drawn while this tracer waited
             gl.viewport(col0, row0, cols, rows);
             gl.scissor(col0, row0, cols, rows);
-            draw(roundPasses[1 - from], r, false);
+            draw(roundDraws[1 - from], r, false);
             from = 1 - from;
             gl.bindFramebuffer(gl.FRAMEBUFFER, progressFbs[from]);
             gl.readPixels(col0, row0, cols, rows, gl.RGBA, gl.FLOAT, phases);
@@ -354,12 +349,31 @@ export class KernelTracer {
             if (finished) break;
             if (!whole) await this.finished();
           }
-          bind(from);
-          gl.viewport(col0, row0, cols, rows);
-          gl.scissor(col0, row0, cols, rows);
-          draw(passes, 1, true);
-          // The finishing draw of the whole grid is not waited for: its frame is shaded in
-          // the same animation frame, the GPU working through it in order.
+          if (finishDraws) {
+            bind(from);
+            gl.viewport(col0, row0, cols, rows);
+            gl.scissor(col0, row0, cols, rows);
+            draw(finishDraws[1 - from], 1, true);
+            from = 1 - from;
+          }
+          // The record's slots into the slot textures, and a sample left unfinished after
+          // the rounds out of work (its record's status). The copy of the whole grid is not
+          // waited for: its frame is shaded in the same animation frame, the GPU working
+          // through it in order.
+          gl.disable(gl.SCISSOR_TEST);
+          slots.forEach((_, s) => {
+            gl.bindFramebuffer(gl.READ_FRAMEBUFFER, recordFbs[from][s]);
+            gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, slotFbs[s]);
+            gl.blitFramebuffer(col0, row0, col0 + cols, row0 + rows, col0, row0, col0 + cols,
+              row0 + rows, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+          });
+          gl.bindTexture(gl.TEXTURE_2D, slots[0]);
+          for (let i = 0; i < phases.length; i += 4) {
+            if (phases[i] === input.phase_done) continue;
+            const at = i / 4;
+            gl.texSubImage2D(gl.TEXTURE_2D, 0, col0 + (at % cols), row0 + Math.floor(at / cols),
+              1, 1, gl.RGBA, gl.FLOAT, new Float32Array([-1, WORK_LIMIT, 0, 0]));
+          }
           unbind();
           if (!whole) await this.finished();
           done += cols * rows;
@@ -378,7 +392,6 @@ export class KernelTracer {
     } finally {
       unbind();
       gl.deleteTexture(table);
-      passes.forEach(({ fb }) => gl.deleteFramebuffer(fb));
       framebuffers.forEach((fb) => gl.deleteFramebuffer(fb));
       layers.forEach((t) => gl.deleteTexture(t));
     }

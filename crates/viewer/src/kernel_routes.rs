@@ -46,11 +46,11 @@ pub struct PageInput {
     /// The source prefix after `#version 300 es` ([`KernelInput::defines`]).
     pub defines: String,
     /// The rounds a tile is traced in (docs/physics.md, "Rounds"; the page runs them as
-    /// [`gpu::host`] does): the progress's slots after the record's, the first slot a round
-    /// writes, the progress's phase of a finished sample, the first round's budget of passes,
-    /// and the rounds at most.
+    /// [`gpu::host`] does): the progress's slots after the record's, how the draws write
+    /// them ([`KernelInput::round_plan`]), the progress's phase of a finished sample, the
+    /// first round's budget of passes, and the rounds at most.
     pub state_slots: usize,
-    pub round_slot0: usize,
+    pub plan: gpu::input::RoundPlan,
     pub phase_done: f32,
     pub first_budget: i32,
     pub max_rounds: u32,
@@ -64,7 +64,7 @@ impl PageInput {
         PageInput {
             slots,
             state_slots: gpu::input::STATE_SLOTS,
-            round_slot0: gpu::input::ROUND_SLOT0,
+            plan: input.round_plan(draw_buffers),
             phase_done: gpu::input::PHASE_DONE,
             first_budget: gpu::host::FIRST_BUDGET,
             max_rounds: gpu::host::MAX_ROUNDS,
