@@ -1125,67 +1125,64 @@ float fallingLast(int i, int j, Ray ray) {
 // depth and index (its start probe is the finished span's end probe; its end is probed
 // again, which the CPU keeps on a stack).
 
-const int M_LOOP = 0;      // at the start of loop eLoop
+const int M_LOOP = 0;      // at the start of loop mach.loop_
 const int M_START = 1;     // the loop's start probes, object by object
-const int M_SEGMENT = 2;   // at the start of segment eSeg
+const int M_SEGMENT = 2;   // at the start of segment mach.seg
 const int M_SCAN = 3;      // the next object of the segment
-const int M_BISECT = 4;    // the span [ba, bb] of object eObj, both end probes known
+const int M_BISECT = 4;    // the span [bis.a, bis.b] of object mach.obj, both end probes known
 const int M_REFINE = 5;    // Illinois steps on a crossing
 const int M_DONE = 6;
 
 // What a requested probe is for.
 const int Q_NONE = 0;
-const int Q_START = 1;     // the loop's start probe of object eObj
-const int Q_END = 2;       // the segment's end probe of object eObj
-const int Q_SPAN = 3;      // the end probe of the span [ba, bb]
-const int Q_REFINE = 4;    // a refinement step at qLambda
+const int Q_START = 1;     // the loop's start probe of object mach.obj
+const int Q_END = 2;       // the segment's end probe of object mach.obj
+const int Q_SPAN = 3;      // the end probe of the span [bis.a, bis.b]
+const int Q_REFINE = 4;    // a refinement step at req.lambda
 const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's extent)
 
 struct Found { int status; int target; int loop_; float lambda; float tau; };
 const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
 
-// The search plan: `loops` copies of a stretch of length `span` cut into `segs` segments
-// (a Gödel pixel ray's loops), or, where eCont, `loops` stretches one after the other of the
-// ray's eTotal segments (a straight ray, a shadow ray: cut so that each stretch's start is a
-// checkpoint of the rounds, main); pixel rays stop at the time bound.
-Ray eRay = NO_RAY;
-int eLoops = 0, eSegs = 0, eTotal = 0;
-bool eCont = false;
-float eSpan = 0.0, ePt = 0.0, eTBound = 0.0;
-bool ePixel = false;
-// Shadow rays: the lit object is not searched from segment eSkipSeg on (its last).
-int eSkipObj = 0;
-int eSkipSeg = 0;
+// The search plan (startSearch): `loops` copies of a stretch of length `span` cut into `segs`
+// segments (a Gödel pixel ray's loops), or, where `cont`, `loops` stretches one after the other
+// of the ray's `total` segments (a straight ray, a shadow ray: cut so that each stretch's start
+// is a checkpoint of the rounds, main); pixel rays stop at the time bound. Shadow rays: the lit
+// object `skipObj` is not searched from segment `skipSeg` on (its last). The first loop's box.
+struct Plan {
+    Ray ray;
+    int loops; int segs; int total; bool cont;
+    float span; float pt; float tBound; bool pixel;
+    int skipObj; int skipSeg;
+    vec3 boxLo; vec3 boxHi;
+};
+Plan plan = Plan(NO_RAY, 0, 0, 0, false, 0.0, 0.0, 0.0, false, -1, 0, vec3(0.0), vec3(0.0));
 
-// The machine's state.
-int eMode = 0, eLoop = 0, eSeg = 0, eObj = 0;
-float eLo = 0.0, eHi = 0.0;
-Found eBest = NO_FOUND, eResult = NO_FOUND;
+// The machine's place: its mode, loop, segment [lo, hi] and object, the segment's earliest
+// crossing so far, and the search's result.
+struct Machine { int mode; int loop_; int seg; int obj; float lo; float hi; Found best; Found result; };
+Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, NO_FOUND, NO_FOUND);
 // The probes at the start and the end of the segment, per object, and the λ where each was
 // taken. Two arrays, written only at constant indices (setEndProbe; the end probes become
 // the next segment's start probes by a copy): drivers that store at a runtime index into
 // one buffer of both went wrong (docs/physics.md, "The GPU kernel").
 Probe startProbe[N_OBJECTS], endProbe[N_OBJECTS];
 float startAt[N_OBJECTS], endAt[N_OBJECTS];
-vec3 eBoxLo = vec3(0.0), eBoxHi = vec3(0.0);
-// Bisection of one object's stretch [bA, bA + bL]: the span [ba, bb] at depth bDepth and
-// index bIndex, with its end probes bpa, bpb.
-float bA = 0.0, bL = 0.0, ba = 0.0, bb = 0.0;
-int bDepth = 0, bIndex = 0, bProbes = 0;
-Probe bpa = NO_PROBE, bpb = NO_PROBE;
-// Refinement: the bracket and the Illinois side.
-float rlo = 0.0, rhi = 0.0, rflo = 0.0, rfhi = 0.0;
-int rSide = 0, rIter = 0;
-// The probe requested by a step, and its answer.
-int qTag = 0, qObj = 0, qLoop = 0;
-float qLambda = 0.0, qSeed = 0.0;
-Probe qAnswer = NO_PROBE;
-vec4 qX = vec4(0.0);
+// Bisection of one object's stretch [start, start + len]: the span [a, b] at depth `depth` and
+// index `index`, with its end probes pa, pb; the probes it took.
+struct Bisection { float start; float len; float a; float b; int depth; int index; int probes; Probe pa; Probe pb; };
+Bisection bis = Bisection(0.0, 0.0, 0.0, 0.0, 0, 0, 0, NO_PROBE, NO_PROBE);
+// Refinement of a crossing: the bracket [lo, hi], f there, the Illinois side, the steps.
+struct Refinement { float lo; float hi; float flo; float fhi; int side; int iter; };
+Refinement ill = Refinement(0.0, 0.0, 0.0, 0.0, 0, 0);
+// The probe requested by a step (for what, of which object, where), and its answer.
+struct Request { int tag; int obj; int loop_; float lambda; float seed; Probe answer; vec4 x; };
+Request req = Request(Q_NONE, 0, 0, 0.0, 0.0, NO_PROBE, vec4(0.0));
 
 // Whether the current loop searches object i on a segment starting at λ0 (from the loop's
 // start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
 bool loopSearches(int i, float lambda0) {
-    return !(isFree(i) && ePixel) || lambda0 <= fbLast[i];
+    return !(isFree(i) && plan.pixel) || lambda0 <= fbLast[i];
 }
 
 // Object i's probe at the segment's start, or at its end, taken at λ = at: stored at the
@@ -1208,25 +1205,25 @@ void setEndProbe(int i, Probe p, float at) {
 }
 
 void request(int tag, float lambda, float seed) {
-    qTag = tag;
-    qObj = eObj;
-    qLoop = eLoop;
-    qLambda = lambda;
-    qSeed = seed;
+    req.tag = tag;
+    req.obj = mach.obj;
+    req.loop_ = mach.loop_;
+    req.lambda = lambda;
+    req.seed = seed;
 }
 
-float loopOffset() { return float(eLoop) * eSpan; }
+float loopOffset() { return float(mach.loop_) * plan.span; }
 
 // The searched ray's event and tangent at parameter l of loop (or stretch) j.
 void searchRayAt(int j, float l, out vec4 ev, out vec4 k) {
     ev = vec4(0.0); k = vec4(0.0);
-    if (eCont) rayAt(eRay, 0, l + float(j) * eSpan, ev, k);
-    else rayAt(eRay, j, l, ev, k);
+    if (plan.cont) rayAt(plan.ray, 0, l + float(j) * plan.span, ev, k);
+    else rayAt(plan.ray, j, l, ev, k);
 }
 
 void finish(int status) {
-    eResult = Found(status, -1, 0, 0.0, NO_TAU);
-    eMode = M_DONE;
+    mach.result = Found(status, -1, 0, 0.0, NO_TAU);
+    mach.mode = M_DONE;
 }
 
 // The loop's box, for skipping loops that come near no object (render::segment::loop_bounds):
@@ -1234,41 +1231,41 @@ void finish(int status) {
 void loopBox() {
     vec4 x = vec4(0.0), k = vec4(0.0), prev = vec4(0.0);
     float grow = 0.0;
-    for (int s = 0; s <= eSegs; s++) {
-        rayAt(eRay, 0, eSpan * float(s) / float(eSegs), x, k);
-        if (s == 0) { eBoxLo = x.yzw; eBoxHi = x.yzw; prev = x; }
-        eBoxLo = min(eBoxLo, x.yzw);
-        eBoxHi = max(eBoxHi, x.yzw);
+    for (int s = 0; s <= plan.segs; s++) {
+        rayAt(plan.ray, 0, plan.span * float(s) / float(plan.segs), x, k);
+        if (s == 0) { plan.boxLo = x.yzw; plan.boxHi = x.yzw; prev = x; }
+        plan.boxLo = min(plan.boxLo, x.yzw);
+        plan.boxHi = max(plan.boxHi, x.yzw);
         grow = max(grow, 0.25 * length(x.yzw - prev.yzw));
         prev = x;
     }
-    eBoxLo -= grow;
-    eBoxHi += grow;
+    plan.boxLo -= grow;
+    plan.boxHi += grow;
 }
 
 void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, float tBound) {
-    eRay = r;
-    eLoops = loops;
-    eSegs = segs;
-    eSpan = span;
-    ePt = pt;
-    ePixel = pixel;
-    eTBound = tBound;
-    eCont = false;
-    eTotal = loops * segs;
-    eLoop = 0;
-    eMode = M_LOOP;
-    eSkipObj = -1;
-    eSkipSeg = MAX_SEGMENTS + 1;
-    qTag = Q_NONE;
+    plan.ray = r;
+    plan.loops = loops;
+    plan.segs = segs;
+    plan.span = span;
+    plan.pt = pt;
+    plan.pixel = pixel;
+    plan.tBound = tBound;
+    plan.cont = false;
+    plan.total = loops * segs;
+    mach.loop_ = 0;
+    mach.mode = M_LOOP;
+    plan.skipObj = -1;
+    plan.skipSeg = MAX_SEGMENTS + 1;
+    req.tag = Q_NONE;
     for (int i = 0; i < N_OBJECTS; i++) {
         startProbe[i] = NO_PROBE;
         endProbe[i] = NO_PROBE;
         startAt[i] = 0.0;
         endAt[i] = 0.0;
     }
-    eBoxLo = vec3(0.0);
-    eBoxHi = vec3(0.0);
+    plan.boxLo = vec3(0.0);
+    plan.boxHi = vec3(0.0);
     if (loops > 1) loopBox();
 }
 
@@ -1277,97 +1274,97 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
 void startLongSearch(Ray r, int total, float length, float pt, bool pixel, float tBound) {
     int loops = (total + EXACT_SEGMENTS - 1) / EXACT_SEGMENTS;
     startSearch(r, 1, EXACT_SEGMENTS, length * float(EXACT_SEGMENTS) / float(total), pt, pixel, tBound);
-    eLoops = loops;
-    eCont = true;
-    eTotal = total;
+    plan.loops = loops;
+    plan.cont = true;
+    plan.total = total;
 }
 
-// The span after the finished span [ba, bb] of the current bisection: climb while it is a
-// right half, then take the right sibling, whose start probe is bb's and whose end is probed.
+// The span after the finished span [bis.a, bis.b] of the current bisection: climb while it is a
+// right half, then take the right sibling, whose start probe is bis.b's and whose end is probed.
 void nextSpan() {
     // The trailing ones of the index are the levels to climb: 2^k = (i + 1) & −(i + 1).
-    int up = toInt(log2(float((bIndex + 1) & -(bIndex + 1))) + 0.5, 0, SEARCH_DEPTH);
-    bDepth -= up;
-    bIndex >>= up;
-    if (bDepth <= 0) {
-        eMode = M_SCAN;   // no crossing of this object in the segment
+    int up = toInt(log2(float((bis.index + 1) & -(bis.index + 1))) + 0.5, 0, SEARCH_DEPTH);
+    bis.depth -= up;
+    bis.index >>= up;
+    if (bis.depth <= 0) {
+        mach.mode = M_SCAN;   // no crossing of this object in the segment
         return;
     }
-    if (bProbes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
-    bProbes++;
-    bIndex++;
-    bpa = bpb;
-    ba = bb;
-    bb = bA + bL * float(bIndex + 1) / exp2(float(bDepth));
-    request(Q_SPAN, bb, bpa.tau);
+    if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+    bis.probes++;
+    bis.index++;
+    bis.pa = bis.pb;
+    bis.a = bis.b;
+    bis.b = bis.start + bis.len * float(bis.index + 1) / exp2(float(bis.depth));
+    request(Q_SPAN, bis.b, bis.pa.tau);
 }
 
 // One step of the machine: takes the answer to its last request, then either requests a
 // probe or moves on.
 void machineStep() {
-    int tag = qTag;
-    qTag = Q_NONE;
+    int tag = req.tag;
+    req.tag = Q_NONE;
     if (tag == Q_START) {
-        setStartProbe(eObj, qAnswer, loopOffset());
+        setStartProbe(mach.obj, req.answer, loopOffset());
     } else if (tag == Q_END) {
-        setEndProbe(eObj, qAnswer, eHi + loopOffset());
-        bpb = qAnswer;
-        float limit = eBest.status == HIT ? eBest.lambda : eHi;
-        bA = eLo;
-        bL = min(limit, eHi) - eLo;
-        ba = bA;
-        bb = bA + bL;
-        bDepth = 0;
-        bIndex = 0;
-        bProbes = 0;
-        eMode = M_BISECT;
+        setEndProbe(mach.obj, req.answer, mach.hi + loopOffset());
+        bis.pb = req.answer;
+        float limit = mach.best.status == HIT ? mach.best.lambda : mach.hi;
+        bis.start = mach.lo;
+        bis.len = min(limit, mach.hi) - mach.lo;
+        bis.a = bis.start;
+        bis.b = bis.start + bis.len;
+        bis.depth = 0;
+        bis.index = 0;
+        bis.probes = 0;
+        mach.mode = M_BISECT;
     } else if (tag == Q_SPAN) {
-        bpb = qAnswer;
+        bis.pb = req.answer;
     } else if (tag == Q_ROOT) {
-        if (accepts(eObj, qX)) {
-            if (eBest.status != HIT || qLambda < eBest.lambda) {
-                eBest = Found(HIT, eObj, eLoop, qLambda, qAnswer.tau);
+        if (accepts(mach.obj, req.x)) {
+            if (mach.best.status != HIT || req.lambda < mach.best.lambda) {
+                mach.best = Found(HIT, mach.obj, mach.loop_, req.lambda, req.answer.tau);
             }
-            eMode = M_SCAN;
+            mach.mode = M_SCAN;
         } else {
-            eMode = M_BISECT;   // a plane crossed beyond its extent: on with the next span
+            mach.mode = M_BISECT;   // a plane crossed beyond its extent: on with the next span
             nextSpan();
-            if (eMode != M_SCAN) return;
+            if (mach.mode != M_SCAN) return;
         }
     } else if (tag == Q_REFINE) {
-        float fm = qAnswer.f, m = qLambda;
-        if (fm == 0.0 || rhi - rlo <= 4.0 * 1.1920929e-7 * max(max(abs(rhi), abs(rlo)), 1e-30)) {
-            request(Q_ROOT, m, bpa.tau);
+        float fm = req.answer.f, m = req.lambda;
+        if (fm == 0.0 || ill.hi - ill.lo <= 4.0 * 1.1920929e-7 * max(max(abs(ill.hi), abs(ill.lo)), 1e-30)) {
+            request(Q_ROOT, m, bis.pa.tau);
             return;
         }
-        if ((fm > 0.0) == (rfhi > 0.0)) {
-            rhi = m; rfhi = fm;
-            if (rSide == 1) rflo *= 0.5;
-            rSide = 1;
+        if ((fm > 0.0) == (ill.fhi > 0.0)) {
+            ill.hi = m; ill.fhi = fm;
+            if (ill.side == 1) ill.flo *= 0.5;
+            ill.side = 1;
         } else {
-            rlo = m; rflo = fm;
-            if (rSide == -1) rfhi *= 0.5;
-            rSide = -1;
+            ill.lo = m; ill.flo = fm;
+            if (ill.side == -1) ill.fhi *= 0.5;
+            ill.side = -1;
         }
     }
 
-    if (eMode == M_LOOP) {
+    if (mach.mode == M_LOOP) {
         // Skip a loop whose box meets no searched object's box, one loop a pass (each loop's
         // start is a checkpoint of the sample's rounds: main); stop at the time bound.
-        if (eLoop >= eLoops) {
-            finish(ePixel && godel() ? WORK_LIMIT : ESCAPED);
+        if (mach.loop_ >= plan.loops) {
+            finish(plan.pixel && godel() ? WORK_LIMIT : ESCAPED);
             return;
         }
-        float dz = float(eLoop) * eRay.shift.y;
-        if (ePixel && float(eLoop) * eRay.shift.x < eTBound) { finish(ESCAPED); return; }
-        vec3 lo = eBoxLo + vec3(0.0, 0.0, dz), hi = eBoxHi + vec3(0.0, 0.0, dz);
-        bool near = eLoop == 0 || eCont;   // the box is of copies of the first loop
+        float dz = float(mach.loop_) * plan.ray.shift.y;
+        if (plan.pixel && float(mach.loop_) * plan.ray.shift.x < plan.tBound) { finish(ESCAPED); return; }
+        vec3 lo = plan.boxLo + vec3(0.0, 0.0, dz), hi = plan.boxHi + vec3(0.0, 0.0, dz);
+        bool near = mach.loop_ == 0 || plan.cont;   // the box is of copies of the first loop
         for (int i = 0; i < N_OBJECTS; i++) {
             vec3 olo = vec3(0.0), ohi = vec3(0.0);
             if (!searched[i]) continue;
-            if (isFree(i) && ePixel) {
+            if (isFree(i) && plan.pixel) {
                 // Balls in free fall: searched up to the loop's last λ within their reach.
-                float last = fallingLast(i, eLoop, eRay);
+                float last = fallingLast(i, mach.loop_, plan.ray);
                 storeFallingLast(i, last);
                 near = near || last > NO_TAU;
             } else {
@@ -1375,124 +1372,124 @@ void machineStep() {
             }
         }
         if (!near) {
-            eLoop++;
+            mach.loop_++;
             return;
         }
-        eObj = -1;
-        eMode = M_START;
+        mach.obj = -1;
+        mach.mode = M_START;
     }
-    if (eMode == M_START) {
-        eObj++;
-        while (eObj < N_OBJECTS && !(searched[eObj] && loopSearches(eObj, 0.0))) eObj++;
-        if (eObj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
-        eSeg = 0;
-        eMode = M_SEGMENT;
+    if (mach.mode == M_START) {
+        mach.obj++;
+        while (mach.obj < N_OBJECTS && !(searched[mach.obj] && loopSearches(mach.obj, 0.0))) mach.obj++;
+        if (mach.obj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
+        mach.seg = 0;
+        mach.mode = M_SEGMENT;
     }
-    if (eMode == M_SEGMENT) {
-        if (eLoop * eSegs + eSeg >= eTotal) { finish(ESCAPED); return; }   // a long search's end
-        eLo = eSpan * float(eSeg) / float(eSegs);
-        eHi = eSpan * float(eSeg + 1) / float(eSegs);
-        eBest = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
-        eObj = -1;
-        eMode = M_SCAN;
+    if (mach.mode == M_SEGMENT) {
+        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(ESCAPED); return; }   // a long search's end
+        mach.lo = plan.span * float(mach.seg) / float(plan.segs);
+        mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
+        mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+        mach.obj = -1;
+        mach.mode = M_SCAN;
     }
-    if (eMode == M_BISECT) {
-        bool finiteBoth = finite(bpa.f) && finite(bpb.f);
-        if (bb > ba && (finite(bpa.f) || finite(bpb.f))) {
-            if (finiteBoth && crossed(bpa.f, bpb.f)) {
-                rlo = ba; rhi = bb; rflo = bpa.f; rfhi = bpb.f;
-                rSide = 0; rIter = 0;
-                eMode = M_REFINE;
+    if (mach.mode == M_BISECT) {
+        bool finiteBoth = finite(bis.pa.f) && finite(bis.pb.f);
+        if (bis.b > bis.a && (finite(bis.pa.f) || finite(bis.pb.f))) {
+            if (finiteBoth && crossed(bis.pa.f, bis.pb.f)) {
+                ill.lo = bis.a; ill.hi = bis.b; ill.flo = bis.pa.f; ill.fhi = bis.pb.f;
+                ill.side = 0; ill.iter = 0;
+                mach.mode = M_REFINE;
             } else {
-                float rate = max(bpa.rate, bpb.rate);
-                if (!((finiteBoth && excluded(bpa.f, bpb.f, rate, bb - ba)) || bDepth >= SEARCH_DEPTH)) {
+                float rate = max(bis.pa.rate, bis.pb.rate);
+                if (!((finiteBoth && excluded(bis.pa.f, bis.pb.f, rate, bis.b - bis.a)) || bis.depth >= SEARCH_DEPTH)) {
                     // Halve: the earlier half first.
-                    if (bProbes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
-                    bProbes++;
-                    bb = 0.5 * (ba + bb);
-                    bDepth++;
-                    bIndex *= 2;
-                    request(Q_SPAN, bb, bpa.tau);
+                    if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+                    bis.probes++;
+                    bis.b = 0.5 * (bis.a + bis.b);
+                    bis.depth++;
+                    bis.index *= 2;
+                    request(Q_SPAN, bis.b, bis.pa.tau);
                     return;
                 }
                 nextSpan();
-                if (eMode != M_SCAN) return;
+                if (mach.mode != M_SCAN) return;
             }
         } else {
             nextSpan();
-            if (eMode != M_SCAN) return;
+            if (mach.mode != M_SCAN) return;
         }
     }
-    if (eMode == M_REFINE) {
-        if (rIter == REFINE_STEPS) {
-            request(Q_ROOT, 0.5 * (rlo + rhi), bpa.tau);
+    if (mach.mode == M_REFINE) {
+        if (ill.iter == REFINE_STEPS) {
+            request(Q_ROOT, 0.5 * (ill.lo + ill.hi), bis.pa.tau);
             return;
         }
-        float m = rfhi != rflo ? (rlo * rfhi - rhi * rflo) / (rfhi - rflo) : 0.5 * (rlo + rhi);
-        if (!finite(m) || !(m > rlo && m < rhi)) m = 0.5 * (rlo + rhi);
-        rIter++;
-        request(Q_REFINE, m, bpa.tau);
+        float m = ill.fhi != ill.flo ? (ill.lo * ill.fhi - ill.hi * ill.flo) / (ill.fhi - ill.flo) : 0.5 * (ill.lo + ill.hi);
+        if (!finite(m) || !(m > ill.lo && m < ill.hi)) m = 0.5 * (ill.lo + ill.hi);
+        ill.iter++;
+        request(Q_REFINE, m, bis.pa.tau);
         return;
     }
-    if (eMode == M_SCAN) {
+    if (mach.mode == M_SCAN) {
         float off = loopOffset();
-        for (eObj++; eObj < N_OBJECTS; eObj++) {
-            if (!searched[eObj]) continue;
-            Probe p = startProbe[eObj];
-            float at = startAt[eObj];
-            if (!loopSearches(eObj, eLo)) {
+        for (mach.obj++; mach.obj < N_OBJECTS; mach.obj++) {
+            if (!searched[mach.obj]) continue;
+            Probe p = startProbe[mach.obj];
+            float at = startAt[mach.obj];
+            if (!loopSearches(mach.obj, mach.lo)) {
                 // Past the ball's last λ within reach in this loop (a later loop probes afresh).
-                setEndProbe(eObj, p, at);
+                setEndProbe(mach.obj, p, at);
                 continue;
             }
-            if (eObj == eSkipObj && eLoop * eSegs + eSeg >= eSkipSeg) {
-                setEndProbe(eObj, p, at);
+            if (mach.obj == plan.skipObj && mach.loop_ * plan.segs + mach.seg >= plan.skipSeg) {
+                setEndProbe(mach.obj, p, at);
                 continue;
             }
             // GPU only: a segment that provably stays clear of a ball at rest or a plane is
             // not searched ("Whole-ray rejection", applied per segment); its end probe is a
             // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
             // plane's height, linear in λ), from which the next segment goes on.
-            if (objectMisses(eObj, eRay.geo, eLo + off, eHi + off)) {
-                float fEnd = isRest(eObj)
-                    ? REACH_PER_RADIUS * objs[eObj].radius / 1.05 - objs[eObj].radius
-                    : eRay.geo.pz * (eHi + off) - oCz[eObj];
-                setEndProbe(eObj, Probe(fEnd, p.rate, NO_TAU), eHi + off);
+            if (objectMisses(mach.obj, plan.ray.geo, mach.lo + off, mach.hi + off)) {
+                float fEnd = isRest(mach.obj)
+                    ? REACH_PER_RADIUS * objs[mach.obj].radius / 1.05 - objs[mach.obj].radius
+                    : plan.ray.geo.pz * (mach.hi + off) - oCz[mach.obj];
+                setEndProbe(mach.obj, Probe(fEnd, p.rate, NO_TAU), mach.hi + off);
                 continue;
             }
             float clear = abs(p.f);
-            if (isRest(eObj) && finite(clear) && p.rate > 0.0 && eHi + off < at + min(clear / p.rate, MAX_SKIP)) {
-                setEndProbe(eObj, p, at);   // provably no crossing of this object within the segment
+            if (isRest(mach.obj) && finite(clear) && p.rate > 0.0 && mach.hi + off < at + min(clear / p.rate, MAX_SKIP)) {
+                setEndProbe(mach.obj, p, at);   // provably no crossing of this object within the segment
                 continue;
             }
             // A probe taken before lo still bounds |f| at lo from below (same side).
-            bpa = Probe(p.f - sign(p.f) * p.rate * (eLo + off - at), p.rate, p.tau);
-            request(Q_END, eHi, bpa.tau);
+            bis.pa = Probe(p.f - sign(p.f) * p.rate * (mach.lo + off - at), p.rate, p.tau);
+            request(Q_END, mach.hi, bis.pa.tau);
             return;
         }
         // Every object scanned: the segment's earliest crossing ends the search.
-        if (eBest.status == HIT) {
-            eResult = eBest;
+        if (mach.best.status == HIT) {
+            mach.result = mach.best;
             // A long search's hit as a parameter from the ray's start.
-            if (eCont) eResult = Found(HIT, eBest.target, 0, eBest.lambda + loopOffset(), eBest.tau);
-            eMode = M_DONE;
+            if (plan.cont) mach.result = Found(HIT, mach.best.target, 0, mach.best.lambda + loopOffset(), mach.best.tau);
+            mach.mode = M_DONE;
             return;
         }
-        if (ePixel) {
+        if (plan.pixel) {
             vec4 x = vec4(0.0), k = vec4(0.0);
-            searchRayAt(eLoop, eHi, x, k);
-            if (x.x < eTBound) { finish(ESCAPED); return; }
+            searchRayAt(mach.loop_, mach.hi, x, k);
+            if (x.x < plan.tBound) { finish(ESCAPED); return; }
         }
         for (int i = 0; i < N_OBJECTS; i++) {   // the end probes start the next segment
             startProbe[i] = endProbe[i];
             startAt[i] = endAt[i];
         }
-        eSeg++;
-        if (eSeg < eSegs) {
-            eMode = M_SEGMENT;
+        mach.seg++;
+        if (mach.seg < plan.segs) {
+            mach.mode = M_SEGMENT;
         } else {
-            eLoop++;
-            eMode = M_LOOP;
+            mach.loop_++;
+            mach.mode = M_LOOP;
         }
     }
 }
@@ -1500,15 +1497,15 @@ void machineStep() {
 // One pass of the machine: the probe it asked for, if any (the kernel's one call of
 // probeObject), then its next step.
 void searchPass() {
-    if (qTag != Q_NONE) {
+    if (req.tag != Q_NONE) {
         if (probes_left <= 0) { finish(WORK_LIMIT); return; }
         vec4 k = vec4(0.0);
-        searchRayAt(qLoop, qLambda, qX, k);
-        qAnswer = probeObject(qObj, qX, k, ePt, qSeed);
+        searchRayAt(req.loop_, req.lambda, req.x, k);
+        req.answer = probeObject(req.obj, req.x, k, plan.pt, req.seed);
         // A probe answers a finite distance or FAR (INF, the CPU's infinity: nothing known);
         // anything else (a driver's NaN) ends the search, and the sample is marked failed:
         // no search goes on from a value it cannot order.
-        if (!(finite(qAnswer.f) || qAnswer.f == INF) || !finite(qAnswer.rate)) {
+        if (!(finite(req.answer.f) || req.answer.f == INF) || !finite(req.answer.rate)) {
             finish(FAILED);
             return;
         }
@@ -1541,18 +1538,16 @@ void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit
     uemit = isFree(i) ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
 }
 
-// The hit: what the record and the lights need of it.
-int hTarget = 0;
-vec4 hX = vec4(0.0), hK = vec4(0.0);
-WPoint hAt = NO_WPOINT;
-mat4 hFrame = mat4(0.0);
-vec3 hXi = vec3(0.0);
-vec4 hUemit = vec4(0.0);
-vec2 hUV = vec2(0.0);
-vec3 hDir = vec3(0.0);
-float hCos = 0.0;
-vec4 hScreen[2] = vec4[2](vec4(0.0), vec4(0.0));   // the pixel's screen-up and screen-right, transported to the hit
-vec3 hPol = vec3(0.0);
+// The hit: what the record and the lights need of it: the object, the event and the photon's
+// tangent there, the worldline point and body frame, the rest-frame position, the emitter's
+// velocity, texture coordinates, the photon's direction in the emitter's frame, cos_i, the
+// pixel's screen-up and screen-right transported to the hit, the measured polarization.
+struct HitPoint {
+    int target; vec4 x; vec4 k; WPoint at; mat4 frame; vec3 xi; vec4 uemit; vec2 uv; vec3 dir;
+    float cosI; vec4 up; vec4 right; vec3 pol;
+};
+HitPoint hp = HitPoint(0, vec4(0.0), vec4(0.0), NO_WPOINT, mat4(0.0), vec3(0.0), vec4(0.0),
+                       vec2(0.0), vec3(0.0), 0.0, vec4(0.0), vec4(0.0), vec3(0.0));
 
 // The record's `pol` from the frame components of the transported screen-up f and
 // screen-right r, for a photon travelling along dir in that frame (docs/physics.md,
@@ -1566,7 +1561,7 @@ bool measurePolarization(vec4 f, vec4 r, vec3 dir) {
     vec3 v = a + cross(dir, b);
     v -= dot(v, dir) * dir;
     float len = length(v);
-    hPol = v / max(len, 1e-30);
+    hp.pol = v / max(len, 1e-30);
     return len > 1e-6 && finite(len);
 }
 
@@ -1578,46 +1573,46 @@ bool restFramePolarization(WPoint p, mat4 frame, vec4 x) {
     mat4 ginv = inverseMetricAt(p.ev);
     if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
     mat4 dual = dualFrame(metricAt(p.ev), frame);
-    vec4 up = components(dual, hScreen[0] - christoffelWith(dX, dY, ginv, p.ev - x, hScreen[0]));
-    vec4 right = components(dual, hScreen[1] - christoffelWith(dX, dY, ginv, p.ev - x, hScreen[1]));
-    return measurePolarization(up, right, hDir);
+    vec4 up = components(dual, hp.up - christoffelWith(dX, dY, ginv, p.ev - x, hp.up));
+    vec4 right = components(dual, hp.right - christoffelWith(dX, dY, ginv, p.ev - x, hp.right));
+    return measurePolarization(up, right, hp.dir);
 }
 
 bool surface() {
-    int i = hTarget;
-    vec4 x = hX, k = hK;
-    hUemit = vec4(1.0, 0.0, 0.0, 0.0);
-    float seed = hAt.tau > NO_TAU ? hAt.tau : tauGuess(i, x.x);
-    hAt = WPoint(x.x, x, hUemit);
-    hFrame = mat4(1.0);
+    int i = hp.target;
+    vec4 x = hp.x, k = hp.k;
+    hp.uemit = vec4(1.0, 0.0, 0.0, 0.0);
+    float seed = hp.at.tau > NO_TAU ? hp.at.tau : tauGuess(i, x.x);
+    hp.at = WPoint(x.x, x, hp.uemit);
+    hp.frame = mat4(1.0);
     if (isRest(i) || isFree(i)) {
         Local lp = localize(i, x, seed, INF);
         if (!lp.ok) return false;
-        hAt = lp.at;
-        hFrame = bodyFrame(i, hAt);
-        hXi = restComponents(i, lp, hFrame);
+        hp.at = lp.at;
+        hp.frame = bodyFrame(i, hp.at);
+        hp.xi = restComponents(i, lp, hp.frame);
         vec4 kl = vec4(0.0);
-        restFramePhoton(i, hAt, hFrame, x, k, hUemit, kl);
-        hUV = lonLat(hXi);
-        hDir = normalize(-kl.yzw);
-        hCos = abs(dot(normalize(hXi), hDir));
-        return restFramePolarization(hAt, hFrame, x);
+        restFramePhoton(i, hp.at, hp.frame, x, k, hp.uemit, kl);
+        hp.uv = lonLat(hp.xi);
+        hp.dir = normalize(-kl.yzw);
+        hp.cosI = abs(dot(normalize(hp.xi), hp.dir));
+        return restFramePolarization(hp.at, hp.frame, x);
     }
     // Coordinate objects: static emitters; the photon's direction in the static frame.
     mat4 f = staticFrame(x);
     vec4 p = metricAt(x) * (-k);
-    hDir = normalize(vec3(dot(f[1], p), dot(f[2], p), dot(f[3], p)));
+    hp.dir = normalize(vec3(dot(f[1], p), dot(f[2], p), dot(f[3], p)));
     if (isCoordSphere(i)) {
         vec3 n = normalize(x.yzw - objs[i].pos.yzw);
-        hUV = lonLat(n);
-        hCos = abs(dot(n, normalize(-k.yzw)));
+        hp.uv = lonLat(n);
+        hp.cosI = abs(dot(n, normalize(-k.yzw)));
     } else {
-        hUV = objs[i].extent > 0.0 ? 0.5 + x.yz / (2.0 * objs[i].extent) : fract(x.yz);
-        hCos = abs(normalize(-k.yzw).z);
+        hp.uv = objs[i].extent > 0.0 ? 0.5 + x.yz / (2.0 * objs[i].extent) : fract(x.yz);
+        hp.cosI = abs(normalize(-k.yzw).z);
     }
     // Their body axes are the static frame's.
     mat4 dual = dualFrame(metricAt(x), f);
-    return measurePolarization(components(dual, hScreen[0]), components(dual, hScreen[1]), hDir);
+    return measurePolarization(components(dual, hp.up), components(dual, hp.right), hp.dir);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1629,15 +1624,20 @@ bool surface() {
 // counted unless emitted more than max_past before the hit, arriving from behind, at a
 // caustic, or occluded. The enumeration runs in passes of the kernel's one loop (`main`):
 // a light's set-up, sixteen cells of the grid, one refinement step, or one ray's set-up.
-int gLight = 0, gIdx = 0, gTotal = 0, gCells = 0, gN = 0, gSide = 0, gIter = 0;
-bool gInbound = false;
-float gU0 = 0.0, gG0 = 0.0, gRho = 0.0, gCmax = 0.0, gZp = 0.0, gPower = 0.0, gSum = 0.0, gWeight = 0.0;
-// The root's bracket in ψ = arccos |c| and G there, and the root's ψ; the hit's distance from
-// the source's axis over 2a, and the least ψ that reaches it.
-float gLo = 0.0, gHi = 0.0, gFlo = 0.0, gFhi = 0.0, gPsi = 0.0, gS = 0.0, gPsiMin = 0.0;
-vec4 gP = vec4(0.0), gSource = vec4(0.0);
-Iso gBack = NO_ISO;
-bool gFailed = false;
+struct ShadowRays {
+    int light; int idx; int total; int cells;   // the light, the grid index, its cells
+    int n; bool inbound; int side; int iter;    // the winding and branch; the refinement's side, steps
+    float rho; float cmax; float zp; float power; float sum; float weight;
+    float u0; float g0;                         // the grid point before a pass's first and G there
+    // The root's bracket in ψ = arccos |c| and G there, and the root's ψ; the hit's distance
+    // from the source's axis over 2a, and the least ψ that reaches it.
+    float lo; float hi; float flo; float fhi; float psi; float s; float psiMin;
+    vec4 p; vec4 source; Iso back;              // the hit in the source's frame; the source; its isometry
+    bool failed;                                // an occlusion search ran out of work
+};
+ShadowRays shadow = ShadowRays(0, 0, 0, 0, 0, false, 0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                               0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                               vec4(0.0), vec4(0.0), NO_ISO, false);
 
 // Φ(θ) = arctan(q tan θ), continuous.
 float bigPhi(float q, float th) {
@@ -1646,22 +1646,22 @@ float bigPhi(float q, float th) {
 }
 
 // θ of a winding and branch for the ray leaving at angle ψ to the z axis, for the target at
-// ρ = 2a s (gS) whose reach ψ_min (gPsiMin, where r_max = ρ) the light's set-up made: sin θ₀ =
+// ρ = 2a s (shadow.s) whose reach ψ_min (shadow.psiMin, where r_max = ρ) the light's set-up made: sin θ₀ =
 // ρ/r_max = s√(1 + c²)/sin ψ, and cos θ₀ from σ² − s²(1 + c²) = (1 + s²) sin(ψ − ψ_min)
 // sin(ψ + ψ_min), without the cancellation of r_max − ρ near the reach, where asin's slope
 // would turn f32's rounding of ρ/r_max into an error of θ near √ε (spacetime::connect refines
 // in ψ for the same reason in f64).
 float shadowTheta(float psi, int n, bool inbound) {
     float c = cosA(psi);
-    float d = (1.0 + gS * gS) * sinA(psi - gPsiMin) * sinA(psi + gPsiMin);
-    float th0 = atan2s(gS * sqrt(1.0 + c * c), sqrt(max(d, 0.0)));
+    float d = (1.0 + shadow.s * shadow.s) * sinA(psi - shadow.psiMin) * sinA(psi + shadow.psiMin);
+    float th0 = atan2s(shadow.s * sqrt(1.0 + c * c), sqrt(max(d, 0.0)));
     return float(n) * PI + (inbound ? PI - th0 : th0);
 }
 
 // G(ψ) = 2a c θ/√(1 + c²) − |z_P|, c = cos ψ: its roots are the rays of a winding and branch.
 float shadowG(float psi, int n, bool inbound) {
     float c = cosA(psi);
-    return 2.0 * u_a * c * shadowTheta(psi, n, inbound) / sqrt(1.0 + c * c) - abs(gZp);
+    return 2.0 * u_a * c * shadowTheta(psi, n, inbound) / sqrt(1.0 + c * c) - abs(shadow.zp);
 }
 
 // The first cell of a group of four (pass indices offset..offset+3, cell numbers `cellNo`)
@@ -1727,13 +1727,13 @@ float areaDistanceSq(float psi, float chi, float lambda) {
 // Incidence of light with future tangent kLight at the hit (render::target::Target::incidence):
 // (cos, energy in the object's frame).
 vec2 incidence(vec4 kLight) {
-    int i = hTarget;
-    vec4 x = hX, view = hK;
+    int i = hp.target;
+    vec4 x = hp.x, view = hp.k;
     if (isRest(i) || isFree(i)) {
         vec4 ue = vec4(0.0), kl = vec4(0.0), kv = vec4(0.0);
-        restFramePhoton(i, hAt, hFrame, x, kLight, ue, kl);
-        restFramePhoton(i, hAt, hFrame, x, view, ue, kv);
-        vec3 n = normalize(hXi);
+        restFramePhoton(i, hp.at, hp.frame, x, kLight, ue, kl);
+        restFramePhoton(i, hp.at, hp.frame, x, view, ue, kv);
+        vec3 n = normalize(hp.xi);
         float side = dot(n, -kv.yzw) >= 0.0 ? 1.0 : -1.0;
         return vec2(-side * dot(n, normalize(kl.yzw)), kl.x);
     }
@@ -1758,147 +1758,147 @@ void setLight(int li, float v) {
 
 // Ends the current light: its irradiance (negative: unknown) into its channel.
 void endLight() {
-    setLight(gLight, gFailed ? -1.0 : gSum);
-    gLight++;
-    gIdx = -1;
+    setLight(shadow.light, shadow.failed ? -1.0 : shadow.sum);
+    shadow.light++;
+    shadow.idx = -1;
 }
 
-// Light gLight's geometry for the hit: the source's isometry, the hit in the source's frame,
-// the grid's size; false when no ray of it can count. A function of gLight and the hit alone
+// Light shadow.light's geometry for the hit: the source's isometry, the hit in the source's frame,
+// the grid's size; false when no ray of it can count. A function of shadow.light and the hit alone
 // (a round that resumes a light makes it again).
 bool lightGeometry() {
     float a = u_a;
-    vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * gLight);
-    gSource = vec4(0.0, lt.xyz);
-    gPower = lt.w;
-    Iso to = toOrigin(gSource);
-    gBack = inverseIso(to);
-    gP = applyIso(to, hX);
-    gRho = length(gP.yz);
-    gZp = gP.w;
-    gS = gRho / (2.0 * a);
-    float s2 = gS * gS;
+    vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * shadow.light);
+    shadow.source = vec4(0.0, lt.xyz);
+    shadow.power = lt.w;
+    Iso to = toOrigin(shadow.source);
+    shadow.back = inverseIso(to);
+    shadow.p = applyIso(to, hp.x);
+    shadow.rho = length(shadow.p.yz);
+    shadow.zp = shadow.p.w;
+    shadow.s = shadow.rho / (2.0 * a);
+    float s2 = shadow.s * shadow.s;
     if (s2 >= 1.0) return false;   // beyond the source's horizon: no ray
-    gCmax = sqrt((1.0 - s2) / (1.0 + s2));
-    gPsiMin = atan2s(gS * SQRT2, sqrt(1.0 - s2));   // sin²ψ_min = 2s²/(1 + s²)
+    shadow.cmax = sqrt((1.0 - s2) / (1.0 + s2));
+    shadow.psiMin = atan2s(shadow.s * SQRT2, sqrt(1.0 - s2));   // sin²ψ_min = 2s²/(1 + s²)
     // Rays of winding n take at least n·T_ret (the shortest loop time) in the source's
     // frame, where emission events keep their scene time (the source is on its axis):
     // windings emitted before the window are not enumerated (the CPU drops their rays).
     float tret = 2.0 * PI * a * (SQRT2 - 1.0);
-    int windings = toInt(floor((gP.x - hX.x + u_max_past) / tret), -1, MAX_WINDINGS);
+    int windings = toInt(floor((shadow.p.x - hp.x.x + u_max_past) / tret), -1, MAX_WINDINGS);
     if (windings < 0) return false;
-    gCells = gZp == 0.0 ? 1 : SHADOW_GRID;
-    gTotal = (windings + 1) * 2 * gCells;
+    shadow.cells = shadow.zp == 0.0 ? 1 : SHADOW_GRID;
+    shadow.total = (windings + 1) * 2 * shadow.cells;
     return true;
 }
 
-// Sets up light gLight for the hit; false when no ray of it can count.
+// Sets up light shadow.light for the hit; false when no ray of it can count.
 bool startLight() {
-    gSum = 0.0;
-    gFailed = false;
+    shadow.sum = 0.0;
+    shadow.failed = false;
     if (!lightGeometry()) return false;
-    gIdx = 0;
+    shadow.idx = 0;
     return true;
 }
 
 // One pass over up to sixteen cells of the current light's grid: true when it stopped at a
-// root (its bracket [gLo, gHi] in ψ set up for refinement, or gPsi set when exact).
+// root (its bracket [shadow.lo, shadow.hi] in ψ set up for refinement, or shadow.psi set when exact).
 bool gridPass() {
-    gN = gIdx / (2 * gCells);
-    gInbound = (gIdx / gCells) % 2 == 1;
-    int cell = gIdx % gCells + 1;
-    if (gZp == 0.0) {
-        gIdx++;
-        gPsi = 0.5 * PI;
-        gIter = -1;
+    shadow.n = shadow.idx / (2 * shadow.cells);
+    shadow.inbound = (shadow.idx / shadow.cells) % 2 == 1;
+    int cell = shadow.idx % shadow.cells + 1;
+    if (shadow.zp == 0.0) {
+        shadow.idx++;
+        shadow.psi = 0.5 * PI;
+        shadow.iter = -1;
         return true;
     }
     // The grid's point before the pass's first cell and G there, made again in every pass
     // (never carried from the last): a pass that a later round resumes starts from the same
     // values as one that follows its predecessor in the same round.
-    gU0 = gCmax * float(cell - 1) / float(SHADOW_GRID);
-    gG0 = cell == 1
-        ? -abs(gZp)
-        : shadowG4(gRho, gZp, vec4(gU0), vec4(float(cell - 1)), gN, gInbound).x;
+    shadow.u0 = shadow.cmax * float(cell - 1) / float(SHADOW_GRID);
+    shadow.g0 = cell == 1
+        ? -abs(shadow.zp)
+        : shadowG4(shadow.rho, shadow.zp, vec4(shadow.u0), vec4(float(cell - 1)), shadow.n, shadow.inbound).x;
     // Sixteen cells per pass, in four groups written out (each pass of a loop counts
     // against llvmpipe's limit).
-    int count = min(CELLS_PER_PASS, gCells - cell + 1);
+    int count = min(CELLS_PER_PASS, shadow.cells - cell + 1);
     vec4 base = float(cell) + vec4(0.0, 1.0, 2.0, 3.0);
     vec4 us[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     vec4 gs[4] = us;
-    us[0] = gCmax * base / float(SHADOW_GRID);
-    us[1] = gCmax * (base + 4.0) / float(SHADOW_GRID);
-    us[2] = gCmax * (base + 8.0) / float(SHADOW_GRID);
-    us[3] = gCmax * (base + 12.0) / float(SHADOW_GRID);
-    gs[0] = shadowG4(gRho, gZp, us[0], base, gN, gInbound);
-    gs[1] = shadowG4(gRho, gZp, us[1], base + 4.0, gN, gInbound);
-    gs[2] = shadowG4(gRho, gZp, us[2], base + 8.0, gN, gInbound);
-    gs[3] = shadowG4(gRho, gZp, us[3], base + 12.0, gN, gInbound);
-    int found = min(min(firstRoot(vec4(gG0, gs[0].xyz), gs[0], base, 0, count, gInbound),
-                        firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, gInbound)),
-                    min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, gInbound),
-                        firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, gInbound)));
+    us[0] = shadow.cmax * base / float(SHADOW_GRID);
+    us[1] = shadow.cmax * (base + 4.0) / float(SHADOW_GRID);
+    us[2] = shadow.cmax * (base + 8.0) / float(SHADOW_GRID);
+    us[3] = shadow.cmax * (base + 12.0) / float(SHADOW_GRID);
+    gs[0] = shadowG4(shadow.rho, shadow.zp, us[0], base, shadow.n, shadow.inbound);
+    gs[1] = shadowG4(shadow.rho, shadow.zp, us[1], base + 4.0, shadow.n, shadow.inbound);
+    gs[2] = shadowG4(shadow.rho, shadow.zp, us[2], base + 8.0, shadow.n, shadow.inbound);
+    gs[3] = shadowG4(shadow.rho, shadow.zp, us[3], base + 12.0, shadow.n, shadow.inbound);
+    int found = min(min(firstRoot(vec4(shadow.g0, gs[0].xyz), gs[0], base, 0, count, shadow.inbound),
+                        firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, shadow.inbound)),
+                    min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, shadow.inbound),
+                        firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, shadow.inbound)));
     if (found >= CELLS_PER_PASS) {
-        gIdx += count;
+        shadow.idx += count;
         return false;
     }
     // The cell [u0, u1] of the root, as the bracket [ψ(u1), ψ(u0)] in ψ = arccos u (ψ falls
     // as u grows; the grid's last point is ψ_min exactly, as on the CPU).
     int prev = max(found - 1, 0);
-    float u0 = found == 0 ? gU0 : us[prev / 4][prev % 4];
-    float g0 = found == 0 ? gG0 : gs[prev / 4][prev % 4];
+    float u0 = found == 0 ? shadow.u0 : us[prev / 4][prev % 4];
+    float g0 = found == 0 ? shadow.g0 : gs[prev / 4][prev % 4];
     float u1 = us[found / 4][found % 4];
     float g1 = gs[found / 4][found % 4];
     bool last = cell + found == SHADOW_GRID;
-    gLo = last ? gPsiMin : acosA(u1);
-    gFlo = g1;
-    gHi = acosA(u0);
-    gFhi = g0;
-    gIdx += found + 1;
-    gSide = 0;
-    gIter = 0;
-    gPsi = gLo;
-    if (g1 == 0.0) gIter = -1;   // an exact root: no refinement
+    shadow.lo = last ? shadow.psiMin : acosA(u1);
+    shadow.flo = g1;
+    shadow.hi = acosA(u0);
+    shadow.fhi = g0;
+    shadow.idx += found + 1;
+    shadow.side = 0;
+    shadow.iter = 0;
+    shadow.psi = shadow.lo;
+    if (g1 == 0.0) shadow.iter = -1;   // an exact root: no refinement
     return true;
 }
 
 // One Illinois step on the bracketed root of G (spacetime::refine_root); true when done.
 bool rootStep() {
-    float m = gFhi != gFlo ? (gLo * gFhi - gHi * gFlo) / (gFhi - gFlo) : 0.5 * (gLo + gHi);
-    if (!finite(m) || !(m > gLo && m < gHi)) m = 0.5 * (gLo + gHi);
-    gPsi = m;
-    float fm = shadowG(m, gN, gInbound);
-    gIter++;
-    if (fm == 0.0 || gHi - gLo <= 4.0 * 1.1920929e-7 * max(gHi, 1e-30) || gIter >= REFINE_STEPS) return true;
-    if ((fm > 0.0) == (gFhi > 0.0)) { gHi = m; gFhi = fm; if (gSide == 1) gFlo *= 0.5; gSide = 1; }
-    else { gLo = m; gFlo = fm; if (gSide == -1) gFhi *= 0.5; gSide = -1; }
+    float m = shadow.fhi != shadow.flo ? (shadow.lo * shadow.fhi - shadow.hi * shadow.flo) / (shadow.fhi - shadow.flo) : 0.5 * (shadow.lo + shadow.hi);
+    if (!finite(m) || !(m > shadow.lo && m < shadow.hi)) m = 0.5 * (shadow.lo + shadow.hi);
+    shadow.psi = m;
+    float fm = shadowG(m, shadow.n, shadow.inbound);
+    shadow.iter++;
+    if (fm == 0.0 || shadow.hi - shadow.lo <= 4.0 * 1.1920929e-7 * max(shadow.hi, 1e-30) || shadow.iter >= REFINE_STEPS) return true;
+    if ((fm > 0.0) == (shadow.fhi > 0.0)) { shadow.hi = m; shadow.fhi = fm; if (shadow.side == 1) shadow.flo *= 0.5; shadow.side = 1; }
+    else { shadow.lo = m; shadow.flo = fm; if (shadow.side == -1) shadow.fhi *= 0.5; shadow.side = -1; }
     return false;
 }
 
-// The ray of root gPsi (spacetime::connect): 0 when it does not count, 1 when it counts
-// unoccluded (gWeight), 2 when its occlusion must be searched (the search is set up).
+// The ray of root shadow.psi (spacetime::connect): 0 when it does not count, 1 when it counts
+// unoccluded (shadow.weight), 2 when its occlusion must be searched (the search is set up).
 int shadowRaySetUp() {
     float a = u_a;
-    float c = sign(gZp) * cosA(gPsi);
-    int n = gN;
-    float th = shadowTheta(gPsi, n, gInbound);
+    float c = sign(shadow.zp) * cosA(shadow.psi);
+    int n = shadow.n;
+    float th = shadowTheta(shadow.psi, n, shadow.inbound);
     float w1 = 1.0 + c * c;
     float omega = sqrt(w1) / (2.0 * a);
     float big = bigPhi(sqrt(2.0 / w1), th);
     float lambda = th / omega;
-    float chi = carg(gP.yz) - big + float(n) * PI;
-    float sinpsi = sinA(gPsi);
-    vec4 em = vec4(gP.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
+    float chi = carg(shadow.p.yz) - big + float(n) * PI;
+    float sinpsi = sinA(shadow.psi);
+    vec4 em = vec4(shadow.p.x - (2.0 * SQRT2 * a * big - lambda), 0.0, 0.0, 0.0);
     vec4 tg = vec4(1.0, sinpsi * cosA(chi), sinpsi * sinA(chi), c);
-    vec4 emission = applyIso(gBack, em);
-    if (emission.x < hX.x - u_max_past) return 0;
+    vec4 emission = applyIso(shadow.back, em);
+    if (emission.x < hp.x.x - u_max_past) return 0;
     // The ray in the source's axis frame: the closed form from the origin, moved by the
     // emission time, carried back by the source's isometry (its end then lies on the hit
     // point to the rounding of one map, not of two).
     Ray r = NO_RAY;
     r.geo = originGeodesic(tg);
     if (!r.geo.ok) return 0;
-    r.back = gBack;
+    r.back = shadow.back;
     r.back.t0 -= em.x;
     r.lret = returnParameter(r.geo);
     r.shift = vec2(0.0);
@@ -1906,9 +1906,9 @@ int shadowRaySetUp() {
     rayAt(r, 0, lambda, xe, kEnd);
     vec2 inc = incidence(kEnd);
     if (!finite(inc.x) || !(inc.x > 0.0)) return 0;
-    float d2 = areaDistanceSq(c < 0.0 ? PI - gPsi : gPsi, chi, lambda);
+    float d2 = areaDistanceSq(c < 0.0 ? PI - shadow.psi : shadow.psi, chi, lambda);
     if (!(d2 > 0.0 && finite(d2))) return 0;
-    gWeight = gPower * inc.y * inc.y * inc.x / (4.0 * PI * d2);
+    shadow.weight = shadow.power * inc.y * inc.y * inc.x / (4.0 * PI * d2);
     // Occlusion: the ray from its emission to just before the lit point (END_CUT),
     // searched for every object it may come near; the lit object up to the last segment
     // only (render::lighting: that stretch is nearly a circle arc, which meets a sphere in
@@ -1918,11 +1918,11 @@ int shadowRaySetUp() {
     float end = lambda * (1.0 - END_CUT);
     int segs = toInt(ceil(end / (r.lret / float(EXACT_SEGMENTS))), 1, MAX_SEGMENTS);
     float last = end * float(segs - 1) / float(segs);
-    bool any = setSearched(gSource, r.geo, end, hTarget, last);
+    bool any = setSearched(shadow.source, r.geo, end, hp.target, last);
     if (!any) return 1;
     startLongSearch(r, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
-    eSkipObj = hTarget;
-    eSkipSeg = segs - 1;
+    plan.skipObj = hp.target;
+    plan.skipSeg = segs - 1;
     return 2;
 }
 
@@ -1939,8 +1939,8 @@ void pixelScreen(mat4 frame, vec3 n) {
     vec3 s = u_up - dot(u_up, n) * n;
     if (dot(s, s) < 1e-12) s = u_forward - dot(u_forward, n) * n;
     s = normalize(s);
-    hScreen[0] = frame * vec4(0.0, s);
-    hScreen[1] = frame * vec4(0.0, cross(n, s));
+    hp.up = frame * vec4(0.0, s);
+    hp.right = frame * vec4(0.0, cross(n, s));
 }
 
 // The screen vectors parallel-transported along the pixel's ray r from the observer `obs` to
@@ -1954,10 +1954,10 @@ void transportScreen(Ray r, vec4 obs, float within, float lambda) {
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(r.geo, within, e0, k0);
     Iso to = toOrigin(obs);
-    vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[0]));
-    vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hScreen[1]));
-    hScreen[0] = pushIso(r.back, e0, up);
-    hScreen[1] = pushIso(r.back, e0, right);
+    vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.up));
+    vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.right));
+    hp.up = pushIso(r.back, e0, up);
+    hp.right = pushIso(r.back, e0, right);
 }
 
 // The outputs: slots [u_slot0, u_slot0 + DRAW_BUFFERS) of `slots`.
@@ -2062,10 +2062,10 @@ Progress atStretch(Progress step, int stretch) {
 }
 Progress atLightStep(Progress p, Found hit) {
     p.phase = PH_LIGHTS;
-    p.counter = gLight;
-    p.idx = gIdx;
+    p.counter = shadow.light;
+    p.idx = shadow.idx;
     p.sub = -1;
-    p.sum = gFailed ? -1.0 : gSum;
+    p.sum = shadow.failed ? -1.0 : shadow.sum;
     p.hit = hit;
     p.probes = probes_left;
     return p;
@@ -2098,22 +2098,22 @@ int startPixel(Ray r, vec4 obs, float pt, float tBound) {
 // the record's slots; its status (escaped where the hit lies before the time bound, failed
 // where it has no surface or shift).
 int takeHit(Found f, Ray r, mat4 frame, vec3 n, vec4 obs, vec4 k, float tBound) {
-    rayAt(r, f.loop_, f.lambda, hX, hK);
+    rayAt(r, f.loop_, f.lambda, hp.x, hp.k);
     float lambda = f.lambda + float(f.loop_) * r.lret;
     pixelScreen(frame, n);
     transportScreen(r, obs, f.lambda, lambda);
-    hTarget = f.target;
-    hAt.tau = f.tau;
+    hp.target = f.target;
+    hp.at.tau = f.tau;
     bool ok = surface();
     // g = (p·u_obs)/(p·u_emit), the backward ray's momentum at both ends.
-    float g = dot(frame[0], metricAt(obs) * k) / dot(hUemit, metricAt(hX) * hK);
-    if (hX.x < tBound) return ESCAPED;
+    float g = dot(frame[0], metricAt(obs) * k) / dot(hp.uemit, metricAt(hp.x) * hp.k);
+    if (hp.x.x < tBound) return ESCAPED;
     if (!ok || !(g > 0.0 && finite(g))) return FAILED;
-    slots[0] = vec4(float(hTarget), 0.0, hUV);
-    slots[1] = vec4(g, hX.x, lambda, hCos);
-    slots[2].xyz = hX.yzw;
-    slots[3].xyz = hDir;
-    slots[4].yzw = hPol;
+    slots[0] = vec4(float(hp.target), 0.0, hp.uv);
+    slots[1] = vec4(g, hp.x.x, lambda, hp.cosI);
+    slots[2].xyz = hp.x.yzw;
+    slots[3].xyz = hp.dir;
+    slots[4].yzw = hp.pol;
     return HIT;
 }
 
@@ -2181,15 +2181,15 @@ void main() {
         if (decided >= 0) {
             cp = atEnd(at, decided, NO_FOUND);
         } else {
-            eLoop = at.counter;
+            mach.loop_ = at.counter;
             searching = true;
             pixelSearch = true;
         }
     } else if (at.phase == PH_LIGHTS) {
-        gLight = at.counter;
-        gIdx = at.idx;
-        gFailed = at.sum < 0.0;
-        gSum = max(at.sum, 0.0);
+        shadow.light = at.counter;
+        shadow.idx = at.idx;
+        shadow.failed = at.sum < 0.0;
+        shadow.sum = max(at.sum, 0.0);
         resume = at.sub;
     }
     if (cp.phase == PH_DONE) moved = true;
@@ -2220,23 +2220,23 @@ void main() {
                     cp = atEnd(cp, status, hit);
                     break;
                 }
-                gLight = 0;
-                gIdx = -1;
-                gSum = 0.0;
-                gFailed = false;
+                shadow.light = 0;
+                shadow.idx = -1;
+                shadow.sum = 0.0;
+                shadow.failed = false;
                 cp = atLightStep(cp, hit);
-            } else if (gIdx >= 0 && gLight < u_lights) {
+            } else if (shadow.idx >= 0 && shadow.light < u_lights) {
                 lightGeometry();   // a resumed light's, from the hit just taken
             }
             continue;
         }
         if (searching) {
-            for (int pass = 0; pass < MAX_BUDGET && eMode != M_DONE && spent < at.budget; pass++) {
+            for (int pass = 0; pass < MAX_BUDGET && mach.mode != M_DONE && spent < at.budget; pass++) {
                 spent++;
-                if (eMode == M_LOOP && qTag == Q_NONE) {
+                if (mach.mode == M_LOOP && req.tag == Q_NONE) {
                     // A loop's or a stretch's start: a checkpoint (none before the round's start).
-                    Progress p = atStretch(step, eLoop);   // (no ?: of structures in WebGL)
-                    if (pixelSearch) p = atLoop(cp, eLoop);
+                    Progress p = atStretch(step, mach.loop_);   // (no ?: of structures in WebGL)
+                    if (pixelSearch) p = atLoop(cp, mach.loop_);
                     if (!after(at, p)) {
                         moved = moved || after(p, at);
                         cp = p;
@@ -2244,9 +2244,9 @@ void main() {
                 }
                 searchPass();
             }
-            if (eMode != M_DONE) break;   // the round's budget is spent
+            if (mach.mode != M_DONE) break;   // the round's budget is spent
             searching = false;
-            Found f = eResult;
+            Found f = mach.result;
             if (pixelSearch) {
                 pixelSearch = false;
                 if (f.status != HIT) {
@@ -2260,9 +2260,9 @@ void main() {
                 continue;
             }
             if (f.status == WORK_LIMIT || f.status == FAILED) {   // occlusion unknown
-                gFailed = true;
+                shadow.failed = true;
             } else if (f.status != HIT) {
-                gSum += gWeight;
+                shadow.sum += shadow.weight;
             }
             continue;
         }
@@ -2277,24 +2277,24 @@ void main() {
                 moved = moved || after(step, at);
                 cp = step;
             }
-            if (gLight >= u_lights) {
+            if (shadow.light >= u_lights) {
                 cp = atEnd(cp, HIT, hit);
                 break;
             }
-            if (gIdx < 0) {
+            if (shadow.idx < 0) {
                 if (!startLight()) endLight();
-            } else if (gIdx >= gTotal || gFailed) {
+            } else if (shadow.idx >= shadow.total || shadow.failed) {
                 endLight();
             } else if (gridPass()) {
-                for (int it = 0; it < REFINE_STEPS && gIter >= 0; it++) {
+                for (int it = 0; it < REFINE_STEPS && shadow.iter >= 0; it++) {
                     spent++;
                     if (rootStep()) break;
                 }
                 int use = shadowRaySetUp();
-                if (use == 1) gSum += gWeight;
+                if (use == 1) shadow.sum += shadow.weight;
                 if (use == 2) {
                     searching = true;
-                    if (resume >= 0) eLoop = resume;   // the restored step's search, where it was
+                    if (resume >= 0) mach.loop_ = resume;   // the restored step's search, where it was
                     resume = -1;
                 }
             }

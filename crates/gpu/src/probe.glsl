@@ -96,9 +96,9 @@ void main() {
     // to the z axis, winding a0.y, inbound where a0.z > ½, and G at the four |c| of a3 (the
     // last one the grid's last point, c_max); D² of the ray leaving the axis at (ψ, χ) = a2.xy,
     // ending at λ = a2.z; Φ(θ) for q = a1.w, θ = a2.w.
-    gS = a1.x;
-    gPsiMin = a1.y;
-    gZp = a1.z;
+    shadow.s = a1.x;
+    shadow.psiMin = a1.y;
+    shadow.zp = a1.z;
     int n = toInt(a0.y, 0, MAX_WINDINGS);
     bool inbound = a0.z > 0.5;
     slots[0] = vec4(shadowTheta(a0.x, n, inbound), shadowG(a0.x, n, inbound),
