@@ -3,27 +3,51 @@
 //! layout, shared by the offscreen host (`crate::host`) and the viewer page (which receives
 //! [`KernelInput`] as JSON and sets the same uniforms).
 //!
+//! What is the same for every sample is computed here once, in f64, with the CPU tracer's own
+//! functions (`spacetime`: frames, Christoffel symbols, isometries, closed forms), and rounded
+//! to f32 once: the kernel reads it (docs/physics.md, "The GPU kernel").
+//!
 //! Scene table (RGBA32F texels, [`TABLE_WIDTH`] per row): per object [`OBJECT_TEXELS`],
 //!
 //! | texel | ball at rest | ball in free fall | coordinate sphere | plane |
 //! | --- | --- | --- | --- | --- |
 //! | 0 | (0, R, 0, 0) | (1, R, 0, 0) | (2, R, 0, 0) | (3, 0, extent or 0, 0) |
-//! | 1 | (x, y, z, 0) | start (x, y, z), speed | centre (x, y, z, 0) | (0, 0, height, 0) |
-//! | 2 | — | start time (hi, lo, 0, 0) | — | — |
-//! | 3 | — | direction (x, y, z, 0) | — | — |
+//! | 1 | (x, y, z, 0) | start (x, y, z, 0) | centre (x, y, z, 0) | (0, 0, height, 0) |
+//! | 2 | — | start time (hi, lo), B's t₀, 0 | — | — |
+//! | 3–6 | static frame e0..e3 | start frame u, e1..e3 (Gödel: e1..e3 in the origin frame) | — | — |
+//! | 7–10 | dual rows c0..c3 | (γ, γ(1 + v), rate, 0); (E, p_z, κ, ω); (cos χ, sin χ, r_max, q); B's (w₀, z₀, rotation) | — | — |
+//! | 11–16 | Γ^μ_αβ there, μ = t, x, y: (Γ^μ_tt, Γ^μ_tx, Γ^μ_ty, Γ^μ_xx), (Γ^μ_xy, Γ^μ_yy, 0, 0) | — | — | — |
 //!
-//! (a scene without objects gets one of kind −1, never searched), then per light [`LIGHT_TEXELS`]: (x, y, z, power). Times are split into f32 hi + lo parts,
-//! so that the kernel subtracts the observer's time without losing the digits (f32 has 24
-//! bits; scenes allow times up to 10⁶).
+//! (a scene without objects gets one of kind −1, never searched), then per light
+//! [`LIGHT_TEXELS`]: (x, y, z, power). A ball at rest has its static frame, that frame's dual
+//! rows (frame components are dot products with them) and the Christoffel symbols at its
+//! position (those with a z index vanish: neither metric depends on z or mixes it with t, x, y;
+//! `tests/table.rs` checks it). A ball in free fall has its start frame (the static frame boosted by its
+//! velocity; u its four-velocity) and, in Gödel's universe, its worldline's closed form in the
+//! start's origin frame (spacetime::OriginGeodesic of u carried there) and the isometry B
+//! from that frame back (spacetime::Isometry), its legs e1..e3 carried into that frame (where
+//! the kernel transports them); γ = −u_t, and the rate is the coordinate time per proper time
+//! over whole loops. They are made for the start at time zero (a shift of t is an isometry):
+//! the kernel adds the start's time relative to the observer's, so that the table does not
+//! depend on the observer (the page flies many observers with one table). Times are split
+//! into f32 hi + lo parts, so that the kernel subtracts the observer's time without losing
+//! the digits (f32 has 24 bits; scenes allow times up to 10⁶).
+//!
+//! The observer's frame (static frame boosted) and isometry stay in the kernel: the page
+//! makes the uniforms of each flying frame itself, from the observer's event and velocity,
+//! without this packer.
 
 use scene::{Camera, Motion, Scene, Shape};
 use serde::Serialize;
+use spacetime::measure::DualFrame;
+use spacetime::{Event, ExactGeodesic, FourVector, Isometry, LocalVelocity, Metric, Spacetime};
+use std::f64::consts::{PI, SQRT_2};
 use std::ops::Range;
 
 /// Texels per row of the scene table.
 pub const TABLE_WIDTH: usize = 256;
 /// Texels per object and per light.
-pub const OBJECT_TEXELS: usize = 4;
+pub const OBJECT_TEXELS: usize = 17;
 pub const LIGHT_TEXELS: usize = 1;
 
 /// The output slots of a record, four channels each (see [`slots`]).
@@ -154,19 +178,17 @@ impl KernelInput {
                 (Shape::Sphere { radius }, Motion::Rest { position }) => {
                     t[0] = [0.0, radius as f32, 0.0, 0.0];
                     t[1] = [position.x as f32, position.y as f32, position.z as f32, 0.0];
+                    rest_ball(&scene.metric, position, &mut t);
                 }
                 (Shape::Sphere { radius }, Motion::Geodesic { start, velocity }) => {
-                    let [hi, lo] = split_time(start.t);
                     t[0] = [1.0, radius as f32, 0.0, 0.0];
-                    t[1] = [
-                        start.x as f32,
-                        start.y as f32,
-                        start.z as f32,
-                        velocity.speed as f32,
-                    ];
-                    t[2] = [hi, lo, 0.0, 0.0];
-                    let d = f(velocity.direction);
-                    t[3] = [d[0], d[1], d[2], 0.0];
+                    t[1] = [start.x as f32, start.y as f32, start.z as f32, 0.0];
+                    if !falling_ball(&scene.metric, start, velocity, &mut t) {
+                        // Never for a scene's ball (its coordinates are within 10⁶ a, its
+                        // speed below 1): without a closed form it is never searched.
+                        t = [[0.0; 4]; OBJECT_TEXELS];
+                        t[0] = [-1.0, 0.0, 0.0, 0.0];
+                    }
                 }
                 (Shape::CoordinateSphere { center, radius }, _) => {
                     t[0] = [2.0, radius as f32, 0.0, 0.0];
@@ -261,4 +283,77 @@ impl KernelInput {
             layers,
         }
     }
+}
+
+/// A vector as a texel.
+fn texel(v: FourVector) -> [f32; 4] {
+    v.to_array().map(|c| c as f32)
+}
+
+/// Texels 3–16 of a ball at rest at `position`: its body frame (the static frame there), the
+/// frame's dual rows and the Christoffel symbols there (as `render::worldline` makes them).
+fn rest_ball(metric: &Metric, position: Event, t: &mut [[f32; 4]; OBJECT_TEXELS]) {
+    let p = Event::new(0.0, position.x, position.y, position.z);
+    let frame = metric.static_frame(p);
+    let dual = DualFrame::new(&metric.metric(p), &frame);
+    for a in 0..4 {
+        t[3 + a] = texel(frame.e[a]);
+        t[7 + a] = dual.0[a].map(|c| c as f32);
+    }
+    let gamma = metric.christoffel(p);
+    for (mu, g) in gamma.iter().take(3).enumerate() {
+        t[11 + 2 * mu] = [g[0][0], g[0][1], g[0][2], g[1][1]].map(|c| c as f32);
+        t[12 + 2 * mu] = [g[1][2], g[2][2], 0.0, 0.0].map(|c| c as f32);
+    }
+}
+
+/// Texels 2–10 of a ball in free fall from `start` with `velocity` (the table above); false
+/// where its worldline has no closed form.
+fn falling_ball(
+    metric: &Metric,
+    start: Event,
+    velocity: LocalVelocity,
+    t: &mut [[f32; 4]; OBJECT_TEXELS],
+) -> bool {
+    // Everything for a start at time zero; the kernel adds the start's relative time.
+    let start0 = Event::new(0.0, start.x, start.y, start.z);
+    let frame = metric.observer_frame(start0, velocity);
+    let u = frame.e[0];
+    // γ = −u_t is conserved (∂t is Killing), γ(1 + v) = γ + √(γ² − 1)
+    // (render::worldline::Worldline::speed_factor).
+    let gamma = (-metric.lower(start0, u).t).max(1.0);
+    let speed = gamma + (gamma * gamma - 1.0).sqrt();
+    let [hi, lo] = split_time(start.t);
+    t[3] = texel(u);
+    let mut rate = u.t;
+    if let Some(a) = metric.godel_a() {
+        let Some(g) = ExactGeodesic::new(a, start0, u) else {
+            return false;
+        };
+        let to = Isometry::to_origin(a, start0);
+        for k in 1..4 {
+            t[3 + k] = texel(to.push(start0, frame.e[k]));
+        }
+        let o = g.origin;
+        let lret = o.return_parameter();
+        // The time after one return to the axis over its parameter.
+        rate = o.at(lret).0.t / lret;
+        // ω and q of spacetime::closed_form (its fields are private): λ_ret = π/ω,
+        // q = |E|/(√2 a ω).
+        let omega = PI / lret;
+        let q = o.energy.abs() / (SQRT_2 * a * omega);
+        let (cc, sc) = o.cis_chi();
+        t[8] = [o.energy, o.pz, o.kappa, omega].map(|c| c as f32);
+        t[9] = [cc, sc, o.r_max(), q].map(|c| c as f32);
+        let b = g.back;
+        t[2] = [hi, lo, b.t0 as f32, 0.0];
+        t[10] = [b.w0.re, b.w0.im, b.z0, b.rotation].map(|c| c as f32);
+    } else {
+        for k in 1..4 {
+            t[3 + k] = texel(frame.e[k]);
+        }
+        t[2] = [hi, lo, 0.0, 0.0];
+    }
+    t[7] = [gamma, speed, rate, 0.0].map(|c| c as f32);
+    true
 }

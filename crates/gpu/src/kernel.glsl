@@ -82,7 +82,7 @@ layout(location = 7) out vec4 o7;
 #endif
 
 const int TABLE_WIDTH = 256;
-const int OBJECT_TEXELS = 4;
+const int OBJECT_TEXELS = 17;
 const int LIGHT_TEXELS = 1;
 
 const int KIND_REST = 0;
@@ -577,9 +577,10 @@ Ray makeRay(vec4 at, vec4 k) {
 
 // ---------------------------------------------------------------------------------------
 // Objects (docs/physics.md, "Local objects"; render::target, render::worldline), read from
-// the table and prepared once per sample. GLSL inlines every call, so the heavy functions
-// below each have one call site (two for `localize`), and the kernel stays small enough to
-// compile in seconds.
+// the table once per sample: what is the same for every sample (frames, Γ, a free fall's
+// closed form and isometry) the host computed in f64 (crates/gpu/src/input.rs). GLSL inlines
+// every call, so the heavy functions below each have one call site (two for `localize`), and
+// the kernel stays small enough to compile in seconds.
 
 struct Object {
     int kind;
@@ -587,9 +588,9 @@ struct Object {
     float extent;   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
     vec4 pos;       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
     mat4 dual;      // at rest: dual rows of the static frame
-    mat4 dX;        // at rest: ∂x g, ∂y g and g⁻¹ at the position (Γ there)
-    mat4 dY;
-    mat4 ginv;
+    mat3 chrT;      // at rest: Γ^μ_αβ at the position for μ = t, x, y and α, β = t, x, y
+    mat3 chrX;      // (those with a z index vanish)
+    mat3 chrY;
     Iso back;       // free fall: from the start's origin frame back
     OGeo geo;       // free fall: the closed form in that frame
     vec4 start;     // free fall: start event; Minkowski: and its velocity below
@@ -641,43 +642,48 @@ void storeFallingLast(int i, float last) {
     }
 }
 
-// The frame a free fall that starts at `start` starts with: the static frame there boosted by
-// its velocity.
-mat4 startFrame(int i, vec4 start) {
-    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
-    vec4 t3 = tableTexel(OBJECT_TEXELS * i + 3);
-    return boostFrame(staticFrame(start), t1.w, t3.xyz);
+// Four texels from `at` on, as the columns of a matrix.
+mat4 tableMat(int at) { return mat4(tableTexel(at), tableTexel(at + 1), tableTexel(at + 2), tableTexel(at + 3)); }
+
+// The symmetric matrix of the two texels from `at` on: (m00, m01, m02, m11), (m12, m22, −, −).
+mat3 tableSymmetric(int at) {
+    vec4 p = tableTexel(at), q = tableTexel(at + 1);
+    return mat3(p.x, p.y, p.z, p.y, p.w, q.x, p.z, q.x, q.y);
 }
 
-// Object i, read from the table and prepared (zero where its kind has no use for a field).
+// Γ^μ_αβ d^α d^β at the position of the ball at rest i.
+vec4 restChristoffel(int i, vec4 d) {
+    vec3 v = d.xyz;
+    return vec4(dot(v, objs[i].chrT * v), dot(v, objs[i].chrX * v), dot(v, objs[i].chrY * v), 0.0);
+}
+
+// Object i, read from the table (zero where its kind has no use for a field; the layout is
+// input.rs's).
 Object loadObject(int i) {
-    vec4 t0 = tableTexel(OBJECT_TEXELS * i);
-    vec4 t1 = tableTexel(OBJECT_TEXELS * i + 1);
-    vec4 t2 = tableTexel(OBJECT_TEXELS * i + 2);
+    int at = OBJECT_TEXELS * i;
+    vec4 t0 = tableTexel(at);
+    vec4 t1 = tableTexel(at + 1);
     Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), mat4(0.0),
-                      mat4(0.0), mat4(0.0), mat4(0.0), NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0),
+                      mat3(0.0), mat3(0.0), mat3(0.0), NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0),
                       1.0, 1.0, 1.0);
     if (restKind(o.kind)) {
-        o.dual = dualFrame(metricAt(o.pos), staticFrame(o.pos));
-        metricDerivatives(o.pos, o.dX, o.dY);
-        o.ginv = inverseMetricAt(o.pos);
-        if (!godel()) { o.dX = mat4(0.0); o.dY = mat4(0.0); }
+        o.dual = tableMat(at + 7);
+        o.chrT = tableSymmetric(at + 11);
+        o.chrX = tableSymmetric(at + 13);
+        o.chrY = tableSymmetric(at + 15);
     } else if (freeKind(o.kind)) {
+        vec4 t2 = tableTexel(at + 2);
         // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
         o.start = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
-        vec4 u = startFrame(i, o.start)[0];
-        o.u0 = u;
-        float gam = -(metricAt(o.start) * u).x;   // γ = −u_t, conserved
-        o.speed = gam + sqrt(max(gam * gam - 1.0, 0.0));
-        o.gamma = max(gam, 1.0);
-        o.rate = u.x;
-        if (godel()) {
-            Iso to = toOrigin(o.start);
-            o.geo = originGeodesic(pushIso(to, o.start, u));
-            o.back = inverseIso(to);
-            float lr = returnParameter(o.geo);
-            o.rate = (sign(o.geo.e) * 2.0 * SQRT2 * u_a * PI - o.geo.e * lr) / lr;
-        }
+        o.u0 = tableTexel(at + 3);
+        vec4 s = tableTexel(at + 7);
+        o.gamma = s.x;
+        o.speed = s.y;
+        o.rate = s.z;
+        vec4 g0 = tableTexel(at + 8), g1 = tableTexel(at + 9), b = tableTexel(at + 10);
+        o.geo = OGeo(g0.x, g0.y, g0.z, g1.xy, g0.w, g1.z, g1.w, true);
+        // The table's isometry is that of a start at time zero: shifted by the start's time.
+        o.back = Iso(t2.z - o.start.x, b.xy, b.z, b.w);
     }
     return o;
 }
@@ -716,17 +722,16 @@ WPoint worldAt(int i, float tau) {
 }
 
 // The body frame at the worldline point p (free fall: the start frame parallel-transported
-// in closed form; at rest: the static frame).
+// in closed form; at rest: the static frame). Read from the table here, at a hit, not for
+// every object when a sample starts.
 mat4 bodyFrame(int i, WPoint p) {
-    if (!isFree(i)) return staticFrame(objs[i].pos);
-    mat4 f0 = startFrame(i, objs[i].start);
-    if (!godel()) return f0;
-    Iso to = toOrigin(objs[i].start);
+    mat4 f = tableMat(OBJECT_TEXELS * i + 3);
+    if (!isFree(i) || !godel()) return f;
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(objs[i].geo, p.tau, e0, k0);
-    vec4 w1 = transportFromOrigin(objs[i].geo, p.tau, e0, pushIso(to, objs[i].start, f0[1]));
-    vec4 w2 = transportFromOrigin(objs[i].geo, p.tau, e0, pushIso(to, objs[i].start, f0[2]));
-    vec4 w3 = transportFromOrigin(objs[i].geo, p.tau, e0, pushIso(to, objs[i].start, f0[3]));
+    vec4 w1 = transportFromOrigin(objs[i].geo, p.tau, e0, f[1]);
+    vec4 w2 = transportFromOrigin(objs[i].geo, p.tau, e0, f[2]);
+    vec4 w3 = transportFromOrigin(objs[i].geo, p.tau, e0, f[3]);
     return mat4(p.u, pushIso(objs[i].back, e0, w1), pushIso(objs[i].back, e0, w2), pushIso(objs[i].back, e0, w3));
 }
 
@@ -778,7 +783,7 @@ Local localize(int i, vec4 x, float seed, float far) {
         if (lp.exact) {
             for (int it = 0; it < 2; it++) {   // a fixed count, without jumps: unrolled
                 vec4 d = x - vec4(t, objs[i].pos.yzw);
-                xi = components(objs[i].dual, d + 0.5 * christoffelWith(objs[i].dX, objs[i].dY, objs[i].ginv, d, d));
+                xi = components(objs[i].dual, d + 0.5 * restChristoffel(i, d));
                 t += xi.x;
             }
         }

@@ -7,6 +7,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use axum::http::StatusCode;
+use gpu::input::OBJECT_TEXELS;
 use gpu::KernelInput;
 use scene::Scene;
 use viewer::ViewerState;
@@ -109,11 +110,11 @@ async fn light_channels_follow_the_records_slots() {
         got["light_channels"],
         serde_json::json!([[5, 0], [5, 1], [5, 2], [5, 3], [6, 0]])
     );
-    // Each light's position and power in the table, after the object's four texels.
+    // Each light's position and power in the table, after the object's texels.
     let table = got["table"].as_array().unwrap();
     for k in 0..5 {
         let texel: Vec<f64> = (0..4)
-            .map(|c| table[(4 + k) * 4 + c].as_f64().unwrap())
+            .map(|c| table[(OBJECT_TEXELS + k) * 4 + c].as_f64().unwrap())
             .collect();
         assert_eq!(texel, [1.0, k as f64, 0.0, 2.0], "light {k}");
     }
