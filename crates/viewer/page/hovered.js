@@ -2,7 +2,7 @@
 // without the server. Its record is read from the frame's slots (the kernel's layout,
 // gpu::host::sample_record and light_value), with the fields the server's /api/pixel gives
 // for its own frames (crates/viewer/src/state.rs, `pixel`). Its light ray, for the map
-// (map.js), is traced by the GPU kernel's own closed forms: crates/gpu/src/kernel.glsl
+// (map.js), is traced by the GPU kernel's own closed forms: crates/gpu/src/kernel/ (render_map.glsl)
 // compiled with RAY_PATH, the twin of render::map::light_ray (docs/physics.md, "The explore
 // map"), with the fields of the server's /api/explore/ray: status, object, points
 // [{t, x, y, z, r}] from the observer into the past, emission, travel_time.

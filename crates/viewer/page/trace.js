@@ -1,5 +1,5 @@
 // godel view: the exact tracer on the GPU, in the page. Runs the kernel of crates/gpu
-// (kernel.glsl, served at /api/gpu/kernel) in WebGL2 as crates/gpu/src/host.rs runs it
+// (crates/gpu/src/kernel/, served at /api/gpu/kernel) in WebGL2 as crates/gpu/src/host.rs runs it
 // offscreen: compiled after `#version 300 es` and the input's defines, the scene table
 // uploaded as RGBA32F texels, the sample grid drawn tile by tile (each draw short, so that no
 // GPU watchdog fires and the page stays responsive), each tile in rounds (docs/physics.md,
@@ -168,7 +168,7 @@ export class KernelTracer {
     gl.uniform1i(at('lights'), u.lights);
     gl.uniform1i(at('table'), 0);
     gl.uniform1i(at('prev'), 1);
-    // The bound of the loop that tells a round cut short by a loop limiter (kernel.glsl).
+    // The bound of the loop that tells a round cut short by a loop limiter (render_tracer.glsl).
     gl.uniform1i(at('two'), 2);
   }
 

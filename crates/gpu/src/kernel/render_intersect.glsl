@@ -1,0 +1,399 @@
+// ---------------------------------------------------------------------------------------
+// The intersection search (render::intersect, render::tracer; docs/physics.md "The
+// intersection search") as one state machine with one probe call: a ray is searched loop by
+// loop (later loops are the first one's copies) and segment by segment; per segment and
+// object, conservative advancement from the last probe, else a depth-first bisection that
+// drops spans excluded by the rate bound (at most SEARCH_DEPTH halvings and SEARCH_PROBES
+// probes), and the Illinois refinement of a crossing. The bisection is stackless: spans are
+// dyadic pieces of the searched stretch, so the span after a finished one follows from its
+// depth and index (its start probe is the finished span's end probe; its end is probed
+// again, which the CPU keeps on a stack).
+
+const int M_LOOP = 0;      // at the start of loop mach.loop_
+const int M_START = 1;     // the loop's start probes, object by object
+const int M_SEGMENT = 2;   // at the start of segment mach.seg
+const int M_SCAN = 3;      // the next object of the segment
+const int M_BISECT = 4;    // the span [bis.a, bis.b] of object mach.obj, both end probes known
+const int M_REFINE = 5;    // Illinois steps on a crossing
+const int M_DONE = 6;
+
+// What a requested probe is for.
+const int Q_NONE = 0;
+const int Q_START = 1;     // the loop's start probe of object mach.obj
+const int Q_END = 2;       // the segment's end probe of object mach.obj
+const int Q_SPAN = 3;      // the end probe of the span [bis.a, bis.b]
+const int Q_REFINE = 4;    // a refinement step at req.lambda
+const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's extent)
+
+struct Found { int status; int target; int loop_; float lambda; float tau; };
+const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
+
+// The search plan (startSearch): `loops` copies of a stretch of length `span` cut into `segs`
+// segments (a Gödel pixel ray's loops), or, where `cont`, `loops` stretches one after the other
+// of the ray's `total` segments (a straight ray, a shadow ray: cut so that each stretch's start
+// is a checkpoint of the rounds, main); pixel rays stop at the time bound. Shadow rays: the lit
+// object `skipObj` is not searched from segment `skipSeg` on (its last). The first loop's box.
+struct Plan {
+    Ray ray;
+    int loops; int segs; int total; bool cont;
+    float span; float pt; float tBound; bool pixel;
+    int skipObj; int skipSeg;
+    vec3 boxLo; vec3 boxHi;
+};
+Plan plan = Plan(NO_RAY, 0, 0, 0, false, 0.0, 0.0, 0.0, false, -1, 0, vec3(0.0), vec3(0.0));
+
+// The machine's place: its mode, loop, segment [lo, hi] and object, the segment's earliest
+// crossing so far, and the search's result.
+struct Machine { int mode; int loop_; int seg; int obj; float lo; float hi; Found best; Found result; };
+Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, NO_FOUND, NO_FOUND);
+// The probes at the start and the end of the segment, per object, and the λ where each was
+// taken. Two arrays, written only at constant indices (setEndProbe; the end probes become
+// the next segment's start probes by a copy): drivers that store at a runtime index into
+// one buffer of both went wrong (docs/physics.md, "The GPU kernel").
+Probe startProbe[N_OBJECTS], endProbe[N_OBJECTS];
+float startAt[N_OBJECTS], endAt[N_OBJECTS];
+// Bisection of one object's stretch [start, start + len]: the span [a, b] at depth `depth` and
+// index `index`, with its end probes pa, pb; the probes it took.
+struct Bisection { float start; float len; float a; float b; int depth; int index; int probes; Probe pa; Probe pb; };
+Bisection bis = Bisection(0.0, 0.0, 0.0, 0.0, 0, 0, 0, NO_PROBE, NO_PROBE);
+// Refinement of a crossing: the bracket [lo, hi], f there, the Illinois side, the steps.
+struct Refinement { float lo; float hi; float flo; float fhi; int side; int iter; };
+Refinement ill = Refinement(0.0, 0.0, 0.0, 0.0, 0, 0);
+// The probe requested by a step (for what, of which object, where), and its answer.
+struct Request { int tag; int obj; int loop_; float lambda; float seed; Probe answer; vec4 x; };
+Request req = Request(Q_NONE, 0, 0, 0.0, 0.0, NO_PROBE, vec4(0.0));
+
+// Whether the current loop searches object i on a segment starting at λ0 (from the loop's
+// start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
+bool loopSearches(int i, float lambda0) {
+    return !(isFree(i) && plan.pixel) || lambda0 <= fbLast[i];
+}
+
+// Object i's probe at the segment's start, or at its end, taken at λ = at: stored at the
+// loop's constant indices, never at the runtime index i.
+void setStartProbe(int i, Probe p, float at) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) {
+            startProbe[j] = p;
+            startAt[j] = at;
+        }
+    }
+}
+void setEndProbe(int i, Probe p, float at) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) {
+            endProbe[j] = p;
+            endAt[j] = at;
+        }
+    }
+}
+
+void request(int tag, float lambda, float seed) {
+    req.tag = tag;
+    req.obj = mach.obj;
+    req.loop_ = mach.loop_;
+    req.lambda = lambda;
+    req.seed = seed;
+}
+
+float loopOffset() { return float(mach.loop_) * plan.span; }
+
+// The searched ray's event and tangent at parameter l of loop (or stretch) j.
+void searchRayAt(int j, float l, out vec4 ev, out vec4 k) {
+    ev = vec4(0.0); k = vec4(0.0);
+    if (plan.cont) rayAt(plan.ray, 0, l + float(j) * plan.span, ev, k);
+    else rayAt(plan.ray, j, l, ev, k);
+}
+
+void finish(int status) {
+    mach.result = Found(status, -1, 0, 0.0, NO_TAU);
+    mach.mode = M_DONE;
+}
+
+// The loop's box, for skipping loops that come near no object (render::segment::loop_bounds):
+// segment ends, grown by a quarter of the longest chord.
+void loopBox() {
+    vec4 x = vec4(0.0), k = vec4(0.0), prev = vec4(0.0);
+    float grow = 0.0;
+    for (int s = 0; s <= plan.segs; s++) {
+        rayAt(plan.ray, 0, plan.span * float(s) / float(plan.segs), x, k);
+        if (s == 0) { plan.boxLo = x.yzw; plan.boxHi = x.yzw; prev = x; }
+        plan.boxLo = min(plan.boxLo, x.yzw);
+        plan.boxHi = max(plan.boxHi, x.yzw);
+        grow = max(grow, 0.25 * length(x.yzw - prev.yzw));
+        prev = x;
+    }
+    plan.boxLo -= grow;
+    plan.boxHi += grow;
+}
+
+void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, float tBound) {
+    plan.ray = r;
+    plan.loops = loops;
+    plan.segs = segs;
+    plan.span = span;
+    plan.pt = pt;
+    plan.pixel = pixel;
+    plan.tBound = tBound;
+    plan.cont = false;
+    plan.total = loops * segs;
+    mach.loop_ = 0;
+    mach.mode = M_LOOP;
+    plan.skipObj = -1;
+    plan.skipSeg = MAX_SEGMENTS + 1;
+    req.tag = Q_NONE;
+    for (int i = 0; i < N_OBJECTS; i++) {
+        startProbe[i] = NO_PROBE;
+        endProbe[i] = NO_PROBE;
+        startAt[i] = 0.0;
+        endAt[i] = 0.0;
+    }
+    plan.boxLo = vec3(0.0);
+    plan.boxHi = vec3(0.0);
+    if (loops > 1) loopBox();
+}
+
+// A search of the ray r over λ ∈ [0, length] in `total` segments, as stretches of
+// EXACT_SEGMENTS segments one after the other (searchRayAt).
+void startLongSearch(Ray r, int total, float length, float pt, bool pixel, float tBound) {
+    int loops = (total + EXACT_SEGMENTS - 1) / EXACT_SEGMENTS;
+    startSearch(r, 1, EXACT_SEGMENTS, length * float(EXACT_SEGMENTS) / float(total), pt, pixel, tBound);
+    plan.loops = loops;
+    plan.cont = true;
+    plan.total = total;
+}
+
+// The span after the finished span [bis.a, bis.b] of the current bisection: climb while it is a
+// right half, then take the right sibling, whose start probe is bis.b's and whose end is probed.
+void nextSpan() {
+    // The trailing ones of the index are the levels to climb: 2^k = (i + 1) & −(i + 1).
+    int up = toInt(log2(float((bis.index + 1) & -(bis.index + 1))) + 0.5, 0, SEARCH_DEPTH);
+    bis.depth -= up;
+    bis.index >>= up;
+    if (bis.depth <= 0) {
+        mach.mode = M_SCAN;   // no crossing of this object in the segment
+        return;
+    }
+    if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+    bis.probes++;
+    bis.index++;
+    bis.pa = bis.pb;
+    bis.a = bis.b;
+    bis.b = bis.start + bis.len * float(bis.index + 1) / exp2(float(bis.depth));
+    request(Q_SPAN, bis.b, bis.pa.tau);
+}
+
+// One step of the machine: takes the answer to its last request, then either requests a
+// probe or moves on.
+void machineStep() {
+    int tag = req.tag;
+    req.tag = Q_NONE;
+    if (tag == Q_START) {
+        setStartProbe(mach.obj, req.answer, loopOffset());
+    } else if (tag == Q_END) {
+        setEndProbe(mach.obj, req.answer, mach.hi + loopOffset());
+        bis.pb = req.answer;
+        float limit = mach.best.status == HIT ? mach.best.lambda : mach.hi;
+        bis.start = mach.lo;
+        bis.len = min(limit, mach.hi) - mach.lo;
+        bis.a = bis.start;
+        bis.b = bis.start + bis.len;
+        bis.depth = 0;
+        bis.index = 0;
+        bis.probes = 0;
+        mach.mode = M_BISECT;
+    } else if (tag == Q_SPAN) {
+        bis.pb = req.answer;
+    } else if (tag == Q_ROOT) {
+        if (accepts(mach.obj, req.x)) {
+            if (mach.best.status != HIT || req.lambda < mach.best.lambda) {
+                mach.best = Found(HIT, mach.obj, mach.loop_, req.lambda, req.answer.tau);
+            }
+            mach.mode = M_SCAN;
+        } else {
+            mach.mode = M_BISECT;   // a plane crossed beyond its extent: on with the next span
+            nextSpan();
+            if (mach.mode != M_SCAN) return;
+        }
+    } else if (tag == Q_REFINE) {
+        float fm = req.answer.f, m = req.lambda;
+        if (fm == 0.0 || ill.hi - ill.lo <= 4.0 * 1.1920929e-7 * max(max(abs(ill.hi), abs(ill.lo)), 1e-30)) {
+            request(Q_ROOT, m, bis.pa.tau);
+            return;
+        }
+        if ((fm > 0.0) == (ill.fhi > 0.0)) {
+            ill.hi = m; ill.fhi = fm;
+            if (ill.side == 1) ill.flo *= 0.5;
+            ill.side = 1;
+        } else {
+            ill.lo = m; ill.flo = fm;
+            if (ill.side == -1) ill.fhi *= 0.5;
+            ill.side = -1;
+        }
+    }
+
+    if (mach.mode == M_LOOP) {
+        // Skip a loop whose box meets no searched object's box, one loop a pass (each loop's
+        // start is a checkpoint of the sample's rounds: main); stop at the time bound.
+        if (mach.loop_ >= plan.loops) {
+            finish(plan.pixel && godel() ? WORK_LIMIT : ESCAPED);
+            return;
+        }
+        float dz = float(mach.loop_) * plan.ray.shift.y;
+        if (plan.pixel && float(mach.loop_) * plan.ray.shift.x < plan.tBound) { finish(ESCAPED); return; }
+        vec3 lo = plan.boxLo + vec3(0.0, 0.0, dz), hi = plan.boxHi + vec3(0.0, 0.0, dz);
+        bool near = mach.loop_ == 0 || plan.cont;   // the box is of copies of the first loop
+        for (int i = 0; i < N_OBJECTS; i++) {
+            vec3 olo = vec3(0.0), ohi = vec3(0.0);
+            if (!searched[i]) continue;
+            if (isFree(i) && plan.pixel) {
+                // Balls in free fall: searched up to the loop's last λ within their reach.
+                float last = fallingLast(i, mach.loop_, plan.ray);
+                storeFallingLast(i, last);
+                near = near || last > NO_TAU;
+            } else {
+                near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
+            }
+        }
+        if (!near) {
+            mach.loop_++;
+            return;
+        }
+        mach.obj = -1;
+        mach.mode = M_START;
+    }
+    if (mach.mode == M_START) {
+        mach.obj++;
+        while (mach.obj < N_OBJECTS && !(searched[mach.obj] && loopSearches(mach.obj, 0.0))) mach.obj++;
+        if (mach.obj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
+        mach.seg = 0;
+        mach.mode = M_SEGMENT;
+    }
+    if (mach.mode == M_SEGMENT) {
+        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(ESCAPED); return; }   // a long search's end
+        mach.lo = plan.span * float(mach.seg) / float(plan.segs);
+        mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
+        mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+        mach.obj = -1;
+        mach.mode = M_SCAN;
+    }
+    if (mach.mode == M_BISECT) {
+        bool finiteBoth = finite(bis.pa.f) && finite(bis.pb.f);
+        if (bis.b > bis.a && (finite(bis.pa.f) || finite(bis.pb.f))) {
+            if (finiteBoth && crossed(bis.pa.f, bis.pb.f)) {
+                ill.lo = bis.a; ill.hi = bis.b; ill.flo = bis.pa.f; ill.fhi = bis.pb.f;
+                ill.side = 0; ill.iter = 0;
+                mach.mode = M_REFINE;
+            } else {
+                float rate = max(bis.pa.rate, bis.pb.rate);
+                if (!((finiteBoth && excluded(bis.pa.f, bis.pb.f, rate, bis.b - bis.a)) || bis.depth >= SEARCH_DEPTH)) {
+                    // Halve: the earlier half first.
+                    if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+                    bis.probes++;
+                    bis.b = 0.5 * (bis.a + bis.b);
+                    bis.depth++;
+                    bis.index *= 2;
+                    request(Q_SPAN, bis.b, bis.pa.tau);
+                    return;
+                }
+                nextSpan();
+                if (mach.mode != M_SCAN) return;
+            }
+        } else {
+            nextSpan();
+            if (mach.mode != M_SCAN) return;
+        }
+    }
+    if (mach.mode == M_REFINE) {
+        if (ill.iter == REFINE_STEPS) {
+            request(Q_ROOT, 0.5 * (ill.lo + ill.hi), bis.pa.tau);
+            return;
+        }
+        float m = ill.fhi != ill.flo ? (ill.lo * ill.fhi - ill.hi * ill.flo) / (ill.fhi - ill.flo) : 0.5 * (ill.lo + ill.hi);
+        if (!finite(m) || !(m > ill.lo && m < ill.hi)) m = 0.5 * (ill.lo + ill.hi);
+        ill.iter++;
+        request(Q_REFINE, m, bis.pa.tau);
+        return;
+    }
+    if (mach.mode == M_SCAN) {
+        float off = loopOffset();
+        for (mach.obj++; mach.obj < N_OBJECTS; mach.obj++) {
+            if (!searched[mach.obj]) continue;
+            Probe p = startProbe[mach.obj];
+            float at = startAt[mach.obj];
+            if (!loopSearches(mach.obj, mach.lo)) {
+                // Past the ball's last λ within reach in this loop (a later loop probes afresh).
+                setEndProbe(mach.obj, p, at);
+                continue;
+            }
+            if (mach.obj == plan.skipObj && mach.loop_ * plan.segs + mach.seg >= plan.skipSeg) {
+                setEndProbe(mach.obj, p, at);
+                continue;
+            }
+            // GPU only: a segment that provably stays clear of a ball at rest or a plane is
+            // not searched ("Whole-ray rejection", applied per segment); its end probe is a
+            // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
+            // plane's height, linear in λ), from which the next segment goes on.
+            if (objectMisses(mach.obj, plan.ray.geo, mach.lo + off, mach.hi + off)) {
+                float fEnd = isRest(mach.obj)
+                    ? REACH_PER_RADIUS * objs[mach.obj].radius / 1.05 - objs[mach.obj].radius
+                    : plan.ray.geo.pz * (mach.hi + off) - oCz[mach.obj];
+                setEndProbe(mach.obj, Probe(fEnd, p.rate, NO_TAU), mach.hi + off);
+                continue;
+            }
+            float clear = abs(p.f);
+            if (isRest(mach.obj) && finite(clear) && p.rate > 0.0 && mach.hi + off < at + min(clear / p.rate, MAX_SKIP)) {
+                setEndProbe(mach.obj, p, at);   // provably no crossing of this object within the segment
+                continue;
+            }
+            // A probe taken before lo still bounds |f| at lo from below (same side).
+            bis.pa = Probe(p.f - sign(p.f) * p.rate * (mach.lo + off - at), p.rate, p.tau);
+            request(Q_END, mach.hi, bis.pa.tau);
+            return;
+        }
+        // Every object scanned: the segment's earliest crossing ends the search.
+        if (mach.best.status == HIT) {
+            mach.result = mach.best;
+            // A long search's hit as a parameter from the ray's start.
+            if (plan.cont) mach.result = Found(HIT, mach.best.target, 0, mach.best.lambda + loopOffset(), mach.best.tau);
+            mach.mode = M_DONE;
+            return;
+        }
+        if (plan.pixel) {
+            vec4 x = vec4(0.0), k = vec4(0.0);
+            searchRayAt(mach.loop_, mach.hi, x, k);
+            if (x.x < plan.tBound) { finish(ESCAPED); return; }
+        }
+        for (int i = 0; i < N_OBJECTS; i++) {   // the end probes start the next segment
+            startProbe[i] = endProbe[i];
+            startAt[i] = endAt[i];
+        }
+        mach.seg++;
+        if (mach.seg < plan.segs) {
+            mach.mode = M_SEGMENT;
+        } else {
+            mach.loop_++;
+            mach.mode = M_LOOP;
+        }
+    }
+}
+
+// One pass of the machine: the probe it asked for, if any (the kernel's one call of
+// probeObject), then its next step.
+void searchPass() {
+    if (req.tag != Q_NONE) {
+        if (probes_left <= 0) { finish(WORK_LIMIT); return; }
+        vec4 k = vec4(0.0);
+        searchRayAt(req.loop_, req.lambda, req.x, k);
+        req.answer = probeObject(req.obj, req.x, k, plan.pt, req.seed);
+        // A probe answers a finite distance or FAR (INF, the CPU's infinity: nothing known);
+        // anything else (a driver's NaN) ends the search, and the sample is marked failed:
+        // no search goes on from a value it cannot order.
+        if (!(finite(req.answer.f) || req.answer.f == INF) || !finite(req.answer.rate)) {
+            finish(FAILED);
+            return;
+        }
+    }
+    machineStep();
+}
+

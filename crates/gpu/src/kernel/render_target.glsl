@@ -1,0 +1,69 @@
+// ---------------------------------------------------------------------------------------
+// Probes: signed distance f (≤ 0 inside), rate bound |df/dλ| ≤ rate, matched proper time
+// (render::target::Target::probe, docs/physics.md "The intersection search").
+
+struct Probe { float f; float rate; float tau; };
+const Probe NO_PROBE = Probe(0.0, 0.0, 0.0);
+// Nothing known of the object here (the CPU's infinite distance).
+const Probe FAR = Probe(INF, 0.0, NO_TAU);
+
+Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
+    probes_left--;
+    if (isCoordSphere(i)) {
+        return Probe(length(x.yzw - objs[i].pos.yzw) - objs[i].radius, RATE_MARGIN * length(k.yzw), NO_TAU);
+    }
+    if (isPlane(i)) return Probe(x.w - objs[i].pos.w, RATE_MARGIN * abs(k.w), NO_TAU);
+    float scale = godel() ? u_a : 1.0;
+    float far = FAR_DISTANCE * scale + FAR_RADII * objs[i].radius;
+    float floor_ = objs[i].radius + 0.5 * FAR_DISTANCE * scale;
+    float rate = GLOBAL_RATE_MARGIN * abs(pt) * objs[i].speed;
+    float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
+    Local lp = localize(i, x, seed, far);
+    if (!lp.ok) return FAR;
+    float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
+    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, rate, lp.exact ? lp.at.tau : NO_TAU);
+    // A stale seed may call a point inside a falling ball far: then the point of equal
+    // coordinate time is tried too and the nearer kept.
+    if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
+        Local lq = localize(i, x, tauGuess(i, x.x), far);
+        if (lq.ok) {
+            float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
+            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, rate, lq.exact ? lq.at.tau : NO_TAU);
+        }
+    }
+    return p;
+}
+
+bool crossed(float fa, float fb) { return (fa > 0.0) != (fb > 0.0); }
+bool excluded(float fa, float fb, float rate, float h) {
+    return !crossed(fa, fb) && (abs(fa) + abs(fb) > rate * h || rate == 0.0);
+}
+bool accepts(int i, vec4 x) {
+    return !isPlane(i) || objs[i].extent <= 0.0 || (abs(x.y) <= objs[i].extent && abs(x.z) <= objs[i].extent);
+}
+
+// A coordinate box around object i (render::target::Target::bounds); false when there is
+// none (free fall: every loop is searched).
+bool objectBox(int i, out vec3 lo, out vec3 hi) {
+    lo = vec3(0.0); hi = vec3(0.0);
+    vec3 c = objs[i].pos.yzw;
+    float grow = 0.0;
+    if (isRest(i)) {
+        float r = length(c.xy) + 2.0 * objs[i].radius;
+        float s2 = godel() ? pow(r / (2.0 * u_a), 2.0) : 0.0;
+        grow = 2.0 * objs[i].radius * sqrt(1.0 + s2) + 0.05;
+    } else if (isCoordSphere(i)) {
+        grow = objs[i].radius * (1.0 + 1e-6);
+    } else if (isPlane(i)) {
+        float e = objs[i].extent > 0.0 ? objs[i].extent : INF;
+        lo = vec3(-e, -e, c.z);
+        hi = vec3(e, e, c.z);
+        return true;
+    } else {
+        return false;
+    }
+    lo = c - grow;
+    hi = c + grow;
+    return true;
+}
+

@@ -1,0 +1,274 @@
+// ---------------------------------------------------------------------------------------
+// Objects (docs/physics.md, "Local objects"; render::target, render::worldline), read from
+// the table once per sample: what is the same for every sample (frames, Γ, a free fall's
+// closed form and isometry) the host computed in f64 (crates/gpu/src/input.rs). GLSL inlines
+// every call, so the heavy functions below each have one call site (two for `localize`), and
+// the kernel stays small enough to compile in seconds.
+
+struct Object {
+    int kind;
+    float radius;
+    float extent;   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
+    vec4 pos;       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
+    mat4 dual;      // at rest: dual rows of the static frame
+    mat3 chrT;      // at rest: Γ^μ_αβ at the position for μ = t, x, y and α, β = t, x, y
+    mat3 chrX;      // (those with a z index vanish)
+    mat3 chrY;
+    Iso back;       // free fall: from the start's origin frame back
+    OGeo geo;       // free fall: the closed form in that frame
+    vec4 start;     // free fall: start event; Minkowski: and its velocity below
+    vec4 u0;
+    float speed;    // γ(1 + v) relative to the static observers
+    float rate;     // free fall: coordinate time per proper time over whole loops
+    float gamma;    // free fall: γ = −u_t, conserved
+};
+Object objs[N_OBJECTS];
+
+// The kinds of object, each false at compile time where the scene has none of it (the host's
+// HAS_* defines): GPUs and llvmpipe run both sides of a branch their samples take apart, so
+// code for kinds a scene lacks would cost every sample.
+bool restKind(int kind) { return HAS_REST != 0 && kind == KIND_REST; }
+bool freeKind(int kind) { return HAS_FREE != 0 && kind == KIND_FREE; }
+bool isRest(int i) { return restKind(objs[i].kind); }
+bool isFree(int i) { return freeKind(objs[i].kind); }
+bool isCoordSphere(int i) { return HAS_COORD_SPHERE != 0 && objs[i].kind == KIND_COORD_SPHERE; }
+bool isPlane(int i) { return HAS_PLANE != 0 && objs[i].kind == KIND_PLANE; }
+
+// Per object, for the ray being searched: whether it is searched at all (setSearched), a
+// ball's centre (disc coordinate, z) and a plane's height in the ray's origin frame, and a
+// falling ball's last λ within reach in the current loop, from the loop's start (fallingLast).
+bool searched[N_OBJECTS];
+vec2 oCw[N_OBJECTS];
+float oCz[N_OBJECTS];
+float fbLast[N_OBJECTS];
+
+// The stores into the per-object arrays, each at the constant indices of a loop whose body
+// is the store alone, which compilers unroll: never at the runtime index i (drivers have
+// stored at the wrong index; docs/physics.md, "The GPU kernel").
+void storeObject(int i, Object o) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) objs[j] = o;
+    }
+}
+void storeSearched(int i, bool s, vec2 cw, float cz) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) {
+            searched[j] = s;
+            oCw[j] = cw;
+            oCz[j] = cz;
+        }
+    }
+}
+void storeFallingLast(int i, float last) {
+    for (int j = 0; j < N_OBJECTS; j++) {
+        if (j == i) fbLast[j] = last;
+    }
+}
+
+// Four texels from `at` on, as the columns of a matrix.
+mat4 tableMat(int at) { return mat4(tableTexel(at), tableTexel(at + 1), tableTexel(at + 2), tableTexel(at + 3)); }
+
+// The symmetric matrix of the two texels from `at` on: (m00, m01, m02, m11), (m12, m22, −, −).
+mat3 tableSymmetric(int at) {
+    vec4 p = tableTexel(at), q = tableTexel(at + 1);
+    return mat3(p.x, p.y, p.z, p.y, p.w, q.x, p.z, q.x, q.y);
+}
+
+// Γ^μ_αβ d^α d^β at the position of the ball at rest i.
+vec4 restChristoffel(int i, vec4 d) {
+    vec3 v = d.xyz;
+    return vec4(dot(v, objs[i].chrT * v), dot(v, objs[i].chrX * v), dot(v, objs[i].chrY * v), 0.0);
+}
+
+// Object i, read from the table (zero where its kind has no use for a field; the layout is
+// input.rs's).
+Object loadObject(int i) {
+    int at = OBJECT_TEXELS * i;
+    vec4 t0 = tableTexel(at);
+    vec4 t1 = tableTexel(at + 1);
+    Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), mat4(0.0),
+                      mat3(0.0), mat3(0.0), mat3(0.0), NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0),
+                      1.0, 1.0, 1.0);
+    if (restKind(o.kind)) {
+        o.dual = tableMat(at + 7);
+        o.chrT = tableSymmetric(at + 11);
+        o.chrX = tableSymmetric(at + 13);
+        o.chrY = tableSymmetric(at + 15);
+    } else if (freeKind(o.kind)) {
+        vec4 t2 = tableTexel(at + 2);
+        // Start time relative to the observer's: (hi − hi) + (lo − lo) keeps the digits.
+        o.start = vec4((t2.x - u_obs_t.x) + (t2.y - u_obs_t.y), t1.xyz);
+        o.u0 = tableTexel(at + 3);
+        vec4 s = tableTexel(at + 7);
+        o.gamma = s.x;
+        o.speed = s.y;
+        o.rate = s.z;
+        vec4 g0 = tableTexel(at + 8), g1 = tableTexel(at + 9), b = tableTexel(at + 10);
+        o.geo = OGeo(g0.x, g0.y, g0.z, g1.xy, g0.w, g1.z, g1.w, true);
+        // The table's isometry is that of a start at time zero: shifted by the start's time.
+        o.back = Iso(t2.z - o.start.x, b.xy, b.z, b.w);
+    }
+    return o;
+}
+
+// Every object into objs, and the per-ray arrays cleared.
+void loadObjects() {
+    for (int i = 0; i < N_OBJECTS; i++) {
+        searched[i] = false;
+        oCw[i] = vec2(0.0);
+        oCz[i] = 0.0;
+        fbLast[i] = NO_TAU;
+    }
+    for (int i = 0; i < N_OBJECTS; i++) storeObject(i, loadObject(i));
+}
+
+struct WPoint { float tau; vec4 ev; vec4 u; };
+const WPoint NO_WPOINT = WPoint(0.0, vec4(0.0), vec4(0.0));
+
+// The worldline point at proper time τ: event and four-velocity (free fall: the closed form
+// carried back from the start's origin frame; Minkowski: a straight line).
+WPoint worldAt(int i, float tau) {
+    WPoint p = NO_WPOINT;
+    p.tau = tau;
+    if (!isFree(i)) {
+        p.ev = vec4(tau, objs[i].pos.yzw);
+        p.u = vec4(1.0, 0.0, 0.0, 0.0);
+    } else if (!godel()) {
+        p.ev = objs[i].start + tau * objs[i].u0;
+        p.u = objs[i].u0;
+    } else {
+        vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+        ogeoAt(objs[i].geo, tau, e0, k0);
+        applyPush(objs[i].back, e0, k0, p.ev, p.u);
+    }
+    return p;
+}
+
+// The body frame at the worldline point p (free fall: the start frame parallel-transported
+// in closed form; at rest: the static frame). Read from the table here, at a hit, not for
+// every object when a sample starts.
+mat4 bodyFrame(int i, WPoint p) {
+    mat4 f = tableMat(OBJECT_TEXELS * i + 3);
+    if (!isFree(i) || !godel()) return f;
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+    ogeoAt(objs[i].geo, p.tau, e0, k0);
+    vec4 w1 = transportFromOrigin(objs[i].geo, p.tau, e0, f[1]);
+    vec4 w2 = transportFromOrigin(objs[i].geo, p.tau, e0, f[2]);
+    vec4 w3 = transportFromOrigin(objs[i].geo, p.tau, e0, f[3]);
+    return mat4(p.u, pushIso(objs[i].back, e0, w1), pushIso(objs[i].back, e0, w2), pushIso(objs[i].back, e0, w3));
+}
+
+// A first guess of the proper time at which the worldline has coordinate time t.
+// A free fall's: the proper time of equal coordinate time (the CPU interpolates it from its
+// integration steps), by Newton steps on t(τ) from the mean rate's guess (dt/dτ = u^t).
+float tauGuess(int i, float t) {
+    if (!isFree(i)) return t;
+    float tau = (t - objs[i].start.x) / objs[i].rate;
+    for (int it = 0; it < TIME_STEPS; it++) {
+        WPoint p = worldAt(i, tau);
+        tau += (t - p.ev.x) / max(p.u.x, 0.05);
+    }
+    return tau;
+}
+
+// ---------------------------------------------------------------------------------------
+// Localizing a ray point in an object's rest frame (render::worldline::Worldline::localize).
+
+// The second-order normal-coordinate displacement of x from the worldline point p, taken
+// after the isometry that sends p to the origin, and p's four-velocity carried there
+// (render::worldline::origin_coords). Minkowski: the displacement itself.
+void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
+    xi = vec4(0.0); u = vec4(0.0);
+    if (!godel()) { xi = x - p.ev; u = p.u; return; }
+    Iso to = toOrigin(p.ev);
+    vec4 o = vec4(0.0);
+    applyPush(to, p.ev, p.u, o, u);
+    xi = normalDisplacement(vec4(0.0), applyIso(to, x));
+}
+
+// xi: spatial rest-frame components (at rest); len: their length; disp: the second-order
+// normal-coordinate displacement (free fall: taken at the origin, whose components need the
+// body frame carried there).
+struct Local { WPoint at; vec3 xi; float len; vec4 disp; bool exact; bool ok; };
+const Local NO_LOCAL = Local(NO_WPOINT, vec3(0.0), 0.0, vec4(0.0), false, false);
+
+Local localize(int i, vec4 x, float seed, float far) {
+    Local lp = NO_LOCAL;
+    lp.ok = true;
+    lp.disp = vec4(0.0);
+    if (isRest(i)) {
+        // u = ∂t: g(u, Δ) = 0 fixes Δt = g_ti Δxⁱ at first order; then two steps with the
+        // second-order ξ⁰.
+        vec3 dx = x.yzw - objs[i].pos.yzw;
+        float t = x.x + dot(objs[i].dual[0].yzw, dx);
+        vec4 xi = components(objs[i].dual, x - vec4(t, objs[i].pos.yzw));
+        lp.exact = length(xi.yzw) <= far;
+        if (lp.exact) {
+            for (int it = 0; it < 2; it++) {   // a fixed count, without jumps: unrolled
+                vec4 d = x - vec4(t, objs[i].pos.yzw);
+                xi = components(objs[i].dual, d + 0.5 * restChristoffel(i, d));
+                t += xi.x;
+            }
+        }
+        lp.at = WPoint(t, vec4(t, objs[i].pos.yzw), vec4(1.0, 0.0, 0.0, 0.0));
+        lp.xi = xi.yzw;
+        lp.len = length(xi.yzw);
+        return lp;
+    }
+    // Free fall: the first-order simultaneity ξ⁰ = −g(u, Δ) = 0 by the secant method from
+    // the seed, then one Newton step on the second-order ξ⁰ taken at the origin (as on the
+    // CPU). One worldline evaluation per pass of the loop.
+    // The seed's point first (a far point needs no more, and no loop pass).
+    WPoint p = worldAt(i, seed);
+    mat4 g = metricAt(p.ev);
+    float f0 = -dotg(g, p.u, x - p.ev);
+    float len0 = sqrt(max(dotg(g, x - p.ev, x - p.ev) + f0 * f0, 0.0));
+    if (len0 > far) {
+        lp.at = p;
+        lp.len = len0;
+        lp.exact = false;
+        return lp;
+    }
+    float ta = seed, fa = f0, tau = seed + f0;
+    int stage = 1;   // 1 secant, 2 after the Newton step
+    mat4 g0 = metricAt(vec4(0.0));
+    vec4 xi = vec4(0.0), uo = vec4(0.0);
+    for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
+        p = worldAt(i, tau);
+        if (stage == 2) break;
+        g = metricAt(p.ev);
+        float f = -dotg(g, p.u, x - p.ev);
+        bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
+        if (done) {
+            originDisplacement(p, x, xi, uo);
+            tau += -dotg(g0, uo, xi);
+            stage = 2;
+            continue;
+        }
+        float slope = (f - fa) / (tau - ta);
+        float step_ = (slope < 0.0 && finite(slope)) ? -f / slope : f;
+        ta = tau; fa = f;
+        tau = tau + step_;
+    }
+    originDisplacement(p, x, xi, uo);
+    float x0 = -dotg(g0, uo, xi);
+    lp.at = p;
+    lp.disp = xi;
+    lp.len = sqrt(max(dotg(g0, xi, xi) + x0 * x0, 0.0));
+    lp.exact = true;
+    lp.ok = finite(lp.len) && finite(tau);
+    return lp;
+}
+
+// The rest-frame spatial components of a localized ray point, given the body frame there.
+vec3 restComponents(int i, Local lp, mat4 frame) {
+    if (isRest(i)) return lp.xi;
+    if (godel()) {
+        // The frame carried to the origin, where disp was taken.
+        Iso to = toOrigin(lp.at.ev);
+        frame = mat4(pushIso(to, lp.at.ev, frame[0]), pushIso(to, lp.at.ev, frame[1]),
+                     pushIso(to, lp.at.ev, frame[2]), pushIso(to, lp.at.ev, frame[3]));
+    }
+    return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
+}
+
