@@ -36,9 +36,10 @@ fn same_bytes(a: &Traced, b: &Traced) -> bool {
 
 #[test]
 fn records_do_not_depend_on_tiles_or_budgets() {
-    // The scene of two runs, two pictures: a lit floor, a ball falling at 0.8 c,
-    // a = 1.5, max_past 25, an off-axis observer at 0.6 c.
-    let scene = lit_floor(1.5, 25.0, 36, 9);
+    // A lit floor, a ball falling at 0.8 c, an off-axis observer at 0.6 c, a = 0.5 and
+    // max_past 30 (twenty and more windings): before the rounds, 160 of its 400 samples at
+    // 40×10 were out of work on the GPU, none on the CPU, and which ones depended on the tiles.
+    let scene = lit_floor(0.5, 30.0, 16, 4);
     let tracer = GpuTracer::new(KernelInput::new(&scene)).expect("a GPU context");
     let cuts = [
         // Many small tiles and rounds of 8 passes: a sample crosses many rounds, and
@@ -64,7 +65,7 @@ fn records_do_not_depend_on_tiles_or_budgets() {
     let hits = (traced[0].records.iter())
         .filter(|r| r.status == datafile::RayStatus::Hit)
         .count();
-    assert!(hits > 50, "the scene shows its objects: {hits} hits");
+    assert!(hits > 10, "the scene shows its objects: {hits} hits");
     for (t, cut) in traced[1..].iter().zip(&cuts[1..]) {
         assert!(
             same_bytes(&traced[0], t),
