@@ -532,6 +532,8 @@ pub(crate) unsafe fn set_uniforms(gl: &glow::Context, program: glow::Program, u:
     gl.uniform_1_f32(loc("a").as_ref(), u.a);
     gl.uniform_2_f32_slice(loc("obs_t").as_ref(), &u.obs_t);
     gl.uniform_3_f32_slice(loc("obs_x").as_ref(), &u.obs_x);
+    gl.uniform_matrix_4_f32_slice(loc("obs_static").as_ref(), false, &u.observer.obs_static);
+    gl.uniform_4_f32_slice(loc("obs_to").as_ref(), &u.observer.obs_to);
     gl.uniform_4_f32_slice(loc("velocity").as_ref(), &u.velocity);
     gl.uniform_3_f32_slice(loc("forward").as_ref(), &u.forward);
     gl.uniform_3_f32_slice(loc("up").as_ref(), &u.up);

@@ -33,9 +33,11 @@
 //! into f32 hi + lo parts, so that the kernel subtracts the observer's time without losing
 //! the digits (f32 has 24 bits; scenes allow times up to 10⁶).
 //!
-//! The observer's frame (static frame boosted) and isometry stay in the kernel: the page
-//! makes the uniforms of each flying frame itself, from the observer's event and velocity,
-//! without this packer.
+//! The observer's uniforms that depend on its position alone, its static frame and its
+//! isometry to the origin, are made here too ([`ObserverUniforms`]), and by the same function
+//! for each position of a flight (the server sends them with every position it gives the
+//! page); the boost by the observer's velocity stays in the kernel, since the page changes
+//! the velocity itself, every animation frame, without the server.
 
 use scene::{Camera, Motion, Scene, Shape};
 use serde::Serialize;
@@ -99,6 +101,10 @@ pub struct Uniforms {
     pub a: f32,
     pub obs_t: [f32; 2],
     pub obs_x: [f32; 3],
+    /// The static frame and isometry at `obs_x` (JSON: `obs_static` and `obs_to` among the
+    /// others).
+    #[serde(flatten)]
+    pub observer: ObserverUniforms,
     pub velocity: [f32; 4],
     pub forward: [f32; 3],
     pub up: [f32; 3],
@@ -109,6 +115,42 @@ pub struct Uniforms {
     pub max_past: f32,
     pub max_loops: i32,
     pub lights: i32,
+}
+
+/// What the kernel reads of an observer at a position (x, y, z): the same at every sample,
+/// so made once in f64 with `spacetime`'s own functions and rounded to f32 once.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ObserverUniforms {
+    /// The static frame there (`Spacetime::static_frame`: Gram–Schmidt of ∂t, ∂x, ∂y, ∂z; the
+    /// identity in Minkowski's spacetime), column-major as a GLSL mat4: columns e0..e3. The
+    /// kernel boosts it by the observer's velocity.
+    pub obs_static: [f32; 16],
+    /// Gödel: the isometry sending the observer's event to the origin
+    /// (`spacetime::Isometry::to_origin`) as (w₀.re, w₀.im, z₀, rotation); its t₀ is 0, as
+    /// the kernel's times are relative to the observer's. Minkowski: zeros (a translation,
+    /// which the kernel never needs: its rays are straight lines from the observer).
+    pub obs_to: [f32; 4],
+}
+
+impl ObserverUniforms {
+    /// The one home of the observer's position-dependent uniforms: both hosts and the page
+    /// (through the server) take them from here.
+    pub fn new(metric: &Metric, x: f64, y: f64, z: f64) -> ObserverUniforms {
+        let at = Event::new(0.0, x, y, z);
+        let frame = metric.static_frame(at);
+        let mut obs_static = [0.0f32; 16];
+        for (column, e) in obs_static.chunks_exact_mut(4).zip(frame.e) {
+            column.copy_from_slice(&texel(e));
+        }
+        let obs_to = match metric.godel_a() {
+            Some(a) => {
+                let to = Isometry::to_origin(a, at);
+                [to.w0.re, to.w0.im, to.z0, to.rotation].map(|c| c as f32)
+            }
+            None => [0.0; 4],
+        };
+        ObserverUniforms { obs_static, obs_to }
+    }
 }
 
 /// Everything the kernel needs for one scene.
@@ -156,6 +198,7 @@ impl KernelInput {
             a: scene.metric.godel_a().unwrap_or(1.0) as f32,
             obs_t: split_time(obs.event.t),
             obs_x: f([obs.event.x, obs.event.y, obs.event.z]),
+            observer: ObserverUniforms::new(&scene.metric, obs.event.x, obs.event.y, obs.event.z),
             velocity: [
                 v.speed as f32,
                 v.direction[0] as f32,

@@ -4,7 +4,8 @@
 //! Christoffel symbols it leaves out vanish, and balls
 //! at rest and in free fall, whose frames, Christoffel symbols, closed forms and isometries the
 //! packer computes, are traced as the CPU traces them also late in time, where the start's
-//! time enters only relative to the observer's.
+//! time enters only relative to the observer's. The observer's uniforms that the packer makes
+//! (its static frame and isometry to the origin) are `spacetime`'s.
 //!
 //! The kernel runs in an offscreen OpenGL ES 3 context (Mesa's llvmpipe here).
 
@@ -14,7 +15,7 @@ use common::{agreement, off_axis_lit_floor, scene, MINKOWSKI_TWO_BALLS};
 use gpu::input::{KernelInput, LIGHT_TEXELS, OBJECT_TEXELS, TABLE_WIDTH};
 use gpu::KERNEL;
 use scene::Motion;
-use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski, Spacetime};
+use spacetime::{Event, Godel, Isometry, LocalVelocity, Metric, Minkowski, Spacetime};
 
 /// The value of the kernel's `const int NAME = value;`.
 fn kernel_constant(name: &str) -> usize {
@@ -91,5 +92,43 @@ fn balls_at_rest_and_in_free_fall_late_in_time_agree_with_the_cpu() {
         let a = agreement(&late, KERNEL);
         a.assert_holds();
         assert!(a.seen > 50, "{a:?}");
+    }
+}
+
+#[test]
+fn the_observer_uniforms_are_spacetimes_static_frame_and_isometry() {
+    // The host makes them (the kernel reads them, columns e0..e3 of a GLSL mat4, and the
+    // isometry's disc point, z₀ and rotation): an off-axis observer in Gödel's universe, one
+    // in Minkowski space. The off-axis scenes above and in the agreement suite trace with them.
+    for s in [off_axis_lit_floor(24, 8), scene(MINKOWSKI_TWO_BALLS)] {
+        let e = s.observer.event;
+        let u = KernelInput::new(&s).uniforms.observer;
+        let at = Event::new(0.0, e.x, e.y, e.z);
+        let frame = s.metric.static_frame(at);
+        for (a, leg) in frame.e.iter().enumerate() {
+            let column: Vec<f32> = leg.to_array().iter().map(|&c| c as f32).collect();
+            assert_eq!(
+                u.obs_static[4 * a..4 * a + 4],
+                column[..],
+                "{}: e{a}",
+                s.name
+            );
+        }
+        match s.metric.godel_a() {
+            Some(a) => {
+                assert!(e.x.hypot(e.y) > 0.1, "an off-axis observer");
+                let to = Isometry::to_origin(a, e);
+                let want = [to.w0.re, to.w0.im, to.z0, to.rotation].map(|c| c as f32);
+                assert_eq!(u.obs_to, want, "{}", s.name);
+                // It sends the observer's event (time relative: 0) to the origin.
+                let o = Isometry::to_origin(a, at).apply(at);
+                assert!(o.to_array().iter().all(|c| c.abs() < 1e-12), "{o:?}");
+            }
+            None => {
+                let identity: Vec<f32> = (0..16).map(|i| f32::from(i % 5 == 0)).collect();
+                assert_eq!(u.obs_static[..], identity[..], "{}", s.name);
+                assert_eq!(u.obs_to, [0.0; 4], "{}", s.name);
+            }
+        }
     }
 }

@@ -41,6 +41,8 @@ precision highp sampler2D;
 uniform float u_a;           // Gödel parameter a
 uniform vec2 u_obs_t;        // observer time as hi + lo (times of objects are made relative to it)
 uniform vec3 u_obs_x;        // observer position (x, y, z)
+uniform mat4 u_obs_static;   // the static frame there, columns e0..e3 (made by the host in f64)
+uniform vec4 u_obs_to;       // Gödel: the isometry sending the observer to the origin, (w0, z0, rot)
 uniform vec4 u_velocity;     // observer speed and unit direction in the static frame
 uniform vec3 u_forward;      // camera axes in the observer's frame
 uniform vec3 u_up;

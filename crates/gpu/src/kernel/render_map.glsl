@@ -42,8 +42,8 @@ float parameterAtTime(Ray r, float t) {
 void main() {
     for (int s = 0; s < ALL_SLOTS + 8; s++) slots[s] = vec4(0.0);
     vec4 obs = vec4(0.0, u_obs_x);
-    mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
-    Ray r = makeRay(obs, frame * vec4(-1.0, normalize(u_ray.xyz)));
+    mat4 frame = boostFrame(u_obs_static, u_velocity.x, u_velocity.yzw);
+    Ray r = makeRay(obs, frame * vec4(-1.0, normalize(u_ray.xyz)), observerToOrigin());
     if (!r.geo.ok || (godel() && (!finite(r.shift.x) || !(r.shift.x < 0.0)))) {
         slots[0] = vec4(-1.0);   // no closed form: no path
     } else if (u_points == 0) {
@@ -51,7 +51,7 @@ void main() {
         float loops = godel() ? max(end / r.lret, 1.0) : 1.0;
         float points = min(max(ceil(loops * POINTS_PER_LOOP), 2.0), float(MAX_RAY_POINTS - 1));
         vec4 e = vec4(0.0, u_emission);
-        float rEmit = godel() ? length(applyIso(toOrigin(obs), e).yz) : length(e.yz - obs.yz);
+        float rEmit = godel() ? length(applyIso(observerToOrigin(), e).yz) : length(e.yz - obs.yz);
         slots[0] = vec4(end, points, rEmit, 1.0);
     } else {
         ivec2 p = ivec2(gl_FragCoord.xy);

@@ -28,8 +28,9 @@ void rayAt(Ray r, int j, float l, out vec4 ev, out vec4 k) {
     ev.w += float(j) * r.shift.y;
 }
 
-// The ray through `at` with tangent `k` (Gödel: the exact geodesic; spacetime::ExactGeodesic).
-Ray makeRay(vec4 at, vec4 k) {
+// The ray through `at` with tangent `k` (Gödel: the exact geodesic; spacetime::ExactGeodesic),
+// `to` the isometry sending `at` to the origin (Gödel only).
+Ray makeRay(vec4 at, vec4 k, Iso to) {
     Ray r = NO_RAY;
     r.x0 = at;
     r.k0 = k;
@@ -38,7 +39,6 @@ Ray makeRay(vec4 at, vec4 k) {
     r.lret = INF;
     r.shift = vec2(0.0);
     if (godel()) {
-        Iso to = toOrigin(at);
         r.geo = originGeodesic(pushIso(to, at, k));
         r.back = inverseIso(to);
         r.lret = returnParameter(r.geo);

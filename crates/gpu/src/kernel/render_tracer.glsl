@@ -25,7 +25,7 @@ void transportScreen(Ray r, vec4 obs, float within, float lambda) {
     if (!godel()) return;
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(r.geo, within, e0, k0);
-    Iso to = toOrigin(obs);
+    Iso to = observerToOrigin();
     vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.up));
     vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.right));
     hp.up = pushIso(r.back, e0, up);
@@ -233,10 +233,12 @@ void main() {
     slots[4].x = n.z;
     loadObjects();
     vec4 obs = vec4(0.0, u_obs_x);
-    mat4 frame = boostFrame(staticFrame(obs), u_velocity.x, u_velocity.yzw);
+    // The static frame is the host's; the boost is made here, as the page sets the velocity
+    // of each flying frame itself.
+    mat4 frame = boostFrame(u_obs_static, u_velocity.x, u_velocity.yzw);
     vec4 k = frame * vec4(-1.0, n);                 // the past-directed photon
     float pt = (metricAt(obs) * k).x;               // p_t, conserved
-    Ray r = makeRay(obs, k);
+    Ray r = makeRay(obs, k, observerToOrigin());
     float tBound = -u_max_past;
 
     // The finishing draw's status (a hit's slots are made again by takeHit below).

@@ -10,6 +10,9 @@ vec2 disc(vec2 xy) { return xy / sqrt(dot(xy, xy) + 4.0 * u_a * u_a); }
 vec2 fromDisc(vec2 w) { return 2.0 * u_a * w / sqrt(1.0 - dot(w, w)); }
 
 Iso toOrigin(vec4 p) { return Iso(p.x, disc(p.yz), p.w, 0.0); }
+// toOrigin of the observer's event, made by the host in f64 (times are relative to the
+// observer's: t0 = 0).
+Iso observerToOrigin() { return Iso(0.0, u_obs_to.xy, u_obs_to.z, u_obs_to.w); }
 Iso inverseIso(Iso m) { return Iso(-m.t0, -cmul(cis(m.rot), m.w0), -m.z0, -m.rot); }
 bool isTranslation(Iso m) { return m.w0 == vec2(0.0) && m.rot == 0.0; }
 
