@@ -36,8 +36,10 @@ void transportScreen(Ray r, vec4 obs, float within, float lambda) {
 // Whether main's round was cut short by llvmpipe's loop limit: it then writes the previous
 // round's slots (zeros in a first round) and its progress.
 bool roundCut = false;
+bool cutRecord = false;   // and the sample ended out of work (its record's status slot)
 
 vec4 slotOut(int layer) {
+    if (cutRecord && layer == 0) return vec4(-1.0, float(WORK_LIMIT), 0.0, 0.0);
     if (!roundCut || layer >= STATE) return slots[layer];
     ivec2 frag = ivec2(gl_FragCoord.xy);
     return u_round > 0 ? texelFetch(u_prev, ivec3(frag, layer), 0) : vec4(0.0);
@@ -88,9 +90,14 @@ const int PH_LIGHTS = 1;   // the shadow rays: light `counter`, grid index `idx`
 const int PH_DONE = 2;     // finished with `status`
 // Ints kept in f32 between rounds: exact up to 2^24.
 const int MAX_COUNT = 16777215;
+// Rounds cut one after the other before a checkpoint: a sample whose work between two
+// checkpoints does not fit a round under llvmpipe's limit beside its neighbours' work.
+const int MAX_CUTS = 6;
 
 struct Progress {
-    int phase; int budget; int probes; int status;
+    int phase; int budget; int probes;
+    int status;   // PH_DONE: the sample's status
+    int cuts;     // else: rounds cut by llvmpipe's limit since the last checkpoint
     int counter; int idx; int sub;
     float sum;   // the current light's sum so far (−1: unknown, one of its searches ran out of work)
     Found hit;   // the pixel's hit (PH_LIGHTS; PH_DONE with status HIT)
@@ -98,14 +105,17 @@ struct Progress {
 
 Progress readProgress() {
     vec4 s0 = slots[STATE], s1 = slots[STATE + 1], s2 = slots[STATE + 2];
-    return Progress(toInt(s0.x, PH_PIXEL, PH_DONE), toInt(s0.y, MIN_BUDGET, MAX_BUDGET),
-                    toInt(s0.z, 0, PIXEL_PROBES), toInt(s0.w, HIT, WORK_LIMIT),
+    int phase = toInt(s0.x, PH_PIXEL, PH_DONE);
+    int w = toInt(s0.w, 0, MAX_CUTS);   // the status, or the cuts
+    return Progress(phase, toInt(s0.y, MIN_BUDGET, MAX_BUDGET), toInt(s0.z, 0, PIXEL_PROBES),
+                    phase == PH_DONE ? w : NOT_TRACED, phase == PH_DONE ? 0 : w,
                     toInt(s1.x, 0, MAX_COUNT), toInt(s1.y, -1, MAX_COUNT), toInt(s2.w, -1, MAX_COUNT), s1.z,
                     Found(HIT, toInt(s1.w, -1, N_OBJECTS), toInt(s2.x, 0, MAX_COUNT), s2.y, s2.z));
 }
 
 void writeProgress(Progress p) {
-    slots[STATE] = vec4(float(p.phase), float(p.budget), float(p.probes), float(p.status));
+    float w = float(p.phase == PH_DONE ? p.status : p.cuts);
+    slots[STATE] = vec4(float(p.phase), float(p.budget), float(p.probes), w);
     slots[STATE + 1] = vec4(float(p.counter), float(p.idx), p.sum, float(p.hit.target));
     slots[STATE + 2] = vec4(float(p.hit.loop_), p.hit.lambda, p.hit.tau, float(p.sub));
 }
@@ -214,7 +224,7 @@ void main() {
     }
     // (No ?: between structures: WebGL forbids it.)
     Progress at = Progress(PH_PIXEL, clamp(u_budget, MIN_BUDGET, MAX_BUDGET), PIXEL_PROBES,
-                           NOT_TRACED, 0, -1, -1, 0.0, NO_FOUND);
+                           NOT_TRACED, 0, 0, -1, -1, 0.0, NO_FOUND);
     if (u_round > 0) at = readProgress();
     if (u_finish == 0 && at.phase == PH_DONE) {   // finished in an earlier round: kept as it is
         writeSlots();
@@ -389,11 +399,23 @@ void main() {
     Progress next = cp;
     next.budget = at.budget;
     if (passes != 2) {
-        // Cut short: nothing of this round is kept; again with half the budget.
+        // Cut short: nothing of this round is kept; again with half the budget. After
+        // MAX_CUTS cuts without a checkpoint the pixel's search is out of work, or the
+        // light's occlusion unknown.
         roundCut = true;
         next = at;
         next.budget = max(at.budget / 2, MIN_BUDGET);
-    } else if (!moved) {
+        next.cuts = at.cuts + 1;
+        if (next.cuts > MAX_CUTS && at.phase == PH_LIGHTS) {
+            next.sum = -1.0;
+            next.cuts = 0;
+        } else if (next.cuts > MAX_CUTS) {
+            next = atEnd(at, WORK_LIMIT, NO_FOUND);
+            cutRecord = true;
+        }
+    } else if (moved) {
+        next.cuts = 0;
+    } else {
         // No checkpoint reached: more passes next round, up to MAX_BUDGET; beyond that the
         // pixel's search is out of work, or the light's occlusion unknown.
         if (at.budget < MAX_BUDGET) next.budget = min(at.budget * 2, MAX_BUDGET);
