@@ -7,6 +7,12 @@
 // The kernel's uniforms are the view's fields as they are (crates/gpu/src/input.rs,
 // `KernelInput::new`: the time split into f32 hi + lo, the velocity as speed and direction,
 // the axes in the observer's frame); the scene table and defines come once from the server.
+// What depends on the observer's position alone, its static frame and its isometry to the
+// origin (`obs_static`, `obs_to`: gpu::input::ObserverUniforms, made in f64), comes from the
+// server with every position: the position changes only through the server's answers (the
+// kernel input of the start or of an event typed or dragged, POST /api/explore/move), and
+// no frame is traced from a position whose uniforms have not come yet. The kernel boosts
+// that static frame by the velocity, which the page sets itself every animation frame.
 // The browser test checks the page's uniforms against the server's for the same view
 // (POST /api/explore/input).
 //
@@ -77,14 +83,30 @@ function turn(v, k, angle) {
   return v.map((x, i) => x * c + kv[i] * s + k[i] * d);
 }
 
+// The server's observer uniforms (`obs_static`, `obs_to`) in `uniforms`, kept with the
+// position they belong to.
+export function observerOf(uniforms, position) {
+  return { position: { x: position.x, y: position.y, z: position.z },
+    obs_static: uniforms.obs_static, obs_to: uniforms.obs_to };
+}
+
+// Whether `observer` (observerOf) belongs to `position`.
+export function observerAt(observer, position) {
+  const p = observer.position;
+  return p.x === position.x && p.y === position.y && p.z === position.z;
+}
+
 // The kernel's uniforms for `view` traced on a `width` × `height` grid (gpu::input::Uniforms
-// from KernelInput::new), the scene's own ones (`base`: metric, a, max_past, …) otherwise.
-export function uniformsFor(base, view, width, height) {
+// from KernelInput::new), the scene's own ones (`base`: metric, a, max_past, …) otherwise;
+// `observer` (observerOf) the server's for the view's position.
+export function uniformsFor(base, view, observer, width, height) {
   const c = view.camera;
   const fov = c.kind === 'panorama' ? [c.h_fov_deg, c.v_fov_deg]
     : c.kind === 'sphere' ? [360, 180] : [c.fov_deg, 0];
   const p = view.position;
+  if (!observerAt(observer, p)) throw new Error('the observer\'s uniforms are of another position');
   return { ...base, obs_t: splitTime(view.time), obs_x: [p.x, p.y, p.z].map(Math.fround),
+    obs_static: observer.obs_static, obs_to: observer.obs_to,
     velocity: [view.velocity.speed, ...view.velocity.direction].map(Math.fround),
     forward: view.forward.map(Math.fround), up: view.up.map(Math.fround),
     fov: fov.map(Math.fround), size: [width, height] };
@@ -101,9 +123,13 @@ export async function startFly(viewer, explore, map, status) {
   let tracer;
   let input;
   let sceneView;
+  const s = explore.event;
+  // The kernel's input seen from an event (its observer uniforms too).
+  const inputAt = (e) => fetchJson(`/api/gpu/input?${new URLSearchParams({
+    draw_buffers: tracer.maxDrawBuffers, t: e.t, x: e.x, y: e.y, z: e.z })}`);
   try {
     tracer = new KernelTracer(gl, await (await fetch('/api/gpu/kernel')).text());
-    input = await fetchJson(`/api/gpu/input?draw_buffers=${tracer.maxDrawBuffers}`);
+    input = await inputAt(s);
     sceneView = (await fetchJson('/api/view')).view;
   } catch (e) {
     status(`tracing on the server: ${e.message || e}`);
@@ -118,13 +144,14 @@ export async function startFly(viewer, explore, map, status) {
   const c = sceneView.camera;
   const camera = { kind: c.kind, width: fullW, height: fullH, samples: ss * ss };
   for (const k of ['fov_deg', 'h_fov_deg', 'v_fov_deg']) if (c[k] !== undefined) camera[k] = c[k];
-  const s = explore.event;
   const fly = {
     view: {
       time: s.t, position: { x: s.x, y: s.y, z: s.z },
       velocity: { speed: sceneView.velocity.speed, direction: [...sceneView.velocity.direction] },
       forward: normalize(sceneView.forward), up: normalize(sceneView.up), camera,
     },
+    // The server's uniforms of the observer's position (observerOf).
+    observer: observerOf(input.uniforms, s),
     keys: new Set(),
     keyed: false,        // the keys set the velocity (letting go of them stops the observer)
     speed: 0.5,
@@ -154,7 +181,8 @@ export async function startFly(viewer, explore, map, status) {
   explore.fly = fly;
   explore.view = () => structuredClone(fly.view);
   explore.onView = null;
-  explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, width, height);
+  explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, fly.observer,
+    width, height);
   // The sample that stands for pixel (col, row) of the frame shown (the one nearest the
   // pixel's centre, as the server's picture_sample), or null outside the frame.
   const sampleOf = (col, row) => {
@@ -257,6 +285,7 @@ export async function startFly(viewer, explore, map, status) {
       if (!response.ok) throw new Error(answer.error || `${response.status}`);
       v.time = answer.time;
       v.position = answer.position;
+      fly.observer = observerOf(answer.observer, answer.position);
       if (fly.fall) v.velocity = answer.velocity;
       fly.tauMoved += tau;
       fly.error = null;
@@ -394,7 +423,7 @@ export async function startFly(viewer, explore, map, status) {
     fly.busy = true;
     try {
       const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
-        fly.view, w, h) }, { whole: true });
+        fly.view, fly.observer, w, h) }, { whole: true });
       const now = performance.now();
       fly.frameMs.push(now);
       if (fly.frameMs.length > 30) fly.frameMs.shift();
@@ -416,6 +445,7 @@ export async function startFly(viewer, explore, map, status) {
   async function traceFull() {
     const version = fly.version;
     const view = structuredClone(fly.view);
+    const { observer } = fly;
     const cancelled = () => fly.version !== version;
     const steps = [];
     const [halfW, halfH] = [Math.round(fullW / 2), Math.max(1, Math.round(fullH / 2))];
@@ -430,7 +460,7 @@ export async function startFly(viewer, explore, map, status) {
     try {
       for (const [level, w, h] of steps) {
         const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
-          view, w, h) }, { cancelled });
+          view, observer, w, h) }, { cancelled });
         const ms = Math.round(performance.now() - started);
         fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
         const next = level === 'half' ? `${fullW}×${fullH}` : `${ss * ss} samples a pixel`;
@@ -490,6 +520,8 @@ export async function startFly(viewer, explore, map, status) {
       fly.pendingTau = 0;
     }
     if (fly.error !== null) return;
+    // A position whose uniforms are still on their way from the server waits for them.
+    if (!observerAt(fly.observer, v.position)) return;
     // While time runs every animation frame is traced (the observer's newest event may not
     // be back from the server yet: then the same view again).
     const stale = fly.traced === null || fly.traced.version !== fly.version;
@@ -598,10 +630,18 @@ export async function startFly(viewer, explore, map, status) {
   rate.value = String(fly.rate);
   sync();
   // The event fields and the map move the observer too.
-  explore.setEvent = (e) => {
+  // Its observer uniforms come from the server (the newest event's are kept).
+  explore.setEvent = async (e) => {
     fly.view.time = e.t;
     fly.view.position = { x: e.x, y: e.y, z: e.z };
     changed();
+    try {
+      const mine = observerOf((await inputAt(e)).uniforms, e);
+      if (observerAt(mine, fly.view.position)) fly.observer = mine;
+    } catch (err) {
+      // No frame is traced from this event: the next one asks again.
+      status(`cannot move the observer: ${err.message || err}`);
+    }
   };
   changed();
   requestAnimationFrame(tick);

@@ -157,6 +157,8 @@ export class KernelTracer {
     gl.uniform1f(at('a'), u.a);
     gl.uniform2fv(at('obs_t'), u.obs_t);
     gl.uniform3fv(at('obs_x'), u.obs_x);
+    gl.uniformMatrix4fv(at('obs_static'), false, u.obs_static);
+    gl.uniform4fv(at('obs_to'), u.obs_to);
     gl.uniform4fv(at('velocity'), u.velocity);
     gl.uniform3fv(at('forward'), u.forward);
     gl.uniform3fv(at('up'), u.up);

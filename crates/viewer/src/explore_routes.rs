@@ -12,7 +12,7 @@
 //! | `POST /api/explore/view-keyframe?frame=N` ([`View`]) | a sequence-script keyframe (TOML download) with the view's observer (event, velocity, axes) and fields of view (a flight's); 400 naming the field |
 //! | `GET /api/gpu/input?t=T&x=X&y=Y&z=Z[&draw_buffers=N]` | what the GPU kernel reads to trace the full frame seen from that event (as in [`crate::kernel_routes`]); without an event, from the newest frame's (the scene's own before any) |
 //! | `POST /api/explore/input?draw_buffers=N` (a [`View`]: `{"time", "position", "velocity", "forward", "up", "camera"}`) | what the GPU kernel reads to trace that view (the flying page's, page/fly.js); 400 naming the field for a bad view |
-//! | `POST /api/explore/move` (`{"time", "position", "velocity", "tau"}`) | where that observer is after `tau` of its proper time falling freely, and its velocity there: `{"time", "position", "velocity"}`; 400 naming the field for bad input |
+//! | `POST /api/explore/move` (`{"time", "position", "velocity", "tau"}`) | where that observer is after `tau` of its proper time falling freely, its velocity there, and the kernel's uniforms of that position (`gpu::input::ObserverUniforms`: its static frame and isometry, which the page does not compute): `{"time", "position", "velocity", "observer": {"obs_static", "obs_to"}}`; 400 naming the field for bad input |
 //! | `POST /api/explore/check` | the page's samples traced again by the CPU exact tracer: whether its GPU agrees ([`crate::page_check`]) |
 //! | `GET /api/gpu/kernel` | the kernel's source the page traces with: the `gpu` crate's, or the one `godel explore --kernel FILE` serves (as in [`crate::kernel_routes`]) |
 //! | [`FRAME_ROUTES`]`?…&generation=G&level=L` | as in [`crate::routes`] and [`crate::look_routes`] (`/api/info`, `/api/pixel`, `/api/png`, `/api/look/png`, `/api/overlay`, …), answered for that frame (the one the page shows; 410 once gone); without a name, for the frame the server opened on (whose channels `/api/gpu/…` serves: what the page shows before it takes a traced frame) |
@@ -546,10 +546,19 @@ async fn fall(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Res
             VIEW_FIELDS[i]
         )));
     }
+    // The kernel's uniforms of the new position, made by the one packer (gpu::input).
+    let observer = state
+        .explorer
+        .source()
+        .kernel_input(to)
+        .map_err(|why| ApiError::bad_request(format!("move: {why}")))?
+        .uniforms
+        .observer;
     let body = serde_json::json!({
         "time": to.t,
         "position": { "x": to.x, "y": to.y, "z": to.z },
         "velocity": velocity,
+        "observer": observer,
     });
     Ok((no_store(), Json(body)).into_response())
 }
