@@ -21,7 +21,7 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 stage=target/device-check
 # The test binaries that need a GPU; the others (kernel_rules, softpipe) check Mesa or text.
-tests=(agreement faults check)
+tests=(agreement faults check probes rounds)
 # The tests run there, most telling first: NVIDIA's driver took 16-60 s to compile each
 # kernel variant (BENCHMARKS.md, "On an NVIDIA H200"), and each scene and each mutation is a
 # variant, so the whole suite may not fit; the mutation tests (`*_is_caught`) check the
@@ -29,6 +29,11 @@ tests=(agreement faults check)
 # after DEADLINE seconds.
 ordered=(
     "check a_correct_trace_passes_and_a_wrong_one_is_refused"
+    "probes elementary_functions_match_std"
+    "probes closed_forms_match_spacetime_closed_form"
+    "probes isometries_match_spacetime_isometry"
+    "probes shadow_rays_match_spacetime_connect"
+    "rounds records_do_not_depend_on_tiles_or_budgets"
     "agreement the_lit_examples_agree"
     "agreement the_falling_ball_of_the_reference_scene_agrees"
     "agreement an_off_axis_observer_moving_at_nine_tenths_of_c_agrees"
