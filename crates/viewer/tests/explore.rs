@@ -535,7 +535,7 @@ async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
         input["uniforms"]["obs_x"],
         serde_json::json!([0.25, -0.5, 0.125])
     );
-    assert_eq!(input["draw_buffers"], 5);
+    assert_eq!(input["draw_buffers"], 8); // the record and the progress in one draw
     // Else the newest frame's event.
     let body = r#"{"t": 4, "x": 0.5, "y": 0, "z": 0}"#;
     let (status, _, _) = send(&app, common::post("/api/explore/event", body)).await;
@@ -589,7 +589,7 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
         serde_json::json!([0.25, -0.5, 0.125])
     );
     assert_eq!(input["uniforms"]["velocity"][0], 0.5);
-    assert_eq!(input["draw_buffers"], 5);
+    assert_eq!(input["draw_buffers"], 8); // the record and the progress in one draw
     let step = r#"{"time": 1, "position": {"x": 0, "y": 0, "z": 0},
         "velocity": {"speed": 0.5, "direction": [1, 0, 0]}, "tau": 2}"#;
     let (status, moved, _) = send(&app, common::post("/api/explore/move", step)).await;

@@ -72,15 +72,21 @@ async fn the_input_is_the_embedded_scene_packed_by_the_gpu_crate() {
     // No light: five fixed slots (the fifth: view_z and the polarization).
     assert_eq!(got["slots"], 5);
     assert_eq!(got["light_channels"], serde_json::json!([]));
-    // Eight render targets asked for, five used: one pass writes the whole record.
-    assert_eq!(got["draw_buffers"], 5);
-    assert_eq!(got["defines"], KernelInput::new(&scene).defines(5));
+    // Eight render targets asked for, eight used: one draw a round writes the record and the
+    // three slots of the sample's progress (docs/physics.md, "Rounds"), no finishing draw.
+    assert_eq!(got["draw_buffers"], 8);
+    assert_eq!(got["state_slots"], 3);
+    assert_eq!(
+        got["plan"],
+        serde_json::json!({"rounds": {"start": 0, "end": 8}, "finish": null, "layers": 8})
+    );
+    assert_eq!(got["defines"], KernelInput::new(&scene).defines(8));
     assert!(got["defines"]
         .as_str()
         .unwrap()
-        .contains("#define DRAW_BUFFERS 5\n"));
+        .contains("#define DRAW_BUFFERS 8\n"));
     // Without the page's count: four, what every WebGL2 has; with two, two.
-    for (query, buffers) in [("", 4), ("?draw_buffers=2", 2), ("?draw_buffers=16", 5)] {
+    for (query, buffers) in [("", 4), ("?draw_buffers=2", 2), ("?draw_buffers=16", 8)] {
         let (status, _, body) = common::send(common::get(&format!("/api/gpu/input{query}"))).await;
         assert_eq!(status, StatusCode::OK, "{query}");
         let got = json(&body);
