@@ -536,7 +536,7 @@ async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
         serde_json::json!([0.25, -0.5, 0.125])
     );
     assert_eq!(input["draw_buffers"], 8); // the record and the progress in one draw
-    // Else the newest frame's event.
+                                          // Else the newest frame's event.
     let body = r#"{"t": 4, "x": 0.5, "y": 0, "z": 0}"#;
     let (status, _, _) = send(&app, common::post("/api/explore/event", body)).await;
     assert_eq!(status, StatusCode::OK);
