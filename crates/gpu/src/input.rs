@@ -334,7 +334,8 @@ fn texel(v: FourVector) -> [f32; 4] {
 }
 
 /// Texels 3–16 of a ball at rest at `position`: its body frame (the static frame there), the
-/// frame's dual rows and the Christoffel symbols there (as `render::worldline` makes them).
+/// frame's dual rows and the Christoffel symbols there (as `render::worldline` makes them),
+/// those of t, x and y (symmetric in the lower two).
 fn rest_ball(metric: &Metric, position: Event, t: &mut [[f32; 4]; OBJECT_TEXELS]) {
     let p = Event::new(0.0, position.x, position.y, position.z);
     let frame = metric.static_frame(p);
