@@ -23,7 +23,7 @@
 // bounds whose body is a few stores: a store at a runtime index i is such a loop storing where
 // j == i); no NaN is tested (finite() reads the bits) or made on purpose; floats become ints
 // only through toInt; every variable gets a value where it is declared, every out parameter
-// first thing in its function.
+// first thing in its function; no `?:` between structures (WebGL refuses it).
 //
 // Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), events and
 // vectors as vec4 (t, x, y, z) in pseudo-Cartesian coordinates, times relative to the
