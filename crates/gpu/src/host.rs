@@ -515,7 +515,7 @@ unsafe fn slot_layers(gl: &glow::Context, layers: usize) -> Result<glow::Texture
 ///
 /// # Safety
 /// A context must be current on this thread, `gl` its functions.
-unsafe fn gl_error(gl: &glow::Context, when: &str) -> Result<(), HostError> {
+pub(crate) unsafe fn gl_error(gl: &glow::Context, when: &str) -> Result<(), HostError> {
     match gl.get_error() {
         glow::NO_ERROR => Ok(()),
         err => Err(HostError::Gl(format!("GL error 0x{err:x} {when}"))),

@@ -6,7 +6,7 @@
 
 use crate::context::Context;
 use crate::host::{
-    compile, f32_bytes_mut, float_texture, fragment_source, set_uniforms, HostError,
+    compile, f32_bytes_mut, float_texture, fragment_source, gl_error, set_uniforms, HostError,
 };
 use crate::input::{KernelInput, Uniforms};
 use crate::KERNEL;
@@ -179,10 +179,7 @@ impl Prober {
             }
             gl.delete_texture(texture);
             gl.active_texture(glow::TEXTURE0);
-            let err = gl.get_error();
-            if err != glow::NO_ERROR {
-                return Err(HostError::Gl(format!("GL error 0x{err:x} in a probe")));
-            }
+            gl_error(gl, "in a probe")?;
         }
         Ok(results)
     }
