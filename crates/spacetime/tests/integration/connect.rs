@@ -5,13 +5,8 @@
 // `!(a > b)` is "not a > b, NaN included": a NaN must be skipped too.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-mod common;
-use common::Rng;
+use crate::common::{max_abs, Rng};
 use spacetime::*;
-
-fn max_abs(v: [f64; 4]) -> f64 {
-    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
-}
 
 /// Integrates `r` from its emission event for its affine length; returns the relative
 /// miss distance from `target` and the null-condition residual at emission.

@@ -2,8 +2,7 @@
 //! commutators), the finite isometries (docs/physics.md, "Isometries") and the closed-form
 //! geodesics built on them (docs/physics.md, "Closed forms").
 
-mod common;
-use common::Rng;
+use crate::common::{max_abs, Rng};
 use spacetime::*;
 use std::f64::consts::SQRT_2;
 
@@ -136,10 +135,6 @@ fn killing_fields_close_under_the_bracket_as_stated() {
         }
     }
     eprintln!("commutators: worst deviation {worst:e}");
-}
-
-fn max_abs(v: [f64; 4]) -> f64 {
-    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 fn random_vector(rng: &mut Rng) -> FourVector {

@@ -4,8 +4,7 @@
 //! light and particles, both time orientations, several a; and the invariants the transport
 //! must keep (inner products with the tangent and between transported vectors).
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 use spacetime::transport::transport_from_origin;
 use spacetime::*;
 

@@ -3,8 +3,7 @@
 //! (horizon at 2a, return time, sense of rotation), conservation of E, L, p_z and the null
 //! condition, rays through the axis, and straight lines in Minkowski spacetime.
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 use spacetime::*;
 use std::f64::consts::{PI, SQRT_2};
 

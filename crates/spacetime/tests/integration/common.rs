@@ -1,7 +1,5 @@
-//! Shared helpers for the spacetime tests: a tiny deterministic random generator and
-//! random events/directions (no external crates needed).
-
-#![allow(dead_code)]
+//! Shared helpers for the spacetime tests: a tiny deterministic random generator,
+//! random events/directions (no external crates needed), and the largest component.
 
 use spacetime::Event;
 
@@ -47,4 +45,9 @@ impl Rng {
             }
         }
     }
+}
+
+/// The largest absolute component.
+pub fn max_abs(v: [f64; 4]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }

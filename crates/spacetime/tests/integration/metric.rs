@@ -5,8 +5,7 @@
 // Tensor components are indexed as written in the formulas (g[a][c] g⁻¹[c][b], Γ^μ_ab).
 #![allow(clippy::needless_range_loop)]
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 use spacetime::*;
 use std::f64::consts::SQRT_2;
 

@@ -2,13 +2,8 @@
 //! against the numerical integrator, and their tangents' normalization and constants of
 //! motion.
 
-mod common;
-use common::Rng;
+use crate::common::{max_abs, Rng};
 use spacetime::*;
-
-fn max_abs(v: [f64; 4]) -> f64 {
-    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
-}
 
 /// A random launch: light or a particle (speed 0.05..0.95), future or past, from `at`.
 fn random_launch(rng: &mut Rng, m: &Metric, at: Event, i: usize) -> Geodesic {

@@ -4,8 +4,7 @@
 //! (`spacetime::propagator`), and the two agree, also when loops are composed as the numeric
 //! tracer composes them (P(λ) Mⁿ, M the first loop's propagator).
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 use spacetime::propagator::{self, apply, propagators};
 use spacetime::transport::transport_from_origin;
 use spacetime::*;

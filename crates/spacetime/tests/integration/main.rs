@@ -1,0 +1,12 @@
+//! The spacetime crate's integration tests, one binary (ripgrep's layout: the crate is linked
+//! once, not once per file). One module: `cargo test -p spacetime --test integration geodesics`.
+
+mod common;
+
+mod closed_form;
+mod connect;
+mod geodesics;
+mod metric;
+mod polarization;
+mod symmetry;
+mod transport;
