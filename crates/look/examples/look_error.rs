@@ -13,10 +13,10 @@
 //!
 //! The views aim at the first image of a ball at rest at r = a seen from the axis (39.2°
 //! left of +x): make SPHERE.exr with `godel render` of the scene `sphere_scene()` in
-//! crates/look/tests/look.rs (the figures in docs/physics.md).
+//! crates/look/tests/integration/look.rs (the figures in docs/physics.md).
 //! `cargo run --release -p look --example look_error -- SPHERE.exr [VIEW-NAME-PREFIX]`
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/integration/common.rs"]
 mod common;
 
 use common::{FISHEYE, PANORAMA, PINHOLE};

@@ -5,9 +5,7 @@
 //! shift of a ball the observer moves towards, the magnification of the static sky
 //! (dθ = D dθ′). Refusals and the output header: `look_input.rs`.
 
-mod common;
-
-use common::{FISHEYE, PANORAMA, PINHOLE};
+use crate::common::{FISHEYE, PANORAMA, PINHOLE};
 use datafile::{DataFile, PixelRecord, RayStatus};
 use look::{look, look_with, pixel_look, resolution, Filter, LookView, Sampling, SphereSource};
 use render::driver::{render, NoProgress};

@@ -1,6 +1,5 @@
 //! The cameras of the views that `look` is compared with direct renders through, shared by
 //! the tests (`look.rs`) and the example that measures the errors (`examples/look_error.rs`).
-#![allow(dead_code)]
 
 use scene::Camera;
 
