@@ -2,8 +2,7 @@
 //! exactly twice, one beyond the horizon never, the falling ball of the reference scene
 //! several times, and 20+ times when followed ten times further into the past.
 
-mod common;
-use common::render_scene;
+use crate::common::render_scene;
 use datafile::DataFile;
 use scene::Scene;
 use std::path::Path;

@@ -2,8 +2,8 @@
 //! connected groups of hit pixels, the panorama's pixel geometry (docs/physics.md, "Pixels
 //! and cameras"), and an independent numeric shoot-and-solve for the light rays connecting
 //! the observer on the Gödel axis with a static point (built on `spacetime::trace` only, not
-//! on the renderer); the tracer of a scene, built as the renderer builds it.
-#![allow(dead_code)]
+//! on the renderer); the tracer of a scene, built as the renderer builds it; lengths and
+//! unit vectors of 3-vectors.
 
 use datafile::DataFile;
 use render::driver::{render, NoProgress, RenderStats};
@@ -134,11 +134,6 @@ pub fn wrap_pi(a: f64) -> f64 {
 /// (docs/physics.md, "Pixels and cameras": α = h_fov·((col + ½)/W − ½)).
 pub fn panorama_col(alpha: f64, h_fov: f64, width: usize) -> f64 {
     width as f64 * (alpha / h_fov + 0.5)
-}
-
-/// Fractional row of elevation `beta` (β = v_fov·(½ − (row + ½)/H)).
-pub fn panorama_row(beta: f64, v_fov: f64, height: usize) -> f64 {
-    height as f64 * (0.5 - beta / v_fov)
 }
 
 /// Circular distance between two columns of a 360° panorama.
@@ -312,4 +307,15 @@ pub fn reference_scene(method: &str, width: u32, height: u32) -> Scene {
         .replace("samples = 4", "samples = 1")
         .replace("method = \"numeric\"", &format!("method = \"{method}\""));
     Scene::from_str(&text, "reference.toml").unwrap()
+}
+
+/// The Euclidean length of a 3-vector.
+pub fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+/// `v` scaled to unit length.
+pub fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = norm(v);
+    [v[0] / n, v[1] / n, v[2] / n]
 }

@@ -10,8 +10,7 @@
 //!   each pixel's ray (an off-axis, moving observer; rays over many loops), which a tracer
 //!   that dropped the transport fails.
 
-mod common;
-use common::{render_scene, scene, scene_file, tracer};
+use crate::common::{render_scene, scene, scene_file, tracer, unit};
 use spacetime::measure::vector_components;
 use spacetime::{
     photon_tangent, Dop853, Event, FourVector, Metric, OdeSystem, Spacetime, StepOutcome,
@@ -20,11 +19,6 @@ use spacetime::{
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = dot(v, v).sqrt();
-    v.map(|c| c / n)
 }
 
 fn f64s(v: [f32; 3]) -> [f64; 3] {

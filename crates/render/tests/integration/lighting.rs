@@ -3,8 +3,7 @@
 //! independent numeric integration of the connecting rays says it must; the light planes
 //! survive the data file.
 
-mod common;
-use common::{render_scene, scene};
+use crate::common::{render_scene, scene};
 use datafile::DataFile;
 use spacetime::{
     shadow_rays, trace, Event, Geodesic, GeodesicKind, Godel, Metric, Spacetime, TraceLimits,

@@ -1,9 +1,7 @@
 //! Whole-ray rejection of balls at rest (`render::reject`): the reach covers the renderer's
 //! own ball, and a rejected ray never comes within the reach of the centre on any loop.
 
-mod common;
-
-use common::tracer;
+use crate::common::{norm, tracer, unit};
 use proptest::prelude::*;
 use render::reject::{static_distance, StaticBall, REACH_PER_A, REACH_PER_RADIUS};
 use render::target::Target;
@@ -16,14 +14,6 @@ use spacetime::{
 /// Bound on (static distance)/|ξ| asserted below; the worst ratio found while writing the test
 /// was between 1.01 and 1.03 (near the horizon, r ≈ 3.8a).
 const RATIO: f64 = 1.05;
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = norm(v);
-    [v[0] / n, v[1] / n, v[2] / n]
-}
 
 fn ball(a: f64, c: [f64; 3], radius: f64) -> Target {
     let metric = Metric::Godel(Godel::new(a));

@@ -5,8 +5,7 @@
 //! the match from that seed called the points inside "far", and its estimate (positive)
 //! hid the graze, so the exact ray went on to a later image of the ball or escaped.
 
-mod common;
-use common::tracer;
+use crate::common::{self, tracer};
 
 /// The built-in reference scene at 2200×250, one ray per pixel, traced by `method`.
 fn reference(method: &str) -> scene::Scene {

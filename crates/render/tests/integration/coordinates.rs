@@ -2,8 +2,7 @@
 //! intersected in pseudo-Cartesian coordinates), checked in flat spacetime against the exact
 //! geometry.
 
-mod common;
-use common::{pixel_directions, render_scene, scene};
+use crate::common::{pixel_directions, render_scene, scene};
 use datafile::DataFile;
 
 /// Renders `objects` in flat spacetime through a 90° pinhole of 81 × 81 pixels looking

@@ -8,9 +8,7 @@
 //! directions taken from the pinhole formula of docs/physics.md ("Pixels and cameras"), not
 //! from the scene crate.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 use datafile::DataFile;
 
 const FOV_DEG: f64 = 30.0;

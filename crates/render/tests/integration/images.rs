@@ -7,9 +7,7 @@
 //! Geometry of every scene: observer at rest at the origin, camera forward = e_x, up = e_z,
 //! so right = −e_y and a local azimuth az (counter-clockwise from e_x) shows at α = −az.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 use datafile::record::RayStatus;
 use spacetime::Spacetime;
 use std::f64::consts::TAU;

@@ -3,8 +3,7 @@
 //! on every pixel but silhouettes, and on g and t_emit where both hit; with lights, on the
 //! direct light too.
 
-mod common;
-use common::{render_scene, scene_file};
+use crate::common::{render_scene, scene_file};
 
 #[test]
 fn exact_and_numeric_tracers_agree_pixel_by_pixel() {

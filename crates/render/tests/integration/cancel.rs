@@ -2,9 +2,7 @@
 //! comes): the driver traces no tile after the flag is set, and the tiles it did trace are
 //! those of the whole render.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 use render::driver::{Progress, Renderer};
 use render::plan::Plan;
 use render::tiles::TileData;

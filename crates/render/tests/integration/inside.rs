@@ -9,9 +9,7 @@
 //! first change of side of the object's distance function (written here from the metric,
 //! not taken from the renderer) refined by bisection.
 
-mod common;
-
-use common::{bisect, godel, pixel_directions, render_scene, scene};
+use crate::common::{bisect, godel, pixel_directions, render_scene, scene};
 use datafile::record::RayStatus;
 use datafile::DataFile;
 use scene::Scene;

@@ -4,9 +4,7 @@
 //! light are the same, bit for bit, with and without the rejection (and an over-eager bound
 //! is caught by that comparison).
 
-mod common;
-
-use common::tracer;
+use crate::common::{self, norm, tracer, unit};
 use proptest::prelude::*;
 use render::circle::RayCircle;
 use render::falling::{FallingBall, REACH_PER_GAMMA_RADIUS};
@@ -23,15 +21,6 @@ use spacetime::{
 /// Bound asserted below on (static distance)/(γ|ξ|) and on the time offset over
 /// γ|ξ|(v + √2), below [`REACH_PER_GAMMA_RADIUS`].
 const RATIO: f64 = 1.05;
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let n = norm(v);
-    [v[0] / n, v[1] / n, v[2] / n]
-}
 
 /// A ball of `radius` falling freely from `start` with `speed` along `dir`, its worldline
 /// covering coordinate times [t_min, t_max].

@@ -2,8 +2,7 @@
 //! known in closed form: relativistic aberration cos θ' = (cos θ + v)/(1 + v cos θ) for a
 //! source at angle θ from the direction of motion, and the equidistant dome projection.
 
-mod common;
-use common::{render_scene, scene};
+use crate::common::{render_scene, scene};
 use datafile::record::RayStatus;
 
 /// Mean angle from the camera's forward axis (radians) of the hit pixels of a sphere

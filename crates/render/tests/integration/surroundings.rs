@@ -6,9 +6,7 @@
 //! and bisection (not the renderer's intersection search). A static emitter seen by a static
 //! observer has g = 1 exactly (docs/physics.md, "Frequency shift").
 
-mod common;
-
-use common::{pixel_directions, render_scene, scene};
+use crate::common::{pixel_directions, render_scene, scene};
 use std::f64::consts::{PI, SQRT_2};
 
 const A: f64 = 1.0;

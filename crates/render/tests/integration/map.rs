@@ -3,7 +3,7 @@
 //! pixel's map ray against the tracer's record of that pixel; the tracks of balls against
 //! their scene positions and the closed form of a timelike geodesic.
 
-mod common;
+use crate::common;
 
 use render::map::{light_ray, map, MapPoint, ObserverAxis, HORIZON_POINTS};
 use scene::Scene;

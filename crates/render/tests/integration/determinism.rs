@@ -1,9 +1,7 @@
 //! A real render through the data file: written and read back unchanged, and the same
 //! bytes whatever the number of worker threads.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 use datafile::DataFile;
 
 /// A small Gödel scene with a static and a free-falling sphere (both images, Doppler
