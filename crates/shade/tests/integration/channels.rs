@@ -3,7 +3,7 @@
 //! benchmark (and a few more settings), on synthetic data with every ray status, missing and
 //! unknown objects, odd values (NaN, negative, zero shifts), one sample per pixel and 2×2.
 
-#[path = "../benches/common/mod.rs"]
+#[path = "../../benches/common/mod.rs"]
 mod common;
 
 use datafile::record::{PixelRecord, RayStatus};
