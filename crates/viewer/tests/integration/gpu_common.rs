@@ -1,6 +1,5 @@
 //! Shared by the GPU and look route tests: a 16×8 full-sphere data file built in memory whose
 //! every pixel is known, and requests as the page sends them.
-#![allow(dead_code)]
 
 use std::path::Path;
 use std::sync::Arc;

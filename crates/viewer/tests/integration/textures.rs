@@ -4,25 +4,14 @@
 //! about the file, and without blocking a worker. The embedded scene's textures obey the same
 //! folders.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Duration;
 
+use crate::common::{data, error_of, post, scene, send_to, write_png};
 use axum::http::StatusCode;
-use common::{data, error_of, post, scene, send_to};
 use shade::{ShadeSettings, ShaderKind, Shading, TextureChoice};
 use viewer::{ViewerOptions, ViewerState, WorkLimit};
-
-/// A 4×2 image with distinct pixels.
-fn write_png(path: &Path, seed: u8) {
-    image::RgbImage::from_fn(4, 2, |x, y| {
-        image::Rgb([seed, (x * 60) as u8, (y * 120) as u8])
-    })
-    .save(path)
-    .unwrap();
-}
 
 /// The texture layer with the ball's texture the image at `path` (as the client names it).
 fn image_settings(path: &Path) -> ShadeSettings {

@@ -3,11 +3,9 @@
 //! pixel is known. The arrays on the wire must hold the data file's values exactly, the
 //! tables the `shade` crate's, and the looked-at pictures `look` + `shade`'s.
 
-mod gpu_common;
-
+use crate::gpu_common::*;
 use axum::http::StatusCode;
 use datafile::{DataFile, PixelRecord, RayStatus};
-use gpu_common::*;
 use look::{look, LookView};
 use scene::Camera;
 use shade::{ShadeSettings, ShaderKind, Shading};

@@ -1,7 +1,7 @@
 //! Helpers shared by the viewer's HTTP tests: a data file built in memory whose every pixel is
 //! known, and requests sent straight into the router (tower's `oneshot`) carrying what the
-//! page sends: `Host: 127.0.0.1:PORT`, and JSON bodies as `application/json`.
-#![allow(dead_code)]
+//! page sends: `Host: 127.0.0.1:PORT`, and JSON bodies as `application/json`; small PNG
+//! textures.
 
 use std::path::Path;
 use std::sync::Arc;
@@ -128,4 +128,13 @@ pub fn frequency_settings(temperature: f64) -> ShadeSettings {
 /// [`frequency_settings`] as the JSON the page sends.
 pub fn frequency(temperature: f64) -> String {
     serde_json::to_string(&frequency_settings(temperature)).unwrap()
+}
+
+/// Writes a 4×2 PNG at `path` with distinct pixels, its red channel `seed`.
+pub fn write_png(path: &Path, seed: u8) {
+    image::RgbImage::from_fn(4, 2, |x, y| {
+        image::Rgb([seed, (x * 60) as u8, (y * 120) as u8])
+    })
+    .save(path)
+    .unwrap();
 }

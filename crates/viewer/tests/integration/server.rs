@@ -7,7 +7,7 @@
 //! Each test runs the real server on a port of its own; the clients are plain TCP sockets.
 //! The read timeouts are deadlines against hanging forever, not speed checks.
 
-mod common;
+use crate::common;
 
 use std::io::{Read, Write};
 use std::net::TcpStream;

@@ -2,12 +2,10 @@
 //! the cheap routes still answer), those within them wait their turn and are all answered;
 //! per-request sizes (lamps, light sources) are capped by the settings checks.
 
-mod common;
-
 use std::sync::Arc;
 
+use crate::common::{data, error_of, frequency, frequency_settings, get, post, send_to};
 use axum::http::StatusCode;
-use common::{data, error_of, frequency, frequency_settings, get, post, send_to};
 use shade::{Lamp, LightSource, MAX_LAMPS};
 use viewer::{ViewerOptions, ViewerState, WorkLimit};
 

@@ -16,7 +16,7 @@ use viewer::keep::{ExactJob, Keeper, Recording, Rendered, MAX_KEYFRAMES};
 use viewer::view::{CameraView, Position, Velocity, View};
 use viewer::{Access, WorkLimit};
 
-mod common;
+use crate::common;
 
 /// A keeper whose renders wait (at most ten seconds) until the gate opens or they are
 /// cancelled; views wider than 100 pixels are refused as a scene would refuse them.

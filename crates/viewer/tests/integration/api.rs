@@ -1,14 +1,14 @@
 //! The viewer's HTTP interface without a browser: requests go straight into the router
 //! (tower's `oneshot`), on a data file built in memory whose every pixel is known.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 
-use axum::http::StatusCode;
-use common::{
+use crate::common::{
     data, error_of, frequency, frequency_settings, get, post, scene, send, HEIGHT, WIDTH,
 };
+use axum::http::StatusCode;
 use shade::{ShadeSettings, Shading};
 use viewer::ViewerState;
 /// The picture the shade crate makes of `data()` for `settings`.

@@ -12,7 +12,7 @@ use gpu::KernelInput;
 use scene::Scene;
 use viewer::ViewerState;
 
-mod common;
+use crate::common;
 
 fn json(body: &[u8]) -> serde_json::Value {
     serde_json::from_slice(body).expect("a JSON answer")

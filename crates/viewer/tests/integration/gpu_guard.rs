@@ -5,13 +5,12 @@
 //! (the embedded scene's through the viewer's texture source, a client's through the same
 //! check as `/api/png`), with the same words whatever the reason.
 
-mod gpu_common;
-
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use crate::common::{error_of, write_png};
+use crate::gpu_common::*;
 use axum::http::StatusCode;
-use gpu_common::*;
 use shade::{ShadeSettings, ShaderKind, TextureChoice};
 use viewer::{ViewerOptions, ViewerState, WorkLimit, MAX_BODY_BYTES};
 
@@ -33,10 +32,6 @@ fn texture_settings() -> ShadeSettings {
     let mut s = ShadeSettings::defaults_for(&data());
     s.shaders = vec![ShaderKind::Texture];
     s
-}
-
-fn error_of(body: &[u8]) -> String {
-    json(body)["error"].as_str().unwrap().to_string()
 }
 
 /// Every GET route of the GPU page and the look routes.
@@ -173,22 +168,13 @@ async fn look_pictures_have_a_bounded_size() {
     assert!(error_of(&answer).contains("camera"));
 }
 
-/// A 4×2 image with distinct pixels.
-fn write_png(path: &Path) {
-    image::RgbImage::from_fn(4, 2, |x, y| {
-        image::Rgb([200, (x * 60) as u8, (y * 120) as u8])
-    })
-    .save(path)
-    .unwrap();
-}
-
 #[tokio::test]
 async fn look_settings_read_textures_only_from_the_allowed_folders() {
     let dir = tempfile::tempdir().unwrap();
     let elsewhere = tempfile::tempdir().unwrap();
-    write_png(&dir.path().join("map.png"));
+    write_png(&dir.path().join("map.png"), 200);
     let secret = elsewhere.path().join("secret.png");
-    write_png(&secret);
+    write_png(&secret, 200);
     let state = viewer_with(dir.path(), WorkLimit::new(1, 4));
     let with_image = |path: &Path| {
         let mut s = texture_settings();
@@ -223,7 +209,7 @@ async fn the_scenes_image_textures_come_from_the_data_files_folder() {
     // The globe's texture is an image file named relative to the data file's folder: the
     // GPU page gets exactly that image (the current directory plays no part).
     let dir = tempfile::tempdir().unwrap();
-    write_png(&dir.path().join("globe.png"));
+    write_png(&dir.path().join("globe.png"), 200);
     let mut d = data();
     d.header.scene_text = scene_text().replace(
         r#"texture = { kind = "image", builtin = "earth" }"#,

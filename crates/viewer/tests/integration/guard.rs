@@ -3,14 +3,12 @@
 //! as `application/json` (a page on another site can POST `text/plain` without a CORS
 //! preflight); bodies are capped; `/api/info` does not show where the data file lies.
 
-mod common;
-
 use std::net::SocketAddr;
 use std::sync::Arc;
 
+use crate::common::{data, error_of, frequency, get, post, send, send_to};
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
-use common::{data, error_of, frequency, get, post, send, send_to};
 use viewer::{Access, ViewerState, MAX_BODY_BYTES};
 
 fn get_with_host(path: &str, host: Option<&str>) -> Request<Body> {

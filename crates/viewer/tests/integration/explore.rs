@@ -20,7 +20,7 @@ use viewer::view::{Velocity, View};
 use viewer::wire::{read_header, SampleType, HEADER_LEN};
 use viewer::Access;
 
-mod common;
+use crate::common;
 
 const FULL: (usize, usize) = (common::WIDTH, common::HEIGHT);
 const COARSE: (usize, usize) = (2, 1);

@@ -1,0 +1,16 @@
+//! The viewer crate's integration tests, one binary (ripgrep's layout: the crate is linked
+//! once, not once per file). One module: `cargo test -p viewer --test integration explore`.
+
+mod common;
+mod gpu_common;
+
+mod api;
+mod explore;
+mod gpu_api;
+mod gpu_guard;
+mod guard;
+mod keep;
+mod kernel_api;
+mod limits;
+mod server;
+mod textures;
