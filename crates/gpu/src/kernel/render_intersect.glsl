@@ -8,6 +8,11 @@
 // dyadic pieces of the searched stretch, so the span after a finished one follows from its
 // depth and index (its start probe is the finished span's end probe; its end is probed
 // again, which the CPU keeps on a stack).
+//
+// A long bisection is a checkpoint of the sample's rounds (render_tracer's main) every
+// SPAN_CHECK probes, at the request of a span's end probe: a round resumes there by going
+// through its loop again without bisecting (its start and end probes, each the same as
+// before), then the bisection from its depth and index (Resume).
 
 const int M_LOOP = 0;      // at the start of loop mach.loop_
 const int M_START = 1;     // the loop's start probes, object by object
@@ -24,6 +29,10 @@ const int Q_END = 2;       // the segment's end probe of object mach.obj
 const int Q_SPAN = 3;      // the end probe of the span [bis.a, bis.b]
 const int Q_REFINE = 4;    // a refinement step at req.lambda
 const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's extent)
+const int Q_RESUME = 6;    // a resumed bisection's probe at its span's start (Resume)
+
+// Probes of a bisection between two of its checkpoints.
+const int SPAN_CHECK = 256;
 
 struct Found { int status; int target; int loop_; float lambda; float tau; };
 const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
@@ -44,8 +53,9 @@ Plan plan = Plan(NO_RAY, 0, 0, 0, false, 0.0, 0.0, 0.0, false, -1, 0, vec3(0.0),
 
 // The machine's place: its mode, loop, segment [lo, hi] and object, the segment's earliest
 // crossing so far, and the search's result.
-struct Machine { int mode; int loop_; int seg; int obj; float lo; float hi; Found best; Found result; };
-Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, NO_FOUND, NO_FOUND);
+// `check`: the pending request is a checkpoint's (nextSpan).
+struct Machine { int mode; int loop_; int seg; int obj; float lo; float hi; Found best; Found result; bool check; };
+Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, NO_FOUND, NO_FOUND, false);
 // The probes at the start and the end of the segment, per object, and the λ where each was
 // taken. Two arrays, written only at constant indices (setEndProbe; the end probes become
 // the next segment's start probes by a copy): drivers that store at a runtime index into
@@ -53,9 +63,21 @@ Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, NO_FOUND, NO_FOUND);
 Probe startProbe[N_OBJECTS], endProbe[N_OBJECTS];
 float startAt[N_OBJECTS], endAt[N_OBJECTS];
 // Bisection of one object's stretch [start, start + len]: the span [a, b] at depth `depth` and
-// index `index`, with its end probes pa, pb; the probes it took.
-struct Bisection { float start; float len; float a; float b; int depth; int index; int probes; Probe pa; Probe pb; };
-Bisection bis = Bisection(0.0, 0.0, 0.0, 0.0, 0, 0, 0, NO_PROBE, NO_PROBE);
+// index `index`, with its end probes pa, pb and the τ seeds they were probed with (seedA:
+// where pa is a probe, pb's before); the probes it took, and their count at its last
+// checkpoint.
+struct Bisection {
+    float start; float len; float a; float b; int depth; int index; int probes; int mark;
+    Probe pa; Probe pb; float seedA; float seedB;
+};
+Bisection bis = Bisection(0.0, 0.0, 0.0, 0.0, 0, 0, 0, 0, NO_PROBE, NO_PROBE, 0.0, 0.0);
+// A bisection's checkpoint to resume at (`on`): in segment `seg` of the search's loop, object
+// `obj`'s span at `depth` and `index` (odd: a right sibling) starting at `a`, whose probe took
+// the seed `seed`, after `probes` probes of the bisection; the segment's earliest crossing so
+// far, and the sample's probes left. Until the machine reaches it, segments and objects before
+// it are not bisected: none crossed there, or the search would have ended.
+struct Resume { bool on; int seg; int obj; int depth; int index; int probes; float a; float seed; Found best; int left; };
+Resume res = Resume(false, 0, 0, 0, 0, 0, 0.0, 0.0, NO_FOUND, 0);
 // Refinement of a crossing: the bracket [lo, hi], f there, the Illinois side, the steps.
 struct Refinement { float lo; float hi; float flo; float fhi; int side; int iter; };
 Refinement ill = Refinement(0.0, 0.0, 0.0, 0.0, 0, 0);
@@ -178,9 +200,17 @@ void nextSpan() {
     bis.probes++;
     bis.index++;
     bis.pa = bis.pb;
+    bis.seedA = bis.seedB;
     bis.a = bis.b;
     bis.b = bis.start + bis.len * float(bis.index + 1) / exp2(float(bis.depth));
+    mach.check = bis.probes - bis.mark >= SPAN_CHECK;
+    if (mach.check) bis.mark = bis.probes;
     request(Q_SPAN, bis.b, bis.pa.tau);
+}
+
+// Whether segment `seg`'s object `obj` lies before the resumed checkpoint.
+bool beforeResume(int seg, int obj) {
+    return res.on && (seg < res.seg || (seg == res.seg && obj < res.obj));
 }
 
 // One step of the machine: takes the answer to its last request, then either requests a
@@ -188,22 +218,53 @@ void nextSpan() {
 void machineStep() {
     int tag = req.tag;
     req.tag = Q_NONE;
+    mach.check = false;
     if (tag == Q_START) {
         setStartProbe(mach.obj, req.answer, loopOffset());
     } else if (tag == Q_END) {
         setEndProbe(mach.obj, req.answer, mach.hi + loopOffset());
-        bis.pb = req.answer;
-        float limit = mach.best.status == HIT ? mach.best.lambda : mach.hi;
-        bis.start = mach.lo;
-        bis.len = min(limit, mach.hi) - mach.lo;
-        bis.a = bis.start;
-        bis.b = bis.start + bis.len;
-        bis.depth = 0;
-        bis.index = 0;
-        bis.probes = 0;
-        mach.mode = M_BISECT;
+        if (beforeResume(mach.seg, mach.obj)) {
+            mach.mode = M_SCAN;   // bisected before the checkpoint, with no crossing
+        } else {
+            if (res.on) mach.best = res.best;
+            bis.pb = req.answer;
+            bis.seedB = req.seed;
+            float limit = mach.best.status == HIT ? mach.best.lambda : mach.hi;
+            bis.start = mach.lo;
+            bis.len = min(limit, mach.hi) - mach.lo;
+            bis.a = bis.start;
+            bis.b = bis.start + bis.len;
+            bis.depth = 0;
+            bis.index = 0;
+            bis.probes = 0;
+            bis.mark = 0;
+            mach.mode = M_BISECT;
+            if (res.on && (mach.seg != res.seg || mach.obj != res.obj)) {
+                finish(FAILED);   // the way back missed its checkpoint (never, if probes repeat)
+                return;
+            }
+            if (res.on) {
+                // The checkpoint's span, as nextSpan makes it after its left sibling, whose end
+                // is probed again as it was.
+                bis.depth = res.depth;
+                bis.index = res.index - 1;
+                bis.probes = res.probes - 1;
+                bis.mark = res.probes - SPAN_CHECK;
+                request(Q_RESUME, res.a, res.seed);
+                return;
+            }
+        }
     } else if (tag == Q_SPAN) {
         bis.pb = req.answer;
+        bis.seedB = req.seed;
+    } else if (tag == Q_RESUME) {
+        bis.b = req.lambda;
+        bis.pb = req.answer;
+        bis.seedB = req.seed;
+        res.on = false;
+        probes_left = res.left;   // the probes of the way back were counted before
+        nextSpan();
+        return;
     } else if (tag == Q_ROOT) {
         if (accepts(mach.obj, req.x)) {
             if (mach.best.status != HIT || req.lambda < mach.best.lambda) {

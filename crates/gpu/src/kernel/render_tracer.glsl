@@ -74,17 +74,20 @@ void writeSlots() {
 // Rounds (docs/physics.md, "The GPU kernel", "Rounds"). A sample is traced in rounds of draws
 // (crates/gpu/src/host.rs; the page's trace.js): each round goes on from where the previous
 // one left the sample, for at most its budget of passes, and keeps what it finished up to the
-// last checkpoint it reached: the start of each loop of the pixel's search, the search's end,
-// and each step of the shadow rays' enumeration. At a checkpoint the sample's state is a few
-// numbers (Progress), written into its state slots; the next round makes everything else
-// again from them, and the searches are memoryless there (a loop probes its objects afresh).
+// last checkpoint it reached: the start of each loop of the pixel's search, every SPAN_CHECK
+// probes of a bisection in it (render_intersect), the search's end, and each step of the
+// shadow rays' enumeration. At a checkpoint the sample's state is a few numbers (Progress),
+// written into its state slots; the next round makes everything else again from them, and
+// the searches are memoryless there (a loop probes its objects afresh; a bisection's
+// checkpoint is reached again through its loop, with the same probes).
 // So a record does not depend on how its work was cut into rounds: not on draw sizes, the
 // driver's grouping of samples, timing or load. llvmpipe ends every loop of a shader once its
 // loops have run 65535 passes in all, per group of samples and silently: a round cut short
 // so is told by a last loop that must run twice, and dropped (the sample runs it again with
 // half the budget).
 
-const int PH_PIXEL = 0;    // the pixel's search, at the start of loop `counter`
+const int PH_PIXEL = 0;    // the pixel's search, in loop `counter`: at its start (seg < 0),
+                           // or in a bisection (Span)
 const int PH_LIGHTS = 1;   // the shadow rays: light `counter`, grid index `idx`; `sub` ≥ 0: in
                            // the occlusion search of the step's ray, at the start of stretch `sub`
 const int PH_DONE = 2;     // finished with `status`
@@ -94,37 +97,83 @@ const int MAX_COUNT = 16777215;
 // checkpoints does not fit a round under llvmpipe's limit beside its neighbours' work.
 const int MAX_CUTS = 6;
 
+// A bisection's checkpoint in the pixel's search (render_intersect's Resume): segment `seg`
+// (−1: none, the loop's start), object `obj`, span at `depth` and `index` starting at `a`,
+// probed with the seed `seed`, after `probes` probes of the bisection.
+struct Span { int seg; int obj; int depth; int index; int probes; float a; float seed; };
+const Span NO_SPAN = Span(-1, 0, 0, 0, 0, 0.0, 0.0);
+
 struct Progress {
     int phase; int budget; int probes;
     int status;   // PH_DONE: the sample's status
     int cuts;     // else: rounds cut by llvmpipe's limit since the last checkpoint
     int counter; int idx; int sub;
     float sum;   // the current light's sum so far (−1: unknown, one of its searches ran out of work)
-    Found hit;   // the pixel's hit (PH_LIGHTS; PH_DONE with status HIT)
+    Found hit;   // the pixel's hit (PH_LIGHTS; PH_DONE with status HIT); PH_PIXEL in a
+                 // bisection: the segment's earliest crossing so far
+    Span span;   // PH_PIXEL
 };
 
+// The progress in three slots, every number an integer below 2^24 or a float kept as it is:
+//   (phase (the hosts read it), budget + 2^21 · cuts, probes, PH_DONE ? status : span index
+//    mod 2^15),
+//   (counter, PH_PIXEL ? span seg + 16 · depth + 512 · (index / 2^15) (−1: none) : idx, sum
+//    (PH_PIXEL: span a), hit target + 1 + 4096 · span obj),
+//   (PH_PIXEL ? span seed : hit loop, hit lambda, hit tau, PH_PIXEL ? span probes : sub).
+// (Depth ≤ SEARCH_DEPTH < 32 and index < 2^SEARCH_DEPTH = 2^30; segments < EXACT_SEGMENTS =
+// 16; budget ≤ MAX_BUDGET = 2^20; objects < 4096, and a scene with more takes no bisection checkpoints: main.)
 Progress readProgress() {
     vec4 s0 = slots[STATE], s1 = slots[STATE + 1], s2 = slots[STATE + 2];
     int phase = toInt(s0.x, PH_PIXEL, PH_DONE);
-    int w = toInt(s0.w, 0, MAX_CUTS);   // the status, or the cuts
-    return Progress(phase, toInt(s0.y, MIN_BUDGET, MAX_BUDGET), toInt(s0.z, 0, PIXEL_PROBES),
-                    phase == PH_DONE ? w : NOT_TRACED, phase == PH_DONE ? 0 : w,
-                    toInt(s1.x, 0, MAX_COUNT), toInt(s1.y, -1, MAX_COUNT), toInt(s2.w, -1, MAX_COUNT), s1.z,
-                    Found(HIT, toInt(s1.w, -1, N_OBJECTS), toInt(s2.x, 0, MAX_COUNT), s2.y, s2.z));
+    int pack = toInt(s0.y, 0, MAX_COUNT);
+    int cuts = min(pack >> 21, MAX_CUTS);
+    int targets = toInt(s1.w, 0, MAX_COUNT);
+    int code = toInt(s1.y, -1, MAX_COUNT);
+    Found hit = Found(HIT, (targets & 4095) - 1, toInt(s2.x, 0, MAX_COUNT), s2.y, s2.z);
+    Span span = NO_SPAN;
+    int idx = code;
+    int sub = toInt(s2.w, -1, MAX_COUNT);
+    if (phase == PH_PIXEL) {
+        idx = -1;
+        sub = -1;
+        hit.loop_ = toInt(s1.x, 0, MAX_COUNT);
+        if (code >= 0) {
+            span = Span(code & 15, targets >> 12, (code >> 4) & 31,
+                        ((code >> 9) << 15) + toInt(s0.w, 0, 32767), toInt(s2.w, 0, SEARCH_PROBES), s1.z, s2.x);
+        }
+    }
+    return Progress(phase, clamp(pack & 2097151, MIN_BUDGET, MAX_BUDGET), toInt(s0.z, 0, PIXEL_PROBES),
+                    phase == PH_DONE ? toInt(s0.w, 0, WORK_LIMIT) : NOT_TRACED, phase == PH_DONE ? 0 : cuts,
+                    toInt(s1.x, 0, MAX_COUNT), idx, sub, s1.z, hit, span);
 }
 
 void writeProgress(Progress p) {
-    float w = float(p.phase == PH_DONE ? p.status : p.cuts);
-    slots[STATE] = vec4(float(p.phase), float(p.budget), float(p.probes), w);
-    slots[STATE + 1] = vec4(float(p.counter), float(p.idx), p.sum, float(p.hit.target));
-    slots[STATE + 2] = vec4(float(p.hit.loop_), p.hit.lambda, p.hit.tau, float(p.sub));
+    bool pixel = p.phase == PH_PIXEL;
+    Span sp = p.span;
+    bool inSpan = pixel && sp.seg >= 0;
+    float code = float(p.idx), sum = p.sum, first = float(p.hit.loop_), last = float(p.sub);
+    if (pixel) {
+        code = inSpan ? float(sp.seg + 16 * sp.depth + 512 * (sp.index >> 15)) : -1.0;
+        sum = sp.a;
+        first = sp.seed;
+        last = float(sp.probes);
+    }
+    float w = p.phase == PH_DONE ? float(p.status) : float(sp.index & 32767);
+    slots[STATE] = vec4(float(p.phase), float(p.budget + 2097152 * p.cuts), float(p.probes), w);
+    slots[STATE + 1] = vec4(float(p.counter), code, sum, float(p.hit.target + 1 + 4096 * (inSpan ? sp.obj : 0)));
+    slots[STATE + 2] = vec4(first, p.hit.lambda, p.hit.tau, last);
 }
 
-// Whether the checkpoint p lies after q (the order of the work: phase, loop or light, grid
-// index, stretch).
+// Whether the checkpoint p lies after q (the order of the work: phase, loop or light, then
+// the pixel's segment, object and bisection probes, or the lights' grid index and stretch).
 bool after(Progress p, Progress q) {
     if (p.phase != q.phase) return p.phase > q.phase;
     if (p.counter != q.counter) return p.counter > q.counter;
+    if (p.phase == PH_PIXEL) {
+        if (p.span.seg != q.span.seg) return p.span.seg > q.span.seg;
+        if (p.span.obj != q.span.obj) return p.span.obj > q.span.obj;
+        return p.span.probes > q.span.probes;
+    }
     if (p.idx != q.idx) return p.idx > q.idx;
     return p.sub > q.sub;
 }
@@ -134,6 +183,17 @@ bool after(Progress p, Progress q) {
 Progress atLoop(Progress p, int loop) {
     p.phase = PH_PIXEL;
     p.counter = loop;
+    p.span = NO_SPAN;
+    p.hit = NO_FOUND;
+    p.probes = probes_left;
+    return p;
+}
+// In a bisection (render_intersect's nextSpan): the new span's end probe requested.
+Progress atSpan(Progress p) {
+    p.phase = PH_PIXEL;
+    p.counter = mach.loop_;
+    p.span = Span(mach.seg, mach.obj, bis.depth, bis.index, bis.probes, bis.a, bis.seedA);
+    p.hit = mach.best;
     p.probes = probes_left;
     return p;
 }
@@ -224,7 +284,7 @@ void main() {
     }
     // (No ?: between structures: WebGL forbids it.)
     Progress at = Progress(PH_PIXEL, clamp(u_budget, MIN_BUDGET, MAX_BUDGET), PIXEL_PROBES,
-                           NOT_TRACED, 0, 0, -1, -1, 0.0, NO_FOUND);
+                           NOT_TRACED, 0, 0, -1, -1, 0.0, NO_FOUND, NO_SPAN);
     if (u_round > 0) at = readProgress();
     if (u_finish == 0 && at.phase == PH_DONE) {   // finished in an earlier round: kept as it is
         writeSlots();
@@ -268,6 +328,12 @@ void main() {
             mach.loop_ = at.counter;
             searching = true;
             pixelSearch = true;
+            Span sp = at.span;
+            if (sp.seg >= 0) {   // back to a bisection's checkpoint, through its loop
+                Found best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+                if (at.hit.target >= 0) best = at.hit;
+                res = Resume(true, sp.seg, sp.obj, sp.depth, sp.index, sp.probes, sp.a, sp.seed, best, at.probes);
+            }
         }
     } else if (at.phase == PH_LIGHTS) {
         shadow.light = at.counter;
@@ -317,10 +383,13 @@ void main() {
         if (searching) {
             for (int pass = 0; pass < MAX_BUDGET && mach.mode != M_DONE && spent < at.budget; pass++) {
                 spent++;
-                if (mach.mode == M_LOOP && req.tag == Q_NONE) {
-                    // A loop's or a stretch's start: a checkpoint (none before the round's start).
+                // A loop's or a stretch's start, or a bisection's checkpoint in the pixel's
+                // search: a checkpoint (none before the round's start).
+                bool atSpanCheck = pixelSearch && mach.check && req.tag == Q_SPAN && N_OBJECTS < 4096;
+                if ((mach.mode == M_LOOP && req.tag == Q_NONE) || atSpanCheck) {
                     Progress p = atStretch(step, mach.loop_);   // (no ?: of structures in WebGL)
                     if (pixelSearch) p = atLoop(cp, mach.loop_);
+                    if (atSpanCheck) p = atSpan(cp);
                     if (!after(at, p)) {
                         moved = moved || after(p, at);
                         cp = p;
