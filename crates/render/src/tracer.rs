@@ -3,9 +3,12 @@
 //! (`crate::intersect`). Two ways to follow the ray, with the same search and the same
 //! records to f32 rounding:
 //!
-//! - numeric: DOP853 steps of the geodesic equations (any metric);
+//! - numeric: DOP853 steps of the geodesic equations (any metric; its first loop in
+//!   `tracer/numeric.rs`);
 //! - exact: closed-form Gödel geodesics carried to the observer's event by an isometry
-//!   (docs/physics.md, "Closed forms" and "Isometries").
+//!   (docs/physics.md, "Closed forms" and "Isometries"; its first loop in `tracer/exact.rs`).
+//!
+//! This file holds what both share: the pixel's ray, later loops, transport and record.
 //!
 //! Pixel → ray: a pixel looking along the local unit direction n starts the past-directed
 //! null ray k = −e₀ + nⁱ eᵢ of the observer's (boosted) frame ([`photon_tangent`]).
@@ -28,16 +31,19 @@
 //! polarization is the pixel's screen-up carried back to the hit (`crate::polarization`:
 //! in closed form for the exact tracer, integrated with the ray for the numeric one).
 
+mod exact;
+mod numeric;
+
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
 use crate::polarization::{self, RayPlace};
 use crate::reject::{set_ray, Rejection, NUMERIC_TOLERANCE};
-use crate::segment::{loop_bounds, Segment, Shift, EXACT_SEGMENTS};
+use crate::segment::{loop_bounds, Segment, Shift};
 use datafile::record::{PixelRecord, RayStatus};
 use scene::Observer;
 use spacetime::measure::frequency_ratio;
 use spacetime::{
-    photon_tangent, AxisWatch, Dop853, Event, ExactGeodesic, FourVector, GeodesicState,
-    GeodesicSystem, OdeSystem, Spacetime, StepOutcome, Tetrad, TimeDirection, Tolerances,
+    photon_tangent, Event, ExactGeodesic, FourVector, GeodesicState, GeodesicSystem, Spacetime,
+    Tetrad, TimeDirection, Tolerances,
 };
 
 /// Everything a pixel's ray needs, built once per render and shared by all threads.
@@ -264,85 +270,6 @@ impl Tracer {
         }
     }
 
-    /// The numeric first loop: DOP853 steps, each scanned as it is taken, until the ray
-    /// ends or closes on its axis (Gödel; in other metrics it never closes).
-    fn first_loop_numeric(
-        &self,
-        start: &GeodesicState,
-        segments: &mut Vec<Segment>,
-        probes: &mut Probes,
-        first_step: &mut Option<f64>,
-    ) -> FirstLoop {
-        let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
-        let mut ode = Dop853::new(sys, 0.0, s0, self.tol, *first_step);
-        let mut axis = AxisWatch::new(start);
-        let mut periodic = self.periodic;
-        loop {
-            if ode.accepted >= self.max_steps {
-                return FirstLoop::Ended(End::Miss(RayStatus::StepBudget));
-            }
-            let g_prev = axis.g(ode.state(), ode.derivative());
-            match ode.step() {
-                StepOutcome::Accepted => {}
-                StepOutcome::Stalled | StepOutcome::NonFinite => {
-                    return FirstLoop::Ended(End::Miss(RayStatus::Failed))
-                }
-            }
-            if ode.accepted == 1 {
-                // Bounded by the ray's extent: where the error estimate vanishes (flat
-                // spacetime) the proposal grows tenfold per ray and would overflow.
-                *first_step = Some(ode.next_step_size().min(self.observer.t - self.t_bound));
-            }
-            // Kept in place (a step record is large): only the first loop is stored for reuse.
-            if !periodic {
-                segments.clear();
-            }
-            segments.push(Segment::step(ode.last_step(), sys));
-            let d = segments.last().expect("just pushed");
-            probes.activate(0, d.lambda0);
-            let mut hi = d.lambda1();
-            let mut closed = None;
-            if periodic {
-                let back = axis.after_step(
-                    g_prev,
-                    &d.y1,
-                    ode.derivative(),
-                    d.lambda0,
-                    d.lambda1(),
-                    |l| d.eval(l),
-                    |st| sys.rhs(st),
-                );
-                match back {
-                    Some(r) if r.closed => {
-                        hi = r.lambda;
-                        closed = Some(Shift {
-                            dt: r.state[0] - s0[0],
-                            dz: r.state[3] - s0[3],
-                            dl: r.lambda,
-                        });
-                    }
-                    // Did not close well enough: integrate on.
-                    Some(r) if r.near => periodic = false,
-                    _ => {}
-                }
-            }
-            if let Some(end) = self.scan_first_loop(segments, d.lambda0, hi, probes) {
-                return FirstLoop::Ended(end);
-            }
-            if d.eval(hi)[0] < self.t_bound || !d.y1.iter().all(|v| v.is_finite()) {
-                return FirstLoop::Ended(End::Miss(if d.y1[0] < self.t_bound {
-                    RayStatus::Escaped
-                } else {
-                    RayStatus::Failed
-                }));
-            }
-            probes.advance();
-            if let Some(p) = closed {
-                return FirstLoop::Closed(p);
-            }
-        }
-    }
-
     /// Scans the latest segment of the first loop (not shifted) over [lo, hi]: the ray's
     /// end when an object is hit there or the search runs out of work, else `None`.
     fn scan_first_loop(
@@ -381,45 +308,6 @@ impl Tracer {
         let dt = end[0] - s0[0];
         let last = start.x.t + scene::MAX_RAY_LOOPS as f64 * dt;
         (dt < 0.0 && last < self.t_bound).then_some(RayStatus::Escaped)
-    }
-
-    /// The exact first loop: [`EXACT_SEGMENTS`] closed-form segments up to the return to
-    /// the axis, whose parameter and shift are known exactly.
-    fn first_loop_exact(
-        &self,
-        start: &GeodesicState,
-        geo: Option<ExactGeodesic>,
-        segments: &mut Vec<Segment>,
-        probes: &mut Probes,
-    ) -> FirstLoop {
-        let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
-        let Some(geo) = geo else {
-            return FirstLoop::Ended(End::Miss(RayStatus::Failed));
-        };
-        let l_ret = geo.origin.return_parameter();
-        for i in 0..EXACT_SEGMENTS {
-            let (l0, l1) = (
-                l_ret * i as f64 / EXACT_SEGMENTS as f64,
-                l_ret * (i + 1) as f64 / EXACT_SEGMENTS as f64,
-            );
-            let y0 = segments.last().map_or(s0, |d| d.y1);
-            segments.push(Segment::exact(geo, sys, l0, y0, l1));
-            let d = segments.last().expect("just pushed");
-            probes.activate(0, l0);
-            if let Some(end) = self.scan_first_loop(segments, l0, l1, probes) {
-                return FirstLoop::Ended(end);
-            }
-            if d.y1[0] < self.t_bound {
-                return FirstLoop::Ended(End::Miss(RayStatus::Escaped));
-            }
-            probes.advance();
-        }
-        let end = segments.last().expect("segments").y1;
-        FirstLoop::Closed(Shift {
-            dt: end[0] - s0[0],
-            dz: end[3] - s0[3],
-            dl: l_ret,
-        })
     }
 
     /// Later loops: the stored first loop, shifted by whole periods.
