@@ -9,10 +9,11 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
-use common::{files_in, stderr, write_scene};
-
-const GODEL: &str = env!("CARGO_BIN_EXE_godel");
+// The integration binary's helpers; `pub` so that those this test leaves unused are not
+// reported as dead (the integration binary uses them all).
+#[path = "integration/common.rs"]
+pub mod common;
+use common::{files_in, stderr, write_scene, GODEL};
 
 /// An `mpirun` with the flags a test machine needs (root in CI, fewer cores than ranks).
 /// Its session folder lies in the test's own `dir`: OpenMPI makes it under TMPDIR, and two

@@ -11,8 +11,10 @@
 //! data file in their own output folder, and outputs that are inputs, run it always
 //! (`reshade_case.rs`).
 
-#[path = "../common/mod.rs"]
-mod common;
+// The integration binary's helpers; `pub` so that those the fuzz test leaves unused are not
+// reported as dead (the integration binary uses them all).
+#[path = "../integration/common.rs"]
+pub mod common;
 
 mod cli;
 mod fixtures;

@@ -1,10 +1,9 @@
 //! Helpers of the browser tests (viewer_browser.rs): rendering a scene with `godel render`,
 //! serving it with `godel view --port 0` (or a scene with `godel explore --port 0`), running a playwright-core script of tests/browser
 //! against Debian's chromium, and reading the raw pictures the scripts save.
-#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 pub fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -32,13 +31,6 @@ pub fn require_browser_tools() {
     );
 }
 
-pub fn godel(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_godel"))
-        .args(args)
-        .output()
-        .expect("run godel")
-}
-
 /// Writes `text` as `dir/NAME.toml`, renders it quietly into `dir`; returns `dir/NAME.exr`.
 pub fn render(dir: &Path, name: &str, text: &str) -> PathBuf {
     let scene = dir.join(format!("{name}.toml"));
@@ -54,6 +46,7 @@ pub fn render(dir: &Path, name: &str, text: &str) -> PathBuf {
     dir.join(format!("{name}.exr"))
 }
 
+pub use crate::common::godel;
 /// The `godel view` server, killed when dropped.
 pub use crate::common::Server;
 use crate::common::{start_server, start_server_with};

@@ -6,8 +6,7 @@
 use std::f64::consts::{PI, SQRT_2};
 use std::process::Output;
 
-mod common;
-use common::{geodesic_along_x, godel};
+use crate::common::{geodesic_along_x, godel};
 
 fn stdout(o: &Output) -> String {
     assert!(

@@ -1,18 +1,19 @@
 //! Helpers shared by the CLI tests: running `godel` (`render` in particular), a path as an
 //! argument, reading a PNG's pixels, reading a command's standard error, a
 //! small lit scene (parts and MPI ranks), writing it, running under a time limit, reading the
-//! R, G, B planes of a picture EXR.
-#![allow(dead_code)]
+//! R, G, B planes of a picture EXR, a data file's records as text.
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-#[allow(unused_imports)] // not every test file reads standard error
 pub use testkit::stderr;
+
+/// The `godel` binary of this package.
+pub const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 
 /// Runs the `godel` binary of this package with `args` to its end.
 pub fn godel(args: &[&str]) -> Output {
-    testkit::run(env!("CARGO_BIN_EXE_godel"), args)
+    testkit::run(GODEL, args)
 }
 
 /// Runs `godel` with `args` and asserts that it succeeds; returns its output.
@@ -212,7 +213,6 @@ pub fn shade_lit_pair(data: &Path, dir: &Path, stem: &str) -> (PathBuf, PathBuf)
 
 /// Asserts that `o` is a refusal of bad input: exit status 2, one line of stderr holding
 /// every needle, and nothing written at `no_output`.
-#[allow(dead_code)] // used by some test binaries only
 pub fn assert_refused(o: &Output, needles: &[&str], no_output: &Path) {
     let e = stderr(o);
     assert_eq!(o.status.code(), Some(2), "{e}");
@@ -290,4 +290,10 @@ pub fn port_of(url: &str) -> u16 {
         .next()
         .and_then(|p| p.parse().ok())
         .unwrap_or_else(|| panic!("no port in {url:?}"))
+}
+
+/// The records of a data file, every bit of every field (NaN included) as text.
+pub fn records(path: &Path) -> String {
+    let data = datafile::DataFile::read(path).unwrap();
+    format!("{:?} {:?}", data.records, data.lights)
 }

@@ -5,13 +5,11 @@
 //! shade writes linear EXR or tone-mapped PNG by extension and refuses other extensions;
 //! progress rates are whole numbers.
 
-mod common;
-
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-use common::{
+use crate::common::{
     files_in, geodesic_along_x, godel, lit_scene_text, path_arg as s, read_rgb, shade_lit_pair,
     stderr, write_scene,
 };

@@ -7,9 +7,7 @@ use std::path::Path;
 
 use std::time::Duration;
 
-mod common;
-
-use common::{port_of, start_server, start_server_with, Server};
+use crate::common::{self, port_of, start_server, start_server_with, Server};
 
 /// scenes/static-sphere.toml at 48×8 pixels of 2×2 rays, its observer at `observer` (the
 /// lines of the `[observer]` table for time and position).

@@ -10,8 +10,7 @@ use std::process::Command;
 
 use datafile::DataFile;
 
-mod common;
-use common::{assert_refused, files_in, godel, run_within, stderr};
+use crate::common::{self, assert_refused, files_in, godel, records, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(300);
@@ -38,12 +37,6 @@ fn scene_text(name: &str, observer: &str, fov: &str) -> String {
          width = 40\nheight = 8\n[trace]\nmax_past = 4.0\n{OBJECTS}",
         testkit::GODEL
     )
-}
-
-/// The records of a data file, every bit of every field (NaN included) as text.
-fn records(path: &Path) -> String {
-    let data = DataFile::read(path).unwrap();
-    format!("{:?} {:?}", data.records, data.lights)
 }
 
 #[test]

@@ -3,9 +3,7 @@
 //! the refusal of --part, and one clear sentence where no EGL library can be loaded (with no
 //! file written).
 
-mod common;
-
-use common::{godel, path_arg, render, stderr};
+use crate::common::{godel, path_arg, render, stderr};
 use datafile::{DataFile, RayStatus};
 use std::path::Path;
 

@@ -7,11 +7,9 @@
 //! and lost its gradation; the test checks that such pixels exist in the linear image and
 //! that none is at 255 in either PNG. Orientation marks are drawn only when asked for.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{read_rgb, render, shade, shade_lit_pair, stderr};
+use crate::common::{read_rgb, render, shade, shade_lit_pair, stderr};
 
 /// Renders the example scene `scenes/STEM.toml` at `width` × `height` into `dir`; returns
 /// the data file.

@@ -8,10 +8,8 @@ use std::path::Path;
 use std::process::Command;
 use std::time::Duration;
 
-mod common;
-use common::{files_in, run_within, stderr, write_scene};
+use crate::common::{self, files_in, run_within, stderr, write_scene, GODEL};
 
-const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 /// Far longer than any of these commands needs when it works (well under a second).
 const NEVER_HANGS: Duration = Duration::from_secs(120);
 

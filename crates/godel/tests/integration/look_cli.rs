@@ -6,9 +6,7 @@
 //! observer's full sphere, a part file and bad flags are refused with the file or flag
 //! named, exit 2 (1 for unreadable files), and no output.
 
-mod common;
-
-use common::{files_in, godel, path_arg as s, stderr};
+use crate::common::{self, files_in, godel, path_arg as s, stderr};
 use datafile::DataFile;
 use look::{look, look_with, Filter, LookView, Sampling};
 use scene::{Camera, Scene};

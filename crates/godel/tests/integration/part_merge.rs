@@ -11,8 +11,7 @@ use render::tiles::{extract, insert};
 use scene::Scene;
 use std::path::Path;
 
-mod common;
-use common::{assert_same_files, godel, godel_ok as render_ok, stderr, write_scene};
+use crate::common::{self, assert_same_files, godel, godel_ok as render_ok, stderr, write_scene};
 
 /// The shared lit test scene, named "split".
 fn scene_text(max_past: f64) -> String {

@@ -2,15 +2,14 @@
 //! DIR/NAME.exr with a summary line; every bad scene in `scenes/bad/` is refused with the
 //! file, line and field named and no output left behind; bad flags exit 2.
 //!
-//! Bad scenes declare what they expect (see crates/scene/tests/scene_files.rs): a line
+//! Bad scenes declare what they expect (see crates/scene/tests/integration/scene_files.rs): a line
 //! `# expect field: PATH` (empty for TOML syntax errors) and `# <- error here` on the line
 //! the error must point at.
 
 use datafile::DataFile;
 use std::path::{Path, PathBuf};
 
-mod common;
-use common::{render, stderr};
+use crate::common::{render, stderr};
 
 const W: u32 = 120;
 const H: u32 = 15;

@@ -9,8 +9,7 @@ use shade::colour::{rgb_to_srgb8, rgb_to_srgb8_fast, srgb8_to_linear};
 use shade::{ShadeSettings, Shading};
 use std::path::Path;
 
-mod common;
-use common::{assert_same_files, godel, godel_ok as ok, render, stderr, write_scene};
+use crate::common::{self, assert_same_files, godel, godel_ok as ok, render, stderr, write_scene};
 
 /// Runs `godel render SCENE -o OUT EXTRA…` and asserts that it succeeds.
 fn ok_render(scene: &str, out: &Path, extra: &[&str]) {

@@ -10,8 +10,7 @@ use std::process::{Command, Output};
 
 use datafile::DataFile;
 
-mod common;
-use common::{assert_refused, files_in, godel, png, run_within, stderr};
+use crate::common::{self, assert_refused, files_in, godel, png, run_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine; they take well under a second.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);

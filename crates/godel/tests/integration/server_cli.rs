@@ -14,9 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
+use crate::common::{self, GODEL};
 
-const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 /// A deadline against hanging forever.
 const DEADLINE: Duration = Duration::from_secs(60);
 

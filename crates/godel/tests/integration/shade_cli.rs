@@ -8,8 +8,7 @@ use std::path::{Path, PathBuf};
 
 use datafile::DataFile;
 
-mod common;
-use common::{path_arg as s, png, render, shade, stderr};
+use crate::common::{path_arg as s, png, render, shade, stderr};
 
 /// The small scene rendered by the first test, also the scene text of the synthetic data
 /// files.

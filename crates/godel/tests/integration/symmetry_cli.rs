@@ -4,8 +4,7 @@
 //! `plot isometry` (each image of the ray closes on its own start, which lies on the field's
 //! orbit of the origin).
 
-mod common;
-use common::godel;
+use crate::common::godel;
 
 /// The two samples (start and end) of `godel geodesic` as JSON from `at` along `dir`
 /// (`extra` flags) until coordinate time `until`.

@@ -3,8 +3,7 @@
 
 use std::process::Output;
 
-mod common;
-use common::godel;
+use crate::common::{self, godel};
 
 fn fails_with(o: &Output, code: i32, needles: &[&str]) {
     let stderr = String::from_utf8_lossy(&o.stderr);

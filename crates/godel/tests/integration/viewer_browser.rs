@@ -16,10 +16,7 @@
 //! Chromium and the npm packages are installed by `bash scripts/test.sh`; without them these
 //! tests fail and say so.
 
-mod browser_support;
-mod common;
-
-use browser_support::*;
+use crate::browser_support::*;
 use datafile::record::RayStatus;
 use datafile::DataFile;
 use scene::Scene;
@@ -225,19 +222,11 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
     assert!(screenshot.width() >= 800 && screenshot.height() >= 400);
 }
 
-#[path = "viewer_browser/explore.rs"]
 mod explore;
-#[path = "viewer_browser/fly.rs"]
 mod fly;
-#[path = "viewer_browser/gpu_trace.rs"]
 mod gpu_trace;
-#[path = "viewer_browser/keep.rs"]
 mod keep;
-#[path = "viewer_browser/layers.rs"]
 mod layers;
-#[path = "viewer_browser/look.rs"]
 mod look;
-#[path = "viewer_browser/page_check.rs"]
 mod page_check;
-#[path = "viewer_browser/polarization.rs"]
 mod polarization;

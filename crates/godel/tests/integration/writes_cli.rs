@@ -15,10 +15,8 @@ use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
-mod common;
-use common::{files_in, lit_scene_text, run_within, stderr, write_scene};
+use crate::common::{files_in, lit_scene_text, run_within, stderr, write_scene, GODEL};
 
-const GODEL: &str = env!("CARGO_BIN_EXE_godel");
 const NEVER_HANGS: Duration = Duration::from_secs(120);
 
 /// Writes the lit test scene named "ranks" into `dir` and makes the output folder `dir/out`;

@@ -7,7 +7,7 @@
 //! takes coarse frames, each drawn before the next; with `--sphere` the page looks around
 //! in the traced sphere and keeps the view across events.
 
-use super::browser_support::*;
+use crate::browser_support::*;
 
 /// The reference scene (a ball in free fall past the observer) at 88×10 pixels, one ray each.
 pub(super) fn scene_text() -> String {

@@ -17,9 +17,9 @@
 //! - a touch drag turns the view about its up axis by the drag's share of the field of
 //!   view, and a wheel step zooms.
 
-use super::browser_support::*;
 use super::explore::scene_text;
 use super::gpu_trace::{kernel_agreement, traced_file};
+use crate::browser_support::*;
 use datafile::DataFile;
 
 /// The scene with the observer and camera fields of a view (`viewer.explore.view()`).

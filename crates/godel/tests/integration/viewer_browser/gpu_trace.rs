@@ -17,8 +17,8 @@
 
 use std::path::Path;
 
-use super::browser_support::*;
-#[path = "../../../gpu/tests/common/mod.rs"]
+use crate::browser_support::*;
+#[path = "../../../../gpu/tests/common/mod.rs"]
 pub(super) mod kernel_agreement;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;

@@ -6,8 +6,8 @@
 
 use std::path::Path;
 
-use super::browser_support::*;
-use datafile::DataFile;
+use crate::browser_support::*;
+use crate::common::records;
 
 /// The reference scene (a ball in free fall past the observer) at 64×8 pixels, 4 rays each.
 fn scene_text() -> String {
@@ -72,12 +72,6 @@ fn render_view(
     ]);
     assert!(o.status.success(), "{o:?}");
     (out.join("direct.png"), out.join("direct.exr"))
-}
-
-/// The records of a data file, every bit of every field (NaN included) as text.
-fn records(path: &Path) -> String {
-    let data = DataFile::read(path).unwrap();
-    format!("{:?} {:?}", data.records, data.lights)
 }
 
 #[test]

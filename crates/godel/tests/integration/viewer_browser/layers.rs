@@ -9,7 +9,7 @@
 //! layer (issue 25): its ticks, drawn by the page from the file's pol and dir channels and
 //! each object's axis, equal the crate's on every pixel within one step.
 
-use super::browser_support::*;
+use crate::browser_support::*;
 use datafile::DataFile;
 use shade::{BrightnessMode, ShadeSettings, ShaderKind, Shading, TextureChoice, TimeMode};
 

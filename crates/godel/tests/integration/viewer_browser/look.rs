@@ -10,8 +10,8 @@
 
 use std::path::Path;
 
-use super::browser_support::*;
 use super::{angles, azimuth_elevation, number};
+use crate::browser_support::*;
 use datafile::DataFile;
 use look::{pixel_look, LookView, SphereSource};
 use scene::Camera;

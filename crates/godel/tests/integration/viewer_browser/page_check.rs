@@ -5,8 +5,8 @@
 //! (its channels fetched, coarse then full). The real kernel passing the same check is
 //! asserted in fly.rs (at rest).
 
-use super::browser_support::*;
 use super::explore::scene_text;
+use crate::browser_support::*;
 
 /// The kernel with a fault: escaped rays say `failed` (a constant read wrongly).
 fn faulty_kernel() -> String {

@@ -11,8 +11,8 @@
 //!   settings turns to that azimuth, the ticks change (and equal the `shade` crate's for the
 //!   new axis), and the page neither traces again nor asks the server for anything.
 
-use super::browser_support::*;
 use super::gpu_trace::{kernel_agreement, read_slots, render_and_serve, traced_file};
+use crate::browser_support::*;
 use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
 

@@ -1,0 +1,24 @@
+//! The godel crate's integration tests, one binary (ripgrep's layout: the crate is linked
+//! once, not once per file). One module: `cargo test -p godel --test integration render_cli`.
+
+mod browser_support;
+mod common;
+
+mod cli;
+mod consistency_cli;
+mod explore_cli;
+mod flythrough_cli;
+mod gpu_cli;
+mod hdr_cli;
+mod limits_cli;
+mod look_cli;
+mod part_merge;
+mod render_cli;
+mod samples_cli;
+mod sequence_cli;
+mod server_cli;
+mod shade_cli;
+mod symmetry_cli;
+mod view_cli;
+mod viewer_browser;
+mod writes_cli;
