@@ -4,15 +4,17 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# The viewer's browser tests (crates/godel/tests/viewer_browser.rs) drive Debian's chromium
-# through playwright-core; playwright's own browser download cannot work here, and is not used.
+# The viewer's browser tests (crates/godel/tests/integration/viewer_browser.rs) drive Debian's
+# chromium through playwright-core; playwright's own browser download cannot work here, and is
+# not used.
 # The page shades with WebGL2: headless chromium renders it in software on SwiftShader, which
 # Debian's chromium package ships (/usr/lib/chromium/libvk_swiftshader.so); no GPU is needed.
 command -v chromium >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null; }
 [ -d tests/browser/node_modules/playwright-core ] || (cd tests/browser && npm ci --silent --no-audit --no-fund)
 # `godel render --gpu` (crates/gpu) loads libEGL at run time; without a GPU, Mesa's llvmpipe
-# renders its OpenGL ES 3 context in software (crates/gpu/tests, crates/godel/tests/gpu_cli.rs).
+# renders its OpenGL ES 3 context in software (crates/gpu/tests,
+# crates/godel/tests/integration/gpu_cli.rs).
 dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || { apt-get update -qq \
     && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null; }
 # Khronos' reference GLSL compiler checks every kernel a host builds (crates/gpu/tests/glslang.rs).

@@ -8,7 +8,7 @@
 //! temporary and waits that long before renaming, so that tests can interrupt a run exactly
 //! there; with `GODEL_PAUSE_BETWEEN_RENAMES=SECONDS` it prints `renamed: PATH` after each
 //! rename but the last and waits that long, so that tests can race another run or break
-//! the next rename there (crates/godel/tests/writes_cli.rs).
+//! the next rename there (crates/godel/tests/integration/writes_cli.rs).
 
 use anyhow::Context;
 use datafile::atomic::{check_writable, commit_all_with, stage};

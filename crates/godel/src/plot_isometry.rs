@@ -4,7 +4,7 @@
 //!
 //! The ray is traced numerically (one loop from the origin); each image is the exact flow
 //! of the Killing field applied to every sample (`spacetime::Isometry::flow`, checked against
-//! integrating dX/ds = ξ(X) in `spacetime/tests/symmetry.rs`). Because the flow is an
+//! integrating dX/ds = ξ(X) in `spacetime/tests/integration/symmetry.rs`). Because the flow is an
 //! isometry, every image is again a light ray: it leaves its own start event, touches that
 //! event's horizon and comes back to it after the same Δt = 2πa(√2 − 1). The translations
 //! K_x, K_y move the start along their orbit (for K_x the x axis, to x = 2a sinh(s/2a));

@@ -165,7 +165,7 @@ impl Isometry {
     /// along its real and imaginary axes: on the x axis K_x = D ∂x with D = √(1 + x²/4a²)
     /// and no ∂t part, so the origin flows to x = 2a sinh(s/2a) with t = 0, and the flow is
     /// T_P⁻¹ with P that event (w ↦ (w + tanh(s/2a))/(1 + tanh(s/2a) w)). Checked against
-    /// integrating dX/ds = ξ(X) in `tests/symmetry.rs`.
+    /// integrating dX/ds = ξ(X) in `tests/integration/symmetry.rs`.
     pub fn flow(a: f64, field: KillingField, s: f64) -> Self {
         let id = Isometry::identity(a);
         let shift = 2.0 * a * (s / (2.0 * a)).sinh();

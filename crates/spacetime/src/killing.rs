@@ -16,7 +16,7 @@
 //!   K_y = (  x/(√2 a D), −x y/(4a² D), (1 + (2x² + y²)/4a²)/D, 0 ).
 //!
 //! Their algebra: [K_x, K_y] = (√2/a) ∂t + (1/a²) ∂φ, [∂φ, K_x] = −K_y, [∂φ, K_y] = K_x,
-//! ∂t and ∂z central (checked in `tests/symmetry.rs`).
+//! ∂t and ∂z central (checked in `tests/integration/symmetry.rs`).
 
 use crate::vectors::{Event, FourVector};
 use std::f64::consts::SQRT_2;

@@ -194,7 +194,7 @@ proptest! {
     /// The rejection changes nothing: every pixel's record (bit for bit) is the same with it
     /// as without it, for both tracers, moving observers, several balls at rest near and far
     /// (also around the observer), with and without a floor plane and a ball in free fall
-    /// (rejected loop by loop; see also `tests/falling.rs`). (That rejection happens at all
+    /// (rejected loop by loop; see also `tests/integration/falling.rs`). (That rejection happens at all
     /// is `most_rays_far_from_a_ball_are_rejected`; that hits survive it, every image test of
     /// the renderer, which run with it.)
     #[test]
