@@ -13,7 +13,7 @@
 //! | hit object k, [`Brightness::Normalized`] | colour of g·T_k with its largest component 1 |
 //! | hit object k, [`Brightness::Physical`] | `exposure · Y(g·T_k)/Y(T_k)` times the colour of g·T_k at luminance 1, tone-clamped |
 //! | nothing hit | [`BACKGROUND`] |
-//! | failed, step budget, not traced | as the texture shader ([`FAILED`], [`STEP_BUDGET`], [`NOT_TRACED`]) |
+//! | failed, step budget, not traced | as the texture shader ([`crate::texture_shader::FAILED`], [`crate::texture_shader::STEP_BUDGET`], [`crate::texture_shader::NOT_TRACED`]) |
 //! | object without a temperature, T ≤ 0, or g not finite and positive | [`FAILED`] |
 //!
 //! Physical brightness is relative to each object's own unshifted luminance: an object seen

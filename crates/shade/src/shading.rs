@@ -1,5 +1,6 @@
-//! [`Shading`]: a prepared shader — [`ShadeSettings`] checked against one data file, textures
-//! loaded once — and the per-pixel rule that every front end (CLI, sequences, viewer) uses.
+//! [`Shading`]: a prepared shader — [`crate::settings::ShadeSettings`] checked against one
+//! data file, textures loaded once (`shading/prepare.rs`) — and the per-pixel rule that every
+//! front end (CLI, sequences, viewer) uses, which this file holds.
 //!
 //! A hit pixel of object k is the product of its layers' colours (linear RGB):
 //!
@@ -15,7 +16,7 @@
 //! layer, pixels painted by a texture (texture or time-window layer) get the preview's Lambert
 //! factor 0.25 + 0.75·max(cos_i, 0), so the texture layer alone with the scene's textures is
 //! exactly the render's preview; black bodies and false colours are not Lambert-shaded.
-//! Pixels that hit nothing, failed, or were not traced take [`status_colour`]'s colours.
+//! Pixels that hit nothing, failed, or were not traced take [`crate::texture_shader::status_colour`]'s colours.
 //!
 //! Pictures for display ([`Shading::image`]) scale each hit pixel by 2^`ev` and pass it
 //! through the display tone curve ([`crate::colour::tone_map`]), then draw the reference
@@ -27,7 +28,8 @@
 //! (colours, tone curve over the row, 8-bit encoding).
 //!
 //! Caps, checked with the other settings so that every front end gets them: at most
-//! [`MAX_LAMPS`] lamps per object and [`MAX_LIGHT_SOURCES`] light sources (or the data file's
+//! [`crate::settings::MAX_LAMPS`] lamps per object and [`crate::settings::MAX_LIGHT_SOURCES`]
+//! light sources (or the data file's
 //! light count, if larger); image files as [`crate::texture`] caps them.
 //!
 //! Texture coordinates: u_tex = scale_u·u + offset_u − rotation_deg/360 (the body turned about
@@ -36,30 +38,22 @@
 //! latitude π(v_tex − ½)) and is on when ((t − phase)/period) mod 1 < duty, t being the
 //! coordinate time of emission (observer time + t_emit); off it shows a tenth of its colour.
 
-use std::collections::HashMap;
+mod prepare;
 
 use datafile::DataFile;
 use image::{RgbImage, RgbaImage};
 use rayon::prelude::*;
 
-use crate::blackbody::table;
-use crate::body::{prepare_lamp, PreparedObject};
+use crate::body::PreparedObject;
 use crate::channels::{Channels, Needs, Sample};
-use crate::checks::{colour, direction, finite, first_unknown, invalid, non_negative, positive};
 use crate::colour::{display_srgb8, linear_to_srgb8_row, rgb_to_srgb8_fast, tone_map, TONE_KNEE};
-use crate::error::ShadeError;
 use crate::frequency_shader::{blackbody_colour, reference_square, Brightness, REFERENCE_SQUARES};
 use crate::gt_table::gt_table;
 use crate::layer::{composite, Overlays};
 use crate::legend::false_colour;
 use crate::polarization::{draw_ticks, PolSample};
-use crate::settings::{
-    BrightnessMode, ObjectSettings, ShadeSettings, ShaderKind, TextureChoice, TimeMode, MAX_LAMPS,
-    MAX_LIGHT_SOURCES,
-};
-use crate::texture::{ImageTexture, Texture};
+use crate::settings::TimeMode;
 use crate::texture_shader::{displayed, shading_factor, status_colour_of, BACKGROUND, FAILED};
-use crate::texture_source::TextureSource;
 
 /// Settings checked against a data file, textures loaded: ready to shade it (or other data
 /// files with the same objects and lights) any number of times.
@@ -94,255 +88,6 @@ pub struct Shading {
 pub const MAX_EV: f64 = 20.0;
 
 impl Shading {
-    /// Checks `settings` against `data` and loads the textures, image files from anywhere
-    /// ([`TextureSource::any`]: the command line). Errors name the settings field (e.g.
-    /// `objects.ball.temperature`), the unknown object, the image file, or the missing light
-    /// channels.
-    pub fn new(data: &DataFile, settings: &ShadeSettings) -> Result<Shading, ShadeError> {
-        Shading::with_textures(data, settings, &TextureSource::any())
-    }
-
-    /// [`Shading::new`] with image textures, and the embedded scene's textures, from `textures`
-    /// (the viewer restricts them to a few folders).
-    pub fn with_textures(
-        data: &DataFile,
-        settings: &ShadeSettings,
-        textures: &TextureSource,
-    ) -> Result<Shading, ShadeError> {
-        if settings.shaders.is_empty() {
-            return Err(invalid("shaders", "name at least one shader"));
-        }
-        for (i, s) in settings.shaders.iter().enumerate() {
-            if settings.shaders[..i].contains(s) {
-                return Err(invalid("shaders", format!("'{}' is named twice", s.name())));
-            }
-        }
-        let has = |k: ShaderKind| settings.shaders.contains(&k);
-        // The polarization layer alone draws its ticks over the texture layer.
-        let texture_layer =
-            has(ShaderKind::Texture) || settings.shaders.as_slice() == [ShaderKind::Polarization];
-        if has(ShaderKind::Polarization) && !data.polarization {
-            return Err(invalid(
-                "shaders",
-                "the polarization shader needs the data file's pol_x, pol_y, pol_z channels \
-                 (this file was traced without them: render it again)",
-            ));
-        }
-        let names = &data.header.object_names;
-        if let Some(name) = first_unknown(names, settings.objects.keys()) {
-            return Err(invalid(
-                format!("objects.{name}"),
-                format!(
-                    "unknown object '{name}' (the data file's objects: {})",
-                    name_list(names)
-                ),
-            ));
-        }
-        let exposure = non_negative("exposure", settings.exposure)?;
-        let brightness = match settings.brightness {
-            BrightnessMode::Normalized => Brightness::Normalized,
-            BrightnessMode::Physical => Brightness::Physical { exposure },
-        };
-        let time = &settings.time;
-        let t0 = finite("time.t0", time.t0)?;
-        let dt = positive("time.dt", time.dt)?;
-        let tmin = finite("time.travel_min", time.travel_min)?;
-        let tmax = finite("time.travel_max", time.travel_max)?;
-        if tmax <= tmin {
-            return Err(invalid(
-                "time.travel_max",
-                format!("must exceed travel_min ({tmin}), got {tmax}"),
-            ));
-        }
-        let ambient = non_negative("light.ambient", settings.light.ambient)? as f32;
-        let ev = finite("ev", settings.ev)?;
-        if ev.abs() > MAX_EV {
-            return Err(invalid(
-                "ev",
-                format!("must be within ±{MAX_EV} stops, got {ev}"),
-            ));
-        }
-        let marks = if settings.grid {
-            Some(crate::marks::data_camera(data).ok_or_else(|| {
-                invalid(
-                    "grid",
-                    "the data file's embedded scene has no usable camera",
-                )
-            })?)
-        } else {
-            None
-        };
-        let sources = &settings.light.sources;
-        if has(ShaderKind::Light) && data.lights.is_empty() {
-            return Err(ShadeError::NoLightChannels);
-        }
-        // Extra sources only matter when the light layer would use them.
-        if has(ShaderKind::Light) && sources.len() > data.lights.len() {
-            return Err(invalid(
-                format!("light.sources[{}]", data.lights.len()),
-                format!(
-                    "the data file has {} light channel(s), the settings {} source(s)",
-                    data.lights.len(),
-                    sources.len()
-                ),
-            ));
-        }
-        let most = MAX_LIGHT_SOURCES.max(data.lights.len());
-        if sources.len() > most {
-            return Err(invalid(
-                "light.sources",
-                format!(
-                    "at most {most} sources (the data file has {} light channel(s)), got {}",
-                    data.lights.len(),
-                    sources.len()
-                ),
-            ));
-        }
-        let mut lights = Vec::new();
-        for k in 0..data.lights.len() {
-            let w = match sources.get(k) {
-                Some(s) => {
-                    let field = format!("light.sources[{k}]");
-                    let i = non_negative(&format!("{field}.intensity"), s.intensity)? as f32;
-                    let c = colour(&format!("{field}.color"), s.color)?;
-                    if s.on {
-                        c.map(|c| c * i)
-                    } else {
-                        [0.0; 3]
-                    }
-                }
-                None => [1.0; 3],
-            };
-            lights.push(w);
-        }
-
-        // The scene's own textures, only when a layer paints textures.
-        let paints = texture_layer || has(ShaderKind::Time) || has(ShaderKind::Light);
-        // The data file's defaults only for objects the settings leave out (reading them
-        // parses the embedded scene: the page sends every object, and skips that).
-        let defaults =
-            (settings.objects.len() < names.len()).then(|| ShadeSettings::defaults_for(data));
-        let mut scene_textures: Option<Vec<Texture>> = None;
-        let mut earth: Option<Texture> = None;
-        // Each image file decoded once, however many objects show it.
-        let mut images = HashMap::new();
-        let mut objects = Vec::with_capacity(names.len());
-        let mut axes = Vec::with_capacity(names.len());
-        for (k, name) in names.iter().enumerate() {
-            let o = settings
-                .objects
-                .get(name)
-                .or_else(|| defaults.as_ref().and_then(|d| d.objects.get(name)))
-                .cloned()
-                .unwrap_or_else(|| ObjectSettings::new(crate::settings::DEFAULT_TEMPERATURE));
-            let field = format!("objects.{name}");
-            let temperature = positive(&format!("{field}.temperature"), o.temperature)?;
-            let scale = [
-                finite(&format!("{field}.scale_u"), o.scale_u)?,
-                finite(&format!("{field}.scale_v"), o.scale_v)?,
-            ];
-            let rotation = finite(&format!("{field}.rotation_deg"), o.rotation_deg)?;
-            let offset = [
-                finite(&format!("{field}.offset_u"), o.offset_u)? - rotation / 360.0,
-                finite(&format!("{field}.offset_v"), o.offset_v)?,
-            ];
-            if o.lamps.len() > MAX_LAMPS {
-                return Err(invalid(
-                    format!("{field}.lamps"),
-                    format!(
-                        "at most {MAX_LAMPS} lamps per object, got {}",
-                        o.lamps.len()
-                    ),
-                ));
-            }
-            let lamps = o
-                .lamps
-                .iter()
-                .enumerate()
-                .map(|(i, l)| prepare_lamp(&format!("{field}.lamps[{i}]"), l))
-                .collect::<Result<Vec<_>, _>>()?;
-            let mut load = |choice: &TextureChoice, which: &str| -> Result<Texture, ShadeError> {
-                let f = format!("{field}.{which}");
-                if !paints {
-                    return Ok(Texture::Uniform([1.0; 3]));
-                }
-                Ok(match choice {
-                    TextureChoice::Scene => {
-                        if scene_textures.is_none() {
-                            scene_textures = Some(textures.scene_textures(data)?);
-                        }
-                        scene_textures
-                            .as_ref()
-                            .and_then(|t| t.get(k))
-                            .cloned()
-                            .ok_or_else(|| invalid(f, "the embedded scene has no such object"))?
-                    }
-                    TextureChoice::Checker { rows, cols } => {
-                        if *rows == 0 || *cols == 0 {
-                            return Err(invalid(f, "checker rows and cols must be at least 1"));
-                        }
-                        Texture::Checker {
-                            rows: *rows,
-                            cols: *cols,
-                        }
-                    }
-                    TextureChoice::Gradient => Texture::Gradient,
-                    TextureChoice::Uniform { color } => {
-                        Texture::Uniform(colour(&format!("{f}.color"), *color)?)
-                    }
-                    TextureChoice::Image { path } => {
-                        Texture::Image(textures.image_cached(path, &mut images)?)
-                    }
-                    TextureChoice::Earth => {
-                        if earth.is_none() {
-                            earth = Some(Texture::Image(ImageTexture::earth()?));
-                        }
-                        earth.clone().expect("just loaded")
-                    }
-                })
-            };
-            axes.push(match o.polarization {
-                Some(axis) => Some(direction(&format!("{field}.polarization"), axis)?),
-                None => None,
-            });
-            let first = load(&o.texture, "texture")?;
-            let second = if has(ShaderKind::Time) {
-                load(&o.window_texture, "window_texture")?
-            } else {
-                Texture::Uniform([1.0; 3])
-            };
-            objects.push(PreparedObject {
-                first,
-                second,
-                scale,
-                offset,
-                temperature,
-                luminance: table().luminance(temperature),
-                lamps,
-            });
-        }
-        Ok(Shading {
-            texture: texture_layer,
-            frequency: has(ShaderKind::Frequency),
-            time: has(ShaderKind::Time),
-            light: has(ShaderKind::Light),
-            objects,
-            brightness,
-            time_mode: time.mode,
-            window: (t0, t0 + dt),
-            travel: (tmin, tmax),
-            legend: time.legend,
-            reference_squares: settings.reference_squares,
-            ambient,
-            lights,
-            observer_time: data.header.observer_time,
-            gain: 2f64.powf(ev) as f32,
-            marks,
-            polarization: has(ShaderKind::Polarization),
-            axes,
-        })
-    }
-
     /// Shades `data` into a new 8-bit sRGB image of its picture size (rows in parallel; the
     /// result does not depend on the thread count).
     pub fn image(&self, data: &DataFile) -> RgbImage {
@@ -358,7 +103,9 @@ impl Shading {
     }
 
     /// Shades `data` into `bytes` (resized to the picture's width × height × 3, RGB8
-    /// row-major, row 0 at the top), reusing the caller's buffer: the viewer's path. An
+    /// row-major, row 0 at the top), reusing the caller's buffer: the path of a data file
+    /// shaded once (`godel shade`; the viewer shades a [`Channels`] copy with
+    /// [`Shading::image_into_with`], which gives the same bytes). An
     /// anti-aliased file is shaded sample by sample and box-filtered
     /// ([`DataFile::box_filter`]). Overlays (reference squares, legend) included.
     pub fn image_into(&self, data: &DataFile, bytes: &mut Vec<u8>) {
@@ -721,16 +468,6 @@ impl Shading {
             composite(&mut img, &layer);
         }
         *bytes = img.into_raw();
-    }
-}
-
-/// The data file's object names for a message: all of them, or the first few and the count.
-fn name_list(names: &[String]) -> String {
-    const SHOWN: usize = 10;
-    if names.len() <= SHOWN {
-        names.join(", ")
-    } else {
-        format!("{}, … ({} in all)", names[..SHOWN].join(", "), names.len())
     }
 }
 
