@@ -20,34 +20,54 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 stage=target/device-check
-# The test binaries that need a GPU; the others (kernel_rules, softpipe) check Mesa or text.
-tests=(agreement faults check probes rounds)
+# The gpu crate's test binary, and its modules that need a GPU; the others (kernel_rules,
+# glslang, softpipe, table) check Mesa, glslang or text.
+tests=(integration)
+modules='agreement|faults|check|probes|rounds'
 # The tests run there, most telling first: NVIDIA's driver took 16-60 s to compile each
 # kernel variant (BENCHMARKS.md, "On an NVIDIA H200"), and each scene and each mutation is a
 # variant, so the whole suite may not fit; the mutation tests (`*_is_caught`) check the
 # suite's power, not the driver, and come last. Each test is its own step, none started
 # after DEADLINE seconds.
 ordered=(
-    "check a_correct_trace_passes_and_a_wrong_one_is_refused"
-    "probes elementary_functions_match_std"
-    "probes closed_forms_match_spacetime_closed_form"
-    "probes isometries_match_spacetime_isometry"
-    "probes shadow_rays_match_spacetime_connect"
-    "rounds records_do_not_depend_on_tiles_or_budgets"
-    "agreement the_lit_examples_agree"
-    "agreement the_falling_ball_of_the_reference_scene_agrees"
-    "agreement an_off_axis_observer_moving_at_nine_tenths_of_c_agrees"
-    "agreement the_floor_grid_with_its_light_agrees"
-    "agreement twenty_eight_images_of_a_falling_ball_agree"
-    "agreement universes_with_a_half_and_a_two_agree"
-    "agreement an_observer_inside_spheres_sees_their_inner_surfaces_alike"
-    "agreement a_fisheye_dome_agrees_also_outside_its_circle"
-    "agreement minkowski_rays_are_straight_on_both"
-    "agreement the_static_examples_agree"
-    "faults a_driver_that_loses_the_probe_stores_is_caught"
-    "faults a_nan_blind_finiteness_test_changes_no_record"
-    "faults a_probe_answering_nan_is_caught_and_its_samples_marked_failed"
-    "check two_percent_and_at_least_two_disagreements_are_allowed"
+    "integration check::a_correct_trace_passes_and_a_wrong_one_is_refused"
+    "integration probes::elementary_functions_match_std"
+    "integration probes::closed_forms_match_spacetime_closed_form"
+    "integration probes::isometries_match_spacetime_isometry"
+    "integration probes::shadow_rays_match_spacetime_connect"
+    "integration rounds::records_do_not_depend_on_tiles_or_budgets"
+    "integration rounds::bisections_resumed_at_their_checkpoints_give_the_same_records"
+    "integration rounds::lit_floors_are_out_of_work_on_the_gpu_no_more_often_than_on_the_cpu"
+    "integration agreement::the_lit_examples_agree"
+    "integration agreement::the_falling_ball_of_the_reference_scene_agrees"
+    "integration agreement::an_off_axis_observer_moving_at_nine_tenths_of_c_agrees"
+    "integration agreement::the_floor_grid_with_its_light_agrees"
+    "integration agreement::twenty_eight_images_of_a_falling_ball_agree"
+    "integration agreement::universes_with_a_half_and_a_two_agree"
+    "integration agreement::an_observer_inside_spheres_sees_their_inner_surfaces_alike"
+    "integration agreement::a_fisheye_dome_agrees_also_outside_its_circle"
+    "integration agreement::minkowski_rays_are_straight_on_both"
+    "integration agreement::the_static_examples_agree"
+    "integration faults::a_driver_that_loses_the_probe_stores_is_caught"
+    "integration faults::a_nan_blind_finiteness_test_changes_no_record"
+    "integration faults::a_probe_answering_nan_is_caught_and_its_samples_marked_failed"
+    "integration check::two_percent_and_at_least_two_disagreements_are_allowed"
+    "integration check::samples_the_gpu_left_out_of_work_are_disagreements"
+    "integration probes::the_metric_and_its_inverse_match_spacetime_godel"
+    "integration probes::the_metric_and_its_inverse_match_spacetime_minkowski"
+    "integration probes::christoffel_and_normal_displacement_match_spacetime"
+    "integration probes::static_and_boosted_frames_match_spacetime_frame_godel"
+    "integration probes::static_and_boosted_frames_match_spacetime_frame_minkowski"
+    "integration probes::camera_directions_match_scene_camera"
+    "integration probes::transport_matches_spacetime_transport"
+    "integration probes::rejections_are_safe_and_match_render_reject"
+    "integration probes::texture_coordinates_match_render_target"
+    "integration agreement::a_kernel_without_loop_copies_is_caught"
+    "integration agreement::a_kernel_without_occlusion_is_caught"
+    "integration agreement::a_kernel_whose_falling_balls_stand_still_is_caught"
+    "integration agreement::a_kernel_without_the_observers_boost_is_caught"
+    "integration agreement::a_kernel_without_the_observers_isometry_is_caught"
+    "integration agreement::a_kernel_without_the_polarization_transport_is_caught"
 )
 DEADLINE=${DEADLINE:-340}
 
@@ -150,7 +170,7 @@ run() {
     # Every test of the suite is listed above (a new one must be added there).
     for t in "${tests[@]}"; do
         local listed
-        listed=$("$bin/$t" --list 2>/dev/null | sed -n 's/: test$//p')
+        listed=$("$bin/$t" --list 2>/dev/null | sed -n 's/: test$//p' | grep -E "^($modules)::")
         for name in $listed; do
             printf '%s\n' "${ordered[@]}" | grep -qx "$t $name" \
                 || results+=("test $t $name: not in the script's list")

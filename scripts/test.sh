@@ -17,7 +17,7 @@ command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninterac
 # crates/godel/tests/integration/gpu_cli.rs).
 dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || { apt-get update -qq \
     && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null; }
-# Khronos' reference GLSL compiler checks every kernel a host builds (crates/gpu/tests/glslang.rs).
+# Khronos' reference GLSL compiler checks every kernel a host builds (crates/gpu/tests/integration/glslang.rs).
 command -v glslangValidator >/dev/null || { apt-get update -qq \
     && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq glslang-tools >/dev/null; }
 

@@ -4,7 +4,7 @@
 // place of the pixel kernel; docs/physics.md "The GPU kernel"): one fragment evaluates one
 // group of the kernel's functions on the arguments of its texels of u_args, and writes the
 // results to its first PROBE_SLOTS slots. crates/gpu/src/probe.rs is its host,
-// crates/gpu/tests/probes.rs holds each function to its Rust twin in f64.
+// crates/gpu/tests/integration/probes.rs holds each function to its Rust twin in f64.
 #ifdef PROBE
 #define PROBE_ELEMENTARY 1
 #define PROBE_METRIC 2

@@ -18,7 +18,7 @@
 // probe count in place of view_x).
 //
 // Rules, so that no conforming driver can run it two ways (docs/physics.md, "The GPU kernel";
-// crates/gpu/tests/kernel_rules.rs checks them on this text): arrays, matrices and vectors
+// crates/gpu/tests/integration/kernel_rules.rs checks them on this text): arrays, matrices and vectors
 // are stored into only at constant indices (constants, or the index of a loop with constant
 // bounds whose body is a few stores: a store at a runtime index i is such a loop storing where
 // j == i); no NaN is tested (finite() reads the bits) or made on purpose; floats become ints

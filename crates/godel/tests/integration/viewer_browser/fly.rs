@@ -9,7 +9,7 @@
 //! - while it moves, a frame is traced and drawn in every animation frame (counted by the
 //!   test's own requestAnimationFrame loop), at fewer pixels than the full frame;
 //! - at rest the frame reaches the scene's full size, and equals `godel render --gpu` of a
-//!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/common);
+//!   scene with the view's fields within issue 22's tolerances (crates/gpu/tests/integration/common.rs);
 //! - "Save observer keyframe" gives the view flown (the velocity it fell with);
 //! - hovering a pixel of the frame at rest (a hit, and one that hit nothing) shows its
 //!   record, the one `godel render --gpu` writes, and draws on the map the light ray that

@@ -3,7 +3,7 @@
 //! — the reference scene (free fall, 2×2 samples a pixel), lit ones (direct light, a shadow
 //! in space and time) and surroundings (the observer inside a sphere) — each against its data
 //! file, measured and held to issue 22's tolerances exactly as the `gpu` crate's own agreement
-//! tests do (crates/gpu/tests/common, included here): the same object and status on ≥ 99.5 %
+//! tests do (crates/gpu/tests/integration/common.rs, included here): the same object and status on ≥ 99.5 %
 //! of the samples either sees an object in, |Δg|/g median ≤ 1e-4 and ≤ 1e-3 on 99.9 %,
 //! |Δt_emit| ≤ 1e-4·(1 + |t_emit|) on 99.9 %, light within 1e-3 relative on 99.9 % of the lit
 //! samples (docs/physics.md, "The GPU kernel"). The traced slots are read back by the test
@@ -18,7 +18,8 @@
 use std::path::Path;
 
 use crate::browser_support::*;
-#[path = "../../../../gpu/tests/common/mod.rs"]
+#[path = "../../../../gpu/tests/integration/common.rs"]
+#[allow(dead_code)] // the gpu crate's test helpers: this binary uses their comparison only
 pub(super) mod kernel_agreement;
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::DataFile;

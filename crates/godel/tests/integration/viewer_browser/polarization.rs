@@ -5,7 +5,7 @@
 //! - on the data file's frame, the page's ticks (texture and polarization layers) equal the
 //!   picture `godel shade --shader texture,polarization` writes, within one 8-bit step;
 //! - the page traces the frame on the GPU: its polarization channels agree with the exact
-//!   tracer's within the kernel's tolerance (crates/gpu/tests/common), and its picture equals
+//!   tracer's within the kernel's tolerance (crates/gpu/tests/integration/common.rs), and its picture equals
 //!   the `shade` crate's picture of the traced records within one step;
 //! - dragging the first object's axis-azimuth slider re-shades at once: the axis in the
 //!   settings turns to that azimuth, the ticks change (and equal the `shade` crate's for the

@@ -9,9 +9,9 @@
 //! Mesa picks its driver when a process first opens a display, so the test runs itself again
 //! in a process of its own with GALLIUM_DRIVER=softpipe.
 
-mod common;
-
-use common::{compare, cpu_render, example, gpu_render, off_axis_lit_floor, scene, sized};
+use crate::common::{
+    self, compare, cpu_render, example, gpu_render, off_axis_lit_floor, scene, sized,
+};
 use gpu::KERNEL;
 use std::process::Command;
 
@@ -33,7 +33,7 @@ fn frames() -> Vec<scene::Scene> {
 
 #[test]
 fn small_frames_agree_on_softpipe() {
-    let name = "small_frames_agree_on_softpipe";
+    let name = "softpipe::small_frames_agree_on_softpipe";
     if std::env::var(DRIVER_VAR).as_deref() != Ok(DRIVER) {
         let exe = std::env::current_exe().expect("the test binary");
         let out = Command::new(exe)

@@ -6,9 +6,7 @@
 //! to 30, it marks `work limit` no more often than the CPU (before the rounds, such a scene at
 //! 360×70 had hundreds of GPU samples out of work, the CPU none, and two runs differed).
 
-mod common;
-
-use common::{agreement, lit_floor};
+use crate::common::{self, agreement, lit_floor};
 use datafile::PixelRecord;
 use gpu::{GpuTracer, KernelInput, Tiling, Traced, KERNEL};
 use render::driver::NoProgress;

@@ -9,9 +9,7 @@
 //!
 //! The kernel runs in an offscreen OpenGL ES 3 context (Mesa's llvmpipe here).
 
-mod common;
-
-use common::{agreement, off_axis_lit_floor, scene, MINKOWSKI_TWO_BALLS};
+use crate::common::{agreement, off_axis_lit_floor, scene, MINKOWSKI_TWO_BALLS};
 use gpu::input::{KernelInput, LIGHT_TEXELS, OBJECT_TEXELS, TABLE_WIDTH};
 use gpu::KERNEL;
 use scene::Motion;

@@ -8,9 +8,7 @@
 //! The kernel runs in an offscreen OpenGL ES 3 context: on this machine Mesa's llvmpipe, which
 //! the test command installs.
 
-mod common;
-
-use common::{agreement, example, scene, sized, Agreement};
+use crate::common::{self, agreement, example, scene, sized, Agreement};
 use gpu::KERNEL;
 
 /// The agreement of the real kernel on `scene`, asserted.

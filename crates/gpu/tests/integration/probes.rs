@@ -9,8 +9,7 @@
 //! function (where cancellation or an ill-conditioned step makes it larger, it says so), with
 //! K a small constant; the worst ratio of error to tolerance is printed per function.
 
-mod common;
-
+use crate::common;
 use gpu::input::{KernelInput, Uniforms};
 use gpu::probe::{Args, Function, Prober, Results};
 use render::reject::{static_distance, Rejection, StaticBall};

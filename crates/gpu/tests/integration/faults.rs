@@ -10,9 +10,7 @@
 //! - A probe answering NaN (inside the objects, and at one probe in eight): caught, and no
 //!   record is wrong: the search stops at the NaN and marks its sample failed.
 
-mod common;
-
-use common::{compare, cpu_render, gpu_render, off_axis_lit_floor};
+use crate::common::{compare, cpu_render, gpu_render, off_axis_lit_floor};
 use datafile::{DataFile, PixelRecord, RayStatus};
 use gpu::check::{against_cpu, CheckError};
 use gpu::KERNEL;
