@@ -6,8 +6,8 @@
 //! alone assembles and writes. Rank 0 works too, on a thread of its own, while its main
 //! thread serves the queue (only that thread calls MPI: `Threading::Funneled`); with
 //! `GODEL_MPI_ROOT_WORKS=0` it only serves (e.g. when rank 0 sits on a service node).
-//! The commands bring their own jobs: `godel render` batches of tiles (cmd_render.rs),
-//! `godel sequence` whole frames (cmd_sequence.rs); this file knows neither.
+//! The commands bring their own jobs: `godel render` batches of tiles (cmd/render.rs),
+//! `godel sequence` whole frames (cmd/sequence.rs); this file knows neither.
 //!
 //! Failure: a rank whose scene, work or fingerprint fails prints `godel: rank R: <error>`
 //! and calls `MPI_Abort`, so the whole job exits non-zero and rank 0 never writes a partial

@@ -1,5 +1,5 @@
 //! The `godel` command-line tool: parses the command line with clap and dispatches each
-//! subcommand to its own module (`cmd_*.rs`). `main` returns the exit code: 0 on success,
+//! subcommand to its own module (`cmd/*.rs`). `main` returns the exit code: 0 on success,
 //! 2 for usage errors (from clap, or an invalid value found by validation, see
 //! [`args::UsageError`]), 1 for any other failure; errors print as one line `error: ...`
 //! with their cause chain, each cause said once. A closed standard output (`godel … | head`)
@@ -14,16 +14,7 @@
 mod args;
 #[cfg(feature = "mpi")]
 mod cluster;
-mod cmd_connect;
-mod cmd_explore;
-mod cmd_geodesic;
-mod cmd_look;
-mod cmd_merge;
-mod cmd_plot;
-mod cmd_render;
-mod cmd_sequence;
-mod cmd_shade;
-mod cmd_view;
+mod cmd;
 mod flight;
 mod inputs;
 mod keep;
@@ -31,12 +22,10 @@ mod manifest;
 mod memory;
 mod out_pair;
 mod output;
-mod plot_isometry;
-mod plot_kit;
+mod plot;
 mod progress;
 mod scene_edit;
 mod serve;
-mod svg;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -60,43 +49,43 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Trace a scene: writes FOLDER/<name>.png (preview) and FOLDER/<name>.exr (per-pixel data).
-    Render(cmd_render::RenderArgs),
+    Render(cmd::render::RenderArgs),
     /// Any camera of any observer at the event of a full-sphere data file, without tracing:
     /// turn, zoom, change projection, boost (aberration and Doppler shift).
-    Look(cmd_look::LookArgs),
+    Look(cmd::look::LookArgs),
     /// Re-colour a data file without tracing again: texture, frequency, time and light shaders.
-    Shade(cmd_shade::ShadeArgs),
+    Shade(cmd::shade::ShadeArgs),
     /// Image sequences with keyframed shader settings: numbered PNGs, and an MP4 with ffmpeg.
-    Sequence(cmd_sequence::SequenceArgs),
+    Sequence(cmd::sequence::SequenceArgs),
     /// Serve a live web viewer of a data file, shaded on the GPU: shader controls, zoom, pixel
     /// records, saving; a full-sphere file can be looked around and boosted.
-    View(cmd_view::ViewArgs),
+    View(cmd::view::ViewArgs),
     /// The live viewer of a scene whose observer can be moved and flown: where the browser's
     /// WebGL2 runs the GPU kernel the page traces every frame itself; otherwise each change
     /// of event is traced on the server, a coarse frame first, then the full one.
-    Explore(cmd_explore::ExploreArgs),
+    Explore(cmd::explore::ExploreArgs),
     /// Join the part files of `render --part i/N` into the files a single run writes.
-    Merge(cmd_merge::MergeArgs),
+    Merge(cmd::merge::MergeArgs),
     /// Trace one geodesic (light ray or massive particle) and print it as CSV or JSON.
-    Geodesic(cmd_geodesic::GeodesicArgs),
+    Geodesic(cmd::geodesic::GeodesicArgs),
     /// Every light ray from a source at rest to an event, with emission times.
-    Connect(cmd_connect::ConnectArgs),
+    Connect(cmd::connect::ConnectArgs),
     /// Draw figures (SVG or PNG).
-    Plot(cmd_plot::PlotArgs),
+    Plot(cmd::plot::PlotArgs),
 }
 
 fn run(command: Command) -> anyhow::Result<()> {
     match command {
-        Command::Render(args) => cmd_render::run(args),
-        Command::Look(args) => cmd_look::run(args),
-        Command::Shade(args) => cmd_shade::run(args),
-        Command::Sequence(args) => cmd_sequence::run(args),
-        Command::View(args) => cmd_view::run(args),
-        Command::Explore(args) => cmd_explore::run(args),
-        Command::Merge(args) => cmd_merge::run(args),
-        Command::Geodesic(args) => cmd_geodesic::run(args),
-        Command::Connect(args) => cmd_connect::run(args),
-        Command::Plot(args) => cmd_plot::run(args),
+        Command::Render(args) => cmd::render::run(args),
+        Command::Look(args) => cmd::look::run(args),
+        Command::Shade(args) => cmd::shade::run(args),
+        Command::Sequence(args) => cmd::sequence::run(args),
+        Command::View(args) => cmd::view::run(args),
+        Command::Explore(args) => cmd::explore::run(args),
+        Command::Merge(args) => cmd::merge::run(args),
+        Command::Geodesic(args) => cmd::geodesic::run(args),
+        Command::Connect(args) => cmd::connect::run(args),
+        Command::Plot(args) => cmd::plot::run(args),
     }
 }
 
@@ -110,7 +99,7 @@ fn exit_on_signals() -> std::io::Result<()> {
         .spawn(move || {
             if let Some(signal) = signals.forever().next() {
                 // A child writing a temporary file stops first, so it cannot recreate it.
-                let _encoder = cmd_sequence::stop_encoder();
+                let _encoder = cmd::sequence::stop_encoder();
                 let removed = datafile::atomic::remove_live_temporaries();
                 if removed > 0 {
                     eprintln!("godel: interrupted; removed {removed} temporary file(s)");

@@ -1,7 +1,7 @@
 //! One home for "this scene with some fields replaced": the scene's own text as a TOML
 //! table, edited (an observer moved, a camera replaced, the tracing method set), then read
 //! again with the usual checks (`scene::Scene::from_str`). Fly-through frames (`flight`),
-//! explore's frames (`cmd_explore`) and explore's exact renders and recorded flights (`keep`)
+//! explore's frames (`cmd::explore`) and explore's exact renders and recorded flights (`keep`)
 //! all make their scenes here, so that each is exactly the scene a user would write with those
 //! fields: its data file embeds that text.
 

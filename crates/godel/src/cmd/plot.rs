@@ -7,11 +7,11 @@
 //! the closed form. Output: SVG, or PNG rasterized from it (chosen by the `-o` extension).
 
 use crate::args::usage;
-use crate::plot_kit::{
+use crate::plot::kit::{
     arrowhead, caption, legend_heading, legend_text, palette_swatches, prepare_figure_output,
     trace_ray, write_figure, Frame, PALETTE,
 };
-use crate::svg::f;
+use crate::plot::svg::f;
 use spacetime::{Event, Godel, Metric};
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -29,7 +29,7 @@ pub enum Figure {
     /// Light rays through the origin in the x–y plane, with the optical horizon r = 2a.
     Geodesics(GeodesicsPlotArgs),
     /// One light ray and its images under the flow of a Killing field, with the field.
-    Isometry(crate::plot_isometry::IsometryPlotArgs),
+    Isometry(crate::plot::isometry::IsometryPlotArgs),
 }
 
 /// Arguments of `godel plot geodesics`.
@@ -250,7 +250,7 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
 pub fn run(args: PlotArgs) -> anyhow::Result<()> {
     match args.figure {
         Figure::Geodesics(g) => plot_geodesics(g),
-        Figure::Isometry(i) => crate::plot_isometry::plot_isometry(i),
+        Figure::Isometry(i) => crate::plot::isometry::plot_isometry(i),
     }
 }
 

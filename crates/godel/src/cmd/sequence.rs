@@ -30,7 +30,7 @@ use render::driver::{header, render, NoProgress};
 use scene::Scene;
 use shade::{Channels, FrameSource, Needs, Script, ShadeSettings, Shading, Timeline};
 
-use crate::cmd_shade::settings_error;
+use crate::cmd::shade::settings_error;
 use crate::flight::Flight;
 use crate::inputs::Inputs;
 use crate::manifest::{self, Manifest, MANIFEST};
@@ -182,7 +182,7 @@ impl Plan {
                             FrameSource::Trace { scene, .. } => Some(scene.as_path()),
                             FrameSource::Data(_) => None,
                         };
-                        let asked_by = crate::cmd_render::gpu_in_scene(file);
+                        let asked_by = crate::cmd::render::gpu_in_scene(file);
                         gpu::render(&scene, &NoProgress).context(asked_by)?.data
                     }
                     false => render(&scene, &NoProgress)?.0,

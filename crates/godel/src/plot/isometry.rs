@@ -11,11 +11,11 @@
 //! ∂φ rotates the loop about the origin.
 
 use crate::args::usage;
-use crate::plot_kit::{
+use crate::plot::kit::{
     arrowhead, caption, legend_heading, legend_text, palette_swatches, prepare_figure_output,
     tick_label, trace_ray, write_figure, Frame, PALETTE,
 };
-use crate::svg::f;
+use crate::plot::svg::f;
 use clap::ValueEnum;
 use spacetime::{Event, Godel, Isometry, KillingField, Metric};
 use std::path::PathBuf;

@@ -5,7 +5,7 @@
 
 use crate::args::usage;
 use crate::output::{prepare_file, write_atomic};
-use crate::svg::{f, to_png, Svg, Weight};
+use crate::plot::svg::{f, to_png, Svg, Weight};
 use anyhow::Context;
 use spacetime::{trace, Event, Geodesic, Metric, Spacetime, TimeDirection, TraceLimits};
 
