@@ -2,7 +2,8 @@
 //! as `{"error": "..."}`, never cached; and the refusals of what a request sent, naming it as
 //! the request wrote it ([`json_body`], [`path_error`]).
 
-use axum::extract::rejection::PathRejection;
+use axum::extract::rejection::{PathRejection, QueryRejection};
+use axum::extract::Query;
 use axum::http::{header, HeaderName, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
@@ -65,6 +66,14 @@ pub fn json_body<T: serde::de::DeserializeOwned>(body: &[u8], name: &str) -> Res
     json.end()
         .map_err(|e| ApiError::bad_request(format!("{name}: {e}")))?;
     Ok(value)
+}
+
+/// A route's query string as `T`, or a refusal as JSON naming the route: `NAME: why` (400, as
+/// axum's own plain-text answer would say it). Every route reads its query through this.
+pub fn query_value<T>(name: &str, query: Result<Query<T>, QueryRejection>) -> Result<T, ApiError> {
+    query
+        .map(|Query(value)| value)
+        .map_err(|e| ApiError::bad_request(format!("{name}: {}", e.body_text())))
 }
 
 /// A path segment of a route that could not be read (`/api/explore/channel/%FF`), as JSON

@@ -37,7 +37,7 @@ use serde::Deserialize;
 use spacetime::message::short;
 use tower::ServiceExt;
 
-use crate::api_error::{json_body, no_store, path_error, ApiError};
+use crate::api_error::{json_body, no_store, path_error, query_value, ApiError};
 use crate::explore::{Explorer, Frame, Level, ObserverEvent, EVENT_FIELDS, VIEW_FIELDS};
 use crate::gpu::Channel;
 use crate::guard::{Access, MAX_BODY_BYTES};
@@ -165,8 +165,7 @@ async fn for_frame(
     State(state): State<Arc<ExploreState>>,
     request: Request,
 ) -> Result<Response, ApiError> {
-    let Query(which) = Query::<FrameQuery>::try_from_uri(request.uri())
-        .map_err(|e| ApiError::bad_request(format!("frame: {}", e.body_text())))?;
+    let which = query_value("frame", Query::<FrameQuery>::try_from_uri(request.uri()))?;
     let routes = match state.frame_named(which)? {
         // Preparing reads the scene's textures: work within the server's bound.
         Some(frame) => {
@@ -273,8 +272,7 @@ async fn channel(
     query: Result<Query<ChannelQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
     let Path(name) = name.map_err(|e| path_error("channel", e))?;
-    let Query(q) =
-        query.map_err(|e| ApiError::bad_request(format!("channel: {}", e.body_text())))?;
+    let q = query_value("channel", query)?;
     let frame = state
         .explorer
         .frame(q.generation, q.level)
@@ -299,8 +297,7 @@ async fn map(
     State(state): State<Arc<ExploreState>>,
     query: Result<Query<ObserverEvent>, QueryRejection>,
 ) -> Result<Response, ApiError> {
-    let Query(event) =
-        query.map_err(|e| ApiError::bad_request(format!("map: {}", e.body_text())))?;
+    let event = query_value("map", query)?;
     if let Some(why) = event.refusal_as(state.explorer.bound(), "map", EVENT_FIELDS) {
         return Err(ApiError::bad_request(why));
     }
@@ -326,7 +323,7 @@ async fn ray(
     State(state): State<Arc<ExploreState>>,
     query: Result<Query<RayQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
-    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("ray: {}", e.body_text())))?;
+    let q = query_value("ray", query)?;
     let frame = state
         .explorer
         .frame(q.generation, q.level)
@@ -371,7 +368,7 @@ async fn keyframe(
     query: Result<Query<KeyframeQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let q = keyframe_query(query)?;
+    let q = query_value("keyframe", query)?;
     let event: ObserverEvent = json_body(&body, "event")?;
     if let Some(why) = event.refusal(state.explorer.bound()) {
         return Err(ApiError::bad_request(why));
@@ -392,7 +389,7 @@ async fn view_keyframe(
     query: Result<Query<KeyframeQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let q = keyframe_query(query)?;
+    let q = query_value("keyframe", query)?;
     let view = view_body(&state, &body)?;
     let work = state.viewer.work().admit()?;
     let source = state.clone();
@@ -401,15 +398,6 @@ async fn view_keyframe(
         .await?
         .map_err(ApiError::bad_request)?;
     Ok(keyframe_download(&state, text))
-}
-
-/// The keyframe routes' `?frame=N`.
-fn keyframe_query(
-    query: Result<Query<KeyframeQuery>, QueryRejection>,
-) -> Result<KeyframeQuery, ApiError> {
-    let Query(q) =
-        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
-    Ok(q)
 }
 
 /// A keyframe's text as a TOML download.
@@ -445,7 +433,7 @@ async fn kernel_input(
     State(state): State<Arc<ExploreState>>,
     query: Result<Query<InputQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
-    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
+    let q = query_value("input", query)?;
     let buffers = crate::kernel_routes::draw_buffers(q.draw_buffers)?;
     let event = match (q.t, q.x, q.y, q.z) {
         (Some(t), Some(x), Some(y), Some(z)) => ObserverEvent { t, x, y, z },
@@ -477,7 +465,7 @@ async fn view_input(
     query: Result<Query<crate::kernel_routes::InputQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
+    let q = query_value("input", query)?;
     let buffers = crate::kernel_routes::draw_buffers(q.draw_buffers)?;
     let view = view_body(&state, &body)?;
     let work = state.viewer.work().admit()?;

@@ -23,7 +23,7 @@ use axum::{Json, Router};
 pub use gpu::KernelInput;
 use serde::{Deserialize, Serialize};
 
-use crate::api_error::{no_store, ApiError};
+use crate::api_error::{no_store, query_value, ApiError};
 use crate::state::ViewerState;
 
 /// Render targets the kernel writes at most in one pass (its outputs o0 … o7).
@@ -164,7 +164,7 @@ async fn input(
     State(state): State<Arc<KernelState>>,
     query: Result<Query<InputQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
-    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("input: {}", e.body_text())))?;
+    let q = query_value("input", query)?;
     let buffers = draw_buffers(q.draw_buffers)?;
     let page = PageInput::new(state.input()?.clone(), buffers);
     Ok((no_store(), Json(page)).into_response())

@@ -31,8 +31,8 @@ use axum::routing::{get, post};
 use axum::{middleware, Json, Router};
 use serde::Deserialize;
 
-use crate::api_error::no_store;
 pub use crate::api_error::ApiError;
+use crate::api_error::{no_store, query_value};
 use crate::encode;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::responses::{attachment, overlay_png, png_download, rgba_picture};
@@ -186,8 +186,7 @@ async fn keyframe(
     query: Result<Query<KeyframeQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
-    let Query(q) =
-        query.map_err(|e| ApiError::bad_request(format!("keyframe: {}", e.body_text())))?;
+    let q = query_value("keyframe", query)?;
     let (settings, state) = blocking(&state.clone(), move || {
         let prepared = parse_settings(&state, &body);
         prepared.map(|(settings, _)| (settings, state))
@@ -220,7 +219,7 @@ pub async fn pixel(
     State(state): State<Arc<ViewerState>>,
     query: Result<Query<PixelQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
-    let Query(q) = query.map_err(|e| ApiError::bad_request(format!("pixel: {}", e.body_text())))?;
+    let q = query_value("pixel", query)?;
     let record = state.pixel(q.col, q.row).ok_or_else(|| {
         ApiError::bad_request(format!(
             "pixel ({}, {}) is outside the {}×{} image",
