@@ -29,7 +29,7 @@ use std::sync::{Arc, Mutex};
 use axum::body::Bytes;
 use axum::extract::rejection::{PathRejection, QueryRejection};
 use axum::extract::{DefaultBodyLimit, Path, Query, Request, State};
-use axum::http::{header, HeaderValue, StatusCode};
+use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{any, get, post};
 use axum::{middleware, Json, Router};
@@ -402,18 +402,8 @@ async fn view_keyframe(
 
 /// A keyframe's text as a TOML download.
 fn keyframe_download(state: &ExploreState, text: String) -> Response {
-    let headers = [
-        (
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/toml; charset=utf-8"),
-        ),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (
-            header::CONTENT_DISPOSITION,
-            crate::responses::attachment(&state.viewer, "observer-keyframe.toml"),
-        ),
-    ];
-    (headers, text).into_response()
+    let name = crate::responses::attachment(&state.viewer, "observer-keyframe.toml");
+    crate::responses::toml_download(text, name)
 }
 
 /// `?t=T&x=X&y=Y&z=Z&draw_buffers=N`, the event all or nothing.

@@ -26,7 +26,7 @@ use std::sync::{Arc, Mutex};
 use axum::body::Bytes;
 use axum::extract::rejection::PathRejection;
 use axum::extract::{DefaultBodyLimit, Path, State};
-use axum::http::{header, HeaderValue, StatusCode};
+use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{middleware, Json, Router};
@@ -226,15 +226,8 @@ async fn file(
             ))
         }
     };
-    let headers = [
-        (header::CONTENT_TYPE, HeaderValue::from_static(content_type)),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (
-            header::CONTENT_DISPOSITION,
-            crate::responses::attachment_named(&rendered.name, &kind),
-        ),
-    ];
-    Ok((headers, bytes).into_response())
+    let name = crate::responses::attachment_named(&rendered.name, &kind);
+    Ok(crate::responses::download(bytes, content_type, name))
 }
 
 /// `POST /api/explore/record`: the sequence script of a recorded flight.
@@ -249,16 +242,8 @@ async fn record(State(state): State<Arc<KeepState>>, body: Bytes) -> Result<Resp
         .await?
         .map_err(ApiError::bad_request)?;
     let name = format!("{}-flight", state.keeper.name());
-    let headers = [
-        (
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/toml; charset=utf-8"),
-        ),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (
-            header::CONTENT_DISPOSITION,
-            crate::responses::attachment_named(&name, "toml"),
-        ),
-    ];
-    Ok((headers, text).into_response())
+    Ok(crate::responses::toml_download(
+        text,
+        crate::responses::attachment_named(&name, "toml"),
+    ))
 }

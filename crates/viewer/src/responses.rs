@@ -2,6 +2,7 @@
 //! named after the scene, the overlay layer as an RGBA PNG. Shared by the shading routes and
 //! the look routes.
 
+use axum::body::Body;
 use axum::http::{header, HeaderName, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use image::RgbaImage;
@@ -49,14 +50,29 @@ pub fn rgba_picture(bytes: Vec<u8>, width: u32, height: u32) -> Response {
     (headers, bytes).into_response()
 }
 
-/// A PNG file download named by `disposition` ([`attachment`]); never cached.
-pub fn png_download(bytes: Vec<u8>, disposition: HeaderValue) -> Response {
+/// A file download of `content_type` named by `disposition` ([`attachment`],
+/// [`attachment_named`]); never cached. Every download of the viewer is one of these.
+pub fn download(
+    body: impl Into<Body>,
+    content_type: &'static str,
+    disposition: HeaderValue,
+) -> Response {
     let headers = [
-        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CONTENT_TYPE, HeaderValue::from_static(content_type)),
         (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
         (header::CONTENT_DISPOSITION, disposition),
     ];
-    (headers, bytes).into_response()
+    (headers, body.into()).into_response()
+}
+
+/// A PNG file download.
+pub fn png_download(bytes: Vec<u8>, disposition: HeaderValue) -> Response {
+    download(bytes, "image/png", disposition)
+}
+
+/// A TOML text download (a keyframe, a flight's sequence script).
+pub fn toml_download(text: String, disposition: HeaderValue) -> Response {
+    download(text, "application/toml; charset=utf-8", disposition)
 }
 
 /// `attachment; filename="NAME"` for a download (the name is the scene's, made safe).

@@ -35,7 +35,7 @@ pub use crate::api_error::ApiError;
 use crate::api_error::{no_store, query_value};
 use crate::encode;
 use crate::guard::{Access, MAX_BODY_BYTES};
-use crate::responses::{attachment, overlay_png, png_download, rgba_picture};
+use crate::responses::{attachment, overlay_png, png_download, rgba_picture, toml_download};
 use crate::state::ViewerState;
 use shade::{ShadeSettings, Shading};
 
@@ -193,18 +193,7 @@ async fn keyframe(
     })
     .await??;
     let text = state.keyframe(q.frame, &settings);
-    let headers = [
-        (
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/toml; charset=utf-8"),
-        ),
-        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
-        (
-            header::CONTENT_DISPOSITION,
-            attachment(&state, "keyframe.toml"),
-        ),
-    ];
-    Ok((headers, text).into_response())
+    Ok(toml_download(text, attachment(&state, "keyframe.toml")))
 }
 
 /// `?col=C&row=R`.
