@@ -46,10 +46,9 @@ pub struct PageInput {
     /// The source prefix after `#version 300 es` ([`KernelInput::defines`]).
     pub defines: String,
     /// The rounds a tile is traced in (docs/physics.md, "Rounds"; the page runs them as
-    /// [`gpu::host`] does): the progress's slots after the record's, how the draws write
-    /// them ([`KernelInput::round_plan`]), the progress's phase of a finished sample, the
-    /// first round's budget of passes, and the rounds at most.
-    pub state_slots: usize,
+    /// [`gpu::host`] does): how the draws write the record's and the progress's slots
+    /// ([`KernelInput::round_plan`]), the progress's phase of a finished sample, the first
+    /// round's budget of passes, and the rounds at most.
     pub plan: gpu::input::RoundPlan,
     pub phase_done: f32,
     pub first_budget: i32,
@@ -63,7 +62,6 @@ impl PageInput {
         let draw_buffers = input.draw_buffers(draw_buffers.min(KERNEL_OUTPUTS));
         PageInput {
             slots,
-            state_slots: gpu::input::STATE_SLOTS,
             plan: input.round_plan(draw_buffers),
             phase_done: gpu::input::PHASE_DONE,
             first_budget: gpu::host::FIRST_BUDGET,
