@@ -121,7 +121,8 @@ struct Progress {
 //    (PH_PIXEL: span a), hit target + 1 + 4096 · span obj),
 //   (PH_PIXEL ? span seed : hit loop, hit lambda, hit tau, PH_PIXEL ? span probes : sub).
 // (Depth ≤ SEARCH_DEPTH < 32 and index < 2^SEARCH_DEPTH = 2^30; segments < EXACT_SEGMENTS =
-// 16; budget ≤ MAX_BUDGET = 2^20; objects < 4096, and a scene with more takes no bisection checkpoints: main.)
+// 16; budget ≤ MAX_BUDGET = 2^20; objects < 4096: a scene with more takes no bisection
+// checkpoints, main.)
 Progress readProgress() {
     vec4 s0 = slots[STATE], s1 = slots[STATE + 1], s2 = slots[STATE + 2];
     int phase = toInt(s0.x, PH_PIXEL, PH_DONE);

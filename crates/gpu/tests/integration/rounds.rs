@@ -101,6 +101,11 @@ fn bisections_resumed_at_their_checkpoints_give_the_same_records() {
     let scenes = [
         (common::sized(common::example("reference"), 48, 12), vec![0]),
         (overlapping, vec![0, 1]),
+        // Minkowski's straight rays: searched stretch by stretch, not loop by loop.
+        (
+            common::sized(common::scene(common::MINKOWSKI_TWO_BALLS), 32, 24),
+            vec![0],
+        ),
     ];
     for (scene, seen) in scenes {
         let cut = GpuTracer::with_kernel(KernelInput::new(&scene), &often)
