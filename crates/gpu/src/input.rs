@@ -22,7 +22,7 @@
 //! [`LIGHT_TEXELS`]: (x, y, z, power). A ball at rest has its static frame, that frame's dual
 //! rows (frame components are dot products with them) and the Christoffel symbols at its
 //! position (those with a z index vanish: neither metric depends on z or mixes it with t, x, y;
-//! `tests/table.rs` checks it). A ball in free fall has its start frame (the static frame boosted by its
+//! `tests/integration/table.rs` checks it). A ball in free fall has its start frame (the static frame boosted by its
 //! velocity; u its four-velocity) and, in Gödel's universe, its worldline's closed form in the
 //! start's origin frame (spacetime::OriginGeodesic of u carried there) and the isometry B
 //! from that frame back (spacetime::Isometry), its legs e1..e3 carried into that frame (where

@@ -1,7 +1,7 @@
 //! The kernel tested in pieces (docs/physics.md, "The GPU kernel"): a host for the kernel's
 //! `PROBE` entry point (`src/probe.glsl`, appended after the kernel), which evaluates one
 //! group of the kernel's functions per fragment on arguments the host uploads, so that each
-//! can be held to its Rust twin (`tests/probes.rs`). Compiled with the scene's defines, as
+//! can be held to its Rust twin (`tests/integration/probes.rs`). Compiled with the scene's defines, as
 //! the pixel kernel is ([`crate::host::fragment_source`]).
 
 use crate::context::Context;
