@@ -71,13 +71,17 @@ struct Bisection {
     Probe pa; Probe pb; float seedA; float seedB;
 };
 Bisection bis = Bisection(0.0, 0.0, 0.0, 0.0, 0, 0, 0, 0, NO_PROBE, NO_PROBE, 0.0, 0.0);
-// A bisection's checkpoint to resume at (`on`): in segment `seg` of the search's loop, object
-// `obj`'s span at `depth` and `index` (odd: a right sibling) starting at `a`, whose probe took
-// the seed `seed`, after `probes` probes of the bisection; the segment's earliest crossing so
-// far, and the sample's probes left. Until the machine reaches it, segments and objects before
-// it are not bisected: none crossed there, or the search would have ended.
-struct Resume { bool on; int seg; int obj; int depth; int index; int probes; float a; float seed; Found best; int left; };
-Resume res = Resume(false, 0, 0, 0, 0, 0, 0.0, 0.0, NO_FOUND, 0);
+// A bisection's checkpoint (render_tracer's Progress keeps it between rounds): segment `seg`
+// (−1: none, the loop's start), object `obj`, span at `depth` and `index` (odd: a right
+// sibling) starting at `a`, probed with the seed `seed`, after `probes` probes of the
+// bisection.
+struct Span { int seg; int obj; int depth; int index; int probes; float a; float seed; };
+const Span NO_SPAN = Span(-1, 0, 0, 0, 0, 0.0, 0.0);
+// The checkpoint to resume at (`on`), the segment's earliest crossing so far, and the sample's
+// probes left. Until the machine reaches it, segments and objects before it are not bisected:
+// none crossed there, or the search would have ended.
+struct Resume { bool on; Span at; Found best; int left; };
+Resume res = Resume(false, NO_SPAN, NO_FOUND, 0);
 // Refinement of a crossing: the bracket [lo, hi], f there, the Illinois side, the steps.
 struct Refinement { float lo; float hi; float flo; float fhi; int side; int iter; };
 Refinement ill = Refinement(0.0, 0.0, 0.0, 0.0, 0, 0);
@@ -210,7 +214,7 @@ void nextSpan() {
 
 // Whether segment `seg`'s object `obj` lies before the resumed checkpoint.
 bool beforeResume(int seg, int obj) {
-    return res.on && (seg < res.seg || (seg == res.seg && obj < res.obj));
+    return res.on && (seg < res.at.seg || (seg == res.at.seg && obj < res.at.obj));
 }
 
 // One step of the machine: takes the answer to its last request, then either requests a
@@ -239,18 +243,18 @@ void machineStep() {
             bis.probes = 0;
             bis.mark = 0;
             mach.mode = M_BISECT;
-            if (res.on && (mach.seg != res.seg || mach.obj != res.obj)) {
+            if (res.on && (mach.seg != res.at.seg || mach.obj != res.at.obj)) {
                 finish(FAILED);   // the way back missed its checkpoint (never, if probes repeat)
                 return;
             }
             if (res.on) {
                 // The checkpoint's span, as nextSpan makes it after its left sibling, whose end
                 // is probed again as it was.
-                bis.depth = res.depth;
-                bis.index = res.index - 1;
-                bis.probes = res.probes - 1;
-                bis.mark = res.probes - SPAN_CHECK;
-                request(Q_RESUME, res.a, res.seed);
+                bis.depth = res.at.depth;
+                bis.index = res.at.index - 1;
+                bis.probes = res.at.probes - 1;
+                bis.mark = res.at.probes - SPAN_CHECK;
+                request(Q_RESUME, res.at.a, res.at.seed);
                 return;
             }
         }

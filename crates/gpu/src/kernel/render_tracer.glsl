@@ -97,12 +97,6 @@ const int MAX_COUNT = 16777215;
 // checkpoints does not fit a round under llvmpipe's limit beside its neighbours' work.
 const int MAX_CUTS = 6;
 
-// A bisection's checkpoint in the pixel's search (render_intersect's Resume): segment `seg`
-// (−1: none, the loop's start), object `obj`, span at `depth` and `index` starting at `a`,
-// probed with the seed `seed`, after `probes` probes of the bisection.
-struct Span { int seg; int obj; int depth; int index; int probes; float a; float seed; };
-const Span NO_SPAN = Span(-1, 0, 0, 0, 0, 0.0, 0.0);
-
 struct Progress {
     int phase; int budget; int probes;
     int status;   // PH_DONE: the sample's status
@@ -111,7 +105,7 @@ struct Progress {
     float sum;   // the current light's sum so far (−1: unknown, one of its searches ran out of work)
     Found hit;   // the pixel's hit (PH_LIGHTS; PH_DONE with status HIT); PH_PIXEL in a
                  // bisection: the segment's earliest crossing so far
-    Span span;   // PH_PIXEL
+    Span span;   // PH_PIXEL: a bisection's checkpoint (render_intersect)
 };
 
 // The progress in three slots, every number an integer below 2^24 or a float kept as it is:
@@ -333,7 +327,7 @@ void main() {
             if (sp.seg >= 0) {   // back to a bisection's checkpoint, through its loop
                 Found best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
                 if (at.hit.target >= 0) best = at.hit;
-                res = Resume(true, sp.seg, sp.obj, sp.depth, sp.index, sp.probes, sp.a, sp.seed, best, at.probes);
+                res = Resume(true, sp, best, at.probes);
             }
         }
     } else if (at.phase == PH_LIGHTS) {
