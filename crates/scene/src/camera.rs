@@ -7,6 +7,8 @@
 //! row 0 is the top row. Sub-pixel samples are the pixels of [`Camera::supersampled`]
 //! (docs/physics.md, "Pixels and cameras").
 
+use serde::{Deserialize, Serialize};
+
 /// Largest image side, and largest pixel count: guards against typos that would allocate
 /// gigabytes.
 pub const MAX_SIDE: u32 = 20_000;
@@ -16,7 +18,12 @@ pub const MAX_PIXELS: u64 = 50_000_000;
 /// when a scene is read, or with [`Camera::check`] (pinhole fov in (0, 180), panorama h_fov
 /// in (0, 360] and v_fov in (0, 180], fisheye fov in (0, 360], sizes in 1..=[`MAX_SIDE`],
 /// at most [`MAX_PIXELS`] pixels).
-#[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// Its JSON form (the viewer's page reads and writes it) is the scene file's `[camera]`
+/// table without `samples`: `{"kind": "fisheye", "fov_deg": 180, "width": 512, "height": 512}`;
+/// a fisheye's `width` and `height` must be equal.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum Camera {
     /// Image plane at unit distance, horizontal field of view `fov_deg`, square pixels.
     Pinhole {
@@ -35,7 +42,41 @@ pub enum Camera {
     Sphere { width: u32, height: u32 },
     /// Equidistant fisheye (dome master) on a square `size`×`size` image; the inscribed
     /// circle spans `fov_deg`.
+    #[serde(
+        serialize_with = "square_json::serialize",
+        deserialize_with = "square_json::deserialize"
+    )]
     Fisheye { fov_deg: f64, size: u32 },
+}
+
+/// The fisheye's JSON form: `size` written as the `width` and `height` of every other camera.
+mod square_json {
+    use serde::{de::Error, Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Square {
+        fov_deg: f64,
+        width: u32,
+        height: u32,
+    }
+
+    pub fn serialize<S: Serializer>(fov_deg: &f64, size: &u32, s: S) -> Result<S::Ok, S::Error> {
+        Square {
+            fov_deg: *fov_deg,
+            width: *size,
+            height: *size,
+        }
+        .serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<(f64, u32), D::Error> {
+        let q = Square::deserialize(d)?;
+        match super::Camera::fisheye(q.fov_deg, q.width, q.height) {
+            Ok(_) => Ok((q.fov_deg, q.width)),
+            Err((field, message)) => Err(D::Error::custom(format!("{field}: {message}"))),
+        }
+    }
 }
 
 impl Camera {

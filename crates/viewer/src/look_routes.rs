@@ -75,99 +75,6 @@ pub fn router(state: Arc<LookState>) -> Router {
         .with_state(state)
 }
 
-/// A camera as the page and scene files write it.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
-pub enum CameraJson {
-    Pinhole {
-        fov_deg: f64,
-        width: u32,
-        height: u32,
-    },
-    Panorama {
-        h_fov_deg: f64,
-        v_fov_deg: f64,
-        width: u32,
-        height: u32,
-    },
-    Sphere {
-        width: u32,
-        height: u32,
-    },
-    Fisheye {
-        fov_deg: f64,
-        width: u32,
-        height: u32,
-    },
-}
-
-impl CameraJson {
-    pub fn of(camera: &Camera) -> CameraJson {
-        match *camera {
-            Camera::Pinhole {
-                fov_deg,
-                width,
-                height,
-            } => CameraJson::Pinhole {
-                fov_deg,
-                width,
-                height,
-            },
-            Camera::Panorama {
-                h_fov_deg,
-                v_fov_deg,
-                width,
-                height,
-            } => CameraJson::Panorama {
-                h_fov_deg,
-                v_fov_deg,
-                width,
-                height,
-            },
-            Camera::Sphere { width, height } => CameraJson::Sphere { width, height },
-            Camera::Fisheye { fov_deg, size } => CameraJson::Fisheye {
-                fov_deg,
-                width: size,
-                height: size,
-            },
-        }
-    }
-
-    /// The camera; a fisheye must be square (as in a scene file).
-    pub fn camera(&self) -> Result<Camera, ApiError> {
-        Ok(match *self {
-            CameraJson::Pinhole {
-                fov_deg,
-                width,
-                height,
-            } => Camera::Pinhole {
-                fov_deg,
-                width,
-                height,
-            },
-            CameraJson::Panorama {
-                h_fov_deg,
-                v_fov_deg,
-                width,
-                height,
-            } => Camera::Panorama {
-                h_fov_deg,
-                v_fov_deg,
-                width,
-                height,
-            },
-            CameraJson::Sphere { width, height } => Camera::Sphere { width, height },
-            CameraJson::Fisheye {
-                fov_deg,
-                width,
-                height,
-            } => Camera::fisheye(fov_deg, width, height).map_err(|(field, message)| {
-                ApiError::bad_request(format!("view: {field}: {message}"))
-            })?,
-        })
-    }
-}
-
 /// A velocity as the page writes it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -181,7 +88,7 @@ pub struct VelocityJson {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ViewJson {
-    pub camera: CameraJson,
+    pub camera: Camera,
     pub forward: [f64; 3],
     pub up: [f64; 3],
     pub velocity: VelocityJson,
@@ -212,7 +119,7 @@ fn view_info(viewer: &ViewerState) -> ViewInfo {
     let data = &viewer.data;
     let read = Scene::read_view(&data.header.scene_text, "<scene embedded in the data file>");
     let view = read.as_ref().ok().map(|(observer, camera)| ViewJson {
-        camera: CameraJson::of(camera),
+        camera: *camera,
         forward: observer.forward,
         up: observer.up,
         velocity: VelocityJson {
@@ -304,7 +211,7 @@ fn prepare_look(
             v.velocity.speed, v.velocity.direction
         ))
     })?;
-    let camera = v.camera.camera()?;
+    let camera = v.camera;
     scene::samples_per_side(i64::from(v.samples), camera.width(), camera.height())
         .map_err(|m| ApiError::bad_request(format!("view: camera.samples: {m}")))?;
     let pixels = camera.width() as u64 * camera.height() as u64 * u64::from(v.samples);

@@ -131,3 +131,45 @@ fn reading_a_view_checks_observer_and_camera_with_located_errors() {
     assert_eq!(e.field, "observer.up");
     assert!(e.message.contains("orthogonal"), "{e}");
 }
+
+#[test]
+fn a_cameras_json_form_is_its_scene_file_table() {
+    for camera in cameras() {
+        let text = replace_view(
+            &text(),
+            "t.toml",
+            &camera,
+            LocalVelocity::REST,
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+        )
+        .expect("edit");
+        let table: toml::Table = toml::from_str(&text).expect("toml");
+        let from_file = serde_json::to_value(&table["camera"]).expect("json");
+        let json = serde_json::to_value(camera).expect("json");
+        assert_eq!(json, from_file, "{text}");
+        assert_eq!(
+            serde_json::from_value::<Camera>(json).expect("reads back"),
+            camera
+        );
+    }
+    let fisheye = |w: u32, h: u32| {
+        serde_json::from_str::<Camera>(&format!(
+            r#"{{"kind": "fisheye", "fov_deg": 180, "width": {w}, "height": {h}}}"#
+        ))
+    };
+    assert_eq!(
+        fisheye(64, 64).expect("square"),
+        Camera::Fisheye {
+            fov_deg: 180.0,
+            size: 64
+        }
+    );
+    let e = fisheye(64, 48).unwrap_err().to_string();
+    assert!(e.contains("camera.height") && e.contains("square"), "{e}");
+    let e =
+        serde_json::from_str::<Camera>(r#"{"kind": "sphere", "width": 8, "height": 4, "size": 8}"#)
+            .unwrap_err()
+            .to_string();
+    assert!(e.contains("size"), "an unknown field is refused: {e}");
+}
