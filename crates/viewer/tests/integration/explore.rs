@@ -327,6 +327,39 @@ async fn send(
     (status, json, body.to_vec())
 }
 
+/// The explore routes over the stand-in frame source, serving `kernel` when given.
+fn stand_in_app(kernel: Option<String>) -> axum::Router {
+    let explorer = Explorer::new(Fake::default()).unwrap();
+    viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        kernel,
+    )
+}
+
+/// A view's JSON (`viewer::view::View`) at `time` and `position`, moving at `speed` along
+/// `direction`, with a small pinhole camera.
+fn view_json(time: f64, position: [f64; 3], speed: f64, direction: [f64; 3]) -> serde_json::Value {
+    serde_json::json!({
+        "time": time, "position": {"x": position[0], "y": position[1], "z": position[2]},
+        "velocity": {"speed": speed, "direction": direction},
+        "forward": [1, 0, 0], "up": [0, 0, 1],
+        "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
+    })
+}
+
+/// The refusal's message of a request that must be refused as a bad request.
+async fn refusal(app: &axum::Router, request: Request<Body>) -> String {
+    let what = format!("{} {}", request.method(), request.uri());
+    let (status, answer, body) = send(app, request).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST, "{what}");
+    let message = answer["error"].as_str();
+    message
+        .unwrap_or_else(|| panic!("{what}: {}", String::from_utf8_lossy(&body)))
+        .to_string()
+}
+
 #[tokio::test]
 async fn godel_view_says_it_is_not_explore_mode() {
     let (status, _, body) = common::send(common::get("/api/explore/info")).await;
@@ -365,9 +398,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
             "event.refine",
         ),
     ] {
-        let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{body}");
-        let message = answer["error"].as_str().unwrap();
+        let message = refusal(&app, common::post("/api/explore/event", body)).await;
         assert!(message.contains(field), "{field} not in {message}");
     }
     let body = r#"{"t": 4, "x": 0.5, "y": 0, "z": 0}"#;
@@ -446,10 +477,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
         ("t=4&x=0&y=0&z=1e9", "map.z: 1e9 is beyond"),
         ("t=4&x=0&y=0", "z"),
     ] {
-        let (status, answer, _) =
-            send(&app, common::get(&format!("/api/explore/map?{query}"))).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{query}");
-        let message = answer["error"].as_str().unwrap();
+        let message = refusal(&app, common::get(&format!("/api/explore/map?{query}"))).await;
         assert!(message.contains(field), "{field} not in {message}");
     }
     let (status, _, text) = send(&app, common::post("/api/explore/keyframe?frame=3", body)).await;
@@ -510,13 +538,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
-    let explorer = Explorer::new(Fake::default()).unwrap();
-    let app = viewer::explore_routes::router(
-        common::state(),
-        explorer,
-        Access::local(common::PORT),
-        None,
-    );
+    let app = stand_in_app(None);
     // Before any frame: the scene's own event.
     let (status, input, _) = send(&app, common::get("/api/gpu/input")).await;
     assert_eq!(status, StatusCode::OK);
@@ -555,28 +577,15 @@ async fn the_kernel_input_is_the_scene_seen_from_the_event_asked_for() {
         ("?t=1&x=1e9&y=0&z=0", "input.x: 1e9 is beyond"),
         ("?t=1&x=0&y=0&z=0&draw_buffers=0", "draw_buffers"),
     ] {
-        let (status, answer, _) = send(&app, common::get(&format!("/api/gpu/input{query}"))).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{query}");
-        let message = answer["error"].as_str().unwrap();
+        let message = refusal(&app, common::get(&format!("/api/gpu/input{query}"))).await;
         assert!(message.contains(needle), "{query}: {message}");
     }
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_why() {
-    let explorer = Explorer::new(Fake::default()).unwrap();
-    let app = viewer::explore_routes::router(
-        common::state(),
-        explorer,
-        Access::local(common::PORT),
-        None,
-    );
-    let view = serde_json::json!({
-        "time": 2.5, "position": {"x": 0.25, "y": -0.5, "z": 0.125},
-        "velocity": {"speed": 0.5, "direction": [1, 0, 0]},
-        "forward": [1, 0, 0], "up": [0, 0, 1],
-        "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
-    });
+    let app = stand_in_app(None);
+    let view = view_json(2.5, [0.25, -0.5, 0.125], 0.5, [1.0, 0.0, 0.0]);
     let (status, input, _) = send(
         &app,
         common::post("/api/explore/input?draw_buffers=8", &view.to_string()),
@@ -653,10 +662,8 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
         ),
         ("/api/explore/move", step.replace(", \"tau\": 2", ""), "tau"),
     ] {
-        let (status, answer, _) = send(&app, common::post(url, &body)).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{url} {body}");
-        let message = answer["error"].as_str().unwrap();
-        assert!(message.contains(needle), "{url}: {message}");
+        let message = refusal(&app, common::post(url, &body)).await;
+        assert!(message.contains(needle), "{url} {body}: {message}");
     }
 }
 
@@ -666,20 +673,8 @@ async fn a_view_gets_its_kernel_input_and_a_move_its_free_fall_and_bad_ones_say_
 /// field as the request wrote it, with the route's name, numbers in short form, as JSON.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn refusals_name_what_the_request_wrote_in_short() {
-    let explorer = Explorer::new(Fake::default()).unwrap();
-    let app = viewer::explore_routes::router(
-        common::state(),
-        explorer,
-        Access::local(common::PORT),
-        None,
-    );
-    let view = serde_json::json!({
-        "time": 1e308, "position": {"x": 0, "y": 0, "z": 0},
-        "velocity": {"speed": 0.5, "direction": [1, 0, 0]},
-        "forward": [1, 0, 0], "up": [0, 0, 1],
-        "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
-    })
-    .to_string();
+    let app = stand_in_app(None);
+    let view = view_json(1e308, [0.0; 3], 0.5, [1.0, 0.0, 0.0]).to_string();
     let step = |time: &str, tau: &str| {
         format!(
             r#"{{"time": {time}, "position": {{"x": 0, "y": 0, "z": 0}},
@@ -738,28 +733,21 @@ async fn refusals_name_what_the_request_wrote_in_short() {
     ];
     for (route, body, want) in posts {
         let url = format!("/api/explore/{route}");
-        let (status, answer, _) = send(&app, common::post(&url, &body)).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{url} {body}");
-        let message = answer["error"].as_str().unwrap();
+        let message = refusal(&app, common::post(&url, &body)).await;
         assert!(
             message.starts_with(&want),
             "{url}: {message} (wanted {want})"
         );
     }
-    let (status, answer, _) = send(&app, common::get("/api/explore/map?t=0&x=1e308&y=0&z=0")).await;
-    assert_eq!(status, StatusCode::BAD_REQUEST);
-    assert_eq!(answer["error"], format!("map.x: 1e308 {beyond}"));
+    let message = refusal(&app, common::get("/api/explore/map?t=0&x=1e308&y=0&z=0")).await;
+    assert_eq!(message, format!("map.x: 1e308 {beyond}"));
     // A name that is not UTF-8, in the explore routes and the viewer's own.
     for url in [
         "/api/explore/channel/%FF?generation=1&level=full",
         "/api/gpu/channel/%FF",
         "/api/gpu/image/%FF",
     ] {
-        let (status, answer, body) = send(&app, common::get(url)).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{url}");
-        let message = answer["error"].as_str();
-        let message =
-            message.unwrap_or_else(|| panic!("{url}: {}", String::from_utf8_lossy(&body)));
+        let message = refusal(&app, common::get(url)).await;
         assert!(message.contains("Invalid UTF-8"), "{url}: {message}");
     }
 }
@@ -771,24 +759,13 @@ async fn refusals_name_what_the_request_wrote_in_short() {
 /// given to the router.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_page_check_hands_its_samples_to_the_source_and_bad_ones_say_why() {
-    let explorer = Explorer::new(Fake::default()).unwrap();
-    let app = viewer::explore_routes::router(
-        common::state(),
-        explorer,
-        Access::local(common::PORT),
-        Some("void main() {} // served".into()),
-    );
+    let app = stand_in_app(Some("void main() {} // served".into()));
     let (status, _, kernel) = send(&app, common::get("/api/gpu/kernel")).await;
     assert_eq!(status, StatusCode::OK);
     assert_eq!(kernel, b"void main() {} // served");
     let body = |samples: serde_json::Value| {
         serde_json::json!({
-            "view": {
-                "time": 0.5, "position": {"x": 0, "y": 0, "z": 0},
-                "velocity": {"speed": 0.6, "direction": [0, 1, 0]},
-                "forward": [1, 0, 0], "up": [0, 0, 1],
-                "camera": {"kind": "pinhole", "fov_deg": 60, "width": 8, "height": 4, "samples": 1},
-            },
+            "view": view_json(0.5, [0.0; 3], 0.6, [0.0, 1.0, 0.0]),
             "renderer": "SwiftShader",
             "samples": samples,
         })
@@ -836,10 +813,8 @@ async fn the_page_check_hands_its_samples_to_the_source_and_bad_ones_say_why() {
             "object",
         ),
     ] {
-        let (status, answer, _) = send(&app, common::post("/api/explore/check", &request)).await;
-        assert_eq!(status, StatusCode::BAD_REQUEST, "{request}");
-        let message = answer["error"].as_str().unwrap();
-        assert!(message.contains(needle), "{message}");
+        let message = refusal(&app, common::post("/api/explore/check", &request)).await;
+        assert!(message.contains(needle), "{request}: {message}");
     }
     let padded =
         body(serde_json::json!([hit])).replace("SwiftShader", &"x".repeat(MAX_CHECK_BYTES));
