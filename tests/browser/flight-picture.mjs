@@ -1,8 +1,8 @@
-// The README's picture of a flight (scripts/flight-picture.sh): in explore mode, with "Fall
-// freely" on, holds W at SPEED (fraction of c) until the observer's time passes UNTIL, lets
-// go, waits for the full frame traced in the browser at rest, hovers the middle of the
-// leftmost image on the picture's middle row (made by light that looped round the
-// observer's axis) until the map shows its light ray, and saves the page as OUT.png.
+// The picture of a flight in the README and the guide (scripts/flight-picture.sh): in explore
+// mode, with "Fall freely" on, holds W at SPEED (fraction of c) until the observer's time
+// passes UNTIL, lets go, waits for the full frame traced in the browser at rest, hovers the
+// middle of the leftmost image on the picture's middle row (made by light that looped round
+// the observer's axis) until the map shows its light ray, and saves the page as OUT.png.
 // usage: node flight-picture.mjs URL OUT_DIR OUT.png SPEED UNTIL
 // Prints {view, hovered, full_ms}.
 import { launch, open, atRest } from './launch.mjs';

@@ -1,11 +1,11 @@
-// Makes the README's pictures of the viewer with Debian's chromium (WebGL2 on SwiftShader):
+// Makes the guide's pictures of the viewer with Debian's chromium (WebGL2 on SwiftShader):
 // the mouse on pixel COL ROW of the picture, after applying SETTINGS (JSON: "shaders", and for
 // a full-sphere file "look": projection, fov, yaw, pitch, speed, preset).
 // With "explore": true in SETTINGS (`godel explore` serving URL) it first waits for the full
 // frame of the scene's event and its map, and then also for the map's light ray of the pixel.
 // usage: node screenshot.mjs URL OUT.png COL ROW [SETTINGS]   (with `godel view` serving URL)
-//   e.g. node screenshot.mjs URL docs/viewer.png 700 125 '{"shaders": ["frequency"]}'
-//        node screenshot.mjs URL docs/explore.png 300 50 '{"explore": true}'
+//   e.g. node screenshot.mjs URL docs/guide/src/pictures/viewer.png 700 125 '{"shaders": ["frequency"]}'
+//        node screenshot.mjs URL docs/guide/src/pictures/explore.png 300 50 '{"explore": true}'
 import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
