@@ -25,7 +25,7 @@ command -v glslangValidator >/dev/null || { apt-get update -qq \
 cargo build --workspace --all-targets --quiet
 cargo test --workspace --no-fail-fast
 
-# --- Python (issue 26): the package in python/ (README, "Python"), installed with
+# --- Python (issue 26): the package in python/ (docs/guide/src/python.md), installed with
 # `pip install ./python` into a virtual environment under target/ (made when missing, with
 # the test tools installed when missing), then its pytest tests, which compare it with the
 # godel binary built above. maturin builds with the dev profile here, whose artifacts the
@@ -56,3 +56,15 @@ fi
 # shared dependencies (tokio, axum, render, gpu, ...) got another feature set and compiled
 # again (about 40 crates); so only the MPI crates and godel compile here.
 cargo test --workspace --features godel/mpi --test mpi --no-fail-fast
+
+# --- The user guide (issue 35): docs/guide is an mdBook, built into docs/guide/book. mdBook
+# is not in Debian: it is installed from crates.io into target/tools when missing, without
+# its default features (file watcher, live-reload server, search index; the book reads
+# without them): about 1.5 minutes of compiling on 2 cores.
+# mdBook exits 0 on a broken link, a missing picture or an include of a missing file, so
+# scripts/check-guide.py then checks every link and picture of the built book and of
+# README.md.
+[ -x target/tools/bin/mdbook ] || cargo install mdbook --no-default-features --locked \
+    --version 0.5.4 --root target/tools --quiet
+MDBOOK_LOG=warn target/tools/bin/mdbook build docs/guide
+python3 scripts/check-guide.py
