@@ -10,7 +10,7 @@ command line, so that the numbers are the command line's, bit for bit:
 - :func:`geodesic`: one light ray or massive particle (``godel geodesic``);
 - :func:`connect`: every light ray from a source at rest to an event (``godel connect``).
 
-Conventions (README.md, docs/physics.md): c = 1, signature (−,+,+,+), Gödel parameter
+Conventions (docs/guide/src/how-it-works.md, docs/physics.md): c = 1, signature (−,+,+,+), Gödel parameter
 ``a``, optical horizon at r = 2a, pseudo-Cartesian coordinates (t, x, y, z) with
 x = r cos φ, y = r sin φ. Bad input raises ``ValueError`` with the command line's message,
 naming the file, line and field of a scene, or the keyword argument (an empty path too); a

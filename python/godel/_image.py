@@ -16,8 +16,8 @@ _DTYPES = {"object": np.int32, "status": np.uint8}
 class Image:
     """A traced image: what ``godel render`` writes into its data file, in memory.
 
-    Made by :func:`godel.render` or :func:`godel.read`. Channels (see the README, "The data
-    file") are H×W numpy arrays of the stored image (with ``samples = s²`` it is s times
+    Made by :func:`godel.render` or :func:`godel.read`. Channels (see the guide,
+    docs/guide/src/data-file.md) are H×W numpy arrays of the stored image (with ``samples = s²`` it is s times
     wider and taller than the picture, every sample kept):
 
     - ``object`` (int32): index of the object hit in scene order, −1 for none;

@@ -1,4 +1,4 @@
-//! The command line's error messages as Python exceptions (README.md, "Python"): bad input
+//! The command line's error messages as Python exceptions (docs/guide/src/python.md): bad input
 //! (a scene, a setting, an argument) is a `ValueError` with the text `godel` prints after
 //! `error: `, naming the file, line and field, or the keyword argument where the command line
 //! names its flag, and an empty path naming its keyword argument. A file that cannot be read

@@ -17,7 +17,8 @@ from conftest import run_cli
 
 
 def metric_norm(a: float, x, y, k) -> np.ndarray:
-    """g(k, k) of Gödel's metric in pseudo-Cartesian coordinates (README, "Scenes":
+    """g(k, k) of Gödel's metric in pseudo-Cartesian coordinates (docs/physics.md,
+    "The Gödel metric":
     ds² = −dt² − (√2 r²/a) dt dφ + dr²/(1 + (r/2a)²) + r²(1 − (r/2a)²) dφ² + dz²,
     with r² dφ = x dy − y dx and r dr = x dx + y dy), at points off the axis."""
     kt, kx, ky, kz = k[:, 0], k[:, 1], k[:, 2], k[:, 3]

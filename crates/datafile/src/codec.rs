@@ -1,5 +1,5 @@
-//! The per-pixel data file: one OpenEXR file per traced image (README.md,
-//! "The data file"), read back by the post-render shaders without re-tracing.
+//! The per-pixel data file: one OpenEXR file per traced image
+//! (docs/guide/src/data-file.md), read back by the post-render shaders without re-tracing.
 //!
 //! # Format (format version 2)
 //!

@@ -1,5 +1,5 @@
 //! The data file's channels as named planes of values, exactly as the file stores them
-//! (README.md, "The data file"): what the EXR encoder writes, and what other readers of a
+//! (docs/guide/src/data-file.md): what the EXR encoder writes, and what other readers of a
 //! traced image in memory (the Python module) hand out, so that both hold the same numbers.
 //!
 //! *No value where there is none:* the physical channels (`u` … `cos_i`, `dir_*`, `light_k`)

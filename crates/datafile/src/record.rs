@@ -1,7 +1,7 @@
 //! The per-pixel record: what the tracer learned about one pixel's ray.
 //!
 //! One [`PixelRecord`] per pixel is everything the post-render shaders need
-//! (README.md, "The data file"): which object the backward null geodesic hit, where
+//! (docs/guide/src/data-file.md): which object the backward null geodesic hit, where
 //! and when it was emitted, the frequency shift `g`, and the texture coordinates.
 //! Direct light from each source (`light_k`) is not part of the record: it is
 //! stored as separate planes in [`crate::DataFile::lights`] so that the

@@ -1,6 +1,6 @@
 //! Fly-through sequences: the scene of each frame of a traced sequence, with the observer
-//! and the camera's field of view keyframed in the script (`shade::script`, README.md,
-//! "Sequences").
+//! and the camera's field of view keyframed in the script (`shade::script`,
+//! docs/guide/src/sequences.md).
 //!
 //! [`Flight::new`] starts from the scene's own observer (time, position as x, y, z,
 //! velocity, forward, up) and camera (its fields of view) and follows the script's

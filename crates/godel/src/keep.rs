@@ -1,4 +1,4 @@
-//! *Render exactly* and *Record* of `godel explore` (README "Exploring"): the
+//! *Render exactly* and *Record* of `godel explore` (docs/guide/src/explore.md): the
 //! [`viewer::keep::Keeper`] over the explored scene.
 //!
 //! - A view ([`View`]: the scene file's observer fields and its camera) becomes the scene
@@ -7,7 +7,7 @@
 //!   every edited scene is made (`scene_edit`), so it is exactly the scene a user would write.
 //!   Its render is `godel render`'s: the same driver on all cores, the same PNG and data file
 //!   bytes (`output::data_and_preview`).
-//! - A recording becomes a sequence script (README "Sequences", "Fly-throughs"): `[trace]
+//! - A recording becomes a sequence script (docs/guide/src/sequences.md, "Fly-throughs"): `[trace]
 //!   scene` the scene file (absolute path), one `[[keyframe]]` per recorded view at its frame
 //!   with every observer field and the camera's fields of view, linear easing; frames at the
 //!   scene's own size and samples. The text is read back by the script parser and every

@@ -1,4 +1,4 @@
-//! What the explore map draws (README, "Exploring"; docs/physics.md, "The explore map"):
+//! What the explore map draws (docs/guide/src/explore.md; docs/physics.md, "The explore map"):
 //! for an observer's event, its optical horizon in the x–y plane, the scene's balls where
 //! they are at the observer's time and their worldline tracks, and one pixel's light ray from
 //! the observer back to where it was emitted.

@@ -1,5 +1,5 @@
 //! The worker threads of a render: rayon's pool with a bounded, checked size, so that a
-//! request for a million threads is refused before any work (README.md, "Limits").
+//! request for a million threads is refused before any work (docs/guide/src/command-line.md, **Limits**).
 
 /// Most worker threads per core: more only adds switching and memory, never speed.
 pub const THREADS_PER_CORE: usize = 8;

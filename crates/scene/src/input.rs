@@ -1,6 +1,6 @@
 //! Reading input files with a bound: every file `godel` reads (scene files, shade settings,
 //! sequence scripts, data files) goes through [`read_bounded`], so that no input can make a
-//! read block or grow without limit (README.md, "The command line", **Limits**).
+//! read block or grow without limit (docs/guide/src/command-line.md, **Limits**).
 //!
 //! Only regular files are read: a FIFO would block on open, a device such as `/dev/zero`
 //! never ends, a directory is a mistake. The type is checked on the path before it is

@@ -1,5 +1,5 @@
 //! Scene files for the Gödel ray tracer: parsing, validation with located errors, and the
-//! runtime scene description (README.md, "Scenes"; docs/physics.md, "Pixels and cameras").
+//! runtime scene description (docs/guide/src/scenes.md; docs/physics.md, "Pixels and cameras").
 //!
 //! Main types:
 //! - [`Scene`]: the validated scene — metric, [`Observer`], [`Camera`], [`TraceSettings`],

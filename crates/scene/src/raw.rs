@@ -1,4 +1,4 @@
-//! The scene file exactly as written (README.md, "Scenes"): serde structs with unknown
+//! The scene file exactly as written (docs/guide/src/scenes.md): serde structs with unknown
 //! fields rejected everywhere. Nothing is checked here beyond TOML types; the meaning (which
 //! fields go with which `kind`, ranges, units) is checked in `validate.rs`, which turns these
 //! records into the runtime types with located errors.

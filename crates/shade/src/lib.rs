@@ -1,5 +1,5 @@
 //! `shade`: the post-render stage — shading per-pixel data files into pictures without
-//! re-tracing (README.md, "Shading").
+//! re-tracing (docs/guide/src/shading.md).
 //!
 //! Main types and functions:
 //! - [`ShadeSettings`]: every shader parameter (serde; TOML files, keyframes, the viewer),

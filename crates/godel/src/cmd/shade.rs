@@ -1,5 +1,5 @@
 //! `godel shade DATA.exr --shader texture|frequency|time|light … -o out.png`: re-colours a
-//! traced data file without tracing again (README.md, "Shading"). The settings start
+//! traced data file without tracing again (docs/guide/src/shading.md). The settings start
 //! from the data file's defaults ([`shade::ShadeSettings::defaults_for`]), then a settings
 //! file (`--settings`), then the convenience flags, in that order; a flag that no chosen
 //! layer reads is refused ([`unused_flags`]). The picture's format follows the output's

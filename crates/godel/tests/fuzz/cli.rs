@@ -1,6 +1,6 @@
 //! The command line on a sample of the cases: `godel render`, `godel shade` and
 //! `godel sequence` as subprocesses, killed if they run past their limit, with the
-//! command line's promises checked (README, "The command line"; the project's rules):
+//! command line's promises checked (docs/guide/src/command-line.md; the project's rules):
 //! exit 0, or exit 1 or 2 with one line `error: …` and no panic or signal; on success
 //! exactly the promised files, on failure no file at all in the output folder (no
 //! temporaries, nothing half-written); the same verdict as the library in process.

@@ -144,7 +144,7 @@ pub fn run(text: &str) -> Result<Verdict, String> {
     })
 }
 
-/// The data file's promises about records (README, "The data file").
+/// The data file's promises about records (docs/guide/src/data-file.md).
 pub fn check_records(scene: &Scene, data: &DataFile) -> Result<(), String> {
     // One record per sample: the camera's size times the samples per side.
     let s = scene.supersample() as usize;

@@ -1,4 +1,4 @@
-//! Random valid-looking scene files (README, "Scenes"; the schema of `scene`'s raw records),
+//! Random valid-looking scene files (docs/guide/src/scenes.md; the schema of `scene`'s raw records),
 //! always tiny: at most 8×4 pixels (a fisheye at most 6×6) and a few loops of a light ray
 //! into the past. They aim where the tracer is weakest: an observer inside, on, or just
 //! outside a sphere (local at rest, free fall from the observer's event, coordinate), planes

@@ -1,5 +1,5 @@
-//! Random shade settings files (README, "Shading"; `shade::settings`) and sequence scripts
-//! (README, "Sequences"; `shade::script`) as TOML text: any subset of the fields, values
+//! Random shade settings files (docs/guide/src/shading.md; `shade::settings`) and sequence scripts
+//! (docs/guide/src/sequences.md; `shade::script`) as TOML text: any subset of the fields, values
 //! ordinary and extreme, object names from the data file and unknown ones, image textures
 //! that exist, are damaged, or are not images.
 

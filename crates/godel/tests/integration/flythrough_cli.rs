@@ -1,5 +1,5 @@
 //! End-to-end tests of fly-through sequences (`godel sequence` with `[keyframe.observer]`
-//! and `[keyframe.camera]`, README.md "Sequences"): at every keyframe a frame is the very
+//! and `[keyframe.camera]`, docs/guide/src/sequences.md): at every keyframe a frame is the very
 //! `godel render` of the scene with that observer and camera (the same PNG bytes and the
 //! same data records); the observer's time eases between keyframes by the script's formula
 //! (read back from each kept data file's header); stale data files of an earlier run are

@@ -65,7 +65,7 @@ texture = { kind = "uniform", color = [0.0, 1.0, 0.0] }
     let o = godel(&["sequence", script.to_str().unwrap(), "-q"]);
     let e = stderr(&o);
     assert!(o.status.success(), "{e}");
-    // The README's display curve: identity to 0.8, then 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2.
+    // The guide's display curve (docs/guide/src/shading.md): identity to 0.8, then 0.8 + 0.2·y/(1 + y), y = (x − 0.8)/0.2.
     let tone = |x: f64| {
         if x <= 0.8 {
             x

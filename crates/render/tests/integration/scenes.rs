@@ -1,4 +1,4 @@
-//! The example scenes in scenes/ show what the README promises: a sphere at rest seen
+//! The example scenes in scenes/ show what the guide promises (docs/guide/src/scenes.md): a sphere at rest seen
 //! exactly twice, one beyond the horizon never, the falling ball of the reference scene
 //! several times, and 20+ times when followed ten times further into the past.
 
