@@ -8,8 +8,7 @@
 
 use crate::args::usage;
 use crate::plot::kit::{
-    arrowhead, caption, legend_heading, legend_text, palette_swatches, prepare_figure_output,
-    trace_ray, write_figure, Frame, PALETTE,
+    arrowhead, caption, prepare_figure_output, trace_ray, write_figure, Frame, Legend, PALETTE,
 };
 use crate::plot::svg::f;
 use spacetime::{Event, Godel, Metric};
@@ -190,41 +189,18 @@ fn figure(a: f64, rays: &[Ray], n_plane: usize, n_tilted: usize) -> String {
 
     // Legend and caption on the right.
     let x0 = fr.legend_left();
-    let mut y = top + 20.0;
-    legend_heading(&mut s, x0, y);
-    y += 28.0;
-    palette_swatches(&mut s, (x0, y), n_plane, 9.0);
-    legend_text(
-        &mut s,
-        (x0 + 80.0, y),
-        &format!("light rays in the plane ({n_plane})"),
-    );
+    let mut legend = Legend::new(&mut s, x0, top + 20.0, x0 + 80.0);
+    let in_plane = format!("light rays in the plane ({n_plane})");
+    legend.swatches(&mut s, n_plane, 9.0, &in_plane);
     if n_tilted > 0 {
-        y += 26.0;
-        s.line(
-            (x0, y - 5.0),
-            (x0 + 72.0, y - 5.0),
-            &format!(r#"stroke="{TILTED_COLOUR}" stroke-width="2""#),
-        );
-        legend_text(
-            &mut s,
-            (x0 + 80.0, y),
-            &format!("tilted 45° out of it ({n_tilted})"),
-        );
+        let style = format!(r#"stroke="{TILTED_COLOUR}" stroke-width="2""#);
+        let text = format!("tilted 45° out of it ({n_tilted})");
+        legend.line(&mut s, 72.0, &style, &text);
     }
-    y += 26.0;
-    s.line(
-        (x0, y - 5.0),
-        (x0 + 72.0, y - 5.0),
-        r##"stroke="#222" stroke-width="1.6" stroke-dasharray="7 5""##,
-    );
-    legend_text(&mut s, (x0 + 80.0, y), "optical horizon r = 2a");
-    y += 26.0;
-    s.polygon(
-        &[(x0 + 44.0, y - 5.0), (x0 + 32.0, y - 10.0), (x0 + 32.0, y)],
-        r##"fill="#444""##,
-    );
-    legend_text(&mut s, (x0 + 80.0, y), "future direction");
+    let dashed = r##"stroke="#222" stroke-width="1.6" stroke-dasharray="7 5""##;
+    legend.line(&mut s, 72.0, dashed, "optical horizon r = 2a");
+    legend.arrow(&mut s, 12.0, "#444", "future direction");
+    let y = legend.y;
 
     let t_ret = Godel::new(a).shortest_loop_time();
     let plane: Vec<f64> = rays.iter().filter(|r| !r.tilted).map(|r| r.t_end).collect();

@@ -12,8 +12,8 @@
 
 use crate::args::usage;
 use crate::plot::kit::{
-    arrowhead, caption, legend_heading, legend_text, palette_swatches, prepare_figure_output,
-    tick_label, trace_ray, write_figure, Frame, PALETTE,
+    arrowhead, caption, prepare_figure_output, tick_label, trace_ray, write_figure, Frame, Legend,
+    PALETTE,
 };
 use crate::plot::svg::f;
 use clap::ValueEnum;
@@ -186,44 +186,21 @@ fn figure(args: &IsometryPlotArgs, a: f64, events: &[Event], images: &[Image]) -
 
     // Legend and caption.
     let x0 = fr.legend_left();
-    let mut y = top + 20.0;
-    legend_heading(&mut s, x0, y);
-    y += 28.0;
-    s.line(
-        (x0, y - 5.0),
-        (x0 + 60.0, y - 5.0),
-        &format!(r#"stroke="{ORIGINAL}" stroke-width="3""#),
-    );
-    legend_text(&mut s, (x0 + 70.0, y), "light ray from the origin");
-    y += 26.0;
-    palette_swatches(&mut s, (x0, y), images.len(), 6.0);
+    let mut legend = Legend::new(&mut s, x0, top + 20.0, x0 + 70.0);
+    let ray = format!(r#"stroke="{ORIGINAL}" stroke-width="3""#);
+    legend.line(&mut s, 60.0, &ray, "light ray from the origin");
     let unit = if field == FieldName::Phi { "" } else { "a" };
-    legend_text(
-        &mut s,
-        (x0 + 70.0, y),
-        &format!(
-            "its images, s = {}{unit} … {}{unit}",
-            tick_label(images[0].s),
-            tick_label(images[images.len() - 1].s)
-        ),
+    let range = format!(
+        "its images, s = {}{unit} … {}{unit}",
+        tick_label(images[0].s),
+        tick_label(images[images.len() - 1].s)
     );
-    y += 26.0;
-    s.polygon(
-        &[(x0 + 44.0, y - 5.0), (x0 + 24.0, y - 10.0), (x0 + 24.0, y)],
-        r##"fill="#9a9a9a""##,
-    );
-    legend_text(
-        &mut s,
-        (x0 + 70.0, y),
-        &format!("direction of {} (x–y part)", field.label()),
-    );
-    y += 26.0;
-    s.line(
-        (x0, y - 5.0),
-        (x0 + 60.0, y - 5.0),
-        r##"stroke="#222" stroke-width="1.2" stroke-dasharray="7 5""##,
-    );
-    legend_text(&mut s, (x0 + 70.0, y), "horizon of the origin, r = 2a");
+    legend.swatches(&mut s, images.len(), 6.0, &range);
+    let direction = format!("direction of {} (x–y part)", field.label());
+    legend.arrow(&mut s, 20.0, "#9a9a9a", &direction);
+    let dashed = r##"stroke="#222" stroke-width="1.2" stroke-dasharray="7 5""##;
+    legend.line(&mut s, 60.0, dashed, "horizon of the origin, r = 2a");
+    let y = legend.y;
     let t_ret = spacetime::Godel::new(a).shortest_loop_time();
     let lines = [
         format!("Gödel universe, a = {}. The flow", f(a)),

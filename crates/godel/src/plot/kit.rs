@@ -208,35 +208,86 @@ impl Frame {
     }
 }
 
-/// The bold "Legend" heading at (`x`, `y`).
-pub fn legend_heading(s: &mut Svg, x: f64, y: f64) {
-    s.text_as(
-        (x, y),
-        16.0,
-        Weight::Bold,
-        0.0,
-        "start",
-        r##"fill="#222""##,
-        "Legend",
-    );
+/// A figure's legend: the bold heading, then rows 26 pixels apart (the first 28 below the
+/// heading), each a key drawn from `x0` and its text at `text_x`.
+pub struct Legend {
+    x0: f64,
+    text_x: f64,
+    /// The text line of the last row drawn (of the heading before any).
+    pub y: f64,
+    rows: usize,
 }
 
-/// The legend's sample of the first `n` palette colours: short lines `step` pixels apart,
-/// overlapping, on the text line at `at`.
-pub fn palette_swatches(s: &mut Svg, (x0, y): (f64, f64), n: usize, step: f64) {
-    for (k, colour) in PALETTE.iter().enumerate().take(n.min(PALETTE.len())) {
-        let xk = x0 + step * k as f64;
-        s.line(
-            (xk, y - 5.0),
-            (xk + 30.0, y - 5.0),
-            &format!(r#"stroke="{colour}" stroke-width="2""#),
+impl Legend {
+    /// Draws the heading at (`x0`, `top`); keys go on the left of `text_x`.
+    pub fn new(s: &mut Svg, x0: f64, top: f64, text_x: f64) -> Legend {
+        s.text_as(
+            (x0, top),
+            16.0,
+            Weight::Bold,
+            0.0,
+            "start",
+            r##"fill="#222""##,
+            "Legend",
+        );
+        Legend {
+            x0,
+            text_x,
+            y: top,
+            rows: 0,
+        }
+    }
+
+    /// A new row's text line, after the last.
+    fn next(&mut self) -> f64 {
+        self.y += if self.rows == 0 { 28.0 } else { 26.0 };
+        self.rows += 1;
+        self.y
+    }
+
+    fn text(&self, s: &mut Svg, text: &str) {
+        s.text(
+            (self.text_x, self.y),
+            15.0,
+            "start",
+            r##"fill="#222""##,
+            text,
         );
     }
-}
 
-/// A legend entry's text, starting at `at`.
-pub fn legend_text(s: &mut Svg, at: (f64, f64), text: &str) {
-    s.text(at, 15.0, "start", r##"fill="#222""##, text);
+    /// A row keyed by the first `n` palette colours: short lines `step` pixels apart,
+    /// overlapping.
+    pub fn swatches(&mut self, s: &mut Svg, n: usize, step: f64, text: &str) {
+        let y = self.next();
+        for (k, colour) in PALETTE.iter().enumerate().take(n.min(PALETTE.len())) {
+            let xk = self.x0 + step * k as f64;
+            s.line(
+                (xk, y - 5.0),
+                (xk + 30.0, y - 5.0),
+                &format!(r#"stroke="{colour}" stroke-width="2""#),
+            );
+        }
+        self.text(s, text);
+    }
+
+    /// A row keyed by a line `length` pixels long, drawn with `style`.
+    pub fn line(&mut self, s: &mut Svg, length: f64, style: &str, text: &str) {
+        let y = self.next();
+        s.line((self.x0, y - 5.0), (self.x0 + length, y - 5.0), style);
+        self.text(s, text);
+    }
+
+    /// A row keyed by an arrowhead pointing right, `length` pixels long, its tip 44 pixels
+    /// from the key's start, filled with `fill`.
+    pub fn arrow(&mut self, s: &mut Svg, length: f64, fill: &str, text: &str) {
+        let y = self.next();
+        let (tip, base) = (self.x0 + 44.0, self.x0 + 44.0 - length);
+        s.polygon(
+            &[(tip, y - 5.0), (base, y - 10.0), (base, y)],
+            &format!(r#"fill="{fill}""#),
+        );
+        self.text(s, text);
+    }
 }
 
 /// The caption's lines from (`x`, `y`) down, 22 pixels apart.
