@@ -25,8 +25,7 @@ pub enum CheckError {
     Setup(#[from] RenderError),
     #[error(
         "the GPU ({renderer}) disagrees with the CPU exact tracer on {differ} of {checked} check samples \
-         (e.g. sample column {col}, row {row}: GPU {gpu}, CPU {cpu}); its trace is not used: trace \
-         without --gpu (or [trace] gpu = false)"
+         (e.g. sample column {col}, row {row}: GPU {gpu}, CPU {cpu})"
     )]
     Disagrees {
         renderer: String,

@@ -1,5 +1,5 @@
 //! `godel explore SCENE.toml [--port P] [--host H] [--textures DIR]… [--threads N]`: the live
-//! viewer in explore mode (README, "Exploring"). The page changes the observer's event
+//! viewer in explore mode (docs/guide/src/explore.md). The page changes the observer's event
 //! (t, x, y, z); the server re-traces the scene from there with the exact tracer of
 //! `godel render` (the `render` crate's driver, on all cores), a coarse frame first (the same
 //! camera with a quarter of the width and height, one ray per pixel), then the full one, which
@@ -235,18 +235,7 @@ impl FrameSource for SceneFrames {
         // The records the page did not send are `not traced`: gpu::check passes them over.
         Ok(match gpu::check::against_cpu(&scene, &records, renderer) {
             Ok(()) => Verdict::Agree,
-            Err(CheckError::Disagrees {
-                checked,
-                differ,
-                col,
-                row,
-                gpu,
-                cpu,
-                ..
-            }) => Verdict::Disagree(format!(
-                "it disagrees with the CPU exact tracer on {differ} of {checked} samples \
-                 (e.g. sample column {col}, row {row}: GPU {gpu}, CPU {cpu})"
-            )),
+            Err(e @ CheckError::Disagrees { .. }) => Verdict::Disagree(e.to_string()),
             Err(e @ CheckError::Setup(_)) => Verdict::Unchecked(e.to_string()),
         })
     }

@@ -16,7 +16,6 @@ use crate::inputs::Inputs;
 use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
 use crate::progress::{progress_bar, Bar};
-use anyhow::Context;
 use clap::Args;
 use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
@@ -87,7 +86,7 @@ pub struct RenderArgs {
     pub gpu: bool,
     /// Rays per pixel, a square number (1, 4, 9, 16, … up to 256) traced on a grid in each
     /// pixel; overrides the scene's `[camera] samples`. Every sample's record is kept in
-    /// the data file (see README, "The data file").
+    /// the data file (see the guide, "The data file").
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub samples: Option<i64>,
 }
@@ -227,6 +226,29 @@ pub fn gpu_in_scene(file: Option<&Path>) -> String {
     format!("{file}: [trace] gpu = true")
 }
 
+/// `gpu::render` of `scene`, asked for by `asked_by` (`--gpu` or the scene's field).
+pub fn trace_on_gpu(
+    scene: &scene::Scene,
+    progress: &dyn render::driver::Progress,
+    asked_by: String,
+) -> anyhow::Result<gpu::GpuRender> {
+    gpu::render(scene, progress).map_err(|e| anyhow::anyhow!(gpu_failure(&asked_by, &e)))
+}
+
+/// Why a GPU render failed; a trace the CPU check refused is not used, and the message says
+/// how to trace without the GPU.
+fn gpu_failure(asked_by: &str, e: &gpu::HostError) -> String {
+    let refused = matches!(
+        e,
+        gpu::HostError::Check(gpu::check::CheckError::Disagrees { .. })
+    );
+    let advice = match refused {
+        true => "; its trace is not used: trace without --gpu (or [trace] gpu = false)",
+        false => "",
+    };
+    format!("{asked_by}: {e}{advice}")
+}
+
 /// Why --gpu goes with neither --part nor MPI.
 const GPU_ONE_PROCESS: &str =
     "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
@@ -240,7 +262,7 @@ fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> a
         true => "--gpu".to_string(),
         false => gpu_in_scene(scene.source_path.as_deref()),
     };
-    let done = gpu::render(scene, &Bar(bar.clone())).context(asked_by)?;
+    let done = trace_on_gpu(scene, &Bar(bar.clone()), asked_by)?;
     bar.finish_and_clear();
     let (exr, png) = target.files(&scene.name);
     write_data_and_preview(scene, &done.data, &exr, &png, args.grid)?;
@@ -338,5 +360,35 @@ mod under_mpi {
             shares.join(", ")
         );
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use gpu::check::CheckError;
+    use gpu::HostError;
+
+    #[test]
+    fn a_refused_gpu_trace_says_how_to_trace_without_the_gpu() {
+        let refused = HostError::Check(CheckError::Disagrees {
+            renderer: "llvmpipe".into(),
+            checked: 40,
+            differ: 3,
+            col: 1,
+            row: 2,
+            gpu: "hit object 0".into(),
+            cpu: "escaped".into(),
+        });
+        let message = super::gpu_failure("--gpu", &refused);
+        assert!(
+            message.starts_with("--gpu: the GPU (llvmpipe) disagrees"),
+            "{message}"
+        );
+        assert!(
+            message.ends_with("trace without --gpu (or [trace] gpu = false)"),
+            "{message}"
+        );
+        let failed = super::gpu_failure("--gpu", &HostError::Gl("out of memory".into()));
+        assert_eq!(failed, "--gpu: the GPU failed: out of memory");
     }
 }

@@ -183,7 +183,7 @@ impl Plan {
                             FrameSource::Data(_) => None,
                         };
                         let asked_by = crate::cmd::render::gpu_in_scene(file);
-                        gpu::render(&scene, &NoProgress).context(asked_by)?.data
+                        crate::cmd::render::trace_on_gpu(&scene, &NoProgress, asked_by)?.data
                     }
                     false => render(&scene, &NoProgress)?.0,
                 };

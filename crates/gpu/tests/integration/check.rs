@@ -59,7 +59,14 @@ fn a_correct_trace_passes_and_a_wrong_one_is_refused() {
                     cpu: "escaped".into(),
                 }
                 .to_string();
-                assert!(message.contains("without --gpu"), "{message}");
+                assert!(
+                    message.contains("disagrees with the CPU exact tracer on"),
+                    "{message}"
+                );
+                assert!(
+                    !message.contains("--gpu"),
+                    "a library's message gives no CLI advice: {message}"
+                );
             }
             other => panic!("{name}: a moved ball passes the check: {other:?}"),
         }
