@@ -232,21 +232,18 @@ pub fn trace_on_gpu(
     progress: &dyn render::driver::Progress,
     asked_by: String,
 ) -> anyhow::Result<gpu::GpuRender> {
-    gpu::render(scene, progress).map_err(|e| anyhow::anyhow!(gpu_failure(&asked_by, &e)))
+    gpu::render(scene, progress).map_err(|e| gpu_failure(asked_by, e))
 }
 
-/// Why a GPU render failed; a trace the CPU check refused is not used, and the message says
-/// how to trace without the GPU.
-fn gpu_failure(asked_by: &str, e: &gpu::HostError) -> String {
-    let refused = matches!(
-        e,
-        gpu::HostError::Check(gpu::check::CheckError::Disagrees { .. })
-    );
-    let advice = match refused {
-        true => "; its trace is not used: trace without --gpu (or [trace] gpu = false)",
-        false => "",
-    };
-    format!("{asked_by}: {e}{advice}")
+/// Why a GPU render failed, its causes kept; a trace the CPU check refused is not used, and
+/// the message says how to trace without the GPU.
+fn gpu_failure(asked_by: String, e: gpu::HostError) -> anyhow::Error {
+    match e {
+        gpu::HostError::Check(gpu::check::CheckError::Disagrees { .. }) => anyhow::anyhow!(
+            "{asked_by}: {e}; its trace is not used: trace without --gpu (or [trace] gpu = false)"
+        ),
+        e => anyhow::Error::new(e).context(asked_by),
+    }
 }
 
 /// Why --gpu goes with neither --part nor MPI.
@@ -379,7 +376,7 @@ mod tests {
             gpu: "hit object 0".into(),
             cpu: "escaped".into(),
         });
-        let message = super::gpu_failure("--gpu", &refused);
+        let message = format!("{:#}", super::gpu_failure("--gpu".into(), refused));
         assert!(
             message.starts_with("--gpu: the GPU (llvmpipe) disagrees"),
             "{message}"
@@ -388,7 +385,10 @@ mod tests {
             message.ends_with("trace without --gpu (or [trace] gpu = false)"),
             "{message}"
         );
-        let failed = super::gpu_failure("--gpu", &HostError::Gl("out of memory".into()));
-        assert_eq!(failed, "--gpu: the GPU failed: out of memory");
+        let failed = super::gpu_failure("--gpu".into(), HostError::Gl("out of memory".into()));
+        assert_eq!(
+            format!("{failed:#}"),
+            "--gpu: the GPU failed: out of memory"
+        );
     }
 }
