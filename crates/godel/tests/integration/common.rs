@@ -85,6 +85,18 @@ pub fn write_scene(dir: &Path, name: &str, text: &str) -> String {
     path.display().to_string()
 }
 
+/// Runs `godel sequence SCRIPT -q`, killed and failed after `limit`.
+pub fn sequence_within(script: &Path, limit: std::time::Duration) -> Output {
+    run_within(
+        std::process::Command::new(env!("CARGO_BIN_EXE_godel")).args([
+            "sequence",
+            script.to_str().unwrap(),
+            "-q",
+        ]),
+        limit,
+    )
+}
+
 /// Runs `cmd` to its end, or kills it after `limit` and fails the test: the command must
 /// never hang (issue 10). Standard output and error are collected as they come, so a chatty
 /// command cannot block on a full pipe.

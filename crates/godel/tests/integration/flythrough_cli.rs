@@ -6,11 +6,10 @@
 //! removed; bad keyframes are refused with file:line and field, exit code 2 and no output.
 
 use std::path::Path;
-use std::process::Command;
 
 use datafile::DataFile;
 
-use crate::common::{self, assert_refused, files_in, godel, records, run_within, stderr};
+use crate::common::{self, assert_refused, files_in, godel, records, sequence_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(300);
@@ -146,14 +145,7 @@ fn run_sequence(dir: &Path, top: &str, trace: &str, keys: &str) -> std::process:
         format!("output = \"out\"\nmp4 = false\n{top}[trace]\nscene = \"fly.toml\"\n{trace}{keys}"),
     )
     .unwrap();
-    run_within(
-        Command::new(env!("CARGO_BIN_EXE_godel")).args([
-            "sequence",
-            script.to_str().unwrap(),
-            "-q",
-        ]),
-        NEVER_HANGS,
-    )
+    sequence_within(&script, NEVER_HANGS)
 }
 
 #[test]

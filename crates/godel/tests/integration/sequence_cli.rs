@@ -6,11 +6,11 @@
 //! only its own frames.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 use datafile::DataFile;
 
-use crate::common::{self, assert_refused, files_in, godel, png, run_within, stderr};
+use crate::common::{self, assert_refused, files_in, godel, png, sequence_within, stderr};
 
 /// Long enough for any of these commands on a loaded machine; they take well under a second.
 const NEVER_HANGS: std::time::Duration = std::time::Duration::from_secs(120);
@@ -134,18 +134,6 @@ motion = { kind = "geodesic", time = 0.0, position = { x = 1.0, y = -0.5, z = 0.
     assert!(!dir.path().join("out/sequence.mp4").exists());
 }
 
-/// Runs `godel sequence SCRIPT -q`, killed and failed after [`NEVER_HANGS`].
-fn sequence_within(script: &Path) -> Output {
-    run_within(
-        Command::new(env!("CARGO_BIN_EXE_godel")).args([
-            "sequence",
-            script.to_str().unwrap(),
-            "-q",
-        ]),
-        NEVER_HANGS,
-    )
-}
-
 /// Runs `godel sequence` on each script text, which must be refused before any frame with a
 /// message holding every needle.
 fn refused_all(cases: &[(&str, &[&str])]) {
@@ -161,7 +149,7 @@ fn refused(script_text: &str, needles: &[&str]) {
     std::fs::write(&script, script_text).unwrap();
     // Bounded: before the frame count was bounded, `frames = 1e9` wrote until the disk
     // was full.
-    let o = sequence_within(&script);
+    let o = sequence_within(&script, NEVER_HANGS);
     assert_refused(&o, needles, &dir.path().join("frames"));
 }
 
@@ -216,7 +204,7 @@ fn unwritable_outputs_and_odd_inputs_are_refused_before_any_frame() {
     let script = dir.path().join("s.toml");
     std::fs::write(&script, "data = \"fifo\"\nframes = 2\n").unwrap();
     for input in [&fifo, &script] {
-        let o = sequence_within(input);
+        let o = sequence_within(input, NEVER_HANGS);
         let e = stderr(&o);
         assert!(!o.status.success(), "{e}");
         assert!(e.contains("not a regular file (a FIFO)"), "{e}");
