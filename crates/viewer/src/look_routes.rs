@@ -40,7 +40,7 @@ use serde::{Deserialize, Serialize};
 use shade::{ShadeSettings, Shading};
 use spacetime::LocalVelocity;
 
-use crate::api_error::{no_store, ApiError};
+use crate::api_error::{json_body, no_store, ApiError};
 use crate::encode;
 use crate::state::ViewerState;
 
@@ -198,11 +198,7 @@ fn prepare_look(
     viewer: &ViewerState,
     body: &[u8],
 ) -> Result<(LookView, Sampling, Shading), ApiError> {
-    let mut json = serde_json::Deserializer::from_slice(body);
-    let request: LookRequest = serde_path_to_error::deserialize(&mut json)
-        .map_err(|e| ApiError::bad_request(format!("look: {}: {}", e.path(), e.inner())))?;
-    json.end()
-        .map_err(|e| ApiError::bad_request(format!("look: {e}")))?;
+    let request: LookRequest = json_body(body, "look")?;
     let v = &request.view;
     let velocity = LocalVelocity::new(v.velocity.speed, v.velocity.direction).ok_or_else(|| {
         ApiError::bad_request(format!(

@@ -32,7 +32,7 @@ use axum::{middleware, Json, Router};
 use serde::Deserialize;
 
 pub use crate::api_error::ApiError;
-use crate::api_error::{no_store, query_value};
+use crate::api_error::{json_body, no_store, query_value};
 use crate::encode;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::responses::{attachment, overlay_png, png_download, rgba_picture, toml_download};
@@ -87,17 +87,7 @@ pub fn parse_settings(
     state: &ViewerState,
     body: &[u8],
 ) -> Result<(ShadeSettings, Shading), ApiError> {
-    let mut json = serde_json::Deserializer::from_slice(body);
-    let settings: ShadeSettings = serde_path_to_error::deserialize(&mut json).map_err(|e| {
-        let path = e.path().to_string();
-        if path == "." {
-            ApiError::bad_request(format!("settings: {}", e.inner()))
-        } else {
-            ApiError::bad_request(format!("settings: {path}: {}", e.inner()))
-        }
-    })?;
-    json.end()
-        .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+    let settings: ShadeSettings = json_body(body, "settings")?;
     let shading = state
         .prepare(&settings)
         .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;

@@ -290,7 +290,14 @@ async fn bad_views_get_400_naming_the_field() {
             |v| v["view"]["up"] = serde_json::json!([0.6, 0.8, 0.0]),
             "orthogonal",
         ),
-        (|v| v["view"]["zoom"] = 2.into(), "zoom"),
+        (
+            |v| v["view"]["zoom"] = 2.into(),
+            "look.view.zoom: unknown field `zoom`",
+        ),
+        (
+            |v| v["settings"]["exposure"] = "x".into(),
+            "look.settings.exposure: invalid type",
+        ),
         (|v| v["settings"]["exposure"] = (-1.0).into(), "exposure"),
     ] {
         let mut bad = value.clone();
