@@ -37,6 +37,18 @@ fn mpirun(dir: &Path, args: &[&str]) -> Output {
         .expect("run mpirun (is OpenMPI installed? scripts/test.sh installs it)")
 }
 
+/// Runs `godel ARGS` on two ranks, with the environment variable `env` (`NAME=VALUE`) given
+/// to both when asked.
+fn on_two_ranks(dir: &Path, env: Option<&str>, args: &[&str]) -> Output {
+    let mut all: Vec<&str> = match env {
+        Some(v) => vec!["-x", v],
+        None => vec![],
+    };
+    all.extend(["-n", "2", GODEL]);
+    all.extend(args);
+    mpirun(dir, &all)
+}
+
 /// The shared lit test scene, named "ranks".
 fn scene_text(max_past: f64) -> String {
     common::lit_scene_text("ranks", max_past)
@@ -57,21 +69,9 @@ fn two_ranks_write_the_bytes_of_one_process() {
     // that every tile surely travels from rank 1.
     for (root_works, dir) in [("1", "two"), ("0", "two-remote")] {
         let two = tmp.path().join(dir);
-        let out = mpirun(
-            tmp.path(),
-            &[
-                "-x",
-                &format!("GODEL_MPI_ROOT_WORKS={root_works}"),
-                "-n",
-                "2",
-                GODEL,
-                "render",
-                &scene,
-                "-q",
-                "-o",
-                two.to_str().unwrap(),
-            ],
-        );
+        let env = format!("GODEL_MPI_ROOT_WORKS={root_works}");
+        let args = ["render", &scene, "-q", "-o", two.to_str().unwrap()];
+        let out = on_two_ranks(tmp.path(), Some(&env), &args);
         let err = stderr(&out);
         assert!(out.status.success(), "{err}");
         assert!(err.contains("(2 ranks;"), "{err}");
@@ -153,18 +153,10 @@ fn sequence_alone_and_on_two_ranks(dir: &Path, trace: &str) -> Vec<String> {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", stderr(&out));
-    let out = mpirun(
+    let out = on_two_ranks(
         dir,
-        &[
-            "-x",
-            "GODEL_MPI_ROOT_WORKS=0",
-            "-n",
-            "2",
-            GODEL,
-            "sequence",
-            &two,
-            "-q",
-        ],
+        Some("GODEL_MPI_ROOT_WORKS=0"),
+        &["sequence", &two, "-q"],
     );
     assert!(out.status.success(), "{}", stderr(&out));
     let names = files_in(&dir.join("one"));
@@ -360,21 +352,8 @@ fn limits_are_checked_before_tracing_under_mpi() {
         (good.to_str().unwrap(), "100000", ": --threads: at most "),
     ];
     for (out, threads, needle) in cases {
-        let o = mpirun(
-            tmp.path(),
-            &[
-                "-n",
-                "2",
-                GODEL,
-                "render",
-                &scene,
-                "-q",
-                "-o",
-                out,
-                "--threads",
-                threads,
-            ],
-        );
+        let args = ["render", &scene, "-q", "-o", out, "--threads", threads];
+        let o = on_two_ranks(tmp.path(), None, &args);
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(needle), "{err}");
