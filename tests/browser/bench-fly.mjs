@@ -10,13 +10,9 @@
 // pixel's light ray made in the page: first, then again), start_half_ms, start_size_ms and
 // start_full_ms (up to 640×360: the same for the scene's own view, before flying, from its
 // coming to rest)}.
-import { launch, open, atRest } from './launch.mjs';
+import { argsOr, launch, open, atRest } from './launch.mjs';
 
-const [url, outDir, frames] = process.argv.slice(2);
-if (!url || !outDir || !frames) {
-  console.error('usage: node bench-fly.mjs URL OUT_DIR FRAMES');
-  process.exit(2);
-}
+const [url, outDir, frames] = argsOr('node bench-fly.mjs URL OUT_DIR FRAMES', 3);
 const n = Number(frames);
 const { context, page } = await launch(outDir, { width: 1400, height: 900 });
 const FULL_BOUND_S = 90;

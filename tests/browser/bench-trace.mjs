@@ -3,13 +3,9 @@
 // (the first run also compiles the kernel) and prints one JSON object with each run's time.
 //
 // usage: node bench-trace.mjs URL OUT_DIR [RUNS]
-import { launch, idle } from './launch.mjs';
+import { argsOr, launch, idle } from './launch.mjs';
 
-const [url, outDir, runsText] = process.argv.slice(2);
-if (!url || !outDir) {
-  console.error('usage: node bench-trace.mjs URL OUT_DIR [RUNS]');
-  process.exit(2);
-}
+const [url, outDir, runsText] = argsOr('node bench-trace.mjs URL OUT_DIR [RUNS]', 2);
 const runs = Number(runsText || 2);
 const { context, page } = await launch(outDir);
 

@@ -6,13 +6,9 @@
 // Prints {look, drag: {yaw, pixels_changed, requests}, after: {event, level, yaw, look},
 // pixels_changed_by_t, console_errors, error}.
 import { join } from 'node:path';
-import { launch, open, savePicture, differing, fullFrame, dragLeft } from './launch.mjs';
+import { argsOr, launch, open, savePicture, differing, fullFrame, dragLeft } from './launch.mjs';
 
-const [url, outDir, t] = process.argv.slice(2);
-if (!url || !outDir || t === undefined) {
-  console.error('usage: node explore-look.mjs URL OUT_DIR T');
-  process.exit(2);
-}
+const [url, outDir, t] = argsOr('node explore-look.mjs URL OUT_DIR T', 3);
 const { context, page, requests, consoleErrors } = await launch(outDir);
 
 const result = {};

@@ -9,13 +9,9 @@
 // play_log, paused, paused_t, requests, console_errors, error}.
 import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { launch, open, savePicture, fullFrame } from './launch.mjs';
+import { argsOr, launch, pageReport, open, savePicture, fullFrame } from './launch.mjs';
 
-const [url, outDir, t] = process.argv.slice(2);
-if (!url || !outDir || t === undefined) {
-  console.error('usage: node explore.mjs URL OUT_DIR T');
-  process.exit(2);
-}
+const [url, outDir, t] = argsOr('node explore.mjs URL OUT_DIR T', 3);
 const { context, page, requests, consoleErrors } = await launch(outDir);
 
 const result = {};
@@ -63,9 +59,7 @@ try {
   result.paused = await fullFrame(page, pausedAt.generation - 1);
   result.paused_t = pausedAt.t;
   result.play_log = pausedAt.log;
-  result.error = await page.evaluate(() => window.godelViewer.error);
-  result.requests = requests;
-  result.console_errors = consoleErrors;
+  Object.assign(result, await pageReport(page, requests, consoleErrors));
 } finally {
   await context.close();
 }

@@ -5,13 +5,9 @@
 // the observer's axis) until the map shows its light ray, and saves the page as OUT.png.
 // usage: node flight-picture.mjs URL OUT_DIR OUT.png SPEED UNTIL
 // Prints {view, hovered, full_ms}.
-import { launch, open, atRest } from './launch.mjs';
+import { argsOr, launch, open, atRest } from './launch.mjs';
 
-const [url, outDir, out, speed, until] = process.argv.slice(2);
-if (!url || !outDir || !out || !speed || !until) {
-  console.error('usage: node flight-picture.mjs URL OUT_DIR OUT.png SPEED UNTIL');
-  process.exit(2);
-}
+const [url, outDir, out, speed, until] = argsOr('node flight-picture.mjs URL OUT_DIR OUT.png SPEED UNTIL', 5);
 // Bounds on each wait: the full frame of the reference scene takes about 40 s here.
 const WAIT_MS = 600000;
 const { context, page } = await launch(outDir, { width: 1400, height: 790 });

@@ -7,13 +7,9 @@
 // prints {refused (explore's note), check (fly.js's last check), header, shown (the server's
 // frame shown: generation, level), size [width, height], requests_after (the requests since
 // the refusal), requests (all), console_errors, error}.
-import { launch, idle } from './launch.mjs';
+import { argsOr, launch, idle } from './launch.mjs';
 
-const [url, outDir] = process.argv.slice(2);
-if (!url || !outDir) {
-  console.error('usage: node fly-check.mjs URL OUT_DIR');
-  process.exit(2);
-}
+const [url, outDir] = argsOr('node fly-check.mjs URL OUT_DIR', 2);
 const { context, page, requests, consoleErrors } = await launch(outDir, { width: 1200, height: 900 });
 const result = {};
 try {

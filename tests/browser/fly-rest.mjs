@@ -22,7 +22,7 @@
 // error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, atRest } from './launch.mjs';
+import { argsOr, launch, open, atRest } from './launch.mjs';
 
 // Pixels whose RGB differ by more than 40 in a channel between two canvases (RGBA, base64).
 function apart(a, b) {
@@ -34,11 +34,7 @@ function apart(a, b) {
   return n;
 }
 
-const [url, outDir] = process.argv.slice(2);
-if (!url || !outDir) {
-  console.error('usage: node fly-rest.mjs URL OUT_DIR');
-  process.exit(2);
-}
+const [url, outDir] = argsOr('node fly-rest.mjs URL OUT_DIR', 2);
 const { context, page, consoleErrors } = await launch(outDir, { width: 1200, height: 900 });
 const rest = () => atRest(page, 180000);
 

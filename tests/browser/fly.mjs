@@ -13,13 +13,9 @@
 // touch {dx, width, after}, wheel, requests, console_errors, error}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, atRest } from './launch.mjs';
+import { argsOr, launch, open, atRest } from './launch.mjs';
 
-const [url, outDir] = process.argv.slice(2);
-if (!url || !outDir) {
-  console.error('usage: node fly.mjs URL OUT_DIR');
-  process.exit(2);
-}
+const [url, outDir] = argsOr('node fly.mjs URL OUT_DIR', 2);
 const { context, page, requests, consoleErrors } = await launch(outDir, { width: 1200, height: 900 });
 // The full frame of the view as it is now, at rest (at most 3 minutes).
 const rest = () => atRest(page, 180000);

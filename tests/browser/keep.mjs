@@ -11,13 +11,9 @@
 // error}.
 import { copyFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { launch, open, fullFrame } from './launch.mjs';
+import { argsOr, launch, pageReport, open, fullFrame } from './launch.mjs';
 
-const [url, outDir, x, t] = process.argv.slice(2);
-if (!url || !outDir || x === undefined || t === undefined) {
-  console.error('usage: node keep.mjs URL OUT_DIR X T');
-  process.exit(2);
-}
+const [url, outDir, x, t] = argsOr('node keep.mjs URL OUT_DIR X T', 4);
 const { context, page, requests, consoleErrors } = await launch(outDir);
 
 const download = async (selector, path) => {
@@ -69,9 +65,7 @@ try {
   result.keyframes = await page.evaluate(() => window.godelViewer.keep.keyframes);
   result.record_status = await page.evaluate(
     () => document.getElementById('keep-record-status').textContent);
-  result.error = await page.evaluate(() => window.godelViewer.error);
-  result.requests = requests;
-  result.console_errors = consoleErrors;
+  Object.assign(result, await pageReport(page, requests, consoleErrors));
 } finally {
   await context.close();
 }

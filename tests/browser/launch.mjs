@@ -11,6 +11,24 @@ export const ARGS = ['--headless', '--no-sandbox', '--use-gl=angle', '--use-angl
   '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run',
   '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 
+// The script's arguments (after `node SCRIPT`); fewer than `required` print `usage: USAGE`
+// and exit with status 2.
+export function argsOr(usage, required) {
+  const args = process.argv.slice(2);
+  if (args.length < required || args.slice(0, required).some((a) => a === '')) {
+    console.error(`usage: ${usage}`);
+    process.exit(2);
+  }
+  return args;
+}
+
+// What a script reports of the page at its end: the page's own error line, the requests it
+// made and the console's errors.
+export async function pageReport(page, requests, consoleErrors) {
+  const error = await page.evaluate(() => window.godelViewer.error);
+  return { error, requests, console_errors: consoleErrors };
+}
+
 export async function launch(dir, viewport = { width: 1400, height: 900 }) {
   const context = await chromium.launchPersistentContext(mkdtempSync(join(dir, 'profile-')), {
     executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ARGS,

@@ -6,13 +6,9 @@
 // Writes OUT_DIR/case-K.rgba (+ .json) for each, and prints {requests, console_errors, errors}.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, idle, savePicture } from './launch.mjs';
+import { argsOr, launch, open, idle, savePicture } from './launch.mjs';
 
-const [url, outDir, casesFile] = process.argv.slice(2);
-if (!url || !outDir || !casesFile) {
-  console.error('usage: node layers.mjs URL OUT_DIR CASES.json');
-  process.exit(2);
-}
+const [url, outDir, casesFile] = argsOr('node layers.mjs URL OUT_DIR CASES.json', 3);
 const cases = JSON.parse(readFileSync(casesFile, 'utf8'));
 const { context, page, requests, consoleErrors } = await launch(outDir);
 const result = { errors: [] };

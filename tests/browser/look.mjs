@@ -9,13 +9,9 @@
 // PNG" download of the last case), and prints what it saw as one JSON object.
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, idle, savePicture, differing, dragLeft } from './launch.mjs';
+import { argsOr, launch, open, idle, savePicture, differing, dragLeft } from './launch.mjs';
 
-const [url, outDir, casesFile] = process.argv.slice(2);
-if (!url || !outDir || !casesFile) {
-  console.error('usage: node look.mjs URL OUT_DIR CASES.json');
-  process.exit(2);
-}
+const [url, outDir, casesFile] = argsOr('node look.mjs URL OUT_DIR CASES.json', 3);
 const cases = JSON.parse(readFileSync(casesFile, 'utf8'));
 const { context, page, requests, consoleErrors } = await launch(outDir);
 const result = { errors: [] };

@@ -8,13 +8,9 @@
 // Writes OUT_DIR/before.rgba, OUT_DIR/after.rgba (+ .json) and OUT_DIR/keyframe.toml, and
 // prints one JSON object (see `result` below).
 import { join } from 'node:path';
-import { launch, open, idle, savePicture } from './launch.mjs';
+import { argsOr, launch, pageReport, open, idle, savePicture } from './launch.mjs';
 
-const [url, outDir, colText, rowText, dxText, dyText] = process.argv.slice(2);
-if (!url || !outDir || dyText === undefined) {
-  console.error('usage: node map.mjs URL OUT_DIR COL ROW DX DY');
-  process.exit(2);
-}
+const [url, outDir, colText, rowText, dxText, dyText] = argsOr('node map.mjs URL OUT_DIR COL ROW DX DY', 6);
 const [col, row, dx, dy] = [colText, rowText, dxText, dyText].map(Number);
 const { context, page, requests, consoleErrors } = await launch(outDir);
 
@@ -142,9 +138,7 @@ try {
   await download.saveAs(join(outDir, 'keyframe.toml'));
   await page.waitForFunction(() => !document.getElementById('explore-keyframe').hidden);
   result.keyframe_shown = await page.evaluate(() => document.getElementById('explore-keyframe').textContent);
-  result.error = await page.evaluate(() => window.godelViewer.error);
-  result.requests = requests;
-  result.console_errors = consoleErrors;
+  Object.assign(result, await pageReport(page, requests, consoleErrors));
 } finally {
   await context.close();
 }

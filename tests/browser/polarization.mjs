@@ -10,13 +10,9 @@
 // Prints {requests, console_errors, requests_while_turning, traces_before, traces_after}.
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, open, idle, savePicture, traced } from './launch.mjs';
+import { argsOr, launch, open, idle, savePicture, traced } from './launch.mjs';
 
-const [url, outDir, azimuth] = process.argv.slice(2);
-if (!url || !outDir || azimuth === undefined) {
-  console.error('usage: node polarization.mjs URL OUT_DIR AZIMUTH');
-  process.exit(2);
-}
+const [url, outDir, azimuth] = argsOr('node polarization.mjs URL OUT_DIR AZIMUTH', 3);
 const settings = (page) => page.evaluate(() => window.godelViewer.settings);
 // The traced frame the page holds (a new object with each trace).
 const traceMark = (page) => page.evaluate(() => {

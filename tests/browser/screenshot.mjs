@@ -9,13 +9,9 @@
 import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { launch, open, idle } from './launch.mjs';
+import { argsOr, launch, open, idle } from './launch.mjs';
 
-const [url, out, col, row, settingsText] = process.argv.slice(2);
-if (!url || !out || col === undefined || row === undefined) {
-  console.error('usage: node screenshot.mjs URL OUT.png COL ROW [SETTINGS]');
-  process.exit(2);
-}
+const [url, out, col, row, settingsText] = argsOr('node screenshot.mjs URL OUT.png COL ROW [SETTINGS]', 4);
 const settings = JSON.parse(settingsText || '{"shaders": ["frequency"]}');
 const { context, page } = await launch(mkdtempSync(join(tmpdir(), 'godel-shot-')),
   settings.explore ? { width: 1400, height: 900 } : { width: 1500, height: 960 });

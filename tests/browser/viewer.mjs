@@ -9,13 +9,9 @@
 // slider moved), textured.rgba and zoomed.rgba (the picture with the texture layer, and the
 // canvas zoomed in on it) and a fresh chromium profile.
 import { join } from 'node:path';
-import { launch, open, idle, savePicture, differing } from './launch.mjs';
+import { argsOr, launch, open, idle, savePicture, differing } from './launch.mjs';
 
-const [url, outDir, colText, rowText] = process.argv.slice(2);
-if (!url || !outDir || colText === undefined || rowText === undefined) {
-  console.error('usage: node viewer.mjs URL OUT_DIR COL ROW');
-  process.exit(2);
-}
+const [url, outDir, colText, rowText] = argsOr('node viewer.mjs URL OUT_DIR COL ROW', 4);
 const col = Number(colText);
 const row = Number(rowText);
 
