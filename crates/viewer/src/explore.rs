@@ -1,4 +1,4 @@
-//! Explore mode (`godel explore`, README "Exploring"): the observer's event (t, x, y, z) changes
+//! Explore mode (`godel explore`, docs/guide/src/explore.md): the observer's event (t, x, y, z) changes
 //! and the server re-traces the scene from there, progressively. The viewer does not trace: a
 //! [`FrameSource`] (in `godel`, the exact tracer on the scene with its observer moved) makes
 //! each frame; this module decides which frames are made and which are kept.

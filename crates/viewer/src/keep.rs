@@ -1,4 +1,4 @@
-//! Keeping what one flies in explore mode (README "Exploring", *Render exactly* and *Record*):
+//! Keeping what one flies in explore mode (docs/guide/src/explore.md, *Render exactly* and *Record*):
 //! the view on the page ([`View`], the scene file's observer and camera fields, as the page's
 //! `viewer.explore.view()` gives it) rendered by the CPU exact tracer at a chosen size and
 //! samples ([`Keeper::render`]: the PNG and data file `godel render` writes for the scene with

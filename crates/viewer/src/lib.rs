@@ -1,4 +1,4 @@
-//! `viewer`: the live web viewer behind `godel view` (README.md, "Live viewer"). A local axum
+//! `viewer`: the live web viewer behind `godel view` (docs/guide/src/viewer.md). A local axum
 //! server holds one data file in memory; the page (embedded in the binary) fetches the file's
 //! channels once and shades them on the GPU with WebGL2 shaders that reproduce the `shade`
 //! crate's rule, so every control, turn, zoom and boost redraws within a frame. The server

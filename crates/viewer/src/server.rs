@@ -1,4 +1,4 @@
-//! Serving the routes over TCP with bounds that no client can lift (README, "Live viewer"):
+//! Serving the routes over TCP with bounds that no client can lift (docs/guide/src/viewer.md):
 //! hyper's HTTP/1 connections, each driving the axum router, accepted by [`serve`].
 //!
 //! - **Header read timeout** (hyper's `header_read_timeout`): a connection whose request

@@ -1,5 +1,5 @@
 //! A view of the explored scene: the observer and the camera with exactly the fields of the
-//! scene file's `[observer]` and `[camera]` (README, "Scenes"), as the explore page's
+//! scene file's `[observer]` and `[camera]` (docs/guide/src/scenes.md), as the explore page's
 //! `viewer.explore.view()` gives it, so that a scene with these fields traces the view. The
 //! flying page's kernel input and moves (`crate::explore_routes`) and *Render exactly* and
 //! *Record* (`crate::keep`) all read this one shape.
