@@ -2,9 +2,11 @@
 //! once, not once per file). One module: `cargo test -p viewer --test integration explore`.
 
 mod common;
+mod contract_types;
 mod gpu_common;
 
 mod api;
+mod contract;
 mod explore;
 mod gpu_api;
 mod gpu_guard;
