@@ -20,6 +20,8 @@
 //!   geodesic in any metric ([`propagator`]); what observers measure of a light ray's
 //!   polarization ([`polarization`]).
 //!
+//! - [`Viewpoint`]: an observer and its camera axes; [`Viewpoint::eye`] displaces it along
+//!   the right axis by an isometry (stereo eyes).
 //! - [`message::short`]: how numbers are written in messages, in every crate.
 //!
 //! Conventions (docs/physics.md, "Conventions"): c = 1, signature (−,+,+,+), Gödel parameter
@@ -32,6 +34,7 @@ pub mod connection;
 mod constants;
 pub mod curve;
 mod dop853;
+pub mod eyes;
 mod frame;
 mod geodesic;
 mod godel;
@@ -51,6 +54,7 @@ pub mod worldline;
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
 pub use connect::{shadow_rays, shadow_rays_from_axis, source_area_distance_sq, Branch, ShadowRay};
 pub use constants::{ConstantsOfMotion, Drift};
+pub use eyes::Viewpoint;
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use frame::{aberrate, boost, gram_schmidt_static_frame, scaled_unit, LocalVelocity};
 pub use geodesic::{

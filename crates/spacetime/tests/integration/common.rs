@@ -1,7 +1,7 @@
 //! Shared helpers for the spacetime tests: a tiny deterministic random generator,
 //! random events/directions (no external crates needed), and the largest component.
 
-use spacetime::Event;
+use spacetime::{Event, FourVector};
 
 /// xorshift64*: deterministic, good enough to spread test points.
 pub struct Rng(u64);
@@ -50,4 +50,30 @@ impl Rng {
 /// The largest absolute component.
 pub fn max_abs(v: [f64; 4]) -> f64 {
     v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// Integrates dX/ds = ξ(X) from `x` over `s` with classical RK4 in `steps` steps.
+pub fn integrate_field(
+    field: impl Fn(Event) -> FourVector,
+    x: Event,
+    s: f64,
+    steps: usize,
+) -> Event {
+    let h = s / steps as f64;
+    let f = |e: Event| field(e).to_array();
+    let add = |e: Event, k: [f64; 4], c: f64| {
+        let v = e.to_array();
+        Event::from_array(std::array::from_fn(|i| v[i] + c * k[i]))
+    };
+    let mut e = x;
+    for _ in 0..steps {
+        let k1 = f(e);
+        let k2 = f(add(e, k1, 0.5 * h));
+        let k3 = f(add(e, k2, 0.5 * h));
+        let k4 = f(add(e, k3, h));
+        let k: [f64; 4] =
+            std::array::from_fn(|i| (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) / 6.0);
+        e = add(e, k, h);
+    }
+    e
 }

@@ -5,6 +5,7 @@ mod common;
 
 mod closed_form;
 mod connect;
+mod eyes;
 mod geodesics;
 mod metric;
 mod polarization;

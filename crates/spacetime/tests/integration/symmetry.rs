@@ -2,7 +2,7 @@
 //! commutators), the finite isometries (docs/physics.md, "Isometries") and the closed-form
 //! geodesics built on them (docs/physics.md, "Closed forms").
 
-use crate::common::{max_abs, Rng};
+use crate::common::{integrate_field, max_abs, Rng};
 use spacetime::*;
 use std::f64::consts::SQRT_2;
 
@@ -302,30 +302,9 @@ fn isometries_map_integrated_geodesics_onto_integrated_geodesics() {
     eprintln!("mapped geodesics: worst deviation {worst:e}");
 }
 
-/// Integrates dX/ds = ξ(X) from `x` over `s` with classical RK4 (independent of the closed form).
+/// Integrates the flow of `field` from `x` over `s` (RK4, independent of the closed form).
 fn integrate_flow(a: f64, field: KillingField, x: Event, s: f64, steps: usize) -> Event {
-    let h = s / steps as f64;
-    let f = |e: Event| field.at(a, e).to_array();
-    let add = |e: Event, k: [f64; 4], c: f64| {
-        let v = e.to_array();
-        Event::new(
-            v[0] + c * k[0],
-            v[1] + c * k[1],
-            v[2] + c * k[2],
-            v[3] + c * k[3],
-        )
-    };
-    let mut e = x;
-    for _ in 0..steps {
-        let k1 = f(e);
-        let k2 = f(add(e, k1, 0.5 * h));
-        let k3 = f(add(e, k2, 0.5 * h));
-        let k4 = f(add(e, k3, h));
-        let k: [f64; 4] =
-            std::array::from_fn(|i| (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) / 6.0);
-        e = add(e, k, h);
-    }
-    e
+    integrate_field(|e| field.at(a, e), x, s, steps)
 }
 
 #[test]

@@ -1,0 +1,129 @@
+//! Stereo eyes (`spacetime::eyes`, docs/physics.md "Stereo eyes"): an eye is the observer
+//! moved by the flow of the Killing field that is its right axis at its event. Checked against
+//! integrating that flow, against the conserved products of a Killing field with the carried
+//! frame, and in flat space against a plain translation.
+
+use crate::common::{integrate_field, max_abs, Rng};
+use spacetime::*;
+
+/// A random observer (event within r < 3a, speed below 0.9) with orthonormal camera axes.
+fn viewpoint(rng: &mut Rng, a: f64) -> Viewpoint {
+    let event = rng.event(3.0 * a);
+    let velocity = LocalVelocity::new(rng.uniform(0.0, 0.9), rng.direction()).unwrap();
+    let forward = rng.direction();
+    let d = rng.direction();
+    let dot = forward[0] * d[0] + forward[1] * d[1] + forward[2] * d[2];
+    let up = [0, 1, 2].map(|i| d[i] - dot * forward[i]);
+    let n = (up[0] * up[0] + up[1] * up[1] + up[2] * up[2]).sqrt();
+    Viewpoint {
+        event,
+        velocity,
+        forward,
+        up: up.map(|c| c / n),
+    }
+}
+
+fn right(v: &Viewpoint) -> [f64; 3] {
+    let (f, u) = (v.forward, v.up);
+    [
+        f[1] * u[2] - f[2] * u[1],
+        f[2] * u[0] - f[0] * u[2],
+        f[0] * u[1] - f[1] * u[0],
+    ]
+}
+
+/// The observer's 4-velocity and camera axes (forward, up, right) as vectors at its event.
+fn carried(metric: &Metric, v: &Viewpoint) -> [FourVector; 4] {
+    let frame = v.frame(metric);
+    let axis = |n: [f64; 3]| frame.vector([0.0, n[0], n[1], n[2]]);
+    [frame.e[0], axis(v.forward), axis(v.up), axis(right(v))]
+}
+
+#[test]
+fn an_offset_of_zero_is_the_observer_itself() {
+    let mut rng = Rng::new(37);
+    for metric in [Metric::Godel(Godel::new(1.0)), Metric::Minkowski(Minkowski)] {
+        let v = viewpoint(&mut rng, 1.0);
+        assert_eq!(v.eye(&metric, 0.0), v);
+    }
+}
+
+#[test]
+fn in_flat_space_an_eye_is_the_event_moved_along_the_right_axis() {
+    let mut rng = Rng::new(38);
+    let metric = Metric::Minkowski(Minkowski);
+    for _ in 0..50 {
+        let v = viewpoint(&mut rng, 1.0);
+        let d = rng.uniform(-0.5, 0.5);
+        let eye = v.eye(&metric, d);
+        let e_r = carried(&metric, &v)[3].to_array();
+        let want: [f64; 4] = std::array::from_fn(|i| v.event.to_array()[i] + d * e_r[i]);
+        let moved: [f64; 4] = std::array::from_fn(|i| eye.event.to_array()[i] - want[i]);
+        assert!(max_abs(moved) < 1e-14, "{moved:?}");
+        // Orthogonal to the 4-velocity: the eyes are at the same time in the observer's frame.
+        let u = carried(&metric, &v)[0];
+        let shift = FourVector::from_array(std::array::from_fn(|i| {
+            eye.event.to_array()[i] - v.event.to_array()[i]
+        }));
+        assert!(metric.dot(v.event, u, shift).abs() < 1e-14);
+        assert_eq!(
+            (eye.velocity, eye.forward, eye.up),
+            (v.velocity, v.forward, v.up)
+        );
+    }
+}
+
+/// In Gödel's universe, with T the map of the observer's event to the origin and u the right
+/// axis there: the eye is T⁻¹ of the point the flow of ξ_u = u^t ∂t + u^x K_x + u^y K_y + u^z ∂z
+/// reaches from the origin in parameter d (integrated with RK4); and the isometry keeps every
+/// product g(V, ξ) of a carried vector V (4-velocity, forward, up) with the field.
+#[test]
+fn in_godels_universe_an_eye_is_the_flow_of_the_right_axis_killing_field() {
+    let mut rng = Rng::new(39);
+    let (mut worst_event, mut worst_product): (f64, f64) = (0.0, 0.0);
+    for a in [1.0, 0.5] {
+        let metric = Metric::Godel(Godel::new(a));
+        for _ in 0..40 {
+            let v = viewpoint(&mut rng, a);
+            let d = rng.uniform(-0.6, 0.6) * a;
+            let eye = v.eye(&metric, d);
+            let to_origin = Isometry::to_origin(a, v.event);
+            let before = carried(&metric, &v);
+            let u = to_origin.push(v.event, before[3]).to_array();
+            let fields = [
+                KillingField::T,
+                KillingField::Kx,
+                KillingField::Ky,
+                KillingField::Z,
+            ];
+            let xi = |e: Event| {
+                let parts = fields.map(|f| f.at(a, e).to_array());
+                FourVector::from_array(std::array::from_fn(|m| {
+                    (0..4).map(|k| u[k] * parts[k][m]).sum()
+                }))
+            };
+            let origin = Event::new(0.0, 0.0, 0.0, 0.0);
+            let reached = integrate_field(xi, origin, d, 400);
+            let want = to_origin.inverse().apply(reached).to_array();
+            let off: [f64; 4] = std::array::from_fn(|i| eye.event.to_array()[i] - want[i]);
+            worst_event = worst_event.max(max_abs(off) / a);
+            // The products at the origin and at the reached point, in the origin's chart.
+            let after = carried(&metric, &eye);
+            let at_eye = to_origin.apply(eye.event);
+            for k in 0..3 {
+                let p0 = metric.dot(origin, to_origin.push(v.event, before[k]), xi(origin));
+                let pushed = to_origin.push(eye.event, after[k]);
+                let p1 = metric.dot(at_eye, pushed, xi(at_eye));
+                worst_product = worst_product.max((p1 - p0).abs());
+            }
+            // The eye's axes are orthonormal and the eye moves no faster than light.
+            assert!(eye.velocity.speed < 1.0);
+            let f = eye.forward;
+            let up = eye.up;
+            assert!((f[0] * up[0] + f[1] * up[1] + f[2] * up[2]).abs() < 1e-12);
+        }
+    }
+    eprintln!("eyes: worst event {worst_event:e} (units of a), worst product {worst_product:e}");
+    assert!(worst_event < 1e-10, "{worst_event:e}");
+    assert!(worst_product < 1e-12, "{worst_product:e}");
+}
