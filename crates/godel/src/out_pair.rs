@@ -80,12 +80,34 @@ impl OutPair {
     /// The two files' names within [`OutPair::folder`], for checking them before any work.
     pub fn names(&self, name: &str) -> Vec<String> {
         let (exr, png) = self.files(name);
-        [exr, png]
-            .iter()
-            .filter_map(|p| p.file_name())
-            .map(|n| n.to_string_lossy().into_owned())
-            .collect()
+        file_names(&[exr, png])
     }
+
+    /// A stereo scene's files: each eye's data file (`NAME.left.exr`, `NAME.right.exr`: the
+    /// data file's name with the eye before its extension) and the preview of both eyes.
+    pub fn stereo_files(&self, name: &str) -> ([PathBuf; 2], PathBuf) {
+        let (exr, png) = self.files(name);
+        let eye = |e: scene::Eye| {
+            let stem = exr.file_stem().unwrap_or_default().to_string_lossy();
+            let ext = exr.extension().unwrap_or_default().to_string_lossy();
+            exr.with_file_name(format!("{stem}.{}.{ext}", e.name()))
+        };
+        ([eye(scene::Eye::Left), eye(scene::Eye::Right)], png)
+    }
+
+    /// [`OutPair::stereo_files`]' names within [`OutPair::folder`].
+    pub fn stereo_names(&self, name: &str) -> Vec<String> {
+        let ([left, right], png) = self.stereo_files(name);
+        file_names(&[left, right, png])
+    }
+}
+
+fn file_names(paths: &[PathBuf]) -> Vec<String> {
+    paths
+        .iter()
+        .filter_map(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .collect()
 }
 
 #[cfg(test)]

@@ -104,25 +104,29 @@ pub fn data_and_preview(
     png: &Path,
     grid: bool,
 ) -> anyhow::Result<(Vec<u8>, Vec<u8>)> {
-    let textures = shade::textures_for_scene(scene)?;
-    let png_bytes = {
-        let mut image = shade::texture_shader::preview_with_textures(data, &textures, scene);
-        if grid {
-            let marks = shade::layer::Overlays {
-                marks: Some(scene.camera),
-                ..Default::default()
-            };
-            if let Some(layer) = marks.draw(image.width(), image.height()) {
-                shade::layer::composite(&mut image, &layer);
-            }
-        }
-        shade::encode_png(&image, png)?
-    };
+    let png_bytes = shade::encode_png(&preview(scene, data, grid)?, png)?;
     let exr_bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {
         path: exr.to_path_buf(),
         kind,
     })?;
     Ok((exr_bytes, png_bytes))
+}
+
+/// The preview of `scene`'s data file `data`: its textures, lit where the scene has lights,
+/// with the orientation marks when `grid`.
+pub fn preview(scene: &Scene, data: &DataFile, grid: bool) -> anyhow::Result<image::RgbImage> {
+    let textures = shade::textures_for_scene(scene)?;
+    let mut image = shade::texture_shader::preview_with_textures(data, &textures, scene);
+    if grid {
+        let marks = shade::layer::Overlays {
+            marks: Some(scene.camera),
+            ..Default::default()
+        };
+        if let Some(layer) = marks.draw(image.width(), image.height()) {
+            shade::layer::composite(&mut image, &layer);
+        }
+    }
+    Ok(image)
 }
 
 /// The testing hooks of the module doc: when the variable `var` holds a number of seconds,

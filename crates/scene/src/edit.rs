@@ -6,6 +6,7 @@
 
 use crate::camera::Camera;
 use crate::error::SceneError;
+use crate::model::Observer;
 use spacetime::LocalVelocity;
 use toml_edit::{value, Array, DocumentMut, InlineTable, Item, Table, TableLike, Value};
 
@@ -53,6 +54,39 @@ pub fn replace_view(
     }
     camera.insert("width", value(i64::from(c.width())));
     camera.insert("height", value(i64::from(c.height())));
+    Ok(doc.to_string())
+}
+
+/// `text` as one eye of its stereo camera sees it (`Scene::eye`): `name` and the observer's
+/// time, position (x, y, z), velocity and camera axes replaced by `observer`'s, and
+/// `[camera] stereo` removed; everything else kept as written.
+pub fn replace_eye(
+    text: &str,
+    file: &str,
+    name: &str,
+    observer: &Observer,
+) -> Result<String, SceneError> {
+    let mut doc = parse(text, file)?;
+    doc.insert("name", value(name));
+    let o = table_entry(&mut doc, "observer").ok_or_else(|| not_a_table(file, "observer"))?;
+    let e = observer.event;
+    o.insert("time", value(e.t));
+    let mut position = InlineTable::new();
+    for (k, v) in [("x", e.x), ("y", e.y), ("z", e.z)] {
+        position.insert(k, Value::from(v));
+    }
+    o.insert("position", value(position));
+    let mut v = InlineTable::new();
+    v.insert("speed", Value::from(observer.velocity.speed));
+    v.insert(
+        "direction",
+        Value::Array(vector(observer.velocity.direction)),
+    );
+    o.insert("velocity", value(v));
+    o.insert("forward", value(vector(observer.forward)));
+    o.insert("up", value(vector(observer.up)));
+    let camera = table_entry(&mut doc, "camera").ok_or_else(|| not_a_table(file, "camera"))?;
+    camera.remove("stereo");
     Ok(doc.to_string())
 }
 

@@ -30,18 +30,20 @@ mod objects;
 pub mod overrides;
 pub mod ranges;
 mod raw;
+mod stereo;
 mod validate;
 
 pub use camera::{
     azimuth_elevation, direction_from, samples_per_side, Camera, MAX_RAYS, MAX_SAMPLES,
 };
-pub use edit::{replace_samples, replace_view};
+pub use edit::{replace_eye, replace_samples, replace_view};
 pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
     BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
     TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
 pub use spacetime::message::short;
+pub use stereo::{Eye, Layout, Stereo, MAX_SEPARATION_PER_A};
 pub use validate::{A_RANGE, MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;

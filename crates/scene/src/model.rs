@@ -19,6 +19,8 @@ pub struct Scene {
     pub metric: Metric,
     pub observer: Observer,
     pub camera: Camera,
+    /// Two eyes instead of one (`[camera] stereo`); each eye's scene is [`Scene::eye`].
+    pub stereo: Option<crate::stereo::Stereo>,
     /// Rays per pixel (`[camera] samples`): a square number s², traced on an s×s grid in each
     /// pixel ([`Camera::supersampled`]); width · height · samples ≤ `camera::MAX_RAYS`.
     pub samples: u32,

@@ -86,6 +86,24 @@ pub struct RawCamera {
     pub height: u32,
     /// Rays per pixel (a square number); default 1.
     pub samples: Option<i64>,
+    /// Two eyes instead of one (`crate::stereo`).
+    pub stereo: Option<RawStereo>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStereo {
+    pub separation: f64,
+    pub layout: Option<LayoutName>,
+    pub convergence: Option<f64>,
+}
+
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq)]
+#[serde(rename_all = "kebab-case")]
+pub enum LayoutName {
+    SideBySide,
+    OverUnder,
+    Anaglyph,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq)]

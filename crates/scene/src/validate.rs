@@ -59,8 +59,10 @@ pub(crate) fn build(
     output_name(&c, &raw.name)?;
     let metric = spacetime(&c, raw.spacetime)?;
     let observer = observer(&c, raw.observer)?;
-    let samples = raw.camera.samples.unwrap_or(1);
-    let camera = camera(&c, raw.camera)?;
+    let mut raw_camera = raw.camera;
+    let samples = raw_camera.samples.unwrap_or(1);
+    let stereo = crate::stereo::stereo(&c, raw_camera.stereo.take())?;
+    let camera = camera(&c, raw_camera)?;
     if let Err(message) = crate::camera::samples_per_side(samples, camera.width(), camera.height())
     {
         return c.err("camera.samples", message);
@@ -96,6 +98,7 @@ pub(crate) fn build(
         metric,
         observer,
         camera,
+        stereo,
         samples: samples as u32,
         trace,
         objects,

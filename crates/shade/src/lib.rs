@@ -49,6 +49,7 @@ pub mod polarization;
 pub mod script;
 pub mod settings;
 pub mod shading;
+pub mod stereo;
 pub mod text;
 pub mod texture;
 pub mod texture_shader;

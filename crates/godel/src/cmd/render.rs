@@ -176,8 +176,12 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let scene = load_with_overrides(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
+    if scene.stereo.is_some() && part.is_some() {
+        return Err(crate::args::usage("--part", STEREO_ONE_PROCESS));
+    }
     let outputs = match part {
         Some(part) => vec![part.file_name(&scene.name)],
+        None if scene.stereo.is_some() => target.stereo_names(&scene.name),
         None => target.names(&scene.name),
     };
     if scene.trace.gpu && part.is_some() {
@@ -195,6 +199,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
+    if let Some(stereo) = scene.stereo {
+        return render_stereo(&scene, stereo.layout, &args, &target, &pool);
+    }
     if args.gpu || scene.trace.gpu {
         return render_on_gpu(&scene, &args, &target);
     }
@@ -246,6 +253,67 @@ fn gpu_failure(asked_by: String, e: gpu::HostError) -> anyhow::Error {
     }
 }
 
+/// Why a stereo scene goes with neither --part nor MPI.
+const STEREO_ONE_PROCESS: &str =
+    "a stereo scene renders its two eyes in one process: it cannot be split with --part or over MPI ranks";
+
+/// A stereo scene: each eye's scene traced (on the GPU when asked), each eye's data file and
+/// the preview of both in the scene's layout written together.
+fn render_stereo(
+    scene: &Scene,
+    layout: scene::Layout,
+    args: &RenderArgs,
+    target: &OutPair,
+    pool: &rayon::ThreadPool,
+) -> anyhow::Result<()> {
+    let ([left_exr, right_exr], png) = target.stereo_files(&scene.name);
+    let mut eyes = Vec::with_capacity(2);
+    for (eye, exr) in scene::Eye::BOTH.into_iter().zip([&left_exr, &right_exr]) {
+        let seen = scene.eye(eye)?;
+        let (data, summary) = if args.gpu || scene.trace.gpu {
+            let asked_by = match args.gpu {
+                true => "--gpu".to_string(),
+                false => gpu_in_scene(scene.source_path.as_deref()),
+            };
+            let camera = seen.sample_camera();
+            let pixels = u64::from(camera.width()) * u64::from(camera.height());
+            let bar = progress_bar(&seen, pixels, args.quiet);
+            let done = trace_on_gpu(&seen, &Bar(bar.clone()), asked_by)?;
+            bar.finish_and_clear();
+            let summary = format!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
+            (done.data, summary)
+        } else {
+            let bar = progress_bar(&seen, 0, args.quiet);
+            let traced = pool.install(|| render_plan(&seen, &Plan::All, &Bar(bar.clone())));
+            bar.finish_and_clear();
+            let (data, stats) = traced?;
+            (data, stats.summary())
+        };
+        eprintln!("{} eye: {summary}", eye.name());
+        let bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {
+            path: exr.to_path_buf(),
+            kind,
+        })?;
+        let picture = crate::output::preview(&seen, &data, args.grid)?;
+        eyes.push((bytes, picture));
+    }
+    let both = shade::stereo::compose(layout, &eyes[0].1, &eyes[1].1);
+    let png_bytes = shade::encode_png(&both, &png)?;
+    crate::output::write_together(&[
+        (left_exr.clone(), &eyes[0].0),
+        (right_exr.clone(), &eyes[1].0),
+        (png.clone(), &png_bytes),
+    ])?;
+    eprintln!(
+        "wrote {} ({}), {} and {}",
+        png.display(),
+        layout.name(),
+        left_exr.display(),
+        right_exr.display()
+    );
+    Ok(())
+}
+
 /// Why --gpu goes with neither --part nor MPI.
 const GPU_ONE_PROCESS: &str =
     "a GPU render runs in one process: it cannot be split with --part or over MPI ranks";
@@ -292,6 +360,9 @@ mod under_mpi {
             let scene = load_with_overrides(&args)?;
             if args.gpu || scene.trace.gpu {
                 return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
+            }
+            if scene.stereo.is_some() {
+                return Err(anyhow::anyhow!(STEREO_ONE_PROCESS));
             }
             if rank0 {
                 // Fail before tracing: textures, and the folder rank 0 writes to.

@@ -18,6 +18,7 @@ mod samples_cli;
 mod sequence_cli;
 mod server_cli;
 mod shade_cli;
+mod stereo_cli;
 mod symmetry_cli;
 mod view_cli;
 mod viewer_browser;

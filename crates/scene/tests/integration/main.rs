@@ -4,5 +4,6 @@
 mod input_files;
 mod no_panic;
 mod scene_files;
+mod stereo;
 mod validation;
 mod view_edit;

@@ -12,4 +12,5 @@ mod script;
 mod settings;
 mod shade;
 mod shading;
+mod stereo;
 mod texture_source;
