@@ -59,12 +59,13 @@ pub fn replace_view(
 
 /// `text` as one eye of its stereo camera sees it (`Scene::eye`): `name` and the observer's
 /// time, position (x, y, z), velocity and camera axes replaced by `observer`'s, and
-/// `[camera] stereo` removed; everything else kept as written.
+/// `[camera] stereo` marked with `eye`; everything else kept as written.
 pub fn replace_eye(
     text: &str,
     file: &str,
     name: &str,
     observer: &Observer,
+    eye: &str,
 ) -> Result<String, SceneError> {
     let mut doc = parse(text, file)?;
     doc.insert("name", value(name));
@@ -86,7 +87,11 @@ pub fn replace_eye(
     o.insert("forward", value(vector(observer.forward)));
     o.insert("up", value(vector(observer.up)));
     let camera = table_entry(&mut doc, "camera").ok_or_else(|| not_a_table(file, "camera"))?;
-    camera.remove("stereo");
+    let stereo = camera
+        .get_mut("stereo")
+        .and_then(|s| s.as_table_like_mut())
+        .ok_or_else(|| not_a_table(file, "camera.stereo"))?;
+    stereo.insert("eye", value(eye));
     Ok(doc.to_string())
 }
 

@@ -96,6 +96,15 @@ pub struct RawStereo {
     pub separation: f64,
     pub layout: Option<LayoutName>,
     pub convergence: Option<f64>,
+    /// Written by `Scene::eye` into each eye's scene: which eye it is.
+    pub eye: Option<EyeName>,
+}
+
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq)]
+#[serde(rename_all = "lowercase")]
+pub enum EyeName {
+    Left,
+    Right,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy, PartialEq)]

@@ -16,7 +16,7 @@ use crate::checker::{Checker, Result};
 use crate::edit;
 use crate::error::SceneError;
 use crate::model::{Observer, Scene};
-use crate::raw::{LayoutName, RawStereo};
+use crate::raw::{EyeName, LayoutName, RawStereo};
 use spacetime::Viewpoint;
 
 /// Largest separation, in units of a: the eyes stay within a small part of the horizon's
@@ -46,12 +46,21 @@ impl Layout {
 }
 
 /// `[camera] stereo`: two eyes `separation` apart (units of a), their pictures in `layout`,
-/// turned to meet at `convergence` (units of a) or parallel.
+/// turned to meet at `convergence` (units of a) or parallel. `eye` is set in the scene of one
+/// eye ([`Scene::eye`]): its observer is that eye, and it traces as one picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stereo {
     pub separation: f64,
     pub layout: Layout,
     pub convergence: Option<f64>,
+    pub eye: Option<Eye>,
+}
+
+impl Stereo {
+    /// Whether this is a pair to trace (not one eye of one).
+    pub fn is_pair(&self) -> bool {
+        self.eye.is_none()
+    }
 }
 
 /// One of the two eyes.
@@ -116,23 +125,32 @@ pub(crate) fn stereo(c: &Checker, raw: Option<RawStereo>) -> Result<Option<Stere
         LayoutName::OverUnder => Layout::OverUnder,
         LayoutName::Anaglyph => Layout::Anaglyph,
     };
+    let eye = r.eye.map(|e| match e {
+        EyeName::Left => Eye::Left,
+        EyeName::Right => Eye::Right,
+    });
     Ok(Some(Stereo {
         separation,
         layout,
         convergence,
+        eye,
     }))
 }
 
 impl Scene {
-    /// The scene one eye sees: this scene's objects and camera, without `stereo`, from the
-    /// eye's event, named `NAME.left` or `NAME.right`; its text is this scene's text with
-    /// that name and observer (so the eye's data file embeds a scene that traces it). A
-    /// scene without stereo is its own eye's scene but for the name.
-    pub fn eye(&self, eye: Eye) -> std::result::Result<Scene, SceneError> {
+    /// The scene one eye of this stereo pair sees: its objects and camera from the eye's
+    /// event, named `NAME.left` or `NAME.right`, its `stereo` marked with the eye (it traces
+    /// as one picture); its text is this scene's text with that name, observer and mark (so
+    /// the eye's data file embeds a scene that traces it). `None` for a scene that is not a
+    /// stereo pair.
+    pub fn eye(&self, eye: Eye) -> Option<std::result::Result<Scene, SceneError>> {
+        let stereo = self.stereo.filter(Stereo::is_pair)?;
+        Some(self.eye_of(stereo, eye))
+    }
+
+    fn eye_of(&self, stereo: Stereo, eye: Eye) -> std::result::Result<Scene, SceneError> {
         let a = self.metric.godel_a().unwrap_or(1.0);
-        let (separation, convergence) = self
-            .stereo
-            .map_or((0.0, None), |s| (s.separation, s.convergence));
+        let (separation, convergence) = (stereo.separation, stereo.convergence);
         let o = &self.observer;
         let here = Viewpoint {
             event: o.event,
@@ -163,7 +181,8 @@ impl Scene {
             .source_path
             .as_ref()
             .map_or("<scene>".to_string(), |p| p.display().to_string());
-        let source_text = edit::replace_eye(&self.source_text, &file, &name, &observer)?;
+        let source_text =
+            edit::replace_eye(&self.source_text, &file, &name, &observer, eye.name())?;
         // The observer as its text reads (the reader normalizes the axes): the eye's scene
         // is exactly what its data file will embed.
         let (observer, _) = Scene::read_view(&source_text, &file)?;
@@ -171,7 +190,10 @@ impl Scene {
             name,
             source_text,
             observer,
-            stereo: None,
+            stereo: Some(Stereo {
+                eye: Some(eye),
+                ..stereo
+            }),
             ..self.clone()
         })
     }

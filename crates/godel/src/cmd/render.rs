@@ -176,12 +176,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let scene = load_with_overrides(&args)?;
     // Textures load and the output folder is checked before tracing: bad input fails fast.
     shade::textures_for_scene(&scene)?;
-    if scene.stereo.is_some() && part.is_some() {
+    let pair = scene.stereo.filter(scene::Stereo::is_pair);
+    if pair.is_some() && part.is_some() {
         return Err(crate::args::usage("--part", STEREO_ONE_PROCESS));
     }
     let outputs = match part {
         Some(part) => vec![part.file_name(&scene.name)],
-        None if scene.stereo.is_some() => target.stereo_names(&scene.name),
+        None if pair.is_some() => target.stereo_names(&scene.name),
         None => target.names(&scene.name),
     };
     if scene.trace.gpu && part.is_some() {
@@ -199,7 +200,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
-    if let Some(stereo) = scene.stereo {
+    if let Some(stereo) = pair {
         return render_stereo(&scene, stereo.layout, &args, &target, &pool);
     }
     if args.gpu || scene.trace.gpu {
@@ -269,7 +270,9 @@ fn render_stereo(
     let ([left_exr, right_exr], png) = target.stereo_files(&scene.name);
     let mut eyes = Vec::with_capacity(2);
     for (eye, exr) in scene::Eye::BOTH.into_iter().zip([&left_exr, &right_exr]) {
-        let seen = scene.eye(eye)?;
+        let seen = scene
+            .eye(eye)
+            .ok_or_else(|| anyhow::anyhow!("{}: not a stereo pair", scene.name))??;
         let (data, summary) = if args.gpu || scene.trace.gpu {
             let asked_by = match args.gpu {
                 true => "--gpu".to_string(),
@@ -361,7 +364,7 @@ mod under_mpi {
             if args.gpu || scene.trace.gpu {
                 return Err(crate::args::usage("--gpu", GPU_ONE_PROCESS));
             }
-            if scene.stereo.is_some() {
+            if scene.stereo.is_some_and(|s| s.is_pair()) {
                 return Err(anyhow::anyhow!(STEREO_ONE_PROCESS));
             }
             if rank0 {

@@ -152,8 +152,18 @@ fn in_godels_universe_the_left_eye_is_the_mono_render_from_its_event() {
     assert_eq!(records(&left), records(&dir.join("out/s.exr")));
     let header = DataFile::read(&left).unwrap().header;
     let embedded = scene::Scene::from_str(&header.scene_text, "embedded").unwrap();
-    assert_eq!((embedded.name.as_str(), embedded.stereo), ("s.left", None));
+    let mark = embedded.stereo.and_then(|s| s.eye);
+    assert_eq!(
+        (embedded.name.as_str(), mark),
+        ("s.left", Some(scene::Eye::Left))
+    );
     assert_eq!(embedded.observer.event, e);
+    // That scene traces the eye again, as one picture under the eye's name.
+    let again = tmp.path().join("again");
+    std::fs::create_dir_all(&again).unwrap();
+    render_ok(&again, "eye.toml", &header.scene_text);
+    assert_eq!(records(&again.join("out/s.left.exr")), records(&left));
+    assert!(!again.join("out/s.left.left.exr").exists());
     // Over-under: the left eye's picture on top.
     assert_eq!(png(&tmp.path().join("out/s.png")).dimensions(), (48, 40));
 }

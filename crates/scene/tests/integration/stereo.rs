@@ -24,7 +24,8 @@ fn a_stereo_table_is_read_and_each_eye_reads_back_as_its_own_scene() {
         Some(Stereo {
             separation: 0.1,
             layout: Layout::SideBySide,
-            convergence: None
+            convergence: None,
+            eye: None
         })
     );
     let with = "stereo = { separation = 0.2, layout = \"anaglyph\", convergence = 3.0 }";
@@ -32,7 +33,7 @@ fn a_stereo_table_is_read_and_each_eye_reads_back_as_its_own_scene() {
     assert_eq!(t.stereo.unwrap().layout, Layout::Anaglyph);
     assert_eq!(t.stereo.unwrap().convergence, Some(3.0));
     for scene in [&s, &t] {
-        let [left, right] = Eye::BOTH.map(|e| scene.eye(e).unwrap());
+        let [left, right] = Eye::BOTH.map(|e| scene.eye(e).unwrap().unwrap());
         assert_eq!(
             (left.name.as_str(), right.name.as_str()),
             ("pair.left", "pair.right")
@@ -40,11 +41,18 @@ fn a_stereo_table_is_read_and_each_eye_reads_back_as_its_own_scene() {
         for eye in [&left, &right] {
             let back = Scene::from_str(&eye.source_text, "eye.toml").unwrap();
             assert_eq!(back.observer, eye.observer, "the text says the eye exactly");
-            assert_eq!((back.stereo, eye.stereo), (None, None));
+            assert_eq!(back.stereo, eye.stereo);
+            assert!(
+                back.stereo.is_some_and(|s| !s.is_pair()),
+                "marked as one eye"
+            );
+            assert!(back.eye(Eye::Left).is_none(), "an eye has no eyes");
             assert_eq!(back.objects.len(), 1);
         }
         // The eyes are apart (at a = 2, half the separation times a on each side).
         assert_ne!(left.observer.event, right.observer.event);
+        let marks = [&left, &right].map(|e| e.stereo.unwrap().eye);
+        assert_eq!(marks, [Some(Eye::Left), Some(Eye::Right)]);
     }
 }
 
@@ -61,8 +69,8 @@ fn in_flat_space_the_eyes_sit_half_the_separation_either_side() {
         );
     let s = Scene::from_str(&flat, "f.toml").unwrap();
     // forward × up = (1, 0, 0) × (0, 0, 1) = (0, −1, 0): the left eye is at +y.
-    let left = s.eye(Eye::Left).unwrap().observer.event;
-    let right = s.eye(Eye::Right).unwrap().observer.event;
+    let left = s.eye(Eye::Left).unwrap().unwrap().observer.event;
+    let right = s.eye(Eye::Right).unwrap().unwrap().observer.event;
     assert_eq!((left.t, left.x, left.y, left.z), (0.5, 0.0, 0.25, 0.0));
     assert_eq!((right.t, right.x, right.y, right.z), (0.5, 0.0, -0.25, 0.0));
 }
