@@ -127,6 +127,24 @@ impl Scene {
 /// must be TOML but is not checked. For readers of a data file's embedded scene (marks, the
 /// viewer's pixel directions), whose image textures need not be where the scene was.
 pub fn camera_from_str(text: &str, name_for_errors: &str) -> Result<Camera, SceneError> {
+    with_raw_camera(text, name_for_errors, validate::camera_only)
+}
+
+/// Only `[camera] stereo` of scene text, checked as in a scene file (`None` without one);
+/// for readers of a data file's embedded scene, as [`camera_from_str`].
+pub fn stereo_from_str(text: &str, name_for_errors: &str) -> Result<Option<Stereo>, SceneError> {
+    with_raw_camera(text, name_for_errors, |loc, raw| {
+        stereo::stereo(&checker::Checker { loc }, raw.stereo)
+    })
+}
+
+/// The raw `[camera]` of scene text handed to `check` with its locator; the rest of the text
+/// must be TOML but is not checked.
+fn with_raw_camera<T>(
+    text: &str,
+    name_for_errors: &str,
+    check: impl FnOnce(&Locator, raw::RawCamera) -> Result<T, SceneError>,
+) -> Result<T, SceneError> {
     /// The document with everything but the camera ignored.
     #[derive(Deserialize)]
     struct CameraOnly {
@@ -138,7 +156,7 @@ pub fn camera_from_str(text: &str, name_for_errors: &str) -> Result<Camera, Scen
     let loc = Locator::new(name_for_errors, text, Some(&root));
     let raw = CameraOnly::deserialize(toml::de::Deserializer::from(root.clone()))
         .map_err(|e| loc.at_span(e.span(), e.message().to_string()))?;
-    validate::camera_only(&loc, raw.camera)
+    check(&loc, raw.camera)
 }
 
 fn parse(text: &str, file: &str, base_dir: &Path) -> Result<Scene, SceneError> {

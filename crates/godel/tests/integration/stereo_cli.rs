@@ -268,3 +268,46 @@ fn bad_stereo_settings_are_refused_naming_the_field() {
     let o = render(Path::new(&path), &out, &["-q", "--part", "1/2"]);
     assert_refused(&o, &["--part", "stereo"], &out);
 }
+
+/// `godel shade` of one eye's data file re-colours the pair into its layout: the picture is
+/// the two eyes shaded alone (`--one-eye`) put side by side, whichever eye is named; with the
+/// other eye's file gone it says so.
+#[test]
+fn shade_colours_both_eyes_into_the_pairs_layout() {
+    let tmp = tempfile::tempdir().unwrap();
+    let camera = (60.0, 40, 16, "stereo = { separation = 0.1 }\n");
+    render_ok(
+        tmp.path(),
+        "s.toml",
+        &scene(GODEL, AT_ORIGIN, camera, BALLS),
+    );
+    let out = tmp.path().join("out");
+    let shade = |data: &str, png: &str, extra: &[&str]| {
+        let o = crate::common::shade(
+            &out.join(data),
+            &out.join(png),
+            &[&["--shader", "frequency"], extra].concat(),
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
+    shade("s.left.exr", "left.png", &["--one-eye"]);
+    shade("s.right.exr", "right.png", &["--one-eye"]);
+    shade("s.left.exr", "pair.png", &[]);
+    shade("s.right.exr", "pair-from-right.png", &[]);
+    let (left, right) = (png(&out.join("left.png")), png(&out.join("right.png")));
+    let pair = png(&out.join("pair.png"));
+    assert_eq!(pair, png(&out.join("pair-from-right.png")));
+    assert_eq!(pair.dimensions(), (80, 16));
+    assert_ne!(left, right, "the eyes see differently");
+    for (x, y, p) in left.enumerate_pixels() {
+        assert_eq!(pair.get_pixel(x, y), p);
+        assert_eq!(pair.get_pixel(x + 40, y), right.get_pixel(x, y));
+    }
+    std::fs::remove_file(out.join("s.right.exr")).unwrap();
+    let o = crate::common::shade(&out.join("s.left.exr"), &out.join("again.png"), &[]);
+    assert_refused(
+        &o,
+        &["s.right.exr", "missing", "--one-eye"],
+        &out.join("again.png"),
+    );
+}
