@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the controls, built from the file's info. Each control is described once
 // (kind, path into its target object, range) and reads its input into the target on change:
 // the settings (the `shade` crate's ShadeSettings) or, for a full-sphere file, the look.
@@ -7,20 +8,63 @@
 // polarization axis (a unit vector in its body axes, or null: unpolarized).
 'use strict';
 
+import { $ } from './dom.js';
 import { PROJECTIONS, SAMPLES } from './look.js';
 
-const $ = (id) => document.getElementById(id);
+/** @typedef {import('./contract').Info} Info */
+/** @typedef {import('./contract').ViewInfo} ViewInfo */
+/** @typedef {import('./contract').Vec3} Vec3 */
+/** @typedef {import('./contract').ShaderKind} ShaderKind */
 
+/**
+ * A control: its input's id and label, its kind, where it reads into its target (`path`),
+ * and what its kind needs (options, range, layer, the axis it turns).
+ * @typedef {object} Control
+ * @property {string} id
+ * @property {string} label
+ * @property {'range' | 'select' | 'check' | 'layer' | 'texture' | 'polarized' | 'axis'} kind
+ * @property {(string | number)[]} [path]
+ * @property {string[]} [options]
+ * @property {string[]} [labels]
+ * @property {number} [min]
+ * @property {number} [max]
+ * @property {number} [step]
+ * @property {ShaderKind} [layer]
+ * @property {boolean} [disabled]
+ * @property {string} [axis] the polarization axis an 'axis' or 'polarized' control shares
+ * @property {number} [part] 0: the axis's azimuth, 1: its elevation
+ * @property {string} [box] the 'polarized' checkbox an 'axis' control checks
+ */
+
+/**
+ * A group of controls and the name of their target ('settings' when absent).
+ * @typedef {{ title: string, target?: string, controls: Control[] }} Group
+ */
+
+/**
+ * What controls read into, by name (the settings, the look): objects walked by path.
+ * @typedef {Record<string, any>} Targets
+ */
+
+/** @type {ShaderKind[]} */
 export const LAYERS = ['texture', 'frequency', 'time', 'light', 'polarization'];
 
 // ---- polarization axes: azimuth (x towards y) and elevation (towards z), degrees
 
+/**
+ * @param {Vec3} axis
+ * @returns {[number, number]}
+ */
 export function axisAngles(axis) {
   const [x, y, z] = axis;
   const deg = 180 / Math.PI;
   return [Math.atan2(y, x) * deg, Math.atan2(z, Math.hypot(x, y)) * deg];
 }
 
+/**
+ * @param {[number, number]} angles
+ * @returns {Vec3}
+ */
 export function axisFrom([azimuth, elevation]) {
   const rad = Math.PI / 180;
   const c = Math.cos(elevation * rad);
@@ -28,12 +72,27 @@ export function axisFrom([azimuth, elevation]) {
 }
 
 // The last axis each object had, so that switching its polarization off and on keeps it.
+/** @type {Map<string | undefined, Vec3>} */
 const lastAxis = new Map();
+/** @type {Vec3} */
 const DEFAULT_AXIS = [1, 0, 0];
+/**
+ * @param {any} target
+ * @param {Control} c
+ * @returns {Vec3}
+ */
 const axisOf = (target, c) => getPath(target, c.path) || lastAxis.get(c.axis) || DEFAULT_AXIS;
-const axisValue = (target, c) => Math.round(axisAngles(axisOf(target, c))[c.part] / c.step) * c.step;
+/**
+ * @param {any} target
+ * @param {Control} c
+ */
+const axisValue = (target, c) => {
+  const step = Number(c.step);
+  return Math.round(axisAngles(axisOf(target, c))[Number(c.part)] / step) * step;
+};
 
 // A texture choice of each kind, as the shade crate reads it.
+/** @type {Record<string, import('./contract').TextureChoice>} */
 const TEXTURES = {
   scene: { kind: 'scene' },
   checker: { kind: 'checker', rows: 8, cols: 16 },
@@ -45,18 +104,35 @@ const TEXTURES = {
 // ---- settings paths: ['objects', 'ball', 'temperature'] → settings.objects.ball.temperature
 // (arrays of keys, since object names may contain dots)
 
-function getPath(object, path) {
+/**
+ * @param {any} object
+ * @param {(string | number)[] | undefined} path
+ * @returns {any}
+ */
+function getPath(object, path = []) {
   return path.reduce((o, key) => (o == null ? undefined : o[key]), object);
 }
 
-function setPath(object, path, value) {
+/**
+ * @param {any} object
+ * @param {(string | number)[] | undefined} path
+ * @param {unknown} value
+ */
+function setPath(object, path = [], value) {
   const parent = getPath(object, path.slice(0, -1));
   parent[path[path.length - 1]] = value;
 }
 
+/**
+ * The controls of a file described by `info` and `view` (/api/info, /api/view).
+ * @param {Info} info
+ * @param {ViewInfo | null} view
+ * @returns {Group[]}
+ */
 export function describeControls(info, view) {
   const d = info.defaults;
   const tMax = Math.max(d.time.travel_max, 1);
+  /** @type {Group[]} */
   const groups = [];
   if (view && view.sphere) {
     const presets = [['forward', 'the view\u2019s centre']];
@@ -127,6 +203,7 @@ export function describeControls(info, view) {
     ],
   });
   if (info.lights > 0) {
+    /** @type {Control[]} */
     const controls = [{ id: 'light-ambient', label: 'ambient', path: ['light', 'ambient'],
       kind: 'range', min: 0, max: 1, step: 0.01 }];
     for (let k = 0; k < info.lights; k += 1) {
@@ -140,6 +217,7 @@ export function describeControls(info, view) {
     groups.push({ title: 'Light', controls });
   }
   info.objects.forEach((name, k) => {
+    /** @param {string} field */
     const path = (field) => ['objects', name, field];
     groups.push({
       title: `Object ${name}`,
@@ -170,59 +248,75 @@ export function describeControls(info, view) {
   return groups;
 }
 
+/**
+ * The input of control `c`, showing its value in `target`.
+ * @param {Control} c
+ * @param {any} target
+ * @returns {HTMLInputElement | HTMLSelectElement}
+ */
 function inputFor(c, target) {
+  /** @type {HTMLInputElement | HTMLSelectElement} */
   let input;
   if (c.kind === 'select' || c.kind === 'texture') {
-    input = document.createElement('select');
-    const options = c.kind === 'texture' ? Object.keys(TEXTURES) : c.options;
-    options.forEach((option, i) => input.append(new Option(c.labels ? c.labels[i] : option,
+    const select = document.createElement('select');
+    const options = c.kind === 'texture' ? Object.keys(TEXTURES) : c.options ?? [];
+    options.forEach((option, i) => select.append(new Option(c.labels ? c.labels[i] : option,
       option)));
     const current = getPath(target, c.path);
     if (c.kind === 'texture' && !(current.kind in TEXTURES)) {
       // A choice the page cannot make (an image file) stays selectable as it is.
       TEXTURES[current.kind] = current;
-      input.append(new Option(current.kind, current.kind));
+      select.append(new Option(current.kind, current.kind));
     }
-    input.value = c.kind === 'texture' ? current.kind : current;
+    select.value = c.kind === 'texture' ? current.kind : current;
+    input = select;
   } else if (c.kind === 'check' || c.kind === 'layer' || c.kind === 'polarized') {
     input = document.createElement('input');
     input.type = 'checkbox';
     input.checked = c.kind === 'layer' ? target.shaders.includes(c.layer)
       : Boolean(getPath(target, c.path));
-  } else if (c.kind === 'axis') {
-    input = document.createElement('input');
-    input.type = 'range';
-    for (const key of ['min', 'max', 'step']) input[key] = c[key];
-    input.value = axisValue(target, c);
   } else {
-    input = document.createElement('input');
-    input.type = c.kind;
-    for (const key of ['min', 'max', 'step']) input[key] = c[key];
-    input.value = getPath(target, c.path);
+    input = rangeInput(c);
+    input.value = c.kind === 'axis' ? String(axisValue(target, c)) : getPath(target, c.path);
   }
   input.id = c.id;
   input.disabled = Boolean(c.disabled);
   return input;
 }
 
+// An input of type 'range' (an axis) or the control's kind, with the control's range.
+/** @param {Control} c */
+function rangeInput(c) {
+  const input = document.createElement('input');
+  input.type = c.kind === 'axis' ? 'range' : c.kind;
+  for (const key of /** @type {const} */ (['min', 'max', 'step'])) input[key] = String(c[key]);
+  return input;
+}
+
 // Reads a control into its target.
+/**
+ * @param {Control} c
+ * @param {HTMLInputElement | HTMLSelectElement} input
+ * @param {any} target
+ */
 function apply(c, input, target) {
+  const checked = input instanceof HTMLInputElement && input.checked;
   if (c.kind === 'layer') {
     const on = new Set(target.shaders);
-    if (input.checked) on.add(c.layer); else on.delete(c.layer);
+    if (checked) on.add(c.layer); else on.delete(c.layer);
     target.shaders = LAYERS.filter((layer) => on.has(layer));
   } else if (c.kind === 'check') {
-    setPath(target, c.path, input.checked);
+    setPath(target, c.path, checked);
   } else if (c.kind === 'polarized') {
-    setPath(target, c.path, input.checked ? axisOf(target, c) : null);
+    setPath(target, c.path, checked ? axisOf(target, c) : null);
   } else if (c.kind === 'axis') {
     const angles = axisAngles(axisOf(target, c));
-    angles[c.part] = Number(input.value);
+    angles[Number(c.part)] = Number(input.value);
     const axis = axisFrom(angles);
     lastAxis.set(c.axis, axis);
     setPath(target, c.path, axis);
     // Turning the axis polarizes the object's light.
-    $(c.box).checked = true;
+    $(String(c.box), HTMLInputElement).checked = true;
   } else if (c.kind === 'texture') {
     setPath(target, c.path, structuredClone(TEXTURES[input.value]));
   } else if (c.kind === 'select') {
@@ -236,9 +330,19 @@ function apply(c, input, target) {
 // `changed(group target name)` runs after every change. Returns a function that writes the
 // targets' current values back into the inputs (after the mouse turned the view, or a script
 // changed the settings).
+/**
+ * @param {Group[]} groups
+ * @param {Targets} targets
+ * @param {(target: string) => void} changed
+ * @returns {() => void}
+ */
 export function buildControls(groups, targets, changed) {
   const form = $('controls');
   form.textContent = '';
+  /**
+   * @type {{ c: Control, input: HTMLInputElement | HTMLSelectElement,
+   *   output: HTMLOutputElement, name: string }[]}
+   */
   const bound = [];
   for (const group of groups) {
     const name = group.target || 'settings';
@@ -267,23 +371,25 @@ export function buildControls(groups, targets, changed) {
   return () => {
     for (const { c, input, output, name } of bound) {
       const target = targets[name];
+      /** @param {boolean} on */
+      const check = (on) => { if (input instanceof HTMLInputElement) input.checked = on; };
       if (c.kind === 'layer') {
-        input.checked = target.shaders.includes(c.layer);
+        check(target.shaders.includes(c.layer));
         continue;
       }
       const value = getPath(target, c.path);
       if (value === undefined) continue;
       if (c.kind === 'polarized') {
-        input.checked = Boolean(value);
+        check(Boolean(value));
         continue;
       }
       if (c.kind === 'axis') {
         if (value) lastAxis.set(c.axis, value);
-        input.value = axisValue(target, c);
+        input.value = String(axisValue(target, c));
         output.value = input.value;
         continue;
       }
-      if (c.kind === 'check') input.checked = value;
+      if (c.kind === 'check') check(value);
       else if (c.kind === 'texture') input.value = value.kind in TEXTURES ? value.kind : '';
       else input.value = value;
       if (c.kind === 'range') output.value = input.value;

@@ -1,52 +1,42 @@
+// @ts-check
 // godel view: what the page fetches from the server once and keeps on the GPU: the data
 // file's channels (each fetched when a layer first needs it), the image textures (stacked in
 // one atlas texture of linear RGB), the black-body tables. Routes: crates/viewer/src/gpu_routes.rs.
 'use strict';
 
+import { getJson, ok, fetchPatiently } from './api.js';
 import { parseArray } from './gl.js';
 import { Blackbody, srgb8ToLinear } from './overlays.js';
+
+/** @typedef {import('./contract').Info} Info */
+/** @typedef {import('./contract').ShadeSettings} ShadeSettings */
+/** @typedef {import('./contract').GpuTexture} GpuTexture */
+/** @typedef {import('./gl.js').Gpu} Gpu */
+/** @typedef {import('./gl.js').WireArray} WireArray */
+
+/**
+ * An image texture in the atlas: its size, 8-bit sRGB samples, and its first row there.
+ * @typedef {{ width: number, height: number, rgb: WireArray['data'], y0: number }} AtlasImage
+ */
 
 // 8-bit sRGB → linear, the `shade` crate's table (texture.rs).
 const LINEAR = Float32Array.from({ length: 256 }, (_, k) => srgb8ToLinear(k));
 
 // How many arrays the page asks for at once: within the server's waiting places (four per
-// core, crates/viewer/src/limit.rs) even on one core, so one page alone never meets a 503.
+// core, crates/viewer/src/limit.rs) even on one core, so one page alone never meets a 503
+// (which api.js's fetchPatiently asks again).
 const PARALLEL = 4;
-// A 503 (the server busy with other tabs or scripts) is retried this many times, waiting a
-// little longer each time (about 10 s in all), then shown as an error.
-const BUSY_RETRIES = 20;
 
-const sleep = (ms) => new Promise((resolve) => { setTimeout(resolve, ms); });
-
-// `fetch(url, init)`, asked again while the server answers 503 (busy), at most BUSY_RETRIES
-// times.
-export async function fetchPatiently(url, init) {
-  let response = await fetch(url, init);
-  for (let k = 1; response.status === 503 && k <= BUSY_RETRIES; k += 1) {
-    await sleep(50 * k);
-    response = await fetch(url, init);
-  }
-  return response;
-}
-
-async function fetchOk(url) {
-  const response = await fetchPatiently(url);
-  if (!response.ok) {
-    const text = await response.text();
-    let message = text;
-    try { message = JSON.parse(text).error || text; } catch (_) { /* not JSON */ }
-    const error = new Error(`${url}: ${message}`);
-    error.status = response.status;
-    throw error;
-  }
-  return response;
-}
-
-export const fetchJson = async (url) => (await fetchOk(url)).json();
-const fetchArray = async (url) => parseArray(await (await fetchOk(url)).arrayBuffer());
+/**
+ * The array at `url` (crates/viewer/src/wire.rs); a refusal throws, naming the URL.
+ * @param {string} url
+ */
+const fetchArray = async (url) => parseArray(await (await ok(await fetchPatiently(url), url))
+  .arrayBuffer());
 
 // Whether the settings show the texture layer: named, or the polarization layer alone, which
 // draws its ticks over it (crates/shade/src/shading.rs).
+/** @param {ShadeSettings} settings */
 export function textureLayer(settings) {
   const s = settings.shaders;
   return s.includes('texture') || (s.length === 1 && s[0] === 'polarization');
@@ -54,6 +44,10 @@ export function textureLayer(settings) {
 
 // Whether the settings' polarization layer draws anything on the data file's own pixels (not
 // looking around): some object's light polarized.
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ */
 export function polarizationLayer(settings, info, look = false) {
   return !look && settings.shaders.includes('polarization')
     && info.objects.some((name) => (settings.objects[name] || info.defaults.objects[name])
@@ -63,6 +57,11 @@ export function polarizationLayer(settings, info, look = false) {
 // Which channels the layers of `settings` read (as Shading::pixel reads the record); looking
 // around (`look`), also those that tell one image from another where the sphere is read
 // smoothly (t_emit, u, v: crates/look/src/sample.rs).
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ * @returns {string[]}
+ */
 export function channelsFor(settings, info, look = false) {
   const on = new Set(settings.shaders);
   const need = new Set(look ? ['id', 'u', 'v', 't_emit'] : ['id']);
@@ -79,19 +78,37 @@ export function channelsFor(settings, info, look = false) {
 }
 
 export class Data {
-  constructor(gpu, info) {
+  /**
+   * The data's holder on `gpu` for the file `info` describes, with its scene textures and
+   * black-body tables (Data.load fetches them).
+   * @param {Gpu} gpu
+   * @param {Info} info
+   * @param {GpuTexture[]} sceneTextures
+   * @param {Blackbody} blackbody
+   * @param {number} gtRows the rows of the g·T table's texture
+   */
+  constructor(gpu, info, sceneTextures, blackbody, gtRows) {
     this.gpu = gpu;
     this.info = info;
-    this.loaded = new Set();   // channels on the GPU
+    this.sceneTextures = sceneTextures;
+    this.blackbody = blackbody;
+    this.gtRows = gtRows;
+    /** @type {Set<string>} channels on the GPU */
+    this.loaded = new Set();
+    /** @type {WireArray[]} */
     this.lightPlanes = [];
-    this.images = new Map();   // name → {width, height, rgb, y0}
-    this.fetched = [];         // [url, bytes, ms] of each array, for the benchmarks
+    /** @type {Map<string, AtlasImage>} */
+    this.images = new Map();
+    /** @type {[string, number, number][]} [url, bytes, ms] of each array, for the benchmarks */
+    this.fetched = [];
+    /** @type {(name: string) => string} */
     this.channelUrl = (name) => `/api/gpu/channel/${name}`;
     this.epoch = 0;            // bumped whenever the frame whose channels are loaded changes
   }
 
   // Explore mode (explore.js): the channels of another frame, from `channelUrl(name)`; the
   // ones on the GPU are fetched again when a layer needs them.
+  /** @param {(name: string) => string} channelUrl */
   reset(channelUrl) {
     this.channelUrl = channelUrl;
     this.loaded.clear();
@@ -100,20 +117,26 @@ export class Data {
   }
 
   // Channels put on the GPU by the page itself (a frame traced there, traced.js).
+  /** @param {string[]} names */
   provide(names) {
     names.forEach((n) => this.loaded.add(n));
     this.epoch += 1;
   }
 
-  // The scene textures' description and the black-body tables (uploaded here).
-  async start() {
+  // The data of the file `info` describes on `gpu`: first the scene textures' description
+  // and the black-body tables (uploaded here).
+  /**
+   * @param {Gpu} gpu
+   * @param {Info} info
+   */
+  static async load(gpu, info) {
+    /** @type {[string, number, number][]} */
+    const fetched = [];
     const [textures, blackbody, gt] = await Promise.all([
-      fetchJson('/api/gpu/textures'),
-      fetchJson('/api/gpu/blackbody'),
-      this.array('/api/gpu/blackbody/gt'),
+      /** @type {Promise<import('./contract').SceneTextures>} */ (getJson('/api/gpu/textures')),
+      /** @type {Promise<import('./contract').Blackbody>} */ (getJson('/api/gpu/blackbody')),
+      timedArray('/api/gpu/blackbody/gt', fetched),
     ]);
-    this.sceneTextures = textures.objects;
-    this.blackbody = new Blackbody(blackbody);
     // Repack the bins × 2 table into rows of 1024 bins (any WebGL2 takes 2048-wide textures).
     const bins = gt.width;
     const rows = Math.ceil(bins / 1024);
@@ -124,15 +147,15 @@ export class Data {
         packed.set(gt.data.subarray((part * bins + i) * 4, (part * bins + i + 1) * 4), to);
       }
     }
-    this.gpu.uploadFloatRgba('gt', 1024, rows * 2, packed);
-    this.gtRows = rows;
+    gpu.uploadFloatRgba('gt', 1024, rows * 2, packed);
+    const data = new Data(gpu, info, textures.objects, new Blackbody(blackbody), rows);
+    data.fetched.push(...fetched);
+    return data;
   }
 
-  async array(url) {
-    const started = performance.now();
-    const a = await fetchArray(url);
-    this.fetched.push([url, a.data.byteLength, performance.now() - started]);
-    return a;
+  /** @param {string} url */
+  array(url) {
+    return timedArray(url, this.fetched);
   }
 
   // The size of the sample grid the channels hold: the picture's times the samples per
@@ -142,12 +165,15 @@ export class Data {
     return [this.info.width * s, this.info.height * s];
   }
 
+  /** @param {string[]} names */
   missing(names) {
     return names.filter((n) => !this.loaded.has(n));
   }
 
   // The arrays at `urls`, at most PARALLEL requests at a time, in order.
+  /** @param {string[]} urls */
   async arrays(urls) {
+    /** @type {WireArray[]} */
     const out = [];
     for (let i = 0; i < urls.length; i += PARALLEL) {
       out.push(...await Promise.all(urls.slice(i, i + PARALLEL).map((u) => this.array(u))));
@@ -158,6 +184,7 @@ export class Data {
   // Fetches and uploads the channels not yet on the GPU. Channels of a frame replaced while
   // they loaded (explore: a frame traced in the page, fly.js) are dropped: the caller asks
   // again for the frame shown now.
+  /** @param {string[]} names */
   async ensure(names) {
     const missing = this.missing(names);
     const epoch = this.epoch;
@@ -186,13 +213,14 @@ export class Data {
   }
 
   // Fetches the named images not yet in the atlas and rebuilds it.
+  /** @param {string[]} names */
   async ensureImages(names) {
     const missing = names.filter((n) => !this.images.has(n));
     if (missing.length === 0) return;
     const arrays = await this.arrays(missing.map((n) => `/api/gpu/image/${n}`));
     missing.forEach((name, i) => {
       const a = arrays[i];
-      this.images.set(name, { width: a.width, height: a.height, rgb: a.data });
+      this.images.set(name, { width: a.width, height: a.height, rgb: a.data, y0: 0 });
     });
     let width = 1;
     let height = 0;
@@ -216,4 +244,16 @@ export class Data {
     }
     this.gpu.uploadFloatRgba('atlas', width, height, rgba);
   }
+}
+
+// The array at `url`, noted in `fetched` as [url, bytes, ms] (for the benchmarks).
+/**
+ * @param {string} url
+ * @param {[string, number, number][]} fetched
+ */
+async function timedArray(url, fetched) {
+  const started = performance.now();
+  const a = await fetchArray(url);
+  fetched.push([url, a.data.byteLength, performance.now() - started]);
+  return a;
 }

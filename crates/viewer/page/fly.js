@@ -1,3 +1,4 @@
+// @ts-check
 // godel explore: flying, with every frame traced in this page on the GPU (the exact tracer's
 // kernel, trace.js) — no server round trip per frame. The view (`viewer.explore.view()`) is
 // the observer and camera with exactly the scene file's `[observer]` and `[camera]` fields
@@ -37,14 +38,140 @@
 // one sample per pixel, its pixel count steered so that a frame takes about TARGET_MS; at
 // rest the page traces the scene's full size in steps (half size, full size at one sample a
 // pixel, full samples: traceFull), in tiles, each cancelled by the next change.
+//
+// The flight's state is in four parts, each a typedef below, each changed only by the
+// functions its typedef names: the sight (where the observer is and looks), the controls (what
+// the user holds and chose), the motion (the observer's moves asked of the server) and the
+// frames (the frame pipeline: what is traced, in flight and shown, and its counters). Every
+// flag that says something is in flight says which request, and is cleared where it ends.
 'use strict';
 
-import { KernelTracer } from './trace.js';
+import { getJson, getText, messageOf, ok, postJson } from './api.js';
+import { $ } from './dom.js';
 import { STATUS, sampleRecord, tracedLightRay } from './hovered.js';
-import { fetchJson } from './data.js';
 import { cross, dot, normalize } from './look.js';
+import { KernelTracer } from './trace.js';
 
-const $ = (id) => document.getElementById(id);
+/** @typedef {import('./contract').Vec3} Vec3 */
+/** @typedef {import('./contract').View} View */
+/** @typedef {import('./contract').CameraView} CameraView */
+/** @typedef {import('./contract').Velocity} Velocity */
+/** @typedef {import('./contract').Position} Position */
+/** @typedef {import('./contract').ObserverEvent} ObserverEvent */
+/** @typedef {import('./contract').KernelInput} KernelInput */
+/** @typedef {import('./contract').KernelUniforms} KernelUniforms */
+/** @typedef {import('./contract').ObserverUniforms} ObserverUniforms */
+/** @typedef {import('./contract').CheckAnswer} CheckAnswer */
+/** @typedef {import('./contract').CheckSample} CheckSample */
+/** @typedef {import('./trace.js').Traced} Traced */
+
+/**
+ * The server's observer uniforms (`obs_static`, `obs_to`) with the position they belong to.
+ * @typedef {ObserverUniforms & { position: Position }} PlacedObserver
+ */
+
+/**
+ * Where the observer is and looks: the view (the scene file's observer and camera fields),
+ * the server's uniforms of its position (a frame is traced only from a position whose
+ * uniforms have come), and its version, which every change of the view bumps (frames and
+ * checks say which version they show). Changed by changeView (keys, drag, roll, wheel, Stop,
+ * the event fields and the map: setEvent), and by a move's answer (move).
+ * @typedef {object} Sight
+ * @property {View} view
+ * @property {PlacedObserver} observer
+ * @property {number} version
+ */
+
+/**
+ * What the user holds and chose: the keys held, whether they set the velocity (letting go of
+ * them stops the observer), the speed they give, the proper-time rate, Play, "fall freely",
+ * and the drag under way (its last pointer position). Changed by the key, pointer and panel
+ * handlers; a failed move lets go of the keys and pauses; a refused tracer lets go of the keys.
+ * @typedef {object} Controls
+ * @property {Set<string>} keys
+ * @property {boolean} keyed
+ * @property {number} speed
+ * @property {number} rate
+ * @property {boolean} playing
+ * @property {boolean} fall
+ * @property {[number, number] | null} drag
+ */
+
+/**
+ * The observer's motion along its geodesic: the proper time run and not yet asked for, and
+ * whether a move request is in flight (one at a time: the proper time run meanwhile waits),
+ * the proper time moved so far (tests). Changed by step (time runs) and move.
+ * @typedef {object} Motion
+ * @property {number} pendingTau
+ * @property {boolean} moving
+ * @property {number} tauMoved
+ */
+
+/**
+ * A frame shown: the view's version it was traced from, its picture's size, its level:
+ * 'moving' (fewer pixels, one sample), 'half' (half the full width and height, one sample),
+ * 'size' (the full size, one sample) or 'full' (the full size and samples).
+ * @typedef {{ version: number, width: number, height: number, level: Level }} ShownFrame
+ * @typedef {'moving' | 'half' | 'size' | 'full'} Level
+ */
+
+/**
+ * A line of the frames' log (tests and benchmarks): the frame shown, the animation frames and
+ * frames drawn so far, when (performance.now()), and at rest the ms since its steps began.
+ * @typedef {ShownFrame & { rafs: number, drawn: number, at: number, ms: number | null }} LogEntry
+ */
+
+/**
+ * The page's checks of its tracer: when the last one began, whether one is in flight, how
+ * many the server answered, the last answer (or why it failed).
+ * @typedef {object} Checks
+ * @property {number | null} at
+ * @property {boolean} busy
+ * @property {number} done
+ * @property {CheckAnswer | { verdict: 'failed', reason: string } | null} last
+ */
+
+/**
+ * The frame pipeline: the frame shown and its slots (kept until the next one: hover reads
+ * them), the traces in flight (a moving frame's, `busy`: one at a time; a full frame's steps,
+ * `refining`: cancelled by a change of the view; the two may overlap while a move is under
+ * way), the steering of the moving frames' width, the counters, the checks, why tracing
+ * stopped (`error`: a move or a trace failed; a move that succeeds clears it), and why this
+ * page's tracer was refused (`refused`: from then on the server traces). Changed by step,
+ * traceMoving, traceFull, show, checkFrame and refuse.
+ * @typedef {object} Frames
+ * @property {ShownFrame | null} traced
+ * @property {{ traced: Traced, view: View, supersample: number } | null} slots
+ * @property {boolean} busy
+ * @property {boolean} refining
+ * @property {number} width
+ * @property {number | null} raysPerMs the kernel's speed here, from the last frame at rest
+ * @property {number} rafs animation frames while the view changed
+ * @property {number} drawn frames traced and shown
+ * @property {number[]} frameMs wall times of the last frames shown
+ * @property {LogEntry[]} log
+ * @property {string | null} error
+ * @property {Checks} check
+ * @property {string | null} refused
+ */
+
+/**
+ * The flight's numbers under the names tests and benchmarks read (tests/browser/fly*.mjs,
+ * launch.mjs): read-only, from the parts above.
+ * @typedef {object} FlightNumbers
+ * @property {number} version
+ * @property {number} speed
+ * @property {boolean} moving
+ * @property {number} tauMoved
+ * @property {ShownFrame | null} traced
+ * @property {boolean} refining
+ * @property {number | null} raysPerMs
+ * @property {number} drawn
+ * @property {LogEntry[]} log
+ * @property {Checks} check
+ * @property {string | null} error
+ * @property {string | null} refused
+ */
 
 // The frame time aimed at while moving (15 frames/s and more).
 const TARGET_MS = 50;
@@ -62,6 +189,7 @@ const MAX_DT = 0.1;
 const CHECK_EVERY_MS = 5000;
 const CHECK_PER_SIDE = 24;
 
+/** @type {Record<string, Vec3>} */
 const KEYS = {
   KeyW: [1, 0, 0], KeyS: [-1, 0, 0], KeyD: [0, 1, 0], KeyA: [0, -1, 0],
   KeyR: [0, 0, 1], Space: [0, 0, 1], KeyF: [0, 0, -1], ShiftLeft: [0, 0, -1],
@@ -69,28 +197,52 @@ const KEYS = {
 };
 
 // A time as f32 hi + lo (gpu::input::split_time).
+/**
+ * @param {number} t
+ * @returns {[number, number]}
+ */
 export function splitTime(t) {
   const hi = Math.fround(t);
   return [hi, Math.fround(t - hi)];
 }
 
 // Rodrigues: `v` turned by `angle` about the unit axis `k`.
+/**
+ * @param {Vec3} v
+ * @param {Vec3} k
+ * @param {number} angle
+ * @returns {Vec3}
+ */
 function turn(v, k, angle) {
   const c = Math.cos(angle);
   const s = Math.sin(angle);
   const kv = cross(k, v);
   const d = dot(k, v) * (1 - c);
-  return v.map((x, i) => x * c + kv[i] * s + k[i] * d);
+  /** @param {number} i */
+  const at = (i) => v[i] * c + kv[i] * s + k[i] * d;
+  return [at(0), at(1), at(2)];
 }
+
+/** @param {Vec3} v @returns {Vec3} */
+const f32s = (v) => [Math.fround(v[0]), Math.fround(v[1]), Math.fround(v[2])];
 
 // The server's observer uniforms (`obs_static`, `obs_to`) in `uniforms`, kept with the
 // position they belong to.
+/**
+ * @param {ObserverUniforms} uniforms
+ * @param {Position} position
+ * @returns {PlacedObserver}
+ */
 export function observerOf(uniforms, position) {
   return { position: { x: position.x, y: position.y, z: position.z },
     obs_static: uniforms.obs_static, obs_to: uniforms.obs_to };
 }
 
 // Whether `observer` (observerOf) belongs to `position`.
+/**
+ * @param {PlacedObserver} observer
+ * @param {Position} position
+ */
 export function observerAt(observer, position) {
   const p = observer.position;
   return p.x === position.x && p.y === position.y && p.z === position.z;
@@ -99,40 +251,61 @@ export function observerAt(observer, position) {
 // The kernel's uniforms for `view` traced on a `width` × `height` grid (gpu::input::Uniforms
 // from KernelInput::new), the scene's own ones (`base`: metric, a, max_past, …) otherwise;
 // `observer` (observerOf) the server's for the view's position.
+/**
+ * @param {KernelUniforms} base
+ * @param {View} view
+ * @param {PlacedObserver} observer
+ * @param {number} width
+ * @param {number} height
+ * @returns {KernelUniforms}
+ */
 export function uniformsFor(base, view, observer, width, height) {
   const c = view.camera;
-  const fov = c.kind === 'panorama' ? [c.h_fov_deg, c.v_fov_deg]
-    : c.kind === 'sphere' ? [360, 180] : [c.fov_deg, 0];
+  const fov = c.kind === 'panorama' ? [Number(c.h_fov_deg), Number(c.v_fov_deg)]
+    : c.kind === 'sphere' ? [360, 180] : [Number(c.fov_deg), 0];
   const p = view.position;
   if (!observerAt(observer, p)) throw new Error('the observer\'s uniforms are of another position');
-  return { ...base, obs_t: splitTime(view.time), obs_x: [p.x, p.y, p.z].map(Math.fround),
+  const { speed, direction } = view.velocity;
+  return { ...base, obs_t: splitTime(view.time), obs_x: f32s([p.x, p.y, p.z]),
     obs_static: observer.obs_static, obs_to: observer.obs_to,
-    velocity: [view.velocity.speed, ...view.velocity.direction].map(Math.fround),
-    forward: view.forward.map(Math.fround), up: view.up.map(Math.fround),
-    fov: fov.map(Math.fround), size: [width, height] };
+    velocity: [Math.fround(speed), ...f32s(direction)],
+    forward: f32s(view.forward), up: f32s(view.up),
+    fov: [Math.fround(fov[0]), Math.fround(fov[1])], size: [width, height] };
 }
 
 // Starts flying in explore mode; false where the kernel cannot trace the scene here (the
 // reason is shown and the server's frames stay).
+/**
+ * @param {import('./viewer.js').LoadedViewer} viewer
+ * @param {import('./explore.js').Explore} explore
+ * @param {import('./map.js').MapPanel} map
+ * @param {(text: string) => void} status
+ * @returns {Promise<boolean>}
+ */
 export async function startFly(viewer, explore, map, status) {
   if (viewer.look) {
     status('tracing on the server: a full sphere (--sphere) is looked around in, not flown');
     return false;
   }
   const gl = viewer.gpu().gl;
+  /** @type {KernelTracer} */
   let tracer;
+  /** @type {KernelInput} */
   let input;
+  /** @type {import('./contract').LookView | null} */
   let sceneView;
   const s = explore.event;
   // The kernel's input seen from an event (its observer uniforms too).
-  const inputAt = (e) => fetchJson(`/api/gpu/input?${new URLSearchParams({
-    draw_buffers: tracer.maxDrawBuffers, t: e.t, x: e.x, y: e.y, z: e.z })}`);
+  /** @param {ObserverEvent} e */
+  const inputAt = async (e) => /** @type {KernelInput} */ (await getJson(`/api/gpu/input?${
+    new URLSearchParams({ draw_buffers: String(tracer.maxDrawBuffers), t: String(e.t),
+      x: String(e.x), y: String(e.y), z: String(e.z) })}`));
   try {
-    tracer = new KernelTracer(gl, await (await fetch('/api/gpu/kernel')).text());
+    tracer = new KernelTracer(gl, await getText('/api/gpu/kernel'));
     input = await inputAt(s);
-    sceneView = (await fetchJson('/api/view')).view;
+    sceneView = /** @type {import('./contract').ViewInfo} */ (await getJson('/api/view')).view;
   } catch (e) {
-    status(`tracing on the server: ${e.message || e}`);
+    status(`tracing on the server: ${messageOf(e)}`);
     return false;
   }
   if (!sceneView) {
@@ -142,62 +315,92 @@ export async function startFly(viewer, explore, map, status) {
   const ss = input.supersample;
   const [fullW, fullH] = [input.uniforms.size[0] / ss, input.uniforms.size[1] / ss];
   const c = sceneView.camera;
+  /** @type {CameraView} */
   const camera = { kind: c.kind, width: fullW, height: fullH, samples: ss * ss };
-  for (const k of ['fov_deg', 'h_fov_deg', 'v_fov_deg']) if (c[k] !== undefined) camera[k] = c[k];
-  const fly = {
+  if ('fov_deg' in c) camera.fov_deg = c.fov_deg;
+  if ('h_fov_deg' in c) {
+    camera.h_fov_deg = c.h_fov_deg;
+    camera.v_fov_deg = c.v_fov_deg;
+  }
+
+  // ---- the state (the typedefs above say what each part holds and what changes it)
+
+  /** @type {Sight} */
+  const sight = {
     view: {
       time: s.t, position: { x: s.x, y: s.y, z: s.z },
       velocity: { speed: sceneView.velocity.speed, direction: [...sceneView.velocity.direction] },
       forward: normalize(sceneView.forward), up: normalize(sceneView.up), camera,
     },
-    // The server's uniforms of the observer's position (observerOf).
     observer: observerOf(input.uniforms, s),
-    keys: new Set(),
-    keyed: false,        // the keys set the velocity (letting go of them stops the observer)
-    speed: 0.5,
-    rate: 1,
-    playing: false,
-    fall: false,
-    pendingTau: 0,
-    moving: false,       // in flight: a request for the observer's motion is under way
-    version: 0,          // bumped by every change of the view
-    traced: null,        // {version, width, height, level} of the frame shown
-    busy: false,         // a moving frame's trace is under way (it waits only to compile)
-    refining: false,     // a full frame's trace is under way (a change cancels it)
-    slots: null,         // the slots of the frame shown (hover, tests)
-    tauMoved: 0,         // proper time the observer has moved (for tests)
-    width: Math.min(fullW, MIN_WIDTH), // the moving frames' width
-    raysPerMs: null,     // the kernel's speed here, from the last frame at rest
-    rafs: 0,             // animation frames while the view changed
-    drawn: 0,            // frames traced and shown
-    frameMs: [],         // wall times of the last frames shown
-    log: [],             // for tests and benches: {version, width, height, level, rafs,
-                         // drawn, at (performance.now() when shown), ms (at rest: since the
-                         // first step began, traceFull)}
-    error: null,
-    check: { at: null, busy: false, done: 0, last: null }, // the checks of frames traced
-    refused: null,       // why this page's tracer was refused (then the server traces)
+    version: 0,
   };
-  explore.fly = fly;
-  explore.view = () => structuredClone(fly.view);
+  /** @type {Controls} */
+  const controls = { keys: new Set(), keyed: false, speed: 0.5, rate: 1, playing: false,
+    fall: false, drag: null };
+  /** @type {Motion} */
+  const motion = { pendingTau: 0, moving: false, tauMoved: 0 };
+  /** @type {Frames} */
+  const frames = {
+    traced: null,
+    slots: null,
+    busy: false,
+    refining: false,
+    width: Math.min(fullW, MIN_WIDTH),
+    raysPerMs: null,
+    rafs: 0,
+    drawn: 0,
+    frameMs: [],
+    log: [],
+    error: null,
+    check: { at: null, busy: false, done: 0, last: null },
+    refused: null,
+  };
+
+  /** @type {FlightNumbers} */
+  explore.fly = {
+    get version() { return sight.version; },
+    get speed() { return controls.speed; },
+    get moving() { return motion.moving; },
+    get tauMoved() { return motion.tauMoved; },
+    get traced() { return frames.traced; },
+    get refining() { return frames.refining; },
+    get raysPerMs() { return frames.raysPerMs; },
+    get drawn() { return frames.drawn; },
+    get log() { return frames.log; },
+    get check() { return frames.check; },
+    get error() { return frames.error; },
+    get refused() { return frames.refused; },
+  };
+  explore.view = () => structuredClone(sight.view);
   explore.onView = null;
-  explore.uniforms = (width, height) => uniformsFor(input.uniforms, fly.view, fly.observer,
+  explore.uniforms = (width, height) => uniformsFor(input.uniforms, sight.view, sight.observer,
     width, height);
   // The sample that stands for pixel (col, row) of the frame shown (the one nearest the
   // pixel's centre, as the server's picture_sample), or null outside the frame.
+  /**
+   * @param {number} col
+   * @param {number} row
+   * @returns {[number, number] | null}
+   */
   const sampleOf = (col, row) => {
-    const traced = fly.slots;
-    if (!traced) return null;
-    const s = fly.slotsSupersample;
+    const shown = frames.slots;
+    if (!shown) return null;
+    const s = shown.supersample;
     const [x, y] = [s * col + (s >> 1), s * row + (s >> 1)];
-    return x < traced.width && y < traced.height ? [x, y] : null;
+    return x < shown.traced.width && y < shown.traced.height ? [x, y] : null;
   };
   // The slots of sample (x, y) of the frame `traced`, read back once for the record panel
   // and the map's ray of the same hover.
-  let lastRead = { traced: null, x: -1, y: -1, slots: null };
+  /** @type {{ traced: Traced, x: number, y: number, slots: Promise<Float32Array[]> } | null} */
+  let lastRead = null;
+  /**
+   * @param {Traced} traced
+   * @param {number} x
+   * @param {number} y
+   */
   const readHovered = (traced, x, y) => {
-    const r = lastRead;
-    if (r.traced !== traced || r.x !== x || r.y !== y) {
+    if (!lastRead || lastRead.traced !== traced || lastRead.x !== x || lastRead.y !== y) {
       lastRead = { traced, x, y, slots: tracer.readSample(traced, x, y) };
     }
     return lastRead.slots;
@@ -207,25 +410,26 @@ export async function startFly(viewer, explore, map, status) {
   // null outside.
   explore.hoverRecord = async (col, row) => {
     const at = sampleOf(col, row);
-    if (!at) return null;
-    const slots = await readHovered(fly.slots, at[0], at[1]);
+    const shown = frames.slots;
+    if (!at || !shown) return null;
+    const slots = await readHovered(shown.traced, at[0], at[1]);
     return { col, row, ...sampleRecord(slots, input, viewer.info.objects) };
   };
   // Which frame the hovered records are of (it changes with every frame shown).
-  explore.hoverFrame = () => fly.drawn;
+  explore.hoverFrame = () => frames.drawn;
   // The light ray of pixel (col, row) of the frame shown (map.js's hover), made in this page:
   // the record is read from the frame's slots and its path traced by the kernel's closed
   // forms (hovered.js), no server call. Null outside the frame; the load answers null once
   // the frame is gone.
   explore.hoverRay = (col, row) => {
     const at = sampleOf(col, row);
-    if (!at) return null;
-    const traced = fly.slots;
-    const view = fly.slotsView;
+    const shown = frames.slots;
+    if (!at || !shown) return null;
+    const { traced, view } = shown;
     return {
-      key: `${fly.drawn} ${col} ${row}`,
+      key: `${frames.drawn} ${col} ${row}`,
       load: async () => {
-        if (fly.slots !== traced) return null;
+        if (frames.slots?.traced !== traced) return null;
         const slots = await readHovered(traced, at[0], at[1]);
         const event = { t: view.time, ...view.position };
         return { ...(await tracedLightRay(tracer, traced.input, event, slots)), col, row };
@@ -234,7 +438,8 @@ export async function startFly(viewer, explore, map, status) {
   };
   // For tests: the shown frame's slots as floats (base64 per slot).
   explore.readSlots = () => {
-    const t = fly.slots;
+    if (!frames.slots) throw new Error('no frame is shown');
+    const t = frames.slots.traced;
     return { width: t.width, height: t.height,
       slots: tracer.readSlots(t).map((f) => viewer.base64(new Uint8Array(f.buffer))) };
   };
@@ -245,91 +450,117 @@ export async function startFly(viewer, explore, map, status) {
   // The server traces its own frames of the first event (coarse, then full, on all cores):
   // unseen while the page flies, so its full frame is given up (the newest request wins,
   // and asks for the coarse frame only) and leaves the cores to this page's GPU.
-  fetch('/api/explore/event', { method: 'POST', headers: { 'Content-Type': 'application/json' },
-    body: JSON.stringify({ ...explore.event, refine: false }) }).catch(() => {});
+  /** @type {import('./contract').EventRequest} */
+  const coarseOnly = { ...explore.event, refine: false };
+  postJson('/api/explore/event', coarseOnly).catch(() => {});
 
-  const changed = () => {
-    fly.version += 1;
-    const v = structuredClone(fly.view);
+  // ---- the sight's transitions
+
+  // The view changed (after `edit`): a new version, announced.
+  /** @param {(view: View) => void} edit */
+  const changeView = (edit) => {
+    edit(sight.view);
+    sight.version += 1;
+    const v = structuredClone(sight.view);
     if (typeof explore.onView === 'function') explore.onView(v);
     window.dispatchEvent(new CustomEvent('godel-view', { detail: v }));
   };
-  const event = () => ({ t: fly.view.time, ...fly.view.position });
-  const right = () => cross(fly.view.forward, fly.view.up);
+  /** @returns {ObserverEvent} */
+  const event = () => ({ t: sight.view.time, ...sight.view.position });
+  const right = () => cross(sight.view.forward, sight.view.up);
 
   // The velocity the keys give (in the observer's axes), or null where none is held.
+  /** @returns {Velocity | null} */
   const keyVelocity = () => {
+    /** @type {Vec3} */
     let d = [0, 0, 0];
-    const axes = [fly.view.forward, right(), fly.view.up];
-    for (const k of fly.keys) {
+    const axes = [sight.view.forward, right(), sight.view.up];
+    for (const k of controls.keys) {
       const a = KEYS[k];
-      for (let i = 0; i < 3; i += 1) d = d.map((x, j) => x + a[i] * axes[i][j]);
+      if (!a) continue; // Q, E: roll
+      for (let i = 0; i < 3; i += 1) {
+        d = [d[0] + a[i] * axes[i][0], d[1] + a[i] * axes[i][1], d[2] + a[i] * axes[i][2]];
+      }
     }
     const n = Math.hypot(...d);
-    return n > 1e-9 ? { speed: fly.speed, direction: d.map((x) => x / n) } : null;
+    return n > 1e-9 ? { speed: controls.speed, direction: [d[0] / n, d[1] / n, d[2] / n] }
+      : null;
   };
+
+  // Stop: the observer at rest where it is (its direction kept for the next speed).
+  function stop() {
+    if (sight.view.velocity.speed === 0) return;
+    changeView((v) => { v.velocity = { speed: 0, direction: v.velocity.direction }; });
+  }
+
+  // ---- the motion's transitions
 
   // The observer's motion over the proper time accumulated: one request at a time.
   async function move() {
-    if (fly.moving || fly.pendingTau === 0) return;
-    const tau = fly.pendingTau;
-    fly.pendingTau = 0;
-    fly.moving = true;
-    const v = fly.view;
+    if (motion.moving || motion.pendingTau === 0) return;
+    const tau = motion.pendingTau;
+    motion.pendingTau = 0;
+    motion.moving = true;
+    const v = sight.view;
+    /** @type {import('./contract').MoveRequest} */
+    const asked = { time: v.time, position: v.position, velocity: v.velocity, tau };
     try {
-      const response = await fetch('/api/explore/move', {
-        method: 'POST', headers: { 'Content-Type': 'application/json' },
-        body: JSON.stringify({ time: v.time, position: v.position, velocity: v.velocity, tau }),
+      const answer = /** @type {import('./contract').MoveAnswer} */ (await (await ok(
+        await postJson('/api/explore/move', asked))).json());
+      sight.observer = observerOf(answer.observer, answer.position);
+      motion.tauMoved += tau;
+      frames.error = null;
+      changeView((view) => {
+        view.time = answer.time;
+        view.position = answer.position;
+        if (controls.fall) view.velocity = answer.velocity;
       });
-      const answer = await response.json();
-      if (!response.ok) throw new Error(answer.error || `${response.status}`);
-      v.time = answer.time;
-      v.position = answer.position;
-      fly.observer = observerOf(answer.observer, answer.position);
-      if (fly.fall) v.velocity = answer.velocity;
-      fly.tauMoved += tau;
-      fly.error = null;
-      changed();
       map.update(event());
       explore.showEvent(event());
     } catch (e) {
-      fly.error = e.message || String(e);
-      fly.playing = false;
-      fly.keys.clear();
-      status(`cannot move the observer: ${fly.error}`);
+      frames.error = messageOf(e);
+      controls.playing = false;
+      controls.keys.clear();
+      status(`cannot move the observer: ${frames.error}`);
     } finally {
-      fly.moving = false;
+      motion.moving = false;
     }
   }
 
-  // Shows a traced frame of `view` at `level`: 'moving' (fewer pixels, one sample), 'half'
-  // (half the full width and height, one sample), 'size' (the full size, one sample) or
-  // 'full' (the full size and samples). Its slots are kept until the next one (the hovered
-  // pixel's record is read from them). `ms`: at rest, the time since its steps began.
+  // ---- the frames' transitions
+
+  // Shows a traced frame of `view` at `level`. Its slots are kept until the next one (the
+  // hovered pixel's record is read from them). `ms`: at rest, the time since its steps began.
+  /**
+   * @param {Traced} traced
+   * @param {View} view
+   * @param {number} version
+   * @param {Level} level
+   * @param {(width: number, height: number) => string} note
+   * @param {number | null} [ms]
+   */
   function show(traced, view, version, level, note, ms = null) {
-    if (fly.refused) return; // a trace that was under way: the server's frames are shown now
+    if (frames.refused) return; // a trace that was under way: the server's frames are shown now
     const full = level === 'full';
     const channels = tracer.channels(traced, viewer.info.objects.length);
-    if (fly.slots) fly.slots.slots.forEach((t) => gl.deleteTexture(t));
-    fly.slots = traced;
-    fly.slotsView = view;
-    fly.slotsSupersample = full ? ss : 1;
+    if (frames.slots) frames.slots.traced.slots.forEach((t) => gl.deleteTexture(t));
+    frames.slots = { traced, view, supersample: full ? ss : 1 };
     const [pw, ph] = full ? [fullW, fullH] : [traced.width, traced.height];
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
       supersample: full ? ss : 1 });
-    fly.drawn += 1;
+    frames.drawn += 1;
     if (level !== 'moving') {
       // The panel's line said which server frame was shown: now it says where this one is seen from.
-      const v = fly.view;
+      const v = sight.view;
       const p = v.position;
       status(`frame traced in this browser at t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, `
         + `y = ${p.y.toFixed(3)}, z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
     }
-    fly.traced = { version, width: pw, height: ph, level };
+    frames.traced = { version, width: pw, height: ph, level };
     explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
-    fly.log.push({ version, width: pw, height: ph, level, rafs: fly.rafs, drawn: fly.drawn,
-      at: performance.now(), ms });
-    if (fly.log.length > 2000) fly.log.shift();
+    frames.log.push({ version, width: pw, height: ph, level, rafs: frames.rafs,
+      drawn: frames.drawn, at: performance.now(), ms });
+    if (frames.log.length > 2000) frames.log.shift();
     // For tests: called while this frame's slots are the ones `readSlots` reads.
     if (typeof explore.onShown === 'function') explore.onShown(level);
     checkFrame(traced, view);
@@ -343,11 +574,19 @@ export async function startFly(viewer, explore, map, status) {
   // Up to CHECK_PER_SIDE samples among the hits of slot 0 (`s0`: status and object of each
   // sample, the kernel's layout) and as many among the others traced, at a fixed stride, as
   // gpu::check chooses its own; as the server reads them.
+  /**
+   * @param {Float32Array} s0
+   * @param {number} width
+   * @returns {CheckSample[]}
+   */
   const chooseSamples = (s0, width) => {
     const count = s0.length / 4;
+    /** @param {number} i */
     const code = (i) => s0[4 * i + 1];
+    /** @type {((c: number) => boolean)[]} */
     const sides = [(c) => c === 0, (c) => c !== 0 && STATUS[c] !== 'not traced'];
     return sides.flatMap((side) => {
+      /** @type {number[]} */
       const all = [];
       for (let i = 0; i < count; i += 1) if (side(code(i))) all.push(i);
       const stride = Math.max(1, Math.ceil(all.length / CHECK_PER_SIDE));
@@ -360,81 +599,87 @@ export async function startFly(viewer, explore, map, status) {
   // Checks the frame `traced` of `view` just shown, where one is due (the first, then one
   // every CHECK_EVERY_MS at most, one at a time; frames of one sample a pixel, the check's
   // grid): its samples are read now, before a newer frame frees them.
+  /**
+   * @param {Traced} traced
+   * @param {View} view
+   */
   async function checkFrame(traced, view) {
+    const check = frames.check;
     const now = performance.now();
-    if (fly.check.busy || (fly.check.at !== null && now - fly.check.at < CHECK_EVERY_MS)
+    if (check.busy || (check.at !== null && now - check.at < CHECK_EVERY_MS)
       || traced.width * traced.height > fullW * fullH) return;
-    fly.check.busy = true;
-    fly.check.at = now;
+    check.busy = true;
+    check.at = now;
     try {
       const [s0] = await tracer.readLater([traced.slots[0]], 0, 0, traced.width, traced.height);
       const samples = chooseSamples(s0, traced.width);
       if (samples.length === 0) return;
       const camera = { ...view.camera, width: traced.width, height: traced.height, samples: 1 };
-      const response = await fetch('/api/explore/check', {
-        method: 'POST', headers: { 'Content-Type': 'application/json' },
-        body: JSON.stringify({ view: { ...view, camera }, renderer, samples }),
-      });
-      const answer = await response.json();
-      if (!response.ok) throw new Error(answer.error || `${response.status}`);
-      fly.check.last = answer;
-      fly.check.done += 1;
+      /** @type {import('./contract').CheckRequest} */
+      const asked = { view: { ...view, camera }, renderer, samples };
+      const answer = /** @type {CheckAnswer} */ (await (await ok(
+        await postJson('/api/explore/check', asked))).json());
+      check.last = answer;
+      check.done += 1;
       if (answer.verdict === 'disagree') {
         explore.refusedCheck = answer;
-        refuse(answer.reason);
+        refuse(String(answer.reason));
       }
     } catch (e) {
-      fly.check.last = { verdict: 'failed', reason: e.message || String(e) };
+      check.last = { verdict: 'failed', reason: messageOf(e) };
     } finally {
-      fly.check.busy = false;
+      check.busy = false;
     }
   }
 
   // The tracer here disagrees with the CPU: this page traces no more, the server does.
+  /** @param {string} reason */
   function refuse(reason) {
-    fly.refused = `the GPU renderer ${renderer} was refused: ${reason}`;
-    fly.keys.clear();
+    frames.refused = `the GPU renderer ${renderer} was refused: ${reason}`;
+    controls.keys.clear();
     $('fly-panel').hidden = true;
-    explore.traceOnServer(`${fly.refused}; frames traced on the server`);
+    explore.traceOnServer(`${frames.refused}; frames traced on the server`);
   }
+  /** @param {unknown} e */
   const failed = (e) => {
-    fly.error = e.message || String(e);
-    status(`cannot trace on the GPU: ${fly.error}`);
+    frames.error = messageOf(e);
+    status(`cannot trace on the GPU: ${frames.error}`);
   };
 
   // The view changed: a smaller frame of one sample per pixel, in one draw that is not waited
   // for (the kernel compiles on the first). Its width is steered by the time between
   // animation frames towards TARGET_MS.
+  /** @param {number} frameMs */
   async function traceMoving(frameMs) {
-    if (frameMs > 0 && fly.drawn > 0) {
+    if (frameMs > 0 && frames.drawn > 0) {
       const scale = Math.min(1.25, Math.max(0.8, Math.sqrt(TARGET_MS / frameMs)));
-      fly.width = Math.min(fullW, Math.max(MIN_WIDTH, fly.width * scale));
+      frames.width = Math.min(fullW, Math.max(MIN_WIDTH, frames.width * scale));
     }
     // The frame rate steers by the time between animation frames, which lags the GPU's work
     // (a frame is not waited for): never more rays than the GPU traces in TARGET_MS.
-    if (fly.raysPerMs !== null) {
-      const most = Math.sqrt(fly.raysPerMs * TARGET_MS * fullW / fullH);
-      fly.width = Math.max(MIN_WIDTH, Math.min(fly.width, most));
+    if (frames.raysPerMs !== null) {
+      const most = Math.sqrt(frames.raysPerMs * TARGET_MS * fullW / fullH);
+      frames.width = Math.max(MIN_WIDTH, Math.min(frames.width, most));
     }
-    const w = Math.max(Math.min(MIN_WIDTH, fullW), Math.min(fullW, Math.round(fly.width)));
+    const w = Math.max(Math.min(MIN_WIDTH, fullW), Math.min(fullW, Math.round(frames.width)));
     const h = Math.max(1, Math.round(w * fullH / fullW));
-    const version = fly.version;
-    const view = structuredClone(fly.view);
-    fly.busy = true;
+    const version = sight.version;
+    const view = structuredClone(sight.view);
+    frames.busy = true;
     try {
       const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
-        fly.view, fly.observer, w, h) }, { whole: true });
+        sight.view, sight.observer, w, h) }, { whole: true });
       const now = performance.now();
-      fly.frameMs.push(now);
-      if (fly.frameMs.length > 30) fly.frameMs.shift();
-      const n = fly.frameMs.length;
-      const fps = n > 1 ? (n - 1) * 1000 / (now - fly.frameMs[0]) : 0;
+      frames.frameMs.push(now);
+      if (frames.frameMs.length > 30) frames.frameMs.shift();
+      const n = frames.frameMs.length;
+      const fps = n > 1 ? (n - 1) * 1000 / (now - frames.frameMs[0]) : 0;
       show(traced, view, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the GPU · `
         + `${fps.toFixed(0)} frames/s`);
     } catch (e) {
       failed(e);
     } finally {
-      fly.busy = false;
+      frames.busy = false;
     }
   }
 
@@ -443,207 +688,215 @@ export async function startFly(viewer, explore, map, status) {
   // would take more than QUICK_MS (a quarter of its rays), the full size at one sample a pixel
   // where the scene asks for ss × ss (ss² times fewer rays), then the full samples.
   async function traceFull() {
-    const version = fly.version;
-    const view = structuredClone(fly.view);
-    const { observer } = fly;
-    const cancelled = () => fly.version !== version;
+    const version = sight.version;
+    const view = structuredClone(sight.view);
+    const { observer } = sight;
+    const cancelled = () => sight.version !== version;
+    /** @type {[Level, number, number][]} */
     const steps = [];
     const [halfW, halfH] = [Math.round(fullW / 2), Math.max(1, Math.round(fullH / 2))];
     if (halfW >= MIN_WIDTH
-      && (fly.raysPerMs === null || (fullW * fullH) / fly.raysPerMs > QUICK_MS)) {
+      && (frames.raysPerMs === null || (fullW * fullH) / frames.raysPerMs > QUICK_MS)) {
       steps.push(['half', halfW, halfH]);
     }
     if (ss > 1) steps.push(['size', fullW, fullH]);
     steps.push(['full', fullW * ss, fullH * ss]);
-    fly.refining = true;
+    frames.refining = true;
     const started = performance.now();
     try {
       for (const [level, w, h] of steps) {
         const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
           view, observer, w, h) }, { cancelled });
         const ms = Math.round(performance.now() - started);
-        fly.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
+        frames.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
         const next = level === 'half' ? `${fullW}×${fullH}` : `${ss * ss} samples a pixel`;
         show(traced, view, version, level, (pw, ph) => (level === 'full'
           ? `${pw}×${ph}${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`
           : `${pw}×${ph} traced on the GPU in ${ms} ms · refining to ${next}`), ms);
       }
-      fly.frameMs = [];
+      frames.frameMs = [];
     } catch (e) {
-      if (fly.version === version) failed(e);
+      if (sight.version === version) failed(e);
     } finally {
-      fly.refining = false;
+      frames.refining = false;
     }
   }
 
+  /** @type {number | null} */
   let last = null;
   // Asked for again after the frame is traced and shown, so that the next animation frame
   // shades it (viewer.js's draw, asked for by showing it) before tracing the next.
+  /** @param {number} now */
   async function tick(now) {
     try {
       await step(now);
     } finally {
-      if (!fly.refused) requestAnimationFrame(tick);
+      if (!frames.refused) requestAnimationFrame(tick);
     }
   }
+  // One animation frame: the controls held turn and move the observer, time runs, and the
+  // frame the view needs next is traced.
+  /** @param {number} now */
   async function step(now) {
-    if (fly.refused) return;
+    if (frames.refused) return;
     const frameMs = last === null ? 0 : now - last;
     const dt = Math.min(MAX_DT, frameMs / 1000);
     last = now;
-    const v = fly.view;
     // Roll.
-    const roll = (fly.keys.has('KeyE') ? 1 : 0) - (fly.keys.has('KeyQ') ? 1 : 0);
+    const roll = (controls.keys.has('KeyE') ? 1 : 0) - (controls.keys.has('KeyQ') ? 1 : 0);
     if (roll !== 0 && dt > 0) {
-      v.up = normalize(turn(v.up, v.forward, roll * ROLL_PER_S * dt));
-      changed();
+      changeView((v) => { v.up = normalize(turn(v.up, v.forward, roll * ROLL_PER_S * dt)); });
     }
     // The velocity: the keys' while held; once they are let go, at rest (the geodesic's when
     // falling); otherwise as it was (the scene's, until a key or Stop changes it).
     const keyed = keyVelocity();
     if (keyed) {
-      fly.keyed = true;
-      if (keyed.speed !== v.velocity.speed || keyed.direction.some((x, i) => x !== v.velocity.direction[i])) {
-        v.velocity = keyed;
-        changed();
+      controls.keyed = true;
+      const v = sight.view.velocity;
+      if (keyed.speed !== v.speed || keyed.direction.some((x, i) => x !== v.direction[i])) {
+        changeView((view) => { view.velocity = keyed; });
       }
-    } else if (fly.keyed) {
-      fly.keyed = false;
-      if (!fly.fall) stop();
+    } else if (controls.keyed) {
+      controls.keyed = false;
+      if (!controls.fall) stop();
     }
     // Proper time runs while playing (at the rate) and while a key moves the observer.
-    const running = fly.playing || keyed !== null;
+    const running = controls.playing || keyed !== null;
     if (running && dt > 0) {
-      fly.pendingTau += (fly.playing ? fly.rate : Math.abs(fly.rate) || 1) * dt;
+      motion.pendingTau += (controls.playing ? controls.rate : Math.abs(controls.rate) || 1) * dt;
       move();
     } else if (!running) {
-      fly.pendingTau = 0;
+      motion.pendingTau = 0;
     }
-    if (fly.error !== null) return;
+    if (frames.error !== null) return;
     // A position whose uniforms are still on their way from the server waits for them.
-    if (!observerAt(fly.observer, v.position)) return;
+    if (!observerAt(sight.observer, sight.view.position)) return;
     // While time runs every animation frame is traced (the observer's newest event may not
     // be back from the server yet: then the same view again).
-    const stale = fly.traced === null || fly.traced.version !== fly.version;
-    if (stale || (running && fly.traced.level !== 'full')) {
-      fly.rafs += 1;
+    const shown = frames.traced;
+    if (shown === null || shown.version !== sight.version || (running && shown.level !== 'full')) {
+      frames.rafs += 1;
       // Waited for: it resolves in this task once the kernel is compiled (one draw, no
       // fence), so that the shading asked for comes in the next animation frame.
-      if (!fly.busy) await traceMoving(frameMs);
-    } else if (fly.traced.level !== 'full' && !fly.busy && !fly.refining && !running && !fly.moving) {
+      if (!frames.busy) await traceMoving(frameMs);
+    } else if (shown.level !== 'full' && !frames.busy && !frames.refining && !running
+      && !motion.moving) {
       traceFull();
     }
   }
 
-  // Stop: the observer at rest where it is (its direction kept for the next speed).
-  function stop() {
-    const v = fly.view;
-    if (v.velocity.speed === 0) return;
-    v.velocity = { speed: 0, direction: v.velocity.direction };
-    changed();
-  }
+  // ---- the controls: keys, pointer and wheel on the picture, the Fly panel
 
-  // ---- the controls
+  /** @param {KeyboardEvent} e */
   const typing = (e) => e.target instanceof HTMLInputElement && e.target.type !== 'range'
     && e.target.type !== 'checkbox';
   window.addEventListener('keydown', (e) => {
-    if (typing(e) || fly.refused) return;
+    if (typing(e) || frames.refused) return;
     if (e.code === 'KeyX') {
       stop();
       e.preventDefault();
     } else if (e.code in KEYS || e.code === 'KeyQ' || e.code === 'KeyE') {
-      fly.keys.add(e.code);
+      controls.keys.add(e.code);
       e.preventDefault();
     }
   });
-  window.addEventListener('keyup', (e) => { fly.keys.delete(e.code); });
-  window.addEventListener('blur', () => fly.keys.clear());
+  window.addEventListener('keyup', (e) => { controls.keys.delete(e.code); });
+  window.addEventListener('blur', () => controls.keys.clear());
 
-  const canvas = $('image');
+  const canvas = $('image', HTMLCanvasElement);
   const picture = canvas.parentElement;
-  let drag = null;
+  if (!picture) throw new Error('the picture\u2019s canvas has no parent');
   // Captured before the viewer's own pan and zoom of the picture (viewer.js).
   picture.addEventListener('pointerdown', (e) => {
-    if (e.target !== canvas || fly.refused) return;
+    if (e.target !== canvas || frames.refused) return;
     e.stopPropagation();
-    drag = [e.clientX, e.clientY];
+    controls.drag = [e.clientX, e.clientY];
     canvas.setPointerCapture(e.pointerId);
   }, true);
   picture.addEventListener('pointermove', (e) => {
+    const drag = controls.drag;
     if (!drag || e.target !== canvas) return;
     e.stopPropagation();
     const fov = (camera.fov_deg || camera.h_fov_deg || 360) * Math.PI / 180;
     const perPx = fov / Math.max(canvas.clientWidth, 1);
     const [dx, dy] = [e.clientX - drag[0], e.clientY - drag[1]];
-    drag = [e.clientX, e.clientY];
-    const v = fly.view;
+    controls.drag = [e.clientX, e.clientY];
     // Drag the world: right turns the view left; up tilts it down.
-    const yawed = turn(v.forward, v.up, dx * perPx);
-    const r = normalize(cross(yawed, v.up));
-    v.forward = normalize(turn(yawed, r, dy * perPx));
-    v.up = normalize(cross(r, v.forward));
-    changed();
+    changeView((v) => {
+      const yawed = turn(v.forward, v.up, dx * perPx);
+      const r = normalize(cross(yawed, v.up));
+      v.forward = normalize(turn(yawed, r, dy * perPx));
+      v.up = normalize(cross(r, v.forward));
+    });
   }, true);
+  /** @param {PointerEvent} e */
   const endDrag = (e) => {
-    if (drag && e.target === canvas) e.stopPropagation();
-    drag = null;
+    if (controls.drag && e.target === canvas) e.stopPropagation();
+    controls.drag = null;
   };
   picture.addEventListener('pointerup', endDrag, true);
   picture.addEventListener('pointercancel', endDrag, true);
   picture.addEventListener('wheel', (e) => {
-    if (e.target !== canvas || camera.kind === 'sphere' || fly.refused) return;
+    if (e.target !== canvas || camera.kind === 'sphere' || frames.refused) return;
     e.preventDefault();
     e.stopPropagation();
     const f = Math.exp(e.deltaY * 0.001);
+    /** @type {(x: number, hi: number) => number} */
     const clamp = (x, hi) => Math.min(hi, Math.max(1, x));
-    if (camera.kind === 'panorama') {
-      const h = clamp(camera.h_fov_deg * f, 360);
-      camera.v_fov_deg = clamp(camera.v_fov_deg * h / camera.h_fov_deg, 180);
-      camera.h_fov_deg = h;
-    } else {
-      camera.fov_deg = clamp(camera.fov_deg * f, camera.kind === 'pinhole' ? 170 : 360);
-    }
-    changed();
+    changeView(({ camera: c }) => {
+      if (c.kind === 'panorama') {
+        const h = clamp(Number(c.h_fov_deg) * f, 360);
+        c.v_fov_deg = clamp(Number(c.v_fov_deg) * h / Number(c.h_fov_deg), 180);
+        c.h_fov_deg = h;
+      } else {
+        c.fov_deg = clamp(Number(c.fov_deg) * f, c.kind === 'pinhole' ? 170 : 360);
+      }
+    });
   }, { capture: true, passive: false });
 
-  const speed = $('fly-speed');
-  const rate = $('fly-rate');
+  const speed = $('fly-speed', HTMLInputElement);
+  const rate = $('fly-rate', HTMLInputElement);
+  const fall = $('fly-fall', HTMLInputElement);
   const sync = () => {
-    $('fly-speed-value').textContent = `${fly.speed.toFixed(2)} c`;
-    $('fly-play').textContent = fly.playing ? 'Pause' : 'Play';
+    $('fly-speed-value').textContent = `${controls.speed.toFixed(2)} c`;
+    $('fly-play').textContent = controls.playing ? 'Pause' : 'Play';
   };
-  speed.addEventListener('input', () => { fly.speed = Number(speed.value); sync(); });
+  speed.addEventListener('input', () => { controls.speed = Number(speed.value); sync(); });
   rate.addEventListener('change', () => {
     const r = Number(rate.value);
     if (rate.value.trim() === '' || !Number.isFinite(r)) {
       status('rate: not a number');
-      rate.value = String(fly.rate);
+      rate.value = String(controls.rate);
       return;
     }
-    fly.rate = r;
+    controls.rate = r;
   });
-  $('fly-play').addEventListener('click', () => { fly.playing = !fly.playing; sync(); });
-  $('fly-reverse').addEventListener('click', () => { fly.rate = -fly.rate; rate.value = String(fly.rate); });
+  $('fly-play').addEventListener('click', () => { controls.playing = !controls.playing; sync(); });
+  $('fly-reverse').addEventListener('click', () => {
+    controls.rate = -controls.rate;
+    rate.value = String(controls.rate);
+  });
   $('fly-stop').addEventListener('click', stop);
-  $('fly-fall').addEventListener('change', () => { fly.fall = $('fly-fall').checked; });
-  speed.value = String(fly.speed);
-  rate.value = String(fly.rate);
+  fall.addEventListener('change', () => { controls.fall = fall.checked; });
+  speed.value = String(controls.speed);
+  rate.value = String(controls.rate);
   sync();
   // The event fields and the map move the observer too.
   // Its observer uniforms come from the server (the newest event's are kept).
   explore.setEvent = async (e) => {
-    fly.view.time = e.t;
-    fly.view.position = { x: e.x, y: e.y, z: e.z };
-    changed();
+    changeView((v) => {
+      v.time = e.t;
+      v.position = { x: e.x, y: e.y, z: e.z };
+    });
     try {
       const mine = observerOf((await inputAt(e)).uniforms, e);
-      if (observerAt(mine, fly.view.position)) fly.observer = mine;
+      if (observerAt(mine, sight.view.position)) sight.observer = mine;
     } catch (err) {
       // No frame is traced from this event: the next one asks again.
-      status(`cannot move the observer: ${err.message || err}`);
+      status(`cannot move the observer: ${messageOf(err)}`);
     }
   };
-  changed();
+  changeView(() => {});
   requestAnimationFrame(tick);
   return true;
 }

@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the WebGL2 side. Uploads the arrays the server sends (crates/viewer/src/wire.rs)
 // as textures, runs the shading pass (shaders.js) into an offscreen RGBA8 texture the size
 // of the picture, and draws that texture on the canvas at any zoom with trilinear filtering.
@@ -5,10 +6,33 @@
 
 import { VERTEX, shadeSource, displaySource } from './shaders.js';
 
+/** @typedef {import('./uniforms.js').Features} Features */
+
+/**
+ * An array the server sent (crates/viewer/src/wire.rs): width × height samples of
+ * `components` each.
+ * @typedef {{ width: number, height: number, components: number,
+ *   data: Uint8Array | Uint16Array | Uint32Array | Float32Array }} WireArray
+ */
+
+/**
+ * The shading pass's uniforms by name: [kind, value] (kind: 'i', 'u', 'f', or a vector: 'i2',
+ * 'i4', 'f2', 'f3', 'f4'; arrays of vectors flat).
+ * @typedef {Record<string, [string, number | number[] | number[][]]>} Uniforms
+ */
+
 // ---- the wire format: 16-byte header, then little-endian samples
 
+/**
+ * @type {Record<number, Uint8ArrayConstructor | Uint16ArrayConstructor
+ *   | Uint32ArrayConstructor | Float32ArrayConstructor>}
+ */
 const TYPES = { 1: Uint8Array, 2: Uint16Array, 3: Uint32Array, 4: Float32Array };
 
+/**
+ * @param {ArrayBuffer} buffer
+ * @returns {WireArray}
+ */
 export function parseArray(buffer) {
   const view = new DataView(buffer);
   const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
@@ -22,6 +46,12 @@ export function parseArray(buffer) {
 }
 
 // Texture formats by typed array and component count.
+/**
+ * @param {WebGL2RenderingContext} gl
+ * @param {WireArray['data']} data
+ * @param {number} components
+ * @returns {[number, number, number]}
+ */
 function formatOf(gl, data, components) {
   if (data instanceof Float32Array) {
     return [[gl.R32F, gl.RG32F, gl.RGB32F, gl.RGBA32F][components - 1],
@@ -35,9 +65,17 @@ function formatOf(gl, data, components) {
 
 // A program of the full-screen vertex shader and `fragment`; `what` names it in errors. The
 // shading here and the traced frames (trace.js) compile through this one function.
+/**
+ * @param {WebGL2RenderingContext} gl
+ * @param {string} fragment
+ * @param {string} what
+ * @returns {WebGLProgram}
+ */
 export function linkProgram(gl, fragment, what) {
+  /** @type {(type: number, source: string) => WebGLShader} */
   const shader = (type, source) => {
     const s = gl.createShader(type);
+    if (!s) throw new Error(`the GPU context was lost while compiling ${what}`);
     gl.shaderSource(s, source);
     gl.compileShader(s);
     if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) {
@@ -62,6 +100,7 @@ export function linkProgram(gl, fragment, what) {
 }
 
 export class Gpu {
+  /** @param {HTMLCanvasElement} canvas */
   constructor(canvas) {
     const gl = canvas.getContext('webgl2', { antialias: false, alpha: false, depth: false,
       preserveDrawingBuffer: true, premultipliedAlpha: false });
@@ -76,9 +115,20 @@ export class Gpu {
     this.shadePrograms = new Map(); // by features, compiled when first needed
     this.displayPrograms = [this.program(displaySource(false)), this.program(displaySource(true))];
     this.vao = gl.createVertexArray();
+    /** @type {Record<string, WebGLTexture>} */
     this.textures = {};
+    /** @type {Record<string, string>} the size of each texture uploadFloatRgba rewrites */
+    this.sizes = {};
+    /** @type {Map<WebGLProgram, Map<string, WebGLUniformLocation | null>>} */
     this.locations = new Map();
-    this.shaded = null; // { texture, framebuffer, width, height }
+    /**
+     * The offscreen picture; its mipmaps are made again when it is next drawn filtered.
+     * @type {{ texture: WebGLTexture, framebuffer: WebGLFramebuffer, width: number,
+     *   height: number, mipmapsStale: boolean } | null}
+     */
+    this.shaded = null;
+    /** @type {[number, number, Features, Uniforms] | null} the last shading pass, for profiling */
+    this.lastShade = null;
     // 1×1 stand-ins for textures a pass does not read.
     this.blank = {
       float: this.texture2d(1, 1, gl.R32F, gl.RED, gl.FLOAT, new Float32Array(1)),
@@ -88,10 +138,16 @@ export class Gpu {
     };
   }
 
+  /** @param {string} fragment */
   program(fragment) {
     return linkProgram(this.gl, fragment, 'a shading program');
   }
 
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {string} what
+   */
   checkSize(width, height, what) {
     if (width > this.maxSize || height > this.maxSize) {
       throw new Error(`${what} is ${width}×${height}; this browser's WebGL textures are at most `
@@ -99,12 +155,25 @@ export class Gpu {
     }
   }
 
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {number} internal
+   * @param {number} format
+   * @param {number} type
+   * @param {ArrayBufferView | ImageBitmap | null} data
+   * @param {number} [filter]
+   */
   texture2d(width, height, internal, format, type, data, filter) {
     const gl = this.gl;
     const t = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, t);
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-    gl.texImage2D(gl.TEXTURE_2D, 0, internal, width, height, 0, format, type, data);
+    if (data instanceof ImageBitmap) {
+      gl.texImage2D(gl.TEXTURE_2D, 0, internal, width, height, 0, format, type, data);
+    } else {
+      gl.texImage2D(gl.TEXTURE_2D, 0, internal, width, height, 0, format, type, data);
+    }
     const f = filter || gl.NEAREST;
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, f);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, f);
@@ -113,6 +182,12 @@ export class Gpu {
     return t;
   }
 
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {number} layers
+   * @param {Float32Array} data
+   */
   arrayTexture(width, height, layers, data) {
     const gl = this.gl;
     const t = gl.createTexture();
@@ -126,6 +201,10 @@ export class Gpu {
   }
 
   // Stores a parsed array as texture `name` (replacing any earlier one).
+  /**
+   * @param {string} name
+   * @param {WireArray} array
+   */
   upload(name, array) {
     this.checkSize(array.width, array.height, name);
     const [internal, format, type] = formatOf(this.gl, array.data, array.components);
@@ -134,12 +213,23 @@ export class Gpu {
   }
 
   // The light planes, one layer each.
+  /**
+   * @param {WireArray[]} planes
+   * @param {number} width
+   * @param {number} height
+   */
   uploadLights(planes, width, height) {
     const data = new Float32Array(width * height * planes.length);
     planes.forEach((p, k) => data.set(p.data, k * width * height));
     this.replace('light', this.arrayTexture(width, height, planes.length, data));
   }
 
+  /**
+   * @param {string} name
+   * @param {number} width
+   * @param {number} height
+   * @param {Uint8Array} bytes
+   */
   uploadRgba(name, width, height, bytes) {
     const gl = this.gl;
     this.replace(name, this.texture2d(width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, bytes));
@@ -147,6 +237,10 @@ export class Gpu {
 
   // An image decoded by the browser (the overlay layer's PNG), its bytes as they are: not
   // premultiplied by alpha, no colour conversion.
+  /**
+   * @param {string} name
+   * @param {ImageBitmap} bitmap
+   */
   uploadBitmap(name, bitmap) {
     const gl = this.gl;
     gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
@@ -157,9 +251,15 @@ export class Gpu {
 
   // Small tables that change with the settings (the objects') are rewritten in place: a new
   // texture per frame would make the driver set up its state afresh each time.
+  /**
+   * @param {string} name
+   * @param {number} width
+   * @param {number} height
+   * @param {Float32Array} floats
+   */
   uploadFloatRgba(name, width, height, floats) {
     const gl = this.gl;
-    const sizes = this.sizes || (this.sizes = {});
+    const sizes = this.sizes;
     const size = `${width}×${height}`;
     if (this.textures[name] && sizes[name] === size) {
       gl.bindTexture(gl.TEXTURE_2D, this.textures[name]);
@@ -170,25 +270,50 @@ export class Gpu {
     sizes[name] = size;
   }
 
+  /**
+   * @param {string} name
+   * @param {WebGLTexture} texture
+   */
   replace(name, texture) {
     if (this.textures[name]) this.gl.deleteTexture(this.textures[name]);
     this.textures[name] = texture;
   }
 
+  /**
+   * @param {WebGLProgram} program
+   * @param {string} name
+   * @returns {WebGLUniformLocation | null}
+   */
   location(program, name) {
-    if (!this.locations.has(program)) this.locations.set(program, new Map());
-    const known = this.locations.get(program);
-    if (!known.has(name)) known.set(name, this.gl.getUniformLocation(program, name));
-    return known.get(name);
+    let known = this.locations.get(program);
+    if (!known) {
+      known = new Map();
+      this.locations.set(program, known);
+    }
+    let at = known.get(name);
+    if (at === undefined) {
+      at = this.gl.getUniformLocation(program, name);
+      known.set(name, at);
+    }
+    return at;
   }
 
+  /** @param {Features} features */
   shadeProgram(features) {
     const key = JSON.stringify(features);
-    if (!this.shadePrograms.has(key)) this.shadePrograms.set(key, this.program(shadeSource(features)));
-    return this.shadePrograms.get(key);
+    let program = this.shadePrograms.get(key);
+    if (!program) {
+      program = this.program(shadeSource(features));
+      this.shadePrograms.set(key, program);
+    }
+    return program;
   }
 
   // The offscreen picture, resized when the picture's size changes.
+  /**
+   * @param {number} width
+   * @param {number} height
+   */
   target(width, height) {
     const gl = this.gl;
     if (this.shaded && this.shaded.width === width && this.shaded.height === height) {
@@ -204,12 +329,18 @@ export class Gpu {
     const framebuffer = gl.createFramebuffer();
     gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
     gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
-    this.shaded = { texture, framebuffer, width, height };
+    this.shaded = { texture, framebuffer, width, height, mipmapsStale: true };
     return this.shaded;
   }
 
   // The shading pass, with the program of `features`: `uniforms` maps names to [kind, value]
   // (kind: 'i', 'u', 'f', or a vector: 'i2', 'i4', 'f2', 'f3', 'f4'; arrays of vectors flat).
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {Features} features
+   * @param {Uniforms} uniforms
+   */
   shade(width, height, features, uniforms) {
     this.lastShade = [width, height, features, uniforms];
     const gl = this.gl;
@@ -218,6 +349,7 @@ export class Gpu {
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
     gl.viewport(0, 0, width, height);
     gl.useProgram(program);
+    /** @type {[string, string, 'float' | 'uint' | 'rgba'][]} */
     const samplers = [
       ['uId', 'id', 'uint'], ['uU', 'u', 'float'], ['uV', 'v', 'float'], ['uG', 'g', 'float'],
       ['uT', 't_emit', 'float'], ['uCos', 'cos_i', 'uint'], ['uObjects', 'objects', 'float'],
@@ -236,17 +368,23 @@ export class Gpu {
     for (const [name, [kind, value]] of Object.entries(uniforms)) {
       const at = this.location(program, name);
       if (at === null) continue; // unused by the compiled shader
-      const v = Array.isArray(value) ? value.flat() : value;
+      if (typeof value === 'number') {
+        switch (kind) {
+          case 'i': gl.uniform1i(at, value); break;
+          case 'u': gl.uniform1ui(at, value); break;
+          case 'f': gl.uniform1f(at, value); break;
+          default: throw new Error(`uniform kind ${kind} of a number`);
+        }
+        continue;
+      }
+      const v = value.flat();
       switch (kind) {
-        case 'i': gl.uniform1i(at, v); break;
-        case 'u': gl.uniform1ui(at, v); break;
-        case 'f': gl.uniform1f(at, v); break;
         case 'i2': gl.uniform2iv(at, v); break;
         case 'i4': gl.uniform4iv(at, v); break;
         case 'f2': gl.uniform2fv(at, v); break;
         case 'f3': gl.uniform3fv(at, v); break;
         case 'f4': gl.uniform4fv(at, v); break;
-        default: throw new Error(`uniform kind ${kind}`);
+        default: throw new Error(`uniform kind ${kind} of a vector`);
       }
     }
     gl.bindVertexArray(this.vao);
@@ -257,6 +395,10 @@ export class Gpu {
   // Draws the offscreen picture on the canvas: its top-left corner at canvas pixel `offset`,
   // `zoom` canvas pixels per picture pixel; filtered (mipmaps made when first needed) unless
   // it is shown texel for texel.
+  /**
+   * @param {[number, number]} offset
+   * @param {number} zoom
+   */
   display(offset, zoom) {
     const gl = this.gl;
     const shaded = this.shaded;
@@ -287,6 +429,7 @@ export class Gpu {
   // The offscreen picture's RGBA bytes, row 0 (the top of the picture) first.
   readShaded() {
     const gl = this.gl;
+    if (!this.shaded) throw new Error('nothing has been shaded yet');
     const { framebuffer, width, height } = this.shaded;
     gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
     const out = new Uint8Array(width * height * 4);

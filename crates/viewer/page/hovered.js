@@ -1,3 +1,4 @@
+// @ts-check
 // godel explore: the hovered sample of a frame traced in this page (flying), read and shown
 // without the server. Its record is read from the frame's slots (the kernel's layout,
 // gpu::host::sample_record and light_value), with the fields the server's /api/pixel gives
@@ -8,7 +9,25 @@
 // [{t, x, y, z, r}] from the observer into the past, emission, travel_time.
 'use strict';
 
+/** @typedef {import('./contract').RayStatusName} RayStatusName */
+/** @typedef {import('./contract').KernelInput} KernelInput */
+/** @typedef {import('./contract').ObserverEvent} ObserverEvent */
+/** @typedef {import('./contract').MapPoint} MapPoint */
+
+/**
+ * A sample's record as /api/pixel answers it, but for the pixel and the directions, which
+ * the caller knows.
+ * @typedef {Omit<import('./contract').PixelRecord, 'col' | 'row' | 'azimuth_deg'
+ *   | 'elevation_deg'>} SampleRecord
+ */
+
+/**
+ * A sample's light ray as /api/explore/ray answers it, but for the pixel.
+ * @typedef {Omit<import('./contract').LightRay, 'col' | 'row'>} SampleRay
+ */
+
 // datafile::RayStatus by code, with the names crates/viewer/src/state.rs gives them.
+/** @type {RayStatusName[]} */
 export const STATUS = ['hit', 'escaped', 'step budget', 'failed', 'not traced', 'work limit'];
 const HIT = 0;
 const NOT_TRACED = 4;
@@ -18,6 +37,12 @@ const ROW = 64;
 // The record of the sample whose slots are `slots` (arrays of four floats, every slot of
 // the kernel `input`, whose `light_channels` say where each light is), as /api/pixel
 // answers it; `objects`: the scene's object names.
+/**
+ * @param {ArrayLike<number>[]} slots
+ * @param {Pick<KernelInput, 'light_channels'>} input
+ * @param {string[]} objects
+ * @returns {SampleRecord}
+ */
 export function sampleRecord(slots, input, objects) {
   const [s0, s1, s2] = slots;
   const code = s0[1];
@@ -25,7 +50,9 @@ export function sampleRecord(slots, input, objects) {
   const object = hit ? s0[0] : -1;
   // The fields of a miss mean nothing (NaN in the data file, null in JSON); a light out of
   // work is NaN (negative in the kernel, gpu::host::light_value), 0 where nothing was hit.
+  /** @param {number} v */
   const field = (v) => (hit ? v : null);
+  /** @param {[number, number]} where */
   const light = ([slot, component]) => {
     const v = slots[slot][component];
     return hit ? (v < 0 ? null : v) : 0;
@@ -50,8 +77,16 @@ export function sampleRecord(slots, input, objects) {
 // a frame traced with `input` (trace.js's `traced.input`: {defines, draw_buffers,
 // uniforms, light_channels}) from the observer's event `event` ({t, x, y, z}): resolves once
 // the GPU has traced it, without blocking the page.
+/**
+ * @param {import('./trace.js').KernelTracer} tracer
+ * @param {KernelInput} input
+ * @param {ObserverEvent} event
+ * @param {ArrayLike<number>[]} slots
+ * @returns {Promise<SampleRay>}
+ */
 export async function tracedLightRay(tracer, input, event, slots) {
   const record = sampleRecord(slots, input, []);
+  /** @type {SampleRay} */
   const answer = {
     status: record.status,
     object: record.object >= 0 ? record.object : null,
@@ -61,6 +96,7 @@ export async function tracedLightRay(tracer, input, event, slots) {
   };
   // The direction the pixel's ray was launched along (none where it was not traced).
   const [s0, s1, s2, s3, s4] = slots;
+  /** @type {[number, number, number]} */
   const n = [s2[3], s3[3], s4[0]];
   const length = Math.hypot(...n);
   if (s0[1] === NOT_TRACED || !(length > 0 && Number.isFinite(length))) return answer;
@@ -69,9 +105,17 @@ export async function tracedLightRay(tracer, input, event, slots) {
   if (input.draw_buffers < 2) throw new Error('the light ray needs two render targets a draw');
   const gl = tracer.gl;
   const { program } = tracer.program(`${input.defines}#define RAY_PATH 1\n`);
+  /** @param {string} name */
   const at = (name) => gl.getUniformLocation(program, `u_${name}`);
   // Draws the kernel's first `outputs` slots on `width` × `height` targets: resolves to
   // their floats, row by row (read back without blocking the page).
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {number} outputs
+   * @param {number} points
+   * @param {number} end
+   */
   const draw = async (width, height, outputs, points, end) => {
     const targets = Array.from({ length: outputs }, () => tracer.floatTexture(width, height));
     const fb = gl.createFramebuffer();
@@ -118,8 +162,8 @@ export async function tracedLightRay(tracer, input, event, slots) {
       z: events[k + 3], r: radii[k] });
   }
   if (withHit) {
-    answer.emission = { t: event.t + record.t_emit, x: record.x, y: record.y, z: record.z,
-      r: emissionR };
+    // The record's t_emit and emission event, as sampleRecord reads a hit's.
+    answer.emission = { t: event.t + s1[1], x: s2[0], y: s2[1], z: s2[2], r: emissionR };
     answer.travel_time = record.travel_time;
   }
   return answer;

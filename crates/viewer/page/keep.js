@@ -1,3 +1,4 @@
+// @ts-check
 // godel explore: keeping what one flies (README "Exploring"; the server's side is
 // crates/viewer/src/keep_routes.rs). Everything here reads the view on screen only through
 // `viewer.explore.view()`: the scene file's observer fields and camera.
@@ -13,9 +14,23 @@
 //   `godel sequence`, linked for download.
 'use strict';
 
-import { fetchPatiently } from './data.js';
+import { errorText, getJson, messageOf, postJson } from './api.js';
+import { $ } from './dom.js';
 
-const $ = (id) => document.getElementById(id);
+/** @typedef {import('./contract').View} View */
+/** @typedef {import('./contract').RecordedView} RecordedView */
+
+/**
+ * What is kept (tests read it): the exact render asked for (its job, state and view), and the
+ * recording (whether under way, its keyframes, the script made of them).
+ * @typedef {object} KeepState
+ * @property {number | null} job
+ * @property {import('./contract').JobState | null} state
+ * @property {View | null} view
+ * @property {boolean} recording
+ * @property {RecordedView[]} keyframes
+ * @property {string | null} script
+ */
 
 // At most one keyframe per this many seconds of wall-clock time.
 const MIN_GAP_S = 0.25;
@@ -25,35 +40,35 @@ const PROGRESS_MS = 250;
 // The samples per pixel a render may ask for (square numbers, as the scene file's).
 const SAMPLES = [1, 4, 9, 16, 25, 36, 49, 64];
 
-async function errorOf(response) {
-  try {
-    return (await response.json()).error || `${response.status}`;
-  } catch (_) {
-    return `${response.status} ${response.statusText}`;
-  }
-}
-
 // A busy server (503: its shading slots taken by other tabs or frames) is asked again.
-const postJson = (url, body) => fetchPatiently(url, {
-  method: 'POST',
-  headers: { 'Content-Type': 'application/json' },
-  body: JSON.stringify(body),
-});
+/**
+ * @param {string} url
+ * @param {unknown} body
+ */
+const post = (url, body) => postJson(url, body, { patient: true });
 
-export async function startKeep(viewer) {
-  const explore = viewer.explore;
+/**
+ * @param {import('./viewer.js').LoadedViewer} viewer
+ * @param {import('./explore.js').Explore} explore
+ */
+export async function startKeep(viewer, explore) {
+  /** @type {import('./contract').OwnView} */
   let limits;
   try {
-    limits = await (await fetch('/api/explore/view')).json();
+    limits = /** @type {import('./contract').OwnView} */ (await getJson('/api/explore/view'));
   } catch (_) {
     return;
   }
-  const keep = { job: null, recording: false, keyframes: [], script: null };
+  /** @type {KeepState} */
+  const keep = { job: null, state: null, view: null, recording: false, keyframes: [],
+    script: null };
   viewer.keep = keep;
   const own = explore.view();
-  $('keep-width').value = String(own.camera.width);
-  $('keep-height').value = String(own.camera.height);
-  const samples = $('keep-samples');
+  const width = $('keep-width', HTMLInputElement);
+  const height = $('keep-height', HTMLInputElement);
+  width.value = String(own.camera.width);
+  height.value = String(own.camera.height);
+  const samples = $('keep-samples', HTMLSelectElement);
   for (const n of new Set([...SAMPLES, own.camera.samples])) {
     const option = document.createElement('option');
     option.value = String(n);
@@ -63,36 +78,45 @@ export async function startKeep(viewer) {
   samples.value = String(own.camera.samples);
 
   // ---- Render exactly
+  /** @param {string} text */
   const status = (text) => { $('keep-status').textContent = text; };
+  /**
+   * @param {string} id
+   * @param {string | null} url
+   */
   const show = (id, url) => {
-    const link = $(id);
+    const link = $(id, HTMLAnchorElement);
     link.hidden = url === null;
     if (url) {
       link.href = url;
       link.download = '';
     }
   };
+  /** @type {number | null} */
   let polling = null;
   async function progress() {
+    /** @type {import('./contract').ExactJob | null} */
     let job;
     try {
-      job = (await (await fetch('/api/explore/exact')).json()).job;
+      job = /** @type {import('./contract').ExactStatus} */ (
+        await getJson('/api/explore/exact')).job;
     } catch (e) {
-      status(`cannot reach the server: ${e.message || e}`);
+      status(`cannot reach the server: ${messageOf(e)}`);
       return;
     }
     if (!job || job.id !== keep.job) return;
     keep.state = job.state;
     const rendering = job.state === 'rendering';
-    $('keep-progress').hidden = !rendering;
+    const bar = $('keep-progress', HTMLProgressElement);
+    bar.hidden = !rendering;
     $('keep-cancel').hidden = !rendering;
-    $('keep-render').disabled = rendering;
+    $('keep-render', HTMLButtonElement).disabled = rendering;
     if (rendering) {
-      $('keep-progress').value = job.total > 0 ? job.done / job.total : 0;
+      bar.value = job.total > 0 ? job.done / job.total : 0;
       status(`rendering exactly: ${job.done} of ${job.total || '…'} rays`);
       return;
     }
-    clearInterval(polling);
+    if (polling !== null) clearInterval(polling);
     polling = null;
     if (job.state === 'done') {
       show('keep-png', job.png);
@@ -106,37 +130,43 @@ export async function startKeep(viewer) {
   }
   $('keep-render').addEventListener('click', async () => {
     const view = explore.view();
-    view.camera.width = Number($('keep-width').value);
-    view.camera.height = Number($('keep-height').value);
+    view.camera.width = Number(width.value);
+    view.camera.height = Number(height.value);
     view.camera.samples = Number(samples.value);
     show('keep-png', null);
     show('keep-exr', null);
     let response;
     try {
-      response = await postJson('/api/explore/exact', view);
+      response = await post('/api/explore/exact', view);
     } catch (e) {
-      status(`cannot reach the server: ${e.message || e}`);
+      status(`cannot reach the server: ${messageOf(e)}`);
       return;
     }
     if (!response.ok) {
-      status(await errorOf(response));
+      status(await errorText(response));
       return;
     }
-    keep.job = (await response.json()).job;
+    keep.job = /** @type {import('./contract').ExactStarted} */ (await response.json()).job;
     keep.view = view;
     keep.state = 'rendering';
     status('rendering exactly…');
-    if (polling === null) polling = setInterval(progress, PROGRESS_MS);
+    if (polling === null) polling = window.setInterval(progress, PROGRESS_MS);
   });
-  $('keep-cancel').addEventListener('click', () => postJson('/api/explore/exact/cancel', {}));
+  $('keep-cancel').addEventListener('click', () => post('/api/explore/exact/cancel', {}));
 
   // ---- Record
+  /** @param {string} text */
   const recordStatus = (text) => { $('keep-record-status').textContent = text; };
   let started = 0;
+  /** @type {number | null} */
   let sampler = null;
   let lastText = '';
   let pending = false;
   const now = () => (performance.now() - started) / 1000;
+  /**
+   * @param {number} seconds
+   * @param {View} view
+   */
   const take = (seconds, view) => {
     keep.keyframes.push({ seconds, view });
     lastText = JSON.stringify(view);
@@ -159,11 +189,11 @@ export async function startKeep(viewer) {
     show('keep-script', null);
     started = performance.now();
     take(0, explore.view());
-    sampler = setInterval(sample, SAMPLE_MS);
+    sampler = window.setInterval(sample, SAMPLE_MS);
     $('keep-record').textContent = 'Stop';
   }
   async function stop() {
-    clearInterval(sampler);
+    if (sampler !== null) clearInterval(sampler);
     keep.recording = false;
     $('keep-record').textContent = 'Record';
     const last = keep.keyframes[keep.keyframes.length - 1];
@@ -171,20 +201,22 @@ export async function startKeep(viewer) {
     const n = keep.keyframes.length;
     let response;
     try {
-      response = await postJson('/api/explore/record', { keyframes: keep.keyframes });
+      /** @type {import('./contract').RecordRequest} */
+      const recording = { keyframes: keep.keyframes };
+      response = await post('/api/explore/record', recording);
     } catch (e) {
-      recordStatus(`cannot reach the server: ${e.message || e}`);
+      recordStatus(`cannot reach the server: ${messageOf(e)}`);
       return;
     }
     if (!response.ok) {
-      recordStatus(await errorOf(response));
+      recordStatus(await errorText(response));
       return;
     }
     const disposition = response.headers.get('Content-Disposition') || '';
     const name = (disposition.match(/filename="([^"]+)"/) || [])[1] || 'flight.toml';
     const text = await response.text();
     keep.script = text;
-    const link = $('keep-script');
+    const link = $('keep-script', HTMLAnchorElement);
     if (link.href.startsWith('blob:')) URL.revokeObjectURL(link.href);
     link.href = URL.createObjectURL(new Blob([text], { type: 'application/toml' }));
     link.download = name;

@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: cameras and looking around, in f64 as the `look` crate and `scene::Camera`
 // compute them (the shader does the same in f32 per pixel): a pixel's direction for any
 // camera, the aberration and Doppler factor of a moving observer, the sphere pixel a
@@ -5,25 +6,64 @@
 // mouse and the controls change.
 'use strict';
 
+/** @typedef {import('./contract').Vec3} Vec3 */
+/** @typedef {import('./contract').Camera} Camera */
+/** @typedef {import('./contract').LookView} LookView */
+
+/**
+ * A look-around view of a full-sphere file, as the controls change it: the projection and its
+ * field of view, the turn from the file's axes, the observer's velocity (its direction set
+ * from `preset`), the samples per pixel.
+ * @typedef {object} Look
+ * @property {Projection} projection
+ * @property {number} fov degrees
+ * @property {number} yaw degrees to the right
+ * @property {number} pitch degrees up
+ * @property {number} speed
+ * @property {string} preset 'forward', 'object:K' or an axis ('+x', …)
+ * @property {Vec3} direction the velocity's, static frame
+ * @property {string} samples one of SAMPLES
+ */
+
+/** @typedef {'pinhole' | 'panorama' | 'fisheye' | 'sphere'} Projection */
+
+/**
+ * The axes of a file's own view (ViewInfo.view), and of a sphere of width × height pixels.
+ * @typedef {{ forward: Vec3, up: Vec3 }} Axes
+ * @typedef {{ width: number, height: number, forward: Vec3, up: Vec3 }} Sphere
+ */
+
+/** @type {(a: Vec3, b: Vec3) => number} */
 export const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+/** @type {(a: Vec3, b: Vec3) => Vec3} */
 export const cross = (a, b) => [
   a[1] * b[2] - a[2] * b[1],
   a[2] * b[0] - a[0] * b[2],
   a[0] * b[1] - a[1] * b[0],
 ];
-const scaled = (a, s) => a.map((x) => x * s);
-const add = (a, b) => a.map((x, i) => x + b[i]);
+/** @type {(a: Vec3, s: number) => Vec3} */
+const scaled = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
+/** @type {(a: Vec3, b: Vec3) => Vec3} */
+const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+/** @type {(a: Vec3) => Vec3} */
 export const normalize = (a) => scaled(a, 1 / Math.sqrt(dot(a, a)));
 const RAD = Math.PI / 180;
 
 // Camera-basis direction (forward, right, up) of pixel (col, row) of `camera` (the JSON of
 // /api/view: kind, width, height, fov_deg | h_fov_deg, v_fov_deg), or null where it shows
 // nothing (crates/scene/src/camera.rs).
+/**
+ * @param {Camera} camera
+ * @param {number} col
+ * @param {number} row
+ * @returns {Vec3 | null}
+ */
 export function cameraDirection(camera, col, row) {
   const { width: w, height: h } = camera;
   if (col < 0 || row < 0 || col >= w || row >= h) return null;
   const cx = col + 0.5;
   const cy = row + 0.5;
+  /** @type {(hFov: number, vFov: number) => Vec3} */
   const panorama = (hFov, vFov) => {
     const alpha = hFov * RAD * (cx / w - 0.5);
     const beta = vFov * RAD * (0.5 - cy / h);
@@ -52,23 +92,40 @@ export function cameraDirection(camera, col, row) {
 }
 
 // Local-frame direction of a camera-basis direction, for axes forward and up.
+/**
+ * @param {Vec3} d
+ * @param {Vec3} forward
+ * @param {Vec3} up
+ * @returns {Vec3}
+ */
 export function toLocal(d, forward, up) {
   const right = cross(forward, up);
-  return [0, 1, 2].map((i) => d[0] * forward[i] + d[1] * right[i] + d[2] * up[i]);
+  return add(add(scaled(forward, d[0]), scaled(right, d[1])), scaled(up, d[2]));
 }
 
 // spacetime::aberrate: the static observer's direction n of the photon a moving observer
 // (speed, unit direction) sees along `own`, and the Doppler factor D = γ(1 + n·v).
+/**
+ * @param {number} speed
+ * @param {Vec3} direction
+ * @param {Vec3} own
+ * @returns {[Vec3, number]}
+ */
 export function aberrate(speed, direction, own) {
   const gamma = 1 / Math.sqrt(1 - speed * speed);
   const along = dot(own, direction);
   const scale = 1 / (gamma * (1 - speed * along));
   const c = (gamma - 1) * along - gamma * speed;
-  return [own.map((x, i) => (x + c * direction[i]) * scale), scale];
+  return [scaled(add(own, scaled(direction, c)), scale), scale];
 }
 
 // SphereSource::position and ::nearest: the sphere pixel (col, row) containing static
 // direction n, for a sphere of width × height with axes forward, up.
+/**
+ * @param {Sphere} sphere
+ * @param {Vec3} n
+ * @returns {[number, number]}
+ */
 export function spherePixel(sphere, n) {
   const right = cross(sphere.forward, sphere.up);
   const alpha = Math.atan2(dot(n, right), dot(n, sphere.forward));
@@ -82,12 +139,17 @@ export function spherePixel(sphere, n) {
 }
 
 // Azimuth (from x towards y) and elevation (towards z) of a unit direction, degrees.
+/**
+ * @param {Vec3} n
+ * @returns {[number, number]}
+ */
 export function azimuthElevation(n) {
   return [Math.atan2(n[1], n[0]) / RAD, Math.asin(Math.min(Math.max(n[2], -1), 1)) / RAD];
 }
 
 // ---- the look-around view
 
+/** @type {Record<Projection, { fov: number, min: number, max: number }>} */
 export const PROJECTIONS = {
   pinhole: { fov: 90, min: 5, max: 170 },
   panorama: { fov: 220, min: 20, max: 360 },
@@ -97,6 +159,10 @@ export const PROJECTIONS = {
 
 // A view of a sphere file: turned by yaw (to the right) and pitch (up), in degrees, from the
 // file's own axes, with the projection's field of view, moving with speed along direction.
+/**
+ * @param {Axes} file
+ * @returns {Look}
+ */
 export function newLook(file) {
   return {
     projection: 'pinhole',
@@ -115,6 +181,11 @@ export function newLook(file) {
 export const SAMPLES = ['1', '4', '9', '16'];
 
 // The camera axes of a look in the moving observer's frame (the file's axes turned).
+/**
+ * @param {Look} look
+ * @param {Axes} file
+ * @returns {Axes}
+ */
 export function lookAxes(look, file) {
   const right = cross(file.forward, file.up);
   const [sy, cy] = [Math.sin(look.yaw * RAD), Math.cos(look.yaw * RAD)];
@@ -127,6 +198,12 @@ export function lookAxes(look, file) {
 }
 
 // The camera of a look on a width × height view (a fisheye uses the largest square).
+/**
+ * @param {Look} look
+ * @param {number} width
+ * @param {number} height
+ * @returns {Camera}
+ */
 export function lookCamera(look, width, height) {
   switch (look.projection) {
     case 'pinhole': return { kind: 'pinhole', fov_deg: look.fov, width, height };
@@ -141,6 +218,13 @@ export function lookCamera(look, width, height) {
 }
 
 // The view as /api/look/* reads it.
+/**
+ * @param {Look} look
+ * @param {Axes} file
+ * @param {number} width
+ * @param {number} height
+ * @returns {LookView}
+ */
 export function lookView(look, file, width, height) {
   const { forward, up } = lookAxes(look, file);
   return {
@@ -153,12 +237,24 @@ export function lookView(look, file, width, height) {
 }
 
 // Radians of view per pixel across the width (for dragging).
+/**
+ * @param {Look} look
+ * @param {number} width
+ */
 export function radiansPerPixel(look, width) {
   return look.fov * RAD / Math.max(width, 1);
 }
 
 // The direction a velocity preset names, static frame: the view's centre, an object, an axis.
+/**
+ * @param {string} preset
+ * @param {Look} look
+ * @param {Axes} file
+ * @param {(Vec3 | null)[]} objectDirections
+ * @returns {Vec3}
+ */
 export function presetDirection(preset, look, file, objectDirections) {
+  /** @type {Record<string, Vec3>} */
   const axes = { '+x': [1, 0, 0], '-x': [-1, 0, 0], '+y': [0, 1, 0], '-y': [0, -1, 0],
     '+z': [0, 0, 1], '-z': [0, 0, -1] };
   if (preset in axes) return axes[preset];
@@ -172,6 +268,13 @@ export function presetDirection(preset, look, file, objectDirections) {
 // Where output pixel (col, row) of a look looks: its own direction, the static one, D, and the
 // sphere pixel its centre falls in (whose record the hover shows); null outside the camera's
 // picture.
+/**
+ * @param {LookView} view
+ * @param {Sphere} sphere
+ * @param {number} col
+ * @param {number} row
+ * @returns {{ own: Vec3, static: Vec3, doppler: number, source: [number, number] } | null}
+ */
 export function lookPixel(view, sphere, col, row) {
   const d = cameraDirection(view.camera, col, row);
   if (!d) return null;

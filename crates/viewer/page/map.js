@@ -1,3 +1,4 @@
+// @ts-check
 // godel explore: the map beside the picture. Draws what the server's /api/explore/map and
 // /api/explore/ray say (crates/render/src/map.rs; docs/physics.md, "The explore map") on two
 // canvases:
@@ -9,6 +10,53 @@
 // Requests never pile up: at most one map and one ray request are in flight; the newest wish
 // waits for it, older wishes are dropped.
 'use strict';
+
+import { getJson } from './api.js';
+
+/** @typedef {import('./contract').ExploreMap} ExploreMap */
+/** @typedef {import('./contract').ObserverEvent} ObserverEvent */
+/** @typedef {import('./contract').MapPoint} MapPoint */
+/** @typedef {import('./hovered.js').SampleRay} SampleRay */
+
+/**
+ * A plot's size and the room its axes take, CSS pixels.
+ * @typedef {{ width: number, height: number, left: number, right: number, top: number,
+ *   bottom: number }} Box
+ */
+
+/**
+ * The top view's window: centre and half-size in map units.
+ * @typedef {{ cx: number, cy: number, half: number }} TopWindow
+ */
+
+/**
+ * A hovered pixel's ray to show: of a server frame (fetched from /api/explore/ray), or of a
+ * frame traced in the page (`load` makes it; null once that frame is gone).
+ * @typedef {{ generation: number, level: import('./contract').Level, col: number,
+ *   row: number }} ServerRayWish
+ * @typedef {{ key: string, load: () => Promise<SampleRay | null> }} TracedRay
+ */
+
+/**
+ * The map panel (createMap): what it shows, and what moves it.
+ * @typedef {object} MapPanel
+ * @property {string} canvas the top view's canvas id
+ * @property {string} side the side view's canvas id
+ * @property {ExploreMap | null} fetched the last /api/explore/map answer
+ * @property {SampleRay | null} ray the light ray shown
+ * @property {ObserverEvent | null} event the observer's event as the page has it now
+ * @property {boolean} dragging
+ * @property {TopWindow | null} view
+ * @property {(x: number, y: number) => { px: number, py: number }} toScreen
+ * @property {(px: number, py: number) => { x: number, y: number }} fromScreen
+ * @property {(event: ObserverEvent) => void} update
+ * @property {(frame: { generation: number, level: import('./contract').Level }, col: number,
+ *   row: number) => void} hover
+ * @property {(ray: TracedRay) => void} hoverTraced
+ * @property {() => void} clearRay
+ * @property {() => boolean} idle
+ * @property {() => void} draw
+ */
 
 export const COLOURS = {
   background: '#161922',
@@ -28,11 +76,18 @@ const SIDE = { width: 380, height: 240, left: 44, right: 12, top: 38, bottom: 32
 // How near (CSS pixels) a pointer must come to the observer's marker to pick it up.
 const PICK_PX = 14;
 
+/** @param {number} index */
 export const objectColour = (index) => COLOURS.objects[index % COLOURS.objects.length];
 
 // Calls `load(wish)` for the newest wish, one at a time, then `done(wish, result, error)`.
+/**
+ * @template W, R
+ * @param {(wish: W) => Promise<R>} load
+ * @param {(wish: W, result: R | null, error: any) => void} done
+ */
 function latest(load, done) {
   let busy = false;
+  /** @type {W | null} */
   let waiting = null;
   async function pump() {
     if (busy || waiting === null) return;
@@ -48,32 +103,32 @@ function latest(load, done) {
     }
     pump();
   }
-  const want = (wish) => {
-    waiting = wish;
-    pump();
+  return {
+    /** @param {W} wish */
+    want: (wish) => {
+      waiting = wish;
+      pump();
+    },
+    busy: () => busy || waiting !== null,
   };
-  want.busy = () => busy || waiting !== null;
-  return want;
-}
-
-async function getJson(url) {
-  const response = await fetch(url);
-  const answer = await response.json().catch(() => ({}));
-  if (!response.ok) {
-    const error = new Error(answer.error || `${response.status} ${response.statusText}`);
-    error.status = response.status;
-    throw error;
-  }
-  return answer;
 }
 
 // A tick step for `span` in about `n` steps: 1, 2 or 5 times a power of ten.
+/**
+ * @param {number} span
+ * @param {number} n
+ */
 function tickStep(span, n) {
   const raw = span / n;
   const p = 10 ** Math.floor(Math.log10(raw));
-  return [1, 2, 5, 10].map((k) => k * p).find((s) => s >= raw);
+  return [1, 2, 5, 10].map((k) => k * p).find((s) => s >= raw) ?? 10 * p;
 }
 
+/**
+ * @param {number} lo
+ * @param {number} hi
+ * @param {number} n
+ */
 function ticks(lo, hi, n) {
   const step = tickStep(hi - lo, n);
   const out = [];
@@ -83,9 +138,14 @@ function ticks(lo, hi, n) {
   return out;
 }
 
+/** @param {number} v */
 const label = (v) => String(Math.round(v * 1000) / 1000);
 
 // Sizes a canvas to `box` CSS pixels and returns its context, cleared, in CSS pixels.
+/**
+ * @param {HTMLCanvasElement} canvas
+ * @param {Box} box
+ */
 function prepare(canvas, box) {
   const dpr = window.devicePixelRatio || 1;
   canvas.style.width = `${box.width}px`;
@@ -97,6 +157,7 @@ function prepare(canvas, box) {
     canvas.height = h;
   }
   const g = canvas.getContext('2d');
+  if (!g) throw new Error('this browser draws no 2D canvas');
   g.setTransform(dpr, 0, 0, dpr, 0, 0);
   g.fillStyle = COLOURS.background;
   g.fillRect(0, 0, box.width, box.height);
@@ -105,6 +166,14 @@ function prepare(canvas, box) {
   return g;
 }
 
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {string} s
+ * @param {number} x
+ * @param {number} y
+ * @param {CanvasTextAlign} [align]
+ * @param {CanvasTextBaseline} [baseline]
+ */
 function text(g, s, x, y, colour = COLOURS.text, align = 'left', baseline = 'alphabetic') {
   g.fillStyle = colour;
   g.textAlign = align;
@@ -113,6 +182,14 @@ function text(g, s, x, y, colour = COLOURS.text, align = 'left', baseline = 'alp
 }
 
 // Text on a dark backing, kept inside the plot box.
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {string} s
+ * @param {number} x
+ * @param {number} y
+ * @param {string} colour
+ * @param {Box} box
+ */
 function tag(g, s, x, y, colour, box) {
   const w = g.measureText(s).width;
   const px = Math.min(Math.max(x, box.left + 2), box.width - box.right - w - 2);
@@ -122,6 +199,13 @@ function tag(g, s, x, y, colour, box) {
   text(g, s, px, py, colour);
 }
 
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {number[][]} points
+ * @param {string} colour
+ * @param {number} width
+ * @param {number[]} [dash]
+ */
 function polyline(g, points, colour, width, dash = []) {
   if (points.length < 2) return;
   g.strokeStyle = colour;
@@ -137,7 +221,13 @@ function polyline(g, points, colour, width, dash = []) {
 // Arrowheads along a screen polyline, every `every` pixels of its length, pointing from its
 // last point to its first (light runs from the emission to the observer); only on the last
 // `reach` pixels before the first point, so that a ray looping many times stays legible.
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {number[][]} points
+ * @param {string} colour
+ */
 function arrows(g, points, colour, every = 60, reach = 420) {
+  /** @param {number} i */
   const length = (i) => Math.hypot(points[i][0] - points[i - 1][0], points[i][1] - points[i - 1][1]);
   let total = 0;
   for (let i = 1; i < points.length; i += 1) total += length(i);
@@ -166,6 +256,13 @@ function arrows(g, points, colour, every = 60, reach = 420) {
   }
 }
 
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {number} x
+ * @param {number} y
+ * @param {number} radius
+ * @param {string} colour
+ */
 function ring(g, x, y, radius, colour, width = 2) {
   g.strokeStyle = colour;
   g.lineWidth = width;
@@ -174,6 +271,13 @@ function ring(g, x, y, radius, colour, width = 2) {
   g.stroke();
 }
 
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {number} x
+ * @param {number} y
+ * @param {number} radius
+ * @param {string} colour
+ */
 function disc(g, x, y, radius, colour) {
   g.fillStyle = colour;
   g.beginPath();
@@ -182,6 +286,11 @@ function disc(g, x, y, radius, colour) {
 }
 
 // The observer: a ring with a cross.
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {number} x
+ * @param {number} y
+ */
 function observerMark(g, x, y) {
   ring(g, x, y, 7, COLOURS.observer, 2);
   g.beginPath();
@@ -193,6 +302,16 @@ function observerMark(g, x, y) {
 }
 
 // Axes with ticks and a faint grid: `sx`, `sy` map values to CSS pixels.
+/**
+ * @param {CanvasRenderingContext2D} g
+ * @param {Box} box
+ * @param {number[]} xs
+ * @param {number[]} ys
+ * @param {(x: number) => number} sx
+ * @param {(y: number) => number} sy
+ * @param {string} xName
+ * @param {string} yName
+ */
 function axes(g, box, xs, ys, sx, sy, xName, yName) {
   const [l, r, t, b] = [box.left, box.width - box.right, box.top, box.height - box.bottom];
   g.strokeStyle = COLOURS.grid;
@@ -215,6 +334,11 @@ function axes(g, box, xs, ys, sx, sy, xName, yName) {
 
 // The top view's window: centre and half-size in map units, rounded so that small moves of
 // the observer keep the scale.
+/**
+ * @param {ExploreMap} map
+ * @param {ObserverEvent} event
+ * @returns {TopWindow}
+ */
 function topWindow(map, event) {
   const xs = [event.x];
   const ys = [event.y];
@@ -226,6 +350,7 @@ function topWindow(map, event) {
     }
   }
   const unit = (map.a || 1) / 2;
+  /** @param {number} v */
   const round = (v) => Math.round(v / unit) * unit;
   const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
   const half = Math.ceil((Math.max(x1 - x0, y1 - y0) / 2 * 1.08 + 1e-9) / unit) * unit;
@@ -234,29 +359,28 @@ function topWindow(map, event) {
 
 // The map panel: `top` and `side` canvases, `legend` element; `hooks.dragTo(x, y)` moves the
 // observer, `hooks.status(text)` reports errors.
+/**
+ * @param {HTMLCanvasElement} top
+ * @param {HTMLCanvasElement} side
+ * @param {HTMLElement} legend
+ * @param {{ status: (text: string) => void, dragTo: (x: number, y: number) => void }} hooks
+ * @returns {MapPanel}
+ */
 export function createMap(top, side, legend, hooks) {
-  const map = {
-    canvas: top.id,
-    side: side.id,
-    fetched: null,   // the last /api/explore/map answer
-    ray: null,       // the last /api/explore/ray answer shown, or null
-    event: null,     // the observer's event as the page has it now
-    dragging: false,
-    view: null,      // the top view's window {cx, cy, half}
-  };
   const plot = TOP.width - TOP.left - TOP.right;
-  const scale = () => plot / (2 * map.view.half);
-  map.toScreen = (x, y) => ({
-    px: TOP.left + plot / 2 + (x - map.view.cx) * scale(),
-    py: TOP.top + plot / 2 - (y - map.view.cy) * scale(),
-  });
-  map.fromScreen = (px, py) => ({
-    x: map.view.cx + (px - TOP.left - plot / 2) / scale(),
-    y: map.view.cy - (py - TOP.top - plot / 2) / scale(),
-  });
+  // The top view's window; the map has one once it is first drawn.
+  const shown = () => {
+    if (!map.view) throw new Error('the map is not drawn yet');
+    return map.view;
+  };
+  const scale = () => plot / (2 * shown().half);
 
+  /** @type {ServerRayWish | TracedRay | null} */
   let rayWish = null;
-  const wantMap = latest((e) => getJson(`/api/explore/map?t=${e.t}&x=${e.x}&y=${e.y}&z=${e.z}`),
+  const wantMap = latest(
+    /** @param {ObserverEvent} e */
+    (e) => /** @type {Promise<ExploreMap>} */ (getJson(`/api/explore/map?t=${e.t}&x=${e.x}`
+      + `&y=${e.y}&z=${e.z}`)),
     (e, answer, error) => {
       if (error) {
         hooks.status(`map: ${error.message}`);
@@ -265,58 +389,86 @@ export function createMap(top, side, legend, hooks) {
       map.fetched = answer;
       map.draw();
     });
-  const wantRay = latest((w) => (w.load ? w.load() : getJson(`/api/explore/ray?generation=`
-    + `${w.generation}&level=${w.level}&col=${w.col}&row=${w.row}`)), (w, answer, error) => {
-    if (w !== rayWish) return; // the mouse left the picture meanwhile, or moved on
-    if (error) {
-      if (error.status !== 410) hooks.status(`ray: ${error.message}`);
-      return;
-    }
-    if (answer === null) return; // a traced frame replaced meanwhile
-    map.ray = answer;
-    map.draw();
-  });
+  const wantRay = latest(
+    /**
+     * @param {ServerRayWish | TracedRay} w
+     * @returns {Promise<SampleRay | null>}
+     */
+    (w) => ('load' in w ? w.load() : /** @type {Promise<SampleRay>} */ (getJson(
+      `/api/explore/ray?generation=${w.generation}&level=${w.level}&col=${w.col}&row=${w.row}`))),
+    (w, answer, error) => {
+      if (w !== rayWish) return; // the mouse left the picture meanwhile, or moved on
+      if (error) {
+        if (error.status !== 410) hooks.status(`ray: ${error.message}`);
+        return;
+      }
+      if (answer === null) return; // a traced frame replaced meanwhile
+      map.ray = answer;
+      map.draw();
+    });
 
-  // The observer moved: fetch its map (the marker follows at once).
-  map.update = (event) => {
-    map.event = { ...event };
-    wantMap({ ...event });
-    map.draw();
+  /** @type {MapPanel} */
+  const map = {
+    canvas: top.id,
+    side: side.id,
+    fetched: null,
+    ray: null,
+    event: null,
+    dragging: false,
+    view: null,
+    toScreen: (x, y) => ({
+      px: TOP.left + plot / 2 + (x - shown().cx) * scale(),
+      py: TOP.top + plot / 2 - (y - shown().cy) * scale(),
+    }),
+    fromScreen: (px, py) => ({
+      x: shown().cx + (px - TOP.left - plot / 2) / scale(),
+      y: shown().cy - (py - TOP.top - plot / 2) / scale(),
+    }),
+    // The observer moved: fetch its map (the marker follows at once).
+    update: (event) => {
+      map.event = { ...event };
+      wantMap.want({ ...event });
+      map.draw();
+    },
+    // The pixel (col, row) of frame {generation, level} is hovered: fetch its light ray.
+    hover: (frame, col, row) => {
+      const w = { generation: frame.generation, level: frame.level, col, row };
+      if (rayWish && JSON.stringify(rayWish) === JSON.stringify(w)) return;
+      rayWish = w;
+      wantRay.want(w);
+    },
+    // A pixel of a frame traced in the page is hovered: `ray` is fly.js's {key, load}.
+    hoverTraced: (ray) => {
+      if (rayWish && 'key' in rayWish && rayWish.key === ray.key) return;
+      rayWish = ray;
+      wantRay.want(ray);
+    },
+    clearRay: () => {
+      rayWish = null;
+      map.ray = null;
+      map.draw();
+    },
+    // Nothing to fetch (for tests).
+    idle: () => !wantMap.busy() && !wantRay.busy(),
+    draw: () => {
+      const m = map.fetched;
+      const event = map.event || (m && m.event);
+      if (!m || !event) return;
+      if (!map.dragging || map.view === null) map.view = topWindow(m, event);
+      drawTop(m, event);
+      drawSide(m, event);
+      drawLegend(m);
+    },
   };
-  // The pixel (col, row) of frame {generation, level} is hovered: fetch its light ray.
-  map.hover = (frame, col, row) => {
-    const w = { generation: frame.generation, level: frame.level, col, row };
-    if (rayWish && JSON.stringify(rayWish) === JSON.stringify(w)) return;
-    rayWish = w;
-    wantRay(w);
-  };
-  // A pixel of a frame traced in the page is hovered: `ray` is fly.js's {key, load}.
-  map.hoverTraced = (ray) => {
-    if (rayWish && rayWish.key === ray.key) return;
-    rayWish = ray;
-    wantRay(ray);
-  };
-  map.clearRay = () => {
-    rayWish = null;
-    map.ray = null;
-    map.draw();
-  };
-  // Nothing to fetch (for tests).
-  map.idle = () => !wantMap.busy() && !wantRay.busy();
 
-  map.draw = () => {
-    const m = map.fetched;
-    const event = map.event || (m && m.event);
-    if (!m || !event) return;
-    if (!map.dragging || map.view === null) map.view = topWindow(m, event);
-    drawTop(m, event);
-    drawSide(m, event);
-    drawLegend(m);
-  };
-
+  /**
+   * @param {ExploreMap} m
+   * @param {ObserverEvent} event
+   */
   function drawTop(m, event) {
     const g = prepare(top, TOP);
-    const v = map.view;
+    const v = shown();
+    /** @type {(x: number, y: number) => [number, number]} */
     const at = (x, y) => { const p = map.toScreen(x, y); return [p.px, p.py]; };
     const n = ticks(v.cx - v.half, v.cx + v.half, 6);
     const sy = ticks(v.cy - v.half, v.cy + v.half, 6);
@@ -340,7 +492,7 @@ export function createMap(top, side, legend, hooks) {
       const curve = m.horizon.map(([x, y]) => at(x, y));
       polyline(g, [...curve, curve[0]], COLOURS.horizon, 1.5, [6, 5]);
       const lowest = curve.reduce((a, b) => (b[1] > a[1] ? b : a));
-      tag(g, `horizon of the observer (r = ${label(m.horizon_radius)}a)`,
+      tag(g, `horizon of the observer (r = ${label(m.horizon_radius ?? 0)}a)`,
         lowest[0] - 95, lowest[1] + 16, COLOURS.horizon, TOP);
     }
     for (const o of m.objects) {
@@ -369,12 +521,17 @@ export function createMap(top, side, legend, hooks) {
     g.restore();
   }
 
+  /** @param {SampleRay} ray */
   function emittedText(ray) {
     const e = ray.emission;
     if (!e) return `no hit: traced back to t = ${ray.points[ray.points.length - 1].t.toFixed(2)}`;
     return `emitted t = ${e.t.toFixed(2)}, travel time ${Number(ray.travel_time).toFixed(2)} a`;
   }
 
+  /**
+   * @param {ExploreMap} m
+   * @param {ObserverEvent} event
+   */
   function drawSide(m, event) {
     const g = prepare(side, SIDE);
     const a = m.a || 1;
@@ -387,7 +544,9 @@ export function createMap(top, side, legend, hooks) {
     if (t1 - t0 < 1e-9) t1 = t0 + 1;
     const w = SIDE.width - SIDE.left - SIDE.right;
     const h = SIDE.height - SIDE.top - SIDE.bottom;
+    /** @param {number} r */
     const sx = (r) => SIDE.left + (r / rMax) * w;
+    /** @param {number} t */
     const sy = (t) => SIDE.top + (1 - (t - t0) / (t1 - t0)) * h;
     axes(g, SIDE, ticks(0, rMax, 6), ticks(t0, t1, 5), sx, sy, 'r / a', 't / a');
     text(g, 'side view: t against distance r from the observer\u2019s axis', SIDE.width / 2, 15,
@@ -417,12 +576,19 @@ export function createMap(top, side, legend, hooks) {
     g.restore();
   }
 
+  /** @type {string | null} */
   let legendKey = null;
+  /** @param {ExploreMap} m */
   function drawLegend(m) {
     const key = JSON.stringify([m.horizon.length > 1,
       ...m.objects.map((o) => [o.index, o.name, o.moving])]);
     if (key === legendKey) return;
     legendKey = key;
+    /**
+     * @param {string} colour
+     * @param {string} style
+     * @param {string} words
+     */
     const line = (colour, style, words) => {
       const row = document.createElement('div');
       const swatch = document.createElement('span');
@@ -444,10 +610,12 @@ export function createMap(top, side, legend, hooks) {
   }
 
   // Dragging the observer on the top view (the window stays put while dragging).
+  /** @param {PointerEvent} event */
   const local = (event) => {
     const rect = top.getBoundingClientRect();
     return [event.clientX - rect.left, event.clientY - rect.top];
   };
+  /** @param {PointerEvent} event */
   const nearObserver = (event) => {
     if (!map.view || !map.event) return false;
     const [px, py] = local(event);
@@ -467,6 +635,7 @@ export function createMap(top, side, legend, hooks) {
     }
     const [px, py] = local(event);
     const p = map.fromScreen(px, py);
+    /** @param {number} v */
     const round = (v) => Math.round(v * 1000) / 1000;
     hooks.dragTo(round(p.x), round(p.y));
   });

@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the GLSL ES 3.00 shaders. SHADE_FS reproduces the `shade` crate's per-pixel
 // rule (crates/shade/src/shading.rs: texture, time, frequency and light layers multiplied,
 // the Lambert factor, status colours, 8-bit sRGB) and, in look mode, the remapping of
@@ -553,7 +554,11 @@ void main() {
 // polarization, look, smooth, images, refs, overlay} (booleans), camera (0 pinhole, 1 panorama or sphere, 2 fisheye) and
 // supersample (samples per pixel along each side, 1 when absent: a sampled file's, or a
 // look's).
+/**
+ * @param {import('./uniforms.js').Features} features
+ */
 export function shadeSource(features) {
+  /** @type {(keyof import('./uniforms.js').Features)[]} */
   const names = ['texture', 'time', 'travel', 'frequency', 'light', 'polarization', 'look',
     'smooth', 'images', 'refs', 'overlay'];
   const defines = names.map((n) => `#define ${n.toUpperCase()} ${features[n] ? 1 : 0}`);
@@ -564,6 +569,9 @@ export function shadeSource(features) {
 
 // The display pass: `filtered` samples the picture trilinearly at any zoom; otherwise it is
 // copied texel for texel (zoom 1 at a whole-pixel offset, as when looking around).
+/**
+ * @param {boolean} filtered
+ */
 export function displaySource(filtered) {
   return `#version 300 es
 #define FILTERED ${filtered ? 1 : 0}

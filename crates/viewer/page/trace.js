@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the exact tracer on the GPU, in the page. Runs the kernel of crates/gpu
 // (crates/gpu/src/kernel/, served at /api/gpu/kernel) in WebGL2 as crates/gpu/src/host.rs runs it
 // offscreen: compiled after `#version 300 es` and the input's defines, the scene table
@@ -17,6 +18,34 @@
 'use strict';
 
 import { linkProgram } from './gl.js';
+
+/** @typedef {import('./contract').KernelInput} KernelInput */
+
+/**
+ * A traced frame: its sample grid's size, its slots (one RGBA32F texture each, the caller's
+ * to delete), the input traced, the kernel's source as compiled, and the times taken.
+ * @typedef {object} Traced
+ * @property {number} width
+ * @property {number} height
+ * @property {WebGLTexture[]} slots
+ * @property {KernelInput} input
+ * @property {string} source
+ * @property {number} compileMs
+ * @property {number} traceMs
+ */
+
+/**
+ * The channels the shading reads, as textures named as the data file's channels (the light
+ * planes as one array texture, null without lights).
+ * @typedef {Record<string, WebGLTexture | null>} Channels
+ */
+
+/**
+ * How a trace runs: `progress(done, total)` after each tile, `cancelled()` checked between
+ * draws, `whole` the grid in one tile.
+ * @typedef {{ progress?: (done: number, total: number) => void, cancelled?: () => boolean,
+ *   whole?: boolean }} TraceOptions
+ */
 
 // The kernel's statuses (datafile::record::RayStatus codes).
 const HIT = 0;
@@ -93,13 +122,20 @@ void main() {
 
 // Where each channel the shading reads lies in a record: [slot, component]
 // (gpu::input::SLOT_CHANNELS).
+/** @type {Record<string, [number, number]>} */
 const FLOAT_CHANNELS = { u: [0, 2], v: [0, 3], g: [1, 0], t_emit: [1, 1] };
+/** @type {[number, number]} */
 const COS_I = [1, 3];
 // Three channels from the slot's first or second component.
+/** @type {Record<string, [number, number]>} */
 const VECTOR_CHANNELS = { dir: [3, 0], pol: [4, 1] };
 
 export class KernelTracer {
   // `kernel`: the source of /api/gpu/kernel. Throws, saying why, where WebGL2 cannot run it.
+  /**
+   * @param {WebGL2RenderingContext} gl
+   * @param {string} kernel
+   */
   constructor(gl, kernel) {
     if (!gl.getExtension('EXT_color_buffer_float')) {
       throw new Error('this browser\u2019s WebGL2 cannot draw into float textures '
@@ -107,27 +143,41 @@ export class KernelTracer {
     }
     this.gl = gl;
     this.kernel = kernel;
+    /** @type {number} */
     this.maxDrawBuffers = gl.getParameter(gl.MAX_DRAW_BUFFERS);
+    /** @type {number} */
     this.maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
-    this.programs = new Map(); // kernel programs and their sources by defines
-    this.warm = new Set();     // those that have drawn once
+    /** @type {Map<string, { program: WebGLProgram, source: string }>} kernels by defines */
+    this.programs = new Map();
+    /** @type {Set<WebGLProgram>} those that have drawn once */
+    this.warm = new Set();
     this.vao = gl.createVertexArray();
-    this.convertFloat = null;
-    this.convertUint = null;
-    this.convertVector = null;
+    /**
+     * The conversion passes' programs, linked when first needed.
+     * @type {{ float: WebGLProgram, uint: WebGLProgram, vector: WebGLProgram } | null}
+     */
+    this.convert = null;
   }
 
   // The kernel compiled with `defines` (once per distinct defines): {program, source}, the
   // source as host.rs compiles it (`#version 300 es`, the defines, the kernel).
+  /** @param {string} defines */
   program(defines) {
-    if (!this.programs.has(defines)) {
+    let compiled = this.programs.get(defines);
+    if (!compiled) {
       const source = `#version 300 es\n${defines}${this.kernel}`;
-      this.programs.set(defines, { program: linkProgram(this.gl, source, 'the GPU kernel'), source });
+      compiled = { program: linkProgram(this.gl, source, 'the GPU kernel'), source };
+      this.programs.set(defines, compiled);
     }
-    return this.programs.get(defines);
+    return compiled;
   }
 
   // An RGBA32F array texture of `layers` layers (a round's slots, one layer each).
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {number} layers
+   */
   arrayTexture(width, height, layers) {
     const gl = this.gl;
     const t = gl.createTexture();
@@ -138,6 +188,10 @@ export class KernelTracer {
     return t;
   }
 
+  /**
+   * @param {number} width
+   * @param {number} height
+   */
   floatTexture(width, height) {
     const gl = this.gl;
     const t = gl.createTexture();
@@ -150,8 +204,13 @@ export class KernelTracer {
 
   // Sets the input's uniforms `u` (a view's, crates/viewer/src/kernel_routes.rs) on
   // `program`, in use.
+  /**
+   * @param {WebGLProgram} program
+   * @param {import('./contract').KernelUniforms} u
+   */
   setUniforms(program, u) {
     const gl = this.gl;
+    /** @param {string} name */
     const at = (name) => gl.getUniformLocation(program, `u_${name}`);
     // The metric is no uniform: the defines say it (GODEL), as for every other switch.
     gl.uniform1f(at('a'), u.a);
@@ -175,11 +234,16 @@ export class KernelTracer {
   }
 
   // Resolves once the GPU has done everything asked of it, without blocking the page.
+  /** @returns {Promise<void>} */
   finished() {
     const gl = this.gl;
     const sync = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl.flush();
     return new Promise((resolve, reject) => {
+      if (!sync) {
+        reject(new Error('the GPU context was lost while tracing'));
+        return;
+      }
       const poll = () => {
         if (gl.isContextLost()) {
           reject(new Error('the GPU context was lost while tracing'));
@@ -201,6 +265,11 @@ export class KernelTracer {
   // compileMs, traceMs}. `progress(done, total)` is
   // called after each tile; `cancelled()` (optional) stops between draws (rejects). `whole`:
   // the grid in one tile (a small frame while flying, fly.js: no wait between tiles).
+  /**
+   * @param {KernelInput} input
+   * @param {TraceOptions} [options]
+   * @returns {Promise<Traced>}
+   */
   async trace(input, { progress = () => {}, cancelled = () => false, whole = false } = {}) {
     const gl = this.gl;
     const u = input.uniforms;
@@ -221,8 +290,10 @@ export class KernelTracer {
     gl.bindTexture(gl.TEXTURE_2D, table);
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 256, input.table_rows, gl.RGBA, gl.FLOAT,
       Float32Array.from(input.table));
+    /** @type {WebGLTexture[]} */
     const slots = [];
     for (let s = 0; s < input.slots; s += 1) slots.push(this.floatTexture(width, height));
+    /** @type {WebGLFramebuffer[]} */
     const framebuffers = [];
     const framebuffer = () => {
       const fb = gl.createFramebuffer();
@@ -238,7 +309,12 @@ export class KernelTracer {
     // round, and one per record slot of each array and per slot texture, for the copy.
     const { plan } = input;
     const layers = [0, 1].map(() => this.arrayTexture(width, height, plan.layers));
+    /**
+     * @param {WebGLTexture} texture
+     * @param {import('./contract').Span} range
+     */
     const drawsInto = (texture, range) => {
+      /** @type {{ fb: WebGLFramebuffer, first: number }[]} */
       const list = [];
       for (let first = range.start; first < range.end; first += buffers) {
         const fb = framebuffer();
@@ -256,7 +332,13 @@ export class KernelTracer {
       return list;
     };
     const roundDraws = layers.map((texture) => drawsInto(texture, plan.rounds));
-    const finishDraws = plan.finish ? layers.map((texture) => drawsInto(texture, plan.finish)) : null;
+    const finishRange = plan.finish;
+    const finishDraws = finishRange ? layers.map((texture) => drawsInto(texture, finishRange))
+      : null;
+    /**
+     * @param {WebGLTexture} texture
+     * @param {number} layer
+     */
     const layerFb = (texture, layer) => {
       const fb = framebuffer();
       gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, texture, 0, layer);
@@ -279,6 +361,7 @@ export class KernelTracer {
     const round = gl.getUniformLocation(program, 'u_round');
     const finish = gl.getUniformLocation(program, 'u_finish');
     gl.uniform1i(gl.getUniformLocation(program, 'u_budget'), input.first_budget);
+    /** @param {number} from */
     const bind = (from) => {
       gl.useProgram(program);
       gl.activeTexture(gl.TEXTURE0);
@@ -289,6 +372,11 @@ export class KernelTracer {
       gl.enable(gl.SCISSOR_TEST);
     };
     // One round of a tile (or its finishing draw): reads layers[from], writes `targets`.
+    /**
+     * @param {{ fb: WebGLFramebuffer, first: number }[]} targets
+     * @param {number} roundNo
+     * @param {boolean} finishing
+     */
     const draw = (targets, roundNo, finishing) => {
       gl.uniform1i(round, roundNo > 0 ? 1 : 0);
       gl.uniform1i(finish, finishing ? 1 : 0);
@@ -405,14 +493,20 @@ export class KernelTracer {
   // (R32F), cos_i (R16UI), pol and dir (RGBA32F), light (R32F array, a layer per light; null
   // without lights)},
   // new textures the caller owns. `objects`: how many objects the scene has.
+  /**
+   * @param {Traced} traced
+   * @param {number} objects
+   * @returns {Channels}
+   */
   channels(traced, objects) {
     const gl = this.gl;
     const { width, height, slots, input } = traced;
-    if (!this.convertFloat) {
-      this.convertFloat = linkProgram(this.gl, CONVERT_FLOAT, 'the channel conversion');
-      this.convertUint = linkProgram(this.gl, CONVERT_UINT, 'the channel conversion');
-      this.convertVector = linkProgram(this.gl, CONVERT_VECTOR, 'the channel conversion');
-    }
+    const convert = this.convert ??= {
+      float: linkProgram(this.gl, CONVERT_FLOAT, 'the channel conversion'),
+      uint: linkProgram(this.gl, CONVERT_UINT, 'the channel conversion'),
+      vector: linkProgram(this.gl, CONVERT_VECTOR, 'the channel conversion'),
+    };
+    /** @param {number} internal */
     const target = (internal) => {
       const t = gl.createTexture();
       gl.bindTexture(gl.TEXTURE_2D, t);
@@ -426,6 +520,12 @@ export class KernelTracer {
     gl.viewport(0, 0, width, height);
     gl.bindVertexArray(this.vao);
     // Draws `program` into `attach()`'s target, reading slot `slot` component `component`.
+    /**
+     * @param {WebGLProgram} program
+     * @param {[number, number]} where
+     * @param {(loc: (name: string) => WebGLUniformLocation | null) => void} set
+     * @param {() => void} attach
+     */
     const pass = (program, [slot, component], set, attach) => {
       attach();
       gl.drawBuffers([gl.COLOR_ATTACHMENT0]);
@@ -440,25 +540,30 @@ export class KernelTracer {
       set((name) => gl.getUniformLocation(program, name));
       gl.drawArrays(gl.TRIANGLES, 0, 3);
     };
+    /** @param {WebGLTexture} texture */
     const into = (texture) => () => gl.framebufferTexture2D(gl.FRAMEBUFFER,
       gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
-    const out = {};
+    /** @type {Channels} */
+    const out = { light: null };
     for (const [name, where] of Object.entries(FLOAT_CHANNELS)) {
-      out[name] = target(gl.R32F);
-      pass(this.convertFloat, where, (loc) => gl.uniform1i(loc('u_light'), 0), into(out[name]));
+      const t = target(gl.R32F);
+      out[name] = t;
+      pass(convert.float, where, (loc) => gl.uniform1i(loc('u_light'), 0), into(t));
     }
-    out.id = target(gl.R32UI);
-    pass(this.convertUint, [0, 0], (loc) => {
+    const id = target(gl.R32UI);
+    out.id = id;
+    pass(convert.uint, [0, 0], (loc) => {
       gl.uniform1i(loc('u_id'), 1);
       gl.uniform1i(loc('u_objects'), objects);
-    }, into(out.id));
-    out.cos_i = target(gl.R16UI);
-    pass(this.convertUint, COS_I, (loc) => gl.uniform1i(loc('u_id'), 0), into(out.cos_i));
+    }, into(id));
+    const cosI = target(gl.R16UI);
+    out.cos_i = cosI;
+    pass(convert.uint, COS_I, (loc) => gl.uniform1i(loc('u_id'), 0), into(cosI));
     for (const [name, where] of Object.entries(VECTOR_CHANNELS)) {
-      out[name] = target(gl.RGBA32F);
-      pass(this.convertVector, where, () => {}, into(out[name]));
+      const t = target(gl.RGBA32F);
+      out[name] = t;
+      pass(convert.vector, where, () => {}, into(t));
     }
-    out.light = null;
     const lights = input.light_channels.length;
     if (lights > 0) {
       const t = gl.createTexture();
@@ -467,7 +572,7 @@ export class KernelTracer {
       gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
       gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
       input.light_channels.forEach((where, k) => {
-        pass(this.convertFloat, where, (loc) => gl.uniform1i(loc('u_light'), 1),
+        pass(convert.float, where, (loc) => gl.uniform1i(loc('u_light'), 1),
           () => gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, t, 0, k));
       });
       out.light = t;
@@ -479,6 +584,13 @@ export class KernelTracer {
 
   // The traced slots' floats over the rectangle (x, y, width, height) of the sample grid:
   // one Float32Array of width × height × 4 per slot, grid row y first.
+  /**
+   * @param {Traced} traced
+   * @param {number} x
+   * @param {number} y
+   * @param {number} width
+   * @param {number} height
+   */
   readRect(traced, x, y, width, height) {
     const gl = this.gl;
     const fb = gl.createFramebuffer();
@@ -499,6 +611,14 @@ export class KernelTracer {
   // without blocking the page (a pixel-pack buffer, then a fence: the frame in flight goes
   // on being traced meanwhile): resolves to one Float32Array of width × height × 4 per
   // texture, grid row y first.
+  /**
+   * @param {WebGLTexture[]} textures
+   * @param {number} x
+   * @param {number} y
+   * @param {number} width
+   * @param {number} height
+   * @returns {Promise<Float32Array[]>}
+   */
   async readLater(textures, x, y, width, height) {
     const gl = this.gl;
     const bytes = width * height * 16;
@@ -530,11 +650,17 @@ export class KernelTracer {
 
   // One sample's four channels of every slot (the hovered pixel's record, fly.js), read back
   // without blocking the page.
+  /**
+   * @param {Traced} traced
+   * @param {number} x
+   * @param {number} y
+   */
   readSample(traced, x, y) {
     return this.readLater(traced.slots, x, y, 1, 1);
   }
 
   // The traced slots as floats (for tests), the whole grid.
+  /** @param {Traced} traced */
   readSlots(traced) {
     return this.readRect(traced, 0, 0, traced.width, traced.height);
   }

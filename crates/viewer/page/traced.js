@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the frame traced on the GPU. The "Trace on the GPU" switch (or the URL
 // parameter ?trace=gpu) makes the page trace the data file's own scene with the exact
 // tracer's kernel (trace.js, in WebGL2) and shade that frame instead of the file's: every
@@ -6,29 +7,38 @@
 // shows the file's records.
 'use strict';
 
+import { getJson, getText, messageOf } from './api.js';
+import { $ } from './dom.js';
 import { KernelTracer } from './trace.js';
-import { fetchJson } from './data.js';
 
-const $ = (id) => document.getElementById(id);
+/** @typedef {import('./trace.js').Traced} Traced */
 
-async function fetchText(url) {
-  const response = await fetch(url);
-  if (!response.ok) throw new Error(`${url}: ${response.status} ${await response.text()}`);
-  return response.text();
-}
+/**
+ * The "Trace on the GPU" switch's state: whether a trace is under way, the frame traced (its
+ * slots kept for tests to read back), why the last trace failed.
+ * @typedef {object} TracedState
+ * @property {boolean} tracing
+ * @property {Traced | null} traced
+ * @property {string | null} error
+ * @property {() => object} readSlots for tests: the traced slots as floats (base64 per slot)
+ */
 
+/** @param {import('./viewer.js').LoadedViewer} viewer */
 export function startTraced(viewer) {
-  const box = $('trace-gpu');
+  const box = $('trace-gpu', HTMLInputElement);
   const status = $('trace-status');
   // Explore mode traces on the server (its GPU frames come with a later version).
   if (viewer.explore) return;
   $('trace-panel').hidden = false;
+  /** @type {KernelTracer | null} */
   let tracer = null;
+  /** @type {import('./contract').KernelInput | null} */
   let input = null;
-  // The GPU-traced frame: {traced (the slots), ms}; kept for tests to read back.
-  const state = { tracing: false, traced: null, error: null };
+  /** @type {TracedState} */
+  const state = { tracing: false, traced: null, error: null, readSlots };
   viewer.traced = state;
 
+  /** @param {boolean} on */
   const show = async (on) => {
     if (state.tracing) return; // unchecked while tracing: the trace stops after its draw
     if (!on) {
@@ -42,8 +52,11 @@ export function startTraced(viewer) {
     viewer.hold(true);
     try {
       const gl = viewer.gpu().gl;
-      if (!tracer) tracer = new KernelTracer(gl, await fetchText('/api/gpu/kernel'));
-      if (!input) input = await fetchJson(`/api/gpu/input?draw_buffers=${tracer.maxDrawBuffers}`);
+      if (!tracer) tracer = new KernelTracer(gl, await getText('/api/gpu/kernel'));
+      if (!input) {
+        input = /** @type {import('./contract').KernelInput} */ (await getJson(
+          `/api/gpu/input?draw_buffers=${tracer.maxDrawBuffers}`));
+      }
       status.textContent = 'compiling the kernel…';
       // Let the status show before the (blocking) compilation.
       await new Promise((resolve) => { requestAnimationFrame(() => setTimeout(resolve, 0)); });
@@ -64,7 +77,7 @@ export function startTraced(viewer) {
     } catch (e) {
       // Said in the panel (the page's error line clears with the next picture drawn).
       if (box.checked) {
-        state.error = e.message || String(e);
+        state.error = messageOf(e);
         status.textContent = `cannot trace on the GPU: ${state.error}; showing the data `
           + 'file\u2019s frame';
         status.classList.add('failed');
@@ -81,13 +94,14 @@ export function startTraced(viewer) {
   box.addEventListener('change', () => show(box.checked));
   // For tests: the traced slots as floats (base64 per slot), the grid's size, the kernel's
   // source as compiled and the defines the server sent.
-  state.readSlots = () => {
+  function readSlots() {
     const t = state.traced;
+    if (!t || !tracer) throw new Error('no frame has been traced on the GPU');
     const slots = tracer.readSlots(t).map((f) => viewer.base64(new Uint8Array(f.buffer)));
     return { width: t.width, height: t.height, slots, traceMs: t.traceMs,
       compileMs: t.compileMs, source: t.source, defines: t.input.defines,
       drawBuffers: t.input.draw_buffers };
-  };
+  }
   if (new URLSearchParams(window.location.search).get('trace') === 'gpu') {
     box.checked = true;
     show(true);

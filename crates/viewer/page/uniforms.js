@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the shading pass's inputs for given settings (the `shade` crate's
 // ShadeSettings, as Shading::new prepares them) and, in look mode, a view: the uniforms, the
 // per-object table, the reference squares, and what the overlay layer depends on.
@@ -7,8 +8,53 @@ import { referenceSquare, linearToSrgb8, toneMap, LINEAR_STOPS, windowBounds } f
 import { cross } from './look.js';
 import { textureLayer, polarizationLayer } from './data.js';
 
+/** @typedef {import('./contract').Info} Info */
+/** @typedef {import('./contract').ShadeSettings} ShadeSettings */
+/** @typedef {import('./contract').TextureChoice} TextureChoice */
+/** @typedef {import('./contract').GpuTexture} GpuTexture */
+/** @typedef {import('./contract').LookView} LookView */
+/** @typedef {import('./data.js').Data} Data */
+/** @typedef {import('./gl.js').Uniforms} Uniforms */
+
+/**
+ * A look-around picture: the view shaded, the sphere it is read from, and whether it is read
+ * smoothly (bilinear; else one sample per pixel from the nearest sphere pixel, while dragging).
+ * @typedef {{ view: LookView, sphere: import('./look.js').Sphere, smooth: boolean }} ShadedLook
+ */
+
+/**
+ * The picture the shading pass makes: its size, and the look it shows (null: the data file's
+ * own pixels).
+ * @typedef {{ width: number, height: number, look: ShadedLook | null }} Picture
+ */
+
+/**
+ * What a shading program is compiled for (shaders.js, shadeSource).
+ * @typedef {object} Features
+ * @property {boolean} texture
+ * @property {boolean} time
+ * @property {boolean} travel
+ * @property {boolean} frequency
+ * @property {boolean} light
+ * @property {boolean} polarization
+ * @property {boolean} look
+ * @property {boolean} smooth
+ * @property {number} supersample samples per pixel along each side
+ * @property {number} camera 0 pinhole, 1 panorama or sphere, 2 fisheye
+ * @property {boolean} images
+ * @property {boolean} refs
+ * @property {boolean} overlay
+ */
+
 // The texture a choice names, as (kind, a, b, c) for the shader, and the image it needs.
+/**
+ * @param {TextureChoice} choice
+ * @param {number} k
+ * @param {Data} data
+ * @returns {{ texel: number[] } | { image: string }}
+ */
 function textureOf(choice, k, data) {
+  /** @type {TextureChoice | GpuTexture} */
   let t = choice;
   if (t.kind === 'scene') t = data.sceneTextures[k];
   switch (t.kind) {
@@ -19,21 +65,27 @@ function textureOf(choice, k, data) {
     case 'uniform': return { texel: [2, ...t.color] };
     case 'earth': return { image: 'earth' };
     case 'image':
-      if (t.image) return { image: t.image };
+      if ('image' in t) return { image: t.image };
       throw new Error(`the page cannot read image files named in the settings (${t.path}); `
         + 'save the settings and use `godel shade`');
-    default: throw new Error(`unknown texture kind '${t.kind}'`);
+    default: throw new Error(`unknown texture kind '${/** @type {{ kind: string }} */ (t).kind}'`);
   }
 }
 
 // The images the settings' textures need (fetched before shading).
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ * @param {Data} data
+ */
 export function imagesFor(settings, info, data) {
+  /** @type {Set<string>} */
   const names = new Set();
   info.objects.forEach((name, k) => {
     const o = settings.objects[name] || info.defaults.objects[name];
     for (const choice of [o.texture, o.window_texture]) {
       const t = textureOf(choice, k, data);
-      if (t.image) names.add(t.image);
+      if ('image' in t) names.add(t.image);
     }
   });
   return [...names];
@@ -45,15 +97,22 @@ export const OBJECT_TEXELS = 5;
 // The object table: OBJECT_TEXELS RGBA32F texels per object (one row each; one row of zeros
 // when the file has no objects): texture moves, first and second texture, (T, Y(T)), and the
 // polarization axis (x, y, z, 1), (0, 0, 0, 0) for unpolarized light.
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ * @param {Data} data
+ */
 export function objectTable(settings, info, data) {
   const table = new Float32Array(Math.max(info.objects.length, 1) * 4 * OBJECT_TEXELS);
   const bb = data.blackbody;
   info.objects.forEach((name, k) => {
     const o = settings.objects[name] || info.defaults.objects[name];
+    /** @param {TextureChoice} choice */
     const texel = (choice) => {
       const t = textureOf(choice, k, data);
-      if (!t.image) return t.texel;
+      if (!('image' in t)) return t.texel;
       const image = data.images.get(t.image);
+      if (!image) throw new Error(`the image ${t.image} is not loaded`);
       return [3, image.y0, image.width, image.height];
     };
     const axis = o.polarization;
@@ -70,10 +129,21 @@ export function objectTable(settings, info, data) {
   return table;
 }
 
+/** @type {Record<import('./contract').Camera['kind'], number>} */
 const CAMERAS = { pinhole: 0, panorama: 1, sphere: 1, fisheye: 2 };
 
 // What the shading program is compiled for (shaders.js, shadeSource), given the uniforms.
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ * @param {Data} data
+ * @param {ShadedLook | null} look
+ * @param {Uniforms} uniforms
+ * @returns {Features}
+ */
 export function featuresFor(settings, info, data, look, uniforms) {
+  /** @param {string} name */
+  const third = (name) => /** @type {number[]} */ (uniforms[name][1])[2];
   const on = new Set(settings.shaders);
   return {
     texture: textureLayer(settings),
@@ -90,13 +160,22 @@ export function featuresFor(settings, info, data, look, uniforms) {
     supersample: look ? Math.round(Math.sqrt(look.view.samples)) : info.supersample,
     camera: look ? CAMERAS[look.view.camera.kind] : 0,
     images: imagesFor(settings, info, data).length > 0,
-    refs: uniforms.uRef0[1][2] > 0 || uniforms.uRef1[1][2] > 0,
+    refs: third('uRef0') > 0 || third('uRef1') > 0,
     overlay: Boolean(uniforms.uOverlayOn && uniforms.uOverlayOn[1]),
   };
 }
 
 // Uniforms for a picture of width × height; `look` is null for the data file's own pixels,
 // else {view, sphere} (the `look` crate's view and the sphere's axes).
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ * @param {Data} data
+ * @param {number} width
+ * @param {number} height
+ * @param {ShadedLook | null} look
+ * @returns {Uniforms}
+ */
 export function uniformsFor(settings, info, data, width, height, look) {
   const on = new Set(settings.shaders);
   const bb = data.blackbody;
@@ -107,6 +186,7 @@ export function uniformsFor(settings, info, data, width, height, look) {
   // 2^ev in f32, as Shading::new computes it (2f64.powf(ev) as f32).
   const gain = Math.fround(2 ** settings.ev);
   const sources = settings.light.sources;
+  /** @type {number[][]} */
   const lightW = [];
   for (let k = 0; k < info.lights; k += 1) {
     const s = sources[k];
@@ -114,6 +194,7 @@ export function uniformsFor(settings, info, data, width, height, look) {
       : [0, 0, 0]);
   }
   if (lightW.length > 16) throw new Error('the page shades at most 16 light channels');
+  /** @type {Uniforms} */
   const u = {
     uWinLo: ['f', winLo],
     uWinHi: ['f', winHi],
@@ -144,7 +225,9 @@ export function uniformsFor(settings, info, data, width, height, look) {
   };
   if (look) Object.assign(u, lookUniforms(look.view, look.sphere));
   // Reference squares of the first two objects' unshifted colours (frequency layer).
+  /** @type {number[][]} */
   const refs = [[0, 0, 0, 0], [0, 0, 0, 0]];
+  /** @type {number[][]} */
   const refColours = [[0, 0, 0], [0, 0, 0]];
   if (on.has('frequency') && settings.reference_squares) {
     info.objects.slice(0, 2).forEach((name, k) => {
@@ -168,6 +251,12 @@ export function uniformsFor(settings, info, data, width, height, look) {
 // What the server's overlay layer (crates/shade/src/layer.rs: orientation marks, travel-time
 // and polarization legends, reference-square labels) depends on for these settings and
 // picture, as a string; null when it draws nothing. Shading::overlays_shown decides the same.
+/**
+ * @param {ShadeSettings} settings
+ * @param {Info} info
+ * @param {Picture} p
+ * @returns {string | null}
+ */
 export function overlayKey(settings, info, p) {
   const on = new Set(settings.shaders);
   const t = settings.time;
@@ -175,6 +264,7 @@ export function overlayKey(settings, info, p) {
   const squares = on.has('frequency') && settings.reference_squares && info.objects.length > 0;
   const polarization = polarizationLayer(settings, info, Boolean(p.look));
   if (!legend && !squares && !settings.grid && !polarization) return null;
+  /** @param {string} name */
   const temperature = (name) => (settings.objects[name] || info.defaults.objects[name]).temperature;
   return JSON.stringify({
     size: [p.width, p.height],
@@ -185,9 +275,15 @@ export function overlayKey(settings, info, p) {
   });
 }
 
+/**
+ * @param {LookView} view
+ * @param {import('./look.js').Sphere} sphere
+ * @returns {Uniforms}
+ */
 function lookUniforms(view, sphere) {
   const c = view.camera;
   const rad = Math.PI / 180;
+  /** @type {[number, number]} */
   let angles;
   if (c.kind === 'pinhole') {
     angles = [Math.tan(0.5 * c.fov_deg * rad), 0];

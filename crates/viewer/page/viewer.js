@@ -1,3 +1,4 @@
+// @ts-check
 // godel view: the page. Fetches the data file's description and, once, the arrays the GPU
 // shades from (data.js); every control change, drag or wheel step redraws in the next
 // animation frame without asking the server (gl.js, shaders.js). The server still answers
@@ -5,38 +6,147 @@
 // file the page looks around (look.js): any projection, turn, zoom and observer velocity.
 'use strict';
 
-import { Gpu } from './gl.js';
-import { Data, channelsFor, fetchJson } from './data.js';
+import { HttpError, errorText, getJson, messageOf, postJson } from './api.js';
 import { describeControls, buildControls } from './controls.js';
+import { Data, channelsFor } from './data.js';
+import { $, query } from './dom.js';
+import { startExplore } from './explore.js';
+import { Gpu } from './gl.js';
+import * as L from './look.js';
+import { startTraced } from './traced.js';
 import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TEXELS }
   from './uniforms.js';
-import * as L from './look.js';
-import { startExplore } from './explore.js';
-import { startTraced } from './traced.js';
 
+/** @typedef {import('./contract').Info} Info */
+/** @typedef {import('./contract').ViewInfo} ViewInfo */
+/** @typedef {import('./contract').LookView} LookView */
+/** @typedef {import('./contract').ShadeSettings} ShadeSettings */
+/** @typedef {import('./uniforms.js').Picture} Picture */
+
+/**
+ * The page (window.godelViewer): what it shows, its counters, and what the other modules and
+ * the tests and scripts call. The file's description, view and settings are null until loaded
+ * (LoadedViewer: after start), and explore mode, the GPU-traced frame and *Render exactly*
+ * add their own state (absent otherwise).
+ * @typedef {object} Viewer
+ * @property {Info | null} info /api/info
+ * @property {ViewInfo | null} view /api/view
+ * @property {ShadeSettings | null} settings
+ * @property {L.Look | null} look the look-around state, for a full-sphere file
+ * @property {number} frames pictures drawn on the canvas
+ * @property {number} shadings shading passes run
+ * @property {number[]} frameTimes performance.now() of the last frames drawn (at most 600)
+ * @property {number | null} firstPicture ms from navigation start to the first picture
+ * @property {{ described?: number, tables?: number, channels?: number }} timeline ms from
+ *   navigation start (first load)
+ * @property {import('./contract').PixelRecord | import('./hovered.js').SampleRecord | null} record
+ *   the last pixel record shown
+ * @property {string | null} error the last error message shown
+ * @property {number} aspect the picture's width / height for the layout (explore: the full
+ *   frames', so that coarse frames keep their place)
+ * @property {number} lookShare the share of the window's height a look-around view takes
+ *   (explore: less, so that the map below stays in view)
+ * @property {import('./explore.js').Explore} [explore]
+ * @property {import('./traced.js').TracedState} [traced]
+ * @property {import('./keep.js').KeepState} [keep]
+ * @property {() => boolean} idle
+ * @property {() => { width: number, height: number, bytes: string }} readPicture
+ * @property {() => { width: number, height: number, bytes: string }} readCanvas
+ * @property {(bytes: Uint8Array) => string} base64
+ * @property {(w: number | null, h?: number) => void} setViewSize
+ * @property {() => string} saveBody
+ * @property {() => string} frameQuery
+ * @property {(text: string) => Promise<boolean>} sendRaw
+ * @property {() => void} changed
+ * @property {() => void} finish
+ * @property {() => [string, number, number][]} fetched
+ * @property {() => Gpu} gpu
+ * @property {(event: { clientX: number, clientY: number }) => [number, number] | null} pixelAt
+ * @property {(url: string, body: string, fallbackName: string) => Promise<Blob | null>} download
+ * @property {() => void} layout
+ * @property {() => number} zoom
+ * @property {(frame: import('./contract').FrameInfo, channelUrl: (name: string) => string)
+ *   => boolean} showFrame
+ * @property {(on: boolean) => void} hold
+ * @property {(channels: import('./trace.js').Channels, note: string,
+ *   size?: { width: number, height: number, supersample: number } | null) => void} showTracedFrame
+ * @property {(note: string) => void} noteFrames
+ * @property {() => void} showFileFrame
+ */
+
+/**
+ * The page once the file's description is loaded (start).
+ * @typedef {Viewer & { info: Info, view: ViewInfo, settings: ShadeSettings }} LoadedViewer
+ */
+
+/** @type {Viewer} */
 const viewer = {
-  info: null,      // /api/info
-  view: null,      // /api/view
-  settings: null,  // ShadeSettings
-  look: null,      // the look-around state, for a full-sphere file
-  frames: 0,       // pictures drawn on the canvas
-  shadings: 0,     // shading passes run
-  frameTimes: [],  // performance.now() of the last frames drawn (at most 600)
-  firstPicture: null, // ms from navigation start to the first picture on the canvas
-  timeline: {},    // ms from navigation start: described, tables, channels (first load)
-  record: null,    // the last pixel record shown
-  error: null,     // the last error message shown
-  aspect: null,    // the picture's width / height for the layout (explore: the full frames',
-                   // so that coarse frames keep their place)
-  lookShare: 0.6,  // the share of the window's height a look-around view takes (explore: less,
-                   // so that the map below stays in view)
+  info: null,
+  view: null,
+  settings: null,
+  look: null,
+  frames: 0,
+  shadings: 0,
+  frameTimes: [],
+  firstPicture: null,
+  timeline: {},
+  record: null,
+  error: null,
+  aspect: 1,
+  lookShare: 0.6,
+  // What the other modules, tests and scripts call: the functions below.
+  idle,
+  readPicture,
+  readCanvas,
+  base64,
+  setViewSize,
+  saveBody,
+  frameQuery,
+  sendRaw,
+  changed: () => { syncControls(); changed(); },
+  finish: () => gpuOf().finish(),
+  fetched: () => dataOf().fetched,
+  gpu: gpuOf,
+  pixelAt,
+  download,
+  layout: () => layout(),
+  zoom: () => (lookMode() ? 1 : pan.zoom),
+  showFrame,
+  hold,
+  showTracedFrame,
+  noteFrames,
+  showFileFrame,
 };
 window.godelViewer = viewer;
 
-const $ = (id) => document.getElementById(id);
+/** @type {Gpu | null} */
 let gpu = null;
+/** @type {Data | null} */
 let data = null;
 
+// The page's loaded parts, for what runs only once start has made them.
+function gpuOf() {
+  if (!gpu) throw new Error('the page has no WebGL2 context yet');
+  return gpu;
+}
+function dataOf() {
+  if (!data) throw new Error('the data file\u2019s tables are not loaded yet');
+  return data;
+}
+/** @returns {LoadedViewer} */
+function loaded() {
+  if (!isLoaded(viewer)) throw new Error('the data file\u2019s description is not loaded yet');
+  return viewer;
+}
+/**
+ * @param {Viewer} v
+ * @returns {v is LoadedViewer}
+ */
+function isLoaded(v) {
+  return v.info !== null && v.view !== null && v.settings !== null;
+}
+
+/** @param {string} message */
 function showError(message) {
   viewer.error = message;
   $('error').textContent = message;
@@ -48,15 +158,6 @@ function clearError() {
   $('error').hidden = true;
 }
 
-async function errorText(response) {
-  const text = await response.text();
-  try {
-    return JSON.parse(text).error || text;
-  } catch (_) {
-    return `${response.status} ${response.statusText}: ${text}`;
-  }
-}
-
 // ---- what is on the canvas: the picture's size, and where it lies
 
 // Writes the header line about the file (set at start; its size follows explore frames).
@@ -66,22 +167,36 @@ let describe = () => {};
 let frameNote = '';
 // Explore: whether the frame last given to showFrame has been shaded (or failed to load).
 let frameDrawn = true;
-let fixedSize = null;      // [w, h] canvas pixels set by a script, else the layout decides
+/** @type {[number, number] | null} canvas pixels set by a script, else the layout decides */
+let fixedSize = null;
+/** @type {{ zoom: number, offset: [number, number], fitted: boolean }} */
 const pan = { zoom: 1, offset: [0, 0], fitted: true };
-let dragging = null;       // the canvas point of the last pointer move while the button is down
+// The canvas point of the last pointer move while the button is down.
+/** @type {[number, number] | null} */
+let dragging = null;
 
 function lookMode() {
   return viewer.look !== null;
 }
 
+// The look and the file's own view it turns, in look mode; else null.
+function looking() {
+  const look = viewer.look;
+  const file = viewer.view?.view;
+  return look && file ? { look, file } : null;
+}
+
 // The picture the shading pass makes: {width, height, look} (look: view and sphere, or null).
+/** @returns {Picture} */
 function picture() {
-  const canvas = $('image');
-  if (!lookMode()) return { width: viewer.info.width, height: viewer.info.height, look: null };
+  const canvas = $('image', HTMLCanvasElement);
+  const { info, view: fileView } = loaded();
+  const l = looking();
+  if (!l) return { width: info.width, height: info.height, look: null };
   // The velocity's direction follows its preset (the view's centre turns with the view).
-  viewer.look.direction = L.presetDirection(viewer.look.preset, viewer.look, viewer.view.view,
-    viewer.view.object_directions);
-  const view = L.lookView(viewer.look, viewer.view.view, canvas.width, canvas.height);
+  l.look.direction = L.presetDirection(l.look.preset, l.look, l.file,
+    fileView.object_directions);
+  const view = L.lookView(l.look, l.file, canvas.width, canvas.height);
   // While the mouse turns the view, one sample per pixel from the nearest sphere pixel (the
   // frame rate); once it lets go, the chosen samples, read smoothly as `godel look` reads.
   if (dragging) view.samples = 1;
@@ -89,21 +204,25 @@ function picture() {
     look: { view, sphere: sphere(), smooth: !dragging } };
 }
 
+/** @returns {L.Sphere} */
 function sphere() {
-  const v = viewer.view.view;
-  return { width: viewer.info.width, height: viewer.info.height, forward: v.forward, up: v.up };
+  const { info, view } = loaded();
+  const v = view.view;
+  if (!v) throw new Error('the data file has no view to look around in');
+  return { width: info.width, height: info.height, forward: v.forward, up: v.up };
 }
 
 function fit() {
-  const canvas = $('image');
-  pan.zoom = Math.min(canvas.width / viewer.info.width, canvas.height / viewer.info.height);
-  pan.offset = [(canvas.width - viewer.info.width * pan.zoom) / 2,
-    (canvas.height - viewer.info.height * pan.zoom) / 2];
+  const canvas = $('image', HTMLCanvasElement);
+  const { info } = loaded();
+  pan.zoom = Math.min(canvas.width / info.width, canvas.height / info.height);
+  pan.offset = [(canvas.width - info.width * pan.zoom) / 2,
+    (canvas.height - info.height * pan.zoom) / 2];
   pan.fitted = true;
 }
 
 function layout() {
-  const canvas = $('image');
+  const canvas = $('image', HTMLCanvasElement);
   const room = $('picture').clientWidth;
   const dpr = window.devicePixelRatio || 1;
   let css;
@@ -133,7 +252,8 @@ function layout() {
 
 let frameQueued = false;
 let shadeDirty = true;   // the picture must be shaded again (else only displayed)
-let loading = null;      // the frame (data.js epoch) whose channels or images are being fetched
+/** @type {number | null} the frame (data.js epoch) whose channels or images are being fetched */
+let loading = null;
 // Whether the frame shown is still loading: a load for a frame replaced meanwhile (a frame
 // traced in the page, fly.js) holds nothing up, and its channels are dropped (data.js).
 const loadingNow = () => loading !== null && data !== null && loading === data.epoch;
@@ -141,7 +261,13 @@ let held = false;        // the page traces a frame on the GPU (traced.js): noth
 
 // The overlay layer (orientation marks, legend, labels), drawn by the server for the
 // settings (crates/shade/src/layer.rs) and composited by the shading pass: the key it was
-// made for (overlayKey), its size, whether it draws anything; the one wanted next.
+// made for (overlayKey), its size, whether it draws anything; the one wanted next, whether
+// one is being fetched, whether the last answer was for a frame replaced meanwhile.
+/**
+ * @type {{ key: string | null, size: [number, number] | null, drawn: boolean,
+ *   wanted: { key: string, url: string, body: string } | null, busy: boolean,
+ *   stale: boolean }}
+ */
 const overlay = { key: null, size: null, drawn: false, wanted: null, busy: false, stale: false };
 
 function overlayPending() {
@@ -154,8 +280,7 @@ async function fetchOverlay() {
   if (overlay.busy || want === null || want.key === overlay.key) return;
   overlay.busy = true;
   try {
-    const response = await fetch(want.url, { method: 'POST', body: want.body,
-      headers: { 'Content-Type': 'application/json' } });
+    const response = await postJson(want.url, want.body);
     if (response.status === 410) {
       // Explore: that frame was replaced meanwhile; asked again when the next one shows.
       overlay.drawn = false;
@@ -168,13 +293,13 @@ async function fetchOverlay() {
     } else {
       const bitmap = await createImageBitmap(await response.blob(),
         { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
-      gpu.uploadBitmap('overlay', bitmap);
+      gpuOf().uploadBitmap('overlay', bitmap);
       overlay.size = [bitmap.width, bitmap.height];
       bitmap.close();
       overlay.drawn = true;
     }
   } catch (e) {
-    showError(`cannot load the overlay from the viewer's server: ${e.message || e}`);
+    showError(`cannot load the overlay from the viewer's server: ${messageOf(e)}`);
     overlay.drawn = false;
   } finally {
     overlay.key = want.key;
@@ -194,31 +319,33 @@ function changed(shade = true) {
 
 async function draw() {
   frameQueued = false;
-  if (loadingNow() || held || !gpu) return;
-  const settings = viewer.settings;
+  if (loadingNow() || held || !gpu || !data) return;
+  const { info, settings } = loaded();
   let need;
   let images;
   try {
-    need = channelsFor(settings, viewer.info, lookMode());
-    images = imagesFor(settings, viewer.info, data);
+    need = channelsFor(settings, info, lookMode());
+    images = imagesFor(settings, info, data);
   } catch (e) {
-    showError(e.message);
+    showError(messageOf(e));
     return;
   }
-  if (data.missing(need).length || images.some((n) => !data.images.has(n))) {
-    const epoch = data.epoch;
+  const d = data;
+  if (d.missing(need).length || images.some((n) => !d.images.has(n))) {
+    const epoch = d.epoch;
     loading = epoch;
     $('status').textContent = 'loading the data file\u2019s channels…';
     try {
-      await data.ensure(need);
-      await data.ensureImages(images);
+      await d.ensure(need);
+      await d.ensureImages(images);
     } catch (e) {
       // Nothing more to wait for: the next frame may come (unless another frame came meanwhile).
-      if (data.epoch === epoch) frameDrawn = true;
+      if (d.epoch === epoch) frameDrawn = true;
       // Explore: the frame was superseded while its channels loaded (410 Gone, or replaced by
       // a frame traced in the page); the newer frame comes, and no error flashes up meanwhile.
-      if (!(viewer.explore && (e.status === 410 || data.epoch !== epoch))) {
-        showError(`cannot load the data for the GPU: ${e.message}`);
+      const gone = e instanceof HttpError && e.status === 410;
+      if (!(viewer.explore && (gone || d.epoch !== epoch))) {
+        showError(`cannot load the data for the GPU: ${messageOf(e)}`);
       }
       return;
     } finally {
@@ -231,30 +358,31 @@ async function draw() {
   const p = picture();
   try {
     if (shadeDirty) {
-      const uniforms = uniformsFor(settings, viewer.info, data, p.width, p.height, p.look);
-      const key = overlayKey(settings, viewer.info, p);
+      const uniforms = uniformsFor(settings, info, d, p.width, p.height, p.look);
+      const key = overlayKey(settings, info, p);
       if (key === null) {
         overlay.wanted = null;
       } else if (key !== overlay.key) {
+        /** @type {import('./contract').LookRequest | ShadeSettings} */
+        const body = p.look ? { settings, view: p.look.view } : settings;
         overlay.wanted = { key,
           url: (p.look ? '/api/look/overlay' : '/api/overlay') + frameQuery(),
-          body: p.look ? JSON.stringify({ settings, view: p.look.view })
-            : JSON.stringify(settings) };
+          body: JSON.stringify(body) };
         fetchOverlay();
       }
       // Until the new layer comes, the last one of the same size stays (no flicker).
       const shown = key !== null && overlay.drawn && overlay.size !== null
         && overlay.size[0] === p.width && overlay.size[1] === p.height;
       uniforms.uOverlayOn = ['i', shown ? 1 : 0];
-      const table = objectTable(settings, viewer.info, data);
+      const table = objectTable(settings, info, d);
       gpu.uploadFloatRgba('objects', OBJECT_TEXELS, table.length / (4 * OBJECT_TEXELS), table);
-      gpu.shade(p.width, p.height, featuresFor(settings, viewer.info, data, p.look, uniforms),
+      gpu.shade(p.width, p.height, featuresFor(settings, info, d, p.look, uniforms),
         uniforms);
       viewer.shadings += 1;
       frameDrawn = true;
       shadeDirty = false;
     }
-    const canvas = $('image');
+    const canvas = $('image', HTMLCanvasElement);
     if (lookMode()) {
       gpu.display([Math.floor((canvas.width - p.width) / 2),
         Math.floor((canvas.height - p.height) / 2)], 1);
@@ -263,7 +391,7 @@ async function draw() {
     }
   } catch (e) {
     frameDrawn = true;
-    showError(e.message);
+    showError(messageOf(e));
     return;
   }
   if (viewer.firstPicture === null) {
@@ -280,20 +408,30 @@ async function draw() {
 }
 
 // Nothing waiting to be drawn or fetched (for tests and scripts).
-viewer.idle = () => !frameQueued && !loadingNow() && !held && !shadeDirty && !overlayPending();
+function idle() {
+  return !frameQueued && !loadingNow() && !held && !shadeDirty && !overlayPending();
+}
 
 // ---- the mouse: drag to turn (look) or pan, wheel to zoom, hover for the record
 
+/**
+ * @param {{ clientX: number, clientY: number }} event
+ * @returns {[number, number]}
+ */
 function canvasPoint(event) {
-  const canvas = $('image');
+  const canvas = $('image', HTMLCanvasElement);
   const rect = canvas.getBoundingClientRect();
   return [(event.clientX - rect.left) * canvas.width / rect.width,
     (event.clientY - rect.top) * canvas.height / rect.height];
 }
 
 // The picture pixel under canvas point c, or null.
+/**
+ * @param {[number, number]} c
+ * @returns {[number, number] | null}
+ */
 function picturePixel(c) {
-  const canvas = $('image');
+  const canvas = $('image', HTMLCanvasElement);
   const p = picture();
   const [ox, oy, zoom] = lookMode()
     ? [Math.floor((canvas.width - p.width) / 2), Math.floor((canvas.height - p.height) / 2), 1]
@@ -304,13 +442,17 @@ function picturePixel(c) {
   return [col, row];
 }
 
-function onDrag(event) {
+/**
+ * @param {PointerEvent} event
+ * @param {[number, number]} from
+ */
+function onDrag(event, from) {
   const c = canvasPoint(event);
-  const [dx, dy] = [c[0] - dragging[0], c[1] - dragging[1]];
+  const [dx, dy] = [c[0] - from[0], c[1] - from[1]];
   dragging = c;
-  if (lookMode()) {
-    const deg = L.radiansPerPixel(viewer.look, picture().width) * 180 / Math.PI;
-    const look = viewer.look;
+  const look = viewer.look;
+  if (look) {
+    const deg = L.radiansPerPixel(look, picture().width) * 180 / Math.PI;
     look.yaw = ((look.yaw - dx * deg + 540) % 360) - 180;
     look.pitch = Math.min(90, Math.max(-90, look.pitch + dy * deg));
     syncControls();
@@ -322,11 +464,12 @@ function onDrag(event) {
   }
 }
 
+/** @param {WheelEvent} event */
 function onWheel(event) {
   event.preventDefault();
   const factor = Math.exp(event.deltaY * 0.001);
-  if (lookMode()) {
-    const look = viewer.look;
+  const look = viewer.look;
+  if (look) {
     const range = L.PROJECTIONS[look.projection];
     look.fov = Math.min(range.max, Math.max(range.min, look.fov * factor));
     syncControls();
@@ -346,24 +489,34 @@ let syncControls = () => {};
 
 // ---- hover: the record of the data pixel under the mouse, and where it looks
 
-let hoverWanted = null; // {pixel: [col, row] of the data file, ...what the page adds}
+/**
+ * The hover wanted: the data file's pixel [col, row], and what the page adds to its record.
+ * @typedef {{ pixel: [number, number], view?: [number, number], doppler: number,
+ *   direction: string, staticDirection: string }} HoverWish
+ */
+/** @type {HoverWish | null} */
+let hoverWanted = null;
 let hoverBusy = false;
+/** @type {(HoverWish & { frame: unknown }) | null} */
 let hoverShown = null;
 
+/** @param {PointerEvent} event */
 function hoverAt(event) {
   const q = picturePixel(canvasPoint(event));
   if (!q) return;
+  /** @param {L.Vec3} n */
   const deg = (n) => L.azimuthElevation(n).map((x) => x.toFixed(2)).join('°, ') + '°';
-  if (lookMode()) {
-    const at = L.lookPixel(picture().look.view, sphere(), q[0], q[1]);
+  const shownLook = picture().look;
+  if (viewer.look && shownLook) {
+    const at = L.lookPixel(shownLook.view, sphere(), q[0], q[1]);
     if (!at) return;
     hoverWanted = { pixel: at.source, view: q, doppler: at.doppler, direction: deg(at.own),
       staticDirection: viewer.look.speed > 0 ? deg(at.static) : '–' };
   } else {
-    const v = viewer.view.view;
+    const v = loaded().view.view;
     const d = v && L.cameraDirection(v.camera, q[0], q[1]);
-    hoverWanted = { pixel: q, doppler: 1, direction: d ? deg(L.toLocal(d, v.forward, v.up)) : '–',
-      staticDirection: '–' };
+    hoverWanted = { pixel: q, doppler: 1, direction: d && v ? deg(L.toLocal(d, v.forward, v.up))
+      : '–', staticDirection: '–' };
   }
   fetchHover();
 }
@@ -373,7 +526,7 @@ async function fetchHover() {
   // Flying (fly.js): the record is read from the frame the page traced, no server call.
   const flying = viewer.explore?.hoverRecord;
   // In explore mode, the record of the frame on the GPU (not of a newer one still loading).
-  const frame = flying ? viewer.explore.hoverFrame() : viewer.explore?.shown ?? null;
+  const frame = flying ? viewer.explore?.hoverFrame?.() : viewer.explore?.shown ?? null;
   const wanted = { ...hoverWanted, frame };
   if (hoverShown && JSON.stringify(hoverShown) === JSON.stringify(wanted)) return;
   hoverBusy = true;
@@ -381,22 +534,23 @@ async function fetchHover() {
     const [col, row] = wanted.pixel;
     let record;
     if (flying) {
-      record = await viewer.explore.hoverRecord(col, row);
+      record = await flying(col, row);
       if (record === null) return; // outside the frame shown
     } else {
-      const which = frame ? `&generation=${frame.generation}&level=${frame.level}` : '';
+      const which = frame && typeof frame === 'object'
+        ? `&generation=${frame.generation}&level=${frame.level}` : '';
       const response = await fetch(`/api/pixel?col=${col}&row=${row}${which}`);
       if (response.status === 410) return; // that frame was replaced meanwhile: hover again
       if (!response.ok) {
         showError(await errorText(response));
         return;
       }
-      record = await response.json();
+      record = /** @type {import('./contract').PixelRecord} */ (await response.json());
     }
     showRecord(record, wanted);
     hoverShown = wanted;
   } catch (e) {
-    showError(flying ? `cannot read the hovered record: ${e.message || e}`
+    showError(flying ? `cannot read the hovered record: ${messageOf(e)}`
       : `cannot reach the viewer's server: ${e}`);
   } finally {
     hoverBusy = false;
@@ -404,12 +558,20 @@ async function fetchHover() {
   fetchHover(); // the mouse may have moved meanwhile
 }
 
+/**
+ * @param {number | null | undefined} x
+ * @param {number} digits
+ */
 const number = (x, digits) => (x === null || x === undefined ? '–' : Number(x).toFixed(digits));
 
+/**
+ * @param {import('./hovered.js').SampleRecord & { col: number, row: number }} r
+ * @param {HoverWish} at
+ */
 function showRecord(r, at) {
   viewer.record = r;
   const hit = r.object >= 0;
-  const g = hit ? Math.fround(r.g * at.doppler) : r.g;
+  const g = hit ? Math.fround(Number(r.g) * at.doppler) : r.g;
   const fields = {
     pixel: at.view ? `${r.col}, ${r.row} (view ${at.view[0]}, ${at.view[1]})` : `${r.col}, ${r.row}`,
     object: r.object_name === null ? 'none' : r.object_name,
@@ -427,7 +589,7 @@ function showRecord(r, at) {
   const always = ['pixel', 'object', 'status', 'direction', 'static_direction', 'doppler'];
   for (const [field, text] of Object.entries(fields)) {
     const keep = always.includes(field) || hit;
-    document.querySelector(`#record [data-field="${field}"]`).textContent = keep ? text : '–';
+    query(`#record [data-field="${field}"]`).textContent = keep ? text : '–';
   }
 }
 
@@ -440,14 +602,25 @@ function frameQuery() {
   return f ? `?generation=${f.generation}&level=${f.level}` : '';
 }
 
+// The settings and view the server would shade for "Save PNG".
 function saveBody() {
-  if (!lookMode()) return JSON.stringify(viewer.settings);
-  return JSON.stringify({ settings: viewer.settings, view: picture().look.view });
+  const { settings } = loaded();
+  const look = picture().look;
+  if (!lookMode() || !look) return JSON.stringify(settings);
+  /** @type {import('./contract').LookRequest} */
+  const body = { settings, view: look.view };
+  return JSON.stringify(body);
 }
 
+// POSTs `body` to `url` and downloads the answer, named as the server says (else
+// `fallbackName`); null, the error shown, when refused.
+/**
+ * @param {string} url
+ * @param {string} body
+ * @param {string} fallbackName
+ */
 async function download(url, body, fallbackName) {
-  const response = await fetch(url, { method: 'POST', body,
-    headers: { 'Content-Type': 'application/json' } });
+  const response = await postJson(url, body);
   if (!response.ok) {
     showError(await errorText(response));
     return null;
@@ -466,7 +639,8 @@ async function download(url, body, fallbackName) {
 }
 
 async function saveKeyframe() {
-  const blob = await download('/api/keyframe', JSON.stringify(viewer.settings), 'keyframe.toml');
+  const blob = await download('/api/keyframe', JSON.stringify(loaded().settings),
+    'keyframe.toml');
   if (blob) {
     $('keyframe').textContent = await blob.text();
     $('keyframe').hidden = false;
@@ -475,99 +649,98 @@ async function saveKeyframe() {
 
 // ---- for tests and scripts
 
-const base64 = (bytes) => {
+/** @param {Uint8Array} bytes */
+function base64(bytes) {
   let s = '';
   for (let i = 0; i < bytes.length; i += 8192) s += String.fromCharCode(...bytes.subarray(i, i + 8192));
   return btoa(s);
-};
+}
 // The shaded picture (RGBA, top row first), and the canvas as shown.
-viewer.readPicture = () => { const p = gpu.readShaded(); return { ...p, bytes: base64(p.bytes) }; };
-viewer.readCanvas = () => { const p = gpu.readCanvas(); return { ...p, bytes: base64(p.bytes) }; };
-viewer.base64 = base64;
+function readPicture() {
+  const p = gpuOf().readShaded();
+  return { ...p, bytes: base64(p.bytes) };
+}
+function readCanvas() {
+  const p = gpuOf().readCanvas();
+  return { ...p, bytes: base64(p.bytes) };
+}
 // Fixes the canvas at w × h pixels (null: back to the layout).
-viewer.setViewSize = (w, h) => { fixedSize = w ? [w, h] : null; layout(); };
-// The settings and view the server would shade for "Save PNG", and the query naming the
-// frame on screen (explore mode).
-viewer.saveBody = saveBody;
-viewer.frameQuery = frameQuery;
+/**
+ * @param {number | null} w
+ * @param {number} [h]
+ */
+function setViewSize(w, h) {
+  fixedSize = w ? [w, Number(h)] : null;
+  layout();
+}
 // Sends `text` to the server as settings, as the page did before it shaded on the GPU: for
 // checking that the server's messages show.
-viewer.sendRaw = async (text) => {
-  const response = await fetch('/api/image', { method: 'POST', body: text,
-    headers: { 'Content-Type': 'application/json' } });
+/** @param {string} text */
+async function sendRaw(text) {
+  const response = await postJson('/api/image', text);
   if (!response.ok) showError(await errorText(response));
   return response.ok;
-};
-viewer.changed = () => { syncControls(); changed(); };
-// Waits for the GPU (benchmarks: a frame counts when drawn, not when asked for).
-viewer.finish = () => gpu.finish();
-// What the page fetched: [url, bytes, ms] per array.
-viewer.fetched = () => data.fetched;
-// The WebGL side, for profiling from the console.
-viewer.gpu = () => gpu;
+}
 // The data pixel [col, row] under a pointer event's clientX, clientY (looking around: the
 // sphere's pixel seen there), or null (explore.js).
-viewer.pixelAt = (event) => {
+/** @param {{ clientX: number, clientY: number }} event */
+function pixelAt(event) {
   const q = picturePixel(canvasPoint(event));
-  if (!q || !lookMode()) return q;
-  const at = L.lookPixel(picture().look.view, sphere(), q[0], q[1]);
+  const look = picture().look;
+  if (!q || !lookMode() || !look) return q;
+  const at = L.lookPixel(look.view, sphere(), q[0], q[1]);
   return at ? at.source : null;
-};
-// POSTs `body` to `url` and downloads the answer (explore.js's keyframe).
-viewer.download = download;
-// Lays the page out again (explore.js, after setting `aspect`).
-viewer.layout = () => layout();
-// Canvas pixels per picture pixel (1 when looking around).
-viewer.zoom = () => (lookMode() ? 1 : pan.zoom);
+}
 
 // ---- start
 
 async function start() {
   try {
-    [viewer.info, viewer.view] = await Promise.all([fetchJson('/api/info'),
-      fetchJson('/api/view')]);
+    [viewer.info, viewer.view] = /** @type {[Info, ViewInfo]} */ (await Promise.all([
+      getJson('/api/info'), getJson('/api/view')]));
   } catch (e) {
-    showError(`cannot load the data file's description: ${e.message || e}`);
+    showError(`cannot load the data file's description: ${messageOf(e)}`);
     return;
   }
   const info = viewer.info;
   viewer.timeline.described = performance.now();
   viewer.aspect = info.width / info.height;
   viewer.settings = structuredClone(info.defaults);
+  if (!isLoaded(viewer)) return;
+  const page = viewer;
   // A sampled sphere is shown as a picture: `godel look` refuses it, and so does the page.
-  const camera = viewer.view.view?.camera;
+  const camera = page.view.view?.camera;
   const sampledSphere = info.supersample > 1 && camera && (camera.kind === 'sphere'
     || (camera.kind === 'panorama' && camera.h_fov_deg === 360 && camera.v_fov_deg === 180));
   describe = () => {
     $('file').textContent = `${info.file} · ${info.scene_name} · ${info.width}×${info.height}`
       + (info.supersample > 1 ? ` · ${info.supersample}×${info.supersample} rays per pixel` : '')
-      + (viewer.view.sphere ? ' · full sphere: drag to look around' : '')
-      + (sampledSphere ? ` · no looking around: ${viewer.view.sphere_error}` : '')
+      + (page.view.sphere ? ' · full sphere: drag to look around' : '')
+      + (sampledSphere ? ` · no looking around: ${page.view.sphere_error}` : '')
       + (frameNote ? ` · ${frameNote}` : '');
   };
   describe();
   try {
-    gpu = new Gpu($('image'));
-    data = new Data(gpu, info);
-    await data.start();
+    gpu = new Gpu($('image', HTMLCanvasElement));
+    data = await Data.load(gpu, info);
     viewer.timeline.tables = performance.now();
   } catch (e) {
-    showError(e.message);
+    showError(messageOf(e));
     return;
   }
-  if (viewer.view.sphere) viewer.look = L.newLook(viewer.view.view);
-  const targets = { settings: viewer.settings, look: viewer.look };
-  syncControls = buildControls(describeControls(info, viewer.view), targets, (target) => {
+  if (page.view.sphere && page.view.view) viewer.look = L.newLook(page.view.view);
+  const targets = { settings: page.settings, look: viewer.look };
+  syncControls = buildControls(describeControls(info, page.view), targets, (target) => {
     if (target === 'look') lookChanged();
     changed();
   });
-  const canvas = $('image');
+  const canvas = $('image', HTMLCanvasElement);
   canvas.addEventListener('pointerdown', (event) => {
     dragging = canvasPoint(event);
     canvas.setPointerCapture(event.pointerId);
   });
   canvas.addEventListener('pointermove', (event) => {
-    if (dragging) onDrag(event);
+    if (dragging) onDrag(event, dragging);
     hoverAt(event);
   });
   canvas.addEventListener('pointerup', () => {
@@ -581,20 +754,23 @@ async function start() {
     (lookMode() ? '/api/look/png' : '/api/png') + frameQuery(), saveBody(), 'view.png'));
   $('save-keyframe').addEventListener('click', saveKeyframe);
   layout();
-  await startExplore(viewer);
-  startTraced(viewer);
+  await startExplore(page);
+  startTraced(page);
 }
 
-// Explore mode (explore.js): shade a newly traced frame, of `frame.width` × `frame.height`
-// pictures, whose channels come from `channelUrl(name)`; false (try later) while loading.
 // Explore (explore.js): shows another frame, whose channels are at `channelUrl(name)`; false
 // (try again later) while the last one is not drawn yet, so that every frame taken is seen.
-viewer.showFrame = (frame, channelUrl) => {
+/**
+ * @param {import('./contract').FrameInfo} frame
+ * @param {(name: string) => string} channelUrl
+ */
+function showFrame(frame, channelUrl) {
   if (loadingNow() || !data || !frameDrawn) return false;
+  const { info } = loaded();
   frameDrawn = false;
   // A zoomed or panned picture keeps its place on the canvas at the new size.
-  if (!pan.fitted) pan.zoom *= viewer.info.width / frame.width;
-  Object.assign(viewer.info, { width: frame.width, height: frame.height,
+  if (!pan.fitted) pan.zoom *= info.width / frame.width;
+  Object.assign(info, { width: frame.width, height: frame.height,
     supersample: frame.supersample });
   // The camera is the same but for its size (coarse or full): hover directions follow.
   const camera = viewer.view?.view?.camera;
@@ -608,60 +784,71 @@ viewer.showFrame = (frame, channelUrl) => {
   layout();
   changed();
   return true;
-};
+}
 
 // The frame traced on the GPU (traced.js): while `on`, nothing is drawn; then `channels`
 // (textures named as the data file's channels, gl.js) replace the file's, and `note` says so
 // in the header, until showFileFrame fetches the file's channels again.
-viewer.hold = (on) => {
+/** @param {boolean} on */
+function hold(on) {
   held = on;
   if (!on) changed();
-};
+}
 // `size` ({width, height, supersample}, explore's flight: fly.js): the traced frame's, where
 // it is not the file's.
-viewer.showTracedFrame = (channels, note, size = null) => {
+/**
+ * @param {import('./trace.js').Channels} channels
+ * @param {string} note
+ * @param {{ width: number, height: number, supersample: number } | null} [size]
+ */
+function showTracedFrame(channels, note, size = null) {
+  const { info } = loaded();
   if (size) {
-    if (!pan.fitted) pan.zoom *= viewer.info.width / size.width;
-    Object.assign(viewer.info, size);
+    if (!pan.fitted) pan.zoom *= info.width / size.width;
+    Object.assign(info, size);
     const camera = viewer.view?.view?.camera;
     if (camera) Object.assign(camera, { width: size.width, height: size.height });
     layout();
   }
   for (const [name, texture] of Object.entries(channels)) {
-    if (texture) gpu.replace(name, texture);
+    if (texture) gpuOf().replace(name, texture);
   }
   const names = ['id', 'u', 'v', 'g', 't_emit', 'cos_i', 'pol', 'dir'];
-  for (let k = 0; k < viewer.info.lights; k += 1) names.push(`light_${k}`);
-  data.provide(names);
+  for (let k = 0; k < info.lights; k += 1) names.push(`light_${k}`);
+  dataOf().provide(names);
   frameNote = note;
   describe();
   changed();
-};
+}
 // Explore's frames from the server after the page's tracer was refused (explore.js): `note`
 // stays in the header for every frame shown.
-viewer.noteFrames = (note) => {
+/** @param {string} note */
+function noteFrames(note) {
   frameNote = note;
   describe();
-};
-viewer.showFileFrame = () => {
+}
+function showFileFrame() {
   if (!frameNote) return;
-  data.reset(data.channelUrl);
+  const d = dataOf();
+  d.reset(d.channelUrl);
   frameNote = '';
   describe();
   changed();
-};
+}
 
 // After a look control: the preset's direction, the projection's field of view.
+/** @type {L.Projection} the projection whose field of view the look has */
+let lookProjection = 'pinhole';
 function lookChanged() {
   const look = viewer.look;
+  if (!look) return;
   const range = L.PROJECTIONS[look.projection];
-  if (look.projection !== lookChanged.projection) {
+  if (look.projection !== lookProjection) {
     look.fov = range.fov;
-    lookChanged.projection = look.projection;
+    lookProjection = look.projection;
   }
   look.fov = Math.min(range.max, Math.max(range.min, look.fov));
   syncControls();
 }
-lookChanged.projection = 'pinhole';
 
 start();

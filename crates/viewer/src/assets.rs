@@ -1,8 +1,9 @@
 //! The page (HTML, CSS, JavaScript modules), embedded in the binary so that the viewer needs
-//! no files beside it and nothing from the internet.
+//! no files beside it and nothing from the internet. The page's folder also holds its type
+//! check (tsconfig.json, contract.d.ts, window.d.ts: types only), which is not served.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 17] = [
+pub const FILES: [(&str, &str, &str); 19] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -14,6 +15,8 @@ pub const FILES: [(&str, &str, &str); 17] = [
         include_str!("../page/viewer.css"),
     ),
     js("/viewer.js", include_str!("../page/viewer.js")),
+    js("/api.js", include_str!("../page/api.js")),
+    js("/dom.js", include_str!("../page/dom.js")),
     js("/controls.js", include_str!("../page/controls.js")),
     js("/data.js", include_str!("../page/data.js")),
     js("/gl.js", include_str!("../page/gl.js")),

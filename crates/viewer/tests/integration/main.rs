@@ -14,5 +14,6 @@ mod guard;
 mod keep;
 mod kernel_api;
 mod limits;
+mod page_files;
 mod server;
 mod textures;
