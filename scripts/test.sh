@@ -11,7 +11,12 @@ cd "$(dirname "$0")/.."
 # Debian's chromium package ships (/usr/lib/chromium/libvk_swiftshader.so); no GPU is needed.
 command -v chromium >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null; }
-[ -d tests/browser/node_modules/playwright-core ] || (cd tests/browser && npm ci --silent --no-audit --no-fund)
+[ -d tests/browser/node_modules/playwright-core ] && [ -x tests/browser/node_modules/.bin/tsc ] \
+    || (cd tests/browser && npm ci --silent --no-audit --no-fund)
+# The page (crates/viewer/page: ES modules with JSDoc types, the server's JSON typed in
+# contract.d.ts) is type-checked by TypeScript, pinned in the same package.json: strict, no
+# output; any type error fails the tests.
+tests/browser/node_modules/.bin/tsc -p crates/viewer/page
 # `godel render --gpu` (crates/gpu) loads libEGL at run time; without a GPU, Mesa's llvmpipe
 # renders its OpenGL ES 3 context in software (crates/gpu/tests,
 # crates/godel/tests/integration/gpu_cli.rs).
