@@ -96,3 +96,25 @@ fn the_long_scene_shows_twenty_and_more_images_many_emitted_before_t_minus_30() 
         "{imgs:?}"
     );
 }
+
+/// The stereo dome master: each eye is its own observer (`Scene::eye`), and near a fold the
+/// eyes do not see the same images: the image of the falling earth emitted around t = −1.3
+/// covers over a thousand samples for the right eye and a few dozen for the left.
+#[test]
+fn the_stereo_fisheyes_right_eye_sees_an_image_the_left_hardly_sees() {
+    let mut s = load("stereo-fisheye.toml");
+    s.set_samples(1).unwrap();
+    let image_near_t_minus_1_3 = |eye: scene::Eye| {
+        let (d, stats) = render_scene(&s.eye(eye).unwrap().unwrap());
+        assert_eq!(stats.failed + stats.step_budget, 0);
+        let earth = |r: &&datafile::PixelRecord| r.is_hit() && r.object == 0;
+        let near = |r: &&datafile::PixelRecord| (-1.6..-1.0).contains(&r.t_emit);
+        d.records.iter().filter(earth).filter(near).count()
+    };
+    let left = image_near_t_minus_1_3(scene::Eye::Left);
+    let right = image_near_t_minus_1_3(scene::Eye::Right);
+    assert!(
+        right > 1000 && right > 10 * left,
+        "left {left}, right {right}"
+    );
+}
