@@ -2,7 +2,7 @@
 // godel explore: flying, with every frame traced in this page on the GPU (the exact tracer's
 // kernel, trace.js) — no server round trip per frame. The view (`viewer.explore.view()`) is
 // the observer and camera with exactly the scene file's `[observer]` and `[camera]` fields
-// (README "Scenes"), so that a scene with them traces the frame shown; `godel-view` events
+// (docs/guide/src/scenes.md), so that a scene with them traces the frame shown; `godel-view` events
 // (and `viewer.explore.onView`) announce each change.
 //
 // The kernel's uniforms are the view's fields as they are (crates/gpu/src/input.rs,
@@ -632,10 +632,11 @@ export async function startFly(viewer, explore, map, status) {
     }
   }
 
-  // The tracer here disagrees with the CPU: this page traces no more, the server does.
+  // The tracer here disagrees with the CPU: this page traces no more, the server does. The
+  // reason names the renderer ("the GPU (…) disagrees with the CPU exact tracer on …").
   /** @param {string} reason */
   function refuse(reason) {
-    frames.refused = `the GPU renderer ${renderer} was refused: ${reason}`;
+    frames.refused = `the page's tracer was refused: ${reason}`;
     controls.keys.clear();
     $('fly-panel').hidden = true;
     explore.traceOnServer(`${frames.refused}; frames traced on the server`);

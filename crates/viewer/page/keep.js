@@ -1,5 +1,5 @@
 // @ts-check
-// godel explore: keeping what one flies (README "Exploring"; the server's side is
+// godel explore: keeping what one flies (docs/guide/src/explore.md; the server's side is
 // crates/viewer/src/keep_routes.rs). Everything here reads the view on screen only through
 // `viewer.explore.view()`: the scene file's observer fields and camera.
 //

@@ -43,12 +43,12 @@ fn a_kernel_that_disagrees_with_the_cpu_is_refused_and_the_server_traces() {
             && reason.contains("GPU failed, CPU escaped"),
         "{reason}"
     );
-    // The header names the renderer refused and why, and who traces now.
+    // The header says the page's tracer was refused, why (naming its renderer), and who
+    // traces now.
     let header = seen["header"].as_str().unwrap();
     assert!(
-        header.contains("the GPU renderer ")
-            && header.contains(" was refused: ")
-            && header.contains(reason)
+        header.contains(&format!("the page's tracer was refused: {reason}"))
+            && reason.starts_with("the GPU (")
             && header.contains("frames traced on the server"),
         "{header}"
     );
