@@ -138,3 +138,32 @@ pub fn write_png(path: &Path, seed: u8) {
     .save(path)
     .unwrap();
 }
+
+/// A view at the origin at rest, looking along x with z up, through an 8×4 camera of `kind`
+/// with the fields of view `fov` (`fov_deg`, or `h_fov_deg` and `v_fov_deg` for a panorama).
+pub fn view_at_origin(kind: &str, fov: [Option<f64>; 3]) -> viewer::view::View {
+    use viewer::view::{CameraView, Position, Velocity, View};
+    View {
+        time: 0.0,
+        position: Position {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        },
+        velocity: Velocity {
+            speed: 0.0,
+            direction: [1.0, 0.0, 0.0],
+        },
+        forward: [1.0, 0.0, 0.0],
+        up: [0.0, 0.0, 1.0],
+        camera: CameraView {
+            kind: kind.into(),
+            fov_deg: fov[0],
+            h_fov_deg: fov[1],
+            v_fov_deg: fov[2],
+            width: 8,
+            height: 4,
+            samples: 1,
+        },
+    }
+}

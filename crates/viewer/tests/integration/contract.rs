@@ -23,7 +23,7 @@ use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 use viewer::keep::{ExactJob, Keeper, Recording, Rendered};
 use viewer::kernel_routes::KernelInput;
 use viewer::page_check::{CheckedSample, Verdict};
-use viewer::view::{CameraView, Position, Velocity, View};
+use viewer::view::{Velocity, View};
 use viewer::{Access, ViewerOptions, ViewerState, WorkLimit};
 
 use crate::common::{self, get, post};
@@ -153,29 +153,7 @@ impl Keeper for Keep {
     }
     /// A panorama (its two fields of view): the views sent are pinholes (theirs).
     fn own_view(&self) -> View {
-        View {
-            time: 0.0,
-            position: Position {
-                x: 0.0,
-                y: 0.0,
-                z: 0.0,
-            },
-            velocity: Velocity {
-                speed: 0.0,
-                direction: [1.0, 0.0, 0.0],
-            },
-            forward: [1.0, 0.0, 0.0],
-            up: [0.0, 0.0, 1.0],
-            camera: CameraView {
-                kind: "panorama".into(),
-                fov_deg: None,
-                h_fov_deg: Some(220.0),
-                v_fov_deg: Some(25.0),
-                width: 8,
-                height: 4,
-                samples: 1,
-            },
-        }
+        common::view_at_origin("panorama", [None, Some(220.0), Some(25.0)])
     }
     fn check(&self, _view: &View) -> Result<(), String> {
         Ok(())

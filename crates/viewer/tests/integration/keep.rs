@@ -13,7 +13,7 @@ use axum::http::{Request, StatusCode};
 use http_body_util::BodyExt;
 use tower::ServiceExt;
 use viewer::keep::{ExactJob, Keeper, Recording, Rendered, MAX_KEYFRAMES};
-use viewer::view::{CameraView, Position, Velocity, View};
+use viewer::view::View;
 use viewer::{Access, WorkLimit};
 
 use crate::common;
@@ -28,29 +28,7 @@ struct Fake {
 }
 
 fn own() -> View {
-    View {
-        time: 0.0,
-        position: Position {
-            x: 0.0,
-            y: 0.0,
-            z: 0.0,
-        },
-        velocity: Velocity {
-            speed: 0.0,
-            direction: [1.0, 0.0, 0.0],
-        },
-        forward: [1.0, 0.0, 0.0],
-        up: [0.0, 0.0, 1.0],
-        camera: CameraView {
-            kind: "pinhole".into(),
-            fov_deg: Some(60.0),
-            h_fov_deg: None,
-            v_fov_deg: None,
-            width: 8,
-            height: 4,
-            samples: 1,
-        },
-    }
+    common::view_at_origin("pinhole", [Some(60.0), None, None])
 }
 
 impl Keeper for Fake {
