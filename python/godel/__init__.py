@@ -7,6 +7,8 @@ command line, so that the numbers are the command line's, bit for bit:
 - :func:`read` reads a data file any ``godel`` command wrote;
 - :class:`Image`: the channels as numpy arrays, :meth:`Image.rgb` / :meth:`Image.hdr`
   shade it as ``godel shade`` does, :meth:`Image.save` writes the data file;
+- :class:`StereoImage`: a stereo scene's two eyes (``img.eye("left")``), their picture in
+  the pair's layout;
 - :func:`geodesic`: one light ray or massive particle (``godel geodesic``);
 - :func:`connect`: every light ray from a source at rest to an event (``godel connect``).
 
@@ -25,8 +27,9 @@ import numpy as np
 
 from . import _godel, _progress
 from ._image import Image
+from ._stereo import Stereo, StereoImage
 
-__all__ = ["Image", "connect", "geodesic", "read", "render"]
+__all__ = ["Image", "Stereo", "StereoImage", "connect", "geodesic", "read", "render"]
 
 SceneLike = Union[str, "os.PathLike[str]", None]
 
@@ -60,6 +63,11 @@ def render(
     (default: one per core; at most 8 per core). The records are those ``godel render``
     writes for the same scene and overrides, bit for bit, whatever the thread count.
 
+    A stereo scene (``[camera] stereo``) traces both eyes, as ``godel render`` does, and
+    returns a :class:`StereoImage`: ``img.eye("left")`` and ``img.eye("right")`` are the
+    images of its ``NAME.left.exr`` and ``NAME.right.exr``, ``img.rgb()`` the picture of
+    both in the pair's layout; ``img["g"]`` raises ``ValueError`` (choose an eye).
+
     ``progress`` shows a progress bar (tqdm's when installed, in Jupyter too, else a plain
     line on standard error). Ctrl-C (or a notebook's interrupt) stops the render within one
     tile per thread and raises ``KeyboardInterrupt``. A bad scene or value raises
@@ -85,8 +93,10 @@ def render(
         if bar is not None:
             bar.update_to(job.done)
             bar.close()
-    data, summary = job.result()
-    return Image(data, summary)
+    eyes = [Image(data, summary) for data, summary in job.result()]
+    if job.stereo is None:
+        return eyes[0]
+    return StereoImage(eyes[0], eyes[1], Stereo(*job.stereo), job.scene)
 
 
 def read(path: Union[str, "os.PathLike[str]"]) -> Image:

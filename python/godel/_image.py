@@ -12,6 +12,9 @@ from . import _godel
 #: Types of the channels that are not float32.
 _DTYPES = {"object": np.int32, "status": np.uint8}
 
+#: The eyes of a stereo pair, as ``Image.eye`` names them.
+EYES = ("left", "right")
+
 
 class Image:
     """A traced image: what ``godel render`` writes into its data file, in memory.
@@ -31,7 +34,14 @@ class Image:
       ``view_*`` where nothing was traced.
 
     ``image["g"]`` is ``image.channels["g"]``. Row 0 is the top row.
+
+    A stereo scene renders as a pair (``godel.StereoImage``): ``image.eye("left")`` and
+    ``image.eye("right")`` are then each eye's image. The data file of one eye
+    (``NAME.left.exr``) reads as one image, as any data file.
     """
+
+    #: A stereo pair's ``[camera] stereo`` (``godel.Stereo``); None for one picture.
+    stereo = None
 
     def __init__(self, data: _godel.Data, summary: str = "") -> None:
         self._data = data
@@ -53,6 +63,14 @@ class Image:
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.channels[name]
+
+    def eye(self, name: str) -> "Image":
+        """One eye of a stereo pair (``"left"`` or ``"right"``): this image is one picture,
+        so it raises ``ValueError``."""
+        raise ValueError(
+            f"eye: this image is one picture, not a stereo pair (a scene with [camera] stereo "
+            f"renders both eyes); no eye {name!r}"
+        )
 
     def __contains__(self, name: object) -> bool:
         return name in self.channels

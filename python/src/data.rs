@@ -24,11 +24,16 @@ impl Data {
     pub fn new(data: DataFile) -> Data {
         Data { data }
     }
+
+    /// The traced image.
+    pub fn data(&self) -> &DataFile {
+        &self.data
+    }
 }
 
 /// The settings of a settings file given as JSON text (a Python dict), over the data file's
 /// defaults; errors name the field as `godel shade` does.
-fn settings(data: &DataFile, json: &str) -> Result<ShadeSettings, ShadeError> {
+pub fn settings(data: &DataFile, json: &str) -> Result<ShadeSettings, ShadeError> {
     let invalid = |field: String, message: String| ShadeError::Invalid { field, message };
     let partial: toml::Table =
         serde_json::from_str(json).map_err(|e| invalid(String::new(), e.to_string()))?;

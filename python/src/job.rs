@@ -9,6 +9,10 @@
 //! `godel render`, so the records are the same, bit for bit. The render's progress consumer
 //! counts the pixels done and reports a cancellation, which the driver honours between
 //! tiles: a cancelled render stops within one tile per thread.
+//!
+//! A stereo scene (`[camera] stereo`) traces its two eyes one after the other, each eye's
+//! scene made by `Scene::eye` as `godel render` makes it, so each eye's records are those of
+//! that eye's data file (`NAME.left.exr`, `NAME.right.exr`).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -25,8 +29,9 @@ use scene::overrides::{load, LoadError, Overrides, SceneSource, Setting};
 use crate::data::Data;
 use crate::errors::{argument_error, file_argument, io_error, value_error};
 
-/// What the render thread hands back: the traced image and the summary line, or why not.
-type Outcome = Result<(datafile::DataFile, String), String>;
+/// What the render thread hands back: the traced image and its summary line (one per eye, left
+/// first, for a stereo pair), or why not.
+type Outcome = Result<Vec<(datafile::DataFile, String)>, String>;
 
 /// Shared between the Python object and the render thread.
 #[derive(Default)]
@@ -62,6 +67,11 @@ pub struct RenderJob {
     shared: Arc<Shared>,
     name: String,
     total: u64,
+    /// The scene as rendered, overrides included (TOML text).
+    scene_text: String,
+    /// A stereo pair's separation (units of a), layout name and convergence; `None` for one
+    /// picture.
+    stereo: Option<(f64, &'static str, Option<f64>)>,
 }
 
 /// A scene refused with its overrides, as `godel render` says it, the overrides named by
@@ -126,22 +136,51 @@ impl RenderJob {
         // Sized against memory before any work, as on the command line; a bad
         // GODEL_MEMORY_BUDGET is named as such, not as the scene's camera.
         datafile::memory::budget().map_err(value_error)?;
-        let total = plan_pixels(&scene, &Plan::All);
+        let pixels = plan_pixels(&scene, &Plan::All);
         let what = "a data file of this width × height × samples";
-        datafile::memory::check_writing(what, total, scene.lights.len())
+        datafile::memory::check_writing(what, pixels, scene.lights.len())
             .map_err(|e| value_error(format!("{file}: camera: {e}")))?;
+        let pair = scene.stereo.filter(scene::Stereo::is_pair);
+        let stereo = pair.map(|s| (s.separation, s.layout.name(), s.convergence));
+        let (name, scene_text) = (scene.name.clone(), scene.source_text.clone());
+        // One scene per picture: the scene itself, or each eye's (left first), as `godel
+        // render` traces them.
+        let pictures = match pair {
+            None => vec![scene],
+            Some(_) => scene::Eye::BOTH
+                .into_iter()
+                .map(|eye| match scene.eye(eye) {
+                    Some(seen) => seen.map_err(value_error),
+                    None => Err(PyRuntimeError::new_err("internal error: not a stereo pair")),
+                })
+                .collect::<PyResult<Vec<_>>>()?,
+        };
+        let total = pictures
+            .iter()
+            .map(|seen| plan_pixels(seen, &Plan::All))
+            .sum();
         let shared = Arc::new(Shared::default());
         let worker = Arc::clone(&shared);
-        let name = scene.name.clone();
         std::thread::Builder::new()
             .name(format!("godel render {name}"))
             .spawn(move || {
                 let counter = Counter(Arc::clone(&worker));
                 let traced = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    pool.install(|| render(&scene, &counter))
+                    pool.install(|| {
+                        let mut done = Vec::with_capacity(pictures.len());
+                        for seen in &pictures {
+                            // A cancelled pair does not start its second eye.
+                            if counter.cancelled() {
+                                break;
+                            }
+                            let (data, stats) = render(seen, &counter)?;
+                            done.push((data, stats.summary()));
+                        }
+                        Ok::<_, render::driver::RenderError>(done)
+                    })
                 }));
                 let outcome = match traced {
-                    Ok(Ok((data, stats))) => Ok((data, stats.summary())),
+                    Ok(Ok(done)) => Ok(done),
                     Ok(Err(e)) => Err(e.to_string()),
                     Err(_) => Err("internal error: the render stopped unexpectedly".into()),
                 };
@@ -153,6 +192,8 @@ impl RenderJob {
             shared,
             name,
             total,
+            scene_text,
+            stereo,
         })
     }
 
@@ -162,7 +203,21 @@ impl RenderJob {
         &self.name
     }
 
-    /// Rays to trace in all (pixels × samples).
+    /// The scene as rendered, overrides included (TOML text): for a stereo pair, the pair's
+    /// (each eye's image holds its eye's scene).
+    #[getter]
+    fn scene(&self) -> &str {
+        &self.scene_text
+    }
+
+    /// `(separation, layout, convergence)` of a stereo pair (lengths in units of a,
+    /// convergence None for parallel eyes); None for a scene of one picture.
+    #[getter]
+    fn stereo(&self) -> Option<(f64, &'static str, Option<f64>)> {
+        self.stereo
+    }
+
+    /// Rays to trace in all (pixels × samples; both eyes' for a stereo pair).
     #[getter]
     fn total(&self) -> u64 {
         self.total
@@ -207,14 +262,17 @@ impl RenderJob {
         self.shared.cancel.store(true, Ordering::Relaxed);
     }
 
-    /// The traced image and the summary line, once the render has ended (see `wait`);
-    /// raises if it was cancelled or failed.
-    fn result(&self) -> PyResult<(Data, String)> {
+    /// The traced images and their summary lines (one; two for a stereo pair, left eye
+    /// first), once the render has ended (see `wait`); raises if it was cancelled or failed.
+    fn result(&self) -> PyResult<Vec<(Data, String)>> {
         if self.shared.cancel.load(Ordering::Relaxed) {
             return Err(PyRuntimeError::new_err("the render was cancelled"));
         }
         match self.shared.outcome().take() {
-            Some(Ok((data, summary))) => Ok((Data::new(data), summary)),
+            Some(Ok(done)) => Ok(done
+                .into_iter()
+                .map(|(data, summary)| (Data::new(data), summary))
+                .collect()),
             Some(Err(message)) => Err(value_error(message)),
             None => Err(PyRuntimeError::new_err("the render has not ended yet")),
         }

@@ -7,6 +7,7 @@
 //!   render`), with progress and cancellation between tiles;
 //! - [`data`]: `Data`, a traced image (`datafile::DataFile`): its channels as the file stores
 //!   them, shading as `godel shade`, reading and writing the data file;
+//! - [`stereo`]: `shade_pair`, a stereo pair's picture in its layout, as `godel shade`;
 //! - [`rays`]: `geodesic` and `connect` (`spacetime::curve`, `spacetime::connection`, as
 //!   `godel geodesic` and `godel connect`), computed without the GIL;
 //! - [`errors`]: the command line's messages as Python exceptions.
@@ -17,6 +18,7 @@ mod data;
 mod errors;
 mod job;
 mod rays;
+mod stereo;
 
 /// The native half of `godel`: use the functions of the `godel` package instead.
 #[pymodule]
@@ -25,5 +27,6 @@ fn _godel(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<data::Data>()?;
     m.add_function(wrap_pyfunction!(rays::geodesic, m)?)?;
     m.add_function(wrap_pyfunction!(rays::connect, m)?)?;
+    m.add_function(wrap_pyfunction!(stereo::shade_pair, m)?)?;
     Ok(())
 }
