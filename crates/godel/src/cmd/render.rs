@@ -17,6 +17,7 @@ use crate::out_pair::OutPair;
 use crate::output::{prepare, write_data_and_preview};
 use crate::progress::{progress_bar, Bar};
 use clap::Args;
+use datafile::DataFile;
 use render::driver::{plan_pixels, render_plan};
 use render::part::{fingerprint, write_part};
 use render::plan::{Part, Plan};
@@ -194,10 +195,12 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         .scene
         .as_ref()
         .map_or("built-in scene".into(), |p| p.display().to_string());
+    // A stereo pair holds both eyes' data files until they are written together.
+    let files = if pair.is_some() { 2 } else { 1 };
     crate::memory::check_writing(
         &format!("{file}: camera"),
         "a data file of this width × height × samples",
-        plan_pixels(&scene, &plan),
+        files * plan_pixels(&scene, &plan),
         scene.lights.len(),
     )?;
     if let Some(stereo) = pair {
@@ -274,17 +277,8 @@ fn render_stereo(
             .eye(eye)
             .ok_or_else(|| anyhow::anyhow!("{}: not a stereo pair", scene.name))??;
         let (data, summary) = if args.gpu || scene.trace.gpu {
-            let asked_by = match args.gpu {
-                true => "--gpu".to_string(),
-                false => gpu_in_scene(scene.source_path.as_deref()),
-            };
-            let camera = seen.sample_camera();
-            let pixels = u64::from(camera.width()) * u64::from(camera.height());
-            let bar = progress_bar(&seen, pixels, args.quiet);
-            let done = trace_on_gpu(&seen, &Bar(bar.clone()), asked_by)?;
-            bar.finish_and_clear();
-            let summary = format!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
-            (done.data, summary)
+            // The scene's own field asks for the GPU in both eyes' scenes.
+            gpu_trace(&seen, args)?
         } else {
             let bar = progress_bar(&seen, 0, args.quiet);
             let traced = pool.install(|| render_plan(&seen, &Plan::All, &Bar(bar.clone())));
@@ -323,6 +317,15 @@ const GPU_ONE_PROCESS: &str =
 
 /// `godel render --gpu`: the whole image traced by the GPU kernel, the same files written.
 fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> anyhow::Result<()> {
+    let (data, summary) = gpu_trace(scene, args)?;
+    let (exr, png) = target.files(&scene.name);
+    write_data_and_preview(scene, &data, &exr, &png, args.grid)?;
+    eprintln!("{summary}");
+    Ok(())
+}
+
+/// The GPU kernel's trace of `scene` with its progress bar, and its summary line.
+fn gpu_trace(scene: &scene::Scene, args: &RenderArgs) -> anyhow::Result<(DataFile, String)> {
     let camera = scene.sample_camera();
     let pixels = u64::from(camera.width()) * u64::from(camera.height());
     let bar = progress_bar(scene, pixels, args.quiet);
@@ -332,10 +335,8 @@ fn render_on_gpu(scene: &scene::Scene, args: &RenderArgs, target: &OutPair) -> a
     };
     let done = trace_on_gpu(scene, &Bar(bar.clone()), asked_by)?;
     bar.finish_and_clear();
-    let (exr, png) = target.files(&scene.name);
-    write_data_and_preview(scene, &done.data, &exr, &png, args.grid)?;
-    eprintln!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
-    Ok(())
+    let summary = format!("{} (on the GPU: {})", done.stats.summary(), done.renderer);
+    Ok((done.data, summary))
 }
 
 /// `godel render` under MPI: batches of tiles as jobs of the generic queue
