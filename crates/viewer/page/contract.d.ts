@@ -33,6 +33,19 @@ export interface Info {
   polarization: boolean;
   observer_time: number;
   defaults: ShadeSettings;
+  stereo: StereoInfo | null;
+}
+
+/** A stereo layout: the pair's pictures side by side, one over the other, or an anaglyph. */
+export type StereoLayout = 'side-by-side' | 'over-under' | 'anaglyph';
+
+/** `Info.stereo`: the file is this eye of a stereo pair in this layout; `partner` whether
+ * the other eye's file is beside it (then `POST /api/stereo/png?layout=L`, settings as the
+ * body, answers both eyes' picture as a PNG). */
+export interface StereoInfo {
+  eye: 'left' | 'right';
+  layout: StereoLayout;
+  partner: boolean;
 }
 
 /** A record's status, as the server names it. */
@@ -59,7 +72,7 @@ export interface PixelRecord {
 }
 
 // ---- the shading settings: the `shade` crate's ShadeSettings (crates/shade/src/settings.rs),
-// sent back as the body of /api/png, /api/overlay, /api/keyframe and in the look routes'
+// sent back as the body of /api/png, /api/stereo/png, /api/overlay, /api/keyframe and in the look routes'
 
 export type ShaderKind = 'texture' | 'frequency' | 'time' | 'light' | 'polarization';
 

@@ -3,9 +3,10 @@
 //! | route | answer |
 //! | --- | --- |
 //! | `GET /`, `/viewer.js`, `/viewer.css` | the page ([`crate::assets`]) |
-//! | `GET /api/info` | file, size, objects, light count, default settings (JSON) |
+//! | `GET /api/info` | file, size, objects, light count, default settings, stereo eye (JSON) |
 //! | `POST /api/image` (settings JSON) | the shaded picture as raw RGBA; `X-Image-Width`, `X-Image-Height`, `Server-Timing` |
 //! | `POST /api/png` (settings JSON) | the shaded picture as a PNG download |
+//! | `POST /api/stereo/png?layout=L` (settings JSON) | of one eye of a stereo pair, both eyes shaded with those settings in layout `L` (`side-by-side`, `over-under`, `anaglyph`; default the pair's; `shade::stereo::compose`) as a PNG; 404 without the other eye |
 //! | `POST /api/overlay` (settings JSON) | the overlay layer (orientation marks, legend, labels; `shade::layer`) of the picture as an RGBA PNG, 204 when there is nothing to draw |
 //! | `POST /api/keyframe?frame=N` (settings JSON) | a sequence-script keyframe (TOML) download |
 //! | `GET /api/pixel?col=C&row=R` | that pixel's record (JSON) |
@@ -25,7 +26,7 @@ use std::time::Instant;
 use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{DefaultBodyLimit, Query, State};
-use axum::http::{header, HeaderName, HeaderValue};
+use axum::http::{header, HeaderName, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{middleware, Json, Router};
@@ -37,6 +38,7 @@ use crate::encode;
 use crate::guard::{Access, MAX_BODY_BYTES};
 use crate::responses::{attachment, overlay_png, png_download, rgba_picture, toml_download};
 use crate::state::ViewerState;
+use scene::{Eye, Layout};
 use shade::{ShadeSettings, Shading};
 
 /// The server's routes over one loaded data file, answering requests that `access` allows.
@@ -65,6 +67,7 @@ pub fn routes(state: Arc<ViewerState>) -> Router {
         .route("/api/info", get(info))
         .route("/api/image", post(image))
         .route("/api/png", post(png))
+        .route("/api/stereo/png", post(stereo_png))
         .route("/api/overlay", post(overlay))
         .route("/api/keyframe", post(keyframe))
         .route("/api/pixel", get(pixel))
@@ -148,6 +151,78 @@ async fn png(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Respo
     })
     .await??;
     Ok(png_download(bytes, disposition))
+}
+
+/// `?layout=side-by-side|over-under|anaglyph` (default: the pair's).
+#[derive(Deserialize)]
+struct StereoQuery {
+    layout: Option<LayoutName>,
+}
+
+/// A stereo layout as the query names it.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum LayoutName {
+    SideBySide,
+    OverUnder,
+    Anaglyph,
+}
+
+impl From<LayoutName> for Layout {
+    fn from(name: LayoutName) -> Layout {
+        match name {
+            LayoutName::SideBySide => Layout::SideBySide,
+            LayoutName::OverUnder => Layout::OverUnder,
+            LayoutName::Anaglyph => Layout::Anaglyph,
+        }
+    }
+}
+
+/// Both eyes of a stereo pair shaded with one set of settings and put into one picture, as
+/// `godel shade NAME.left.exr` does; 404 for a mono file or without the other eye's file.
+async fn stereo_png(
+    State(state): State<Arc<ViewerState>>,
+    query: Result<Query<StereoQuery>, QueryRejection>,
+    body: Bytes,
+) -> Result<Response, ApiError> {
+    let q = query_value("stereo", query)?;
+    let stereo = state.stereo().ok_or_else(|| {
+        ApiError::new(
+            StatusCode::NOT_FOUND,
+            "this data file is not one eye of a stereo pair",
+        )
+    })?;
+    if stereo.partner.is_none() {
+        return Err(ApiError::new(
+            StatusCode::NOT_FOUND,
+            format!(
+                "the other eye's data file of this stereo pair was not beside the {} eye's",
+                stereo.eye.name()
+            ),
+        ));
+    }
+    let layout = q.layout.map_or(stereo.layout, Layout::from);
+    let bytes = blocking(&state.clone(), move || {
+        let stereo = state.stereo().expect("checked above");
+        let partner = stereo.partner.as_deref().expect("checked above");
+        let (settings, ours) = parse_settings(&state, &body)?;
+        let theirs = partner
+            .prepare(&settings)
+            .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
+        let (mine, other) = (state.shade(&ours), partner.shade(&theirs));
+        let (left, right) = match stereo.eye {
+            Eye::Left => (&mine, &other),
+            Eye::Right => (&other, &mine),
+        };
+        encode::png(&shade::stereo::compose(layout, left, right))
+            .map_err(|e| ApiError::internal(format!("encoding PNG: {e}")))
+    })
+    .await??;
+    let headers = [
+        (header::CONTENT_TYPE, HeaderValue::from_static("image/png")),
+        (header::CACHE_CONTROL, HeaderValue::from_static("no-store")),
+    ];
+    Ok((headers, bytes).into_response())
 }
 
 async fn overlay(State(state): State<Arc<ViewerState>>, body: Bytes) -> Result<Response, ApiError> {

@@ -6,6 +6,11 @@
 //! Image textures (the embedded scene's and those a client names) are read only from the data
 //! file's folder and the folders named with `--textures` ([`shade::TextureSource::within`]);
 //! the embedded scene's are loaded once, here.
+//!
+//! One eye's data file of a stereo pair (`NAME.left.exr`) is loaded with the other eye's
+//! beside it ([`shade::stereo::partner`]), as a state of its own ([`Stereo::partner`]), so
+//! that both eyes shade with one set of settings; without that file the one eye is served
+//! alone, and `/api/info` says so.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
@@ -43,6 +48,9 @@ pub enum LoadError {
         #[source]
         source: shade::ShadeError,
     },
+    /// The other eye's file of a stereo pair is there but does not read or is not that eye.
+    #[error(transparent)]
+    Partner(shade::stereo::PartnerError),
 }
 
 /// How to serve a data file beyond the file itself.
@@ -79,6 +87,28 @@ pub struct ViewerState {
     /// Every shading channel of `data`, copied once on the first picture shaded: what each
     /// picture is shaded from (a state that only answers hovers never makes it).
     channels: OnceLock<Channels>,
+    /// Of one eye's data file of a stereo pair: which, and the other eye.
+    stereo: Option<Stereo>,
+}
+
+/// One eye of a stereo pair being viewed, and the other when its file was beside it.
+pub struct Stereo {
+    /// Which eye the viewed file is.
+    pub eye: scene::Eye,
+    /// The pair's layout.
+    pub layout: scene::Layout,
+    /// The other eye's data file, loaded as the viewed one was (textures from the same
+    /// folders); `None` when its file was missing.
+    pub partner: Option<Box<ViewerState>>,
+}
+
+/// `stereo` of [`Info`]: the viewed file is this eye of a pair in this layout; `partner`
+/// whether the other eye's file was found (both eyes can be shaded).
+#[derive(Clone, Debug, Serialize)]
+pub struct StereoInfo {
+    pub eye: &'static str,
+    pub layout: &'static str,
+    pub partner: bool,
 }
 
 /// One pixel's record as the page shows it.
@@ -129,6 +159,8 @@ pub struct Info {
     pub polarization: bool,
     pub observer_time: f64,
     pub defaults: ShadeSettings,
+    /// One eye of a stereo pair, `null` for a mono file.
+    pub stereo: Option<StereoInfo>,
 }
 
 impl ViewerState {
@@ -137,10 +169,40 @@ impl ViewerState {
         ViewerState::load_with(path, ViewerOptions::default())
     }
 
-    /// [`ViewerState::load`] with `options`.
+    /// [`ViewerState::load`] with `options`; one eye's file of a stereo pair with the other
+    /// eye's beside it, when that is there (a file there that is not the other eye of the
+    /// pair is an error).
     pub fn load_with(path: &Path, options: ViewerOptions) -> Result<ViewerState, LoadError> {
         let data = DataFile::read(path)?;
-        ViewerState::new_with(path, data, options)
+        let found = shade::stereo::partner(path, &data);
+        let own = ViewerOptions {
+            texture_folders: options.texture_folders.clone(),
+            work: options.work.clone(),
+        };
+        let stereo = match found {
+            Ok(None) => None,
+            Ok(Some(p)) => Some(Stereo {
+                eye: p.eye,
+                layout: p.layout,
+                partner: Some(Box::new(ViewerState::new_with(&p.path, p.data, own)?)),
+            }),
+            Err(e) if e.is_missing() => {
+                // `partner` read the mark before it looked for the file.
+                let mark = scene::stereo_from_str(&data.header.scene_text, "")
+                    .ok()
+                    .flatten();
+                mark.and_then(|s| s.eye.map(|eye| (eye, s.layout)))
+                    .map(|(eye, layout)| Stereo {
+                        eye,
+                        layout,
+                        partner: None,
+                    })
+            }
+            Err(e) => return Err(LoadError::Partner(e)),
+        };
+        let mut state = ViewerState::new_with(path, data, options)?;
+        state.stereo = stereo;
+        Ok(state)
     }
 
     /// Prepares an already-read data file (`path` names it in messages and gives its folder)
@@ -181,7 +243,13 @@ impl ViewerState {
             work: options.work,
             camera,
             channels: OnceLock::new(),
+            stereo: None,
         })
+    }
+
+    /// Of one eye's data file of a stereo pair: which, and the other eye when loaded.
+    pub fn stereo(&self) -> Option<&Stereo> {
+        self.stereo.as_ref()
     }
 
     /// Every shading channel of the data file, copied on first use.
@@ -229,6 +297,11 @@ impl ViewerState {
             polarization: self.data.polarization,
             observer_time: h.observer_time,
             defaults: self.defaults.clone(),
+            stereo: self.stereo.as_ref().map(|s| StereoInfo {
+                eye: s.eye.name(),
+                layout: s.layout.name(),
+                partner: s.partner.is_some(),
+            }),
         }
     }
 

@@ -3,8 +3,8 @@
 //! contract gives it (every field declared, none missing, each of its type), every body built
 //! to a type of the contract is accepted, and every field the contract declares is seen in
 //! some answer or accepted body. A field renamed, added or dropped on either side fails here.
-//! The routes run over the data files of the other tests, a stand-in explore source (the
-//! real map and light rays of the test scene) and a stand-in keeper.
+//! The routes run over the data files of the other tests (a stereo pair's too), a stand-in
+//! explore source (the real map and light rays of the test scene) and a stand-in keeper.
 
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
@@ -228,6 +228,25 @@ async fn viewing(c: &Contract) {
     beside
         .write("/api/png", "ShadeSettings", &settings, None)
         .await;
+
+    // One eye of a stereo pair, the other eye's file beside it.
+    let pair = tempfile::tempdir().unwrap();
+    let eye = Api {
+        app: viewer::router(
+            Arc::new(ViewerState::load(&crate::stereo::pair(pair.path())).unwrap()),
+            Access::local(common::PORT),
+        ),
+        contract: c,
+    };
+    let stereo = eye.read("/api/info", "Info").await;
+    assert_eq!(stereo["stereo"]["partner"], true);
+    eye.write(
+        "/api/stereo/png?layout=anaglyph",
+        "ShadeSettings",
+        &stereo["defaults"],
+        None,
+    )
+    .await;
 
     // A full sphere with a light, a uniform texture and an image; then a checker and a
     // gradient; then a pinhole camera.

@@ -16,4 +16,5 @@ mod kernel_api;
 mod limits;
 mod page_files;
 mod server;
+mod stereo;
 mod textures;
