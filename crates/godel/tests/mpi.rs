@@ -1,7 +1,7 @@
 //! `godel render` under `mpirun` (cargo feature `mpi`; needs OpenMPI, which
 //! scripts/test.sh installs when missing): 2 ranks write the very bytes of a
-//! single-process run (a render, a 3-frame sequence, and a fly-through keeping its data
-//! files), a rank that fails ends the job non-zero with its rank named, and a rank killed
+//! single-process run (a render, a 3-frame sequence, a fly-through keeping its data
+//! files, and a stereo fly-through), a rank that fails ends the job non-zero with its rank named, and a rank killed
 //! while tracing ends the job non-zero with nothing written.
 #![cfg(feature = "mpi")]
 
@@ -135,12 +135,12 @@ fn a_rank_with_another_scene_fails_the_job_and_is_named() {
     assert!(!dir.join("ranks.exr").exists());
 }
 
-/// Runs the 3-frame sequence whose script after `[trace]` is `trace` once in one process
-/// (into `one/`) and once on 2 ranks (into `two/`), rank 0 only serving the queue so that
-/// every frame comes from rank 1; asserts both runs wrote the same file names with the same
-/// bytes and returns the names.
-fn sequence_alone_and_on_two_ranks(dir: &Path, trace: &str) -> Vec<String> {
-    write_scene(dir, "fall.toml", &scene_text(6.0));
+/// Runs the 3-frame sequence of the scene `scene` whose script after `[trace]` is `trace`
+/// once in one process (into `one/`) and once on 2 ranks (into `two/`), rank 0 only serving
+/// the queue so that every frame comes from rank 1; asserts both runs wrote the same file
+/// names with the same bytes and returns the names.
+fn sequence_alone_and_on_two_ranks(dir: &Path, scene: &str, trace: &str) -> Vec<String> {
+    write_scene(dir, "fall.toml", scene);
     let script = |out: &str| {
         let text = format!(
             "output = \"{out}\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fall.toml\"\n{trace}"
@@ -193,7 +193,11 @@ fn sequence_alone_and_on_two_ranks(dir: &Path, trace: &str) -> Vec<String> {
 fn two_ranks_write_the_frames_of_one_process() {
     let tmp = tempfile::tempdir().unwrap();
     // Observer time advancing, so each frame is traced.
-    let names = sequence_alone_and_on_two_ranks(tmp.path(), "observer_time = [0.0, 1.5]\n");
+    let names = sequence_alone_and_on_two_ranks(
+        tmp.path(),
+        &scene_text(6.0),
+        "observer_time = [0.0, 1.5]\n",
+    );
     assert_eq!(names.len(), 3, "{names:?}");
     // The frames differ from each other: the ball moved, so each frame was really made.
     let frame = |i: usize| std::fs::read(tmp.path().join(format!("one/frame_{i:04}.png"))).unwrap();
@@ -206,6 +210,7 @@ fn two_ranks_write_the_frames_and_data_files_of_one_process() {
     // A fly-through keeping each frame's data file: the observer moves and turns.
     let names = sequence_alone_and_on_two_ranks(
         tmp.path(),
+        &scene_text(6.0),
         "keep_data = true\n[[keyframe]]\nframe = 0\n[[keyframe]]\nframe = 2\n\
          [keyframe.observer]\ntime = 1.0\nposition = { x = 0.3, y = 0.1, z = 0.0 }\n\
          forward = [0, 1, 0]\n",
@@ -216,6 +221,27 @@ fn two_ranks_write_the_frames_and_data_files_of_one_process() {
         data(0) != data(2),
         "the observer moved between frames 0 and 2"
     );
+}
+
+/// A stereo fly-through (issue 37) keeping both eyes' data files: each rank makes whole
+/// frames, both eyes, so 2 ranks write the very files of one process.
+#[test]
+fn two_ranks_write_the_stereo_frames_of_one_process() {
+    let tmp = tempfile::tempdir().unwrap();
+    let stereo = scene_text(6.0).replace(
+        "[camera]\n",
+        "[camera]\nstereo = { separation = 0.2, layout = \"over-under\" }\n",
+    );
+    let names = sequence_alone_and_on_two_ranks(
+        tmp.path(),
+        &stereo,
+        "keep_data = true\n[[keyframe]]\nframe = 0\n[[keyframe]]\nframe = 2\n\
+         [keyframe.observer]\ntime = 1.0\nposition = { x = 0.3, y = 0.1, z = 0.0 }\n",
+    );
+    let expected: Vec<String> = (0..3)
+        .flat_map(|i| ["left.exr", "png", "right.exr"].map(|ext| format!("frame_{i:04}.{ext}")))
+        .collect();
+    assert_eq!(names, expected);
 }
 
 /// Bound on every wait below; the job itself needs seconds.

@@ -5,6 +5,14 @@
 //! `[trace] keep_data = true` each frame's data file `frame_NNNN.exr` is written together
 //! with its picture (both staged, then renamed one right after the other).
 //!
+//! Stereo: when the traced scene is a stereo pair (`[camera] stereo`), each frame traces the
+//! two eyes of that frame's scene (the keyframes move the observer, the eyes follow it) and
+//! its picture is the two eyes shaded with the frame's settings in the pair's layout
+//! ([`shade::stereo::compose`]), as `godel render` writes a pair's preview; kept data files
+//! are `frame_NNNN.left.exr` and `frame_NNNN.right.exr`. A sequence shading one eye's data
+//! file (`NAME.left.exr`) shades both eyes, the other eye's file beside it, into the layout,
+//! as `godel shade` does.
+//!
 //! Before the first frame: every output path of every frame is checked (writable, not an
 //! input of the run), and what an earlier sequence wrote into the folder that this run does
 //! not write again is removed — files named by the folder's manifest ([`crate::manifest`])
@@ -27,7 +35,7 @@ use datafile::DataFile;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use render::driver::{header, render, NoProgress};
-use scene::Scene;
+use scene::{Eye, Layout, Scene};
 use shade::{Channels, FrameSource, Needs, Script, ShadeSettings, Shading, Timeline};
 
 use crate::cmd::shade::settings_error;
@@ -50,7 +58,12 @@ file is ever removed. ffmpeg encodes exactly this run's frames.
 
 Traced sequences may keyframe the observer ([keyframe.observer]: time, position {x, y, z}, \
 velocity, forward, up) and the field of view ([keyframe.camera]); the position moves along a \
-straight coordinate line. [trace] keep_data = true writes frame_NNNN.exr beside each frame.")]
+straight coordinate line. [trace] keep_data = true writes frame_NNNN.exr beside each frame.
+
+A stereo scene ([camera] stereo) makes stereo frames: both eyes of each frame's observer in the \
+pair's layout (side-by-side frames twice as wide, over-under twice as tall), keeping \
+frame_NNNN.left.exr and frame_NNNN.right.exr with keep_data. A data file that is one eye of a \
+pair (NAME.left.exr) is shaded with the other eye's file beside it into the layout.")]
 pub struct SequenceArgs {
     /// The sequence script (TOML).
     pub script: PathBuf,
@@ -65,23 +78,25 @@ pub struct SequenceArgs {
 /// Where each frame's data comes from, loaded.
 enum Source {
     /// One data file for every frame, and its shading channels (copied once, every frame
-    /// shaded from them).
+    /// shaded from them); for one eye of a stereo pair, both eyes' (left first).
     Data {
-        data: Box<DataFile>,
-        channels: Box<Channels>,
+        eyes: Vec<(DataFile, Channels)>,
+        pair: Option<Layout>,
     },
-    /// A scene traced per frame, each frame's scene from the flight; with `keep_data` the
-    /// frame's data file is kept.
+    /// A scene traced per frame, each frame's scene from the flight (both eyes of it for a
+    /// stereo pair, in `pair`'s layout); with `keep_data` the frame's data files are kept.
     Trace {
         flight: Box<Flight>,
         keep_data: bool,
+        pair: Option<Layout>,
     },
 }
 
-/// One frame made: its picture, and its data file's bytes when the sequence keeps them.
+/// One frame made: its picture, and its data files' bytes when the sequence keeps them (in
+/// the order of [`Plan::data_paths`]: the left eye first for a stereo pair).
 pub struct Frame {
     pub image: RgbImage,
-    pub data: Option<Vec<u8>>,
+    pub data: Vec<Vec<u8>>,
 }
 
 /// A checked sequence, ready to make frames.
@@ -103,12 +118,25 @@ impl Plan {
             FrameSource::Data(p) => {
                 inputs.add("the data file", p);
                 let data = DataFile::read(p)?;
-                let channels = Box::new(Channels::new(&data, Needs::ALL));
-                let source = Source::Data {
-                    data: Box::new(data.clone()),
-                    channels,
+                let (pair, files) = match stereo_partner(&script, p, &data)? {
+                    None => (None, vec![data.clone()]),
+                    Some((path, other, eye, layout)) => {
+                        inputs.add("the other eye's data file", path);
+                        let files = match eye {
+                            Eye::Left => vec![data.clone(), other],
+                            Eye::Right => vec![other, data.clone()],
+                        };
+                        (Some(layout), files)
+                    }
                 };
-                (source, data)
+                let eyes = files
+                    .into_iter()
+                    .map(|d| {
+                        let channels = Channels::new(&d, Needs::ALL);
+                        (d, channels)
+                    })
+                    .collect();
+                (Source::Data { eyes, pair }, data)
             }
             FrameSource::Trace {
                 scene, keep_data, ..
@@ -128,9 +156,39 @@ impl Plan {
                     polarization: !s.trace.gpu,
                 };
                 let flight = Flight::new(&s, &script).map_err(|e| settings_error("sequence", e))?;
+                let pair = s.stereo.filter(scene::Stereo::is_pair).map(|st| st.layout);
+                // A frame holds its traced records while it is shaded, and a stereo frame
+                // keeping its data both eyes' files until they are written together. The
+                // keyframes change neither the size nor the samples: frame 0 tells.
+                let camera = s.sample_camera();
+                let rays = u64::from(camera.width()) * u64::from(camera.height());
+                let (files, what) = match pair.is_some() && *keep_data {
+                    true => (
+                        2,
+                        "both eyes' data files of a frame of this width × height × samples",
+                    ),
+                    false => (1, "a frame's data file of this width × height × samples"),
+                };
+                crate::memory::check_writing(
+                    &format!("{}: camera", scene.display()),
+                    what,
+                    rays.saturating_mul(files),
+                    s.lights.len(),
+                )?;
+                if pair.is_some() {
+                    // Each eye is the frame's scene moved by an isometry; what could refuse
+                    // it (the scene's text) is the same in every frame: frame 0 tells.
+                    let first = flight
+                        .scene_at(0)
+                        .map_err(|e| settings_error("sequence", e))?;
+                    for eye in Eye::BOTH {
+                        eye_scene(&first, eye)?;
+                    }
+                }
                 let source = Source::Trace {
                     flight: Box::new(flight),
                     keep_data: *keep_data,
+                    pair,
                 };
                 (source, probe)
             }
@@ -167,36 +225,75 @@ impl Plan {
     pub fn frame(&self, i: u32) -> anyhow::Result<Frame> {
         let settings = self.timeline.settings_at(i);
         match &self.source {
-            Source::Data { data, channels } => Ok(Frame {
-                image: Shading::new(data, &settings)?.image_with(channels),
-                data: None,
-            }),
-            Source::Trace { flight, keep_data } => {
+            Source::Data { eyes, pair } => {
+                let mut pictures = Vec::with_capacity(eyes.len());
+                for (data, channels) in eyes {
+                    pictures.push(Shading::new(data, &settings)?.image_with(channels));
+                }
+                Ok(Frame {
+                    image: in_layout(*pair, pictures),
+                    data: Vec::new(),
+                })
+            }
+            Source::Trace {
+                flight,
+                keep_data,
+                pair,
+            } => {
                 let scene = flight
                     .scene_at(i)
                     .map_err(|e| settings_error("sequence", e))?;
-                // `[trace] gpu = true` traces the frames with the GPU kernel.
-                let data = match scene.trace.gpu {
-                    true => {
-                        let file = match &self.script.source {
-                            FrameSource::Trace { scene, .. } => Some(scene.as_path()),
-                            FrameSource::Data(_) => None,
-                        };
-                        let asked_by = crate::cmd::render::gpu_in_scene(file);
-                        crate::cmd::render::trace_on_gpu(&scene, &NoProgress, asked_by)?.data
+                // A stereo pair: the eyes of this frame's observer, left first.
+                let (scenes, eyes) = match pair {
+                    None => (vec![scene], vec![None]),
+                    Some(_) => (
+                        Eye::BOTH
+                            .iter()
+                            .map(|&e| eye_scene(&scene, e))
+                            .collect::<anyhow::Result<_>>()?,
+                        Eye::BOTH.map(Some).to_vec(),
+                    ),
+                };
+                let mut pictures = Vec::with_capacity(scenes.len());
+                let mut kept = Vec::new();
+                for (seen, eye) in scenes.iter().zip(eyes) {
+                    let data = self.trace(seen)?;
+                    pictures.push(Shading::new(&data, &settings)?.image(&data));
+                    if *keep_data {
+                        kept.push(data.to_bytes().map_err(|kind| datafile::DataFileError {
+                            path: self.data_path(i, eye),
+                            kind,
+                        })?);
                     }
-                    false => render(&scene, &NoProgress)?.0,
-                };
-                let image = Shading::new(&data, &settings)?.image(&data);
-                let bytes = match keep_data {
-                    true => Some(data.to_bytes().map_err(|kind| datafile::DataFileError {
-                        path: self.data_path(i),
-                        kind,
-                    })?),
-                    false => None,
-                };
-                Ok(Frame { image, data: bytes })
+                }
+                Ok(Frame {
+                    image: in_layout(*pair, pictures),
+                    data: kept,
+                })
             }
+        }
+    }
+
+    /// The data file of one frame's `scene` (or of one eye of it), traced on the CPU, or
+    /// with the GPU kernel where the scene says `[trace] gpu = true`.
+    fn trace(&self, scene: &Scene) -> anyhow::Result<DataFile> {
+        Ok(match scene.trace.gpu {
+            true => {
+                let file = match &self.script.source {
+                    FrameSource::Trace { scene, .. } => Some(scene.as_path()),
+                    FrameSource::Data(_) => None,
+                };
+                let asked_by = crate::cmd::render::gpu_in_scene(file);
+                crate::cmd::render::trace_on_gpu(scene, &NoProgress, asked_by)?.data
+            }
+            false => render(scene, &NoProgress)?.0,
+        })
+    }
+
+    /// The stereo pair's layout, when the frames are a pair's (traced or shaded).
+    fn pair(&self) -> Option<Layout> {
+        match &self.source {
+            Source::Data { pair, .. } | Source::Trace { pair, .. } => *pair,
         }
     }
 
@@ -221,17 +318,27 @@ impl Plan {
         self.script.output.join(format!("frame_{i:04}.png"))
     }
 
-    /// Where frame `i`'s data file is written (with `keep_data`).
-    pub fn data_path(&self, i: u32) -> PathBuf {
-        self.script.output.join(format!("frame_{i:04}.exr"))
+    /// Where frame `i`'s data file is written (with `keep_data`): `frame_NNNN.exr`, or for
+    /// one eye of a stereo pair `frame_NNNN.left.exr` / `frame_NNNN.right.exr`.
+    fn data_path(&self, i: u32, eye: Option<Eye>) -> PathBuf {
+        let eye = eye.map_or(String::new(), |e| format!(".{}", e.name()));
+        self.script.output.join(format!("frame_{i:04}{eye}.exr"))
+    }
+
+    /// The data files frame `i` writes: none without `keep_data`, else its one, or both
+    /// eyes' of a stereo pair (left first).
+    pub fn data_paths(&self, i: u32) -> Vec<PathBuf> {
+        match (self.keeps_data(), self.pair()) {
+            (false, _) => Vec::new(),
+            (true, None) => vec![self.data_path(i, None)],
+            (true, Some(_)) => Eye::BOTH.map(|e| self.data_path(i, Some(e))).to_vec(),
+        }
     }
 
     /// Every file the run may write, frame by frame, then the MP4 and the manifest.
     fn outputs(&self) -> Vec<PathBuf> {
-        let frames = (0..self.frames()).flat_map(|i| {
-            let data = self.keeps_data().then(|| self.data_path(i));
-            [self.frame_path(i)].into_iter().chain(data)
-        });
+        let frames = (0..self.frames())
+            .flat_map(|i| [self.frame_path(i)].into_iter().chain(self.data_paths(i)));
         let dir = self.output_dir();
         frames.chain([dir.join(MP4), dir.join(MANIFEST)]).collect()
     }
@@ -246,22 +353,101 @@ impl Plan {
                 // Exactly the name this program gives that frame.
                 .filter(|&i| name == format!("frame_{i:04}{ext}") && i < self.frames())
         };
-        frame(".png").is_some() || (self.keeps_data() && frame(".exr").is_some())
+        let data: &[&str] = match (self.keeps_data(), self.pair()) {
+            (false, _) => &[],
+            (true, None) => &[".exr"],
+            (true, Some(_)) => &[".left.exr", ".right.exr"],
+        };
+        frame(".png").is_some() || data.iter().any(|ext| frame(ext).is_some())
     }
 
-    /// Writes frame `i`: its picture, and its data file beside it when given, both complete
-    /// before either is renamed into place; both recorded in the folder's manifest.
-    pub fn write_frame(&self, i: u32, image: &RgbImage, data: Option<&[u8]>) -> anyhow::Result<()> {
+    /// Writes frame `i`: its picture, and its data files beside it when given (`data` in the
+    /// order of [`Plan::data_paths`]), all complete before any is renamed into place; all
+    /// recorded in the folder's manifest.
+    pub fn write_frame(&self, i: u32, image: &RgbImage, data: &[Vec<u8>]) -> anyhow::Result<()> {
         let png = self.frame_path(i);
-        let Some(exr) = data else {
+        if data.is_empty() {
             shade::write_png(image, &png)?;
             return manifest::record(self.output_dir(), &[&png]);
-        };
+        }
         let png_bytes = shade::encode_png(image, &png)?;
-        let exr_path = self.data_path(i);
-        write_together(&[(exr_path.clone(), exr), (png.clone(), &png_bytes)])?;
-        manifest::record(self.output_dir(), &[&exr_path, &png])
+        let mut files: Vec<(PathBuf, &[u8])> = self
+            .data_paths(i)
+            .into_iter()
+            .zip(data.iter().map(Vec::as_slice))
+            .collect();
+        files.push((png, &png_bytes));
+        write_together(&files)?;
+        let paths: Vec<&Path> = files.iter().map(|(p, _)| p.as_path()).collect();
+        manifest::record(self.output_dir(), &paths)
     }
+}
+
+/// The scene one eye of a frame's stereo pair sees (the frame's observer moved to the eye).
+fn eye_scene(scene: &Scene, eye: Eye) -> anyhow::Result<Scene> {
+    Ok(scene
+        .eye(eye)
+        .ok_or_else(|| anyhow::anyhow!("{}: not a stereo pair", scene.name))??)
+}
+
+/// A frame's picture from its eyes' pictures: the one picture, or both eyes (left first) in
+/// the pair's layout.
+fn in_layout(pair: Option<Layout>, mut pictures: Vec<RgbImage>) -> RgbImage {
+    match pair {
+        Some(layout) => shade::stereo::compose(layout, &pictures[0], &pictures[1]),
+        None => pictures.swap_remove(0),
+    }
+}
+
+/// For a sequence shading one eye of a stereo pair (`NAME.left.exr`, its embedded scene's
+/// `[camera] stereo` marked with the eye): the other eye's file beside it
+/// (`NAME.right.exr`), read and checked to be the other eye of the same pair, the given
+/// file's eye and the layout; `None` for a data file that is not one eye of a pair. As
+/// `godel shade` colours both eyes of a pair; a missing partner is refused at `data`.
+fn stereo_partner(
+    script: &Script,
+    path: &Path,
+    data: &DataFile,
+) -> anyhow::Result<Option<(PathBuf, DataFile, Eye, Layout)>> {
+    // Only a data file whose embedded scene says it is one eye is shaded as a pair; one
+    // whose scene cannot be read (an older or a synthetic file) is shaded as it is.
+    let stereo = scene::stereo_from_str(&data.header.scene_text, "").unwrap_or(None);
+    let Some((eye, layout)) = stereo.and_then(|s| s.eye.map(|e| (e, s.layout))) else {
+        return Ok(None);
+    };
+    let other = match eye {
+        Eye::Left => Eye::Right,
+        Eye::Right => Eye::Left,
+    };
+    let refuse = |why: String| settings_error("sequence", script.error_at("data", why));
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let mine = format!(".{}.", eye.name());
+    let Some(at) = name.rfind(&mine) else {
+        return Err(refuse(format!(
+            "{} is the {} eye of a stereo pair, but its name does not say so (NAME.{}.exr): \
+             the other eye's file, whose picture the frames show beside it, cannot be found",
+            path.display(),
+            eye.name(),
+            eye.name()
+        )));
+    };
+    let partner = path.with_file_name(format!(
+        "{}.{}.{}",
+        &name[..at],
+        other.name(),
+        &name[at + mine.len()..]
+    ));
+    if !partner.exists() {
+        return Err(refuse(format!(
+            "{} is the {} eye of a stereo pair; the {} eye's {} is missing",
+            path.display(),
+            eye.name(),
+            other.name(),
+            partner.display()
+        )));
+    }
+    let other_data = crate::cmd::shade::read_partner(&partner, data)?;
+    Ok(Some((partner, other_data, eye, layout)))
 }
 
 /// Whether `ffmpeg` runs.
@@ -372,7 +558,7 @@ pub fn run(args: SequenceArgs) -> anyhow::Result<()> {
     // The one place that writes: frames in order, each atomically.
     for i in 0..n {
         let frame = plan.frame(i).with_context(|| format!("frame {i}"))?;
-        plan.write_frame(i, &frame.image, frame.data.as_deref())?;
+        plan.write_frame(i, &frame.image, &frame.data)?;
         bar.inc(1);
     }
     finish(&plan, &args, &bar)
@@ -523,33 +709,17 @@ mod under_mpi {
             let mut bytes = frame.image.width().to_le_bytes().to_vec();
             bytes.extend_from_slice(&frame.image.height().to_le_bytes());
             bytes.extend_from_slice(frame.image.as_raw());
-            if let Some(data) = &frame.data {
+            for data in &frame.data {
+                bytes.extend_from_slice(&(data.len() as u64).to_le_bytes());
                 bytes.extend_from_slice(data);
             }
             Ok(bytes)
         };
         let mut failure = None;
         let mut done = |job: usize, bytes: Vec<u8>| {
-            let size = |at: usize| {
-                bytes
-                    .get(at..at + 4)
-                    .and_then(|b| b.try_into().ok())
-                    .map_or(0, u32::from_le_bytes)
-            };
-            // The RGB bytes end where the size says; the data file's bytes follow.
-            let end = (size(0) as usize)
-                .checked_mul(size(4) as usize)
-                .and_then(|n| n.checked_mul(3))
-                .and_then(|n| n.checked_add(8))
-                .filter(|&end| bytes.len() >= 8 && end <= bytes.len());
-            let image =
-                end.and_then(|end| RgbImage::from_raw(size(0), size(4), bytes[8..end].to_vec()));
-            let data = end.map(|end| &bytes[end..]);
-            let written = match (image, data) {
-                (Some(image), Some(data)) if plan.keeps_data() != data.is_empty() => {
-                    plan.write_frame(job as u32, &image, plan.keeps_data().then_some(data))
-                }
-                _ => Err(anyhow::anyhow!("frame {job} arrived damaged")),
+            let written = match unpack(&bytes, plan.data_paths(job as u32).len()) {
+                Some((image, data)) => plan.write_frame(job as u32, &image, &data),
+                None => Err(anyhow::anyhow!("frame {job} arrived damaged")),
             };
             match written {
                 Ok(()) => bar.inc(1),
@@ -564,5 +734,27 @@ mod under_mpi {
             finish(&plan, &args, &bar).unwrap_or_else(|e| abort(&world, &e));
         }
         Ok(())
+    }
+
+    /// A frame as `work` sends it: width and height (u32), the RGB bytes, then each of the
+    /// `files` data files as its length (u64) and bytes; `None` unless exactly that.
+    fn unpack(bytes: &[u8], files: usize) -> Option<(RgbImage, Vec<Vec<u8>>)> {
+        let u32_at = |at: usize| Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+        let (w, h) = (u32_at(0)?, u32_at(4)?);
+        let end = (w as usize)
+            .checked_mul(h as usize)?
+            .checked_mul(3)?
+            .checked_add(8)?;
+        let image = RgbImage::from_raw(w, h, bytes.get(8..end)?.to_vec())?;
+        let mut at = end;
+        let mut data = Vec::with_capacity(files);
+        for _ in 0..files {
+            let len = u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?);
+            let start = at + 8;
+            let stop = start.checked_add(usize::try_from(len).ok()?)?;
+            data.push(bytes.get(start..stop)?.to_vec());
+            at = stop;
+        }
+        (at == bytes.len()).then_some((image, data))
     }
 }

@@ -139,7 +139,7 @@ fn stereo_partner(
 }
 
 /// The other eye's data file, checked to be that eye of the same pair.
-fn read_partner(path: &Path, data: &DataFile) -> anyhow::Result<DataFile> {
+pub(crate) fn read_partner(path: &Path, data: &DataFile) -> anyhow::Result<DataFile> {
     let other = DataFile::read(path)?;
     let embedded = format!("{} (its scene)", path.display());
     let theirs = scene::stereo_from_str(&other.header.scene_text, &embedded)?;

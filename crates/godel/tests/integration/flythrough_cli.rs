@@ -4,6 +4,8 @@
 //! same data records); the observer's time eases between keyframes by the script's formula
 //! (read back from each kept data file's header); stale data files of an earlier run are
 //! removed; bad keyframes are refused with file:line and field, exit code 2 and no output.
+//! Stereo fly-throughs: each frame is both eyes of its observer in the pair's layout, at a
+//! keyframe the very preview `godel render` writes, with both eyes' data files kept.
 
 use std::path::Path;
 
@@ -334,4 +336,231 @@ fn every_frames_outputs_are_checked_before_tracing() {
     assert_eq!(o.status.code(), Some(2), "{e}");
     assert!(e.contains("frame_0001.png: it is a directory"), "{e}");
     assert_eq!(files_in(&out), ["frame_0001.png"]);
+}
+
+/// A 40×8 panorama's fields of view (`h_fov` across) and `[camera] stereo` (camera keys of
+/// [`scene_text`]).
+fn stereo_camera(h_fov: f64, stereo: &str) -> String {
+    format!("h_fov_deg = {h_fov:?}\nv_fov_deg = 40.0\nstereo = {{ {stereo} }}\n")
+}
+
+/// Issue 37, a stereo fly-through: each frame of a stereo scene's sequence is the two eyes
+/// of that frame's observer in the pair's layout. At every keyframe the frame is the very
+/// preview `godel render` writes of the scene with that observer and field of view (the eyes
+/// move with the observer), and the kept `frame_NNNN.left.exr` / `.right.exr` hold that render's eyes'
+/// records. A sequence shading one kept eye's data file shades both eyes into the layout:
+/// the traced frame again.
+#[test]
+fn stereo_frames_are_both_eyes_of_each_frames_observer() {
+    let dir = tempfile::tempdir().unwrap();
+    let camera = |h_fov| stereo_camera(h_fov, "separation = 0.2, convergence = 2.0");
+    let keys: [(u32, &str, f64); 2] = [
+        (
+            0,
+            "time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }\n",
+            360.0,
+        ),
+        (
+            2,
+            "time = 0.75\nposition = { x = 0.2, y = -0.1, z = 0.05 }\n",
+            200.0,
+        ),
+    ];
+    std::fs::write(
+        dir.path().join("fly.toml"),
+        scene_text("fly", "time = -3.0\n", &camera(90.0)),
+    )
+    .unwrap();
+    let mut script = String::from(
+        "output = \"out\"\nframes = 3\nmp4 = false\n[trace]\nscene = \"fly.toml\"\nkeep_data = true\n",
+    );
+    for (frame, observer, h_fov) in keys {
+        script += &format!(
+            "[[keyframe]]\nframe = {frame}\n[keyframe.observer]\n{observer}\
+             [keyframe.camera]\nh_fov_deg = {h_fov:?}\n"
+        );
+    }
+    let seq = dir.path().join("seq.toml");
+    std::fs::write(&seq, script).unwrap();
+    let o = sequence_within(&seq, NEVER_HANGS);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = dir.path().join("out");
+    assert_eq!(
+        files_in(&out),
+        std::iter::once(common::MANIFEST.to_string())
+            .chain((0..3).flat_map(|i| {
+                ["left.exr", "png", "right.exr"].map(|ext| format!("frame_{i:04}.{ext}"))
+            }))
+            .collect::<Vec<_>>()
+    );
+    let bytes = |p: &Path| std::fs::read(p).unwrap();
+    for (k, (frame, observer, h_fov)) in keys.into_iter().enumerate() {
+        let name = format!("key{k}");
+        let scene = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&scene, scene_text(&name, observer, &camera(h_fov))).unwrap();
+        let direct = dir.path().join("direct");
+        let o = godel(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-q",
+            "-o",
+            direct.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(
+            bytes(&out.join(format!("frame_{frame:04}.png")))
+                == bytes(&direct.join(format!("{name}.png"))),
+            "frame {frame}'s picture differs from the render of keyframe {k}"
+        );
+        for eye in ["left", "right"] {
+            assert_eq!(
+                records(&out.join(format!("frame_{frame:04}.{eye}.exr"))),
+                records(&direct.join(format!("{name}.{eye}.exr"))),
+                "frame {frame}'s {eye} eye differs from the render of keyframe {k}"
+            );
+        }
+    }
+    // Side by side: twice as wide as one eye; the eyes see different pictures, and the frame
+    // between the keyframes is a new pair.
+    let frame0 = common::png(&out.join("frame_0000.png"));
+    assert_eq!(frame0.dimensions(), (80, 8));
+    let eye = |i: u32, eye: &str| records(&out.join(format!("frame_{i:04}.{eye}.exr")));
+    assert_ne!(eye(0, "left"), eye(0, "right"));
+    assert_ne!(eye(1, "left"), eye(0, "left"));
+    assert_ne!(eye(1, "left"), eye(2, "left"));
+
+    // A sequence of one kept eye (either) shades both into the layout: frame 1 again.
+    for given in ["left", "right"] {
+        let shaded = dir.path().join(format!("from-{given}.toml"));
+        std::fs::write(
+            &shaded,
+            format!("data = \"out/frame_0001.{given}.exr\"\noutput = \"{given}\"\nframes = 1\nmp4 = false\n"),
+        )
+        .unwrap();
+        let o = sequence_within(&shaded, NEVER_HANGS);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(
+            bytes(&dir.path().join(format!("{given}/frame_0000.png")))
+                == bytes(&out.join("frame_0001.png")),
+            "shading the {given} eye's data file differs from the traced frame"
+        );
+    }
+    // Without the other eye's file it is refused, naming the script's field.
+    std::fs::copy(
+        out.join("frame_0001.left.exr"),
+        dir.path().join("alone.left.exr"),
+    )
+    .unwrap();
+    let alone = dir.path().join("alone.toml");
+    std::fs::write(
+        &alone,
+        "data = \"alone.left.exr\"\noutput = \"alone\"\nframes = 1\nmp4 = false\n",
+    )
+    .unwrap();
+    let o = sequence_within(&alone, NEVER_HANGS);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("alone.toml:1") && e.contains("alone.right.exr is missing"),
+        "{e}"
+    );
+    assert!(!dir.path().join("alone/frame_0000.png").exists());
+}
+
+/// With separation 0 both eyes are the observer: the two halves of a side-by-side frame
+/// are the same picture, frame after frame as the observer moves; over-under stacks them.
+#[test]
+fn stereo_frames_of_eyes_together_have_equal_halves() {
+    for (layout, size) in [("side-by-side", (80, 8)), ("over-under", (40, 16))] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("fly.toml"),
+            scene_text(
+                "fly",
+                "time = 0.0\n",
+                &stereo_camera(360.0, &format!("separation = 0.0, layout = \"{layout}\"")),
+            ),
+        )
+        .unwrap();
+        let seq = dir.path().join("seq.toml");
+        std::fs::write(
+            &seq,
+            "output = \"out\"\nframes = 2\nmp4 = false\n[trace]\nscene = \"fly.toml\"\n\
+             [[keyframe]]\nframe = 0\n[keyframe.observer]\nposition = { x = 0.0, y = 0.0, z = 0.0 }\n\
+             [[keyframe]]\nframe = 1\n[keyframe.observer]\ntime = 1.0\n\
+             position = { x = 0.5, y = 0.5, z = 0.0 }\n",
+        )
+        .unwrap();
+        let o = sequence_within(&seq, NEVER_HANGS);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let frames: Vec<_> = (0..2)
+            .map(|i| common::png(&dir.path().join(format!("out/frame_{i:04}.png"))))
+            .collect();
+        for (i, p) in frames.iter().enumerate() {
+            assert_eq!(p.dimensions(), size, "{layout}");
+            let (w, h) = match layout {
+                "side-by-side" => (40, 0),
+                _ => (0, 8),
+            };
+            for (x, y, px) in p.enumerate_pixels().filter(|(x, y, _)| *x < 40 && *y < 8) {
+                assert_eq!(
+                    *px,
+                    *p.get_pixel(x + w, y + h),
+                    "{layout} frame {i} at ({x}, {y})"
+                );
+            }
+        }
+        assert!(frames[0] != frames[1], "{layout}: the observer moved");
+        assert_eq!(
+            files_in(&dir.path().join("out")),
+            [common::MANIFEST, "frame_0000.png", "frame_0001.png"]
+        );
+    }
+}
+
+/// A stereo frame keeping its data holds both eyes' data files until they are written
+/// together: the memory check before the first frame counts both (refused with exit 2 and
+/// nothing written where one eye's would fit), and one eye's without `keep_data`.
+#[test]
+fn a_stereo_frame_keeping_its_data_is_sized_for_both_eyes() {
+    let dir = tempfile::tempdir().unwrap();
+    let one_eye = 40 * 8 * datafile::memory::writing_bytes(0);
+    let budget = (one_eye * 3 / 2).to_string();
+    std::fs::write(
+        dir.path().join("fly.toml"),
+        scene_text(
+            "fly",
+            "time = 0.0\n",
+            &stereo_camera(360.0, "separation = 0.1"),
+        ),
+    )
+    .unwrap();
+    let seq = dir.path().join("seq.toml");
+    let run = |keep: bool| {
+        std::fs::write(
+            &seq,
+            format!(
+                "output = \"out\"\nframes = 1\nmp4 = false\n[trace]\nscene = \"fly.toml\"\n\
+                 keep_data = {keep}\n"
+            ),
+        )
+        .unwrap();
+        common::run_within(
+            std::process::Command::new(common::GODEL)
+                .args(["sequence", seq.to_str().unwrap(), "-q"])
+                .env("GODEL_MEMORY_BUDGET", &budget),
+            NEVER_HANGS,
+        )
+    };
+    let o = run(true);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("fly.toml: camera: both eyes' data files"), "{e}");
+    assert!(files_in(&dir.path().join("out")).is_empty());
+    let o = run(false);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        files_in(&dir.path().join("out")),
+        [common::MANIFEST, "frame_0000.png"]
+    );
 }
