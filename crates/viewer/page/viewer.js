@@ -13,6 +13,7 @@ import { $, query } from './dom.js';
 import { startExplore } from './explore.js';
 import { Gpu } from './gl.js';
 import * as L from './look.js';
+import { startStereo } from './stereo.js';
 import { startTraced } from './traced.js';
 import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TEXELS }
   from './uniforms.js';
@@ -49,6 +50,7 @@ import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TE
  * @property {import('./explore.js').Explore} [explore]
  * @property {import('./traced.js').TracedState} [traced]
  * @property {import('./keep.js').KeepState} [keep]
+ * @property {import('./stereo.js').StereoState} [stereo] the Stereo panel (stereo.js)
  * @property {() => boolean} idle
  * @property {() => { width: number, height: number, bytes: string }} readPicture
  * @property {() => { width: number, height: number, bytes: string }} readCanvas
@@ -165,6 +167,8 @@ let describe = () => {};
 // Where the frame shown comes from, when not from the data file (e.g. "traced on the GPU in
 // 812 ms"): the header says it.
 let frameNote = '';
+// The Stereo panel's refresh after a change of the settings (stereo.js; start sets it).
+let stereoChanged = () => {};
 // Explore: whether the frame last given to showFrame has been shaded (or failed to load).
 let frameDrawn = true;
 /** @type {[number, number] | null} canvas pixels set by a script, else the layout decides */
@@ -310,7 +314,10 @@ async function fetchOverlay() {
 
 // A change: `shade` false when only the display (zoom, pan) changed.
 function changed(shade = true) {
-  if (shade) shadeDirty = true;
+  if (shade) {
+    shadeDirty = true;
+    stereoChanged();
+  }
   if (!frameQueued) {
     frameQueued = true;
     requestAnimationFrame(draw);
@@ -756,6 +763,7 @@ async function start() {
   layout();
   await startExplore(page);
   startTraced(page);
+  stereoChanged = startStereo(page, showError);
 }
 
 // Explore (explore.js): shows another frame, whose channels are at `channelUrl(name)`; false

@@ -3,7 +3,7 @@
 //! check (tsconfig.json, contract.d.ts, window.d.ts: types only), which is not served.
 
 /// The page's files: (URL path, content type, content).
-pub const FILES: [(&str, &str, &str); 19] = [
+pub const FILES: [(&str, &str, &str); 20] = [
     (
         "/",
         "text/html; charset=utf-8",
@@ -31,6 +31,7 @@ pub const FILES: [(&str, &str, &str); 19] = [
     js("/traced.js", include_str!("../page/traced.js")),
     js("/fly.js", include_str!("../page/fly.js")),
     js("/hovered.js", include_str!("../page/hovered.js")),
+    js("/stereo.js", include_str!("../page/stereo.js")),
 ];
 
 const fn js(path: &'static str, body: &'static str) -> (&'static str, &'static str, &'static str) {

@@ -11,6 +11,8 @@
 //!   `godel shade` within one step, and a boost turns the ball ahead blue, the one behind red;
 //! - the polarization layer's ticks equal `godel shade`'s, on the file's frame and on a frame
 //!   traced in the page, and its axis control re-shades without tracing or asking anything;
+//! - one eye of a stereo pair shows both eyes' picture (the server's) in the Stereo panel, in
+//!   the pair's layout and as an anaglyph on request;
 //! - the page asks nothing of any server but its own.
 //!
 //! Chromium and the npm packages are installed by `bash scripts/test.sh`; without them these
@@ -230,3 +232,4 @@ mod layers;
 mod look;
 mod page_check;
 mod polarization;
+mod stereo;
