@@ -30,6 +30,8 @@
 //! - [`polarization`]: the polarization layer's ticks along the observed polarization,
 //!   coloured by its angle (legend in the overlay layer).
 //! - [`colour`]: linear ↔ sRGB transfer functions and 8-bit conversion.
+//! - [`stereo`]: a stereo pair's two pictures in one layout ([`stereo::compose`]), and the
+//!   other eye's data file beside one eye's ([`stereo::partner`]).
 //! - [`ShadeError`]: every error, naming the file or field concerned.
 
 pub mod blackbody;

@@ -6,7 +6,8 @@
 //! by the `shade` crate, after the `look` crate for a turned or boosted view).
 //!
 //! - [`ViewerState`]: the loaded data file, shading, pixel records, keyframes; image textures
-//!   only from the data file's folder and [`ViewerOptions::texture_folders`].
+//!   only from the data file's folder and [`ViewerOptions::texture_folders`]; of one eye of a
+//!   stereo pair, the other eye's file beside it too ([`state::Stereo`]).
 //! - [`router`]: the routes (see [`routes`], [`gpu_routes`] and [`look_routes`] for the
 //!   tables), [`serve`]: runs them within the bounds of [`server`] (header read timeout,
 //!   connection cap, shutdown with a deadline).
