@@ -37,9 +37,6 @@ impl Partner {
 /// Why the other eye of a stereo pair cannot be had; each names the file concerned.
 #[derive(Debug, thiserror::Error)]
 pub enum PartnerError {
-    /// An embedded scene's `[camera] stereo` does not read.
-    #[error(transparent)]
-    Scene(#[from] scene::SceneError),
     /// The file's name does not say which eye it is, so the other's cannot be named.
     #[error(
         "{} is the {} eye of a stereo pair, but its name does not say so (NAME.{}.exr): the \
@@ -89,8 +86,9 @@ fn other(eye: Eye) -> Eye {
 /// the other eye of the same pair (same separation, layout and convergence) and it sees the
 /// same objects. `None` for a data file that is not one eye of a pair.
 pub fn partner(path: &Path, data: &DataFile) -> Result<Option<Partner>, PartnerError> {
-    let embedded = |p: &Path| format!("{} (its scene)", p.display());
-    let ours = scene::stereo_from_str(&data.header.scene_text, &embedded(path))?;
+    // Only a data file whose embedded scene says it is one eye is one of a pair; one whose
+    // scene's camera does not read (an older or a synthetic file) is shown as it is.
+    let ours = scene::stereo_from_str(&data.header.scene_text, "").unwrap_or(None);
     let Some((ours, eye)) = ours.and_then(|s| s.eye.map(|e| (s, e))) else {
         return Ok(None);
     };
@@ -112,7 +110,7 @@ pub fn partner(path: &Path, data: &DataFile) -> Result<Option<Partner>, PartnerE
         });
     }
     let other_data = DataFile::read(&partner)?;
-    let their = scene::stereo_from_str(&other_data.header.scene_text, &embedded(&partner))?;
+    let their = scene::stereo_from_str(&other_data.header.scene_text, "").unwrap_or(None);
     let pair = |s: Stereo| Stereo { eye: None, ..s };
     let same_pair = their.is_some_and(|t| t.eye == Some(other(eye)) && pair(t) == pair(ours));
     if !same_pair || other_data.header.object_names != data.header.object_names {

@@ -118,15 +118,17 @@ impl Plan {
             FrameSource::Data(p) => {
                 inputs.add("the data file", p);
                 let data = DataFile::read(p)?;
-                let (pair, files) = match stereo_partner(&script, p, &data)? {
+                // One eye of a stereo pair is shaded with the other beside it, as godel shade does.
+                let partner = shade::stereo::partner(p, &data).map_err(|e| match e {
+                    shade::stereo::PartnerError::Read(e) => e.into(),
+                    e => settings_error("sequence", script.error_at("data", e.to_string())),
+                })?;
+                let (pair, files) = match partner {
                     None => (None, vec![data.clone()]),
-                    Some((path, other, eye, layout)) => {
-                        inputs.add("the other eye's data file", path);
-                        let files = match eye {
-                            Eye::Left => vec![data.clone(), other],
-                            Eye::Right => vec![other, data.clone()],
-                        };
-                        (Some(layout), files)
+                    Some(other) => {
+                        inputs.add("the other eye's data file", &other.path);
+                        let (left, right) = other.left_right(data.clone(), other.data.clone());
+                        (Some(other.layout), vec![left, right])
                     }
                 };
                 let eyes = files
@@ -397,57 +399,6 @@ fn in_layout(pair: Option<Layout>, mut pictures: Vec<RgbImage>) -> RgbImage {
         Some(layout) => shade::stereo::compose(layout, &pictures[0], &pictures[1]),
         None => pictures.swap_remove(0),
     }
-}
-
-/// For a sequence shading one eye of a stereo pair (`NAME.left.exr`, its embedded scene's
-/// `[camera] stereo` marked with the eye): the other eye's file beside it
-/// (`NAME.right.exr`), read and checked to be the other eye of the same pair, the given
-/// file's eye and the layout; `None` for a data file that is not one eye of a pair. As
-/// `godel shade` colours both eyes of a pair; a missing partner is refused at `data`.
-fn stereo_partner(
-    script: &Script,
-    path: &Path,
-    data: &DataFile,
-) -> anyhow::Result<Option<(PathBuf, DataFile, Eye, Layout)>> {
-    // Only a data file whose embedded scene says it is one eye is shaded as a pair; one
-    // whose scene cannot be read (an older or a synthetic file) is shaded as it is.
-    let stereo = scene::stereo_from_str(&data.header.scene_text, "").unwrap_or(None);
-    let Some((eye, layout)) = stereo.and_then(|s| s.eye.map(|e| (e, s.layout))) else {
-        return Ok(None);
-    };
-    let other = match eye {
-        Eye::Left => Eye::Right,
-        Eye::Right => Eye::Left,
-    };
-    let refuse = |why: String| settings_error("sequence", script.error_at("data", why));
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let mine = format!(".{}.", eye.name());
-    let Some(at) = name.rfind(&mine) else {
-        return Err(refuse(format!(
-            "{} is the {} eye of a stereo pair, but its name does not say so (NAME.{}.exr): \
-             the other eye's file, whose picture the frames show beside it, cannot be found",
-            path.display(),
-            eye.name(),
-            eye.name()
-        )));
-    };
-    let partner = path.with_file_name(format!(
-        "{}.{}.{}",
-        &name[..at],
-        other.name(),
-        &name[at + mine.len()..]
-    ));
-    if !partner.exists() {
-        return Err(refuse(format!(
-            "{} is the {} eye of a stereo pair; the {} eye's {} is missing",
-            path.display(),
-            eye.name(),
-            other.name(),
-            partner.display()
-        )));
-    }
-    let other_data = crate::cmd::shade::read_partner(&partner, data)?;
-    Ok(Some((partner, other_data, eye, layout)))
 }
 
 /// Whether `ffmpeg` runs.

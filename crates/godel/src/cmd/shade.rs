@@ -16,7 +16,6 @@ use shade::{
 
 use crate::args::{parse_vector, usage};
 use crate::inputs::Inputs;
-use scene::Stereo;
 use shade::hdr::{encode_exr, write_bytes, PictureFormat};
 
 #[derive(Args, Debug)]
@@ -97,72 +96,20 @@ pub struct ShadeArgs {
     pub one_eye: bool,
 }
 
-/// The other eye of a stereo pair whose eye `data` is, when a PNG of both is asked for: its
-/// path (`NAME.right.exr` beside `NAME.left.exr`), whether `data` is the left eye, and the
-/// pair's layout. `None` for a data file that is not one eye of a pair.
-fn stereo_partner(
-    args: &ShadeArgs,
+/// The other eye of the stereo pair whose eye `data` (read from `path`) is, for a picture of
+/// both (`shade::stereo::partner`); refused at `flag`, saying how to shade the one eye alone
+/// when the other's file is not there.
+pub(crate) fn stereo_partner(
+    flag: &str,
+    path: &Path,
     data: &DataFile,
-) -> anyhow::Result<Option<(PathBuf, bool, scene::Layout)>> {
-    let embedded = format!("{} (its scene)", args.data.display());
-    let stereo = scene::stereo_from_str(&data.header.scene_text, &embedded)?;
-    let Some((eye, layout)) = stereo.and_then(|s| s.eye.map(|e| (e, s.layout))) else {
-        return Ok(None);
-    };
-    let (mine, other) = match eye {
-        scene::Eye::Left => ("left", "right"),
-        scene::Eye::Right => ("right", "left"),
-    };
-    let name = args.data.file_name().unwrap_or_default().to_string_lossy();
-    let Some(at) = name.rfind(&format!(".{mine}.")) else {
-        return Err(usage(
-            "DATA",
-            format!(
-                "{} is the {mine} eye of a stereo pair, but its name does not say so                  (NAME.{mine}.exr): the other eye's file cannot be found; use --one-eye",
-                args.data.display()
-            ),
-        ));
-    };
-    let partner_name = format!("{}.{other}.{}", &name[..at], &name[at + mine.len() + 2..]);
-    let partner = args.data.with_file_name(partner_name);
-    if !partner.exists() {
-        return Err(usage(
-            "DATA",
-            format!(
-                "{} is the {mine} eye of a stereo pair; the {other} eye's {} is missing                  (or use --one-eye)",
-                args.data.display(),
-                partner.display()
-            ),
-        ));
-    }
-    Ok(Some((partner, eye == scene::Eye::Left, layout)))
-}
-
-/// The other eye's data file, checked to be that eye of the same pair.
-pub(crate) fn read_partner(path: &Path, data: &DataFile) -> anyhow::Result<DataFile> {
-    let other = DataFile::read(path)?;
-    let embedded = format!("{} (its scene)", path.display());
-    let theirs = scene::stereo_from_str(&other.header.scene_text, &embedded)?;
-    let ours = scene::stereo_from_str(&data.header.scene_text, "")?;
-    let same_pair = match (ours, theirs) {
-        (Some(a), Some(b)) => {
-            a.eye.is_some()
-                && b.eye.is_some()
-                && a.eye != b.eye
-                && Stereo { eye: None, ..a } == Stereo { eye: None, ..b }
-        }
-        _ => false,
-    };
-    if !same_pair || other.header.object_names != data.header.object_names {
-        return Err(usage(
-            "DATA",
-            format!(
-                "{} is not the other eye of the same stereo pair",
-                path.display()
-            ),
-        ));
-    }
-    Ok(other)
+) -> anyhow::Result<Option<shade::stereo::Partner>> {
+    use shade::stereo::PartnerError;
+    shade::stereo::partner(path, data).map_err(|e| match e {
+        PartnerError::Read(e) => e.into(),
+        e if e.is_missing() => usage(flag, format!("{e}; use --one-eye")),
+        e => usage(flag, e.to_string()),
+    })
 }
 
 fn parse_shader(s: &str) -> Result<ShaderKind, String> {
@@ -448,11 +395,11 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
     inputs.refuse_outputs_over_inputs("--output", &[&args.output])?;
     let data = DataFile::read(&args.data)?;
     let partner = match (format, args.one_eye) {
-        (PictureFormat::Png, false) => stereo_partner(&args, &data)?,
+        (PictureFormat::Png, false) => stereo_partner("DATA", &args.data, &data)?,
         _ => None,
     };
-    if let Some((path, _, _)) = &partner {
-        inputs.add("the other eye's data file", path);
+    if let Some(p) = &partner {
+        inputs.add("the other eye's data file", &p.path);
         inputs.refuse_outputs_over_inputs("--output", &[&args.output])?;
     }
     let mut settings = ShadeSettings::defaults_for(&data);
@@ -482,18 +429,14 @@ pub fn run(args: ShadeArgs) -> anyhow::Result<()> {
     let mut both = None;
     match format {
         PictureFormat::Png => match &partner {
-            Some((path, given_is_left, layout)) => {
-                let other = read_partner(path, &data)?;
-                let theirs = Shading::new(&other, &settings)
+            Some(p) => {
+                let theirs = Shading::new(&p.data, &settings)
                     .map_err(|e| settings_error(blamed_flag(&args, &e), e))?
-                    .image(&other);
+                    .image(&p.data);
                 let ours = shading.image(&data);
-                let (left, right) = match given_is_left {
-                    true => (&ours, &theirs),
-                    false => (&theirs, &ours),
-                };
-                shade::write_png(&shade::stereo::compose(*layout, left, right), &args.output)?;
-                both = Some(layout.name());
+                let (left, right) = p.left_right(&ours, &theirs);
+                shade::write_png(&shade::stereo::compose(p.layout, left, right), &args.output)?;
+                both = Some(p.layout.name());
             }
             None => shade::write_png(&shading.image(&data), &args.output)?,
         },
