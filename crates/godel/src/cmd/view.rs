@@ -32,8 +32,23 @@ pub fn run(args: ViewArgs) -> anyhow::Result<()> {
         .iter()
         .map(|f| f.display().to_string())
         .collect();
+    // One eye of a stereo pair: say whether the other is there to be shown beside it.
+    let stereo = match state.stereo() {
+        None => String::new(),
+        Some(s) => match &s.partner {
+            Some(_) => format!(
+                "; the {} eye of a stereo pair ({})",
+                s.eye.name(),
+                s.layout.name()
+            ),
+            None => format!(
+                "; the {} eye of a stereo pair, the other eye's file missing",
+                s.eye.name()
+            ),
+        },
+    };
     eprintln!(
-        "{} ({}×{}); image textures from {}; press Ctrl-C to stop",
+        "{} ({}×{}{stereo}); image textures from {}; press Ctrl-C to stop",
         args.data.display(),
         state.data.picture_size().0,
         state.data.picture_size().1,
