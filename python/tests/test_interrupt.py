@@ -14,9 +14,15 @@ from conftest import REPO
 
 SCRIPT = textwrap.dedent(
     """
+    import signal
     import sys
     import godel
     from godel import _progress
+
+    # Python raises KeyboardInterrupt on SIGINT only where SIGINT was not ignored when it
+    # started; a shell's background job inherits it ignored. A user's Ctrl-C reaches a
+    # process with the default handler: give this one that handler whatever started it.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
     class Spy:
         # Records what the progress bar is shown; says once when tracing is under way.
