@@ -193,3 +193,46 @@ fn an_empty_godel_egl_is_the_default_library() {
         "gpu"
     );
 }
+
+/// A stereo pair on the GPU: each eye traced by the kernel (and checked against the CPU) as
+/// its own scene, its records those of the CPU exact tracer's same eye.
+#[test]
+fn render_gpu_traces_both_eyes_of_a_stereo_pair() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = SCENE.replace(
+        "height = 20\n",
+        "height = 20\nstereo = { separation = 0.2 }\n",
+    );
+    let scene = write(dir.path(), "ball.toml", &text);
+    let (gpu, cpu) = (dir.path().join("gpu"), dir.path().join("cpu"));
+    let o = render(&scene, &gpu, &["--gpu", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = render(&scene, &cpu, &["--method", "exact", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        crate::common::png(&gpu.join("ball.png")).dimensions(),
+        (360, 20)
+    );
+    let mut eyes = Vec::new();
+    for eye in ["left", "right"] {
+        let name = format!("ball.{eye}.exr");
+        let a = DataFile::read(&gpu.join(&name)).unwrap();
+        let b = DataFile::read(&cpu.join(&name)).unwrap();
+        assert_eq!(a.header.method, "gpu");
+        let same = a.records.iter().zip(&b.records);
+        for (i, (x, y)) in same.enumerate() {
+            assert_eq!(
+                (x.status, x.object),
+                (y.status, y.object),
+                "{eye} eye, sample {i}"
+            );
+        }
+        eyes.push(
+            a.records
+                .iter()
+                .filter(|r| r.status == RayStatus::Hit)
+                .count(),
+        );
+    }
+    assert!(eyes[0] > 50 && eyes[0] != eyes[1], "hits per eye {eyes:?}");
+}
