@@ -38,6 +38,7 @@ pub mod eyes;
 mod frame;
 mod geodesic;
 mod godel;
+pub mod godel_type;
 pub mod isometry;
 pub mod killing;
 pub mod measure;
@@ -62,6 +63,7 @@ pub use geodesic::{
     GeodesicState, GeodesicSystem, StopReason, TimeDirection, TraceLimits, TracedGeodesic, STATE,
 };
 pub use godel::Godel;
+pub use godel_type::GodelType;
 pub use isometry::{Complex, Isometry};
 pub use killing::KillingField;
 pub use metric::{Metric, Spacetime};

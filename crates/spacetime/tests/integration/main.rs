@@ -7,6 +7,7 @@ mod closed_form;
 mod connect;
 mod eyes;
 mod geodesics;
+mod godel_type;
 mod metric;
 mod polarization;
 mod symmetry;
