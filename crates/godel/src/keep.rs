@@ -313,9 +313,13 @@ mod tests {
     use viewer::keep::RecordedView;
 
     fn keeper() -> SceneKeeper {
+        // One file per call: the tests run at once in one process, and a file written by one
+        // while another reads it was seen read empty.
+        static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let dir = std::env::temp_dir().join(format!("godel-keep-unit-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("keep-unit.toml");
+        let path = dir.join(format!("keep-unit-{call}.toml"));
         let text = testkit::ball_ahead(
             "keep-unit",
             &testkit::panorama(220.0, 25.0, 16, 8),

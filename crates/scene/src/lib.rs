@@ -39,11 +39,12 @@ pub use camera::{
 pub use edit::{replace_eye, replace_samples, replace_view};
 pub use error::{line_column, line_of_path, one_line, Location, SceneError};
 pub use model::{
-    BuiltinImage, ImageSource, Light, Motion, Object, ObjectFrame, Observer, Scene, Shape,
-    TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
+    BuiltinImage, Eye, ImageSource, Layout, Light, Motion, Object, ObjectFrame, Observer, Scene,
+    Shape, Stereo, TextureSpec, TraceMethod, TraceSettings, DEFAULT_TEMPERATURE,
 };
 pub use spacetime::message::short;
-pub use stereo::{Eye, Layout, Stereo, MAX_SEPARATION_PER_A};
+pub use stereo::MAX_SEPARATION_PER_A;
+
 pub use validate::{A_RANGE, MAX_COORDINATE_PER_A, MAX_LOCAL_RADIUS_PER_A, MAX_RAY_LOOPS};
 
 use error::Locator;
@@ -134,7 +135,7 @@ pub fn camera_from_str(text: &str, name_for_errors: &str) -> Result<Camera, Scen
 /// for readers of a data file's embedded scene, as [`camera_from_str`].
 pub fn stereo_from_str(text: &str, name_for_errors: &str) -> Result<Option<Stereo>, SceneError> {
     with_raw_camera(text, name_for_errors, |loc, raw| {
-        stereo::stereo(&checker::Checker { loc }, raw.stereo)
+        stereo::stereo(&checker::Checker { loc }, raw.stereo, MAX_COORDINATE_PER_A)
     })
 }
 

@@ -20,7 +20,7 @@ pub struct Scene {
     pub observer: Observer,
     pub camera: Camera,
     /// Two eyes instead of one (`[camera] stereo`); each eye's scene is [`Scene::eye`].
-    pub stereo: Option<crate::stereo::Stereo>,
+    pub stereo: Option<Stereo>,
     /// Rays per pixel (`[camera] samples`): a square number s², traced on an s×s grid in each
     /// pixel ([`Camera::supersampled`]); width · height · samples ≤ `camera::MAX_RAYS`.
     pub samples: u32,
@@ -225,4 +225,71 @@ pub struct Light {
     pub color: [f64; 3],
     /// ≥ 0 (default 1).
     pub power: f64,
+}
+
+/// How the two eyes' pictures are put into one preview.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layout {
+    /// Left eye's picture on the left, right eye's on the right.
+    SideBySide,
+    /// Left eye's picture above the right eye's.
+    OverUnder,
+    /// One picture: red from the left eye, green and blue from the right (red/cyan glasses).
+    Anaglyph,
+}
+
+impl Layout {
+    /// The name as written in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::SideBySide => "side-by-side",
+            Layout::OverUnder => "over-under",
+            Layout::Anaglyph => "anaglyph",
+        }
+    }
+}
+
+/// `[camera] stereo`: two eyes `separation` apart (units of a), their pictures in `layout`,
+/// turned to meet at `convergence` (units of a) or parallel. `eye` is set in the scene of one
+/// eye ([`Scene::eye`]): its observer is that eye, and it traces as one picture.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stereo {
+    pub separation: f64,
+    pub layout: Layout,
+    pub convergence: Option<f64>,
+    pub eye: Option<Eye>,
+}
+
+impl Stereo {
+    /// Whether this is a pair to trace (not one eye of one).
+    pub fn is_pair(&self) -> bool {
+        self.eye.is_none()
+    }
+}
+
+/// One of the two eyes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Eye {
+    Left,
+    Right,
+}
+
+impl Eye {
+    pub const BOTH: [Eye; 2] = [Eye::Left, Eye::Right];
+
+    /// `left` or `right`: the eye's files are `NAME.left.exr`, `NAME.right.exr`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Eye::Left => "left",
+            Eye::Right => "right",
+        }
+    }
+
+    /// −1 for the left eye, +1 for the right (along the camera's right axis).
+    pub(crate) fn side(self) -> f64 {
+        match self {
+            Eye::Left => -1.0,
+            Eye::Right => 1.0,
+        }
+    }
 }

@@ -15,7 +15,7 @@
 use crate::checker::{Checker, Result};
 use crate::edit;
 use crate::error::SceneError;
-use crate::model::{Observer, Scene};
+use crate::model::{cross, Eye, Layout, Observer, Scene, Stereo};
 use crate::raw::{EyeName, LayoutName, RawStereo};
 use spacetime::Viewpoint;
 
@@ -23,75 +23,13 @@ use spacetime::Viewpoint;
 /// radius 2a, as a pair of eyes should.
 pub const MAX_SEPARATION_PER_A: f64 = 1.0;
 
-/// How the two eyes' pictures are put into one preview.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Layout {
-    /// Left eye's picture on the left, right eye's on the right.
-    SideBySide,
-    /// Left eye's picture above the right eye's.
-    OverUnder,
-    /// One picture: red from the left eye, green and blue from the right (red/cyan glasses).
-    Anaglyph,
-}
-
-impl Layout {
-    /// The name as written in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Layout::SideBySide => "side-by-side",
-            Layout::OverUnder => "over-under",
-            Layout::Anaglyph => "anaglyph",
-        }
-    }
-}
-
-/// `[camera] stereo`: two eyes `separation` apart (units of a), their pictures in `layout`,
-/// turned to meet at `convergence` (units of a) or parallel. `eye` is set in the scene of one
-/// eye ([`Scene::eye`]): its observer is that eye, and it traces as one picture.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Stereo {
-    pub separation: f64,
-    pub layout: Layout,
-    pub convergence: Option<f64>,
-    pub eye: Option<Eye>,
-}
-
-impl Stereo {
-    /// Whether this is a pair to trace (not one eye of one).
-    pub fn is_pair(&self) -> bool {
-        self.eye.is_none()
-    }
-}
-
-/// One of the two eyes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Eye {
-    Left,
-    Right,
-}
-
-impl Eye {
-    pub const BOTH: [Eye; 2] = [Eye::Left, Eye::Right];
-
-    /// `left` or `right`: the eye's files are `NAME.left.exr`, `NAME.right.exr`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Eye::Left => "left",
-            Eye::Right => "right",
-        }
-    }
-
-    /// −1 for the left eye, +1 for the right (along the camera's right axis).
-    fn side(self) -> f64 {
-        match self {
-            Eye::Left => -1.0,
-            Eye::Right => 1.0,
-        }
-    }
-}
-
-/// The checked `[camera] stereo` table (lengths in units of a).
-pub(crate) fn stereo(c: &Checker, raw: Option<RawStereo>) -> Result<Option<Stereo>> {
+/// The checked `[camera] stereo` table (lengths in units of a; the convergence at most
+/// `max_coordinate`, the scene's bound on coordinates).
+pub(crate) fn stereo(
+    c: &Checker,
+    raw: Option<RawStereo>,
+    max_coordinate: f64,
+) -> Result<Option<Stereo>> {
     let Some(r) = raw else { return Ok(None) };
     let separation = c.non_negative("camera.stereo.separation", r.separation)?;
     if separation > MAX_SEPARATION_PER_A {
@@ -107,12 +45,12 @@ pub(crate) fn stereo(c: &Checker, raw: Option<RawStereo>) -> Result<Option<Stere
         None => None,
         Some(d) => {
             let d = c.positive("camera.stereo.convergence", d)?;
-            if d > crate::validate::MAX_COORDINATE_PER_A {
+            if d > max_coordinate {
                 return c.err(
                     "camera.stereo.convergence",
                     format!(
                         "must be at most {} (in units of a), got {}",
-                        crate::validate::MAX_COORDINATE_PER_A,
+                        crate::short(max_coordinate),
                         crate::short(d)
                     ),
                 );
@@ -197,12 +135,4 @@ impl Scene {
             ..self.clone()
         })
     }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }

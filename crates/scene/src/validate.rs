@@ -61,7 +61,7 @@ pub(crate) fn build(
     let observer = observer(&c, raw.observer)?;
     let mut raw_camera = raw.camera;
     let samples = raw_camera.samples.unwrap_or(1);
-    let stereo = crate::stereo::stereo(&c, raw_camera.stereo.take())?;
+    let stereo = crate::stereo::stereo(&c, raw_camera.stereo.take(), MAX_COORDINATE_PER_A)?;
     let camera = camera(&c, raw_camera)?;
     if let Err(message) = crate::camera::samples_per_side(samples, camera.width(), camera.height())
     {

@@ -23,6 +23,7 @@ use crate::frame::{boost, LocalVelocity};
 use crate::isometry::Isometry;
 use crate::killing::KillingField;
 use crate::metric::{Metric, Spacetime};
+use crate::polarization::cross;
 use crate::vectors::{Event, FourVector, Tetrad};
 
 /// An observer as the scene describes one: its event, its velocity relative to the static
@@ -113,14 +114,6 @@ impl Viewpoint {
             up: components(carried[2]),
         }
     }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn norm(v: [f64; 3]) -> f64 {

@@ -55,8 +55,8 @@ pub mod worldline;
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
 pub use connect::{shadow_rays, shadow_rays_from_axis, source_area_distance_sq, Branch, ShadowRay};
 pub use constants::{ConstantsOfMotion, Drift};
-pub use eyes::Viewpoint;
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
+pub use eyes::Viewpoint;
 pub use frame::{aberrate, boost, gram_schmidt_static_frame, scaled_unit, LocalVelocity};
 pub use geodesic::{
     photon_tangent, refine_root, trace, AxisReturn, AxisWatch, Geodesic, GeodesicKind,

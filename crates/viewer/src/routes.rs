@@ -186,31 +186,34 @@ async fn stereo_png(
     body: Bytes,
 ) -> Result<Response, ApiError> {
     let q = query_value("stereo", query)?;
-    let stereo = state.stereo().ok_or_else(|| {
+    let not_a_pair = || {
         ApiError::new(
             StatusCode::NOT_FOUND,
             "this data file is not one eye of a stereo pair",
         )
-    })?;
-    if stereo.partner.is_none() {
-        return Err(ApiError::new(
-            StatusCode::NOT_FOUND,
-            format!(
-                "the other eye's data file of this stereo pair was not beside the {} eye's",
-                stereo.eye.name()
-            ),
-        ));
-    }
-    let layout = q.layout.map_or(stereo.layout, Layout::from);
+    };
+    let stereo = state.stereo().ok_or_else(not_a_pair)?;
+    let (eye, layout) = (stereo.eye, q.layout.map_or(stereo.layout, Layout::from));
+    let missing = ApiError::new(
+        StatusCode::NOT_FOUND,
+        format!(
+            "the other eye's data file of this stereo pair was not beside the {} eye's",
+            eye.name()
+        ),
+    );
+    stereo.partner.as_ref().ok_or_else(|| missing.clone())?;
     let bytes = blocking(&state.clone(), move || {
-        let stereo = state.stereo().expect("checked above");
-        let partner = stereo.partner.as_deref().expect("checked above");
+        // The state owns the other eye: found again here, inside the blocking job.
+        let partner = state
+            .stereo()
+            .and_then(|s| s.partner.as_deref())
+            .ok_or(missing)?;
         let (settings, ours) = parse_settings(&state, &body)?;
         let theirs = partner
             .prepare(&settings)
             .map_err(|e| ApiError::bad_request(format!("settings: {e}")))?;
         let (mine, other) = (state.shade(&ours), partner.shade(&theirs));
-        let (left, right) = match stereo.eye {
+        let (left, right) = match eye {
             Eye::Left => (&mine, &other),
             Eye::Right => (&other, &mine),
         };
