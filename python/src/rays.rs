@@ -31,6 +31,7 @@ fn keyword(input: Input) -> &'static str {
         Input::Speed => "speed",
         Input::UntilTime => "max_past",
         Input::Samples => "samples",
+        Input::Method => "method",
     }
 }
 

@@ -28,6 +28,8 @@ pub struct RawScene {
 pub enum MetricName {
     Godel,
     Minkowski,
+    #[serde(rename = "godel-type")]
+    GodelType,
 }
 
 #[derive(Debug, Deserialize)]
@@ -35,6 +37,8 @@ pub enum MetricName {
 pub struct RawSpacetime {
     pub metric: Option<MetricName>,
     pub a: Option<f64>,
+    pub m2: Option<f64>,
+    pub omega: Option<f64>,
 }
 
 /// `{ r, phi, z }` (cylindrical) or `{ x, y, z }` (pseudo-Cartesian); missing components

@@ -87,7 +87,7 @@ impl Scene {
     }
 
     fn eye_of(&self, stereo: Stereo, eye: Eye) -> std::result::Result<Scene, SceneError> {
-        let a = self.metric.godel_a().unwrap_or(1.0);
+        let a = self.metric.length_scale();
         let (separation, convergence) = (stereo.separation, stereo.convergence);
         let o = &self.observer;
         let here = Viewpoint {
@@ -97,7 +97,22 @@ impl Scene {
             up: o.up,
         };
         let half = 0.5 * separation * a;
-        let moved = here.eye(&self.metric, eye.side() * half);
+        let file = self
+            .source_path
+            .as_ref()
+            .map_or("<scene>".to_string(), |p| p.display().to_string());
+        // The scene's check refuses stereo pairs where eyes cannot be placed.
+        let Some(moved) = here.eye(&self.metric, eye.side() * half) else {
+            return Err(SceneError {
+                file,
+                location: None,
+                field: "camera.stereo".to_string(),
+                message: format!(
+                    "a stereo pair cannot be placed in the metric {:?}",
+                    self.metric.name()
+                ),
+            });
+        };
         // Toe-in: the eye turns about its up axis towards the point `convergence` ahead.
         let forward = match convergence {
             Some(d) => {
@@ -115,10 +130,6 @@ impl Scene {
             up: moved.up,
         };
         let name = format!("{}.{}", self.name, eye.name());
-        let file = self
-            .source_path
-            .as_ref()
-            .map_or("<scene>".to_string(), |p| p.display().to_string());
         let source_text =
             edit::replace_eye(&self.source_text, &file, &name, &observer, eye.name())?;
         // The observer as its text reads (the reader normalizes the axes): the eye's scene

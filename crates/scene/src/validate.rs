@@ -17,7 +17,7 @@ use crate::checker::{Checker, Result};
 use crate::error::Locator;
 use crate::model::*;
 use crate::raw::*;
-use spacetime::{Event, Godel, LocalVelocity, Metric, Minkowski};
+use spacetime::{Event, Godel, GodelType, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -40,6 +40,14 @@ pub const MAX_COORDINATE_PER_A: f64 = 1e6;
 /// The Gödel parameter a, smallest and largest: beyond them the metric's terms (r²/a, 1/a²)
 /// overflow or lose the precision of f64 (a = 1e-300 made even the axis unusable).
 pub const A_RANGE: (f64, f64) = (1e-6, 1e6);
+
+/// Largest |m²|/Ω² of a Gödel-type member: the family's character (causal or not, shells)
+/// is decided at m² of the order of Ω² (m² = 4Ω² is the causal boundary).
+pub const MAX_M2_PER_OMEGA2: f64 = 100.0;
+
+/// Largest mρ of a position in a Gödel-type member with m² > 0 (Gödel's own bound, 1e6·a
+/// of its radius r = 2a sinh(ρ/2a), is mρ ≈ 29).
+pub const MAX_M_RHO: f64 = 30.0;
 
 /// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
 /// a local object is described in its rest frame to second order in its size (Riemann
@@ -89,7 +97,7 @@ pub(crate) fn build(
             power: c.non_negative(&format!("{path}.power"), l.power.unwrap_or(1.0))?,
         });
     }
-    godel_rules(&c, &metric, &trace, &objects, &lights)?;
+    godel_rules(&c, &metric, &trace, &objects, &lights, stereo)?;
     coordinate_bounds(&c, &metric, &observer, &objects, &lights)?;
     Ok(Scene {
         name: raw.name,
@@ -149,7 +157,13 @@ fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
     let Some(s) = raw else {
         return Ok(Metric::Godel(Godel::new(1.0)));
     };
-    match s.metric.unwrap_or(MetricName::Godel) {
+    let name = s.metric.unwrap_or(MetricName::Godel);
+    if name != MetricName::GodelType {
+        let why = "here: m2 and omega are the constants of metric = \"godel-type\"";
+        c.unused("spacetime.m2", &s.m2, why)?;
+        c.unused("spacetime.omega", &s.omega, why)?;
+    }
+    match name {
         MetricName::Godel => {
             let a = c.positive("spacetime.a", s.a.unwrap_or(1.0))?;
             if !(A_RANGE.0..=A_RANGE.1).contains(&a) {
@@ -169,6 +183,47 @@ fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
         MetricName::Minkowski => {
             c.unused("spacetime.a", &s.a, "by the Minkowski metric")?;
             Ok(Metric::Minkowski(Minkowski))
+        }
+        MetricName::GodelType => {
+            c.unused(
+                "spacetime.a",
+                &s.a,
+                "by metric = \"godel-type\" (its constants are m2 and omega)",
+            )?;
+            let why = "by metric = \"godel-type\"";
+            let omega = c.required("spacetime.omega", s.omega, why)?;
+            let omega = c.positive("spacetime.omega", omega)?;
+            // Gödel's a of the same vorticity, 1/(√2 Ω), within the range allowed for a.
+            let a = 1.0 / (std::f64::consts::SQRT_2 * omega);
+            if !(A_RANGE.0..=A_RANGE.1).contains(&a) {
+                return c.err(
+                    "spacetime.omega",
+                    format!(
+                        "{} is outside [{:e}, {:e}] (1/(√2 Ω) must be within the range of Gödel's a): \
+                         the metric loses the precision of f64 there (choose the unit of length so that Ω is moderate)",
+                        crate::short(omega),
+                        1.0 / (std::f64::consts::SQRT_2 * A_RANGE.1),
+                        1.0 / (std::f64::consts::SQRT_2 * A_RANGE.0)
+                    ),
+                );
+            }
+            let m2 = c.required("spacetime.m2", s.m2, why)?;
+            let m2 = c.finite("spacetime.m2", m2)?;
+            let ratio = m2 / (omega * omega);
+            if ratio.abs() > MAX_M2_PER_OMEGA2 {
+                return c.err(
+                    "spacetime.m2",
+                    format!(
+                        "{} is {} Ω²; |m²| must be at most {MAX_M2_PER_OMEGA2} Ω² = {}: beyond, the \
+                         curvature scale 1/|m| is so much smaller than the vorticity's that the \
+                         metric's exponentials lose the precision of f64 within a few units of length",
+                        crate::short(m2),
+                        crate::short(ratio),
+                        crate::short(MAX_M2_PER_OMEGA2 * omega * omega)
+                    ),
+                );
+            }
+            Ok(Metric::GodelType(GodelType::new(m2, omega)))
         }
     }
 }
@@ -299,31 +354,51 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     })
 }
 
-/// Checks that need both the metric and the rest. The exact tracer and the lights use
-/// Gödel's closed forms, so they need that metric. In Gödel's universe, rays loop with a
-/// period of at least [`Godel::shortest_loop_time`], so `max_past` bounds the number of
-/// loops a ray makes ([`MAX_RAY_LOOPS`]); and a local sphere must be small against a.
+/// Checks that need both the metric and the rest. The exact tracer, the lights and stereo
+/// pairs use Gödel's closed forms and isometries, so they need that metric. In Gödel's
+/// universe, rays loop with a period of at least [`Godel::shortest_loop_time`], so
+/// `max_past` bounds the number of loops a ray makes ([`MAX_RAY_LOOPS`]); and a local
+/// sphere must be small against the curvature scale (a in Gödel's universe).
 fn godel_rules(
     c: &Checker,
     metric: &Metric,
     trace: &TraceSettings,
     objects: &[Object],
     lights: &[Light],
+    stereo: Option<Stereo>,
 ) -> Result<()> {
-    let Metric::Godel(godel) = metric else {
-        if trace.method == TraceMethod::Exact {
-            return c.err(
-                "trace.method",
-                "\"exact\" uses the Gödel closed forms: it needs spacetime.metric = \"godel\"",
-            );
+    let godel = match metric {
+        Metric::Godel(godel) => godel,
+        Metric::Minkowski(_) | Metric::GodelType(_) => {
+            let need = "spacetime.metric = \"godel\"";
+            let not_yet = match metric {
+                Metric::GodelType(_) => {
+                    " (in the Gödel-type family only the numeric tracer works so far)"
+                }
+                _ => "",
+            };
+            if trace.method == TraceMethod::Exact {
+                return c.err(
+                    "trace.method",
+                    format!("\"exact\" uses the Gödel closed forms: it needs {need}{not_yet}"),
+                );
+            }
+            if !lights.is_empty() {
+                return c.err(
+                    "light[0]",
+                    format!("lights are traced with the Gödel closed forms (shadow rays): they need {need}{not_yet}"),
+                );
+            }
+            if let (Metric::GodelType(_), Some(s)) = (metric, stereo) {
+                if s.is_pair() {
+                    return c.err(
+                        "camera.stereo",
+                        format!("a stereo pair places its eyes with Gödel's isometries: it needs {need}{not_yet}"),
+                    );
+                }
+            }
+            return local_sizes(c, objects, metric.length_scale());
         }
-        if !lights.is_empty() {
-            return c.err(
-                "light[0]",
-                "lights are traced with the Gödel closed forms (shadow rays): they need spacetime.metric = \"godel\"",
-            );
-        }
-        return Ok(());
     };
     let a = godel.a;
     let loops = trace.max_past / godel.shortest_loop_time();
@@ -337,6 +412,11 @@ fn godel_rules(
             ),
         );
     }
+    local_sizes(c, objects, a)
+}
+
+/// Local spheres small against the curvature scale `a` (module constants above).
+fn local_sizes(c: &Checker, objects: &[Object], a: f64) -> Result<()> {
     for (i, o) in objects.iter().enumerate() {
         if let Shape::Sphere { radius } = o.shape {
             // A ball moving at γ has a rest-frame neighbourhood whose static coordinates
@@ -369,6 +449,27 @@ fn godel_rules(
     Ok(())
 }
 
+/// How far from the axis a Gödel-type member's scene may reach, and why. m² > 0: the metric
+/// grows as e^{mρ}, and beyond mρ = [`MAX_M_RHO`] its terms cancel to few digits. m² < 0:
+/// the coordinates end at ρ = π/μ (the base's pole opposite the axis); every light ray and
+/// free fall is a circle of diameter at most ρ_c on the base, so a scene within π/μ − ρ_c of
+/// the axis never reaches that pole.
+fn member_radius_limit(member: GodelType) -> Option<(f64, String)> {
+    if member.m2 > 0.0 {
+        let limit = MAX_M_RHO / member.m2.sqrt();
+        Some((
+            limit,
+            format!(
+                "the metric grows as e^(mρ) and loses the precision of f64 beyond mρ = {MAX_M_RHO}"
+            ),
+        ))
+    } else {
+        let end = member.coordinate_radius()?;
+        let rho_c = member.critical_radius()?;
+        Some((end - rho_c, format!("rays from there could cross the pole opposite the axis at π/μ = {}, where the coordinates end (light and free falls stay within ρ_c = {} of where they pass)", crate::short(end), crate::short(rho_c))))
+    }
+}
+
 /// Every time, position and size in the scene within [`MAX_COORDINATE_PER_A`] of the
 /// scale (a in Gödel's universe, 1 in flat spacetime), located at the offending field.
 fn coordinate_bounds(
@@ -378,7 +479,7 @@ fn coordinate_bounds(
     objects: &[Object],
     lights: &[Light],
 ) -> Result<()> {
-    let bound = MAX_COORDINATE_PER_A * metric.godel_a().unwrap_or(1.0);
+    let bound = MAX_COORDINATE_PER_A * metric.length_scale();
     let check = |path: &str, values: &[f64]| -> Result<()> {
         match values.iter().find(|v| v.abs() > bound) {
             Some(v) => c.err(
@@ -391,22 +492,37 @@ fn coordinate_bounds(
             None => Ok(()),
         }
     };
+    let radius_limit = metric.godel_type().and_then(member_radius_limit);
+    let place = |path: &str, p: [f64; 3]| -> Result<()> {
+        check(path, &p)?;
+        match &radius_limit {
+            Some((limit, why)) if p[0].hypot(p[1]) > *limit => c.err(
+                path,
+                format!(
+                    "is {} from the axis, beyond {}: {why}",
+                    crate::short(p[0].hypot(p[1])),
+                    crate::short(*limit)
+                ),
+            ),
+            _ => Ok(()),
+        }
+    };
     let event = |e: Event| [e.x, e.y, e.z];
     check("observer.time", &[observer.event.t])?;
-    check("observer.position", &event(observer.event))?;
+    place("observer.position", event(observer.event))?;
     for (i, o) in objects.iter().enumerate() {
         let p = |f: &str| format!("object[{i}].{f}");
         match o.motion {
-            Motion::Rest { position } => check(&p("motion.position"), &event(position))?,
+            Motion::Rest { position } => place(&p("motion.position"), event(position))?,
             Motion::Geodesic { start, .. } => {
                 check(&p("motion.time"), &[start.t])?;
-                check(&p("motion.position"), &event(start))?;
+                place(&p("motion.position"), event(start))?;
             }
         }
         match o.shape {
             Shape::Sphere { radius } => check(&p("radius"), &[radius])?,
             Shape::CoordinateSphere { center, radius } => {
-                check(&p("center"), &center)?;
+                place(&p("center"), center)?;
                 check(&p("radius"), &[radius])?;
             }
             Shape::Plane { height, extent } => {
@@ -416,7 +532,7 @@ fn coordinate_bounds(
         }
     }
     for (i, l) in lights.iter().enumerate() {
-        check(&format!("light[{i}].position"), &event(l.position))?;
+        place(&format!("light[{i}].position"), event(l.position))?;
     }
     Ok(())
 }

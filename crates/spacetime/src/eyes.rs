@@ -49,19 +49,21 @@ impl Viewpoint {
 
     /// The eye at proper distance `offset` along the camera's right axis (forward × up;
     /// negative: to the left): the image of this viewpoint under exp(offset ξ) (module
-    /// documentation). An offset of 0 gives this viewpoint unchanged.
-    pub fn eye(&self, metric: &Metric, offset: f64) -> Viewpoint {
+    /// documentation). An offset of 0 gives this viewpoint unchanged; `None` in the
+    /// Gödel-type family, whose isometries are not used here yet.
+    pub fn eye(&self, metric: &Metric, offset: f64) -> Option<Viewpoint> {
         if offset == 0.0 {
-            return *self;
+            return Some(*self);
         }
         let frame = self.frame(metric);
         let right = cross(self.forward, self.up);
         let e_right = Viewpoint::axis(&frame, right);
         match metric {
-            Metric::Minkowski(_) => Viewpoint {
+            Metric::Minkowski(_) => Some(Viewpoint {
                 event: Event::from_array(add(self.event.to_array(), offset, e_right)),
                 ..*self
-            },
+            }),
+            Metric::GodelType(_) => None,
             Metric::Godel(g) => {
                 let a = g.a;
                 let to_origin = Isometry::to_origin(a, self.event);
@@ -87,7 +89,7 @@ impl Viewpoint {
                     event = map.apply(at);
                     carried = carried.map(|v| map.push(at, v));
                 }
-                Viewpoint::seen_at(metric, event, carried)
+                Some(Viewpoint::seen_at(metric, event, carried))
             }
         }
     }

@@ -84,6 +84,35 @@ impl GodelType {
         GodelType { m2, omega }
     }
 
+    /// Gödel's parameter a of the same vorticity, 1/(√2 Ω): the member m² = 2Ω² is Gödel's
+    /// universe with this a (docs/physics.md, "The Gödel-type family").
+    pub fn godel_a(&self) -> f64 {
+        1.0 / (std::f64::consts::SQRT_2 * self.omega)
+    }
+
+    /// ρ_c, beyond which the circles about the axis are closed timelike curves and where the
+    /// light rays from the axis in the plane z = 0 turn back: tanh(mρ_c/2) = m/(2Ω), ρ_c = 1/Ω
+    /// for m² = 0, tan(μρ_c/2) = μ/(2Ω) for m² = −μ² < 0 (the first of its shells). None for
+    /// m² ≥ 4Ω², which is causal everywhere.
+    pub fn critical_radius(&self) -> Option<f64> {
+        let two_omega = 2.0 * self.omega;
+        if self.m2 > 0.0 {
+            let m = self.m2.sqrt();
+            (m < two_omega).then(|| 2.0 * (m / two_omega).atanh() / m)
+        } else if self.m2 == 0.0 {
+            Some(1.0 / self.omega)
+        } else {
+            let mu = (-self.m2).sqrt();
+            Some(2.0 * (mu / two_omega).atan() / mu)
+        }
+    }
+
+    /// Where the coordinates end: ρ = π/μ for m² = −μ² < 0 (the base is a sphere and ρ = π/μ
+    /// its pole opposite the axis); None for m² ≥ 0.
+    pub fn coordinate_radius(&self) -> Option<f64> {
+        (self.m2 < 0.0).then(|| std::f64::consts::PI / (-self.m2).sqrt())
+    }
+
     /// f = H/ρ², q = (D²/ρ² − 1)/ρ² and their derivatives with respect to s = ρ², at s.
     fn profile(&self, s: f64) -> Profile {
         let [c, dc, t, dt] = functions(self.m2 * s);

@@ -8,7 +8,7 @@
 
 use crate::frame::{boost, gram_schmidt_static_frame, LocalVelocity};
 use crate::vectors::{Christoffel, Covector, Event, FourVector, MetricTensor, Tetrad};
-use crate::{Godel, Minkowski};
+use crate::{Godel, GodelType, Minkowski};
 
 /// A spacetime metric in pseudo-Cartesian coordinates (t, x, y, z).
 ///
@@ -96,6 +96,7 @@ pub trait Spacetime {
 pub enum Metric {
     Minkowski(Minkowski),
     Godel(Godel),
+    GodelType(GodelType),
 }
 
 impl Metric {
@@ -103,14 +104,35 @@ impl Metric {
     pub fn godel_a(&self) -> Option<f64> {
         match self {
             Metric::Godel(g) => Some(g.a),
-            Metric::Minkowski(_) => None,
+            Metric::Minkowski(_) | Metric::GodelType(_) => None,
         }
+    }
+    /// The member of the Gödel-type family, if this is one given by (m², Ω).
+    pub fn godel_type(&self) -> Option<GodelType> {
+        match self {
+            Metric::GodelType(g) => Some(*g),
+            Metric::Minkowski(_) | Metric::Godel(_) => None,
+        }
+    }
+    /// The unit that sizes the scene's bounds and step limits: a in Gödel's universe, Gödel's
+    /// a of the same vorticity, 1/(√2 Ω), in the Gödel-type family, 1 in flat spacetime.
+    pub fn length_scale(&self) -> f64 {
+        match self {
+            Metric::Godel(g) => g.a,
+            Metric::GodelType(g) => g.godel_a(),
+            Metric::Minkowski(_) => 1.0,
+        }
+    }
+    /// The radius beyond which the coordinates end (D = 0 at μρ = π where m² = −μ² < 0).
+    pub fn coordinate_radius(&self) -> Option<f64> {
+        self.godel_type().and_then(|g| g.coordinate_radius())
     }
     /// Short name as used in scene files and on the command line.
     pub fn name(&self) -> &'static str {
         match self {
             Metric::Godel(_) => "godel",
             Metric::Minkowski(_) => "minkowski",
+            Metric::GodelType(_) => "godel-type",
         }
     }
 }
@@ -120,6 +142,7 @@ macro_rules! dispatch {
         match $self {
             Metric::Minkowski($m) => $e,
             Metric::Godel($m) => $e,
+            Metric::GodelType($m) => $e,
         }
     };
 }

@@ -107,6 +107,7 @@ fn flag(input: Input) -> &'static str {
         Input::Speed => "--speed",
         Input::UntilTime => "--until-time",
         Input::Samples => "--samples",
+        Input::Method => "--method",
     }
 }
 

@@ -133,7 +133,9 @@ fn in_godels_universe_the_left_eye_is_the_mono_render_from_its_event() {
         forward: [1.0, 0.0, 0.0],
         up: [0.0, 0.0, 1.0],
     };
-    let eye = here.eye(&Metric::Godel(spacetime::Godel::new(1.0)), -0.15);
+    let eye = here
+        .eye(&Metric::Godel(spacetime::Godel::new(1.0)), -0.15)
+        .expect("a Gödel eye");
     let e = eye.event;
     let v = eye.velocity;
     let by_hand = format!(

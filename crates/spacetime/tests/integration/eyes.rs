@@ -44,7 +44,7 @@ fn an_offset_of_zero_is_the_observer_itself() {
     let mut rng = Rng::new(37);
     for metric in [Metric::Godel(Godel::new(1.0)), Metric::Minkowski(Minkowski)] {
         let v = viewpoint(&mut rng, 1.0);
-        assert_eq!(v.eye(&metric, 0.0), v);
+        assert_eq!(v.eye(&metric, 0.0), Some(v));
     }
 }
 
@@ -55,7 +55,7 @@ fn in_flat_space_an_eye_is_the_event_moved_along_the_right_axis() {
     for _ in 0..50 {
         let v = viewpoint(&mut rng, 1.0);
         let d = rng.uniform(-0.5, 0.5);
-        let eye = v.eye(&metric, d);
+        let eye = v.eye(&metric, d).expect("a Gödel or Minkowski eye");
         let e_r = carried(&metric, &v)[3].to_array();
         let want: [f64; 4] = std::array::from_fn(|i| v.event.to_array()[i] + d * e_r[i]);
         let moved: [f64; 4] = std::array::from_fn(|i| eye.event.to_array()[i] - want[i]);
@@ -86,7 +86,7 @@ fn in_godels_universe_an_eye_is_the_flow_of_the_right_axis_killing_field() {
         for _ in 0..40 {
             let v = viewpoint(&mut rng, a);
             let d = rng.uniform(-0.6, 0.6) * a;
-            let eye = v.eye(&metric, d);
+            let eye = v.eye(&metric, d).expect("a Gödel or Minkowski eye");
             let to_origin = Isometry::to_origin(a, v.event);
             let before = carried(&metric, &v);
             let u = to_origin.push(v.event, before[3]).to_array();
