@@ -98,6 +98,10 @@ impl Data {
         d.set_item("observer_time", h.observer_time)?;
         d.set_item("metric", &h.metric)?;
         d.set_item("a", h.godel_a)?;
+        if let Some(m) = h.member {
+            d.set_item("m2", m.m2)?;
+            d.set_item("omega", m.omega)?;
+        }
         d.set_item("method", &h.method)?;
         d.set_item("objects", h.object_names.clone())?;
         Ok(d)

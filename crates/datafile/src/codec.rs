@@ -89,6 +89,10 @@ pub mod attr {
     pub const METRIC: &str = "godel.metric";
     pub const A: &str = "godel.a";
     pub const METHOD: &str = "godel.method";
+    /// The Gödel-type member's m² (only for `metric = "godel-type"`).
+    pub const M2: &str = "godel.m2";
+    /// The Gödel-type member's vorticity Ω (only for `metric = "godel-type"`).
+    pub const OMEGA: &str = "godel.omega";
     pub const OBJECTS: &str = "godel.objects";
     /// Samples per picture pixel along each side (s; s² rays per pixel).
     pub const SUPERSAMPLE: &str = "godel.supersample";
@@ -99,6 +103,13 @@ pub mod attr {
     /// Part files: the scene file's path (empty for the built-in scene), to find its
     /// textures.
     pub const SCENE_PATH: &str = "godel.scene_path";
+}
+
+/// A member of the Gödel-type family: its constants m² and Ω.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Member {
+    pub m2: f64,
+    pub omega: f64,
 }
 
 /// Self-description of a data file: the scene and camera it was traced from.
@@ -114,10 +125,12 @@ pub struct DataHeader {
     pub camera: String,
     /// Coordinate time of the observer; `t_emit` is relative to it.
     pub observer_time: f64,
-    /// `"godel"` or `"minkowski"`.
+    /// `"godel"`, `"minkowski"` or `"godel-type"`.
     pub metric: String,
-    /// The Gödel scale parameter `a`.
+    /// The Gödel scale parameter `a` (0 for the other metrics).
     pub godel_a: f64,
+    /// The member of the Gödel-type family, exactly for `metric = "godel-type"`.
+    pub member: Option<Member>,
     /// Tracing method (`"numeric"` or `"exact"`).
     pub method: String,
     /// Object names in scene-file order; `object` ids index this list.
@@ -279,6 +292,20 @@ impl DataFile {
         }
         check_finite(attr::OBSERVER_TIME, h.observer_time)?;
         check_finite(attr::A, h.godel_a)?;
+        match (h.metric == "godel-type", h.member) {
+            (true, Some(m)) => {
+                check_finite(attr::M2, m.m2)?;
+                check_finite(attr::OMEGA, m.omega)?;
+            }
+            (true, None) => return Err(DataFileErrorKind::MissingAttribute(attr::M2)),
+            (false, Some(_)) => {
+                return Err(DataFileErrorKind::BadAttribute {
+                    name: attr::M2,
+                    problem: format!("given for the metric {:?}", h.metric),
+                })
+            }
+            (false, None) => {}
+        }
         for (i, r) in self.records.iter().enumerate() {
             let (col, row) = (i % self.width, i / self.width);
             check_object(r.object, h.object_names.len(), col, row)?;
@@ -309,6 +336,12 @@ impl DataFile {
             .collect();
 
         let mut attributes = LayerAttributes::default();
+        let member = h.member.into_iter().flat_map(|m| {
+            [
+                (attr::M2, format!("{:?}", m.m2)),
+                (attr::OMEGA, format!("{:?}", m.omega)),
+            ]
+        });
         let texts = [
             (attr::FORMAT_VERSION, h.format_version.to_string()),
             (attr::SCENE_NAME, h.scene_name.clone()),
@@ -322,7 +355,7 @@ impl DataFile {
             (attr::SUPERSAMPLE, h.supersample.to_string()),
         ];
         let extra = extra.iter().map(|(n, v)| (*n, v.clone()));
-        for (name, value) in texts.into_iter().chain(extra) {
+        for (name, value) in texts.into_iter().chain(member).chain(extra) {
             // exr's Text is a byte string; store UTF-8 bytes unchanged.
             let text = Text::from_bytes_unchecked(SmallVec::from_vec(value.into_bytes()));
             attributes
@@ -431,6 +464,7 @@ impl DataFile {
             observer_time: number(attr::OBSERVER_TIME)?,
             metric: text(attr::METRIC)?,
             godel_a: number(attr::A)?,
+            member: None,
             method: text(attr::METHOD)?,
             object_names,
             supersample: text(attr::SUPERSAMPLE)?
@@ -443,6 +477,13 @@ impl DataFile {
                     problem: format!("not a whole number in 1..={}", crate::MAX_SUPERSAMPLE),
                 })?,
         };
+        let mut header = header;
+        if header.metric == "godel-type" {
+            header.member = Some(Member {
+                m2: number(attr::M2)?,
+                omega: number(attr::OMEGA)?,
+            });
+        }
         if width % header.supersample as usize != 0 || height % header.supersample as usize != 0 {
             return inconsistent(format!(
                 "image size {width}×{height} is not a multiple of the supersampling {}",

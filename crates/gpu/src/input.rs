@@ -195,7 +195,7 @@ impl KernelInput {
         let v = obs.velocity;
         let uniforms = Uniforms {
             metric: i32::from(scene.metric.godel_a().is_some()),
-            a: scene.metric.godel_a().unwrap_or(1.0) as f32,
+            a: scene.metric.length_scale() as f32,
             obs_t: split_time(obs.event.t),
             obs_x: f([obs.event.x, obs.event.y, obs.event.z]),
             observer: ObserverUniforms::new(&scene.metric, obs.event.x, obs.event.y, obs.event.z),

@@ -17,7 +17,7 @@ use crate::target::Target;
 use crate::tiles::{Assembler, Sink, TileData};
 use crate::tracer::{Scratch, TraceOptions, Tracer};
 use datafile::record::{PixelRecord, RayStatus};
-use datafile::{DataFile, DataHeader, FORMAT_VERSION};
+use datafile::{DataFile, DataHeader, Member, FORMAT_VERSION};
 use rayon::prelude::*;
 use scene::{Camera, Scene, TraceMethod};
 use std::sync::Mutex;
@@ -314,6 +314,10 @@ pub fn header(scene: &Scene) -> DataHeader {
         observer_time: scene.observer.event.t,
         metric: scene.metric.name().to_string(),
         godel_a: scene.metric.godel_a().unwrap_or(0.0),
+        member: scene.metric.godel_type().map(|g| Member {
+            m2: g.m2,
+            omega: g.omega,
+        }),
         method: match scene.trace.method {
             TraceMethod::Numeric => "numeric".into(),
             TraceMethod::Exact => "exact".into(),

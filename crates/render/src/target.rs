@@ -100,8 +100,7 @@ impl Target {
                 let pad = match object.motion {
                     Motion::Rest { .. } => 0.0,
                     Motion::Geodesic { velocity, .. } => {
-                        let near =
-                            FAR_DISTANCE * metric.godel_a().unwrap_or(1.0) + FAR_RADII * radius;
+                        let near = FAR_DISTANCE * metric.length_scale() + FAR_RADII * radius;
                         2.0 * velocity.gamma() * near
                     }
                 };
@@ -133,12 +132,10 @@ impl Target {
                 // The rest frame's "now" differs from coordinate time across the ball.
                 let dt = 4.0 * radius + 0.1;
                 let b = worldline.bounds(t0 - dt, t1 + dt);
-                // A proper length along r spans √(1 + (r/2a)²) in coordinates
+                // A proper length spans more in coordinates far out in Gödel's universe
                 // (docs/physics.md, "The Gödel metric": g_rr = 1/(1 + s²)).
-                let s2 = metric.godel_a().map_or(0.0, |a| {
-                    ((b.max_radius() + 2.0 * radius) / (2.0 * a)).powi(2)
-                });
-                b.grown(2.0 * radius * (1.0 + s2).sqrt() + 0.05)
+                let stretch = metric.coordinate_stretch(b.max_radius() + 2.0 * radius);
+                b.grown(2.0 * radius * stretch + 0.05)
             }
             Target::CoordinateSphere { center, radius } => {
                 Aabb::point(*center).grown(radius * (1.0 + 1e-9))
@@ -162,7 +159,7 @@ impl Target {
                 } else {
                     worldline.tau_guess(s.x.t)
                 };
-                let far = FAR_DISTANCE * metric.godel_a().unwrap_or(1.0) + FAR_RADII * radius;
+                let far = FAR_DISTANCE * metric.length_scale() + FAR_RADII * radius;
                 let at = |seed: f64| {
                     let lp = worldline.localize(metric, s.x, seed, far)?;
                     Some((
@@ -340,7 +337,7 @@ fn local_probe(
     // A far point is outside (beyond R + FAR_DISTANCE·a to first order): however large the
     // ball, its estimate stays at least half that margin clear, never on the inside
     // (2.95/1.3 once made a false crossing).
-    let floor = radius + 0.5 * FAR_DISTANCE * metric.godel_a().unwrap_or(1.0);
+    let floor = radius + 0.5 * FAR_DISTANCE * metric.length_scale();
     let d = if lp.exact {
         d1
     } else {

@@ -457,6 +457,8 @@ fn local_coords(dual: &DualFrame, gamma: Option<&Christoffel>, p: Event, x: Even
 /// holds for displacements up to the largest radius, a/2, even for a boosted ball near the
 /// horizon: at `p` itself a coordinate displacement of ~γ|ξ| at large r once put a point
 /// 1.7 γ|ξ| away (static distance) inside the ball. Minkowski: the displacement itself.
+/// The Gödel-type family (no isometries used here yet): normal coordinates at `p` itself,
+/// where ρ is the proper radius and the metric has no 1/(1 + s²) stretch to amplify them.
 fn origin_coords(
     metric: &Metric,
     origin: &(MetricTensor, Christoffel),
@@ -465,7 +467,8 @@ fn origin_coords(
 ) -> [f64; 4] {
     let Some(a) = metric.godel_a() else {
         let g = metric.metric(p.event);
-        return local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x);
+        let gamma = metric.godel_type().map(|_| metric.christoffel(p.event));
+        return local_coords(&DualFrame::new(&g, &p.frame), gamma.as_ref(), p.event, x);
     };
     let to = Isometry::to_origin(a, p.event);
     let frame = Tetrad {
@@ -486,7 +489,7 @@ fn integrate(
     done: impl Fn(f64) -> bool,
 ) -> Result<Vec<DenseStep<20>>, WorldlineError> {
     // Steps scale with the curvature scale a (a loop takes a few a of proper time).
-    let scale = metric.godel_a().unwrap_or(1.0);
+    let scale = metric.length_scale();
     let tol = Tolerances {
         rtol: 1e-11,
         atol: 1e-11,

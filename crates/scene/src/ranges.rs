@@ -1,9 +1,13 @@
 //! The ranges scenes allow for the Gödel parameter and for coordinates ([`A_RANGE`],
-//! [`MAX_COORDINATE_PER_A`]), as checks of values given outside a scene file: the command
-//! line's `--a` and events (`godel geodesic`, `connect`, `plot`), the Python module's
-//! arguments. The messages name no flag or keyword (the caller does).
+//! [`MAX_COORDINATE_PER_A`]), and for the constants of a Gödel-type member and how far from
+//! its axis an event may lie ([`MAX_M2_PER_OMEGA2`], [`MAX_M_RHO`]), as checks of values
+//! given outside a scene file: the command line's `--a`, `--m2`, `--omega` and events
+//! (`godel geodesic`, `connect`, `plot`), the Python module's arguments. The messages name
+//! no flag or keyword (the caller does).
 
+use crate::validate::{MAX_M2_PER_OMEGA2, MAX_M_RHO};
 use crate::{short, A_RANGE, MAX_COORDINATE_PER_A};
+use spacetime::GodelType;
 
 /// Checks a Gödel parameter: positive and finite, within [`A_RANGE`].
 pub fn check_a(a: f64) -> Result<f64, String> {
@@ -40,6 +44,77 @@ pub fn check_coordinates(names: &[&str], values: &[f64], a: f64) -> Result<(), S
     Ok(())
 }
 
+/// Checks a Gödel-type member's vorticity Ω: positive and finite, with Gödel's a of the same
+/// vorticity, 1/(√2 Ω), within [`A_RANGE`] (as scenes' `spacetime.omega`).
+pub fn check_omega(omega: f64) -> Result<f64, String> {
+    if !(omega.is_finite() && omega > 0.0) {
+        return Err(format!("must be positive and finite, got {}", short(omega)));
+    }
+    let a = 1.0 / (std::f64::consts::SQRT_2 * omega);
+    if !(A_RANGE.0..=A_RANGE.1).contains(&a) {
+        return Err(format!(
+            "{} is outside [{:e}, {:e}], as in scenes (spacetime.omega: 1/(√2 Ω) within the \
+             range of Gödel's a): the metric loses the precision of f64 there",
+            short(omega),
+            1.0 / (std::f64::consts::SQRT_2 * A_RANGE.1),
+            1.0 / (std::f64::consts::SQRT_2 * A_RANGE.0)
+        ));
+    }
+    Ok(omega)
+}
+
+/// Checks a Gödel-type member's m² for the (checked) vorticity `omega`: finite, |m²| at most
+/// [`MAX_M2_PER_OMEGA2`]·Ω² (as scenes' `spacetime.m2`).
+pub fn check_m2(m2: f64, omega: f64) -> Result<f64, String> {
+    if !m2.is_finite() {
+        return Err(format!("must be finite, got {}", short(m2)));
+    }
+    let ratio = m2 / (omega * omega);
+    if ratio.abs() > MAX_M2_PER_OMEGA2 {
+        return Err(format!(
+            "{} is {} Ω²; |m²| must be at most {MAX_M2_PER_OMEGA2} Ω² = {}, as in scenes \
+             (spacetime.m2): beyond, the metric's exponentials lose the precision of f64 \
+             within a few units of length",
+            short(m2),
+            short(ratio),
+            short(MAX_M2_PER_OMEGA2 * omega * omega)
+        ));
+    }
+    Ok(m2)
+}
+
+/// Checks the distance `rho` of an event from a member's axis, as scenes bound positions:
+/// m² > 0: mρ at most [`MAX_M_RHO`] (the metric grows as e^{mρ}); m² = −μ² < 0: ρ at most
+/// π/μ − ρ_c (light and free falls from there stay within ρ_c of it and cannot reach the
+/// pole opposite the axis at ρ = π/μ, where the coordinates end).
+pub fn check_member_radius(member: GodelType, rho: f64) -> Result<(), String> {
+    if member.m2 > 0.0 {
+        let limit = MAX_M_RHO / member.m2.sqrt();
+        if rho.is_nan() || rho > limit {
+            return Err(format!(
+                "R = {} is beyond mρ = {MAX_M_RHO} (R ≤ {}), as in scenes: the metric grows as \
+                 e^(mρ) and loses the precision of f64 there",
+                short(rho),
+                short(limit)
+            ));
+        }
+    } else if let (Some(end), Some(rho_c)) = (member.coordinate_radius(), member.critical_radius())
+    {
+        if rho.is_nan() || rho > end - rho_c {
+            return Err(format!(
+                "R = {} is beyond π/μ − ρ_c = {}, as in scenes: rays from there could cross the \
+                 pole opposite the axis at π/μ = {}, where the coordinates end (light and free \
+                 falls stay within ρ_c = {} of where they pass)",
+                short(rho),
+                short(end - rho_c),
+                short(end),
+                short(rho_c)
+            ));
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -61,5 +136,27 @@ mod tests {
         assert!(check_coordinates(&names, &[0.0, 0.0, 0.0, 5e6], 10.0).is_ok());
         assert!(check_coordinates(&names, &[0.0, 0.0, 2e6, 0.0], 10.0).is_err());
         assert!(check_coordinates(&["x"], &[f64::NAN], 1.0).is_err());
+    }
+
+    #[test]
+    fn members_have_the_ranges_of_scenes() {
+        assert_eq!(check_omega(0.5), Ok(0.5));
+        for bad in [0.0, -1.0, f64::NAN, 1e300, 1e-300] {
+            assert!(check_omega(bad).is_err(), "{bad}");
+        }
+        assert_eq!(check_m2(-25.0, 0.5), Ok(-25.0));
+        assert!(check_m2(25.1, 0.5)
+            .unwrap_err()
+            .starts_with("25.1 is 100.4 Ω²"));
+        assert!(check_m2(f64::INFINITY, 0.5).is_err());
+        // m² = 1: mρ ≤ 30.
+        let member = GodelType::new(1.0, 0.5);
+        assert!(check_member_radius(member, 30.0).is_ok());
+        assert!(check_member_radius(member, 30.01).is_err());
+        // m² = −1, Ω = 1/2: π/μ − ρ_c = π − 2 atan(1) = π/2.
+        let member = GodelType::new(-1.0, 0.5);
+        assert!(check_member_radius(member, 1.57).is_ok());
+        assert!(check_member_radius(member, 1.58).is_err());
+        assert!(check_member_radius(GodelType::new(0.0, 0.5), 1e5).is_ok());
     }
 }

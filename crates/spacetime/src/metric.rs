@@ -114,13 +114,35 @@ impl Metric {
             Metric::Minkowski(_) | Metric::Godel(_) => None,
         }
     }
-    /// The unit that sizes the scene's bounds and step limits: a in Gödel's universe, Gödel's
-    /// a of the same vorticity, 1/(√2 Ω), in the Gödel-type family, 1 in flat spacetime.
+    /// The unit that sizes the scene's bounds, local objects and step limits: a in Gödel's
+    /// universe; in the Gödel-type family the shorter of Gödel's a for the same vorticity,
+    /// 1/(√2 Ω), and the curvature scale 1/|m| (both a for the Gödel member); 1 in flat
+    /// spacetime.
     pub fn length_scale(&self) -> f64 {
         match self {
             Metric::Godel(g) => g.a,
-            Metric::GodelType(g) => g.godel_a(),
+            Metric::GodelType(g) => g.godel_a().min(1.0 / g.m2.abs().sqrt()),
             Metric::Minkowski(_) => 1.0,
+        }
+    }
+    /// The most coordinate length (x, y) that a unit of proper length spans within
+    /// `radius` of the axis: √(1 + (r/2a)²) in Gödel's universe (g_rr = 1/(1 + (r/2a)²)),
+    /// μρ/sin(μρ) in members with m² = −μ² < 0 (the circles' proper length D dφ is less
+    /// than ρ dφ), 1 otherwise (ρ is the proper radius and D ≥ ρ).
+    pub fn coordinate_stretch(&self, radius: f64) -> f64 {
+        match self {
+            Metric::Godel(g) => (1.0 + (radius / (2.0 * g.a)).powi(2)).sqrt(),
+            Metric::GodelType(g) if g.m2 < 0.0 => {
+                let x = (-g.m2).sqrt() * radius;
+                if x >= std::f64::consts::PI {
+                    f64::INFINITY
+                } else if x > 0.0 {
+                    x / x.sin()
+                } else {
+                    1.0
+                }
+            }
+            Metric::GodelType(_) | Metric::Minkowski(_) => 1.0,
         }
     }
     /// The radius beyond which the coordinates end (D = 0 at μρ = π where m² = −μ² < 0).

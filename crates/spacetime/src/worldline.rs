@@ -4,12 +4,14 @@
 //! flight (the page's controls and "fall freely") moves its observer with this.
 //!
 //! In Gödel's universe the geodesic is the closed form carried by the isometries
-//! ([`ExactGeodesic`]); in Minkowski space it is the straight line. The 4-velocity of an
+//! ([`ExactGeodesic`]); in Minkowski space it is the straight line; in the Gödel-type family
+//! it is integrated (DOP853). The 4-velocity of an
 //! observer moving with `v` relative to the static frame (e₀, e₁, e₂, e₃) is
 //! u = γ(e₀ + v n·e), so back: γ = −g(u, e₀), γ v nᵢ = g(u, eᵢ).
 
 use crate::closed_form::ExactGeodesic;
 use crate::frame::LocalVelocity;
+use crate::geodesic::{trace, Geodesic, GeodesicKind, StopReason, TraceLimits};
 use crate::metric::{Metric, Spacetime};
 use crate::vectors::{Event, FourVector};
 
@@ -39,9 +41,10 @@ pub fn fall(
     tau: f64,
 ) -> Option<(Event, LocalVelocity)> {
     let u = metric.observer_frame(at, velocity).e[0];
-    let (event, tangent) = match metric.godel_a() {
-        Some(a) => ExactGeodesic::new(a, at, u)?.at(tau),
-        None => (
+    let (event, tangent) = match metric {
+        Metric::Godel(g) => ExactGeodesic::new(g.a, at, u)?.at(tau),
+        Metric::GodelType(_) => integrated_fall(metric, at, u, tau)?,
+        Metric::Minkowski(_) => (
             Event::new(
                 at.t + tau * u.t,
                 at.x + tau * u.x,
@@ -55,6 +58,34 @@ pub fn fall(
         return None;
     }
     Some((event, local_velocity(metric, event, tangent)?))
+}
+
+/// The geodesic with 4-velocity `u` at `at` after proper time `tau`, integrated (DOP853 at
+/// the default tolerances; a fall into the past runs along −u); `None` unless the
+/// integration reaches |tau| within its step budget.
+fn integrated_fall(
+    metric: &Metric,
+    at: Event,
+    u: FourVector,
+    tau: f64,
+) -> Option<(Event, FourVector)> {
+    if tau == 0.0 {
+        return Some((at, u));
+    }
+    let sign = tau.signum();
+    let start = FourVector::from_array(u.to_array().map(|c| sign * c));
+    let geodesic = Geodesic::from_tangent(metric, GeodesicKind::Timelike, at, start);
+    let limits = TraceLimits {
+        max_affine: tau.abs(),
+        ..Default::default()
+    };
+    let traced = trace(*metric, &geodesic, &limits);
+    if traced.stop != StopReason::AffineLimit {
+        return None;
+    }
+    let end = traced.end;
+    let tangent = end.tangent(metric).to_array().map(|c| sign * c);
+    Some((end.x, FourVector::from_array(tangent)))
 }
 
 #[cfg(test)]

@@ -176,6 +176,7 @@ pub fn godel_header(
         observer_time: 0.0,
         metric: "godel".into(),
         godel_a: 1.0,
+        member: None,
         method: "numeric".into(),
         object_names: objects.iter().map(|o| o.as_ref().to_string()).collect(),
         supersample: 1,

@@ -38,6 +38,7 @@ fn header(objects: usize) -> DataHeader {
         observer_time: 0.1 + 0.2,
         metric: "godel".into(),
         godel_a: std::f64::consts::PI * 1e-7,
+        member: None,
         method: "numeric".into(),
         object_names: (0..objects).map(|k| format!("object {k} ✓")).collect(),
         supersample: 1,

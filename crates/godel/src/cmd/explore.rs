@@ -172,7 +172,7 @@ impl FrameSource for SceneFrames {
     }
 
     fn bound(&self) -> f64 {
-        scene::MAX_COORDINATE_PER_A * self.scene.metric.godel_a().unwrap_or(1.0)
+        scene::MAX_COORDINATE_PER_A * self.scene.metric.length_scale()
     }
 
     fn frame(

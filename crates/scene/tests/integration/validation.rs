@@ -329,3 +329,79 @@ fn polarization_axis_is_a_direction_or_absent() {
         assert!(e.to_string().contains("polarization"), "{bad}: {e}");
     }
 }
+
+/// A Gödel-type member (issue 34): m2 and omega with metric = "godel-type", each bad value or
+/// misplaced constant refused at its field.
+#[test]
+fn godel_type_members_and_their_constants() {
+    let member = |m2: &str, omega: &str| {
+        format!("[spacetime]\nmetric = \"godel-type\"\nm2 = {m2}\nomega = {omega}\n")
+    };
+    for (m2, omega) in [("-1", "1"), ("0", "0.5"), ("2.25", "1.5"), ("6", "1")] {
+        let s = scene(&member(m2, omega)).unwrap();
+        let g = s.metric.godel_type().expect("a Gödel-type member");
+        assert_eq!(
+            (g.m2, g.omega),
+            (m2.parse().unwrap(), omega.parse().unwrap())
+        );
+        assert_eq!(s.metric.name(), "godel-type");
+        assert_eq!(s.metric.godel_a(), None);
+    }
+    let field = |extra: &str| err(extra).field;
+    assert_eq!(field(&member("1", "0")), "spacetime.omega");
+    assert_eq!(field(&member("1", "-1")), "spacetime.omega");
+    assert_eq!(field(&member("1", "nan")), "spacetime.omega");
+    assert_eq!(field(&member("1", "1e9")), "spacetime.omega");
+    assert_eq!(field(&member("nan", "1")), "spacetime.m2");
+    assert_eq!(field(&member("inf", "1")), "spacetime.m2");
+    assert_eq!(field(&member("101", "1")), "spacetime.m2");
+    assert_eq!(field(&member("-101", "1")), "spacetime.m2");
+    assert_eq!(
+        field("[spacetime]\nmetric = \"godel-type\"\nomega = 1\n"),
+        "spacetime.m2"
+    );
+    assert_eq!(
+        field("[spacetime]\nmetric = \"godel-type\"\nm2 = 1\n"),
+        "spacetime.omega"
+    );
+    let with_a = format!("{}a = 1\n", member("1", "1"));
+    assert_eq!(field(&with_a), "spacetime.a");
+    assert_eq!(
+        field("[spacetime]\nmetric = \"godel\"\nm2 = 1\n"),
+        "spacetime.m2"
+    );
+    assert_eq!(
+        field("[spacetime]\nmetric = \"minkowski\"\nomega = 1\n"),
+        "spacetime.omega"
+    );
+    assert_eq!(field("[spacetime]\nm2 = 1\n"), "spacetime.m2");
+    // Not yet for the family: the exact tracer, lights (same message, one sentence).
+    let exact = format!("{}[trace]\nmethod = \"exact\"\n", member("1", "1"));
+    let e = err(&exact);
+    assert_eq!(e.field, "trace.method");
+    assert!(e.message.contains("Gödel-type"), "{}", e.message);
+    let light = format!("{}[[light]]\nposition = {{ r = 0.5 }}\n", member("1", "1"));
+    assert_eq!(field(&light), "light[0]");
+}
+
+/// Positions are bounded by the member's geometry: mρ ≤ 30 where m² > 0; for m² = −μ² < 0
+/// within π/μ − ρ_c of the axis (the coordinates end at the pole ρ = π/μ).
+#[test]
+fn godel_type_positions_stay_where_the_coordinates_hold() {
+    let at = |m2: f64, r: f64| {
+        scene(&format!(
+            "[spacetime]\nmetric = \"godel-type\"\nm2 = {m2}\nomega = 1\n[observer]\nposition = {{ r = {r} }}\n"
+        ))
+    };
+    // m² = 4: m = 2, the limit is ρ = 15.
+    assert!(at(4.0, 14.9).is_ok());
+    assert_eq!(at(4.0, 15.1).unwrap_err().field, "observer.position");
+    // m² = −1: μ = 1, ρ_c = 2 atan(1/2), the limit is π − ρ_c ≈ 2.214.
+    let limit = std::f64::consts::PI - 2.0 * 0.5f64.atan();
+    assert!(at(-1.0, limit - 0.01).is_ok());
+    let e = at(-1.0, limit + 0.01).unwrap_err();
+    assert_eq!(e.field, "observer.position");
+    assert!(e.message.contains("pole"), "{}", e.message);
+    // m² = 0 (Som–Raychaudhuri) has only the general bound.
+    assert!(at(0.0, 1e5).is_ok());
+}

@@ -77,6 +77,7 @@ pub fn data() -> DataFile {
             observer_time: 0.0,
             metric: "minkowski".into(),
             godel_a: 1.0,
+            member: None,
             method: "numeric".into(),
             object_names: vec!["ball".into(), "globe".into()],
             supersample: 1,
