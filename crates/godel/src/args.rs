@@ -82,6 +82,17 @@ pub fn scale_a(flag: &str, a: f64) -> anyhow::Result<f64> {
     scene::ranges::check_a(a).map_err(|e| usage(flag, e))
 }
 
+/// The Gödel-type member of `--m2` and `--omega` (both required), each checked in the
+/// ranges scenes allow (`scene::ranges`).
+pub fn member(m2: Option<f64>, omega: Option<f64>) -> anyhow::Result<spacetime::GodelType> {
+    let need = "needed by --metric godel-type (with --m2 and --omega)";
+    let omega = omega.ok_or_else(|| usage("--omega", need))?;
+    let omega = scene::ranges::check_omega(omega).map_err(|e| usage("--omega", e))?;
+    let m2 = m2.ok_or_else(|| usage("--m2", need))?;
+    let m2 = scene::ranges::check_m2(m2, omega).map_err(|e| usage("--m2", e))?;
+    Ok(spacetime::GodelType::new(m2, omega))
+}
+
 /// Checks the coordinates of an event or position given with `flag` (named `names`, e.g.
 /// `t`, `R`, `phi`, `z`): each within ±1e6·a as in scenes (`scene::ranges`).
 pub fn coordinates(flag: &str, names: &[&str], values: &[f64], a: f64) -> anyhow::Result<()> {

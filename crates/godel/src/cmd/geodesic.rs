@@ -7,10 +7,14 @@
 //! checks of the inputs are `spacetime::curve`'s; this file parses the flags, names them in
 //! refusals and writes the samples.
 //!
+//! `--metric godel-type --m2 M2 --omega OMEGA` traces in a member of the Gödel-type family of
+//! Rebouças and Tiomno (docs/physics.md, "The Gödel-type family"); there R is the proper
+//! radius ρ, bounded as scenes bound positions (`scene::ranges::check_member_radius`).
+//!
 //! Physics: Gödel, Rev. Mod. Phys. 21, 447 (1949); constants of motion from the Killing fields
 //! ∂t, ∂φ, ∂z; integration in pseudo-Cartesian coordinates by the `spacetime` crate.
 
-use crate::args::{coordinates, parse_vector, positive, scale_a, usage, Format};
+use crate::args::{coordinates, member, parse_vector, scale_a, usage, Format};
 use anyhow::Context;
 use clap::ValueEnum;
 use scene::short;
@@ -28,6 +32,8 @@ use std::io::Write;
 pub enum MetricName {
     Godel,
     Minkowski,
+    /// A member of the Gödel-type family (needs --m2 and --omega).
+    GodelType,
 }
 
 /// How the geodesic is computed.
@@ -44,16 +50,23 @@ pub enum Method {
 #[command(after_help = "\
 Stop: with --until-time DT the geodesic stops exactly where |t - T| = DT. Without it, a \
 Gödel geodesic stops after one loop: back on the starting axis (the start's x, y), or at \
-the latest after |t - T| = 2√2·π·a; a Minkowski geodesic stops at |t - T| = 10. Either \
-method stops at the latest at parameter λ = 10⁶ (a note on stderr says so when that \
-comes before DT); the numeric one also after 100000 steps (an error).
+the latest after |t - T| = 2√2·π·a; a Gödel-type one likewise with a = 1/(√2·Ω); a \
+Minkowski geodesic stops at |t - T| = 10. Either method stops at the latest at parameter \
+λ = 10⁶ (a note on stderr says so when that comes before DT); the numeric one also after \
+100000 steps (an error).
 
-Limits: --samples at most 1000000.
+Gödel-type family: --metric godel-type --m2 M2 --omega OMEGA is the member ds² = \
+−(dt + H dφ)² + dρ² + D² dφ² + dz² (docs/physics.md); R is the proper radius ρ. Gödel's \
+universe with parameter a is m2 = 1/a², omega = 1/(√2·a). Only --method numeric so far.
+
+Limits: --samples at most 1000000; --a within [1e-6, 1e6]; --omega with 1/(√2·Ω) in that \
+range, |--m2| at most 100·Ω²; R at most 30/m for m² > 0, at most π/μ − ρ_c for m² = −μ² < 0.
 
 Output: CSV columns lambda,t,r,phi,z,x,y (phi unwrapped, continuous), or JSON with the \
 samples, the stop reason, the constants of motion and their relative drift.
 
-Example: godel geodesic --at 0,0,0,0 --dir 1,0,0")]
+Examples: godel geodesic --at 0,0,0,0 --dir 1,0,0
+          godel geodesic --metric godel-type --m2 0 --omega 1 --at 0,0,0,0 --dir 1,0,0")]
 pub struct GeodesicArgs {
     /// Spacetime metric.
     #[arg(long, value_enum, default_value_t = MetricName::Godel)]
@@ -61,9 +74,15 @@ pub struct GeodesicArgs {
     /// Integrate numerically, or evaluate the closed form.
     #[arg(long, value_enum, default_value_t = Method::Numeric)]
     pub method: Method,
-    /// Gödel parameter a > 0 (optical horizon at r = 2a).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub a: f64,
+    /// Gödel parameter a > 0 (optical horizon at r = 2a) [default: 1]; metric godel only.
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<f64>,
+    /// m² of a Gödel-type member (any sign; metric godel-type only).
+    #[arg(long, value_name = "M2", allow_hyphen_values = true)]
+    pub m2: Option<f64>,
+    /// Vorticity Ω > 0 of a Gödel-type member (metric godel-type only).
+    #[arg(long, value_name = "OMEGA", allow_hyphen_values = true)]
+    pub omega: Option<f64>,
     /// Start event T,R,PHI,Z in cylindrical coordinates (PHI in radians, R ≥ 0).
     #[arg(long, value_name = "T,R,PHI,Z", allow_hyphen_values = true)]
     pub at: String,
@@ -123,21 +142,41 @@ fn curve_error(e: CurveError) -> anyhow::Error {
 impl Request {
     /// Checks every value; errors name the flag.
     pub fn from_args(args: &GeodesicArgs) -> anyhow::Result<Request> {
-        let (metric, a) = match args.metric {
+        let metric = match args.metric {
             MetricName::Godel => {
-                let a = scale_a("--a", args.a)?;
-                (Metric::Godel(Godel::new(a)), a)
+                refuse_member(args, "godel")?;
+                Metric::Godel(Godel::new(scale_a("--a", args.a.unwrap_or(1.0))?))
             }
             MetricName::Minkowski => {
-                positive("--a", args.a)?;
-                (Metric::Minkowski(Minkowski), 1.0)
+                refuse_member(args, "minkowski")?;
+                if args.a.is_some() {
+                    return Err(usage(
+                        "--a",
+                        "is the Gödel parameter: not used by --metric minkowski",
+                    ));
+                }
+                Metric::Minkowski(Minkowski)
+            }
+            MetricName::GodelType => {
+                if args.a.is_some() {
+                    return Err(usage(
+                        "--a",
+                        "not used by --metric godel-type: its constants are --m2 and --omega \
+                         (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
+                    ));
+                }
+                Metric::GodelType(member(args.m2, args.omega)?)
             }
         };
         let [t, r, phi, z] = parse_vector::<4>("--at", &args.at)?;
         if r < 0.0 {
             return Err(usage("--at", format!("R must be ≥ 0, got {}", short(r))));
         }
-        coordinates("--at", &["t", "R", "phi", "z"], &[t, r, phi, z], a)?;
+        let scale = metric.length_scale();
+        coordinates("--at", &["t", "R", "phi", "z"], &[t, r, phi, z], scale)?;
+        if let Some(g) = metric.godel_type() {
+            scene::ranges::check_member_radius(g, r).map_err(|e| usage("--at", e))?;
+        }
         let start = Cylindrical { t, r, phi, z };
         let direction = parse_vector::<3>("--dir", &args.dir)?;
         let curve = CurveRequest::new(
@@ -165,6 +204,19 @@ impl Request {
             format: args.format,
         })
     }
+}
+
+/// --m2 and --omega belong to --metric godel-type: refused with the other metrics.
+fn refuse_member(args: &GeodesicArgs, metric: &str) -> anyhow::Result<()> {
+    for (flag, value) in [("--m2", args.m2), ("--omega", args.omega)] {
+        if value.is_some() {
+            return Err(usage(
+                flag,
+                format!("is a constant of --metric godel-type: not used by --metric {metric}"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// One output row: parameter, cylindrical and Cartesian position.
@@ -247,6 +299,8 @@ fn json_document(req: &Request, curve: &Curve, rows: &[Row]) -> serde_json::Valu
     json!({
         "metric": req.curve.metric.name(),
         "a": req.curve.metric.godel_a(),
+        "m2": req.curve.metric.godel_type().map(|g| g.m2),
+        "omega": req.curve.metric.godel_type().map(|g| g.omega),
         "method": match req.method { Method::Numeric => "numeric", Method::Exact => "exact" },
         "kind": match curve.kind { GeodesicKind::Null => "null", GeodesicKind::Timelike => "timelike" },
         "speed": req.curve.speed,

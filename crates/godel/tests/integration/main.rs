@@ -7,6 +7,7 @@ mod common;
 mod cli;
 mod consistency_cli;
 mod explore_cli;
+mod family_cli;
 mod flythrough_cli;
 mod gpu_cli;
 mod hdr_cli;
