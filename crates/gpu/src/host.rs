@@ -46,6 +46,9 @@ pub enum HostError {
     Gl(String),
     #[error(transparent)]
     Check(#[from] crate::check::CheckError),
+    /// The scene is one the kernel does not trace ([`crate::input::refusal`]).
+    #[error("{0}")]
+    Unsupported(String),
 }
 
 /// The kernel compiled for one scene, ready to trace it.

@@ -177,6 +177,17 @@ pub fn split_time(t: f64) -> [f32; 2] {
     [hi, (t - f64::from(hi)) as f32]
 }
 
+/// Why the kernel cannot trace `scene`, in one sentence; `None` where it can. The kernel
+/// carries Gödel's metric, closed forms and isometries and Minkowski's, not the Gödel-type
+/// family's (docs/physics.md, "The GPU kernel").
+pub fn refusal(scene: &Scene) -> Option<String> {
+    scene.metric.godel_type().map(|_| {
+        "the GPU kernel knows only Gödel's metric and flat spacetime, not yet the Gödel-type \
+         family's metric and closed forms, so this member is traced on the CPU"
+            .to_string()
+    })
+}
+
 impl KernelInput {
     pub fn new(scene: &Scene) -> KernelInput {
         let obs = scene.observer;

@@ -35,6 +35,9 @@ pub fn render_with(
     kernel: &str,
     progress: &dyn Progress,
 ) -> Result<GpuRender, HostError> {
+    if let Some(why) = crate::input::refusal(scene) {
+        return Err(HostError::Unsupported(why));
+    }
     let started = Instant::now();
     let tracer = GpuTracer::with_kernel(KernelInput::new(scene), kernel)?;
     let traced = tracer.trace(progress)?;

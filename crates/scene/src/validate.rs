@@ -389,6 +389,12 @@ fn godel_rules(
                     format!("lights are traced with the Gödel closed forms (shadow rays): they need {need}{not_yet}"),
                 );
             }
+            if let (Metric::GodelType(_), true) = (metric, trace.gpu) {
+                return c.err(
+                    "trace.gpu",
+                    format!("the GPU kernel knows only Gödel's metric and flat spacetime so far: it needs {need}{not_yet}"),
+                );
+            }
             if let (Metric::GodelType(_), Some(s)) = (metric, stereo) {
                 if s.is_pair() {
                     return c.err(

@@ -126,6 +126,9 @@ impl KernelState {
 fn input_of(viewer: &ViewerState) -> Result<KernelInput, String> {
     let cannot = |why: String| format!("the page cannot trace this data file's frame: {why}");
     let scene = viewer.embedded_scene().map_err(|e| cannot(e.to_string()))?;
+    if let Some(why) = gpu::input::refusal(&scene) {
+        return Err(cannot(why));
+    }
     let input = KernelInput::new(&scene);
     let [w, h] = input.uniforms.size;
     let (fw, fh) = (viewer.data.width, viewer.data.height);

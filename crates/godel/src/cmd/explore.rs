@@ -242,11 +242,13 @@ impl FrameSource for SceneFrames {
 
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
         let scene = scene_at(&self.scene, event, Level::Full).map_err(|e| format!("{e:#}"))?;
+        gpu::input::refusal(&scene).map_or(Ok(()), Err)?;
         Ok(KernelInput::new(&scene))
     }
 
     fn view_input(&self, view: &View) -> Result<KernelInput, String> {
         let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
+        gpu::input::refusal(&scene).map_or(Ok(()), Err)?;
         Ok(KernelInput::new(&scene))
     }
 

@@ -189,6 +189,9 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     if scene.trace.gpu && part.is_some() {
         return Err(crate::args::usage("--part", GPU_ONE_PROCESS));
     }
+    if let (true, Some(why)) = (args.gpu, gpu::input::refusal(&scene)) {
+        return Err(crate::args::usage("--gpu", why));
+    }
     prepare_outputs(target.folder(), &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);
     let file = args

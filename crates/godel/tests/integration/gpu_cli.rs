@@ -236,3 +236,49 @@ fn render_gpu_traces_both_eyes_of_a_stereo_pair() {
     }
     assert!(eyes[0] > 50 && eyes[0] != eyes[1], "hits per eye {eyes:?}");
 }
+
+/// A Gödel-type member (issue 34) is not traced by the kernel: `--gpu` is refused with one
+/// sentence naming the reason, before anything is traced or written; `[trace] gpu = true`
+/// in such a scene is refused at its line.
+#[test]
+fn the_kernel_refuses_godel_type_members_with_one_sentence() {
+    let dir = tempfile::tempdir().unwrap();
+    let member = SCENE
+        .replace(
+            "metric = \"godel\"\na = 1.0",
+            "metric = \"godel-type\"\nm2 = 1.0\nomega = 0.7071067811865476",
+        )
+        .replace(
+            "[[light]]\nposition = { x = 1.0, y = 1.0, z = 0.0 }\npower = 12.0\n",
+            "",
+        );
+    let scene = write(dir.path(), "member.toml", &member);
+    let out = dir.path().join("out");
+    let o = render(&scene, &out, &["--gpu"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--gpu") && err.contains("Gödel-type"), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(!out.exists());
+    let in_scene = write(
+        dir.path(),
+        "in-scene.toml",
+        &member.replace("max_past = 8.0", "max_past = 8.0\ngpu = true"),
+    );
+    let o = render(&in_scene, &out, &[]);
+    let err = stderr(&o);
+    assert_ne!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("trace.gpu") && err.contains("in-scene.toml"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    // Without the GPU the member renders (numeric tracer).
+    let o = render(&scene, &out, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let data = DataFile::read(&out.join("ball.exr")).unwrap();
+    assert_eq!(data.header.metric, "godel-type");
+    let member = data.header.member.expect("the member in the header");
+    assert_eq!((member.m2, member.omega), (1.0, 0.7071067811865476));
+    assert!(data.records.iter().any(|r| r.status == RayStatus::Hit));
+}
