@@ -16,6 +16,8 @@
 //!   isometries and their differentials), [`ExactGeodesic`] (closed-form geodesics through
 //!   any event), [`shadow_rays`] (light rays from a source at rest to an event), and
 //!   [`connection`]: those rays with what an observer measures of them.
+//! - The Gödel-type family's symmetries: [`killing_field`], [`TypeIsometry`], and its
+//!   closed-form geodesics [`TypeOriginGeodesic`] (from the axis) and [`TypeExactGeodesic`].
 //! - Parallel transport: along the closed forms ([`transport`]) and integrated with a
 //!   geodesic in any metric ([`propagator`]); what observers measure of a light ray's
 //!   polarization ([`polarization`]).
@@ -39,6 +41,8 @@ mod frame;
 mod geodesic;
 mod godel;
 pub mod godel_type;
+pub mod godel_type_geodesic;
+pub mod godel_type_symmetry;
 pub mod isometry;
 pub mod killing;
 pub mod measure;
@@ -64,6 +68,8 @@ pub use geodesic::{
 };
 pub use godel::Godel;
 pub use godel_type::GodelType;
+pub use godel_type_geodesic::{GeodesicRegime, TypeExactGeodesic, TypeOriginGeodesic};
+pub use godel_type_symmetry::{killing_field, TypeIsometry};
 pub use isometry::{Complex, Isometry};
 pub use killing::KillingField;
 pub use metric::{Metric, Spacetime};

@@ -8,6 +8,8 @@ mod connect;
 mod eyes;
 mod geodesics;
 mod godel_type;
+mod godel_type_geodesic;
+mod godel_type_symmetry;
 mod metric;
 mod polarization;
 mod symmetry;
