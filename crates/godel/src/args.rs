@@ -64,6 +64,27 @@ pub fn parse_vector<const N: usize>(flag: &str, text: &str) -> anyhow::Result<[f
     Ok(out)
 }
 
+/// Parses 1 to `most` comma-separated finite numbers, e.g. `--members 0,2,4.5`.
+pub fn parse_list(flag: &str, text: &str, most: usize) -> anyhow::Result<Vec<f64>> {
+    let mut out = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        let v: f64 = part
+            .parse()
+            .map_err(|_| usage(flag, format!("'{part}' is not a number")))?;
+        if !v.is_finite() {
+            return Err(usage(flag, format!("{part} is not finite")));
+        }
+        out.push(v);
+    }
+    if out.len() > most {
+        return Err(usage(
+            flag,
+            format!("at most {most} numbers, got {} in '{text}'", out.len()),
+        ));
+    }
+    Ok(out)
+}
+
 /// Checks that `v` is finite and strictly positive.
 pub fn positive(flag: &str, v: f64) -> anyhow::Result<f64> {
     if v.is_finite() && v > 0.0 {

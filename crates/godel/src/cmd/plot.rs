@@ -5,8 +5,12 @@
 //! after Δt = 2πa(√2 − 1); rays tilted out of the plane stay strictly inside the horizon.
 //! The rays are traced numerically (one loop each, `TraceLimits::one_loop`), not drawn from
 //! the closed form. Output: SVG, or PNG rasterized from it (chosen by the `-o` extension).
+//!
+//! With `--metric godel-type --m2 --omega`, or `--members` (m²/Ω² of up to three members),
+//! the figure is the Gödel-type family's (`plot::family`).
 
-use crate::args::usage;
+use crate::args::{member, parse_list, usage};
+use crate::plot::family::{frame_half, member_figure, members_figure, trace_member};
 use crate::plot::kit::{
     arrowhead, caption, prepare_figure_output, trace_ray, write_figure, Frame, Legend, PALETTE,
 };
@@ -31,18 +35,49 @@ pub enum Figure {
     Isometry(crate::plot::isometry::IsometryPlotArgs),
 }
 
+/// The spacetimes `godel plot geodesics` draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum PlotMetric {
+    Godel,
+    /// A member of the Gödel-type family (--m2, --omega), or several (--members).
+    GodelType,
+}
+
 /// Arguments of `godel plot geodesics`.
 #[derive(clap::Args, Debug)]
+#[command(after_help = "\
+Gödel-type family: --metric godel-type --m2 M2 [--omega OMEGA] draws one member's light rays \
+from the origin in the plane z = 0, with the circle ρ = ρ_c beyond which closed timelike \
+curves exist and where those rays turn (none for m² ≥ 4Ω²: the rays escape and are drawn \
+until they leave the frame); --members 0,2,4.5 draws up to three members side by side, \
+given as m²/Ω² at one Ω (--metric godel-type implied). Axes in units of 1/Ω, ρ the proper \
+radius. --omega defaults to 1; in units of 1/Ω the picture depends on m²/Ω² only.
+
+Examples: godel plot geodesics -o geodesics.png
+          godel plot geodesics --members 0,2,4.5 -o family-geodesics.png")]
 pub struct GeodesicsPlotArgs {
-    /// Gödel parameter a > 0 (axes are in units of a).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub a: f64,
+    /// Spacetime [default: godel; godel-type with --members].
+    #[arg(long, value_enum)]
+    pub metric: Option<PlotMetric>,
+    /// Gödel parameter a > 0 (axes are in units of a) [default: 1]; metric godel only.
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<f64>,
+    /// m² of the Gödel-type member (any sign; metric godel-type).
+    #[arg(long, value_name = "M2", allow_hyphen_values = true)]
+    pub m2: Option<f64>,
+    /// Vorticity Ω > 0 of the Gödel-type members [default: 1].
+    #[arg(long, value_name = "OMEGA", allow_hyphen_values = true)]
+    pub omega: Option<f64>,
+    /// Gödel-type members side by side: their m²/Ω², comma-separated (1 to 3).
+    #[arg(long, value_name = "M2/OMEGA2,...", allow_hyphen_values = true)]
+    pub members: Option<String>,
     /// Number of light rays in the plane (evenly spaced azimuths, 1 to 360).
     #[arg(long, value_name = "N", default_value_t = 12)]
     pub rays: usize,
-    /// Number of extra rays tilted 45° out of the plane, drawn lighter (0 to 360).
-    #[arg(long, value_name = "N", default_value_t = 4)]
-    pub tilted: usize,
+    /// Number of extra rays tilted 45° out of the plane, drawn lighter (0 to 360)
+    /// [default: 4]; metric godel only.
+    #[arg(long, value_name = "N")]
+    pub tilted: Option<usize>,
     /// Output file, .svg or .png (PNG at 2 pixels per SVG unit).
     #[arg(short, long, value_name = "FILE", default_value = "geodesics.svg")]
     pub output: PathBuf,
@@ -230,22 +265,97 @@ pub fn run(args: PlotArgs) -> anyhow::Result<()> {
     }
 }
 
+/// Most members side by side.
+const MAX_MEMBERS: usize = 3;
+
 fn plot_geodesics(args: GeodesicsPlotArgs) -> anyhow::Result<()> {
-    let a = crate::args::scale_a("--a", args.a)?;
     if !(1..=360).contains(&args.rays) {
         return Err(usage(
             "--rays",
             format!("must be between 1 and 360, got {}", args.rays),
         ));
     }
-    if args.tilted > 360 {
+    let family = match args.metric {
+        Some(PlotMetric::GodelType) => true,
+        Some(PlotMetric::Godel) => false,
+        None => args.members.is_some(),
+    };
+    if family {
+        return plot_family(&args);
+    }
+    for (flag, given) in [
+        ("--m2", args.m2.is_some()),
+        ("--omega", args.omega.is_some()),
+        ("--members", args.members.is_some()),
+    ] {
+        if given {
+            return Err(usage(
+                flag,
+                "draws Gödel-type members: not used by --metric godel",
+            ));
+        }
+    }
+    let a = crate::args::scale_a("--a", args.a.unwrap_or(1.0))?;
+    let tilted = args.tilted.unwrap_or(4);
+    if tilted > 360 {
         return Err(usage(
             "--tilted",
-            format!("must be between 0 and 360, got {}", args.tilted),
+            format!("must be between 0 and 360, got {tilted}"),
         ));
     }
     let png = prepare_figure_output(&args.output)?;
-    let rays = trace_fan(a, args.rays, args.tilted)?;
-    let svg = figure(a, &rays, args.rays, args.tilted);
+    let rays = trace_fan(a, args.rays, tilted)?;
+    let svg = figure(a, &rays, args.rays, tilted);
+    write_figure(&args.output, svg, png)
+}
+
+/// The Gödel-type family's figure: one member (--m2) or several (--members).
+fn plot_family(args: &GeodesicsPlotArgs) -> anyhow::Result<()> {
+    let why = "not used by --metric godel-type (its constants are --m2 and --omega)";
+    if args.a.is_some() {
+        return Err(usage("--a", why));
+    }
+    if args.tilted.is_some() {
+        return Err(usage(
+            "--tilted",
+            "the Gödel-type figure draws the rays in the plane only",
+        ));
+    }
+    let omega = args.omega.unwrap_or(1.0);
+    let members = match &args.members {
+        Some(list) => {
+            if args.m2.is_some() {
+                return Err(usage(
+                    "--m2",
+                    "not used with --members, which gives each member's m²/Ω²",
+                ));
+            }
+            let ratios = parse_list("--members", list, MAX_MEMBERS)?;
+            let mut members = Vec::with_capacity(ratios.len());
+            for ratio in ratios {
+                let one = member(Some(ratio * omega * omega), Some(omega));
+                // A bad Ω is --omega's; a bad m² is the list's.
+                members.push(
+                    one.map_err(|e| match e.downcast::<crate::args::UsageError>() {
+                        Ok(u) if u.flag == "--m2" => usage("--members", u.message),
+                        Ok(u) => u.into(),
+                        Err(e) => e,
+                    })?,
+                );
+            }
+            members
+        }
+        None => vec![member(args.m2, Some(omega))?],
+    };
+    let png = prepare_figure_output(&args.output)?;
+    let half = frame_half(&members);
+    let traced = members
+        .iter()
+        .map(|&g| trace_member(g, args.rays, half))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let svg = match args.members {
+        Some(_) => members_figure(&traced, args.rays),
+        None => member_figure(&traced[0], args.rays),
+    };
     write_figure(&args.output, svg, png)
 }

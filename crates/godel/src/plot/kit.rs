@@ -16,14 +16,24 @@ const SAMPLES: usize = 600;
 pub const PALETTE: [&str; 6] = [
     "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
 ];
-/// Traces a future-directed light ray from the origin along the local direction `dir`:
-/// its events at [`SAMPLES`] evenly spaced parameters, and the time at its end.
+/// Traces a future-directed light ray from the origin along the local direction `dir`, one
+/// loop of Gödel's universe with parameter `a` ([`TraceLimits::one_loop`]): its events at
+/// [`SAMPLES`] evenly spaced parameters, and the time at its end.
 pub fn trace_ray(metric: Metric, a: f64, dir: [f64; 3]) -> anyhow::Result<(Vec<Event>, f64)> {
+    trace_ray_within(metric, dir, &TraceLimits::one_loop(a))
+}
+
+/// [`trace_ray`] with the stops `limits`.
+pub fn trace_ray_within(
+    metric: Metric,
+    dir: [f64; 3],
+    limits: &TraceLimits,
+) -> anyhow::Result<(Vec<Event>, f64)> {
     let origin = Event::new(0.0, 0.0, 0.0, 0.0);
     let frame = metric.static_frame(origin);
     let g = Geodesic::launch(&metric, origin, &frame, dir, 1.0, TimeDirection::Future)
         .context("cannot launch a ray from the origin")?;
-    let traced = trace(metric, &g, &TraceLimits::one_loop(a));
+    let traced = trace(metric, &g, limits);
     if traced.stop.is_failure() {
         anyhow::bail!(
             "tracing a ray along {dir:?} failed: {}",
@@ -86,10 +96,15 @@ pub struct Frame {
 
 impl Frame {
     pub fn new(half: f64) -> Frame {
-        let side = 520.0;
+        Frame::at(90.0, 64.0, 520.0, half)
+    }
+
+    /// A frame of `side` pixels with its top left corner at (`left`, `top`), showing
+    /// [−half, half]² (a panel of a figure with several).
+    pub fn at(left: f64, top: f64, side: f64, half: f64) -> Frame {
         Frame {
-            left: 90.0,
-            top: 64.0,
+            left,
+            top,
             side,
             scale: side / (2.0 * half),
         }
@@ -145,6 +160,13 @@ impl Frame {
     /// The axis titles x / a and y / a, then opens the data layer: clipped to the frame, in
     /// units of a with y up and the origin at the centre. [`Frame::close_data_layer`] closes it.
     pub fn open_data_layer(&self, s: &mut Svg) {
+        self.open_data_layer_titled(s, ("x / a", "y / a"), ("frame", "data"));
+    }
+
+    /// [`Frame::open_data_layer`] with other axis titles (x, y) and ids (of the clip path, of
+    /// the data layer: one pair per frame of a figure).
+    pub fn open_data_layer_titled(&self, s: &mut Svg, titles: (&str, &str), ids: (&str, &str)) {
+        let (clip, data) = ids;
         let (left, top, side, scale) = (self.left, self.top, self.side, self.scale);
         let (cx, cy) = (left + side / 2.0, top + side / 2.0);
         s.text(
@@ -152,7 +174,7 @@ impl Frame {
             17.0,
             "middle",
             r##"fill="#222""##,
-            "x / a",
+            titles.0,
         );
         s.text_as(
             (left - 52.0, cy),
@@ -161,20 +183,20 @@ impl Frame {
             -90.0,
             "middle",
             r##"fill="#222""##,
-            "y / a",
+            titles.1,
         );
 
         // Data layer: units of a, y up, clipped to the frame.
         s.raw(&format!(
-            r#"<defs><clipPath id="frame"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
+            r#"<defs><clipPath id="{clip}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath></defs>"#,
             f(left),
             f(top),
             f(side),
             f(side)
         ));
-        s.group(r#"clip-path="url(#frame)""#);
+        s.group(&format!(r#"clip-path="url(#{clip})""#));
         s.group(&format!(
-            r#"id="data" transform="translate({},{}) scale({},{})""#,
+            r#"id="{data}" transform="translate({},{}) scale({},{})""#,
             f(cx),
             f(cy),
             f(scale),

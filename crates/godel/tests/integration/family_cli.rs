@@ -2,7 +2,9 @@
 //! the command line: `godel geodesic --metric godel-type` against Gödel's universe (the
 //! member m² = 1/a², Ω = 1/(√2 a), carried through r = 2a sinh(ρ/2a)) and against the
 //! turning radius ρ_c of in-plane rays from the axis; the refusals of --m2, --omega and --a,
-//! each naming its flag.
+//! each naming its flag; `godel plot geodesics` of one member and of several (`--members`):
+//! the circle ρ_c where a member has one and of the right radius, none where m² ≥ 4Ω², rays
+//! that turn there or leave the frame, the same bytes on a second run, bad flags refused.
 
 use std::f64::consts::SQRT_2;
 
@@ -236,4 +238,228 @@ fn bad_family_flags_exit_2_naming_the_flag() {
         "2",
     ]);
     assert_eq!(ok.len(), 2);
+}
+
+/// Runs `godel plot geodesics` with `args` into `name` in `dir`; returns the SVG text.
+fn plot(dir: &std::path::Path, name: &str, args: &[&str]) -> String {
+    let path = dir.join(name);
+    let out = godel(
+        &[
+            &["plot", "geodesics"],
+            args,
+            &["-o", path.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    let svg = std::fs::read_to_string(&path).unwrap();
+    resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).expect("valid SVG");
+    svg
+}
+
+/// The radii (in the data layer's units) of the circles ρ = ρ_c in `svg`, in order.
+fn critical_circles(svg: &str) -> Vec<f64> {
+    svg.split("<circle")
+        .skip(1)
+        .filter(|c| c.contains(r#"id="critical-radius""#))
+        .map(|c| {
+            let r = c.split(" r=\"").nth(1).unwrap().split('"').next().unwrap();
+            r.parse().unwrap()
+        })
+        .collect()
+}
+
+/// The points of every polyline in the data layers (units of 1/Ω).
+fn polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
+    svg.split("<polyline")
+        .skip(1)
+        .map(|pl| {
+            let points = pl
+                .split("points=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap();
+            points
+                .split(' ')
+                .map(|pt| {
+                    let (x, y) = pt.split_once(',').unwrap();
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn a_member_is_drawn_with_its_critical_circle_and_rays_turning_there() {
+    let dir = tempfile::tempdir().unwrap();
+    // m² = Ω² at Ω = 0.5: ρ_c·Ω = 2 atanh(1/2) = 1.0986; plot units are 1/Ω.
+    let svg = plot(
+        dir.path(),
+        "one.svg",
+        &[
+            "--metric",
+            "godel-type",
+            "--m2",
+            "0.25",
+            "--omega",
+            "0.5",
+            "--rays",
+            "6",
+        ],
+    );
+    let expected = critical_radius(0.25, 0.5) * 0.5;
+    let circles = critical_circles(&svg);
+    assert_eq!(circles.len(), 1);
+    assert!(
+        (circles[0] - expected).abs() < 1e-4,
+        "{circles:?} vs {expected}"
+    );
+    let rays = polylines(&svg);
+    assert_eq!(rays.len(), 6);
+    for ray in &rays {
+        let widest = ray.iter().fold(0.0_f64, |m, (x, y)| m.max(x.hypot(*y)));
+        assert!((widest - expected).abs() < 2e-3, "{widest} vs {expected}");
+        let (x, y) = *ray.last().unwrap();
+        assert!(
+            x.hypot(y) < 1e-3,
+            "the ray ends at ({x}, {y}), not at the origin"
+        );
+    }
+    assert!(svg.contains("ρ = ρ_c, where the rays turn"));
+    assert!(svg.contains("closed timelike curves"));
+    // m² = 0: ρ_c = 1/Ω. m² = −Ω² (μ = Ω): ρ_c·Ω = 2 atan(1/2).
+    for (m2, expected) in [("0", 1.0), ("-1", 2.0 * 0.5_f64.atan())] {
+        let svg = plot(
+            dir.path(),
+            "x.svg",
+            &["--metric", "godel-type", "--m2", m2, "--omega", "1"],
+        );
+        let circles = critical_circles(&svg);
+        assert!(
+            circles.len() == 1 && (circles[0] - expected).abs() < 1e-4,
+            "{m2}: {circles:?}"
+        );
+    }
+}
+
+#[test]
+fn a_causal_member_has_no_critical_circle_and_its_rays_leave_the_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    for m2 in ["4", "4.5", "30"] {
+        let svg = plot(
+            dir.path(),
+            "c.svg",
+            &["--metric", "godel-type", "--m2", m2, "--rays", "4"],
+        );
+        assert!(critical_circles(&svg).is_empty(), "{m2}");
+        assert!(!svg.contains("closed timelike curves (ρ > ρ_c)"), "{m2}");
+        // The frame shows [−2, 2]² (units of 1/Ω): each ray ends beyond its corner, unless
+        // stopped at mρ = 12 (m² = 30: Ωρ = 12/√30 = 2.19 < 2√2, said in the caption).
+        let m = m2.parse::<f64>().unwrap().sqrt();
+        let end = (2.0 * 2f64.sqrt()).min(12.0 / m);
+        for ray in polylines(&svg) {
+            let (x, y) = *ray.last().unwrap();
+            assert!(x.hypot(y) > end * 0.999, "{m2}: the ray ends at ({x}, {y})");
+        }
+        assert_eq!(svg.contains("drawn to mρ = 12"), m2 == "30", "{m2}");
+    }
+}
+
+#[test]
+fn members_side_by_side_have_their_own_circles_and_are_reproducible() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["--members", "0,2,4.5", "--omega", "0.5", "--rays", "8"];
+    let svg = plot(dir.path(), "a.svg", &args);
+    // Units of 1/Ω: ρ_c·Ω = 1 (m² = 0), 2 asinh(1)/√2 (Gödel: ρ_c = 2a asinh 1, a = 1/(√2 Ω)).
+    let circles = critical_circles(&svg);
+    assert_eq!(circles.len(), 2, "{circles:?}");
+    assert!((circles[0] - 1.0).abs() < 1e-4, "{circles:?}");
+    assert!(
+        (circles[1] - 2.0 * 1f64.asinh() / 2f64.sqrt()).abs() < 1e-4,
+        "{circles:?}"
+    );
+    assert_eq!(polylines(&svg).len(), 24);
+    for label in [
+        "m² = 0 (Som–Raychaudhuri)",
+        "m² = 2Ω² (Gödel)",
+        "m² = 4.5Ω² (causal)",
+    ] {
+        assert!(svg.contains(label), "no label {label}");
+    }
+    // Each panel clips to its own frame.
+    for i in 0..3 {
+        assert!(
+            svg.contains(&format!(r#"clip-path="url(#frame-{i})""#)),
+            "{i}"
+        );
+    }
+    let again = plot(dir.path(), "b.svg", &args);
+    assert!(svg == again, "a second run differs");
+    // PNG too.
+    let path = dir.path().join("a.png");
+    let out = godel(&[
+        "plot",
+        "geodesics",
+        "--members",
+        "0,2,4.5",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let first = std::fs::read(&path).unwrap();
+    let out = godel(&[
+        "plot",
+        "geodesics",
+        "--members",
+        "0,2,4.5",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success() && std::fs::read(&path).unwrap() == first);
+}
+
+#[test]
+fn bad_plot_flags_exit_2_naming_the_flag_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("g.svg");
+    let s = svg.to_str().unwrap();
+    let family = ["--metric", "godel-type"];
+    let cases: &[(&[&str], &str)] = &[
+        (&family, "--m2"),
+        (&[&family[..], &["--m2", "1", "--a", "1"]].concat(), "--a"),
+        (
+            &[&family[..], &["--m2", "1", "--tilted", "2"]].concat(),
+            "--tilted",
+        ),
+        (&[&family[..], &["--m2", "NaN"]].concat(), "--m2"),
+        (&[&family[..], &["--m2", "101"]].concat(), "--m2"),
+        (
+            &[&family[..], &["--m2", "1", "--omega", "0"]].concat(),
+            "--omega",
+        ),
+        (&["--members", "0,2,4.5,6"], "--members"),
+        (&["--members", "0,x"], "--members"),
+        (&["--members", "0,inf"], "--members"),
+        (&["--members", "200"], "--members"),
+        (&["--members", ""], "--members"),
+        (&["--members", "1", "--m2", "1"], "--m2"),
+        (&["--members", "1", "--omega", "-2"], "--omega"),
+        (&["--metric", "godel", "--members", "1"], "--members"),
+        (&["--m2", "1"], "--m2"),
+        (&["--omega", "1"], "--omega"),
+    ];
+    for (extra, flag) in cases {
+        let args = [&["plot", "geodesics"][..], extra, &["-o", s]].concat();
+        let out = godel(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {flag}: ")),
+            "{args:?}: {err}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
