@@ -52,6 +52,10 @@ def render(
     max_past: Optional[float] = None,
     threads: Optional[int] = None,
     progress: bool = True,
+    metric: Optional[str] = None,
+    a: Optional[float] = None,
+    m2: Optional[float] = None,
+    omega: Optional[float] = None,
 ) -> Image:
     """Traces a scene, as ``godel render`` does, and returns its :class:`Image`.
 
@@ -62,6 +66,13 @@ def render(
     render and are checked like the scene file; ``threads`` is the number of worker threads
     (default: one per core; at most 8 per core). The records are those ``godel render``
     writes for the same scene and overrides, bit for bit, whatever the thread count.
+
+    ``metric`` (``"godel"``, ``"godel-type"``, ``"minkowski"``), ``a``, ``m2`` and ``omega``
+    replace the scene's spacetime as ``godel render --metric --a --m2 --omega`` do: a new
+    ``metric`` takes its constants from these arguments alone (the scene's are dropped), so
+    ``render(metric="godel-type", m2=0.5, omega=0.7)`` renders the built-in scene in that
+    member of the Gödel-type family (docs/physics.md, "The Gödel-type family"; only the
+    numeric tracer runs there: the built-in scene's method is numeric).
 
     A stereo scene (``[camera] stereo``) traces both eyes, as ``godel render`` does, and
     returns a :class:`StereoImage`: ``img.eye("left")`` and ``img.eye("right")`` are the
@@ -76,7 +87,8 @@ def render(
     missing raises ``FileNotFoundError``, a folder in its place ``IsADirectoryError``.
     """
     path, text = _scene_source(scene)
-    job = _godel.RenderJob(path, text, width, height, samples, method, max_past, threads)
+    job = _godel.RenderJob(path, text, width, height, samples, method, max_past, threads,
+                           metric, a, m2, omega)
     bar = _progress.bar(job.total, job.name) if progress else None
     ended = False
     try:
@@ -108,17 +120,22 @@ def read(path: Union[str, "os.PathLike[str]"]) -> Image:
 
 
 def geodesic(
-    a: float = 1.0,
+    a: Optional[float] = None,
     position: Sequence[float] = (0.0, 0.0, 0.0),
     time: float = 0.0,
     direction: Sequence[float] = (1.0, 0.0, 0.0),
     speed: Optional[float] = None,
     past: bool = True,
-    method: str = "exact",
+    method: Optional[str] = None,
     samples: int = 100,
     max_past: Optional[float] = None,
+    metric: str = "godel",
+    m2: Optional[float] = None,
+    omega: Optional[float] = None,
 ) -> Dict[str, Union[np.ndarray, str]]:
-    """One geodesic of Gödel's universe, as ``godel geodesic`` computes it.
+    """One geodesic of Gödel's universe (``a``, default 1), or of a member of the Gödel-type
+    family (``metric="godel-type"`` with ``m2`` and ``omega``), as ``godel geodesic``
+    computes it.
 
     It starts at the event (``time``, ``position`` = (x, y, z)) along ``direction`` (any
     non-zero length), given in the local frame of the observer at rest there. Without
@@ -126,17 +143,32 @@ def geodesic(
     particle of that speed in that frame (λ is its proper time). ``past`` follows it into
     the past (as godel's rays are traced), else into the future. ``method`` ``"exact"``
     evaluates the closed form carried by an isometry, ``"numeric"`` integrates the geodesic
-    equations (DOP853); both give the same curve. It stops where |t − time| reaches
-    ``max_past``, or by default after one loop (back on its starting axis, or at the latest
-    after |t − time| = 2√2·π·a).
+    equations (DOP853); both give the same curve. The default is ``"exact"`` in Gödel's
+    universe and ``"numeric"`` in the family, whose closed forms are not available yet. It
+    stops where |t − time| reaches ``max_past``, or by default after one loop (back on its
+    starting axis, or at the latest after |t − time| = 2√2·π·a; in the family with
+    a = 1/(√2·Ω)).
+
+    The family (docs/physics.md, "The Gödel-type family"): ds² = −(dt + H dφ)² + dρ² +
+    D² dφ² + dz² with vorticity ``omega`` = Ω > 0 and ``m2`` = m² of any sign, in
+    coordinates x = ρ cos φ, y = ρ sin φ with ρ the proper radius. Gödel's universe with
+    parameter a is the member ``m2=1/a**2, omega=1/(sqrt(2)*a)`` (its r = 2a sinh(ρ/2a)).
+    ``a`` is refused with it, and ``m2``, ``omega`` with ``metric="godel"``; the ranges are
+    those of scenes (1/(√2Ω) within [1e-6, 1e6], |m²| ≤ 100Ω², the start's ρ at most 30/m
+    for m² > 0 and at most π/μ − ρ_c for m² = −μ² < 0).
 
     Returns ``samples`` points (2 to 1,000,000) evenly spaced in λ, first at the start,
     last at the stop, as float64 arrays: ``lambda``, ``t``, ``x``, ``y``, ``z``, and
     ``tangent`` (samples × 4: dt/dλ, dx/dλ, dy/dλ, dz/dλ); and ``stop``, why it stopped
     (``"axis_return"``, ``"time_reached"``, ``"affine_limit"``).
     """
+    if method is None:
+        method = "numeric" if metric == "godel-type" else "exact"
     stop, columns = _godel.geodesic(
-        float(a),
+        str(metric),
+        None if a is None else float(a),
+        None if m2 is None else float(m2),
+        None if omega is None else float(omega),
         _vector(position, 3, "position"),
         float(time),
         _vector(direction, 3, "direction"),

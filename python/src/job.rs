@@ -91,7 +91,7 @@ impl RenderJob {
     /// Checks everything and starts tracing. `scene_path` or `scene_text` (neither: the
     /// built-in reference scene); the other arguments as those of `godel.render`.
     #[new]
-    #[pyo3(signature = (scene_path=None, scene_text=None, width=None, height=None, samples=None, method=None, max_past=None, threads=None))]
+    #[pyo3(signature = (scene_path=None, scene_text=None, width=None, height=None, samples=None, method=None, max_past=None, threads=None, metric=None, a=None, m2=None, omega=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         scene_path: Option<PathBuf>,
@@ -102,6 +102,10 @@ impl RenderJob {
         method: Option<String>,
         max_past: Option<f64>,
         threads: Option<i64>,
+        metric: Option<String>,
+        a: Option<f64>,
+        m2: Option<f64>,
+        omega: Option<f64>,
     ) -> PyResult<RenderJob> {
         let pool = match threads {
             Some(n) if n < 1 => Err(ThreadsError::Count("must be at least 1".into())),
@@ -129,6 +133,10 @@ impl RenderJob {
             method,
             samples,
             name: None,
+            metric,
+            a,
+            m2,
+            omega,
         };
         let scene = load(source, &overrides).map_err(|e| load_error(e, scene_path.as_deref()))?;
         // Textures load before tracing, as on the command line: bad input fails fast.

@@ -1,14 +1,16 @@
 //! `geodesic` and `connect`: one geodesic from an event (`spacetime::curve`, as `godel
 //! geodesic`) and every light ray from a source at rest to an event
 //! (`spacetime::connection`, as `godel connect`), computed without holding the GIL. Inputs
-//! are checked by those modules; a refusal names the keyword argument at fault.
+//! are checked by those modules; a refusal names the keyword argument at fault. `geodesic`
+//! also traces in a member of the Gödel-type family (`metric = "godel-type"`, `m2`, `omega`:
+//! docs/physics.md, "The Gödel-type family"), checked as `godel geodesic` checks it.
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyByteArray;
 use spacetime::connection::{connections, on_the_source_axis, MAX_WINDINGS};
 use spacetime::curve::{compute, stop_name, CurveError, CurveMethod, CurveRequest, Input};
-use spacetime::{Event, Godel, Metric, TimeDirection};
+use spacetime::{Event, Godel, GodelType, Metric, TimeDirection};
 
 use crate::errors::argument_error;
 
@@ -21,6 +23,47 @@ fn checked(a: f64, named: &[(&str, &[&str], &[f64])]) -> PyResult<f64> {
             .map_err(|e| argument_error(keyword, e))?;
     }
     Ok(a)
+}
+
+/// The metric of `geodesic`'s `metric`, `a`, `m2` and `omega` (each given or None): Gödel's
+/// with `a` (default 1), or the Gödel-type member (`m2`, `omega`), checked in the ranges of
+/// scenes (`scene::ranges`); a constant the metric does not use is refused, naming it.
+fn metric_of(
+    metric: &str,
+    a: Option<f64>,
+    m2: Option<f64>,
+    omega: Option<f64>,
+) -> PyResult<Metric> {
+    match metric {
+        "godel" => {
+            for (keyword, value) in [("m2", m2), ("omega", omega)] {
+                if value.is_some() {
+                    let message = "is a constant of metric=\"godel-type\": not used by \"godel\"";
+                    return Err(argument_error(keyword, message));
+                }
+            }
+            let a = scene::ranges::check_a(a.unwrap_or(1.0)).map_err(|e| argument_error("a", e))?;
+            Ok(Metric::Godel(Godel::new(a)))
+        }
+        "godel-type" => {
+            if a.is_some() {
+                let message = "not used by metric=\"godel-type\": its constants are m2 and omega \
+                               (Gödel's a is m2 = 1/a², omega = 1/(√2·a))";
+                return Err(argument_error("a", message));
+            }
+            let need = "needed by metric=\"godel-type\" (with m2 and omega)";
+            let omega = omega.ok_or_else(|| argument_error("omega", need))?;
+            let omega =
+                scene::ranges::check_omega(omega).map_err(|e| argument_error("omega", e))?;
+            let m2 = m2.ok_or_else(|| argument_error("m2", need))?;
+            let m2 = scene::ranges::check_m2(m2, omega).map_err(|e| argument_error("m2", e))?;
+            Ok(Metric::GodelType(GodelType::new(m2, omega)))
+        }
+        other => Err(argument_error(
+            "metric",
+            format!("must be \"godel\" or \"godel-type\", got {other:?}"),
+        )),
+    }
 }
 
 /// The keyword argument of each input that `spacetime::curve` checks.
@@ -45,15 +88,18 @@ fn curve_error(e: CurveError) -> PyErr {
 /// Named columns of native-endian f64 values.
 type Columns<'py> = Vec<(&'static str, Bound<'py, PyByteArray>)>;
 
-/// One geodesic of Gödel's universe; returns the stop reason and the columns (name, bytes of
-/// native f64): lambda, t, x, y, z and the tangent dt/dλ, dx/dλ, dy/dλ, dz/dλ. See
-/// `godel.geodesic`.
+/// One geodesic of Gödel's universe or of a Gödel-type member; returns the stop reason and
+/// the columns (name, bytes of native f64): lambda, t, x, y, z and the tangent dt/dλ, dx/dλ,
+/// dy/dλ, dz/dλ. See `godel.geodesic`.
 #[pyfunction]
-#[pyo3(signature = (a, position, time, direction, speed, past, method, samples, max_past))]
+#[pyo3(signature = (metric, a, m2, omega, position, time, direction, speed, past, method, samples, max_past))]
 #[allow(clippy::too_many_arguments)]
 pub fn geodesic<'py>(
     py: Python<'py>,
-    a: f64,
+    metric: &str,
+    a: Option<f64>,
+    m2: Option<f64>,
+    omega: Option<f64>,
     position: [f64; 3],
     time: f64,
     direction: [f64; 3],
@@ -63,11 +109,17 @@ pub fn geodesic<'py>(
     samples: usize,
     max_past: Option<f64>,
 ) -> PyResult<(String, Columns<'py>)> {
+    let metric = metric_of(metric, a, m2, omega)?;
+    let scale = metric.length_scale();
     let xyz: &[&str] = &["x", "y", "z"];
-    let a = checked(
-        a,
-        &[("position", xyz, &position), ("time", &["t"], &[time])],
-    )?;
+    for (keyword, names, values) in [("position", xyz, &position[..]), ("time", &["t"], &[time])] {
+        scene::ranges::check_coordinates(names, values, scale)
+            .map_err(|e| argument_error(keyword, e))?;
+    }
+    if let Some(g) = metric.godel_type() {
+        scene::ranges::check_member_radius(g, position[0].hypot(position[1]))
+            .map_err(|e| argument_error("position", e))?;
+    }
     let method = match method {
         "exact" => CurveMethod::Exact,
         "numeric" => CurveMethod::Numeric,
@@ -76,7 +128,6 @@ pub fn geodesic<'py>(
             return Err(argument_error("method", message));
         }
     };
-    let metric = Metric::Godel(Godel::new(a));
     let [x, y, z] = position;
     let request = CurveRequest::new(
         metric,

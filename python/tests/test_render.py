@@ -18,6 +18,8 @@ CASES = [
     (None, dict(width=176, height=20)),  # the reference scene, 2×2 samples per pixel
     ("scenes/lit-shadow.toml", dict(width=96, height=12, method="exact", max_past=12.0)),
     ("scenes/static-sphere.toml", dict(width=72, height=12, samples=4, method="numeric")),
+    # The reference scene in a member of the Gödel-type family (its a dropped).
+    (None, dict(width=88, height=10, samples=1, metric="godel-type", m2=0.5, omega=0.7)),
 ]
 
 

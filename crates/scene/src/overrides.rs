@@ -4,6 +4,12 @@
 //! `trace.method`, `name`, `camera.samples`) and the result is validated exactly like a
 //! scene file, so the same rules hold; a refusal names the setting that caused it. The data
 //! file then embeds the scene as rendered (overrides included).
+//!
+//! The spacetime too (`--metric --a --m2 --omega`: `spacetime.metric`, `spacetime.a`,
+//! `spacetime.m2`, `spacetime.omega`), e.g. a member of the Gödel-type family for a Gödel
+//! scene: a new metric takes its constants from the overrides alone (the scene's `a`, `m2`
+//! and `omega` are dropped first, since each metric refuses the others' constants); without
+//! one, a constant replaces the scene's.
 
 use std::fmt;
 use std::path::Path;
@@ -33,6 +39,10 @@ pub enum Setting {
     Method,
     Name,
     Samples,
+    Metric,
+    A,
+    M2,
+    Omega,
 }
 
 impl Setting {
@@ -45,6 +55,10 @@ impl Setting {
             Setting::Method => "--method",
             Setting::Name => "--name",
             Setting::Samples => "--samples",
+            Setting::Metric => "--metric",
+            Setting::A => "--a",
+            Setting::M2 => "--m2",
+            Setting::Omega => "--omega",
         }
     }
 
@@ -57,6 +71,10 @@ impl Setting {
             Setting::Method => "method",
             Setting::Name => "name",
             Setting::Samples => "samples",
+            Setting::Metric => "metric",
+            Setting::A => "a",
+            Setting::M2 => "m2",
+            Setting::Omega => "omega",
         }
     }
 
@@ -69,6 +87,10 @@ impl Setting {
             Setting::Method => ("trace", "method"),
             Setting::Name => ("", "name"),
             Setting::Samples => ("camera", "samples"),
+            Setting::Metric => ("spacetime", "metric"),
+            Setting::A => ("spacetime", "a"),
+            Setting::M2 => ("spacetime", "m2"),
+            Setting::Omega => ("spacetime", "omega"),
         }
     }
 
@@ -90,6 +112,10 @@ pub struct Overrides {
     pub method: Option<String>,
     pub name: Option<String>,
     pub samples: Option<i64>,
+    pub metric: Option<String>,
+    pub a: Option<f64>,
+    pub m2: Option<f64>,
+    pub omega: Option<f64>,
 }
 
 impl Overrides {
@@ -107,6 +133,10 @@ impl Overrides {
         put(Setting::Method, self.method.clone().map(Value::String));
         put(Setting::Name, self.name.clone().map(Value::String));
         put(Setting::Samples, self.samples.map(Value::Integer));
+        put(Setting::Metric, self.metric.clone().map(Value::String));
+        put(Setting::A, self.a.map(Value::Float));
+        put(Setting::M2, self.m2.map(Value::Float));
+        put(Setting::Omega, self.omega.map(Value::Float));
         out
     }
 }
@@ -179,6 +209,14 @@ pub fn load(source: SceneSource, o: &Overrides) -> Result<Scene, LoadError> {
     let mut table: Table = text
         .parse()
         .map_err(|e| refuse(format!("{file}: cannot re-read the scene: {e}")))?;
+    if o.metric.is_some() {
+        // A new metric's constants are the overrides' alone (module documentation).
+        if let Some(Value::Table(spacetime)) = table.get_mut("spacetime") {
+            for key in ["a", "m2", "omega"] {
+                spacetime.remove(key);
+            }
+        }
+    }
     for (setting, value) in &set {
         let (section, key) = setting.field();
         let target = if section.is_empty() {
@@ -198,11 +236,18 @@ pub fn load(source: SceneSource, o: &Overrides) -> Result<Scene, LoadError> {
         toml::to_string(&table).map_err(|e| refuse(format!("{file}: cannot write: {e}")))?;
     let source_path = scene.source_path.take();
     scene = Scene::from_str(&new_text, &file).map_err(|e| {
-        // The setting whose field the scene crate refused, else all those given.
-        let blamed = all.iter().find(|s| {
-            let field = s.path();
-            e.field == field || e.field.starts_with(&format!("{field}."))
-        });
+        // The setting whose field the scene crate refused (a constant the new metric lacks:
+        // the metric), else all those given.
+        let blamed = all
+            .iter()
+            .find(|s| {
+                let field = s.path();
+                e.field == field || e.field.starts_with(&format!("{field}."))
+            })
+            .or_else(|| {
+                all.iter()
+                    .find(|s| **s == Setting::Metric && e.field.starts_with("spacetime."))
+            });
         let message = if e.field.is_empty() {
             e.message.clone()
         } else {
@@ -260,6 +305,73 @@ mod tests {
                 assert_eq!(e.field, "name");
             }
             other => panic!("expected a scene error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_metric_and_its_constants_are_overridden() {
+        // The built-in Gödel scene as a Gödel-type member: its a is dropped.
+        let o = Overrides {
+            metric: Some("godel-type".into()),
+            m2: Some(0.5),
+            omega: Some(0.6),
+            ..Default::default()
+        };
+        let scene = load(SceneSource::Builtin, &o).unwrap();
+        assert_eq!(
+            scene.metric.godel_type(),
+            Some(spacetime::GodelType::new(0.5, 0.6))
+        );
+        // Without a metric, a constant replaces the scene's: a of the Gödel scene.
+        let o = Overrides {
+            a: Some(2.0),
+            ..Default::default()
+        };
+        let scene = load(SceneSource::Builtin, &o).unwrap();
+        assert_eq!(scene.metric.godel_a(), Some(2.0));
+        // Refusals name the setting: m2 on a Gödel scene, a bad omega, a with the family.
+        let cases = [
+            (
+                Overrides {
+                    m2: Some(1.0),
+                    ..Default::default()
+                },
+                "m2: spacetime.m2: ",
+            ),
+            (
+                Overrides {
+                    metric: Some("godel-type".into()),
+                    m2: Some(1.0),
+                    omega: Some(-1.0),
+                    ..Default::default()
+                },
+                "omega: spacetime.omega: ",
+            ),
+            (
+                Overrides {
+                    metric: Some("godel-type".into()),
+                    a: Some(1.0),
+                    m2: Some(1.0),
+                    omega: Some(1.0),
+                    ..Default::default()
+                },
+                "a: spacetime.a: ",
+            ),
+        ];
+        let missing = Overrides {
+            metric: Some("godel-type".into()),
+            m2: Some(1.0),
+            width: Some(20),
+            ..Default::default()
+        };
+        let text = load(SceneSource::Builtin, &missing)
+            .unwrap_err()
+            .describe(Setting::keyword);
+        assert!(text.starts_with("metric: spacetime.omega: "), "{text}");
+        for (o, start) in cases {
+            let e = load(SceneSource::Builtin, &o).unwrap_err();
+            let text = e.describe(Setting::keyword);
+            assert!(text.starts_with(start), "{text}");
         }
     }
 }

@@ -39,7 +39,9 @@ Output: -o names a FOLDER that receives NAME.exr and NAME.png (NAME the scene's 
 merge; shade and look take file names too). With --part, -o is a folder. \
 --width, --height, --max-past, --method and --name replace the scene's \
 camera.width, camera.height, trace.max_past, trace.method and name, checked like the \
-scene file (errors name the flag); the data file embeds the scene as rendered.
+scene file (errors name the flag); the data file embeds the scene as rendered. --metric, \
+--a, --m2 and --omega replace the scene's spacetime: a new --metric takes its constants \
+from these flags alone (e.g. --metric godel-type --m2 0 --omega 0.7 --method numeric).
 
 Writing: both files go to hidden temporaries `.NAME.godel-PID-HOST.XXXXXX.tmp` and are \
 renamed together at the end. Ctrl-C or SIGTERM removes the temporaries (exit 130 or 143); \
@@ -90,6 +92,19 @@ pub struct RenderArgs {
     /// the data file (see the guide, "The data file").
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub samples: Option<i64>,
+    /// Spacetime metric, godel, godel-type or minkowski (replaces [spacetime] metric; the
+    /// scene's a, m2 and omega are dropped: give the new metric's).
+    #[arg(long)]
+    pub metric: Option<String>,
+    /// Gödel parameter a (replaces [spacetime] a).
+    #[arg(long, allow_negative_numbers = true)]
+    pub a: Option<f64>,
+    /// m² of a Gödel-type member (replaces [spacetime] m2).
+    #[arg(long, allow_negative_numbers = true, value_name = "M2")]
+    pub m2: Option<f64>,
+    /// Vorticity Ω of a Gödel-type member (replaces [spacetime] omega).
+    #[arg(long, allow_negative_numbers = true, value_name = "OMEGA")]
+    pub omega: Option<f64>,
 }
 
 impl RenderArgs {
@@ -102,6 +117,10 @@ impl RenderArgs {
             method: self.method.clone(),
             name: self.name.clone(),
             samples: self.samples,
+            metric: self.metric.clone(),
+            a: self.a,
+            m2: self.m2,
+            omega: self.omega,
         }
     }
 }

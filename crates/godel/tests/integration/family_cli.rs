@@ -463,3 +463,53 @@ fn bad_plot_flags_exit_2_naming_the_flag_and_write_nothing() {
     }
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+#[test]
+fn render_takes_a_member_for_the_scene_and_names_the_flag_at_fault() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().to_str().unwrap();
+    let tiny = [
+        "--width",
+        "22",
+        "--height",
+        "4",
+        "--samples",
+        "1",
+        "-q",
+        "-o",
+        out_dir,
+    ];
+    let member = ["--metric", "godel-type", "--m2", "0.5", "--omega", "0.7"];
+    let out = godel(&[&["render"][..], &member, &tiny].concat());
+    assert!(out.status.success(), "{}", stderr(&out));
+    // The data file embeds the scene as rendered: the member, without the scene's a.
+    let exr = dir.path().join("reference.exr");
+    let data = datafile::DataFile::read(&exr).unwrap();
+    let text = &data.header.scene_text;
+    assert!(
+        text.contains("godel-type") && text.contains("m2 = 0.5"),
+        "{text}"
+    );
+    assert!(!text.contains("a = 1.0"), "{text}");
+    let cases: &[(&[&str], &str)] = &[
+        (&["--m2", "0.5"], "error: --m2: spacetime.m2: "),
+        (
+            &["--metric", "godel-type", "--m2", "0.5"],
+            "error: --metric: spacetime.omega: ",
+        ),
+        (
+            &[&member[..], &["--a", "1"]].concat(),
+            "error: --a: spacetime.a: ",
+        ),
+        (
+            &["--metric", "godel-type", "--m2", "500", "--omega", "1"],
+            "error: --m2: ",
+        ),
+    ];
+    for (extra, start) in cases {
+        let out = godel(&[&["render"][..], extra, &tiny].concat());
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(err.starts_with(start), "{extra:?}: {err}");
+    }
+}
