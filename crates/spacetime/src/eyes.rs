@@ -18,9 +18,22 @@
 //!   ([∂φ, K_x] = −K_y, [∂φ, K_y] = K_x), so
 //!   exp(d ξ) = T_P⁻¹ ∘ shift_t(d u^t) ∘ shift_z(d u^z) ∘ R_θ ∘ exp(d ρ K_x) ∘ R_{−θ} ∘ T_P.
 //!   Checked against integrating dX/ds = ξ(X) in `tests/integration/eyes.rs`.
+//! - A Gödel-type member: the same product with the member's isometries
+//!   ([`TypeIsometry`]; docs/physics.md, "The Gödel-type family", "Isometries of the
+//!   family"), whose K_x and K_y are ∂x and ∂y on the axis and obey the same brackets with
+//!   ∂φ. On the sphere (m² < 0) two factors can fail: the flow of K_x beyond the pole
+//!   (μ|d ρ| ≥ π), and T_P⁻¹, whose time shift jumps across a cut on the far side of the
+//!   sphere; an eye there is not placed (`None`). Along exp(s ρ K_x) the base point runs on a
+//!   straight line of the stereographic plane from 0, on which the cut's test quantity
+//!   Re(1 − k ζ̄₁ ζ) is affine, so checking the eye itself checks the whole orbit. With a
+//!   scene's observer (within π/μ − ρ_c of the axis, so |k ζ_P| ≤ Ω) the cut needs
+//!   |ζ| ≥ 1/Ω, which the small separations of scenes reach only at speeds near light along
+//!   the right axis (u, and so the flow's parameter, grows as γ).
 
 use crate::frame::{boost, LocalVelocity};
-use crate::isometry::Isometry;
+use crate::godel_type::GodelType;
+use crate::godel_type_symmetry::{base_coordinate, TypeIsometry};
+use crate::isometry::{Complex, Isometry};
 use crate::killing::KillingField;
 use crate::metric::{Metric, Spacetime};
 use crate::polarization::cross;
@@ -49,8 +62,10 @@ impl Viewpoint {
 
     /// The eye at proper distance `offset` along the camera's right axis (forward × up;
     /// negative: to the left): the image of this viewpoint under exp(offset ξ) (module
-    /// documentation). An offset of 0 gives this viewpoint unchanged; `None` in the
-    /// Gödel-type family, whose isometries are not used here yet.
+    /// documentation). An offset of 0 gives this viewpoint unchanged; `None` only on the
+    /// sphere of a Gödel-type member with m² < 0, where the eye would reach the pole opposite
+    /// the axis or cross the cut of the map back (and for a member's event that is not
+    /// finite).
     pub fn eye(&self, metric: &Metric, offset: f64) -> Option<Viewpoint> {
         if offset == 0.0 {
             return Some(*self);
@@ -58,12 +73,16 @@ impl Viewpoint {
         let frame = self.frame(metric);
         let right = cross(self.forward, self.up);
         let e_right = Viewpoint::axis(&frame, right);
+        let carried = [
+            frame.e[0],
+            Viewpoint::axis(&frame, self.forward),
+            Viewpoint::axis(&frame, self.up),
+        ];
         match metric {
             Metric::Minkowski(_) => Some(Viewpoint {
                 event: Event::from_array(add(self.event.to_array(), offset, e_right)),
                 ..*self
             }),
-            Metric::GodelType(_) => None,
             Metric::Godel(g) => {
                 let a = g.a;
                 let to_origin = Isometry::to_origin(a, self.event);
@@ -78,17 +97,41 @@ impl Viewpoint {
                     Isometry::flow(a, KillingField::Z, offset * u.z),
                     to_origin.inverse(),
                 ];
-                let mut event = self.event;
-                let mut carried = [
-                    frame.e[0],
-                    Viewpoint::axis(&frame, self.forward),
-                    Viewpoint::axis(&frame, self.up),
+                let (event, carried) =
+                    carry(&steps, self.event, carried, Isometry::apply, Isometry::push);
+                Some(Viewpoint::seen_at(metric, event, carried))
+            }
+            Metric::GodelType(member) => {
+                let m = *member;
+                let to_origin = TypeIsometry::to_origin(m, self.event)?;
+                let u = to_origin.push(self.event, e_right);
+                let (rho, theta) = (u.x.hypot(u.y), u.y.atan2(u.x));
+                let steps = [
+                    to_origin,
+                    TypeIsometry::rotation(m, -theta),
+                    TypeIsometry::flow(m, KillingField::Kx, offset * rho)?,
+                    TypeIsometry::rotation(m, theta),
+                    TypeIsometry::flow(m, KillingField::T, offset * u.t)?,
+                    TypeIsometry::flow(m, KillingField::Z, offset * u.z)?,
                 ];
-                for map in steps {
-                    let at = event;
-                    event = map.apply(at);
-                    carried = carried.map(|v| map.push(at, v));
+                let (moved, at_origin) = carry(
+                    &steps,
+                    self.event,
+                    carried,
+                    TypeIsometry::apply,
+                    TypeIsometry::push,
+                );
+                if across_the_cut(m, self.event, moved) {
+                    return None;
                 }
+                let back = to_origin.inverse();
+                let (event, carried) = carry(
+                    &[back],
+                    moved,
+                    at_origin,
+                    TypeIsometry::apply,
+                    TypeIsometry::push,
+                );
                 Some(Viewpoint::seen_at(metric, event, carried))
             }
         }
@@ -116,6 +159,37 @@ impl Viewpoint {
             up: components(carried[2]),
         }
     }
+}
+
+/// `event` and the vectors `carried` there mapped by each of `steps` in turn.
+fn carry<M>(
+    steps: &[M],
+    event: Event,
+    carried: [FourVector; 3],
+    apply: impl Fn(&M, Event) -> Event,
+    push: impl Fn(&M, Event, FourVector) -> FourVector,
+) -> (Event, [FourVector; 3]) {
+    let (mut event, mut carried) = (event, carried);
+    for map in steps {
+        let at = event;
+        event = apply(map, at);
+        carried = carried.map(|v| push(map, at, v));
+    }
+    (event, carried)
+}
+
+/// Whether T_P⁻¹, the map back from the origin to the observer's event `p`, would take
+/// `moved` across its cut: on the sphere (m² < 0), where Re(1 − k ζ̄₁ ζ) ≤ 0 with ζ₁ = −ζ_P
+/// the base coordinate T_P⁻¹ sends to the origin and k = m²/4 (docs/physics.md, "Isometries
+/// of the family"). Never for m² ≥ 0.
+fn across_the_cut(member: GodelType, p: Event, moved: Event) -> bool {
+    if member.m2 >= 0.0 {
+        return false;
+    }
+    let zeta_p = base_coordinate(member, p.x, p.y);
+    let zeta = base_coordinate(member, moved.x, moved.y);
+    let one = Complex::new(1.0, 0.0);
+    (one + (zeta_p.conj() * zeta).scale(0.25 * member.m2)).re <= 0.0
 }
 
 fn norm(v: [f64; 3]) -> f64 {

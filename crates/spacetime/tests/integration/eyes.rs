@@ -1,14 +1,20 @@
 //! Stereo eyes (`spacetime::eyes`, docs/physics.md "Stereo eyes"): an eye is the observer
 //! moved by the flow of the Killing field that is its right axis at its event. Checked against
 //! integrating that flow, against the conserved products of a Killing field with the carried
-//! frame, and in flat space against a plain translation.
+//! frame, and in flat space against a plain translation; in the Gödel-type family likewise
+//! with the member's Killing fields and isometries, and on its sphere the refusals.
 
 use crate::common::{integrate_field, max_abs, Rng};
 use spacetime::*;
 
 /// A random observer (event within r < 3a, speed below 0.9) with orthonormal camera axes.
 fn viewpoint(rng: &mut Rng, a: f64) -> Viewpoint {
-    let event = rng.event(3.0 * a);
+    viewpoint_within(rng, 3.0 * a)
+}
+
+/// A random observer within `r_max` of the axis (speed below 0.9), orthonormal camera axes.
+fn viewpoint_within(rng: &mut Rng, r_max: f64) -> Viewpoint {
+    let event = rng.event(r_max);
     let velocity = LocalVelocity::new(rng.uniform(0.0, 0.9), rng.direction()).unwrap();
     let forward = rng.direction();
     let d = rng.direction();
@@ -126,4 +132,159 @@ fn in_godels_universe_an_eye_is_the_flow_of_the_right_axis_killing_field() {
     eprintln!("eyes: worst event {worst_event:e} (units of a), worst product {worst_product:e}");
     assert!(worst_event < 1e-10, "{worst_event:e}");
     assert!(worst_product < 1e-12, "{worst_product:e}");
+}
+
+const OMEGA: f64 = 0.7;
+
+/// Members m²/Ω² ∈ {−1, 0, 1, 3.5, 4, 6} at Ω = 0.7, each with how far from the axis its
+/// observers are put: π/μ − ρ_c on the sphere (as scenes allow), else 3 length scales.
+fn members() -> Vec<(GodelType, f64)> {
+    [-1.0, 0.0, 1.0, 3.5, 4.0, 6.0]
+        .iter()
+        .map(|ratio| {
+            let m = GodelType::new(ratio * OMEGA * OMEGA, OMEGA);
+            let reach = match (m.coordinate_radius(), m.critical_radius()) {
+                (Some(edge), Some(rho_c)) => edge - rho_c,
+                _ => 3.0 * Metric::GodelType(m).length_scale(),
+            };
+            (m, reach)
+        })
+        .collect()
+}
+
+/// The member's field ξ_u = u^t ∂t + u^x K_x + u^y K_y + u^z ∂z at `e`.
+fn member_field(member: GodelType, u: [f64; 4], e: Event) -> FourVector {
+    let fields = [
+        KillingField::T,
+        KillingField::Kx,
+        KillingField::Ky,
+        KillingField::Z,
+    ];
+    let parts = fields.map(|f| killing_field(member, f, e).to_array());
+    FourVector::from_array(std::array::from_fn(|m| {
+        (0..4).map(|k| u[k] * parts[k][m]).sum()
+    }))
+}
+
+/// In every member, as in Gödel's universe: the eye is T⁻¹ of the point the flow of ξ_u
+/// reaches from the origin in parameter d (RK4), the isometry keeps every product g(V, ξ) of
+/// a carried vector with the field, |ξ| = 1 along the orbit (so the eye is at proper distance
+/// |d| along it), the eye's speed is the observer's (isometries keep ∂t), the eye of the eye
+/// at −d is the observer again, and an offset of 0 changes nothing.
+#[test]
+fn in_the_godel_type_family_an_eye_is_the_flow_of_the_right_axis_killing_field() {
+    let mut rng = Rng::new(40);
+    let (mut worst_event, mut worst_product, mut worst_back): (f64, f64, f64) = (0.0, 0.0, 0.0);
+    for (member, reach) in members() {
+        let metric = Metric::GodelType(member);
+        let a = metric.length_scale();
+        for _ in 0..30 {
+            let v = viewpoint_within(&mut rng, reach);
+            assert_eq!(v.eye(&metric, 0.0), Some(v));
+            // Scenes' eyes: half a separation of at most a.
+            let d = rng.uniform(-0.5, 0.5) * a;
+            let eye = v
+                .eye(&metric, d)
+                .unwrap_or_else(|| panic!("no eye for {member:?} at {v:?}, d = {d}"));
+            let to_origin = TypeIsometry::to_origin(member, v.event).unwrap();
+            let before = carried(&metric, &v);
+            let u = to_origin.push(v.event, before[3]).to_array();
+            let xi = |e: Event| member_field(member, u, e);
+            let origin = Event::new(0.0, 0.0, 0.0, 0.0);
+            let reached = integrate_field(xi, origin, d, 400);
+            let want = to_origin.inverse().apply(reached).to_array();
+            let off: [f64; 4] = std::array::from_fn(|i| eye.event.to_array()[i] - want[i]);
+            worst_event = worst_event.max(max_abs(off) / a);
+            let length = metric.dot(reached, xi(reached), xi(reached));
+            assert!((length - 1.0).abs() < 1e-9, "{member:?}: |ξ|² = {length}");
+            let after = carried(&metric, &eye);
+            let at_eye = to_origin.apply(eye.event);
+            for k in 0..3 {
+                let p0 = metric.dot(origin, to_origin.push(v.event, before[k]), xi(origin));
+                let pushed = to_origin.push(eye.event, after[k]);
+                let p1 = metric.dot(at_eye, pushed, xi(at_eye));
+                worst_product = worst_product.max((p1 - p0).abs());
+            }
+            assert!(
+                (eye.velocity.speed - v.velocity.speed).abs() < 1e-9,
+                "{member:?}: {eye:?} {v:?}"
+            );
+            let f = eye.forward;
+            let up = eye.up;
+            assert!((f[0] * up[0] + f[1] * up[1] + f[2] * up[2]).abs() < 1e-12);
+            let back = eye.eye(&metric, -d).unwrap();
+            let moved: [f64; 4] =
+                std::array::from_fn(|i| back.event.to_array()[i] - v.event.to_array()[i]);
+            let turned = (0..3)
+                .map(|i| {
+                    (back.forward[i] - v.forward[i])
+                        .abs()
+                        .max((back.up[i] - v.up[i]).abs())
+                })
+                .fold(0.0f64, f64::max);
+            worst_back = worst_back.max(max_abs(moved) / a).max(turned);
+        }
+    }
+    eprintln!(
+        "member eyes: worst event {worst_event:e} (units of a), worst product {worst_product:e}, worst round trip {worst_back:e}"
+    );
+    assert!(worst_event < 1e-10, "{worst_event:e}");
+    assert!(worst_product < 1e-12, "{worst_product:e}");
+    assert!(worst_back < 1e-9, "{worst_back:e}");
+}
+
+/// On the sphere (m² = −Ω²) an eye is refused where the isometries cannot place it: when
+/// the flow along the right axis reaches the pole opposite the axis, and when the map back
+/// would take it across its cut (an observer far out, moving at nearly the speed of light
+/// along its right axis). Short of the cut the eye is still the flow's.
+#[test]
+fn on_the_sphere_eyes_the_isometries_cannot_place_are_refused() {
+    let member = GodelType::new(-OMEGA * OMEGA, OMEGA);
+    let metric = Metric::GodelType(member);
+    let edge = member.coordinate_radius().unwrap();
+    let on_axis = Viewpoint {
+        event: Event::new(0.0, 0.0, 0.0, 0.0),
+        velocity: LocalVelocity::REST,
+        forward: [0.0, 1.0, 0.0],
+        up: [0.0, 0.0, 1.0],
+    };
+    // Right = forward × up = +x: the eye runs along the x axis, ρ = d.
+    let near = on_axis.eye(&metric, 0.99 * edge).unwrap();
+    assert!((near.event.x - 0.99 * edge).abs() < 1e-9, "{near:?}");
+    assert_eq!(on_axis.eye(&metric, edge), None);
+    // Far out along x, moving fast along +x (its right axis): the flow's parameter is γ d.
+    let rho_c = member.critical_radius().unwrap();
+    let far = Viewpoint {
+        event: Event::new(0.0, edge - rho_c, 0.0, 0.0),
+        velocity: LocalVelocity::new(0.999, [1.0, 0.0, 0.0]).unwrap(),
+        ..on_axis
+    };
+    // The flow integrated in the observer's own coordinates, ξ = (T_P⁻¹)_* ξ_u ∘ T_P: its
+    // time is continuous where the map back's time shift jumps.
+    let to_origin = TypeIsometry::to_origin(member, far.event).unwrap();
+    let back = to_origin.inverse();
+    let u = to_origin
+        .push(far.event, carried(&metric, &far)[3])
+        .to_array();
+    let field = |x: Event| {
+        let there = to_origin.apply(x);
+        back.push(there, member_field(member, u, there))
+    };
+    let flow = |d: f64| integrate_field(field, far.event, d, 4000);
+    // Placed from d = 0 up to some d, refused beyond (and never placed again).
+    let mut placed = 0;
+    for k in 1..=200 {
+        let d = 0.01 * k as f64;
+        if let Some(eye) = far.eye(&metric, d) {
+            assert_eq!(placed, k - 1, "placed again at d = {d}");
+            placed = k;
+            let want = flow(d);
+            let off = max_abs(std::array::from_fn(|i| {
+                eye.event.to_array()[i] - want.to_array()[i]
+            }));
+            assert!(off < 1e-8, "d = {d}: {eye:?} vs {want:?}");
+        }
+    }
+    eprintln!("sphere: eyes placed up to d = {}", 0.01 * placed as f64);
+    assert!(placed > 0 && placed < 200, "placed up to k = {placed}");
 }
