@@ -26,6 +26,7 @@
 )]
 
 pub mod bounds;
+pub mod chart;
 pub mod circle;
 pub mod driver;
 pub mod falling;

@@ -15,6 +15,7 @@
 //! between integration steps, however thin.
 
 use crate::bounds::Aabb;
+use crate::chart::LocalChart;
 use crate::worldline::{LocalPoint, WorldPoint, Worldline, WorldlineError};
 use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
@@ -431,16 +432,25 @@ fn rest_frame_photon(
     x: Event,
     k: FourVector,
 ) -> (FourVector, [f64; 4]) {
-    let gam = metric.christoffel(at.event);
-    let g = metric.metric(at.event);
-    let d = (x - at.event).to_array();
+    // In the chart of local descriptions ([`LocalChart`]), as the ball's coordinates are.
+    let chart = LocalChart::of(metric);
+    let (centre, here) = (chart.event(at.event), chart.event(x));
+    let gam = chart.christoffel(centre);
+    let g = chart.metric(centre);
+    let d = (here - centre).to_array();
     // k carried from the hit point to the centre, then measured in the body frame.
-    let kn = normal::transport(&gam, (at.event - x).to_array(), k.to_array());
-    let kl = vector_components(&g, &at.frame, FourVector::from_array(kn));
+    let kn = normal::transport(
+        &gam,
+        (centre - here).to_array(),
+        chart.vector(x, k).to_array(),
+    );
+    let frame = chart.frame(at.event, &at.frame);
+    let kl = vector_components(&g, &frame, FourVector::from_array(kn));
     let u_emit = match wl {
         Worldline::Rest { .. } => FourVector::new(1.0, 0.0, 0.0, 0.0),
         Worldline::Free(_) => {
-            FourVector::from_array(normal::transport(&gam, d, at.frame.e[0].to_array()))
+            let u = normal::transport(&gam, d, frame.e[0].to_array());
+            chart.vector_back(x, FourVector::from_array(u))
         }
     };
     (u_emit, kl)

@@ -16,11 +16,12 @@
 //! one Newton step on the second-order one.
 
 use crate::bounds::Aabb;
+use crate::chart::LocalChart;
 use scene::Motion;
 use spacetime::measure::DualFrame;
 use spacetime::{
     normal, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry,
-    Metric, MetricTensor, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances,
+    Metric, MetricTensor, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances, TypeIsometry,
 };
 
 /// A worldline point: event, four-velocity and body frame (e[0] = u).
@@ -48,8 +49,10 @@ pub enum Worldline {
     Rest {
         position: Event,
         frame: Tetrad,
+        /// The position, Γ there and the frame's dual basis in the chart of local
+        /// descriptions ([`LocalChart`]), constant for an object at rest.
+        center: Event,
         gamma: Christoffel,
-        /// The frame's dual basis, constant for an object at rest.
         dual: DualFrame,
     },
     Free(FreeFall),
@@ -179,11 +182,14 @@ impl Worldline {
             Motion::Rest { position } => {
                 let p = Event::new(0.0, position.x, position.y, position.z);
                 let frame = metric.static_frame(p);
+                let chart = LocalChart::of(&metric);
+                let center = chart.event(p);
                 Ok(Worldline::Rest {
                     position: p,
                     frame,
-                    gamma: metric.christoffel(p),
-                    dual: DualFrame::new(&metric.metric(p), &frame),
+                    center,
+                    gamma: chart.christoffel(center),
+                    dual: DualFrame::new(&chart.metric(center), &chart.frame(p, &frame)),
                 })
             }
             Motion::Geodesic { start, velocity } => {
@@ -216,7 +222,10 @@ impl Worldline {
                     tau_min,
                     tau_max,
                     boxes,
-                    origin: (metric.metric(ORIGIN), metric.christoffel(ORIGIN)),
+                    origin: {
+                        let chart = LocalChart::of(&metric);
+                        (chart.metric(ORIGIN), chart.christoffel(ORIGIN))
+                    },
                 }))
             }
         }
@@ -327,20 +336,18 @@ impl Worldline {
             Worldline::Rest {
                 position,
                 frame,
+                center,
                 gamma,
                 dual,
             } => {
                 // Static: u = ∂t; g(u, Δ) = 0 fixes Δt = g_ti Δ^i at first order, and the
-                // dual row of e0 = ∂t is −g_tμ.
-                let dx = [x.x - position.x, x.y - position.y, x.z - position.z];
+                // dual row of e0 = ∂t is −g_tμ. All in the chart of local descriptions.
+                let x = LocalChart::of(metric).event(x);
+                let dx = [x.x - center.x, x.y - center.y, x.z - center.z];
                 let dt = -(dual.0[0][1] * dx[0] + dual.0[0][2] * dx[1] + dual.0[0][3] * dx[2]);
                 let mut t = x.t - dt;
-                let first = local_coords(
-                    dual,
-                    None,
-                    Event::new(t, position.x, position.y, position.z),
-                    x,
-                );
+                let first =
+                    local_coords(dual, None, Event::new(t, center.x, center.y, center.z), x);
                 let mut xi = first;
                 let exact = norm3(&first) <= far;
                 if exact {
@@ -348,7 +355,7 @@ impl Worldline {
                         xi = local_coords(
                             dual,
                             Some(gamma),
-                            Event::new(t, position.x, position.y, position.z),
+                            Event::new(t, center.x, center.y, center.z),
                             x,
                         );
                         t += xi[0];
@@ -370,8 +377,7 @@ impl Worldline {
                 // lie beyond it) still get a finite distance, so no step is skipped.
                 let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
                 let p = self.at(metric, tau)?;
-                let g = metric.metric(p.event);
-                let first = local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x);
+                let first = first_order(metric, &p, x);
                 if norm3(&first) > far {
                     // Far: an estimate only (the tracer never lets it vouch for more than
                     // one step: with the worldline looping, "now" is ambiguous far away).
@@ -389,9 +395,7 @@ impl Worldline {
                 // and a secant on it jumped between them from one ray point to the next.)
                 let xi0_at = |tau: f64| -> Option<(WorldPoint, f64)> {
                     let p = self.at(metric, tau)?;
-                    let g = metric.metric(p.event);
-                    let xi0 = local_coords(&DualFrame::new(&g, &p.frame), None, p.event, x)[0];
-                    Some((p, xi0))
+                    Some((p, first_order(metric, &p, x)[0]))
                 };
                 let (mut ta, mut fa) = (tau, first[0]);
                 tau = (ta + fa).clamp(ff.tau_min, ff.tau_max);
@@ -451,31 +455,44 @@ fn local_coords(dual: &DualFrame, gamma: Option<&Christoffel>, p: Event, x: Even
     })
 }
 
+/// Rest-frame components of the displacement from the worldline point `p` to `x` to first
+/// order, in the chart of local descriptions ([`LocalChart`]).
+fn first_order(metric: &Metric, p: &WorldPoint, x: Event) -> [f64; 4] {
+    let chart = LocalChart::of(metric);
+    let at = chart.event(p.event);
+    let dual = DualFrame::new(&chart.metric(at), &chart.frame(p.event, &p.frame));
+    local_coords(&dual, None, at, chart.event(x))
+}
+
 /// Rest-frame components of the displacement from the worldline point `p` to `x` in
 /// Riemann normal coordinates to second order, taken after the isometry that sends `p` to
-/// the origin (docs/physics.md "Simultaneity"). There Γ is small and the expansion
+/// the origin (docs/physics.md "Simultaneity"), in the chart of local descriptions there
+/// (`origin`: its metric and Γ at the origin). There Γ is small and the expansion
 /// holds for displacements up to the largest radius, a/2, even for a boosted ball near the
 /// horizon: at `p` itself a coordinate displacement of ~γ|ξ| at large r once put a point
 /// 1.7 γ|ξ| away (static distance) inside the ball. Minkowski: the displacement itself.
-/// The Gödel-type family (no isometries used here yet): normal coordinates at `p` itself,
-/// where ρ is the proper radius and the metric has no 1/(1 + s²) stretch to amplify them.
 fn origin_coords(
     metric: &Metric,
     origin: &(MetricTensor, Christoffel),
     p: &WorldPoint,
     x: Event,
 ) -> [f64; 4] {
-    let Some(a) = metric.godel_a() else {
-        let g = metric.metric(p.event);
-        let gamma = metric.godel_type().map(|_| metric.christoffel(p.event));
-        return local_coords(&DualFrame::new(&g, &p.frame), gamma.as_ref(), p.event, x);
+    let chart = LocalChart::of(metric);
+    let to_origin = match *metric {
+        Metric::Godel(g) => Some(Isometry::to_origin(g.a, p.event))
+            .map(|to| (to.apply(x), p.frame.e.map(|e| to.push(p.event, e)))),
+        Metric::GodelType(member) => TypeIsometry::to_origin(member, p.event)
+            .map(|to| (to.apply(x), p.frame.e.map(|e| to.push(p.event, e)))),
+        Metric::Minkowski(_) => None,
     };
-    let to = Isometry::to_origin(a, p.event);
-    let frame = Tetrad {
-        e: p.frame.e.map(|e| to.push(p.event, e)),
+    let Some((there, frame)) = to_origin else {
+        // Minkowski space (and a member's event at the pole opposite the axis, which the
+        // scene's bounds keep any object from reaching): the displacement at `p` itself.
+        return first_order(metric, p, x);
     };
-    let dual = DualFrame::new(&origin.0, &frame);
-    local_coords(&dual, Some(&origin.1), ORIGIN, to.apply(x))
+    // The chart's differential at the origin is the identity: the frame stays as it is.
+    let dual = DualFrame::new(&origin.0, &Tetrad { e: frame });
+    local_coords(&dual, Some(&origin.1), ORIGIN, chart.event(there))
 }
 
 /// The event at the origin of the coordinates.

@@ -97,7 +97,7 @@ pub(crate) fn build(
             power: c.non_negative(&format!("{path}.power"), l.power.unwrap_or(1.0))?,
         });
     }
-    godel_rules(&c, &metric, &trace, &objects, &lights, stereo)?;
+    godel_rules(&c, &metric, &trace, &objects, &lights)?;
     coordinate_bounds(&c, &metric, &observer, &objects, &lights)?;
     Ok(Scene {
         name: raw.name,
@@ -354,8 +354,8 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     })
 }
 
-/// Checks that need both the metric and the rest. The exact tracer, the lights and stereo
-/// pairs use Gödel's closed forms and isometries, so they need that metric. In Gödel's
+/// Checks that need both the metric and the rest. The exact tracer and the lights use
+/// Gödel's closed forms, so they need that metric. In Gödel's
 /// universe, rays loop with a period of at least [`Godel::shortest_loop_time`], so
 /// `max_past` bounds the number of loops a ray makes ([`MAX_RAY_LOOPS`]); and a local
 /// sphere must be small against the curvature scale (a in Gödel's universe).
@@ -365,7 +365,6 @@ fn godel_rules(
     trace: &TraceSettings,
     objects: &[Object],
     lights: &[Light],
-    stereo: Option<Stereo>,
 ) -> Result<()> {
     let godel = match metric {
         Metric::Godel(godel) => godel,
@@ -395,15 +394,16 @@ fn godel_rules(
                     format!("the GPU kernel knows only Gödel's metric and flat spacetime so far: it needs {need}{not_yet}"),
                 );
             }
-            if let (Metric::GodelType(_), Some(s)) = (metric, stereo) {
-                if s.is_pair() {
-                    return c.err(
-                        "camera.stereo",
-                        format!("a stereo pair places its eyes with Gödel's isometries: it needs {need}{not_yet}"),
-                    );
-                }
+            // Flat spacetime has no curvature scale: a local ball of any size is exact.
+            if metric.godel_type().is_none() {
+                return Ok(());
             }
-            return local_sizes(c, objects, metric.length_scale());
+            let a = metric.length_scale();
+            let scale = format!(
+                "the length scale a = min(1/(√2 Ω), 1/|m|) = {}",
+                crate::short(a)
+            );
+            return local_sizes(c, objects, a, &scale);
         }
     };
     let a = godel.a;
@@ -418,11 +418,12 @@ fn godel_rules(
             ),
         );
     }
-    local_sizes(c, objects, a)
+    local_sizes(c, objects, a, &format!("a = {a}"))
 }
 
 /// Local spheres small against the curvature scale `a` (module constants above).
-fn local_sizes(c: &Checker, objects: &[Object], a: f64) -> Result<()> {
+/// `scale` names a for the messages.
+fn local_sizes(c: &Checker, objects: &[Object], a: f64, scale: &str) -> Result<()> {
     for (i, o) in objects.iter().enumerate() {
         if let Shape::Sphere { radius } = o.shape {
             // A ball moving at γ has a rest-frame neighbourhood whose static coordinates
@@ -433,7 +434,7 @@ fn local_sizes(c: &Checker, objects: &[Object], a: f64) -> Result<()> {
                     return c.err(
                         &format!("object[{i}].radius"),
                         format!(
-                            "{radius} is too large for a local sphere falling at speed {} with a = {a}: its rest frame is described to second order in γ²·radius = {stretch:.4}, which must be at most {MAX_LOCAL_RADIUS_PER_A}·a = {} (radius ≤ {:.4} at this speed)",
+                            "{radius} is too large for a local sphere falling at speed {} with {scale}: its rest frame is described to second order in γ²·radius = {stretch:.4}, which must be at most {MAX_LOCAL_RADIUS_PER_A}·a = {} (radius ≤ {:.4} at this speed)",
                             velocity.speed,
                             MAX_LOCAL_RADIUS_PER_A * a,
                             MAX_LOCAL_RADIUS_PER_A * a / velocity.gamma().powi(2)
@@ -445,7 +446,7 @@ fn local_sizes(c: &Checker, objects: &[Object], a: f64) -> Result<()> {
                 return c.err(
                     &format!("object[{i}].radius"),
                     format!(
-                        "{radius} is too large for a local sphere with a = {a}: a local object is described in its rest frame to second order in its size, which needs radius ≤ {MAX_LOCAL_RADIUS_PER_A}·a = {}; use frame = \"coordinates\" for a large object",
+                        "{radius} is too large for a local sphere with {scale}: a local object is described in its rest frame to second order in its size, which needs radius ≤ {MAX_LOCAL_RADIUS_PER_A}·a = {}; use frame = \"coordinates\" for a large object",
                         MAX_LOCAL_RADIUS_PER_A * a
                     ),
                 );
@@ -460,7 +461,7 @@ fn local_sizes(c: &Checker, objects: &[Object], a: f64) -> Result<()> {
 /// the coordinates end at ρ = π/μ (the base's pole opposite the axis); every light ray and
 /// free fall is a circle of diameter at most ρ_c on the base, so a scene within π/μ − ρ_c of
 /// the axis never reaches that pole.
-fn member_radius_limit(member: GodelType) -> Option<(f64, String)> {
+pub(crate) fn member_radius_limit(member: GodelType) -> Option<(f64, String)> {
     if member.m2 > 0.0 {
         let limit = MAX_M_RHO / member.m2.sqrt();
         Some((

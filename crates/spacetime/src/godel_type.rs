@@ -35,9 +35,9 @@ pub struct GodelType {
 }
 
 /// Where the closed forms of C, S and T lose digits to cancellation, their series take over.
-const SERIES_BELOW: f64 = 0.5;
+pub(crate) const SERIES_BELOW: f64 = 0.5;
 /// Terms of the series: the last, |u|^11/24!, is below 1e-24 for |u| < 0.5.
-const SERIES_TERMS: usize = 12;
+pub(crate) const SERIES_TERMS: usize = 12;
 
 /// C(u), C'(u), T(u) = (S(u) − 1)/u and T'(u) (module documentation).
 fn functions(u: f64) -> [f64; 4] {

@@ -40,6 +40,7 @@ pub mod eyes;
 mod frame;
 mod geodesic;
 mod godel;
+pub mod godel_chart;
 pub mod godel_type;
 pub mod godel_type_geodesic;
 pub mod godel_type_symmetry;
@@ -67,6 +68,7 @@ pub use geodesic::{
     GeodesicState, GeodesicSystem, StopReason, TimeDirection, TraceLimits, TracedGeodesic, STATE,
 };
 pub use godel::Godel;
+pub use godel_chart::GodelChart;
 pub use godel_type::GodelType;
 pub use godel_type_geodesic::{GeodesicRegime, TypeExactGeodesic, TypeOriginGeodesic};
 pub use godel_type_symmetry::{killing_field, TypeIsometry};

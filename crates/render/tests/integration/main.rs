@@ -10,6 +10,7 @@ mod coordinates;
 mod determinism;
 mod exact;
 mod falling;
+mod godel_type;
 mod graze;
 mod images;
 mod inside;

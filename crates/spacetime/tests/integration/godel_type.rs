@@ -260,3 +260,77 @@ fn in_plane_rays_from_the_axis_turn_where_closed_timelike_curves_begin() {
         );
     }
 }
+
+/// The Gödel-like chart (`spacetime::GodelChart`, docs/physics.md "The Gödel-like chart"):
+/// its metric is the member's pulled back (g_member(v, w) = g_chart(J v, J w)), its inverse
+/// and derivatives are its metric's, `vector_back` undoes `vector`, and for the Gödel member
+/// it is Gödel's metric itself.
+#[test]
+fn the_godel_like_chart_is_the_member_in_other_coordinates() {
+    let mut rng = Rng::new(36);
+    for (member, rho_max) in members() {
+        let chart = GodelChart::new(member);
+        for _ in 0..60 {
+            let e = point(&mut rng, rho_max);
+            let x = chart.event(e);
+            let basis = [0, 1, 2, 3].map(|k| {
+                let mut v = [0.0; 4];
+                v[k] = 1.0;
+                FourVector::from_array(v)
+            });
+            let (g, gc) = (member.metric(e), chart.metric(x));
+            for i in 0..4 {
+                for j in 0..4 {
+                    let (vi, vj) = (chart.vector(e, basis[i]), chart.vector(e, basis[j]));
+                    let pulled = chart.dot(x, vi, vj);
+                    assert!(
+                        (pulled - g[i][j]).abs() < 1e-10 * (1.0 + g[i][j].abs()),
+                        "{member:?} {e:?} g{i}{j}: {pulled} vs {}",
+                        g[i][j]
+                    );
+                    let back = chart.vector_back(e, chart.vector(e, basis[i])).to_array();
+                    assert!((back[j] - basis[i].to_array()[j]).abs() < 1e-12);
+                }
+            }
+            let gi = chart.inverse_metric(x);
+            for i in 0..4 {
+                for j in 0..4 {
+                    let v: f64 = (0..4).map(|k| gc[i][k] * gi[k][j]).sum();
+                    let want = if i == j { 1.0 } else { 0.0 };
+                    assert!((v - want).abs() < 1e-10, "{member:?} {x:?}: {v} at {i},{j}");
+                }
+            }
+            let dg = chart.metric_derivatives(x);
+            let h = 1e-5;
+            for (l, dg_l) in dg.iter().enumerate() {
+                let (mut plus, mut minus) = (x.to_array(), x.to_array());
+                plus[l] += h;
+                minus[l] -= h;
+                let gp = chart.metric(Event::from_array(plus));
+                let gm = chart.metric(Event::from_array(minus));
+                for i in 0..4 {
+                    for j in 0..4 {
+                        let fd = (gp[i][j] - gm[i][j]) / (2.0 * h);
+                        let tol = 1e-6 * (1.0 + dg_l[i][j].abs());
+                        assert!((fd - dg_l[i][j]).abs() < tol, "{member:?} ∂{l} g{i}{j}");
+                    }
+                }
+            }
+        }
+    }
+    // The Gödel member: Gödel's metric, and the chart's radius Gödel's r = 2a sinh(ρ/2a).
+    for a in [1.0, 0.7] {
+        let member = GodelType::new(1.0 / (a * a), 1.0 / (2f64.sqrt() * a));
+        let (chart, godel) = (GodelChart::new(member), Godel::new(a));
+        for _ in 0..40 {
+            let e = point(&mut rng, 3.0 * a);
+            let x = chart.event(e);
+            let r = 2.0 * a * (e.x.hypot(e.y) / (2.0 * a)).sinh();
+            assert!((x.x.hypot(x.y) - r).abs() < 1e-13 * (1.0 + r));
+            let diff = max_diff(&chart.metric(x), &godel.metric(x));
+            assert!(diff < 1e-13, "a = {a}, {x:?}: {diff}");
+            let diff = max_diff(&chart.inverse_metric(x), &godel.inverse_metric(x));
+            assert!(diff < 1e-13, "a = {a}, {x:?}: inverse {diff}");
+        }
+    }
+}
