@@ -2,10 +2,12 @@
 //! stereo scene as a scene of its own (docs/physics.md, "Stereo eyes").
 //!
 //! An eye is an observer displaced along the camera's right axis by ±separation/2 (in units
-//! of a; of 1 in flat spacetime) by an isometry (`spacetime::Viewpoint::eye`), so each eye's
-//! scene is an ordinary one-observer scene: it traces, shades, looks and explores as any
-//! other, and its data file embeds it. With a convergence distance D the eyes turn inwards
-//! (toe-in) by atan(separation/2D) about their up axis; without one they look parallel.
+//! of a, a Gödel-type member's length scale min(1/(√2 Ω), 1/|m|), or 1 in flat spacetime) by
+//! an isometry (`spacetime::Viewpoint::eye`), so each eye's scene is an ordinary one-observer
+//! scene: it traces, shades, looks and explores as any other, and its data file embeds it. A
+//! member's eye must stay within the scene's bound on distances from the axis, as the
+//! observer does. With a convergence distance D the eyes turn inwards (toe-in) by
+//! atan(separation/2D) about their up axis; without one they look parallel.
 //!
 //! Panoramas and spheres get the same two eyes, not an omnidirectional-stereo pair per
 //! column: a data file holds the records of one event (look, the viewer and explore re-aim
@@ -14,7 +16,7 @@
 
 use crate::checker::{Checker, Result};
 use crate::edit;
-use crate::error::SceneError;
+use crate::error::{Locator, SceneError};
 use crate::model::{cross, Eye, Layout, Observer, Scene, Stereo};
 use crate::raw::{EyeName, LayoutName, RawStereo};
 use spacetime::Viewpoint;
@@ -101,18 +103,45 @@ impl Scene {
             .source_path
             .as_ref()
             .map_or("<scene>".to_string(), |p| p.display().to_string());
-        // The scene's check refuses stereo pairs where eyes cannot be placed.
+        // The isometries place an eye anywhere but on a Gödel-type member's sphere, where a
+        // fast observer's eye can reach the pole opposite the axis (`Viewpoint::eye`).
         let Some(moved) = here.eye(&self.metric, eye.side() * half) else {
-            return Err(SceneError {
-                file,
-                location: None,
-                field: "camera.stereo".to_string(),
-                message: format!(
-                    "a stereo pair cannot be placed in the metric {:?}",
-                    self.metric.name()
+            let why = match self.metric.godel_type().and_then(|m| m.coordinate_radius()) {
+                Some(end) => format!(
+                    "the isometry that moves it there would carry it to or across the pole opposite the axis (π/μ = {}), where the coordinates end; use a smaller separation or a slower observer",
+                    crate::short(end)
                 ),
-            });
+                None => format!("the metric {:?} has no isometry for it", self.metric.name()),
+            };
+            return Err(self.stereo_error(
+                &file,
+                format!(
+                    "the {} eye, {} along the camera's right axis, cannot be placed: {why}",
+                    eye.name(),
+                    crate::short(half)
+                ),
+            ));
         };
+        // A member's eye stays where scenes keep positions, as the observer does.
+        let limit = self
+            .metric
+            .godel_type()
+            .and_then(crate::validate::member_radius_limit);
+        if let Some((limit, why)) = limit {
+            let rho = moved.event.r();
+            if rho.is_nan() || rho > limit {
+                return Err(self.stereo_error(
+                    &file,
+                    format!(
+                        "the {} eye, {} along the camera's right axis, is {} from the axis, beyond {}: {why}; use a smaller separation or move the observer",
+                        eye.name(),
+                        crate::short(half),
+                        crate::short(rho),
+                        crate::short(limit)
+                    ),
+                ));
+            }
+        }
         // Toe-in: the eye turns about its up axis towards the point `convergence` ahead.
         let forward = match convergence {
             Some(d) => {
@@ -145,5 +174,11 @@ impl Scene {
             }),
             ..self.clone()
         })
+    }
+
+    /// An error about this scene's `[camera] stereo`, located there in its text.
+    fn stereo_error(&self, file: &str, message: String) -> SceneError {
+        let root = toml::de::DeTable::parse(&self.source_text).ok();
+        Locator::new(file, &self.source_text, root.as_ref()).at_path("camera.stereo", message)
     }
 }
