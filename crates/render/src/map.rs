@@ -6,13 +6,17 @@
 //! - The horizon: an observer on the axis sees nothing beyond r = 2a ("Conventions"); for any
 //!   other event it is that circle carried by the isometry T_P⁻¹ that takes the origin to the
 //!   event ("Isometries"). The curve is drawn at the observer's z (T_P moves z only by a shift).
+//!   In a Gödel-type member ("The Gödel-type family") the circle is ρ = ρ_c, where closed
+//!   timelike curves begin and where the in-plane light rays from the axis turn back, carried
+//!   by the member's T_P⁻¹ ("Isometries of the family"); a causal member (m² ≥ 4Ω²) has none.
 //! - Every point of the map also carries r, its distance from the *observer's* axis: the
-//!   cylindrical radius after T_P (so the horizon is r = 2a in the side view, t against r).
+//!   cylindrical radius after T_P (so the horizon is r = 2a in the side view, t against r); in
+//!   a member the proper radius ρ after the member's T_P.
 //! - A ball at rest stays at its position; a ball in free fall is on its worldline
 //!   (`worldline`), at the proper time whose coordinate time is the one asked (Newton on
 //!   t(τ), dt/dτ = u^t > 0).
-//! - A pixel's light ray is the exact geodesic ("Isometries", exact geodesics from any event)
-//!   with the tangent the tracer launched (`photon_tangent` of the record's `view` in the
+//! - A pixel's light ray is the exact geodesic ("Isometries", exact geodesics from any event;
+//!   in a member "Closed-form geodesics of the family") with the tangent the tracer launched (`photon_tangent` of the record's `view` in the
 //!   observer's frame), sampled from λ = 0 (the observer) to the record's affine parameter
 //!   at the hit; a ray that hit nothing is drawn until it reaches the trace's past limit.
 //!   In Minkowski space the rays are straight and there is no horizon.
@@ -22,6 +26,7 @@ use datafile::PixelRecord;
 use scene::{Motion, Scene, Shape};
 use spacetime::{
     photon_tangent, Event, ExactGeodesic, FourVector, Isometry, Metric, Spacetime, TimeDirection,
+    TypeExactGeodesic, TypeIsometry,
 };
 
 /// Points of the horizon curve.
@@ -64,21 +69,36 @@ pub struct MapObject {
     pub track: Vec<MapPoint>,
 }
 
+/// A Gödel-type member on the map: its constants, and the unit the page sizes its view by.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct MemberMap {
+    pub m2: f64,
+    pub omega: f64,
+    /// The member's length scale, min(1/(√2 Ω), 1/|m|) (`Metric::length_scale`): what a is
+    /// to Gödel's map.
+    pub unit: f64,
+}
+
 /// The map of an observer's event.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Map {
-    /// Gödel's parameter (`None` in Minkowski space).
+    /// Gödel's parameter (`None` in Minkowski space and in a Gödel-type member).
     pub a: Option<f64>,
     pub event: MapPoint,
-    /// 2a, the horizon's radius about the observer's axis.
+    /// The horizon's radius about the observer's axis: 2a in Gödel's universe, ρ_c in a
+    /// Gödel-type member; `None` without a horizon.
     pub horizon_radius: Option<f64>,
     /// The horizon in the x–y plane, a closed curve (first point not repeated); empty in
-    /// Minkowski space.
+    /// Minkowski space and in a causal member.
     pub horizon: Vec<[f64; 2]>,
     /// The span of the tracks: from the trace's past limit to the observer's time.
     pub time_range: [f64; 2],
     /// The scene's balls (planes are left out).
     pub objects: Vec<MapObject>,
+    /// The Gödel-type member, if the scene is one. Left out of the JSON otherwise, so that
+    /// Gödel's and Minkowski's maps read as before.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub member: Option<MemberMap>,
 }
 
 /// One pixel's light ray.
@@ -93,29 +113,57 @@ pub struct LightRay {
     pub travel_time: Option<f64>,
 }
 
+/// T_P, the isometry that takes the observer's event to the origin.
+#[derive(Clone, Copy, Debug)]
+enum ToOrigin {
+    Godel(Isometry),
+    Member(TypeIsometry),
+    /// Minkowski space; also a member's event outside its chart (at or beyond the pole of the
+    /// sphere m² < 0, where scenes keep no observer): distances in the x–y plane, no horizon.
+    Flat,
+}
+
 /// Distances from the axis of an observer at `observer`.
 #[derive(Clone, Copy, Debug)]
 pub struct ObserverAxis {
-    metric: Metric,
     observer: Event,
-    /// T_P (Gödel only).
-    to_origin: Option<Isometry>,
+    to_origin: ToOrigin,
+    /// The horizon's radius about the axis (2a; ρ_c in a member).
+    horizon_radius: Option<f64>,
 }
 
 impl ObserverAxis {
     pub fn new(metric: Metric, observer: Event) -> ObserverAxis {
+        let (to_origin, horizon_radius) = match metric {
+            Metric::Godel(g) => (
+                ToOrigin::Godel(Isometry::to_origin(g.a, observer)),
+                Some(2.0 * g.a),
+            ),
+            Metric::GodelType(member) => match TypeIsometry::to_origin(member, observer) {
+                Some(to) => (ToOrigin::Member(to), member.critical_radius()),
+                None => (ToOrigin::Flat, None),
+            },
+            Metric::Minkowski(_) => (ToOrigin::Flat, None),
+        };
         ObserverAxis {
-            metric,
             observer,
-            to_origin: metric.godel_a().map(|a| Isometry::to_origin(a, observer)),
+            to_origin,
+            horizon_radius,
         }
+    }
+
+    /// The horizon's radius about the observer's axis: 2a in Gödel's universe, ρ_c in a
+    /// Gödel-type member; `None` in Minkowski space and in a causal member.
+    pub fn horizon_radius(&self) -> Option<f64> {
+        self.horizon_radius
     }
 
     /// `e` with its radius from the observer's axis.
     pub fn point(&self, e: Event) -> MapPoint {
         let r = match self.to_origin {
-            Some(iso) => iso.apply(e).r(),
-            None => (e.x - self.observer.x).hypot(e.y - self.observer.y),
+            ToOrigin::Godel(iso) => iso.apply(e).r(),
+            ToOrigin::Member(iso) => iso.apply(e).r(),
+            ToOrigin::Flat => (e.x - self.observer.x).hypot(e.y - self.observer.y),
         };
         MapPoint {
             t: e.t,
@@ -126,22 +174,22 @@ impl ObserverAxis {
         }
     }
 
-    /// The observer's optical horizon in the x–y plane: the circle r = 2a about the axis
-    /// carried to the observer, in `points` points; empty in Minkowski space.
+    /// The observer's optical horizon in the x–y plane: the circle of the horizon's radius
+    /// about the axis carried to the observer, in `points` points; empty without a horizon.
     pub fn horizon(&self, points: usize) -> Vec<[f64; 2]> {
-        let (Some(a), Some(to)) = (self.metric.godel_a(), self.to_origin) else {
+        let Some(radius) = self.horizon_radius else {
             return Vec::new();
         };
-        let back = to.inverse();
+        let back = |e: Event| match self.to_origin {
+            ToOrigin::Godel(to) => to.inverse().apply(e),
+            ToOrigin::Member(to) => to.inverse().apply(e),
+            // Not reached: flat distances come with no horizon radius.
+            ToOrigin::Flat => e,
+        };
         (0..points)
             .map(|k| {
                 let phi = std::f64::consts::TAU * k as f64 / points as f64;
-                let e = back.apply(Event::new(
-                    0.0,
-                    2.0 * a * phi.cos(),
-                    2.0 * a * phi.sin(),
-                    0.0,
-                ));
+                let e = back(Event::new(0.0, radius * phi.cos(), radius * phi.sin(), 0.0));
                 [e.x, e.y]
             })
             .collect()
@@ -178,10 +226,15 @@ pub fn map(scene: &Scene, observer: Event) -> Result<Map, (String, WorldlineErro
     Ok(Map {
         a: metric.godel_a(),
         event: axis.point(observer),
-        horizon_radius: metric.godel_a().map(|a| 2.0 * a),
+        horizon_radius: axis.horizon_radius(),
         horizon: axis.horizon(HORIZON_POINTS),
         time_range: [t0, t1],
         objects,
+        member: metric.godel_type().map(|m| MemberMap {
+            m2: m.m2,
+            omega: m.omega,
+            unit: metric.length_scale(),
+        }),
     })
 }
 
@@ -257,33 +310,42 @@ pub fn light_ray(scene: &Scene, observer: Event, record: &PixelRecord) -> LightR
     }
 }
 
-/// A light ray from the observer: the exact geodesic in Gödel's universe, a straight line in
-/// Minkowski space.
+/// A light ray from the observer: the exact geodesic in Gödel's universe and in a Gödel-type
+/// member, a straight line in Minkowski space (and where a closed form refuses the event).
 enum Ray {
     Godel(ExactGeodesic),
+    Member(TypeExactGeodesic),
     Straight(Event, FourVector),
 }
 
 impl Ray {
     fn new(metric: Metric, at: Event, k: FourVector) -> Ray {
-        metric
-            .godel_a()
-            .and_then(|a| ExactGeodesic::new(a, at, k))
-            .map_or(Ray::Straight(at, k), Ray::Godel)
+        let exact = match metric {
+            Metric::Godel(g) => ExactGeodesic::new(g.a, at, k).map(Ray::Godel),
+            Metric::GodelType(m) => TypeExactGeodesic::new(m, at, k).map(Ray::Member),
+            Metric::Minkowski(_) => None,
+        };
+        exact.unwrap_or(Ray::Straight(at, k))
     }
 
     fn at(&self, lambda: f64) -> Event {
         match self {
             Ray::Godel(g) => g.at(lambda).0,
+            Ray::Member(g) => g.at(lambda).0,
             Ray::Straight(at, k) => at.offset(*k, lambda),
         }
     }
 
     /// How many returns to the observer's axis the ray makes up to `lambda` (at least 1, so
-    /// that a short ray still gets enough points to look smooth).
+    /// that a short ray still gets enough points to look smooth; 1 for a member's ray that
+    /// escapes).
     fn loops(&self, lambda: f64) -> f64 {
         match self {
             Ray::Godel(g) => (lambda / g.origin.return_parameter()).max(1.0),
+            Ray::Member(g) => g
+                .origin
+                .return_parameter()
+                .map_or(1.0, |period| (lambda / period).max(1.0)),
             Ray::Straight(..) => 1.0,
         }
     }

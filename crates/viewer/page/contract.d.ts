@@ -384,7 +384,10 @@ export interface MapPoint {
   r: number;
 }
 
-/** `GET /api/explore/map` (render::map::Map). */
+/**
+ * `GET /api/explore/map` (render::map::Map). `horizon_radius` is 2a in Gödel's universe and
+ * ρ_c in a Gödel-type member (closed timelike curves beyond); `member` only in a member.
+ */
 export interface ExploreMap {
   a: number | null;
   event: MapPoint;
@@ -392,6 +395,14 @@ export interface ExploreMap {
   horizon: [number, number][];
   time_range: [number, number];
   objects: MapObject[];
+  member?: MemberMap;
+}
+
+/** A Gödel-type member on the map (render::map::MemberMap): `unit` is its length scale. */
+export interface MemberMap {
+  m2: number;
+  omega: number;
+  unit: number;
 }
 
 export interface MapObject {

@@ -7,6 +7,9 @@
 //   and where it is at the observer's time, the observer (a marker that can be dragged), and
 //   the light ray of the hovered pixel, from its emission event to the observer;
 // - the side view, t against r, the distance from the observer's axis, with the same things.
+// In a Gödel-type member (`map.member`, docs/physics.md "The Gödel-type family") lengths are
+// the member's own coordinates, the distance from the axis is the proper radius ρ, and the
+// horizon is the circle ρ = ρ_c, where closed timelike curves begin (none in a causal member).
 // Requests never pile up: at most one map and one ray request are in flight; the newest wish
 // waits for it, older wishes are dropped.
 'use strict';
@@ -140,6 +143,19 @@ function ticks(lo, hi, n) {
 
 /** @param {number} v */
 const label = (v) => String(Math.round(v * 1000) / 1000);
+
+// The length the view is sized by: a in Gödel's universe, a member's length scale, 1 in flat
+// spacetime.
+/** @param {ExploreMap} map */
+const lengthUnit = (map) => map.a || map.member?.unit || 1;
+
+// The horizon's words: r = 2a in Gödel's universe (in units of a); in a member the circle
+// ρ = ρ_c, in its own coordinates.
+/**
+ * @param {ExploreMap} m
+ * @param {number} radius
+ */
+const horizonText = (m, radius) => (m.member ? `ρ_c = ${label(radius)}` : `r = ${label(radius)}a`);
 
 // Sizes a canvas to `box` CSS pixels and returns its context, cleared, in CSS pixels.
 /**
@@ -349,7 +365,7 @@ function topWindow(map, event) {
       ys.push(p.y - o.radius, p.y + o.radius);
     }
   }
-  const unit = (map.a || 1) / 2;
+  const unit = lengthUnit(map) / 2;
   /** @param {number} v */
   const round = (v) => Math.round(v / unit) * unit;
   const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
@@ -472,7 +488,8 @@ export function createMap(top, side, legend, hooks) {
     const at = (x, y) => { const p = map.toScreen(x, y); return [p.px, p.py]; };
     const n = ticks(v.cx - v.half, v.cx + v.half, 6);
     const sy = ticks(v.cy - v.half, v.cy + v.half, 6);
-    axes(g, TOP, n, sy, (x) => at(x, 0)[0], (y) => at(0, y)[1], 'x / a', 'y / a');
+    const [xName, yName] = m.member ? ['x', 'y'] : ['x / a', 'y / a'];
+    axes(g, TOP, n, sy, (x) => at(x, 0)[0], (y) => at(0, y)[1], xName, yName);
     text(g, `top view: the x–y plane (r–φ) at z = ${label(event.z)}`, TOP.width / 2, 15,
       COLOURS.text, 'center');
     g.save();
@@ -492,8 +509,11 @@ export function createMap(top, side, legend, hooks) {
       const curve = m.horizon.map(([x, y]) => at(x, y));
       polyline(g, [...curve, curve[0]], COLOURS.horizon, 1.5, [6, 5]);
       const lowest = curve.reduce((a, b) => (b[1] > a[1] ? b : a));
-      tag(g, `horizon of the observer (r = ${label(m.horizon_radius ?? 0)}a)`,
-        lowest[0] - 95, lowest[1] + 16, COLOURS.horizon, TOP);
+      const radius = m.horizon_radius ?? 0;
+      const words = m.member
+        ? `${horizonText(m, radius)} (closed timelike curves beyond)`
+        : `horizon of the observer (${horizonText(m, radius)})`;
+      tag(g, words, lowest[0] - 95, lowest[1] + 16, COLOURS.horizon, TOP);
     }
     for (const o of m.objects) {
       const colour = objectColour(o.index);
@@ -525,7 +545,8 @@ export function createMap(top, side, legend, hooks) {
   function emittedText(ray) {
     const e = ray.emission;
     if (!e) return `no hit: traced back to t = ${ray.points[ray.points.length - 1].t.toFixed(2)}`;
-    return `emitted t = ${e.t.toFixed(2)}, travel time ${Number(ray.travel_time).toFixed(2)} a`;
+    const unit = map.fetched?.member ? '' : ' a';
+    return `emitted t = ${e.t.toFixed(2)}, travel time ${Number(ray.travel_time).toFixed(2)}${unit}`;
   }
 
   /**
@@ -534,8 +555,8 @@ export function createMap(top, side, legend, hooks) {
    */
   function drawSide(m, event) {
     const g = prepare(side, SIDE);
-    const a = m.a || 1;
-    let rMax = 2.2 * a;
+    // Room for the horizon and a tenth beyond it (2.2a in Gödel's universe).
+    let rMax = m.member && m.horizon_radius ? 1.1 * m.horizon_radius : 2.2 * lengthUnit(m);
     let [t0, t1] = [Math.min(m.time_range[0], event.t), Math.max(m.time_range[1], event.t)];
     for (const o of m.objects) for (const p of o.track) rMax = Math.max(rMax, p.r + o.radius);
     const ray = map.ray;
@@ -548,8 +569,10 @@ export function createMap(top, side, legend, hooks) {
     const sx = (r) => SIDE.left + (r / rMax) * w;
     /** @param {number} t */
     const sy = (t) => SIDE.top + (1 - (t - t0) / (t1 - t0)) * h;
-    axes(g, SIDE, ticks(0, rMax, 6), ticks(t0, t1, 5), sx, sy, 'r / a', 't / a');
-    text(g, 'side view: t against distance r from the observer\u2019s axis', SIDE.width / 2, 15,
+    const [rName, tName, distance] = m.member
+      ? ['ρ', 't', 'proper distance ρ'] : ['r / a', 't / a', 'distance r'];
+    axes(g, SIDE, ticks(0, rMax, 6), ticks(t0, t1, 5), sx, sy, rName, tName);
+    text(g, `side view: t against ${distance} from the observer\u2019s axis`, SIDE.width / 2, 15,
       COLOURS.text, 'center');
     g.save();
     g.beginPath();
@@ -558,7 +581,7 @@ export function createMap(top, side, legend, hooks) {
     if (m.horizon_radius) {
       const x = sx(m.horizon_radius);
       polyline(g, [[x, SIDE.top], [x, SIDE.top + h]], COLOURS.horizon, 1.5, [6, 5]);
-      tag(g, `r = ${label(m.horizon_radius)}a`, x + 4, SIDE.top + 16, COLOURS.horizon, SIDE);
+      tag(g, horizonText(m, m.horizon_radius), x + 4, SIDE.top + 16, COLOURS.horizon, SIDE);
     }
     for (const o of m.objects) {
       const colour = objectColour(o.index);
@@ -580,7 +603,7 @@ export function createMap(top, side, legend, hooks) {
   let legendKey = null;
   /** @param {ExploreMap} m */
   function drawLegend(m) {
-    const key = JSON.stringify([m.horizon.length > 1,
+    const key = JSON.stringify([m.horizon.length > 1, m.horizon_radius, Boolean(m.member),
       ...m.objects.map((o) => [o.index, o.name, o.moving])]);
     if (key === legendKey) return;
     legendKey = key;
@@ -600,7 +623,10 @@ export function createMap(top, side, legend, hooks) {
     legend.replaceChildren(
       line(COLOURS.observer, 'solid', 'the observer (drag it on the top view)'),
       ...(m.horizon.length > 1
-        ? [line(COLOURS.horizon, 'dashed', 'its optical horizon, r = 2a: no light from beyond')]
+        ? [line(COLOURS.horizon, 'dashed', m.member
+          ? `its horizon, ${horizonText(m, m.horizon_radius ?? 0)}: closed timelike curves `
+            + 'beyond, no light from beyond'
+          : 'its optical horizon, r = 2a: no light from beyond')]
         : []),
       ...m.objects.map((o) => line(objectColour(o.index), 'solid',
         `${o.name}: worldline track${o.moving ? ' (free fall)' : ''}; disc: at the observer\u2019s t`)),

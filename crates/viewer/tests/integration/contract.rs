@@ -85,14 +85,24 @@ fn test_scene() -> scene::Scene {
     scene::Scene::from_str(&common::scene(), "contract.toml").unwrap()
 }
 
+/// The test scene in the Gödel-type member m² = Ω² = 1 (whose map names the member).
+fn member_scene() -> scene::Scene {
+    let text = common::scene().replace(
+        testkit::GODEL,
+        "[spacetime]\nmetric = \"godel-type\"\nm2 = 1.0\nomega = 1.0\n",
+    );
+    scene::Scene::from_str(&text, "contract.toml").unwrap()
+}
+
 /// Explore's frames: `common::data()` for every event and level; the map and light rays are
-/// the real ones of the test scene (`render::map`), so that the map has an object with its
-/// track.
-struct Source;
+/// the real ones of `scene` (`render::map`), so that the map has an object with its track.
+struct Source {
+    scene: fn() -> scene::Scene,
+}
 
 impl FrameSource for Source {
     fn start(&self) -> ObserverEvent {
-        ObserverEvent::from(test_scene().observer.event)
+        ObserverEvent::from((self.scene)().observer.event)
     }
     fn bound(&self) -> f64 {
         100.0
@@ -106,10 +116,10 @@ impl FrameSource for Source {
         Ok(Some(common::data()))
     }
     fn map(&self, event: ObserverEvent) -> Result<Map, String> {
-        render::map::map(&test_scene(), event.event()).map_err(|(why, _)| why)
+        render::map::map(&(self.scene)(), event.event()).map_err(|(why, _)| why)
     }
     fn light_ray(&self, event: ObserverEvent, record: &PixelRecord) -> LightRay {
-        render::map::light_ray(&test_scene(), event.event(), record)
+        render::map::light_ray(&(self.scene)(), event.event(), record)
     }
     fn keyframe(&self, _event: ObserverEvent, frame: u32) -> Result<String, String> {
         Ok(format!("keyframe {frame}"))
@@ -118,7 +128,7 @@ impl FrameSource for Source {
         Ok(format!("keyframe {frame}"))
     }
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
-        let mut scene = test_scene();
+        let mut scene = (self.scene)();
         scene.observer.event = event.event();
         Ok(KernelInput::new(&scene))
     }
@@ -292,7 +302,7 @@ async fn viewing(c: &Contract) {
 
 /// The routes of `godel explore`, flying included.
 async fn exploring(c: &Contract) {
-    let explorer = Explorer::new(Source).unwrap();
+    let explorer = Explorer::new(Source { scene: test_scene }).unwrap();
     let app = Api {
         app: viewer::explore_routes::router(
             common::state(),
@@ -326,6 +336,27 @@ async fn exploring(c: &Contract) {
         .read(&format!("/api/explore/map?{}", query(&start)), "ExploreMap")
         .await;
     assert!(map["objects"][0]["at"].is_object(), "{map}");
+    assert!(
+        map.get("member").is_none(),
+        "Gödel's map has no member: {map}"
+    );
+    // A Gödel-type member's map names the member (`member`, the optional field).
+    let member = Api {
+        app: viewer::explore_routes::router(
+            common::state(),
+            Explorer::new(Source {
+                scene: member_scene,
+            })
+            .unwrap(),
+            Access::local(common::PORT),
+            None,
+        ),
+        contract: c,
+    };
+    let in_member = member
+        .read(&format!("/api/explore/map?{}", query(&start)), "ExploreMap")
+        .await;
+    assert_eq!(in_member["member"]["m2"], 1.0, "{in_member}");
     let (generation, level) = (&frame["generation"], frame["level"].as_str().unwrap());
     for col in [0, 7] {
         let path =

@@ -100,6 +100,7 @@ impl FrameSource for Fake {
             horizon: vec![],
             time_range: [event.t - 1.0, event.t],
             objects: vec![],
+            member: None,
         })
     }
     /// A "ray" of two points: the event and (t_emit, 0, 0, 0) of the record.
