@@ -625,3 +625,28 @@ fn explore_refusals_name_what_the_request_wrote_in_short() {
     let error = json(&answer)["error"].as_str().unwrap().to_string();
     assert!(error.starts_with("exact: `abc` is not"), "{error}");
 }
+
+/// A Gödel-type member (issue 34) explores on the server's CPU tracer: the full frame comes,
+/// and the page's kernel input is refused with the one sentence that says why (the page
+/// shows it and keeps the server's frames).
+#[test]
+fn a_godel_type_member_explores_on_the_cpu_and_the_kernel_says_why_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("member.toml");
+    let text = scene_text("time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }").replace(
+        "metric = \"godel\"\na = 1.0",
+        "metric = \"godel-type\"\nm2 = 0.5\nomega = 0.7071067811865476",
+    );
+    assert!(text.contains("godel-type"));
+    std::fs::write(&scene, text).unwrap();
+    let (_server, port) = explore(&scene);
+    let frame = full_frame(port, None);
+    assert_eq!(frame["level"], "full", "{frame}");
+    let (status, body) = http(port, "GET", "/api/gpu/input?draw_buffers=4", "");
+    let body = String::from_utf8_lossy(&body);
+    assert_eq!(status, 400, "{body}");
+    assert!(
+        body.contains("Gödel-type") && body.contains("CPU"),
+        "{body}"
+    );
+}
