@@ -18,7 +18,8 @@
 //! - A pixel's light ray is the exact geodesic ("Isometries", exact geodesics from any event;
 //!   in a member "Closed-form geodesics of the family") with the tangent the tracer launched (`photon_tangent` of the record's `view` in the
 //!   observer's frame), sampled from λ = 0 (the observer) to the record's affine parameter
-//!   at the hit; a ray that hit nothing is drawn until it reaches the trace's past limit.
+//!   at the hit; a ray that hit nothing is drawn until it reaches the trace's past limit, or
+//!   in a member with m² > 0 until it is as far from the axis as scenes' positions may be.
 //!   In Minkowski space the rays are straight and there is no horizon.
 
 use crate::worldline::{Worldline, WorldlineError};
@@ -105,7 +106,8 @@ pub struct Map {
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct LightRay {
     /// From the observer (first) into the past: to the emission event (last) for a hit,
-    /// to the trace's past limit otherwise.
+    /// to the trace's past limit otherwise (or where a member's escaping ray leaves the reach
+    /// of scenes' positions).
     pub points: Vec<MapPoint>,
     /// The emission event of the record (a hit only).
     pub emission: Option<MapPoint>,
@@ -286,7 +288,17 @@ pub fn light_ray(scene: &Scene, observer: Event, record: &PixelRecord) -> LightR
     let lambda_end = if hit {
         f64::from(record.lambda)
     } else {
-        ray.parameter_at_time(observer.t - scene.trace.max_past)
+        let past = observer.t - scene.trace.max_past;
+        // A member's escaping ray (m² > 0) runs out as e^{mρ}: it ends where scenes' positions
+        // end (mρ = 30, `scene::ranges::check_member_radius`), beyond which the coordinates
+        // lose the precision of f64. On the sphere (m² < 0) every ray returns.
+        let far = |e: Event| match metric.godel_type() {
+            Some(member) if member.m2 > 0.0 => {
+                scene::ranges::check_member_radius(member, e.r()).is_err()
+            }
+            _ => false,
+        };
+        ray.parameter_where(|e| e.t <= past || far(e))
     };
     let count = (ray.loops(lambda_end) * POINTS_PER_LOOP).ceil();
     let count = (count.max(2.0) as usize).min(MAX_RAY_POINTS - 1);
@@ -350,12 +362,13 @@ impl Ray {
         }
     }
 
-    /// The parameter at which the past-directed ray reaches coordinate time `t` (below the
-    /// start; t decreases along it): doubling, then bisection, each bounded.
-    fn parameter_at_time(&self, t: f64) -> f64 {
+    /// The parameter at which the past-directed ray first has `ended` (reached the past limit,
+    /// t decreasing along it; or left the coordinates' reach): doubling, then bisection, each
+    /// bounded.
+    fn parameter_where(&self, ended: impl Fn(Event) -> bool) -> f64 {
         let mut hi = 1.0;
         for _ in 0..MAX_SEARCH_STEPS {
-            if self.at(hi).t <= t {
+            if ended(self.at(hi)) {
                 break;
             }
             hi *= 2.0;
@@ -366,7 +379,7 @@ impl Ray {
             if mid <= lo || mid >= hi {
                 break;
             }
-            if self.at(mid).t > t {
+            if !ended(self.at(mid)) {
                 lo = mid;
             } else {
                 hi = mid;
