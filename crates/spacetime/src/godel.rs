@@ -20,6 +20,7 @@
 //!   2H = (1 − 2c) p_t² − (√2/a) c p_t L + c(p_x² + p_y²) + k(1 + c)(x p_x + y p_y)² + p_z²,
 //! L = x p_y − y p_x = p_φ.
 
+use crate::godel_chart::rotating_derivatives;
 use crate::metric::Spacetime;
 use crate::vectors::MetricTensor;
 use crate::vectors::{Covector, Event, FourVector};
@@ -96,30 +97,8 @@ impl Spacetime for Godel {
         let (x, y, a) = (e.x, e.y, self.a);
         let k = 0.25 / (a * a);
         let m = 1.0 / (4.0 * a * a + x * x + y * y);
-        let m2 = m * m;
-        let w = 1.0 / (SQRT_2 * a);
-        // ∂_x and ∂_y of g_xx = 1 − k y² − m x², g_xy = (k − m) x y, g_yy = 1 − k x² − m y²,
-        // using ∂_l m = −2 m² X_l.
-        let dx_xx = 2.0 * m2 * x * x * x - 2.0 * m * x;
-        let dy_xx = -2.0 * k * y + 2.0 * m2 * y * x * x;
-        let dx_xy = (k - m) * y + 2.0 * m2 * x * x * y;
-        let dy_xy = (k - m) * x + 2.0 * m2 * x * y * y;
-        let dx_yy = -2.0 * k * x + 2.0 * m2 * x * y * y;
-        let dy_yy = 2.0 * m2 * y * y * y - 2.0 * m * y;
-        let zero = [[0.0; 4]; 4];
-        let dx = [
-            [0.0, 0.0, -w, 0.0],
-            [0.0, dx_xx, dx_xy, 0.0],
-            [-w, dx_xy, dx_yy, 0.0],
-            [0.0; 4],
-        ];
-        let dy = [
-            [0.0, w, 0.0, 0.0],
-            [w, dy_xx, dy_xy, 0.0],
-            [0.0, dy_xy, dy_yy, 0.0],
-            [0.0; 4],
-        ];
-        [zero, dx, dy, zero]
+        // g_xx = 1 − k y² − m x², g_xy = (k − m) x y, g_yy = 1 − k x² − m y².
+        rotating_derivatives(1.0 / (SQRT_2 * a), k, m, x, y)
     }
 
     #[inline]

@@ -108,6 +108,34 @@ impl GodelChart {
     }
 }
 
+/// ∂_x g and ∂_y g (the others vanish) of g_tt = −1, g_tx = w y, g_ty = −w x,
+/// g_ij = δ_ij − k J_i J_j − m X_i X_j where m's only dependence is ∂_l m = −2 m² X_l: the
+/// form of Gödel's metric (`godel.rs`) and of every member in this chart, so the one home of
+/// these derivatives.
+pub(crate) fn rotating_derivatives(w: f64, k: f64, m: f64, x: f64, y: f64) -> [MetricTensor; 4] {
+    let m2 = m * m;
+    let dx_xx = 2.0 * m2 * x * x * x - 2.0 * m * x;
+    let dy_xx = -2.0 * k * y + 2.0 * m2 * y * x * x;
+    let dx_xy = (k - m) * y + 2.0 * m2 * x * x * y;
+    let dy_xy = (k - m) * x + 2.0 * m2 * x * y * y;
+    let dx_yy = -2.0 * k * x + 2.0 * m2 * x * y * y;
+    let dy_yy = 2.0 * m2 * y * y * y - 2.0 * m * y;
+    let zero = [[0.0; 4]; 4];
+    let dx = [
+        [0.0, 0.0, -w, 0.0],
+        [0.0, dx_xx, dx_xy, 0.0],
+        [-w, dx_xy, dx_yy, 0.0],
+        [0.0; 4],
+    ];
+    let dy = [
+        [0.0, w, 0.0, 0.0],
+        [w, dy_xx, dy_xy, 0.0],
+        [0.0, dy_xy, dy_yy, 0.0],
+        [0.0; 4],
+    ];
+    [zero, dx, dy, zero]
+}
+
 impl Spacetime for GodelChart {
     fn metric(&self, e: Event) -> MetricTensor {
         let (x, y, w, kappa) = (e.x, e.y, self.member.omega, self.kappa());
@@ -156,30 +184,8 @@ impl Spacetime for GodelChart {
 
     fn metric_derivatives(&self, e: Event) -> [MetricTensor; 4] {
         let (x, y, w, kappa) = (e.x, e.y, self.member.omega, self.kappa());
-        let k = w * w - kappa;
         let m = kappa / (1.0 + kappa * (x * x + y * y));
-        let m2 = m * m;
-        // As in `godel.rs` with k → K, m → M: ∂_l M = −2 M² X_l.
-        let dx_xx = 2.0 * m2 * x * x * x - 2.0 * m * x;
-        let dy_xx = -2.0 * k * y + 2.0 * m2 * y * x * x;
-        let dx_xy = (k - m) * y + 2.0 * m2 * x * x * y;
-        let dy_xy = (k - m) * x + 2.0 * m2 * x * y * y;
-        let dx_yy = -2.0 * k * x + 2.0 * m2 * x * y * y;
-        let dy_yy = 2.0 * m2 * y * y * y - 2.0 * m * y;
-        let zero = [[0.0; 4]; 4];
-        let dx = [
-            [0.0, 0.0, -w, 0.0],
-            [0.0, dx_xx, dx_xy, 0.0],
-            [-w, dx_xy, dx_yy, 0.0],
-            [0.0; 4],
-        ];
-        let dy = [
-            [0.0, w, 0.0, 0.0],
-            [w, dy_xx, dy_xy, 0.0],
-            [0.0, dy_xy, dy_yy, 0.0],
-            [0.0; 4],
-        ];
-        [zero, dx, dy, zero]
+        rotating_derivatives(w, w * w - kappa, m, x, y)
     }
 
     /// ẋ^μ = g^{μν} p_ν, ṗ_μ = ½ (g^{-1} p)^α ∂_μ g_{αβ} (g^{-1} p)^β (the chart serves local
