@@ -17,7 +17,8 @@
 //!   any event), [`shadow_rays`] (light rays from a source at rest to an event), and
 //!   [`connection`]: those rays with what an observer measures of them.
 //! - The Gödel-type family's symmetries: [`killing_field`], [`TypeIsometry`], and its
-//!   closed-form geodesics [`TypeOriginGeodesic`] (from the axis) and [`TypeExactGeodesic`].
+//!   closed-form geodesics [`TypeOriginGeodesic`] (from the axis) and [`TypeExactGeodesic`],
+//!   and its shadow rays [`type_shadow_rays`] (light rays from a source at rest to an event).
 //! - Parallel transport: along the closed forms ([`transport`]) and integrated with a
 //!   geodesic in any metric ([`propagator`]); what observers measure of a light ray's
 //!   polarization ([`polarization`]).
@@ -42,6 +43,7 @@ mod geodesic;
 mod godel;
 pub mod godel_chart;
 pub mod godel_type;
+pub mod godel_type_connect;
 pub mod godel_type_geodesic;
 pub mod godel_type_symmetry;
 pub mod isometry;
@@ -70,6 +72,9 @@ pub use geodesic::{
 pub use godel::Godel;
 pub use godel_chart::GodelChart;
 pub use godel_type::GodelType;
+pub use godel_type_connect::{
+    type_shadow_rays, type_shadow_rays_from_axis, type_source_area_distance_sq,
+};
 pub use godel_type_geodesic::{GeodesicRegime, TypeExactGeodesic, TypeOriginGeodesic};
 pub use godel_type_symmetry::{killing_field, TypeIsometry};
 pub use isometry::{Complex, Isometry};

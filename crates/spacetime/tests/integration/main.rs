@@ -8,6 +8,7 @@ mod connect;
 mod eyes;
 mod geodesics;
 mod godel_type;
+mod godel_type_connect;
 mod godel_type_geodesic;
 mod godel_type_symmetry;
 mod metric;
