@@ -5,6 +5,7 @@
 //! with the member's Killing fields and isometries, and on its sphere the refusals.
 
 use crate::common::{integrate_field, max_abs, Rng};
+use crate::godel_type_symmetry::to_godel;
 use spacetime::*;
 
 /// A random observer (event within r < 3a, speed below 0.9) with orthonormal camera axes.
@@ -287,4 +288,27 @@ fn on_the_sphere_eyes_the_isometries_cannot_place_are_refused() {
     }
     eprintln!("sphere: eyes placed up to d = {}", 0.01 * placed as f64);
     assert!(placed > 0 && placed < 200, "placed up to k = {placed}");
+}
+
+/// The Gödel member (m² = 1/a², Ω = 1/(√2 a)) places its eyes where Gödel's universe does:
+/// for observers on the axis (where the two static frames agree), the member's eye carried
+/// through r = 2a sinh(ρ/2a) is Gödel's eye, with the same speed.
+#[test]
+fn the_godel_members_eyes_are_godels() {
+    let mut rng = Rng::new(41);
+    for a in [1.0, 0.5] {
+        let godel = Metric::Godel(Godel::new(a));
+        let member = Metric::GodelType(GodelType::new(1.0 / (a * a), 1.0 / (2f64.sqrt() * a)));
+        for _ in 0..20 {
+            let mut v = viewpoint(&mut rng, a);
+            v.event = Event::new(v.event.t, 0.0, 0.0, v.event.z);
+            let d = rng.uniform(-0.5, 0.5) * a;
+            let (g, m) = (v.eye(&godel, d).unwrap(), v.eye(&member, d).unwrap());
+            let carried = to_godel(a, m.event).to_array();
+            let off: [f64; 4] = std::array::from_fn(|i| carried[i] - g.event.to_array()[i]);
+            assert!(max_abs(off) < 1e-12 * a, "{off:?}: {m:?} vs {g:?}");
+            assert!((m.velocity.speed - g.velocity.speed).abs() < 1e-12);
+            assert!(m.event.r() > 0.1 * d.abs(), "{m:?}");
+        }
+    }
 }
