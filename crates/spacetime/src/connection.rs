@@ -12,11 +12,17 @@
 //! local frame (docs/physics.md, "Frames"). The frequency ratio g between the static source
 //! and a static receiver is (k·u_obs)/(k·u_emit) at the two ends; it is 1, since ∂t is a
 //! Killing field of unit norm, and computed rather than assumed.
+//!
+//! In a member of the Gödel-type family ([`type_connections`]) the rays are
+//! [`crate::type_shadow_rays`] (docs/physics.md, "Shadow rays in the family") and are
+//! re-evaluated with [`TypeExactGeodesic`]; they exist only within ρ_c of the source's axis
+//! for m² < 4Ω², and everywhere for the causal members.
 
 use crate::measure::{frequency_ratio, vector_components};
 use crate::{
-    shadow_rays, source_area_distance_sq, Event, ExactGeodesic, FourVector, Godel, Isometry,
-    ShadowRay, Spacetime,
+    shadow_rays, source_area_distance_sq, type_shadow_rays, type_source_area_distance_sq, Event,
+    ExactGeodesic, FourVector, Godel, GodelType, Isometry, Metric, ShadowRay, Spacetime,
+    TypeExactGeodesic, TypeIsometry,
 };
 
 /// Most windings counted: each is an earlier emission, and costs a root search.
@@ -43,12 +49,17 @@ pub struct Connection {
 /// The rays between a source and an event.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Connections {
-    pub a: f64,
+    /// Gödel's universe or a Gödel-type member.
+    pub metric: Metric,
     pub event: Event,
     /// The source's position (t = 0).
     pub source: Event,
-    /// The event's distance from the source's axis in the source's frame (horizon at 2a).
+    /// The event's distance from the source's axis in the source's frame (Gödel's r, or a
+    /// member's proper radius ρ).
     pub rho: f64,
+    /// The distance from the source's axis that light from it reaches: Gödel's horizon 2a,
+    /// a member's ρ_c; `None` for the causal members (m² ≥ 4Ω²), whose light reaches all.
+    pub reach: Option<f64>,
     /// Latest emission first.
     pub rays: Vec<Connection>,
 }
@@ -56,7 +67,7 @@ pub struct Connections {
 impl Connections {
     /// Whether the event lies within the source's horizon (else there is no ray).
     pub fn within_horizon(&self) -> bool {
-        self.rho < 2.0 * self.a
+        self.reach.is_none_or(|reach| self.rho < reach)
     }
 }
 
@@ -104,8 +115,25 @@ pub fn on_the_source_axis(a: f64, source: Event, event: Event) -> Option<OnTheSo
     }
 }
 
+/// [`on_the_source_axis`] in a Gödel-type member (to 10⁻¹² of its length scale); `None`
+/// also where the source lies outside the chart (the caller's to refuse).
+pub fn type_on_the_source_axis(
+    member: GodelType,
+    source: Event,
+    event: Event,
+) -> Option<OnTheSourceAxis> {
+    let source = Event::new(0.0, source.x, source.y, source.z);
+    let moved = TypeIsometry::to_origin(member, source)?.apply(event);
+    let here = 1e-12 * Metric::GodelType(member).length_scale();
+    match (moved.r() > here, moved.z.abs() > here) {
+        (true, _) => None,
+        (false, false) => Some(OnTheSourceAxis::AtTheSource),
+        (false, true) => Some(OnTheSourceAxis::OnItsAxis),
+    }
+}
+
 /// Local spatial components of `v` in the static frame at `at`, normalized.
-fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
+fn local_direction(metric: &Metric, at: Event, v: FourVector) -> [f64; 3] {
     let frame = metric.static_frame(at);
     let [_, n @ ..] = vector_components(&metric.metric(at), &frame, v);
     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
@@ -118,15 +146,67 @@ fn local_direction(metric: &Godel, at: Event, v: FourVector) -> [f64; 3] {
 /// not [`on_the_source_axis`]); `None` if a ray found has no closed form (it always has).
 pub fn connections(a: f64, source: Event, event: Event, windings: u32) -> Option<Connections> {
     let source = Event::new(0.0, source.x, source.y, source.z);
-    let metric = Godel::new(a);
     let rho = Isometry::to_origin(a, source).apply(event).r();
+    let rays = shadow_rays(a, source, event, windings.min(MAX_WINDINGS));
+    let end = |ray: &ShadowRay| {
+        ExactGeodesic::new(a, ray.emission, ray.tangent).map(|g| g.at(ray.lambda))
+    };
+    let area = |ray: &ShadowRay| source_area_distance_sq(a, source, ray);
+    let metric = Metric::Godel(Godel::new(a));
+    let rays = measure_rays(metric, event, rays, end, area)?;
+    Some(Connections {
+        metric,
+        event,
+        source,
+        rho,
+        reach: Some(2.0 * a),
+        rays,
+    })
+}
+
+/// [`connections`] in a Gödel-type member: the rays of [`type_shadow_rays`]. The inputs are
+/// the caller's to check (the member's constants, positions in the chart, the event not
+/// [`type_on_the_source_axis`]); `None` if the source lies outside the chart or a ray found
+/// has no closed form.
+pub fn type_connections(
+    member: GodelType,
+    source: Event,
+    event: Event,
+    windings: u32,
+) -> Option<Connections> {
+    let source = Event::new(0.0, source.x, source.y, source.z);
+    let rho = TypeIsometry::to_origin(member, source)?.apply(event).r();
+    let rays = type_shadow_rays(member, source, event, windings.min(MAX_WINDINGS));
+    let end = |ray: &ShadowRay| {
+        TypeExactGeodesic::new(member, ray.emission, ray.tangent).map(|g| g.at(ray.lambda))
+    };
+    let area = |ray: &ShadowRay| type_source_area_distance_sq(member, source, ray);
+    let metric = Metric::GodelType(member);
+    let rays = measure_rays(metric, event, rays, end, area)?;
+    Some(Connections {
+        metric,
+        event,
+        source,
+        rho,
+        reach: member.critical_radius(),
+        rays,
+    })
+}
+
+/// What an observer measures of each ray: `end` is the closed form's event and tangent at the
+/// ray's λ, `area` the source's area distance squared.
+fn measure_rays(
+    metric: Metric,
+    event: Event,
+    rays: Vec<ShadowRay>,
+    end: impl Fn(&ShadowRay) -> Option<(Event, FourVector)>,
+    area: impl Fn(&ShadowRay) -> f64,
+) -> Option<Vec<Connection>> {
     let static_u = |at: Event| metric.static_frame(at).e[0];
-    let rays = shadow_rays(a, source, event, windings.min(MAX_WINDINGS))
-        .into_iter()
+    rays.into_iter()
         .map(|ray| {
-            let g = ExactGeodesic::new(a, ray.emission, ray.tangent)?;
-            let (end, k_end) = g.at(ray.lambda);
-            let miss = (end - event)
+            let (end_event, k_end) = end(&ray)?;
+            let miss = (end_event - event)
                 .to_array()
                 .iter()
                 .fold(0.0_f64, |m, d| m.max(d.abs()));
@@ -142,19 +222,12 @@ pub fn connections(a: f64, source: Event, event: Event, windings: u32) -> Option
                 travel_time: event.t - ray.emission.t,
                 departure: local_direction(&metric, ray.emission, ray.tangent),
                 look: arrival.map(|c| -c),
-                area_distance: source_area_distance_sq(a, source, &ray).sqrt(),
+                area_distance: area(&ray).sqrt(),
                 g: shift,
                 miss,
             })
         })
-        .collect::<Option<Vec<_>>>()?;
-    Some(Connections {
-        a,
-        event,
-        source,
-        rho,
-        rays,
-    })
+        .collect()
 }
 
 #[cfg(test)]
@@ -207,5 +280,31 @@ mod tests {
         let c = connections(a, source, near, 1).unwrap();
         assert!(!c.rays.is_empty());
         assert!(c.rays.iter().all(|r| r.miss < 1e-9 && r.travel_time > 0.0));
+    }
+
+    /// A member's rays land (re-evaluated by the closed form), see no shift between static
+    /// ends, and the reach is ρ_c for m² < 4Ω², everything for causal members.
+    #[test]
+    fn members_rays_land_and_static_ends_see_no_shift() {
+        let omega = 0.7;
+        for ratio in [-1.0, 0.0, 2.0, 4.0, 6.0] {
+            let member = GodelType::new(ratio * omega * omega, omega);
+            let source = Event::new(0.0, 0.6, -0.3, 0.35);
+            let event = Event::new(2.0, 0.2, 0.4, 1.1);
+            assert_eq!(type_on_the_source_axis(member, source, event), None);
+            let c = type_connections(member, source, event, 2).unwrap();
+            assert!(c.within_horizon() && !c.rays.is_empty(), "m²/Ω² = {ratio}");
+            assert_eq!(c.reach, member.critical_radius());
+            for ray in &c.rays {
+                assert!(ray.miss < 1e-9, "m²/Ω² = {ratio}: {}", ray.miss);
+                assert!((ray.g - 1.0).abs() < 1e-9, "m²/Ω² = {ratio}: {}", ray.g);
+                assert!(ray.area_distance > 0.0);
+            }
+            let above = Event::new(2.0, 0.6, -0.3, 1.0);
+            assert_eq!(
+                type_on_the_source_axis(member, source, above),
+                Some(OnTheSourceAxis::OnItsAxis)
+            );
+        }
     }
 }

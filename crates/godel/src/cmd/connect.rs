@@ -8,15 +8,24 @@
 //! the source's horizon (ρ < 2a); within it there are two per winding in the source's plane,
 //! and more off it.
 //!
+//! `--metric godel-type --m2 M2 --omega OMEGA` finds them in a member of the Gödel-type
+//! family (`spacetime::godel_type_connect`; docs/physics.md, "Shadow rays in the family"):
+//! R is the proper radius ρ, bounded as scenes bound positions, and rays reach ρ < ρ_c for
+//! m² < 4Ω², every event for the causal members.
+//!
 //! The rays with their directions, area distance and miss distance are
 //! `spacetime::connection`'s; this file parses the flags and prints them.
 
-use crate::args::{coordinates, parse_vector, scale_a, usage, Format};
+use crate::args::{coordinates, member, parse_vector, scale_a, usage, Format};
+use crate::cmd::geodesic::MetricName;
 use anyhow::Context;
 use scene::short;
 use serde_json::json;
-use spacetime::connection::{connections, on_the_source_axis, Connections, MAX_WINDINGS};
-use spacetime::Cylindrical;
+use spacetime::connection::{
+    connections, on_the_source_axis, type_connections, type_on_the_source_axis, Connections,
+    MAX_WINDINGS,
+};
+use spacetime::{Cylindrical, Godel, Metric};
 use std::io::Write;
 
 /// Raw command-line arguments of `godel connect`.
@@ -28,7 +37,13 @@ direction of departure at the source and of arrival (where to look) at the event
 affine length, the source's area distance D (flux = L/(4πD²)) and the ray's miss distance. \
 JSON adds the frequency ratio g between source and receiver at rest (1, computed).
 
-Example: godel connect --from 0,0,0,0 --to-source 1.2,0.5,0.3")]
+Gödel-type family: --metric godel-type --m2 M2 --omega OMEGA (as for godel geodesic); R is \
+the proper radius ρ, at most 30/m for m² > 0 and π/μ − ρ_c for m² = −μ² < 0. Rays reach \
+ρ < ρ_c from the source's axis for m² < 4Ω², every event for m² ≥ 4Ω² (there only one ray \
+escapes to each event in the source's plane).
+
+Example: godel connect --from 0,0,0,0 --to-source 1.2,0.5,0.3
+         godel connect --metric godel-type --m2 0 --omega 1 --from 1,0.5,0,1 --to-source 0,0,0")]
 pub struct ConnectArgs {
     /// The receiving event T,R,PHI,Z (cylindrical, PHI in radians).
     #[arg(long, value_name = "T,R,PHI,Z", allow_hyphen_values = true)]
@@ -36,9 +51,18 @@ pub struct ConnectArgs {
     /// The source's position R,PHI,Z; it is at rest there at all times.
     #[arg(long, value_name = "R,PHI,Z", allow_hyphen_values = true)]
     pub to_source: String,
-    /// Gödel parameter a > 0 (optical horizon at r = 2a).
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub a: f64,
+    /// Spacetime metric: godel or godel-type.
+    #[arg(long, value_enum, default_value_t = MetricName::Godel)]
+    pub metric: MetricName,
+    /// Gödel parameter a > 0 (optical horizon at r = 2a) [default: 1]; metric godel only.
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<f64>,
+    /// m² of a Gödel-type member (any sign; metric godel-type only).
+    #[arg(long, value_name = "M2", allow_hyphen_values = true)]
+    pub m2: Option<f64>,
+    /// Vorticity Ω > 0 of a Gödel-type member (metric godel-type only).
+    #[arg(long, value_name = "OMEGA", allow_hyphen_values = true)]
+    pub omega: Option<f64>,
     /// Largest winding counted (0 to 1000): each winding is an earlier emission.
     #[arg(long, value_name = "N", default_value_t = 2)]
     pub windings: u32,
@@ -47,14 +71,56 @@ pub struct ConnectArgs {
     pub format: Format,
 }
 
+/// The metric of `--metric` with its constants; the other metric's constants refused.
+fn metric(args: &ConnectArgs) -> anyhow::Result<Metric> {
+    match args.metric {
+        MetricName::Godel => {
+            for (flag, value) in [("--m2", args.m2), ("--omega", args.omega)] {
+                if value.is_some() {
+                    return Err(usage(
+                        flag,
+                        "is a constant of --metric godel-type: not used by --metric godel",
+                    ));
+                }
+            }
+            Ok(Metric::Godel(Godel::new(scale_a(
+                "--a",
+                args.a.unwrap_or(1.0),
+            )?)))
+        }
+        MetricName::GodelType => {
+            if args.a.is_some() {
+                return Err(usage(
+                    "--a",
+                    "not used by --metric godel-type: its constants are --m2 and --omega \
+                     (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
+                ));
+            }
+            Ok(Metric::GodelType(member(args.m2, args.omega)?))
+        }
+        MetricName::Minkowski => Err(usage(
+            "--metric",
+            "connect knows Gödel's universe (godel) and the Gödel-type family (godel-type)",
+        )),
+    }
+}
+
 /// Finds and checks every connecting ray for the arguments.
 pub fn connect(args: &ConnectArgs) -> anyhow::Result<Connections> {
-    let a = scale_a("--a", args.a)?;
+    let metric = metric(args)?;
+    // Gödel's a, or the member's length scale.
+    let scale = metric.length_scale();
+    // A member's R is its proper radius, bounded as in scenes.
+    let radius = |flag: &str, r: f64| match metric.godel_type() {
+        Some(g) => scene::ranges::check_member_radius(g, r).map_err(|e| usage(flag, e)),
+        None => Ok(()),
+    };
     let [t, r, phi, z] = parse_vector::<4>("--from", &args.from)?;
     if r < 0.0 {
         return Err(usage("--from", format!("R must be ≥ 0, got {}", short(r))));
     }
-    coordinates("--from", &["t", "R", "phi", "z"], &[t, r, phi, z], a)?;
+    coordinates("--from", &["t", "R", "phi", "z"], &[t, r, phi, z], scale)?;
+    radius("--from", r)?;
     let [sr, sphi, sz] = parse_vector::<3>("--to-source", &args.to_source)?;
     if sr < 0.0 {
         return Err(usage(
@@ -62,7 +128,8 @@ pub fn connect(args: &ConnectArgs) -> anyhow::Result<Connections> {
             format!("R must be ≥ 0, got {}", short(sr)),
         ));
     }
-    coordinates("--to-source", &["R", "phi", "z"], &[sr, sphi, sz], a)?;
+    coordinates("--to-source", &["R", "phi", "z"], &[sr, sphi, sz], scale)?;
+    radius("--to-source", sr)?;
     if args.windings > MAX_WINDINGS {
         return Err(usage(
             "--windings",
@@ -78,10 +145,20 @@ pub fn connect(args: &ConnectArgs) -> anyhow::Result<Connections> {
     }
     .to_event();
     // Not single rays there, but cones of them: refused rather than one arbitrary member.
-    if let Some(why) = on_the_source_axis(a, source, event) {
+    let (axis, found) = match metric.godel_type() {
+        Some(g) => (
+            type_on_the_source_axis(g, source, event),
+            type_connections(g, source, event, args.windings),
+        ),
+        None => (
+            on_the_source_axis(scale, source, event),
+            connections(scale, source, event, args.windings),
+        ),
+    };
+    if let Some(why) = axis {
         return Err(usage("--from/--to-source", why.to_string()));
     }
-    connections(a, source, event, args.windings).context("a connecting ray has no closed form")
+    found.context("a connecting ray has no closed form")
 }
 
 fn write_csv(out: &mut impl Write, ans: &Connections) -> std::io::Result<()> {
@@ -128,14 +205,23 @@ fn json_document(ans: &Connections) -> serde_json::Value {
         })
         .collect();
     let (ev, s) = (ans.event, ans.source);
-    json!({
-        "a": ans.a,
+    let mut doc = json!({
         "event": {"t": ev.t, "x": ev.x, "y": ev.y, "z": ev.z},
         "source": {"x": s.x, "y": s.y, "z": s.z},
         "rho": ans.rho,
         "within_horizon": ans.within_horizon(),
         "rays": rays,
-    })
+    });
+    match ans.metric {
+        Metric::GodelType(g) => {
+            doc["metric"] = json!("godel-type");
+            doc["m2"] = json!(g.m2);
+            doc["omega"] = json!(g.omega);
+            doc["reach"] = json!(ans.reach);
+        }
+        m => doc["a"] = json!(m.godel_a()),
+    }
+    doc
 }
 
 /// Runs `godel connect`, printing to standard output (and a note on standard error when
@@ -143,11 +229,15 @@ fn json_document(ans: &Connections) -> serde_json::Value {
 pub fn run(args: ConnectArgs) -> anyhow::Result<()> {
     let ans = connect(&args)?;
     if !ans.within_horizon() {
+        let reach = ans.reach.unwrap_or(f64::INFINITY);
+        let limit = match ans.metric {
+            Metric::GodelType(_) => format!("ρ_c = {reach:.6}, where its light turns back"),
+            _ => format!("its horizon 2a = {reach}"),
+        };
         eprintln!(
             "note: no light ray connects them: the event is at ρ = {:.6} from the source's axis, \
-             beyond its horizon 2a = {}",
-            ans.rho,
-            2.0 * ans.a
+             beyond {limit}",
+            ans.rho
         );
     }
     let stdout = std::io::stdout();

@@ -5,6 +5,7 @@ mod browser_support;
 mod common;
 
 mod cli;
+mod connect_family_cli;
 mod consistency_cli;
 mod explore_cli;
 mod family_cli;
