@@ -186,16 +186,23 @@ def geodesic(
 def connect(
     source: Sequence[float],
     target: Sequence[float],
-    a: float = 1.0,
+    a: Optional[float] = None,
     windings: int = 2,
+    metric: str = "godel",
+    m2: Optional[float] = None,
+    omega: Optional[float] = None,
 ) -> List[Dict[str, object]]:
-    """Every light ray from a source at rest to an event, as ``godel connect`` finds them.
+    """Every light ray from a source at rest to an event, as ``godel connect`` finds them, in
+    Gödel's universe (``a``, default 1) or in a member of the Gödel-type family
+    (``metric="godel-type"`` with ``m2`` and ``omega``, as for ``geodesic``).
 
     ``source`` is the source's position (x, y, z): it is at rest there at all times, so it
     has no time of its own. ``target`` is the receiving event (t, x, y, z). Rays exist only
     where the target lies within the source's optical horizon (distance 2a from the
     source's axis); there are two per winding in the source's plane and more off it,
-    ``windings`` (0 to 1000) counting the loops a ray completes before it arrives.
+    ``windings`` (0 to 1000) counting the loops a ray completes before it arrives. In a
+    member x, y are ρ cos φ, ρ sin φ with ρ the proper radius (bounded as for ``geodesic``),
+    and rays reach ρ < ρ_c from the source's axis, every event for m² ≥ 4Ω².
 
     Returns one dict per ray, latest emission first: ``t_emit`` (emission time),
     ``emission`` (the event t, x, y, z), ``travel_time``, ``winding``, ``branch``
@@ -215,7 +222,13 @@ def connect(
     if isinstance(windings, bool) or int(windings) != windings or windings < 0:
         raise ValueError(f"windings: must be a whole number from 0 to 1000, got {windings!r}")
     _rho, rays = _godel.connect(
-        _vector(source, 3, "source"), _vector(target, 4, "target"), float(a), int(windings)
+        _vector(source, 3, "source"),
+        _vector(target, 4, "target"),
+        str(metric),
+        None if a is None else float(a),
+        None if m2 is None else float(m2),
+        None if omega is None else float(omega),
+        int(windings),
     )
     keys = ("emission", "travel_time", "winding", "branch", "departure", "look", "lambda",
             "area_distance", "g", "miss")

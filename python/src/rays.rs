@@ -2,30 +2,22 @@
 //! geodesic`) and every light ray from a source at rest to an event
 //! (`spacetime::connection`, as `godel connect`), computed without holding the GIL. Inputs
 //! are checked by those modules; a refusal names the keyword argument at fault. `geodesic`
-//! also traces in a member of the Gödel-type family (`metric = "godel-type"`, `m2`, `omega`:
-//! docs/physics.md, "The Gödel-type family"), checked as `godel geodesic` checks it.
+//! and `connect` also work in a member of the Gödel-type family (`metric = "godel-type"`,
+//! `m2`, `omega`: docs/physics.md, "The Gödel-type family"), checked as `godel geodesic` and
+//! `godel connect` check it.
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyByteArray;
-use spacetime::connection::{connections, on_the_source_axis, MAX_WINDINGS};
+use spacetime::connection::{
+    connections, on_the_source_axis, type_connections, type_on_the_source_axis, MAX_WINDINGS,
+};
 use spacetime::curve::{compute, stop_name, CurveError, CurveMethod, CurveRequest, Input};
 use spacetime::{Event, Godel, GodelType, Metric, TimeDirection};
 
 use crate::errors::argument_error;
 
-/// Checks the Gödel parameter and the coordinates (each argument's named components) in the
-/// ranges scenes allow (`scene::ranges`), as the command line does; returns `a`.
-fn checked(a: f64, named: &[(&str, &[&str], &[f64])]) -> PyResult<f64> {
-    let a = scene::ranges::check_a(a).map_err(|e| argument_error("a", e))?;
-    for (keyword, names, values) in named {
-        scene::ranges::check_coordinates(names, values, a)
-            .map_err(|e| argument_error(keyword, e))?;
-    }
-    Ok(a)
-}
-
-/// The metric of `geodesic`'s `metric`, `a`, `m2` and `omega` (each given or None): Gödel's
+/// The metric of `geodesic`'s and `connect`'s `metric`, `a`, `m2` and `omega` (each given or None): Gödel's
 /// with `a` (default 1), or the Gödel-type member (`m2`, `omega`), checked in the ranges of
 /// scenes (`scene::ranges`); a constant the metric does not use is refused, naming it.
 fn metric_of(
@@ -182,26 +174,42 @@ type Ray = (
 );
 
 /// Every light ray from a source at rest at `source` (x, y, z) to the event `target`
-/// (t, x, y, z), latest emission first; with the event's distance from the source's axis.
-/// See `godel.connect`.
+/// (t, x, y, z), latest emission first, in Gödel's universe or a Gödel-type member (as
+/// `geodesic`'s `metric`, `a`, `m2`, `omega`); with the event's distance from the source's
+/// axis. See `godel.connect`.
 #[pyfunction]
-#[pyo3(signature = (source, target, a, windings))]
+#[pyo3(signature = (source, target, metric, a, m2, omega, windings))]
+#[allow(clippy::too_many_arguments)]
 pub fn connect(
     py: Python<'_>,
     source: [f64; 3],
     target: [f64; 4],
-    a: f64,
+    metric: &str,
+    a: Option<f64>,
+    m2: Option<f64>,
+    omega: Option<f64>,
     windings: u32,
 ) -> PyResult<(f64, Vec<Ray>)> {
+    let metric = metric_of(metric, a, m2, omega)?;
+    let scale = metric.length_scale();
     let source_names: &[&str] = &["x", "y", "z"];
     let target_names: &[&str] = &["t", "x", "y", "z"];
-    let a = checked(
-        a,
-        &[
-            ("source", source_names, &source),
-            ("target", target_names, &target),
-        ],
-    )?;
+    for (keyword, names, values) in [
+        ("source", source_names, &source[..]),
+        ("target", target_names, &target[..]),
+    ] {
+        scene::ranges::check_coordinates(names, values, scale)
+            .map_err(|e| argument_error(keyword, e))?;
+    }
+    if let Some(g) = metric.godel_type() {
+        for (keyword, x, y) in [
+            ("source", source[0], source[1]),
+            ("target", target[1], target[2]),
+        ] {
+            scene::ranges::check_member_radius(g, x.hypot(y))
+                .map_err(|e| argument_error(keyword, e))?;
+        }
+    }
     if windings > MAX_WINDINGS {
         let message = format!("must be at most {MAX_WINDINGS}, got {windings}");
         return Err(argument_error("windings", message));
@@ -210,11 +218,18 @@ pub fn connect(
     let [sx, sy, sz] = source;
     let (source, event) = (Event::new(0.0, sx, sy, sz), Event::new(t, x, y, z));
     // Not single rays there, but cones of them: refused, as `godel connect` does.
-    if let Some(why) = on_the_source_axis(a, source, event) {
+    let axis = match metric.godel_type() {
+        Some(g) => type_on_the_source_axis(g, source, event),
+        None => on_the_source_axis(scale, source, event),
+    };
+    if let Some(why) = axis {
         return Err(argument_error("target", why));
     }
     let found = py
-        .detach(|| connections(a, source, event, windings))
+        .detach(|| match metric.godel_type() {
+            Some(g) => type_connections(g, source, event, windings),
+            None => connections(scale, source, event, windings),
+        })
         .ok_or_else(|| PyRuntimeError::new_err("a connecting ray has no closed form"))?;
     let rays = found
         .rays

@@ -1,8 +1,9 @@
 """The Gödel-type family (docs/physics.md, "The Gödel-type family") in Python:
 godel.geodesic(metric="godel-type", m2=…, omega=…) against Gödel's universe (the member
 m² = 1/a², Ω = 1/(√2 a), carried through r = 2a sinh(ρ/2a)) and against ``godel geodesic
---metric godel-type``; render(metric=…, m2=…, omega=…) recording the member; bad arguments
-raise ValueError naming the keyword."""
+--metric godel-type``; connect in a member (the Gödel member as Gödel, a member as
+``godel connect --metric godel-type``); render(metric=…, m2=…, omega=…) recording the
+member; bad arguments raise ValueError naming the keyword."""
 
 from __future__ import annotations
 
@@ -96,3 +97,51 @@ def test_render_in_a_member_records_it():
 def test_bad_render_spacetimes_name_the_keyword(kwargs, keyword):
     with pytest.raises(ValueError, match=f"^{keyword}: spacetime\\."):
         godel.render(width=22, height=4, progress=False, **kwargs)
+
+
+def test_connect_in_the_godel_member_is_godels_through_the_proper_radius():
+    a = 0.8
+    member = dict(metric="godel-type", m2=1 / a**2, omega=1 / (math.sqrt(2) * a))
+    # Source and target on the x axis, where the two charts' static frames agree.
+    source, target = (0.3, 0.0, -0.2), (0.5, 0.9, 0.0, 0.7)
+    rays = godel.connect(source, target, **member)
+    stretch = lambda rho: 2 * a * math.sinh(rho / (2 * a))
+    theirs = godel.connect((stretch(0.3), 0.0, -0.2), (0.5, stretch(0.9), 0.0, 0.7), a=a)
+    assert len(rays) == len(theirs) >= 6
+    for mine, goedel in zip(rays, theirs):
+        assert (mine["winding"], mine["branch"]) == (goedel["winding"], goedel["branch"])
+        assert abs(mine["t_emit"] - goedel["t_emit"]) < 1e-9
+        assert np.allclose(mine["departure"], goedel["departure"], rtol=0, atol=1e-8)
+        area, want = mine["area_distance"], goedel["area_distance"]
+        assert abs(area - want) < 1e-6 * want
+        assert mine["miss"] < 1e-9
+
+
+def test_connect_in_a_member_equals_the_cli():
+    rays = godel.connect((0.3, 0.1, 0.0), (1.0, 0.2, -0.5, 0.8), metric="godel-type", m2=6.0,
+                         omega=1.0, windings=1)
+    to = f"{math.hypot(0.3, 0.1)!r},{math.atan2(0.1, 0.3)!r},0"
+    frm = f"1,{math.hypot(0.2, -0.5)!r},{math.atan2(-0.5, 0.2)!r},0.8"
+    cli = json.loads(run_cli("connect", "--metric", "godel-type", "--m2", "6", "--omega", "1",
+                             "--from", frm, "--to-source", to, "--windings", "1",
+                             "--format", "json").stdout)
+    assert len(rays) == len(cli["rays"]) >= 1
+    for mine, theirs in zip(rays, cli["rays"]):
+        assert abs(mine["t_emit"] - theirs["emission"]["t"]) < 1e-9
+        area, want = mine["area_distance"], theirs["area_distance"]
+        assert abs(area - want) < 1e-9 * want
+        assert mine["branch"] == theirs["branch"]
+
+
+@pytest.mark.parametrize("kwargs,keyword", [
+    (dict(metric="godel-type", omega=1.0), "m2"),
+    (dict(metric="godel-type", m2=1.0, omega=1.0, a=1.0), "a"),
+    (dict(m2=1.0), "m2"),
+    (dict(metric="godel-type", m2=-1.0, omega=1.0, source=(2.5, 0, 0)), "source"),
+    (dict(metric="godel-type", m2=-1.0, omega=1.0, target=(0, 0, 2.5, 0)), "target"),
+    (dict(metric="godel-type", m2=1.0, omega=1.0, target=(1, 0.3, 0, 2)), "target"),
+])
+def test_bad_connect_arguments_name_the_keyword(kwargs, keyword):
+    args = {"source": (0.3, 0, 0), "target": (1, 0, 0.5, 0), **kwargs}
+    with pytest.raises(ValueError, match=f"^{keyword}: "):
+        godel.connect(**args)
