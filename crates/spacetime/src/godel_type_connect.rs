@@ -96,7 +96,9 @@ fn lambda_at(member: GodelType, r: f64, (c, sigma): (f64, f64), n: u32, b: Branc
 }
 
 /// G = |c| λ − |z_P| on a branch at (c, σ), with its limits where λ → ∞ (Λ → 0 from above):
-/// +∞ for c > 0, and θ/Ω at c = 0 (only for m² = 4Ω², where Λ = Ω²c²).
+/// +∞ for c > 0, and θ/Ω at c = 0 (only for m² = 4Ω², where Λ = Ω²c², so cλ = θ/Ω, and
+/// θ₀ = arcsin(Ωc R/σ) → 0 leaves θ = nπ outbound, (n + 1)π inbound). NaN (no root) where
+/// the branch does not exist.
 fn excess(member: GodelType, r: f64, zp: f64, (c, sigma): (f64, f64), n: u32, b: Branch) -> f64 {
     match lambda_at(member, r, (c, sigma), n, b) {
         Some(l) if l.is_finite() => c * l - zp.abs(),

@@ -422,3 +422,36 @@ fn rays_across_the_cut_of_the_sphere_land_on_the_target() {
     assert!(count >= 40, "only {count} rays");
     eprintln!("{count} rays from sources beyond the cut: worst miss {worst:e}");
 }
+
+/// Near the source's axis the ray that climbs almost along z has 1 − cos ψ ~ ρ², below what
+/// f64 resolves of c near 1: found in ψ (as for Gödel), every ray lands down to ρ = 10⁻¹².
+#[test]
+fn rays_to_targets_near_the_source_axis_land_too() {
+    for ratio in RATIOS {
+        let m = member(ratio);
+        for rho in [1e-12, 1e-9, 1e-6, 1e-3] {
+            for z in [1.0, -0.3, 2.5] {
+                let p = Event::new(0.5, rho * 0.6, -rho * 0.8, z);
+                let rays = type_shadow_rays_from_axis(m, p, 2);
+                assert!(
+                    rays.iter().any(
+                        |r| r.winding == 0 && (p.t - r.emission.t - z.abs()).abs() < 1e-9 + rho
+                    ),
+                    "m²/Ω² = {ratio} ρ = {rho} z = {z}: no direct ray"
+                );
+                for r in &rays {
+                    let (d, null) = miss(m, r, p);
+                    assert!(
+                        d < 1e-8 && null < 1e-12,
+                        "m²/Ω² = {ratio} ρ = {rho} z = {z}: {d:e}"
+                    );
+                    let area = type_source_area_distance_sq(m, Event::default(), r);
+                    assert!(
+                        area.is_finite() && area > 0.0,
+                        "ρ = {rho} z = {z}: D² = {area}"
+                    );
+                }
+            }
+        }
+    }
+}
