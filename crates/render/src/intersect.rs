@@ -284,6 +284,7 @@ impl Intersector {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::segment::ClosedForm;
     use spacetime::TimeDirection;
     use spacetime::{photon_tangent, Event, ExactGeodesic, GeodesicSystem, Godel, Spacetime};
 
@@ -335,7 +336,7 @@ mod tests {
                 p: metric.lower(o, k),
             };
             let (sys, s0) = GeodesicSystem::new(metric, &start);
-            let seg = Segment::exact(geo, sys, 0.0, s0, 1.0);
+            let seg = Segment::exact(ClosedForm::Godel(geo), sys, 0.0, s0, 1.0);
             let t = &intersector.targets[0];
             let pa = t.probe(&metric, &start, f64::NAN);
             let pb = t.probe(&metric, &seg.state_at(1.0), f64::NAN);

@@ -43,7 +43,7 @@
 
 use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
 use crate::reject::{set_ray, Rejection};
-use crate::segment::{Segment, Shift, EXACT_SEGMENTS};
+use crate::segment::{ClosedForm, Segment, Shift, EXACT_SEGMENTS};
 use spacetime::{
     shadow_rays, source_area_distance_sq, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
     Godel, ShadowRay, Spacetime,
@@ -245,7 +245,7 @@ fn occluded(
     let mut y0 = s0;
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
-        let d = Segment::exact(geo, sys, l0, y0, l1);
+        let d = Segment::exact(ClosedForm::Godel(geo), sys, l0, y0, l1);
         probes.activate(0, l0);
         if i + 1 == n {
             probes.active[lit] = false;

@@ -1,15 +1,21 @@
 //! A ray as a chain of segments over its affine parameter λ: accepted integrator steps
-//! (dense output made on first use) or stretches of a closed-form Gödel geodesic, evaluated
-//! directly; and the shift that turns a ray's first loop into its later ones.
+//! (dense output made on first use) or stretches of a closed-form geodesic (Gödel's, or a
+//! Gödel-type member's: [`ClosedForm`]), evaluated directly; and the shift that turns a ray's
+//! first loop into its later ones.
 //!
-//! Later loops: in Gödel's universe every light ray returns to its start's axis and then
-//! retraces its loop moved in t and z only, since ∂t and ∂z are Killing fields
-//! (docs/physics.md, "Closed forms"). So a stored first loop, shifted by (Δt, Δz, Δλ) per
-//! period, is every later loop.
+//! Later loops: in Gödel's universe, and for the returning rays of every Gödel-type member,
+//! a light ray returns to its start's axis and then retraces its loop moved in t and z only,
+//! since ∂t and ∂z are Killing fields (docs/physics.md, "Closed forms" and "The exact
+//! tracer in the family"). So a stored first loop, shifted by (Δt, Δz, Δλ) per period, is
+//! every later loop.
+//!
+//! A stretch of a loop that provably stays beyond every object (`crate::tracer::EscapeStop`) is stored
+//! as one segment marked `far`: it is never searched, only stepped over.
 
 use crate::bounds::Aabb;
 use spacetime::{
-    DenseStep, ExactGeodesic, GeodesicState, GeodesicSystem, Metric, Spacetime, StepData, STATE,
+    DenseStep, Event, ExactGeodesic, FourVector, GeodesicState, GeodesicSystem, Metric, Spacetime,
+    StepData, TypeExactGeodesic, TypeOriginGeodesic, STATE,
 };
 use std::cell::OnceCell;
 
@@ -27,7 +33,62 @@ pub struct Segment {
     data: StepData<STATE>,
     sys: GeodesicSystem<Metric>,
     dense: OnceCell<DenseStep<STATE>>,
-    exact: Option<ExactGeodesic>,
+    exact: Option<ClosedForm>,
+    /// Beyond every object throughout (`crate::tracer::EscapeStop`): stepped over, never
+    /// searched.
+    pub far: bool,
+}
+
+/// A closed-form light ray: Gödel's (`closed_form.rs`) or a Gödel-type member's
+/// (`godel_type_geodesic.rs`), both through any event.
+#[derive(Clone, Copy)]
+pub enum ClosedForm {
+    Godel(ExactGeodesic),
+    Type(TypeExactGeodesic),
+}
+
+impl ClosedForm {
+    /// The closed form through `at` with tangent `k` in `metric`, if it has one.
+    pub fn new(metric: &Metric, at: Event, k: FourVector) -> Option<ClosedForm> {
+        match metric {
+            Metric::Godel(g) => ExactGeodesic::new(g.a, at, k).map(ClosedForm::Godel),
+            Metric::GodelType(m) => TypeExactGeodesic::new(*m, at, k).map(ClosedForm::Type),
+            Metric::Minkowski(_) => None,
+        }
+    }
+
+    /// Event and tangent at parameter `l` (0 at the start).
+    pub fn at(&self, l: f64) -> (Event, FourVector) {
+        match self {
+            ClosedForm::Godel(g) => g.at(l),
+            ClosedForm::Type(g) => g.at(l),
+        }
+    }
+
+    /// The parameter of the return to the start's axis; `None` for a ray that escapes
+    /// ([`family_return`] for a Gödel-type member).
+    pub fn return_parameter(&self) -> Option<f64> {
+        match self {
+            ClosedForm::Godel(g) => Some(g.origin.return_parameter()),
+            ClosedForm::Type(g) => family_return(&g.origin),
+        }
+    }
+
+    /// Gödel's closed form, if this is one.
+    pub fn godel(&self) -> Option<&ExactGeodesic> {
+        match self {
+            ClosedForm::Godel(g) => Some(g),
+            ClosedForm::Type(_) => None,
+        }
+    }
+
+    /// A Gödel-type member's closed form, if this is one.
+    pub fn member(&self) -> Option<&TypeExactGeodesic> {
+        match self {
+            ClosedForm::Godel(_) => None,
+            ClosedForm::Type(g) => Some(g),
+        }
+    }
 }
 
 impl Segment {
@@ -38,12 +99,13 @@ impl Segment {
             sys,
             dense: OnceCell::new(),
             exact: None,
+            far: false,
         }
     }
 
     /// The stretch [l0, l1] of a closed-form geodesic whose state at l0 is `y0`.
     pub fn exact(
-        geo: ExactGeodesic,
+        geo: ClosedForm,
         sys: GeodesicSystem<Metric>,
         l0: f64,
         y0: [f64; STATE],
@@ -60,7 +122,14 @@ impl Segment {
             sys,
             dense: OnceCell::new(),
             exact: Some(geo),
+            far: false,
         }
+    }
+
+    /// The same stretch, marked as beyond every object throughout (never searched).
+    pub fn beyond_objects(mut self) -> Self {
+        self.far = true;
+        self
     }
 
     /// The integrated state (t, x, y, z, p_x, p_y) at `l`.
@@ -91,8 +160,24 @@ impl std::ops::Deref for Segment {
     }
 }
 
+/// Below this fraction of Ω²E², Λ = Ω²E² − m²A/4 is taken for 0 (`family_return`).
+pub const BOUNDARY_LAMBDA: f64 = 1e-12;
+
+/// The return parameter π/√Λ of a Gödel-type member's light ray `o` from the axis, or `None`
+/// for a ray that escapes, where Λ ≤ [`BOUNDARY_LAMBDA`]·Ω²E² counts as the boundary Λ = 0:
+/// Λ is the difference of two terms of size Ω²E², computed from a tangent pushed by an
+/// isometry, so its sign is rounding within ~1e-14 of that (in m² = 4Ω², Λ = Ω²p_z², every
+/// ray in the plane z = 0 of the observer). A ray with 0 < Λ ≤ 1e-12 Ω²E² would loop out to
+/// w_max = (m/2)k⊥/√Λ ≥ 1e6·(m/2)k⊥/(Ω|E|), mρ ≳ 28: at the edge of the scenes' chart
+/// (mρ ≤ 30), where its return is not resolved either.
+pub fn family_return(o: &TypeOriginGeodesic) -> Option<f64> {
+    let spin = o.member.omega * o.energy;
+    o.return_parameter()
+        .filter(|_| o.big_lambda() > BOUNDARY_LAMBDA * spin * spin)
+}
+
 /// The integrated-state form (t, x, y, z, p_x, p_y) of a closed-form geodesic at `l`.
-fn exact_state(geo: &ExactGeodesic, sys: &GeodesicSystem<Metric>, l: f64) -> [f64; STATE] {
+fn exact_state(geo: &ClosedForm, sys: &GeodesicSystem<Metric>, l: f64) -> [f64; STATE] {
     let (x, k) = geo.at(l);
     let p = sys.metric.lower(x, k);
     [x.t, x.x, x.y, x.z, p.x, p.y]
@@ -126,11 +211,11 @@ impl Shift {
 
 /// A coordinate box around a stored loop: segment ends, grown by a quarter of the longest
 /// chord (an arc of one step, turning by well under a radian, departs from its chord by at
-/// most about an eighth of it).
+/// most about an eighth of it). Far segments are left out: they come near no object.
 pub fn loop_bounds(segments: &[Segment]) -> Aabb {
     let mut b = Aabb::EMPTY;
     let mut grow: f64 = 0.0;
-    for st in segments {
+    for st in segments.iter().filter(|st| !st.far) {
         b.add([st.y0[1], st.y0[2], st.y0[3]]);
         b.add([st.y1[1], st.y1[2], st.y1[3]]);
         let chord = ((st.y1[1] - st.y0[1]).powi(2)

@@ -5,8 +5,10 @@
 //!
 //! - numeric: DOP853 steps of the geodesic equations (any metric; its first loop in
 //!   `tracer/numeric.rs`);
-//! - exact: closed-form Gödel geodesics carried to the observer's event by an isometry
-//!   (docs/physics.md, "Closed forms" and "Isometries"; its first loop in `tracer/exact.rs`).
+//! - exact: closed-form geodesics carried to the observer's event by an isometry, Gödel's
+//!   (docs/physics.md, "Closed forms" and "Isometries") or a Gödel-type member's ("The
+//!   Gödel-type family", "The exact tracer in the family"); its first loop in
+//!   `tracer/exact.rs`.
 //!
 //! This file holds what both share: the pixel's ray, later loops, transport and record.
 //!
@@ -18,7 +20,14 @@
 //! numeric one checked to close, position and momentum, by [`AxisWatch`]) and stored; later
 //! loops are its copies, each still searched against every object at its own times. This
 //! bounds the integration error to one loop, however far into the past a ray is followed.
-//! The number of copies is bounded by [`scene::MAX_RAY_LOOPS`].
+//! The number of copies is bounded by [`scene::MAX_RAY_LOOPS`]. The same holds for the
+//! returning rays of every Gödel-type member (the exact tracer's loops; the numeric tracer
+//! integrates the family's rays without reuse).
+//!
+//! Causal Gödel-type members (m² ≥ 4Ω²): some rays escape to infinity, and returning ones may
+//! loop far out. A ray beyond every object that will not come back before the time bound is
+//! marked escaped by both tracers (`tracer/escape.rs`); the exact one steps over the far
+//! stretch of a loop in one unsearched segment.
 //!
 //! Objects at rest that a ray provably never comes near (`crate::reject`, one test per ray
 //! and object for all its loops) are left out of its search; a ray of the exact tracer that
@@ -29,21 +38,24 @@
 //!
 //! The record's frequency shift is g = (p·u_obs)/(p·u_emit) ([`frequency_ratio`]); its
 //! polarization is the pixel's screen-up carried back to the hit (`crate::polarization`:
-//! in closed form for the exact tracer, integrated with the ray for the numeric one).
+//! in closed form for Gödel's exact tracer, integrated with the ray otherwise).
 
+mod escape;
 mod exact;
 mod numeric;
+
+pub use escape::{EscapeStop, MAX_FAMILY_SEGMENTS, STEP_PER_SCALE};
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
 use crate::polarization::{self, RayPlace};
 use crate::reject::{set_ray, Rejection, NUMERIC_TOLERANCE};
-use crate::segment::{loop_bounds, Segment, Shift};
+use crate::segment::{loop_bounds, ClosedForm, Segment, Shift};
 use datafile::record::{PixelRecord, RayStatus};
 use scene::Observer;
 use spacetime::measure::frequency_ratio;
 use spacetime::{
-    photon_tangent, Event, ExactGeodesic, FourVector, GeodesicState, GeodesicSystem, Spacetime,
-    Tetrad, TimeDirection, Tolerances,
+    photon_tangent, Event, FourVector, GeodesicState, GeodesicSystem, Spacetime, Tetrad,
+    TimeDirection, Tolerances,
 };
 
 /// Everything a pixel's ray needs, built once per render and shared by all threads.
@@ -61,8 +73,11 @@ pub struct Tracer {
     max_steps: u64,
     /// Reuse the first loop (Gödel only).
     periodic: bool,
-    /// Use the closed-form geodesics instead of the integrator (Gödel only).
+    /// Use the closed-form geodesics instead of the integrator (Gödel and the Gödel-type
+    /// family).
     exact: bool,
+    /// Where rays of a causal Gödel-type member are done (`tracer/escape.rs`).
+    escape: Option<EscapeStop>,
     /// Per object, its whole-ray rejection test (balls at rest and planes, Gödel only; none
     /// where the numeric tracer's tolerance is too loose for its margin).
     rejections: Vec<Option<Rejection>>,
@@ -129,7 +144,9 @@ impl Tracer {
         let observer_axes = (observer.up, observer.forward);
         let observer = observer.event;
         let godel = objects.metric.godel_a().is_some();
-        let exact = opt.exact && godel;
+        let exact = opt.exact && (godel || objects.metric.godel_type().is_some());
+        let t_bound = observer.t - opt.max_past;
+        let escape = EscapeStop::new(&objects.metric, observer, &objects.targets, t_bound);
         let rejections = objects
             .targets
             .iter()
@@ -145,7 +162,7 @@ impl Tracer {
             frame,
             up: observer_axes.0,
             forward: observer_axes.1,
-            t_bound: observer.t - opt.max_past,
+            t_bound,
             tol: Tolerances {
                 rtol: opt.tolerance,
                 atol: opt.tolerance,
@@ -154,6 +171,7 @@ impl Tracer {
             max_steps: opt.max_steps,
             periodic: godel,
             exact,
+            escape,
             rejections,
         }
     }
@@ -204,16 +222,15 @@ impl Tracer {
             first_step,
         } = scratch;
         segments.clear();
-        // The closed form: the exact tracer's ray, and the numeric one's rejection tests.
-        let geo = self
-            .objects
-            .metric
-            .godel_a()
-            .filter(|_| self.exact || self.rejections.iter().any(Option::is_some))
-            .and_then(|a| ExactGeodesic::new(a, self.observer, k));
+        // The closed form: the exact tracer's ray, and the numeric one's rejection tests and
+        // escape stop.
+        let geo =
+            (self.exact || self.escape.is_some() || self.rejections.iter().any(Option::is_some))
+                .then(|| ClosedForm::new(&self.objects.metric, self.observer, k))
+                .flatten();
         set_ray(
             &self.rejections,
-            geo.as_ref().map(|g| &g.origin),
+            geo.as_ref().and_then(ClosedForm::godel).map(|g| &g.origin),
             0.0,
             f64::INFINITY,
             probes,
@@ -240,7 +257,11 @@ impl Tracer {
         let first = if self.exact {
             self.first_loop_exact(&start, geo, segments, probes)
         } else {
-            self.first_loop_numeric(&start, segments, probes, first_step)
+            let stop = self
+                .escape
+                .as_ref()
+                .zip(geo.as_ref().and_then(ClosedForm::member));
+            self.first_loop_numeric(&start, segments, probes, first_step, stop)
         };
         let end = match first {
             FirstLoop::Ended(end) => end,
@@ -295,15 +316,18 @@ impl Tracer {
 
     /// The status of an exact ray that searches no object, if it surely escapes: its search
     /// would find nothing, and it reaches the time bound within the loop limit (the period
-    /// computed as the first loop computes it). None: trace it in full.
+    /// computed as the first loop computes it), or never returns to its axis (a Gödel-type
+    /// member's escaping ray). None: trace it in full.
     fn escape_unsearched(
         &self,
         start: &GeodesicState,
-        geo: Option<ExactGeodesic>,
+        geo: Option<ClosedForm>,
     ) -> Option<RayStatus> {
         let geo = geo?;
         let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
-        let l_ret = geo.origin.return_parameter();
+        let Some(l_ret) = geo.return_parameter() else {
+            return Some(RayStatus::Escaped);
+        };
         let end = Segment::exact(geo, sys, 0.0, s0, l_ret).y1;
         let dt = end[0] - s0[0];
         let last = start.x.t + scene::MAX_RAY_LOOPS as f64 * dt;
@@ -346,6 +370,17 @@ impl Tracer {
             self.objects.probe_all(&first, shift.dl, probes);
             for (i, d) in segments.iter().enumerate() {
                 probes.activate(k, d.lambda0);
+                if d.far {
+                    // Beyond every object throughout: probe afresh at its end (never the
+                    // loop's last segment).
+                    let hi = d.lambda1();
+                    let end = shift.apply(d.state_at(hi));
+                    if end.x.t < self.t_bound {
+                        return End::Miss(RayStatus::Escaped);
+                    }
+                    self.objects.probe_all(&end, hi + shift.dl, probes);
+                    continue;
+                }
                 let hi = if i + 1 == segments.len() {
                     period.dl
                 } else {
@@ -374,17 +409,18 @@ impl Tracer {
     }
 
     /// The pixel's screen-up and screen-right, transported along the pixel's ray to the hit at
-    /// `place` (moved by `shift`): in closed form along the exact ray `geo`, else integrated
-    /// with the ray (`None` if that fails).
+    /// `place` (moved by `shift`): in closed form along Gödel's exact ray `geo`, else
+    /// integrated with the ray (`None` if that fails; the Gödel-type family has no closed-form
+    /// transport yet).
     fn transport(
         &self,
         start: &GeodesicState,
-        geo: Option<&ExactGeodesic>,
+        geo: Option<&ClosedForm>,
         screen: [FourVector; 2],
         place: RayPlace,
         shift: Shift,
     ) -> Option<[FourVector; 2]> {
-        match geo.filter(|_| self.exact) {
+        match geo.and_then(ClosedForm::godel).filter(|_| self.exact) {
             Some(geo) => Some(polarization::exact(
                 geo,
                 self.observer,

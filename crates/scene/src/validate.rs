@@ -45,9 +45,22 @@ pub const A_RANGE: (f64, f64) = (1e-6, 1e6);
 /// is decided at m² of the order of Ω² (m² = 4Ω² is the causal boundary).
 pub const MAX_M2_PER_OMEGA2: f64 = 100.0;
 
-/// Largest mρ of a position in a Gödel-type member with m² > 0 (Gödel's own bound, 1e6·a
-/// of its radius r = 2a sinh(ρ/2a), is mρ ≈ 29).
+/// Largest mρ of a position in a Gödel-type member with m² > 0 where the coordinates still
+/// hold (Gödel's own bound, 1e6·a of its radius r = 2a sinh(ρ/2a), is mρ ≈ 29): the bound of
+/// single geodesics and shadow rays (`crate::ranges`). Scenes are bounded tighter,
+/// [`MAX_SCENE_M_RHO`].
 pub const MAX_M_RHO: f64 = 30.0;
+
+/// Largest mρ of a scene's position (observer, objects) in a Gödel-type member with m² > 0:
+/// what both tracers trace. Measured with a ball at rest and a falling one beside an
+/// observer at mρ = 4 … 12 (m²/Ω² = 2, 4, 6; render's exact and numeric tracers): the exact
+/// tracer carries each pixel's tangent to the observer's origin frame, where it is null only
+/// to ~e^{mρ}·1e-16 of E², past the closed form's tolerance 1e-12 from mρ ≈ 9 (it failed 69
+/// of 100 rays at mρ = 10 for m² = 6Ω², half the image at mρ = 12 for Gödel's member); the
+/// numeric tracer failed from mρ = 12 (Gödel's member) and in the causal members spent its
+/// step budget on some rays from mρ = 6 (m² = 6Ω²: 5 % of the pixels, 11 % at mρ = 8), whose
+/// escape it can prove only once they are twice as far from the observer's axis.
+pub const MAX_SCENE_M_RHO: f64 = 8.0;
 
 /// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
 /// a local object is described in its rest frame to second order in its size (Riemann
@@ -354,8 +367,8 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     })
 }
 
-/// Checks that need both the metric and the rest. The exact tracer and the lights use
-/// Gödel's closed forms, so they need that metric. In Gödel's
+/// Checks that need both the metric and the rest. The exact tracer uses closed forms, Gödel's
+/// or the Gödel-type family's; the lights use Gödel's, so they need that metric. In Gödel's
 /// universe, rays loop with a period of at least [`Godel::shortest_loop_time`], so
 /// `max_past` bounds the number of loops a ray makes ([`MAX_RAY_LOOPS`]); and a local
 /// sphere must be small against the curvature scale (a in Gödel's universe).
@@ -371,15 +384,16 @@ fn godel_rules(
         Metric::Minkowski(_) | Metric::GodelType(_) => {
             let need = "spacetime.metric = \"godel\"";
             let not_yet = match metric {
-                Metric::GodelType(_) => {
-                    " (in the Gödel-type family only the numeric tracer works so far)"
-                }
+                Metric::GodelType(_) => " (not yet in the Gödel-type family)",
                 _ => "",
             };
-            if trace.method == TraceMethod::Exact {
+            // The Gödel-type family has closed forms of its own (render's exact tracer).
+            if trace.method == TraceMethod::Exact && metric.godel_type().is_none() {
                 return c.err(
                     "trace.method",
-                    format!("\"exact\" uses the Gödel closed forms: it needs {need}{not_yet}"),
+                    format!(
+                        "\"exact\" uses closed-form geodesics: it needs {need} or \"godel-type\""
+                    ),
                 );
             }
             if !lights.is_empty() {
@@ -457,17 +471,18 @@ fn local_sizes(c: &Checker, objects: &[Object], a: f64, scale: &str) -> Result<(
 }
 
 /// How far from the axis a Gödel-type member's scene may reach, and why. m² > 0: the metric
-/// grows as e^{mρ}, and beyond mρ = [`MAX_M_RHO`] its terms cancel to few digits. m² < 0:
+/// grows as e^{mρ}, and beyond mρ = [`MAX_SCENE_M_RHO`] the tracers lose the digits they
+/// need (its documentation). m² < 0:
 /// the coordinates end at ρ = π/μ (the base's pole opposite the axis); every light ray and
 /// free fall is a circle of diameter at most ρ_c on the base, so a scene within π/μ − ρ_c of
 /// the axis never reaches that pole.
 pub(crate) fn member_radius_limit(member: GodelType) -> Option<(f64, String)> {
     if member.m2 > 0.0 {
-        let limit = MAX_M_RHO / member.m2.sqrt();
+        let limit = MAX_SCENE_M_RHO / member.m2.sqrt();
         Some((
             limit,
             format!(
-                "the metric grows as e^(mρ) and loses the precision of f64 beyond mρ = {MAX_M_RHO}"
+                "the metric grows as e^(mρ), and beyond mρ = {MAX_SCENE_M_RHO} the tracers lose the precision of f64 they need"
             ),
         ))
     } else {

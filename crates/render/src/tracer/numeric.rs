@@ -2,23 +2,29 @@
 //! (docs/physics.md, "Geodesics"), each step scanned as it is taken
 //! ("The intersection search"), until the ray ends or, in Gödel's universe, returns to its
 //! start's axis ("Closed forms", "Return to the axis"), checked to close in position and
-//! momentum. Later loops and the record are the tracer's (`super`).
+//! momentum. In a causal Gödel-type member a ray beyond every object that will not come back
+//! before the time bound is done (`super::escape`). Later loops and the record are the
+//! tracer's (`super`).
 
-use super::{End, FirstLoop, Tracer};
+use super::{End, EscapeStop, FirstLoop, Tracer};
 use crate::intersect::Probes;
 use crate::segment::{Segment, Shift};
 use datafile::record::RayStatus;
-use spacetime::{AxisWatch, Dop853, GeodesicState, GeodesicSystem, OdeSystem, StepOutcome};
+use spacetime::{
+    AxisWatch, Dop853, GeodesicState, GeodesicSystem, OdeSystem, StepOutcome, TypeExactGeodesic,
+};
 
 impl Tracer {
     /// The numeric first loop: DOP853 steps, each scanned as it is taken, until the ray
-    /// ends or closes on its axis (Gödel; in other metrics it never closes).
+    /// ends or closes on its axis (Gödel; in other metrics it never closes). `stop`: a causal
+    /// Gödel-type member's escape stop with the ray's closed form (for its constants).
     pub(super) fn first_loop_numeric(
         &self,
         start: &GeodesicState,
         segments: &mut Vec<Segment>,
         probes: &mut Probes,
         first_step: &mut Option<f64>,
+        stop: Option<(&EscapeStop, &TypeExactGeodesic)>,
     ) -> FirstLoop {
         let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
         let mut ode = Dop853::new(sys, 0.0, s0, self.tol, *first_step);
@@ -82,6 +88,9 @@ impl Tracer {
                 } else {
                     RayStatus::Failed
                 }));
+            }
+            if stop.is_some_and(|(s, geo)| s.done(geo, d.lambda1(), &d.y1)) {
+                return FirstLoop::Ended(End::Miss(RayStatus::Escaped));
             }
             probes.advance();
             if let Some(p) = closed {

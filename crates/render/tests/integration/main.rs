@@ -10,6 +10,7 @@ mod coordinates;
 mod determinism;
 mod exact;
 mod falling;
+mod family_exact;
 mod godel_type;
 mod graze;
 mod images;

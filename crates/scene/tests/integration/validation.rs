@@ -375,16 +375,21 @@ fn godel_type_members_and_their_constants() {
         "spacetime.omega"
     );
     assert_eq!(field("[spacetime]\nm2 = 1\n"), "spacetime.m2");
-    // Not yet for the family: the exact tracer, lights (same message, one sentence).
+    // The exact tracer has the family's closed forms; lights are not yet for the family.
     let exact = format!("{}[trace]\nmethod = \"exact\"\n", member("1", "1"));
-    let e = err(&exact);
-    assert_eq!(e.field, "trace.method");
-    assert!(e.message.contains("Gödel-type"), "{}", e.message);
+    let s = scene(&exact).unwrap();
+    assert_eq!(s.trace.method, TraceMethod::Exact);
     let light = format!("{}[[light]]\nposition = {{ r = 0.5 }}\n", member("1", "1"));
-    assert_eq!(field(&light), "light[0]");
+    let e = err(&light);
+    assert_eq!(e.field, "light[0]");
+    assert!(e.message.contains("Gödel-type"), "{}", e.message);
+    // Flat spacetime still has no closed forms.
+    let flat = "[spacetime]\nmetric = \"minkowski\"\n[trace]\nmethod = \"exact\"\n";
+    assert_eq!(field(flat), "trace.method");
 }
 
-/// Positions are bounded by the member's geometry: mρ ≤ 30 where m² > 0; for m² = −μ² < 0
+/// Positions are bounded by the member's geometry: mρ ≤ 8 where m² > 0 (what the tracers
+/// trace, `MAX_SCENE_M_RHO`); for m² = −μ² < 0
 /// within π/μ − ρ_c of the axis (the coordinates end at the pole ρ = π/μ).
 #[test]
 fn godel_type_positions_stay_where_the_coordinates_hold() {
@@ -393,9 +398,11 @@ fn godel_type_positions_stay_where_the_coordinates_hold() {
             "[spacetime]\nmetric = \"godel-type\"\nm2 = {m2}\nomega = 1\n[observer]\nposition = {{ r = {r} }}\n"
         ))
     };
-    // m² = 4: m = 2, the limit is ρ = 15.
-    assert!(at(4.0, 14.9).is_ok());
-    assert_eq!(at(4.0, 15.1).unwrap_err().field, "observer.position");
+    // m² = 4: m = 2, the limit is ρ = 4.
+    assert!(at(4.0, 3.9).is_ok());
+    let e = at(4.0, 4.1).unwrap_err();
+    assert_eq!(e.field, "observer.position");
+    assert!(e.message.contains("mρ = 8"), "{}", e.message);
     // m² = −1: μ = 1, ρ_c = 2 atan(1/2), the limit is π − ρ_c ≈ 2.214.
     let limit = std::f64::consts::PI - 2.0 * 0.5f64.atan();
     assert!(at(-1.0, limit - 0.01).is_ok());
