@@ -126,7 +126,7 @@ impl Scene {
         let limit = self
             .metric
             .godel_type()
-            .and_then(crate::validate::member_radius_limit);
+            .and_then(crate::ranges::member_radius_limit);
         if let Some((limit, why)) = limit {
             let rho = moved.event.r();
             if rho.is_nan() || rho > limit {

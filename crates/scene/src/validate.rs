@@ -16,6 +16,7 @@ use crate::camera::Camera;
 use crate::checker::{Checker, Result};
 use crate::error::Locator;
 use crate::model::*;
+use crate::ranges::{member_radius_limit, MAX_M2_PER_OMEGA2};
 use crate::raw::*;
 use spacetime::{Event, Godel, GodelType, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
@@ -40,27 +41,6 @@ pub const MAX_COORDINATE_PER_A: f64 = 1e6;
 /// The Gödel parameter a, smallest and largest: beyond them the metric's terms (r²/a, 1/a²)
 /// overflow or lose the precision of f64 (a = 1e-300 made even the axis unusable).
 pub const A_RANGE: (f64, f64) = (1e-6, 1e6);
-
-/// Largest |m²|/Ω² of a Gödel-type member: the family's character (causal or not, shells)
-/// is decided at m² of the order of Ω² (m² = 4Ω² is the causal boundary).
-pub const MAX_M2_PER_OMEGA2: f64 = 100.0;
-
-/// Largest mρ of a position in a Gödel-type member with m² > 0 where the coordinates still
-/// hold (Gödel's own bound, 1e6·a of its radius r = 2a sinh(ρ/2a), is mρ ≈ 29): the bound of
-/// single geodesics and shadow rays (`crate::ranges`). Scenes are bounded tighter,
-/// [`MAX_SCENE_M_RHO`].
-pub const MAX_M_RHO: f64 = 30.0;
-
-/// Largest mρ of a scene's position (observer, objects) in a Gödel-type member with m² > 0:
-/// what both tracers trace. Measured with a ball at rest and a falling one beside an
-/// observer at mρ = 4 … 12 (m²/Ω² = 2, 4, 6; render's exact and numeric tracers): the exact
-/// tracer carries each pixel's tangent to the observer's origin frame, where it is null only
-/// to ~e^{mρ}·1e-16 of E², past the closed form's tolerance 1e-12 from mρ ≈ 9 (it failed 69
-/// of 100 rays at mρ = 10 for m² = 6Ω², half the image at mρ = 12 for Gödel's member); the
-/// numeric tracer failed from mρ = 12 (Gödel's member) and in the causal members spent its
-/// step budget on some rays from mρ = 6 (m² = 6Ω²: 5 % of the pixels, 11 % at mρ = 8), whose
-/// escape it can prove only once they are twice as far from the observer's axis.
-pub const MAX_SCENE_M_RHO: f64 = 8.0;
 
 /// Largest proper radius of a local sphere in units of a (for a falling one, of γ²·radius):
 /// a local object is described in its rest frame to second order in its size (Riemann
@@ -468,28 +448,6 @@ fn local_sizes(c: &Checker, objects: &[Object], a: f64, scale: &str) -> Result<(
         }
     }
     Ok(())
-}
-
-/// How far from the axis a Gödel-type member's scene may reach, and why. m² > 0: the metric
-/// grows as e^{mρ}, and beyond mρ = [`MAX_SCENE_M_RHO`] the tracers lose the digits they
-/// need (its documentation). m² < 0:
-/// the coordinates end at ρ = π/μ (the base's pole opposite the axis); every light ray and
-/// free fall is a circle of diameter at most ρ_c on the base, so a scene within π/μ − ρ_c of
-/// the axis never reaches that pole.
-pub(crate) fn member_radius_limit(member: GodelType) -> Option<(f64, String)> {
-    if member.m2 > 0.0 {
-        let limit = MAX_SCENE_M_RHO / member.m2.sqrt();
-        Some((
-            limit,
-            format!(
-                "the metric grows as e^(mρ), and beyond mρ = {MAX_SCENE_M_RHO} the tracers lose the precision of f64 they need"
-            ),
-        ))
-    } else {
-        let end = member.coordinate_radius()?;
-        let rho_c = member.critical_radius()?;
-        Some((end - rho_c, format!("rays from there could cross the pole opposite the axis at π/μ = {}, where the coordinates end (light and free falls stay within ρ_c = {} of where they pass)", crate::short(end), crate::short(rho_c))))
-    }
 }
 
 /// Every time, position and size in the scene within [`MAX_COORDINATE_PER_A`] of the
