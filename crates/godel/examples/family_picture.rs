@@ -5,7 +5,7 @@
 //!
 //! Each Ri is m²/Ω²; the scene's own Ω is kept and its `m2` line replaced by Ri·Ω² (the
 //! scene's text, so each member's render is exactly `godel render` of that text). Each
-//! member is traced by the numeric tracer and shaded as `godel render`'s preview.
+//! member is traced by the scene's tracer and shaded as `godel render`'s preview.
 
 use anyhow::{bail, Context};
 use image::{Rgba, RgbaImage};
