@@ -30,14 +30,14 @@ impl Tracer {
         probes: &mut Probes,
     ) -> FirstLoop {
         let (sys, s0) = GeodesicSystem::new(self.objects.metric, start);
-        let geo = match geo {
-            Some(ClosedForm::Godel(g)) => ClosedForm::Godel(g),
+        // Gödel's rays all return, after λ_ret = π/ω.
+        let (geo, l_ret) = match geo {
+            Some(ClosedForm::Godel(g)) => (ClosedForm::Godel(g), g.origin.return_parameter()),
             Some(ClosedForm::Type(g)) => {
                 return self.first_loop_family(g, sys, s0, segments, probes)
             }
             None => return FirstLoop::Ended(End::Miss(RayStatus::Failed)),
         };
-        let l_ret = geo.return_parameter().expect("Gödel's rays return");
         for i in 0..EXACT_SEGMENTS {
             let (l0, l1) = (
                 l_ret * i as f64 / EXACT_SEGMENTS as f64,
