@@ -143,8 +143,7 @@ def geodesic(
     particle of that speed in that frame (λ is its proper time). ``past`` follows it into
     the past (as godel's rays are traced), else into the future. ``method`` ``"exact"``
     evaluates the closed form carried by an isometry, ``"numeric"`` integrates the geodesic
-    equations (DOP853); both give the same curve. The default is ``"exact"`` in Gödel's
-    universe and ``"numeric"`` in the family, whose closed forms are not available yet. It
+    equations (DOP853); both give the same curve. The default is ``"exact"``. It
     stops where |t − time| reaches ``max_past``, or by default after one loop (back on its
     starting axis, or at the latest after |t − time| = 2√2·π·a; in the family with
     a = 1/(√2·Ω)).
@@ -163,7 +162,7 @@ def geodesic(
     (``"axis_return"``, ``"time_reached"``, ``"affine_limit"``).
     """
     if method is None:
-        method = "numeric" if metric == "godel-type" else "exact"
+        method = "exact"
     stop, columns = _godel.geodesic(
         str(metric),
         None if a is None else float(a),

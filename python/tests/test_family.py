@@ -66,7 +66,6 @@ def test_a_member_equals_the_cli():
     (dict(metric="godel-type", m2=math.inf, omega=1.0), "m2"),
     (dict(metric="godel-type", m2=-101.0, omega=1.0), "m2"),
     (dict(metric="godel-type", m2=1.0, omega=1.0, a=1.0), "a"),
-    (dict(metric="godel-type", m2=1.0, omega=1.0, method="exact"), "method"),
     (dict(metric="godel-type", m2=4.0, omega=1.0, position=(15.01, 0, 0)), "position"),
     (dict(metric="godel-type", m2=-1.0, omega=0.5, position=(0, 1.58, 0)), "position"),
     (dict(m2=1.0), "m2"),

@@ -10,8 +10,10 @@
 //! λ = π/ω, the time limit by root finding. (t is monotonic along causal curves where
 //! r < 2a, since there the surfaces of constant t are spacelike: g^tt = −(1 − r²/4a²)/(1 +
 //! r²/4a²) < 0. A curve from off the axis may go beyond; there the root found is a place
-//! where |t − t_start| reaches the limit, not necessarily the first.) In Minkowski spacetime
-//! the exact curve is the straight line.
+//! where |t − t_start| reaches the limit, not necessarily the first.) In a Gödel-type member
+//! it is the member's closed form ([`TypeExactGeodesic`], docs/physics.md "The Gödel-type
+//! family"), stopping at the axis return λ = π/√Λ of a returning ray; in Minkowski
+//! spacetime the exact curve is the straight line.
 //!
 //! Every input is checked here ([`CurveRequest::new`]); a refusal names the input at fault
 //! ([`Input`]), so that each front end names it as its user wrote it.
@@ -19,7 +21,7 @@
 use crate::message::short;
 use crate::{
     refine_root, trace, Drift, Event, ExactGeodesic, FourVector, Geodesic, GeodesicKind,
-    GeodesicState, Metric, Spacetime, StopReason, TimeDirection, TraceLimits,
+    GeodesicState, Metric, Spacetime, StopReason, TimeDirection, TraceLimits, TypeExactGeodesic,
 };
 
 /// Default time limit in Minkowski spacetime, where rays never come back.
@@ -123,12 +125,6 @@ impl CurveRequest {
         until_time: Option<f64>,
         samples: usize,
     ) -> Result<CurveRequest, CurveError> {
-        if method == CurveMethod::Exact && metric.godel_type().is_some() {
-            return Err(refuse(
-                Input::Method,
-                "the closed forms of the Gödel-type family are not available yet: use the numeric method",
-            ));
-        }
         let frame = metric.static_frame(start);
         if !start.to_array().iter().all(|c| c.is_finite()) || !frame.e.iter().all(|e| e.is_finite())
         {
@@ -300,12 +296,17 @@ pub fn stop_name(stop: StopReason) -> &'static str {
     }
 }
 
-/// The closed-form curve of either metric: Gödel's through an isometry, Minkowski's a line.
+/// The closed-form curve of each metric: Gödel's and a Gödel-type member's through an
+/// isometry, Minkowski's a line.
 enum ExactCurve {
     Godel {
         metric: Metric,
         a: f64,
         g: ExactGeodesic,
+    },
+    Family {
+        metric: Metric,
+        g: TypeExactGeodesic,
     },
     Line {
         metric: Metric,
@@ -316,20 +317,24 @@ enum ExactCurve {
 
 impl ExactCurve {
     fn new(metric: Metric, at: Event, k: FourVector) -> Option<ExactCurve> {
-        match metric.godel_a() {
-            Some(a) => Some(ExactCurve::Godel {
+        match metric {
+            Metric::Godel(godel) => Some(ExactCurve::Godel {
                 metric,
-                a,
-                g: ExactGeodesic::new(a, at, k)?,
+                a: godel.a,
+                g: ExactGeodesic::new(godel.a, at, k)?,
             }),
-            None if metric.godel_type().is_none() => Some(ExactCurve::Line { metric, at, k }),
-            None => None,
+            Metric::GodelType(member) => Some(ExactCurve::Family {
+                metric,
+                g: TypeExactGeodesic::new(member, at, k)?,
+            }),
+            Metric::Minkowski(_) => Some(ExactCurve::Line { metric, at, k }),
         }
     }
 
     fn event_and_tangent(&self, lambda: f64) -> (Event, FourVector) {
         match self {
             ExactCurve::Godel { g, .. } => g.at(lambda),
+            ExactCurve::Family { g, .. } => g.at(lambda),
             ExactCurve::Line { at, k, .. } => (
                 Event::new(
                     at.t + lambda * k.t,
@@ -344,7 +349,9 @@ impl ExactCurve {
 
     fn state(&self, lambda: f64) -> GeodesicState {
         let metric = match self {
-            ExactCurve::Godel { metric, .. } | ExactCurve::Line { metric, .. } => metric,
+            ExactCurve::Godel { metric, .. }
+            | ExactCurve::Family { metric, .. }
+            | ExactCurve::Line { metric, .. } => metric,
         };
         let (x, k) = self.event_and_tangent(lambda);
         GeodesicState {
@@ -354,7 +361,8 @@ impl ExactCurve {
     }
 
     /// The parameter where the curve stops under `limits`, and why: the first of the
-    /// return to the starting axis (λ = π/ω, Gödel only, not for curves along the axis),
+    /// return to the starting axis (λ = π/ω in Gödel's universe, π/√Λ for a returning ray
+    /// of a Gödel-type member; not for curves along the axis),
     /// |t − t_start| = until_time, and λ = max_affine (as the numeric method).
     fn stop(&self, limits: &TraceLimits) -> Result<(f64, StopReason), CurveError> {
         let axis = match self {
@@ -363,6 +371,11 @@ impl ExactCurve {
             {
                 Some(g.origin.return_parameter())
             }
+            ExactCurve::Family { metric, g } if limits.stop_at_axis_return => g
+                .origin
+                .rho_max()
+                .filter(|r| *r > 1e-12 * metric.length_scale())
+                .and_then(|_| g.origin.return_parameter()),
             _ => None,
         };
         let time =

@@ -57,7 +57,7 @@ Minkowski geodesic stops at |t - T| = 10. Either method stops at the latest at p
 
 Gödel-type family: --metric godel-type --m2 M2 --omega OMEGA is the member ds² = \
 −(dt + H dφ)² + dρ² + D² dφ² + dz² (docs/physics.md); R is the proper radius ρ. Gödel's \
-universe with parameter a is m2 = 1/a², omega = 1/(√2·a). Only --method numeric so far.
+universe with parameter a is m2 = 1/a², omega = 1/(√2·a). --method exact follows the member's closed form.
 
 Limits: --samples at most 1000000; --a within [1e-6, 1e6]; --omega with 1/(√2·Ω) in that \
 range, |--m2| at most 100·Ω²; R at most 30/m for m² > 0, at most π/μ − ρ_c for m² = −μ² < 0.

@@ -173,14 +173,6 @@ fn bad_family_flags_exit_2_naming_the_flag() {
             &[&family[..], &["--m2", "-101", "--omega", "1"]].concat(),
             "--m2",
         ),
-        (
-            &[
-                &family[..],
-                &["--m2", "1", "--omega", "1", "--method", "exact"],
-            ]
-            .concat(),
-            "--method",
-        ),
         (&["--m2", "1"], "--m2"),
         (&["--omega", "1"], "--omega"),
         (&["--metric", "minkowski", "--m2", "1"], "--m2"),

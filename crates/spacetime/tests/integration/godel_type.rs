@@ -334,3 +334,85 @@ fn the_godel_like_chart_is_the_member_in_other_coordinates() {
         }
     }
 }
+
+/// `spacetime::curve` (what `godel geodesic` and Python's `geodesic` print) by the exact
+/// method in a Gödel-type member is the numeric method's curve: same stop, same samples
+/// (light and a particle, in and out of the plane, from on and off the axis), for
+/// m²/Ω² = −1, 0, 1, 2, 3.5, 4, 6.
+#[test]
+fn the_exact_curve_of_a_member_is_the_numeric_one() {
+    use spacetime::curve::{compute, CurveMethod, CurveRequest};
+    let omega = 0.7;
+    for ratio in [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0] {
+        let metric = Metric::GodelType(GodelType::new(ratio * omega * omega, omega));
+        for (start, direction, speed) in [
+            (Event::new(0.0, 0.0, 0.0, 0.0), [1.0, 0.0, 0.0], None),
+            (Event::new(0.0, 0.3, -0.2, 0.1), [0.2, 1.0, 0.5], None),
+            (Event::new(1.0, -0.4, 0.1, 0.0), [1.0, 0.3, -0.2], Some(0.6)),
+        ] {
+            let curve = |method| {
+                let req = CurveRequest::new(
+                    metric,
+                    method,
+                    start,
+                    direction,
+                    speed,
+                    TimeDirection::Past,
+                    // Within what the integrator follows: in m² ≥ 4Ω² rays in the plane
+                    // reach infinity within a finite coordinate time.
+                    Some(1.0),
+                    40,
+                )
+                .unwrap();
+                compute(&req).unwrap()
+            };
+            let (exact, numeric) = (curve(CurveMethod::Exact), curve(CurveMethod::Numeric));
+            assert_eq!(exact.stop, numeric.stop, "m²/Ω² = {ratio}");
+            let scale = (exact.lambda_end.abs()).max(1.0);
+            assert!(
+                (exact.lambda_end - numeric.lambda_end).abs() < 1e-7 * scale,
+                "m²/Ω² = {ratio}: λ_end {} vs {}",
+                exact.lambda_end,
+                numeric.lambda_end
+            );
+            for ((le, se), (ln, sn)) in exact.samples.iter().zip(&numeric.samples) {
+                assert!((le - ln).abs() < 1e-7 * scale);
+                let (a, b) = (se.x.to_array(), sn.x.to_array());
+                for c in 0..4 {
+                    assert!(
+                        (a[c] - b[c]).abs() < 1e-6 * (1.0 + a[c].abs()),
+                        "m²/Ω² = {ratio} {start:?}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+        }
+    }
+    // The default stop: back on the axis, where returning rays come back (λ = π/√Λ).
+    for ratio in [-1.0, 0.0, 1.0, 2.0, 3.5] {
+        let metric = Metric::GodelType(GodelType::new(ratio * omega * omega, omega));
+        let curve = |method| {
+            let start = Event::new(0.0, 0.0, 0.0, 0.0);
+            let req = CurveRequest::new(
+                metric,
+                method,
+                start,
+                [1.0, 0.0, 0.2],
+                None,
+                TimeDirection::Past,
+                None,
+                20,
+            )
+            .unwrap();
+            compute(&req).unwrap()
+        };
+        let (exact, numeric) = (curve(CurveMethod::Exact), curve(CurveMethod::Numeric));
+        assert_eq!(exact.stop, StopReason::AxisReturn, "m²/Ω² = {ratio}");
+        assert_eq!(numeric.stop, StopReason::AxisReturn, "m²/Ω² = {ratio}");
+        assert!(
+            (exact.lambda_end - numeric.lambda_end).abs() < 1e-7 * exact.lambda_end,
+            "m²/Ω² = {ratio}: {} vs {}",
+            exact.lambda_end,
+            numeric.lambda_end
+        );
+    }
+}
