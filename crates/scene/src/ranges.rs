@@ -36,14 +36,21 @@ pub const MAX_SCENE_M_RHO: f64 = 8.0;
 /// free fall is a circle of diameter at most ρ_c on the base, so a scene within π/μ − ρ_c of
 /// the axis never reaches that pole.
 pub fn member_radius_limit(member: GodelType) -> Option<(f64, String)> {
+    radius_limit(
+        member,
+        MAX_SCENE_M_RHO,
+        "the tracers lose the precision of f64 they need",
+    )
+}
+
+/// The largest distance from a member's axis, and why: mρ ≤ `max_m_rho` for m² > 0 (the
+/// metric grows as e^{mρ}; `beyond` says what fails there), π/μ − ρ_c for m² = −μ² < 0;
+/// none for m² = 0.
+fn radius_limit(member: GodelType, max_m_rho: f64, beyond: &str) -> Option<(f64, String)> {
     if member.m2 > 0.0 {
-        let limit = MAX_SCENE_M_RHO / member.m2.sqrt();
-        Some((
-            limit,
-            format!(
-                "the metric grows as e^(mρ), and beyond mρ = {MAX_SCENE_M_RHO} the tracers lose the precision of f64 they need"
-            ),
-        ))
+        let limit = max_m_rho / member.m2.sqrt();
+        let why = format!("the metric grows as e^(mρ), and beyond mρ = {max_m_rho} {beyond}");
+        Some((limit, why))
     } else {
         let end = member.coordinate_radius()?;
         let rho_c = member.critical_radius()?;
@@ -95,8 +102,9 @@ pub fn check_omega(omega: f64) -> Result<f64, String> {
     let a = 1.0 / (std::f64::consts::SQRT_2 * omega);
     if !(A_RANGE.0..=A_RANGE.1).contains(&a) {
         return Err(format!(
-            "{} is outside [{:e}, {:e}], as in scenes (spacetime.omega: 1/(√2 Ω) within the \
-             range of Gödel's a): the metric loses the precision of f64 there",
+            "{} is outside [{:e}, {:e}] (1/(√2 Ω) must be within the range of Gödel's a): the \
+             metric loses the precision of f64 there (choose the unit of length so that Ω is \
+             moderate)",
             short(omega),
             1.0 / (std::f64::consts::SQRT_2 * A_RANGE.1),
             1.0 / (std::f64::consts::SQRT_2 * A_RANGE.0)
@@ -114,9 +122,9 @@ pub fn check_m2(m2: f64, omega: f64) -> Result<f64, String> {
     let ratio = m2 / (omega * omega);
     if ratio.abs() > MAX_M2_PER_OMEGA2 {
         return Err(format!(
-            "{} is {} Ω²; |m²| must be at most {MAX_M2_PER_OMEGA2} Ω² = {}, as in scenes \
-             (spacetime.m2): beyond, the metric's exponentials lose the precision of f64 \
-             within a few units of length",
+            "{} is {} Ω²; |m²| must be at most {MAX_M2_PER_OMEGA2} Ω² = {}: beyond, the \
+             curvature scale 1/|m| is so much smaller than the vorticity's that the metric's \
+             exponentials lose the precision of f64 within a few units of length",
             short(m2),
             short(ratio),
             short(MAX_M2_PER_OMEGA2 * omega * omega)
@@ -130,31 +138,15 @@ pub fn check_m2(m2: f64, omega: f64) -> Result<f64, String> {
 /// π/μ − ρ_c (light and free falls from there stay within ρ_c of it and cannot reach the
 /// pole opposite the axis at ρ = π/μ, where the coordinates end).
 pub fn check_member_radius(member: GodelType, rho: f64) -> Result<(), String> {
-    if member.m2 > 0.0 {
-        let limit = MAX_M_RHO / member.m2.sqrt();
-        if rho.is_nan() || rho > limit {
-            return Err(format!(
-                "R = {} is beyond mρ = {MAX_M_RHO} (R ≤ {}), as in scenes: the metric grows as \
-                 e^(mρ) and loses the precision of f64 there",
-                short(rho),
-                short(limit)
-            ));
-        }
-    } else if let (Some(end), Some(rho_c)) = (member.coordinate_radius(), member.critical_radius())
-    {
-        if rho.is_nan() || rho > end - rho_c {
-            return Err(format!(
-                "R = {} is beyond π/μ − ρ_c = {}, as in scenes: rays from there could cross the \
-                 pole opposite the axis at π/μ = {}, where the coordinates end (light and free \
-                 falls stay within ρ_c = {} of where they pass)",
-                short(rho),
-                short(end - rho_c),
-                short(end),
-                short(rho_c)
-            ));
-        }
+    let beyond = "it loses the precision of f64";
+    match radius_limit(member, MAX_M_RHO, beyond) {
+        Some((limit, why)) if rho.is_nan() || rho > limit => Err(format!(
+            "R = {} is beyond {}, as in scenes: {why}",
+            short(rho),
+            short(limit)
+        )),
+        _ => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]

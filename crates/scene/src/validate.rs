@@ -16,7 +16,7 @@ use crate::camera::Camera;
 use crate::checker::{Checker, Result};
 use crate::error::Locator;
 use crate::model::*;
-use crate::ranges::{member_radius_limit, MAX_M2_PER_OMEGA2};
+use crate::ranges::{check_m2, check_omega, member_radius_limit};
 use crate::raw::*;
 use spacetime::{Event, Godel, GodelType, LocalVelocity, Metric, Minkowski};
 use std::collections::HashMap;
@@ -184,38 +184,11 @@ fn spacetime(c: &Checker, raw: Option<RawSpacetime>) -> Result<Metric> {
                 "by metric = \"godel-type\" (its constants are m2 and omega)",
             )?;
             let why = "by metric = \"godel-type\"";
+            // The ranges' one home is `crate::ranges` (the command line checks with it too).
             let omega = c.required("spacetime.omega", s.omega, why)?;
-            let omega = c.positive("spacetime.omega", omega)?;
-            // Gödel's a of the same vorticity, 1/(√2 Ω), within the range allowed for a.
-            let a = 1.0 / (std::f64::consts::SQRT_2 * omega);
-            if !(A_RANGE.0..=A_RANGE.1).contains(&a) {
-                return c.err(
-                    "spacetime.omega",
-                    format!(
-                        "{} is outside [{:e}, {:e}] (1/(√2 Ω) must be within the range of Gödel's a): \
-                         the metric loses the precision of f64 there (choose the unit of length so that Ω is moderate)",
-                        crate::short(omega),
-                        1.0 / (std::f64::consts::SQRT_2 * A_RANGE.1),
-                        1.0 / (std::f64::consts::SQRT_2 * A_RANGE.0)
-                    ),
-                );
-            }
+            let omega = check_omega(omega).or_else(|e| c.err("spacetime.omega", e))?;
             let m2 = c.required("spacetime.m2", s.m2, why)?;
-            let m2 = c.finite("spacetime.m2", m2)?;
-            let ratio = m2 / (omega * omega);
-            if ratio.abs() > MAX_M2_PER_OMEGA2 {
-                return c.err(
-                    "spacetime.m2",
-                    format!(
-                        "{} is {} Ω²; |m²| must be at most {MAX_M2_PER_OMEGA2} Ω² = {}: beyond, the \
-                         curvature scale 1/|m| is so much smaller than the vorticity's that the \
-                         metric's exponentials lose the precision of f64 within a few units of length",
-                        crate::short(m2),
-                        crate::short(ratio),
-                        crate::short(MAX_M2_PER_OMEGA2 * omega * omega)
-                    ),
-                );
-            }
+            let m2 = check_m2(m2, omega).or_else(|e| c.err("spacetime.m2", e))?;
             Ok(Metric::GodelType(GodelType::new(m2, omega)))
         }
     }

@@ -16,8 +16,8 @@
 //! The rays with their directions, area distance and miss distance are
 //! `spacetime::connection`'s; this file parses the flags and prints them.
 
-use crate::args::{coordinates, member, parse_vector, scale_a, usage, Format};
-use crate::cmd::geodesic::MetricName;
+use crate::args::{coordinates, parse_vector, usage, Format};
+use crate::cmd::geodesic::{metric_of, MetricName};
 use anyhow::Context;
 use scene::short;
 use serde_json::json;
@@ -25,7 +25,7 @@ use spacetime::connection::{
     connections, on_the_source_axis, type_connections, type_on_the_source_axis, Connections,
     MAX_WINDINGS,
 };
-use spacetime::{Cylindrical, Godel, Metric};
+use spacetime::{Cylindrical, Metric};
 use std::io::Write;
 
 /// Raw command-line arguments of `godel connect`.
@@ -71,38 +71,16 @@ pub struct ConnectArgs {
     pub format: Format,
 }
 
-/// The metric of `--metric` with its constants; the other metric's constants refused.
+/// The metric of `--metric` with its constants (`geodesic::metric_of`); connect knows the
+/// metrics with closed-form shadow rays.
 fn metric(args: &ConnectArgs) -> anyhow::Result<Metric> {
-    match args.metric {
-        MetricName::Godel => {
-            for (flag, value) in [("--m2", args.m2), ("--omega", args.omega)] {
-                if value.is_some() {
-                    return Err(usage(
-                        flag,
-                        "is a constant of --metric godel-type: not used by --metric godel",
-                    ));
-                }
-            }
-            Ok(Metric::Godel(Godel::new(scale_a(
-                "--a",
-                args.a.unwrap_or(1.0),
-            )?)))
-        }
-        MetricName::GodelType => {
-            if args.a.is_some() {
-                return Err(usage(
-                    "--a",
-                    "not used by --metric godel-type: its constants are --m2 and --omega \
-                     (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
-                ));
-            }
-            Ok(Metric::GodelType(member(args.m2, args.omega)?))
-        }
-        MetricName::Minkowski => Err(usage(
+    if args.metric == MetricName::Minkowski {
+        return Err(usage(
             "--metric",
             "connect knows Gödel's universe (godel) and the Gödel-type family (godel-type)",
-        )),
+        ));
     }
+    metric_of(args.metric, args.a, args.m2, args.omega)
 }
 
 /// Finds and checks every connecting ray for the arguments.

@@ -142,32 +142,7 @@ fn curve_error(e: CurveError) -> anyhow::Error {
 impl Request {
     /// Checks every value; errors name the flag.
     pub fn from_args(args: &GeodesicArgs) -> anyhow::Result<Request> {
-        let metric = match args.metric {
-            MetricName::Godel => {
-                refuse_member(args, "godel")?;
-                Metric::Godel(Godel::new(scale_a("--a", args.a.unwrap_or(1.0))?))
-            }
-            MetricName::Minkowski => {
-                refuse_member(args, "minkowski")?;
-                if args.a.is_some() {
-                    return Err(usage(
-                        "--a",
-                        "is the Gödel parameter: not used by --metric minkowski",
-                    ));
-                }
-                Metric::Minkowski(Minkowski)
-            }
-            MetricName::GodelType => {
-                if args.a.is_some() {
-                    return Err(usage(
-                        "--a",
-                        "not used by --metric godel-type: its constants are --m2 and --omega \
-                         (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
-                    ));
-                }
-                Metric::GodelType(member(args.m2, args.omega)?)
-            }
-        };
+        let metric = metric_of(args.metric, args.a, args.m2, args.omega)?;
         let [t, r, phi, z] = parse_vector::<4>("--at", &args.at)?;
         if r < 0.0 {
             return Err(usage("--at", format!("R must be ≥ 0, got {}", short(r))));
@@ -206,17 +181,52 @@ impl Request {
     }
 }
 
-/// --m2 and --omega belong to --metric godel-type: refused with the other metrics.
-fn refuse_member(args: &GeodesicArgs, metric: &str) -> anyhow::Result<()> {
-    for (flag, value) in [("--m2", args.m2), ("--omega", args.omega)] {
-        if value.is_some() {
-            return Err(usage(
-                flag,
-                format!("is a constant of --metric godel-type: not used by --metric {metric}"),
-            ));
+/// The metric of `--metric` with its constants `--a` (Gödel's, default 1) or `--m2` and
+/// `--omega` (a Gödel-type member's, both required), each checked as in scenes; the other
+/// metrics' constants refused naming their flag (`godel geodesic`, `godel connect`).
+pub fn metric_of(
+    name: MetricName,
+    a: Option<f64>,
+    m2: Option<f64>,
+    omega: Option<f64>,
+) -> anyhow::Result<Metric> {
+    let refuse_member = |metric: &str| -> anyhow::Result<()> {
+        for (flag, value) in [("--m2", m2), ("--omega", omega)] {
+            if value.is_some() {
+                return Err(usage(
+                    flag,
+                    format!("is a constant of --metric godel-type: not used by --metric {metric}"),
+                ));
+            }
         }
-    }
-    Ok(())
+        Ok(())
+    };
+    Ok(match name {
+        MetricName::Godel => {
+            refuse_member("godel")?;
+            Metric::Godel(Godel::new(scale_a("--a", a.unwrap_or(1.0))?))
+        }
+        MetricName::Minkowski => {
+            refuse_member("minkowski")?;
+            if a.is_some() {
+                return Err(usage(
+                    "--a",
+                    "is the Gödel parameter: not used by --metric minkowski",
+                ));
+            }
+            Metric::Minkowski(Minkowski)
+        }
+        MetricName::GodelType => {
+            if a.is_some() {
+                return Err(usage(
+                    "--a",
+                    "not used by --metric godel-type: its constants are --m2 and --omega \
+                     (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
+                ));
+            }
+            Metric::GodelType(member(m2, omega)?)
+        }
+    })
 }
 
 /// One output row: parameter, cylindrical and Cartesian position.

@@ -89,12 +89,13 @@ impl Tracer {
                 _ => l0 + h,
             };
             let y0 = segments.last().map_or(s0, |d| d.y1);
-            segments.push(Segment::exact(geo, sys, l0, y0, l1));
+            let segment = Segment::exact(geo, sys, l0, y0, l1);
+            let y1 = segment.y1;
+            segments.push(segment);
             probes.activate(0, l0);
             if let Some(end) = self.scan_first_loop(segments, l0, l1, probes) {
                 return FirstLoop::Ended(end);
             }
-            let y1 = segments.last().expect("just pushed").y1;
             if y1[0] < self.t_bound {
                 return FirstLoop::Ended(End::Miss(RayStatus::Escaped));
             }
@@ -115,8 +116,9 @@ impl Tracer {
             // symmetrically: beyond them all until λ_ret − l1, one segment never searched.
             if let Some(l) = l_ret.filter(|&l| stop.beyond_reach(&y1) && l - l1 > l1 + h) {
                 let back = l - l1;
-                segments.push(Segment::exact(geo, sys, l1, y1, back).beyond_objects());
-                let end = segments.last().expect("just pushed").state_at(back);
+                let far = Segment::exact(geo, sys, l1, y1, back).beyond_objects();
+                let end = far.state_at(back);
+                segments.push(far);
                 self.objects.probe_all(&end, back, probes);
                 l0 = back;
             }
