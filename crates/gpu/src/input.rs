@@ -183,7 +183,7 @@ pub fn split_time(t: f64) -> [f32; 2] {
 pub fn refusal(scene: &Scene) -> Option<String> {
     scene.metric.godel_type().map(|_| {
         "the GPU kernel knows only Gödel's metric and flat spacetime, not yet the Gödel-type \
-         family's metric and closed forms, so this member is traced on the CPU"
+         family's metric and closed forms"
             .to_string()
     })
 }

@@ -9,7 +9,10 @@
 //! an isometry, where the rays are solved for in one variable. There can be several, emitted
 //! at different times (two per winding around the source's axis, and infinitely many
 //! windings when the target is off the source's plane); rays emitted more than `max_past`
-//! before the hit are not counted, the same window as the pixel rays.
+//! before the hit are not counted, the same window as the pixel rays. In a Gödel-type
+//! member they are [`spacetime::type_shadow_rays`], and the windings the window can hold are
+//! counted with the member's shortest loop time (docs/physics.md, "Direct light in the
+//! family").
 //!
 //! Intensity law (irradiance on the surface, in the object's rest frame; docs/physics.md,
 //! "Area distance and irradiance"), per ray:
@@ -36,17 +39,18 @@
 //! own intersection search (bracketing with rate bounds, so thin occluders are not missed)
 //! on the closed-form curve from emission to just before the hit ([`END_CUT`]): the lit
 //! surface itself is not counted at its end point, but it does block a ray that passes
-//! through the object earlier (self-shadowing, e.g. of later windings). Objects at rest that
-//! a connecting ray provably never comes near (`crate::reject`) are left out of its search,
-//! and a ball in free fall from the ray's last λ within its reach on (docs/physics.md,
-//! "Occlusion").
+//! through the object earlier (self-shadowing, e.g. of later windings). In Gödel's universe
+//! objects at rest that a connecting ray provably never comes near (`crate::reject`) are
+//! left out of its search, and a ball in free fall from the ray's last λ within its reach on
+//! (docs/physics.md, "Occlusion"); a Gödel-type member has no such tests, and searches
+//! every object along the whole ray.
 
 use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
 use crate::reject::{set_ray, Rejection};
-use crate::segment::{ClosedForm, Segment, Shift, EXACT_SEGMENTS};
+use crate::segment::{ClosedForm, Segment, Shift};
 use spacetime::{
-    shadow_rays, source_area_distance_sq, Event, ExactGeodesic, GeodesicState, GeodesicSystem,
-    Godel, ShadowRay, Spacetime,
+    shadow_rays, source_area_distance_sq, type_shadow_rays, type_source_area_distance_sq,
+    type_windings_within, Event, GeodesicState, GeodesicSystem, Metric, ShadowRay, Spacetime,
 };
 use std::f64::consts::{PI, SQRT_2};
 use std::sync::OnceLock;
@@ -103,9 +107,9 @@ impl Lighting {
     }
 
     /// Direct light from each source at a pixel ray's hit (see the module documentation)
-    /// into `out[k]` for light k: zeros where the ray hit nothing (`hit` is `None`) or the
-    /// metric is not Gödel's, NaN where a connecting ray's occlusion search ran out of work
-    /// (unknown light).
+    /// into `out[k]` for light k: zeros where the ray hit nothing (`hit` is `None`) or in flat
+    /// spacetime, NaN where a connecting ray's occlusion search ran out of work (unknown
+    /// light).
     pub fn illuminate(
         &self,
         objects: &Intersector,
@@ -114,24 +118,27 @@ impl Lighting {
         out: &mut [f32],
     ) {
         out.fill(0.0);
-        let (Some(hit), Some(a)) = (hit, objects.metric.godel_a()) else {
+        let metric = &objects.metric;
+        let Some(hit) = hit.filter(|_| !matches!(metric, Metric::Minkowski(_))) else {
             return;
         };
         let rejections = self.rejections.get_or_init(|| {
             self.lights
                 .iter()
-                .map(|l| {
-                    objects
+                .map(|l| match metric.godel_a() {
+                    // Whole-ray rejection has Gödel's closed forms only.
+                    Some(a) => objects
                         .targets
                         .iter()
                         .map(|t| Rejection::new(a, l.position, t))
-                        .collect()
+                        .collect(),
+                    None => Vec::new(),
                 })
                 .collect()
         });
         for ((o, light), rejections) in out.iter_mut().zip(&self.lights).zip(rejections) {
             *o = self
-                .irradiance(objects, a, (light, rejections), hit, probes)
+                .irradiance(objects, (light, rejections), hit, probes)
                 .map_or(f32::NAN, |e| e as f32);
         }
     }
@@ -142,7 +149,6 @@ impl Lighting {
     fn irradiance(
         &self,
         objects: &Intersector,
-        a: f64,
         (light, rejections): (&LightSource, &[Option<Rejection>]),
         hit: &HitPoint,
         probes: &mut Probes,
@@ -152,8 +158,8 @@ impl Lighting {
         let view = metric.raise(x, hit.state.p);
         let target = &objects.targets[hit.target];
         let mut sum = 0.0;
-        for ray in self.connecting_rays(a, light, x) {
-            let Some(geo) = ExactGeodesic::new(a, ray.emission, ray.tangent) else {
+        for ray in self.connecting_rays(metric, light, x) {
+            let Some(geo) = ClosedForm::new(metric, ray.emission, ray.tangent) else {
                 continue;
             };
             let (_, k_end) = geo.at(ray.lambda);
@@ -163,7 +169,7 @@ impl Lighting {
             if !(inc.cos > 0.0) {
                 continue;
             }
-            let d2 = source_area_distance_sq(a, light.position, &ray);
+            let d2 = area_distance_sq(metric, light.position, &ray);
             if !(d2 > 0.0 && d2.is_finite()) {
                 continue;
             }
@@ -176,18 +182,47 @@ impl Lighting {
         Some(sum)
     }
 
-    /// The light rays from `light` to `x` emitted at most the window before it.
-    pub fn connecting_rays(&self, a: f64, light: &LightSource, x: Event) -> Vec<ShadowRay> {
-        // Each winding takes at least the shortest loop time of the source's clock; the
-        // isometry to the source's axis shifts the target's time by at most 2√2 a·π.
-        let t_ret = Godel::new(a).shortest_loop_time();
-        let windings = ((self.window + 2.0 * SQRT_2 * PI * a) / t_ret)
-            .ceil()
-            .min(1e4) as u32
-            + 1;
-        let mut rays = shadow_rays(a, light.position, x, windings);
+    /// The light rays from `light` to `x` emitted at most the window before it (none in flat
+    /// spacetime, which has no lights).
+    pub fn connecting_rays(
+        &self,
+        metric: &Metric,
+        light: &LightSource,
+        x: Event,
+    ) -> Vec<ShadowRay> {
+        let mut rays = match metric {
+            Metric::Godel(g) => {
+                // Each winding takes at least the shortest loop time of the source's clock;
+                // the isometry to the source's axis shifts the target's time by at most
+                // 2√2 a·π.
+                let travel = self.window + 2.0 * SQRT_2 * PI * g.a;
+                let n = (travel / g.shortest_loop_time())
+                    .ceil()
+                    .min(MAX_WINDINGS as f64) as u32
+                    + 1;
+                shadow_rays(g.a, light.position, x, n)
+            }
+            Metric::GodelType(m) => {
+                let p = light.position;
+                let n = type_windings_within(*m, p, x, self.window, MAX_WINDINGS);
+                type_shadow_rays(*m, p, x, n)
+            }
+            Metric::Minkowski(_) => Vec::new(),
+        };
         rays.retain(|r| r.emission.t >= x.t - self.window);
         rays
+    }
+}
+
+/// Most windings of the connecting rays searched per light and hit.
+const MAX_WINDINGS: u32 = 10_000;
+
+/// The source's area distance squared along `ray` from a source at rest at `source`.
+fn area_distance_sq(metric: &Metric, source: Event, ray: &ShadowRay) -> f64 {
+    match metric {
+        Metric::Godel(g) => source_area_distance_sq(g.a, source, ray),
+        Metric::GodelType(m) => type_source_area_distance_sq(*m, source, ray),
+        Metric::Minkowski(_) => f64::NAN,
     }
 }
 
@@ -204,7 +239,7 @@ impl Lighting {
 /// "Occlusion"). `t_start`: the emission's time after the light's event of the tests.
 fn occluded(
     objects: &Intersector,
-    geo: ExactGeodesic,
+    geo: ClosedForm,
     ray: &ShadowRay,
     (t_start, rejections): (f64, &[Option<Rejection>]),
     lit: usize,
@@ -212,20 +247,22 @@ fn occluded(
 ) -> Result<bool, OutOfWork> {
     let metric = objects.metric;
     let end = ray.lambda * (1.0 - END_CUT);
-    set_ray(rejections, Some(&geo.origin), t_start, end, probes);
-    let l_ret = geo.origin.return_parameter();
-    let per_loop = l_ret / EXACT_SEGMENTS as f64;
-    let n = (end / per_loop).ceil().clamp(1.0, 1e5) as usize;
+    let origin = geo.godel().map(|g| &g.origin);
+    set_ray(rejections, origin, t_start, end, probes);
+    let per_segment = geo.segment_length(metric.length_scale());
+    let n = (end / per_segment).ceil().clamp(1.0, 1e5) as usize;
     // The lit object is searched up to the last segment only: its whole-ray test over that
     // stretch may drop it (a lit plane always: z is linear, and the ray meets it at its end).
     let last = end * (n - 1) as f64 / n as f64;
-    if let Some(r) = rejections.get(lit).and_then(Option::as_ref) {
-        if r.misses(&geo.origin, last) {
+    if let (Some(r), Some(origin)) = (rejections.get(lit).and_then(Option::as_ref), origin) {
+        if r.misses(origin, last) {
             probes.on_ray[lit] = false;
         }
     }
     // One chain of segments with no fresh probe: an object is searched from the start up
     // to its last λ within reach (a stretch searched later would start from other probes).
+    // Only Gödel's rejection tests search by loop (`set_ray`), and Gödel's rays return.
+    let l_ret = geo.return_parameter().unwrap_or(f64::INFINITY);
     for i in 0..probes.loops.len() {
         if probes.by_loop[i] {
             let last = probes.last(i, l_ret);
@@ -245,7 +282,7 @@ fn occluded(
     let mut y0 = s0;
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
-        let d = Segment::exact(ClosedForm::Godel(geo), sys, l0, y0, l1);
+        let d = Segment::exact(geo, sys, l0, y0, l1);
         probes.activate(0, l0);
         if i + 1 == n {
             probes.active[lit] = false;

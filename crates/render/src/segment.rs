@@ -74,6 +74,24 @@ impl ClosedForm {
         }
     }
 
+    /// The λ length of the segments the tracers cut this ray into: Gödel's loop in
+    /// [`EXACT_SEGMENTS`]; a member's equal segments of at most [`STEP_PER_SCALE`] length
+    /// scales (`length_scale`, the member's), at least [`EXACT_SEGMENTS`] a loop and a whole
+    /// number of them to the return where the ray returns.
+    pub fn segment_length(&self, length_scale: f64) -> f64 {
+        match self {
+            ClosedForm::Godel(g) => g.origin.return_parameter() / EXACT_SEGMENTS as f64,
+            ClosedForm::Type(g) => {
+                // Light moves through the base and z at the proper speed |E|.
+                let step = STEP_PER_SCALE * length_scale / g.origin.energy.abs();
+                match family_return(&g.origin) {
+                    Some(l) => l / (l / step).ceil().max(EXACT_SEGMENTS as f64),
+                    None => step,
+                }
+            }
+        }
+    }
+
     /// Gödel's closed form, if this is one.
     pub fn godel(&self) -> Option<&ExactGeodesic> {
         match self {
@@ -159,6 +177,13 @@ impl std::ops::Deref for Segment {
         &self.data
     }
 }
+
+/// Proper length of one segment of a Gödel-type ray in the exact tracer, per length scale of
+/// the member (`Metric::length_scale`): a light ray moves through the base and z at the
+/// constant proper speed |E| (dρ² + D²dφ² + dz² = (dt + H dφ)² = E² dλ²), so segments of
+/// equal λ are of equal proper length. Gödel's loop, cut in `EXACT_SEGMENTS`, has segments
+/// of about half its a.
+pub const STEP_PER_SCALE: f64 = 0.5;
 
 /// Below this fraction of Ω²E², Λ = Ω²E² − m²A/4 is taken for 0 (`family_return`).
 pub const BOUNDARY_LAMBDA: f64 = 1e-12;

@@ -44,7 +44,8 @@ mod escape;
 mod exact;
 mod numeric;
 
-pub use escape::{EscapeStop, MAX_FAMILY_SEGMENTS, STEP_PER_SCALE};
+pub use crate::segment::STEP_PER_SCALE;
+pub use escape::{EscapeStop, MAX_FAMILY_SEGMENTS};
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
 use crate::polarization::{self, RayPlace};

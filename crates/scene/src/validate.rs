@@ -320,11 +320,12 @@ fn trace(c: &Checker, raw: Option<RawTrace>) -> Result<TraceSettings> {
     })
 }
 
-/// Checks that need both the metric and the rest. The exact tracer uses closed forms, Gödel's
-/// or the Gödel-type family's; the lights use Gödel's, so they need that metric. In Gödel's
-/// universe, rays loop with a period of at least [`Godel::shortest_loop_time`], so
-/// `max_past` bounds the number of loops a ray makes ([`MAX_RAY_LOOPS`]); and a local
-/// sphere must be small against the curvature scale (a in Gödel's universe).
+/// Checks that need both the metric and the rest. The exact tracer and the lights use
+/// closed forms, Gödel's or the Gödel-type family's, so they need one of those metrics; the
+/// GPU kernel knows Gödel's only. Light rays loop with a period of at least the metric's
+/// shortest loop time, so `max_past` bounds the number of loops a ray makes
+/// ([`MAX_RAY_LOOPS`]); and a local sphere must be small against the curvature scale (a in
+/// Gödel's universe, the member's length scale in the family).
 fn godel_rules(
     c: &Checker,
     metric: &Metric,
@@ -332,60 +333,55 @@ fn godel_rules(
     objects: &[Object],
     lights: &[Light],
 ) -> Result<()> {
-    let godel = match metric {
-        Metric::Godel(godel) => godel,
-        Metric::Minkowski(_) | Metric::GodelType(_) => {
-            let need = "spacetime.metric = \"godel\"";
-            let not_yet = match metric {
-                Metric::GodelType(_) => " (not yet in the Gödel-type family)",
-                _ => "",
-            };
-            // The Gödel-type family has closed forms of its own (render's exact tracer).
-            if trace.method == TraceMethod::Exact && metric.godel_type().is_none() {
-                return c.err(
-                    "trace.method",
-                    format!(
-                        "\"exact\" uses closed-form geodesics: it needs {need} or \"godel-type\""
-                    ),
-                );
-            }
-            if !lights.is_empty() {
-                return c.err(
-                    "light[0]",
-                    format!("lights are traced with the Gödel closed forms (shadow rays): they need {need}{not_yet}"),
-                );
-            }
-            if let (Metric::GodelType(_), true) = (metric, trace.gpu) {
-                return c.err(
-                    "trace.gpu",
-                    format!("the GPU kernel knows only Gödel's metric and flat spacetime so far: it needs {need}{not_yet}"),
-                );
-            }
-            // Flat spacetime has no curvature scale: a local ball of any size is exact.
-            if metric.godel_type().is_none() {
-                return Ok(());
-            }
-            let a = metric.length_scale();
-            let scale = format!(
-                "the length scale a = min(1/(√2 Ω), 1/|m|) = {}",
-                crate::short(a)
+    let Some(t_loop) = metric.shortest_loop_time() else {
+        // Flat spacetime.
+        let need = "spacetime.metric = \"godel\" or \"godel-type\"";
+        if trace.method == TraceMethod::Exact {
+            return c.err(
+                "trace.method",
+                format!("\"exact\" uses closed-form geodesics: it needs {need}"),
             );
-            return local_sizes(c, objects, a, &scale);
         }
+        if !lights.is_empty() {
+            return c.err(
+                "light[0]",
+                format!("lights are traced with closed forms (shadow rays): they need {need}"),
+            );
+        }
+        // No curvature scale: a local ball of any size is exact.
+        return Ok(());
     };
-    let a = godel.a;
-    let loops = trace.max_past / godel.shortest_loop_time();
+    if let (Metric::GodelType(_), true) = (metric, trace.gpu) {
+        return c.err(
+            "trace.gpu",
+            "the GPU kernel knows only Gödel's metric and flat spacetime so far: it needs spacetime.metric = \"godel\" (not yet in the Gödel-type family)",
+        );
+    }
+    let loops = trace.max_past / t_loop;
+    let (loop_law, scale) = match metric {
+        Metric::Godel(g) => ("2πa(√2 − 1)", format!("a = {}", g.a)),
+        _ => (
+            "π/(Ω + √max(0, Ω² − m²/4))",
+            format!(
+                "the length scale a = min(1/(√2 Ω), 1/|m|) = {}",
+                crate::short(metric.length_scale())
+            ),
+        ),
+    };
     if loops > MAX_RAY_LOOPS as f64 {
+        let raise = match metric {
+            Metric::Godel(_) => "raise spacetime.a",
+            _ => "lower spacetime.omega",
+        };
         return c.err(
             "trace.max_past",
             format!(
-                "{} is {loops:.3e} loops of a light ray (one loop takes at least 2πa(√2 − 1) = {:.4} with a = {a}); at most {MAX_RAY_LOOPS} are followed: reduce max_past or raise spacetime.a",
-                trace.max_past,
-                godel.shortest_loop_time()
+                "{} is {loops:.3e} loops of a light ray (one loop takes at least {loop_law} = {:.4}); at most {MAX_RAY_LOOPS} are followed: reduce max_past or {raise}",
+                trace.max_past, t_loop
             ),
         );
     }
-    local_sizes(c, objects, a, &format!("a = {a}"))
+    local_sizes(c, objects, metric.length_scale(), &scale)
 }
 
 /// Local spheres small against the curvature scale `a` (module constants above).

@@ -107,6 +107,19 @@ impl GodelType {
         }
     }
 
+    /// The shortest coordinate time in which a light ray from the axis comes back to it
+    /// (docs/physics.md, "Direct light in the family"): a ray with E = 1 leaving at angle ψ
+    /// to the axis, σ = sin ψ, s = √Λ = √(Ω² − m²σ²/4) > 0, returns after
+    /// t_loop = (π/s)(1 − Ωσ²/(Ω + s)), whose least value is π/(Ω + s₁) in the plane,
+    /// s₁ = √(Ω² − m²/4), for m² < 4Ω², and π/Ω (rays along the axis) for m² ≥ 4Ω². The
+    /// Gödel member gives Gödel's 2πa(√2 − 1). Along these rays t never falls (they stay
+    /// within ρ_c, where ∂φ is spacelike), so a ray back on the axis n times has taken at
+    /// least n times this.
+    pub fn shortest_loop_time(&self) -> f64 {
+        let s1 = (self.omega * self.omega - 0.25 * self.m2).max(0.0).sqrt();
+        std::f64::consts::PI / (self.omega + s1)
+    }
+
     /// Where the coordinates end: ρ = π/μ for m² = −μ² < 0 (the base is a sphere and ρ = π/μ
     /// its pole opposite the axis); None for m² ≥ 0.
     pub fn coordinate_radius(&self) -> Option<f64> {

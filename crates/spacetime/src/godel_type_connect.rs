@@ -296,6 +296,29 @@ pub fn type_shadow_rays(
     out
 }
 
+/// The most windings [`type_shadow_rays`] needs to find every light ray from a source at rest
+/// at `source` to `target` emitted at most `window` before it, capped at `cap`
+/// (docs/physics.md, "Direct light in the family"): on the source's axis a ray of winding n
+/// has travelled at least n [`GodelType::shortest_loop_time`], t never falling along it,
+/// and the isometry to that axis moves the target's time by δ. (On the sphere a ray from a
+/// source beyond |ζ_S| = 4Ω/μ² winds about the image of the pole, and the cut's correction
+/// makes it emitted a period 8πΩ/μ² earlier per loop: it travels longer, never shorter.)
+pub fn type_windings_within(
+    member: GodelType,
+    source: Event,
+    target: Event,
+    window: f64,
+    cap: u32,
+) -> u32 {
+    let source = Event::new(0.0, source.x, source.y, source.z);
+    let Some(to) = TypeIsometry::to_origin(member, source) else {
+        return 0;
+    };
+    let shift = to.apply(target).t - target.t;
+    let n = ((window + shift) / member.shortest_loop_time()).ceil();
+    (n.clamp(0.0, f64::from(cap)) as u32).saturating_add(1)
+}
+
 /// The source's area distance squared, D² = dA/dΩ, of a light ray from a source at rest at
 /// `source` in `member`, as [`crate::source_area_distance_sq`] defines it for Gödel and
 /// computes it: in the frame where the source is on the axis (the isometry keeps the

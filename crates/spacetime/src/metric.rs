@@ -149,6 +149,16 @@ impl Metric {
     pub fn coordinate_radius(&self) -> Option<f64> {
         self.godel_type().and_then(|g| g.coordinate_radius())
     }
+    /// The shortest coordinate time in which a light ray returns to the axis it left: Gödel's
+    /// 2πa(√2 − 1), or the member's ([`GodelType::shortest_loop_time`]); None in flat
+    /// spacetime, where rays do not return.
+    pub fn shortest_loop_time(&self) -> Option<f64> {
+        match self {
+            Metric::Godel(g) => Some(g.shortest_loop_time()),
+            Metric::GodelType(g) => Some(g.shortest_loop_time()),
+            Metric::Minkowski(_) => None,
+        }
+    }
     /// Short name as used in scene files and on the command line.
     pub fn name(&self) -> &'static str {
         match self {

@@ -209,7 +209,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         return Err(crate::args::usage("--part", GPU_ONE_PROCESS));
     }
     if let (true, Some(why)) = (args.gpu, gpu::input::refusal(&scene)) {
-        return Err(crate::args::usage("--gpu", why));
+        return Err(crate::args::usage(
+            "--gpu",
+            format!("{why}: trace this member without --gpu"),
+        ));
     }
     prepare_outputs(target.folder(), &scene, &outputs)?;
     let plan = part.map_or(Plan::All, Plan::Part);

@@ -28,13 +28,6 @@ use crate::segment::family_return;
 use crate::target::Target;
 use spacetime::{Event, Metric, TypeExactGeodesic, STATE};
 
-/// Proper length of one segment of a Gödel-type ray in the exact tracer, per length scale of
-/// the member (`Metric::length_scale`): a light ray moves through the base and z at the
-/// constant proper speed |E| (dρ² + D²dφ² + dz² = (dt + H dφ)² = E² dλ²), so segments of
-/// equal λ are of equal proper length. Gödel's loop, cut in `EXACT_SEGMENTS`, has segments
-/// of about half its a.
-pub const STEP_PER_SCALE: f64 = 0.5;
-
 /// The most segments an escaping ray (or a returning ray's first loop) is cut into: beyond
 /// it the pixel is marked as out of work. Rays near the boundary between the regimes rise
 /// only as log λ (w = sinh(mρ/2) ≈ Ω k⊥ λ in m² = 4Ω²), so reaching past the objects' reach

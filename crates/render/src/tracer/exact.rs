@@ -5,14 +5,14 @@
 //!   segments up to the ray's return to the axis, whose parameter and shift are known
 //!   exactly. The GPU kernel (crates/gpu) mirrors this.
 //! - A Gödel-type member ("The Gödel-type family", "The exact tracer in the family"): equal
-//!   segments of at most [`STEP_PER_SCALE`] length scales of proper length (at least
+//!   segments of at most [`crate::segment::STEP_PER_SCALE`] length scales of proper length (at least
 //!   [`EXACT_SEGMENTS`] per loop), up to the return to the axis for a returning ray, else
 //!   until the ray is done; in a causal member a stretch beyond every object is one
 //!   unsearched segment (`super::escape`). At most [`MAX_FAMILY_SEGMENTS`] segments.
 //!
 //! Later loops and the record are the tracer's (`super`).
 
-use super::escape::{MAX_FAMILY_SEGMENTS, STEP_PER_SCALE};
+use super::escape::MAX_FAMILY_SEGMENTS;
 use super::{End, FirstLoop, Tracer};
 use crate::intersect::Probes;
 use crate::segment::{ClosedForm, Segment, Shift, EXACT_SEGMENTS};
@@ -74,13 +74,8 @@ impl Tracer {
         probes: &mut Probes,
     ) -> FirstLoop {
         let geo = ClosedForm::Type(g);
-        // Light moves through the base and z at the proper speed |E|.
-        let step = STEP_PER_SCALE * self.objects.metric.length_scale() / g.origin.energy.abs();
         let l_ret = geo.return_parameter();
-        let h = match l_ret {
-            Some(l) => l / (l / step).ceil().max(EXACT_SEGMENTS as f64),
-            None => step,
-        };
+        let h = geo.segment_length(self.objects.metric.length_scale());
         let mut l0 = 0.0;
         for _ in 0..MAX_FAMILY_SEGMENTS {
             let l1 = match l_ret {

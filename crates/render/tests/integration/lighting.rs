@@ -1,13 +1,18 @@
 //! Direct illumination (shadow rays): a light beyond the observer's horizon is never seen
 //! yet lights the ball, also on its averted side; an occluder's shadow falls where an
-//! independent numeric integration of the connecting rays says it must; the light planes
-//! survive the data file.
+//! independent numeric integration of the connecting rays says it must, in Gödel's universe
+//! and in Gödel-type members; the window of emission times holds every winding it should;
+//! the light planes survive the data file.
 
 use crate::common::{render_scene, scene};
 use datafile::DataFile;
+use render::lighting::{LightSource, Lighting};
+use scene::Scene;
 use spacetime::{
-    shadow_rays, trace, Event, Geodesic, GeodesicKind, Godel, Metric, Spacetime, TraceLimits,
+    shadow_rays, trace, type_shadow_rays, Event, Geodesic, GeodesicKind, Godel, GodelType, Metric,
+    ShadowRay, Spacetime, TraceLimits, TypeExactGeodesic,
 };
+use std::f64::consts::PI;
 use std::path::Path;
 
 fn scene_text(name: &str, width: u32, height: u32) -> String {
@@ -146,15 +151,24 @@ fn ray_facts(
     (to_blocker, to_ball, cos)
 }
 
-#[test]
-fn the_shadow_falls_where_the_connecting_rays_cross_the_occluder() {
-    let a = 1.0;
-    let m = Metric::Godel(Godel::new(a));
-    let shadow = scene(&scene_text("lit-shadow.toml", 360, 40));
-    let (with, _) = render_scene(&shadow);
-    let (without, _) = render_scene(&scene(&scene_text("lit-side.toml", 360, 40)));
+/// The light rays from a source at rest at `light` to `x` with up to `windings` windings, by
+/// the closed forms of `m` (Gödel's or a member's).
+fn rays_to(m: &Metric, light: Event, x: Event, windings: u32) -> Vec<ShadowRay> {
+    match m {
+        Metric::Godel(g) => shadow_rays(g.a, light, x, windings),
+        Metric::GodelType(member) => type_shadow_rays(*member, light, x, windings),
+        Metric::Minkowski(_) => Vec::new(),
+    }
+}
+
+/// Where the lit ball of `shadow` is darker than in `without` (the same scene without the
+/// blocker), some connecting ray, integrated numerically, comes near the blocker; where a
+/// contributing ray surely crosses it, the pixel is dark. Returns (checked, dark, surely
+/// predicted) pixels.
+fn shadow_check(m: &Metric, shadow: &Scene, without: &Scene, blocker: Event) -> [usize; 3] {
+    let (with, _) = render_scene(shadow);
+    let (without, _) = render_scene(without);
     let ball = Event::new(0.0, 1.0, 0.0, 0.0);
-    let blocker = Event::new(0.0, 0.686, 0.444, 0.0);
     let (r_ball, r_blocker) = (0.2, 0.08);
     let light = shadow.lights[0].position;
     let window = shadow.trace.max_past;
@@ -173,11 +187,12 @@ fn the_shadow_falls_where_the_connecting_rays_cross_the_occluder() {
             f64::from(r.z),
         );
         let (mut surely, mut maybe) = (false, false);
-        for ray in shadow_rays(a, light, x, 8) {
+        // Far more windings than the window holds: which of them count is the window's.
+        for ray in rays_to(m, light, x, 12) {
             if ray.emission.t < x.t - window {
                 continue;
             }
-            let (b, s, cos) = ray_facts(&m, &ray, ball, blocker);
+            let (b, s, cos) = ray_facts(m, &ray, ball, blocker);
             // A ray that counts: arrives on the outside and did not cross the ball before.
             let counts = cos > 0.05 && s > 1.05 * r_ball;
             let could = cos > -0.05 && s > 0.95 * r_ball;
@@ -186,20 +201,163 @@ fn the_shadow_falls_where_the_connecting_rays_cross_the_occluder() {
         }
         assert!(
             !surely || is_dark,
-            "pixel {i}: a contributing ray crosses the blocker, yet not dark"
+            "{m:?}, pixel {i}: a contributing ray crosses the blocker, yet not dark"
         );
         assert!(
             !is_dark || maybe,
-            "pixel {i}: dark, yet no ray comes near the blocker"
+            "{m:?}, pixel {i}: dark, yet no ray comes near the blocker"
         );
         dark += is_dark as usize;
         predicted += surely as usize;
     }
+    eprintln!("{m:?}: {checked} lit ball pixels, {dark} in shadow, {predicted} surely predicted");
+    [checked, dark, predicted]
+}
+
+#[test]
+fn the_shadow_falls_where_the_connecting_rays_cross_the_occluder() {
+    let m = Metric::Godel(Godel::new(1.0));
+    let shadow = scene(&scene_text("lit-shadow.toml", 360, 40));
+    let without = scene(&scene_text("lit-side.toml", 360, 40));
+    let blocker = Event::new(0.0, 0.686, 0.444, 0.0);
+    let [checked, dark, predicted] = shadow_check(&m, &shadow, &without, blocker);
     assert!(
         checked > 200 && dark >= 10 && predicted >= 10,
-        "{checked} checked, {dark} dark, {predicted} predicted"
+        "{checked} checked, {dark} dark, {predicted} surely predicted"
     );
-    eprintln!("{checked} lit ball pixels, {dark} in shadow, {predicted} surely predicted");
+}
+
+/// The same in Gödel-type members (issue 34) of Gödel's vorticity (Ω = 1/√2), m²/Ω² = −1,
+/// 0, 3.5 and 6: the lit-shadow scene with the blocker put halfway along the latest light
+/// ray from the light to the ball's centre (which differs from member to member).
+#[test]
+fn in_the_family_the_shadow_falls_where_the_connecting_rays_cross_the_occluder() {
+    let omega = 0.5f64.sqrt();
+    for ratio in [-1.0, 0.0, 3.5, 6.0] {
+        let member = GodelType::new(ratio * omega * omega, omega);
+        let m = Metric::GodelType(member);
+        let light = Event::new(0.0, 1.0, 1.0, 0.0);
+        let first = type_shadow_rays(member, light, Event::new(0.0, 1.0, 0.0, 0.0), 0)[0];
+        let (mid, _) = TypeExactGeodesic::new(member, first.emission, first.tangent)
+            .unwrap()
+            .at(0.5 * first.lambda);
+        let spacetime = format!(
+            "metric = \"godel-type\"\nm2 = {:?}\nomega = {omega:?}",
+            member.m2
+        );
+        let text = scene_text("lit-shadow.toml", 240, 30)
+            .replace("metric = \"godel\"\na = 1.0", &spacetime)
+            .replace(
+                "position = { x = 0.686, y = 0.444, z = 0.0 }",
+                &format!(
+                    "position = {{ x = {:?}, y = {:?}, z = {:?} }}",
+                    mid.x, mid.y, mid.z
+                ),
+            );
+        let shadow = scene(&text);
+        assert_eq!((shadow.metric, shadow.objects.len()), (m, 2));
+        let mut without = shadow.clone();
+        without.objects.pop();
+        let blocker = Event::new(0.0, mid.x, mid.y, mid.z);
+        let [checked, dark, predicted] = shadow_check(&m, &shadow, &without, blocker);
+        assert!(
+            checked > 100 && dark >= 5 && predicted >= 5,
+            "{m:?}: {checked} checked, {dark} dark, {predicted} surely predicted"
+        );
+    }
+}
+
+/// A uniform number in [lo, hi) from the xorshift state `seed`.
+fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 7;
+    *seed ^= *seed << 17;
+    lo + (hi - lo) * (*seed >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// The window of emission times is filled: for random lights and events in Gödel's universe
+/// and in members m²/Ω² = −1, 0, 1, 3.5, 4, 6 (lights and events within the scene bounds),
+/// the connecting rays direct light uses are exactly those of 60 windings (far beyond the
+/// window) emitted within it, ray for ray; and some events get rays of more than one
+/// winding (in the causal members only events far apart along z can); on the sphere also
+/// for lights far enough out that their rays cross the cut of the time shift.
+#[test]
+fn direct_light_counts_every_winding_within_the_window() {
+    let omega = 0.5f64.sqrt();
+    let mut metrics = vec![Metric::Godel(Godel::new(1.0))];
+    for ratio in [-1.0, 0.0, 1.0, 3.5, 4.0, 6.0] {
+        metrics.push(Metric::GodelType(GodelType::new(
+            ratio * omega * omega,
+            omega,
+        )));
+    }
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let window = 12.0;
+    for m in metrics {
+        // In the causal members a returning ray gains at least π/Ω in z a loop.
+        let causal = m
+            .godel_type()
+            .is_some_and(|g| g.critical_radius().is_none());
+        let dz = if causal { 10.0 } else { 0.5 };
+        // Within 1.2 of the axis: inside every member's bounds (the sphere's π/μ − ρ_c = 3.1)
+        // and, mostly, within the light's reach of each other.
+        let mut at = |t: f64| {
+            let r = uniform(&mut seed, 0.0, 1.2);
+            let phi = uniform(&mut seed, 0.0, 2.0 * PI);
+            let z = uniform(&mut seed, -dz, dz);
+            let t = t + uniform(&mut seed, -5.0, 5.0);
+            Event::new(t, r * phi.cos(), r * phi.sin(), z)
+        };
+        let mut several = 0;
+        for _ in 0..40 {
+            let light = LightSource {
+                position: at(0.0),
+                power: 1.0,
+            };
+            let x = at(0.0);
+            let lighting = Lighting::new(vec![light], window);
+            let used = lighting.connecting_rays(&m, &light, x);
+            let mut all = rays_to(&m, light.position, x, 60);
+            all.retain(|r| r.emission.t >= x.t - window);
+            assert_eq!(used, all, "{m:?}: light at {light:?}, event {x:?}");
+            several += used.iter().any(|r| r.winding >= 1) as usize;
+        }
+        assert!(
+            several >= 5,
+            "{m:?}: only {several} events see a second winding"
+        );
+    }
+    // On the sphere, lights beyond |ζ_S| = 4Ω/μ² (ρ > 3.13 for m² = −Ω², outside the scenes'
+    // bounds), whose rays can cross the cut of the time shift, and events near them.
+    let sphere = GodelType::new(-omega * omega, omega);
+    let m = Metric::GodelType(sphere);
+    let mut crossing = 0;
+    for _ in 0..30 {
+        let (r, phi) = (
+            uniform(&mut seed, 3.3, 4.2),
+            uniform(&mut seed, 0.0, 2.0 * PI),
+        );
+        let light = LightSource {
+            position: Event::new(0.0, r * phi.cos(), r * phi.sin(), 0.0),
+            power: 1.0,
+        };
+        let (d, psi) = (
+            uniform(&mut seed, 0.1, 0.8),
+            uniform(&mut seed, 0.0, 2.0 * PI),
+        );
+        let x = Event::new(
+            uniform(&mut seed, -5.0, 5.0),
+            light.position.x + d * psi.cos(),
+            light.position.y + d * psi.sin(),
+            uniform(&mut seed, -0.5, 0.5),
+        );
+        let used = Lighting::new(vec![light], window).connecting_rays(&m, &light, x);
+        let mut all = rays_to(&m, light.position, x, 60);
+        all.retain(|r| r.emission.t >= x.t - window);
+        assert_eq!(used, all, "{m:?}: light at {light:?}, event {x:?}");
+        crossing += used.len();
+    }
+    assert!(crossing > 30, "{crossing} rays from the far lights");
 }
 
 #[test]

@@ -375,17 +375,28 @@ fn godel_type_members_and_their_constants() {
         "spacetime.omega"
     );
     assert_eq!(field("[spacetime]\nm2 = 1\n"), "spacetime.m2");
-    // The exact tracer has the family's closed forms; lights are not yet for the family.
+    // The exact tracer and the lights have the family's closed forms; the GPU kernel not.
     let exact = format!("{}[trace]\nmethod = \"exact\"\n", member("1", "1"));
     let s = scene(&exact).unwrap();
     assert_eq!(s.trace.method, TraceMethod::Exact);
     let light = format!("{}[[light]]\nposition = {{ r = 0.5 }}\n", member("1", "1"));
-    let e = err(&light);
-    assert_eq!(e.field, "light[0]");
+    assert_eq!(scene(&light).unwrap().lights.len(), 1);
+    let gpu = format!("{}[trace]\ngpu = true\n", member("1", "1"));
+    let e = err(&gpu);
+    assert_eq!(e.field, "trace.gpu");
     assert!(e.message.contains("Gödel-type"), "{}", e.message);
+    // max_past bounds the loops by the member's shortest loop time, π/(Ω + √(Ω² − m²/4)).
+    let t_loop = std::f64::consts::PI / (1.0 + (1.0f64 - 0.25).sqrt());
+    let loops = |n: f64| format!("{}[trace]\nmax_past = {}\n", member("1", "1"), n * t_loop);
+    assert!(scene(&loops(99_000.0)).is_ok());
+    let e = err(&loops(101_000.0));
+    assert_eq!(e.field, "trace.max_past");
+    assert!(e.message.contains("loops of a light ray"), "{}", e.message);
     // Flat spacetime still has no closed forms.
     let flat = "[spacetime]\nmetric = \"minkowski\"\n[trace]\nmethod = \"exact\"\n";
     assert_eq!(field(flat), "trace.method");
+    let flat = "[spacetime]\nmetric = \"minkowski\"\n[[light]]\nposition = { r = 0.5 }\n";
+    assert_eq!(field(flat), "light[0]");
 }
 
 /// Positions are bounded by the member's geometry: mρ ≤ 8 where m² > 0 (what the tracers
