@@ -60,11 +60,12 @@ pub enum Input {
 pub enum CurveError {
     /// An input is refused (a user's mistake); the message does not name the input.
     Input { input: Input, message: String },
-    /// The numeric integration failed.
+    /// The numeric integration failed; `note` says why it could, where that is known.
     Integration {
         reason: String,
         steps: usize,
         lambda: f64,
+        note: Option<String>,
     },
 }
 
@@ -76,10 +77,17 @@ impl std::fmt::Display for CurveError {
                 reason,
                 steps,
                 lambda,
-            } => write!(
-                f,
-                "integration failed: {reason} after {steps} steps at lambda = {lambda}"
-            ),
+                note,
+            } => {
+                write!(
+                    f,
+                    "integration failed: {reason} after {steps} steps at lambda = {lambda}"
+                )?;
+                match note {
+                    Some(note) => write!(f, ": {note}"),
+                    None => Ok(()),
+                }
+            }
         }
     }
 }
@@ -209,6 +217,22 @@ pub struct Curve {
     pub integration: Option<(usize, u64, u64)>,
 }
 
+/// Where a Gödel-type member with m² > 0 was integrated far from the axis: why the
+/// integration could fail there, and what follows the curve instead. The metric's terms grow
+/// as e^{mρ} and cancel to leave terms of e^{mρ} less (D² − H² in the causal members), so
+/// about mρ·log₁₀ e of its 16 digits are lost; beyond mρ = 8 (the scenes' bound) say so.
+fn far_out(metric: &Metric, at: Event) -> Option<String> {
+    let member = metric.godel_type().filter(|g| g.m2 > 0.0)?;
+    let m_rho = member.m2.sqrt() * at.r();
+    (m_rho > 8.0).then(|| {
+        format!(
+            "it had come to m·R = {m_rho:.1}, where the member's metric has lost about {:.0} of \
+             its 16 digits to cancellation; --method exact follows the closed form",
+            m_rho * std::f64::consts::LOG10_E
+        )
+    })
+}
+
 /// Computes the requested geodesic by its method; a failed integration is an error.
 pub fn compute(req: &CurveRequest) -> Result<Curve, CurveError> {
     let at = req.start;
@@ -225,6 +249,7 @@ pub fn compute(req: &CurveRequest) -> Result<Curve, CurveError> {
                     reason: traced.stop.describe().to_string(),
                     steps: traced.steps.len(),
                     lambda: traced.lambda_end,
+                    note: far_out(&req.metric, traced.end.x),
                 });
             }
             Ok(Curve {

@@ -101,6 +101,43 @@ fn in_plane_rays_from_the_axis_turn_at_the_critical_radius() {
     }
 }
 
+/// In a causal member an in-plane ray from the axis escapes, and its integration fails far
+/// out (mρ ≈ 14, where the metric's e^{mρ} terms cancel): the error says where and why, and
+/// names `--method exact`, which follows the ray to the time limit.
+#[test]
+fn a_numeric_ray_lost_far_out_says_why_and_what_follows_it() {
+    let args = [
+        "--metric",
+        "godel-type",
+        "--m2",
+        "4.5",
+        "--omega",
+        "1",
+        "--at",
+        "0,0,0,0",
+        "--dir",
+        "1,0,0",
+    ];
+    let out = godel(&[&["geodesic"], &args[..]].concat());
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("error: integration failed: step budget spent")
+            && err.contains("m·R = ")
+            && err.contains("--method exact"),
+        "{err}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let r = rows(&[&args[..], &["--method", "exact"]].concat());
+    let last = r.last().unwrap();
+    // To the default limit |t| = 2√2·π/(√2 Ω) = 2π, far beyond where the integration failed.
+    assert!(
+        (last[1] - 2.0 * std::f64::consts::PI).abs() < 1e-9,
+        "{last:?}"
+    );
+    assert!(4.5f64.sqrt() * last[2] > 30.0, "{last:?}");
+}
+
 #[test]
 fn json_records_the_member() {
     let out = godel(&[

@@ -24,7 +24,7 @@
 //! tracer uses it too) by the hyperbolic law of cosines in a form without cancellation:
 //! cosh(m d) = cosh(m(ρ₁ − ρ₂)) + 2 sinh(mρ₁) sinh(mρ₂) sin²(Δφ/2).
 
-use crate::segment::family_return;
+use crate::segment::{family_return, BOUNDARY_LAMBDA};
 use crate::target::Target;
 use spacetime::{Event, Metric, TypeExactGeodesic, STATE};
 
@@ -56,8 +56,8 @@ pub struct EscapeStop {
 
 impl EscapeStop {
     /// The stop for rays from `observer` among `targets`, traced back to `t_bound`; `None`
-    /// unless `metric` is a causal Gödel-type member (m² ≥ 4Ω²; in the others every light ray
-    /// returns to its axis within a bounded loop).
+    /// unless `metric` is a causal Gödel-type member (m² ≥ 4Ω², up to rounding; in the others
+    /// every light ray returns to its axis within a bounded loop).
     pub fn new(
         metric: &Metric,
         observer: Event,
@@ -65,7 +65,12 @@ impl EscapeStop {
         t_bound: f64,
     ) -> Option<EscapeStop> {
         let member = metric.godel_type()?;
-        if member.m2 < 4.0 * member.omega * member.omega {
+        // Within rounding of m² = 4Ω² (m2 = 2 with Ω = 1/√2 in f64 is one step below) the
+        // member counts as causal, as its in-plane rays count as boundary rays
+        // (`family_return`): ρ_c lies beyond mρ ≈ 28, where no scene reaches, and within it
+        // t still falls along every past-directed ray.
+        let w2 = member.omega * member.omega;
+        if member.m2 < 4.0 * w2 * (1.0 - BOUNDARY_LAMBDA) {
             return None;
         }
         let mut reach: f64 = 0.0;

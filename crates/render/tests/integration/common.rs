@@ -21,12 +21,16 @@ pub fn scene(text: &str) -> Scene {
 /// The example scene `scenes/NAME` with its camera resized to `width` × `height`, one ray per
 /// pixel (the tracers are compared ray by ray: samples add only cost), traced by `method`.
 pub fn scene_file(name: &str, method: &str, width: u32, height: u32) -> scene::Scene {
+    scene(&scene_text(name, method, width, height))
+}
+
+/// The text of [`scene_file`]'s scene.
+pub fn scene_text(name: &str, method: &str, width: u32, height: u32) -> String {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../scenes")
         .join(name);
     let text = std::fs::read_to_string(p).unwrap();
-    let text: String = text
-        .lines()
+    text.lines()
         .map(|l| match l.split('=').next().map(str::trim) {
             Some("width") => format!("width = {width}"),
             Some("height") => format!("height = {height}"),
@@ -37,8 +41,7 @@ pub fn scene_file(name: &str, method: &str, width: u32, height: u32) -> scene::S
         })
         .collect::<Vec<_>>()
         .join("\n")
-        .replace("[trace]", &format!("[trace]\nmethod = \"{method}\""));
-    scene(&text)
+        .replace("[trace]", &format!("[trace]\nmethod = \"{method}\""))
 }
 
 /// Renders on the current rayon pool.

@@ -11,6 +11,7 @@ use crate::common::{render_scene, scene};
 use datafile::record::RayStatus;
 use datafile::DataFile;
 use render::driver::RenderStats;
+use spacetime::{GodelType, Metric};
 
 /// Vorticity of every member: Gödel's a = 1/(√2 Ω) = 1.
 const OMEGA: f64 = std::f64::consts::FRAC_1_SQRT_2;
@@ -160,6 +161,35 @@ fn the_sky_of_causal_members_escapes() {
         assert!(a.differ * 1000 <= num.records.len(), "{name}: {a:?}");
         assert!(a.g <= 1e-6 && a.t <= 3e-5, "{name}: {a:?}");
     }
+}
+
+/// m2 = 2 with Ω = 1/√2 is one rounding step below 4Ω²: scenes/godel-type.toml written for
+/// the causal member. Its in-plane rays count as boundary rays, so the member counts as
+/// causal too (`EscapeStop`); before, the middle row of an odd-height image (220×25), exactly
+/// in the plane, was marked work limit or step budget on 202 pixels, in both tracers. Now no
+/// pixel fails, and the tracers agree.
+#[test]
+fn a_member_a_rounding_step_below_4_omega2_traces_its_plane() {
+    let m2 = 2.0;
+    assert!(m2 < 4.0 * OMEGA * OMEGA, "the case is one step below 4Ω²");
+    let mut renders = Vec::new();
+    for method in ["numeric", "exact"] {
+        let text = crate::common::scene_text("godel-type.toml", method, 220, 25)
+            .replace("m2 = 1.0", &format!("m2 = {m2:?}"));
+        let s = scene(&text);
+        assert_eq!(s.metric, Metric::GodelType(GodelType::new(m2, OMEGA)));
+        let (d, stats) = render_scene(&s);
+        eprintln!("{method}: {}", summary(&stats));
+        assert_eq!(
+            stats.failed + stats.step_budget + stats.work_limit,
+            0,
+            "{method}: {}",
+            summary(&stats)
+        );
+        renders.push(d);
+    }
+    let a = compare(&renders[0], &renders[1]);
+    assert!(a.differ * 1000 <= renders[0].records.len(), "{a:?}");
 }
 
 /// The stop itself, against the closed form (itself checked against DOP853 in the
