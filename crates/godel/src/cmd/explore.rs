@@ -242,13 +242,13 @@ impl FrameSource for SceneFrames {
 
     fn kernel_input(&self, event: ObserverEvent) -> Result<KernelInput, String> {
         let scene = scene_at(&self.scene, event, Level::Full).map_err(|e| format!("{e:#}"))?;
-        gpu::input::refusal(&scene).map_or(Ok(()), Err)?;
+        kernel_refusal(&scene)?;
         Ok(KernelInput::new(&scene))
     }
 
     fn view_input(&self, view: &View) -> Result<KernelInput, String> {
         let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
-        gpu::input::refusal(&scene).map_or(Ok(()), Err)?;
+        kernel_refusal(&scene)?;
         Ok(KernelInput::new(&scene))
     }
 
@@ -374,6 +374,15 @@ pub fn run(args: ExploreArgs) -> anyhow::Result<()> {
         viewer::explore_routes::router(state, explorer, access, kernel).merge(keep)
     })
     .context("the viewer's server failed")
+}
+
+/// Why the page's kernel cannot trace `scene` (`gpu::input::refusal`), and that the server
+/// traces it on the CPU instead.
+fn kernel_refusal(scene: &scene::Scene) -> Result<(), String> {
+    match gpu::input::refusal(scene) {
+        Some(why) => Err(format!("{why}: the server traces it on the CPU")),
+        None => Ok(()),
+    }
 }
 
 #[cfg(test)]
