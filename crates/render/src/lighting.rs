@@ -229,7 +229,8 @@ fn area_distance_sq(metric: &Metric, source: Event, ray: &ShadowRay) -> f64 {
 /// Whether any object blocks `ray` (future-directed from its emission) before it reaches
 /// its end, cut short by [`END_CUT`]. A surface crossing blocks, so a light inside a ball
 /// reaches only the ball's inner surface. The lit object (`lit`) is not searched on the last
-/// segment (at most 1/16 of a loop before the lit point): over so short a stretch the ray is
+/// segment (at most 1/16 of a loop, and in a member half a length scale, before the lit
+/// point): over so short a stretch the ray is
 /// nearly a circle arc, which meets a sphere in two points at most, so light that arrives at
 /// the lit point from outside (cos θ > 0) has not crossed the ball there; searching it would
 /// only bisect the ray's approach to its own end point, at great cost for grazing light,

@@ -44,7 +44,6 @@ mod escape;
 mod exact;
 mod numeric;
 
-pub use crate::segment::STEP_PER_SCALE;
 pub use escape::{EscapeStop, MAX_FAMILY_SEGMENTS};
 
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};

@@ -5,10 +5,10 @@
 //!   segments up to the ray's return to the axis, whose parameter and shift are known
 //!   exactly. The GPU kernel (crates/gpu) mirrors this.
 //! - A Gödel-type member ("The Gödel-type family", "The exact tracer in the family"): equal
-//!   segments of at most [`crate::segment::STEP_PER_SCALE`] length scales of proper length (at least
-//!   [`EXACT_SEGMENTS`] per loop), up to the return to the axis for a returning ray, else
-//!   until the ray is done; in a causal member a stretch beyond every object is one
-//!   unsearched segment (`super::escape`). At most [`MAX_FAMILY_SEGMENTS`] segments.
+//!   segments of at most [`crate::segment::STEP_PER_SCALE`] length scales of proper length
+//!   (at least [`EXACT_SEGMENTS`] per loop), up to the return to the axis for a returning
+//!   ray, else until the ray is done; in a causal member a stretch beyond every object is
+//!   one unsearched segment (`super::escape`). At most [`MAX_FAMILY_SEGMENTS`] segments.
 //!
 //! Later loops and the record are the tracer's (`super`).
 
