@@ -27,6 +27,7 @@ pub const KERNEL: &str = concat!(
     include_str!("kernel/scene_camera.glsl"),
     include_str!("kernel/spacetime_isometry.glsl"),
     include_str!("kernel/spacetime_closed_form.glsl"),
+    include_str!("kernel/spacetime_godel_type.glsl"),
     include_str!("kernel/render_segment.glsl"),
     include_str!("kernel/render_worldline.glsl"),
     include_str!("kernel/render_target.glsl"),

@@ -17,6 +17,7 @@
 #define PROBE_SHADOW 9
 #define PROBE_REJECT 10
 #define PROBE_SURFACE 11
+#define PROBE_FAMILY 12
 
 uniform sampler2D u_args;   // RGBA32F: fragment (x, y) reads texels (x·ARG_TEXELS + j, y)
 const int ARG_TEXELS = 4;
@@ -113,6 +114,26 @@ void main() {
 #elif PROBE == PROBE_SURFACE
     // The texture coordinates of the direction a0.xyz.
     slots[0] = vec4(lonLat(a0.xyz), 0.0, 0.0);
+#elif PROBE == PROBE_FAMILY
+    // In the member (m², Ω) = a1.yz (FAMILY is defined with this probe): the closed form from
+    // the origin with tangent a0 at λ = a1.x: (ok, λ_ret or −1, Λ, 0), the event, the tangent;
+    // T = R_{a1.w} ∘ T_{a2}: its (t0, ζ0, z0), the image of the event a3 and of the vector a0
+    // there, and the same under its inverse.
+    vec2 mb = a1.yz;
+    TGeo g = typeOriginGeodesic(mb, a0);
+    vec4 ev = vec4(0.0), tan_ = vec4(0.0);
+    tgeoAt(g, a1.x, ev, tan_);
+    slots[0] = vec4(flag(g.ok), typeReturnParameter(g), g.lam, 0.0);
+    slots[1] = ev; slots[2] = tan_;
+    TIso to = typeToOrigin(mb, a2);
+    TIso m = TIso(to.t0, to.zeta0, to.z0, a1.w);
+    vec4 e = vec4(0.0), k = vec4(0.0);
+    typeApplyPush(mb, m, a3, a0, e, k);
+    slots[3] = vec4(m.t0, m.zeta0, m.z0);
+    slots[4] = e; slots[5] = k;
+    vec4 ie = vec4(0.0), ik = vec4(0.0);
+    typeApplyPush(mb, typeInverseIso(m), a3, a0, ie, ik);
+    slots[6] = ie; slots[7] = ik;
 #else
 #error unknown PROBE
 #endif

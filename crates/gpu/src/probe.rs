@@ -54,10 +54,13 @@ pub enum Function {
     Reject,
     /// lonLat.
     Surface,
+    /// The Gödel-type family (FAMILY): typeOriginGeodesic, tgeoAt, typeReturnParameter,
+    /// typeToOrigin, typeApplyPush, typeInverseIso.
+    Family,
 }
 
 impl Function {
-    pub const ALL: [Function; 11] = [
+    pub const ALL: [Function; 12] = [
         Function::Elementary,
         Function::Metric,
         Function::Christoffel,
@@ -69,6 +72,7 @@ impl Function {
         Function::Shadow,
         Function::Reject,
         Function::Surface,
+        Function::Family,
     ];
 
     /// Its name in probe.glsl.
@@ -85,12 +89,19 @@ impl Function {
             Function::Shadow => "PROBE_SHADOW",
             Function::Reject => "PROBE_REJECT",
             Function::Surface => "PROBE_SURFACE",
+            Function::Family => "PROBE_FAMILY",
         }
     }
 
     /// The source after the defines: this probe's entry point selected, the kernel, the probe.
     pub fn kernel(self) -> String {
-        format!("#define PROBE {}\n{KERNEL}{PROBE}", self.define())
+        // The family's functions are compiled only where FAMILY is defined.
+        let family = if self == Function::Family {
+            "#define FAMILY 1\n"
+        } else {
+            ""
+        };
+        format!("#define PROBE {}\n{family}{KERNEL}{PROBE}", self.define())
     }
 }
 

@@ -15,7 +15,8 @@
 // array sizes), DRAW_BUFFERS (render targets per pass), GODEL (1 for Gödel's metric, 0 for
 // Minkowski's), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
 // scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
-// probe count in place of view_x).
+// probe count in place of view_x), and the family's probe FAMILY (the Gödel-type family's
+// functions, spacetime_godel_type.glsl).
 //
 // Rules, so that no conforming driver can run it two ways (docs/physics.md, "The GPU kernel";
 // crates/gpu/tests/integration/kernel_rules.rs checks them on this text): arrays, matrices and vectors

@@ -684,6 +684,180 @@ fn random_tangent(rng: &mut Rng, i: usize) -> [f64; 4] {
     [sign * f64::from(e), s[0], s[1], s[2]]
 }
 
+/// The Gödel-type family's closed forms and isometries (`spacetime_godel_type.glsl`, compiled
+/// with FAMILY) against `spacetime::{TypeOriginGeodesic, TypeIsometry}` in f64, in members
+/// m²/Ω² = −1, 0, 1, 2, 3.5, 4, 6 of Ω = 0.7 and 1.3. The kernel does not trace the family yet:
+/// these are the pieces it will be built from, held to their twins first.
+///
+/// Domain: Λ away from the boundary between the regimes (|Λ| ≥ 10⁻² Ω²E²: there Λ is a
+/// difference of two terms of size Ω²E², and its rounding in f32, ULP·Ω²E², decides the
+/// regime and the loop), λ up to two loops (or |√−Λ λ| ≤ 2 for escaping rays, where the
+/// metric's e^{mρ} stays small), events within mρ ≤ 3 (μρ ≤ π/2 on the sphere).
+///
+/// Tolerances, each a few ULP times the size of the terms: the closed form's angle θ = √Λ λ
+/// is rounded to ULP·θ, which moves x, y by ρ_max θ ULP and t by the same times the rate
+/// |ṫ| ≤ |E|(1 + Ω²A/Λ); J's plain form loses a factor 2. The isometries pass through the
+/// base coordinate, whose map back grows as 1/(1 − k|ζ|²) (the disc's edge for m² > 0): the
+/// tolerance carries that factor at the source, the image and P0, as Gödel's does.
+#[test]
+fn family_closed_forms_and_isometries_match_spacetime() {
+    use spacetime::{GodelType, TypeIsometry, TypeOriginGeodesic};
+    let mut rng = Rng(fastrand::Rng::with_seed(34));
+    let mut cases = Vec::new();
+    for omega in [0.7f64, 1.3] {
+        for ratio in [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0] {
+            let member = GodelType::new(f(ratio * omega * omega), f(omega));
+            let m_abs = member.m2.abs().sqrt();
+            // Events within mρ ≤ 3 (μρ ≤ π/2), and at most 3 in flat m² = 0.
+            let reach = if member.m2 > 0.0 {
+                3.0 / m_abs
+            } else if member.m2 < 0.0 {
+                0.5 * PI / m_abs
+            } else {
+                3.0
+            };
+            let mut i = 0;
+            while cases
+                .iter()
+                .filter(|c: &&(GodelType, _, _, _, _, _)| c.0 == member)
+                .count()
+                < 60
+            {
+                i += 1;
+                let k = random_tangent(&mut rng, i);
+                let Some(geo) = TypeOriginGeodesic::new(member, vector(k)) else {
+                    continue;
+                };
+                let spin = member.omega * k[0].abs();
+                if geo.big_lambda().abs() < 1e-2 * spin * spin {
+                    continue;
+                }
+                let lambda = match (geo.return_parameter(), i % 6) {
+                    (Some(_), 0) => 0.0,
+                    (Some(l), 1) => 0.5 * l,
+                    (Some(l), 2) => l,
+                    (Some(l), _) => rng.range(-l, 2.0 * l),
+                    (None, _) => rng.range(-2.0, 2.0) / (-geo.big_lambda()).sqrt(),
+                };
+                let mut place = |j: usize| {
+                    let r = if (i + j).is_multiple_of(7) {
+                        0.0
+                    } else {
+                        rng.range(0.0, reach)
+                    };
+                    let phi = rng.range(-PI, PI);
+                    f4([
+                        rng.range(-5.0, 5.0),
+                        r * phi.cos(),
+                        r * phi.sin(),
+                        rng.range(-2.0, 2.0),
+                    ])
+                };
+                let (p0, at) = (place(0), place(1));
+                let rot = if i.is_multiple_of(9) {
+                    0.0
+                } else {
+                    f(rng.range(-2.0 * PI, 2.0 * PI))
+                };
+                cases.push((member, k, f(lambda), rot, p0, at));
+            }
+        }
+    }
+    let input = input(true);
+    let args: Vec<Args> = cases
+        .iter()
+        .map(|(m, k, l, rot, p0, at)| {
+            [
+                texel(*k),
+                texel([*l, m.m2, m.omega, *rot]),
+                texel(*p0),
+                texel(*at),
+            ]
+        })
+        .collect();
+    let out = run(&input, Function::Family, &input.uniforms, &args);
+    let mut origin = Compare::new("typeOriginGeodesic");
+    let mut ret = Compare::new("typeReturnParameter");
+    let mut at_c = Compare::new("tgeoAt");
+    let mut to = Compare::new("typeToOrigin");
+    let mut apply = Compare::new("typeApplyPush");
+    for ((member, k, lambda, rot, p0, at), r) in cases.iter().zip(&out) {
+        let w =
+            || format!("{member:?}, k {k:?}, λ = {lambda}, rotation {rot}, p0 {p0:?}, at {at:?}");
+        let geo = TypeOriginGeodesic::new(*member, vector(*k)).expect("a causal tangent");
+        origin.same(r[0][0], true, w);
+        let spin = member.omega * k[0].abs();
+        let lam = geo.big_lambda();
+        origin.value(r[0][2], lam, 4.0 * ULP * spin * spin, w);
+        match geo.return_parameter() {
+            Some(l) => ret.value(r[0][1], l, 8.0 * ULP * l * spin * spin / lam, w),
+            None => ret.value(r[0][1], -1.0, 0.0, w),
+        }
+        let theta = (lam.abs().sqrt() * lambda).abs();
+        let (e, t) = geo.at(*lambda);
+        let (e, t) = (e.to_array(), t.to_array());
+        let a = k[1] * k[1] + k[2] * k[2];
+        let rate = k[0].abs() * (1.0 + member.omega * member.omega * a / lam.abs());
+        let rho = geo
+            .rho_max()
+            .unwrap_or_else(|| e[1].hypot(e[2]))
+            .max(e[1].hypot(e[2]));
+        // Λ's own rounding (ULP Ω²E² relative to Λ) moves θ by θ·ULP·Ω²E²/|Λ| as well.
+        let dtheta = ULP * (1.0 + theta) * (1.0 + spin * spin / lam.abs());
+        let size = 1.0 + rho * (1.0 + theta) + (k[3] * lambda).abs();
+        let tsize = size + (k[0] * lambda).abs() + rate * lambda.abs();
+        for i in 0..4 {
+            let s = if i == 0 { tsize } else { size };
+            at_c.value(r[1][i], e[i], 2.0 * s * dtheta, w);
+        }
+        let ksize = k.iter().map(|c| c.abs()).sum::<f64>() * (1.0 + theta) * (1.0 + rate);
+        for i in 0..4 {
+            at_c.value(r[2][i], t[i], 2.0 * ksize * dtheta, w);
+        }
+        // The isometry.
+        let t0 = TypeIsometry::to_origin(*member, event(*p0)).expect("within the chart");
+        let want = [t0.t0, t0.zeta0.re, t0.zeta0.im, t0.z0];
+        for i in 0..4 {
+            to.value(r[3][i], want[i], 8.0 * ULP * (1.0 + want[i].abs()), w);
+        }
+        let m = t0.then_rotate(*rot);
+        let kk = 0.25 * member.m2;
+        let cond = |p: [f64; 4]| {
+            let z = spacetime::godel_type_symmetry::base_coordinate(*member, p[1], p[2]);
+            1.0 / (1.0 - kk * z.norm_sqr()).min(1.0)
+        };
+        let vsize = k.iter().map(|c| c.abs()).sum::<f64>();
+        for (iso, slots) in [(m, (4, 5)), (m.inverse(), (6, 7))] {
+            let (e, v) = iso.apply_push(event(*at), vector(*k));
+            let (e, v) = (e.to_array(), v.to_array());
+            let scale = cond(*at) * cond(e) * cond(*p0) * 16.0 * ULP;
+            let tsize = 1.0
+                + at[0].abs()
+                + e[0].abs()
+                + member.omega * (1.0 + reach_of(*p0) * reach_of(*at));
+            for i in 0..4 {
+                let s = if i == 0 {
+                    tsize
+                } else {
+                    1.0 + at[i].abs() + e[i].abs()
+                };
+                apply.value(r[slots.0][i], e[i], scale * s, w);
+                apply.value(r[slots.1][i], v[i], scale * (vsize + v[i].abs()), w);
+            }
+        }
+    }
+    origin.assert();
+    ret.assert();
+    at_c.assert();
+    to.assert();
+    apply.assert();
+}
+
+/// The distance of an event from the axis, for the time shift's size Ω ρ₀ ρ.
+fn reach_of(p: [f64; 4]) -> f64 {
+    p[1].hypot(p[2])
+}
+
 #[test]
 fn closed_forms_match_spacetime_closed_form() {
     let mut rng = Rng(fastrand::Rng::with_seed(7));
