@@ -18,6 +18,7 @@
 #define PROBE_REJECT 10
 #define PROBE_SURFACE 11
 #define PROBE_FAMILY 12
+#define PROBE_FAMILY_EXACT 13
 
 uniform sampler2D u_args;   // RGBA32F: fragment (x, y) reads texels (x·ARG_TEXELS + j, y)
 const int ARG_TEXELS = 4;
@@ -134,6 +135,14 @@ void main() {
     vec4 ie = vec4(0.0), ik = vec4(0.0);
     typeApplyPush(mb, typeInverseIso(m), a3, a0, ie, ik);
     slots[6] = ie; slots[7] = ik;
+#elif PROBE == PROBE_FAMILY_EXACT
+    // In the member (m², Ω) = a1.yz: the geodesic through the event a2 with tangent a0 at
+    // λ = a1.x: (ok, 0, 0, 0), the event and the tangent.
+    TExact g = typeExactGeodesic(a1.yz, a2, a0);
+    vec4 ev = vec4(0.0), tan_ = vec4(0.0);
+    texAt(g, a1.x, ev, tan_);
+    slots[0] = vec4(flag(g.origin.ok), 0.0, 0.0, 0.0);
+    slots[1] = ev; slots[2] = tan_;
 #else
 #error unknown PROBE
 #endif

@@ -57,10 +57,12 @@ pub enum Function {
     /// The Gödel-type family (FAMILY): typeOriginGeodesic, tgeoAt, typeReturnParameter,
     /// typeToOrigin, typeApplyPush, typeInverseIso.
     Family,
+    /// The Gödel-type family (FAMILY): typeExactGeodesic, texAt.
+    FamilyExact,
 }
 
 impl Function {
-    pub const ALL: [Function; 12] = [
+    pub const ALL: [Function; 13] = [
         Function::Elementary,
         Function::Metric,
         Function::Christoffel,
@@ -73,6 +75,7 @@ impl Function {
         Function::Reject,
         Function::Surface,
         Function::Family,
+        Function::FamilyExact,
     ];
 
     /// Its name in probe.glsl.
@@ -90,13 +93,14 @@ impl Function {
             Function::Reject => "PROBE_REJECT",
             Function::Surface => "PROBE_SURFACE",
             Function::Family => "PROBE_FAMILY",
+            Function::FamilyExact => "PROBE_FAMILY_EXACT",
         }
     }
 
     /// The source after the defines: this probe's entry point selected, the kernel, the probe.
     pub fn kernel(self) -> String {
         // The family's functions are compiled only where FAMILY is defined.
-        let family = if self == Function::Family {
+        let family = if matches!(self, Function::Family | Function::FamilyExact) {
             "#define FAMILY 1\n"
         } else {
             ""

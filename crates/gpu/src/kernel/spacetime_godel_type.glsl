@@ -3,9 +3,9 @@
 // The Gödel-type family (docs/physics.md, "The Gödel-type family"; spacetime::godel_type_geodesic
 // and spacetime::godel_type_symmetry): a member (m², Ω) as the pair `mb`, its closed-form
 // geodesics through the origin and its isometries R_α ∘ T_P0 in the base coordinate
-// ζ = G(m²ρ²)(x + iy). Compiled only where FAMILY is defined: so far by the family's probe
-// (crates/gpu/tests/integration/probes.rs holds each function to its Rust twin); the pixel
-// kernel does not trace the family yet.
+// ζ = G(m²ρ²)(x + iy), and the geodesic through any event. Compiled only where FAMILY is
+// defined: so far by the family's probes (crates/gpu/tests/integration/probes.rs holds each
+// function to its Rust twin); the pixel kernel does not trace the family yet.
 #ifdef FAMILY
 
 // The functions the closed forms and the base coordinate are built from, each with its
@@ -176,6 +176,56 @@ void typeApplyPush(vec2 mb, TIso m, vec4 at, vec4 v, out vec4 e, out vec4 k) {
     vec2 dzeta1 = cmul(rot, cdiv(dzeta * scale, cmul(den, den)));
     float dt = v.x + mb.y * cdiv(cmul(conj2(m.zeta0), dzeta), den).y;
     k = vec4(dt, fromBaseDifferential(mb, zeta1, dzeta1), v.w);
+}
+
+// The geodesic through any event (spacetime::TypeExactGeodesic): the closed form through the
+// origin mapped back by T⁻¹. On the sphere (m² < 0) the map back's principal time shift jumps
+// by (Ω/k)·2π where the projection crosses its cut; the geodesic follows the continuous
+// arg(α + β e^{iψ}) along its circle (ψ = 2 sgn(E) Φ), β = k ζ̄1·(the circle's centre).
+struct TExact { TIso back; TGeo origin; vec2 alpha; vec2 beta; bool wound; };
+
+TExact typeExactGeodesic(vec2 mb, vec4 at, vec4 k) {
+    TIso to = typeToOrigin(mb, at);
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+    typeApplyPush(mb, to, at, k, e0, k0);
+    TGeo g = typeOriginGeodesic(mb, k0);
+    TIso back = typeInverseIso(to);
+    vec2 beta = vec2(0.0);
+    if (mb.x < 0.0 && g.ok) {
+        float sg = sign(g.e);
+        float r = g.kperp / (2.0 * mb.y * abs(g.e));
+        vec2 centre = vec2(-sg * r * g.cchi.y, sg * r * g.cchi.x);
+        beta = 0.25 * mb.x * cmul(conj2(back.zeta0), centre);
+    }
+    return TExact(back, g, vec2(1.0, 0.0) - beta, beta, mb.x < 0.0);
+}
+
+// arg(α + β e^{iψ}) continued in ψ from 0 at ψ = 0 (α + β = 1): the term of larger modulus
+// carries the winding.
+float continuousArg(vec2 alpha, vec2 beta, float psi) {
+    vec2 one = vec2(1.0, 0.0);
+    if (dot(beta, beta) <= dot(alpha, alpha)) {
+        vec2 r = cdiv(beta, alpha);
+        return carg(one + cmul(r, cis(psi))) - carg(one + r);
+    }
+    vec2 r = cdiv(alpha, beta);
+    return psi + carg(one + cmul(r, cis(-psi))) - carg(one + r);
+}
+
+void texAt(TExact g, float lambda, out vec4 ev, out vec4 tan_) {
+    ev = vec4(0.0); tan_ = vec4(0.0);
+    vec2 mb = g.origin.mb;
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+    tgeoAt(g.origin, lambda, e0, k0);
+    typeApplyPush(mb, g.back, e0, k0, ev, tan_);
+    if (g.wound) {
+        float kk = 0.25 * mb.x;
+        float psi = 2.0 * sign(g.origin.e) * typeParts(g.origin, lambda).z;
+        float continuous = continuousArg(g.alpha, g.beta, psi);
+        vec2 den = vec2(1.0, 0.0) - kk * cmul(conj2(g.back.zeta0), baseCoordinate(mb, e0.yz));
+        float turns = floor((continuous - carg(den)) / (2.0 * PI) + 0.5);
+        ev.x -= mb.y / kk * 2.0 * PI * turns;
+    }
 }
 
 #endif

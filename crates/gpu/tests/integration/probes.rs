@@ -853,6 +853,141 @@ fn family_closed_forms_and_isometries_match_spacetime() {
     apply.assert();
 }
 
+/// The family's geodesic through any event (`typeExactGeodesic`, `texAt`) against
+/// `spacetime::TypeExactGeodesic`, in the same members and a sphere of small vorticity
+/// (m² = −1, Ω = 1/4), from events within mρ ≤ 3 and on the sphere out to μρ = 0.8π, beyond
+/// |ζ| = 4Ω/μ², where the projection can cross the cut of the map back's time shift and the
+/// event's t takes whole periods 8πΩ/μ² (counted: the test asks for such cases). Tolerance: the closed form's (as in the test above) at the origin frame's
+/// point, times the map back's conditioning 1/(1 − k|ζ|²) at the start, that point and the
+/// image, plus the time shift's size Ω(1 + ρ₀ρ) and the periods taken.
+#[test]
+fn family_geodesics_through_any_event_match_spacetime() {
+    use spacetime::godel_type_symmetry::base_coordinate;
+    use spacetime::{GodelType, TypeExactGeodesic};
+    let mut rng = Rng(fastrand::Rng::with_seed(3434));
+    let mut cases = Vec::new();
+    // (Ω, m²/Ω²): the seven members of two vorticities, and a sphere of small vorticity
+    // (m² = −1, Ω = 1/4), whose rays' circles are large against the distance of the cut.
+    let members = [0.7f64, 1.3]
+        .iter()
+        .flat_map(|&o| [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0].map(|r| (o, r)))
+        .chain([(0.25, -16.0)]);
+    for (omega, ratio) in members {
+        {
+            let member = GodelType::new(f(ratio * omega * omega), f(omega));
+            let m_abs = member.m2.abs().sqrt();
+            let reach = if member.m2 > 0.0 {
+                3.0 / m_abs
+            } else if member.m2 < 0.0 {
+                0.8 * PI / m_abs
+            } else {
+                3.0
+            };
+            let mut i: usize = 0;
+            let mut made = 0;
+            while made < 80 {
+                i += 1;
+                // On the sphere half the events lie beyond |ζ| = 4Ω/μ² (μρ > 0.72π for the
+                // first two vorticities), where rays can cross the cut.
+                let r = if i.is_multiple_of(7) {
+                    0.0
+                } else if member.m2 < 0.0 && i.is_multiple_of(2) {
+                    rng.range(0.72 * PI, 0.8 * PI) / m_abs
+                } else {
+                    rng.range(0.0, reach)
+                };
+                let phi = rng.range(-PI, PI);
+                let at = f4([
+                    rng.range(-5.0, 5.0),
+                    r * phi.cos(),
+                    r * phi.sin(),
+                    rng.range(-2.0, 2.0),
+                ]);
+                let k = random_tangent(&mut rng, i);
+                let Some(geo) = TypeExactGeodesic::new(member, event(at), vector(k)) else {
+                    continue;
+                };
+                let o = geo.origin;
+                let spin = member.omega * o.energy.abs();
+                if o.big_lambda().abs() < 1e-2 * spin * spin {
+                    continue;
+                }
+                let lambda = match o.return_parameter() {
+                    Some(l) => rng.range(-l, 2.0 * l),
+                    None => rng.range(-2.0, 2.0) / (-o.big_lambda()).sqrt(),
+                };
+                cases.push((member, k, f(lambda), at));
+                made += 1;
+            }
+        }
+    }
+    let input = input(true);
+    let args: Vec<Args> = cases
+        .iter()
+        .map(|(m, k, l, at)| {
+            [
+                texel(*k),
+                texel([*l, m.m2, m.omega, 0.0]),
+                texel(*at),
+                [0.0; 4],
+            ]
+        })
+        .collect();
+    let out = run(&input, Function::FamilyExact, &input.uniforms, &args);
+    let mut exact = Compare::new("texAt");
+    let mut crossed = 0;
+    for ((member, k, lambda, at), r) in cases.iter().zip(&out) {
+        let w = || format!("{member:?}, k {k:?}, λ = {lambda}, at {at:?}");
+        let geo = TypeExactGeodesic::new(*member, event(*at), vector(*k)).expect("a geodesic");
+        exact.same(r[0][0], true, w);
+        let o = geo.origin;
+        let (e0, k0) = o.at(*lambda);
+        let (e, v) = geo.at(*lambda);
+        let plain = geo.back.apply(e0);
+        // The periods the cut's correction took (only on the sphere).
+        let period = 8.0 * PI * member.omega / member.m2.abs();
+        let (periods, taken) = if member.m2 < 0.0 {
+            let n = ((e.t - plain.t) / period).round().abs();
+            (n, n * period)
+        } else {
+            (0.0, 0.0)
+        };
+        crossed += (periods > 0.0) as usize;
+        let spin = member.omega * o.energy.abs();
+        let lam = o.big_lambda();
+        let theta = (lam.abs().sqrt() * lambda).abs();
+        let ko = k0.to_array();
+        let a = ko[1] * ko[1] + ko[2] * ko[2];
+        let rate = o.energy.abs() * (1.0 + member.omega * member.omega * a / lam.abs());
+        let rho = o.rho_max().unwrap_or(0.0).max(e0.r());
+        let dtheta = ULP * (1.0 + theta) * (1.0 + spin * spin / lam.abs());
+        let kk = 0.25 * member.m2;
+        let cond = |x: f64, y: f64| {
+            let z = base_coordinate(*member, x, y);
+            1.0 / (1.0 - kk * z.norm_sqr()).min(1.0)
+        };
+        let scale = cond(at[1], at[2]) * cond(e0.x, e0.y) * cond(e.x, e.y);
+        let size = 1.0 + rho * (1.0 + theta) + (o.pz * lambda).abs() + e.r();
+        let tsize = size
+            + (o.energy * lambda).abs()
+            + rate * lambda.abs()
+            + at[0].abs()
+            + member.omega * (1.0 + at[1].hypot(at[2]) * (1.0 + rho))
+            + taken;
+        let ksize = ko.iter().map(|c| c.abs()).sum::<f64>() * (1.0 + theta) * (1.0 + rate)
+            + v.to_array().iter().map(|c| c.abs()).sum::<f64>();
+        let (e, v) = (e.to_array(), v.to_array());
+        for i in 0..4 {
+            let s = if i == 0 { tsize } else { size };
+            exact.value(r[1][i], e[i], 2.0 * scale * s * dtheta, w);
+            exact.value(r[2][i], v[i], 2.0 * scale * ksize * dtheta, w);
+        }
+    }
+    exact.assert();
+    // Seen: 8, all from the sphere of small vorticity.
+    assert!(crossed >= 5, "only {crossed} cases cross the cut");
+}
+
 /// The distance of an event from the axis, for the time shift's size Ω ρ₀ ρ.
 fn reach_of(p: [f64; 4]) -> f64 {
     p[1].hypot(p[2])
