@@ -71,8 +71,8 @@ def render(
     replace the scene's spacetime as ``godel render --metric --a --m2 --omega`` do: a new
     ``metric`` takes its constants from these arguments alone (the scene's are dropped), so
     ``render(metric="godel-type", m2=0.5, omega=0.7)`` renders the built-in scene in that
-    member of the Gödel-type family (docs/physics.md, "The Gödel-type family"; only the
-    numeric tracer runs there: the built-in scene's method is numeric).
+    member of the Gödel-type family (docs/physics.md, "The Gödel-type family"; with the
+    built-in scene's method, numeric; ``method="exact"`` follows the member's closed forms).
 
     A stereo scene (``[camera] stereo``) traces both eyes, as ``godel render`` does, and
     returns a :class:`StereoImage`: ``img.eye("left")`` and ``img.eye("right")`` are the

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import godel
-from conftest import run_cli
+from conftest import REPO, run_cli
 
 
 def test_the_godel_member_is_godels_universe_through_the_proper_radius():
@@ -84,6 +84,23 @@ def test_render_in_a_member_records_it():
     assert header["metric"] == "godel-type"
     assert (header["m2"], header["omega"]) == (0.5, 0.7)
     assert 'metric = "godel-type"' in image.scene
+
+
+def test_a_lit_member_lights_its_ball_and_the_blocker_shades_it():
+    scene = REPO / "scenes" / "lit-godel-type.toml"
+    lit = godel.render(str(scene), width=180, height=20, progress=False)
+    assert lit.header["metric"] == "godel-type"
+    light, ball = lit["light_0"], lit["object"] == 0
+    assert np.all(light[ball] >= 0) and np.any(light[ball] > 0)
+    # Without the blocker (object 1) the ball is lit where the blocker shaded it.
+    text = scene.read_text()
+    start = text.index('[[object]]\nname = "blocker"')
+    unblocked = godel.render(text[:start] + text[text.index("[[light]]"):], width=180,
+                             height=20, progress=False)
+    both = ball & (unblocked["object"] == 0)
+    shaded = both & (light < 0.999 * unblocked["light_0"])
+    assert shaded.sum() >= 3
+    assert np.all(light[both] <= unblocked["light_0"][both] * (1 + 1e-6))
 
 
 @pytest.mark.parametrize("kwargs,keyword", [

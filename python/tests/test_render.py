@@ -20,6 +20,8 @@ CASES = [
     ("scenes/static-sphere.toml", dict(width=72, height=12, samples=4, method="numeric")),
     # The reference scene in a member of the Gödel-type family (its a dropped).
     (None, dict(width=88, height=10, samples=1, metric="godel-type", m2=0.5, omega=0.7)),
+    # A lit scene in a member: its light channel too.
+    ("scenes/lit-godel-type.toml", dict(width=96, height=12)),
 ]
 
 
