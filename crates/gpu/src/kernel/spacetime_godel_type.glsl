@@ -13,8 +13,8 @@
 // kernel's own trigonometry elsewhere. Series: asinh(s)/s = 1 − s²/6 + 3s⁴/40, the same in
 // v = s² (v < 0: asin), atan(x)/x = 1 − x²/3 + x⁴/5, tanh(h)/h = 1 − h²/3 + 2h⁴/15 (tan: signs
 // alternate the other way, the same in u = ±4h²), atanh(s)/s = 1 + s²/3 + s⁴/5 (v < 0: atan),
-// sinh(x)/x and cosh x to x⁴: below the thresholds the first omitted term is under 2e-9, but
-// asinh's 5v³/112 < 5e-8, below one rounding of f32. Above them log and the quotient lose up
+// sinh(x)/x and cosh x to x⁴: below the thresholds the first omitted term is at most 2.2e-9,
+// but asinh's 5v³/112 < 5e-8, below one rounding of f32. Above them log and the quotient lose up
 // to ULP/s relative (asinh_, atanh_ of a small s).
 float asinhcF(float v) {
     if (abs(v) < 1e-2) return 1.0 + v * (-1.0 / 6.0 + v * (3.0 / 40.0));
