@@ -10,9 +10,9 @@
 //! at different times (two per winding around the source's axis, and infinitely many
 //! windings when the target is off the source's plane); rays emitted more than `max_past`
 //! before the hit are not counted, the same window as the pixel rays. In a Gödel-type
-//! member they are [`spacetime::type_shadow_rays`], and the windings the window can hold are
-//! counted with the member's shortest loop time (docs/physics.md, "Direct light in the
-//! family").
+//! member they are [`spacetime::type_shadow_rays_within`], which counts the windings the
+//! window can hold with the member's shortest loop time (docs/physics.md, "Direct light in
+//! the family").
 //!
 //! Intensity law (irradiance on the surface, in the object's rest frame; docs/physics.md,
 //! "Area distance and irradiance"), per ray:
@@ -49,8 +49,8 @@ use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
 use crate::reject::{set_ray, Rejection};
 use crate::segment::{ClosedForm, Segment, Shift};
 use spacetime::{
-    shadow_rays, source_area_distance_sq, type_shadow_rays, type_source_area_distance_sq,
-    type_windings_within, Event, GeodesicState, GeodesicSystem, Metric, ShadowRay, Spacetime,
+    shadow_rays, source_area_distance_sq, type_shadow_rays_within, type_source_area_distance_sq,
+    Event, GeodesicState, GeodesicSystem, Metric, ShadowRay, Spacetime,
 };
 use std::f64::consts::{PI, SQRT_2};
 use std::sync::OnceLock;
@@ -190,7 +190,7 @@ impl Lighting {
         light: &LightSource,
         x: Event,
     ) -> Vec<ShadowRay> {
-        let mut rays = match metric {
+        match metric {
             Metric::Godel(g) => {
                 // Each winding takes at least the shortest loop time of the source's clock;
                 // the isometry to the source's axis shifts the target's time by at most
@@ -200,17 +200,15 @@ impl Lighting {
                     .ceil()
                     .min(MAX_WINDINGS as f64) as u32
                     + 1;
-                shadow_rays(g.a, light.position, x, n)
+                let mut rays = shadow_rays(g.a, light.position, x, n);
+                rays.retain(|r| r.emission.t >= x.t - self.window);
+                rays
             }
             Metric::GodelType(m) => {
-                let p = light.position;
-                let n = type_windings_within(*m, p, x, self.window, MAX_WINDINGS);
-                type_shadow_rays(*m, p, x, n)
+                type_shadow_rays_within(*m, light.position, x, self.window, MAX_WINDINGS)
             }
             Metric::Minkowski(_) => Vec::new(),
-        };
-        rays.retain(|r| r.emission.t >= x.t - self.window);
-        rays
+        }
     }
 }
 

@@ -268,10 +268,50 @@ pub fn type_shadow_rays(
     target: Event,
     max_winding: u32,
 ) -> Vec<ShadowRay> {
-    let Some(to) = TypeIsometry::to_origin(member, Event::new(0.0, source.x, source.y, source.z))
-    else {
+    match source_frame(member, source) {
+        Some(to) => rays_through(member, &to, target, max_winding),
+        None => Vec::new(),
+    }
+}
+
+/// The light rays of [`type_shadow_rays`] emitted at most `window` before `target`, found with
+/// no more windings than the window can hold, at most `cap` (docs/physics.md, "Direct light
+/// in the family"): on the source's axis a ray of winding n has travelled at least n
+/// [`GodelType::shortest_loop_time`], t never falling along it, and the isometry to that axis
+/// moves the target's time by δ. (On the sphere a ray from a source beyond |ζ_S| = 4Ω/μ²
+/// winds about the image of the pole, and the cut's correction makes it emitted a period
+/// 8πΩ/μ² earlier per loop: it travels longer, never shorter.)
+pub fn type_shadow_rays_within(
+    member: GodelType,
+    source: Event,
+    target: Event,
+    window: f64,
+    cap: u32,
+) -> Vec<ShadowRay> {
+    let Some(to) = source_frame(member, source) else {
         return Vec::new();
     };
+    let shift = to.apply(target).t - target.t;
+    let n = ((window + shift) / member.shortest_loop_time()).ceil();
+    let windings = (n.clamp(0.0, f64::from(cap)) as u32).saturating_add(1);
+    let mut rays = rays_through(member, &to, target, windings);
+    rays.retain(|r| r.emission.t >= target.t - window);
+    rays
+}
+
+/// The isometry that puts a source at rest at `source` (its t ignored) on the axis; `None`
+/// outside the chart.
+fn source_frame(member: GodelType, source: Event) -> Option<TypeIsometry> {
+    TypeIsometry::to_origin(member, Event::new(0.0, source.x, source.y, source.z))
+}
+
+/// [`type_shadow_rays`] with the source's isometry `to` made.
+fn rays_through(
+    member: GodelType,
+    to: &TypeIsometry,
+    target: Event,
+    max_winding: u32,
+) -> Vec<ShadowRay> {
     let back = to.inverse();
     let moved = to.apply(target);
     let mut out: Vec<ShadowRay> = type_shadow_rays_from_axis(member, moved, max_winding)
@@ -294,29 +334,6 @@ pub fn type_shadow_rays(
         .collect();
     out.sort_by(|p, q| q.emission.t.total_cmp(&p.emission.t));
     out
-}
-
-/// The most windings [`type_shadow_rays`] needs to find every light ray from a source at rest
-/// at `source` to `target` emitted at most `window` before it, capped at `cap`
-/// (docs/physics.md, "Direct light in the family"): on the source's axis a ray of winding n
-/// has travelled at least n [`GodelType::shortest_loop_time`], t never falling along it,
-/// and the isometry to that axis moves the target's time by δ. (On the sphere a ray from a
-/// source beyond |ζ_S| = 4Ω/μ² winds about the image of the pole, and the cut's correction
-/// makes it emitted a period 8πΩ/μ² earlier per loop: it travels longer, never shorter.)
-pub fn type_windings_within(
-    member: GodelType,
-    source: Event,
-    target: Event,
-    window: f64,
-    cap: u32,
-) -> u32 {
-    let source = Event::new(0.0, source.x, source.y, source.z);
-    let Some(to) = TypeIsometry::to_origin(member, source) else {
-        return 0;
-    };
-    let shift = to.apply(target).t - target.t;
-    let n = ((window + shift) / member.shortest_loop_time()).ceil();
-    (n.clamp(0.0, f64::from(cap)) as u32).saturating_add(1)
 }
 
 /// The source's area distance squared, D² = dA/dΩ, of a light ray from a source at rest at

@@ -73,8 +73,8 @@ pub use godel::Godel;
 pub use godel_chart::GodelChart;
 pub use godel_type::GodelType;
 pub use godel_type_connect::{
-    type_shadow_rays, type_shadow_rays_from_axis, type_source_area_distance_sq,
-    type_windings_within,
+    type_shadow_rays, type_shadow_rays_from_axis, type_shadow_rays_within,
+    type_source_area_distance_sq,
 };
 pub use godel_type_geodesic::{GeodesicRegime, TypeExactGeodesic, TypeOriginGeodesic};
 pub use godel_type_symmetry::{killing_field, TypeIsometry};

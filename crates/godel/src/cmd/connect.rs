@@ -17,7 +17,7 @@
 //! `spacetime::connection`'s; this file parses the flags and prints them.
 
 use crate::args::{coordinates, parse_vector, usage, Format};
-use crate::cmd::geodesic::{metric_of, MetricName};
+use crate::cmd::geodesic::{MetricName, SpacetimeArgs};
 use anyhow::Context;
 use scene::short;
 use serde_json::json;
@@ -51,18 +51,10 @@ pub struct ConnectArgs {
     /// The source's position R,PHI,Z; it is at rest there at all times.
     #[arg(long, value_name = "R,PHI,Z", allow_hyphen_values = true)]
     pub to_source: String,
-    /// Spacetime metric: godel or godel-type.
-    #[arg(long, value_enum, default_value_t = MetricName::Godel)]
-    pub metric: MetricName,
-    /// Gödel parameter a > 0 (optical horizon at r = 2a) [default: 1]; metric godel only.
-    #[arg(long, allow_hyphen_values = true)]
-    pub a: Option<f64>,
-    /// m² of a Gödel-type member (any sign; metric godel-type only).
-    #[arg(long, value_name = "M2", allow_hyphen_values = true)]
-    pub m2: Option<f64>,
-    /// Vorticity Ω > 0 of a Gödel-type member (metric godel-type only).
-    #[arg(long, value_name = "OMEGA", allow_hyphen_values = true)]
-    pub omega: Option<f64>,
+    /// The spacetime (godel or godel-type: minkowski has no light rays between a source and
+    /// an event in closed form).
+    #[command(flatten)]
+    pub spacetime: SpacetimeArgs,
     /// Largest winding counted (0 to 1000): each winding is an earlier emission.
     #[arg(long, value_name = "N", default_value_t = 2)]
     pub windings: u32,
@@ -71,16 +63,16 @@ pub struct ConnectArgs {
     pub format: Format,
 }
 
-/// The metric of `--metric` with its constants (`geodesic::metric_of`); connect knows the
+/// The metric of `--metric` with its constants (`SpacetimeArgs::metric`); connect knows the
 /// metrics with closed-form shadow rays.
 fn metric(args: &ConnectArgs) -> anyhow::Result<Metric> {
-    if args.metric == MetricName::Minkowski {
+    if args.spacetime.metric == MetricName::Minkowski {
         return Err(usage(
             "--metric",
             "connect knows Gödel's universe (godel) and the Gödel-type family (godel-type)",
         ));
     }
-    metric_of(args.metric, args.a, args.m2, args.omega)
+    args.spacetime.metric()
 }
 
 /// Finds and checks every connecting ray for the arguments.

@@ -46,6 +46,24 @@ pub enum Method {
 }
 
 /// Raw command-line arguments of `godel geodesic` (validated by [`Request::from_args`]).
+/// The spacetime flags of `godel geodesic` and `godel connect`: `--metric` and its
+/// constants.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SpacetimeArgs {
+    /// Spacetime metric (`godel connect`: godel or godel-type).
+    #[arg(long, value_enum, default_value_t = MetricName::Godel)]
+    pub metric: MetricName,
+    /// Gödel parameter a > 0 (optical horizon at r = 2a) [default: 1]; metric godel only.
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<f64>,
+    /// m² of a Gödel-type member (any sign; metric godel-type only).
+    #[arg(long, value_name = "M2", allow_hyphen_values = true)]
+    pub m2: Option<f64>,
+    /// Vorticity Ω > 0 of a Gödel-type member (metric godel-type only).
+    #[arg(long, value_name = "OMEGA", allow_hyphen_values = true)]
+    pub omega: Option<f64>,
+}
+
 #[derive(clap::Args, Debug)]
 #[command(after_help = "\
 Stop: with --until-time DT the geodesic stops exactly where |t - T| = DT. Without it, a \
@@ -68,21 +86,11 @@ samples, the stop reason, the constants of motion and their relative drift.
 Examples: godel geodesic --at 0,0,0,0 --dir 1,0,0
           godel geodesic --metric godel-type --m2 0 --omega 1 --at 0,0,0,0 --dir 1,0,0")]
 pub struct GeodesicArgs {
-    /// Spacetime metric.
-    #[arg(long, value_enum, default_value_t = MetricName::Godel)]
-    pub metric: MetricName,
+    #[command(flatten)]
+    pub spacetime: SpacetimeArgs,
     /// Integrate numerically, or evaluate the closed form.
     #[arg(long, value_enum, default_value_t = Method::Numeric)]
     pub method: Method,
-    /// Gödel parameter a > 0 (optical horizon at r = 2a) [default: 1]; metric godel only.
-    #[arg(long, allow_hyphen_values = true)]
-    pub a: Option<f64>,
-    /// m² of a Gödel-type member (any sign; metric godel-type only).
-    #[arg(long, value_name = "M2", allow_hyphen_values = true)]
-    pub m2: Option<f64>,
-    /// Vorticity Ω > 0 of a Gödel-type member (metric godel-type only).
-    #[arg(long, value_name = "OMEGA", allow_hyphen_values = true)]
-    pub omega: Option<f64>,
     /// Start event T,R,PHI,Z in cylindrical coordinates (PHI in radians, R ≥ 0).
     #[arg(long, value_name = "T,R,PHI,Z", allow_hyphen_values = true)]
     pub at: String,
@@ -142,7 +150,7 @@ fn curve_error(e: CurveError) -> anyhow::Error {
 impl Request {
     /// Checks every value; errors name the flag.
     pub fn from_args(args: &GeodesicArgs) -> anyhow::Result<Request> {
-        let metric = metric_of(args.metric, args.a, args.m2, args.omega)?;
+        let metric = args.spacetime.metric()?;
         let [t, r, phi, z] = parse_vector::<4>("--at", &args.at)?;
         if r < 0.0 {
             return Err(usage("--at", format!("R must be ≥ 0, got {}", short(r))));
@@ -181,52 +189,50 @@ impl Request {
     }
 }
 
-/// The metric of `--metric` with its constants `--a` (Gödel's, default 1) or `--m2` and
-/// `--omega` (a Gödel-type member's, both required), each checked as in scenes; the other
-/// metrics' constants refused naming their flag (`godel geodesic`, `godel connect`).
-pub fn metric_of(
-    name: MetricName,
-    a: Option<f64>,
-    m2: Option<f64>,
-    omega: Option<f64>,
-) -> anyhow::Result<Metric> {
-    let refuse_member = |metric: &str| -> anyhow::Result<()> {
-        for (flag, value) in [("--m2", m2), ("--omega", omega)] {
-            if value.is_some() {
-                return Err(usage(
-                    flag,
-                    format!("is a constant of --metric godel-type: not used by --metric {metric}"),
-                ));
+impl SpacetimeArgs {
+    /// The metric of `--metric` with its constants `--a` (Gödel's, default 1) or `--m2` and
+    /// `--omega` (a Gödel-type member's, both required), each checked as in scenes; the other
+    /// metrics' constants refused naming their flag.
+    pub fn metric(&self) -> anyhow::Result<Metric> {
+        let (name, a, m2, omega) = (self.metric, self.a, self.m2, self.omega);
+        let refuse_member = |metric: &str| -> anyhow::Result<()> {
+            for (flag, value) in [("--m2", m2), ("--omega", omega)] {
+                if value.is_some() {
+                    let why = format!(
+                        "is a constant of --metric godel-type: not used by --metric {metric}"
+                    );
+                    return Err(usage(flag, why));
+                }
             }
-        }
-        Ok(())
-    };
-    Ok(match name {
-        MetricName::Godel => {
-            refuse_member("godel")?;
-            Metric::Godel(Godel::new(scale_a("--a", a.unwrap_or(1.0))?))
-        }
-        MetricName::Minkowski => {
-            refuse_member("minkowski")?;
-            if a.is_some() {
-                return Err(usage(
-                    "--a",
-                    "is the Gödel parameter: not used by --metric minkowski",
-                ));
+            Ok(())
+        };
+        Ok(match name {
+            MetricName::Godel => {
+                refuse_member("godel")?;
+                Metric::Godel(Godel::new(scale_a("--a", a.unwrap_or(1.0))?))
             }
-            Metric::Minkowski(Minkowski)
-        }
-        MetricName::GodelType => {
-            if a.is_some() {
-                return Err(usage(
-                    "--a",
-                    "not used by --metric godel-type: its constants are --m2 and --omega \
-                     (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
-                ));
+            MetricName::Minkowski => {
+                refuse_member("minkowski")?;
+                if a.is_some() {
+                    return Err(usage(
+                        "--a",
+                        "is the Gödel parameter: not used by --metric minkowski",
+                    ));
+                }
+                Metric::Minkowski(Minkowski)
             }
-            Metric::GodelType(member(m2, omega)?)
-        }
-    })
+            MetricName::GodelType => {
+                if a.is_some() {
+                    return Err(usage(
+                        "--a",
+                        "not used by --metric godel-type: its constants are --m2 and --omega \
+                         (Gödel's a is m2 = 1/a², omega = 1/(√2·a))",
+                    ));
+                }
+                Metric::GodelType(member(m2, omega)?)
+            }
+        })
+    }
 }
 
 /// One output row: parameter, cylindrical and Cartesian position.

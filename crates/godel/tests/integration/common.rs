@@ -239,6 +239,15 @@ pub fn assert_refused(o: &Output, needles: &[&str], no_output: &Path) {
     );
 }
 
+/// Asserts that `o` is a refusal of a command-line flag: exit code 2 and one
+/// `error: FLAG: …` line.
+pub fn assert_usage(o: &Output, flag: &str) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with(&format!("error: {flag}: ")), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
+
 /// A running `godel view` or `godel explore`, killed when dropped.
 pub struct Server(std::process::Child);
 

@@ -4,7 +4,7 @@
 //! one escaping ray for causal members); beyond ρ_c there is none, with a note; bad flag
 //! combinations exit 2 naming the flag.
 
-use crate::common::{godel, stderr};
+use crate::common::{assert_usage, godel, stderr};
 
 fn json(args: &[&str]) -> serde_json::Value {
     let o = godel(args);
@@ -180,12 +180,7 @@ fn bad_connect_flags_exit_2_naming_the_flag() {
         ]
         .concat();
         let out = godel(&args);
-        let err = stderr(&out);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(
-            err.starts_with(&format!("error: {flag}: ")),
-            "{args:?}: {err}"
-        );
+        assert_usage(&out, flag);
         assert!(out.stdout.is_empty());
     }
     // Positions beyond the bound on proper radii (m² = −1, Ω = 1: π − ρ_c ≈ 2.21), and an
@@ -203,11 +198,6 @@ fn bad_connect_flags_exit_2_naming_the_flag() {
         ]
         .concat();
         let out = godel(&args);
-        let err = stderr(&out);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(
-            err.starts_with(&format!("error: {flag}: ")),
-            "{args:?}: {err}"
-        );
+        assert_usage(&out, flag);
     }
 }

@@ -7,20 +7,12 @@
 
 use std::io::{BufRead, BufReader};
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 
 use crate::common::{
-    files_in, geodesic_along_x, godel, lit_scene_text, path_arg as s, read_rgb, shade_lit_pair,
-    stderr, write_scene,
+    assert_usage, files_in, geodesic_along_x, godel, lit_scene_text, path_arg as s, read_rgb,
+    shade_lit_pair, stderr, write_scene,
 };
-
-/// Exit code 2 and one `error: FLAG: …` line.
-fn assert_usage(o: &Output, flag: &str) {
-    let err = stderr(o);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.starts_with(&format!("error: {flag}: ")), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
-}
 
 /// A small traced data file (and its preview) in `dir`, named `lit`.
 fn traced(dir: &Path) -> std::path::PathBuf {

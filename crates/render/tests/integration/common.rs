@@ -322,3 +322,16 @@ pub fn unit(v: [f64; 3]) -> [f64; 3] {
     let n = norm(v);
     [v[0] / n, v[1] / n, v[2] / n]
 }
+
+/// The Gödel-type family's Gödel member's event (m² = 1/a², Ω = 1/(√2 a), r the proper
+/// radius ρ) of the Gödel event `e`: (x, y) scaled from r to ρ = 2a asinh(r/2a), t and z
+/// unchanged (docs/physics.md, "The Gödel-type family").
+pub fn carried(a: f64, e: Event) -> Event {
+    let r = e.x.hypot(e.y);
+    let s = if r == 0.0 {
+        1.0
+    } else {
+        2.0 * a * (r / (2.0 * a)).asinh() / r
+    };
+    Event::new(e.t, s * e.x, s * e.y, e.z)
+}

@@ -11,24 +11,13 @@
 //! another object; before, with the balls expanded in each metric's own coordinates (which
 //! differ at third order about a ball), t_emit differed by 2.6e-3 and g by 9.4e-3.
 
-use crate::common::{render_scene, scene_file};
+use crate::common::{carried, render_scene, scene_file};
 use scene::{Motion, Scene, Shape};
 use spacetime::{Event, FourVector, GodelType, LocalVelocity, Metric, Spacetime};
 
 /// Largest relative difference of g and of t_emit where both hit: a few steps of f32.
 const G_AGREEMENT: f64 = 1e-6;
 const T_AGREEMENT: f64 = 1e-6;
-
-/// Family point of the Gödel point `e` (pseudo-Cartesian): (x, y) scaled by ρ/r.
-fn carried(a: f64, e: Event) -> Event {
-    let r = e.x.hypot(e.y);
-    let s = if r == 0.0 {
-        1.0
-    } else {
-        2.0 * a * (r / (2.0 * a)).asinh() / r
-    };
-    Event::new(e.t, s * e.x, s * e.y, e.z)
-}
 
 /// The differential of [`carried`] at `e` on the vector `v`, by central differences of the
 /// map (smooth, so 1e-6 steps give ~1e-11).

@@ -438,17 +438,6 @@ fn in_a_member_each_pixel_ray_runs_from_the_observer_to_its_emission_event() {
     }
 }
 
-/// The Gödel member's event of a Gödel event: (x, y) scaled from r to ρ = 2a asinh(r/2a).
-fn carried(a: f64, e: Event) -> Event {
-    let r = e.x.hypot(e.y);
-    let s = if r == 0.0 {
-        1.0
-    } else {
-        2.0 * a * (r / (2.0 * a)).asinh() / r
-    };
-    Event::new(e.t, s * e.x, s * e.y, e.z)
-}
-
 /// The Gödel member's map (m² = 1/a², Ω = 1/(√2 a)) is Gödel's map of the same scene carried
 /// through r = 2a sinh(ρ/2a): its horizon curve point by point, the horizon's radius, the
 /// distances from the observer's axis, a ball at rest's track, and (for an observer on the
@@ -462,17 +451,17 @@ fn the_godel_members_map_is_godels_carried() {
             1.0 / (a * a),
             1.0 / (2f64.sqrt() * a),
         ));
-        s.observer.event = carried(a, godel.observer.event);
+        s.observer.event = common::carried(a, godel.observer.event);
         for o in &mut s.objects {
             if let scene::Motion::Rest { position } = &mut o.motion {
-                *position = carried(a, *position);
+                *position = common::carried(a, *position);
             }
         }
         s
     };
     let close = |p: MapPoint, q: MapPoint| {
         let back = 2.0 * a * (q.r / (2.0 * a)).sinh();
-        let c = carried(a, Event::new(p.t, p.x, p.y, p.z));
+        let c = common::carried(a, Event::new(p.t, p.x, p.y, p.z));
         [c.t - q.t, c.x - q.x, c.y - q.y, c.z - q.z, p.r - back]
             .iter()
             .all(|d| d.abs() < 1e-9)
@@ -492,7 +481,7 @@ fn the_godel_members_map_is_godels_carried() {
     assert!((2.0 * a * (rho_c / (2.0 * a)).sinh() - g.horizon_radius.unwrap()).abs() < 1e-12);
     assert_eq!(g.horizon.len(), m.horizon.len());
     for (p, q) in g.horizon.iter().zip(&m.horizon) {
-        let c = carried(a, Event::new(0.0, p[0], p[1], 0.0));
+        let c = common::carried(a, Event::new(0.0, p[0], p[1], 0.0));
         assert!(
             (c.x - q[0]).abs() < 1e-9 && (c.y - q[1]).abs() < 1e-9,
             "{p:?} carried {c:?} vs {q:?}"

@@ -1,7 +1,10 @@
 //! Shared helpers for the spacetime tests: a tiny deterministic random generator,
-//! random events/directions (no external crates needed), and the largest component.
+//! random events/directions (no external crates needed), the largest component, and a
+//! light bundle's area distance by brute force.
 
-use spacetime::{Event, FourVector};
+use spacetime::{
+    trace, Event, FourVector, Geodesic, GeodesicKind, Metric, ShadowRay, Spacetime, TraceLimits,
+};
 
 /// xorshift64*: deterministic, good enough to spread test points.
 pub struct Rng(u64);
@@ -76,4 +79,33 @@ pub fn integrate_field(
         e = add(e, k, h);
     }
     e
+}
+
+/// D² = dA/dΩ by brute force: rays launched numerically from the source's static frame in
+/// directions (ψ ± h, χ) and (ψ, χ ± h) around the ray's, their spread after the ray's
+/// affine length, and the area √det g(J_i, J_j) per solid angle sin ψ dψ dχ (Gödel's
+/// universe or a Gödel-type member).
+pub fn numeric_area_distance_sq(m: Metric, r: &ShadowRay) -> f64 {
+    let frame = m.static_frame(r.emission);
+    let n: Vec<f64> = (1..4)
+        .map(|i| m.dot(r.emission, frame.e[i], r.tangent))
+        .collect();
+    let (psi, chi) = (n[2].clamp(-1.0, 1.0).acos(), n[1].atan2(n[0]));
+    let end = |psi: f64, chi: f64| {
+        let k = frame.vector([1.0, psi.sin() * chi.cos(), psi.sin() * chi.sin(), psi.cos()]);
+        let g = Geodesic::from_tangent(&m, GeodesicKind::Null, r.emission, k);
+        let limits = TraceLimits {
+            max_affine: r.lambda,
+            ..Default::default()
+        };
+        trace(m, &g, &limits).end.x
+    };
+    let h = 1e-4;
+    let d = |p: Event, q: Event| (p - q).to_array().map(|c| c / (2.0 * h));
+    let j1 = d(end(psi + h, chi), end(psi - h, chi));
+    let j2 = d(end(psi, chi + h), end(psi, chi - h));
+    let x = end(psi, chi);
+    let dot =
+        |u: [f64; 4], v: [f64; 4]| m.dot(x, FourVector::from_array(u), FourVector::from_array(v));
+    (dot(j1, j1) * dot(j2, j2) - dot(j1, j2).powi(2)).sqrt() / psi.sin()
 }
