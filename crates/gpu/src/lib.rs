@@ -35,6 +35,7 @@ pub const KERNEL: &str = concat!(
     include_str!("kernel/render_falling.glsl"),
     include_str!("kernel/render_intersect.glsl"),
     include_str!("kernel/render_surface.glsl"),
+    include_str!("kernel/render_lighting_family.glsl"),
     include_str!("kernel/render_lighting.glsl"),
     include_str!("kernel/render_tracer.glsl"),
     include_str!("kernel/render_map.glsl"),

@@ -19,6 +19,7 @@
 #define PROBE_SURFACE 11
 #define PROBE_FAMILY 12
 #define PROBE_FAMILY_EXACT 13
+#define PROBE_FAMILY_SHADOW 14
 
 uniform sampler2D u_args;   // RGBA32F: fragment (x, y) reads texels (x·ARG_TEXELS + j, y)
 const int ARG_TEXELS = 4;
@@ -143,6 +144,41 @@ void main() {
     texAt(g, a1.x, ev, tan_);
     slots[0] = vec4(flag(g.origin.ok), 0.0, 0.0, 0.0);
     slots[1] = ev; slots[2] = tan_;
+#elif PROBE == PROBE_FAMILY_SHADOW
+    // In the member (m², Ω) = a1.xy, the shadow rays' pieces (render_lighting_family.glsl).
+    vec2 mb = a1.xy;
+    if (a1.z < 0.5) {
+        // In the source's axis frame, for the target a0, the ray at ψ = a1.w to ±z of winding
+        // a2.x, inbound where a2.y > ½: the reach (R, σ_min, c_max, c_esc); (λ, G, D² of the
+        // ray at (ψ, λ) = a2.zw, ψ_min); the emission event and tangent of the ray at ψ with
+        // that λ; the grid's |c| at the fractions a3 of [c_lo, c_max] (1: c_max exactly), λ and
+        // G there (the ray's λ: |z_P| for the straight ray along the axis).
+        vec4 reach = typeShadowReach(mb, a0);
+        float psiMin = atan2s(reach.y, reach.z);
+        int n = toInt(a2.x, 0, MAX_WINDINGS);
+        bool inbound = a2.y > 0.5;
+        float lambda = typeShadowLambda(mb, reach.x, psiMin, a1.w, n, inbound);
+        // The straight ray to a target on the axis (ψ = 0) is no root of G: λ = |z_P|.
+        float lambdaRay = a1.w == 0.0 && a0.yz == vec2(0.0) ? abs(a0.w) : lambda;
+        slots[0] = reach;
+        slots[1] = vec4(lambda, typeShadowExcess(mb, reach.x, a0.w, psiMin, a1.w, n, inbound),
+                        typeAreaDistanceSq(mb, a2.z, a2.w), psiMin);
+        vec4 em = vec4(0.0), k = vec4(0.0);
+        typeShadowRay(mb, a0, a1.w, lambdaRay, em, k);
+        slots[2] = em; slots[3] = k;
+        float clo = n == 0 && !inbound ? 0.0 : reach.w;
+        vec4 u = mix(clo + (reach.z - clo) * a3, vec4(reach.z), equal(a3, vec4(1.0)));
+        slots[4] = u;
+        slots[5] = typeShadowLambda4(mb, reach.x, reach.z, u, n, inbound);
+        slots[6] = typeShadowExcess4(mb, reach.x, a0.w, reach.z, u, n, inbound);
+    } else {
+        // The ray of the source at a2.xyz with emission (a2.w, 0, 0, 0) and tangent a3 in its
+        // axis frame, reaching the target a0 at λ = a1.w: its emission event and tangent.
+        TIso back = typeInverseIso(typeToOrigin(mb, vec4(0.0, a2.xyz)));
+        vec4 em = vec4(0.0), k = vec4(0.0);
+        typeShadowRayBack(mb, back, a0, a1.w, vec4(a2.w, 0.0, 0.0, 0.0), a3, em, k);
+        slots[0] = em; slots[1] = k;
+    }
 #else
 #error unknown PROBE
 #endif

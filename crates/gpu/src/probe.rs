@@ -59,10 +59,14 @@ pub enum Function {
     Family,
     /// The Gödel-type family (FAMILY): typeExactGeodesic, texAt.
     FamilyExact,
+    /// The Gödel-type family's shadow rays (FAMILY): typeGodelRadius, typeShadowReach,
+    /// typeShadowLambda, typeShadowLambda4, typeShadowExcess, typeShadowExcess4,
+    /// typeShadowRay, typeShadowRayBack, typeAreaDistanceSq.
+    FamilyShadow,
 }
 
 impl Function {
-    pub const ALL: [Function; 13] = [
+    pub const ALL: [Function; 14] = [
         Function::Elementary,
         Function::Metric,
         Function::Christoffel,
@@ -76,6 +80,7 @@ impl Function {
         Function::Surface,
         Function::Family,
         Function::FamilyExact,
+        Function::FamilyShadow,
     ];
 
     /// Its name in probe.glsl.
@@ -94,13 +99,17 @@ impl Function {
             Function::Surface => "PROBE_SURFACE",
             Function::Family => "PROBE_FAMILY",
             Function::FamilyExact => "PROBE_FAMILY_EXACT",
+            Function::FamilyShadow => "PROBE_FAMILY_SHADOW",
         }
     }
 
     /// The source after the defines: this probe's entry point selected, the kernel, the probe.
     pub fn kernel(self) -> String {
         // The family's functions are compiled only where FAMILY is defined.
-        let family = if matches!(self, Function::Family | Function::FamilyExact) {
+        let family = if matches!(
+            self,
+            Function::Family | Function::FamilyExact | Function::FamilyShadow
+        ) {
             "#define FAMILY 1\n"
         } else {
             ""

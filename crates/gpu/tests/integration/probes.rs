@@ -988,6 +988,424 @@ fn family_geodesics_through_any_event_match_spacetime() {
     assert!(crossed >= 5, "only {crossed} cases cross the cut");
 }
 
+/// C1, S1 and ∂S1/∂Λ of the family's closed form at Λ, λ (E = 1): the rates the shadow
+/// test's tolerances need (∂S1/∂Λ = (C1λ − S1)/(2Λ), its series λ³(−1/6 + Λλ²/60) near 0).
+fn family_s1(lam: f64, lambda: f64) -> (f64, f64, f64) {
+    let x = lam * lambda * lambda;
+    let (c1, s1) = if lam > 0.0 {
+        let r = lam.sqrt();
+        ((r * lambda).cos(), (r * lambda).sin() / r)
+    } else if lam < 0.0 {
+        let r = (-lam).sqrt();
+        ((r * lambda).cosh(), (r * lambda).sinh() / r)
+    } else {
+        (1.0, lambda)
+    };
+    let ds1 = if x.abs() < 1e-3 {
+        lambda.powi(3) * (-1.0 / 6.0 + x / 60.0)
+    } else {
+        (c1 * lambda - s1) / (2.0 * lam)
+    };
+    (c1, s1, ds1)
+}
+
+/// The end (t, φ) of the light ray leaving the family's axis at angle ψ to +z with E = 1, at λ.
+fn family_axis_end(member: spacetime::GodelType, psi: f64, lambda: f64) -> [f64; 2] {
+    let k = FourVector::new(1.0, psi.sin(), 0.0, psi.cos());
+    let g = spacetime::TypeOriginGeodesic::new(member, k).expect("a light ray");
+    let (e, _) = g.at(lambda);
+    [e.t, e.y.atan2(e.x)]
+}
+
+/// An angle reduced to (−π, π].
+fn wrap(a: f64) -> f64 {
+    a - 2.0 * PI * (a / (2.0 * PI)).round()
+}
+
+/// The Gödel-type family's shadow rays (`render_lighting_family.glsl`, compiled with FAMILY)
+/// against `spacetime::godel_type_connect` in f64, in members m²/Ω² = −1, 0, 1, 2, 3.5, 4, 6 of
+/// Ω = 0.75 and 1.25 (m² = 4Ω² exactly in f32) and a sphere of small vorticity (m² = −1,
+/// Ω = 1/4), sources on and off the axis (on the sphere half beyond |ζ_S| = 4Ω/μ², where the
+/// cut's correction takes whole periods), targets within reach (ρ_P < 0.95 ρ_c in the source's
+/// axis frame for m² < 4Ω², mρ_P ≤ 2.5 otherwise), in the plane z_P = 0 and on the axis (the
+/// caustic's cones), windings 0..=2. For every ray of `type_shadow_rays_from_axis` at the
+/// target in the source's axis frame (f32, as the kernel gets it) the kernel's λ at the ray's
+/// ψ (rounded to f32), its G (≈ 0: a root), its emission event and tangent and D² (against
+/// `type_source_area_distance_sq`); at four grid points of each ray's branch λ and G; and
+/// each ray of `type_shadow_rays` mapped back to the scene (`typeShadowRayBack`, the cut's
+/// periods included) from its axis-frame twin.
+///
+/// Tolerances. λ solves R(λ, ψ) = R_P: its error is the error of R's inputs over ∂R/∂λ = σC1,
+/// (|∂R/∂ψ| δψ + δR + σ|∂S1/∂Λ| δΛ)/|σC1| + 8 ULP λ, with δψ the rounding of ψ to f32 and in
+/// the kernel's sines (and of ψ_min, 16 ULP), δR = 8 ULP (R_P(1 + |κ|R_P²) + σ|S1|) and
+/// δΛ = 4 ULP (Ω²c² + |Ω² − κ|σ²) (Λ's rounding, which decides the regime). Near the reach
+/// (C1 → 0) λ is that ill-conditioned for any method; the closed form's end there moves by
+/// the same. The emission time and azimuth carry λ's tolerance times their rates, ψ's times
+/// their derivatives in ψ (central differences of the f64 closed form), and 8 ULP of their
+/// size (the angle also the end's position error over ρ_P). The reach: a few ULP of each
+/// value (c_max over c_max's own slope σ_min/c_max). D²: 8 ULP (1 + θ) times Λ's conditioning
+/// times the size of what √det g(J_i, J_j) subtracts, D² + λ² + |J_ψ||J_χ|/σ (Gödel's form plus
+/// the Jacobi fields' product, large where ∂θ/∂ψ = λ ∂√Λ/∂ψ is, as near m² = 4Ω²). The map
+/// back: the family's isometry tolerance (16 ULP times the base coordinate's conditioning at
+/// the source, the emission and the target).
+#[test]
+fn family_shadow_rays_match_spacetime_godel_type_connect() {
+    use spacetime::godel_type_symmetry::base_coordinate;
+    use spacetime::{
+        type_shadow_rays, type_shadow_rays_from_axis, type_source_area_distance_sq, GodelChart,
+        GodelType, TypeIsometry,
+    };
+    const WINDINGS: u32 = 2;
+    let mut rng = Rng(fastrand::Rng::with_seed(1414));
+    // (member, p in the source's axis frame (f32), the CPU's axis ray, fractions of the grid)
+    // for the axis-frame probe; (member, source, target, axis ray, final ray) for the map back.
+    let mut axis_cases = Vec::new();
+    let mut back_cases = Vec::new();
+    let members = [0.75f64, 1.25]
+        .iter()
+        .flat_map(|&o| [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0].map(|r| (o, r)))
+        .chain([(0.25, -16.0)]);
+    for (omega, ratio) in members {
+        let member = GodelType::new(f(ratio * omega * omega), f(omega));
+        let m_abs = member.m2.abs().sqrt();
+        let rho_c = member.critical_radius();
+        let target_reach = rho_c.map_or(2.5 / m_abs, |r| 0.95 * r);
+        // Sources: mρ ≤ 2 (ρ ≤ 2/Ω for m² = 0); on the sphere up to 0.9π/μ, half of them beyond
+        // |ζ_S| = 4Ω/μ², i.e. μρ_S > 2 atan(2Ω/μ).
+        let source_reach = if member.m2 > 0.0 {
+            2.0 / m_abs
+        } else if member.m2 == 0.0 {
+            2.0 / member.omega
+        } else {
+            0.9 * PI / m_abs
+        };
+        let far = (member.m2 < 0.0).then(|| 2.0 * (2.0 * member.omega / m_abs).atan() / m_abs);
+        for i in 0..24usize {
+            let on_axis = i.is_multiple_of(4);
+            let rs = if on_axis {
+                0.0
+            } else if let Some(far) = far.filter(|&r| r < source_reach && i % 2 == 1) {
+                rng.range(far, source_reach)
+            } else {
+                rng.range(0.0, source_reach)
+            };
+            let ps = rng.range(-PI, PI);
+            let source = f4([0.0, rs * ps.cos(), rs * ps.sin(), rng.range(-1.0, 1.0)]);
+            let rp = if on_axis && i.is_multiple_of(8) {
+                0.0
+            } else {
+                rng.range(0.0, target_reach)
+            };
+            let pp = rng.range(-PI, PI);
+            let zp = if i % 6 == 1 {
+                0.0
+            } else {
+                rng.range(-3.0, 3.0) / member.omega
+            };
+            let p = [rng.range(-5.0, 5.0), rp * pp.cos(), rp * pp.sin(), zp];
+            let to = TypeIsometry::to_origin(member, event(source)).expect("within the chart");
+            let target = f4(to.inverse().apply(event(p)).to_array());
+            if !event(target).is_finite()
+                || member
+                    .coordinate_radius()
+                    .is_some_and(|edge| event(target).r() >= 0.99 * edge)
+            {
+                continue;
+            }
+            let moved = to.apply(event(target));
+            let p32 = f4(moved.to_array());
+            for ray in type_shadow_rays_from_axis(member, event(p32), WINDINGS) {
+                let fractions = [0.0, f(rng.range(0.0, 1.0)), f(rng.range(0.0, 1.0)), 1.0];
+                axis_cases.push((member, p32, ray, fractions));
+            }
+            let axis = type_shadow_rays_from_axis(member, moved, WINDINGS);
+            for ray in type_shadow_rays(member, event(source), event(target), WINDINGS) {
+                let twin = axis
+                    .iter()
+                    .find(|r| r.lambda == ray.lambda && r.winding == ray.winding)
+                    .expect("every ray has its axis-frame twin");
+                back_cases.push((member, source, target, *twin, ray));
+            }
+        }
+    }
+    let input = input(true);
+    let mut args: Vec<Args> = Vec::new();
+    for (m, p, ray, fr) in &axis_cases {
+        let k = ray.tangent;
+        let psi = f(k.x.hypot(k.y).atan2(k.z.abs()));
+        let psi_d = f(k.x.hypot(k.y).atan2(k.z));
+        let inbound = f64::from(u8::from(ray.branch == Branch::Inbound));
+        args.push([
+            texel(*p),
+            texel([m.m2, m.omega, 0.0, psi]),
+            texel([f64::from(ray.winding), inbound, psi_d, f(ray.lambda)]),
+            texel(*fr),
+        ]);
+    }
+    for (m, source, target, twin, _) in &back_cases {
+        args.push([
+            texel(*target),
+            texel([m.m2, m.omega, 1.0, f(twin.lambda)]),
+            texel([source[1], source[2], source[3], f(twin.emission.t)]),
+            texel(f4(twin.tangent.to_array())),
+        ]);
+    }
+    let prober = Prober::new(&input, Function::FamilyShadow).expect("compiles");
+    let mut out = Vec::new();
+    for chunk in args.chunks(gpu::probe::MAX_EVALUATIONS) {
+        out.extend(prober.eval(&input.uniforms, chunk).expect("evaluates"));
+    }
+    let (axis_out, back_out) = out.split_at(axis_cases.len());
+    let mut reach_c = Compare::new("typeShadowReach");
+    let mut lambda_c = Compare::new("typeShadowLambda");
+    let mut excess_c = Compare::new("typeShadowExcess");
+    let mut ray_c = Compare::new("typeShadowRay");
+    let mut area_c = Compare::new("typeAreaDistanceSq");
+    let mut grid_c = Compare::new("typeShadowLambda4, typeShadowExcess4");
+    let mut back_c = Compare::new("typeShadowRayBack");
+    let (mut in_plane, mut caustic, mut escaping, mut periods) = (0, 0, 0, 0);
+    for ((member, p, ray, fr), r) in axis_cases.iter().zip(axis_out) {
+        let w = || format!("{member:?}, p {p:?}, ray {ray:?}");
+        let kappa = 0.25 * member.m2;
+        let w2 = member.omega * member.omega;
+        // The reach, as type_shadow_rays_from_axis makes it.
+        let rp = GodelChart::new(*member).event(event(*p)).r();
+        let smin = member.omega * base_coordinate(*member, p[1], p[2]).norm_sqr().sqrt();
+        let cmax = ((1.0 - smin) * (1.0 + smin)).sqrt();
+        let sesc = 2.0 * member.omega / member.m2.max(0.0).sqrt();
+        let cesc = if sesc < 1.0 {
+            ((1.0 - sesc) * (1.0 + sesc)).sqrt()
+        } else {
+            0.0
+        };
+        reach_c.value(r[0][0], rp, 8.0 * ULP * rp, w);
+        reach_c.value(r[0][1], smin, 16.0 * ULP * smin, w);
+        reach_c.value(
+            r[0][2],
+            cmax,
+            4.0 * ULP + 16.0 * ULP * smin * smin / cmax,
+            w,
+        );
+        reach_c.value(r[0][3], cesc, 4.0 * ULP * (1.0 + 1.0 / cesc.max(1e-3)), w);
+        // λ at the ray's ψ.
+        let k = ray.tangent;
+        let sigma = k.x.hypot(k.y);
+        let c = k.z.abs();
+        let psi_cpu = sigma.atan2(c);
+        let psi = f(psi_cpu);
+        let psi_min = smin.atan2(cmax);
+        let lam = w2 * c * c + (w2 - kappa) * sigma * sigma;
+        let lam_scale = w2 * c * c + (w2 - kappa).abs() * sigma * sigma;
+        let lambda = ray.lambda;
+        let theta = lam.abs().sqrt() * lambda;
+        let (c1, s1, ds1) = family_s1(lam, lambda);
+        let d_psi = (psi - psi_cpu).abs() + 2.0 * ULP * psi + 16.0 * ULP * psi_min;
+        let d_r = 8.0 * ULP * (rp * (1.0 + kappa.abs() * rp * rp) + sigma * s1.abs());
+        let d_lam = 4.0 * ULP * lam_scale;
+        let dr_dpsi = c * s1 + sigma * ds1 * (-2.0 * kappa * sigma * c);
+        let tol_lambda = if sigma == 0.0 {
+            8.0 * ULP * lambda
+        } else {
+            (dr_dpsi.abs() * d_psi + d_r + sigma * ds1.abs() * d_lam) / (sigma * c1).abs()
+                + 8.0 * ULP * lambda
+        };
+        // The straight ray along the axis is no root: the kernel's λ is |z_P| there.
+        if sigma > 0.0 {
+            lambda_c.value(r[1][0], lambda, tol_lambda, w);
+        }
+        // G = |c|λ − |z_P| = 0 at a root.
+        let tol_g = c * tol_lambda + lambda * sigma * d_psi + 4.0 * ULP * (p[3].abs() + c * lambda);
+        if sigma > 0.0 {
+            excess_c.value(r[1][1], 0.0, tol_g, w);
+        }
+        // The emission event and tangent in the axis frame, from the kernel's λ.
+        let sign = if p[3] < 0.0 { -1.0 } else { 1.0 };
+        let psi_s = if sign < 0.0 { PI - psi_cpu } else { psi_cpu };
+        let h = 1e-6;
+        let hl = 1e-6 * (1.0 + lambda);
+        let [tp, fp] = family_axis_end(*member, psi_s + h, lambda);
+        let [tm, fm] = family_axis_end(*member, psi_s - h, lambda);
+        let [tl, fl] = family_axis_end(*member, psi_s, lambda + hl);
+        let [tk, fk] = family_axis_end(*member, psi_s, lambda - hl);
+        let [t_end, _] = family_axis_end(*member, psi_s, lambda);
+        let (dt_psi, dphi_psi) = ((tp - tm) / (2.0 * h), wrap(fp - fm) / (2.0 * h));
+        let (dt_l, dphi_l) = ((tl - tk) / (2.0 * hl), wrap(fl - fk) / (2.0 * hl));
+        let rate = 1.0 + dt_l.abs();
+        let tol_t = dt_l.abs() * tol_lambda
+            + dt_psi.abs() * d_psi
+            + 8.0
+                * ULP
+                * (p[0].abs() + t_end.abs() + rate * lambda)
+                * (1.0 + theta)
+                * (1.0 + lam_scale / lam.abs().max(1e-30)).min(1e6);
+        ray_c.value(r[2][0], ray.emission.t, tol_t, w);
+        for &x in &r[2][1..] {
+            ray_c.value(x, 0.0, 0.0, w);
+        }
+        let rho_p = p[1].hypot(p[2]);
+        let d_alpha = if rho_p == 0.0 {
+            0.0
+        } else {
+            dphi_l.abs() * tol_lambda
+                + dphi_psi.abs() * d_psi
+                + 8.0 * ULP * (1.0 + theta) * (1.0 + (sigma / lam.abs().sqrt()).min(1e3) / rho_p)
+        };
+        let kt = k.to_array();
+        ray_c.value(r[3][0], 1.0, 0.0, w);
+        for i in 1..3 {
+            ray_c.value(r[3][i], kt[i], sigma * d_alpha + 2.0 * d_psi + 4.0 * ULP, w);
+        }
+        ray_c.value(r[3][3], kt[3], 2.0 * d_psi + 4.0 * ULP, w);
+        // D² of the ray at the f32 (ψ, λ) against the twin at the same.
+        let psi_d = f(sigma.atan2(k.z));
+        if sigma > 0.0 {
+            let lambda_d = f(lambda);
+            let probe = spacetime::ShadowRay {
+                emission: Event::new(0.0, 0.0, 0.0, 0.0),
+                tangent: FourVector::new(1.0, psi_d.sin(), 0.0, psi_d.cos()),
+                lambda: lambda_d,
+                winding: 0,
+                branch: Branch::Outbound,
+            };
+            let want =
+                type_source_area_distance_sq(*member, Event::new(0.0, 0.0, 0.0, 0.0), &probe);
+            // √det g(J_ψ, J_χ) subtracts products of the Jacobi fields' components: their size
+            // |J_ψ| |J_χ|/σ, J_ψ from the f64 closed form's derivatives in ψ (the twin's central
+            // difference, h = 10⁻⁵, adds ~10⁻⁹ relative).
+            let big_r = sigma * s1.abs();
+            let j_chi = big_r * (1.0 + big_r * member.omega + (kappa * big_r * big_r).abs());
+            let j_psi = dt_psi.abs()
+                + dr_dpsi.abs()
+                + big_r * dphi_psi.abs() * (1.0 + member.omega * big_r)
+                + sigma * lambda;
+            let cond = (1.0 + lam_scale / lam.abs().max(1e-30)).min(1e6);
+            let size = want.abs() + lambda_d * lambda_d + j_psi * j_chi / sigma;
+            let tol = 8.0 * ULP * size * (1.0 + theta) * cond;
+            area_c.value(r[1][2], want, tol, w);
+        }
+        // The grid at the fractions: |c| from c_lo to c_max (c_max exactly at 1).
+        let n = ray.winding;
+        let inbound = ray.branch == Branch::Inbound;
+        let c_lo = if n == 0 && !inbound { 0.0 } else { cesc };
+        for j in 0..4 {
+            let u = f64::from(r[4][j]);
+            let want_u = if fr[j] == 1.0 {
+                cmax
+            } else {
+                c_lo + (cmax - c_lo) * fr[j]
+            };
+            let wj = || format!("{}, lane {j} (u = {u})", w());
+            grid_c.value(
+                r[4][j],
+                want_u,
+                4.0 * ULP * (1.0 + want_u) + 16.0 * ULP * smin * smin / cmax,
+                wj,
+            );
+            let s = ((1.0 - u) * (1.0 + u)).sqrt();
+            let lam_u = w2 * u * u + (w2 - kappa) * s * s;
+            let lam_u_scale = w2 * u * u + (w2 - kappa).abs() * s * s;
+            let l = f64::from(r[5][j]);
+            if lam_u != 0.0 && lam_u.abs() < 1e-4 * w2 {
+                continue; // the regime is Λ's rounding (Λ = 0 at c = 0 for m² = 4Ω² is exact)
+            }
+            let exists = lam_u > 0.0 || (n == 0 && !inbound);
+            grid_c.same(f32::from(u8::from(l >= 0.0)), exists, wj);
+            if l < 0.0 {
+                let want_g = if u > 0.0 {
+                    f64::from(INF)
+                } else {
+                    (f64::from(n) + f64::from(u8::from(inbound))) * PI / member.omega - p[3].abs()
+                };
+                grid_c.value(
+                    r[6][j],
+                    want_g,
+                    4.0 * ULP * (want_g.abs() + 2.0 * p[3].abs()),
+                    wj,
+                );
+                continue;
+            }
+            grid_c.value(
+                r[6][j],
+                u * l - p[3].abs(),
+                4.0 * ULP * (p[3].abs() + u * l),
+                wj,
+            );
+            // The closed form at (u, s) reaches R_P at the kernel's λ, on its branch.
+            let (c1u, s1u, ds1u) = family_s1(lam_u, l);
+            let theta_u = lam_u.abs().sqrt() * l;
+            let r_end = s * s1u;
+            // c_max's rounding moves θ₀ (by d = (c_max − u)(c_max + u)) and, at c_max, R_max.
+            let d_cmax = 16.0 * ULP * smin * smin / cmax + 2.0 * ULP;
+            let d_r = 8.0 * ULP * (rp * (1.0 + kappa.abs() * rp * rp) + s * s1u.abs())
+                + s * ds1u.abs() * 4.0 * ULP * lam_u_scale
+                + rp * (1.0 + kappa.abs() * rp * rp) * cmax * d_cmax / (s * s)
+                + (c1u * s1u * u / s.max(1e-30) + s * ds1u * 2.0 * kappa * u).abs() * d_cmax
+                + (s * c1u).abs() * 8.0 * ULP * l;
+            grid_c.value(r_end.abs() as f32, rp, d_r, wj);
+            if lam_u > 0.0 {
+                let start = (2.0 * f64::from(n) + f64::from(u8::from(inbound))) * PI / 2.0;
+                let slack = 1e-4 * (1.0 + theta_u);
+                let on_branch = theta_u >= start - slack && theta_u <= start + PI / 2.0 + slack;
+                grid_c.same(f32::from(u8::from(on_branch)), true, wj);
+            }
+        }
+        in_plane += usize::from(p[3] == 0.0);
+        caustic += usize::from(rho_p == 0.0);
+        escaping += usize::from(lam <= 0.0);
+    }
+    for ((member, source, target, twin, ray), r) in back_cases.iter().zip(back_out) {
+        let w = || format!("{member:?}, source {source:?}, target {target:?}, ray {ray:?}");
+        let kk = 0.25 * member.m2;
+        let cond = |x: f64, y: f64| {
+            let z = base_coordinate(*member, x, y);
+            1.0 / (1.0 - kk * z.norm_sqr()).min(1.0)
+        };
+        let e = ray.emission;
+        let scale = cond(source[1], source[2]) * cond(e.x, e.y) * cond(target[1], target[2]);
+        let period = 8.0 * PI * member.omega / member.m2.abs();
+        let plain = TypeIsometry::to_origin(*member, event(*source))
+            .expect("within the chart")
+            .inverse()
+            .apply(twin.emission);
+        let taken = if member.m2 < 0.0 {
+            ((e.t - plain.t) / period).round().abs() * period
+        } else {
+            0.0
+        };
+        periods += usize::from(taken > 0.0);
+        let tsize = 1.0
+            + e.t.abs()
+            + twin.emission.t.abs()
+            + member.omega * (1.0 + source[1].hypot(source[2]) * e.r())
+            + taken;
+        let ea = e.to_array();
+        let ka = ray.tangent.to_array();
+        let ksize = 1.0 + ka.iter().map(|c| c.abs()).sum::<f64>();
+        for i in 0..4 {
+            let s = if i == 0 {
+                tsize
+            } else {
+                1.0 + ea[i].abs() + source[i].abs()
+            };
+            back_c.value(r[0][i], ea[i], 16.0 * ULP * scale * s, w);
+            back_c.value(r[1][i], ka[i], 16.0 * ULP * scale * ksize, w);
+        }
+    }
+    reach_c.assert();
+    lambda_c.assert();
+    excess_c.assert();
+    ray_c.assert();
+    area_c.assert();
+    grid_c.assert();
+    back_c.assert();
+    eprintln!(
+        "{} axis-frame rays ({in_plane} in the plane, {caustic} caustic, {escaping} escaping), {} mapped back ({periods} across the cut)",
+        axis_cases.len(),
+        back_cases.len()
+    );
+    assert!(in_plane >= 10 && caustic >= 5 && escaping >= 10 && periods >= 5);
+}
+
 /// The distance of an event from the axis, for the time shift's size Ω ρ₀ ρ.
 fn reach_of(p: [f64; 4]) -> f64 {
     p[1].hypot(p[2])
