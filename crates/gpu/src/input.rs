@@ -39,10 +39,15 @@
 //! page); the boost by the observer's velocity stays in the kernel, since the page changes
 //! the velocity itself, every animation frame, without the server.
 
+use render::chart::LocalChart;
+use render::segment::{BOUNDARY_LAMBDA, STEP_PER_SCALE};
 use scene::{Camera, Motion, Scene, Shape};
 use serde::Serialize;
 use spacetime::measure::DualFrame;
-use spacetime::{Event, ExactGeodesic, FourVector, Isometry, LocalVelocity, Metric, Spacetime};
+use spacetime::{
+    Event, ExactGeodesic, FourVector, GodelType, Isometry, LocalVelocity, Metric, Spacetime,
+    TypeExactGeodesic, TypeIsometry, TypeOriginGeodesic,
+};
 use std::f64::consts::{PI, SQRT_2};
 use std::ops::Range;
 
@@ -97,6 +102,7 @@ pub struct RoundPlan {
 /// The kernel's uniforms (names without the `u_` prefix of the GLSL source).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Uniforms {
+    /// 0 Minkowski, 1 Gödel, 2 a Gödel-type member (the defines say it to the kernel).
     pub metric: i32,
     pub a: f32,
     pub obs_t: [f32; 2],
@@ -126,9 +132,11 @@ pub struct ObserverUniforms {
     /// kernel boosts it by the observer's velocity.
     pub obs_static: [f32; 16],
     /// Gödel: the isometry sending the observer's event to the origin
-    /// (`spacetime::Isometry::to_origin`) as (w₀.re, w₀.im, z₀, rotation); its t₀ is 0, as
-    /// the kernel's times are relative to the observer's. Minkowski: zeros (a translation,
-    /// which the kernel never needs: its rays are straight lines from the observer).
+    /// (`spacetime::Isometry::to_origin`) as (w₀.re, w₀.im, z₀, rotation); a Gödel-type
+    /// member: its own (`spacetime::TypeIsometry::to_origin`) as (ζ₀.re, ζ₀.im, z₀,
+    /// rotation). Its t₀ is 0, as the kernel's times are relative to the observer's.
+    /// Minkowski: zeros (a translation, which the kernel never needs: its rays are straight
+    /// lines from the observer).
     pub obs_to: [f32; 4],
 }
 
@@ -142,12 +150,17 @@ impl ObserverUniforms {
         for (column, e) in obs_static.chunks_exact_mut(4).zip(frame.e) {
             column.copy_from_slice(&texel(e));
         }
-        let obs_to = match metric.godel_a() {
-            Some(a) => {
-                let to = Isometry::to_origin(a, at);
+        let obs_to = match metric {
+            Metric::Godel(g) => {
+                let to = Isometry::to_origin(g.a, at);
                 [to.w0.re, to.w0.im, to.z0, to.rotation].map(|c| c as f32)
             }
-            None => [0.0; 4],
+            // A scene's observer lies in the chart (scene validation); outside it, the
+            // identity (never traced from).
+            Metric::GodelType(m) => TypeIsometry::to_origin(*m, at).map_or([0.0; 4], |to| {
+                [to.zeta0.re, to.zeta0.im, to.z0, to.rotation].map(|c| c as f32)
+            }),
+            Metric::Minkowski(_) => [0.0; 4],
         };
         ObserverUniforms { obs_static, obs_to }
     }
@@ -169,6 +182,36 @@ pub struct KernelInput {
     pub kinds: [bool; 4],
     /// Samples per side of a pixel.
     pub supersample: u32,
+    /// A Gödel-type member's defines (`None` for Gödel's universe and Minkowski's).
+    pub member: Option<MemberDefines>,
+}
+
+/// What the kernel of a Gödel-type member's scene is compiled with, made in f64 and rounded
+/// once (gpu_input.glsl lists the defines).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MemberDefines {
+    pub m2: f32,
+    pub omega: f32,
+    /// Ω² − m²/4: its sign decides which light rays escape (render::segment::family_return),
+    /// and where m² = 4Ω² f32's own difference would be rounding.
+    pub delta: f32,
+    /// m² ≥ 4Ω² up to rounding (render::tracer::EscapeStop): light may escape.
+    pub causal: bool,
+    /// The longest segment of a ray, STEP_PER_SCALE length scales.
+    pub step: f32,
+}
+
+impl MemberDefines {
+    fn new(member: GodelType, length_scale: f64) -> MemberDefines {
+        let w2 = member.omega * member.omega;
+        MemberDefines {
+            m2: member.m2 as f32,
+            omega: member.omega as f32,
+            delta: (w2 - 0.25 * member.m2) as f32,
+            causal: member.m2 >= 4.0 * w2 * (1.0 - BOUNDARY_LAMBDA),
+            step: (STEP_PER_SCALE * length_scale) as f32,
+        }
+    }
 }
 
 /// A time as f32 hi + lo, hi + lo ≈ t to ~2⁻⁴⁸ relative.
@@ -177,13 +220,35 @@ pub fn split_time(t: f64) -> [f32; 2] {
     [hi, (t - f64::from(hi)) as f32]
 }
 
-/// Why the kernel cannot trace `scene`, in one sentence; `None` where it can. The kernel
-/// carries Gödel's metric, closed forms and isometries and Minkowski's, not the Gödel-type
-/// family's (docs/physics.md, "The GPU kernel").
+/// Why the kernel cannot trace `scene`, in one sentence; `None` where it can (docs/physics.md,
+/// "The GPU kernel in the family"): in a Gödel-type member, lights (the kernel has not the
+/// family's shadow rays yet), and a ball falling fast enough to escape a causal member (the
+/// kernel's escape stop bounds the objects by their orbits, and such a ball has none).
 pub fn refusal(scene: &Scene) -> Option<String> {
-    scene.metric.godel_type().map(|_| {
-        "the GPU kernel knows only Gödel's metric and flat spacetime, not yet the Gödel-type \
-         family's metric and closed forms"
+    let member = scene.metric.godel_type()?;
+    if !scene.lights.is_empty() {
+        return Some(
+            "the GPU kernel does not yet have the Gödel-type family's shadow rays, so it cannot \
+             light a member's scene"
+                .to_string(),
+        );
+    }
+    let escapes = scene.objects.iter().any(|o| match o.motion {
+        Motion::Geodesic { start, velocity } => {
+            let start0 = Event::new(0.0, start.x, start.y, start.z);
+            let u = scene.metric.observer_frame(start0, velocity).e[0];
+            TypeIsometry::to_origin(member, start0)
+                .and_then(|to| TypeOriginGeodesic::new(member, to.push(start0, u)))
+                .is_some_and(|g| {
+                    let spin = member.omega * g.energy;
+                    g.big_lambda() <= BOUNDARY_LAMBDA * spin * spin
+                })
+        }
+        Motion::Rest { .. } => false,
+    });
+    escapes.then(|| {
+        "a ball of this scene falls fast enough to escape the member's axis, which the GPU \
+         kernel's escape stop cannot bound"
             .to_string()
     })
 }
@@ -205,7 +270,11 @@ impl KernelInput {
         let f = |v: [f64; 3]| v.map(|c| c as f32);
         let v = obs.velocity;
         let uniforms = Uniforms {
-            metric: i32::from(scene.metric.godel_a().is_some()),
+            metric: match scene.metric {
+                Metric::Minkowski(_) => 0,
+                Metric::Godel(_) => 1,
+                Metric::GodelType(_) => 2,
+            },
             a: scene.metric.length_scale() as f32,
             obs_t: split_time(obs.event.t),
             obs_x: f([obs.event.x, obs.event.y, obs.event.z]),
@@ -283,6 +352,8 @@ impl KernelInput {
             light_count: scene.lights.len(),
             kinds,
             supersample: scene.supersample(),
+            member: (scene.metric.godel_type())
+                .map(|m| MemberDefines::new(m, scene.metric.length_scale())),
         }
     }
 
@@ -298,13 +369,24 @@ impl KernelInput {
             self.objects.max(1),
             self.light_count.max(1),
             draw_buffers,
-            self.uniforms.metric,
+            i32::from(self.uniforms.metric == 1),
             flag(self.light_count > 0),
             flag(self.kinds[0]),
             flag(self.kinds[1]),
             flag(self.kinds[2]),
             flag(self.kinds[3]),
-        )
+        ) + &self.member.as_ref().map_or(String::new(), |m| {
+            format!(
+                "#define FAMILY 1\n#define MEMBER 1\n#define MEMBER_M2 ({:e})\n\
+                 #define MEMBER_OMEGA ({:e})\n#define MEMBER_DELTA ({:e})\n\
+                 #define MEMBER_CAUSAL {}\n#define MEMBER_STEP ({:e})\n",
+                m.m2,
+                m.omega,
+                m.delta,
+                flag(m.causal),
+                m.step
+            )
+        })
     }
 
     /// The slots of this scene's records.
@@ -344,18 +426,25 @@ fn texel(v: FourVector) -> [f32; 4] {
     v.to_array().map(|c| c as f32)
 }
 
-/// Texels 3–16 of a ball at rest at `position`: its body frame (the static frame there), the
-/// frame's dual rows and the Christoffel symbols there (as `render::worldline` makes them),
-/// those of t, x and y (symmetric in the lower two).
+/// Texels 2–16 of a ball at rest at `position`: its body frame (the static frame there), and
+/// in the chart of local descriptions (`render::chart::LocalChart`: a member's Gödel-like
+/// chart, else the metric's own) its position (texel 2, a member only), the frame's dual rows
+/// and the Christoffel symbols there (as `render::worldline` makes them), those of t, x and y
+/// (symmetric in the lower two).
 fn rest_ball(metric: &Metric, position: Event, t: &mut [[f32; 4]; OBJECT_TEXELS]) {
     let p = Event::new(0.0, position.x, position.y, position.z);
     let frame = metric.static_frame(p);
-    let dual = DualFrame::new(&metric.metric(p), &frame);
+    let chart = LocalChart::of(metric);
+    let centre = chart.event(p);
+    if metric.godel_type().is_some() {
+        t[2] = [centre.x, centre.y, centre.z, 0.0].map(|c| c as f32);
+    }
+    let dual = DualFrame::new(&chart.metric(centre), &chart.frame(p, &frame));
     for a in 0..4 {
         t[3 + a] = texel(frame.e[a]);
         t[7 + a] = dual.0[a].map(|c| c as f32);
     }
-    let gamma = metric.christoffel(p);
+    let gamma = chart.christoffel(centre);
     for (mu, g) in gamma.iter().take(3).enumerate() {
         t[11 + 2 * mu] = [g[0][0], g[0][1], g[0][2], g[1][1]].map(|c| c as f32);
         t[12 + 2 * mu] = [g[1][2], g[2][2], 0.0, 0.0].map(|c| c as f32);
@@ -403,6 +492,28 @@ fn falling_ball(
         let b = g.back;
         t[2] = [hi, lo, b.t0 as f32, 0.0];
         t[10] = [b.w0.re, b.w0.im, b.z0, b.rotation].map(|c| c as f32);
+    } else if let Some(member) = metric.godel_type() {
+        // The geodesic through the start (spacetime::TypeExactGeodesic); its legs stay in the
+        // scene's coordinates, where the kernel transports them (typeTransport).
+        let Some(g) = TypeExactGeodesic::new(member, start0, u) else {
+            return false;
+        };
+        for k in 1..4 {
+            t[3 + k] = texel(frame.e[k]);
+        }
+        let o = g.origin;
+        rate = match o.return_parameter() {
+            Some(lret) => g.at(lret).0.t / lret,
+            None => u.t,
+        };
+        let (cc, sc) = o.cis_chi();
+        t[8] = [o.energy, o.pz, o.kappa, o.kperp()].map(|c| c as f32);
+        t[9] = [o.big_lambda(), cc, sc, 0.0].map(|c| c as f32);
+        let b = g.back;
+        t[2] = [hi, lo, b.t0 as f32, 0.0];
+        t[10] = [b.zeta0.re, b.zeta0.im, b.z0, b.rotation].map(|c| c as f32);
+        let (alpha, beta) = g.winding().unwrap_or_default();
+        t[11] = [alpha.re, alpha.im, beta.re, beta.im].map(|c| c as f32);
     } else {
         for k in 1..4 {
             t[3 + k] = texel(frame.e[k]);

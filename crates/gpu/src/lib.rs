@@ -33,6 +33,7 @@ pub const KERNEL: &str = concat!(
     include_str!("kernel/render_target.glsl"),
     include_str!("kernel/render_reject.glsl"),
     include_str!("kernel/render_falling.glsl"),
+    include_str!("kernel/render_escape.glsl"),
     include_str!("kernel/render_intersect.glsl"),
     include_str!("kernel/render_surface.glsl"),
     include_str!("kernel/render_lighting_family.glsl"),

@@ -142,6 +142,11 @@ impl TypeOriginGeodesic {
         self.member.omega * self.energy.abs()
     }
 
+    /// k⊥ = √A, the tangent's part in the base.
+    pub fn kperp(&self) -> f64 {
+        self.kperp
+    }
+
     /// Λ = Ω²E² − m²A/4, whose sign sets the regime.
     pub fn big_lambda(&self) -> f64 {
         self.big_lambda
@@ -299,6 +304,11 @@ impl TypeExactGeodesic {
             origin,
             winding,
         })
+    }
+
+    /// (α, β) of the continuous arg on the sphere; `None` for m² ≥ 0.
+    pub fn winding(&self) -> Option<(Complex, Complex)> {
+        self.winding
     }
 
     /// Event and tangent at parameter `lambda` (λ = 0 at the starting event).

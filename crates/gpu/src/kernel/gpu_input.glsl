@@ -13,7 +13,11 @@
 // The host prepends `#version 300 es` and its defines (crates/gpu/src/input.rs,
 // `KernelInput::defines`): N_OBJECTS and N_LIGHTS (the scene's counts, at least 1 for the
 // array sizes), DRAW_BUFFERS (render targets per pass), GODEL (1 for Gödel's metric, 0 for
-// Minkowski's), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
+// Minkowski's and the family's), for a Gödel-type member MEMBER with FAMILY and the member's
+// constants MEMBER_M2 (m²), MEMBER_OMEGA (Ω), MEMBER_DELTA (Ω² − m²/4, made in f64: its sign
+// decides which rays escape, and f32's Ω² − m²/4 would be rounding where m² = 4Ω²),
+// MEMBER_CAUSAL (1 where m² ≥ 4Ω² up to rounding: light may escape) and MEMBER_STEP (the
+// longest segment of a ray, render::segment::STEP_PER_SCALE length scales), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
 // scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
 // probe count in place of view_x), and the family's probe FAMILY (the Gödel-type family's
 // functions, spacetime_godel_type.glsl).
@@ -39,11 +43,12 @@ precision highp sampler2D;
 // Inputs. The scene table holds per object OBJECT_TEXELS texels and per light LIGHT_TEXELS
 // (layout written by crates/gpu/src/input.rs, the one packer).
 
-uniform float u_a;           // Gödel parameter a
+uniform float u_a;           // Gödel parameter a; a member's length scale (Metric::length_scale)
 uniform vec2 u_obs_t;        // observer time as hi + lo (times of objects are made relative to it)
 uniform vec3 u_obs_x;        // observer position (x, y, z)
 uniform mat4 u_obs_static;   // the static frame there, columns e0..e3 (made by the host in f64)
-uniform vec4 u_obs_to;       // Gödel: the isometry sending the observer to the origin, (w0, z0, rot)
+uniform vec4 u_obs_to;       // the isometry sending the observer to the origin, (w0, z0, rot)
+                             // (a member: its base coordinate ζ0 in place of w0)
 uniform vec4 u_velocity;     // observer speed and unit direction in the static frame
 uniform vec3 u_forward;      // camera axes in the observer's frame
 uniform vec3 u_up;
@@ -108,6 +113,17 @@ const float SQRT2 = 1.41421356237310;
 const float NO_TAU = -3.0e38;      // "no matched proper time" (the CPU's NaN)
 const float INF = 3.0e38;
 
+#ifdef MEMBER
+const vec2 MB = vec2(MEMBER_M2, MEMBER_OMEGA);   // the member as the family's functions take it
+// render::tracer::MAX_FAMILY_SEGMENTS: segments of an escaping ray at most.
+const int MAX_FAMILY_SEGMENTS = 16384;
+// render::segment::BOUNDARY_LAMBDA: below this fraction of Ω²E², Λ counts as 0 (escaping).
+const float BOUNDARY_LAMBDA = 1e-12;
+// scene::ranges: positions of a member with m² > 0 end at mρ = 30 (beyond, f64 loses its
+// digits; here an escaping ray's e^{mρ} would near f32's range).
+const float MAX_M_RHO = 30.0;
+#endif
+
 // The intersection search's bounds (render::intersect, docs/physics.md "The intersection
 // search"): halvings of a span, probes per object and span, conservative advancement cap.
 const int SEARCH_DEPTH = 30;
@@ -117,6 +133,8 @@ const float MAX_SKIP = 1.0;
 const int EXACT_SEGMENTS = 16;
 // GPU only: segments of a Minkowski ray or a shadow ray at most.
 const int MAX_SEGMENTS = 100000;
+// Segment and loop counts kept as ints (below 2^30: their products with EXACT_SEGMENTS stay ints).
+const int MAX_COUNT_SEGMENTS = 1 << 24;
 // Probes per sample, all its searches together: a count kept exactly in f32 between rounds,
 // far above what the other bounds allow (the CPU has no such bound; the search's own bounds
 // end a search first).

@@ -42,14 +42,17 @@ const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
 // of the ray's `total` segments (a straight ray, a shadow ray: cut so that each stretch's start
 // is a checkpoint of the rounds, main); pixel rays stop at the time bound. Shadow rays: the lit
 // object `skipObj` is not searched from segment `skipSeg` on (its last). The first loop's box.
+// `ends`: the status where the plan's loops or segments run out (a Gödel or member pixel ray:
+// out of work; a straight ray or a shadow ray: escaped).
 struct Plan {
     Ray ray;
     int loops; int segs; int total; bool cont;
     float span; float pt; float tBound; bool pixel;
     int skipObj; int skipSeg;
     vec3 boxLo; vec3 boxHi;
+    int ends;
 };
-Plan plan = Plan(NO_RAY, 0, 0, 0, false, 0.0, 0.0, 0.0, false, -1, 0, vec3(0.0), vec3(0.0));
+Plan plan = Plan(NO_RAY, 0, 0, 0, false, 0.0, 0.0, 0.0, false, -1, 0, vec3(0.0), vec3(0.0), ESCAPED);
 
 // The machine's place: its mode, loop, segment [lo, hi] and object, the segment's earliest
 // crossing so far, and the search's result.
@@ -124,9 +127,38 @@ void request(int tag, float lambda, float seed) {
 
 float loopOffset() { return float(mach.loop_) * plan.span; }
 
+#ifdef MEMBER
+// A member's ray searched in stretches of EXACT_SEGMENTS segments (memberSearch): the loop and
+// the parameter within it of l into stretch j, from the segments' count (a loop holds a whole
+// number of them), so that later loops keep their digits as loop copies.
+void memberPlace(Ray r, int j, float l, out int loop, out float within) {
+    loop = 0; within = 0.0;
+    int g0 = j * EXACT_SEGMENTS;
+    if (r.nseg > 0) {
+        loop = g0 / r.nseg;
+        within = float(g0 - loop * r.nseg) * r.h + l;
+        if (within >= r.lret) {
+            loop++;
+            within -= r.lret;
+        }
+    } else {
+        within = float(g0) * r.h + l;
+    }
+}
+#endif
+
 // The searched ray's event and tangent at parameter l of loop (or stretch) j.
 void searchRayAt(int j, float l, out vec4 ev, out vec4 k) {
     ev = vec4(0.0); k = vec4(0.0);
+#ifdef MEMBER
+    if (plan.cont) {
+        int loop = 0;
+        float within = 0.0;
+        memberPlace(plan.ray, j, l, loop, within);
+        rayAt(plan.ray, loop, within, ev, k);
+        return;
+    }
+#endif
     if (plan.cont) rayAt(plan.ray, 0, l + float(j) * plan.span, ev, k);
     else rayAt(plan.ray, j, l, ev, k);
 }
@@ -176,6 +208,7 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
     }
     plan.boxLo = vec3(0.0);
     plan.boxHi = vec3(0.0);
+    plan.ends = pixel && godel() ? WORK_LIMIT : ESCAPED;
     if (loops > 1) loopBox();
 }
 
@@ -188,6 +221,16 @@ void startLongSearch(Ray r, int total, float length, float pt, bool pixel, float
     plan.cont = true;
     plan.total = total;
 }
+
+#ifdef MEMBER
+// A member's pixel ray (render::tracer::exact's first_loop_family, and later loops as copies):
+// `total` segments of r.h in stretches of EXACT_SEGMENTS, out of work where they run out.
+void memberSearch(Ray r, int total, float pt, float tBound) {
+    startLongSearch(r, total, float(total) * r.h, pt, true, tBound);
+    plan.span = float(EXACT_SEGMENTS) * r.h;
+    plan.ends = WORK_LIMIT;
+}
+#endif
 
 // The span after the finished span [bis.a, bis.b] of the current bisection: climb while it is a
 // right half, then take the right sibling, whose start probe is bis.b's and whose end is probed.
@@ -301,11 +344,11 @@ void machineStep() {
         // Skip a loop whose box meets no searched object's box, one loop a pass (each loop's
         // start is a checkpoint of the sample's rounds: main); stop at the time bound.
         if (mach.loop_ >= plan.loops) {
-            finish(plan.pixel && godel() ? WORK_LIMIT : ESCAPED);
+            finish(plan.ends);
             return;
         }
         float dz = float(mach.loop_) * plan.ray.shift.y;
-        if (plan.pixel && float(mach.loop_) * plan.ray.shift.x < plan.tBound) { finish(ESCAPED); return; }
+        if (plan.pixel && !plan.cont && float(mach.loop_) * plan.ray.shift.x < plan.tBound) { finish(ESCAPED); return; }
         vec3 lo = plan.boxLo + vec3(0.0, 0.0, dz), hi = plan.boxHi + vec3(0.0, 0.0, dz);
         bool near = mach.loop_ == 0 || plan.cont;   // the box is of copies of the first loop
         for (int i = 0; i < N_OBJECTS; i++) {
@@ -335,7 +378,7 @@ void machineStep() {
         mach.mode = M_SEGMENT;
     }
     if (mach.mode == M_SEGMENT) {
-        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(ESCAPED); return; }   // a long search's end
+        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
         mach.lo = plan.span * float(mach.seg) / float(plan.segs);
         mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
         mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
@@ -419,8 +462,17 @@ void machineStep() {
         // Every object scanned: the segment's earliest crossing ends the search.
         if (mach.best.status == HIT) {
             mach.result = mach.best;
-            // A long search's hit as a parameter from the ray's start.
+            // A long search's hit as a parameter from the ray's start (a member's pixel ray: as
+            // its loop and the parameter within it).
             if (plan.cont) mach.result = Found(HIT, mach.best.target, 0, mach.best.lambda + loopOffset(), mach.best.tau);
+#ifdef MEMBER
+            if (plan.cont && plan.pixel) {
+                int loop = 0;
+                float within = 0.0;
+                memberPlace(plan.ray, mach.loop_, mach.best.lambda, loop, within);
+                mach.result = Found(HIT, mach.best.target, loop, within, mach.best.tau);
+            }
+#endif
             mach.mode = M_DONE;
             return;
         }
@@ -428,6 +480,18 @@ void machineStep() {
             vec4 x = vec4(0.0), k = vec4(0.0);
             searchRayAt(mach.loop_, mach.hi, x, k);
             if (x.x < plan.tBound) { finish(ESCAPED); return; }
+#if defined(MEMBER) && MEMBER_CAUSAL != 0
+            // A causal member's escape stop and far stretches (render_escape).
+            int step_ = escapeStep(plan.ray, mach.loop_ * plan.segs + mach.seg + 1, x, plan.tBound);
+            if (step_ == -2) { finish(ESCAPED); return; }
+            if (step_ == -3) { finish(WORK_LIMIT); return; }
+            if (step_ >= 0) {
+                // Beyond every object until the loop comes back: on from that stretch.
+                mach.loop_ = step_;
+                mach.mode = M_LOOP;
+                return;
+            }
+#endif
         }
         for (int i = 0; i < N_OBJECTS; i++) {   // the end probes start the next segment
             startProbe[i] = endProbe[i];

@@ -20,21 +20,39 @@ const float POINTS_PER_LOOP = 96.0;
 const int MAX_RAY_POINTS = 4096;
 const int MAP_SEARCH_STEPS = 200;
 
-vec4 rayEvent(Ray r, float l) { vec4 ev = vec4(0.0), k = vec4(0.0); rayAt(r, 0, l, ev, k); return ev; }
+vec4 rayEvent(Ray r, float l) {
+    vec4 ev = vec4(0.0), k = vec4(0.0);
+#ifdef MEMBER
+    memberRayAt(r, l, ev, k);
+    return ev;
+#endif
+    rayAt(r, 0, l, ev, k);
+    return ev;
+}
 
-// The parameter at which the past-directed ray reaches relative time t (t decreases along
-// it): doubling, then bisection, each bounded.
+// Whether the ray's event e has ended it: reached relative time t (t decreases along it), or
+// in a member with m² > 0 left the scenes' chart, mρ = MAX_M_RHO, where an escaping ray runs
+// out as e^{mρ}.
+bool ended(vec4 e, float t) {
+#ifdef MEMBER
+    if (MEMBER_M2 > 0.0 && sqrt(MEMBER_M2) * length(e.yz) > MAX_M_RHO) return true;
+#endif
+    return e.x <= t;
+}
+
+// The parameter at which the past-directed ray has ended: doubling, then bisection, each
+// bounded.
 float parameterAtTime(Ray r, float t) {
     float hi = 1.0;
     for (int i = 0; i < MAP_SEARCH_STEPS; i++) {
-        if (rayEvent(r, hi).x <= t) break;
+        if (ended(rayEvent(r, hi), t)) break;
         hi *= 2.0;
     }
     float lo = 0.0;
     for (int i = 0; i < MAP_SEARCH_STEPS; i++) {
         float mid = 0.5 * (lo + hi);
         if (mid <= lo || mid >= hi) break;
-        if (rayEvent(r, mid).x > t) lo = mid; else hi = mid;
+        if (!ended(rayEvent(r, mid), t)) lo = mid; else hi = mid;
     }
     return hi;
 }
@@ -48,15 +66,29 @@ void main() {
         slots[0] = vec4(-1.0);   // no closed form: no path
     } else if (u_points == 0) {
         float end = u_ray.w >= 0.0 ? u_ray.w : parameterAtTime(r, -u_max_past);
-        float loops = godel() ? max(end / r.lret, 1.0) : 1.0;
+        // (A member's escaping ray: one loop, as on the CPU.)
+        float loops = godel() || (member() && r.lret < INF) ? max(end / r.lret, 1.0) : 1.0;
         float points = min(max(ceil(loops * POINTS_PER_LOOP), 2.0), float(MAX_RAY_POINTS - 1));
         vec4 e = vec4(0.0, u_emission);
         float rEmit = godel() ? length(applyIso(observerToOrigin(), e).yz) : length(e.yz - obs.yz);
+#ifdef MEMBER
+        rEmit = length(typeApplyIso(MB, TIso(0.0, u_obs_to.xy, u_obs_to.z, u_obs_to.w), e).yz);
+#endif
         slots[0] = vec4(end, points, rEmit, 1.0);
     } else {
         ivec2 p = ivec2(gl_FragCoord.xy);
         int i = 1 + p.x + u_row * p.y;
         float l = u_ray.w * float(i) / float(u_points);
+#ifdef MEMBER
+        // The distance from the observer's axis: ρ in the origin frame, the same in every loop.
+        slots[0] = rayEvent(r, l);
+        int j = r.lret < INF ? toInt(floor(l / r.lret), 0, MAX_COUNT_SEGMENTS) : 0;
+        vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+        tgeoAt(r.tex.origin, l - float(j) * r.lret, e0, k0);
+        slots[1] = vec4(length(e0.yz), 0.0, 0.0, 0.0);
+        writeSlots();
+        return;
+#endif
         if (godel()) {
             // In the origin frame the distance from the observer's axis is the cylindrical r.
             vec4 e0 = vec4(0.0), k0 = vec4(0.0);

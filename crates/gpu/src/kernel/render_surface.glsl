@@ -9,18 +9,28 @@ vec2 lonLat(vec3 p) {
     return clamp(vec2(u, v), 0.0, 1.0);
 }
 
-// The photon's rest-frame components at the worldline point p, k carried from x to the
-// centre to first order, and the emitter's four-velocity at x
-// (render::target::rest_frame_photon).
+// The rest-frame components at the worldline point p of the vector v at x, carried from x to
+// the centre to first order with Γ there (render::target::rest_frame_photon), in the chart of
+// local descriptions, as the ball's coordinates are.
+vec4 restFrameVector(WPoint p, mat4 frame, vec4 x, vec4 v) {
+    vec4 centre = localEvent(p.ev);
+    vec4 vn = localVector(x, v);
+    if (!minkowski()) vn -= localChristoffel(centre, centre - localEvent(x), vn);
+    return components(dualFrame(localMetric(centre), localFrame(p.ev, frame)), vn);
+}
+
+// The photon's rest-frame components at the worldline point p (restFrameVector) and the
+// emitter's four-velocity at x: ∂t at rest, in free fall the centre's carried to x.
 void restFramePhoton(int i, WPoint p, mat4 frame, vec4 x, vec4 k, out vec4 uemit, out vec4 kl) {
     uemit = vec4(0.0); kl = vec4(0.0);
-    mat4 dX = mat4(0.0), dY = mat4(0.0);
-    metricDerivatives(p.ev, dX, dY);
-    mat4 ginv = inverseMetricAt(p.ev);
-    if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
-    vec4 kn = k - christoffelWith(dX, dY, ginv, p.ev - x, k);
-    kl = components(dualFrame(metricAt(p.ev), frame), kn);
-    uemit = isFree(i) ? frame[0] - christoffelWith(dX, dY, ginv, x - p.ev, frame[0]) : vec4(1.0, 0.0, 0.0, 0.0);
+    kl = restFrameVector(p, frame, x, k);
+    uemit = vec4(1.0, 0.0, 0.0, 0.0);
+    if (isFree(i)) {
+        vec4 centre = localEvent(p.ev);
+        vec4 u = localVector(p.ev, frame[0]);
+        if (!minkowski()) u -= localChristoffel(centre, localEvent(x) - centre, u);
+        uemit = localVectorBack(x, u);
+    }
 }
 
 // The hit: what the record and the lights need of it: the object, the event and the photon's
@@ -53,14 +63,7 @@ bool measurePolarization(vec4 f, vec4 r, vec3 dir) {
 // The screen vectors at x carried to the worldline point p to first order and measured in
 // its body frame, as the photon in restFramePhoton (render::target::Target::surface).
 bool restFramePolarization(WPoint p, mat4 frame, vec4 x) {
-    mat4 dX = mat4(0.0), dY = mat4(0.0);
-    metricDerivatives(p.ev, dX, dY);
-    mat4 ginv = inverseMetricAt(p.ev);
-    if (!godel()) { dX = mat4(0.0); dY = mat4(0.0); }
-    mat4 dual = dualFrame(metricAt(p.ev), frame);
-    vec4 up = components(dual, hp.up - christoffelWith(dX, dY, ginv, p.ev - x, hp.up));
-    vec4 right = components(dual, hp.right - christoffelWith(dX, dY, ginv, p.ev - x, hp.right));
-    return measurePolarization(up, right, hp.dir);
+    return measurePolarization(restFrameVector(p, frame, x, hp.up), restFrameVector(p, frame, x, hp.right), hp.dir);
 }
 
 bool surface() {

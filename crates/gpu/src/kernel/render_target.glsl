@@ -13,7 +13,7 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
         return Probe(length(x.yzw - objs[i].pos.yzw) - objs[i].radius, RATE_MARGIN * length(k.yzw), NO_TAU);
     }
     if (isPlane(i)) return Probe(x.w - objs[i].pos.w, RATE_MARGIN * abs(k.w), NO_TAU);
-    float scale = godel() ? u_a : 1.0;
+    float scale = minkowski() ? 1.0 : u_a;
     float far = FAR_DISTANCE * scale + FAR_RADII * objs[i].radius;
     float floor_ = objs[i].radius + 0.5 * FAR_DISTANCE * scale;
     float rate = GLOBAL_RATE_MARGIN * abs(pt) * objs[i].speed;

@@ -16,12 +16,19 @@ void pixelScreen(mat4 frame, vec3 n) {
 }
 
 // The screen vectors parallel-transported along the pixel's ray r from the observer `obs` to
-// the hit at `within` into a loop, `lambda` in all (render::polarization::exact): pushed to
-// the origin by the observer's isometry, transported there in closed form over the whole
+// the hit at `within` into loop `loop`, `lambda` in all (render::polarization::exact): pushed
+// to the origin by the observer's isometry, transported there in closed form over the whole
 // parameter ("Parallel transport along closed forms") and pushed back. The ray's event in
 // its origin frame is taken at `within`: later loops retrace the first shifted in t and z,
-// which moves no vector. Minkowski: components are kept (Cartesian coordinates, no Γ).
-void transportScreen(Ray r, vec4 obs, float within, float lambda) {
+// which moves no vector. Minkowski: components are kept (Cartesian coordinates, no Γ). A
+// Gödel-type member: integrated along the closed form (typeTransport).
+void transportScreen(Ray r, vec4 obs, int loop, float within, float lambda) {
+#ifdef MEMBER
+    mat4 w = typeTransport(r.tex, loop, within, r.lret, r.h, mat4(hp.up, hp.right, vec4(0.0), vec4(0.0)));
+    hp.up = w[0];
+    hp.right = w[1];
+    return;
+#endif
     if (!godel()) return;
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(r.geo, within, e0, k0);
@@ -219,6 +226,19 @@ Progress atEnd(Progress p, int status, Found hit) {
 int startPixel(Ray r, vec4 obs, float pt, float tBound) {
     bool any = setSearched(obs, r.geo, INF, -1, INF);
     if (!r.geo.ok) return FAILED;
+#ifdef MEMBER
+    // render::tracer: a returning ray must go to the past; one near no object escapes where
+    // it never returns, or reaches the time bound within the loops (escape_unsearched).
+    bool returns = r.lret < INF;
+    if (returns && (!finite(r.shift.x) || !(r.shift.x < 0.0))) return FAILED;
+    if (!any && (!returns || float(u_max_loops) * r.shift.x < tBound)) return ESCAPED;
+#if MEMBER_CAUSAL != 0
+    escapeSetUp(r);
+#endif
+    float total = returns ? float(u_max_loops + 1) * float(r.nseg) : float(MAX_FAMILY_SEGMENTS);
+    memberSearch(r, toInt(total, 1, 1 << 30), pt, tBound);
+    return -1;
+#endif
     if (godel()) {
         if (!finite(r.shift.x) || !(r.shift.x < 0.0)) return FAILED;
         // A ray near no object escapes (if it reaches the time bound within the loops).
@@ -238,7 +258,7 @@ int takeHit(Found f, Ray r, mat4 frame, vec3 n, vec4 obs, vec4 k, float tBound) 
     rayAt(r, f.loop_, f.lambda, hp.x, hp.k);
     float lambda = f.lambda + float(f.loop_) * r.lret;
     pixelScreen(frame, n);
-    transportScreen(r, obs, f.lambda, lambda);
+    transportScreen(r, obs, f.loop_, f.lambda, lambda);
     hp.target = f.target;
     hp.at.tau = f.tau;
     bool ok = surface();

@@ -5,11 +5,54 @@
 // every call, so the heavy functions below each have one call site (two for `localize`), and
 // the kernel stays small enough to compile in seconds.
 
+// The chart of local descriptions (render::chart): a ball's rest-frame coordinates are normal
+// coordinates to second order in it. Gödel's and Minkowski's own coordinates; a member's
+// Gödel-like chart (spacetime_metric's chart*), so that the Gödel member's balls are Gödel's.
+vec4 localEvent(vec4 e) {
+#ifdef MEMBER
+    return chartEvent(e);
+#endif
+    return e;
+}
+vec4 localVector(vec4 at, vec4 v) {
+#ifdef MEMBER
+    return chartVector(at, v);
+#endif
+    return v;
+}
+vec4 localVectorBack(vec4 at, vec4 v) {
+#ifdef MEMBER
+    return chartVectorBack(at, v);
+#endif
+    return v;
+}
+mat4 localFrame(vec4 at, mat4 f) {
+    return mat4(localVector(at, f[0]), localVector(at, f[1]), localVector(at, f[2]), localVector(at, f[3]));
+}
+mat4 localMetric(vec4 X) {
+#ifdef MEMBER
+    vec3 p = chartRotating(X);
+    return rotatingMetric(X.yz, p.x, p.y, p.z);
+#endif
+    return metricAt(X);
+}
+// Γ(u, v) at the event X of the chart.
+vec4 localChristoffel(vec4 X, vec4 u, vec4 v) {
+#ifdef MEMBER
+    vec3 p = chartRotating(X);
+    mat4 dX = mat4(0.0), dY = mat4(0.0);
+    rotatingDerivatives(X.yz, p.x, p.y, p.z, dX, dY);
+    return christoffelWith(dX, dY, rotatingInverse(X.yz, p.x, 0.25 * MEMBER_M2), u, v);
+#endif
+    return christoffel(X, u, v);
+}
+
 struct Object {
     int kind;
     float radius;
     float extent;   // planes: |x|, |y| ≤ extent (≤ 0: unbounded)
     vec4 pos;       // at rest (0, x, y, z); coordinate sphere: centre; plane: height in .w
+    vec4 local;     // at rest: its position in the chart of local descriptions
     mat4 dual;      // at rest: dual rows of the static frame
     mat3 chrT;      // at rest: Γ^μ_αβ at the position for μ = t, x, y and α, β = t, x, y
     mat3 chrX;      // (those with a z index vanish)
@@ -21,6 +64,9 @@ struct Object {
     float speed;    // γ(1 + v) relative to the static observers
     float rate;     // free fall: coordinate time per proper time over whole loops
     float gamma;    // free fall: γ = −u_t, conserved
+#ifdef MEMBER
+    TExact tex;     // free fall in a member: the geodesic through its start (Gödel's `geo` and `back`)
+#endif
 };
 Object objs[N_OBJECTS];
 
@@ -86,10 +132,17 @@ Object loadObject(int i) {
     int at = OBJECT_TEXELS * i;
     vec4 t0 = tableTexel(at);
     vec4 t1 = tableTexel(at + 1);
-    Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), mat4(0.0),
+    Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), vec4(0.0, t1.xyz), mat4(0.0),
                       mat3(0.0), mat3(0.0), mat3(0.0), NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0),
-                      1.0, 1.0, 1.0);
+                      1.0, 1.0, 1.0
+#ifdef MEMBER
+                      , NO_TEXACT
+#endif
+                      );
     if (restKind(o.kind)) {
+#ifdef MEMBER
+        o.local = vec4(0.0, tableTexel(at + 2).xyz);
+#endif
         o.dual = tableMat(at + 7);
         o.chrT = tableSymmetric(at + 11);
         o.chrX = tableSymmetric(at + 13);
@@ -107,6 +160,12 @@ Object loadObject(int i) {
         o.geo = OGeo(g0.x, g0.y, g0.z, g1.xy, g0.w, g1.z, g1.w, true);
         // The table's isometry is that of a start at time zero: shifted by the start's time.
         o.back = Iso(t2.z - o.start.x, b.xy, b.z, b.w);
+#ifdef MEMBER
+        // (E, p_z, κ, k⊥), (Λ, cos χ, sin χ), the isometry back, the sphere's (α, β).
+        vec4 w = tableTexel(at + 11);
+        o.tex = TExact(TIso(t2.z - o.start.x, b.xy, b.z, b.w),
+                       TGeo(MB, g0.x, g0.y, g0.z, g0.w, g1.x, g1.yz, true), w.xy, w.zw, MEMBER_M2 < 0.0);
+#endif
     }
     return o;
 }
@@ -133,6 +192,10 @@ WPoint worldAt(int i, float tau) {
     if (!isFree(i)) {
         p.ev = vec4(tau, objs[i].pos.yzw);
         p.u = vec4(1.0, 0.0, 0.0, 0.0);
+#ifdef MEMBER
+    } else if (member()) {
+        texAt(objs[i].tex, tau, p.ev, p.u);
+#endif
     } else if (!godel()) {
         p.ev = objs[i].start + tau * objs[i].u0;
         p.u = objs[i].u0;
@@ -149,6 +212,19 @@ WPoint worldAt(int i, float tau) {
 // every object when a sample starts.
 mat4 bodyFrame(int i, WPoint p) {
     mat4 f = tableMat(OBJECT_TEXELS * i + 3);
+#ifdef MEMBER
+    // The legs integrated along the geodesic (typeTransport), whole loops by their matrix;
+    // segments as a light ray's of the same energy.
+    if (isFree(i)) {
+        TExact g = objs[i].tex;
+        float lret = memberReturn(g.origin);
+        float seg = MEMBER_STEP / max(abs(g.origin.e), 1.0);
+        int loops = lret < INF ? toInt(trunc(p.tau / lret), -MAX_COUNT_SEGMENTS, MAX_COUNT_SEGMENTS) : 0;
+        float within = lret < INF ? p.tau - float(loops) * lret : p.tau;
+        mat4 legs = typeTransport(g, loops, within, lret, seg, mat4(vec4(0.0), f[1], f[2], f[3]));
+        return mat4(p.u, legs[1], legs[2], legs[3]);
+    }
+#endif
     if (!isFree(i) || !godel()) return f;
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(objs[i].geo, p.tau, e0, k0);
@@ -164,6 +240,29 @@ mat4 bodyFrame(int i, WPoint p) {
 float tauGuess(int i, float t) {
     if (!isFree(i)) return t;
     float tau = (t - objs[i].start.x) / objs[i].rate;
+#ifdef MEMBER
+    // In a member a worldline may hover in t where it passes near ρ_c (u^t → 0), and turn back
+    // in t beyond it, where Newton's steps wander off. Each loop advances t by rate·λ_ret:
+    // bracket t(τ) = t by quarter loops from the mean rate's guess, then bisect and
+    // interpolate.
+    float lret = memberReturn(objs[i].tex.origin);
+    if (lret < INF) {
+        float step_ = 0.25 * lret;
+        float lo = tau, hi = tau;
+        float flo = worldAt(i, tau).ev.x - t, fhi = flo;
+        for (int k = 0; k < 16; k++) {
+            if ((flo <= 0.0) == (fhi >= 0.0)) break;
+            if (flo > 0.0) { hi = lo; fhi = flo; lo -= step_; flo = worldAt(i, lo).ev.x - t; }
+            else { lo = hi; flo = fhi; hi += step_; fhi = worldAt(i, hi).ev.x - t; }
+        }
+        for (int k = 0; k < 12; k++) {
+            float mid = 0.5 * (lo + hi);
+            float fm = worldAt(i, mid).ev.x - t;
+            if (fm <= 0.0) { lo = mid; flo = fm; } else { hi = mid; fhi = fm; }
+        }
+        return fhi > flo ? lo + (hi - lo) * (-flo) / (fhi - flo) : 0.5 * (lo + hi);
+    }
+#endif
     for (int it = 0; it < TIME_STEPS; it++) {
         WPoint p = worldAt(i, tau);
         tau += (t - p.ev.x) / max(p.u.x, 0.05);
@@ -179,11 +278,28 @@ float tauGuess(int i, float t) {
 // (render::worldline::origin_coords). Minkowski: the displacement itself.
 void originDisplacement(WPoint p, vec4 x, out vec4 xi, out vec4 u) {
     xi = vec4(0.0); u = vec4(0.0);
+#ifdef MEMBER
+    TIso tm = typeToOrigin(MB, p.ev);
+    vec4 om = vec4(0.0);
+    typeApplyPush(MB, tm, p.ev, p.u, om, u);
+    // The chart's differential at the origin is the identity: u stays as it is.
+    xi = normalDisplacement(vec4(0.0), chartEvent(typeApplyIso(MB, tm, x)));
+    return;
+#endif
     if (!godel()) { xi = x - p.ev; u = p.u; return; }
     Iso to = toOrigin(p.ev);
     vec4 o = vec4(0.0);
     applyPush(to, p.ev, p.u, o, u);
     xi = normalDisplacement(vec4(0.0), applyIso(to, x));
+}
+
+// The first-order simultaneity −g(u, Δ) of x with the worldline point p, and g(Δ, Δ), in the
+// chart of local descriptions (render::worldline::first_order).
+vec2 firstOrder(WPoint p, vec4 x) {
+    vec4 pl = localEvent(p.ev);
+    vec4 d = localEvent(x) - pl;
+    mat4 g = localMetric(pl);
+    return vec2(-dotg(g, localVector(p.ev, p.u), d), dotg(g, d, d));
 }
 
 // xi: spatial rest-frame components (at rest); len: their length; disp: the second-order
@@ -198,14 +314,15 @@ Local localize(int i, vec4 x, float seed, float far) {
     lp.disp = vec4(0.0);
     if (isRest(i)) {
         // u = ∂t: g(u, Δ) = 0 fixes Δt = g_ti Δxⁱ at first order; then two steps with the
-        // second-order ξ⁰.
-        vec3 dx = x.yzw - objs[i].pos.yzw;
-        float t = x.x + dot(objs[i].dual[0].yzw, dx);
-        vec4 xi = components(objs[i].dual, x - vec4(t, objs[i].pos.yzw));
+        // second-order ξ⁰. In the chart of local descriptions (t is the same in it).
+        vec4 xl = localEvent(x);
+        vec3 c = objs[i].local.yzw;
+        float t = xl.x + dot(objs[i].dual[0].yzw, xl.yzw - c);
+        vec4 xi = components(objs[i].dual, xl - vec4(t, c));
         lp.exact = length(xi.yzw) <= far;
         if (lp.exact) {
             for (int it = 0; it < 2; it++) {   // a fixed count, without jumps: unrolled
-                vec4 d = x - vec4(t, objs[i].pos.yzw);
+                vec4 d = xl - vec4(t, c);
                 xi = components(objs[i].dual, d + 0.5 * restChristoffel(i, d));
                 t += xi.x;
             }
@@ -220,9 +337,9 @@ Local localize(int i, vec4 x, float seed, float far) {
     // CPU). One worldline evaluation per pass of the loop.
     // The seed's point first (a far point needs no more, and no loop pass).
     WPoint p = worldAt(i, seed);
-    mat4 g = metricAt(p.ev);
-    float f0 = -dotg(g, p.u, x - p.ev);
-    float len0 = sqrt(max(dotg(g, x - p.ev, x - p.ev) + f0 * f0, 0.0));
+    vec2 first = firstOrder(p, x);
+    float f0 = first.x;
+    float len0 = sqrt(max(first.y + f0 * f0, 0.0));
     if (len0 > far) {
         lp.at = p;
         lp.len = len0;
@@ -236,8 +353,7 @@ Local localize(int i, vec4 x, float seed, float far) {
     for (int it = 1; it < SIMULTANEITY_STEPS + 3; it++) {
         p = worldAt(i, tau);
         if (stage == 2) break;
-        g = metricAt(p.ev);
-        float f = -dotg(g, p.u, x - p.ev);
+        float f = firstOrder(p, x).x;
         bool done = abs(f) < 1e-7 * u_a || tau == ta || it > SIMULTANEITY_STEPS;
         if (done) {
             originDisplacement(p, x, xi, uo);
@@ -263,6 +379,11 @@ Local localize(int i, vec4 x, float seed, float far) {
 // The rest-frame spatial components of a localized ray point, given the body frame there.
 vec3 restComponents(int i, Local lp, mat4 frame) {
     if (isRest(i)) return lp.xi;
+#ifdef MEMBER
+    TIso tm = typeToOrigin(MB, lp.at.ev);
+    frame = mat4(typePush(tm, lp.at.ev, frame[0]), typePush(tm, lp.at.ev, frame[1]),
+                 typePush(tm, lp.at.ev, frame[2]), typePush(tm, lp.at.ev, frame[3]));
+#endif
     if (godel()) {
         // The frame carried to the origin, where disp was taken.
         Iso to = toOrigin(lp.at.ev);

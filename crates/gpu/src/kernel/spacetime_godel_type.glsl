@@ -3,9 +3,10 @@
 // The Gödel-type family (docs/physics.md, "The Gödel-type family"; spacetime::godel_type_geodesic
 // and spacetime::godel_type_symmetry): a member (m², Ω) as the pair `mb`, its closed-form
 // geodesics through the origin and its isometries R_α ∘ T_P0 in the base coordinate
-// ζ = G(m²ρ²)(x + iy), and the geodesic through any event. Compiled only where FAMILY is
-// defined: so far by the family's probes (crates/gpu/tests/integration/probes.rs holds each
-// function to its Rust twin); the pixel kernel does not trace the family yet.
+// ζ = G(m²ρ²)(x + iy), the geodesic through any event, and (in a member's kernel, MEMBER)
+// parallel transport along it, integrated. Compiled only where FAMILY is defined: by the
+// family's probes (crates/gpu/tests/integration/probes.rs holds each function to its Rust
+// twin) and by the kernel of a member's scene.
 #ifdef FAMILY
 
 // The functions the closed forms and the base coordinate are built from, each with its
@@ -52,6 +53,22 @@ vec2 sinhcCoshF(float x) {
 struct TGeo { vec2 mb; float e; float pz; float kappa; float kperp; float lam; vec2 cchi; bool ok; };
 const TGeo NO_TGEO = TGeo(vec2(0.0), 0.0, 0.0, 0.0, 0.0, 0.0, vec2(1.0, 0.0), false);
 
+// Ω² − m²/4: in a member's kernel the host's, made in f64 (where m² = 4Ω² f32's difference
+// would be rounding, and its sign decides which rays escape).
+float typeDelta(vec2 mb) {
+#ifdef MEMBER
+    return MEMBER_DELTA;
+#else
+    return mb.y * mb.y - 0.25 * mb.x;
+#endif
+}
+
+// Λ = Ω²E² − m²k⊥²/4 as Ω²(κ + p_z²) + (Ω² − m²/4)k⊥² (E² = k⊥² + p_z² + κ): no
+// cancellation between terms of size Ω²E² where Λ is small.
+float typeBigLambda(TGeo g) {
+    return g.mb.y * g.mb.y * (g.kappa + g.pz * g.pz) + typeDelta(g.mb) * g.kperp * g.kperp;
+}
+
 TGeo typeOriginGeodesic(vec2 mb, vec4 k) {
     TGeo g = NO_TGEO;
     float e = k.x;
@@ -59,14 +76,21 @@ TGeo typeOriginGeodesic(vec2 mb, vec4 k) {
     float kappa = e * e - kp2 - k.w * k.w;
     g.ok = finite(e) && finite(kp2) && finite(k.w) && e != 0.0 && kappa >= -1e-4 * e * e
         && mb.y > 0.0 && finite(mb.y) && finite(mb.x);
-    float spin = mb.y * abs(e);
     g.mb = mb;
     g.e = e;
     g.pz = k.w;
     g.kappa = max(kappa, 0.0);
     g.kperp = sqrt(kp2);
-    g.lam = spin * spin - 0.25 * mb.x * kp2;
     g.cchi = g.kperp > 0.0 ? k.yz / g.kperp : vec2(1.0, 0.0);
+    g.lam = typeBigLambda(g);
+    return g;
+}
+
+// The same for a light ray: κ = 0 exactly (its rounding in f32 would shift Λ by Ω²·ε E²).
+TGeo typeOriginNull(vec2 mb, vec4 k) {
+    TGeo g = typeOriginGeodesic(mb, k);
+    g.kappa = 0.0;
+    g.lam = typeBigLambda(g);
     return g;
 }
 
@@ -153,6 +177,7 @@ float typeTimeShift(vec2 mb, vec2 zeta0, vec2 zeta) {
 
 // R_rot ∘ T_P0, P0 = (t0, ζ0, z0).
 struct TIso { float t0; vec2 zeta0; float z0; float rot; };
+const TIso NO_TISO = TIso(0.0, vec2(0.0), 0.0, 0.0);
 
 TIso typeToOrigin(vec2 mb, vec4 p) { return TIso(p.x, baseCoordinate(mb, p.yz), p.w, 0.0); }
 TIso typeInverseIso(TIso m) { return TIso(-m.t0, -cmul(cis(m.rot), m.zeta0), -m.z0, -m.rot); }
@@ -183,12 +208,30 @@ void typeApplyPush(vec2 mb, TIso m, vec4 at, vec4 v, out vec4 e, out vec4 k) {
 // by (Ω/k)·2π where the projection crosses its cut; the geodesic follows the continuous
 // arg(α + β e^{iψ}) along its circle (ψ = 2 sgn(E) Φ), β = k ζ̄1·(the circle's centre).
 struct TExact { TIso back; TGeo origin; vec2 alpha; vec2 beta; bool wound; };
+const TExact NO_TEXACT = TExact(NO_TISO, NO_TGEO, vec2(1.0, 0.0), vec2(0.0), false);
 
-TExact typeExactGeodesic(vec2 mb, vec4 at, vec4 k) {
-    TIso to = typeToOrigin(mb, at);
+#ifdef MEMBER
+// The image of the vector v at `at` in the kernel's member.
+vec4 typePush(TIso m, vec4 at, vec4 v) {
+    vec4 e = vec4(0.0), k = vec4(0.0);
+    typeApplyPush(MB, m, at, v, e, k);
+    return k;
+}
+#endif
+
+vec4 typeApplyIso(vec2 mb, TIso m, vec4 at) {
+    vec4 e = vec4(0.0), k = vec4(0.0);
+    typeApplyPush(mb, m, at, vec4(0.0), e, k);
+    return e;
+}
+
+// The geodesic through `at` with tangent k, `to` the isometry sending `at` to the origin
+// (the observer's is the host's, made in f64); `light`: k is null (typeOriginNull).
+TExact typeExactThrough(vec2 mb, TIso to, vec4 at, vec4 k, bool light) {
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     typeApplyPush(mb, to, at, k, e0, k0);
     TGeo g = typeOriginGeodesic(mb, k0);
+    if (light) g = typeOriginNull(mb, k0);
     TIso back = typeInverseIso(to);
     vec2 beta = vec2(0.0);
     if (mb.x < 0.0 && g.ok) {
@@ -198,6 +241,10 @@ TExact typeExactGeodesic(vec2 mb, vec4 at, vec4 k) {
         beta = 0.25 * mb.x * cmul(conj2(back.zeta0), centre);
     }
     return TExact(back, g, vec2(1.0, 0.0) - beta, beta, mb.x < 0.0);
+}
+
+TExact typeExactGeodesic(vec2 mb, vec4 at, vec4 k) {
+    return typeExactThrough(mb, typeToOrigin(mb, at), at, k, false);
 }
 
 // arg(α + β e^{iψ}) continued in ψ from 0 at ψ = 0 (α + β = 1): the term of larger modulus
@@ -227,5 +274,69 @@ void texAt(TExact g, float lambda, out vec4 ev, out vec4 tan_) {
         ev.x -= mb.y / kk * 2.0 * PI * turns;
     }
 }
+
+#ifdef MEMBER
+// ---------------------------------------------------------------------------------------
+// Parallel transport along a member's geodesic (docs/physics.md, "Polarization" and "The GPU
+// kernel in the family"; the CPU integrates it with the ray, render::polarization): the
+// family has no closed-form transport, so dW/dλ = −Γ(k, W) is integrated by RK4, the event
+// and tangent from the closed form. A returning geodesic's later loops are its first one
+// moved in t and z, which moves no component: over whole loops W goes by the first loop's
+// transport matrix M, raised to the loops' power by squaring.
+
+// Γ(k, w) for the four columns of w at the event x.
+mat4 columnsGamma(vec4 x, vec4 k, mat4 w) {
+    mat4 dX = mat4(0.0), dY = mat4(0.0);
+    metricDerivatives(x, dX, dY);
+    mat4 gi = inverseMetricAt(x);
+    return mat4(christoffelWith(dX, dY, gi, k, w[0]), christoffelWith(dX, dY, gi, k, w[1]),
+                christoffelWith(dX, dY, gi, k, w[2]), christoffelWith(dX, dY, gi, k, w[3]));
+}
+
+// The columns of w carried from λ = l0 to l1 in `steps` RK4 steps.
+mat4 typeTransportStretch(TExact g, float l0, float l1, int steps, mat4 w) {
+    float h = (l1 - l0) / float(steps);
+    vec4 x = vec4(0.0), k = vec4(0.0);
+    texAt(g, l0, x, k);
+    for (int s = 0; s < 4096; s++) {
+        if (s >= steps) break;
+        float l = l0 + float(s) * h;
+        vec4 xm = vec4(0.0), km = vec4(0.0), xe = vec4(0.0), ke = vec4(0.0);
+        texAt(g, l + 0.5 * h, xm, km);
+        texAt(g, l + h, xe, ke);
+        mat4 d1 = columnsGamma(x, k, w);
+        mat4 d2 = columnsGamma(xm, km, w - 0.5 * h * d1);
+        mat4 d3 = columnsGamma(xm, km, w - 0.5 * h * d2);
+        mat4 d4 = columnsGamma(xe, ke, w - h * d3);
+        w -= h / 6.0 * (d1 + 2.0 * d2 + 2.0 * d3 + d4);
+        x = xe;
+        k = ke;
+    }
+    return w;
+}
+
+// Steps for a stretch of parameter length `len` of a geodesic whose segments are `seg` long:
+// eight a segment (RK4's error per loop then stays below 1e-6), at most 4096.
+int typeTransportSteps(float len, float seg) {
+    return toInt(ceil(8.0 * abs(len) / seg), 8, 4096);
+}
+
+// The columns of w carried from λ = 0 to `loops` whole loops of parameter `lret` (INF: the
+// geodesic does not return) and then `within` more, the segments `seg` long.
+mat4 typeTransport(TExact g, int loops, float within, float lret, float seg, mat4 w) {
+    if (loops != 0 && lret < INF) {
+        float dir = loops > 0 ? 1.0 : -1.0;
+        mat4 m = typeTransportStretch(g, 0.0, dir * lret, typeTransportSteps(lret, seg), mat4(1.0));
+        int n = loops > 0 ? loops : -loops;
+        for (int bit = 0; bit < 24; bit++) {
+            if (n == 0) break;
+            if (n % 2 == 1) w = m * w;
+            m = m * m;
+            n /= 2;
+        }
+    }
+    return typeTransportStretch(g, 0.0, within, typeTransportSteps(within, seg), w);
+}
+#endif
 
 #endif

@@ -7,12 +7,14 @@
 //! The sources are built as the hosts build them: `#version 300 es`, [`KernelInput::defines`]
 //! of a scene input, then the entry point's source ([`gpu::host::fragment_source`]). The
 //! pixel kernel, which calls every function, is compiled for every combination of what the
-//! defines say: Gödel or Minkowski, with or without lights, every subset of the four object
-//! kinds, small arrays (the fewest objects, one light) or large ones (nine objects, nine
-//! lights), and the render targets a host binds where 1, 4 or 8 can be bound. The other entry points (COUNT_PROBES, RAY_PATH, each probe) share
-//! those functions and differ only in `main`, which reads the metric and the render targets:
-//! they are compiled for every metric and every number of render targets, each with the
-//! smallest scene and the largest.
+//! defines say: Gödel or Minkowski, with or without lights, or a Gödel-type member (a causal
+//! one and one on the sphere, without lights: the kernel refuses lit members), every subset
+//! of the four object kinds, small arrays (the fewest objects, one light) or large ones (nine
+//! objects, nine lights), and the render targets a host binds where 1, 4 or 8 can be bound.
+//! The other entry points (COUNT_PROBES, RAY_PATH, each probe) share those functions and
+//! differ only in `main`, which reads the metric and the render targets: they are compiled for
+//! every metric and every number of render targets, each with the smallest scene and the
+//! largest (the probes, which hosts build only for Gödel and Minkowski, for those).
 
 use gpu::host::fragment_source;
 use gpu::input::KernelInput;
@@ -32,19 +34,41 @@ struct Source {
     text: String,
 }
 
-/// The scene input every combination starts from (its uniforms do not enter the source).
-fn base() -> KernelInput {
-    let path = testkit::scenes_dir().join("static-sphere.toml");
-    let scene =
+/// The metrics of the sources: Minkowski's, Gödel's, and two Gödel-type members.
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Minkowski,
+    Godel,
+    /// m² = 4Ω²: causal (the escape stop), m² > 0.
+    Causal,
+    /// m² = −Ω²: the sphere.
+    Sphere,
+}
+
+/// The scene input every combination of `kind` starts from (its uniforms do not enter the
+/// source).
+fn base(kind: Kind) -> KernelInput {
+    let name = match kind {
+        Kind::Minkowski | Kind::Godel => "static-sphere",
+        Kind::Causal | Kind::Sphere => "godel-type",
+    };
+    let path = testkit::scenes_dir().join(format!("{name}.toml"));
+    let mut scene =
         scene::Scene::from_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    if let spacetime::Metric::GodelType(mut m) = scene.metric {
+        m.m2 = if kind == Kind::Causal { 4.0 } else { -1.0 } * m.omega * m.omega;
+        scene.metric = spacetime::Metric::GodelType(m);
+    }
     KernelInput::new(&scene)
 }
 
 /// `base` as the input of a scene with the given metric, lights, object kinds (at rest, in free
 /// fall, coordinate spheres, planes) and objects.
-fn input(godel: bool, lights: usize, kinds: [bool; 4], objects: usize) -> KernelInput {
-    let mut input = base();
-    input.uniforms.metric = i32::from(godel);
+fn input(kind: Kind, lights: usize, kinds: [bool; 4], objects: usize) -> KernelInput {
+    let mut input = base(kind);
+    if kind == Kind::Minkowski {
+        input.uniforms.metric = 0;
+    }
     input.light_count = lights;
     input.uniforms.lights = lights as i32;
     input.kinds = kinds;
@@ -90,8 +114,12 @@ fn sources() -> Vec<Source> {
     };
     let entries = entry_points();
     let (pixel, others) = entries.split_first().expect("the pixel kernel");
-    for godel in [false, true] {
+    for kind in [Kind::Minkowski, Kind::Godel, Kind::Causal, Kind::Sphere] {
+        let member = matches!(kind, Kind::Causal | Kind::Sphere);
         for lit in [false, true] {
+            if lit && member {
+                continue;
+            }
             for bits in 0..16u8 {
                 let kinds = [0, 1, 2, 3].map(|k| bits & (1 << k) != 0);
                 let fewest = kinds.iter().filter(|k| **k).count();
@@ -99,7 +127,7 @@ fn sources() -> Vec<Source> {
                 for large in [false, true] {
                     let objects = if large && fewest > 0 { 9 } else { fewest };
                     let lights = usize::from(lit) * if large { 9 } else { 1 };
-                    let input = input(godel, lights, kinds, objects);
+                    let input = input(kind, lights, kinds, objects);
                     if !large || objects != fewest || lights > 1 {
                         add(&pixel.0, &pixel.1, &input);
                     }
@@ -107,8 +135,11 @@ fn sources() -> Vec<Source> {
             }
         }
         for (name, kernel) in others {
-            add(name, kernel, &input(godel, 0, [false; 4], 0));
-            add(name, kernel, &input(godel, 9, [true; 4], 9));
+            if member && !matches!(name.as_str(), "COUNT_PROBES" | "RAY_PATH") {
+                continue;
+            }
+            add(name, kernel, &input(kind, 0, [false; 4], 0));
+            add(name, kernel, &input(kind, 9, [true; 4], 9));
         }
     }
     out
@@ -215,7 +246,7 @@ fn glslang_accepts_every_kernel_a_host_builds() {
 /// probe.glsl does not know, are refused, and named.
 #[test]
 fn glslang_refuses_a_broken_kernel() {
-    let input = input(true, 1, [true, false, false, true], 2);
+    let input = input(Kind::Godel, 1, [true, false, false, true], 2);
     let defines = input.defines(4);
     let godel = defines
         .lines()

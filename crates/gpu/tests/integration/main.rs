@@ -7,6 +7,7 @@ mod common;
 
 mod agreement;
 mod check;
+mod family;
 mod faults;
 mod glslang;
 mod kernel_rules;
