@@ -221,18 +221,10 @@ pub fn split_time(t: f64) -> [f32; 2] {
 }
 
 /// Why the kernel cannot trace `scene`, in one sentence; `None` where it can (docs/physics.md,
-/// "The GPU kernel in the family"): in a Gödel-type member, lights (the kernel has not the
-/// family's shadow rays yet), and a ball falling fast enough to escape a causal member (the
-/// kernel's escape stop bounds the objects by their orbits, and such a ball has none).
+/// "The GPU kernel in the family"): a ball falling fast enough to escape a causal Gödel-type
+/// member (the kernel's escape stop bounds each object by its orbit, and such a ball has none).
 pub fn refusal(scene: &Scene) -> Option<String> {
     let member = scene.metric.godel_type()?;
-    if !scene.lights.is_empty() {
-        return Some(
-            "the GPU kernel does not yet have the Gödel-type family's shadow rays, so it cannot \
-             light a member's scene"
-                .to_string(),
-        );
-    }
     let escapes = scene.objects.iter().any(|o| match o.motion {
         Motion::Geodesic { start, velocity } => {
             let start0 = Event::new(0.0, start.x, start.y, start.z);

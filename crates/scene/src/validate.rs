@@ -351,12 +351,6 @@ fn godel_rules(
         // No curvature scale: a local ball of any size is exact.
         return Ok(());
     };
-    if let (Metric::GodelType(_), true) = (metric, trace.gpu) {
-        return c.err(
-            "trace.gpu",
-            "the GPU kernel knows only Gödel's metric and flat spacetime so far: it needs spacetime.metric = \"godel\" (not yet in the Gödel-type family)",
-        );
-    }
     let loops = trace.max_past / t_loop;
     let (loop_law, scale) = match metric {
         Metric::Godel(g) => ("2πa(√2 − 1)", format!("a = {}", g.a)),

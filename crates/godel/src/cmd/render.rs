@@ -211,7 +211,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     if let (true, Some(why)) = (args.gpu, gpu::input::refusal(&scene)) {
         return Err(crate::args::usage(
             "--gpu",
-            format!("{why}: trace this member without --gpu"),
+            format!("{why}: trace this scene without --gpu"),
         ));
     }
     prepare_outputs(target.folder(), &scene, &outputs)?;

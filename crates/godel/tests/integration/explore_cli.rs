@@ -626,27 +626,49 @@ fn explore_refusals_name_what_the_request_wrote_in_short() {
     assert!(error.starts_with("exact: `abc` is not"), "{error}");
 }
 
-/// A Gödel-type member (issue 34) explores on the server's CPU tracer: the full frame comes,
-/// and the page's kernel input is refused with the one sentence that says why (the page
-/// shows it and keeps the server's frames).
+/// A Gödel-type member (issue 34) explores as Gödel's universe does: the server's full frame
+/// comes, and the page's kernel input is the member's (its defines name the member's
+/// constants, its observer isometry is the member's). A ball falling fast enough to escape a
+/// causal member is the one scene the kernel refuses, with the sentence that says why and that
+/// the server traces it on the CPU (the page shows it and keeps the server's frames).
 #[test]
-fn a_godel_type_member_explores_on_the_cpu_and_the_kernel_says_why_not() {
+fn a_godel_type_member_explores_on_the_kernel_and_an_escaping_ball_on_the_cpu() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("member.toml");
-    let text = scene_text("time = 0.0\nposition = { x = 0.0, y = 0.0, z = 0.0 }").replace(
+    let text = scene_text("time = 0.0\nposition = { x = 0.3, y = 0.0, z = 0.0 }").replace(
         "metric = \"godel\"\na = 1.0",
         "metric = \"godel-type\"\nm2 = 0.5\nomega = 0.7071067811865476",
     );
     assert!(text.contains("godel-type"));
-    std::fs::write(&scene, text).unwrap();
-    let (_server, port) = explore(&scene);
+    std::fs::write(&scene, &text).unwrap();
+    let (server, port) = explore(&scene);
     let frame = full_frame(port, None);
     assert_eq!(frame["level"], "full", "{frame}");
     let (status, body) = http(port, "GET", "/api/gpu/input?draw_buffers=4", "");
+    let input = json(&body);
+    assert_eq!(status, 200, "{input}");
+    let defines = input["defines"].as_str().unwrap();
+    assert!(
+        defines.contains("#define MEMBER 1") && defines.contains("#define MEMBER_M2 (5e-1)"),
+        "{defines}"
+    );
+    assert!(defines.contains("#define GODEL 0"), "{defines}");
+    // The observer's isometry is the member's: its base coordinate of x = 0.3, ζ = G(m²ρ²)x
+    // with G = tanh(mρ/2)/(mρ/2) < 1 (Gödel's disc coordinate would be 0.3/√(0.09 + 4a²)).
+    let to = input["uniforms"]["obs_to"][0].as_f64().unwrap();
+    let h = 0.5 * 0.5f64.sqrt() * 0.3;
+    assert!((to - 0.3 * h.tanh() / h).abs() < 1e-6, "{to}");
+    drop(server);
+    // m² = 6Ω², causal; at 0.9 c across the axis Λ = γ²(Ω² − (m²/4)v²) < 0: the ball escapes.
+    let escaping = text.replace("m2 = 0.5", "m2 = 3.0").replace(
+        "[[object]]",
+        "[[object]]\nname = \"fast\"\nradius = 0.05\nmotion = { kind = \"geodesic\", time = 0.0, \
+         position = { x = -0.5, y = 0.0, z = 0.0 }, speed = 0.9, direction = [0, 1, 0] }\n\n[[object]]",
+    );
+    std::fs::write(&scene, escaping).unwrap();
+    let (_server, port) = explore(&scene);
+    let (status, body) = http(port, "GET", "/api/gpu/input?draw_buffers=4", "");
     let body = String::from_utf8_lossy(&body);
     assert_eq!(status, 400, "{body}");
-    assert!(
-        body.contains("Gödel-type") && body.contains("CPU"),
-        "{body}"
-    );
+    assert!(body.contains("escape") && body.contains("CPU"), "{body}");
 }

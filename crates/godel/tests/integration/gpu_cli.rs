@@ -237,12 +237,13 @@ fn render_gpu_traces_both_eyes_of_a_stereo_pair() {
     assert!(eyes[0] > 50 && eyes[0] != eyes[1], "hits per eye {eyes:?}");
 }
 
-/// A Gödel-type member (issue 34) is not traced by the kernel: `--gpu` is refused with one
-/// sentence naming the reason and what to do, before anything is traced or written;
-/// `[trace] gpu = true` in such a scene is refused at its line. Without the GPU the lit
-/// member renders, light plane included.
+/// A Gödel-type member (issue 34) is traced by the kernel: `--gpu` and `[trace] gpu = true`
+/// render the lit member, its records and light plane as the CPU exact tracer's (the check
+/// every GPU render passes, and here sample by sample); a ball falling fast enough to escape a
+/// causal member, which the kernel's escape stop cannot bound, is refused with one sentence
+/// naming the reason and what to do, before anything is traced or written.
 #[test]
-fn the_kernel_refuses_godel_type_members_with_one_sentence() {
+fn the_kernel_traces_godel_type_members_and_refuses_an_escaping_ball_with_one_sentence() {
     let dir = tempfile::tempdir().unwrap();
     let member = SCENE.replace(
         "metric = \"godel\"\na = 1.0",
@@ -250,37 +251,64 @@ fn the_kernel_refuses_godel_type_members_with_one_sentence() {
     );
     assert!(member.contains("[[light]]"));
     let scene = write(dir.path(), "member.toml", &member);
-    let out = dir.path().join("out");
-    let o = render(&scene, &out, &["--gpu"]);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("--gpu") && err.contains("Gödel-type") && err.contains("without --gpu"),
-        "{err}"
+    let (gpu, cpu) = (dir.path().join("gpu"), dir.path().join("cpu"));
+    let o = render(&scene, &gpu, &["--gpu", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = render(&scene, &cpu, &["--method", "exact", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (a, b) = (
+        DataFile::read(&gpu.join("ball.exr")).unwrap(),
+        DataFile::read(&cpu.join("ball.exr")).unwrap(),
     );
-    assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(!out.exists());
+    assert_eq!(a.header.method, "gpu");
+    assert_eq!(a.header.metric, "godel-type");
+    let m = a.header.member.expect("the member in the header");
+    assert_eq!((m.m2, m.omega), (1.0, 0.7071067811865476));
+    let hits = |d: &DataFile| {
+        d.records
+            .iter()
+            .filter(|r| r.status == RayStatus::Hit)
+            .count()
+    };
+    assert!(hits(&b) > 50, "{} hits", hits(&b));
+    let same = (a.records.iter().zip(&b.records))
+        .filter(|(x, y)| x.status == y.status && x.object == y.object)
+        .count();
+    assert_eq!(same, a.records.len(), "records differ");
+    let lit = (0..a.records.len())
+        .filter(|&i| b.lights[0][i] > 0.0)
+        .count();
+    assert!(lit > 20, "{lit} lit");
+    for i in 0..a.records.len() {
+        let (x, y) = (a.lights[0][i], b.lights[0][i]);
+        assert!(
+            (x - y).abs() <= 1e-3 * y.abs() + 1e-9,
+            "sample {i}: light {x} on the GPU, {y} on the CPU"
+        );
+    }
+    // The same from the scene's own [trace] gpu = true.
     let in_scene = write(
         dir.path(),
         "in-scene.toml",
         &member.replace("max_past = 8.0", "max_past = 8.0\ngpu = true"),
     );
-    let o = render(&in_scene, &out, &[]);
+    let o = render(&in_scene, &dir.path().join("in-scene"), &["-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // m² = 6Ω² is causal; at 0.9 c across the axis Λ = γ²(Ω² − (m²/4)v²) < 0: the ball escapes.
+    let escaping = member.replace("m2 = 1.0", "m2 = 3.0").replace(
+        "[[light]]",
+        "[[object]]\nname = \"fast\"\nradius = 0.05\nmotion = { kind = \"geodesic\", time = 0.0, \
+         position = { x = -0.5, y = 0.0, z = 0.0 }, speed = 0.9, direction = [0, 1, 0] }\n[[light]]",
+    );
+    let scene = write(dir.path(), "escaping.toml", &escaping);
+    let out = dir.path().join("out");
+    let o = render(&scene, &out, &["--gpu"]);
     let err = stderr(&o);
-    assert_ne!(o.status.code(), Some(0), "{err}");
+    assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("trace.gpu") && err.contains("in-scene.toml"),
+        err.contains("--gpu") && err.contains("escape") && err.contains("without --gpu"),
         "{err}"
     );
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
     assert!(!out.exists());
-    // Without the GPU the member renders (numeric tracer).
-    let o = render(&scene, &out, &[]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let data = DataFile::read(&out.join("ball.exr")).unwrap();
-    assert_eq!(data.header.metric, "godel-type");
-    let member = data.header.member.expect("the member in the header");
-    assert_eq!((member.m2, member.omega), (1.0, 0.7071067811865476));
-    assert!(data.records.iter().any(|r| r.status == RayStatus::Hit));
-    assert_eq!(data.lights.len(), 1);
-    assert!(data.lights[0].iter().any(|&l| l > 0.0), "nothing lit");
 }

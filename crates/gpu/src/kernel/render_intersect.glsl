@@ -150,17 +150,13 @@ void memberPlace(Ray r, int j, float l, out int loop, out float within) {
 // The searched ray's event and tangent at parameter l of loop (or stretch) j.
 void searchRayAt(int j, float l, out vec4 ev, out vec4 k) {
     ev = vec4(0.0); k = vec4(0.0);
+    // One call of rayAt (GLSL inlines each call site).
+    int loop = plan.cont ? 0 : j;
+    float at = plan.cont ? l + float(j) * plan.span : l;
 #ifdef MEMBER
-    if (plan.cont) {
-        int loop = 0;
-        float within = 0.0;
-        memberPlace(plan.ray, j, l, loop, within);
-        rayAt(plan.ray, loop, within, ev, k);
-        return;
-    }
+    if (plan.cont && plan.pixel) memberPlace(plan.ray, j, l, loop, at);
 #endif
-    if (plan.cont) rayAt(plan.ray, 0, l + float(j) * plan.span, ev, k);
-    else rayAt(plan.ray, j, l, ev, k);
+    rayAt(plan.ray, loop, at, ev, k);
 }
 
 void finish(int status) {
@@ -209,7 +205,9 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
     plan.boxLo = vec3(0.0);
     plan.boxHi = vec3(0.0);
     plan.ends = pixel && godel() ? WORK_LIMIT : ESCAPED;
-    if (loops > 1) loopBox();
+#ifndef MEMBER
+    if (loops > 1) loopBox();   // (a member's searches are long ones, of one loop)
+#endif
 }
 
 // A search of the ray r over λ ∈ [0, length] in `total` segments, as stretches of

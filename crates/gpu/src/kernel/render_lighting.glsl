@@ -51,10 +51,10 @@ float shadowG(float psi, int n, bool inbound) {
 // whose value g changes sign from `prev` or is an exact zero (except at the join of the
 // branches, which only the outbound branch counts); CELLS_PER_PASS if none. Only the pass's
 // first `count` cells count.
-int firstRoot(vec4 prev, vec4 g, vec4 cellNo, int offset, int count, bool inbound) {
+int firstRoot(vec4 prev, vec4 g, vec4 cellNo, int offset, int count, bool atJoin) {
     vec4 change = vec4(lessThan(prev, vec4(0.0))) * vec4(greaterThan(g, vec4(0.0)))
                 + vec4(greaterThan(prev, vec4(0.0))) * vec4(lessThan(g, vec4(0.0)));
-    vec4 join = inbound ? vec4(equal(cellNo, vec4(float(SHADOW_GRID)))) : vec4(0.0);
+    vec4 join = atJoin ? vec4(equal(cellNo, vec4(float(SHADOW_GRID)))) : vec4(0.0);
     vec4 zero = vec4(equal(g, vec4(0.0))) * (1.0 - join);
     vec4 inPass = vec4(lessThan(float(offset) + vec4(0.0, 1.0, 2.0, 3.0), vec4(float(count))));
     vec4 root = min(change + zero, 1.0) * inPass;
@@ -73,6 +73,21 @@ vec4 shadowG4(float rho, float zp, vec4 u, vec4 cellNo, int n, bool inbound) {
                    equal(cellNo, vec4(float(SHADOW_GRID))));
     vec4 th = float(n) * PI + (inbound ? PI - th0 : th0);
     return 2.0 * u_a * u * th / sqrt(1.0 + u * u) - abs(zp);
+}
+
+// G at four grid points u of cell numbers cellNo, and at ψ, of the current winding and branch:
+// Gödel's (shadowG4, shadowG) or a member's (typeShadowExcess4, typeShadowExcess).
+vec4 lightG4(vec4 u, vec4 cellNo) {
+#ifdef MEMBER
+    return typeShadowExcess4(MB, shadow.rho, shadow.zp, shadow.cmax, u, shadow.n, shadow.inbound);
+#endif
+    return shadowG4(shadow.rho, shadow.zp, u, cellNo, shadow.n, shadow.inbound);
+}
+float lightG(float psi) {
+#ifdef MEMBER
+    return typeShadowExcess(MB, shadow.rho, shadow.zp, shadow.psiMin, psi, shadow.n, shadow.inbound);
+#endif
+    return shadowG(psi, shadow.n, shadow.inbound);
 }
 
 // D² = dA/dΩ of the ray with emission direction (ψ, χ) in the source's axis frame, ending at
@@ -113,9 +128,8 @@ vec2 incidence(vec4 kLight) {
     int i = hp.target;
     vec4 x = hp.x, view = hp.k;
     if (isRest(i) || isFree(i)) {
-        vec4 ue = vec4(0.0), kl = vec4(0.0), kv = vec4(0.0);
-        restFramePhoton(i, hp.at, hp.frame, x, kLight, ue, kl);
-        restFramePhoton(i, hp.at, hp.frame, x, view, ue, kv);
+        // (The hit's local description is surface()'s, made once per hit.)
+        vec4 kl = restFrameVector(kLight), kv = restFrameVector(view);
         vec3 n = normalize(hp.xi);
         float side = dot(n, -kv.yzw) >= 0.0 ? 1.0 : -1.0;
         return vec2(-side * dot(n, normalize(kl.yzw)), kl.x);
@@ -146,6 +160,35 @@ void endLight() {
     shadow.idx = -1;
 }
 
+#ifdef MEMBER
+// A member's light (spacetime::godel_type_connect, render_lighting_family): the source's
+// isometry back from its axis frame, and the lowest |c| of the returning-only branches. There
+// shadow.rho is the hit's Gödel-like radius R_P and shadow.s unused.
+TIso lightBack = NO_TISO;
+float lightCesc = 0.0;
+
+// lightGeometry's in a member (type_shadow_rays_within): no ray where σ_min = Ω|ζ_P| ≥ 1 or
+// the hit lies on the source's worldline; windings up to ⌈(max_past + δ)/T_min⌉ + 1, δ the
+// isometry's shift of the hit's time, T_min = π/(Ω + √max(0, Ω² − m²/4)).
+bool memberLightGeometry() {
+    TIso to = typeToOrigin(MB, shadow.source);
+    lightBack = typeInverseIso(to);
+    shadow.p = typeApplyIso(MB, to, hp.x);
+    shadow.zp = shadow.p.w;
+    vec4 reach = typeShadowReach(MB, shadow.p);
+    if (!(reach.y < 1.0) || (reach.x == 0.0 && shadow.zp == 0.0)) return false;
+    shadow.rho = reach.x;
+    shadow.cmax = reach.z;
+    shadow.psiMin = atan2s(reach.y, reach.z);
+    lightCesc = reach.w;
+    float tmin = PI / (MEMBER_OMEGA + sqrt(max(MEMBER_DELTA, 0.0)));
+    int windings = toInt(ceil((shadow.p.x - hp.x.x + u_max_past) / tmin), 0, MAX_WINDINGS) + 1;
+    shadow.cells = shadow.zp == 0.0 ? 1 : SHADOW_GRID;
+    shadow.total = (windings + 1) * 2 * shadow.cells;
+    return true;
+}
+#endif
+
 // Light shadow.light's geometry for the hit: the source's isometry, the hit in the source's frame,
 // the grid's size; false when no ray of it can count. A function of shadow.light and the hit alone
 // (a round that resumes a light makes it again).
@@ -154,6 +197,9 @@ bool lightGeometry() {
     vec4 lt = tableTexel(OBJECT_TEXELS * N_OBJECTS + LIGHT_TEXELS * shadow.light);
     shadow.source = vec4(0.0, lt.xyz);
     shadow.power = lt.w;
+#ifdef MEMBER
+    return memberLightGeometry();
+#endif
     Iso to = toOrigin(shadow.source);
     shadow.back = inverseIso(to);
     shadow.p = applyIso(to, hp.x);
@@ -190,6 +236,23 @@ bool gridPass() {
     shadow.n = shadow.idx / (2 * shadow.cells);
     shadow.inbound = (shadow.idx / shadow.cells) % 2 == 1;
     int cell = shadow.idx % shadow.cells + 1;
+    float clo = 0.0;   // the lowest |c| of the branch
+#ifdef MEMBER
+    // On the source's axis (R_P = 0) the outbound branch of winding n is the inbound one of
+    // n − 1, and the straight ray along z counts no light (its D² is not defined: the CPU drops
+    // it): the outbound branches are skipped. A branch whose c_lo is not below c_max has no ray.
+    if (shadow.rho == 0.0 && !shadow.inbound) {
+        shadow.idx += shadow.cells - cell + 1;
+        return false;
+    }
+    if (shadow.zp != 0.0) {
+        clo = shadow.n == 0 && !shadow.inbound ? 0.0 : lightCesc;
+        if (clo >= shadow.cmax) {
+            shadow.idx += shadow.cells - cell + 1;
+            return false;
+        }
+    }
+#endif
     if (shadow.zp == 0.0) {
         shadow.idx++;
         shadow.psi = 0.5 * PI;
@@ -198,29 +261,34 @@ bool gridPass() {
     }
     // The grid's point before the pass's first cell and G there, made again in every pass
     // (never carried from the last): a pass that a later round resumes starts from the same
-    // values as one that follows its predecessor in the same round.
-    shadow.u0 = shadow.cmax * float(cell - 1) / float(SHADOW_GRID);
-    shadow.g0 = cell == 1
+    // values as one that follows its predecessor in the same round. The grid runs in |c|
+    // from clo to c_max (Gödel: from 0, where G = −|z_P|).
+    float span = shadow.cmax - clo;
+    shadow.u0 = clo + span * float(cell - 1) / float(SHADOW_GRID);
+    shadow.g0 = cell == 1 && !member()
         ? -abs(shadow.zp)
-        : shadowG4(shadow.rho, shadow.zp, vec4(shadow.u0), vec4(float(cell - 1)), shadow.n, shadow.inbound).x;
+        : lightG4(vec4(shadow.u0), vec4(float(cell - 1))).x;
     // Sixteen cells per pass, in four groups written out (each pass of a loop counts
     // against llvmpipe's limit).
     int count = min(CELLS_PER_PASS, shadow.cells - cell + 1);
     vec4 base = float(cell) + vec4(0.0, 1.0, 2.0, 3.0);
     vec4 us[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     vec4 gs[4] = us;
-    us[0] = shadow.cmax * base / float(SHADOW_GRID);
-    us[1] = shadow.cmax * (base + 4.0) / float(SHADOW_GRID);
-    us[2] = shadow.cmax * (base + 8.0) / float(SHADOW_GRID);
-    us[3] = shadow.cmax * (base + 12.0) / float(SHADOW_GRID);
-    gs[0] = shadowG4(shadow.rho, shadow.zp, us[0], base, shadow.n, shadow.inbound);
-    gs[1] = shadowG4(shadow.rho, shadow.zp, us[1], base + 4.0, shadow.n, shadow.inbound);
-    gs[2] = shadowG4(shadow.rho, shadow.zp, us[2], base + 8.0, shadow.n, shadow.inbound);
-    gs[3] = shadowG4(shadow.rho, shadow.zp, us[3], base + 12.0, shadow.n, shadow.inbound);
-    int found = min(min(firstRoot(vec4(shadow.g0, gs[0].xyz), gs[0], base, 0, count, shadow.inbound),
-                        firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, shadow.inbound)),
-                    min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, shadow.inbound),
-                        firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, shadow.inbound)));
+    us[0] = clo + span * base / float(SHADOW_GRID);
+    us[1] = clo + span * (base + 4.0) / float(SHADOW_GRID);
+    us[2] = clo + span * (base + 8.0) / float(SHADOW_GRID);
+    us[3] = clo + span * (base + 12.0) / float(SHADOW_GRID);
+    gs[0] = lightG4(us[0], base);
+    gs[1] = lightG4(us[1], base + 4.0);
+    gs[2] = lightG4(us[2], base + 8.0);
+    gs[3] = lightG4(us[3], base + 12.0);
+    // (A member's exact zero at the join of the branches counts once, as on the CPU, except
+    // on the axis, whose outbound branches are skipped.)
+    bool join = shadow.inbound && (!member() || shadow.rho > 0.0);
+    int found = min(min(firstRoot(vec4(shadow.g0, gs[0].xyz), gs[0], base, 0, count, join),
+                        firstRoot(vec4(gs[0].w, gs[1].xyz), gs[1], base + 4.0, 4, count, join)),
+                    min(firstRoot(vec4(gs[1].w, gs[2].xyz), gs[2], base + 8.0, 8, count, join),
+                        firstRoot(vec4(gs[2].w, gs[3].xyz), gs[3], base + 12.0, 12, count, join)));
     if (found >= CELLS_PER_PASS) {
         shadow.idx += count;
         return false;
@@ -247,10 +315,12 @@ bool gridPass() {
 
 // One Illinois step on the bracketed root of G (spacetime::refine_root); true when done.
 bool rootStep() {
-    float m = shadow.fhi != shadow.flo ? (shadow.lo * shadow.fhi - shadow.hi * shadow.flo) / (shadow.fhi - shadow.flo) : 0.5 * (shadow.lo + shadow.hi);
+    // (A member's G is INF where a branch's λ runs off to infinity: then bisection.)
+    bool secant = shadow.fhi != shadow.flo && finite(shadow.fhi) && finite(shadow.flo);
+    float m = secant ? (shadow.lo * shadow.fhi - shadow.hi * shadow.flo) / (shadow.fhi - shadow.flo) : 0.5 * (shadow.lo + shadow.hi);
     if (!finite(m) || !(m > shadow.lo && m < shadow.hi)) m = 0.5 * (shadow.lo + shadow.hi);
     shadow.psi = m;
-    float fm = shadowG(m, shadow.n, shadow.inbound);
+    float fm = lightG(m);
     shadow.iter++;
     if (fm == 0.0 || shadow.hi - shadow.lo <= 4.0 * 1.1920929e-7 * max(shadow.hi, 1e-30) || shadow.iter >= REFINE_STEPS) return true;
     if ((fm > 0.0) == (shadow.fhi > 0.0)) { shadow.hi = m; shadow.fhi = fm; if (shadow.side == 1) shadow.flo *= 0.5; shadow.side = 1; }
@@ -260,7 +330,51 @@ bool rootStep() {
 
 // The ray of root shadow.psi (spacetime::connect): 0 when it does not count, 1 when it counts
 // unoccluded (shadow.weight), 2 when its occlusion must be searched (the search is set up).
+#ifdef MEMBER
+// shadowRaySetUp's in a member (type_shadow_rays_within, render::lighting): the root's λ (none:
+// a branch without it), its ray from the source's axis frame carried back (the sphere's cut
+// included), dropped where emitted before the window; incidence, D², and the occlusion search
+// over equal segments of at most ClosedForm::segment_length (E = 1 in the axis frame).
+int memberShadowRaySetUp() {
+    float lambda = typeShadowLambda(MB, shadow.rho, shadow.psiMin, shadow.psi, shadow.n, shadow.inbound);
+    if (!(lambda >= 0.0)) return 0;
+    vec4 em = vec4(0.0), tg = vec4(0.0), emission = vec4(0.0), tangent = vec4(0.0);
+    typeShadowRay(MB, shadow.p, shadow.psi, lambda, em, tg);
+    typeShadowRayBack(MB, lightBack, hp.x, lambda, em, tg, emission, tangent);
+    if (emission.x < hp.x.x - u_max_past) return 0;
+    // The closed form from the source's axis frame, started at the emission's time.
+    Ray r = NO_RAY;
+    TGeo g = typeOriginNull(MB, tg);
+    if (!g.ok) return 0;
+    r.tex = typeExactFromOrigin(MB, TIso(-emission.x, lightBack.zeta0, lightBack.z0, lightBack.rot), g);
+    r.geo.ok = true;
+    r.lret = INF;
+    vec4 xe = vec4(0.0), kEnd = vec4(0.0);
+    rayAt(r, 0, lambda, xe, kEnd);
+    vec2 inc = incidence(kEnd);
+    if (!finite(inc.x) || !(inc.x > 0.0)) return 0;
+    float d2 = typeAreaDistanceSq(MB, shadow.psi, lambda);
+    if (!(d2 > 0.0 && finite(d2))) return 0;
+    shadow.weight = shadow.power * inc.y * inc.y * inc.x / (4.0 * PI * d2);
+    float end = lambda * (1.0 - END_CUT);
+    float lret = memberReturn(g);
+    float step_ = MEMBER_STEP;   // / |E|, E = 1
+    float seg = lret < INF ? lret / max(float(EXACT_SEGMENTS), ceil(lret / step_)) : step_;
+    int segs = toInt(ceil(end / seg), 1, MAX_SEGMENTS);
+    float last = end * float(segs - 1) / float(segs);
+    bool any = setSearched(shadow.source, r.geo, end, hp.target, last);
+    if (!any) return 1;
+    startLongSearch(r, segs, end, -1.0, false, -INF);
+    plan.skipObj = hp.target;
+    plan.skipSeg = segs - 1;
+    return 2;
+}
+#endif
+
 int shadowRaySetUp() {
+#ifdef MEMBER
+    return memberShadowRaySetUp();
+#endif
     float a = u_a;
     float c = sign(shadow.zp) * cosA(shadow.psi);
     int n = shadow.n;

@@ -8,8 +8,9 @@
 // there a ray leaves with E = 1 at angle ψ to ±z, (|c|, σ) = (cos ψ, sin ψ), and the target p
 // is reached on winding n and branch (outbound: θ = nπ + θ₀, inbound: nπ + π − θ₀) where
 // its λ solves σ S1(λ) = R_P, R the Gödel-like radius. Compiled only where FAMILY is defined:
-// so far by the family's shadow probe (crates/gpu/tests/integration/probes.rs holds each
-// function to spacetime::godel_type_connect); render_lighting.glsl does not call them yet.
+// by the family's shadow probe (crates/gpu/tests/integration/probes.rs holds each function to
+// spacetime::godel_type_connect) and by a member's kernel, whose lights render_lighting.glsl
+// enumerates with them.
 #ifdef FAMILY
 
 // The Gödel-like radius R = (2/m) sinh(mρ/2) = ρ sinh(h)/h, h = mρ/2 (sin for m² < 0, ρ for
@@ -39,16 +40,17 @@ vec4 typeShadowReach(vec2 mb, vec4 p) {
     float smin = mb.y * length(baseCoordinate(mb, p.yz));
     if (mb.x < 0.0 && -mb.x * dot(p.yz, p.yz) >= PI * PI) smin = 2.0;
     float cmax = sqrt(max((1.0 - smin) * (1.0 + smin), 0.0));
-    float sesc = mb.x > 0.0 ? 2.0 * mb.y / sqrt(mb.x) : 2.0;
-    float cesc = sesc < 1.0 ? sqrt((1.0 - sesc) * (1.0 + sesc)) : 0.0;
+    // 1 − 4Ω²/m² = −4(Ω² − m²/4)/m², its sign the host's where m² = 4Ω² (typeDelta).
+    float delta = typeDelta(mb);
+    float cesc = delta < 0.0 && mb.x > 0.0 ? sqrt(-4.0 * delta / mb.x) : 0.0;
     return vec4(r, smin, cmax, cesc);
 }
 
 // Λ = Ω²c² + (Ω² − m²/4)σ² of the ray leaving at (c, σ) (big_lambda): Ω² − m²σ²/4 without the
-// cancellation near c = 0 for m² ≈ 4Ω² (c² + σ² = 1).
+// cancellation near c = 0 for m² ≈ 4Ω² (c² + σ² = 1), Ω² − m²/4 the host's in a member's kernel
+// (typeDelta).
 float typeShadowBigLambda(vec2 mb, float c, float sigma) {
-    float w2 = mb.y * mb.y;
-    return w2 * c * c + (w2 - 0.25 * mb.x) * sigma * sigma;
+    return mb.y * mb.y * c * c + typeDelta(mb) * sigma * sigma;
 }
 
 // λ at the Gödel-like radius r on winding n and branch (lambda_at) for the ray leaving at

@@ -24,9 +24,9 @@ void pixelScreen(mat4 frame, vec3 n) {
 // Gödel-type member: integrated along the closed form (typeTransport).
 void transportScreen(Ray r, vec4 obs, int loop, float within, float lambda) {
 #ifdef MEMBER
-    mat4 w = typeTransport(r.tex, loop, within, r.lret, r.h, mat4(hp.up, hp.right, vec4(0.0), vec4(0.0)));
-    hp.up = w[0];
-    hp.right = w[1];
+    hitRay = r;   // transported by surface() (memberTransports)
+    hitLoop = loop;
+    hitWithin = within;
     return;
 #endif
     if (!godel()) return;
@@ -381,7 +381,7 @@ void main() {
             if (fresh) {
                 fresh = false;
                 moved = true;
-                if (status != HIT || !godel() || HAS_LIGHTS == 0 || u_lights == 0) {
+                if (status != HIT || minkowski() || HAS_LIGHTS == 0 || u_lights == 0) {
                     cp = atEnd(cp, status, hit);
                     break;
                 }

@@ -14,20 +14,18 @@ vec4 localEvent(vec4 e) {
 #endif
     return e;
 }
-vec4 localVector(vec4 at, vec4 v) {
+// The chart's differential at `at` on the plane (the identity but in a member).
+mat2 localJacobian(vec4 at) {
 #ifdef MEMBER
-    return chartVector(at, v);
+    return chartJacobian(at.yz);
 #endif
-    return v;
+    return mat2(1.0);
 }
-vec4 localVectorBack(vec4 at, vec4 v) {
-#ifdef MEMBER
-    return chartVectorBack(at, v);
-#endif
-    return v;
-}
+vec4 localVector(vec4 at, vec4 v) { return vec4(v.x, localJacobian(at) * v.yz, v.w); }
 mat4 localFrame(vec4 at, mat4 f) {
-    return mat4(localVector(at, f[0]), localVector(at, f[1]), localVector(at, f[2]), localVector(at, f[3]));
+    mat2 j = localJacobian(at);
+    return mat4(vec4(f[0].x, j * f[0].yz, f[0].w), vec4(f[1].x, j * f[1].yz, f[1].w),
+                vec4(f[2].x, j * f[2].yz, f[2].w), vec4(f[3].x, j * f[3].yz, f[3].w));
 }
 mat4 localMetric(vec4 X) {
 #ifdef MEMBER
@@ -36,15 +34,23 @@ mat4 localMetric(vec4 X) {
 #endif
     return metricAt(X);
 }
-// Γ(u, v) at the event X of the chart.
-vec4 localChristoffel(vec4 X, vec4 u, vec4 v) {
+// ∂x g, ∂y g and g⁻¹ at the event X of the chart (zero and the metric's in Minkowski space,
+// whose Γ vanish).
+void localDerivatives(vec4 X, out mat4 dX, out mat4 dY) {
+    dX = mat4(0.0); dY = mat4(0.0);
+    if (minkowski()) return;
 #ifdef MEMBER
     vec3 p = chartRotating(X);
-    mat4 dX = mat4(0.0), dY = mat4(0.0);
     rotatingDerivatives(X.yz, p.x, p.y, p.z, dX, dY);
-    return christoffelWith(dX, dY, rotatingInverse(X.yz, p.x, 0.25 * MEMBER_M2), u, v);
+    return;
 #endif
-    return christoffel(X, u, v);
+    metricDerivatives(X, dX, dY);
+}
+mat4 localInverse(vec4 X) {
+#ifdef MEMBER
+    return rotatingInverse(X.yz, MEMBER_OMEGA, 0.25 * MEMBER_M2);
+#endif
+    return inverseMetricAt(X);
 }
 
 struct Object {
@@ -208,22 +214,13 @@ WPoint worldAt(int i, float tau) {
 }
 
 // The body frame at the worldline point p (free fall: the start frame parallel-transported
-// in closed form; at rest: the static frame). Read from the table here, at a hit, not for
+// in closed form, in a member by surface(); at rest: the static frame). Read from the table here, at a hit, not for
 // every object when a sample starts.
 mat4 bodyFrame(int i, WPoint p) {
     mat4 f = tableMat(OBJECT_TEXELS * i + 3);
 #ifdef MEMBER
-    // The legs integrated along the geodesic (typeTransport), whole loops by their matrix;
-    // segments as a light ray's of the same energy.
-    if (isFree(i)) {
-        TExact g = objs[i].tex;
-        float lret = memberReturn(g.origin);
-        float seg = MEMBER_STEP / max(abs(g.origin.e), 1.0);
-        int loops = lret < INF ? toInt(trunc(p.tau / lret), -MAX_COUNT_SEGMENTS, MAX_COUNT_SEGMENTS) : 0;
-        float within = lret < INF ? p.tau - float(loops) * lret : p.tau;
-        mat4 legs = typeTransport(g, loops, within, lret, seg, mat4(vec4(0.0), f[1], f[2], f[3]));
-        return mat4(p.u, legs[1], legs[2], legs[3]);
-    }
+    // A falling ball's legs as at its start: surface() transports them (memberTransports).
+    if (isFree(i)) return mat4(p.u, f[1], f[2], f[3]);
 #endif
     if (!isFree(i) || !godel()) return f;
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
@@ -247,27 +244,34 @@ float tauGuess(int i, float t) {
     // interpolate.
     float lret = memberReturn(objs[i].tex.origin);
     if (lret < INF) {
+        // One worldline evaluation per pass (GLSL inlines each call site; softpipe's compiler
+        // crashed on the copies): walk from τ in quarter loops until t(τ) = t is bracketed,
+        // then bisect, at most 28 evaluations.
         float step_ = 0.25 * lret;
-        float lo = tau, hi = tau;
-        float flo = worldAt(i, tau).ev.x - t, fhi = flo;
-        for (int k = 0; k < 16; k++) {
-            if ((flo <= 0.0) == (fhi >= 0.0)) break;
-            if (flo > 0.0) { hi = lo; fhi = flo; lo -= step_; flo = worldAt(i, lo).ev.x - t; }
-            else { lo = hi; flo = fhi; hi += step_; fhi = worldAt(i, hi).ev.x - t; }
+        float lo = tau, hi = tau, flo = 0.0, fhi = 0.0, x = tau;
+        bool haveLo = false, haveHi = false;
+        for (int k = 0; k < 28; k++) {
+            float f = worldAt(i, x).ev.x - t;
+            if (f <= 0.0) { lo = x; flo = f; haveLo = true; }
+            else { hi = x; fhi = f; haveHi = true; }
+            // Bracketed to 10⁻⁵ of a loop: a guess needs no more (and the data-dependent end
+            // keeps compilers from unrolling the loop into 28 copies of the worldline).
+            if (haveLo && haveHi && hi - lo <= 1e-5 * lret) break;
+            x = haveLo && haveHi ? 0.5 * (lo + hi) : (haveLo ? lo + step_ : hi - step_);
         }
-        for (int k = 0; k < 12; k++) {
-            float mid = 0.5 * (lo + hi);
-            float fm = worldAt(i, mid).ev.x - t;
-            if (fm <= 0.0) { lo = mid; flo = fm; } else { hi = mid; fhi = fm; }
-        }
-        return fhi > flo ? lo + (hi - lo) * (-flo) / (fhi - flo) : 0.5 * (lo + hi);
+        if (haveLo && haveHi) return fhi > flo ? lo + (hi - lo) * (-flo) / (fhi - flo) : 0.5 * (lo + hi);
+        return x;
     }
-#endif
+    // (A member's falling ball always returns: one that escapes a causal member is refused,
+    // and in the others every orbit returns. So Newton is left out of its kernel.)
+    return tau;
+#else
     for (int it = 0; it < TIME_STEPS; it++) {
         WPoint p = worldAt(i, tau);
         tau += (t - p.ev.x) / max(p.u.x, 0.05);
     }
     return tau;
+#endif
 }
 
 // ---------------------------------------------------------------------------------------

@@ -225,14 +225,9 @@ vec4 typeApplyIso(vec2 mb, TIso m, vec4 at) {
     return e;
 }
 
-// The geodesic through `at` with tangent k, `to` the isometry sending `at` to the origin
-// (the observer's is the host's, made in f64); `light`: k is null (typeOriginNull).
-TExact typeExactThrough(vec2 mb, TIso to, vec4 at, vec4 k, bool light) {
-    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
-    typeApplyPush(mb, to, at, k, e0, k0);
-    TGeo g = typeOriginGeodesic(mb, k0);
-    if (light) g = typeOriginNull(mb, k0);
-    TIso back = typeInverseIso(to);
+// The closed form g through the origin carried back by `back` (the sphere's continuous arg
+// set up for it).
+TExact typeExactFromOrigin(vec2 mb, TIso back, TGeo g) {
     vec2 beta = vec2(0.0);
     if (mb.x < 0.0 && g.ok) {
         float sg = sign(g.e);
@@ -241,6 +236,16 @@ TExact typeExactThrough(vec2 mb, TIso to, vec4 at, vec4 k, bool light) {
         beta = 0.25 * mb.x * cmul(conj2(back.zeta0), centre);
     }
     return TExact(back, g, vec2(1.0, 0.0) - beta, beta, mb.x < 0.0);
+}
+
+// The geodesic through `at` with tangent k, `to` the isometry sending `at` to the origin
+// (the observer's is the host's, made in f64); `light`: k is null (typeOriginNull).
+TExact typeExactThrough(vec2 mb, TIso to, vec4 at, vec4 k, bool light) {
+    vec4 e0 = vec4(0.0), k0 = vec4(0.0);
+    typeApplyPush(mb, to, at, k, e0, k0);
+    TGeo g = typeOriginGeodesic(mb, k0);
+    if (light) g = typeOriginNull(mb, k0);
+    return typeExactFromOrigin(mb, typeInverseIso(to), g);
 }
 
 TExact typeExactGeodesic(vec2 mb, vec4 at, vec4 k) {
@@ -284,33 +289,33 @@ void texAt(TExact g, float lambda, out vec4 ev, out vec4 tan_) {
 // moved in t and z, which moves no component: over whole loops W goes by the first loop's
 // transport matrix M, raised to the loops' power by squaring.
 
-// Γ(k, w) for the four columns of w at the event x.
-mat4 columnsGamma(vec4 x, vec4 k, mat4 w) {
-    mat4 dX = mat4(0.0), dY = mat4(0.0);
-    metricDerivatives(x, dX, dY);
-    mat4 gi = inverseMetricAt(x);
+// Γ(k, w) for the four columns of w, with the metric's derivatives and inverse at the event.
+mat4 columnsGamma(mat4 dX, mat4 dY, mat4 gi, vec4 k, mat4 w) {
     return mat4(christoffelWith(dX, dY, gi, k, w[0]), christoffelWith(dX, dY, gi, k, w[1]),
                 christoffelWith(dX, dY, gi, k, w[2]), christoffelWith(dX, dY, gi, k, w[3]));
 }
 
-// The columns of w carried from λ = l0 to l1 in `steps` RK4 steps.
+// The columns of w carried from λ = l0 to l1 in `steps` RK4 steps. The points of the steps'
+// starts and midpoints, at half steps, are taken one per pass, each once (GLSL inlines every
+// call site: one copy of the closed form and of the metric keeps the kernel small enough
+// for every driver's compiler; softpipe's crashed on more).
 mat4 typeTransportStretch(TExact g, float l0, float l1, int steps, mat4 w) {
     float h = (l1 - l0) / float(steps);
-    vec4 x = vec4(0.0), k = vec4(0.0);
-    texAt(g, l0, x, k);
-    for (int s = 0; s < 4096; s++) {
-        if (s >= steps) break;
-        float l = l0 + float(s) * h;
-        vec4 xm = vec4(0.0), km = vec4(0.0), xe = vec4(0.0), ke = vec4(0.0);
-        texAt(g, l + 0.5 * h, xm, km);
-        texAt(g, l + h, xe, ke);
-        mat4 d1 = columnsGamma(x, k, w);
-        mat4 d2 = columnsGamma(xm, km, w - 0.5 * h * d1);
-        mat4 d3 = columnsGamma(xm, km, w - 0.5 * h * d2);
-        mat4 d4 = columnsGamma(xe, ke, w - h * d3);
-        w -= h / 6.0 * (d1 + 2.0 * d2 + 2.0 * d3 + d4);
-        x = xe;
-        k = ke;
+    mat4 d1 = mat4(0.0), d2 = mat4(0.0), d3 = mat4(0.0);
+    for (int s = 0; s < 8193; s++) {
+        if (s > 2 * steps) break;
+        vec4 x = vec4(0.0), k = vec4(0.0);
+        texAt(g, l0 + 0.5 * h * float(s), x, k);
+        mat4 dX = mat4(0.0), dY = mat4(0.0);
+        metricDerivatives(x, dX, dY);
+        mat4 gi = inverseMetricAt(x);
+        if (s % 2 == 1) {
+            d2 = columnsGamma(dX, dY, gi, k, w - 0.5 * h * d1);
+            d3 = columnsGamma(dX, dY, gi, k, w - 0.5 * h * d2);
+        } else {
+            if (s > 0) w -= h / 6.0 * (d1 + 2.0 * d2 + 2.0 * d3 + columnsGamma(dX, dY, gi, k, w - h * d3));
+            d1 = columnsGamma(dX, dY, gi, k, w);
+        }
     }
     return w;
 }
@@ -324,18 +329,24 @@ int typeTransportSteps(float len, float seg) {
 // The columns of w carried from λ = 0 to `loops` whole loops of parameter `lret` (INF: the
 // geodesic does not return) and then `within` more, the segments `seg` long.
 mat4 typeTransport(TExact g, int loops, float within, float lret, float seg, mat4 w) {
-    if (loops != 0 && lret < INF) {
-        float dir = loops > 0 ? 1.0 : -1.0;
-        mat4 m = typeTransportStretch(g, 0.0, dir * lret, typeTransportSteps(lret, seg), mat4(1.0));
+    // One call of the stretch's integration (GLSL inlines each call site): the loop's matrix
+    // first where whole loops are taken, then the stretch within.
+    bool whole = loops != 0 && lret < INF;
+    float dir = loops > 0 ? 1.0 : -1.0;
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 0 && !whole) continue;
+        float len = pass == 0 ? dir * lret : within;
+        mat4 moved = typeTransportStretch(g, 0.0, len, typeTransportSteps(len, seg), pass == 0 ? mat4(1.0) : w);
+        if (pass == 1) return moved;
         int n = loops > 0 ? loops : -loops;
         for (int bit = 0; bit < 24; bit++) {
             if (n == 0) break;
-            if (n % 2 == 1) w = m * w;
-            m = m * m;
+            if (n % 2 == 1) w = moved * w;
+            moved = moved * moved;
             n /= 2;
         }
     }
-    return typeTransportStretch(g, 0.0, within, typeTransportSteps(within, seg), w);
+    return w;
 }
 #endif
 

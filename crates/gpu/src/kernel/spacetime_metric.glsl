@@ -235,8 +235,6 @@ mat2 chartJacobian(vec2 xy) {
     float c = 2.0 * MEMBER_M2 * s.y;
     return mat2(s.x + c * xy.x * xy.x, c * xy.x * xy.y, c * xy.x * xy.y, s.x + c * xy.y * xy.y);
 }
-vec4 chartVector(vec4 at, vec4 v) { return vec4(v.x, chartJacobian(at.yz) * v.yz, v.w); }
-vec4 chartVectorBack(vec4 at, vec4 v) { return vec4(v.x, inverse(chartJacobian(at.yz)) * v.yz, v.w); }
 
 // The chart's (w, k, m) at its event X.
 vec3 chartRotating(vec4 X) {

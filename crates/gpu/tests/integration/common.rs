@@ -236,3 +236,21 @@ pub fn agreement(scene: &Scene, kernel: &str) -> Agreement {
     let (gpu, cpu) = both(scene, kernel);
     compare(&scene.name, &gpu, &cpu)
 }
+
+/// The example scene in the member m² = `ratio`·Ω², its earth made small enough for a local
+/// sphere at its speed in every member (m² = 6Ω² has the shortest length scale).
+pub fn family_member(ratio: f64) -> scene::Scene {
+    let text = std::fs::read_to_string(testkit::scenes_dir().join("godel-type.toml"))
+        .expect("the example scene");
+    let base = scene(&text);
+    let omega = base.metric.godel_type().expect("a member").omega;
+    let text = text
+        .replace("m2 = 1.0", &format!("m2 = {:?}", ratio * omega * omega))
+        .replace(
+            "name = \"earth\"\nradius = 0.15",
+            "name = \"earth\"\nradius = 0.12",
+        );
+    let mut s = sized(scene(&text), 110, 13);
+    s.name = format!("godel-type m2/omega2 = {ratio}");
+    s
+}

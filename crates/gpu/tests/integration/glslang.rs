@@ -7,9 +7,8 @@
 //! The sources are built as the hosts build them: `#version 300 es`, [`KernelInput::defines`]
 //! of a scene input, then the entry point's source ([`gpu::host::fragment_source`]). The
 //! pixel kernel, which calls every function, is compiled for every combination of what the
-//! defines say: Gödel or Minkowski, with or without lights, or a Gödel-type member (a causal
-//! one and one on the sphere, without lights: the kernel refuses lit members), every subset
-//! of the four object kinds, small arrays (the fewest objects, one light) or large ones (nine
+//! defines say: Gödel, Minkowski or a Gödel-type member (a causal one and one on the
+//! sphere), with or without lights, every subset of the four object kinds, small arrays (the fewest objects, one light) or large ones (nine
 //! objects, nine lights), and the render targets a host binds where 1, 4 or 8 can be bound.
 //! The other entry points (COUNT_PROBES, RAY_PATH, each probe) share those functions and
 //! differ only in `main`, which reads the metric and the render targets: they are compiled for
@@ -117,9 +116,6 @@ fn sources() -> Vec<Source> {
     for kind in [Kind::Minkowski, Kind::Godel, Kind::Causal, Kind::Sphere] {
         let member = matches!(kind, Kind::Causal | Kind::Sphere);
         for lit in [false, true] {
-            if lit && member {
-                continue;
-            }
             for bits in 0..16u8 {
                 let kinds = [0, 1, 2, 3].map(|k| bits & (1 << k) != 0);
                 let fewest = kinds.iter().filter(|k| **k).count();

@@ -19,7 +19,9 @@ const DRIVER_VAR: &str = "GALLIUM_DRIVER";
 const DRIVER: &str = "softpipe";
 
 /// The small frames: balls at rest and their shadows, a falling ball, Minkowski's straight
-/// rays with a ball at rest and a fast one, and the off-axis observer's lit floor.
+/// rays with a ball at rest and a fast one, the off-axis observer's lit floor, and a falling
+/// earth and a ball at rest in a Gödel-type member on the sphere (m² = −Ω²), lit: the largest
+/// kernel a host builds (softpipe's compiler crashed on an earlier one).
 fn frames() -> Vec<scene::Scene> {
     let mut reference = sized(example("reference"), 44, 5);
     reference.samples = 1;
@@ -28,7 +30,19 @@ fn frames() -> Vec<scene::Scene> {
         reference,
         sized(scene(common::MINKOWSKI_TWO_BALLS), 32, 24),
         off_axis_lit_floor(24, 8),
+        lit_member(),
     ]
+}
+
+/// The family's example on the sphere with a light.
+fn lit_member() -> scene::Scene {
+    let text = format!(
+        "{}[[light]]\nposition = {{ x = 0.6, y = 0.4, z = 0.3 }}\npower = 6.0\n",
+        common::family_member(-1.0).source_text
+    );
+    let mut s = sized(scene(&text), 44, 5);
+    s.name = "lit member".to_string();
+    s
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! The page traces on the GPU (page/trace.js running the `gpu` crate's kernel in WebGL2, on
 //! SwiftShader here) what `godel render --method exact` traces: example scenes at small sizes
 //! — the reference scene (free fall, 2×2 samples a pixel), lit ones (direct light, a shadow
-//! in space and time) and surroundings (the observer inside a sphere) — each against its data
+//! in space and time), surroundings (the observer inside a sphere) and a lit Gödel-type member
+//! — each against its data
 //! file, measured and held to issue 22's tolerances exactly as the `gpu` crate's own agreement
 //! tests do (crates/gpu/tests/integration/common.rs, included here): the same object and status on ≥ 99.5 %
 //! of the samples either sees an object in, |Δg|/g median ≤ 1e-4 and ≤ 1e-3 on 99.9 %,
@@ -26,13 +27,14 @@ use datafile::DataFile;
 use shade::{ShadeSettings, Shading};
 
 /// Example scenes and the sizes they are traced at here (SwiftShader is slow): free fall
-/// with 2×2 samples a pixel, light, a shadow, the observer inside a sphere.
-/// The first is also shaded.
-const CASES: [(&str, u32, u32); 4] = [
+/// with 2×2 samples a pixel, light, a shadow, the observer inside a sphere, and a lit
+/// Gödel-type member (m² = 0) with its shadow. The first is also shaded.
+const CASES: [(&str, u32, u32); 5] = [
     ("lit-side", 180, 20),
     ("reference", 110, 13),
     ("lit-shadow", 180, 20),
     ("surroundings", 120, 30),
+    ("lit-godel-type", 180, 20),
 ];
 
 /// Channels per slot of a record (gpu::input::SLOT_CHANNELS).
