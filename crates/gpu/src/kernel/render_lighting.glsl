@@ -362,8 +362,7 @@ int memberShadowRaySetUp() {
     float seg = lret < INF ? lret / max(float(EXACT_SEGMENTS), ceil(lret / step_)) : step_;
     int segs = toInt(ceil(end / seg), 1, MAX_SEGMENTS);
     float last = end * float(segs - 1) / float(segs);
-    bool any = setSearched(shadow.source, r.geo, end, hp.target, last);
-    if (!any) return 1;
+    if (!setSearched(shadow.source, r.geo, end, hp.target, last)) return 1;
     startLongSearch(r, segs, end, -1.0, false, -INF);
     plan.skipObj = hp.target;
     plan.skipSeg = segs - 1;

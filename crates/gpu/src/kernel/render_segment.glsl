@@ -28,8 +28,7 @@ void rayAt(Ray r, int j, float l, out vec4 ev, out vec4 k) {
     ev = vec4(0.0); k = vec4(0.0);
 #ifdef MEMBER
     texAt(r.tex, l, ev, k);
-    ev.x += float(j) * r.shift.x;
-    ev.w += float(j) * r.shift.y;
+    ev += float(j) * vec4(r.shift.x, 0.0, 0.0, r.shift.y);
     return;
 #endif
     if (!godel()) {

@@ -138,13 +138,14 @@ Object loadObject(int i) {
     int at = OBJECT_TEXELS * i;
     vec4 t0 = tableTexel(at);
     vec4 t1 = tableTexel(at + 1);
-    Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), vec4(0.0, t1.xyz), mat4(0.0),
+    Object o = Object(toInt(t0.x, -1, KIND_PLANE), t0.y, t0.z, vec4(0.0, t1.xyz), vec4(0.0), mat4(0.0),
                       mat3(0.0), mat3(0.0), mat3(0.0), NO_ISO, NO_OGEO, vec4(0.0), vec4(0.0),
                       1.0, 1.0, 1.0
 #ifdef MEMBER
                       , NO_TEXACT
 #endif
                       );
+    o.local = o.pos;
     if (restKind(o.kind)) {
 #ifdef MEMBER
         o.local = vec4(0.0, tableTexel(at + 2).xyz);

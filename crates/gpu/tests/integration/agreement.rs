@@ -8,7 +8,7 @@
 //! The kernel runs in an offscreen OpenGL ES 3 context: on this machine Mesa's llvmpipe, which
 //! the test command installs.
 
-use crate::common::{self, agreement, example, scene, sized, Agreement};
+use crate::common::{self, agreement, caught, example, scene, sized, Agreement};
 use gpu::KERNEL;
 
 /// The agreement of the real kernel on `scene`, asserted.
@@ -16,23 +16,6 @@ fn agrees(scene: &scene::Scene) -> Agreement {
     let a = agreement(scene, KERNEL);
     a.assert_holds();
     a
-}
-
-/// A mutated kernel: `from` replaced by `to` (which must occur, so that the test follows the
-/// kernel's text).
-fn mutated(from: &str, to: &str) -> String {
-    assert!(KERNEL.contains(from), "the kernel no longer has {from:?}");
-    KERNEL.replacen(from, to, 1)
-}
-
-/// A mutation must be caught: its kernel disagrees with the CPU on `scene`.
-fn caught(scene: &scene::Scene, from: &str, to: &str) {
-    let a = agreement(scene, &mutated(from, to));
-    eprintln!("mutation {from:?} → {to:?}: {a:?}");
-    assert!(
-        !a.holds(),
-        "the mutation {from:?} → {to:?} went unnoticed: {a:?}"
-    );
 }
 
 #[test]

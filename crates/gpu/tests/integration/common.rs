@@ -3,6 +3,7 @@
 //! tolerances single precision allows.
 
 use datafile::{DataFile, RayStatus};
+use gpu::KERNEL;
 use render::driver::{render, NoProgress};
 use scene::{Scene, TraceMethod};
 
@@ -253,4 +254,25 @@ pub fn family_member(ratio: f64) -> scene::Scene {
     let mut s = sized(scene(&text), 110, 13);
     s.name = format!("godel-type m2/omega2 = {ratio}");
     s
+}
+
+/// A mutated kernel: `from` replaced by `to` (which must occur once, so that the test follows
+/// the kernel's text and mutates what it names).
+pub fn mutated(from: &str, to: &str) -> String {
+    assert_eq!(
+        KERNEL.matches(from).count(),
+        1,
+        "the kernel no longer has {from:?} once"
+    );
+    KERNEL.replacen(from, to, 1)
+}
+
+/// A mutation must be caught: its kernel disagrees with the CPU on `scene`.
+pub fn caught(scene: &scene::Scene, from: &str, to: &str) {
+    let a = agreement(scene, &mutated(from, to));
+    eprintln!("mutation {from:?} → {to:?}: {a:?}");
+    assert!(
+        !a.holds(),
+        "the mutation {from:?} → {to:?} went unnoticed: {a:?}"
+    );
 }
