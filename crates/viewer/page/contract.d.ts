@@ -270,6 +270,8 @@ export interface KernelInput {
   light_count: number;
   kinds: [boolean, boolean, boolean, boolean];
   supersample: number;
+  /** A Gödel-type member's constants (the defines say them to the kernel); null otherwise. */
+  member: MemberDefines | null;
   slots: number;
   light_channels: [number, number][];
   draw_buffers: number;
@@ -280,8 +282,18 @@ export interface KernelInput {
   max_rounds: number;
 }
 
+/** gpu::input::MemberDefines. */
+export interface MemberDefines {
+  m2: number;
+  omega: number;
+  delta: number;
+  causal: boolean;
+  step: number;
+}
+
 /** gpu::input::Uniforms, its observer's (ObserverUniforms) at the top level. */
 export interface KernelUniforms {
+  /** 0 Minkowski, 1 Gödel, 2 a Gödel-type member. */
   metric: number;
   a: number;
   obs_t: [number, number];

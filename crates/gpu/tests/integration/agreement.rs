@@ -178,8 +178,8 @@ fn a_kernel_without_the_observers_isometry_is_caught() {
 fn a_kernel_without_the_observers_boost_is_caught() {
     caught(
         &off_axis_fast_observer(),
-        "mat4 frame = boostFrame(u_obs_static, u_velocity.x, u_velocity.yzw);",
-        "mat4 frame = u_obs_static;",
+        "mat4 frame = boostFrame(u_obs_static, u_velocity.x, u_velocity.yzw);\n    vec4 k = frame",
+        "mat4 frame = u_obs_static;\n    vec4 k = frame",
     );
 }
 

@@ -357,6 +357,14 @@ async fn exploring(c: &Contract) {
         .read(&format!("/api/explore/map?{}", query(&start)), "ExploreMap")
         .await;
     assert_eq!(in_member["member"]["m2"], 1.0, "{in_member}");
+    // Its kernel input names the member too (`member`, null in Gödel's universe).
+    let input = member
+        .read(
+            &format!("/api/gpu/input?{}&draw_buffers=4", query(&start)),
+            "KernelInput",
+        )
+        .await;
+    assert_eq!(input["member"]["m2"], 1.0, "{input}");
     let (generation, level) = (&frame["generation"], frame["level"].as_str().unwrap());
     for col in [0, 7] {
         let path =
