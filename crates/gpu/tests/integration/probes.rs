@@ -853,6 +853,16 @@ fn family_closed_forms_and_isometries_match_spacetime() {
     apply.assert();
 }
 
+/// (Ω, m²/Ω²) of the members the family's probes run in: m²/Ω² = −1, 0, 1, 2, 3.5, 4, 6 at
+/// the two vorticities `omegas`, and a sphere of small vorticity (Ω = 1/4, m² = −1), whose
+/// rays' circles are large against the distance of the cut.
+fn family_members(omegas: [f64; 2]) -> impl Iterator<Item = (f64, f64)> {
+    omegas
+        .into_iter()
+        .flat_map(|o| [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0].map(|r| (o, r)))
+        .chain([(0.25, -16.0)])
+}
+
 /// The family's geodesic through any event (`typeExactGeodesic`, `texAt`) against
 /// `spacetime::TypeExactGeodesic`, in the same members and a sphere of small vorticity
 /// (m² = −1, Ω = 1/4), from events within mρ ≤ 3 and on the sphere out to μρ = 0.8π, beyond
@@ -866,12 +876,7 @@ fn family_geodesics_through_any_event_match_spacetime() {
     use spacetime::{GodelType, TypeExactGeodesic};
     let mut rng = Rng(fastrand::Rng::with_seed(3434));
     let mut cases = Vec::new();
-    // (Ω, m²/Ω²): the seven members of two vorticities, and a sphere of small vorticity
-    // (m² = −1, Ω = 1/4), whose rays' circles are large against the distance of the cut.
-    let members = [0.7f64, 1.3]
-        .iter()
-        .flat_map(|&o| [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0].map(|r| (o, r)))
-        .chain([(0.25, -16.0)]);
+    let members = family_members([0.7, 1.3]);
     for (omega, ratio) in members {
         {
             let member = GodelType::new(f(ratio * omega * omega), f(omega));
@@ -1061,10 +1066,7 @@ fn family_shadow_rays_match_spacetime_godel_type_connect() {
     // for the axis-frame probe; (member, source, target, axis ray, final ray) for the map back.
     let mut axis_cases = Vec::new();
     let mut back_cases = Vec::new();
-    let members = [0.75f64, 1.25]
-        .iter()
-        .flat_map(|&o| [-1.0, 0.0, 1.0, 2.0, 3.5, 4.0, 6.0].map(|r| (o, r)))
-        .chain([(0.25, -16.0)]);
+    let members = family_members([0.75, 1.25]);
     for (omega, ratio) in members {
         let member = GodelType::new(f(ratio * omega * omega), f(omega));
         let m_abs = member.m2.abs().sqrt();
