@@ -72,37 +72,98 @@ impl RayCircle {
         if lo > hi || lo.is_nan() || hi.is_nan() {
             return None;
         }
+        self.arc(w, nw, cosh_m)?.last_in(lo, hi)
+    }
+
+    /// Where the ray's projection may lie within hyperbolic distance m of the disc point `w`
+    /// (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)), in λ from the ray's start: None
+    /// only when it provably lies farther all round the circle; everywhere when unsure (NaN).
+    pub fn arc(&self, w: Complex, nw: f64, cosh_m: f64) -> Option<Arc> {
+        let everywhere = Arc {
+            centre: 0.0,
+            half: f64::INFINITY,
+            period: self.l_ret,
+        };
         // cosh(d(h, w)/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
         let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
         let sh = (ch * ch - 1.0).max(0.0).sqrt();
         let num = ch * self.cosh_rho - cosh_m;
         let den = sh * self.sinh_rho;
         if !(num.is_finite() && den.is_finite()) {
-            return Some(hi);
+            return Some(everywhere);
         }
         if num <= -den {
-            return Some(hi); // within m all round the circle
+            return Some(everywhere); // within m all round the circle
         }
         if num > den {
             return None; // beyond m all round (cos δ would have to exceed 1)
         }
         let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
-        // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h.
+        // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
+        // is nearest w where ψ is a whole number of turns, within m while |δ| ≤ half.
         let beta = moved(self.h, w).arg();
-        let psi_hi = self.psi0 - self.sg * beta + TAU * hi / self.l_ret;
-        let r = psi_hi - TAU * (psi_hi / TAU).round();
-        let back = if r.abs() <= half {
-            0.0
-        } else if r > half {
-            r - half
-        } else {
-            r + TAU - half
+        let turns = (self.sg * beta - self.psi0) / TAU;
+        let arc = Arc {
+            centre: (turns - turns.floor()) * self.l_ret,
+            half: half * self.l_ret / TAU,
+            period: self.l_ret,
         };
-        let l = hi - back * self.l_ret / TAU;
+        if arc.centre.is_finite() && arc.half.is_finite() && arc.period > 0.0 {
+            Some(arc)
+        } else {
+            Some(everywhere)
+        }
+    }
+}
+
+/// The λ-stretches of a ray (from its start) near a point: [c − half, c + half] and its
+/// copies a loop apart ([`RayCircle::arc`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Arc {
+    centre: f64,
+    half: f64,
+    period: f64,
+}
+
+impl Arc {
+    /// Whether [lo, hi] meets a stretch.
+    pub fn meets(&self, lo: f64, hi: f64) -> bool {
+        if !(self.half < 0.5 * self.period) {
+            return true;
+        }
+        // The first copy whose stretch ends at or after lo.
+        let n = ((lo - self.half - self.centre) / self.period).ceil();
+        self.centre + n * self.period - self.half <= hi
+    }
+
+    /// The largest λ in [lo, hi] on a stretch.
+    pub fn last_in(&self, lo: f64, hi: f64) -> Option<f64> {
+        if !(self.half < 0.5 * self.period) {
+            return Some(hi);
+        }
+        // The last copy whose stretch starts at or before hi.
+        let n = ((hi + self.half - self.centre) / self.period).floor();
+        let l = hi.min(self.centre + n * self.period + self.half);
         if l.is_nan() {
             Some(hi)
         } else {
             (l >= lo).then_some(l)
         }
+    }
+}
+
+/// The stretches of a ray near a point at rest: the arcs of its circle ([`Arc`]) within the λ
+/// window [lo, hi] where its height is near too.
+#[derive(Clone, Copy, Debug)]
+pub struct Stretches {
+    pub arc: Arc,
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Stretches {
+    /// Whether [l0, l1] (λ from the ray's start) meets a stretch.
+    pub fn meets(&self, l0: f64, l1: f64) -> bool {
+        l1 >= self.lo && l0 <= self.hi && self.arc.meets(l0.max(self.lo), l1.min(self.hi))
     }
 }

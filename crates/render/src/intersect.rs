@@ -13,6 +13,7 @@
 //! than that is no crossing) and [`SEARCH_PROBES`] probes, beyond which the search reports
 //! [`OutOfWork`] and the caller marks the ray instead of searching on.
 
+use crate::circle::Stretches;
 use crate::segment::{Segment, Shift};
 use crate::target::{Probe, Target};
 use spacetime::{refine_root, GeodesicState, Metric};
@@ -69,6 +70,9 @@ pub struct Probes {
     /// Per object and loop k of the ray: the λ, from the loop's start, up to which the loop
     /// searches it (−∞, or a loop past the end: not at all).
     pub loops: Vec<Vec<f64>>,
+    /// Per object: the only stretches of the ray (λ from its start) that search it (balls at
+    /// rest: `crate::reject::StaticBall::near`); None: all along.
+    pub near: Vec<Option<Stretches>>,
 }
 
 impl Probes {
@@ -99,14 +103,21 @@ impl Probes {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
-    /// Sets `active` for a segment of loop `k` that starts at `lambda0` (from the loop's
-    /// start): an object is searched while λ ≤ its `until`, so within a loop only a first
-    /// stretch of segments is searched (a later loop probes afresh). Whether any is.
-    pub fn activate(&mut self, k: usize, lambda0: f64) -> bool {
+    /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
+    /// l1 from the loop's start): an object is searched while l0 ≤ its `until` (within a
+    /// loop only a first stretch, a later loop probes afresh) and where the stretch meets
+    /// its `near` ones. An object not searched just before starts from a fresh probe
+    /// ([`Intersector::scan`]). Whether any is searched.
+    pub fn activate(&mut self, k: usize, dl: f64, l0: f64, l1: f64) -> bool {
         let mut any = false;
         for i in 0..self.active.len() {
-            self.active[i] = lambda0 <= self.until(i, k);
-            any |= self.active[i];
+            let on =
+                l0 <= self.until(i, k) && self.near[i].is_none_or(|n| n.meets(dl + l0, dl + l1));
+            if on && !self.active[i] {
+                self.start[i].at = f64::NAN;
+            }
+            self.active[i] = on;
+            any |= on;
         }
         any
     }
@@ -147,6 +158,7 @@ impl Intersector {
             on_ray: vec![true; self.targets.len()],
             by_loop: vec![false; self.targets.len()],
             loops: vec![Vec::new(); self.targets.len()],
+            near: vec![None; self.targets.len()],
         }
     }
 
@@ -188,7 +200,14 @@ impl Intersector {
             if !probes.active[i] {
                 continue;
             }
-            let m = probes.start[i];
+            let mut m = probes.start[i];
+            if m.at.is_nan() {
+                // Not searched just before lo: a fresh probe there.
+                m = Measured {
+                    probe: t.probe(&self.metric, &shift.apply(d.state_at(lo)), f64::NAN),
+                    at: lo_abs,
+                };
+            }
             let p = m.probe;
             // Clearance from the surface, on either side of it.
             let clear = p.f.abs();

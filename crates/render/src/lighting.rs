@@ -247,7 +247,7 @@ fn occluded(
     let metric = objects.metric;
     let end = ray.lambda * (1.0 - END_CUT);
     let origin = geo.godel().map(|g| &g.origin);
-    set_ray(rejections, origin, t_start, end, probes);
+    set_ray(rejections, origin, t_start, end, true, probes);
     let per_segment = geo.segment_length(metric.length_scale());
     let n = (end / per_segment).ceil().clamp(1.0, 1e5) as usize;
     // The lit object is searched up to the last segment only: its whole-ray test over that
@@ -269,7 +269,7 @@ fn occluded(
             probes.loops[i].push(last);
         }
     }
-    if !probes.activate(0, 0.0) {
+    if !probes.activate(0, 0.0, 0.0, end) {
         return Ok(false);
     }
     let start = GeodesicState {
@@ -282,7 +282,7 @@ fn occluded(
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
         let d = Segment::exact(geo, sys, l0, y0, l1);
-        probes.activate(0, l0);
+        probes.activate(0, 0.0, l0, l1);
         if i + 1 == n {
             probes.active[lit] = false;
         }

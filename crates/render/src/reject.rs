@@ -21,11 +21,15 @@
 //! (second-order normal coordinates, `worldline.rs`) lies within that static distance of
 //! its centre (a property test measures the ratio).
 //!
+//! A ball the test keeps is searched, by the exact tracer and the shadow rays, only on the
+//! stretches of the ray that may come within the reach ([`StaticBall::near`], docs/physics.md
+//! "The stretches near a ball"): the z window, on the arcs of the circle ([`crate::circle`]).
+//!
 //! Planes z = h (coordinate objects, static): along a closed-form ray z is linear in λ, so
 //! the ray crosses the plane at most once, where p_z λ = h − z_0; a ray that keeps a clear
 //! side over the whole stretch searched never crosses it.
 
-use crate::circle::{moved, RayCircle};
+use crate::circle::{moved, RayCircle, Stretches};
 use crate::falling::FallingBall;
 use crate::intersect::Probes;
 use crate::target::Target;
@@ -142,6 +146,33 @@ impl StaticBall {
         })
     }
 
+    /// The stretches of the light ray of circle `ray` (through the origin), over
+    /// λ ∈ [0, until], that may come within the reach of the centre: the λ window where
+    /// |p_z λ − z_C| ≤ reach, on the arcs of the circle within the reach of w_C (the static
+    /// distance is at least the disc's). None where it provably stays farther; everywhere
+    /// when unsure (NaN).
+    pub fn near(&self, ray: &RayCircle, until: f64) -> Option<Stretches> {
+        let (lo, hi) = if ray.pz == 0.0 {
+            if self.z.abs() > self.reach {
+                return None;
+            }
+            (0.0, until)
+        } else {
+            let (l1, l2) = (
+                (self.z - self.reach) / ray.pz,
+                (self.z + self.reach) / ray.pz,
+            );
+            (l1.min(l2).max(0.0), l1.max(l2).min(until))
+        };
+        if hi < lo {
+            return None;
+        }
+        let nw = 1.0 - self.w.norm_sqr();
+        let arc = ray.arc(self.w, nw, (self.reach / self.a).cosh())?;
+        let near = Stretches { arc, lo, hi };
+        (lo.is_nan() || hi.is_nan() || near.meets(lo, hi)).then_some(near)
+    }
+
     /// Whether the light ray `geo` (through the origin), over λ ∈ [0, until] (all its loops
     /// with `until` = ∞), provably stays farther than the reach from the centre. False when
     /// unsure (NaN included).
@@ -195,21 +226,26 @@ impl StaticBall {
 
 /// Sets, for the closed-form ray `geo` from the start of the rays (its time `t_start`
 /// after the `from` event of the tests), over λ ∈ [0, until], which objects it searches
-/// ([`Probes::on_ray`]) and, for balls in free fall, up to which λ of each loop
-/// ([`Probes::loops`]). With no closed form (`None`: not Gödel's universe) or no test, an
-/// object is searched all along.
+/// ([`Probes::on_ray`]), for balls in free fall up to which λ of each loop
+/// ([`Probes::loops`]) and, with `stretches` (rays whose λ is the closed form's: the exact
+/// tracer's and the shadow rays), for balls at rest in which stretches ([`Probes::near`]).
+/// With no closed form (`None`: not Gödel's universe) or no test, an object is searched all
+/// along.
 pub fn set_ray(
     rejections: &[Option<Rejection>],
     geo: Option<&OriginGeodesic>,
     t_start: f64,
     until: f64,
+    stretches: bool,
     probes: &mut Probes,
 ) {
     let circle = geo
         .filter(|_| {
-            rejections
-                .iter()
-                .any(|r| matches!(r, Some(Rejection::Falling(_))))
+            rejections.iter().any(|r| match r {
+                Some(Rejection::Falling(_)) => true,
+                Some(Rejection::Ball(_)) => stretches,
+                _ => false,
+            })
         })
         .map(RayCircle::new);
     for i in 0..probes.on_ray.len() {
@@ -223,6 +259,15 @@ pub fn set_ray(
             (Some(r), Some(g)) => (!r.misses(g, until), false),
             _ => (true, false),
         };
+        // A ball at rest that the whole-ray test keeps: only its stretches (none: left out).
+        let (on, near) = match (rejections.get(i).and_then(Option::as_ref), &circle) {
+            (Some(Rejection::Ball(b)), Some(c)) if on && stretches => {
+                let near = b.near(c, until);
+                (near.is_some(), near)
+            }
+            _ => (on, None),
+        };
+        probes.near[i] = near;
         probes.on_ray[i] = on;
         probes.by_loop[i] = by_loop;
     }

@@ -233,6 +233,7 @@ impl Tracer {
             geo.as_ref().and_then(ClosedForm::godel).map(|g| &g.origin),
             0.0,
             f64::INFINITY,
+            self.exact,
             probes,
         );
         if !self.exact {
@@ -244,7 +245,7 @@ impl Tracer {
                 }
             }
         }
-        probes.activate(0, 0.0);
+        probes.activate(0, 0.0, 0.0, 0.0);
         if self.exact && !probes.on_ray.iter().any(|&on| on) {
             if let Some(status) = self.escape_unsearched(&start, geo) {
                 return Traced {
@@ -360,7 +361,7 @@ impl Tracer {
             let metric = &self.objects.metric;
             // Objects this loop searches at all (`crate::reject`), and whose box it meets.
             let k = loops as usize;
-            if !probes.activate(k, 0.0)
+            if !probes.activate(k, shift.dl, 0.0, period.dl)
                 || !(self.objects.targets.iter().zip(&probes.active))
                     .any(|(t, &on)| on && t.bounds(metric, t_lo, t_hi).intersects(&here))
             {
@@ -369,11 +370,15 @@ impl Tracer {
             let first = shift.apply(segments[0].state_at(segments[0].lambda0));
             self.objects.probe_all(&first, shift.dl, probes);
             for (i, d) in segments.iter().enumerate() {
-                probes.activate(k, d.lambda0);
+                let hi = if i + 1 == segments.len() {
+                    period.dl
+                } else {
+                    d.lambda1()
+                };
+                probes.activate(k, shift.dl, d.lambda0, hi);
                 if d.far {
                     // Beyond every object throughout: probe afresh at its end (never the
                     // loop's last segment).
-                    let hi = d.lambda1();
                     let end = shift.apply(d.state_at(hi));
                     if end.x.t < self.t_bound {
                         return End::Miss(RayStatus::Escaped);
@@ -381,11 +386,6 @@ impl Tracer {
                     self.objects.probe_all(&end, hi + shift.dl, probes);
                     continue;
                 }
-                let hi = if i + 1 == segments.len() {
-                    period.dl
-                } else {
-                    d.lambda1()
-                };
                 match self.objects.scan(d, shift, d.lambda0, hi, probes) {
                     Ok(Some(crossing)) => {
                         return End::Hit {

@@ -46,7 +46,7 @@ impl Tracer {
             let y0 = segments.last().map_or(s0, |d| d.y1);
             segments.push(Segment::exact(geo, sys, l0, y0, l1));
             let d = segments.last().expect("just pushed");
-            probes.activate(0, l0);
+            probes.activate(0, 0.0, l0, l1);
             if let Some(end) = self.scan_first_loop(segments, l0, l1, probes) {
                 return FirstLoop::Ended(end);
             }
@@ -87,7 +87,7 @@ impl Tracer {
             let segment = Segment::exact(geo, sys, l0, y0, l1);
             let y1 = segment.y1;
             segments.push(segment);
-            probes.activate(0, l0);
+            probes.activate(0, 0.0, l0, l1);
             if let Some(end) = self.scan_first_loop(segments, l0, l1, probes) {
                 return FirstLoop::Ended(end);
             }

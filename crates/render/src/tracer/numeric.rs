@@ -52,8 +52,8 @@ impl Tracer {
             }
             segments.push(Segment::step(ode.last_step(), sys));
             let d = segments.last().expect("just pushed");
-            probes.activate(0, d.lambda0);
             let mut hi = d.lambda1();
+            probes.activate(0, 0.0, d.lambda0, hi);
             let mut closed = None;
             if periodic {
                 let back = axis.after_step(

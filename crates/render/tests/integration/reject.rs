@@ -3,6 +3,7 @@
 
 use crate::common::{norm, tracer, unit};
 use proptest::prelude::*;
+use render::circle::RayCircle;
 use render::reject::{static_distance, StaticBall, REACH_PER_A, REACH_PER_RADIUS};
 use render::target::Target;
 use render::worldline::Worldline;
@@ -99,6 +100,90 @@ proptest! {
             }
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// The stretches of a ray near a ball at rest (`StaticBall::near`): every sample of the
+    /// closed-form ray, over three loops and its whole z window, that lies within the reach
+    /// (less the distance light covers between samples) is in a stretch, and a ray with no
+    /// stretch is one `misses` may reject too.
+    #[test]
+    fn every_point_within_the_reach_is_in_a_stretch(
+        a in 0.2f64..5.0,
+        o in prop::array::uniform3(-2.5f64..2.5), t0 in -10.0f64..10.0,
+        n in prop::array::uniform3(-1.0f64..1.0),
+        v in 0.0f64..0.9, vdir in prop::array::uniform3(-1.0f64..1.0),
+        c in prop::array::uniform3(-1.5f64..1.5),
+        radius in 0.01f64..0.5,
+    ) {
+        prop_assume!(norm(n) > 1e-3 && norm(vdir) > 1e-3);
+        let metric = Metric::Godel(Godel::new(a));
+        let obs = Event::new(t0, a * o[0], a * o[1], 0.3 * a * o[2]);
+        let frame = metric.observer_frame(obs, LocalVelocity::new(v, vdir).unwrap());
+        let k = photon_tangent(&frame, unit(n), TimeDirection::Past);
+        let geo = ExactGeodesic::new(a, obs, k).unwrap();
+        let centre = [a * c[0], a * c[1], 0.3 * a * c[2]];
+        let b = StaticBall::new(a, obs, &ball(a, centre, radius * a)).unwrap();
+        let near = b.near(&RayCircle::new(&geo.origin), f64::INFINITY);
+        let reach = REACH_PER_RADIUS * radius * a + REACH_PER_A * a;
+        let l_ret = geo.origin.return_parameter();
+        let speed = metric.lower(obs, k).t.abs();
+        let pz = geo.origin.pz;
+        let end = 3.0 * l_ret + if pz != 0.0 { (centre[2] - obs.z).abs() / pz.abs() + 2.0 * reach / pz.abs() } else { 0.0 };
+        let n = 3000;
+        let step = end / n as f64;
+        for i in 0..=n {
+            let l = i as f64 * step;
+            let (x, _) = geo.at(l);
+            let dist = static_distance(a, centre, [x.x, x.y, x.z]);
+            if dist <= reach - 0.5 * step * speed {
+                prop_assert!(
+                    near.is_some_and(|s| s.meets(l, l)),
+                    "λ = {l} is {dist} from the centre (reach {reach}) but in no stretch: {near:?}"
+                );
+            }
+        }
+    }
+}
+
+/// The stretches are not vacuous: for the rays of a panorama from the origin around a ball
+/// at (1, 0, 0) that `misses` keeps, the stretches leave out most of each ray's first
+/// three loops (each sampled at 64 points a loop).
+#[test]
+fn stretches_leave_out_most_of_a_kept_ray() {
+    let a = 1.0;
+    let metric = Metric::Godel(Godel::new(a));
+    let obs = Event::new(0.0, 0.0, 0.0, 0.0);
+    let frame = metric.static_frame(obs);
+    let b = StaticBall::new(a, obs, &ball(a, [1.0, 0.0, 0.0], 0.2)).unwrap();
+    let (mut kept, mut samples, mut inside) = (0, 0, 0);
+    for i in 0..220 {
+        for j in 0..25 {
+            let az = (i as f64 - 110.0).to_radians();
+            let el = (j as f64 - 12.0).to_radians();
+            let n = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+            let k = photon_tangent(&frame, n, TimeDirection::Past);
+            let geo = ExactGeodesic::new(a, obs, k).unwrap();
+            if b.misses(&geo.origin, f64::INFINITY) {
+                continue;
+            }
+            kept += 1;
+            let near = b.near(&RayCircle::new(&geo.origin), f64::INFINITY);
+            let l_ret = geo.origin.return_parameter();
+            for s in 0..3 * 64 {
+                let l = l_ret * s as f64 / 64.0;
+                samples += 1;
+                inside += usize::from(near.is_some_and(|st| st.meets(l, l)));
+            }
+        }
+    }
+    assert!(kept > 100, "{kept} rays kept");
+    assert!(
+        inside * 4 < samples,
+        "{inside} of {samples} samples in a stretch"
+    );
 }
 
 /// Rejection is not vacuous: of the rays of a panorama from the origin around a ball at
