@@ -72,8 +72,17 @@ fn big_phi(q: f64, th: f64) -> f64 {
 /// to the z axis given as (cos ψ, sin ψ) = (c, σ) (needs r_max ≥ ρ). r_max = 2a σ/√(1 + c²)
 /// is the closed form's 2a √((1 − c²)/(1 + c²)) without the cancellation in 1 − c².
 fn theta(a: f64, rho: f64, (c, sigma): (f64, f64), n: u32, b: Branch) -> f64 {
+    theta_of(first_theta(a, rho, (c, sigma)), n, b)
+}
+
+/// θ of the first outbound meeting, arcsin(ρ/r_max): the same for every winding and branch.
+fn first_theta(a: f64, rho: f64, (c, sigma): (f64, f64)) -> f64 {
     let r_max = 2.0 * a * sigma / (1.0 + c * c).sqrt();
-    let th0 = (rho / r_max).min(1.0).asin();
+    (rho / r_max).min(1.0).asin()
+}
+
+/// θ of a winding and branch from [`first_theta`].
+fn theta_of(th0: f64, n: u32, b: Branch) -> f64 {
     n as f64 * PI
         + match b {
             Branch::Outbound => th0,
@@ -134,6 +143,12 @@ pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<Sha
         GRID => psi_min,
         _ => (c_max * i as f64 / GRID as f64).acos(),
     };
+    // What the grid's G needs of each point, the same for every winding and branch (made
+    // once: this is most of the work per target).
+    let grid: [(f64, f64, f64); GRID + 1] = std::array::from_fn(|i| {
+        let (c, sigma) = point(i);
+        (c, first_theta(a, rho, (c, sigma)), (1.0 + c * c).sqrt())
+    });
     let mut out = Vec::new();
     for n in 0..=max_winding {
         for b in [Branch::Outbound, Branch::Inbound] {
@@ -149,10 +164,15 @@ pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<Sha
                 let (sigma, c) = psi.sin_cos();
                 g_at((c, sigma))
             };
+            // g_at at grid point i, from its parts made above.
+            let g_grid = |i: usize| {
+                let (c, th0, root) = grid[i];
+                2.0 * a * c * theta_of(th0, n, b) / root - zp.abs()
+            };
             let signed = |(c, sigma): (f64, f64)| (sign * c, sigma);
-            let mut g0 = g_at(point(0));
+            let mut g0 = g_grid(0);
             for i in 1..=GRID {
-                let g1 = g_at(point(i));
+                let g1 = g_grid(i);
                 // A root exactly at c_max belongs to both branches: count it once.
                 let at_join = i == GRID && b == Branch::Inbound;
                 if g1 == 0.0 && !at_join {
