@@ -15,6 +15,8 @@
 //!   `--part i/N` part files and their merge.
 //! - [`threads`]: the worker pool, its size checked (at most 8 threads per core).
 //! - [`map`]: what the explore map draws (horizon, balls and their tracks, a pixel's ray).
+//! - `probe_count` (feature `count-probes`): how many probes the objects answered, for
+//!   `examples/probes.rs`.
 
 // `!(a < b)` is how this crate writes "not a < b, NaN included" (a NaN must fail the
 // test); per-axis loops over [f64; 3]; `Worldline::Free` is large, and boxing it would
@@ -36,6 +38,8 @@ pub mod map;
 pub mod part;
 pub mod plan;
 pub mod polarization;
+#[cfg(feature = "count-probes")]
+pub mod probe_count;
 pub mod reject;
 pub mod segment;
 pub mod target;

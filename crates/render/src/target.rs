@@ -153,6 +153,8 @@ impl Target {
 
     /// Probe at ray state `s`; `tau_seed` is the previous match on this ray (NaN if none).
     pub fn probe(&self, metric: &Metric, s: &GeodesicState, tau_seed: f64) -> Probe {
+        #[cfg(feature = "count-probes")]
+        crate::probe_count::add();
         match self {
             Target::LocalSphere { radius, worldline } => {
                 let seed = if tau_seed.is_finite() {
