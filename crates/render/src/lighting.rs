@@ -278,21 +278,30 @@ fn occluded(
     };
     let (sys, s0) = GeodesicSystem::new(metric, &start);
     objects.probe_all(&start, 0.0, probes);
-    let mut y0 = s0;
+    // The start of the next segment where the one before was made (None: skipped).
+    let mut y0 = Some(s0);
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
-        let d = Segment::exact(geo, sys, l0, y0, l1);
         probes.activate(0, 0.0, l0, l1);
         if i + 1 == n {
             probes.active[lit] = false;
         }
+        if !probes.active.iter().any(|&on| on) {
+            // Nothing to search here: the segment is not made (a closed form less).
+            y0 = None;
+            continue;
+        }
+        let d = match y0 {
+            Some(y0) => Segment::exact(geo, sys, l0, y0, l1),
+            None => Segment::exact_between(geo, sys, l0, l1),
+        };
         if objects
             .scan(&d, Shift::default(), l0, l1, probes)?
             .is_some()
         {
             return Ok(true);
         }
-        y0 = d.y1;
+        y0 = Some(d.y1);
         probes.advance();
     }
     Ok(false)

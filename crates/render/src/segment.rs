@@ -144,6 +144,12 @@ impl Segment {
         }
     }
 
+    /// The stretch [l0, l1] of a closed-form geodesic, its start from the closed form too
+    /// (the same state as the end of a segment that ends at l0).
+    pub fn exact_between(geo: ClosedForm, sys: GeodesicSystem<Metric>, l0: f64, l1: f64) -> Self {
+        Self::exact(geo, sys, l0, exact_state(&geo, &sys, l0), l1)
+    }
+
     /// The same stretch, marked as beyond every object throughout (never searched).
     pub fn beyond_objects(mut self) -> Self {
         self.far = true;
