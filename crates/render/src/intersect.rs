@@ -73,6 +73,9 @@ pub struct Probes {
     /// Per object: the only stretches of the ray (λ from its start) that search it (balls at
     /// rest: `crate::reject::StaticBall::near`); None: all along.
     pub near: Vec<Option<Stretches>>,
+    /// The closed form's λ per loop of the current ray, where its λ is the closed form's (the
+    /// exact tracer's rays and the shadow rays; NaN otherwise).
+    pub loop_length: f64,
 }
 
 impl Probes {
@@ -92,15 +95,24 @@ impl Probes {
         }
     }
 
-    /// The last λ of the whole ray (loops of parameter `l_ret`) at which object `i` is
-    /// searched.
-    pub fn last(&self, i: usize, l_ret: f64) -> f64 {
-        if !self.on_ray[i] || !self.by_loop[i] {
-            return self.until(i, 0);
+    /// Whether the stretch [l0, l1], from the start of loop `k`, reaches λ ≤ `until` of a
+    /// loop for object `i`. A stretch may run on into later loops (a shadow ray's segments,
+    /// with `loop_length` known): then it reaches each from its start.
+    fn in_loops(&self, i: usize, k: usize, l0: f64, l1: f64) -> bool {
+        let len = self.loop_length;
+        if !(self.by_loop[i] && len > 0.0 && l1 > len) {
+            return l0 <= self.until(i, k);
         }
-        (self.loops[i].iter().enumerate())
-            .map(|(k, u)| k as f64 * l_ret + u)
-            .fold(f64::NEG_INFINITY, f64::max)
+        let (first, last) = ((l0 / len).floor().max(0.0), (l1 / len).floor());
+        if !(last.is_finite() && first <= last) {
+            return true; // unsure
+        }
+        let loops = self.loops[i].len();
+        let (first, last) = (first as usize, (last as usize).min(loops));
+        (first..=last).any(|j| {
+            let from = if j == first { l0 - j as f64 * len } else { 0.0 };
+            from <= self.until(i, k + j)
+        })
     }
 
     /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
@@ -111,8 +123,8 @@ impl Probes {
     pub fn activate(&mut self, k: usize, dl: f64, l0: f64, l1: f64) -> bool {
         let mut any = false;
         for i in 0..self.active.len() {
-            let on =
-                l0 <= self.until(i, k) && self.near[i].is_none_or(|n| n.meets(dl + l0, dl + l1));
+            let on = self.in_loops(i, k, l0, l1)
+                && self.near[i].is_none_or(|n| n.meets(dl + l0, dl + l1));
             if on && !self.active[i] {
                 self.start[i].at = f64::NAN;
             }
@@ -159,6 +171,7 @@ impl Intersector {
             by_loop: vec![false; self.targets.len()],
             loops: vec![Vec::new(); self.targets.len()],
             near: vec![None; self.targets.len()],
+            loop_length: f64::NAN,
         }
     }
 

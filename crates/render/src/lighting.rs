@@ -258,17 +258,9 @@ fn occluded(
             probes.on_ray[lit] = false;
         }
     }
-    // One chain of segments with no fresh probe: an object is searched from the start up
-    // to its last λ within reach (a stretch searched later would start from other probes).
-    // Only Gödel's rejection tests search by loop (`set_ray`), and Gödel's rays return.
-    let l_ret = geo.return_parameter().unwrap_or(f64::INFINITY);
-    for i in 0..probes.loops.len() {
-        if probes.by_loop[i] {
-            let last = probes.last(i, l_ret);
-            probes.loops[i].clear();
-            probes.loops[i].push(last);
-        }
-    }
+    // One chain of segments over λ from the emission, each searching what its loops search
+    // (`set_ray`; only Gödel's rays, which return, are searched by loop), from a fresh probe
+    // where an object's search resumes.
     if !probes.activate(0, 0.0, 0.0, end) {
         return Ok(false);
     }

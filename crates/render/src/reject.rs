@@ -248,6 +248,10 @@ pub fn set_ray(
             })
         })
         .map(RayCircle::new);
+    probes.loop_length = match &circle {
+        Some(c) if stretches => c.l_ret,
+        _ => f64::NAN,
+    };
     for i in 0..probes.on_ray.len() {
         let (on, by_loop) = match (rejections.get(i).and_then(Option::as_ref), geo) {
             (Some(Rejection::Falling(f)), Some(_)) => {

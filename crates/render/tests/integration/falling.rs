@@ -255,6 +255,61 @@ proptest! {
     }
 }
 
+/// A lit floor with a ball falling between it and the light, seen by an observer moving off
+/// the axis (the issue's second live scene), its shadow rays 25 time units long: several
+/// loops each, the ball near only in some. The direct light at every hit is the same, bit
+/// for bit, with the rejection as without it, and the ball shadows some of the floor.
+#[test]
+fn direct_light_on_a_lit_floor_is_the_same_with_and_without_rejection() {
+    use render::lighting::{LightSource, Lighting};
+    let sc = common::scene(
+        "name = \"lit-floor\"\n\
+         [spacetime]\nmetric = \"godel\"\na = 1.5\n\
+         [observer]\ntime = 2.0\nposition = { r = 0.6, phi = 0.8, z = 0.4 }\n\
+         velocity = { speed = 0.6, direction = [0.2, -1, 0.1] }\nforward = [1, 0, 0]\nup = [0, 0, 1]\n\
+         [camera]\nkind = \"panorama\"\nh_fov_deg = 360.0\nv_fov_deg = 90.0\nwidth = 72\nheight = 14\n\
+         [trace]\nmethod = \"exact\"\nmax_past = 25\n\
+         [[object]]\nname = \"falling\"\nradius = 0.15\n\
+         motion = { kind = \"geodesic\", time = 0.0, position = { x = -0.5, y = 0.5, z = 0.0 }, speed = 0.8, direction = [1, 0, 0.2] }\n\
+         [[object]]\nname = \"floor\"\nframe = \"coordinates\"\nshape = \"plane\"\nheight = -0.5\nextent = 3.0\n",
+    );
+    let tr = tracer(&sc);
+    let light = LightSource {
+        position: Event::new(0.0, 0.5 * 2f64.cos(), 0.5 * 2f64.sin(), 0.6),
+        power: 2.0,
+    };
+    let with = Lighting::new(vec![light], sc.trace.max_past);
+    let without = Lighting::new(vec![light], sc.trace.max_past).without_rejection();
+    let ball_free = Lighting::new(vec![light], sc.trace.max_past);
+    let no_ball = common::scene(&sc.source_text.replace("radius = 0.15", "radius = 0.000001"));
+    let tr_free = tracer(&no_ball);
+    let mut scratch = tr.scratch();
+    let mut scratch_free = tr_free.scratch();
+    let (mut o1, mut o2, mut o3) = ([0.0f32], [0.0f32], [0.0f32]);
+    let mut shadowed = 0;
+    for row in 0..sc.camera.height() {
+        for col in 0..sc.camera.width() {
+            let n = sc.observer.pixel_direction(&sc.camera, col, row).unwrap();
+            let Some(hit) = tr.trace(n, &mut scratch).hit else {
+                continue;
+            };
+            with.illuminate(&tr.objects, Some(&hit), &mut scratch.probes, &mut o1);
+            without.illuminate(&tr.objects, Some(&hit), &mut scratch.probes, &mut o2);
+            assert_eq!(format!("{o1:?}"), format!("{o2:?}"), "pixel ({col}, {row})");
+            if hit.target == 1 {
+                ball_free.illuminate(
+                    &tr_free.objects,
+                    Some(&hit),
+                    &mut scratch_free.probes,
+                    &mut o3,
+                );
+                shadowed += usize::from(o3[0] > o1[0]);
+            }
+        }
+    }
+    assert!(shadowed > 0, "the ball shadows none of the floor");
+}
+
 /// The reference scene (a ball falling past the observer at 0.7 c) at 88×10, both tracers.
 fn reference(method: &str) -> scene::Scene {
     common::reference_scene(method, 88, 10)
