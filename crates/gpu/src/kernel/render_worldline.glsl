@@ -92,6 +92,8 @@ bool isPlane(int i) { return HAS_PLANE != 0 && objs[i].kind == KIND_PLANE; }
 bool searched[N_OBJECTS];
 vec2 oCw[N_OBJECTS];
 float oCz[N_OBJECTS];
+// A ball at rest's ballNear for the ray (render_reject).
+vec2 oNear[N_OBJECTS];
 float fbLast[N_OBJECTS];
 
 // The stores into the per-object arrays, each at the constant indices of a loop whose body
@@ -102,12 +104,13 @@ void storeObject(int i, Object o) {
         if (j == i) objs[j] = o;
     }
 }
-void storeSearched(int i, bool s, vec2 cw, float cz) {
+void storeSearched(int i, bool s, vec2 cw, float cz, vec2 near) {
     for (int j = 0; j < N_OBJECTS; j++) {
         if (j == i) {
             searched[j] = s;
             oCw[j] = cw;
             oCz[j] = cz;
+            oNear[j] = near;
         }
     }
 }
@@ -183,6 +186,7 @@ void loadObjects() {
         searched[i] = false;
         oCw[i] = vec2(0.0);
         oCz[i] = 0.0;
+        oNear[i] = vec2(0.0);
         fbLast[i] = NO_TAU;
     }
     for (int i = 0; i < N_OBJECTS; i++) storeObject(i, loadObject(i));
