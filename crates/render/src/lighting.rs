@@ -49,8 +49,9 @@ use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
 use crate::reject::{set_ray, Rejection};
 use crate::segment::{ClosedForm, Segment, Shift};
 use spacetime::{
-    shadow_rays, source_area_distance_sq, type_shadow_rays_within, type_source_area_distance_sq,
-    Event, GeodesicState, GeodesicSystem, Metric, ShadowRay, Spacetime,
+    shadow_rays_within, source_area_distance_sq, type_shadow_rays_within,
+    type_source_area_distance_sq, Event, GeodesicState, GeodesicSystem, Metric, ShadowRay,
+    Spacetime,
 };
 use std::f64::consts::{PI, SQRT_2};
 use std::sync::OnceLock;
@@ -200,9 +201,7 @@ impl Lighting {
                     .ceil()
                     .min(MAX_WINDINGS as f64) as u32
                     + 1;
-                let mut rays = shadow_rays(g.a, light.position, x, n);
-                rays.retain(|r| r.emission.t >= x.t - self.window);
-                rays
+                shadow_rays_within(g.a, light.position, x, self.window, n)
             }
             Metric::GodelType(m) => {
                 type_shadow_rays_within(*m, light.position, x, self.window, MAX_WINDINGS)

@@ -120,6 +120,33 @@ fn ray(a: f64, target: Event, (c, sigma): (f64, f64), n: u32, b: Branch) -> Shad
 /// by 1.2 a), while ψ ~ ρ/a is resolved, and c, sin ψ and r_max follow from ψ without
 /// cancellation. The grid's last point is ψ_min, where r_max = ρ, from s = ρ/2a directly.
 pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<ShadowRay> {
+    rays_from_axis(a, target, max_winding, f64::INFINITY)
+}
+
+/// A lower bound of the travel time t_P − t_emission = 2√2·a·Φ(θ) − λ of every ray of
+/// winding n whose |c| is at least `c_lo`: θ ∈ [nπ, (n + 1)π], where Φ(θ) ≥ nπ (Φ(nπ) = nπ
+/// and Φ' > 0), and λ = 2aθ/√(1 + c²). It grows with n and with c_lo.
+fn travel_floor(a: f64, n: u32, c_lo: f64) -> f64 {
+    let n = n as f64;
+    2.0 * a * PI * (SQRT_2 * n - (n + 1.0) / (1.0 + c_lo * c_lo).sqrt())
+}
+
+/// The largest |c| at which a ray of winding n may travel at most `max_travel`
+/// ([`travel_floor`] solved for c_lo; infinite where every |c| may).
+fn c_within(a: f64, n: u32, max_travel: f64) -> f64 {
+    let nf = n as f64;
+    let gap = SQRT_2 * nf - max_travel / (2.0 * a * PI);
+    if !(gap > 0.0) {
+        return f64::INFINITY;
+    }
+    let root = (nf + 1.0) / gap; // √(1 + c²) at the bound
+    (root * root - 1.0).max(0.0).sqrt()
+}
+
+/// [`shadow_rays_from_axis`] without the rays whose travel time exceeds `max_travel`: the
+/// grid's cells (and windings) where [`travel_floor`] exceeds it are not searched, and the
+/// rays found there otherwise are left out (some may be too).
+fn rays_from_axis(a: f64, target: Event, max_winding: u32, max_travel: f64) -> Vec<ShadowRay> {
     let rho = target.r();
     let s = rho / (2.0 * a);
     if !target.is_finite() || s * s >= 1.0 {
@@ -151,6 +178,17 @@ pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<Sha
     });
     let mut out = Vec::new();
     for n in 0..=max_winding {
+        if travel_floor(a, n, 0.0) > max_travel {
+            break; // and every later winding
+        }
+        // The cells whose smaller |c| (c_max·(i − 1)/GRID) may hold a ray within the travel
+        // time, one more for rounding; the others' rays all take longer.
+        let c_hi = c_within(a, n, max_travel);
+        let last_cell = if c_hi >= c_max {
+            GRID
+        } else {
+            ((c_hi / c_max * GRID as f64).floor() as usize + 2).min(GRID)
+        };
         for b in [Branch::Outbound, Branch::Inbound] {
             if zp == 0.0 {
                 out.push(ray(a, target, (0.0, 1.0), n, b));
@@ -171,7 +209,7 @@ pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<Sha
             };
             let signed = |(c, sigma): (f64, f64)| (sign * c, sigma);
             let mut g0 = g_grid(0);
-            for i in 1..=GRID {
+            for i in 1..=last_cell {
                 let g1 = g_grid(i);
                 // A root exactly at c_max belongs to both branches: count it once.
                 let at_join = i == GRID && b == Branch::Inbound;
@@ -194,11 +232,43 @@ pub fn shadow_rays_from_axis(a: f64, target: Event, max_winding: u32) -> Vec<Sha
 /// All light rays from a source at rest at `source` (its x, y, z; t ignored) to `target`:
 /// the axis case after mapping the source to the origin, mapped back.
 pub fn shadow_rays(a: f64, source: Event, target: Event, max_winding: u32) -> Vec<ShadowRay> {
+    mapped_back(a, source, target, |at| {
+        shadow_rays_from_axis(a, at, max_winding)
+    })
+}
+
+/// The rays of [`shadow_rays`] emitted at most `window` (coordinate time) before `target`:
+/// the grid is not searched where every ray would be emitted earlier.
+pub fn shadow_rays_within(
+    a: f64,
+    source: Event,
+    target: Event,
+    window: f64,
+    max_winding: u32,
+) -> Vec<ShadowRay> {
+    // The map to the source's axis moves the target's time against the source's clock by
+    // 2√2·a·arg(1 − w̄_S w) with |arg| < π/2: a ray that travels longer than the window and
+    // √2·π·a there is emitted before the window (twice that margin, for rounding).
+    let max_travel = window + 2.0 * SQRT_2 * PI * a;
+    let mut rays = mapped_back(a, source, target, |at| {
+        rays_from_axis(a, at, max_winding, max_travel)
+    });
+    rays.retain(|r| r.emission.t >= target.t - window);
+    rays
+}
+
+/// The rays `from_axis` finds to the target moved to the source's axis, mapped back.
+fn mapped_back(
+    a: f64,
+    source: Event,
+    target: Event,
+    from_axis: impl FnOnce(Event) -> Vec<ShadowRay>,
+) -> Vec<ShadowRay> {
     let to = Isometry::to_origin(a, Event::new(0.0, source.x, source.y, source.z));
     // T_S keeps t on the source worldline: arg(1 − |w_S|²) = 0.
     debug_assert!(disc(a, source.x, source.y).norm_sqr() < 1.0);
     let back = to.inverse();
-    shadow_rays_from_axis(a, to.apply(target), max_winding)
+    from_axis(to.apply(target))
         .into_iter()
         .map(|r| ShadowRay {
             emission: back.apply(r.emission),

@@ -60,7 +60,10 @@ mod vectors;
 pub mod worldline;
 
 pub use closed_form::{ExactGeodesic, OriginGeodesic};
-pub use connect::{shadow_rays, shadow_rays_from_axis, source_area_distance_sq, Branch, ShadowRay};
+pub use connect::{
+    shadow_rays, shadow_rays_from_axis, shadow_rays_within, source_area_distance_sq, Branch,
+    ShadowRay,
+};
 pub use constants::{ConstantsOfMotion, Drift};
 pub use dop853::{DenseStep, Dop853, OdeSystem, StepData, StepOutcome, Tolerances};
 pub use eyes::Viewpoint;
