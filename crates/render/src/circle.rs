@@ -126,14 +126,14 @@ pub struct Arc {
 }
 
 impl Arc {
-    /// Whether [lo, hi] meets a stretch.
+    /// Whether [lo, hi] meets a stretch (true when unsure: NaN).
     pub fn meets(&self, lo: f64, hi: f64) -> bool {
         if !(self.half < 0.5 * self.period) {
             return true;
         }
         // The first copy whose stretch ends at or after lo.
         let n = ((lo - self.half - self.centre) / self.period).ceil();
-        self.centre + n * self.period - self.half <= hi
+        !(self.centre + n * self.period - self.half > hi)
     }
 
     /// The largest λ in [lo, hi] on a stretch.
@@ -162,8 +162,8 @@ pub struct Stretches {
 }
 
 impl Stretches {
-    /// Whether [l0, l1] (λ from the ray's start) meets a stretch.
+    /// Whether [l0, l1] (λ from the ray's start) meets a stretch (true when unsure: NaN).
     pub fn meets(&self, l0: f64, l1: f64) -> bool {
-        l1 >= self.lo && l0 <= self.hi && self.arc.meets(l0.max(self.lo), l1.min(self.hi))
+        !(l1 < self.lo || l0 > self.hi) && self.arc.meets(l0.max(self.lo), l1.min(self.hi))
     }
 }
