@@ -136,7 +136,7 @@ fn travel_floor(a: f64, n: u32, c_lo: f64) -> f64 {
 fn c_within(a: f64, n: u32, max_travel: f64) -> f64 {
     let nf = n as f64;
     let gap = SQRT_2 * nf - max_travel / (2.0 * a * PI);
-    if !(gap > 0.0) {
+    if gap.is_nan() || gap <= 0.0 {
         return f64::INFINITY;
     }
     let root = (nf + 1.0) / gap; // √(1 + c²) at the bound

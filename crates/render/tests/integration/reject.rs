@@ -73,33 +73,59 @@ proptest! {
         radius in 0.01f64..0.5,
     ) {
         prop_assume!(norm(n) > 1e-3 && norm(vdir) > 1e-3);
-        let metric = Metric::Godel(Godel::new(a));
         let obs = Event::new(t0, a * o[0], a * o[1], a * o[2]);
-        let frame = metric.observer_frame(obs, LocalVelocity::new(v, vdir).unwrap());
-        let k = photon_tangent(&frame, unit(n), TimeDirection::Past);
-        let geo = ExactGeodesic::new(a, obs, k).unwrap();
+        let geo = ray_from(a, obs, v, vdir, n);
         let centre = [a * c[0], a * c[1], a * c[2]];
         let target = ball(a, centre, radius * a);
         let b = StaticBall::new(a, obs, &target).unwrap();
         if b.misses(&geo.origin, f64::INFINITY) {
             let reach = REACH_PER_RADIUS * radius * a + REACH_PER_A * a;
-            let l_ret = geo.origin.return_parameter();
-            // The static energy −k_t of the ray bounds its static speed per λ.
-            let speed = metric.lower(obs, k).t.abs();
-            let pz = geo.origin.pz;
-            let end = 3.0 * l_ret + if pz != 0.0 { (centre[2] - obs.z).abs() / pz.abs() + 2.0 * reach / pz.abs() } else { 0.0 };
-            let n = 3000;
-            let step = end / n as f64;
-            for i in 0..=n {
-                let (x, _) = geo.at(i as f64 * step);
-                let dist = static_distance(a, centre, [x.x, x.y, x.z]);
+            for (l, dist, slack) in samples(a, &geo, centre, reach) {
                 prop_assert!(
-                    dist > reach - 0.5 * step * speed,
-                    "rejected ray at λ = {} is {dist} from the centre, reach {reach}", i as f64 * step
+                    dist > reach - slack,
+                    "rejected ray at λ = {l} is {dist} from the centre, reach {reach}"
                 );
             }
         }
     }
+}
+
+/// The exact ray from `obs` in the direction `n` of an observer moving at `v` along `vdir`.
+fn ray_from(a: f64, obs: Event, v: f64, vdir: [f64; 3], n: [f64; 3]) -> ExactGeodesic {
+    let metric = Metric::Godel(Godel::new(a));
+    let frame = metric.observer_frame(obs, LocalVelocity::new(v, vdir).unwrap());
+    let k = photon_tangent(&frame, unit(n), TimeDirection::Past);
+    ExactGeodesic::new(a, obs, k).unwrap()
+}
+
+/// Samples (λ, static distance from `centre`, slack) of the closed-form ray `geo` over three
+/// loops and through its whole z window near a centre of the given reach; the slack is the
+/// static distance light covers between samples (its static energy −k_t per λ).
+fn samples(a: f64, geo: &ExactGeodesic, centre: [f64; 3], reach: f64) -> Vec<(f64, f64, f64)> {
+    let metric = Metric::Godel(Godel::new(a));
+    let (obs, k) = geo.at(0.0);
+    let l_ret = geo.origin.return_parameter();
+    let speed = metric.lower(obs, k).t.abs();
+    let pz = geo.origin.pz;
+    let end = 3.0 * l_ret
+        + if pz != 0.0 {
+            (centre[2] - obs.z).abs() / pz.abs() + 2.0 * reach / pz.abs()
+        } else {
+            0.0
+        };
+    let n = 3000;
+    let step = end / n as f64;
+    (0..=n)
+        .map(|i| {
+            let l = i as f64 * step;
+            let (x, _) = geo.at(l);
+            (
+                l,
+                static_distance(a, centre, [x.x, x.y, x.z]),
+                0.5 * step * speed,
+            )
+        })
+        .collect()
 }
 
 proptest! {
@@ -107,8 +133,7 @@ proptest! {
 
     /// The stretches of a ray near a ball at rest (`StaticBall::near`): every sample of the
     /// closed-form ray, over three loops and its whole z window, that lies within the reach
-    /// (less the distance light covers between samples) is in a stretch, and a ray with no
-    /// stretch is one `misses` may reject too.
+    /// (less the distance light covers between samples) is in a stretch.
     #[test]
     fn every_point_within_the_reach_is_in_a_stretch(
         a in 0.2f64..5.0,
@@ -119,26 +144,14 @@ proptest! {
         radius in 0.01f64..0.5,
     ) {
         prop_assume!(norm(n) > 1e-3 && norm(vdir) > 1e-3);
-        let metric = Metric::Godel(Godel::new(a));
         let obs = Event::new(t0, a * o[0], a * o[1], 0.3 * a * o[2]);
-        let frame = metric.observer_frame(obs, LocalVelocity::new(v, vdir).unwrap());
-        let k = photon_tangent(&frame, unit(n), TimeDirection::Past);
-        let geo = ExactGeodesic::new(a, obs, k).unwrap();
+        let geo = ray_from(a, obs, v, vdir, n);
         let centre = [a * c[0], a * c[1], 0.3 * a * c[2]];
         let b = StaticBall::new(a, obs, &ball(a, centre, radius * a)).unwrap();
         let near = b.near(&RayCircle::new(&geo.origin), f64::INFINITY);
         let reach = REACH_PER_RADIUS * radius * a + REACH_PER_A * a;
-        let l_ret = geo.origin.return_parameter();
-        let speed = metric.lower(obs, k).t.abs();
-        let pz = geo.origin.pz;
-        let end = 3.0 * l_ret + if pz != 0.0 { (centre[2] - obs.z).abs() / pz.abs() + 2.0 * reach / pz.abs() } else { 0.0 };
-        let n = 3000;
-        let step = end / n as f64;
-        for i in 0..=n {
-            let l = i as f64 * step;
-            let (x, _) = geo.at(l);
-            let dist = static_distance(a, centre, [x.x, x.y, x.z]);
-            if dist <= reach - 0.5 * step * speed {
+        for (l, dist, slack) in samples(a, &geo, centre, reach) {
+            if dist <= reach - slack {
                 prop_assert!(
                     near.is_some_and(|s| s.meets(l, l)),
                     "λ = {l} is {dist} from the centre (reach {reach}) but in no stretch: {near:?}"
@@ -154,29 +167,19 @@ proptest! {
 #[test]
 fn stretches_leave_out_most_of_a_kept_ray() {
     let a = 1.0;
-    let metric = Metric::Godel(Godel::new(a));
-    let obs = Event::new(0.0, 0.0, 0.0, 0.0);
-    let frame = metric.static_frame(obs);
-    let b = StaticBall::new(a, obs, &ball(a, [1.0, 0.0, 0.0], 0.2)).unwrap();
+    let b = StaticBall::new(a, ORIGIN, &ball(a, [1.0, 0.0, 0.0], 0.2)).unwrap();
     let (mut kept, mut samples, mut inside) = (0, 0, 0);
-    for i in 0..220 {
-        for j in 0..25 {
-            let az = (i as f64 - 110.0).to_radians();
-            let el = (j as f64 - 12.0).to_radians();
-            let n = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
-            let k = photon_tangent(&frame, n, TimeDirection::Past);
-            let geo = ExactGeodesic::new(a, obs, k).unwrap();
-            if b.misses(&geo.origin, f64::INFINITY) {
-                continue;
-            }
-            kept += 1;
-            let near = b.near(&RayCircle::new(&geo.origin), f64::INFINITY);
-            let l_ret = geo.origin.return_parameter();
-            for s in 0..3 * 64 {
-                let l = l_ret * s as f64 / 64.0;
-                samples += 1;
-                inside += usize::from(near.is_some_and(|st| st.meets(l, l)));
-            }
+    for (_, geo) in panorama_rays(a) {
+        if b.misses(&geo.origin, f64::INFINITY) {
+            continue;
+        }
+        kept += 1;
+        let near = b.near(&RayCircle::new(&geo.origin), f64::INFINITY);
+        let l_ret = geo.origin.return_parameter();
+        for s in 0..3 * 64 {
+            let l = l_ret * s as f64 / 64.0;
+            samples += 1;
+            inside += usize::from(near.is_some_and(|st| st.meets(l, l)));
         }
     }
     assert!(kept > 100, "{kept} rays kept");
@@ -186,40 +189,48 @@ fn stretches_leave_out_most_of_a_kept_ray() {
     );
 }
 
+/// The origin event: the observer of the panoramas below.
+const ORIGIN: Event = Event::new(0.0, 0.0, 0.0, 0.0);
+
+/// The rays of a 220°×25° panorama from the origin, one a degree, with their (azimuth,
+/// elevation) in degrees.
+fn panorama_rays(a: f64) -> impl Iterator<Item = ((f64, f64), ExactGeodesic)> {
+    let frame = Metric::Godel(Godel::new(a)).static_frame(ORIGIN);
+    (0..220).flat_map(move |i| {
+        (0..25).map(move |j| {
+            let (az, el) = (i as f64 - 110.0, j as f64 - 12.0);
+            let (azr, elr) = (az.to_radians(), el.to_radians());
+            let n = [elr.cos() * azr.cos(), elr.cos() * azr.sin(), elr.sin()];
+            let k = photon_tangent(&frame, n, TimeDirection::Past);
+            ((az, el), ExactGeodesic::new(a, ORIGIN, k).unwrap())
+        })
+    })
+}
+
 /// Rejection is not vacuous: of the rays of a panorama from the origin around a ball at
 /// (1, 0, 0) (the benchmark scene), most that pass far from the ball are rejected, and
 /// none that pass within the reach.
 #[test]
 fn most_rays_far_from_a_ball_are_rejected() {
     let a = 1.0;
-    let metric = Metric::Godel(Godel::new(a));
-    let obs = Event::new(0.0, 0.0, 0.0, 0.0);
-    let frame = metric.static_frame(obs);
     let centre = [1.0, 0.0, 0.0];
     let target = ball(a, centre, 0.2);
-    let b = StaticBall::new(a, obs, &target).unwrap();
+    let b = StaticBall::new(a, ORIGIN, &target).unwrap();
     let reach = REACH_PER_RADIUS * 0.2 + REACH_PER_A * a;
     let (mut far, mut far_rejected) = (0, 0);
-    for i in 0..220 {
-        for j in 0..25 {
-            let az = (i as f64 - 110.0).to_radians();
-            let el = (j as f64 - 12.0).to_radians();
-            let n = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
-            let k = photon_tangent(&frame, n, TimeDirection::Past);
-            let geo = ExactGeodesic::new(a, obs, k).unwrap();
-            let l_ret = geo.origin.return_parameter();
-            let nearest = (0..=2000)
-                .map(|s| {
-                    let (x, _) = geo.at(5.0 * l_ret * s as f64 / 2000.0);
-                    static_distance(a, centre, [x.x, x.y, x.z])
-                })
-                .fold(f64::INFINITY, f64::min);
-            let rejected = b.misses(&geo.origin, f64::INFINITY);
-            assert!(!(rejected && nearest <= reach), "az {az}, el {el}");
-            if nearest > 2.0 * reach {
-                far += 1;
-                far_rejected += rejected as usize;
-            }
+    for ((az, el), geo) in panorama_rays(a) {
+        let l_ret = geo.origin.return_parameter();
+        let nearest = (0..=2000)
+            .map(|s| {
+                let (x, _) = geo.at(5.0 * l_ret * s as f64 / 2000.0);
+                static_distance(a, centre, [x.x, x.y, x.z])
+            })
+            .fold(f64::INFINITY, f64::min);
+        let rejected = b.misses(&geo.origin, f64::INFINITY);
+        assert!(!(rejected && nearest <= reach), "az {az}, el {el}");
+        if nearest > 2.0 * reach {
+            far += 1;
+            far_rejected += rejected as usize;
         }
     }
     assert!(far > 2000, "{far}");
