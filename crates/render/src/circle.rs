@@ -79,40 +79,21 @@ impl RayCircle {
     /// (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)), in λ from the ray's start: None
     /// only when it provably lies farther all round the circle; everywhere when unsure (NaN).
     pub fn arc(&self, w: Complex, nw: f64, cosh_m: f64) -> Option<Arc> {
-        let everywhere = Arc {
-            centre: 0.0,
-            half: f64::INFINITY,
-            period: self.l_ret,
-        };
         // cosh(d(h, w)/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
         let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
         let sh = (ch * ch - 1.0).max(0.0).sqrt();
-        let num = ch * self.cosh_rho - cosh_m;
-        let den = sh * self.sinh_rho;
-        if !(num.is_finite() && den.is_finite()) {
-            return Some(everywhere);
-        }
-        if num <= -den {
-            return Some(everywhere); // within m all round the circle
-        }
-        if num > den {
-            return None; // beyond m all round (cos δ would have to exceed 1)
-        }
-        let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
         // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
-        // is nearest w where ψ is a whole number of turns, within m while |δ| ≤ half.
+        // is nearest w where ψ is a whole number of turns.
         let beta = moved(self.h, w).arg();
         let turns = (self.sg * beta - self.psi0) / TAU;
         let arc = Arc {
             centre: (turns - turns.floor()) * self.l_ret,
-            half: half * self.l_ret / TAU,
+            half: f64::INFINITY,
             period: self.l_ret,
+            nearest: ch * self.cosh_rho,
+            spread: sh * self.sinh_rho,
         };
-        if arc.centre.is_finite() && arc.half.is_finite() && arc.period > 0.0 {
-            Some(arc)
-        } else {
-            Some(everywhere)
-        }
+        arc.within(cosh_m)
     }
 }
 
@@ -123,9 +104,44 @@ pub struct Arc {
     centre: f64,
     half: f64,
     period: f64,
+    /// cosh(d(h, w)/a)·cosh(ρ/a) and sinh(d(h, w)/a)·sinh(ρ/a): by the law of cosines
+    /// cosh(d_H/a) = nearest − spread·cos δ ([`Arc::within`]).
+    nearest: f64,
+    spread: f64,
 }
 
 impl Arc {
+    /// The arc of the same ray and point for the distance m (given cosh(m/a)): |δ| ≤ A with
+    /// cos A = (cosh(d(h, w)/a)·cosh(ρ/a) − cosh(m/a))/(sinh(d(h, w)/a)·sinh(ρ/a)). None when
+    /// the ray lies farther all round; everywhere when unsure (NaN).
+    pub fn within(&self, cosh_m: f64) -> Option<Arc> {
+        let everywhere = Arc {
+            half: f64::INFINITY,
+            ..*self
+        };
+        let num = self.nearest - cosh_m;
+        let den = self.spread;
+        if !(num.is_finite() && den.is_finite()) {
+            return Some(everywhere);
+        }
+        if num <= -den {
+            return Some(everywhere); // within m all round the circle
+        }
+        if num > den {
+            return None; // beyond m all round (cos δ would have to exceed 1)
+        }
+        let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
+        let arc = Arc {
+            half: half * self.period / TAU,
+            ..*self
+        };
+        if arc.centre.is_finite() && arc.half.is_finite() && arc.period > 0.0 {
+            Some(arc)
+        } else {
+            Some(everywhere)
+        }
+    }
+
     /// Whether [lo, hi] meets a stretch (true when unsure: NaN).
     pub fn meets(&self, lo: f64, hi: f64) -> bool {
         if !(self.half < 0.5 * self.period) {
@@ -152,18 +168,46 @@ impl Arc {
     }
 }
 
-/// The stretches of a ray near a point at rest: the arcs of its circle ([`Arc`]) within the λ
-/// window [lo, hi] where its height is near too.
+/// The stretches of a ray near a point at rest, within static distance `reach` of it: the
+/// arcs of its circle ([`Arc`], for the reach) within the λ window [lo, hi] where its height
+/// p_z λ is within the reach of the point's `z`; where the height differs by Δz, only the
+/// arcs within √(reach² − Δz²) (the static distance is √(d_H² + Δz²)).
 #[derive(Clone, Copy, Debug)]
 pub struct Stretches {
     pub arc: Arc,
     pub lo: f64,
     pub hi: f64,
+    pub pz: f64,
+    pub z: f64,
+    pub reach: f64,
+    /// The curvature scale a (the arcs' distances are in units of it).
+    pub a: f64,
 }
 
 impl Stretches {
     /// Whether [l0, l1] (λ from the ray's start) meets a stretch (true when unsure: NaN).
     pub fn meets(&self, l0: f64, l1: f64) -> bool {
-        !(l1 < self.lo || l0 > self.hi) && self.arc.meets(l0.max(self.lo), l1.min(self.hi))
+        if l1 < self.lo || l0 > self.hi {
+            return false;
+        }
+        let (l0, l1) = (l0.max(self.lo), l1.min(self.hi));
+        if !self.arc.meets(l0, l1) {
+            return false;
+        }
+        // The least |Δz| over [l0, l1] (z is linear in λ): the disc's distance must be
+        // within √(reach² − Δz²) there.
+        let (z0, z1) = (self.pz * l0 - self.z, self.pz * l1 - self.z);
+        let dz = if (z0 > 0.0) != (z1 > 0.0) {
+            0.0
+        } else {
+            z0.abs().min(z1.abs())
+        };
+        if !(dz > 0.0) {
+            return true; // the whole reach (or unsure: NaN)
+        }
+        let m = (self.reach * self.reach - dz * dz).max(0.0).sqrt();
+        self.arc
+            .within((m / self.a).cosh())
+            .is_some_and(|arc| arc.meets(l0, l1))
     }
 }

@@ -169,7 +169,15 @@ impl StaticBall {
         }
         let nw = 1.0 - self.w.norm_sqr();
         let arc = ray.arc(self.w, nw, (self.reach / self.a).cosh())?;
-        let near = Stretches { arc, lo, hi };
+        let near = Stretches {
+            arc,
+            lo,
+            hi,
+            pz: ray.pz,
+            z: self.z,
+            reach: self.reach,
+            a: self.a,
+        };
         (lo.is_nan() || hi.is_nan() || near.meets(lo, hi)).then_some(near)
     }
 
