@@ -208,9 +208,8 @@ fn rays_from_axis(a: f64, target: Event, max_winding: u32, max_travel: f64) -> V
                 2.0 * a * c * theta_of(th0, n, b) / root - zp.abs()
             };
             let signed = |(c, sigma): (f64, f64)| (sign * c, sigma);
-            let mut g0 = g_grid(0);
-            for i in 1..=last_cell {
-                let g1 = g_grid(i);
+            // The root in cell i (between grid points i − 1 and i, G there g0 and g1), if any.
+            let mut root_in = |i: usize, g0: f64, g1: f64| {
                 // A root exactly at c_max belongs to both branches: count it once.
                 let at_join = i == GRID && b == Branch::Inbound;
                 if g1 == 0.0 && !at_join {
@@ -221,6 +220,31 @@ fn rays_from_axis(a: f64, target: Event, max_winding: u32, max_travel: f64) -> V
                     let (sigma, c) = psi.sin_cos();
                     out.push(ray(a, target, signed((c, sigma)), n, b));
                 }
+            };
+            if b == Branch::Outbound {
+                // On the way out G grows with |c| (c/√(1 + c²) grows, and θ₀ = arcsin(ρ/r_max)
+                // with it as r_max falls), from G(0) = −|z_P| < 0: its one root lies in the
+                // first cell whose end is not negative, found by bisecting the grid's indices
+                // (the scan's cell, from the same values).
+                if !(g_grid(last_cell) >= 0.0) {
+                    continue;
+                }
+                let (mut lo, mut hi) = (0, last_cell);
+                while hi - lo > 1 {
+                    let mid = (lo + hi) / 2;
+                    if g_grid(mid) < 0.0 {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                root_in(hi, g_grid(hi - 1), g_grid(hi));
+                continue;
+            }
+            let mut g0 = g_grid(0);
+            for i in 1..=last_cell {
+                let g1 = g_grid(i);
+                root_in(i, g0, g1);
                 g0 = g1;
             }
         }
