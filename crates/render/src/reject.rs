@@ -261,23 +261,21 @@ pub fn set_ray(
         _ => f64::NAN,
     };
     for i in 0..probes.on_ray.len() {
-        let (on, by_loop) = match (rejections.get(i).and_then(Option::as_ref), geo) {
-            (Some(Rejection::Falling(f)), Some(_)) => {
+        let (on, by_loop, near) = match (rejections.get(i).and_then(Option::as_ref), geo, &circle) {
+            (Some(Rejection::Falling(f)), Some(_), _) => {
                 let sure = circle
                     .as_ref()
                     .is_some_and(|c| f.loops(c, t_start, until, &mut probes.loops[i]));
-                (!sure || !probes.loops[i].is_empty(), sure)
+                (!sure || !probes.loops[i].is_empty(), sure, None)
             }
-            (Some(r), Some(g)) => (!r.misses(g, until), false),
-            _ => (true, false),
-        };
-        // A ball at rest that the whole-ray test keeps: only its stretches (none: left out).
-        let (on, near) = match (rejections.get(i).and_then(Option::as_ref), &circle) {
-            (Some(Rejection::Ball(b)), Some(c)) if on && stretches => {
+            // A ball at rest: only its stretches, which are its whole-ray test too (none:
+            // left out).
+            (Some(Rejection::Ball(b)), Some(_), Some(c)) if stretches => {
                 let near = b.near(c, until);
-                (near.is_some(), near)
+                (near.is_some(), false, near)
             }
-            _ => (on, None),
+            (Some(r), Some(g), _) => (!r.misses(g, until), false, None),
+            _ => (true, false, None),
         };
         probes.near[i] = near;
         probes.on_ray[i] = on;
