@@ -376,6 +376,8 @@ export interface FrameAnswer {
   frame: FrameInfo | null;
   generation: number;
   error: string | null;
+  /** Rays a millisecond of the server's last frame traced (null before any). */
+  cpu_rays_per_ms: number | null;
 }
 
 export interface FrameInfo {
@@ -385,6 +387,8 @@ export interface FrameInfo {
   width: number;
   height: number;
   supersample: number;
+  /** The wall-clock time its trace took on the server, ms. */
+  trace_ms: number;
 }
 
 /** An event on the map, with its distance r from the observer's axis (render::map). */

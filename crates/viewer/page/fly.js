@@ -39,6 +39,15 @@
 // rest the page traces the scene's full size in steps (half size, full size at one sample a
 // pixel, full samples: traceFull), in tiles, each cancelled by the next change.
 //
+// The faster tracer (issue 33): each frame, moving or a step at rest, is traced by whichever
+// of this page's kernel and the server's CPU exact tracer traced more rays a millisecond here,
+// for this scene: the kernel's speed measured from its steps at rest, the CPU's from the
+// frames the server traced (the start's, then each it traces for this page). Until the
+// kernel's is measured the kernel traces. A frame of the CPU is one of the view, at the size
+// and samples the page asks (POST /api/explore/view-frame), shown from the server's channels
+// as the frames of `?trace=server` are; the header says which tracer made each frame.
+// `?trace=page` keeps every frame on the kernel.
+//
 // The flight's state is in four parts, each a typedef below, each changed only by the
 // functions its typedef names: the sight (where the observer is and looks), the controls (what
 // the user holds and chose), the motion (the observer's moves asked of the server) and the
@@ -110,8 +119,10 @@ import { KernelTracer } from './trace.js';
 /**
  * A frame shown: the view's version it was traced from, its picture's size, its level:
  * 'moving' (fewer pixels, one sample), 'half' (half the full width and height, one sample),
- * 'size' (the full size, one sample) or 'full' (the full size and samples).
- * @typedef {{ version: number, width: number, height: number, level: Level }} ShownFrame
+ * 'size' (the full size, one sample) or 'full' (the full size and samples); which tracer made
+ * it: 'gpu' (this page's kernel) or 'cpu' (the server's exact tracer).
+ * @typedef {{ version: number, width: number, height: number, level: Level,
+ *   by: 'gpu' | 'cpu' }} ShownFrame
  * @typedef {'moving' | 'half' | 'size' | 'full'} Level
  */
 
@@ -142,10 +153,13 @@ import { KernelTracer } from './trace.js';
  * @typedef {object} Frames
  * @property {ShownFrame | null} traced
  * @property {{ traced: Traced, view: View, supersample: number } | null} slots
+ * @property {{ generation: number, level: import('./contract').Level } | null} server the
+ *   server's frame shown (its records and light rays are the server's), else null
  * @property {boolean} busy
  * @property {boolean} refining
  * @property {number} width
  * @property {number | null} raysPerMs the kernel's speed here, from the last frame at rest
+ * @property {number | null} cpuRaysPerMs the server's CPU's, from the last frame it traced
  * @property {number} rafs animation frames while the view changed
  * @property {number} drawn frames traced and shown
  * @property {number[]} frameMs wall times of the last frames shown
@@ -166,6 +180,7 @@ import { KernelTracer } from './trace.js';
  * @property {ShownFrame | null} traced
  * @property {boolean} refining
  * @property {number | null} raysPerMs
+ * @property {number | null} cpuRaysPerMs
  * @property {number} drawn
  * @property {LogEntry[]} log
  * @property {Checks} check
@@ -188,6 +203,15 @@ const MAX_DT = 0.1;
 // at most this many of its samples among those that hit, and as many among the others.
 const CHECK_EVERY_MS = 5000;
 const CHECK_PER_SIDE = 24;
+// How often the page asks the server whether the frame it asked for is done, and how long it
+// waits for one at most (then says why and traces on).
+const SERVER_POLL_MS = 10;
+const SERVER_WAIT_MS = 600000;
+// `?trace=page`: every frame on this page's kernel, however fast the server is.
+const PINNED = new URLSearchParams(window.location.search).get('trace') === 'page';
+
+/** @param {number} ms */
+const sleep = (ms) => new Promise((resolve) => { setTimeout(resolve, ms); });
 
 /** @type {Record<string, Vec3>} */
 const KEYS = {
@@ -344,10 +368,12 @@ export async function startFly(viewer, explore, map, status) {
   const frames = {
     traced: null,
     slots: null,
+    server: null,
     busy: false,
     refining: false,
     width: Math.min(fullW, MIN_WIDTH),
     raysPerMs: null,
+    cpuRaysPerMs: null,
     rafs: 0,
     drawn: 0,
     frameMs: [],
@@ -366,6 +392,7 @@ export async function startFly(viewer, explore, map, status) {
     get traced() { return frames.traced; },
     get refining() { return frames.refining; },
     get raysPerMs() { return frames.raysPerMs; },
+    get cpuRaysPerMs() { return frames.cpuRaysPerMs; },
     get drawn() { return frames.drawn; },
     get log() { return frames.log; },
     get check() { return frames.check; },
@@ -409,6 +436,16 @@ export async function startFly(viewer, explore, map, status) {
   // frame's slots (hovered.js), as /api/pixel answers for the server's frames; resolves to
   // null outside.
   explore.hoverRecord = async (col, row) => {
+    const server = frames.server;
+    if (server) {
+      // The server's frame: its record, as /api/pixel answers for it (null once it is gone).
+      const response = await fetch(`/api/pixel?col=${col}&row=${row}`
+        + `&generation=${server.generation}&level=${server.level}`);
+      if (response.status === 410 || response.status === 400) return null;
+      const record = /** @type {import('./hovered.js').SampleRecord & { col: number,
+        row: number }} */ (await (await ok(response)).json());
+      return record;
+    }
     const at = sampleOf(col, row);
     const shown = frames.slots;
     if (!at || !shown) return null;
@@ -422,6 +459,14 @@ export async function startFly(viewer, explore, map, status) {
   // forms (hovered.js), no server call. Null outside the frame; the load answers null once
   // the frame is gone.
   explore.hoverRay = (col, row) => {
+    const server = frames.server;
+    if (server) {
+      // The server's frame: its light ray from the server (map.js reads /api/explore/ray).
+      const { generation, level } = server;
+      return { key: `server ${generation} ${col} ${row}`,
+        load: () => /** @type {Promise<import('./map.js').SampleRay>} */ (getJson(
+          `/api/explore/ray?generation=${generation}&level=${level}&col=${col}&row=${row}`)) };
+    }
     const at = sampleOf(col, row);
     const shown = frames.slots;
     if (!at || !shown) return null;
@@ -453,6 +498,11 @@ export async function startFly(viewer, explore, map, status) {
   /** @type {import('./contract').EventRequest} */
   const coarseOnly = { ...explore.event, refine: false };
   postJson('/api/explore/event', coarseOnly).catch(() => {});
+  // The server's speed so far (its frames of the start), for the choice of tracer.
+  getJson('/api/explore/frame').then((answer) => {
+    const a = /** @type {import('./contract').FrameAnswer} */ (answer);
+    if (frames.cpuRaysPerMs === null) frames.cpuRaysPerMs = a.cpu_rays_per_ms;
+  }).catch(() => {});
 
   // ---- the sight's transitions
 
@@ -545,25 +595,116 @@ export async function startFly(viewer, explore, map, status) {
     const channels = tracer.channels(traced, viewer.info.objects.length);
     if (frames.slots) frames.slots.traced.slots.forEach((t) => gl.deleteTexture(t));
     frames.slots = { traced, view, supersample: full ? ss : 1 };
+    frames.server = null;
+    explore.shown = null;
     const [pw, ph] = full ? [fullW, fullH] : [traced.width, traced.height];
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
       supersample: full ? ss : 1 });
     frames.drawn += 1;
+    shown(version, pw, ph, level, 'gpu', ms);
+    checkFrame(traced, view);
+  }
+
+  // A frame is on screen (`by` the kernel or the server's CPU): the map's ray of the pixel
+  // under the pointer follows, and the log and tests hear of it.
+  /**
+   * @param {number} version
+   * @param {number} width
+   * @param {number} height
+   * @param {Level} level
+   * @param {'gpu' | 'cpu'} by
+   * @param {number | null} ms
+   */
+  function shown(version, width, height, level, by, ms) {
     if (level !== 'moving') {
       // The panel's line said which server frame was shown: now it says where this one is seen from.
       const v = sight.view;
       const p = v.position;
-      status(`frame traced in this browser at t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, `
-        + `y = ${p.y.toFixed(3)}, z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
+      status(`frame traced ${by === 'gpu' ? 'in this browser' : 'on the server\u2019s CPU'} at `
+        + `t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, y = ${p.y.toFixed(3)}, `
+        + `z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
     }
-    frames.traced = { version, width: pw, height: ph, level };
+    frames.traced = { version, width, height, level, by };
     explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
-    frames.log.push({ version, width: pw, height: ph, level, rafs: frames.rafs,
+    frames.log.push({ version, width, height, level, by, rafs: frames.rafs,
       drawn: frames.drawn, at: performance.now(), ms });
     if (frames.log.length > 2000) frames.log.shift();
     // For tests: called while this frame's slots are the ones `readSlots` reads.
     if (typeof explore.onShown === 'function') explore.onShown(level);
-    checkFrame(traced, view);
+  }
+
+  // Whether the server's CPU traces this scene faster than this page's kernel, both measured
+  // here (unless `?trace=page`): then it traces the next frame.
+  const serverFaster = () => !PINNED && frames.cpuRaysPerMs !== null
+    && frames.raysPerMs !== null && frames.cpuRaysPerMs > frames.raysPerMs;
+  // The speeds for the header: "the CPU 73 rays/ms, the GPU 9".
+  const speeds = () => `the CPU ${Math.round(frames.cpuRaysPerMs ?? 0)} rays/ms here, `
+    + `the GPU ${Math.round(frames.raysPerMs ?? 0)}`;
+
+  // One frame of `view` traced on the server's CPU, `width` × `height` pixels of `samples`
+  // rays each: asks for it and waits for it; resolves to its FrameInfo, or null once
+  // `cancelled()` or once another request (another tab) replaced it. The CPU's speed is
+  // measured from it.
+  /**
+   * @param {View} view
+   * @param {number} width
+   * @param {number} height
+   * @param {number} samples
+   * @param {() => boolean} cancelled
+   * @returns {Promise<import('./contract').FrameInfo | null>}
+   */
+  async function serverFrame(view, width, height, samples, cancelled) {
+    const camera = { ...view.camera, width, height, samples };
+    const asked = /** @type {import('./contract').EventAnswer} */ (await (await ok(
+      await postJson('/api/explore/view-frame', { ...view, camera }))).json());
+    const deadline = performance.now() + SERVER_WAIT_MS;
+    while (!cancelled()) {
+      const answer = /** @type {import('./contract').FrameAnswer} */ (
+        await getJson('/api/explore/frame'));
+      if (answer.generation > asked.generation) return null;
+      if (answer.error && answer.generation === asked.generation) throw new Error(answer.error);
+      const f = answer.frame;
+      if (f && f.generation === asked.generation) {
+        frames.cpuRaysPerMs = (f.width * f.height * f.supersample * f.supersample)
+          / Math.max(f.trace_ms, 1e-3);
+        return f;
+      }
+      if (performance.now() > deadline) {
+        throw new Error(`the server's frame did not come within ${SERVER_WAIT_MS / 1000} s`);
+      }
+      await sleep(SERVER_POLL_MS);
+    }
+    return null;
+  }
+
+  // Shows the server's `frame` of `view` at `level` (its channels fetched by the viewer, which
+  // takes a frame once the last one is drawn); false where `cancelled()` first.
+  /**
+   * @param {import('./contract').FrameInfo} frame
+   * @param {number} version
+   * @param {Level} level
+   * @param {(width: number, height: number) => string} note
+   * @param {() => boolean} cancelled
+   * @param {number | null} [ms]
+   */
+  async function showServer(frame, version, level, note, cancelled, ms = null) {
+    /** @param {string} name */
+    const url = (name) => `/api/explore/channel/${name}?generation=${frame.generation}`
+      + `&level=${frame.level}`;
+    const deadline = performance.now() + SERVER_WAIT_MS;
+    while (!viewer.showFrame(frame, url)) {
+      if (cancelled() || frames.refused || performance.now() > deadline) return false;
+      await sleep(SERVER_POLL_MS);
+    }
+    if (frames.refused) return false; // the server's frames are explore.js's from now on
+    if (frames.slots) frames.slots.traced.slots.forEach((t) => gl.deleteTexture(t));
+    frames.slots = null;
+    frames.server = { generation: frame.generation, level: frame.level };
+    explore.shown = frames.server; // saved pictures and overlays name this frame
+    viewer.noteFrames(note(frame.width, frame.height));
+    frames.drawn += 1;
+    shown(version, frame.width, frame.height, level, 'cpu', ms);
+    return true;
   }
 
   // The GPU's name, for the check and the header (the unmasked one where the browser says it).
@@ -647,6 +788,21 @@ export async function startFly(viewer, explore, map, status) {
     status(`cannot trace on the GPU: ${frames.error}`);
   };
 
+  // The frame rate of the moving frames, counting one shown now (over the last 30).
+  const frameRate = () => {
+    const now = performance.now();
+    frames.frameMs.push(now);
+    if (frames.frameMs.length > 30) frames.frameMs.shift();
+    const n = frames.frameMs.length;
+    return n > 1 ? (n - 1) * 1000 / (now - frames.frameMs[0]) : 0;
+  };
+  // A moving frame's height for its width, the full frame's shape.
+  /** @param {number} w */
+  const heightOf = (w) => Math.max(1, Math.round(w * fullH / fullW));
+  // A moving frame's width: at least MIN_WIDTH (or the full width, if less), at most the full.
+  /** @param {number} w */
+  const widthOf = (w) => Math.max(Math.min(MIN_WIDTH, fullW), Math.min(fullW, Math.round(w)));
+
   // The view changed: a smaller frame of one sample per pixel, in one draw that is not waited
   // for (the kernel compiles on the first). Its width is steered by the time between
   // animation frames towards TARGET_MS.
@@ -662,21 +818,40 @@ export async function startFly(viewer, explore, map, status) {
       const most = Math.sqrt(frames.raysPerMs * TARGET_MS * fullW / fullH);
       frames.width = Math.max(MIN_WIDTH, Math.min(frames.width, most));
     }
-    const w = Math.max(Math.min(MIN_WIDTH, fullW), Math.min(fullW, Math.round(frames.width)));
-    const h = Math.max(1, Math.round(w * fullH / fullW));
+    const w = widthOf(frames.width);
+    const h = heightOf(w);
     const version = sight.version;
     const view = structuredClone(sight.view);
     frames.busy = true;
     try {
       const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
         sight.view, sight.observer, w, h) }, { whole: true });
-      const now = performance.now();
-      frames.frameMs.push(now);
-      if (frames.frameMs.length > 30) frames.frameMs.shift();
-      const n = frames.frameMs.length;
-      const fps = n > 1 ? (n - 1) * 1000 / (now - frames.frameMs[0]) : 0;
+      const fps = frameRate();
       show(traced, view, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the GPU · `
         + `${fps.toFixed(0)} frames/s`);
+    } catch (e) {
+      failed(e);
+    } finally {
+      frames.busy = false;
+    }
+  }
+
+  // The view changed and the server's CPU is the faster: a smaller frame of one sample a
+  // pixel traced there, of the rays it traces in half of TARGET_MS (the other half is the
+  // round trip), not waited for by the animation frames. Every one is shown, as the kernel's.
+  async function serverMoving() {
+    const w = widthOf(Math.sqrt((frames.cpuRaysPerMs ?? 0) * (TARGET_MS / 2) * fullW / fullH));
+    const h = heightOf(w);
+    const version = sight.version;
+    const view = structuredClone(sight.view);
+    const refused = () => frames.refused !== null;
+    frames.busy = true;
+    try {
+      const frame = await serverFrame(view, w, h, 1, refused);
+      if (frame === null) return;
+      const fps = frameRate();
+      await showServer(frame, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the `
+        + `server\u2019s CPU · ${fps.toFixed(0)} frames/s`, refused);
     } catch (e) {
       failed(e);
     } finally {
@@ -687,33 +862,48 @@ export async function startFly(viewer, explore, map, status) {
   // At rest: the full size, in tiles, in up to three steps, each shown as it comes (the next
   // change cancels them): half the width and height at one sample a pixel where the full size
   // would take more than QUICK_MS (a quarter of its rays), the full size at one sample a pixel
-  // where the scene asks for ss × ss (ss² times fewer rays), then the full samples.
+  // where the scene asks for ss × ss (ss² times fewer rays), then the full samples. Each step
+  // on the faster tracer (serverFaster: the kernel's first step measures its speed).
   async function traceFull() {
     const version = sight.version;
     const view = structuredClone(sight.view);
     const { observer } = sight;
     const cancelled = () => sight.version !== version;
-    /** @type {[Level, number, number][]} */
+    /** @type {[Level, number, number, number][]} level, picture size, samples along a side */
     const steps = [];
     const [halfW, halfH] = [Math.round(fullW / 2), Math.max(1, Math.round(fullH / 2))];
-    if (halfW >= MIN_WIDTH
-      && (frames.raysPerMs === null || (fullW * fullH) / frames.raysPerMs > QUICK_MS)) {
-      steps.push(['half', halfW, halfH]);
+    const speed = serverFaster() ? frames.cpuRaysPerMs : frames.raysPerMs;
+    if (halfW >= MIN_WIDTH && (speed === null || (fullW * fullH) / speed > QUICK_MS)) {
+      steps.push(['half', halfW, halfH, 1]);
     }
-    if (ss > 1) steps.push(['size', fullW, fullH]);
-    steps.push(['full', fullW * ss, fullH * ss]);
+    if (ss > 1) steps.push(['size', fullW, fullH, 1]);
+    steps.push(['full', fullW, fullH, ss]);
     frames.refining = true;
     const started = performance.now();
     try {
-      for (const [level, w, h] of steps) {
-        const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
-          view, observer, w, h) }, { cancelled });
-        const ms = Math.round(performance.now() - started);
-        frames.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
+      for (const [level, pw, ph, side] of steps) {
         const next = level === 'half' ? `${fullW}×${fullH}` : `${ss * ss} samples a pixel`;
-        show(traced, view, version, level, (pw, ph) => (level === 'full'
-          ? `${pw}×${ph}${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on the GPU in ${ms} ms`
-          : `${pw}×${ph} traced on the GPU in ${ms} ms · refining to ${next}`), ms);
+        /**
+         * @param {string} by
+         * @param {number} ms
+         * @returns {(w: number, h: number) => string}
+         */
+        const note = (by, ms) => (w, h) => (level === 'full'
+          ? `${w}×${h}${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on ${by} in ${ms} ms`
+          : `${w}×${h} traced on ${by} in ${ms} ms · refining to ${next}`);
+        if (serverFaster()) {
+          const frame = await serverFrame(view, pw, ph, side * side, cancelled);
+          if (frame === null) return;
+          const ms = Math.round(performance.now() - started);
+          const by = `the server\u2019s CPU (faster here: ${speeds()})`;
+          if (!await showServer(frame, version, level, note(by, ms), cancelled, ms)) return;
+        } else {
+          const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
+            view, observer, pw * side, ph * side) }, { cancelled });
+          const ms = Math.round(performance.now() - started);
+          frames.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
+          show(traced, view, version, level, note('the GPU', ms), ms);
+        }
       }
       frames.frameMs = [];
     } catch (e) {
@@ -779,7 +969,10 @@ export async function startFly(viewer, explore, map, status) {
       frames.rafs += 1;
       // Waited for: it resolves in this task once the kernel is compiled (one draw, no
       // fence), so that the shading asked for comes in the next animation frame.
-      if (!frames.busy) await traceMoving(frameMs);
+      if (!frames.busy) {
+        if (serverFaster()) serverMoving();
+        else await traceMoving(frameMs);
+      }
     } else if (shown.level !== 'full' && !frames.busy && !frames.refining && !running
       && !motion.moving) {
       traceFull();

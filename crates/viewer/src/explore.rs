@@ -5,7 +5,10 @@
 //!
 //! - A change of event ([`Explorer::request`]) starts a new *generation*: first a coarse frame
 //!   ([`Level::Coarse`], same camera, fewer pixels), then the full-resolution one
-//!   ([`Level::Full`]).
+//!   ([`Level::Full`]). A flying page that finds the server faster than its own GPU asks for
+//!   a [`View`] instead ([`Explorer::request_view`]): one frame of exactly that camera.
+//! - Each frame says how long it took: the server's rays a millisecond, which the page weighs
+//!   against its own kernel's to choose who traces ([`Explorer::rays_per_ms`]).
 //! - The newest request wins: the work of an older generation is cancelled (its cancel flag is
 //!   set; the source stops between tiles) and a frame of an older generation is never kept
 //!   once a newer request has come, so it never replaces a newer one.
@@ -140,6 +143,13 @@ pub trait FrameSource: Send + Sync + 'static {
         level: Level,
         cancel: &AtomicBool,
     ) -> Result<Option<DataFile>, String>;
+    /// The frame of `view` (its observer and camera, size and samples as given); `Ok(None)`
+    /// once `cancel` is set, as for [`FrameSource::frame`].
+    fn view_frame(&self, view: &View, cancel: &AtomicBool) -> Result<Option<DataFile>, String>;
+    /// Why `view`'s frame cannot be traced (naming the field: `view.camera: …`), checked
+    /// before it is asked for: a view that makes no valid scene, or more rays than a frame of
+    /// the scene's own camera (what explore's memory is sized by).
+    fn view_refusal(&self, view: &View) -> Option<String>;
     /// What the explore map shows for an observer at `event`: its horizon, the balls at its
     /// time and their tracks ([`render::map`]); `Err` says why it cannot be made.
     fn map(&self, event: ObserverEvent) -> Result<Map, String>;
@@ -186,6 +196,16 @@ pub struct Frame {
     pub event: ObserverEvent,
     /// Shared with the viewer states that answer for this frame (never copied).
     pub data: Arc<DataFile>,
+    /// The wall-clock time its trace took, in ms.
+    pub trace_ms: f64,
+}
+
+/// What a request asks to be traced.
+enum Sought {
+    /// The scene's observer moved to `event`: its coarse frame, then (if `refine`) its full one.
+    Event { event: ObserverEvent, refine: bool },
+    /// One frame of this view ([`FrameSource::view_frame`]), kept as [`Level::Full`].
+    View(Box<View>),
 }
 
 /// What the requests and the worker share.
@@ -193,9 +213,8 @@ pub struct Frame {
 struct Slots {
     /// The newest request's generation (0: none yet).
     generation: u64,
-    /// The event of a request the worker has not started yet.
-    /// (generation, event, whether its full frame follows the coarse one).
-    pending: Option<(u64, ObserverEvent, bool)>,
+    /// The request the worker has not started yet, and its generation.
+    pending: Option<(u64, Sought)>,
     /// The cancel flag of the work under way.
     cancel: Option<Arc<AtomicBool>>,
     /// The newest frame kept.
@@ -205,6 +224,8 @@ struct Slots {
     previous: Option<Arc<Frame>>,
     /// Why the newest generation could not be traced.
     error: Option<String>,
+    /// Rays a millisecond of the last frame traced to its end (none before the first).
+    rays_per_ms: Option<f64>,
     /// Set when the [`Explorer`] is dropped: the worker ends.
     closed: bool,
 }
@@ -269,17 +290,42 @@ impl Explorer {
         if let Some(why) = event.refusal(self.bound()) {
             return Err(why);
         }
+        Ok(self.ask(Sought::Event { event, refine }))
+    }
+
+    /// Asks for one frame of `view` (a flying page's observer and camera, at the size and
+    /// samples it gives): a new generation, as [`Explorer::request`]. A bad view is refused
+    /// (the message names the field) and changes nothing.
+    pub fn request_view(&self, view: View) -> Result<u64, String> {
+        let event = ObserverEvent::of_view(&view);
+        if let Some(why) = event
+            .refusal_as(self.bound(), "view", VIEW_FIELDS)
+            .or_else(|| view.refusal())
+            .or_else(|| self.shared.source.view_refusal(&view))
+        {
+            return Err(why);
+        }
+        Ok(self.ask(Sought::View(Box::new(view))))
+    }
+
+    /// Makes `sought` the newest request: cancels the older one's work, wakes the worker.
+    fn ask(&self, sought: Sought) -> u64 {
         let mut slots = self.shared.lock();
         slots.generation += 1;
         let generation = slots.generation;
         if let Some(cancel) = slots.cancel.take() {
             cancel.store(true, Ordering::SeqCst);
         }
-        slots.pending = Some((generation, event, refine));
+        slots.pending = Some((generation, sought));
         slots.error = None;
         drop(slots);
         self.shared.wake.notify_all();
-        Ok(generation)
+        generation
+    }
+
+    /// The CPU tracer's speed here: rays a millisecond of the last frame traced to its end.
+    pub fn rays_per_ms(&self) -> Option<f64> {
+        self.shared.lock().rays_per_ms
     }
 
     /// Waits until the newest generation has a frame (its coarse one first) and returns it,
@@ -357,36 +403,51 @@ impl Drop for Explorer {
     }
 }
 
-/// The worker: takes the newest pending event and traces its coarse then (if asked) its full frame,
-/// keeping each only while its generation is still the newest.
+/// The worker: takes the newest pending request and traces its frames (an event's coarse
+/// then, if asked, its full frame; a view's one frame), keeping each only while its
+/// generation is still the newest.
 fn work(shared: &Shared) {
     loop {
-        let (generation, event, refine, cancel) = {
+        let (generation, sought, cancel) = {
             let mut slots = shared.lock();
             loop {
                 if slots.closed {
                     return;
                 }
-                if let Some((generation, event, refine)) = slots.pending.take() {
+                if let Some((generation, sought)) = slots.pending.take() {
                     let cancel = Arc::new(AtomicBool::new(false));
                     slots.cancel = Some(cancel.clone());
-                    break (generation, event, refine, cancel);
+                    break (generation, sought, cancel);
                 }
                 slots = shared.wake.wait(slots).unwrap_or_else(|e| e.into_inner());
             }
         };
-        let levels: &[Level] = if refine {
-            &[Level::Coarse, Level::Full]
-        } else {
-            &[Level::Coarse]
+        let (event, levels): (ObserverEvent, &[Level]) = match &sought {
+            Sought::Event {
+                event,
+                refine: true,
+            } => (*event, &[Level::Coarse, Level::Full]),
+            Sought::Event {
+                event,
+                refine: false,
+            } => (*event, &[Level::Coarse]),
+            Sought::View(view) => (ObserverEvent::of_view(view), &[Level::Full]),
         };
         for &level in levels {
             if cancel.load(Ordering::SeqCst) {
                 break;
             }
-            match shared.source.frame(event, level, &cancel) {
+            let started = std::time::Instant::now();
+            let traced = match &sought {
+                Sought::Event { .. } => shared.source.frame(event, level, &cancel),
+                Sought::View(view) => shared.source.view_frame(view, &cancel),
+            };
+            let trace_ms = started.elapsed().as_secs_f64() * 1e3;
+            match traced {
                 Ok(Some(data)) => {
                     let mut slots = shared.lock();
+                    // Measured whether or not the frame is kept: it was traced to its end.
+                    slots.rays_per_ms = Some(data.records.len() as f64 / trace_ms.max(1e-3));
                     if slots.generation != generation || cancel.load(Ordering::SeqCst) {
                         break;
                     }
@@ -395,6 +456,7 @@ fn work(shared: &Shared) {
                         level,
                         event,
                         data: Arc::new(data),
+                        trace_ms,
                     });
                     slots.previous = slots.latest.replace(frame);
                     shared.kept.notify_all();

@@ -4,7 +4,8 @@
 //! | --- | --- |
 //! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"[, "refine": false]}`) | starts a new generation for that event (coarse frame, then the full one unless `refine` is false): `{"generation": N}`; 400 naming the field for a bad event |
-//! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample"}` (`frame` null before any), the newest generation, and the error of the newest generation, if any (JSON) |
+//! | `POST /api/explore/view-frame` ([`View`]) | starts a new generation for one frame of that view, at its camera's size and samples (a flying page that finds this CPU faster than its GPU): `{"generation": N}`, the frame kept as `full`; 400 naming the field for a bad view or one of more rays than a frame of the scene's camera |
+//! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample", "trace_ms"}` (`frame` null before any), the newest generation, the error of the newest generation, if any, and `cpu_rays_per_ms`, the rays a millisecond of the last frame traced (null before any) (JSON) |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the one that frame replaced |
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
@@ -129,6 +130,7 @@ pub fn router(
     let mut explore = Router::new()
         .route("/api/explore/info", get(info))
         .route("/api/explore/event", post(event))
+        .route("/api/explore/view-frame", post(view_frame))
         .route("/api/explore/frame", get(frame))
         .route("/api/explore/channel/{name}", get(channel))
         .route("/api/explore/map", get(map))
@@ -231,6 +233,25 @@ async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Re
         .into_response())
 }
 
+/// `POST /api/explore/view-frame`: one frame of the body's view, traced on the server.
+async fn view_frame(
+    State(state): State<Arc<ExploreState>>,
+    body: Bytes,
+) -> Result<Response, ApiError> {
+    let view = view_body(&state, &body)?;
+    // Checking the view reads the scene again: work within the server's bound.
+    let work = state.viewer.work().admit()?;
+    let generation = work
+        .run(move || state.explorer.request_view(view))
+        .await?
+        .map_err(ApiError::bad_request)?;
+    Ok((
+        no_store(),
+        Json(serde_json::json!({ "generation": generation })),
+    )
+        .into_response())
+}
+
 async fn frame(State(state): State<Arc<ExploreState>>) -> Response {
     let e = &state.explorer;
     let frame = e.latest().map(|f| {
@@ -241,12 +262,14 @@ async fn frame(State(state): State<Arc<ExploreState>>) -> Response {
             "width": f.data.picture_size().0,
             "height": f.data.picture_size().1,
             "supersample": f.data.supersample(),
+            "trace_ms": f.trace_ms,
         })
     });
     let body = serde_json::json!({
         "frame": frame,
         "generation": e.generation(),
         "error": e.error(),
+        "cpu_rays_per_ms": e.rays_per_ms(),
     });
     (no_store(), Json(body)).into_response()
 }

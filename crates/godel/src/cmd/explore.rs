@@ -3,8 +3,10 @@
 //! (t, x, y, z); the server re-traces the scene from there with the exact tracer of
 //! `godel render` (the `render` crate's driver, on all cores), a coarse frame first (the same
 //! camera with a quarter of the width and height, one ray per pixel), then the full one, which
-//! holds the records `godel render` writes for the scene with that observer. The newest event
-//! wins: older work stops between tiles ([`render::driver::Progress::cancelled`]). Which frames
+//! holds the records `godel render` writes for the scene with that observer. A flying page
+//! that finds this CPU faster than its GPU sends its view instead: one frame of that observer
+//! and camera, the records `godel render` writes for the scene with the view's fields. The
+//! newest request wins: older work stops between tiles ([`render::driver::Progress::cancelled`]). Which frames
 //! are kept is decided in the `viewer` crate (`viewer::explore`); this file only traces.
 
 use std::path::PathBuf;
@@ -153,8 +155,12 @@ impl SceneFrames {
         level: Level,
         cancel: &AtomicBool,
     ) -> anyhow::Result<Option<DataFile>> {
-        let scene = scene_at(&self.scene, event, level)?;
-        let renderer = Renderer::new(&scene)?;
+        self.trace_scene(&scene_at(&self.scene, event, level)?, cancel)
+    }
+
+    /// The frame of `scene`, traced on this pool, or `None` once `cancel` is set.
+    fn trace_scene(&self, scene: &Scene, cancel: &AtomicBool) -> anyhow::Result<Option<DataFile>> {
+        let renderer = Renderer::new(scene)?;
         let mut assembler = Assembler::new(renderer.blank(), renderer.tiles());
         let stop = Cancel(cancel);
         self.pool
@@ -163,6 +169,29 @@ impl SceneFrames {
             return Ok(None);
         }
         Ok(Some(assembler.finish()))
+    }
+
+    /// `scene` when its sample grid is no larger than the scene's own (`what` names the
+    /// request's camera in the refusal): explore's memory holds frames of that size.
+    fn within_own(&self, scene: Scene, what: &str) -> Result<Scene, String> {
+        let (grid, own) = (scene.sample_camera(), self.scene.sample_camera());
+        let cells = |c: &scene::Camera| u64::from(c.width()) * u64::from(c.height());
+        if cells(&grid) > cells(&own) {
+            return Err(format!(
+                "{what}: {}×{} samples, more than the scene's {}×{}",
+                grid.width(),
+                grid.height(),
+                own.width(),
+                own.height()
+            ));
+        }
+        Ok(scene)
+    }
+
+    /// The scene of a view sent to be traced here, within the scene's own frame size.
+    fn view_scene(&self, view: &View) -> Result<Scene, String> {
+        let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
+        self.within_own(scene, "view.camera")
     }
 }
 
@@ -183,6 +212,16 @@ impl FrameSource for SceneFrames {
     ) -> Result<Option<DataFile>, String> {
         self.trace(event, level, cancel)
             .map_err(|e| format!("{e:#}"))
+    }
+
+    fn view_frame(&self, view: &View, cancel: &AtomicBool) -> Result<Option<DataFile>, String> {
+        let scene = self.view_scene(view)?;
+        self.trace_scene(&scene, cancel)
+            .map_err(|e| format!("{e:#}"))
+    }
+
+    fn view_refusal(&self, view: &View) -> Option<String> {
+        self.view_scene(view).err()
     }
 
     fn map(&self, event: ObserverEvent) -> Result<Map, String> {
@@ -211,18 +250,12 @@ impl FrameSource for SceneFrames {
         renderer: &str,
     ) -> Result<Verdict, String> {
         let scene = scene_of_view(&self.scene, view).map_err(|e| format!("{e:#}"))?;
-        let (grid, own) = (scene.sample_camera(), self.scene.sample_camera());
-        let (w, h) = (grid.width(), grid.height());
         // A grid no larger than the scene's own frames (which explore holds anyway).
-        let cells = |c: &scene::Camera| u64::from(c.width()) * u64::from(c.height());
-        if cells(&grid) > cells(&own) {
-            return Err(format!(
-                "check.view.camera: {w}×{h} samples, more than the scene's {}×{}",
-                own.width(),
-                own.height()
-            ));
-        }
-        let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); cells(&grid) as usize];
+        let scene = self.within_own(scene, "check.view.camera")?;
+        let grid = scene.sample_camera();
+        let (w, h) = (grid.width(), grid.height());
+        let cells = u64::from(w) * u64::from(h);
+        let mut records = vec![PixelRecord::miss(RayStatus::NotTraced); cells as usize];
         for (k, s) in samples.iter().enumerate() {
             if s.x >= w || s.y >= h {
                 return Err(format!(

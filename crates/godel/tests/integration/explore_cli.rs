@@ -88,6 +88,116 @@ fn floats(bytes: &[u8]) -> Vec<u32> {
         .collect()
 }
 
+/// The channels explore serves for the full frame of `generation` are those of `rendered`'s
+/// records, bit for bit (what the page shades).
+fn assert_channels_are(port: u16, generation: u64, rendered: &datafile::DataFile) {
+    let channel = |name: &str| {
+        let path = format!("/api/explore/channel/{name}?generation={generation}&level=full");
+        let (status, bytes) = http(port, "GET", &path, "");
+        assert_eq!(status, 200, "{name}: {}", String::from_utf8_lossy(&bytes));
+        let header = viewer::wire::read_header(&bytes).unwrap();
+        assert_eq!(
+            (header.0, header.1),
+            (rendered.width, rendered.height),
+            "{name}"
+        );
+        bytes
+    };
+    type Field = fn(&datafile::PixelRecord) -> f32;
+    let fields: [(&str, Field); 4] = [
+        ("u", |r| r.u),
+        ("v", |r| r.v),
+        ("g", |r| r.g),
+        ("t_emit", |r| r.t_emit),
+    ];
+    for (name, get) in fields {
+        let served = floats(&channel(name));
+        let expected: Vec<u32> = rendered.records.iter().map(|r| get(r).to_bits()).collect();
+        assert_eq!(served, expected, "channel {name}");
+    }
+    let ids = channel("id");
+    let objects = rendered.header.object_names.len();
+    let expected: Vec<u8> = rendered
+        .records
+        .iter()
+        .map(|r| viewer::gpu::id_code(r, objects) as u8)
+        .collect();
+    assert_eq!(
+        &ids[viewer::wire::HEADER_LEN..],
+        &expected[..],
+        "channel id"
+    );
+}
+
+#[test]
+fn the_frame_of_a_flown_view_is_godel_render_of_that_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = origin_scene(dir.path());
+    let (_server, port) = explore(&scene);
+    // A flown view: moved, moving at 0.5 c, turned, a pinhole of 24×8 pixels of 2×2 rays.
+    let view = serde_json::json!({
+        "time": 0.75, "position": {"x": 0.25, "y": 0.125, "z": 0.0},
+        "velocity": {"speed": 0.5, "direction": [0.0, 1.0, 0.0]},
+        "forward": [1.0, 0.25, 0.0], "up": [0.0, 0.0, 1.0],
+        "camera": {"kind": "pinhole", "fov_deg": 75.0, "width": 24, "height": 8, "samples": 4},
+    });
+    let (status, body) = http(port, "POST", "/api/explore/view-frame", &view.to_string());
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+    let generation = json(&body)["generation"].as_u64().unwrap();
+    let frame = full_frame(port, Some(generation));
+    assert_eq!(
+        (
+            frame["width"].as_u64(),
+            frame["height"].as_u64(),
+            frame["supersample"].as_u64()
+        ),
+        (Some(24), Some(8), Some(2)),
+        "{frame}"
+    );
+    assert_eq!(frame["event"]["t"], 0.75, "{frame}");
+    let answer = json(&http(port, "GET", "/api/explore/frame", "").1);
+    assert!(
+        answer["cpu_rays_per_ms"].as_f64().is_some_and(|r| r > 0.0),
+        "{answer}"
+    );
+
+    // godel render of the scene with the view's observer and camera.
+    let moved = dir.path().join("viewed.toml");
+    let text = scene_text(
+        "time = 0.75\nposition = { x = 0.25, y = 0.125, z = 0.0 }\n\
+         velocity = { speed = 0.5, direction = [0.0, 1.0, 0.0] }",
+    );
+    let mut table: toml::Table = text.parse().unwrap();
+    let observer = table["observer"].as_table_mut().unwrap();
+    observer.insert(
+        "forward".into(),
+        toml::Value::try_from([1.0, 0.25, 0.0]).unwrap(),
+    );
+    observer.insert("up".into(), toml::Value::try_from([0.0, 0.0, 1.0]).unwrap());
+    let camera: toml::Table =
+        "kind = \"pinhole\"\nfov_deg = 75.0\nwidth = 24\nheight = 8\nsamples = 4"
+            .parse()
+            .unwrap();
+    table.insert("camera".into(), camera.into());
+    std::fs::write(&moved, toml::to_string(&table).unwrap()).unwrap();
+    let out = dir.path().join("out");
+    let o = common::render(&moved, &out, &["-q", "--method", "exact"]);
+    assert!(o.status.success(), "{o:?}");
+    let rendered = datafile::DataFile::read(&out.join("static-sphere.exr")).unwrap();
+    assert_eq!((rendered.width, rendered.height), (48, 16));
+    let hits = rendered.records.iter().filter(|r| r.has_emission()).count();
+    assert!(hits > 0, "the flown view sees the ball");
+    assert_channels_are(port, generation, &rendered);
+
+    // More rays than a frame of the scene's camera (48×8 of 2×2) is refused, naming the field.
+    let mut big = view.clone();
+    big["camera"]["width"] = 100.into();
+    let (status, body) = http(port, "POST", "/api/explore/view-frame", &big.to_string());
+    assert_eq!(status, 400);
+    let why = json(&body)["error"].as_str().unwrap().to_string();
+    assert!(why.starts_with("view.camera: 200×16 samples"), "{why}");
+}
+
 #[test]
 fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
     let dir = tempfile::tempdir().unwrap();
@@ -135,38 +245,7 @@ fn the_full_frame_for_an_event_is_godel_render_of_that_observer() {
         .count();
     assert!(hits > 0, "the moved observer still sees the ball");
 
-    let channel = |name: &str| {
-        let path = format!("/api/explore/channel/{name}?generation={generation}&level=full");
-        let (status, bytes) = http(port, "GET", &path, "");
-        assert_eq!(status, 200, "{name}: {}", String::from_utf8_lossy(&bytes));
-        let header = viewer::wire::read_header(&bytes).unwrap();
-        assert_eq!((header.0, header.1), (96, 16), "{name}");
-        bytes
-    };
-    type Field = fn(&datafile::PixelRecord) -> f32;
-    let fields: [(&str, Field); 4] = [
-        ("u", |r| r.u),
-        ("v", |r| r.v),
-        ("g", |r| r.g),
-        ("t_emit", |r| r.t_emit),
-    ];
-    for (name, get) in fields {
-        let served = floats(&channel(name));
-        let expected: Vec<u32> = rendered.records.iter().map(|r| get(r).to_bits()).collect();
-        assert_eq!(served, expected, "channel {name}");
-    }
-    let ids = channel("id");
-    let objects = rendered.header.object_names.len();
-    let expected: Vec<u8> = rendered
-        .records
-        .iter()
-        .map(|r| viewer::gpu::id_code(r, objects) as u8)
-        .collect();
-    assert_eq!(
-        &ids[viewer::wire::HEADER_LEN..],
-        &expected[..],
-        "channel id"
-    );
+    assert_channels_are(port, generation, &rendered);
 
     // The map's ray of each pixel starts at the observer and ends at the pixel's emission
     // event in the records of `godel render` (the sample nearest the pixel's centre).

@@ -115,6 +115,12 @@ impl FrameSource for Source {
     ) -> Result<Option<DataFile>, String> {
         Ok(Some(common::data()))
     }
+    fn view_frame(&self, _view: &View, _cancel: &AtomicBool) -> Result<Option<DataFile>, String> {
+        Ok(Some(common::data()))
+    }
+    fn view_refusal(&self, _view: &View) -> Option<String> {
+        None
+    }
     fn map(&self, event: ObserverEvent) -> Result<Map, String> {
         render::map::map(&(self.scene)(), event.event()).map_err(|(why, _)| why)
     }
@@ -331,6 +337,14 @@ async fn exploring(c: &Contract) {
         assert!(Instant::now() < until, "no frame came");
         tokio::time::sleep(Duration::from_millis(10)).await;
     };
+    // A flying page's view traced on the server, answered as an event is.
+    app.write(
+        "/api/explore/view-frame",
+        "View",
+        &view(),
+        Some("EventAnswer"),
+    )
+    .await;
     let query = |e: &Value| format!("t={}&x={}&y={}&z={}", e["t"], e["x"], e["y"], e["z"]);
     let map = app
         .read(&format!("/api/explore/map?{}", query(&start)), "ExploreMap")

@@ -84,6 +84,26 @@ impl FrameSource for Fake {
         data.records = vec![record; w * h];
         Ok(Some(data))
     }
+    /// A frame of the view's camera size whose records say the view's time (t_emit = −t)
+    /// and that it was a view's (g = 3).
+    fn view_frame(&self, view: &View, _cancel: &AtomicBool) -> Result<Option<DataFile>, String> {
+        let (w, h) = (view.camera.width as usize, view.camera.height as usize);
+        let mut data = common::data();
+        data.width = w;
+        data.height = h;
+        data.records = vec![testkit::hit(0, 0.5, 0.5, 3.0, -view.time as f32, 1.0); w * h];
+        Ok(Some(data))
+    }
+    /// No larger than the full frame.
+    fn view_refusal(&self, view: &View) -> Option<String> {
+        let c = &view.camera;
+        (c.width as usize * c.height as usize > FULL.0 * FULL.1).then(|| {
+            format!(
+                "view.camera: {}×{} is larger than the scene's",
+                c.width, c.height
+            )
+        })
+    }
     /// A map whose only content is the event it was made for (in `time_range`).
     fn map(&self, event: ObserverEvent) -> Result<Map, String> {
         let e = MapPoint {
@@ -317,6 +337,43 @@ fn bad_events_are_refused_naming_the_field_and_change_nothing() {
     assert_eq!(explorer.generation(), 0);
 }
 
+#[test]
+fn a_view_gets_one_frame_of_its_camera_which_cancels_an_event_and_is_timed() {
+    let fake = Fake::default();
+    fake.held.lock().unwrap().push((1.0, Level::Coarse));
+    let explorer = Explorer::new(fake.clone()).unwrap();
+    assert_eq!(explorer.rays_per_ms(), None, "nothing traced yet");
+    explorer.request(event(1.0)).unwrap();
+    wait_until("the event's work", || !fake.begun().is_empty());
+    let mut view: View =
+        serde_json::from_value(view_json(6.0, [0.0; 3], 0.3, [1.0, 0.0, 0.0])).unwrap();
+    view.camera.width = 3;
+    view.camera.height = 2;
+    assert_eq!(explorer.request_view(view.clone()), Ok(2));
+    wait_until("the view's frame", || latest(&explorer).is_some());
+    // One frame of the view's own size, as full; the event's frames are never kept and its
+    // full frame never begun.
+    assert_eq!(latest(&explorer), Some((2, Level::Full, (3, 2), 6.0, 3.0)));
+    let frame = explorer.latest().unwrap();
+    assert_eq!(frame.event, ObserverEvent::of_view(&view));
+    assert!(frame.trace_ms >= 0.0 && frame.trace_ms.is_finite());
+    assert_eq!(fake.begun(), [(1.0, Level::Coarse)]);
+    let speed = explorer.rays_per_ms().expect("a frame was traced");
+    assert!(speed > 0.0 && speed.is_finite(), "{speed}");
+    // A view of more rays than the scene's frame, or beyond the bound, changes nothing.
+    let mut big = view.clone();
+    big.camera.width = 1000;
+    assert!(explorer
+        .request_view(big)
+        .unwrap_err()
+        .starts_with("view.camera:"));
+    let mut far = view;
+    far.position.y = 1e4;
+    let why = explorer.request_view(far).unwrap_err();
+    assert!(why.starts_with("view.position.y:"), "{why}");
+    assert_eq!(explorer.generation(), 2);
+}
+
 async fn send(
     app: &axum::Router,
     request: Request<Body>,
@@ -359,6 +416,67 @@ async fn refusal(app: &axum::Router, request: Request<Body>) -> String {
     message
         .unwrap_or_else(|| panic!("{what}: {}", String::from_utf8_lossy(&body)))
         .to_string()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_view_frame_route_traces_a_view_and_the_frame_says_how_fast() {
+    let app = stand_in_app(None);
+    let (_, answer, _) = send(&app, common::get("/api/explore/frame")).await;
+    assert_eq!(
+        answer["cpu_rays_per_ms"],
+        serde_json::Value::Null,
+        "{answer}"
+    );
+    let body = view_json(2.5, [0.1, 0.0, 0.0], 0.5, [0.0, 1.0, 0.0]).to_string();
+    let (status, answer, _) = send(&app, common::post("/api/explore/view-frame", &body)).await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(answer["generation"], 1);
+    let mut answer = serde_json::Value::Null;
+    for _ in 0..10_000 {
+        answer = send(&app, common::get("/api/explore/frame")).await.1;
+        if !answer["frame"].is_null() {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(1)).await;
+    }
+    let frame = &answer["frame"];
+    assert_eq!(
+        (frame["width"].as_u64(), frame["height"].as_u64()),
+        (Some(8), Some(4)),
+        "{answer}"
+    );
+    assert_eq!(
+        (frame["level"].as_str(), frame["event"]["t"].as_f64()),
+        (Some("full"), Some(2.5))
+    );
+    assert!(
+        frame["trace_ms"].as_f64().is_some_and(|ms| ms >= 0.0),
+        "{answer}"
+    );
+    assert!(
+        answer["cpu_rays_per_ms"].as_f64().is_some_and(|r| r > 0.0),
+        "{answer}"
+    );
+    // Its channels are served as any frame's: the fake's t_emit is −t.
+    let url = "/api/explore/channel/t_emit?generation=1&level=full";
+    let (status, _, bytes) = send(&app, common::get(url)).await;
+    assert_eq!(status, StatusCode::OK);
+    let first = f32::from_le_bytes(bytes[HEADER_LEN..HEADER_LEN + 4].try_into().unwrap());
+    assert_eq!(first, -2.5);
+    let mut big = view_json(0.0, [0.0; 3], 0.0, [1.0, 0.0, 0.0]);
+    big["camera"]["width"] = 5000.into();
+    let message = refusal(
+        &app,
+        common::post("/api/explore/view-frame", &big.to_string()),
+    )
+    .await;
+    assert!(message.starts_with("view.camera:"), "{message}");
+    let message = refusal(
+        &app,
+        common::post("/api/explore/view-frame", r#"{"time": 0}"#),
+    )
+    .await;
+    assert!(message.contains("position"), "{message}");
 }
 
 #[tokio::test]
