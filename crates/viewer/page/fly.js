@@ -42,7 +42,7 @@
 // The faster tracer (issue 33): each frame, moving or a step at rest, is traced by whichever
 // of this page's kernel and the server's CPU exact tracer traced more rays a millisecond here,
 // for this scene: the kernel's speed measured from its steps at rest, the CPU's from the
-// frames the server traced (the start's, then each it traces for this page). Until the
+// frames the server traced (the start's, then each step at rest it traces for this page). Until the
 // kernel's is measured the kernel traces. A frame of the CPU is one of the view, at the size
 // and samples the page asks (POST /api/explore/view-frame), shown from the server's channels
 // as the frames of `?trace=server` are; the header says which tracer made each frame.
@@ -644,16 +644,18 @@ export async function startFly(viewer, explore, map, status) {
   // One frame of `view` traced on the server's CPU, `width` × `height` pixels of `samples`
   // rays each: asks for it and waits for it; resolves to its FrameInfo, or null once
   // `cancelled()` or once another request (another tab) replaced it. The CPU's speed is
-  // measured from it.
+  // measured from it where `measure` (a step at rest: as the kernel's, not from the small
+  // moving frames, whose fixed costs per frame would weigh more).
   /**
    * @param {View} view
    * @param {number} width
    * @param {number} height
    * @param {number} samples
    * @param {() => boolean} cancelled
+   * @param {boolean} measure
    * @returns {Promise<import('./contract').FrameInfo | null>}
    */
-  async function serverFrame(view, width, height, samples, cancelled) {
+  async function serverFrame(view, width, height, samples, cancelled, measure) {
     const camera = { ...view.camera, width, height, samples };
     const asked = /** @type {import('./contract').EventAnswer} */ (await (await ok(
       await postJson('/api/explore/view-frame', { ...view, camera }))).json());
@@ -665,8 +667,10 @@ export async function startFly(viewer, explore, map, status) {
       if (answer.error && answer.generation === asked.generation) throw new Error(answer.error);
       const f = answer.frame;
       if (f && f.generation === asked.generation) {
-        frames.cpuRaysPerMs = (f.width * f.height * f.supersample * f.supersample)
-          / Math.max(f.trace_ms, 1e-3);
+        if (measure) {
+          frames.cpuRaysPerMs = (f.width * f.height * f.supersample * f.supersample)
+            / Math.max(f.trace_ms, 1e-3);
+        }
         return f;
       }
       if (performance.now() > deadline) {
@@ -847,7 +851,7 @@ export async function startFly(viewer, explore, map, status) {
     const refused = () => frames.refused !== null;
     frames.busy = true;
     try {
-      const frame = await serverFrame(view, w, h, 1, refused);
+      const frame = await serverFrame(view, w, h, 1, refused, false);
       if (frame === null) return;
       const fps = frameRate();
       await showServer(frame, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the `
@@ -892,7 +896,7 @@ export async function startFly(viewer, explore, map, status) {
           ? `${w}×${h}${ss > 1 ? ` · ${ss * ss} samples a pixel` : ''} traced on ${by} in ${ms} ms`
           : `${w}×${h} traced on ${by} in ${ms} ms · refining to ${next}`);
         if (serverFaster()) {
-          const frame = await serverFrame(view, pw, ph, side * side, cancelled);
+          const frame = await serverFrame(view, pw, ph, side * side, cancelled, true);
           if (frame === null) return;
           const ms = Math.round(performance.now() - started);
           const by = `the server\u2019s CPU (faster here: ${speeds()})`;

@@ -225,6 +225,7 @@ fn browser_moves_slider_reads_record_saves_and_shows_errors() {
 }
 
 mod explore;
+mod faster;
 mod fly;
 mod gpu_trace;
 mod keep;

@@ -22,6 +22,12 @@ use super::gpu_trace::{kernel_agreement, traced_file};
 use crate::browser_support::*;
 use datafile::DataFile;
 
+/// The page with every frame on its own kernel (`?trace=page`): what these tests check; the
+/// choice of the faster tracer is tested in viewer_browser/faster.rs.
+pub(super) fn page_frames(url: &str) -> String {
+    format!("{url}?trace=page")
+}
+
 /// The scene with the observer and camera fields of a view (`viewer.explore.view()`).
 fn scene_of_view(text: &str, view: &serde_json::Value) -> String {
     let mut table: toml::Table = text.parse().unwrap();
@@ -46,7 +52,7 @@ fn flying_moves_the_observer_by_its_speed_and_proper_time_and_traces_what_render
     let (server, url) = start_explore(&scene, dir.path(), &[]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("fly.mjs", &url, &out, &[]);
+    let seen = run_script("fly.mjs", &page_frames(&url), &out, &[]);
     drop(server);
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
@@ -316,7 +322,7 @@ fn at_rest_the_full_size_comes_at_one_sample_before_the_full_samples() {
     let (server, url) = start_explore(&scene, dir.path(), &[]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("fly-rest.mjs", &url, &out, &[]);
+    let seen = run_script("fly-rest.mjs", &page_frames(&url), &out, &[]);
     drop(server);
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");

@@ -29,7 +29,7 @@ fn a_kernel_that_disagrees_with_the_cpu_is_refused_and_the_server_traces() {
     let (server, url) = start_explore(&scene, dir.path(), &["--kernel", kernel.to_str().unwrap()]);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let seen = run_script("fly-check.mjs", &url, &out, &[]);
+    let seen = run_script("fly-check.mjs", &super::fly::page_frames(&url), &out, &[]);
     drop(server);
     assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
     assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");

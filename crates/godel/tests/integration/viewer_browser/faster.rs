@@ -1,0 +1,163 @@
+//! Explore on the faster tracer (issue 33, page/fly.js), in headless Chromium (WebGL2 on
+//! SwiftShader, a software GPU): the page measures its kernel's rays a millisecond on its first
+//! step at rest and the server's CPU exact tracer's on the frames the server traced, and from
+//! then on each frame, at rest and moving, comes from the faster one. On this software GPU
+//! that is the CPU, and
+//!
+//! - the speeds the page measured say so (the CPU's above the kernel's), every frame after
+//!   the kernel's first step at rest is the CPU's, and the header names the tracer and both
+//!   speeds;
+//! - the full frame at rest is the scene's view at its size and samples, and the hovered
+//!   pixel's record is the one `godel render --method exact` writes (the page reads it from
+//!   the server's frame), its light ray on the map ends at that record's emission event;
+//! - flying forward, the moving frames are the CPU's too (fewer pixels, one sample), and so
+//!   is the full frame at rest after letting go.
+//!
+//! That the server's frame of a view holds `godel render`'s records bit for bit is
+//! `explore_cli::the_frame_of_a_flown_view_is_godel_render_of_that_view`; the kernel's frames,
+//! with `?trace=page`, are viewer_browser/fly.rs's.
+
+use super::explore::scene_text;
+use crate::browser_support::*;
+use datafile::DataFile;
+
+#[test]
+fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
+    require_browser_tools();
+    let dir = tempfile::tempdir().unwrap();
+    // The reference scene at 88×10 pixels of 2×2 rays.
+    let text = scene_text().replace("samples = 1", "samples = 4");
+    assert!(text.contains("width = 88\n") && text.contains("samples = 4"));
+    let scene = dir.path().join("faster-test.toml");
+    std::fs::write(&scene, &text).unwrap();
+    // The scene's own view by the exact tracer: a hit pixel to hover (its centre sample).
+    let out = dir.path().join("render");
+    let o = godel(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-q",
+        "--method",
+        "exact",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{o:?}");
+    let rendered = DataFile::read(&out.join("reference.exr")).unwrap();
+    let sample =
+        |col: usize, row: usize| rendered.records[rendered.index(2 * col + 1, 2 * row + 1)];
+    let (col, row) = (0..10)
+        .flat_map(|row| (0..88).map(move |col| (col, row)))
+        .find(|&(col, row)| sample(col, row).has_emission())
+        .expect("the scene shows the earth");
+
+    let (server, url) = start_explore(&scene, dir.path(), &[]);
+    let browser_out = dir.path().join("out");
+    std::fs::create_dir(&browser_out).unwrap();
+    let seen = run_script(
+        "fly-faster.mjs",
+        &url,
+        &browser_out,
+        &[col.to_string(), row.to_string()],
+    );
+    drop(server);
+    assert_eq!(seen["error"], serde_json::Value::Null, "{seen}");
+    assert_eq!(seen["console_errors"], serde_json::json!([]), "{seen}");
+    assert_only_local_requests(&seen, &url);
+
+    // Both speeds measured here; the CPU's the higher on this software GPU.
+    let rest = &seen["rest"];
+    let (cpu, gpu) = (rest["cpu"].as_f64().unwrap(), rest["gpu"].as_f64().unwrap());
+    assert!(cpu > gpu && gpu > 0.0, "{seen}");
+    // The kernel traced until its speed was known (its first step at rest), the CPU after.
+    let log = rest_log(&seen["rest_log"]);
+    let first_cpu = log
+        .iter()
+        .position(|(_, by)| by == "cpu")
+        .expect("a CPU frame");
+    assert!(first_cpu > 0, "{seen}");
+    assert!(log[..first_cpu].iter().all(|(_, by)| by == "gpu"), "{seen}");
+    assert!(log[first_cpu..].iter().all(|(_, by)| by == "cpu"), "{seen}");
+    assert_eq!(log[first_cpu - 1].0, "half", "{seen}");
+    let traced = &rest["traced"];
+    assert_eq!(
+        (
+            &traced["level"],
+            &traced["by"],
+            &traced["width"],
+            &traced["height"]
+        ),
+        (&"full".into(), &"cpu".into(), &88.into(), &10.into()),
+        "{seen}"
+    );
+    let header = rest["header"].as_str().unwrap();
+    assert!(
+        header.contains("88×10 · 4 samples a pixel traced on the server\u{2019}s CPU")
+            && header.contains(&format!("the CPU {} rays/ms", cpu.round()))
+            && header.contains(&format!("the GPU {}", gpu.round())),
+        "{header}"
+    );
+    // The hovered pixel's record is godel render's, and its ray ends where the light left.
+    let (record, want) = (&seen["record"], sample(col, row));
+    assert_eq!(seen["hovered"], serde_json::json!([col, row]), "{seen}");
+    assert_eq!(record["status"], "hit", "{seen}");
+    // (the record's f32 numbers as JSON writes them: the shortest that reads back the same)
+    let f32_of = |k: &str| record[k].as_f64().map(|x| x as f32);
+    assert_eq!(f32_of("t_emit"), Some(want.t_emit), "{seen}");
+    assert_eq!(f32_of("g"), Some(want.g), "{seen}");
+    assert_eq!(f32_of("u"), Some(want.u), "{seen}");
+    let ray = &seen["ray"];
+    let emission = ray["emission"].clone();
+    assert!(
+        (emission["t"].as_f64().unwrap() - f64::from(want.t_emit)).abs() < 1e-9
+            && (emission["x"].as_f64().unwrap() - f64::from(want.x)).abs() < 1e-6,
+        "{ray}"
+    );
+    // Flying: every moving frame is the CPU's, of fewer pixels than the full frame.
+    let moving: Vec<_> = rest_log(&seen["moving_log"])
+        .into_iter()
+        .filter(|(level, _)| level == "moving")
+        .collect();
+    assert!(moving.len() >= 10, "{seen}");
+    assert!(moving.iter().all(|(_, by)| by == "cpu"), "{seen}");
+    assert!(
+        seen["moving_log"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|l| l["level"] != "moving" || l["width"].as_u64() < Some(88)),
+        "{seen}"
+    );
+    let moving_header = seen["moving_header"].as_str().unwrap();
+    assert!(
+        moving_header.contains("traced on the server\u{2019}s CPU · "),
+        "{moving_header}"
+    );
+    // At rest again, after moving forward: the CPU's full frame of the new view.
+    let again = &seen["again"];
+    assert_eq!(again["traced"]["level"], "full", "{seen}");
+    assert_eq!(again["traced"]["by"], "cpu", "{seen}");
+    assert!(
+        rest_log(&seen["again_log"])
+            .iter()
+            .all(|(_, by)| by == "cpu"),
+        "{seen}"
+    );
+    assert_ne!(
+        again["view"]["position"], rest["view"]["position"],
+        "{seen}"
+    );
+}
+
+/// (level, tracer) of each frame of a log.
+fn rest_log(log: &serde_json::Value) -> Vec<(String, String)> {
+    log.as_array()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            (
+                l["level"].as_str().unwrap().to_string(),
+                l["by"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect()
+}
