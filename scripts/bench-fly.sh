@@ -8,6 +8,8 @@
 # chose, and the times to the steps at rest and the full frame. Prints the load average
 # before; the server it started is stopped and its folder removed. BENCH_HOVER=1 keeps the
 # pointer on the picture while flying (the hovered pixel's record and light ray every frame).
+# The page traces each frame on the faster of its kernel and the server's CPU (fly.js);
+# BENCH_TRACE=page keeps every frame on the kernel (`?trace=page`).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ $# -lt 3 ]; then
@@ -30,4 +32,9 @@ sed -e "s/^width = .*/width = $2/" -e "s/^height = .*/height = $3/" \
 serve explore "$work/bench.toml"
 echo "# $(uptime)"
 cd tests/browser
+case ${BENCH_TRACE:-} in
+    "") ;;
+    page) url="$url?trace=page" ;;
+    *) echo "BENCH_TRACE is 'page' or unset, not '$BENCH_TRACE'" >&2; exit 2 ;;
+esac
 node bench-fly.mjs "$url" "$work" "$frames"

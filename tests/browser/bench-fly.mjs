@@ -9,7 +9,8 @@
 // at one sample a pixel, where the page traces them: fly.js traceFull), hover_ms (the centre
 // pixel's light ray made in the page: first, then again), start_half_ms, start_size_ms and
 // start_full_ms (up to 640×360: the same for the scene's own view, before flying, from its
-// coming to rest)}.
+// coming to rest), tracers {moving_gpu, moving_cpu (moving frames each traced), full (who
+// traced the full frame), cpu_rays_per_ms, gpu_rays_per_ms (the speeds fly.js measured)}}.
 import { argsOr, launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, frames] = argsOr('node bench-fly.mjs URL OUT_DIR FRAMES', 3);
@@ -52,7 +53,7 @@ try {
     { timeout: 600000 });
   const end = await page.evaluate((s) => [performance.now(), window.godelViewer.frames,
     window.godelViewer.explore.fly.log.slice(-(window.godelViewer.explore.fly.log.length - s))
-      .map((l) => [l.width, l.height])], start[2]);
+      .map((l) => [l.width, l.height, l.by])], start[2]);
   await page.keyboard.up('KeyW');
   const let_go = await page.evaluate(() => performance.now());
   const full = await rest(FULL_BOUND_S * 1000).then(
@@ -85,6 +86,14 @@ try {
     return times;
   });
   const sizes = end[2].sort((a, b) => a[0] - b[0]);
+  // Which tracer made the moving frames and the full one (fly.js: the faster one measured).
+  const tracers = await page.evaluate((moving) => {
+    const f = window.godelViewer.explore.fly;
+    const count = (by) => moving.filter((m) => m[2] === by).length;
+    return { moving_gpu: count('gpu'), moving_cpu: count('cpu'), full: f.traced.by,
+      cpu_rays_per_ms: f.cpuRaysPerMs && Math.round(f.cpuRaysPerMs),
+      gpu_rays_per_ms: f.raysPerMs && Number(f.raysPerMs.toFixed(1)) };
+  }, end[2]);
   const seconds = (end[0] - start[0]) / 1000;
   const s = (p) => (p ? `${p[0]}×${p[1]}` : null);
   console.log(JSON.stringify({ size: `${size.width}×${size.height}`, frames: end[1] - start[1],
@@ -94,7 +103,8 @@ try {
       largest: s(sizes[sizes.length - 1]) },
     full_ms: full === null ? null : Math.round(full - let_go), half_ms: shownAt('half'),
     size_ms: shownAt('size'), hover_ms: hoverMs, start_half_ms: startFull && startFull.half,
-    start_size_ms: startFull && startFull.size, start_full_ms: startFull && startFull.full }));
+    start_size_ms: startFull && startFull.size, start_full_ms: startFull && startFull.full,
+    tracers }));
 } finally {
   await context.close();
 }

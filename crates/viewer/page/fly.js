@@ -867,24 +867,36 @@ export async function startFly(viewer, explore, map, status) {
   // change cancels them): half the width and height at one sample a pixel where the full size
   // would take more than QUICK_MS (a quarter of its rays), the full size at one sample a pixel
   // where the scene asks for ss × ss (ss² times fewer rays), then the full samples. Each step
-  // on the faster tracer (serverFaster: the kernel's first step measures its speed).
+  // on the faster tracer (serverFaster). Where the kernel's speed is not known yet but the
+  // server's is, a frame of a quarter of the width and height (a sixteenth of the rays, shown
+  // as a moving frame) measures it first: on a software GPU the half size alone can take
+  // many seconds.
   async function traceFull() {
     const version = sight.version;
     const view = structuredClone(sight.view);
     const { observer } = sight;
     const cancelled = () => sight.version !== version;
-    /** @type {[Level, number, number, number][]} level, picture size, samples along a side */
-    const steps = [];
-    const [halfW, halfH] = [Math.round(fullW / 2), Math.max(1, Math.round(fullH / 2))];
-    const speed = serverFaster() ? frames.cpuRaysPerMs : frames.raysPerMs;
-    if (halfW >= MIN_WIDTH && (speed === null || (fullW * fullH) / speed > QUICK_MS)) {
-      steps.push(['half', halfW, halfH, 1]);
-    }
-    if (ss > 1) steps.push(['size', fullW, fullH, 1]);
-    steps.push(['full', fullW, fullH, ss]);
     frames.refining = true;
     const started = performance.now();
     try {
+      if (!PINNED && frames.raysPerMs === null && frames.cpuRaysPerMs !== null) {
+        const w = widthOf(fullW / 4);
+        const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
+          view, observer, w, heightOf(w)) }, { cancelled });
+        const ms = Math.round(performance.now() - started);
+        frames.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
+        show(traced, view, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the GPU in `
+          + `${ms} ms · measuring its speed against the server\u2019s CPU`, ms);
+      }
+      /** @type {[Level, number, number, number][]} level, picture size, samples along a side */
+      const steps = [];
+      const [halfW, halfH] = [Math.round(fullW / 2), Math.max(1, Math.round(fullH / 2))];
+      const speed = serverFaster() ? frames.cpuRaysPerMs : frames.raysPerMs;
+      if (halfW >= MIN_WIDTH && (speed === null || (fullW * fullH) / speed > QUICK_MS)) {
+        steps.push(['half', halfW, halfH, 1]);
+      }
+      if (ss > 1) steps.push(['size', fullW, fullH, 1]);
+      steps.push(['full', fullW, fullH, ss]);
       for (const [level, pw, ph, side] of steps) {
         const next = level === 'half' ? `${fullW}×${fullH}` : `${ss * ss} samples a pixel`;
         /**

@@ -1,11 +1,12 @@
 //! Explore on the faster tracer (issue 33, page/fly.js), in headless Chromium (WebGL2 on
-//! SwiftShader, a software GPU): the page measures its kernel's rays a millisecond on its first
-//! step at rest and the server's CPU exact tracer's on the frames the server traced, and from
-//! then on each frame, at rest and moving, comes from the faster one. On this software GPU
+//! SwiftShader, a software GPU): the page measures its kernel's rays a millisecond on a frame
+//! of a quarter of the width and height at rest and the server's CPU exact tracer's on the
+//! frames the server traced, and from then on each frame, at rest and moving, comes from the
+//! faster one. On this software GPU
 //! that is the CPU, and
 //!
 //! - the speeds the page measured say so (the CPU's above the kernel's), every frame after
-//!   the kernel's first step at rest is the CPU's, and the header names the tracer and both
+//!   the kernel's measuring frame is the CPU's, and the header names the tracer and both
 //!   speeds;
 //! - the full frame at rest is the scene's view at its size and samples, and the hovered
 //!   pixel's record is the one `godel render --method exact` writes (the page reads it from
@@ -68,7 +69,8 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     let rest = &seen["rest"];
     let (cpu, gpu) = (rest["cpu"].as_f64().unwrap(), rest["gpu"].as_f64().unwrap());
     assert!(cpu > gpu && gpu > 0.0, "{seen}");
-    // The kernel traced until its speed was known (its first step at rest), the CPU after.
+    // The kernel traced until its speed was known (a frame of a quarter of the width and
+    // height at rest), the CPU after.
     let log = rest_log(&seen["rest_log"]);
     let first_cpu = log
         .iter()
@@ -77,7 +79,12 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     assert!(first_cpu > 0, "{seen}");
     assert!(log[..first_cpu].iter().all(|(_, by)| by == "gpu"), "{seen}");
     assert!(log[first_cpu..].iter().all(|(_, by)| by == "cpu"), "{seen}");
-    assert_eq!(log[first_cpu - 1].0, "half", "{seen}");
+    let measured = &seen["rest_log"][first_cpu - 1];
+    assert_eq!(
+        (&measured["level"], &measured["width"], &measured["height"]),
+        (&"moving".into(), &22.into(), &3.into()),
+        "{seen}"
+    );
     let traced = &rest["traced"];
     assert_eq!(
         (
