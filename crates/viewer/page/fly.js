@@ -41,12 +41,13 @@
 //
 // The faster tracer (issue 33): each frame, moving or a step at rest, is traced by whichever
 // of this page's kernel and the server's CPU exact tracer traced more rays a millisecond here,
-// for this scene: the kernel's speed measured from its steps at rest, the CPU's from the
-// frames the server traced (the start's, then each step at rest it traces for this page). Until the
-// kernel's is measured the kernel traces. A frame of the CPU is one of the view, at the size
-// and samples the page asks (POST /api/explore/view-frame), shown from the server's channels
-// as the frames of `?trace=server` are; the header says which tracer made each frame.
-// `?trace=page` keeps every frame on the kernel.
+// for this scene: the kernel's speed measured on its frames at rest (the first a quarter of
+// the width and height), the CPU's on the frames the server traced (the start's, then each
+// step at rest it traces for this page). Until the kernel's is measured the kernel traces. A
+// frame of the CPU is one of the view, at the size and samples the page asks (POST
+// /api/explore/view-frame), shown from the server's channels as the frames of
+// `?trace=server` are; the header says which tracer made each frame. `?trace=page` keeps
+// every frame on the kernel.
 //
 // The flight's state is in four parts, each a typedef below, each changed only by the
 // functions its typedef names: the sight (where the observer is and looks), the controls (what
@@ -159,7 +160,8 @@ import { KernelTracer } from './trace.js';
  * @property {boolean} refining
  * @property {number} width
  * @property {number | null} raysPerMs the kernel's speed here, from the last frame at rest
- * @property {number | null} cpuRaysPerMs the server's CPU's, from the last frame it traced
+ * @property {number | null} cpuRaysPerMs the server's CPU's, from the last step at rest it
+ *   traced (before any, the start's frames)
  * @property {number} rafs animation frames while the view changed
  * @property {number} drawn frames traced and shown
  * @property {number[]} frameMs wall times of the last frames shown

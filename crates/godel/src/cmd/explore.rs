@@ -6,8 +6,9 @@
 //! holds the records `godel render` writes for the scene with that observer. A flying page
 //! that finds this CPU faster than its GPU sends its view instead: one frame of that observer
 //! and camera, the records `godel render` writes for the scene with the view's fields. The
-//! newest request wins: older work stops between tiles ([`render::driver::Progress::cancelled`]). Which frames
-//! are kept is decided in the `viewer` crate (`viewer::explore`); this file only traces.
+//! newest request wins: older work stops between tiles
+//! ([`render::driver::Progress::cancelled`]). Which frames are kept is decided in the `viewer`
+//! crate (`viewer::explore`); this file only traces.
 
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
