@@ -533,7 +533,7 @@ fn origin_coords(
     let chart = LocalChart::of(metric);
     let to_origin = match *metric {
         Metric::Godel(g) => Some(Isometry::to_origin(g.a, p.event))
-            .map(|to| (to.apply(x), p.frame.e.map(|e| to.push(p.event, e)))),
+            .map(|to| (to.apply(x), to.push_all(p.event, p.frame.e))),
         Metric::GodelType(member) => TypeIsometry::to_origin(member, p.event)
             .map(|to| (to.apply(x), p.frame.e.map(|e| to.push(p.event, e)))),
         Metric::Minkowski(_) => None,

@@ -226,6 +226,13 @@ impl Isometry {
         self.image_vector(at, v, &self.moved(at))
     }
 
+    /// [`Isometry::push`] of several vectors at one event (a tetrad): the Möbius map of
+    /// `at` made once, each image the same numbers as `push` gives.
+    pub fn push_all<const N: usize>(&self, at: Event, vs: [FourVector; N]) -> [FourVector; N] {
+        let m = self.moved(at);
+        vs.map(|v| self.image_vector(at, v, &m))
+    }
+
     /// The Möbius map of the disc coordinate of `at`: w ↦ e^{iα}(w − w0)/(1 − w̄0 w).
     fn moved(&self, at: Event) -> Moved {
         let w = disc(self.a, at.x, at.y);
