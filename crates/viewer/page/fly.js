@@ -500,8 +500,9 @@ export async function startFly(viewer, explore, map, status) {
   /** @type {import('./contract').EventRequest} */
   const coarseOnly = { ...explore.event, refine: false };
   postJson('/api/explore/event', coarseOnly).catch(() => {});
-  // The server's speed so far (its frames of the start), for the choice of tracer.
-  getJson('/api/explore/frame').then((answer) => {
+  // The server's speed so far (its frames of the start), for the choice of tracer: asked now,
+  // waited for before the first step at rest.
+  const startSpeed = getJson('/api/explore/frame').then((answer) => {
     const a = /** @type {import('./contract').FrameAnswer} */ (answer);
     if (frames.cpuRaysPerMs === null) frames.cpuRaysPerMs = a.cpu_rays_per_ms;
   }).catch(() => {});
@@ -879,6 +880,7 @@ export async function startFly(viewer, explore, map, status) {
     const { observer } = sight;
     const cancelled = () => sight.version !== version;
     frames.refining = true;
+    await startSpeed;
     const started = performance.now();
     try {
       if (!PINNED && frames.raysPerMs === null && frames.cpuRaysPerMs !== null) {
