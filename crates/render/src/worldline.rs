@@ -535,7 +535,7 @@ fn origin_coords(
         Metric::Godel(g) => Some(Isometry::to_origin(g.a, p.event))
             .map(|to| (to.apply(x), to.push_all(p.event, p.frame.e))),
         Metric::GodelType(member) => TypeIsometry::to_origin(member, p.event)
-            .map(|to| (to.apply(x), p.frame.e.map(|e| to.push(p.event, e)))),
+            .map(|to| (to.apply(x), to.push_all(p.event, p.frame.e))),
         Metric::Minkowski(_) => None,
     };
     let Some((there, frame)) = to_origin else {

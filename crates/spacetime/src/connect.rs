@@ -226,8 +226,9 @@ fn rays_from_axis(a: f64, target: Event, max_winding: u32, max_travel: f64) -> V
                 // with it as r_max falls), from G(0) = −|z_P| < 0: its one root lies in the
                 // first cell whose end is not negative, found by bisecting the grid's indices
                 // (the scan's cell, from the same values).
-                if !(g_grid(last_cell) >= 0.0) {
-                    continue;
+                let end = g_grid(last_cell);
+                if end.is_nan() || end < 0.0 {
+                    continue; // no root up to the last cell (or G is NaN there)
                 }
                 let (mut lo, mut hi) = (0, last_cell);
                 while hi - lo > 1 {

@@ -296,6 +296,16 @@ impl TypeIsometry {
         self.image_vector(at, v, &self.moved(at))
     }
 
+    /// `push` of several vectors at one event (a tetrad): the base map of `at` made once,
+    /// each image the same numbers as `push` gives.
+    pub fn push_all<const N: usize>(&self, at: Event, vs: [FourVector; N]) -> [FourVector; N] {
+        if self.is_translation() {
+            return vs;
+        }
+        let m = self.moved(at);
+        vs.map(|v| self.image_vector(at, v, &m))
+    }
+
     /// `apply` and `push` together, the base coordinate computed once.
     pub fn apply_push(&self, at: Event, v: FourVector) -> (Event, FourVector) {
         if self.is_translation() {
