@@ -491,8 +491,8 @@ export async function startFly(viewer, explore, map, status) {
       slots: tracer.readSlots(t).map((f) => viewer.base64(new Uint8Array(f.buffer))) };
   };
   $('fly-panel').hidden = false;
-  $('explore-hint').textContent = 'Move the observer\u2019s event: each change is traced in '
-    + 'this browser (Fly, below). PageUp/PageDown change z; drag the observer on the map; '
+  $('explore-hint').textContent = 'Move the observer\u2019s event: each change is traced '
+    + 'again (Fly, below). PageUp/PageDown change z; drag the observer on the map; '
     + 'hover the picture for a pixel\u2019s light ray on the map.';
   // The server traces its own frames of the first event (coarse, then full, on all cores):
   // unseen while the page flies, so its full frame is given up (the newest request wins,
