@@ -42,7 +42,7 @@
 // The faster tracer (issue 33): each frame, moving or a step at rest, is traced by whichever
 // of this page's kernel and the server's CPU exact tracer traced more rays a millisecond here,
 // for this scene: the kernel's speed measured on its frames at rest (the first a quarter of
-// the width and height), the CPU's on the frames the server traced (the start's, then each
+// the width and height, at most MEASURE_RAYS rays), the CPU's on the frames the server traced (the start's, then each
 // step at rest it traces for this page). Until the kernel's is measured the kernel traces. A
 // frame of the CPU is one of the view, at the size and samples the page asks (POST
 // /api/explore/view-frame), shown from the server's channels as the frames of
@@ -197,6 +197,12 @@ const MIN_WIDTH = 16;
 // At rest, a frame of half the width and height comes first where the full size would take
 // longer than this (at the kernel's last measured speed; always before the first).
 const QUICK_MS = 1000;
+// The kernel's speed is first measured on a frame of a quarter of the width and height, of at
+// most this many rays, traced in one draw: on a software GPU such a frame takes under a second
+// (2,048 rays of the reference scene: 0.4 s on SwiftShader, where the quarter of 640×360 took
+// 3 s), and a real GPU traces it in one draw, its fixed costs small beside the CPU's
+// milliseconds.
+const MEASURE_RAYS = 2048;
 // Radians per CSS pixel dragged (times the field of view's share), roll per second.
 const ROLL_PER_S = 1.0;
 // Proper time added per animation frame at most (a stalled tab does not jump).
@@ -871,9 +877,9 @@ export async function startFly(viewer, explore, map, status) {
   // would take more than QUICK_MS (a quarter of its rays), the full size at one sample a pixel
   // where the scene asks for ss × ss (ss² times fewer rays), then the full samples. Each step
   // on the faster tracer (serverFaster). Where the kernel's speed is not known yet but the
-  // server's is, a frame of a quarter of the width and height (a sixteenth of the rays, shown
-  // as a moving frame) measures it first: on a software GPU the half size alone can take
-  // many seconds.
+  // server's is, a frame of a quarter of the width and height (a sixteenth of the rays, at
+  // most MEASURE_RAYS; shown as a moving frame) measures it first: on a software GPU the half
+  // size alone can take many seconds.
   async function traceFull() {
     const version = sight.version;
     const view = structuredClone(sight.view);
@@ -884,9 +890,9 @@ export async function startFly(viewer, explore, map, status) {
     const started = performance.now();
     try {
       if (!PINNED && frames.raysPerMs === null && frames.cpuRaysPerMs !== null) {
-        const w = widthOf(fullW / 4);
+        const w = widthOf(Math.min(fullW / 4, Math.sqrt(MEASURE_RAYS * fullW / fullH)));
         const traced = await tracer.trace({ ...input, uniforms: uniformsFor(input.uniforms,
-          view, observer, w, heightOf(w)) }, { cancelled });
+          view, observer, w, heightOf(w)) }, { cancelled, whole: true });
         const ms = Math.round(performance.now() - started);
         frames.raysPerMs = (traced.width * traced.height) / Math.max(traced.traceMs, 1);
         show(traced, view, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the GPU in `

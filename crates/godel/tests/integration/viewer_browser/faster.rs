@@ -1,12 +1,12 @@
 //! Explore on the faster tracer (issue 33, page/fly.js), in headless Chromium (WebGL2 on
 //! SwiftShader, a software GPU): the page measures its kernel's rays a millisecond on a frame
-//! of a quarter of the width and height at rest and the server's CPU exact tracer's on the
+//! of a quarter of the width and height at rest (at most 2,048 rays) and the server's CPU exact tracer's on the
 //! frames the server traced, and from then on each frame, at rest and moving, comes from the
 //! faster one. On this software GPU
 //! that is the CPU, and
 //!
-//! - the speeds the page measured say so (the CPU's above the kernel's), every frame after
-//!   the kernel's measuring frame is the CPU's, and the header names the tracer and both
+//! - the speeds the page measured say so (the CPU's above the kernel's), the kernel's
+//!   measuring frame has at most 2,048 rays, every frame after it is the CPU's, and the header names the tracer and both
 //!   speeds;
 //! - the full frame at rest is the scene's view at its size and samples, and the hovered
 //!   pixel's record is the one `godel render --method exact` writes (the page reads it from
@@ -26,19 +26,23 @@ use datafile::DataFile;
 fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     require_browser_tools();
     let dir = tempfile::tempdir().unwrap();
-    // The reference scene at 88×10 pixels of 2×2 rays, by the exact tracer (as explore's
-    // server traces it): its own view gives a hit pixel to hover (its centre sample).
+    // The reference scene at 440×80 pixels of 2×2 rays, by the exact tracer (as explore's
+    // server traces it): its own view gives a hit pixel to hover (its centre sample). A
+    // quarter of its width and height is more than the kernel's measuring frame may have.
+    let (width, height) = (440, 80);
     let text = scene_text()
+        .replace("width = 88\n", &format!("width = {width}\n"))
+        .replace("height = 10\n", &format!("height = {height}\n"))
         .replace("samples = 1", "samples = 4")
         .replace("method = \"numeric\"", "method = \"exact\"");
-    assert!(text.contains("width = 88\n") && text.contains("samples = 4"));
+    assert!(text.contains("width = 440\n") && text.contains("samples = 4"));
     assert!(text.contains("method = \"exact\""), "{text}");
     let rendered = DataFile::read(&render(dir.path(), "reference", &text)).unwrap();
     let scene = dir.path().join("reference.toml");
     let sample =
         |col: usize, row: usize| rendered.records[rendered.index(2 * col + 1, 2 * row + 1)];
-    let (col, row) = (0..10)
-        .flat_map(|row| (0..88).map(move |col| (col, row)))
+    let (col, row) = (0..height)
+        .flat_map(|row| (0..width).map(move |col| (col, row)))
         .find(|&(col, row)| sample(col, row).has_emission())
         .expect("the scene shows the earth");
 
@@ -61,7 +65,8 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     let (cpu, gpu) = (rest["cpu"].as_f64().unwrap(), rest["gpu"].as_f64().unwrap());
     assert!(cpu > gpu && gpu > 0.0, "{seen}");
     // The kernel traced until its speed was known (a frame of a quarter of the width and
-    // height at rest), the CPU after.
+    // height at rest, 110×20, cut to at most 2,048 rays in the scene's proportions:
+    // √(2048·440/80) = 106.1 → 106×19), the CPU after.
     let log = rest_log(&seen["rest_log"]);
     let first_cpu = log
         .iter()
@@ -73,7 +78,7 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     let measured = &seen["rest_log"][first_cpu - 1];
     assert_eq!(
         (&measured["level"], &measured["width"], &measured["height"]),
-        (&"moving".into(), &22.into(), &3.into()),
+        (&"moving".into(), &106.into(), &19.into()),
         "{seen}"
     );
     let traced = &rest["traced"];
@@ -84,12 +89,12 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
             &traced["width"],
             &traced["height"]
         ),
-        (&"full".into(), &"cpu".into(), &88.into(), &10.into()),
+        (&"full".into(), &"cpu".into(), &width.into(), &height.into()),
         "{seen}"
     );
     let header = rest["header"].as_str().unwrap();
     assert!(
-        header.contains("88×10 · 4 samples a pixel traced on the server\u{2019}s CPU")
+        header.contains("440×80 · 4 samples a pixel traced on the server\u{2019}s CPU")
             && header.contains(&format!("the CPU {} rays/ms", cpu.round()))
             && header.contains(&format!("the GPU {}", gpu.round())),
         "{header}"
