@@ -65,16 +65,6 @@ impl RayCircle {
         }
     }
 
-    /// The largest λ in [lo, hi] at which the ray's projection may lie within hyperbolic
-    /// distance m of the disc point `w` (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)):
-    /// None only when it provably lies farther all over [lo, hi]; `hi` when unsure (NaN).
-    pub fn last_within(&self, w: Complex, nw: f64, cosh_m: f64, lo: f64, hi: f64) -> Option<f64> {
-        if lo > hi || lo.is_nan() || hi.is_nan() {
-            return None;
-        }
-        self.arc(w, nw, cosh_m)?.last_in(lo, hi)
-    }
-
     /// Where the ray's projection may lie within hyperbolic distance m of the disc point `w`
     /// (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)), in λ from the ray's start: None
     /// only when it provably lies farther all round the circle; everywhere when unsure (NaN).
@@ -150,6 +140,21 @@ impl Arc {
         // The first copy whose stretch ends at or after lo.
         let n = ((lo - self.half - self.centre) / self.period).ceil();
         !(self.centre + n * self.period - self.half > hi)
+    }
+
+    /// The smallest λ in [lo, hi] on a stretch.
+    pub fn first_in(&self, lo: f64, hi: f64) -> Option<f64> {
+        if !(self.half < 0.5 * self.period) {
+            return Some(lo);
+        }
+        // The first copy whose stretch ends at or after lo.
+        let n = ((lo - self.half - self.centre) / self.period).ceil();
+        let l = lo.max(self.centre + n * self.period - self.half);
+        if l.is_nan() {
+            Some(lo)
+        } else {
+            (l <= hi).then_some(l)
+        }
     }
 
     /// The largest λ in [lo, hi] on a stretch.

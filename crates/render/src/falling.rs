@@ -15,7 +15,7 @@
 //! it, from kΔ to (k+1)Δ) can therefore meet the ball only at ray points within static
 //! distance M = reach + m of some cell whose time lies within the loop's window widened by
 //! S = 1.25·γ·R·(v + √2) + U·Δτ/2; the ray's circle (`crate::circle`) and its linear z give
-//! the last λ of the loop where that may happen.
+//! the first and the last λ of the loop where that may happen.
 
 use crate::circle::RayCircle;
 use crate::target::Target;
@@ -120,11 +120,19 @@ impl FallingBall {
     }
 
     /// For the ray `ray` starting at time `t_start` (relative to `from.t`), per loop k
-    /// (λ ∈ [k·λ_ret, (k+1)·λ_ret]) while k·λ_ret < `until`: the λ, counted from the loop's
-    /// start, up to which the loop must search the ball (−∞: not at all), pushed to `out`
-    /// (cleared first). Loops past the end of `out` need no search. False when unsure
-    /// (then `out` means nothing and every loop searches the ball).
-    pub fn loops(&self, ray: &RayCircle, t_start: f64, until: f64, out: &mut Vec<f64>) -> bool {
+    /// (λ ∈ [k·λ_ret, (k+1)·λ_ret]) while k·λ_ret < `until`: the stretch of the loop, λ
+    /// counted from its start, that must search the ball, pushed to `out` (cleared first):
+    /// from the first λ where the ray may be within the ball (from the loop's start where
+    /// `whole_start`) up to the last. Loops past the end of `out` need no search. False when
+    /// unsure (then `out` means nothing and every loop searches the ball).
+    pub fn loops(
+        &self,
+        ray: &RayCircle,
+        t_start: f64,
+        until: f64,
+        whole_start: bool,
+        out: &mut Vec<LoopWindow>,
+    ) -> bool {
         out.clear();
         let (first, last) = match (self.cells.first(), self.cells.last()) {
             (Some(f), Some(l)) => (f.t - self.slack, l.t + self.slack),
@@ -145,21 +153,31 @@ impl FallingBall {
                 return true;
             }
             let l1 = (l0 + ray.l_ret).min(until);
-            let u = self.last_near(ray, ta.min(tb), ta.max(tb), l0, l1);
-            out.push(u.map_or(f64::NEG_INFINITY, |l| l - l0));
-            if u.is_some() {
+            let near = self.near_in(ray, ta.min(tb), ta.max(tb), l0, l1);
+            out.push(near.map_or(LoopWindow::NONE, |(f, u)| LoopWindow {
+                from: if whole_start { 0.0 } else { f - l0 },
+                until: u - l0,
+            }));
+            if near.is_some() {
                 needed = out.len();
             }
         }
         false
     }
 
-    /// The last λ in [l0, l1] (one loop, with times in [t_lo, t_hi]) at which the ray may
-    /// be within the ball.
-    fn last_near(&self, ray: &RayCircle, t_lo: f64, t_hi: f64, l0: f64, l1: f64) -> Option<f64> {
+    /// The first and the last λ in [l0, l1] (one loop, with times in [t_lo, t_hi]) at which
+    /// the ray may be within the ball.
+    fn near_in(
+        &self,
+        ray: &RayCircle,
+        t_lo: f64,
+        t_hi: f64,
+        l0: f64,
+        l1: f64,
+    ) -> Option<(f64, f64)> {
         let m = self.near;
         let i0 = self.cells.partition_point(|c| c.t < t_lo - self.slack);
-        let mut last: Option<f64> = None;
+        let mut near: Option<(f64, f64)> = None;
         for c in &self.cells[i0..] {
             if c.t > t_hi + self.slack {
                 break;
@@ -174,14 +192,50 @@ impl FallingBall {
                 let (p, q) = ((c.z - m) / ray.pz, (c.z + m) / ray.pz);
                 (p.min(q).max(l0), p.max(q).min(l1))
             };
-            let lo = last.map_or(lo, |l| lo.max(l));
-            if let Some(l) = ray.last_within(c.w, c.nw, self.cosh_near, lo, hi) {
-                last = Some(l);
-                if l >= l1 {
+            // A window within the stretch found so far cannot widen it.
+            if lo > hi
+                || lo.is_nan()
+                || hi.is_nan()
+                || near.is_some_and(|(f, u)| f <= lo && hi <= u)
+            {
+                continue;
+            }
+            let Some(arc) = ray.arc(c.w, c.nw, self.cosh_near) else {
+                continue;
+            };
+            if let (Some(f), Some(u)) = (arc.first_in(lo, hi), arc.last_in(lo, hi)) {
+                near = Some(near.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u))));
+                if near.is_some_and(|(f, u)| f <= l0 && u >= l1) {
                     break;
                 }
             }
         }
-        last
+        near
+    }
+}
+
+/// The stretch of one loop of a ray, λ counted from the loop's start, that searches a ball
+/// in free fall ([`FallingBall::loops`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopWindow {
+    pub from: f64,
+    pub until: f64,
+}
+
+impl LoopWindow {
+    /// No search in this loop.
+    pub const NONE: LoopWindow = LoopWindow {
+        from: f64::INFINITY,
+        until: f64::NEG_INFINITY,
+    };
+    /// The whole loop and on (a loop that does not close).
+    pub const ALL: LoopWindow = LoopWindow {
+        from: f64::NEG_INFINITY,
+        until: f64::INFINITY,
+    };
+
+    /// Whether the stretch [l0, l1] (from the loop's start) meets the window.
+    pub fn meets(&self, l0: f64, l1: f64) -> bool {
+        l0 <= self.until && l1 >= self.from
     }
 }

@@ -14,6 +14,7 @@
 //! [`OutOfWork`] and the caller marks the ray instead of searching on.
 
 use crate::circle::Stretches;
+use crate::falling::LoopWindow;
 use crate::segment::{Segment, Shift};
 use crate::target::{Probe, Target};
 use spacetime::{refine_root, GeodesicState, Metric};
@@ -67,9 +68,9 @@ pub struct Probes {
     pub on_ray: Vec<bool>,
     /// Whether `loops` limits the search of the object (balls in free fall).
     pub by_loop: Vec<bool>,
-    /// Per object and loop k of the ray: the λ, from the loop's start, up to which the loop
-    /// searches it (−∞, or a loop past the end: not at all).
-    pub loops: Vec<Vec<f64>>,
+    /// Per object and loop k of the ray: the stretch of the loop, λ from its start, that
+    /// searches it (none, or a loop past the end: not at all).
+    pub loops: Vec<Vec<LoopWindow>>,
     /// Per object: the only stretches of the ray (λ from its start) that search it (balls at
     /// rest: `crate::reject::StaticBall::near`); None: all along.
     pub near: Vec<Option<Stretches>>,
@@ -84,24 +85,24 @@ impl Probes {
         std::mem::swap(&mut self.start, &mut self.end);
     }
 
-    /// The λ, from the start of loop `k`, up to which the current ray searches object `i`.
-    pub fn until(&self, i: usize, k: usize) -> f64 {
+    /// The stretch of loop `k`, λ from its start, that searches object `i`.
+    pub fn window(&self, i: usize, k: usize) -> LoopWindow {
         if !self.on_ray[i] {
-            f64::NEG_INFINITY
+            LoopWindow::NONE
         } else if !self.by_loop[i] {
-            f64::INFINITY
+            LoopWindow::ALL
         } else {
-            self.loops[i].get(k).copied().unwrap_or(f64::NEG_INFINITY)
+            self.loops[i].get(k).copied().unwrap_or(LoopWindow::NONE)
         }
     }
 
-    /// Whether the stretch [l0, l1], from the start of loop `k`, reaches λ ≤ `until` of a
-    /// loop for object `i`. A stretch may run on into later loops (a shadow ray's segments,
-    /// with `loop_length` known): then it reaches each from its start.
+    /// Whether the stretch [l0, l1], from the start of loop `k`, meets the window of a loop
+    /// for object `i`. A stretch may run on into later loops (a shadow ray's segments, with
+    /// `loop_length` known): then it meets each over its part in that loop.
     fn in_loops(&self, i: usize, k: usize, l0: f64, l1: f64) -> bool {
         let len = self.loop_length;
         if !(self.by_loop[i] && len > 0.0 && l1 > len) {
-            return l0 <= self.until(i, k);
+            return self.window(i, k).meets(l0, l1);
         }
         let (first, last) = ((l0 / len).floor().max(0.0), (l1 / len).floor());
         if !(last.is_finite() && first <= last) {
@@ -110,15 +111,16 @@ impl Probes {
         let loops = self.loops[i].len();
         let (first, last) = (first as usize, (last as usize).min(loops));
         (first..=last).any(|j| {
-            let from = if j == first { l0 - j as f64 * len } else { 0.0 };
-            from <= self.until(i, k + j)
+            let shift = j as f64 * len;
+            let from = if j == first { l0 - shift } else { 0.0 };
+            let to = if j == last { l1 - shift } else { len };
+            self.window(i, k + j).meets(from, to)
         })
     }
 
     /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
-    /// l1 from the loop's start): an object is searched while l0 ≤ its `until` (within a
-    /// loop only a first stretch, a later loop probes afresh) and where the stretch meets
-    /// its `near` ones. An object not searched just before starts from a fresh probe
+    /// l1 from the loop's start): an object is searched where the stretch meets its window
+    /// in the loop (one stretch a loop; a later loop probes afresh) and its `near` ones. An object not searched just before starts from a fresh probe
     /// ([`Intersector::scan`]). Whether any is searched.
     pub fn activate(&mut self, k: usize, dl: f64, l0: f64, l1: f64) -> bool {
         let mut any = false;

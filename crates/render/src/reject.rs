@@ -234,9 +234,11 @@ impl StaticBall {
 
 /// Sets, for the closed-form ray `geo` from the start of the rays (its time `t_start`
 /// after the `from` event of the tests), over λ ∈ [0, until], which objects it searches
-/// ([`Probes::on_ray`]), for balls in free fall up to which λ of each loop
+/// ([`Probes::on_ray`]), for balls in free fall which stretch of each loop
 /// ([`Probes::loops`]) and, with `stretches` (rays whose λ is the closed form's: the exact
 /// tracer's and the shadow rays), for balls at rest in which stretches ([`Probes::near`]).
+/// A loop's stretch of a ball in free fall starts where the ray may first come near it with
+/// `stretches`, at the loop's start otherwise.
 /// With no closed form (`None`: not Gödel's universe) or no test, an object is searched all
 /// along.
 pub fn set_ray(
@@ -265,7 +267,7 @@ pub fn set_ray(
             (Some(Rejection::Falling(f)), Some(_), _) => {
                 let sure = circle
                     .as_ref()
-                    .is_some_and(|c| f.loops(c, t_start, until, &mut probes.loops[i]));
+                    .is_some_and(|c| f.loops(c, t_start, until, !stretches, &mut probes.loops[i]));
                 (!sure || !probes.loops[i].is_empty(), sure, None)
             }
             // A ball at rest: only its stretches, which are its whole-ray test too (none:

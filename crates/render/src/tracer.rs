@@ -46,6 +46,7 @@ mod numeric;
 
 pub use escape::{EscapeStop, MAX_FAMILY_SEGMENTS};
 
+use crate::falling::LoopWindow;
 use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
 use crate::polarization::{self, RayPlace};
 use crate::reject::{set_ray, Rejection, NUMERIC_TOLERANCE};
@@ -241,7 +242,7 @@ impl Tracer {
             // may leave a ball in free fall out of its end only if no later loop needs it.
             for (i, loops) in probes.loops.iter_mut().enumerate() {
                 if probes.by_loop[i] && loops.len() > 1 {
-                    loops[0] = f64::INFINITY;
+                    loops[0] = LoopWindow::ALL;
                 }
             }
         }

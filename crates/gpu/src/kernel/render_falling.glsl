@@ -11,7 +11,7 @@
 
 // The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
 // hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when
-// unsure (render::circle::RayCircle::last_within).
+// unsure (render::circle::RayCircle::arc and Arc::last_in).
 float lastWithin(OGeo g, vec2 w, float coshM, float lo, float hi) {
     if (!finite(lo) || !finite(hi) || !(lo <= hi)) return NO_TAU;
     float a = u_a;
