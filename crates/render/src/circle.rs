@@ -72,6 +72,11 @@ impl RayCircle {
         // cosh(d(h, w)/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
         let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
         let sh = (ch * ch - 1.0).max(0.0).sqrt();
+        let (nearest, spread) = (ch * self.cosh_rho, sh * self.sinh_rho);
+        let num = nearest - cosh_m;
+        if num.is_finite() && spread.is_finite() && num > spread {
+            return None; // beyond m all round (as `Arc::within` finds), before any angle
+        }
         // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
         // is nearest w where ψ is a whole number of turns.
         let beta = moved(self.h, w).arg();
@@ -80,8 +85,8 @@ impl RayCircle {
             centre: (turns - turns.floor()) * self.l_ret,
             half: f64::INFINITY,
             period: self.l_ret,
-            nearest: ch * self.cosh_rho,
-            spread: sh * self.sinh_rho,
+            nearest,
+            spread,
         };
         arc.within(cosh_m)
     }
