@@ -172,7 +172,9 @@ function prepare(canvas, box) {
     canvas.width = w;
     canvas.height = h;
   }
-  const g = canvas.getContext('2d');
+  // Drawn on the CPU (`willReadFrequently`): a canvas drawn on the GPU makes each drawing
+  // wait for the GPU's earlier work, a whole frame's shading on a software GPU.
+  const g = canvas.getContext('2d', { willReadFrequently: true });
   if (!g) throw new Error('this browser draws no 2D canvas');
   g.setTransform(dpr, 0, 0, dpr, 0, 0);
   g.fillStyle = COLOURS.background;
@@ -393,6 +395,8 @@ export function createMap(top, side, legend, hooks) {
 
   /** @type {ServerRayWish | TracedRay | null} */
   let rayWish = null;
+  // Whether a drawing of the map waits for the next animation frame (map.draw).
+  let drawQueued = false;
   const wantMap = latest(
     /** @param {ObserverEvent} e */
     (e) => /** @type {Promise<ExploreMap>} */ (getJson(`/api/explore/map?t=${e.t}&x=${e.x}`
@@ -464,16 +468,24 @@ export function createMap(top, side, legend, hooks) {
       map.ray = null;
       map.draw();
     },
-    // Nothing to fetch (for tests).
-    idle: () => !wantMap.busy() && !wantRay.busy(),
+    // Nothing to fetch or draw (for tests).
+    idle: () => !wantMap.busy() && !wantRay.busy() && !drawQueued,
+    // Drawn once in the next animation frame, however often asked for before it: while
+    // flying, each move and each fetched map asks, and on a software GPU each drawing of the
+    // canvas costs the GPU as much as shading a frame.
     draw: () => {
-      const m = map.fetched;
-      const event = map.event || (m && m.event);
-      if (!m || !event) return;
-      if (!map.dragging || map.view === null) map.view = topWindow(m, event);
-      drawTop(m, event);
-      drawSide(m, event);
-      drawLegend(m);
+      if (drawQueued) return;
+      drawQueued = true;
+      requestAnimationFrame(() => {
+        drawQueued = false;
+        const m = map.fetched;
+        const event = map.event || (m && m.event);
+        if (!m || !event) return;
+        if (!map.dragging || map.view === null) map.view = topWindow(m, event);
+        drawTop(m, event);
+        drawSide(m, event);
+        drawLegend(m);
+      });
     },
   };
 
