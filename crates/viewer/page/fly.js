@@ -162,6 +162,8 @@ import { KernelTracer } from './trace.js';
  * @property {number | null} raysPerMs the kernel's speed here, from the last frame at rest
  * @property {number | null} cpuRaysPerMs the server's CPU's, from the last step at rest it
  *   traced (before any, the start's frames)
+ * @property {number | null} serverWidth the width of the server's next moving frame, steered
+ *   by the time the last took (the speed changes with the view, and a frame has fixed costs)
  * @property {number} rafs animation frames while the view changed
  * @property {number} drawn frames traced and shown
  * @property {number[]} frameMs wall times of the last frames shown
@@ -382,6 +384,7 @@ export async function startFly(viewer, explore, map, status) {
     width: Math.min(fullW, MIN_WIDTH),
     raysPerMs: null,
     cpuRaysPerMs: null,
+    serverWidth: null,
     rafs: 0,
     drawn: 0,
     frameMs: [],
@@ -850,10 +853,13 @@ export async function startFly(viewer, explore, map, status) {
   }
 
   // The view changed and the server's CPU is the faster: a smaller frame of one sample a
-  // pixel traced there, of the rays it traces in half of TARGET_MS (the other half is the
-  // round trip), not waited for by the animation frames. Every one is shown, as the kernel's.
+  // pixel traced there in about half of TARGET_MS (the other half is the round trip): at
+  // first of the rays it traces in that time at its speed at rest, then steered by the time
+  // the last moving frame took. Not waited for by the animation frames; every one is shown,
+  // as the kernel's.
   async function serverMoving() {
-    const w = widthOf(Math.sqrt((frames.cpuRaysPerMs ?? 0) * (TARGET_MS / 2) * fullW / fullH));
+    const w = widthOf(frames.serverWidth
+      ?? Math.sqrt((frames.cpuRaysPerMs ?? 0) * (TARGET_MS / 2) * fullW / fullH));
     const h = heightOf(w);
     const version = sight.version;
     const view = structuredClone(sight.view);
@@ -862,6 +868,9 @@ export async function startFly(viewer, explore, map, status) {
     try {
       const frame = await serverFrame(view, w, h, 1, refused, false);
       if (frame === null) return;
+      // The next frame's width, for about TARGET_MS / 2 of tracing.
+      const scale = Math.sqrt((TARGET_MS / 2) / Math.max(frame.trace_ms, 1));
+      frames.serverWidth = frame.width * Math.min(2, Math.max(0.5, scale));
       const fps = frameRate();
       await showServer(frame, version, 'moving', (pw, ph) => `${pw}×${ph} traced on the `
         + `server\u2019s CPU · ${fps.toFixed(0)} frames/s`, refused);
