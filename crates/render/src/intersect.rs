@@ -120,8 +120,9 @@ impl Probes {
 
     /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
     /// l1 from the loop's start): an object is searched where the stretch meets its window
-    /// in the loop (one stretch a loop; a later loop probes afresh) and its `near` ones. An object not searched just before starts from a fresh probe
-    /// ([`Intersector::scan`]). Whether any is searched.
+    /// in the loop (one stretch a loop; a later loop probes afresh) and its `near` ones. An
+    /// object not searched just before starts from a fresh probe ([`Intersector::scan`]).
+    /// Whether any is searched.
     pub fn activate(&mut self, k: usize, dl: f64, l0: f64, l1: f64) -> bool {
         let mut any = false;
         for i in 0..self.active.len() {

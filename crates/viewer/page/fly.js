@@ -42,12 +42,12 @@
 // The faster tracer (issue 33): each frame, moving or a step at rest, is traced by whichever
 // of this page's kernel and the server's CPU exact tracer traced more rays a millisecond here,
 // for this scene: the kernel's speed measured on its frames at rest (the first a quarter of
-// the width and height, at most MEASURE_RAYS rays), the CPU's on the frames the server traced (the start's, then each
-// step at rest it traces for this page). Until the kernel's is measured the kernel traces. A
-// frame of the CPU is one of the view, at the size and samples the page asks (POST
-// /api/explore/view-frame), shown from the server's channels as the frames of
-// `?trace=server` are; the header says which tracer made each frame. `?trace=page` keeps
-// every frame on the kernel.
+// the width and height, at most MEASURE_RAYS rays), the CPU's on the frames the server traced
+// (the start's, then each step at rest it traces for this page). Until the kernel's is
+// measured the kernel traces. A frame of the CPU is one of the view, at the size and samples
+// the page asks (POST /api/explore/view-frame), shown from the server's channels as the
+// frames of `?trace=server` are; the header says which tracer made each frame. `?trace=page`
+// keeps every frame on the kernel.
 //
 // The flight's state is in four parts, each a typedef below, each changed only by the
 // functions its typedef names: the sight (where the observer is and looks), the controls (what
@@ -163,7 +163,7 @@ import { KernelTracer } from './trace.js';
  * @property {number | null} cpuRaysPerMs the server's CPU's, from the last step at rest it
  *   traced (before any, the start's frames)
  * @property {number | null} serverWidth the width of the server's next moving frame, steered
- *   by the time the last took (the speed changes with the view, and a frame has fixed costs)
+ *   by the time the last took (the rays' cost changes tenfold with the view)
  * @property {number} rafs animation frames while the view changed
  * @property {number} drawn frames traced and shown
  * @property {number[]} frameMs wall times of the last frames shown
@@ -201,7 +201,7 @@ const MIN_WIDTH = 16;
 const QUICK_MS = 1000;
 // The kernel's speed is first measured on a frame of a quarter of the width and height, of at
 // most this many rays, traced in one draw: on a software GPU such a frame takes under a second
-// (2,048 rays of the reference scene: 0.4 s on SwiftShader, where the quarter of 640×360 took
+// (2,048 rays of the reference scene: 0.6 s on SwiftShader, where the quarter of 640×360 took
 // 3 s), and a real GPU traces it in one draw, its fixed costs small beside the CPU's
 // milliseconds.
 const MEASURE_RAYS = 2048;

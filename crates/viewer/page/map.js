@@ -172,8 +172,9 @@ function prepare(canvas, box) {
     canvas.width = w;
     canvas.height = h;
   }
-  // Drawn on the CPU (`willReadFrequently`): a canvas drawn on the GPU makes each drawing
-  // wait for the GPU's earlier work, a whole frame's shading on a software GPU.
+  // Drawn on the CPU (`willReadFrequently`): Chromium's GPU-drawn canvas made each drawing
+  // wait for the GPU's earlier work, on a software GPU a frame's shading (~90 ms while
+  // flying; BENCHMARKS.md, "Fewer probes (issue 33)", third session).
   const g = canvas.getContext('2d', { willReadFrequently: true });
   if (!g) throw new Error('this browser draws no 2D canvas');
   g.setTransform(dpr, 0, 0, dpr, 0, 0);
@@ -470,9 +471,8 @@ export function createMap(top, side, legend, hooks) {
     },
     // Nothing to fetch or draw (for tests).
     idle: () => !wantMap.busy() && !wantRay.busy() && !drawQueued,
-    // Drawn once in the next animation frame, however often asked for before it: while
-    // flying, each move and each fetched map asks, and on a software GPU each drawing of the
-    // canvas costs the GPU as much as shading a frame.
+    // Drawn once in the next animation frame, however often asked for before it (while
+    // flying, each move and each fetched map asks).
     draw: () => {
       if (drawQueued) return;
       drawQueued = true;
