@@ -5,7 +5,8 @@
 # Builds godel, explores the reference scene (scenes/reference.toml) and runs tests/browser/flight-picture.mjs
 # in headless chromium (software WebGL2): falls freely toward the earth at SPEED (default 0.6
 # c) until the observer's time passes UNTIL (default 0.9), waits for the full frame traced in
-# the browser (`?trace=page`: the picture shows the page's own kernel; about 40 s on 2 cores), hovers a looping image and saves the page to OUT.png
+# the browser (`?trace=page`: the picture shows the page's own kernel; about 40 s on 2
+# cores), hovers a looping image and saves the page to OUT.png
 # (default docs/guide/src/pictures/flight.png; written only once the picture is made). The
 # server it started is stopped and its folder removed.
 set -euo pipefail

@@ -73,9 +73,8 @@ impl RayCircle {
         let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
         let sh = (ch * ch - 1.0).max(0.0).sqrt();
         let (nearest, spread) = (ch * self.cosh_rho, sh * self.sinh_rho);
-        let num = nearest - cosh_m;
-        if num.is_finite() && spread.is_finite() && num > spread {
-            return None; // beyond m all round (as `Arc::within` finds), before any angle
+        if beyond_all_round(nearest, spread, cosh_m) {
+            return None; // before the angle: most points are
         }
         // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
         // is nearest w where ψ is a whole number of turns.
@@ -90,6 +89,13 @@ impl RayCircle {
         };
         arc.within(cosh_m)
     }
+}
+
+/// Whether a ray's circle lies beyond distance m (given cosh(m/a)) of a point all round, from
+/// the law of cosines' `nearest` and `spread` ([`Arc`]): cos δ would have to exceed 1.
+fn beyond_all_round(nearest: f64, spread: f64, cosh_m: f64) -> bool {
+    let num = nearest - cosh_m;
+    num.is_finite() && spread.is_finite() && num > spread
 }
 
 /// The λ-stretches of a ray (from its start) near a point: [c − half, c + half] and its
@@ -122,8 +128,8 @@ impl Arc {
         if num <= -den {
             return Some(everywhere); // within m all round the circle
         }
-        if num > den {
-            return None; // beyond m all round (cos δ would have to exceed 1)
+        if beyond_all_round(self.nearest, den, cosh_m) {
+            return None;
         }
         let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
         let arc = Arc {

@@ -290,14 +290,11 @@ impl TypeIsometry {
 
     /// The differential: the image at `apply(at)` of the tangent vector `v` at `at`.
     pub fn push(&self, at: Event, v: FourVector) -> FourVector {
-        if self.is_translation() {
-            return v;
-        }
-        self.image_vector(at, v, &self.moved(at))
+        let [w] = self.push_all(at, [v]);
+        w
     }
 
-    /// `push` of several vectors at one event (a tetrad): the base map of `at` made once,
-    /// each image the same numbers as `push` gives.
+    /// `push` of several vectors at one event (a tetrad): the base map of `at` made once.
     pub fn push_all<const N: usize>(&self, at: Event, vs: [FourVector; N]) -> [FourVector; N] {
         if self.is_translation() {
             return vs;

@@ -223,11 +223,12 @@ impl Isometry {
 
     /// The differential: the image at `apply(at)` of the tangent vector `v` at `at`.
     pub fn push(&self, at: Event, v: FourVector) -> FourVector {
-        self.image_vector(at, v, &self.moved(at))
+        let [w] = self.push_all(at, [v]);
+        w
     }
 
     /// [`Isometry::push`] of several vectors at one event (a tetrad): the Möbius map of
-    /// `at` made once, each image the same numbers as `push` gives.
+    /// `at` made once.
     pub fn push_all<const N: usize>(&self, at: Event, vs: [FourVector; N]) -> [FourVector; N] {
         let m = self.moved(at);
         vs.map(|v| self.image_vector(at, v, &m))

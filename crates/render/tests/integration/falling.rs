@@ -120,7 +120,9 @@ proptest! {
             if target.probe(&metric, &st, f64::NAN).f <= 0.0 {
                 let lp = (l / l_ret).floor() as usize;
                 let window = loops.get(lp).copied().unwrap_or(LoopWindow::NONE);
-                let at = l - lp as f64 * l_ret;
+                // (At a loop's start the difference can round below 0: λ = 3·λ_ret sampled as
+                // 4·λ_ret·3000/4000, with floor(λ/λ_ret) = 3.)
+                let at = (l - lp as f64 * l_ret).max(0.0);
                 prop_assert!(
                     window.meets(at, at),
                     "inside at λ = {l} (loop {lp}), but searched only over {window:?}"
