@@ -177,10 +177,19 @@ impl FallingBall {
     ) -> Option<(f64, f64)> {
         let m = self.near;
         let i0 = self.cells.partition_point(|c| c.t < t_lo - self.slack);
+        // The heights the loop's stretch reaches, widened by M and by a margin far above
+        // rounding: a cell beyond them would get an empty λ window below, so it is dropped
+        // before the divisions (most cells of a loop's times are).
+        let (z0, z1) = (ray.pz * l0, ray.pz * l1);
+        let margin = 1e-9 * (z0.abs().max(z1.abs()) + m);
+        let (z_lo, z_hi) = (z0.min(z1) - m - margin, z0.max(z1) + m + margin);
         let mut near: Option<(f64, f64)> = None;
         for c in &self.cells[i0..] {
             if c.t > t_hi + self.slack {
                 break;
+            }
+            if c.z < z_lo || c.z > z_hi {
+                continue;
             }
             // The λ window where |p_z λ − z| ≤ M.
             let (lo, hi) = if ray.pz == 0.0 {

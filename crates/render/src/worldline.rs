@@ -295,7 +295,7 @@ impl Worldline {
                 frame: *frame,
             }),
             Worldline::Free(f) => {
-                let s = f.state(tau)?;
+                let s: [f64; 20] = f.state(tau)?;
                 let x = Event::new(s[0], s[1], s[2], s[3]);
                 let u = metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
                 let e = |k: usize| {
@@ -446,13 +446,9 @@ impl Worldline {
                 // −2.3 at 0.99 c), where Newton with slope −1 diverges. (The first-order
                 // condition has one root near the ball; the second-order one can have more,
                 // and a secant on it jumped between them from one ray point to the next.)
-                let xi0_at = |tau: f64| -> Option<(WorldPoint, f64)> {
-                    let p = self.at(metric, tau)?;
-                    Some((p, first_order(metric, &p, x)[0]))
-                };
                 let (mut ta, mut fa) = (tau, first[0]);
                 tau = (ta + fa).clamp(ff.tau_min, ff.tau_max);
-                let (mut pb, mut fb) = xi0_at(tau)?;
+                let mut fb = ff.time_offset(metric, tau, x)?;
                 for _ in 0..SIMULTANEITY_STEPS {
                     if fb.abs() < 1e-12 || tau == ta {
                         break;
@@ -465,8 +461,9 @@ impl Worldline {
                     };
                     (ta, fa) = (tau, fb);
                     tau = (tau + step).clamp(ff.tau_min, ff.tau_max);
-                    (pb, fb) = xi0_at(tau)?;
+                    fb = ff.time_offset(metric, tau, x)?;
                 }
+                let pb = self.at(metric, tau)?;
                 // Second order near the object, taken at the origin (`origin_coords`): one
                 // more Newton step on its ξ⁰.
                 tau = (tau + origin_coords(metric, &ff.origin, &pb, x)[0])
@@ -594,12 +591,14 @@ fn step_box(st: &DenseStep<20>) -> (f64, f64, Aabb) {
 }
 
 impl FreeFall {
-    fn state(&self, tau: f64) -> Option<[f64; 20]> {
+    /// The first `M` components of the transported state at proper time τ (position and
+    /// u_μ: 8; with the frame: 20); None outside the integrated range.
+    fn state<const M: usize>(&self, tau: f64) -> Option<[f64; M]> {
         if !(tau >= self.tau_min && tau <= self.tau_max) {
             return None;
         }
         if tau == 0.0 {
-            return Some(self.start);
+            return Some(std::array::from_fn(|i| self.start[i]));
         }
         let (steps, index, s) = if tau > 0.0 {
             (&self.forward, &self.forward_index, tau)
@@ -607,7 +606,20 @@ impl FreeFall {
             (&self.backward, &self.backward_index, -tau)
         };
         let i = index.first_reaching(s).min(steps.len().checked_sub(1)?);
-        Some(steps[i].eval(s))
+        Some(steps[i].eval_head(s))
+    }
+
+    /// ξ⁰ of [`first_order`] at the worldline point of proper time τ: the time row alone,
+    /// from the position and u (the body frame's other vectors not interpolated). What the
+    /// simultaneity's secant steps need.
+    fn time_offset(&self, metric: &Metric, tau: f64, x: Event) -> Option<f64> {
+        let s: [f64; 8] = self.state(tau)?;
+        let p = Event::new(s[0], s[1], s[2], s[3]);
+        let u = metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
+        let chart = LocalChart::of(metric);
+        let at = chart.event(p);
+        let row = DualFrame::row(&chart.metric(at), 0, chart.vector(p, u));
+        Some(DualFrame::component(&row, (chart.event(x) - at).to_array()))
     }
 }
 

@@ -70,22 +70,28 @@ impl<const N: usize> DenseStep<N> {
     }
     /// The interpolated state at `lambda` (7th order; exact at both ends).
     pub fn eval(&self, lambda: f64) -> [f64; N] {
+        self.eval_head::<N>(lambda)
+    }
+
+    /// The first `M` components of [`DenseStep::eval`], the others not computed (each
+    /// component's polynomial is its own: the same values).
+    pub fn eval_head<const M: usize>(&self, lambda: f64) -> [f64; M] {
+        const { assert!(M <= N) };
         let s = (lambda - self.lambda0) / self.h;
         if lambda == self.lambda1() || s == 1.0 {
-            return self.y1; // exact (the polynomial would be off by rounding)
+            // exact (the polynomial would be off by rounding)
+            return std::array::from_fn(|i| self.y1[i]);
         }
         let s1 = 1.0 - s;
-        let mut y = [0.0; N];
-        for i in 0..N {
+        std::array::from_fn(|i| {
             // Horner-like scheme of Hairer's CONTD8: alternating factors s and (1 − s).
             let f = &self.f;
             let v = f[0][i]
                 + s1 * (f[1][i]
                     + s * (f[2][i]
                         + s1 * (f[3][i] + s * (f[4][i] + s1 * (f[5][i] + s * f[6][i])))));
-            y[i] = self.y0[i] + s * v;
-        }
-        y
+            self.y0[i] + s * v
+        })
     }
 }
 

@@ -34,24 +34,25 @@ pub struct DualFrame(pub [[f64; 4]; 4]);
 
 impl DualFrame {
     pub fn new(g: &MetricTensor, frame: &Tetrad) -> DualFrame {
-        let mut out = [[0.0; 4]; 4];
-        for (a, e) in frame.e.iter().enumerate() {
-            let e = e.to_array();
-            let sign = if a == 0 { -1.0 } else { 1.0 };
-            for n in 0..4 {
-                out[a][n] = sign * (0..4).map(|m| g[m][n] * e[m]).sum::<f64>();
-            }
-        }
-        DualFrame(out)
+        DualFrame(std::array::from_fn(|a| DualFrame::row(g, a, frame.e[a])))
+    }
+
+    /// Row `a` alone, η_aa g(e_a, ·), for the frame vector `e` = e_a: where only one
+    /// component is measured (the time component of a ball's simultaneity).
+    pub fn row(g: &MetricTensor, a: usize, e: FourVector) -> [f64; 4] {
+        let e = e.to_array();
+        let sign = if a == 0 { -1.0 } else { 1.0 };
+        std::array::from_fn(|n| sign * (0..4).map(|m| g[m][n] * e[m]).sum::<f64>())
     }
 
     /// The frame components of the coordinate components `v`.
     pub fn components(&self, v: [f64; 4]) -> [f64; 4] {
-        let mut out = [0.0; 4];
-        for (a, row) in self.0.iter().enumerate() {
-            out[a] = (0..4).map(|n| row[n] * v[n]).sum();
-        }
-        out
+        self.0.map(|row| DualFrame::component(&row, v))
+    }
+
+    /// One frame component of `v`, from its row ([`DualFrame::row`]).
+    pub fn component(row: &[f64; 4], v: [f64; 4]) -> f64 {
+        (0..4).map(|n| row[n] * v[n]).sum()
     }
 }
 
