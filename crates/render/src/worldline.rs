@@ -634,8 +634,13 @@ impl FreeFall {
     fn time_offset(&self, metric: &Metric, tau: f64, x: Event) -> Option<f64> {
         let s: [f64; 8] = self.state(tau)?;
         let p = Event::new(s[0], s[1], s[2], s[3]);
-        let u = metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
         let chart = LocalChart::of(metric);
+        if let LocalChart::Own(_) = chart {
+            // The time row is −g(u, ·) = −u_μ, which the state carries.
+            let row = [-s[4], -s[5], -s[6], -s[7]];
+            return Some(DualFrame::component(&row, (x - p).to_array()));
+        }
+        let u = metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
         let at = chart.event(p);
         let row = DualFrame::row(&chart.metric(at), 0, chart.vector(p, u));
         Some(DualFrame::component(&row, (chart.event(x) - at).to_array()))
