@@ -106,7 +106,8 @@ impl StepIndex {
     }
 
     /// The first step whose end is ≥ `s` (the steps' count if none): what a binary search
-    /// over all the ends gives, searched only between the cells on either side of `s`'s.
+    /// over all the ends gives, counted only among the few steps between the cells on either
+    /// side of `s`'s (counting them measured faster than a binary search's branches).
     fn first_reaching(&self, s: f64) -> usize {
         let cells = self.first.len() - 1;
         let c = s / self.cell;
@@ -121,7 +122,7 @@ impl StepIndex {
         } else {
             self.first[c + 2]
         };
-        lo + self.ends[lo..hi].partition_point(|&e| e < s)
+        lo + self.ends[lo..hi].iter().filter(|&&e| e < s).count()
     }
 }
 
