@@ -3,6 +3,7 @@
 //! `cargo run -p render --example probe_ray -- SCENE COL ROW LAMBDA0 LAMBDA1`
 
 use render::target::Target;
+use render::worldline::Located;
 use spacetime::*;
 
 fn main() {
@@ -37,17 +38,22 @@ fn main() {
         let s = tr.state_at(l);
         let exact = worldline
             .localize(&m, s.x, worldline.tau_guess(s.x.t), f64::INFINITY)
-            .unwrap();
-        let far = worldline
-            .localize(&m, s.x, worldline.tau_guess(s.x.t), 0.0)
+            .and_then(Located::near)
             .unwrap();
         let d = |x: [f64; 3]| (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt() - radius;
+        let far = match worldline
+            .localize(&m, s.x, worldline.tau_guess(s.x.t), 0.0)
+            .unwrap()
+        {
+            Located::Far(distance) => distance - radius,
+            Located::Near(lp) => d(lp.xi),
+        };
         let p = t.probe(&m, &s, f64::NAN);
         println!(
             "λ {l:.4} t {:.3} exact f {:.5} far f {:.5} probe f {:.5} rate {:.3}",
             s.x.t,
             d(exact.xi),
-            d(far.xi),
+            far,
             p.f,
             p.rate
         );

@@ -16,7 +16,7 @@
 
 use crate::bounds::Aabb;
 use crate::chart::LocalChart;
-use crate::worldline::{LocalPoint, WorldPoint, Worldline, WorldlineError};
+use crate::worldline::{Located, WorldPoint, Worldline, WorldlineError};
 use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
 use spacetime::polarization::measured;
@@ -167,7 +167,7 @@ impl Target {
                     let lp = worldline.localize(metric, s.x, seed, far)?;
                     Some((
                         local_probe(metric, *radius, worldline, far, &lp, s),
-                        lp.exact,
+                        matches!(lp, Located::Near(_)),
                     ))
                 };
                 match at(seed) {
@@ -267,7 +267,9 @@ impl Target {
                 } else {
                     worldline.tau_guess(s.x.t)
                 };
-                let lp = worldline.localize(metric, s.x, seed, f64::INFINITY)?;
+                let lp = worldline
+                    .localize(metric, s.x, seed, f64::INFINITY)?
+                    .near()?;
                 let (u_emit, kl) = rest_frame_photon(metric, worldline, &lp.at, s.x, k);
                 let (u, v) = lon_lat(lp.xi);
                 let dir = normalize3([-kl[1], -kl[2], -kl[3]]);
@@ -324,27 +326,28 @@ fn local_probe(
     radius: f64,
     worldline: &Worldline,
     far: f64,
-    lp: &LocalPoint,
+    lp: &Located,
     s: &GeodesicState,
 ) -> Probe {
-    // Far estimates are shrunk to stay below the true distance: at the switch the
-    // first-order distance exceeds the second-order one by ~5 %, further out by more; the
-    // slack grows from 1.1 to FAR_SLACK.
-    let d1 = norm3(lp.xi);
-    // (Free fall: the estimate comes from a point that is not simultaneous and is never
-    // trusted beyond one step, so the full slack at once.)
-    let slack = match worldline {
-        Worldline::Rest { .. } => 1.1 + (FAR_SLACK - 1.1) * ((d1 - far) / far).min(1.0),
-        Worldline::Free(_) => FAR_SLACK,
-    };
-    // A far point is outside (beyond R + FAR_DISTANCE·a to first order): however large the
-    // ball, its estimate stays at least half that margin clear, never on the inside
-    // (2.95/1.3 once made a false crossing).
-    let floor = radius + 0.5 * FAR_DISTANCE * metric.length_scale();
-    let d = if lp.exact {
-        d1
-    } else {
-        (d1 / slack).max(floor)
+    let (d, tau) = match *lp {
+        Located::Near(lp) => (norm3(lp.xi), lp.at.tau),
+        Located::Far(d1) => {
+            // Far estimates are shrunk to stay below the true distance: at the switch the
+            // first-order distance exceeds the second-order one by ~5 %, further out by
+            // more; the slack grows from 1.1 to FAR_SLACK. (Free fall: the estimate comes
+            // from a point that is not simultaneous and is never trusted beyond one step,
+            // so the full slack at once.)
+            let slack = match worldline {
+                Worldline::Rest { .. } => 1.1 + (FAR_SLACK - 1.1) * ((d1 - far) / far).min(1.0),
+                Worldline::Free(_) => FAR_SLACK,
+            };
+            // A far point is outside (beyond R + FAR_DISTANCE·a to first order): however
+            // large the ball, its estimate stays at least half that margin clear, never on
+            // the inside (2.95/1.3 once made a false crossing). A far match is not
+            // simultaneous: the next probe re-seeds from t.
+            let floor = radius + 0.5 * FAR_DISTANCE * metric.length_scale();
+            ((d1 / slack).max(floor), f64::NAN)
+        }
     };
     // The ray's speed in the rest frame is its energy there, −p·u, which is at most
     // E·γ(1 + v) everywhere on the ray (see Worldline::speed_factor): a bound valid over any
@@ -353,8 +356,7 @@ fn local_probe(
     Probe {
         f: d - radius,
         rate: GLOBAL_RATE_MARGIN * eps_max,
-        // A far match is not simultaneous: the next probe re-seeds from t.
-        tau: if lp.exact { lp.at.tau } else { f64::NAN },
+        tau,
     }
 }
 
@@ -390,7 +392,7 @@ impl Target {
                 } else {
                     worldline.tau_guess(x.t)
                 };
-                let lp = worldline.localize(metric, x, seed, f64::INFINITY)?;
+                let lp = worldline.localize(metric, x, seed, f64::INFINITY)?.near()?;
                 let (_, kl) = rest_frame_photon(metric, worldline, &lp.at, x, k_light);
                 let (_, kv) = rest_frame_photon(metric, worldline, &lp.at, x, view);
                 let n = normalize3(lp.xi);

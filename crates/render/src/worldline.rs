@@ -37,10 +37,36 @@ pub struct WorldPoint {
 pub struct LocalPoint {
     /// The matched worldline point.
     pub at: WorldPoint,
-    /// Spatial rest-frame coordinates of the ray point relative to the object's centre.
+    /// Spatial rest-frame coordinates of the ray point relative to the object's centre, to
+    /// second order.
     pub xi: [f64; 3],
-    /// Second-order (near) or only first-order (far) coordinates.
-    pub exact: bool,
+}
+
+/// A ray point's match on an object's worldline ([`Worldline::localize`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Located {
+    /// Near the object: its rest-frame coordinates.
+    Near(LocalPoint),
+    /// Farther than asked: the first-order rest-frame distance only, an estimate.
+    Far(f64),
+}
+
+impl Located {
+    /// The point's coordinates where it is near.
+    pub fn near(self) -> Option<LocalPoint> {
+        match self {
+            Located::Near(lp) => Some(lp),
+            Located::Far(_) => None,
+        }
+    }
+
+    /// The rest-frame distance from the centre: |ξ| near, the first-order estimate far.
+    pub fn distance(&self) -> f64 {
+        match self {
+            Located::Near(lp) => lp.xi.iter().map(|c| c * c).sum::<f64>().sqrt(),
+            Located::Far(d) => *d,
+        }
+    }
 }
 
 /// Worldline of a local object.
@@ -295,21 +321,7 @@ impl Worldline {
                 event: Event::new(tau, position.x, position.y, position.z),
                 frame: *frame,
             }),
-            Worldline::Free(f) => {
-                let s: [f64; 20] = f.state(tau)?;
-                let x = Event::new(s[0], s[1], s[2], s[3]);
-                let u = metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
-                let e = |k: usize| {
-                    FourVector::new(s[8 + 4 * k], s[9 + 4 * k], s[10 + 4 * k], s[11 + 4 * k])
-                };
-                Some(WorldPoint {
-                    tau,
-                    event: x,
-                    frame: Tetrad {
-                        e: [u, e(0), e(1), e(2)],
-                    },
-                })
-            }
+            Worldline::Free(f) => Some(point(metric, tau, &f.state(tau)?)),
         }
     }
 
@@ -377,15 +389,9 @@ impl Worldline {
     /// with it, starting the search at `tau_guess`. None if the match leaves the worldline.
     ///
     /// Points whose first-order rest-frame distance exceeds `far` are returned with that
-    /// first-order distance only (`exact = false`): the second-order terms matter only near
+    /// first-order distance only ([`Located::Far`]): the second-order terms matter only near
     /// the object, and the caller treats far distances as estimates.
-    pub fn localize(
-        &self,
-        metric: &Metric,
-        x: Event,
-        tau_guess: f64,
-        far: f64,
-    ) -> Option<LocalPoint> {
+    pub fn localize(&self, metric: &Metric, x: Event, tau_guess: f64, far: f64) -> Option<Located> {
         match self {
             Worldline::Rest {
                 position,
@@ -402,44 +408,39 @@ impl Worldline {
                 let mut t = x.t - dt;
                 let first =
                     local_coords(dual, None, Event::new(t, center.x, center.y, center.z), x);
+                let distance = norm3(&first);
+                if !(distance <= far) {
+                    return Some(Located::Far(distance));
+                }
                 let mut xi = first;
-                let exact = norm3(&first) <= far;
-                if exact {
-                    for _ in 0..2 {
-                        xi = local_coords(
-                            dual,
-                            Some(gamma),
-                            Event::new(t, center.x, center.y, center.z),
-                            x,
-                        );
-                        t += xi[0];
-                    }
+                for _ in 0..2 {
+                    xi = local_coords(
+                        dual,
+                        Some(gamma),
+                        Event::new(t, center.x, center.y, center.z),
+                        x,
+                    );
+                    t += xi[0];
                 }
                 let at = WorldPoint {
                     tau: t,
                     event: Event::new(t, position.x, position.y, position.z),
                     frame: *frame,
                 };
-                Some(LocalPoint {
+                Some(Located::Near(LocalPoint {
                     at,
                     xi: [xi[1], xi[2], xi[3]],
-                    exact,
-                })
+                }))
             }
             Worldline::Free(ff) => {
                 // Start inside the integrated range: far points (whose rest-frame "now" may
                 // lie beyond it) still get a finite distance, so no step is skipped.
                 let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
-                let p = self.at(metric, tau)?;
-                let first = first_order(metric, &p, x);
-                if norm3(&first) > far {
+                let (xi0, distance) = ff.first_order(metric, tau, x)?;
+                if distance > far {
                     // Far: an estimate only (the tracer never lets it vouch for more than
                     // one step: with the worldline looping, "now" is ambiguous far away).
-                    return Some(LocalPoint {
-                        at: p,
-                        xi: [first[1], first[2], first[3]],
-                        exact: false,
-                    });
+                    return Some(Located::Far(distance));
                 }
                 // Near: the first-order simultaneity ξ⁰(τ) = −g(u, Δ) = 0 by the secant method,
                 // started with the slope dξ⁰/dτ = −1 of a slow object. For a fast one the
@@ -447,7 +448,7 @@ impl Worldline {
                 // −2.3 at 0.99 c), where Newton with slope −1 diverges. (The first-order
                 // condition has one root near the ball; the second-order one can have more,
                 // and a secant on it jumped between them from one ray point to the next.)
-                let (mut ta, mut fa) = (tau, first[0]);
+                let (mut ta, mut fa) = (tau, xi0);
                 tau = (ta + fa).clamp(ff.tau_min, ff.tau_max);
                 let mut fb = ff.time_offset(metric, tau, x)?;
                 for _ in 0..SIMULTANEITY_STEPS {
@@ -471,14 +472,33 @@ impl Worldline {
                     .clamp(ff.tau_min, ff.tau_max);
                 let pb = self.at(metric, tau)?;
                 let xb = origin_coords(metric, &ff.origin, &pb, x);
-                Some(LocalPoint {
+                Some(Located::Near(LocalPoint {
                     at: pb,
                     xi: [xb[1], xb[2], xb[3]],
-                    exact: true,
-                })
+                }))
             }
         }
     }
+}
+
+/// The worldline point of a free fall's transported state `s` at proper time τ.
+fn point(metric: &Metric, tau: f64, s: &[f64; 20]) -> WorldPoint {
+    let x = Event::new(s[0], s[1], s[2], s[3]);
+    let u = metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
+    let e = |k: usize| FourVector::new(s[8 + 4 * k], s[9 + 4 * k], s[10 + 4 * k], s[11 + 4 * k]);
+    WorldPoint {
+        tau,
+        event: x,
+        frame: Tetrad {
+            e: [u, e(0), e(1), e(2)],
+        },
+    }
+}
+
+/// The time row −g(u, ·) of a free fall's rest frame, in the metric's own chart: −u_μ, which
+/// its state (position, u_μ, …) carries.
+fn own_time_row(s: &[f64; 8]) -> [f64; 4] {
+    [-s[4], -s[5], -s[6], -s[7]]
 }
 
 /// Most secant steps on an object's simultaneity (each converges superlinearly; a handful
@@ -637,21 +657,44 @@ impl FreeFall {
         let p = Event::new(s[0], s[1], s[2], s[3]);
         let chart = LocalChart::of(metric);
         if let LocalChart::Own(_) = chart {
-            // The time row is −g(u, ·) = −u_μ, which the state carries.
-            let row = [-s[4], -s[5], -s[6], -s[7]];
-            return Some(DualFrame::component(&row, (x - p).to_array()));
+            return Some(DualFrame::component(&own_time_row(&s), (x - p).to_array()));
         }
         let u = metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
         let at = chart.event(p);
         let row = DualFrame::row(&chart.metric(at), 0, chart.vector(p, u));
         Some(DualFrame::component(&row, (chart.event(x) - at).to_array()))
     }
+
+    /// ξ⁰ and the spatial length |ξ| of [`first_order`] at the worldline point of proper
+    /// time τ. In the metric's own chart from the position and u alone: the frame is
+    /// orthonormal, so |ξ|² = g(Δ, Δ) + (ξ⁰)².
+    fn first_order(&self, metric: &Metric, tau: f64, x: Event) -> Option<(f64, f64)> {
+        let chart = LocalChart::of(metric);
+        if let LocalChart::Own(_) = chart {
+            let s: [f64; 8] = self.state(tau)?;
+            let p = Event::new(s[0], s[1], s[2], s[3]);
+            let d = (x - p).to_array();
+            let xi0 = DualFrame::component(&own_time_row(&s), d);
+            let g = metric.metric(p);
+            let dd: f64 = (0..4)
+                .map(|m| d[m] * (0..4).map(|n| g[m][n] * d[n]).sum::<f64>())
+                .sum();
+            return Some((xi0, (dd + xi0 * xi0).max(0.0).sqrt()));
+        }
+        let s: [f64; 20] = self.state(tau)?;
+        let first = first_order(metric, &point(metric, tau, &s), x);
+        Some((first[0], norm3(&first)))
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{through, StepIndex, X_AXIS, Y_AXIS};
-    use spacetime::{Event, FourVector, GodelType, Isometry, TypeIsometry};
+    use super::{first_order, norm3, point, through, StepIndex, Worldline, X_AXIS, Y_AXIS};
+    use scene::Motion;
+    use spacetime::{
+        Event, FourVector, Godel, GodelType, Isometry, LocalVelocity, Metric, Minkowski,
+        TypeIsometry,
+    };
 
     /// Numbers in [0, 1) from a fixed seed (xorshift64*): the same cases every run.
     fn uniform(state: &mut u64) -> f64 {
@@ -721,6 +764,47 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// The first-order match from the position and u alone (ξ⁰ = −u_μΔ^μ, |ξ|² = g(Δ, Δ) +
+    /// (ξ⁰)²) is the one measured with the whole transported frame, for fast falls (0.9 c)
+    /// in Gödel's universe and in Minkowski space, at points up to 3a from the worldline and
+    /// far from simultaneous. With |ξ|² = g(Δ, Δ) − (ξ⁰)², or ξ⁰ of the opposite sign, it
+    /// fails.
+    #[test]
+    fn the_first_order_match_needs_only_position_and_velocity() {
+        let mut rng = 11u64;
+        let mut draw = |scale: f64| scale * (2.0 * uniform(&mut rng) - 1.0);
+        for metric in [Metric::Godel(Godel::new(1.0)), Metric::Minkowski(Minkowski)] {
+            let motion = Motion::Geodesic {
+                start: Event::new(0.0, -1.0, 0.3, 0.0),
+                velocity: LocalVelocity::new(0.9, [1.0, 0.4, 0.2]).unwrap(),
+            };
+            let Ok(Worldline::Free(ff)) = Worldline::new(metric, &motion, -6.0, 1.0) else {
+                panic!("a free fall");
+            };
+            for _ in 0..300 {
+                let tau = ff.tau_min + (ff.tau_max - ff.tau_min) * (0.5 + 0.5 * draw(1.0));
+                let c = point(&metric, tau, &ff.state(tau).unwrap()).event;
+                let x = Event::new(
+                    c.t + draw(3.0),
+                    c.x + draw(1.5),
+                    c.y + draw(1.5),
+                    c.z + draw(1.5),
+                );
+                let (xi0, distance) = ff.first_order(&metric, tau, x).unwrap();
+                let want = first_order(&metric, &point(&metric, tau, &ff.state(tau).unwrap()), x);
+                let scale = 1.0 + norm3(&want) + want[0].abs();
+                assert!(
+                    (xi0 - want[0]).abs() <= 1e-12 * scale,
+                    "ξ⁰ {xi0} vs {want:?}"
+                );
+                assert!(
+                    (distance - norm3(&want)).abs() <= 1e-9 * scale,
+                    "|ξ| {distance} vs {want:?}"
+                );
             }
         }
     }

@@ -11,7 +11,7 @@ use render::falling::{FallingBall, LoopWindow, REACH_PER_GAMMA_RADIUS};
 use render::reject::static_distance;
 use render::target::Target;
 use render::tracer::Tracer;
-use render::worldline::Worldline;
+use render::worldline::{Located, Worldline};
 use scene::Motion;
 use spacetime::{
     photon_tangent, Event, ExactGeodesic, GeodesicState, Godel, LocalVelocity, Metric, Spacetime,
@@ -66,7 +66,7 @@ proptest! {
         let x = Event::new(
             p.event.t + c(0), p.event.x + c(1), p.event.y + c(2), p.event.z + c(3),
         );
-        let lp = worldline.localize(&metric, x, tau * a, f64::INFINITY).unwrap();
+        let lp = worldline.localize(&metric, x, tau * a, f64::INFINITY).and_then(Located::near).unwrap();
         let r = norm(lp.xi);
         prop_assume!(r <= 0.5 * a);
         let (_, _, gamma) = worldline.free_fall_range().unwrap();
