@@ -58,6 +58,8 @@ pub struct FallingBall {
     cosh_near: f64,
     /// Time slack S between a ray point and the cells that may hold its centre.
     slack: f64,
+    /// The least and the greatest height of the cells.
+    z_range: (f64, f64),
 }
 
 impl FallingBall {
@@ -95,6 +97,11 @@ impl FallingBall {
             return None;
         }
         cells.sort_by(|p, q| p.t.total_cmp(&q.t));
+        let z_range = cells
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                (lo.min(c.z), hi.max(c.z))
+            });
         let reach = REACH_PER_GAMMA_RADIUS * gamma * radius + SLACK_PER_A * a;
         let near = reach + 0.5 * speed * dtau;
         let u_t = gamma + SQRT_2 * speed;
@@ -106,6 +113,7 @@ impl FallingBall {
             slack: REACH_PER_GAMMA_RADIUS * gamma * radius * (v + SQRT_2)
                 + 0.5 * u_t * dtau
                 + SLACK_PER_A * a,
+            z_range,
         })
     }
 
@@ -142,18 +150,41 @@ impl FallingBall {
         if !(dt != 0.0 && dt.is_finite() && ray.l_ret > 0.0 && t_start.is_finite()) {
             return false;
         }
+        // The λ where the ray's height p_z λ is within M of some cell's (widened far beyond
+        // rounding): every cell's λ window in `near_in` lies inside it.
+        let (z_lo, z_hi) = (self.z_range.0 - self.near, self.z_range.1 + self.near);
+        let (heights_from, heights_until) = if ray.pz == 0.0 {
+            if z_lo <= 0.0 && 0.0 <= z_hi {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            } else {
+                (f64::INFINITY, f64::NEG_INFINITY)
+            }
+        } else {
+            let (p, q) = (z_lo / ray.pz, z_hi / ray.pz);
+            let margin = 1e-9 * (p.abs().max(q.abs()) + ray.l_ret);
+            (p.min(q) - margin, p.max(q) + margin)
+        };
         let mut needed = 0;
         for k in 0..=scene::MAX_RAY_LOOPS {
             let kf = k as f64;
             let l0 = kf * ray.l_ret;
             let (ta, tb) = (t_start + kf * dt, t_start + (kf + 1.0) * dt);
-            // Loops beyond the worldline's times, in the ray's direction, need nothing.
-            if l0 >= until || (dt < 0.0 && ta < first) || (dt > 0.0 && ta > last) {
+            // Loops beyond the worldline's times, in the ray's direction, or beyond its
+            // heights (λ only leads farther from them) need nothing.
+            if l0 >= until
+                || (dt < 0.0 && ta < first)
+                || (dt > 0.0 && ta > last)
+                || l0 > heights_until
+            {
                 out.truncate(needed);
                 return true;
             }
             let l1 = (l0 + ray.l_ret).min(until);
-            let near = self.near_in(ray, ta.min(tb), ta.max(tb), l0, l1);
+            let near = if l1 < heights_from {
+                None // not yet within the heights
+            } else {
+                self.near_in(ray, ta.min(tb), ta.max(tb), l0, l1)
+            };
             out.push(near.map_or(LoopWindow::NONE, |(f, u)| LoopWindow {
                 from: if whole_start { 0.0 } else { f - l0 },
                 until: u - l0,
