@@ -47,6 +47,11 @@ impl Complex {
     }
     /// e^{iα}.
     pub fn cis(alpha: f64) -> Self {
+        if alpha.to_bits() == 0 {
+            // sin_cos(+0) is (+0, 1) exactly; the maps to the origin, which turn by 0, are
+            // in the tracers' inner loops.
+            return Complex::new(1.0, 0.0);
+        }
         let (s, c) = alpha.sin_cos();
         Complex::new(c, s)
     }
