@@ -470,10 +470,10 @@ impl Worldline {
                     tau = (tau + step).clamp(ff.tau_min, ff.tau_max);
                     fb = ff.time_offset(metric, tau, x)?;
                 }
-                let pb = self.at(metric, tau)?;
                 // Second order near the object, taken at the origin (`origin_coords`): one
                 // more Newton step on its ξ⁰.
-                tau = (tau + origin_coords(metric, &ff.origin, &pb, x)[0])
+                let (event, u) = ff.event_velocity(metric, tau)?;
+                tau = (tau + origin_time(metric, &ff.origin, event, u, x))
                     .clamp(ff.tau_min, ff.tau_max);
                 let pb = self.at(metric, tau)?;
                 let xb = origin_coords(metric, &ff.origin, &pb, x);
@@ -540,6 +540,15 @@ fn first_order(metric: &Metric, p: &WorldPoint, x: Event) -> [f64; 4] {
     local_coords(&dual, None, at, chart.event(x))
 }
 
+/// ξ⁰ of [`first_order`] alone, for the worldline point at `event` with four-velocity `u`:
+/// the time row of its frame.
+fn first_order_time(metric: &Metric, event: Event, u: FourVector, x: Event) -> f64 {
+    let chart = LocalChart::of(metric);
+    let at = chart.event(event);
+    let row = DualFrame::row(&chart.metric(at), 0, chart.vector(event, u));
+    DualFrame::component(&row, (chart.event(x) - at).to_array())
+}
+
 /// Rest-frame components of the displacement from the worldline point `p` to `x` in
 /// Riemann normal coordinates to second order, taken after the isometry that sends `p` to
 /// the origin (docs/physics.md "Simultaneity"), in the chart of local descriptions there
@@ -553,23 +562,50 @@ fn origin_coords(
     p: &WorldPoint,
     x: Event,
 ) -> [f64; 4] {
-    let chart = LocalChart::of(metric);
-    let to_origin = match *metric {
-        Metric::Godel(g) => Some(Isometry::to_origin(g.a, p.event))
-            .map(|to| (to.apply(x), to.push_all(p.event, [X_AXIS, Y_AXIS]))),
-        Metric::GodelType(member) => TypeIsometry::to_origin(member, p.event)
-            .map(|to| (to.apply(x), to.push_all(p.event, [X_AXIS, Y_AXIS]))),
-        Metric::Minkowski(_) => None,
-    };
-    let frame = to_origin.map(|(there, axes)| (there, p.frame.e.map(|v| through(axes, v))));
-    let Some((there, frame)) = frame else {
+    let Some((there, axes)) = to_origin(metric, p.event, x) else {
         // Minkowski space (and a member's event at the pole opposite the axis, which the
         // scene's bounds keep any object from reaching): the displacement at `p` itself.
         return first_order(metric, p, x);
     };
     // The chart's differential at the origin is the identity: the frame stays as it is.
+    let frame = p.frame.e.map(|v| through(axes, v));
     let dual = DualFrame::new(&origin.0, &Tetrad { e: frame });
-    local_coords(&dual, Some(&origin.1), ORIGIN, chart.event(there))
+    local_coords(&dual, Some(&origin.1), ORIGIN, there)
+}
+
+/// ξ⁰ of [`origin_coords`] alone, for the worldline point at `event` with four-velocity `u`:
+/// the time row of the frame carried to the origin (the other rows, and the frame's other
+/// vectors, not needed: the Newton step of the simultaneity).
+fn origin_time(
+    metric: &Metric,
+    origin: &(MetricTensor, Christoffel),
+    event: Event,
+    u: FourVector,
+    x: Event,
+) -> f64 {
+    let Some((there, axes)) = to_origin(metric, event, x) else {
+        return first_order_time(metric, event, u, x);
+    };
+    let row = DualFrame::row(&origin.0, 0, through(axes, u));
+    DualFrame::component(
+        &row,
+        normal::displacement(&origin.1, (there - ORIGIN).to_array()),
+    )
+}
+
+/// The ray point `x` moved by the isometry that sends `event` to the origin, in the chart of
+/// local descriptions there, and the images of ∂x and ∂y at `event` ([`through`]). None in
+/// Minkowski space, and at a member's pole opposite the axis.
+fn to_origin(metric: &Metric, event: Event, x: Event) -> Option<(Event, [FourVector; 2])> {
+    let chart = LocalChart::of(metric);
+    let (there, axes) = match *metric {
+        Metric::Godel(g) => Some(Isometry::to_origin(g.a, event))
+            .map(|to| (to.apply(x), to.push_all(event, [X_AXIS, Y_AXIS]))),
+        Metric::GodelType(member) => TypeIsometry::to_origin(member, event)
+            .map(|to| (to.apply(x), to.push_all(event, [X_AXIS, Y_AXIS]))),
+        Metric::Minkowski(_) => None,
+    }?;
+    Some((chart.event(there), axes))
 }
 
 /// The event at the origin of the coordinates.
@@ -665,9 +701,18 @@ impl FreeFall {
             return Some(DualFrame::component(&own_time_row(&s), (x - p).to_array()));
         }
         let u = metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
-        let at = chart.event(p);
-        let row = DualFrame::row(&chart.metric(at), 0, chart.vector(p, u));
-        Some(DualFrame::component(&row, (chart.event(x) - at).to_array()))
+        Some(first_order_time(metric, p, u, x))
+    }
+
+    /// The event and four-velocity at proper time τ (the body frame's other vectors not
+    /// interpolated).
+    fn event_velocity(&self, metric: &Metric, tau: f64) -> Option<(Event, FourVector)> {
+        let s: [f64; 8] = self.state(tau)?;
+        let p = Event::new(s[0], s[1], s[2], s[3]);
+        Some((
+            p,
+            metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7])),
+        ))
     }
 
     /// ξ⁰ and the spatial length |ξ| of [`first_order`] at the worldline point of proper
