@@ -138,6 +138,17 @@ impl Probes {
     }
 }
 
+/// What a scan looks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Want {
+    /// The earliest crossing, refined to full precision (a pixel ray's hit).
+    First,
+    /// Whether there is any (a shadow ray's occlusion): the first crossing found ends the
+    /// scan, and one of an object that takes every crossing ([`Target::accepts_any`]) is not
+    /// refined, its λ only bracketed (the end of the span found to hold it) and τ NaN.
+    Any,
+}
+
 /// The first crossing found in a scan: the object, the ray parameter (relative to the
 /// segment's loop) and the matched proper time on the object's worldline.
 pub struct Crossing {
@@ -199,14 +210,15 @@ impl Intersector {
 
     /// The earliest-λ surface crossing of any active object within [lo, hi] of segment `d` (moved
     /// by `shift`): an entry, or the exit of a ray that started inside (see
-    /// [`Target::crossed`]). Reads the probes at `lo` from `probes.start` and leaves those
-    /// at `hi` in `probes.end`.
+    /// [`Target::crossed`]); with [`Want::Any`] the first found. Reads the probes at `lo`
+    /// from `probes.start` and leaves those at `hi` in `probes.end` (not all of them when a
+    /// [`Want::Any`] scan ends early).
     pub fn scan(
         &self,
         d: &Segment,
         shift: Shift,
-        lo: f64,
-        hi: f64,
+        (lo, hi): (f64, f64),
+        want: Want,
         probes: &mut Probes,
     ) -> Result<Option<Crossing>, OutOfWork> {
         let (lo_abs, hi_abs) = (lo + shift.dl, hi + shift.dl);
@@ -247,14 +259,18 @@ impl Intersector {
             };
             let limit = best.as_ref().map_or(hi, |b| b.lambda);
             if let Some((l, tau)) =
-                self.search(t, d, shift, lo, limit.min(hi), pa, pb, SEARCH_PROBES)?
+                self.search(t, d, shift, lo, limit.min(hi), pa, pb, want, SEARCH_PROBES)?
             {
+                let found = Crossing {
+                    target: i,
+                    lambda: l,
+                    tau,
+                };
+                if want == Want::Any {
+                    return Ok(Some(found));
+                }
                 if best.as_ref().is_none_or(|b| l < b.lambda) {
-                    best = Some(Crossing {
-                        target: i,
-                        lambda: l,
-                        tau,
-                    });
+                    best = Some(found);
                 }
             }
         }
@@ -263,7 +279,8 @@ impl Intersector {
 
     /// Bisection for the first surface crossing of `t` on [a, b]: depth first, the earlier
     /// half first, spans excluded by the rate bound dropped. At most `budget` probes (else
-    /// [`OutOfWork`]) and [`SEARCH_DEPTH`] halvings.
+    /// [`OutOfWork`]) and [`SEARCH_DEPTH`] halvings. With [`Want::Any`], a crossing of an
+    /// object that takes every crossing is reported unrefined (see [`Want`]).
     #[allow(clippy::too_many_arguments)]
     fn search(
         &self,
@@ -274,6 +291,7 @@ impl Intersector {
         b: f64,
         pa: Probe,
         pb: Probe,
+        want: Want,
         budget: u32,
     ) -> Result<Option<(f64, f64)>, OutOfWork> {
         // Each halving pops one span and pushes two, so at most SEARCH_DEPTH + 1 are open.
@@ -288,6 +306,9 @@ impl Intersector {
                 continue; // the object is not defined over this span (beyond its worldline)
             }
             if finite && Target::crossed(pa.f, pb.f) {
+                if want == Want::Any && t.accepts_any() {
+                    return Ok(Some((b, f64::NAN)));
+                }
                 let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
                 let l = refine_root(f, a, b, pa.f, pb.f);
                 let s = shift.apply(d.state_at(l));
@@ -375,7 +396,17 @@ mod tests {
             let t = &intersector.targets[0];
             let pa = t.probe(&metric, &start, f64::NAN);
             let pb = t.probe(&metric, &seg.state_at(1.0), f64::NAN);
-            intersector.search(t, &seg, Shift::default(), 0.0, 1.0, pa, pb, budget)
+            intersector.search(
+                t,
+                &seg,
+                Shift::default(),
+                0.0,
+                1.0,
+                pa,
+                pb,
+                Want::First,
+                budget,
+            )
         };
         assert_eq!(outcome(1e-7, 3), Err(OutOfWork));
         assert_eq!(outcome(1e-7, SEARCH_PROBES), Ok(None));

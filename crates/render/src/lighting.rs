@@ -45,7 +45,7 @@
 //! (docs/physics.md, "Occlusion"); a Gödel-type member has no such tests, and searches
 //! every object along the whole ray.
 
-use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes};
+use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes, Want};
 use crate::reject::{set_ray, Rejection};
 use crate::segment::{ClosedForm, Segment, Shift};
 use spacetime::{
@@ -287,7 +287,7 @@ fn occluded(
             None => Segment::exact_between(geo, sys, l0, l1),
         };
         if objects
-            .scan(&d, Shift::default(), l0, l1, probes)?
+            .scan(&d, Shift::default(), (l0, l1), Want::Any, probes)?
             .is_some()
         {
             return Ok(true);

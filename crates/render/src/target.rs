@@ -239,6 +239,18 @@ impl Target {
         )
     }
 
+    /// Whether every crossing counts ([`Target::accepts`] always true): all but planes of
+    /// limited extent.
+    pub fn accepts_any(&self) -> bool {
+        !matches!(
+            self,
+            Target::Plane {
+                extent: Some(_),
+                ..
+            }
+        )
+    }
+
     /// Whether a plane crossing at `s` lies inside the plane's extent (always true otherwise).
     pub fn accepts(&self, s: &GeodesicState) -> bool {
         match self {

@@ -47,7 +47,7 @@ mod numeric;
 pub use escape::{EscapeStop, MAX_FAMILY_SEGMENTS};
 
 use crate::falling::LoopWindow;
-use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes};
+use crate::intersect::{Crossing, HitPoint, Intersector, OutOfWork, Probes, Want};
 use crate::polarization::{self, RayPlace};
 use crate::reject::{set_ray, Rejection, NUMERIC_TOLERANCE};
 use crate::segment::{loop_bounds, ClosedForm, Segment, Shift};
@@ -303,7 +303,10 @@ impl Tracer {
         probes: &mut Probes,
     ) -> Option<End> {
         let d = segments.last().expect("a segment");
-        match self.objects.scan(d, Shift::default(), lo, hi, probes) {
+        match self
+            .objects
+            .scan(d, Shift::default(), (lo, hi), Want::First, probes)
+        {
             Ok(Some(crossing)) => Some(End::Hit {
                 segment: segments.len() - 1,
                 shift: Shift::default(),
@@ -387,7 +390,10 @@ impl Tracer {
                     self.objects.probe_all(&end, hi + shift.dl, probes);
                     continue;
                 }
-                match self.objects.scan(d, shift, d.lambda0, hi, probes) {
+                match self
+                    .objects
+                    .scan(d, shift, (d.lambda0, hi), Want::First, probes)
+                {
                     Ok(Some(crossing)) => {
                         return End::Hit {
                             segment: i,

@@ -2,7 +2,7 @@
 //! yet lights the ball, also on its averted side; an occluder's shadow falls where an
 //! independent numeric integration of the connecting rays says it must, in Gödel's universe
 //! and in Gödel-type members; the window of emission times holds every winding it should;
-//! the light planes survive the data file.
+//! the light planes survive the data file; a plane of limited extent blocks only within it.
 
 use crate::common::{render_scene, scene};
 use datafile::DataFile;
@@ -368,4 +368,33 @@ fn light_planes_round_trip_through_the_data_file() {
     let back = DataFile::from_bytes(&d.to_bytes().unwrap()).unwrap();
     assert_eq!(back.lights, d.lights);
     assert_eq!(back.records, d.records);
+}
+
+/// A shadow ray is blocked by a plane of limited extent only where it crosses the plane
+/// inside that extent: the lit-side ball with a small plane just below its centre (z = −0.1,
+/// |x|, |y| ≤ 0.05 about the axis), which every connecting ray to the ball's lower points
+/// crosses, almost always far outside it. The ball's lower points keep their light (a ray
+/// that crossed within 0.05 of the axis could darken a few). With every crossing of the
+/// plane taken as a block (its extent ignored in the shadow rays' search) they all went dark.
+#[test]
+fn a_plane_blocks_shadow_rays_only_within_its_extent() {
+    let without = crate::common::scene_text("lit-side.toml", "exact", 360, 40);
+    let plane = "\n[[object]]\nname = \"tile\"\nframe = \"coordinates\"\nshape = \"plane\"\nheight = -0.1\nextent = 0.05\ntexture = { kind = \"uniform\", color = [1.0, 1.0, 1.0] }\n";
+    let with = without.replacen("[[light]]", &format!("{plane}\n[[light]]"), 1);
+    let (a, _) = render_scene(&scene(&without));
+    let (b, _) = render_scene(&scene(&with));
+    let (mut below, mut kept) = (0, 0);
+    for i in 0..a.records.len() {
+        let (r, q) = (&a.records[i], &b.records[i]);
+        if r.object != 0 || q.object != 0 || r.z > -0.12 || a.lights[0][i] <= 0.0 {
+            continue;
+        }
+        below += 1;
+        kept += (b.lights[0][i] == a.lights[0][i]) as usize;
+    }
+    assert!(below >= 20, "only {below} lit ball pixels below the plane");
+    assert!(
+        kept as f64 >= 0.95 * below as f64,
+        "{kept} of {below} lit ball pixels below the plane keep their light"
+    );
 }
