@@ -27,8 +27,10 @@ fn main() {
     let t = Instant::now();
     // BUDGET=N, SIDE=N: cut the work so (the records must not change).
     let env = |name: &str| std::env::var(name).ok().map(|v| v.parse().expect(name));
-    let mut tiling = gpu::Tiling::default();
-    tiling.side = env("SIDE");
+    let mut tiling = gpu::Tiling {
+        side: env("SIDE"),
+        ..Default::default()
+    };
     if let Some(b) = env("BUDGET") {
         tiling.first_budget = b as i32;
     }

@@ -263,7 +263,7 @@ fn the_kernel_traces_godel_type_members_and_refuses_an_escaping_ball_with_one_se
     assert_eq!(a.header.method, "gpu");
     assert_eq!(a.header.metric, "godel-type");
     let m = a.header.member.expect("the member in the header");
-    assert_eq!((m.m2, m.omega), (1.0, 0.7071067811865476));
+    assert_eq!((m.m2, m.omega), (1.0, std::f64::consts::FRAC_1_SQRT_2));
     let hits = |d: &DataFile| {
         d.records
             .iter()
