@@ -486,10 +486,18 @@ impl Worldline {
     }
 }
 
+/// The event and four-velocity u^μ of a free fall's transported state `s` (position, u_μ, …).
+fn event_velocity(metric: &Metric, s: &[f64]) -> (Event, FourVector) {
+    let x = Event::new(s[0], s[1], s[2], s[3]);
+    (
+        x,
+        metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7])),
+    )
+}
+
 /// The worldline point of a free fall's transported state `s` at proper time τ.
 fn point(metric: &Metric, tau: f64, s: &[f64; 20]) -> WorldPoint {
-    let x = Event::new(s[0], s[1], s[2], s[3]);
-    let u = metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
+    let (x, u) = event_velocity(metric, s);
     let e = |k: usize| FourVector::new(s[8 + 4 * k], s[9 + 4 * k], s[10 + 4 * k], s[11 + 4 * k]);
     WorldPoint {
         tau,
@@ -694,13 +702,12 @@ impl FreeFall {
     /// from the position and u (the body frame's other vectors not interpolated). What the
     /// simultaneity's secant steps need.
     fn time_offset(&self, metric: &Metric, tau: f64, x: Event) -> Option<f64> {
-        let s: [f64; 8] = self.state(tau)?;
-        let p = Event::new(s[0], s[1], s[2], s[3]);
-        let chart = LocalChart::of(metric);
-        if let LocalChart::Own(_) = chart {
+        if let LocalChart::Own(_) = LocalChart::of(metric) {
+            let s: [f64; 8] = self.state(tau)?;
+            let p = Event::new(s[0], s[1], s[2], s[3]);
             return Some(DualFrame::component(&own_time_row(&s), (x - p).to_array()));
         }
-        let u = metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7]));
+        let (p, u) = self.event_velocity(metric, tau)?;
         Some(first_order_time(metric, p, u, x))
     }
 
@@ -708,11 +715,7 @@ impl FreeFall {
     /// interpolated).
     fn event_velocity(&self, metric: &Metric, tau: f64) -> Option<(Event, FourVector)> {
         let s: [f64; 8] = self.state(tau)?;
-        let p = Event::new(s[0], s[1], s[2], s[3]);
-        Some((
-            p,
-            metric.raise(p, spacetime::Covector::new(s[4], s[5], s[6], s[7])),
-        ))
+        Some(event_velocity(metric, &s))
     }
 
     /// ξ⁰ and the spatial length |ξ| of [`first_order`] at the worldline point of proper
@@ -723,12 +726,9 @@ impl FreeFall {
         if let LocalChart::Own(_) = chart {
             let s: [f64; 8] = self.state(tau)?;
             let p = Event::new(s[0], s[1], s[2], s[3]);
-            let d = (x - p).to_array();
-            let xi0 = DualFrame::component(&own_time_row(&s), d);
-            let g = metric.metric(p);
-            let dd: f64 = (0..4)
-                .map(|m| d[m] * (0..4).map(|n| g[m][n] * d[n]).sum::<f64>())
-                .sum();
+            let d = FourVector::from_array((x - p).to_array());
+            let xi0 = DualFrame::component(&own_time_row(&s), d.to_array());
+            let dd = metric.dot(p, d, d);
             return Some((xi0, (dd + xi0 * xi0).max(0.0).sqrt()));
         }
         let s: [f64; 20] = self.state(tau)?;
