@@ -508,12 +508,6 @@ fn point(metric: &Metric, tau: f64, s: &[f64; 20]) -> WorldPoint {
     }
 }
 
-/// The time row −g(u, ·) of a free fall's rest frame, in the metric's own chart: −u_μ, which
-/// its state (position, u_μ, …) carries.
-fn own_time_row(s: &[f64; 8]) -> [f64; 4] {
-    [-s[4], -s[5], -s[6], -s[7]]
-}
-
 /// Most secant steps on an object's simultaneity (each converges superlinearly; a handful
 /// suffice, the bound keeps a pathological case finite).
 const SIMULTANEITY_STEPS: usize = 12;
@@ -703,12 +697,21 @@ impl FreeFall {
     /// simultaneity's secant steps need.
     fn time_offset(&self, metric: &Metric, tau: f64, x: Event) -> Option<f64> {
         if let LocalChart::Own(_) = LocalChart::of(metric) {
-            let s: [f64; 8] = self.state(tau)?;
-            let p = Event::new(s[0], s[1], s[2], s[3]);
-            return Some(DualFrame::component(&own_time_row(&s), (x - p).to_array()));
+            return self.own_time_offset(tau, x).map(|(_, _, xi0)| xi0);
         }
         let (p, u) = self.event_velocity(metric, tau)?;
         Some(first_order_time(metric, p, u, x))
+    }
+
+    /// In the metric's own chart: the worldline point at proper time τ, the displacement Δ
+    /// from it to `x`, and ξ⁰ = −g(u, Δ) = −u_μΔ^μ, with u_μ read from the state (no raise,
+    /// no metric).
+    fn own_time_offset(&self, tau: f64, x: Event) -> Option<(Event, FourVector, f64)> {
+        let s: [f64; 8] = self.state(tau)?;
+        let p = Event::new(s[0], s[1], s[2], s[3]);
+        let d = (x - p).to_array();
+        let xi0 = DualFrame::component(&[-s[4], -s[5], -s[6], -s[7]], d);
+        Some((p, FourVector::from_array(d), xi0))
     }
 
     /// The event and four-velocity at proper time τ (the body frame's other vectors not
@@ -722,12 +725,8 @@ impl FreeFall {
     /// time τ. In the metric's own chart from the position and u alone: the frame is
     /// orthonormal, so |ξ|² = g(Δ, Δ) + (ξ⁰)².
     fn first_order(&self, metric: &Metric, tau: f64, x: Event) -> Option<(f64, f64)> {
-        let chart = LocalChart::of(metric);
-        if let LocalChart::Own(_) = chart {
-            let s: [f64; 8] = self.state(tau)?;
-            let p = Event::new(s[0], s[1], s[2], s[3]);
-            let d = FourVector::from_array((x - p).to_array());
-            let xi0 = DualFrame::component(&own_time_row(&s), d.to_array());
+        if let LocalChart::Own(_) = LocalChart::of(metric) {
+            let (p, d, xi0) = self.own_time_offset(tau, x)?;
             let dd = metric.dot(p, d, d);
             return Some((xi0, (dd + xi0 * xi0).max(0.0).sqrt()));
         }
