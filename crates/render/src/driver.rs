@@ -169,7 +169,7 @@ impl<'a> Renderer<'a> {
             max_steps: scene.trace.max_steps,
             exact: scene.trace.method == TraceMethod::Exact,
         };
-        let objects = Intersector { metric: m, targets };
+        let objects = Intersector::new(m, targets);
         let tracer = Tracer::new(objects, &obs, options);
         let lighting = Lighting::new(
             scene.lights.iter().map(LightSource::from_scene).collect(),

@@ -6,7 +6,8 @@
 //! clearance |f| proves that no crossing happens within |f|/rate (conservative advancement,
 //! for objects whose bound holds over several steps); otherwise the span is bisected, the
 //! earlier half first, dropping spans where |f(a)| + |f(b)| > rate·(b − a) with both ends on
-//! one side (the ray cannot reach the surface and come back). Any change of side is a hit,
+//! one side (the ray cannot reach the surface and come back), or where a local ball's
+//! rest-frame chord passes clear of it ([`crate::chord`]). Any change of side is a hit,
 //! so a ray that starts inside an object sees its inner surface.
 //!
 //! Every search is bounded: [`SEARCH_DEPTH`] halvings (a resolution limit: a graze closer
@@ -45,6 +46,9 @@ pub struct OutOfWork;
 pub struct Intersector {
     pub metric: Metric,
     pub targets: Vec<Target>,
+    /// Whether spans may also be excluded by their rest-frame chord
+    /// ([`Target::chord_excludes`]; off only to compare).
+    pub chords: bool,
 }
 
 /// A probe and the ray parameter (absolute: loop shifts included) where it was taken.
@@ -167,6 +171,15 @@ pub struct HitPoint {
 }
 
 impl Intersector {
+    /// The objects `targets` in `metric`, searched with every exclusion.
+    pub fn new(metric: Metric, targets: Vec<Target>) -> Intersector {
+        Intersector {
+            metric,
+            targets,
+            chords: true,
+        }
+    }
+
     /// Probe buffers for one thread.
     pub fn probes(&self) -> Probes {
         let none = Measured {
@@ -174,6 +187,7 @@ impl Intersector {
                 f: 0.0,
                 rate: 0.0,
                 tau: f64::NAN,
+                xi: [f64::NAN; 3],
             },
             at: 0.0,
         };
@@ -247,9 +261,15 @@ impl Intersector {
                 continue;
             }
             // A probe taken before lo still bounds |f| at lo from below (same side).
-            let pa = Probe {
-                f: p.f - p.f.signum() * p.rate * (lo_abs - m.at),
-                ..p
+            // (Its rest-frame coordinates are those of its own place, not of lo's.)
+            let pa = if m.at == lo_abs {
+                p
+            } else {
+                Probe {
+                    f: p.f - p.f.signum() * p.rate * (lo_abs - m.at),
+                    xi: [f64::NAN; 3],
+                    ..p
+                }
             };
             let s_hi = *s_hi.get_or_insert_with(|| shift.apply(d.state_at(hi)));
             let pb = t.probe(&self.metric, &s_hi, pa.tau);
@@ -320,7 +340,10 @@ impl Intersector {
             // With one end undefined (no rest-frame match there) nothing can be excluded:
             // halve until both ends are known.
             let rate = pa.rate.max(pb.rate);
-            if (finite && Target::excluded(pa.f, pb.f, rate, b - a)) || depth >= SEARCH_DEPTH {
+            let excluded = finite
+                && (Target::excluded(pa.f, pb.f, rate, b - a)
+                    || self.chords && t.chord_excludes(&self.metric, &pa, &pb, b - a));
+            if excluded || depth >= SEARCH_DEPTH {
                 continue;
             }
             if probes == budget {
@@ -380,13 +403,13 @@ mod tests {
             })
             .expect("one side is convex");
         let outcome = |gap: f64, budget: u32| {
-            let intersector = Intersector {
+            let intersector = Intersector::new(
                 metric,
-                targets: vec![Target::CoordinateSphere {
+                vec![Target::CoordinateSphere {
                     center: centre(convex, gap),
                     radius,
                 }],
-            };
+            );
             let start = GeodesicState {
                 x: o,
                 p: metric.lower(o, k),

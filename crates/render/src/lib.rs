@@ -7,7 +7,8 @@
 //!   [`polarization`]: the pixel's polarization vector carried along it.
 //! - [`intersect`]: the bounded intersection search shared by pixel and shadow rays, over
 //!   the [`segment`]s of a ray; [`target`]: the objects' signed distances and surfaces;
-//!   [`worldline`]: the objects' worldlines and body frames; [`bounds`]: boxes;
+//!   [`worldline`]: the objects' worldlines and body frames; [`chord`]: ruling out grazes
+//!   of a local ball by its rest-frame chord; [`bounds`]: boxes;
 //!   [`reject`]: whole-ray rejection of objects at rest, and loop by loop of balls in free
 //!   fall ([`falling`]), with the rays' circles ([`circle`]).
 //! - [`lighting`]: direct light from point sources by shadow rays.
@@ -29,6 +30,7 @@
 
 pub mod bounds;
 pub mod chart;
+pub mod chord;
 pub mod circle;
 pub mod driver;
 pub mod falling;

@@ -16,6 +16,7 @@
 
 use crate::bounds::Aabb;
 use crate::chart::LocalChart;
+use crate::chord;
 use crate::worldline::{Located, WorldPoint, Worldline, WorldlineError};
 use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
@@ -57,6 +58,8 @@ pub struct Probe {
     pub rate: f64,
     /// Matched proper time on the worldline (local objects), to seed the next match.
     pub tau: f64,
+    /// The ray point's rest-frame coordinates (local objects, near them; NaN otherwise).
+    pub xi: [f64; 3],
 }
 
 impl Probe {
@@ -64,6 +67,7 @@ impl Probe {
         f: f64::INFINITY,
         rate: 0.0,
         tau: f64::NAN,
+        xi: [f64::NAN; 3],
     };
 }
 
@@ -194,6 +198,7 @@ impl Target {
                     f: d - radius,
                     rate: RATE_MARGIN * norm3([v.x, v.y, v.z]),
                     tau: f64::NAN,
+                    xi: [f64::NAN; 3],
                 }
             }
             Target::Plane { height, .. } => {
@@ -202,6 +207,7 @@ impl Target {
                     f: s.x.z - height,
                     rate: RATE_MARGIN * v.z.abs(),
                     tau: f64::NAN,
+                    xi: [f64::NAN; 3],
                 }
             }
         }
@@ -222,6 +228,25 @@ impl Target {
     /// span, since |df/dλ| ≤ rate (`rate == 0`: f is constant, e.g. a ray lying in a plane).
     pub fn excluded(fa: f64, fb: f64, rate: f64, h: f64) -> bool {
         !Self::crossed(fa, fb) && (fa.abs() + fb.abs() > rate * h || rate == 0.0)
+    }
+
+    /// Whether a span of length `h` between the probes `pa` and `pb` (both on one side)
+    /// provably holds no crossing by the chord of the ray's rest-frame path
+    /// ([`crate::chord`]): local balls in Gödel's universe, both ends near the ball.
+    pub fn chord_excludes(&self, metric: &Metric, pa: &Probe, pb: &Probe, h: f64) -> bool {
+        let (Target::LocalSphere { radius, worldline }, Some(a)) = (self, metric.godel_a()) else {
+            return false;
+        };
+        if !(pa.xi[0].is_finite() && pb.xi[0].is_finite()) {
+            return false;
+        }
+        // The static energy E, from the rate bound GLOBAL_RATE_MARGIN·E·s (`local_probe`).
+        let s = worldline.speed_factor();
+        let energy = pa.rate.max(pb.rate) / (GLOBAL_RATE_MARGIN * s);
+        let ends = norm3(pa.xi).max(norm3(pb.xi));
+        let at_rest = matches!(worldline, Worldline::Rest { .. });
+        chord::stray(a, at_rest, s, energy, ends, h)
+            .is_some_and(|e| chord::excludes(*radius, pa.xi, pb.xi, e))
     }
 
     /// Whether a probe may vouch for a span of several steps: its distance is a lower bound
@@ -341,8 +366,8 @@ fn local_probe(
     lp: &Located,
     s: &GeodesicState,
 ) -> Probe {
-    let (d, tau) = match *lp {
-        Located::Near(lp) => (norm3(lp.xi), lp.at.tau),
+    let (d, tau, xi) = match *lp {
+        Located::Near(lp) => (norm3(lp.xi), lp.at.tau, lp.xi),
         Located::Far(d1) => {
             // Far estimates are shrunk to stay below the true distance: at the switch the
             // first-order distance exceeds the second-order one by ~5 %, further out by
@@ -358,7 +383,7 @@ fn local_probe(
             // the inside (2.95/1.3 once made a false crossing). A far match is not
             // simultaneous: the next probe re-seeds from t.
             let floor = radius + 0.5 * FAR_DISTANCE * metric.length_scale();
-            ((d1 / slack).max(floor), f64::NAN)
+            ((d1 / slack).max(floor), f64::NAN, [f64::NAN; 3])
         }
     };
     // The ray's speed in the rest frame is its energy there, −p·u, which is at most
@@ -369,6 +394,7 @@ fn local_probe(
         f: d - radius,
         rate: GLOBAL_RATE_MARGIN * eps_max,
         tau,
+        xi,
     }
 }
 

@@ -184,6 +184,13 @@ impl Tracer {
         self
     }
 
+    /// The same tracer without the chord exclusion ([`crate::chord`]; for tests that
+    /// compare the two).
+    pub fn without_chords(mut self) -> Tracer {
+        self.objects.chords = false;
+        self
+    }
+
     /// The same tracer with the reach of its balls in free fall scaled by `factor`
     /// ([`crate::falling::FallingBall::scaled`]; for tests that must see an over-eager bound
     /// change records).

@@ -291,7 +291,7 @@ pub fn tracer(sc: &Scene) -> render::tracer::Tracer {
         .map(|ob| Target::new(m, ob, t_min, o.event.t + 1.0).unwrap())
         .collect();
     Tracer::new(
-        Intersector { metric: m, targets },
+        Intersector::new(m, targets),
         &o,
         TraceOptions {
             max_past: sc.trace.max_past,

@@ -6,6 +6,7 @@
 mod common;
 
 mod cancel;
+mod chord;
 mod coordinates;
 mod determinism;
 mod exact;
