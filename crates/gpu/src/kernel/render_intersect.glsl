@@ -3,7 +3,8 @@
 // intersection search") as one state machine with one probe call: a ray is searched loop by
 // loop (later loops are the first one's copies) and segment by segment; per segment and
 // object, conservative advancement from the last probe, else a depth-first bisection that
-// drops spans excluded by the rate bound (at most SEARCH_DEPTH halvings and SEARCH_PROBES
+// drops spans excluded by the rate bound or, near a ball at rest, by the chord of its
+// rest-frame path (chordExcludes; at most SEARCH_DEPTH halvings and SEARCH_PROBES
 // probes), and the Illinois refinement of a crossing. The bisection is stackless: spans are
 // dyadic pieces of the searched stretch, so the span after a finished one follows from its
 // depth and index (its start probe is the finished span's end probe; its end is probed
@@ -392,7 +393,9 @@ void machineStep() {
                 mach.mode = M_REFINE;
             } else {
                 float rate = max(bis.pa.rate, bis.pb.rate);
-                if (!((finiteBoth && excluded(bis.pa.f, bis.pb.f, rate, bis.b - bis.a)) || bis.depth >= SEARCH_DEPTH)) {
+                bool out_ = finiteBoth && (excluded(bis.pa.f, bis.pb.f, rate, bis.b - bis.a)
+                                           || chordExcludes(mach.obj, bis.pa, bis.pb, bis.b - bis.a));
+                if (!(out_ || bis.depth >= SEARCH_DEPTH)) {
                     // Halve: the earlier half first.
                     if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
                     bis.probes++;
@@ -444,7 +447,7 @@ void machineStep() {
                 float fEnd = isRest(mach.obj)
                     ? REACH_PER_RADIUS * objs[mach.obj].radius / 1.05 - objs[mach.obj].radius
                     : plan.ray.geo.pz * (mach.hi + off) - oCz[mach.obj];
-                setEndProbe(mach.obj, Probe(fEnd, p.rate, NO_TAU), mach.hi + off);
+                setEndProbe(mach.obj, Probe(fEnd, p.rate, NO_TAU, vec3(0.0), false), mach.hi + off);
                 continue;
             }
             float clear = abs(p.f);
@@ -452,8 +455,10 @@ void machineStep() {
                 setEndProbe(mach.obj, p, at);   // provably no crossing of this object within the segment
                 continue;
             }
-            // A probe taken before lo still bounds |f| at lo from below (same side).
-            bis.pa = Probe(p.f - sign(p.f) * p.rate * (mach.lo + off - at), p.rate, p.tau);
+            // A probe taken before lo still bounds |f| at lo from below (same side); its
+            // rest-frame coordinates are its own place's.
+            bool here = at == mach.lo + off;
+            bis.pa = Probe(p.f - sign(p.f) * p.rate * (mach.lo + off - at), p.rate, p.tau, p.xi, p.near && here);
             request(Q_END, mach.hi, bis.pa.tau);
             return;
         }
