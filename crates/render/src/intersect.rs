@@ -81,7 +81,12 @@ pub struct Probes {
     /// The closed form's λ per loop of the current ray, where its λ is the closed form's (the
     /// exact tracer's rays and the shadow rays; NaN otherwise).
     pub loop_length: f64,
+    /// The bisection's open spans (at most SEARCH_DEPTH + 2; reused, not filled per search).
+    spans: Vec<Span>,
 }
+
+/// An open span of a bisection: [a, b], its end probes and its depth.
+type Span = (f64, f64, Probe, Probe, u32);
 
 impl Probes {
     /// The end probes become the next segment's start probes.
@@ -200,6 +205,7 @@ impl Intersector {
             loops: vec![Vec::new(); self.targets.len()],
             near: vec![None; self.targets.len()],
             loop_length: f64::NAN,
+            spans: Vec::with_capacity(SEARCH_DEPTH as usize + 2),
         }
     }
 
@@ -278,9 +284,16 @@ impl Intersector {
                 at: hi_abs,
             };
             let limit = best.as_ref().map_or(hi, |b| b.lambda);
-            if let Some((l, tau)) =
-                self.search(t, d, shift, lo, limit.min(hi), pa, pb, want, SEARCH_PROBES)?
-            {
+            if let Some((l, tau)) = self.search(
+                t,
+                d,
+                shift,
+                (lo, limit.min(hi)),
+                (pa, pb),
+                want,
+                SEARCH_PROBES,
+                &mut probes.spans,
+            )? {
                 let found = Crossing {
                     target: i,
                     lambda: l,
@@ -307,20 +320,17 @@ impl Intersector {
         t: &Target,
         d: &Segment,
         shift: Shift,
-        a: f64,
-        b: f64,
-        pa: Probe,
-        pb: Probe,
+        (a, b): (f64, f64),
+        (pa, pb): (Probe, Probe),
         want: Want,
         budget: u32,
+        open: &mut Vec<Span>,
     ) -> Result<Option<(f64, f64)>, OutOfWork> {
         // Each halving pops one span and pushes two, so at most SEARCH_DEPTH + 1 are open.
-        let mut open = [(a, b, pa, pb, 0u32); SEARCH_DEPTH as usize + 2];
-        let mut len = 1;
+        open.clear();
+        open.push((a, b, pa, pb, 0u32));
         let mut probes = 0;
-        while len > 0 {
-            len -= 1;
-            let (a, b, pa, pb, depth) = open[len];
+        while let Some((a, b, pa, pb, depth)) = open.pop() {
             let finite = pa.f.is_finite() && pb.f.is_finite();
             if b <= a || !(pa.f.is_finite() || pb.f.is_finite()) {
                 continue; // the object is not defined over this span (beyond its worldline)
@@ -352,9 +362,8 @@ impl Intersector {
             probes += 1;
             let m = 0.5 * (a + b);
             let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), pa.tau);
-            open[len] = (m, b, pm, pb, depth + 1);
-            open[len + 1] = (a, m, pa, pm, depth + 1);
-            len += 2;
+            open.push((m, b, pm, pb, depth + 1));
+            open.push((a, m, pa, pm, depth + 1));
         }
         Ok(None)
     }
@@ -423,12 +432,11 @@ mod tests {
                 t,
                 &seg,
                 Shift::default(),
-                0.0,
-                1.0,
-                pa,
-                pb,
+                (0.0, 1.0),
+                (pa, pb),
                 Want::First,
                 budget,
+                &mut Vec::new(),
             )
         };
         assert_eq!(outcome(1e-7, 3), Err(OutOfWork));
