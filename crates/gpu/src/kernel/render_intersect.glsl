@@ -388,6 +388,13 @@ void machineStep() {
         bool finiteBoth = finite(bis.pa.f) && finite(bis.pb.f);
         if (bis.b > bis.a && (finite(bis.pa.f) || finite(bis.pb.f))) {
             if (finiteBoth && crossed(bis.pa.f, bis.pb.f)) {
+                // A shadow ray is blocked by any crossing: the first one found of an object
+                // that takes every crossing ends its search unrefined (the CPU's Want::Any).
+                if (!plan.pixel && acceptsAny(mach.obj)) {
+                    mach.result = Found(HIT, mach.obj, mach.loop_, bis.b, NO_TAU);
+                    mach.mode = M_DONE;
+                    return;
+                }
                 ill.lo = bis.a; ill.hi = bis.b; ill.flo = bis.pa.f; ill.fhi = bis.pb.f;
                 ill.side = 0; ill.iter = 0;
                 mach.mode = M_REFINE;

@@ -63,6 +63,9 @@ bool chordExcludes(int i, Probe pa, Probe pb, float h) {
     return pa.f <= 0.0 && pb.f <= 0.0 && ends + stray <= r;
 }
 
+// Whether every crossing of object i counts (render::target::Target::accepts_any): all but
+// planes of limited extent.
+bool acceptsAny(int i) { return !isPlane(i) || objs[i].extent <= 0.0; }
 bool accepts(int i, vec4 x) {
     return !isPlane(i) || objs[i].extent <= 0.0 || (abs(x.y) <= objs[i].extent && abs(x.z) <= objs[i].extent);
 }

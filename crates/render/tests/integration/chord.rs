@@ -62,16 +62,7 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                 velocity: LocalVelocity::new(speed, rng.direction()).unwrap(),
             }
         };
-        let object = scene::Object {
-            name: "ball".into(),
-            frame: scene::ObjectFrame::Local,
-            shape: scene::Shape::Sphere { radius },
-            texture: scene::TextureSpec::Gradient,
-            temperature: 5800.0,
-            motion,
-            polarization: None,
-        };
-        let target = Target::new(m, &object, -20.0 * a, 20.0 * a).unwrap();
+        let target = common::local_ball(m, radius, motion, (-20.0 * a, 20.0 * a));
         let Target::LocalSphere { worldline, .. } = &target else {
             unreachable!()
         };

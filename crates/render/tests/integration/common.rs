@@ -335,3 +335,23 @@ pub fn carried(a: f64, e: Event) -> Event {
     };
     Event::new(e.t, s * e.x, s * e.y, e.z)
 }
+
+/// A local ball of `radius` with `motion` in `metric`, ready to be searched, its worldline
+/// covering coordinate times [t_min, t_max].
+pub fn local_ball(
+    metric: Metric,
+    radius: f64,
+    motion: scene::Motion,
+    (t_min, t_max): (f64, f64),
+) -> render::target::Target {
+    let object = scene::Object {
+        name: "ball".into(),
+        frame: scene::ObjectFrame::Local,
+        shape: scene::Shape::Sphere { radius },
+        texture: scene::TextureSpec::Gradient,
+        temperature: 5800.0,
+        motion,
+        polarization: None,
+    };
+    render::target::Target::new(metric, &object, t_min, t_max).unwrap()
+}

@@ -75,16 +75,7 @@ fn regression_probes_are_lower_bounds_and_the_distance_obeys_the_rate() {
     let frame = m.static_frame(o);
     let radius = 0.2;
     for motion in objects {
-        let object = scene::Object {
-            name: "ball".into(),
-            frame: scene::ObjectFrame::Local,
-            shape: scene::Shape::Sphere { radius },
-            texture: scene::TextureSpec::Gradient,
-            temperature: 5800.0,
-            motion,
-            polarization: None,
-        };
-        let target = Target::new(m, &object, -12.0, 1.0).unwrap();
+        let target = crate::common::local_ball(m, radius, motion, (-12.0, 1.0));
         let Target::LocalSphere { worldline, .. } = &target else {
             unreachable!()
         };
