@@ -63,11 +63,15 @@ pub fn stray(
 }
 
 /// Whether a ball of radius `radius` centred at the origin cannot be crossed on a span
-/// whose path runs within `stray` of the chord from `xa` to `xb` (both ends outside, or
-/// both inside).
-pub fn excludes(radius: f64, xa: [f64; 3], xb: [f64; 3], stray: f64) -> bool {
-    let (na, nb) = (norm(xa), norm(xb));
-    if na > radius && nb > radius {
+/// whose path runs within `stray` of the chord between its ends, each given by its
+/// rest-frame coordinates ξ and its probe's f = |ξ| − R (both outside, or both inside).
+pub fn excludes(
+    radius: f64,
+    (xa, fa): ([f64; 3], f64),
+    (xb, fb): ([f64; 3], f64),
+    stray: f64,
+) -> bool {
+    if fa > 0.0 && fb > 0.0 {
         // The chord's point nearest the centre.
         let d = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
         let dd = dot(d, d);
@@ -77,10 +81,10 @@ pub fn excludes(radius: f64, xa: [f64; 3], xb: [f64; 3], stray: f64) -> bool {
             0.0
         };
         let c = [xa[0] + s * d[0], xa[1] + s * d[1], xa[2] + s * d[2]];
-        norm(c) - stray > radius
-    } else if na <= radius && nb <= radius {
+        dot(c, c).sqrt() - stray > radius
+    } else if fa <= 0.0 && fb <= 0.0 {
         // The chord lies inside with its ends (the ball is convex).
-        na.max(nb) + stray <= radius
+        fa.max(fb) + stray <= 0.0
     } else {
         false
     }
@@ -88,10 +92,6 @@ pub fn excludes(radius: f64, xa: [f64; 3], xb: [f64; 3], stray: f64) -> bool {
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 #[cfg(test)]
@@ -102,17 +102,18 @@ mod tests {
     #[test]
     fn a_chord_is_excluded_only_with_room_for_its_stray() {
         let (r, stray) = (0.2, 0.01);
+        let end = |x: [f64; 3]| (x, dot(x, x).sqrt() - r);
+        let excl = |xa, xb, stray| excludes(r, end(xa), end(xb), stray);
         for (d, want) in [(0.25, true), (0.2105, true), (0.2095, false), (0.15, false)] {
-            let (xa, xb) = ([-0.5, d, 0.0], [0.5, d, 0.0]);
-            assert_eq!(excludes(r, xa, xb, stray), want, "d = {d}");
+            assert_eq!(excl([-0.5, d, 0.0], [0.5, d, 0.0], stray), want, "d = {d}");
         }
         // The nearest point is an end when the chord points away.
-        assert!(excludes(r, [0.0, 0.3, 0.0], [0.0, 0.6, 0.0], 0.05));
+        assert!(excl([0.0, 0.3, 0.0], [0.0, 0.6, 0.0], 0.05));
         // Inside: both ends deep enough.
-        assert!(excludes(r, [0.05, 0.0, 0.0], [0.0, 0.1, 0.0], 0.05));
-        assert!(!excludes(r, [0.05, 0.0, 0.0], [0.0, 0.16, 0.0], 0.05));
+        assert!(excl([0.05, 0.0, 0.0], [0.0, 0.1, 0.0], 0.05));
+        assert!(!excl([0.05, 0.0, 0.0], [0.0, 0.16, 0.0], 0.05));
         // One end inside, one outside: a crossing, never excluded.
-        assert!(!excludes(r, [0.0, 0.1, 0.0], [0.0, 0.3, 0.0], 0.0));
+        assert!(!excl([0.0, 0.1, 0.0], [0.0, 0.3, 0.0], 0.0));
     }
 
     /// The bound refuses fast balls, far ends and long spans.

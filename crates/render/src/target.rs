@@ -243,10 +243,11 @@ impl Target {
         // The static energy E, from the rate bound GLOBAL_RATE_MARGIN·E·s (`local_probe`).
         let s = worldline.speed_factor();
         let energy = pa.rate.max(pb.rate) / (GLOBAL_RATE_MARGIN * s);
-        let ends = norm3(pa.xi).max(norm3(pb.xi));
+        // |ξ| at the ends: the probes' own distances, f + R.
+        let ends = pa.f.max(pb.f) + radius;
         let at_rest = matches!(worldline, Worldline::Rest { .. });
         chord::stray(a, at_rest, s, energy, ends, h)
-            .is_some_and(|e| chord::excludes(*radius, pa.xi, pb.xi, e))
+            .is_some_and(|e| chord::excludes(*radius, (pa.xi, pa.f), (pb.xi, pb.f), e))
     }
 
     /// Whether a probe may vouch for a span of several steps: its distance is a lower bound
