@@ -145,9 +145,11 @@ const int REFINE_STEPS = 100;
 const int SIMULTANEITY_STEPS = 12;
 // Newton steps of a falling ball's proper time at a coordinate time (tauGuess).
 const int TIME_STEPS = 3;
-// render::target: rate margins and the near zone of local objects.
+// render::target: rate margins (near and far probes) and the near zone of local objects.
 const float RATE_MARGIN = 1.5;
 const float GLOBAL_RATE_MARGIN = 2.0;
+const float FAR_RATE_MARGIN = 1.25;
+const float FAR_RATE_MAX_SPEED_FACTOR = 3.0;
 const float FAR_DISTANCE = 0.25;
 const float FAR_RADII = 1.0;
 const float FAR_SLACK = 1.3;

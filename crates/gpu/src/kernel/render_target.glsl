@@ -18,12 +18,15 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     float scale = minkowski() ? 1.0 : u_a;
     float far = FAR_DISTANCE * scale + FAR_RADII * objs[i].radius;
     float floor_ = objs[i].radius + 0.5 * FAR_DISTANCE * scale;
+    // A far probe's estimate needs a smaller margin than a near one's distance (render::target's
+    // FAR_RATE_MARGIN, where it was measured).
     float rate = GLOBAL_RATE_MARGIN * abs(pt) * objs[i].speed;
+    float farRate = godel() && objs[i].speed <= FAR_RATE_MAX_SPEED_FACTOR ? FAR_RATE_MARGIN * abs(pt) * objs[i].speed : rate;
     float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
     Local lp = localize(i, x, seed, far);
     if (!lp.ok) return FAR;
     float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
-    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, rate, lp.exact ? lp.at.tau : NO_TAU,
+    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, lp.exact ? rate : farRate, lp.exact ? lp.at.tau : NO_TAU,
                     lp.xi, lp.exact && isRest(i));
     // A stale seed may call a point inside a falling ball far: then the point of equal
     // coordinate time is tried too and the nearer kept.
@@ -31,7 +34,7 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
         Local lq = localize(i, x, tauGuess(i, x.x), far);
         if (lq.ok) {
             float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
-            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, rate, lq.exact ? lq.at.tau : NO_TAU, vec3(0.0), false);
+            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, lq.exact ? rate : farRate, lq.exact ? lq.at.tau : NO_TAU, vec3(0.0), false);
         }
     }
     return p;

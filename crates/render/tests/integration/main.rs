@@ -12,6 +12,7 @@ mod determinism;
 mod exact;
 mod falling;
 mod family_exact;
+mod far;
 mod godel_type;
 mod graze;
 mod images;
