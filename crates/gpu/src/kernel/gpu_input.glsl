@@ -148,8 +148,8 @@ const int TIME_STEPS = 3;
 // render::target: rate margins (near and far probes) and the near zone of local objects.
 const float RATE_MARGIN = 1.5;
 const float GLOBAL_RATE_MARGIN = 2.0;
-const float FAR_RATE_MARGIN = 1.25;
-const float FAR_RATE_MAX_SPEED_FACTOR = 3.0;
+const float FAR_RATE_MARGIN = 1.5;
+const float FAR_RATE_MAX_SPEED_FACTOR = 3.5;
 const float FAR_DISTANCE = 0.25;
 const float FAR_RADII = 1.0;
 const float FAR_SLACK = 1.3;

@@ -21,7 +21,8 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     // A far probe's estimate needs a smaller margin than a near one's distance (render::target's
     // FAR_RATE_MARGIN, where it was measured).
     float rate = GLOBAL_RATE_MARGIN * abs(pt) * objs[i].speed;
-    float farRate = godel() && objs[i].speed <= FAR_RATE_MAX_SPEED_FACTOR ? FAR_RATE_MARGIN * abs(pt) * objs[i].speed : rate;
+    bool measured = godel() && objs[i].speed <= FAR_RATE_MAX_SPEED_FACTOR && objs[i].speed * objs[i].radius <= u_a;
+    float farRate = measured ? FAR_RATE_MARGIN * abs(pt) * objs[i].speed : rate;
     float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
     Local lp = localize(i, x, seed, far);
     if (!lp.ok) return FAR;

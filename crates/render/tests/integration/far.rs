@@ -33,22 +33,29 @@ impl Cases {
     }
 }
 
-/// Balls at rest and falling at up to 0.8 c (where the far margin is used), radii up to a/2,
-/// up to 1.8a from the axis; rays through random points inside, in random directions. The
-/// entry and the exit are found by walking out from the point with the exact rest-frame
-/// distance; then at every far probe up to 8a/(E·s) of ray parameter beyond them, the probe's
-/// distance f must satisfy f ≤ ρ·E·s·gap (E·s: the photon's largest rest-frame energy; gap:
-/// the parameter to the entry or from the exit) with ρ = FAR_RATE_MARGIN/1.25, a quarter of
-/// room kept. Largest ρ found: 0.95 at rest (head-on, where the far slack is 1.1), 0.83
-/// falling. Fails with the margin cut to 1.15.
+/// Balls at rest and falling at up to 0.85 c, radii up to a/2, up to 1.8a from the axis, where
+/// the far margin is used (speed factor s = γ(1 + v) ≤ 3.5 and s·R ≤ a); rays through random
+/// points inside, in random directions. The entry and the exit are found by walking out from
+/// the point with the exact rest-frame distance; then at every far probe up to 8a/(E·s) of
+/// ray parameter beyond them, the probe's distance f must satisfy f ≤ ρ·E·s·gap (E·s: the
+/// photon's largest rest-frame energy; gap: the parameter to the entry or from the exit) with
+/// ρ = FAR_RATE_MARGIN/1.25, a quarter of room kept. Largest ρ found here: 0.95 at rest
+/// (head-on, where the far slack is 1.1), 0.83 falling (over 6,000 balls once: 1.04 and
+/// 0.95). Fails with the margin cut to 1.15. (Beyond s·R = a the
+/// first-order estimate can be far off: one ball at 0.78 c with R = 0.48a, out of 6,000
+/// tried, had a far probe at ρ = 1.89 next to its surface; such balls keep the near margin.)
 #[test]
 fn far_probes_never_outrun_their_rate_toward_an_entry() {
     let mut rng = Cases(7);
     let (mut entries, mut samples, mut worst) = (0usize, 0usize, [0.0f64; 2]);
-    for case in 0..1500 {
+    for case in 0..2500 {
         let a = 0.5 + 1.5 * rng.unit();
         let m = Metric::Godel(Godel::new(a));
-        let speed = if case % 4 == 0 { 0.0 } else { 0.8 * rng.unit() };
+        let speed = if case % 4 == 0 {
+            0.0
+        } else {
+            0.85 * rng.unit()
+        };
         let radius = (0.02 + 0.48 * rng.unit()) * a;
         let (r, phi) = (1.8 * a * rng.unit(), std::f64::consts::TAU * rng.unit());
         let position = Event::new(0.0, r * phi.cos(), r * phi.sin(), 0.3 * a * rng.signed());
@@ -71,6 +78,9 @@ fn far_probes_never_outrun_their_rate_toward_an_entry() {
         let k = m.static_frame(x0).vector([-1.0, n[0], n[1], n[2]]);
         let ray = ExactGeodesic::new(a, x0, k).unwrap();
         let (energy, s) = (m.lower(x0, k).t.abs(), worldline.speed_factor());
+        if s * radius > a {
+            continue; // the near margin's domain
+        }
         let h = 0.002 * a / (energy * s);
         // The entry (λ < 0) and the exit (λ > 0): the last points inside, walking out from
         // λ = 0 with each match seeded by the previous one.
