@@ -8,34 +8,8 @@ use render::chord;
 use render::lighting::{LightSource, Lighting};
 use render::target::Target;
 use render::worldline::Located;
-use scene::Motion;
 use scene::Scene;
-use spacetime::{Event, ExactGeodesic, Godel, LocalVelocity, Metric, Spacetime};
-
-/// A small seeded generator: the same cases on every run.
-struct Cases(u64);
-
-impl Cases {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn signed(&mut self) -> f64 {
-        2.0 * self.unit() - 1.0
-    }
-    fn direction(&mut self) -> [f64; 3] {
-        loop {
-            let d = [self.signed(), self.signed(), self.signed()];
-            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            if n > 0.1 && n <= 1.0 {
-                return [d[0] / n, d[1] / n, d[2] / n];
-            }
-        }
-    }
-}
+use spacetime::{ExactGeodesic, Spacetime};
 
 /// Balls at rest and falling at up to 0.8 c (the fastest the test is used for), of radii up
 /// to a/2, at up to 1.8a from the axis; rays through random points within 0.45a of a
@@ -45,24 +19,10 @@ impl Cases {
 /// cut from 3 to 1.5 (the Coriolis term is √2), or the boost term from s⁴ to s³.
 #[test]
 fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
-    let mut rng = Cases(33);
+    let mut rng = common::Cases(33);
     let (mut spans, mut worst) = (0usize, [0.0f64; 2]);
     for case in 0..600 {
-        let a = 0.5 + 1.5 * rng.unit();
-        let m = Metric::Godel(Godel::new(a));
-        let speed = if case % 4 == 0 { 0.0 } else { 0.8 * rng.unit() };
-        let radius = (0.02 + 0.48 * rng.unit()) * a;
-        let (r, phi) = (1.8 * a * rng.unit(), std::f64::consts::TAU * rng.unit());
-        let position = Event::new(0.0, r * phi.cos(), r * phi.sin(), 0.3 * a * rng.signed());
-        let motion = if speed == 0.0 {
-            Motion::Rest { position }
-        } else {
-            Motion::Geodesic {
-                start: position,
-                velocity: LocalVelocity::new(speed, rng.direction()).unwrap(),
-            }
-        };
-        let target = common::local_ball(m, radius, motion, (-20.0 * a, 20.0 * a));
+        let (a, m, speed, radius, target) = common::random_ball(&mut rng, case % 4 == 0, 0.8, 20.0);
         let Target::LocalSphere { worldline, .. } = &target else {
             unreachable!()
         };

@@ -355,3 +355,56 @@ pub fn local_ball(
     };
     render::target::Target::new(metric, &object, t_min, t_max).unwrap()
 }
+
+/// A small seeded generator: the same cases on every run.
+pub struct Cases(pub u64);
+
+impl Cases {
+    pub fn unit(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn signed(&mut self) -> f64 {
+        2.0 * self.unit() - 1.0
+    }
+    pub fn direction(&mut self) -> [f64; 3] {
+        loop {
+            let d = [self.signed(), self.signed(), self.signed()];
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if n > 0.1 && n <= 1.0 {
+                return [d[0] / n, d[1] / n, d[2] / n];
+            }
+        }
+    }
+}
+
+/// A random local ball in Gödel's universe for the search's property tests, and its a, its
+/// metric, speed and radius: a from 0.5 to 2, at rest when `at_rest`, else falling at up to
+/// `max_speed`; radius up to a/2, up to 1.8a from the axis and 0.3a off the plane z = 0; its
+/// worldline over coordinate times ±`span`·a.
+pub fn random_ball(
+    rng: &mut Cases,
+    at_rest: bool,
+    max_speed: f64,
+    span: f64,
+) -> (f64, Metric, f64, f64, render::target::Target) {
+    let a = 0.5 + 1.5 * rng.unit();
+    let m = Metric::Godel(spacetime::Godel::new(a));
+    let speed = if at_rest { 0.0 } else { max_speed * rng.unit() };
+    let radius = (0.02 + 0.48 * rng.unit()) * a;
+    let (r, phi) = (1.8 * a * rng.unit(), TAU * rng.unit());
+    let position = Event::new(0.0, r * phi.cos(), r * phi.sin(), 0.3 * a * rng.signed());
+    let motion = if speed == 0.0 {
+        scene::Motion::Rest { position }
+    } else {
+        scene::Motion::Geodesic {
+            start: position,
+            velocity: spacetime::LocalVelocity::new(speed, rng.direction()).unwrap(),
+        }
+    };
+    let target = local_ball(m, radius, motion, (-span * a, span * a));
+    (a, m, speed, radius, target)
+}

@@ -5,33 +5,7 @@
 
 use crate::common;
 use render::target::{Target, FAR_RATE_MARGIN};
-use scene::Motion;
-use spacetime::{Event, ExactGeodesic, GeodesicState, Godel, LocalVelocity, Metric, Spacetime};
-
-/// A small seeded generator: the same cases on every run.
-struct Cases(u64);
-
-impl Cases {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn signed(&mut self) -> f64 {
-        2.0 * self.unit() - 1.0
-    }
-    fn direction(&mut self) -> [f64; 3] {
-        loop {
-            let d = [self.signed(), self.signed(), self.signed()];
-            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            if n > 0.1 && n <= 1.0 {
-                return [d[0] / n, d[1] / n, d[2] / n];
-            }
-        }
-    }
-}
+use spacetime::{ExactGeodesic, GeodesicState, Spacetime};
 
 /// Balls at rest and falling at up to 0.85 c, radii up to a/2, up to 1.8a from the axis, where
 /// the far margin is used (speed factor s = γ(1 + v) ≤ 3.5 and s·R ≤ a); rays through random
@@ -46,28 +20,11 @@ impl Cases {
 /// tried, had a far probe at ρ = 1.89 next to its surface; such balls keep the near margin.)
 #[test]
 fn far_probes_never_outrun_their_rate_toward_an_entry() {
-    let mut rng = Cases(7);
+    let mut rng = common::Cases(7);
     let (mut entries, mut samples, mut worst) = (0usize, 0usize, [0.0f64; 2]);
     for case in 0..2500 {
-        let a = 0.5 + 1.5 * rng.unit();
-        let m = Metric::Godel(Godel::new(a));
-        let speed = if case % 4 == 0 {
-            0.0
-        } else {
-            0.85 * rng.unit()
-        };
-        let radius = (0.02 + 0.48 * rng.unit()) * a;
-        let (r, phi) = (1.8 * a * rng.unit(), std::f64::consts::TAU * rng.unit());
-        let position = Event::new(0.0, r * phi.cos(), r * phi.sin(), 0.3 * a * rng.signed());
-        let motion = if speed == 0.0 {
-            Motion::Rest { position }
-        } else {
-            Motion::Geodesic {
-                start: position,
-                velocity: LocalVelocity::new(speed, rng.direction()).unwrap(),
-            }
-        };
-        let target = common::local_ball(m, radius, motion, (-30.0 * a, 30.0 * a));
+        let (a, m, speed, radius, target) =
+            common::random_ball(&mut rng, case % 4 == 0, 0.85, 30.0);
         let Target::LocalSphere { worldline, .. } = &target else {
             unreachable!()
         };
