@@ -36,12 +36,13 @@ const GLOBAL_RATE_MARGIN: f64 = 2.0;
 
 /// Margin on the same bound for a *far* probe (a first-order estimate, below): the ray's
 /// rest-frame distance falls at most at its rest-frame energy, ≤ E·γ(1 + v), and the
-/// estimate d₁/slack − R toward an entry at about that over the slack. Measured
-/// (rays entering random balls: 6,000 once, 2,500 in `tests/integration/far.rs`) at most
-/// 1.04 of the bound at rest and 0.95 in free fall; 1.5 leaves 40 % more. Used where measured: Gödel's universe,
-/// balls up to 0.85 c ([`FAR_RATE_MAX_SPEED_FACTOR`]) with γ(1 + v)·R ≤ a (beyond, the
-/// estimate next to a large fast ball can be far off); elsewhere far probes take the global
-/// margin. A span with a near end takes the near probe's rate, the larger.
+/// estimate d₁/slack − R toward an entry at about that over the slack. Measured (rays
+/// entering random balls: 6,000 once, 2,500 in `tests/integration/far.rs`) at most 1.04 of
+/// the bound at rest and 0.95 in free fall; 1.5 leaves 40 % more. Used where measured:
+/// Gödel's universe, balls up to 0.85 c ([`FAR_RATE_MAX_SPEED_FACTOR`]) with
+/// γ(1 + v)·R ≤ a (beyond, the estimate next to a large fast ball can be far off);
+/// elsewhere far probes take the global margin. A span with a near end takes the near
+/// probe's rate, the larger (docs/physics.md, "Far probes").
 pub const FAR_RATE_MARGIN: f64 = 1.5;
 
 /// The fastest ball whose far probes take [`FAR_RATE_MARGIN`]: speed factor γ(1 + v) = 3.5
