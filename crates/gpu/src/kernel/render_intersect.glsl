@@ -5,15 +5,18 @@
 // object, conservative advancement from the last probe, else a depth-first bisection that
 // drops spans excluded by the rate bound or, near a ball at rest, by the chord of its
 // rest-frame path (chordExcludes; at most SEARCH_DEPTH halvings and SEARCH_PROBES
-// probes), and the Illinois refinement of a crossing. The bisection is stackless: spans are
-// dyadic pieces of the searched stretch, so the span after a finished one follows from its
-// depth and index (its start probe is the finished span's end probe; its end is probed
-// again, which the CPU keeps on a stack).
+// probes), and the Illinois refinement of a crossing. Spans are dyadic pieces of the
+// searched stretch, so the span after a finished one follows from its depth and index (its
+// start probe is the finished span's end probe). A right half's end probe is its parent's,
+// kept where that halving was the last (`pending`: the top of the CPU's stack, the common
+// case, its left half dropped whole), else probed again.
 //
 // A long bisection is a checkpoint of the sample's rounds (render_tracer's main) every
 // SPAN_CHECK probes, at the request of a span's end probe: a round resumes there by going
 // through its loop again without bisecting (its start and end probes, each the same as
-// before), then the bisection from its depth and index (Resume).
+// before), then the bisection from its depth and index (Resume). The kept end probe is
+// dropped at every such checkpoint, whether or not a round ends there, so a resumed
+// bisection takes the probes of one that ran on.
 
 const int M_LOOP = 0;      // at the start of loop mach.loop_
 const int M_START = 1;     // the loop's start probes, object by object
@@ -75,6 +78,11 @@ struct Bisection {
     Probe pa; Probe pb; float seedA; float seedB;
 };
 Bisection bis = Bisection(0.0, 0.0, 0.0, 0.0, 0, 0, 0, 0, NO_PROBE, NO_PROBE, 0.0, 0.0);
+// The end probe the last halving left for its right half, at depth `pendingDepth` (0: none),
+// and its τ seed.
+Probe pending = NO_PROBE;
+float pendingSeed = 0.0;
+int pendingDepth = 0;
 // A bisection's checkpoint (render_tracer's Progress keeps it between rounds): segment `seg`
 // (−1: none, the loop's start), object `obj`, span at `depth` and `index` (odd: a right
 // sibling) starting at `a`, probed with the seed `seed`, after `probes` probes of the
@@ -203,6 +211,9 @@ void startSearch(Ray r, int loops, int segs, float span, float pt, bool pixel, f
         startAt[i] = 0.0;
         endAt[i] = 0.0;
     }
+    pending = NO_PROBE;
+    pendingSeed = 0.0;
+    pendingDepth = 0;
     plan.boxLo = vec3(0.0);
     plan.boxHi = vec3(0.0);
     plan.ends = pixel && godel() ? WORK_LIMIT : ESCAPED;
@@ -232,7 +243,8 @@ void memberSearch(Ray r, int total, float pt, float tBound) {
 #endif
 
 // The span after the finished span [bis.a, bis.b] of the current bisection: climb while it is a
-// right half, then take the right sibling, whose start probe is bis.b's and whose end is probed.
+// right half, then take the right sibling, whose start probe is bis.b's and whose end probe is
+// the kept one (its parent's end), else probed again.
 void nextSpan() {
     // The trailing ones of the index are the levels to climb: 2^k = (i + 1) & −(i + 1).
     int up = toInt(log2(float((bis.index + 1) & -(bis.index + 1))) + 0.5, 0, SEARCH_DEPTH);
@@ -242,15 +254,24 @@ void nextSpan() {
         mach.mode = M_SCAN;   // no crossing of this object in the segment
         return;
     }
-    if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
-    bis.probes++;
     bis.index++;
     bis.pa = bis.pb;
     bis.seedA = bis.seedB;
     bis.a = bis.b;
     bis.b = bis.start + bis.len * float(bis.index + 1) / exp2(float(bis.depth));
+    if (pendingDepth == bis.depth) {
+        pendingDepth = 0;
+        bis.pb = pending;
+        bis.seedB = pendingSeed;
+        return;   // on with the span (M_BISECT), no probe taken
+    }
+    if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
+    bis.probes++;
     mach.check = bis.probes - bis.mark >= SPAN_CHECK;
-    if (mach.check) bis.mark = bis.probes;
+    if (mach.check) {
+        bis.mark = bis.probes;
+        pendingDepth = 0;   // a checkpoint: a resumed bisection has none kept
+    }
     request(Q_SPAN, bis.b, bis.pa.tau);
 }
 
@@ -284,6 +305,7 @@ void machineStep() {
             bis.index = 0;
             bis.probes = 0;
             bis.mark = 0;
+            pendingDepth = 0;
             mach.mode = M_BISECT;
             if (res.on && (mach.seg != res.at.seg || mach.obj != res.at.obj)) {
                 finish(FAILED);   // the way back missed its checkpoint (never, if probes repeat)
@@ -384,7 +406,9 @@ void machineStep() {
         mach.obj = -1;
         mach.mode = M_SCAN;
     }
-    if (mach.mode == M_BISECT) {
+    // A span whose end probe was kept (nextSpan) is taken up in the same pass: the next span
+    // after it is probed (the kept probe is used up), so two rounds of this loop suffice.
+    for (int kept = 0; kept < 2 && mach.mode == M_BISECT; kept++) {
         bool finiteBoth = finite(bis.pa.f) && finite(bis.pb.f);
         if (bis.b > bis.a && (finite(bis.pa.f) || finite(bis.pb.f))) {
             if (finiteBoth && crossed(bis.pa.f, bis.pb.f)) {
@@ -406,6 +430,9 @@ void machineStep() {
                     // Halve: the earlier half first.
                     if (bis.probes == SEARCH_PROBES) { finish(WORK_LIMIT); return; }
                     bis.probes++;
+                    pending = bis.pb;
+                    pendingSeed = bis.seedB;
+                    pendingDepth = bis.depth + 1;
                     bis.b = 0.5 * (bis.a + bis.b);
                     bis.depth++;
                     bis.index *= 2;
@@ -413,13 +440,16 @@ void machineStep() {
                     return;
                 }
                 nextSpan();
+                if (mach.mode == M_BISECT && req.tag == Q_NONE) continue;
                 if (mach.mode != M_SCAN) return;
             }
         } else {
             nextSpan();
+            if (mach.mode == M_BISECT && req.tag == Q_NONE) continue;
             if (mach.mode != M_SCAN) return;
         }
     }
+    if (mach.mode == M_BISECT) return;   // (not reached: a span's end probe is kept once)
     if (mach.mode == M_REFINE) {
         if (ill.iter == REFINE_STEPS) {
             request(Q_ROOT, 0.5 * (ill.lo + ill.hi), bis.pa.tau);

@@ -10,6 +10,7 @@ mod check;
 mod family;
 mod faults;
 mod glslang;
+mod kept_probes;
 mod kernel_rules;
 mod probes;
 mod rounds;
