@@ -110,11 +110,13 @@ import { KernelTracer } from './trace.js';
 /**
  * The observer's motion along its geodesic: the proper time run and not yet asked for, and
  * whether a move request is in flight (one at a time: the proper time run meanwhile waits),
- * the proper time moved so far (tests). Changed by step (time runs) and move.
+ * the proper time moved so far (tests), and whether the map and the event fields show the
+ * newest event. Changed by step (time runs), move and showPlace.
  * @typedef {object} Motion
  * @property {number} pendingTau
  * @property {boolean} moving
  * @property {number} tauMoved
+ * @property {boolean} placeShown
  */
 
 /**
@@ -373,7 +375,7 @@ export async function startFly(viewer, explore, map, status) {
   const controls = { keys: new Set(), keyed: false, speed: 0.5, rate: 1, playing: false,
     fall: false, drag: null };
   /** @type {Motion} */
-  const motion = { pendingTau: 0, moving: false, tauMoved: 0 };
+  const motion = { pendingTau: 0, moving: false, tauMoved: 0, placeShown: true };
   /** @type {Frames} */
   const frames = {
     traced: null,
@@ -577,8 +579,7 @@ export async function startFly(viewer, explore, map, status) {
         view.position = answer.position;
         if (controls.fall) view.velocity = answer.velocity;
       });
-      map.update(event());
-      explore.showEvent(event());
+      motion.placeShown = false;
     } catch (e) {
       frames.error = messageOf(e);
       controls.playing = false;
@@ -587,6 +588,16 @@ export async function startFly(viewer, explore, map, status) {
     } finally {
       motion.moving = false;
     }
+  }
+
+  // The map and the event fields follow the newest event once per frame shown, and at rest:
+  // not at each move (a few per frame), since every change of the page makes the browser
+  // composite it again, which a software renderer pays for with the cores that trace.
+  function showPlace() {
+    if (motion.placeShown) return;
+    motion.placeShown = true;
+    map.update(event());
+    explore.showEvent(event());
   }
 
   // ---- the frames' transitions
@@ -637,6 +648,7 @@ export async function startFly(viewer, explore, map, status) {
         + `z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
     }
     frames.traced = { version, width, height, level, by };
+    showPlace();
     explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
     frames.log.push({ version, width, height, level, by, rafs: frames.rafs,
       drawn: frames.drawn, at: performance.now(), ms });
@@ -993,6 +1005,7 @@ export async function startFly(viewer, explore, map, status) {
       move();
     } else if (!running) {
       motion.pendingTau = 0;
+      if (!motion.moving) showPlace();
     }
     if (frames.error !== null) return;
     // A position whose uniforms are still on their way from the server waits for them.
