@@ -2,7 +2,7 @@
 //! trace the same scene, and the records are compared channel by channel with the
 //! tolerances single precision allows.
 
-use datafile::{DataFile, RayStatus};
+use datafile::{DataFile, PixelRecord, RayStatus};
 use gpu::KERNEL;
 use render::driver::{render, NoProgress};
 use scene::{Scene, TraceMethod};
@@ -79,6 +79,16 @@ impl Agreement {
 }
 
 /// A scene file of the repository's scenes/ folder.
+/// A record as bits (NaN equal to itself, −0 told from 0): equal bits, equal bytes in the
+/// data file.
+pub fn bits(r: &PixelRecord) -> Vec<u32> {
+    let values = [r.u, r.v, r.g, r.t_emit, r.x, r.y, r.z, r.lambda, r.cos_i];
+    let vectors = r.dir.iter().chain(&r.view).chain(&r.pol);
+    let mut v: Vec<u32> = values.iter().chain(vectors).map(|x| x.to_bits()).collect();
+    v.extend([r.object as u32, r.status as u32]);
+    v
+}
+
 pub fn example(name: &str) -> Scene {
     let path = testkit::scenes_dir().join(format!("{name}.toml"));
     Scene::from_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))

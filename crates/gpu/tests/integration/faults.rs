@@ -10,8 +10,8 @@
 //! - A probe answering NaN (inside the objects, and at one probe in eight): caught, and no
 //!   record is wrong: the search stops at the NaN and marks its sample failed.
 
-use crate::common::{compare, cpu_render, gpu_render, off_axis_lit_floor};
-use datafile::{DataFile, PixelRecord, RayStatus};
+use crate::common::{bits, compare, cpu_render, gpu_render, off_axis_lit_floor};
+use datafile::{DataFile, RayStatus};
 use gpu::check::{against_cpu, CheckError};
 use gpu::KERNEL;
 
@@ -96,15 +96,6 @@ fn a_probe_answering_nan_is_caught_and_its_samples_marked_failed() {
         shipped.records.len(),
         "{failed} failed, {same} the same"
     );
-}
-
-/// A record's values as bits (NaN equal to itself).
-fn bits(r: &PixelRecord) -> Vec<u32> {
-    let values = [r.u, r.v, r.g, r.t_emit, r.x, r.y, r.z, r.lambda, r.cos_i];
-    let vectors = r.dir.iter().chain(&r.view).chain(&r.pol);
-    let mut v: Vec<u32> = values.iter().chain(vectors).map(|x| x.to_bits()).collect();
-    v.extend([r.object as u32, r.status as u32]);
-    v
 }
 
 #[test]

@@ -45,11 +45,6 @@ fn same_hit(k: &PixelRecord, p: &PixelRecord) -> bool {
             || place(k).into_iter().zip(place(p)).all(|(a, b)| close(a, b)))
 }
 
-/// Whether two records are the same bits.
-fn same_bits(k: &PixelRecord, p: &PixelRecord) -> bool {
-    format!("{k:?}") == format!("{p:?}")
-}
-
 #[test]
 fn kept_end_probes_change_no_record_and_save_probes() {
     assert_eq!(
@@ -73,7 +68,7 @@ fn kept_end_probes_change_no_record_and_save_probes() {
             .map(|(i, (k, p))| format!("sample {i}: {k:?} against {p:?}"))
             .collect();
         let bits = (kept.iter().zip(&probed))
-            .filter(|(k, p)| same_bits(k, p))
+            .filter(|(k, p)| common::bits(k) == common::bits(p))
             .count();
         eprintln!(
             "{}: probes {probed_probes} → {kept_probes}; {bits} of {} records the same bits",

@@ -6,21 +6,9 @@
 //! to 30, it marks `work limit` no more often than the CPU (before the rounds, such a scene at
 //! 360×70 had hundreds of GPU samples out of work, the CPU none, and two runs differed).
 
-use crate::common::{self, agreement, lit_floor};
-use datafile::PixelRecord;
+use crate::common::{self, agreement, bits, lit_floor};
 use gpu::{GpuTracer, KernelInput, Tiling, Traced, KERNEL};
 use render::driver::NoProgress;
-
-/// A record as bits (NaN and −0 told apart): equal bits, equal bytes in the data file.
-fn bits(r: &PixelRecord) -> Vec<u32> {
-    let floats = [
-        r.u, r.v, r.g, r.t_emit, r.x, r.y, r.z, r.lambda, r.cos_i, r.dir[0], r.dir[1], r.dir[2],
-        r.view[0], r.view[1], r.view[2], r.pol[0], r.pol[1], r.pol[2],
-    ];
-    let mut v = vec![r.object as u32, r.status as u32];
-    v.extend(floats.map(f32::to_bits));
-    v
-}
 
 fn same_bytes(a: &Traced, b: &Traced) -> bool {
     let records = |t: &Traced| t.records.iter().map(bits).collect::<Vec<_>>();
