@@ -15,7 +15,9 @@
 //! it, from kΔ to (k+1)Δ) can therefore meet the ball only at ray points within static
 //! distance M = reach + m of some cell whose time lies within the loop's window widened by
 //! S = 1.25·γ·R·(v + √2) + U·Δτ/2; the ray's circle (`crate::circle`) and its linear z give
-//! the first and the last λ of the loop where that may happen.
+//! the first and the last λ of the loop where that may happen. Before the loops, one disc
+//! holding every cell (centre C, hyperbolic radius r): a ray whose circle passes farther than
+//! M + r from C all round passes farther than M from every cell, and no loop searches.
 
 use crate::circle::RayCircle;
 use crate::target::Target;
@@ -60,6 +62,10 @@ pub struct FallingBall {
     slack: f64,
     /// The least and the greatest height of the cells.
     z_range: (f64, f64),
+    /// A disc holding every cell's point: its centre C, 1 − |C|², its hyperbolic radius r,
+    /// and cosh((M + r)/a).
+    disc: (Complex, f64, f64),
+    cosh_beyond: f64,
 }
 
 impl FallingBall {
@@ -105,6 +111,19 @@ impl FallingBall {
         let reach = REACH_PER_GAMMA_RADIUS * gamma * radius + SLACK_PER_A * a;
         let near = reach + 0.5 * speed * dtau;
         let u_t = gamma + SQRT_2 * speed;
+        // The disc's centre: the cells' mean point (any point of the disc would do).
+        let c = cells.iter().fold(Complex::new(0.0, 0.0), |s, p| s + p.w);
+        let c = c.scale(1.0 / cells.len() as f64);
+        let nc = 1.0 - c.norm_sqr();
+        // cosh(d/a) = 1 + 2|w − C|²/((1 − |w|²)(1 − |C|²)); widened far above rounding.
+        let r = cells
+            .iter()
+            .map(|p| a * (1.0 + 2.0 * (p.w - c).norm_sqr() / (nc * p.nw)).acosh())
+            .fold(0.0, f64::max);
+        let r = r * (1.0 + 1e-9) + 1e-9 * a;
+        if !(nc > 0.0 && r.is_finite()) {
+            return None;
+        }
         Some(FallingBall {
             a,
             cells,
@@ -114,6 +133,8 @@ impl FallingBall {
                 + 0.5 * u_t * dtau
                 + SLACK_PER_A * a,
             z_range,
+            disc: (c, nc, r),
+            cosh_beyond: ((near + r) / a).cosh(),
         })
     }
 
@@ -123,6 +144,7 @@ impl FallingBall {
     pub fn scaled(mut self, factor: f64) -> FallingBall {
         self.near *= factor;
         self.cosh_near = (self.near / self.a).cosh();
+        self.cosh_beyond = ((self.near + self.disc.2) / self.a).cosh();
         self.slack *= factor;
         self
     }
@@ -149,6 +171,11 @@ impl FallingBall {
         let dt = ray.dt_loop;
         if !(dt != 0.0 && dt.is_finite() && ray.l_ret > 0.0 && t_start.is_finite()) {
             return false;
+        }
+        // Farther than M from every cell all round the circle: no loop searches.
+        let (c, nc, _) = self.disc;
+        if ray.arc(c, nc, self.cosh_beyond).is_none() {
+            return true;
         }
         // The λ where the ray's height p_z λ is within M of some cell's (widened far beyond
         // rounding): every cell's λ window in `near_in` lies inside it.

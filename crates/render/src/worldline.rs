@@ -137,8 +137,9 @@ impl StepIndex {
     }
 
     /// The first step whose end is ≥ `s` (the steps' count if none): what a binary search
-    /// over all the ends gives, counted only among the few steps between the cells on either
-    /// side of `s`'s (counting them measured faster than a binary search's branches).
+    /// over all the ends gives, found among the few steps between the cells on either side
+    /// of `s`'s by walking from the first (measured faster than a binary search's branches,
+    /// and than counting them all).
     fn first_reaching(&self, s: f64) -> usize {
         let cells = self.first.len() - 1;
         let c = s * self.per_cell;
@@ -153,7 +154,8 @@ impl StepIndex {
         } else {
             self.first[c + 2]
         };
-        lo + self.ends[lo..hi].iter().filter(|&&e| e < s).count()
+        // The ends are increasing: the first at or past s, walking from lo (a step or two).
+        lo + self.ends[lo..hi].iter().take_while(|&&e| e < s).count()
     }
 }
 
