@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Frames per second while flying in `godel explore` (BENCHMARKS.md, "Flying in the page"):
 #   scripts/bench-fly.sh SCENE WIDTH HEIGHT [FRAMES]
-# Builds godel (the dev profile, optimized), explores SCENE at WIDTH × HEIGHT with one ray a
-# pixel (BENCH_SAMPLES=N: N, a square number, in place of the scene's `samples` line), and
+# Builds godel (the release build, as README's `cargo run --release`), explores SCENE at
+# WIDTH × HEIGHT with one ray a pixel (BENCH_SAMPLES=N: N, a square number, in place of the
+# scene's `samples` line), and
 # runs tests/browser/bench-fly.mjs in headless chromium (software WebGL2): holds W for FRAMES
 # animation frames (default 120) and prints the frames/s, the sizes the dynamic resolution
 # chose, and the times to the steps at rest and the full frame. Prints the load average
@@ -23,8 +24,7 @@ fi
 scene=$(realpath "$1")
 frames=${4:-120}
 cd "$root"
-cargo build -p godel -q
-godel="$root/target/debug/godel"
+cargo build --release -p godel -q
 # shellcheck source=bench-server.sh
 source "$root/scripts/bench-server.sh"
 sed -e "s/^width = .*/width = $2/" -e "s/^height = .*/height = $3/" \
