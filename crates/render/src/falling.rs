@@ -62,9 +62,9 @@ pub struct FallingBall {
     slack: f64,
     /// The least and the greatest height of the cells.
     z_range: (f64, f64),
-    /// A disc holding every cell's point: its centre C, 1 − |C|², its hyperbolic radius r,
-    /// and cosh((M + r)/a).
+    /// A disc holding every cell's point: its centre C, 1 − |C|² and its hyperbolic radius r.
     disc: (Complex, f64, f64),
+    /// cosh((M + r)/a): a ray's circle farther than M + r from C all round meets no cell.
     cosh_beyond: f64,
 }
 

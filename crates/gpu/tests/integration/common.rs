@@ -78,7 +78,6 @@ impl Agreement {
     }
 }
 
-/// A scene file of the repository's scenes/ folder.
 /// A record as bits (NaN equal to itself, −0 told from 0): equal bits, equal bytes in the
 /// data file.
 pub fn bits(r: &PixelRecord) -> Vec<u32> {
@@ -89,6 +88,7 @@ pub fn bits(r: &PixelRecord) -> Vec<u32> {
     v
 }
 
+/// A scene file of the repository's scenes/ folder.
 pub fn example(name: &str) -> Scene {
     let path = testkit::scenes_dir().join(format!("{name}.toml"));
     Scene::from_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
