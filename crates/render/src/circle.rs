@@ -69,10 +69,7 @@ impl RayCircle {
     /// (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)), in λ from the ray's start: None
     /// only when it provably lies farther all round the circle; everywhere when unsure (NaN).
     pub fn arc(&self, w: Complex, nw: f64, cosh_m: f64) -> Option<Arc> {
-        // cosh(d(h, w)/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
-        let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
-        let sh = (ch * ch - 1.0).max(0.0).sqrt();
-        let (nearest, spread) = (ch * self.cosh_rho, sh * self.sinh_rho);
+        let (nearest, spread) = self.law_of_cosines(w, nw);
         if beyond_all_round(nearest, spread, cosh_m) {
             return None; // before the angle: most points are
         }
@@ -88,6 +85,22 @@ impl RayCircle {
             spread,
         };
         arc.within(cosh_m)
+    }
+
+    /// Whether the ray's projection provably lies farther than m from the disc point `w` all
+    /// round (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)): [`RayCircle::arc`]'s None,
+    /// without the angle it finds otherwise.
+    pub fn beyond(&self, w: Complex, nw: f64, cosh_m: f64) -> bool {
+        let (nearest, spread) = self.law_of_cosines(w, nw);
+        beyond_all_round(nearest, spread, cosh_m)
+    }
+
+    /// cosh(d/a)·cosh(ρ/a) and sinh(d/a)·sinh(ρ/a), d the distance from h to `w`
+    /// ([`Arc`]'s `nearest` and `spread`), with cosh(d/a) = 1 + 2|h − w|²/((1 − |h|²)(1 − |w|²)).
+    fn law_of_cosines(&self, w: Complex, nw: f64) -> (f64, f64) {
+        let ch = 1.0 + 2.0 * (w - self.h).norm_sqr() / (self.nh * nw);
+        let sh = (ch * ch - 1.0).max(0.0).sqrt();
+        (ch * self.cosh_rho, sh * self.sinh_rho)
     }
 }
 

@@ -174,7 +174,7 @@ impl FallingBall {
         }
         // Farther than M from every cell all round the circle: no loop searches.
         let (c, nc, _) = self.disc;
-        if ray.arc(c, nc, self.cosh_beyond).is_none() {
+        if ray.beyond(c, nc, self.cosh_beyond) {
             return true;
         }
         // The λ where the ray's height p_z λ is within M of some cell's (widened far beyond
