@@ -7,9 +7,12 @@
 // again.
 //
 // usage: node fly-faster.mjs URL OUT_DIR COL ROW
-// Prints {rest {traced, cpu, gpu, header, shown, view}, rest_log, record, ray, moving_log,
-// moving_header, again {traced, header, view}, again_log, requests, console_errors, error};
-// each log holds the frames shown (level, size, `by`: gpu or cpu).
+// Prints {rest {traced, cpu, gpu, header, shown, view, canvas}, rest_log, record, ray,
+// moving_log, moving_header, moving_canvas, moving_map {requests, ms}, again {traced, header,
+// view, canvas}, again_log, requests, console_errors, error}; each log holds the frames shown
+// (level, size, `by`: gpu or cpu); a canvas is {level (of the frame shown), width, height
+// (its pixels), box (its box in device pixels)}; moving_map counts the map's requests while W
+// was held, over `ms`.
 import { argsOr, launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, col, row] = argsOr('node fly-faster.mjs URL OUT_DIR COL ROW', 4);
@@ -26,12 +29,20 @@ const state = () => page.evaluate(() => {
 const logFrom = (from) => page.evaluate((k) => window.godelViewer.explore.fly.log.slice(k)
   .map((l) => ({ level: l.level, width: l.width, height: l.height, by: l.by })), from);
 const logLength = () => page.evaluate(() => window.godelViewer.explore.fly.log.length);
+// The canvas's pixels and its box's, with the level of the frame shown.
+const canvas = () => page.evaluate(() => {
+  const c = document.getElementById('image');
+  const dpr = window.devicePixelRatio || 1;
+  return { level: window.godelViewer.explore.fly.traced?.level ?? null, width: c.width,
+    height: c.height, box: [Math.round(c.clientWidth * dpr), Math.round(c.clientHeight * dpr)] };
+});
+const mapRequests = () => requests.filter((u) => u.includes('/api/explore/map')).length;
 
 const result = {};
 try {
   await open(page, url);
   await rest();
-  result.rest = await state();
+  result.rest = { ...await state(), canvas: await canvas() };
   result.rest_log = await logFrom(0);
   // Hover pixel (COL, ROW): the record panel and the map follow the frame shown.
   const target = await page.evaluate(([c, r]) => {
@@ -59,17 +70,21 @@ try {
     speed.dispatchEvent(new Event('input'));
   });
   const pressed = await logLength();
+  const [mapsBefore, pressedAt] = [mapRequests(), await page.evaluate(() => performance.now())];
   await page.keyboard.down('KeyW');
   await page.waitForFunction((k) => window.godelViewer.explore.fly.log.slice(k)
     .filter((l) => l.level === 'moving').length >= 10, pressed, { timeout: 180000 });
   result.moving_header = await page.evaluate(() => document.getElementById('file').textContent);
+  result.moving_canvas = await canvas();
   await page.keyboard.up('KeyW');
+  result.moving_map = { requests: mapRequests() - mapsBefore,
+    ms: await page.evaluate(() => performance.now()) - pressedAt };
   result.moving_log = await logFrom(pressed);
   const released = await logLength();
   await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null,
     { timeout: 180000 });
   await rest();
-  result.again = await state();
+  result.again = { ...await state(), canvas: await canvas() };
   result.again_log = await logFrom(released);
   result.error = await page.evaluate(() => window.godelViewer.error
     || window.godelViewer.explore.fly.error);

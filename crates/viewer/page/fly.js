@@ -221,6 +221,9 @@ const SERVER_POLL_MS = 10;
 const SERVER_WAIT_MS = 600000;
 // `?trace=page`: every frame on this page's kernel, however fast the server is.
 const PINNED = new URLSearchParams(window.location.search).get('trace') === 'page';
+// `?moving=full`: every moving frame at the full size, no dynamic resolution (to measure the
+// frame rate at a given frame size: scripts/bench-fly.sh, BENCH_MOVING=full).
+const FULL_MOVING = new URLSearchParams(window.location.search).get('moving') === 'full';
 
 /** @param {number} ms */
 const sleep = (ms) => new Promise((resolve) => { setTimeout(resolve, ms); });
@@ -622,7 +625,7 @@ export async function startFly(viewer, explore, map, status) {
     explore.shown = null;
     const [pw, ph] = full ? [fullW, fullH] : [traced.width, traced.height];
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
-      supersample: full ? ss : 1 });
+      supersample: full ? ss : 1 }, level === 'moving' ? [fullW, fullH] : null);
     frames.drawn += 1;
     shown(version, pw, ph, level, 'gpu', ms);
     checkFrame(traced, view);
@@ -720,7 +723,7 @@ export async function startFly(viewer, explore, map, status) {
     const url = (name) => `/api/explore/channel/${name}?generation=${frame.generation}`
       + `&level=${frame.level}`;
     const deadline = performance.now() + SERVER_WAIT_MS;
-    while (!viewer.showFrame(frame, url)) {
+    while (!viewer.showFrame(frame, url, level === 'moving' ? [fullW, fullH] : null)) {
       if (cancelled() || frames.refused || performance.now() > deadline) return false;
       await sleep(SERVER_POLL_MS);
     }
@@ -846,7 +849,7 @@ export async function startFly(viewer, explore, map, status) {
       const most = Math.sqrt(frames.raysPerMs * TARGET_MS * fullW / fullH);
       frames.width = Math.max(MIN_WIDTH, Math.min(frames.width, most));
     }
-    const w = widthOf(frames.width);
+    const w = FULL_MOVING ? fullW : widthOf(frames.width);
     const h = heightOf(w);
     const version = sight.version;
     const view = structuredClone(sight.view);
@@ -870,7 +873,7 @@ export async function startFly(viewer, explore, map, status) {
   // the last moving frame took. Not waited for by the animation frames; every one is shown,
   // as the kernel's.
   async function serverMoving() {
-    const w = widthOf(frames.serverWidth
+    const w = FULL_MOVING ? fullW : widthOf(frames.serverWidth
       ?? Math.sqrt((frames.cpuRaysPerMs ?? 0) * (TARGET_MS / 2) * fullW / fullH));
     const h = heightOf(w);
     const version = sight.version;

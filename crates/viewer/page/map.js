@@ -78,25 +78,43 @@ const TOP = { width: 360, height: 380, left: 40, right: 10, top: 38, bottom: 32 
 const SIDE = { width: 380, height: 240, left: 44, right: 12, top: 38, bottom: 32 };
 // How near (CSS pixels) a pointer must come to the observer's marker to pick it up.
 const PICK_PX = 14;
+// The least time between two map requests: while flying the marker follows every frame,
+// the rest (tracks, horizon, the objects at the observer's time) a few times a second. On
+// a software renderer a map fetched and drawn every frame cost a sixth of the frame rate.
+const MAP_GAP_MS = 250;
 
 /** @param {number} index */
 export const objectColour = (index) => COLOURS.objects[index % COLOURS.objects.length];
 
-// Calls `load(wish)` for the newest wish, one at a time, then `done(wish, result, error)`.
+// Calls `load(wish)` for the newest wish, one at a time and at least `gapMs` apart, then
+// `done(wish, result, error)`.
 /**
  * @template W, R
  * @param {(wish: W) => Promise<R>} load
  * @param {(wish: W, result: R | null, error: any) => void} done
+ * @param {number} [gapMs]
  */
-function latest(load, done) {
+function latest(load, done, gapMs = 0) {
   let busy = false;
   /** @type {W | null} */
   let waiting = null;
+  let started = -Infinity;
+  let timer = false;
   async function pump() {
-    if (busy || waiting === null) return;
+    if (busy || timer || waiting === null) return;
+    const wait = started + gapMs - performance.now();
+    if (wait > 0) {
+      timer = true;
+      setTimeout(() => {
+        timer = false;
+        pump();
+      }, wait);
+      return;
+    }
     const wish = waiting;
     waiting = null;
     busy = true;
+    started = performance.now();
     try {
       done(wish, await load(wish), null);
     } catch (e) {
@@ -409,7 +427,7 @@ export function createMap(top, side, legend, hooks) {
       }
       map.fetched = answer;
       map.draw();
-    });
+    }, MAP_GAP_MS);
   const wantRay = latest(
     /**
      * @param {ServerRayWish | TracedRay} w

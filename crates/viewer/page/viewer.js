@@ -67,11 +67,12 @@ import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TE
  * @property {(url: string, body: string, fallbackName: string) => Promise<Blob | null>} download
  * @property {() => void} layout
  * @property {() => number} zoom
- * @property {(frame: import('./contract').FrameInfo, channelUrl: (name: string) => string)
- *   => boolean} showFrame
+ * @property {(frame: import('./contract').FrameInfo, channelUrl: (name: string) => string,
+ *   movingSize?: [number, number] | null) => boolean} showFrame
  * @property {(on: boolean) => void} hold
  * @property {(channels: import('./trace.js').Channels, note: string,
- *   size?: { width: number, height: number, supersample: number } | null) => void} showTracedFrame
+ *   size?: { width: number, height: number, supersample: number } | null,
+ *   movingSize?: [number, number] | null) => void} showTracedFrame
  * @property {(note: string) => void} noteFrames
  * @property {() => void} showFileFrame
  */
@@ -173,6 +174,10 @@ let stereoChanged = () => {};
 let frameDrawn = true;
 /** @type {[number, number] | null} canvas pixels set by a script, else the layout decides */
 let fixedSize = null;
+// Explore: while a moving frame of a flight is shown, the size of the flight's full frame
+// (the canvas holds at most that many pixels: layout), else null.
+/** @type {[number, number] | null} */
+let moving = null;
 /** @type {{ zoom: number, offset: [number, number], fitted: boolean }} */
 const pan = { zoom: 1, offset: [0, 0], fitted: true };
 // The canvas point of the last pointer move while the button is down.
@@ -239,11 +244,27 @@ function layout() {
     const w = Math.min(room, window.innerHeight * 0.6 * aspect);
     css = [w, w / aspect];
   }
+  const sameBox = canvas.style.width === `${css[0]}px` && canvas.style.height === `${css[1]}px`;
   canvas.style.width = `${css[0]}px`;
   canvas.style.height = `${css[1]}px`;
-  const w = Math.max(1, Math.round(css[0] * dpr));
-  const h = Math.max(1, Math.round(css[1] * dpr));
+  let w = Math.max(1, Math.round(css[0] * dpr));
+  let h = Math.max(1, Math.round(css[1] * dpr));
+  // Flying, fitted, with a full frame smaller than the box: the canvas holds the full frame's
+  // pixels (the box's shape kept; the same size all flight long, as a new size costs a new
+  // buffer) and the browser scales them to the box. On a software renderer drawing the box's
+  // pixels took a quarter of each frame's time.
+  if (moving && pan.fitted && !fixedSize && !lookMode()) {
+    const s = Math.max(moving[0] / w, moving[1] / h);
+    if (s < 1) [w, h] = [Math.max(1, Math.round(w * s)), Math.max(1, Math.round(h * s))];
+  }
   if (canvas.width !== w || canvas.height !== h) {
+    // The same box with other canvas pixels (flying, above): a zoomed or panned picture
+    // keeps its place in the box.
+    if (sameBox && !pan.fitted) {
+      const k = w / canvas.width;
+      pan.zoom *= k;
+      pan.offset = [pan.offset[0] * k, pan.offset[1] * k];
+    }
     canvas.width = w;
     canvas.height = h;
     shadeDirty = true;
@@ -768,14 +789,17 @@ async function start() {
 
 // Explore (explore.js): shows another frame, whose channels are at `channelUrl(name)`; false
 // (try again later) while the last one is not drawn yet, so that every frame taken is seen.
+// `movingSize`: a moving frame of the flight (fly.js), whose full frame has that size.
 /**
  * @param {import('./contract').FrameInfo} frame
  * @param {(name: string) => string} channelUrl
+ * @param {[number, number] | null} [movingSize]
  */
-function showFrame(frame, channelUrl) {
+function showFrame(frame, channelUrl, movingSize = null) {
   if (loadingNow() || !data || !frameDrawn) return false;
   const { info } = loaded();
   frameDrawn = false;
+  moving = movingSize;
   // A zoomed or panned picture keeps its place on the canvas at the new size.
   if (!pan.fitted) pan.zoom *= info.width / frame.width;
   Object.assign(info, { width: frame.width, height: frame.height,
@@ -803,20 +827,26 @@ function hold(on) {
   if (!on) changed();
 }
 // `size` ({width, height, supersample}, explore's flight: fly.js): the traced frame's, where
-// it is not the file's.
+// it is not the file's; `movingSize`: a moving frame of the flight, whose full frame has that
+// size.
 /**
  * @param {import('./trace.js').Channels} channels
  * @param {string} note
  * @param {{ width: number, height: number, supersample: number } | null} [size]
+ * @param {[number, number] | null} [movingSize]
  */
-function showTracedFrame(channels, note, size = null) {
+function showTracedFrame(channels, note, size = null, movingSize = null) {
   const { info } = loaded();
+  const wasMoving = moving;
+  moving = movingSize;
   if (size) {
     if (!pan.fitted) pan.zoom *= info.width / size.width;
     Object.assign(info, size);
     const camera = viewer.view?.view?.camera;
     if (camera) Object.assign(camera, { width: size.width, height: size.height });
     layout();
+  } else if (wasMoving) {
+    layout(); // the canvas back at the box's size
   }
   for (const [name, texture] of Object.entries(channels)) {
     if (texture) gpuOf().replace(name, texture);

@@ -12,7 +12,10 @@
 //!   pixel's record is the one `godel render --method exact` writes (the page reads it from
 //!   the server's frame), its light ray on the map ends at that record's emission event;
 //! - flying forward, the moving frames are the CPU's too (one ray a pixel), and so is the
-//!   full frame at rest after letting go.
+//!   full frame at rest after letting go;
+//! - a moving frame fills a canvas of at most the full frame's pixels, of its box's shape,
+//!   which the browser scales to the box; at rest the canvas has the box's pixels again; while
+//!   flying the map is fetched at most four times a second (map.js, MAP_GAP_MS).
 //!
 //! That the server's frame of a view holds `godel render`'s records bit for bit is
 //! `explore_cli::the_frame_of_a_flown_view_is_godel_render_of_that_view`; the kernel's frames,
@@ -127,6 +130,38 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
         moving_header.contains("traced on the server\u{2019}s CPU · "),
         "{moving_header}"
     );
+    // Moving: the canvas holds at most the full frame's pixels, in the box's shape; at rest
+    // (before and after) the box's.
+    let pixels = |c: &serde_json::Value| {
+        let n = |v: &serde_json::Value| v.as_u64().unwrap();
+        (
+            n(&c["width"]),
+            n(&c["height"]),
+            n(&c["box"][0]),
+            n(&c["box"][1]),
+        )
+    };
+    let moving_canvas = &seen["moving_canvas"];
+    assert_eq!(moving_canvas["level"], "moving", "{seen}");
+    let (w, h, bw, bh) = pixels(moving_canvas);
+    assert!(
+        bw > width as u64,
+        "the box is wider than the full frame: {seen}"
+    );
+    assert!(w <= width as u64 && h <= height as u64, "{seen}");
+    assert!(w == width as u64 || h == height as u64, "{seen}");
+    let shape = (w as f64 / h as f64) / (bw as f64 / bh as f64);
+    assert!((shape - 1.0).abs() < 0.02, "the box's shape: {seen}");
+    for c in [&rest["canvas"], &seen["again"]["canvas"]] {
+        assert_eq!(c["level"], "full", "{seen}");
+        let (w, h, bw, bh) = pixels(c);
+        // (the box's device pixels as the browser rounds its CSS size: within one)
+        assert!(w.abs_diff(bw) <= 1 && h.abs_diff(bh) <= 1, "{seen}");
+    }
+    // The map while flying: fetched, at most once every 250 ms.
+    let maps = seen["moving_map"]["requests"].as_u64().unwrap();
+    let ms = seen["moving_map"]["ms"].as_f64().unwrap();
+    assert!(maps >= 1 && maps as f64 <= ms / 250.0 + 1.0, "{seen}");
     // At rest again, after moving forward: the CPU's full frame of the new view.
     let again = &seen["again"];
     assert_eq!(again["traced"]["level"], "full", "{seen}");
