@@ -47,20 +47,9 @@ fn main() {
     // for this one's to go.
     drop(tracer);
     let gpu_time = times.iter().copied().fold(f64::INFINITY, f64::min);
-    let counting = format!("#define COUNT_PROBES 1\n{}", gpu::KERNEL);
-    let counter = gpu::GpuTracer::with_kernel(gpu::KernelInput::new(&scene), &counting)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let counted = counter.trace(&NoProgress).expect("GPU trace");
-    let traced_samples: Vec<_> = counted
-        .records
-        .iter()
-        .filter(|r| r.status != RayStatus::NotTraced)
-        .collect();
-    let probes: f64 = traced_samples
-        .iter()
-        .map(|r| f64::from(r.view[0]))
-        .sum::<f64>()
-        / traced_samples.len().max(1) as f64;
+    let probes = gpu::GpuTracer::count_probes(gpu::KernelInput::new(&scene), gpu::KERNEL)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .per_sample();
     let hits = traced
         .records
         .iter()

@@ -91,6 +91,20 @@ pub struct Traced {
     pub rounds: u64,
 }
 
+/// A kernel's probes over the samples it traced ([`GpuTracer::count_probes`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ProbeCount {
+    pub probes: f64,
+    pub samples: usize,
+}
+
+impl ProbeCount {
+    /// Probes a traced sample, on average (0 where none was traced).
+    pub fn per_sample(&self) -> f64 {
+        self.probes / self.samples.max(1) as f64
+    }
+}
+
 impl GpuTracer {
     /// Makes a context, compiles the kernel for `input`'s scene and uploads its table.
     pub fn new(input: KernelInput) -> Result<GpuTracer, HostError> {
@@ -128,6 +142,22 @@ impl GpuTracer {
             tracer.draw(0, 0, 1, 1, &render::driver::NoProgress, &mut 0)?;
             Ok(tracer)
         }
+    }
+
+    /// The probes of `kernel` (the kernel's source, or a variant of it) on `input`'s scene,
+    /// all traced samples together: its `COUNT_PROBES` build writes each sample's probes
+    /// into the record's `view[0]` (benchmarks and tests).
+    pub fn count_probes(input: KernelInput, kernel: &str) -> Result<ProbeCount, HostError> {
+        let source = format!("#define COUNT_PROBES 1\n{kernel}");
+        let traced = GpuTracer::with_kernel(input, &source)?.trace(&render::driver::NoProgress)?;
+        let samples = traced
+            .records
+            .iter()
+            .filter(|r| r.status != RayStatus::NotTraced);
+        Ok(samples.fold(ProbeCount::default(), |c, r| ProbeCount {
+            probes: c.probes + f64::from(r.view[0]),
+            samples: c.samples + 1,
+        }))
     }
 
     /// The GL renderer that traces (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)").

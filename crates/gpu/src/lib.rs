@@ -42,6 +42,6 @@ pub const KERNEL: &str = concat!(
     include_str!("kernel/render_map.glsl"),
 );
 
-pub use host::{GpuTracer, HostError, Tiling, Traced};
+pub use host::{GpuTracer, HostError, ProbeCount, Tiling, Traced};
 pub use input::KernelInput;
 pub use render::{render, render_with, GpuRender};

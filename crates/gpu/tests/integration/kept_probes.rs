@@ -15,22 +15,15 @@ use scene::Scene;
 /// The line that keeps a probe for the right half of a halving.
 const KEEP: &str = "                    pendingDepth = bis.depth + 1;\n";
 
-/// The records of `scene` traced by `kernel`, and its probes in all (the `COUNT_PROBES`
-/// build of the same kernel writes each sample's probes into `view[0]`).
+/// The records of `scene` traced by `kernel`, and its probes in all.
 fn traced(scene: &Scene, kernel: &str) -> (Vec<PixelRecord>, f64) {
-    let trace = |source: &str| {
-        GpuTracer::with_kernel(KernelInput::new(scene), source)
-            .expect("a GPU context")
-            .trace(&NoProgress)
-            .expect("trace")
-    };
-    let records = trace(kernel).records;
-    let counted = trace(&format!("#define COUNT_PROBES 1\n{kernel}"));
-    let probes = (counted.records.iter())
-        .filter(|r| r.status != RayStatus::NotTraced)
-        .map(|r| f64::from(r.view[0]))
-        .sum();
-    (records, probes)
+    let records = GpuTracer::with_kernel(KernelInput::new(scene), kernel)
+        .expect("a GPU context")
+        .trace(&NoProgress)
+        .expect("trace")
+        .records;
+    let counted = GpuTracer::count_probes(KernelInput::new(scene), kernel).expect("trace");
+    (records, counted.probes)
 }
 
 /// Whether two records are the same hit or miss of the same object, a hit's event and
