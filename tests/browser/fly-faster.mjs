@@ -12,7 +12,8 @@
 // view, canvas}, again_log, requests, console_errors, error}; each log holds the frames shown
 // (level, size, `by`: gpu or cpu); a canvas is {level (of the frame shown), width, height
 // (its pixels), box (its box in device pixels)}; moving_map counts the map's requests while W
-// was held, over `ms`.
+// was held, over `ms`, and `alone`: the animation frames in which the map was drawn and no
+// picture.
 import { argsOr, launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, col, row] = argsOr('node fly-faster.mjs URL OUT_DIR COL ROW', 4);
@@ -78,7 +79,12 @@ try {
   result.moving_canvas = await canvas();
   await page.keyboard.up('KeyW');
   result.moving_map = { requests: mapRequests() - mapsBefore,
-    ms: await page.evaluate(() => performance.now()) - pressedAt };
+    ms: await page.evaluate(() => performance.now()) - pressedAt,
+    alone: await page.evaluate((from) => {
+      const v = window.godelViewer;
+      const pictures = new Set(v.frameTimes);
+      return new Set(v.explore.map.drawTimes.filter((t) => t >= from && !pictures.has(t))).size;
+    }, pressedAt) };
   result.moving_log = await logFrom(pressed);
   const released = await logLength();
   await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null,

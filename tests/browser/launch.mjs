@@ -125,8 +125,11 @@ export async function dragLeft(page) {
 }
 
 // Flying (fly.js): waits until the page shows the full frame of the view as it is now, at
-// rest (no move of the observer under way), at most `timeout` ms.
+// rest (no move of the observer under way), drawn on the canvas with its header and event
+// (a server frame's are written with its picture: viewer.js), at most `timeout` ms.
 export const atRest = (page, timeout) => page.waitForFunction(() => {
-  const f = window.godelViewer.explore?.fly;
-  return f && f.traced && f.traced.level === 'full' && f.traced.version === f.version && !f.moving;
+  const v = window.godelViewer;
+  const f = v.explore?.fly;
+  return f && f.traced && f.traced.level === 'full' && f.traced.version === f.version && !f.moving
+    && v.idle();
 }, null, { timeout });

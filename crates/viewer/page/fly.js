@@ -596,10 +596,12 @@ export async function startFly(viewer, explore, map, status) {
   // The map and the event fields follow the newest event once per frame shown, and at rest:
   // not at each move (a few per frame), since every change of the page makes the browser
   // composite it again, which a software renderer pays for with the cores that trace.
-  function showPlace() {
+  // `now`: in the picture's animation frame, where the map is drawn at once.
+  /** @param {boolean} [now] */
+  function showPlace(now = false) {
     if (motion.placeShown) return;
     motion.placeShown = true;
-    map.update(event());
+    map.update(event(), now);
     explore.showEvent(event());
   }
 
@@ -646,12 +648,14 @@ export async function startFly(viewer, explore, map, status) {
       // The panel's line said which server frame was shown: now it says where this one is seen from.
       const v = sight.view;
       const p = v.position;
-      status(`frame traced ${by === 'gpu' ? 'in this browser' : 'on the server\u2019s CPU'} at `
+      const line = `frame traced ${by === 'gpu' ? 'in this browser' : 'on the server\u2019s CPU'} at `
         + `t = ${v.time.toFixed(2)}, x = ${p.x.toFixed(3)}, y = ${p.y.toFixed(3)}, `
-        + `z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`);
+        + `z = ${p.z.toFixed(3)}, moving at ${v.velocity.speed.toFixed(2)} c`;
+      viewer.withPicture('status', () => status(line));
     }
     frames.traced = { version, width, height, level, by };
-    showPlace();
+    // With the picture (a server frame's channels are still on their way).
+    viewer.withPicture('place', showPlace);
     explore.hover(); // the map's light ray of the pixel under the pointer, in this frame
     frames.log.push({ version, width, height, level, by, rafs: frames.rafs,
       drawn: frames.drawn, at: performance.now(), ms });

@@ -52,13 +52,15 @@ import { getJson } from './api.js';
  * @property {TopWindow | null} view
  * @property {(x: number, y: number) => { px: number, py: number }} toScreen
  * @property {(px: number, py: number) => { x: number, y: number }} fromScreen
- * @property {(event: ObserverEvent) => void} update
+ * @property {(event: ObserverEvent, now?: boolean) => void} update
  * @property {(frame: { generation: number, level: import('./contract').Level }, col: number,
  *   row: number) => void} hover
  * @property {(ray: TracedRay) => void} hoverTraced
  * @property {() => void} clearRay
  * @property {() => boolean} idle
- * @property {() => void} draw
+ * @property {(now?: boolean) => void} draw
+ * @property {number[]} drawTimes the animation frames (document.timeline's time) of its last
+ *   drawings (at most 600; for tests)
  */
 
 export const COLOURS = {
@@ -82,6 +84,8 @@ const PICK_PX = 14;
 // the rest (tracks, horizon, the objects at the observer's time) a few times a second. On
 // a software renderer a map fetched and drawn every frame cost a sixth of the frame rate.
 const MAP_GAP_MS = 250;
+// How long a map fetched while the observer moves waits for the next move to be drawn with.
+const FOLLOW_MS = 200;
 
 /** @param {number} index */
 export const objectColour = (index) => COLOURS.objects[index % COLOURS.objects.length];
@@ -416,6 +420,10 @@ export function createMap(top, side, legend, hooks) {
   let rayWish = null;
   // Whether a drawing of the map waits for the next animation frame (map.draw).
   let drawQueued = false;
+  // When the observer last moved (map.update), and whether a fetched map waits for its next
+  // move to be drawn with it (at most FOLLOW_MS).
+  let movedAt = -Infinity;
+  let fetchedWaits = false;
   const wantMap = latest(
     /** @param {ObserverEvent} e */
     (e) => /** @type {Promise<ExploreMap>} */ (getJson(`/api/explore/map?t=${e.t}&x=${e.x}`
@@ -426,7 +434,17 @@ export function createMap(top, side, legend, hooks) {
         return;
       }
       map.fetched = answer;
-      map.draw();
+      // While the observer moves, the fetched map is drawn with its next move, in the
+      // picture's animation frame (fly.js), not in one of its own: on a software renderer
+      // each animation frame that changes the page costs the browser a whole composition.
+      if (performance.now() - movedAt < FOLLOW_MS) {
+        fetchedWaits = true;
+        setTimeout(() => {
+          if (fetchedWaits) map.draw();
+        }, FOLLOW_MS);
+      } else {
+        map.draw();
+      }
     }, MAP_GAP_MS);
   const wantRay = latest(
     /**
@@ -454,6 +472,7 @@ export function createMap(top, side, legend, hooks) {
     ray: null,
     event: null,
     dragging: false,
+    drawTimes: [],
     view: null,
     toScreen: (x, y) => ({
       px: TOP.left + plot / 2 + (x - shown().cx) * scale(),
@@ -463,11 +482,13 @@ export function createMap(top, side, legend, hooks) {
       x: shown().cx + (px - TOP.left - plot / 2) / scale(),
       y: shown().cy - (py - TOP.top - plot / 2) / scale(),
     }),
-    // The observer moved: fetch its map (the marker follows at once).
-    update: (event) => {
+    // The observer moved: fetch its map (the marker follows at once; `now`: drawn now, in
+    // the caller's animation frame).
+    update: (event, now = false) => {
       map.event = { ...event };
+      movedAt = performance.now();
       wantMap.want({ ...event });
-      map.draw();
+      map.draw(now);
     },
     // The pixel (col, row) of frame {generation, level} is hovered: fetch its light ray.
     hover: (frame, col, row) => {
@@ -488,14 +509,14 @@ export function createMap(top, side, legend, hooks) {
       map.draw();
     },
     // Nothing to fetch or draw (for tests).
-    idle: () => !wantMap.busy() && !wantRay.busy() && !drawQueued,
+    idle: () => !wantMap.busy() && !wantRay.busy() && !drawQueued && !fetchedWaits,
     // Drawn once in the next animation frame, however often asked for before it (while
-    // flying, each move and each fetched map asks).
-    draw: () => {
-      if (drawQueued) return;
-      drawQueued = true;
-      requestAnimationFrame(() => {
+    // flying, each move and each fetched map asks), or `now` (a drawing queued before is
+    // then dropped).
+    draw: (now = false) => {
+      const drawNow = () => {
         drawQueued = false;
+        fetchedWaits = false;
         const m = map.fetched;
         const event = map.event || (m && m.event);
         if (!m || !event) return;
@@ -503,6 +524,17 @@ export function createMap(top, side, legend, hooks) {
         drawTop(m, event);
         drawSide(m, event);
         drawLegend(m);
+        map.drawTimes.push(Number(document.timeline.currentTime ?? performance.now()));
+        if (map.drawTimes.length > 600) map.drawTimes.shift();
+      };
+      if (now) {
+        drawNow();
+        return;
+      }
+      if (drawQueued) return;
+      drawQueued = true;
+      requestAnimationFrame(() => {
+        if (drawQueued) drawNow();
       });
     },
   };

@@ -36,7 +36,8 @@ import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TE
  * @property {L.Look | null} look the look-around state, for a full-sphere file
  * @property {number} frames pictures drawn on the canvas
  * @property {number} shadings shading passes run
- * @property {number[]} frameTimes performance.now() of the last frames drawn (at most 600)
+ * @property {number[]} frameTimes the animation frames (document.timeline's time) of the last
+ *   pictures drawn (at most 600)
  * @property {number | null} firstPicture ms from navigation start to the first picture
  * @property {{ described?: number, tables?: number, channels?: number }} timeline ms from
  *   navigation start (first load)
@@ -69,6 +70,7 @@ import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TE
  * @property {() => number} zoom
  * @property {(frame: import('./contract').FrameInfo, channelUrl: (name: string) => string,
  *   movingSize?: [number, number] | null) => boolean} showFrame
+ * @property {(name: string, write: (inPicture: boolean) => void) => void} withPicture
  * @property {(on: boolean) => void} hold
  * @property {(channels: import('./trace.js').Channels, note: string,
  *   size?: { width: number, height: number, supersample: number } | null,
@@ -115,6 +117,7 @@ const viewer = {
   layout: () => layout(),
   zoom: () => (lookMode() ? 1 : pan.zoom),
   showFrame,
+  withPicture,
   hold,
   showTracedFrame,
   noteFrames,
@@ -172,6 +175,12 @@ let frameNote = '';
 let stereoChanged = () => {};
 // Explore: whether the frame last given to showFrame has been shaded (or failed to load).
 let frameDrawn = true;
+// Explore: what the page writes about a frame whose channels are still being fetched (its
+// header line, the observer's event and place on the map: fly.js), by name, the newest of each
+// kept; written in the animation frame that draws its picture (`wordsWithPicture`), so that
+// the browser composites the page once a picture, not once for the words and again for it.
+/** @type {Map<string, (inPicture: boolean) => void>} */
+const wordsDue = new Map();
 /** @type {[number, number] | null} canvas pixels set by a script, else the layout decides */
 let fixedSize = null;
 // Explore: while a moving frame of a flight is shown, the size of the flight's full frame
@@ -333,6 +342,25 @@ async function fetchOverlay() {
   changed();
 }
 
+// Writes `write` (named `name`) with the picture of the frame given to showFrame, or now when
+// that picture is drawn already; `write(true)`: in the picture's animation frame.
+/**
+ * @param {string} name
+ * @param {(inPicture: boolean) => void} write
+ */
+function withPicture(name, write) {
+  if (frameDrawn) {
+    write(false);
+  } else {
+    wordsDue.set(name, write);
+  }
+}
+function wordsWithPicture() {
+  const due = [...wordsDue.values()];
+  wordsDue.clear();
+  due.forEach((write) => write(true));
+}
+
 // A change: `shade` false when only the display (zoom, pan) changed.
 function changed(shade = true) {
   if (shade) {
@@ -362,13 +390,17 @@ async function draw() {
   if (d.missing(need).length || images.some((n) => !d.images.has(n))) {
     const epoch = d.epoch;
     loading = epoch;
-    $('status').textContent = 'loading the data file\u2019s channels…';
+    // (Explore's next frame: the picture shown meanwhile is the last one, no word needed.)
+    if (!(viewer.explore && viewer.frames > 0)) {
+      $('status').textContent = 'loading the data file\u2019s channels…';
+    }
     try {
       await d.ensure(need);
       await d.ensureImages(images);
     } catch (e) {
       // Nothing more to wait for: the next frame may come (unless another frame came meanwhile).
       if (d.epoch === epoch) frameDrawn = true;
+      wordsWithPicture();
       // Explore: the frame was superseded while its channels loaded (410 Gone, or replaced by
       // a frame traced in the page); the newer frame comes, and no error flashes up meanwhile.
       const gone = e instanceof HttpError && e.status === 410;
@@ -419,16 +451,19 @@ async function draw() {
     }
   } catch (e) {
     frameDrawn = true;
+    wordsWithPicture();
     showError(messageOf(e));
     return;
   }
+  wordsWithPicture();
   if (viewer.firstPicture === null) {
     gpu.finish(); // the first picture counts when it is on the canvas, not when asked for
     viewer.firstPicture = performance.now();
   }
   const now = performance.now();
   viewer.frames += 1;
-  viewer.frameTimes.push(now);
+  // (the animation frame's time: the same for all that is drawn in it, the map's too)
+  viewer.frameTimes.push(Number(document.timeline.currentTime ?? now));
   if (viewer.frameTimes.length > 600) viewer.frameTimes.shift();
   const recent = viewer.frameTimes.filter((t) => t > now - 1000).length;
   $('status').textContent = `${p.width}×${p.height} shaded on the GPU · ${recent} frames/s`;
@@ -807,7 +842,7 @@ function showFrame(frame, channelUrl, movingSize = null) {
   // The camera is the same but for its size (coarse or full): hover directions follow.
   const camera = viewer.view?.view?.camera;
   if (camera) Object.assign(camera, { width: frame.width, height: frame.height });
-  describe();
+  withPicture('describe', () => describe());
   if (overlay.stale) {
     overlay.key = null;
     overlay.stale = false;
@@ -862,8 +897,10 @@ function showTracedFrame(channels, note, size = null, movingSize = null) {
 // stays in the header for every frame shown.
 /** @param {string} note */
 function noteFrames(note) {
-  frameNote = note;
-  describe();
+  withPicture('describe', () => {
+    frameNote = note;
+    describe();
+  });
 }
 function showFileFrame() {
   if (!frameNote) return;

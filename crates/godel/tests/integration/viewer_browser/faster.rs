@@ -162,6 +162,10 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     let maps = seen["moving_map"]["requests"].as_u64().unwrap();
     let ms = seen["moving_map"]["ms"].as_f64().unwrap();
     assert!(maps >= 1 && maps as f64 <= ms / 250.0 + 1.0, "{seen}");
+    // Drawn in the animation frame of a picture (one composition of the page for both), or
+    // alone only for a map fetched when no move followed it soon: at most once a fetch.
+    let alone = seen["moving_map"]["alone"].as_u64().unwrap();
+    assert!(alone <= maps, "{seen}");
     // At rest again, after moving forward: the CPU's full frame of the new view.
     let again = &seen["again"];
     assert_eq!(again["traced"]["level"], "full", "{seen}");
