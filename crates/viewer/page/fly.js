@@ -215,8 +215,8 @@ const MAX_DT = 0.1;
 // at most this many of its samples among those that hit, and as many among the others.
 const CHECK_EVERY_MS = 5000;
 const CHECK_PER_SIDE = 24;
-// How often the page asks the server whether the frame it asked for is done, and how long it
-// waits for one at most (then says why and traces on).
+// How often the page tries again to show a server frame while the last one is being drawn,
+// and how long it waits for one at most (then says why and traces on).
 const SERVER_POLL_MS = 10;
 const SERVER_WAIT_MS = 600000;
 // `?trace=page`: every frame on this page's kernel, however fast the server is.
@@ -692,8 +692,9 @@ export async function startFly(viewer, explore, map, status) {
       await postJson('/api/explore/view-frame', { ...view, camera }))).json());
     const deadline = performance.now() + SERVER_WAIT_MS;
     while (!cancelled()) {
+      // (The server answers once the frame is kept, or after a wait of its own: explore_routes.rs)
       const answer = /** @type {import('./contract').FrameAnswer} */ (
-        await getJson('/api/explore/frame'));
+        await getJson(`/api/explore/frame?after=${asked.generation}`));
       if (answer.generation > asked.generation) return null;
       if (answer.error && answer.generation === asked.generation) throw new Error(answer.error);
       const f = answer.frame;
@@ -707,7 +708,6 @@ export async function startFly(viewer, explore, map, status) {
       if (performance.now() > deadline) {
         throw new Error(`the server's frame did not come within ${SERVER_WAIT_MS / 1000} s`);
       }
-      await sleep(SERVER_POLL_MS);
     }
     return null;
   }

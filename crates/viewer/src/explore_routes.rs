@@ -5,7 +5,7 @@
 //! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"[, "refine": false]}`) | starts a new generation for that event (coarse frame, then the full one unless `refine` is false): `{"generation": N}`; 400 naming the field for a bad event |
 //! | `POST /api/explore/view-frame` ([`View`]) | starts a new generation for one frame of that view, at its camera's size and samples (a flying page that finds this CPU faster than its GPU): `{"generation": N}`, the frame kept as `full`; 400 naming the field for a bad view or one of more rays than a frame of the scene's camera |
-//! | `GET /api/explore/frame` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample", "trace_ms"}` (`frame` null before any), the newest generation, the error of the newest generation, if any, and `cpu_rays_per_ms`, the rays a millisecond of the last frame traced (null before any) (JSON) |
+//! | `GET /api/explore/frame[?after=G]` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample", "trace_ms"}` (`frame` null before any), the newest generation, the error of the newest generation, if any, and `cpu_rays_per_ms`, the rays a millisecond of the last frame traced (null before any) (JSON); with `after`, answered once a frame of generation G or newer is kept, a newer generation is asked for or G failed, or after [`FRAME_WAIT`] |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the one that frame replaced |
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
@@ -21,11 +21,14 @@
 //! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
 //! frame on screen, at its size, never to the first frame the server opened on.
 //!
-//! The page polls `/api/explore/frame`, fetches the channels of a frame newer than the one it
-//! shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
+//! The page polls `/api/explore/frame` (waiting for the frame it asked for with `after`, so
+//! that one or a few requests wait for a frame, not one every few milliseconds: each costs
+//! the browser's cores on a software renderer), fetches the channels of a frame newer than
+//! the one it shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
 //! [`crate::guard::check`]; channels are encoded within the server's bound on work.
 
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 use axum::body::Bytes;
 use axum::extract::rejection::{PathRejection, QueryRejection};
@@ -252,8 +255,37 @@ async fn view_frame(
         .into_response())
 }
 
-async fn frame(State(state): State<Arc<ExploreState>>) -> Response {
+/// The longest `GET /api/explore/frame?after=G` waits (well within the server's shutdown
+/// grace), and how often it looks meanwhile.
+pub const FRAME_WAIT: Duration = Duration::from_millis(250);
+const FRAME_LOOK: Duration = Duration::from_millis(2);
+
+/// `?after=G`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WaitQuery {
+    after: Option<u64>,
+}
+
+/// Whether the page waiting for generation `g` has its answer: a frame of it (or newer)
+/// kept, a newer generation asked for, or its error.
+fn frame_come(e: &Explorer, g: u64) -> bool {
+    e.generation() != g || e.error().is_some() || e.latest().is_some_and(|f| f.generation >= g)
+}
+
+async fn frame(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<WaitQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let q = query_value("frame", query)?;
     let e = &state.explorer;
+    if let Some(g) = q.after {
+        // At most FRAME_WAIT / FRAME_LOOK looks.
+        let deadline = tokio::time::Instant::now() + FRAME_WAIT;
+        while !frame_come(e, g) && tokio::time::Instant::now() < deadline {
+            tokio::time::sleep(FRAME_LOOK).await;
+        }
+    }
     let frame = e.latest().map(|f| {
         serde_json::json!({
             "generation": f.generation,
@@ -271,7 +303,7 @@ async fn frame(State(state): State<Arc<ExploreState>>) -> Response {
         "error": e.error(),
         "cpu_rays_per_ms": e.rays_per_ms(),
     });
-    (no_store(), Json(body)).into_response()
+    Ok((no_store(), Json(body)).into_response())
 }
 
 /// The answer for a frame that is no longer kept.

@@ -419,6 +419,57 @@ async fn refusal(app: &axum::Router, request: Request<Body>) -> String {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn asked_after_a_generation_the_frame_route_waits_for_its_frame() {
+    let fake = Fake::default();
+    // Generation 1's coarse frame waits at the gate until the test opens it.
+    fake.held.lock().unwrap().push((7.0, Level::Coarse));
+    let explorer = Explorer::new(fake.clone()).unwrap();
+    let app = viewer::explore_routes::router(
+        common::state(),
+        explorer,
+        Access::local(common::PORT),
+        None,
+    );
+    let body = r#"{"t": 7, "x": 0, "y": 0, "z": 0}"#;
+    let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
+    assert_eq!(
+        (status, answer["generation"].as_u64()),
+        (StatusCode::OK, Some(1))
+    );
+    // Held: the answer comes when the wait is over, without the frame.
+    let asked = std::time::Instant::now();
+    let (status, answer, _) = send(&app, common::get("/api/explore/frame?after=1")).await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert!(
+        asked.elapsed() >= viewer::explore_routes::FRAME_WAIT,
+        "{answer}"
+    );
+    assert_eq!(answer["frame"], serde_json::Value::Null, "{answer}");
+    // Opened while a request waits: that request answers with the frame.
+    let waiting = {
+        let app = app.clone();
+        tokio::spawn(async move { send(&app, common::get("/api/explore/frame?after=1")).await })
+    };
+    tokio::time::sleep(Duration::from_millis(20)).await;
+    fake.gate.store(true, Ordering::SeqCst);
+    let (status, answer, _) = waiting.await.unwrap();
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(answer["frame"]["generation"], 1, "{answer}");
+    // A generation newer than the one waited for ends the wait too (at once: it is asked).
+    let body = r#"{"t": 8, "x": 0, "y": 0, "z": 0}"#;
+    send(&app, common::post("/api/explore/event", body)).await;
+    let (_, answer, _) = send(&app, common::get("/api/explore/frame?after=1")).await;
+    assert_eq!(answer["generation"], 2, "{answer}");
+    for (query, field) in [("after=x", "after"), ("after=1&wait=2", "wait")] {
+        let message = refusal(&app, common::get(&format!("/api/explore/frame?{query}"))).await;
+        assert!(
+            message.starts_with("frame: ") && message.contains(field),
+            "{message}"
+        );
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_view_frame_route_traces_a_view_and_the_frame_says_how_fast() {
     let app = stand_in_app(None);
     let (_, answer, _) = send(&app, common::get("/api/explore/frame")).await;
