@@ -13,7 +13,9 @@
 // (level, size, `by`: gpu or cpu); a canvas is {level (of the frame shown), width, height
 // (its pixels), box (its box in device pixels)}; moving_map counts the map's requests while W
 // was held, over `ms`, and `alone`: the animation frames in which the map was drawn and no
-// picture.
+// picture; moving_moves: the least time (ms) between two moves of the observer sent while
+// a moving frame of the server's was under way (from its view-frame request to the answer
+// that it was kept), null where no two were.
 import { argsOr, launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, col, row] = argsOr('node fly-faster.mjs URL OUT_DIR COL ROW', 4);
@@ -72,6 +74,10 @@ try {
   });
   const pressed = await logLength();
   const [mapsBefore, pressedAt] = [mapRequests(), await page.evaluate(() => performance.now())];
+  await page.evaluate(() => {
+    performance.clearResourceTimings();
+    performance.setResourceTimingBufferSize(100000);
+  });
   await page.keyboard.down('KeyW');
   await page.waitForFunction((k) => window.godelViewer.explore.fly.log.slice(k)
     .filter((l) => l.level === 'moving').length >= 10, pressed, { timeout: 180000 });
@@ -86,6 +92,27 @@ try {
       return new Set(v.explore.map.drawTimes.filter((t) => t >= from && !pictures.has(t))).size;
     }, pressedAt) };
   result.moving_log = await logFrom(pressed);
+  result.moving_moves = await page.evaluate(() => {
+    const all = performance.getEntriesByType('resource');
+    const named = (part) => all.filter((e) => e.name.includes(part));
+    const [asks, answers] = [named('/api/explore/view-frame'), named('/api/explore/frame?after=')];
+    // Each view-frame request to the last answer to its wait that ended before the next.
+    const spans = asks.map((a, i) => {
+      const next = asks[i + 1]?.startTime ?? Infinity;
+      const ends = answers.filter((w) => w.startTime > a.startTime && w.responseEnd < next);
+      return [a.startTime, ends.length ? ends[ends.length - 1].responseEnd : a.startTime];
+    });
+    const moves = named('/api/explore/move').map((e) => e.startTime);
+    let least = null;
+    for (const [from, to] of spans) {
+      const inside = moves.filter((t) => t > from && t < to);
+      for (let k = 1; k < inside.length; k += 1) {
+        const gap = inside[k] - inside[k - 1];
+        if (least === null || gap < least) least = gap;
+      }
+    }
+    return least;
+  });
   const released = await logLength();
   await page.waitForFunction(() => !window.godelViewer.explore.fly.moving, null,
     { timeout: 180000 });

@@ -109,12 +109,13 @@ import { KernelTracer } from './trace.js';
 
 /**
  * The observer's motion along its geodesic: the proper time run and not yet asked for, and
- * whether a move request is in flight (one at a time: the proper time run meanwhile waits),
- * the proper time moved so far (tests), and whether the map and the event fields show the
- * newest event. Changed by step (time runs), move and showPlace.
+ * whether a move request is in flight (one at a time: the proper time run meanwhile waits)
+ * and when the last was sent, the proper time moved so far (tests), and whether the map and
+ * the event fields show the newest event. Changed by step (time runs), move and showPlace.
  * @typedef {object} Motion
  * @property {number} pendingTau
  * @property {boolean} moving
+ * @property {number} movedAt
  * @property {number} tauMoved
  * @property {boolean} placeShown
  */
@@ -211,6 +212,8 @@ const MEASURE_RAYS = 2048;
 const ROLL_PER_S = 1.0;
 // Proper time added per animation frame at most (a stalled tab does not jump).
 const MAX_DT = 0.1;
+// The least time between two moves of the observer while the server traces a moving frame.
+const MOVE_GAP_MS = 50;
 // The page's check of its tracer: at most one frame in this many ms (the first always), and
 // at most this many of its samples among those that hit, and as many among the others.
 const CHECK_EVERY_MS = 5000;
@@ -378,7 +381,8 @@ export async function startFly(viewer, explore, map, status) {
   const controls = { keys: new Set(), keyed: false, speed: 0.5, rate: 1, playing: false,
     fall: false, drag: null };
   /** @type {Motion} */
-  const motion = { pendingTau: 0, moving: false, tauMoved: 0, placeShown: true };
+  const motion = { pendingTau: 0, moving: false, movedAt: -Infinity, tauMoved: 0,
+    placeShown: true };
   /** @type {Frames} */
   const frames = {
     traced: null,
@@ -568,6 +572,7 @@ export async function startFly(viewer, explore, map, status) {
     const tau = motion.pendingTau;
     motion.pendingTau = 0;
     motion.moving = true;
+    motion.movedAt = performance.now();
     const v = sight.view;
     /** @type {import('./contract').MoveRequest} */
     const asked = { time: v.time, position: v.position, velocity: v.velocity, tau };
@@ -1009,7 +1014,10 @@ export async function startFly(viewer, explore, map, status) {
     const running = controls.playing || keyed !== null;
     if (running && dt > 0) {
       motion.pendingTau += (controls.playing ? controls.rate : Math.abs(controls.rate) || 1) * dt;
-      move();
+      // While the server traces a moving frame, the next one needs the newest event only when
+      // it is asked for: a move at most every MOVE_GAP_MS meanwhile (each request costs the
+      // browser's cores, which a software renderer shares with the server).
+      if (!(frames.busy && serverFaster() && now - motion.movedAt < MOVE_GAP_MS)) move();
     } else if (!running) {
       motion.pendingTau = 0;
       if (!motion.moving) showPlace();
