@@ -387,7 +387,12 @@ async fn send(
 
 /// The explore routes over the stand-in frame source, serving `kernel` when given.
 fn stand_in_app(kernel: Option<String>) -> axum::Router {
-    let explorer = Explorer::new(Fake::default()).unwrap();
+    app_over(Fake::default(), kernel)
+}
+
+/// The explore routes over `fake`, serving `kernel` when given.
+fn app_over(fake: Fake, kernel: Option<String>) -> axum::Router {
+    let explorer = Explorer::new(fake).unwrap();
     viewer::explore_routes::router(
         common::state(),
         explorer,
@@ -423,13 +428,7 @@ async fn asked_after_a_generation_the_frame_route_waits_for_its_frame() {
     let fake = Fake::default();
     // Generation 1's coarse frame waits at the gate until the test opens it.
     fake.held.lock().unwrap().push((7.0, Level::Coarse));
-    let explorer = Explorer::new(fake.clone()).unwrap();
-    let app = viewer::explore_routes::router(
-        common::state(),
-        explorer,
-        Access::local(common::PORT),
-        None,
-    );
+    let app = app_over(fake.clone(), None);
     let body = r#"{"t": 7, "x": 0, "y": 0, "z": 0}"#;
     let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
     assert_eq!(
@@ -543,13 +542,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     let fake = Fake::default();
     // Generation 2's full frame waits at the gate until the test opens it.
     fake.held.lock().unwrap().push((5.0, Level::Full));
-    let explorer = Explorer::new(fake.clone()).unwrap();
-    let app = viewer::explore_routes::router(
-        common::state(),
-        explorer,
-        Access::local(common::PORT),
-        None,
-    );
+    let app = app_over(fake.clone(), None);
     let (status, info, _) = send(&app, common::get("/api/explore/info")).await;
     assert_eq!(status, StatusCode::OK);
     assert_eq!(info["explore"], true);
