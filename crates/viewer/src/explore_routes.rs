@@ -24,8 +24,9 @@
 //! The page polls `/api/explore/frame` (waiting for the frame it asked for with `after`, so
 //! that one or a few requests wait for a frame, not one every few milliseconds: each costs
 //! the browser's cores on a software renderer), fetches the channels of a frame newer than
-//! the one it shows, and shades them on the GPU as the viewer's own channels. Like every route these pass
-//! [`crate::guard::check`]; channels are encoded within the server's bound on work.
+//! the one it shows, and shades them on the GPU as the viewer's own channels. Like every
+//! route these pass [`crate::guard::check`]; channels are encoded within the server's bound
+//! on work.
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
