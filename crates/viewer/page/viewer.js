@@ -872,17 +872,16 @@ function hold(on) {
  */
 function showTracedFrame(channels, note, size = null, movingSize = null) {
   const { info } = loaded();
-  const wasMoving = moving;
+  // A new size, or a flight's moving frames begun or ended: the canvas is laid out again.
+  const relayout = size !== null || moving !== movingSize;
   moving = movingSize;
   if (size) {
     if (!pan.fitted) pan.zoom *= info.width / size.width;
     Object.assign(info, size);
     const camera = viewer.view?.view?.camera;
     if (camera) Object.assign(camera, { width: size.width, height: size.height });
-    layout();
-  } else if (wasMoving) {
-    layout(); // the canvas back at the box's size
   }
+  if (relayout) layout();
   for (const [name, texture] of Object.entries(channels)) {
     if (texture) gpuOf().replace(name, texture);
   }
