@@ -15,7 +15,7 @@
 // was held, over `ms`, and `alone`: the animation frames in which the map was drawn and no
 // picture; moving_moves: the least time (ms) between two moves of the observer sent while
 // a moving frame of the server's was under way (from its view-frame request to the answer
-// that it was kept), null where no two were.
+// that it was kept: that request's or a further wait's), null where no two were.
 import { argsOr, launch, open, atRest } from './launch.mjs';
 
 const [url, outDir, col, row] = argsOr('node fly-faster.mjs URL OUT_DIR COL ROW', 4);
@@ -96,11 +96,12 @@ try {
     const all = performance.getEntriesByType('resource');
     const named = (part) => all.filter((e) => e.name.includes(part));
     const [asks, answers] = [named('/api/explore/view-frame'), named('/api/explore/frame?after=')];
-    // Each view-frame request to the last answer to its wait that ended before the next.
+    // Each view-frame request (which waits for its frame) to its answer or to the last
+    // answer to a further wait that ended before the next.
     const spans = asks.map((a, i) => {
       const next = asks[i + 1]?.startTime ?? Infinity;
       const ends = answers.filter((w) => w.startTime > a.startTime && w.responseEnd < next);
-      return [a.startTime, ends.length ? ends[ends.length - 1].responseEnd : a.startTime];
+      return [a.startTime, Math.max(a.responseEnd, ...ends.map((w) => w.responseEnd))];
     });
     const moves = named('/api/explore/move').map((e) => e.startTime);
     let least = null;

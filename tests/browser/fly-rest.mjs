@@ -42,7 +42,7 @@ const result = {};
 try {
   // The server's own first frame comes late (its channels held back 12 s): the page's traced
   // frames are shown while they load, and must win without an error (data.js ensure).
-  await page.route('**/api/explore/channel/**', async (route) => {
+  await page.route('**/api/explore/channels?**', async (route) => {
     if (route.request().url().includes('generation=1&')) {
       await new Promise((resolve) => { setTimeout(resolve, 12000); });
     }

@@ -369,6 +369,12 @@ export interface EventAnswer {
   generation: number;
 }
 
+/** `POST /api/explore/view-frame?wait=true`: also what `GET /api/explore/frame?after=N` answers. */
+export interface ViewFrameAnswer {
+  generation: number;
+  answer: FrameAnswer;
+}
+
 export type Level = 'coarse' | 'full';
 
 /** `GET /api/explore/frame`. */

@@ -5,7 +5,7 @@
 'use strict';
 
 import { getJson, ok, fetchPatiently } from './api.js';
-import { parseArray } from './gl.js';
+import { parseArrays } from './gl.js';
 import { Blackbody, srgb8ToLinear } from './overlays.js';
 
 /** @typedef {import('./contract').Info} Info */
@@ -13,6 +13,10 @@ import { Blackbody, srgb8ToLinear } from './overlays.js';
 /** @typedef {import('./contract').GpuTexture} GpuTexture */
 /** @typedef {import('./gl.js').Gpu} Gpu */
 /** @typedef {import('./gl.js').WireArray} WireArray */
+/**
+ * The URLs that answer the channels `names`, in order: each one array or a sequence of them.
+ * @typedef {(names: string[]) => string[]} ChannelUrls
+ */
 
 /**
  * An image texture in the atlas: its size, 8-bit sRGB samples, and its first row there.
@@ -28,11 +32,23 @@ const LINEAR = Float32Array.from({ length: 256 }, (_, k) => srgb8ToLinear(k));
 const PARALLEL = 4;
 
 /**
- * The array at `url` (crates/viewer/src/wire.rs); a refusal throws, naming the URL.
+ * The arrays at `url` (crates/viewer/src/wire.rs: one, or a sequence); a refusal throws,
+ * naming the URL.
  * @param {string} url
  */
-const fetchArray = async (url) => parseArray(await (await ok(await fetchPatiently(url), url))
+const fetchArrays = async (url) => parseArrays(await (await ok(await fetchPatiently(url), url))
   .arrayBuffer());
+
+// The channels of explore's server `frame` (crates/viewer/src/explore_routes.rs): all that a
+// picture needs in one request, as each request costs the browser's cores a few milliseconds.
+/**
+ * @param {import('./contract').FrameInfo} frame
+ * @returns {ChannelUrls}
+ */
+export function exploreChannels(frame) {
+  return (names) => [`/api/explore/channels?names=${names.join(',')}`
+    + `&generation=${frame.generation}&level=${frame.level}`];
+}
 
 // Whether the settings show the texture layer: named, or the polarization layer alone, which
 // draws its ticks over it (crates/shade/src/shading.rs).
@@ -101,16 +117,16 @@ export class Data {
     this.images = new Map();
     /** @type {[string, number, number][]} [url, bytes, ms] of each array, for the benchmarks */
     this.fetched = [];
-    /** @type {(name: string) => string} */
-    this.channelUrl = (name) => `/api/gpu/channel/${name}`;
+    /** @type {ChannelUrls} */
+    this.channelUrls = (names) => names.map((n) => `/api/gpu/channel/${n}`);
     this.epoch = 0;            // bumped whenever the frame whose channels are loaded changes
   }
 
-  // Explore mode (explore.js): the channels of another frame, from `channelUrl(name)`; the
+  // Explore mode (explore.js): the channels of another frame, from `channelUrls(names)`; the
   // ones on the GPU are fetched again when a layer needs them.
-  /** @param {(name: string) => string} channelUrl */
-  reset(channelUrl) {
-    this.channelUrl = channelUrl;
+  /** @param {ChannelUrls} channelUrls */
+  reset(channelUrls) {
+    this.channelUrls = channelUrls;
     this.loaded.clear();
     this.lightPlanes = [];
     this.epoch += 1;
@@ -153,11 +169,6 @@ export class Data {
     return data;
   }
 
-  /** @param {string} url */
-  array(url) {
-    return timedArray(url, this.fetched);
-  }
-
   // The size of the sample grid the channels hold: the picture's times the samples per
   // pixel along each side (crates/datafile/src/samples.rs).
   sampleSize() {
@@ -170,13 +181,16 @@ export class Data {
     return names.filter((n) => !this.loaded.has(n));
   }
 
-  // The arrays at `urls`, at most PARALLEL requests at a time, in order.
+  // The arrays at `urls` (each one array or a sequence), at most PARALLEL requests at a
+  // time, in order.
   /** @param {string[]} urls */
   async arrays(urls) {
     /** @type {WireArray[]} */
     const out = [];
     for (let i = 0; i < urls.length; i += PARALLEL) {
-      out.push(...await Promise.all(urls.slice(i, i + PARALLEL).map((u) => this.array(u))));
+      const got = await Promise.all(urls.slice(i, i + PARALLEL)
+        .map((u) => timedArrays(u, this.fetched)));
+      got.forEach((arrays) => out.push(...arrays));
     }
     return out;
   }
@@ -188,8 +202,13 @@ export class Data {
   async ensure(names) {
     const missing = this.missing(names);
     const epoch = this.epoch;
-    const arrays = await this.arrays(missing.map(this.channelUrl));
+    if (missing.length === 0) return;
+    const arrays = await this.arrays(this.channelUrls(missing));
     if (this.epoch !== epoch) return;
+    if (arrays.length !== missing.length) {
+      throw new Error(`the server sent ${arrays.length} arrays for the channels `
+        + missing.join(', '));
+    }
     const [width, height] = this.sampleSize();
     missing.forEach((name, i) => {
       const a = arrays[i];
@@ -246,14 +265,26 @@ export class Data {
   }
 }
 
-// The array at `url`, noted in `fetched` as [url, bytes, ms] (for the benchmarks).
+// The arrays at `url`, noted in `fetched` as [url, bytes, ms] (for the benchmarks).
+/**
+ * @param {string} url
+ * @param {[string, number, number][]} fetched
+ */
+async function timedArrays(url, fetched) {
+  const started = performance.now();
+  const arrays = await fetchArrays(url);
+  const bytes = arrays.reduce((sum, a) => sum + a.data.byteLength, 0);
+  fetched.push([url, bytes, performance.now() - started]);
+  return arrays;
+}
+
+// The one array at `url`.
 /**
  * @param {string} url
  * @param {[string, number, number][]} fetched
  */
 async function timedArray(url, fetched) {
-  const started = performance.now();
-  const a = await fetchArray(url);
-  fetched.push([url, a.data.byteLength, performance.now() - started]);
-  return a;
+  const arrays = await timedArrays(url, fetched);
+  if (arrays.length !== 1) throw new Error(`${url} answered ${arrays.length} arrays, not one`);
+  return arrays[0];
 }

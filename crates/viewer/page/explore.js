@@ -17,6 +17,7 @@
 'use strict';
 
 import { errorText, getJson, messageOf, postJson } from './api.js';
+import { exploreChannels } from './data.js';
 import { $, query } from './dom.js';
 import { startFly } from './fly.js';
 import { startKeep } from './keep.js';
@@ -204,9 +205,7 @@ export async function startExplore(viewer) {
       if (answer.error && answer.generation === state.requested) status(answer.error);
       // A frame of an older generation than the newest request is dropped.
       if (frame && frame.generation >= state.requested && newer(frame)) {
-        /** @param {string} name */
-        const url = (name) => `/api/explore/channel/${name}?generation=${frame.generation}`
-          + `&level=${frame.level}`;
+        const url = exploreChannels(frame);
         // The picture keeps the shape of the full frames: a coarse frame (its size rounded)
         // moves nothing below it, such as the map under a dragging mouse.
         if (frame.level === 'full') viewer.aspect = frame.width / frame.height;

@@ -57,6 +57,7 @@
 'use strict';
 
 import { getJson, getText, messageOf, ok, postJson } from './api.js';
+import { exploreChannels } from './data.js';
 import { $ } from './dom.js';
 import { STATUS, sampleRecord, tracedLightRay } from './hovered.js';
 import { cross, dot, normalize } from './look.js';
@@ -212,8 +213,9 @@ const MEASURE_RAYS = 2048;
 const ROLL_PER_S = 1.0;
 // Proper time added per animation frame at most (a stalled tab does not jump).
 const MAX_DT = 0.1;
-// The least time between two moves of the observer while the server traces a moving frame.
-const MOVE_GAP_MS = 50;
+// The least time between two moves of the observer while the server traces a moving frame:
+// about a frame's time (at 10 frames/s), so that a frame costs about one move.
+const MOVE_GAP_MS = 100;
 // The page's check of its tracer: at most one frame in this many ms (the first always), and
 // at most this many of its samples among those that hit, and as many among the others.
 const CHECK_EVERY_MS = 5000;
@@ -693,13 +695,13 @@ export async function startFly(viewer, explore, map, status) {
    */
   async function serverFrame(view, width, height, samples, cancelled, measure) {
     const camera = { ...view.camera, width, height, samples };
-    const asked = /** @type {import('./contract').EventAnswer} */ (await (await ok(
-      await postJson('/api/explore/view-frame', { ...view, camera }))).json());
+    // The server answers once the frame is kept, or after a wait of its own (explore_routes.rs):
+    // the request that asks for the frame waits for it, and then, if need be, others.
+    const asked = /** @type {import('./contract').ViewFrameAnswer} */ (await (await ok(
+      await postJson('/api/explore/view-frame?wait=true', { ...view, camera }))).json());
     const deadline = performance.now() + SERVER_WAIT_MS;
+    let answer = asked.answer;
     while (!cancelled()) {
-      // (The server answers once the frame is kept, or after a wait of its own: explore_routes.rs)
-      const answer = /** @type {import('./contract').FrameAnswer} */ (
-        await getJson(`/api/explore/frame?after=${asked.generation}`));
       if (answer.generation > asked.generation) return null;
       if (answer.error && answer.generation === asked.generation) throw new Error(answer.error);
       const f = answer.frame;
@@ -713,6 +715,8 @@ export async function startFly(viewer, explore, map, status) {
       if (performance.now() > deadline) {
         throw new Error(`the server's frame did not come within ${SERVER_WAIT_MS / 1000} s`);
       }
+      answer = /** @type {import('./contract').FrameAnswer} */ (
+        await getJson(`/api/explore/frame?after=${asked.generation}`));
     }
     return null;
   }
@@ -728,9 +732,7 @@ export async function startFly(viewer, explore, map, status) {
    * @param {number | null} [ms]
    */
   async function showServer(frame, version, level, note, cancelled, ms = null) {
-    /** @param {string} name */
-    const url = (name) => `/api/explore/channel/${name}?generation=${frame.generation}`
-      + `&level=${frame.level}`;
+    const url = exploreChannels(frame);
     const deadline = performance.now() + SERVER_WAIT_MS;
     while (!viewer.showFrame(frame, url, level === 'moving' ? [fullW, fullH] : null)) {
       if (cancelled() || frames.refused || performance.now() > deadline) return false;

@@ -30,19 +30,42 @@ import { VERTEX, shadeSource, displaySource } from './shaders.js';
 const TYPES = { 1: Uint8Array, 2: Uint16Array, 3: Uint32Array, 4: Float32Array };
 
 /**
+ * The array at byte `at` of `buffer`.
  * @param {ArrayBuffer} buffer
+ * @param {number} [at]
  * @returns {WireArray}
  */
-export function parseArray(buffer) {
-  const view = new DataView(buffer);
-  const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
+export function parseArray(buffer, at = 0) {
+  if (buffer.byteLength < at + 16) throw new Error('the server sent a truncated array');
+  const view = new DataView(buffer, at);
+  const magic = String.fromCharCode(...new Uint8Array(buffer, at, 4));
   const Type = TYPES[view.getUint8(12)];
   if (magic !== 'GDL1' || !Type) throw new Error('the server sent an array in an unknown format');
   const width = view.getUint32(4, true);
   const height = view.getUint32(8, true);
   const components = view.getUint8(13);
-  const data = new Type(buffer, 16, width * height * components);
+  const length = width * height * components;
+  if (buffer.byteLength < at + 16 + length * Type.BYTES_PER_ELEMENT) {
+    throw new Error('the server sent a truncated array');
+  }
+  const data = new Type(buffer, at + 16, length);
   return { width, height, components, data };
+}
+
+// The arrays of a sequence (crates/viewer/src/wire.rs): one after another, each padded to a
+// multiple of 4 bytes; a single array is a sequence of one.
+/**
+ * @param {ArrayBuffer} buffer
+ * @returns {WireArray[]}
+ */
+export function parseArrays(buffer) {
+  const out = [];
+  for (let at = 0; at < buffer.byteLength;) {
+    const a = parseArray(buffer, at);
+    out.push(a);
+    at += Math.ceil((16 + a.data.byteLength) / 4) * 4;
+  }
+  return out;
 }
 
 // Texture formats by typed array and component count.

@@ -68,8 +68,9 @@ import { uniformsFor, featuresFor, objectTable, imagesFor, overlayKey, OBJECT_TE
  * @property {(url: string, body: string, fallbackName: string) => Promise<Blob | null>} download
  * @property {() => void} layout
  * @property {() => number} zoom
- * @property {(frame: import('./contract').FrameInfo, channelUrl: (name: string) => string,
- *   movingSize?: [number, number] | null) => boolean} showFrame
+ * @property {(frame: import('./contract').FrameInfo,
+ *   channelUrls: import('./data.js').ChannelUrls, movingSize?: [number, number] | null)
+ *   => boolean} showFrame
  * @property {(name: string, write: (inPicture: boolean) => void) => void} withPicture
  * @property {(on: boolean) => void} hold
  * @property {(channels: import('./trace.js').Channels, note: string,
@@ -822,15 +823,15 @@ async function start() {
   stereoChanged = startStereo(page, showError);
 }
 
-// Explore (explore.js): shows another frame, whose channels are at `channelUrl(name)`; false
+// Explore (explore.js): shows another frame, whose channels are at `channelUrls(names)`; false
 // (try again later) while the last one is not drawn yet, so that every frame taken is seen.
 // `movingSize`: a moving frame of the flight (fly.js), whose full frame has that size.
 /**
  * @param {import('./contract').FrameInfo} frame
- * @param {(name: string) => string} channelUrl
+ * @param {import('./data.js').ChannelUrls} channelUrls
  * @param {[number, number] | null} [movingSize]
  */
-function showFrame(frame, channelUrl, movingSize = null) {
+function showFrame(frame, channelUrls, movingSize = null) {
   if (loadingNow() || !data || !frameDrawn) return false;
   const { info } = loaded();
   frameDrawn = false;
@@ -847,7 +848,7 @@ function showFrame(frame, channelUrl, movingSize = null) {
     overlay.key = null;
     overlay.stale = false;
   }
-  data.reset(channelUrl);
+  data.reset(channelUrls);
   layout();
   changed();
   return true;
@@ -904,7 +905,7 @@ function noteFrames(note) {
 function showFileFrame() {
   if (!frameNote) return;
   const d = dataOf();
-  d.reset(d.channelUrl);
+  d.reset(d.channelUrls);
   frameNote = '';
   describe();
   changed();

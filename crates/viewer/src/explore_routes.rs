@@ -4,9 +4,10 @@
 //! | --- | --- |
 //! | `GET /api/explore/info` | `"explore": true`, the scene's observer event, the bound on coordinates, the newest generation (JSON) |
 //! | `POST /api/explore/event` (`{"t", "x", "y", "z"[, "refine": false]}`) | starts a new generation for that event (coarse frame, then the full one unless `refine` is false): `{"generation": N}`; 400 naming the field for a bad event |
-//! | `POST /api/explore/view-frame` ([`View`]) | starts a new generation for one frame of that view, at its camera's size and samples (a flying page that finds this CPU faster than its GPU): `{"generation": N}`, the frame kept as `full`; 400 naming the field for a bad view or one of more rays than a frame of the scene's camera |
+//! | `POST /api/explore/view-frame[?wait=true]` ([`View`]) | starts a new generation for one frame of that view, at its camera's size and samples (a flying page that finds this CPU faster than its GPU): `{"generation": N}`, the frame kept as `full`; with `wait`, also `"answer"`: what `GET /api/explore/frame?after=N` answers (one request asks for the frame and waits for it); 400 naming the field for a bad view or one of more rays than a frame of the scene's camera |
 //! | `GET /api/explore/frame[?after=G]` | the newest frame kept: `{"generation", "level", "event", "width", "height", "supersample", "trace_ms"}` (`frame` null before any), the newest generation, the error of the newest generation, if any, and `cpu_rays_per_ms`, the rays a millisecond of the last frame traced (null before any) (JSON); with `after`, answered once a frame of generation G or newer is kept, a newer generation is asked for or G failed, or after [`FRAME_WAIT`] |
 //! | `GET /api/explore/channel/{name}?generation=G&level=L` | a channel of that frame ([`crate::gpu`], [`crate::wire`] array); 410 once it is neither the newest frame nor the one that frame replaced |
+//! | `GET /api/explore/channels?names=N,…&generation=G&level=L` | those channels of that frame in one answer, in the order named (a [`crate::wire::sequence`]); 404 naming an unknown channel, 400 for a channel named twice; 410 as for one channel |
 //! | `GET /api/explore/map?t=T&x=X&y=Y&z=Z` | the map for an observer at that event ([`render::map::Map`] as JSON: horizon, balls at its time, tracks); 400 naming the field for a bad event |
 //! | `GET /api/explore/ray?generation=G&level=L&col=C&row=R` | the light ray of that pixel of that frame, from the observer to its emission event ([`render::map::LightRay`]); 410 as for channels, 400 outside the picture |
 //! | `POST /api/explore/keyframe?frame=N` (`{"t", "x", "y", "z"}`) | a sequence-script keyframe (TOML download) that puts the scene's observer at that event |
@@ -21,12 +22,13 @@
 //! So *Save PNG*, looked pictures, overlays and the file's description always belong to the
 //! frame on screen, at its size, never to the first frame the server opened on.
 //!
-//! The page polls `/api/explore/frame` (waiting for the frame it asked for with `after`, so
-//! that one or a few requests wait for a frame, not one every few milliseconds: each costs
-//! the browser's cores on a software renderer), fetches the channels of a frame newer than
-//! the one it shows, and shades them on the GPU as the viewer's own channels. Like every
-//! route these pass [`crate::guard::check`]; channels are encoded within the server's bound
-//! on work.
+//! The page polls `/api/explore/frame` (waiting for the frame it asked for with `after`, or
+//! asking for a view's frame and waiting for it in one request, so that one or a few
+//! requests wait for a frame, not one every few milliseconds: each costs the browser's
+//! cores on a software renderer), fetches the channels of a frame newer than the one it
+//! shows (all it needs in one request, for the same reason), and shades them on the GPU as
+//! the viewer's own channels. Like every route these pass [`crate::guard::check`]; channels
+//! are encoded within the server's bound on work.
 
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -137,6 +139,7 @@ pub fn router(
         .route("/api/explore/view-frame", post(view_frame))
         .route("/api/explore/frame", get(frame))
         .route("/api/explore/channel/{name}", get(channel))
+        .route("/api/explore/channels", get(channels))
         .route("/api/explore/map", get(map))
         .route("/api/explore/ray", get(ray))
         .route("/api/explore/keyframe", post(keyframe))
@@ -238,26 +241,37 @@ async fn event(State(state): State<Arc<ExploreState>>, body: Bytes) -> Result<Re
 }
 
 /// `POST /api/explore/view-frame`: one frame of the body's view, traced on the server.
+/// `?wait=true`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ViewFrameQuery {
+    #[serde(default)]
+    wait: bool,
+}
+
 async fn view_frame(
     State(state): State<Arc<ExploreState>>,
+    query: Result<Query<ViewFrameQuery>, QueryRejection>,
     body: Bytes,
 ) -> Result<Response, ApiError> {
+    let q = query_value("view-frame", query)?;
     let view = view_body(&state, &body)?;
     // Checking the view reads the scene again: work within the server's bound.
     let work = state.viewer.work().admit()?;
+    let explore = state.clone();
     let generation = work
-        .run(move || state.explorer.request_view(view))
+        .run(move || explore.explorer.request_view(view))
         .await?
         .map_err(ApiError::bad_request)?;
-    Ok((
-        no_store(),
-        Json(serde_json::json!({ "generation": generation })),
-    )
-        .into_response())
+    let mut body = serde_json::json!({ "generation": generation });
+    if q.wait {
+        body["answer"] = frame_answer(&state.explorer, Some(generation)).await;
+    }
+    Ok((no_store(), Json(body)).into_response())
 }
 
-/// The longest `GET /api/explore/frame?after=G` waits (well within the server's shutdown
-/// grace), and how often it looks meanwhile.
+/// The longest `GET /api/explore/frame?after=G` (and `view-frame?wait=true`) waits (well
+/// within the server's shutdown grace), and how often it looks meanwhile.
 pub const FRAME_WAIT: Duration = Duration::from_millis(250);
 const FRAME_LOOK: Duration = Duration::from_millis(2);
 
@@ -279,8 +293,13 @@ async fn frame(
     query: Result<Query<WaitQuery>, QueryRejection>,
 ) -> Result<Response, ApiError> {
     let q = query_value("frame", query)?;
-    let e = &state.explorer;
-    if let Some(g) = q.after {
+    let body = frame_answer(&state.explorer, q.after).await;
+    Ok((no_store(), Json(body)).into_response())
+}
+
+/// What `GET /api/explore/frame[?after=G]` answers, after its wait.
+async fn frame_answer(e: &Explorer, after: Option<u64>) -> serde_json::Value {
+    if let Some(g) = after {
         // At most FRAME_WAIT / FRAME_LOOK looks.
         let deadline = tokio::time::Instant::now() + FRAME_WAIT;
         while !frame_come(e, g) && tokio::time::Instant::now() < deadline {
@@ -298,13 +317,12 @@ async fn frame(
             "trace_ms": f.trace_ms,
         })
     });
-    let body = serde_json::json!({
+    serde_json::json!({
         "frame": frame,
         "generation": e.generation(),
         "error": e.error(),
         "cpu_rays_per_ms": e.rays_per_ms(),
-    });
-    Ok((no_store(), Json(body)).into_response())
+    })
 }
 
 /// The answer for a frame that is no longer kept.
@@ -344,6 +362,49 @@ async fn channel(
         .work()
         .admit()?
         .run(move || channel.encode(&frame.data))
+        .await?;
+    Ok(crate::gpu_routes::array(bytes))
+}
+
+/// `?names=N,…&generation=G&level=coarse|full`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChannelsQuery {
+    names: String,
+    generation: u64,
+    level: Level,
+}
+
+async fn channels(
+    State(state): State<Arc<ExploreState>>,
+    query: Result<Query<ChannelsQuery>, QueryRejection>,
+) -> Result<Response, ApiError> {
+    let q = query_value("channels", query)?;
+    let frame = state
+        .explorer
+        .frame(q.generation, q.level)
+        .ok_or_else(|| gone(q.generation, q.level))?;
+    // Each channel at most once: the answer's size is bounded by the frame's channels.
+    let mut wanted: Vec<Channel> = Vec::new();
+    for name in q.names.split(',') {
+        let Some(channel) = Channel::parse(name, frame.data.lights.len()) else {
+            return Err(ApiError::new(
+                StatusCode::NOT_FOUND,
+                format!("channels: no channel '{name}'"),
+            ));
+        };
+        if wanted.contains(&channel) {
+            return Err(ApiError::bad_request(format!(
+                "channels: '{name}' is named twice"
+            )));
+        }
+        wanted.push(channel);
+    }
+    let bytes = state
+        .viewer
+        .work()
+        .admit()?
+        .run(move || crate::wire::sequence(wanted.iter().map(|c| c.encode(&frame.data))))
         .await?;
     Ok(crate::gpu_routes::array(bytes))
 }

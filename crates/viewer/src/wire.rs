@@ -14,6 +14,10 @@
 //! | 16.. | width × height × components samples, row-major, row 0 first |
 //!
 //! The header is 16 bytes, so the samples of every type start aligned for a typed array.
+//!
+//! A **sequence** of arrays (several channels in one answer, [`sequence`]) is the arrays one
+//! after another, each padded with zeros to a multiple of 4 bytes, so that every array's
+//! samples start aligned as well; each array's header gives its length.
 
 /// First four bytes of every array.
 pub const MAGIC: [u8; 4] = *b"GDL1";
@@ -77,6 +81,33 @@ impl Array {
     pub fn finish(self) -> Vec<u8> {
         self.bytes
     }
+}
+
+/// The arrays one after another, each padded with zeros to a multiple of 4 bytes.
+pub fn sequence(arrays: impl IntoIterator<Item = Vec<u8>>) -> Vec<u8> {
+    let mut out = Vec::new();
+    for a in arrays {
+        out.extend_from_slice(&a);
+        out.resize(out.len().next_multiple_of(4), 0);
+    }
+    out
+}
+
+/// The arrays of a [`sequence`], each without its padding; `None` for anything that is not
+/// one (for tests and tools that read arrays back).
+pub fn split_sequence(mut bytes: &[u8]) -> Option<Vec<&[u8]>> {
+    let mut out = Vec::new();
+    while !bytes.is_empty() {
+        let (w, h, kind, components) = read_header(bytes)?;
+        let len = w
+            .checked_mul(h)?
+            .checked_mul(usize::from(components) * kind.size())?
+            .checked_add(HEADER_LEN)?;
+        let padded = len.checked_next_multiple_of(4)?;
+        out.push(bytes.get(..len)?);
+        bytes = bytes.get(padded..)?;
+    }
+    Some(out)
 }
 
 /// A parsed header: (width, height, sample type, components), for tests and tools that read

@@ -422,6 +422,14 @@ async fn exploring(c: &Contract) {
         None,
     )
     .await;
+    // Asked to wait, with what the frame route answers after that generation.
+    app.write(
+        "/api/explore/view-frame?wait=true",
+        "View",
+        &view(),
+        Some("ViewFrameAnswer"),
+    )
+    .await;
 }
 
 /// *Render exactly* and *Record*.

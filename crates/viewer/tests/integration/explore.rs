@@ -17,7 +17,7 @@ use viewer::explore::{Explorer, FrameSource, Level, ObserverEvent};
 use viewer::kernel_routes::KernelInput;
 use viewer::page_check::{CheckedSample, Verdict, MAX_CHECK_BYTES, MAX_CHECK_SAMPLES};
 use viewer::view::{Velocity, View};
-use viewer::wire::{read_header, SampleType, HEADER_LEN};
+use viewer::wire::{read_header, split_sequence, SampleType, HEADER_LEN};
 use viewer::Access;
 
 use crate::common;
@@ -513,6 +513,27 @@ async fn the_view_frame_route_traces_a_view_and_the_frame_says_how_fast() {
     assert_eq!(status, StatusCode::OK);
     let first = f32::from_le_bytes(bytes[HEADER_LEN..HEADER_LEN + 4].try_into().unwrap());
     assert_eq!(first, -2.5);
+    // Asked to wait, the request that asks for a frame answers with it as well (the stand-in
+    // traces at once), as the frame route asked after its generation does.
+    let body = view_json(3.5, [0.1, 0.0, 0.0], 0.5, [0.0, 1.0, 0.0]).to_string();
+    let url = "/api/explore/view-frame?wait=true";
+    let (status, asked, _) = send(&app, common::post(url, &body)).await;
+    assert_eq!(
+        (status, asked["generation"].as_u64()),
+        (StatusCode::OK, Some(2))
+    );
+    let frame = &asked["answer"]["frame"];
+    assert_eq!(
+        (frame["generation"].as_u64(), frame["event"]["t"].as_f64()),
+        (Some(2), Some(3.5)),
+        "{asked}"
+    );
+    assert_eq!(asked["answer"]["generation"], 2, "{asked}");
+    for query in ["wait=maybe", "wait=true&after=1"] {
+        let url = format!("/api/explore/view-frame?{query}");
+        let message = refusal(&app, common::post(&url, &body)).await;
+        assert!(message.starts_with("view-frame: "), "{message}");
+    }
     let mut big = view_json(0.0, [0.0; 3], 0.0, [1.0, 0.0, 0.0]);
     big["camera"]["width"] = 5000.into();
     let message = refusal(
@@ -657,6 +678,58 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     // may be fetching it): the frame the newest replaced stays, older ones are gone.
     let coarse = "/api/explore/channel/t_emit?generation=1&level=coarse";
     assert_eq!(send(&app, common::get(coarse)).await.0, StatusCode::OK);
+    // Several channels in one answer: each the bytes the one-channel route gives, in the
+    // order named, the 2-pixel frame's id (one byte a pixel) padded so that t_emit's floats
+    // start aligned.
+    let mut one_by_one = Vec::new();
+    for name in ["id", "t_emit", "u"] {
+        let url = format!("/api/explore/channel/{name}?generation=1&level=coarse");
+        let (status, _, bytes) = send(&app, common::get(&url)).await;
+        assert_eq!(status, StatusCode::OK, "{url}");
+        one_by_one.push(bytes);
+    }
+    let all = "/api/explore/channels?names=id,t_emit,u&generation=1&level=coarse";
+    let (status, _, bytes) = send(&app, common::get(all)).await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(
+        read_header(&one_by_one[0]).map(|h| h.2),
+        Some(SampleType::U8)
+    );
+    assert_eq!(bytes.len(), 20 + one_by_one[1].len() + one_by_one[2].len());
+    let parts = split_sequence(&bytes).expect("a sequence of arrays");
+    assert_eq!(
+        parts,
+        one_by_one.iter().map(Vec::as_slice).collect::<Vec<_>>()
+    );
+    for (query, status, words) in [
+        (
+            "names=id,pressure",
+            StatusCode::NOT_FOUND,
+            "no channel 'pressure'",
+        ),
+        (
+            "names=u,id,u",
+            StatusCode::BAD_REQUEST,
+            "'u' is named twice",
+        ),
+        ("names=id&colour=red", StatusCode::BAD_REQUEST, "colour"),
+        (
+            "names=id&generation=x",
+            StatusCode::BAD_REQUEST,
+            "generation",
+        ),
+    ] {
+        let with_frame = if query.contains("generation") {
+            ""
+        } else {
+            "&generation=1"
+        };
+        let url = format!("/api/explore/channels?{query}{with_frame}&level=coarse");
+        let (got, answer, _) = send(&app, common::get(&url)).await;
+        let message = answer["error"].as_str().unwrap_or_default();
+        assert_eq!(got, status, "{url}: {message}");
+        assert!(message.contains(words), "{url}: {message}");
+    }
     let body = r#"{"t": 5, "x": 0.5, "y": 0, "z": 0}"#;
     let (status, answer, _) = send(&app, common::post("/api/explore/event", body)).await;
     assert_eq!(
@@ -687,6 +760,7 @@ async fn the_routes_take_events_and_serve_the_newest_frames_channels() {
     assert_eq!(send(&app, common::get(replaced)).await.0, StatusCode::OK);
     for stale in [
         coarse,
+        all,
         ray,
         shown,
         "/api/explore/channel/t_emit?generation=1&level=full",

@@ -166,10 +166,10 @@ fn each_frame_comes_from_the_faster_tracer_here_the_cpu() {
     // alone only for a map fetched when no move followed it soon: at most once a fetch.
     let alone = seen["moving_map"]["alone"].as_u64().unwrap();
     assert!(alone <= maps, "{seen}");
-    // While the server traces a moving frame, the observer is moved at most every 50 ms (fly.js
-    // MOVE_GAP_MS, timed from animation frames, so within a few ms of it).
+    // While the server traces a moving frame, the observer is moved at most every 100 ms
+    // (fly.js MOVE_GAP_MS, timed from animation frames, so within a few ms of it).
     if let Some(gap) = seen["moving_moves"].as_f64() {
-        assert!(gap >= 40.0, "moves {gap} ms apart: {seen}");
+        assert!(gap >= 90.0, "moves {gap} ms apart: {seen}");
     }
     // At rest again, after moving forward: the CPU's full frame of the new view.
     let again = &seen["again"];

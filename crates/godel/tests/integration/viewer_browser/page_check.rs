@@ -64,7 +64,7 @@ fn a_kernel_that_disagrees_with_the_cpu_is_refused_and_the_server_traces() {
     assert!(
         after
             .iter()
-            .any(|r| r.contains("/api/explore/channel/") && r.contains("level=full")),
+            .any(|r| r.contains("/api/explore/channels?") && r.contains("level=full")),
         "{after:?}"
     );
 }
