@@ -351,12 +351,7 @@ async fn channel(
         .explorer
         .frame(q.generation, q.level)
         .ok_or_else(|| gone(q.generation, q.level))?;
-    let Some(channel) = Channel::parse(&name, frame.data.lights.len()) else {
-        return Err(ApiError::new(
-            StatusCode::NOT_FOUND,
-            format!("no channel '{name}'"),
-        ));
-    };
+    let channel = channel_of(&frame, &name)?;
     let bytes = state
         .viewer
         .work()
@@ -364,6 +359,12 @@ async fn channel(
         .run(move || channel.encode(&frame.data))
         .await?;
     Ok(crate::gpu_routes::array(bytes))
+}
+
+/// The channel `name` of `frame`'s data file; 404 naming it.
+fn channel_of(frame: &Frame, name: &str) -> Result<Channel, ApiError> {
+    Channel::parse(name, frame.data.lights.len())
+        .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, format!("no channel '{name}'")))
 }
 
 /// `?names=N,…&generation=G&level=coarse|full`.
@@ -387,12 +388,7 @@ async fn channels(
     // Each channel at most once: the answer's size is bounded by the frame's channels.
     let mut wanted: Vec<Channel> = Vec::new();
     for name in q.names.split(',') {
-        let Some(channel) = Channel::parse(name, frame.data.lights.len()) else {
-            return Err(ApiError::new(
-                StatusCode::NOT_FOUND,
-                format!("channels: no channel '{name}'"),
-            ));
-        };
+        let channel = channel_of(&frame, name)?;
         if wanted.contains(&channel) {
             return Err(ApiError::bad_request(format!(
                 "channels: '{name}' is named twice"
