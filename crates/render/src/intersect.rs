@@ -284,12 +284,16 @@ impl Intersector {
                 at: hi_abs,
             };
             let limit = best.as_ref().map_or(hi, |b| b.lambda);
+            // A plane's f is z − height, linear in λ along a closed form (z = z0 + p_z λ):
+            // where its end values are the measured ones, no bisection is needed.
+            let linear = t.is_plane() && d.is_closed_form() && m.at == lo_abs;
             if let Some((l, tau)) = self.search(
                 t,
                 d,
                 shift,
                 (lo, limit.min(hi)),
                 (pa, pb),
+                linear,
                 want,
                 SEARCH_PROBES,
                 &mut probes.spans,
@@ -313,7 +317,10 @@ impl Intersector {
     /// Bisection for the first surface crossing of `t` on [a, b]: depth first, the earlier
     /// half first, spans excluded by the rate bound dropped. At most `budget` probes (else
     /// [`OutOfWork`]) and [`SEARCH_DEPTH`] halvings. With [`Want::Any`], a crossing of an
-    /// object that takes every crossing is reported unrefined (see [`Want`]).
+    /// object that takes every crossing is reported unrefined (see [`Want`]). `linear`: f is
+    /// linear in λ on [a, b] (a plane along a closed form, `pa` and `pb` measured at a and b),
+    /// so a span crosses exactly where its ends change side, at the root of the line through
+    /// them (docs/physics.md, "The intersection search").
     #[allow(clippy::too_many_arguments)]
     fn search(
         &self,
@@ -322,6 +329,7 @@ impl Intersector {
         shift: Shift,
         (a, b): (f64, f64),
         (pa, pb): (Probe, Probe),
+        linear: bool,
         want: Want,
         budget: u32,
         open: &mut Vec<Span>,
@@ -339,8 +347,12 @@ impl Intersector {
                 if want == Want::Any && t.accepts_any() {
                     return Ok(Some((b, f64::NAN)));
                 }
-                let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
-                let l = refine_root(f, a, b, pa.f, pb.f);
+                let l = if linear {
+                    a + (b - a) * (pa.f / (pa.f - pb.f)).clamp(0.0, 1.0)
+                } else {
+                    let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
+                    refine_root(f, a, b, pa.f, pb.f)
+                };
                 let s = shift.apply(d.state_at(l));
                 if t.accepts(&s) {
                     return Ok(Some((l, t.probe(&self.metric, &s, pa.tau).tau)));
@@ -351,7 +363,8 @@ impl Intersector {
             // halve until both ends are known.
             let rate = pa.rate.max(pb.rate);
             let excluded = finite
-                && (Target::excluded(pa.f, pb.f, rate, b - a)
+                && (linear
+                    || Target::excluded(pa.f, pb.f, rate, b - a)
                     || self.chords && t.chord_excludes(&self.metric, &pa, &pb, b - a));
             if excluded || depth >= SEARCH_DEPTH {
                 continue;
@@ -374,7 +387,9 @@ mod tests {
     use super::*;
     use crate::segment::ClosedForm;
     use spacetime::TimeDirection;
-    use spacetime::{photon_tangent, Event, ExactGeodesic, GeodesicSystem, Godel, Spacetime};
+    use spacetime::{
+        photon_tangent, Event, ExactGeodesic, GeodesicSystem, Godel, GodelType, Spacetime,
+    };
 
     /// A ray grazing a coordinate sphere within 1e-7 of its radius: ruling a crossing out
     /// takes the bisection many halvings. With a budget of 3 probes it must report
@@ -434,6 +449,7 @@ mod tests {
                 Shift::default(),
                 (0.0, 1.0),
                 (pa, pb),
+                false,
                 Want::First,
                 budget,
                 &mut Vec::new(),
@@ -444,5 +460,99 @@ mod tests {
         assert_eq!(outcome(1e-9, SEARCH_PROBES), Ok(None));
         let hit = outcome(-1e-2, SEARCH_PROBES).expect("within budget");
         assert!(hit.is_some_and(|(l, _)| l > 0.3 && l < 0.5), "{hit:?}");
+    }
+
+    /// A plane along a closed form (Gödel's and a Gödel-type member's rays through random
+    /// events): its f = z − height is linear in λ, so the search finds its crossing at the
+    /// root of the line through the span's end values without a further probe (a budget of
+    /// none), where z is the height to rounding and the Illinois refinement agrees; and rules
+    /// out a span whose ends are on one side, however close to the plane, where the rate bound
+    /// alone must bisect (out of work with no probes to spend).
+    #[test]
+    fn a_plane_along_a_closed_form_is_crossed_at_its_linear_root() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let metrics = [
+            Metric::Godel(Godel::new(1.0)),
+            Metric::GodelType(GodelType::new(3.0, 0.5f64.sqrt())),
+        ];
+        let mut checked = 0;
+        for metric in metrics {
+            for _ in 0..50 {
+                let o = Event::new(
+                    4.0 * uniform() - 2.0,
+                    1.2 * uniform() - 0.6,
+                    1.2 * uniform() - 0.6,
+                    uniform() - 0.5,
+                );
+                let n = [uniform() - 0.5, uniform() - 0.5, uniform() - 0.5];
+                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                if len < 0.1 || n[2].abs() < 0.1 * len {
+                    continue; // a ray (nearly) along the plane has no crossing to look for
+                }
+                let n = n.map(|c| c / len);
+                let k = photon_tangent(&metric.static_frame(o), n, TimeDirection::Past);
+                let geo = ClosedForm::new(&metric, o, k).expect("a closed form");
+                let start = GeodesicState {
+                    x: o,
+                    p: metric.lower(o, k),
+                };
+                let (sys, s0) = GeodesicSystem::new(metric, &start);
+                let seg = Segment::exact(geo, sys, 0.0, s0, 1.0);
+                let z = |l: f64| seg.state_at(l).x.z;
+                let search = |height: f64, linear: bool, budget: u32| {
+                    let intersector = Intersector::new(
+                        metric,
+                        vec![Target::Plane {
+                            height,
+                            extent: None,
+                        }],
+                    );
+                    let t = &intersector.targets[0];
+                    let pa = t.probe(&metric, &start, f64::NAN);
+                    let pb = t.probe(&metric, &seg.state_at(1.0), f64::NAN);
+                    intersector.search(
+                        t,
+                        &seg,
+                        Shift::default(),
+                        (0.0, 1.0),
+                        (pa, pb),
+                        linear,
+                        Want::First,
+                        budget,
+                        &mut Vec::new(),
+                    )
+                };
+                let at = 0.2 + 0.6 * uniform();
+                let height = z(at);
+                let (l, _) = search(height, true, 0)
+                    .expect("no probe needed")
+                    .expect("a crossing");
+                assert!((l - at).abs() <= 1e-12, "{metric:?}: λ {l} against {at}");
+                assert!(
+                    (z(l) - height).abs() <= 1e-12,
+                    "{metric:?}: z {} against {height}",
+                    z(l)
+                );
+                let (illinois, _) = search(height, false, SEARCH_PROBES)
+                    .expect("within budget")
+                    .expect("a crossing");
+                assert!(
+                    (l - illinois).abs() <= 1e-9,
+                    "{metric:?}: {l} against {illinois}"
+                );
+                // Just beyond the span's end: both ends on one side, 1e-7 apart at the end.
+                let beyond = z(1.0) + 1e-7 * (z(1.0) - z(0.0)).signum();
+                assert_eq!(search(beyond, true, 0), Ok(None), "{metric:?}");
+                assert_eq!(search(beyond, false, 0), Err(OutOfWork), "{metric:?}");
+                checked += 1;
+            }
+        }
+        assert!(checked >= 40, "{checked} rays checked");
     }
 }

@@ -156,6 +156,11 @@ impl Segment {
         self
     }
 
+    /// Whether the segment is a stretch of a closed form (whose z is linear in λ).
+    pub fn is_closed_form(&self) -> bool {
+        self.exact.is_some()
+    }
+
     /// The integrated state (t, x, y, z, p_x, p_y) at `l`.
     pub fn eval(&self, l: f64) -> [f64; STATE] {
         if l == self.data.lambda1() {

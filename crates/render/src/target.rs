@@ -281,6 +281,12 @@ impl Target {
         )
     }
 
+    /// Whether the target is a coordinate plane (its f, z − height, linear in λ along a
+    /// closed-form ray).
+    pub fn is_plane(&self) -> bool {
+        matches!(self, Target::Plane { .. })
+    }
+
     /// Whether every crossing counts ([`Target::accepts`] always true): all but planes of
     /// limited extent.
     pub fn accepts_any(&self) -> bool {

@@ -358,6 +358,9 @@ export async function startFly(viewer, explore, map, status) {
   }
   const ss = input.supersample;
   const [fullW, fullH] = [input.uniforms.size[0] / ss, input.uniforms.size[1] / ss];
+  // What the viewer is told of a frame shown at `level`: a moving frame's full size, else null.
+  /** @param {Level} level @returns {[number, number] | null} */
+  const movingSize = (level) => (level === 'moving' ? [fullW, fullH] : null);
   const c = sceneView.camera;
   /** @type {CameraView} */
   const camera = { kind: c.kind, width: fullW, height: fullH, samples: ss * ss };
@@ -634,7 +637,7 @@ export async function startFly(viewer, explore, map, status) {
     explore.shown = null;
     const [pw, ph] = full ? [fullW, fullH] : [traced.width, traced.height];
     viewer.showTracedFrame(channels, note(pw, ph), { width: pw, height: ph,
-      supersample: full ? ss : 1 }, level === 'moving' ? [fullW, fullH] : null);
+      supersample: full ? ss : 1 }, movingSize(level));
     frames.drawn += 1;
     shown(version, pw, ph, level, 'gpu', ms);
     checkFrame(traced, view);
@@ -734,7 +737,7 @@ export async function startFly(viewer, explore, map, status) {
   async function showServer(frame, version, level, note, cancelled, ms = null) {
     const url = exploreChannels(frame);
     const deadline = performance.now() + SERVER_WAIT_MS;
-    while (!viewer.showFrame(frame, url, level === 'moving' ? [fullW, fullH] : null)) {
+    while (!viewer.showFrame(frame, url, movingSize(level))) {
       if (cancelled() || frames.refused || performance.now() > deadline) return false;
       await sleep(SERVER_POLL_MS);
     }

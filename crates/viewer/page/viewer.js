@@ -874,7 +874,8 @@ function hold(on) {
 function showTracedFrame(channels, note, size = null, movingSize = null) {
   const { info } = loaded();
   // A new size, or a flight's moving frames begun or ended: the canvas is laid out again.
-  const relayout = size !== null || moving !== movingSize;
+  const relayout = size !== null || moving?.[0] !== movingSize?.[0]
+    || moving?.[1] !== movingSize?.[1];
   moving = movingSize;
   if (size) {
     if (!pan.fitted) pan.zoom *= info.width / size.width;

@@ -419,12 +419,21 @@ void machineStep() {
                     mach.mode = M_DONE;
                     return;
                 }
+                if (isPlane(mach.obj)) {
+                    // z − height is linear in λ (its start probe is measured at the segment's
+                    // start: a plane never vouches for spans): the crossing is the line's root.
+                    float at = clamp(bis.pa.f / (bis.pa.f - bis.pb.f), 0.0, 1.0);
+                    request(Q_ROOT, bis.a + (bis.b - bis.a) * at, bis.pa.tau);
+                    return;
+                }
                 ill.lo = bis.a; ill.hi = bis.b; ill.flo = bis.pa.f; ill.fhi = bis.pb.f;
                 ill.side = 0; ill.iter = 0;
                 mach.mode = M_REFINE;
             } else {
                 float rate = max(bis.pa.rate, bis.pb.rate);
-                bool out_ = finiteBoth && (excluded(bis.pa.f, bis.pb.f, rate, bis.b - bis.a)
+                // A plane's span whose ends are on one side holds no crossing (f linear).
+                bool out_ = finiteBoth && (isPlane(mach.obj)
+                                           || excluded(bis.pa.f, bis.pb.f, rate, bis.b - bis.a)
                                            || chordExcludes(mach.obj, bis.pa, bis.pb, bis.b - bis.a));
                 if (!(out_ || bis.depth >= SEARCH_DEPTH)) {
                     // Halve: the earlier half first.
@@ -439,15 +448,13 @@ void machineStep() {
                     request(Q_SPAN, bis.b, bis.pa.tau);
                     return;
                 }
-                nextSpan();
-                if (mach.mode == M_BISECT && req.tag == Q_NONE) continue;
-                if (mach.mode != M_SCAN) return;
             }
-        } else {
-            nextSpan();
-            if (mach.mode == M_BISECT && req.tag == Q_NONE) continue;
-            if (mach.mode != M_SCAN) return;
         }
+        if (mach.mode != M_BISECT) break;   // on to the refinement
+        // The span is done (excluded, at the depth bound, or the object undefined on it).
+        nextSpan();
+        if (mach.mode == M_BISECT && req.tag == Q_NONE) continue;
+        if (mach.mode != M_SCAN) return;
     }
     if (mach.mode == M_BISECT) return;   // (not reached: a span's end probe is kept once)
     if (mach.mode == M_REFINE) {

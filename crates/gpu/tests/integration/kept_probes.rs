@@ -17,12 +17,13 @@ const KEEP: &str = "                    pendingDepth = bis.depth + 1;\n";
 
 /// The records of `scene` traced by `kernel`, and its probes in all.
 fn traced(scene: &Scene, kernel: &str) -> (Vec<PixelRecord>, f64) {
-    let records = GpuTracer::with_kernel(KernelInput::new(scene), kernel)
+    let input = KernelInput::new(scene);
+    let records = GpuTracer::with_kernel(input.clone(), kernel)
         .expect("a GPU context")
         .trace(&NoProgress)
         .expect("trace")
         .records;
-    let counted = GpuTracer::count_probes(KernelInput::new(scene), kernel).expect("trace");
+    let counted = GpuTracer::count_probes(input, kernel).expect("trace");
     (records, counted.probes)
 }
 

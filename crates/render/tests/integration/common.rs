@@ -30,14 +30,24 @@ pub fn scene_text(name: &str, method: &str, width: u32, height: u32) -> String {
         .join("../../scenes")
         .join(name);
     let text = std::fs::read_to_string(p).unwrap();
+    // The table each line is in: only the camera's width and height are its size (a plane's
+    // `height` is its place).
+    let mut table = String::new();
     text.lines()
-        .map(|l| match l.split('=').next().map(str::trim) {
-            Some("width") => format!("width = {width}"),
-            Some("height") => format!("height = {height}"),
-            Some("method") => String::new(),
-            // One ray per pixel: the tracers are compared ray by ray, samples add only cost.
-            Some("samples") => String::new(),
-            _ => l.to_string(),
+        .map(|l| {
+            if l.trim_start().starts_with('[') {
+                table = l.trim().to_string();
+            }
+            let camera = table == "[camera]";
+            match l.split('=').next().map(str::trim) {
+                Some("width") if camera => format!("width = {width}"),
+                Some("height") if camera => format!("height = {height}"),
+                Some("method") if table == "[trace]" => String::new(),
+                // One ray per pixel: the tracers are compared ray by ray, samples add only
+                // cost.
+                Some("samples") if camera => String::new(),
+                _ => l.to_string(),
+            }
         })
         .collect::<Vec<_>>()
         .join("\n")

@@ -14,6 +14,9 @@ fn exact_and_numeric_tracers_agree_pixel_by_pixel() {
         ("lit-beyond-horizon.toml", 360, 40),
         ("lit-side.toml", 360, 40),
         ("lit-shadow.toml", 360, 40),
+        // A plane (crossed at its linear root along the exact tracer's closed forms), a ball
+        // at rest and a light.
+        ("floor-grid.toml", 128, 72),
     ] {
         let (num, _) = render_scene(&scene_file(name, "numeric", w, h));
         let (exa, _) = render_scene(&scene_file(name, "exact", w, h));
