@@ -78,6 +78,10 @@ pub struct Probes {
     /// Per object: the only stretches of the ray (λ from its start) that search it (balls at
     /// rest: `crate::reject::StaticBall::near`); None: all along.
     pub near: Vec<Option<Stretches>>,
+    /// Per object: the only stretch of the ray (λ from its start) where it can be crossed
+    /// (planes along a closed form: around the one λ where the ray's linear z reaches the
+    /// plane, `crate::reject::set_ray`); None: all along.
+    pub crossing: Vec<Option<(f64, f64)>>,
     /// The closed form's λ per loop of the current ray, where its λ is the closed form's (the
     /// exact tracer's rays and the shadow rays; NaN otherwise).
     pub loop_length: f64,
@@ -129,14 +133,16 @@ impl Probes {
 
     /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
     /// l1 from the loop's start): an object is searched where the stretch meets its window
-    /// in the loop (one stretch a loop; a later loop probes afresh) and its `near` ones. An
+    /// in the loop (one stretch a loop; a later loop probes afresh), its `near` ones and its
+    /// `crossing` stretch. An
     /// object not searched just before starts from a fresh probe ([`Intersector::scan`]).
     /// Whether any is searched.
     pub fn activate(&mut self, k: usize, dl: f64, l0: f64, l1: f64) -> bool {
         let mut any = false;
         for i in 0..self.active.len() {
             let on = self.in_loops(i, k, l0, l1)
-                && self.near[i].is_none_or(|n| n.meets(dl + l0, dl + l1));
+                && self.near[i].is_none_or(|n| n.meets(dl + l0, dl + l1))
+                && self.crossing[i].is_none_or(|(lo, hi)| dl + l1 >= lo && dl + l0 <= hi);
             if on && !self.active[i] {
                 self.start[i].at = f64::NAN;
             }
@@ -204,6 +210,7 @@ impl Intersector {
             by_loop: vec![false; self.targets.len()],
             loops: vec![Vec::new(); self.targets.len()],
             near: vec![None; self.targets.len()],
+            crossing: vec![None; self.targets.len()],
             loop_length: f64::NAN,
             spans: Vec::with_capacity(SEARCH_DEPTH as usize + 2),
         }

@@ -232,11 +232,25 @@ impl StaticBall {
     }
 }
 
+/// The only stretch of the closed-form light ray `geo` from the origin (λ from its start)
+/// where it can cross the plane at height `z` of the origin frame: its z = p_z λ is linear,
+/// so around λ = z/p_z, widened far beyond rounding (10⁻⁹ of the height's scale, in z). None
+/// (all along) for a ray that keeps its height.
+fn plane_crossing(z: f64, geo: &OriginGeodesic) -> Option<(f64, f64)> {
+    if !(geo.pz != 0.0 && geo.pz.is_finite() && z.is_finite()) {
+        return None;
+    }
+    let margin = 1e-9 * (geo.a + z.abs());
+    let (l1, l2) = ((z - margin) / geo.pz, (z + margin) / geo.pz);
+    Some((l1.min(l2), l1.max(l2)))
+}
+
 /// Sets, for the closed-form ray `geo` from the start of the rays (its time `t_start`
 /// after the `from` event of the tests), over λ ∈ [0, until], which objects it searches
 /// ([`Probes::on_ray`]), for balls in free fall which stretch of each loop
 /// ([`Probes::loops`]) and, with `stretches` (rays whose λ is the closed form's: the exact
-/// tracer's and the shadow rays), for balls at rest in which stretches ([`Probes::near`]).
+/// tracer's and the shadow rays), for balls at rest in which stretches ([`Probes::near`])
+/// and for planes around which λ ([`Probes::crossing`]).
 /// A loop's stretch of a ball in free fall starts where the ray may first come near it with
 /// `stretches`, at the loop's start otherwise.
 /// With no closed form (`None`: not Gödel's universe) or no test, an object is searched all
@@ -278,6 +292,10 @@ pub fn set_ray(
             }
             (Some(r), Some(g), _) => (!r.misses(g, until), false, None),
             _ => (true, false, None),
+        };
+        probes.crossing[i] = match (rejections.get(i).and_then(Option::as_ref), geo) {
+            (Some(Rejection::Plane { z }), Some(g)) if stretches && on => plane_crossing(*z, g),
+            _ => None,
         };
         probes.near[i] = near;
         probes.on_ray[i] = on;
