@@ -291,14 +291,24 @@ impl Intersector {
                 at: hi_abs,
             };
             let limit = best.as_ref().map_or(hi, |b| b.lambda);
+            let end = limit.min(hi);
             // A plane's f is z − height, linear in λ along a closed form (z = z0 + p_z λ):
-            // where its end values are the measured ones, no bisection is needed.
+            // where its end values are the measured ones, no bisection is needed. Searched
+            // only up to an earlier crossing of another object, its value there is the line's.
             let linear = t.is_plane() && d.is_closed_form() && m.at == lo_abs;
+            let pb = if linear && end < hi {
+                Probe {
+                    f: pa.f + (pb.f - pa.f) * ((end - lo) / (hi - lo)),
+                    ..pb
+                }
+            } else {
+                pb
+            };
             if let Some((l, tau)) = self.search(
                 t,
                 d,
                 shift,
-                (lo, limit.min(hi)),
+                (lo, end),
                 (pa, pb),
                 linear,
                 want,
@@ -561,5 +571,63 @@ mod tests {
             }
         }
         assert!(checked >= 40, "{checked} rays checked");
+    }
+
+    /// Two planes crossed in one segment of a closed-form ray: the second is searched only up
+    /// to the first one's crossing, where its value is the line's through the segment's ends,
+    /// so a crossing of it beyond that is none and one before is at its own root (with its
+    /// value at the segment's end taken for the value at the first one's crossing, the root
+    /// would come earlier than both).
+    #[test]
+    fn a_plane_searched_up_to_an_earlier_crossing_keeps_its_root() {
+        let a = 1.0;
+        let metric = Metric::Godel(Godel::new(a));
+        let o = Event::new(0.0, 0.3, -0.2, 0.1);
+        let k = photon_tangent(
+            &metric.static_frame(o),
+            [0.6, 0.0, 0.8],
+            TimeDirection::Past,
+        );
+        let geo = ClosedForm::new(&metric, o, k).expect("a closed form");
+        let start = GeodesicState {
+            x: o,
+            p: metric.lower(o, k),
+        };
+        let (sys, s0) = GeodesicSystem::new(metric, &start);
+        let seg = Segment::exact(geo, sys, 0.0, s0, 1.0);
+        let z = |l: f64| seg.state_at(l).x.z;
+        let first = |heights: [f64; 2]| {
+            let intersector = Intersector::new(
+                metric,
+                heights
+                    .iter()
+                    .map(|&height| Target::Plane {
+                        height,
+                        extent: None,
+                    })
+                    .collect(),
+            );
+            let mut probes = intersector.probes();
+            for m in &mut probes.start {
+                m.at = f64::NAN; // fresh probes at the segment's start
+            }
+            let found = intersector
+                .scan(&seg, Shift::default(), (0.0, 1.0), Want::First, &mut probes)
+                .expect("within budget")
+                .expect("a crossing");
+            (found.target, found.lambda)
+        };
+        let (target, l) = first([z(0.4), z(0.7)]);
+        assert_eq!(
+            target, 0,
+            "the first plane's crossing, at λ 0.4, is the earliest"
+        );
+        assert!((l - 0.4).abs() <= 1e-12, "λ {l}");
+        let (target, l) = first([z(0.4), z(0.3)]);
+        assert_eq!(
+            target, 1,
+            "the second plane's crossing, at λ 0.3, is the earliest"
+        );
+        assert!((l - 0.3).abs() <= 1e-12, "λ {l}");
     }
 }

@@ -301,6 +301,11 @@ void machineStep() {
             bis.len = min(limit, mach.hi) - mach.lo;
             bis.a = bis.start;
             bis.b = bis.start + bis.len;
+            // A plane searched only up to an earlier crossing of another object: its f there
+            // is the line's through its values at the segment's ends (f linear in λ).
+            if (isPlane(mach.obj) && bis.b < mach.hi) {
+                bis.pb.f = bis.pa.f + (bis.pb.f - bis.pa.f) * (bis.len / (mach.hi - mach.lo));
+            }
             bis.depth = 0;
             bis.index = 0;
             bis.probes = 0;

@@ -73,6 +73,36 @@ fn the_floor_grid_with_its_light_agrees() {
     assert!(a.lit_moved * 100 < a.lit, "{a:?}");
 }
 
+/// Two floors a fiftieth of a apart, `first` listed first: a ray down crosses both within
+/// one segment, and the floor listed second is searched only up to the first one's crossing
+/// (where its height is the line's through the segment's ends: a plane's f is linear).
+fn two_floors(first: f64, second: f64) -> scene::Scene {
+    let floor = |name: &str, height: f64| {
+        format!(
+            "[[object]]\nname = \"{name}\"\nframe = \"coordinates\"\nshape = \"plane\"\n\
+             height = {height}\nextent = 3.0\ntexture = {{ kind = \"checker\", rows = 12, cols = 12 }}\n"
+        )
+    };
+    let text = format!(
+        "name = \"two floors\"\n[spacetime]\nmetric = \"godel\"\na = 1.0\n\
+         [observer]\ntime = 0.0\nposition = {{ r = 0.3, phi = 0.5, z = 0.0 }}\n\
+         forward = [0.8, 0.0, -0.6]\nup = [0.6, 0.0, 0.8]\n\
+         [camera]\nkind = \"pinhole\"\nfov_deg = 90.0\nwidth = 64\nheight = 36\n\
+         [trace]\nmethod = \"exact\"\nmax_past = 30.0\n{}{}",
+        floor("first", first),
+        floor("second", second)
+    );
+    scene(&text)
+}
+
+#[test]
+fn two_floors_close_together_agree() {
+    for (first, second) in [(-0.5, -0.52), (-0.52, -0.5)] {
+        let a = agrees(&two_floors(first, second));
+        assert!(a.seen > 1000, "{first}, {second}: {a:?}");
+    }
+}
+
 #[test]
 fn an_observer_inside_spheres_sees_their_inner_surfaces_alike() {
     // The surroundings (a coordinate sphere around the observer), and a local ball at rest
