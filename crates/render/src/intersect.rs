@@ -408,6 +408,48 @@ mod tests {
         photon_tangent, Event, ExactGeodesic, GeodesicSystem, Godel, GodelType, Spacetime,
     };
 
+    /// The past-directed light ray from `o` in the static direction `n`: its start and its
+    /// closed form's segment [0, 1].
+    fn unit_segment(metric: Metric, o: Event, n: [f64; 3]) -> (GeodesicState, Segment) {
+        let k = photon_tangent(&metric.static_frame(o), n, TimeDirection::Past);
+        let geo = ClosedForm::new(&metric, o, k).expect("a closed form");
+        let start = GeodesicState {
+            x: o,
+            p: metric.lower(o, k),
+        };
+        let (sys, s0) = GeodesicSystem::new(metric, &start);
+        (start, Segment::exact(geo, sys, 0.0, s0, 1.0))
+    }
+
+    /// The search of `target` alone over the segment [0, 1] that starts at `start`, from
+    /// probes at its ends.
+    fn search_alone(
+        metric: Metric,
+        target: Target,
+        start: &GeodesicState,
+        seg: &Segment,
+        linear: bool,
+        budget: u32,
+    ) -> Result<Option<(f64, f64)>, OutOfWork> {
+        let intersector = Intersector::new(metric, vec![target]);
+        let t = &intersector.targets[0];
+        let pa = t.probe(&metric, start, f64::NAN);
+        let pb = t.probe(&metric, &seg.state_at(1.0), f64::NAN);
+        let span = (0.0, 1.0);
+        let (shift, want) = (Shift::default(), Want::First);
+        intersector.search(
+            t,
+            seg,
+            shift,
+            span,
+            (pa, pb),
+            linear,
+            want,
+            budget,
+            &mut Vec::new(),
+        )
+    }
+
     /// A ray grazing a coordinate sphere within 1e-7 of its radius: ruling a crossing out
     /// takes the bisection many halvings. With a budget of 3 probes it must report
     /// [`OutOfWork`] (the pixel is marked, the search never runs on); with the full budget
@@ -443,34 +485,18 @@ mod tests {
                 dist(c, 0.45) > dist(c, 0.5) && dist(c, 0.55) > dist(c, 0.5)
             })
             .expect("one side is convex");
+        let start = GeodesicState {
+            x: o,
+            p: metric.lower(o, k),
+        };
+        let (sys, s0) = GeodesicSystem::new(metric, &start);
+        let seg = Segment::exact(ClosedForm::Godel(geo), sys, 0.0, s0, 1.0);
         let outcome = |gap: f64, budget: u32| {
-            let intersector = Intersector::new(
-                metric,
-                vec![Target::CoordinateSphere {
-                    center: centre(convex, gap),
-                    radius,
-                }],
-            );
-            let start = GeodesicState {
-                x: o,
-                p: metric.lower(o, k),
+            let ball = Target::CoordinateSphere {
+                center: centre(convex, gap),
+                radius,
             };
-            let (sys, s0) = GeodesicSystem::new(metric, &start);
-            let seg = Segment::exact(ClosedForm::Godel(geo), sys, 0.0, s0, 1.0);
-            let t = &intersector.targets[0];
-            let pa = t.probe(&metric, &start, f64::NAN);
-            let pb = t.probe(&metric, &seg.state_at(1.0), f64::NAN);
-            intersector.search(
-                t,
-                &seg,
-                Shift::default(),
-                (0.0, 1.0),
-                (pa, pb),
-                false,
-                Want::First,
-                budget,
-                &mut Vec::new(),
-            )
+            search_alone(metric, ball, &start, &seg, false, budget)
         };
         assert_eq!(outcome(1e-7, 3), Err(OutOfWork));
         assert_eq!(outcome(1e-7, SEARCH_PROBES), Ok(None));
@@ -513,37 +539,14 @@ mod tests {
                     continue; // a ray (nearly) along the plane has no crossing to look for
                 }
                 let n = n.map(|c| c / len);
-                let k = photon_tangent(&metric.static_frame(o), n, TimeDirection::Past);
-                let geo = ClosedForm::new(&metric, o, k).expect("a closed form");
-                let start = GeodesicState {
-                    x: o,
-                    p: metric.lower(o, k),
-                };
-                let (sys, s0) = GeodesicSystem::new(metric, &start);
-                let seg = Segment::exact(geo, sys, 0.0, s0, 1.0);
+                let (start, seg) = unit_segment(metric, o, n);
                 let z = |l: f64| seg.state_at(l).x.z;
                 let search = |height: f64, linear: bool, budget: u32| {
-                    let intersector = Intersector::new(
-                        metric,
-                        vec![Target::Plane {
-                            height,
-                            extent: None,
-                        }],
-                    );
-                    let t = &intersector.targets[0];
-                    let pa = t.probe(&metric, &start, f64::NAN);
-                    let pb = t.probe(&metric, &seg.state_at(1.0), f64::NAN);
-                    intersector.search(
-                        t,
-                        &seg,
-                        Shift::default(),
-                        (0.0, 1.0),
-                        (pa, pb),
-                        linear,
-                        Want::First,
-                        budget,
-                        &mut Vec::new(),
-                    )
+                    let plane = Target::Plane {
+                        height,
+                        extent: None,
+                    };
+                    search_alone(metric, plane, &start, &seg, linear, budget)
                 };
                 let at = 0.2 + 0.6 * uniform();
                 let height = z(at);
@@ -583,18 +586,7 @@ mod tests {
         let a = 1.0;
         let metric = Metric::Godel(Godel::new(a));
         let o = Event::new(0.0, 0.3, -0.2, 0.1);
-        let k = photon_tangent(
-            &metric.static_frame(o),
-            [0.6, 0.0, 0.8],
-            TimeDirection::Past,
-        );
-        let geo = ClosedForm::new(&metric, o, k).expect("a closed form");
-        let start = GeodesicState {
-            x: o,
-            p: metric.lower(o, k),
-        };
-        let (sys, s0) = GeodesicSystem::new(metric, &start);
-        let seg = Segment::exact(geo, sys, 0.0, s0, 1.0);
+        let (_, seg) = unit_segment(metric, o, [0.6, 0.0, 0.8]);
         let z = |l: f64| seg.state_at(l).x.z;
         let first = |heights: [f64; 2]| {
             let intersector = Intersector::new(
