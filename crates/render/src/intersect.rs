@@ -284,26 +284,24 @@ impl Intersector {
                     ..p
                 }
             };
-            let s_hi = *s_hi.get_or_insert_with(|| shift.apply(d.state_at(hi)));
-            let pb = t.probe(&self.metric, &s_hi, pa.tau);
+            // Searched only up to another object's earlier crossing in this segment (which
+            // ends the ray's search): its end probe there, where its span ends. (Its value at
+            // hi would bound nothing over the shorter span: a crossing in front could be
+            // excluded.)
+            let end = best.as_ref().map_or(hi, |b| b.lambda.min(hi));
+            let s_end = if end < hi {
+                shift.apply(d.state_at(end))
+            } else {
+                *s_hi.get_or_insert_with(|| shift.apply(d.state_at(hi)))
+            };
+            let pb = t.probe(&self.metric, &s_end, pa.tau);
             probes.end[i] = Measured {
                 probe: pb,
-                at: hi_abs,
+                at: end + shift.dl,
             };
-            let limit = best.as_ref().map_or(hi, |b| b.lambda);
-            let end = limit.min(hi);
             // A plane's f is z − height, linear in λ along a closed form (z = z0 + p_z λ):
-            // where its end values are the measured ones, no bisection is needed. Searched
-            // only up to an earlier crossing of another object, its value there is the line's.
+            // where its end values are the measured ones, no bisection is needed.
             let linear = t.is_plane() && d.is_closed_form() && m.at == lo_abs;
-            let pb = if linear && end < hi {
-                Probe {
-                    f: pa.f + (pb.f - pa.f) * ((end - lo) / (hi - lo)),
-                    ..pb
-                }
-            } else {
-                pb
-            };
             if let Some((l, tau)) = self.search(
                 t,
                 d,
@@ -576,29 +574,20 @@ mod tests {
         assert!(checked >= 40, "{checked} rays checked");
     }
 
-    /// Two planes crossed in one segment of a closed-form ray: the second is searched only up
-    /// to the first one's crossing, where its value is the line's through the segment's ends,
-    /// so a crossing of it beyond that is none and one before is at its own root (with its
-    /// value at the segment's end taken for the value at the first one's crossing, the root
-    /// would come earlier than both).
+    /// Two objects crossed in one segment of a closed-form ray: the one listed second is
+    /// searched only up to the first one's crossing, from an end probe taken there. So a
+    /// crossing of it beyond that is none, and one before it is found at its own place: two
+    /// planes, either crossed first; and a small ball in front of a larger one crossed later,
+    /// which an end probe taken at the segment's end let the rate bound exclude (the search
+    /// then reported the larger ball's crossing behind it).
     #[test]
-    fn a_plane_searched_up_to_an_earlier_crossing_keeps_its_root() {
-        let a = 1.0;
-        let metric = Metric::Godel(Godel::new(a));
+    fn an_object_listed_second_is_found_in_front_of_the_first() {
+        let metric = Metric::Godel(Godel::new(1.0));
         let o = Event::new(0.0, 0.3, -0.2, 0.1);
         let (_, seg) = unit_segment(metric, o, [0.6, 0.0, 0.8]);
-        let z = |l: f64| seg.state_at(l).x.z;
-        let first = |heights: [f64; 2]| {
-            let intersector = Intersector::new(
-                metric,
-                heights
-                    .iter()
-                    .map(|&height| Target::Plane {
-                        height,
-                        extent: None,
-                    })
-                    .collect(),
-            );
+        let at = |l: f64| seg.state_at(l).x;
+        let first = |targets: Vec<Target>| {
+            let intersector = Intersector::new(metric, targets);
             let mut probes = intersector.probes();
             for m in &mut probes.start {
                 m.at = f64::NAN; // fresh probes at the segment's start
@@ -609,17 +598,38 @@ mod tests {
                 .expect("a crossing");
             (found.target, found.lambda)
         };
-        let (target, l) = first([z(0.4), z(0.7)]);
+        let plane = |l: f64| Target::Plane {
+            height: at(l).z,
+            extent: None,
+        };
+        let (target, l) = first(vec![plane(0.4), plane(0.7)]);
         assert_eq!(
             target, 0,
             "the first plane's crossing, at λ 0.4, is the earliest"
         );
         assert!((l - 0.4).abs() <= 1e-12, "λ {l}");
-        let (target, l) = first([z(0.4), z(0.3)]);
+        let (target, l) = first(vec![plane(0.4), plane(0.3)]);
         assert_eq!(
             target, 1,
             "the second plane's crossing, at λ 0.3, is the earliest"
         );
         assert!((l - 0.3).abs() <= 1e-12, "λ {l}");
+        let ball = |l: f64, radius: f64| {
+            let x = at(l);
+            Target::CoordinateSphere {
+                center: [x.x, x.y, x.z],
+                radius,
+            }
+        };
+        let (small, large) = (ball(0.25, 0.02), ball(0.6, 0.05));
+        let (target, alone) = first(vec![small.clone()]);
+        assert_eq!(target, 0);
+        assert!(alone < 0.3, "the small ball alone at λ {alone}");
+        let (target, l) = first(vec![large, small]);
+        assert_eq!(
+            target, 1,
+            "the small ball in front is the first crossing (λ {l})"
+        );
+        assert_eq!(l, alone);
     }
 }

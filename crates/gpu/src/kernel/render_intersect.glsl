@@ -289,7 +289,7 @@ void machineStep() {
     if (tag == Q_START) {
         setStartProbe(mach.obj, req.answer, loopOffset());
     } else if (tag == Q_END) {
-        setEndProbe(mach.obj, req.answer, mach.hi + loopOffset());
+        setEndProbe(mach.obj, req.answer, req.lambda + loopOffset());
         if (beforeResume(mach.seg, mach.obj)) {
             mach.mode = M_SCAN;   // bisected before the checkpoint, with no crossing
         } else {
@@ -301,11 +301,6 @@ void machineStep() {
             bis.len = min(limit, mach.hi) - mach.lo;
             bis.a = bis.start;
             bis.b = bis.start + bis.len;
-            // A plane searched only up to an earlier crossing of another object: its f there
-            // is the line's through its values at the segment's ends (f linear in λ).
-            if (isPlane(mach.obj) && bis.b < mach.hi) {
-                bis.pb.f = bis.pa.f + (bis.pb.f - bis.pa.f) * (bis.len / (mach.hi - mach.lo));
-            }
             bis.depth = 0;
             bis.index = 0;
             bis.probes = 0;
@@ -508,7 +503,12 @@ void machineStep() {
             // rest-frame coordinates are its own place's.
             bool here = at == mach.lo + off;
             bis.pa = Probe(p.f - sign(p.f) * p.rate * (mach.lo + off - at), p.rate, p.tau, p.xi, p.near && here);
-            request(Q_END, mach.hi, bis.pa.tau);
+            // Searched only up to another object's earlier crossing in the segment (which ends
+            // the search): the end probe there, where the span ends (its value at hi bounds
+            // nothing over the shorter span). A resumed round's way back, whose segment has no
+            // crossing yet, probes at hi; the bisection it resumes probes its spans afresh.
+            float end = mach.best.status == HIT ? min(mach.best.lambda, mach.hi) : mach.hi;
+            request(Q_END, end, bis.pa.tau);
             return;
         }
         // Every object scanned: the segment's earliest crossing ends the search.
