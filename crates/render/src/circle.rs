@@ -40,6 +40,8 @@ pub struct RayCircle {
     /// Coordinate time gained per turn in the origin frame:
     /// sgn(E)·2√2·a·π − E·λ_ret (t = sgn(E)·2√2·a·Φ(θ) − Eλ, Φ gains π per turn).
     pub dt_loop: f64,
+    /// The closed form itself: its time along the ray (`crate::falling`).
+    pub geo: OriginGeodesic,
 }
 
 impl RayCircle {
@@ -62,6 +64,7 @@ impl RayCircle {
             l_ret,
             pz: geo.pz,
             dt_loop: sg * 2.0 * SQRT_2 * a * PI - geo.energy * l_ret,
+            geo: *geo,
         }
     }
 
@@ -214,6 +217,19 @@ pub struct Stretches {
 }
 
 impl Stretches {
+    /// The least and the greatest λ of [l0, l1] on a stretch of the reach's arcs within the
+    /// height window ([l0, l1] itself when unsure; an empty pair when none).
+    pub fn span_in(&self, l0: f64, l1: f64) -> (f64, f64) {
+        let (lo, hi) = (l0.max(self.lo), l1.min(self.hi));
+        if lo.is_nan() || hi.is_nan() {
+            return (l0, l1);
+        }
+        match (self.arc.first_in(lo, hi), self.arc.last_in(lo, hi)) {
+            (Some(f), Some(u)) => (f, u),
+            _ => (f64::INFINITY, f64::NEG_INFINITY),
+        }
+    }
+
     /// Whether [l0, l1] (λ from the ray's start) meets a stretch (true when unsure: NaN).
     pub fn meets(&self, l0: f64, l1: f64) -> bool {
         if l1 < self.lo || l0 > self.hi {

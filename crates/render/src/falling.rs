@@ -210,7 +210,7 @@ impl FallingBall {
             let near = if l1 < heights_from {
                 None // not yet within the heights
             } else {
-                self.near_in(ray, ta.min(tb), ta.max(tb), l0, l1)
+                self.near_in(ray, (ta.min(tb), ta.max(tb), t_start), l0, l1)
             };
             out.push(near.map_or(LoopWindow::NONE, |(f, u)| LoopWindow {
                 from: if whole_start { 0.0 } else { f - l0 },
@@ -223,13 +223,12 @@ impl FallingBall {
         false
     }
 
-    /// The first and the last λ in [l0, l1] (one loop, with times in [t_lo, t_hi]) at which
-    /// the ray may be within the ball.
+    /// The first and the last λ in [l0, l1] (one loop, with times in [t_lo, t_hi] and
+    /// `t_start` at λ = 0) at which the ray may be within the ball.
     fn near_in(
         &self,
         ray: &RayCircle,
-        t_lo: f64,
-        t_hi: f64,
+        (t_lo, t_hi, t_start): (f64, f64, f64),
         l0: f64,
         l1: f64,
     ) -> Option<(f64, f64)> {
@@ -242,6 +241,8 @@ impl FallingBall {
         let margin = 1e-9 * (z0.abs().max(z1.abs()) + m);
         let (z_lo, z_hi) = (z0.min(z1) - m - margin, z0.max(z1) + m + margin);
         let mut near: Option<(f64, f64)> = None;
+        // Made for the first cell near the ray's circle (most loops have none).
+        let mut times: Option<LoopTimes> = None;
         for c in &self.cells[i0..] {
             if c.t > t_hi + self.slack {
                 break;
@@ -270,6 +271,21 @@ impl FallingBall {
             let Some(arc) = ray.arc(c.w, c.nw, self.cosh_near) else {
                 continue;
             };
+            // Within that, where the ray's time is within S of the cell's (worth its table of
+            // times only where a cell's band of times leaves out much of the loop's).
+            let (lo, hi) = if ray.dt_loop.abs() > TIME_GATE * self.slack {
+                let times = times.get_or_insert_with(|| LoopTimes::new(ray, t_start, l0, l1));
+                let Some((ta, tb)) = times.within(c.t - self.slack, c.t + self.slack) else {
+                    continue;
+                };
+                let (lo, hi) = (lo.max(ta), hi.min(tb));
+                if lo > hi || near.is_some_and(|(f, u)| f <= lo && hi <= u) {
+                    continue;
+                }
+                (lo, hi)
+            } else {
+                (lo, hi)
+            };
             if let (Some(f), Some(u)) = (arc.first_in(lo, hi), arc.last_in(lo, hi)) {
                 near = Some(near.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u))));
                 if near.is_some_and(|(f, u)| f <= l0 && u >= l1) {
@@ -278,6 +294,75 @@ impl FallingBall {
             }
         }
         near
+    }
+}
+
+/// A loop's time table is made where its time spans more than TIME_GATE·S.
+const TIME_GATE: f64 = 4.0;
+
+/// Nodes of a loop's time table ([`LoopTimes`]), besides its start.
+const TIME_NODES: usize = 4;
+
+/// The ray's coordinate time (origin frame of the ball's test) at equally spaced λ of one loop,
+/// with the sign that makes it increase: where it lies within a band of times is bounded from
+/// the nodes and the largest rate |dt/dλ| ≤ |E| ([`spacetime::OriginGeodesic::time`]).
+struct LoopTimes {
+    l0: f64,
+    step: f64,
+    /// sgn(Δt)·t at the nodes (non-decreasing).
+    u: [f64; TIME_NODES + 1],
+    sign: f64,
+    rate: f64,
+    /// Added to each end of a λ window: far above rounding.
+    margin: f64,
+}
+
+impl LoopTimes {
+    #[inline(never)]
+    fn new(ray: &RayCircle, t_start: f64, l0: f64, l1: f64) -> LoopTimes {
+        let step = (l1 - l0) / TIME_NODES as f64;
+        let sign = if ray.dt_loop < 0.0 { -1.0 } else { 1.0 };
+        LoopTimes {
+            l0,
+            step,
+            u: std::array::from_fn(|j| sign * (t_start + ray.geo.time(l0 + j as f64 * step))),
+            sign,
+            rate: ray.geo.energy.abs() * (1.0 + 1e-9),
+            margin: 1e-9 * (l0.abs() + l1.abs()),
+        }
+    }
+
+    /// A λ window of the loop holding every λ where the ray's time lies in [t_lo, t_hi]
+    /// (None: nowhere; the whole loop when unsure).
+    fn within(&self, t_lo: f64, t_hi: f64) -> Option<(f64, f64)> {
+        let (u1, u2) = if self.sign > 0.0 {
+            (t_lo, t_hi)
+        } else {
+            (-t_hi, -t_lo)
+        };
+        let (first, last) = (self.u[0], self.u[TIME_NODES]);
+        let l = |j: usize| self.l0 + j as f64 * self.step;
+        if !(first.is_finite() && last.is_finite() && self.rate > 0.0) {
+            return Some((l(0), l(TIME_NODES)));
+        }
+        if last < u1 || first > u2 {
+            return None;
+        }
+        // Entering: the last node before the band, from which t rises at most at the rate.
+        let j = self.u.partition_point(|&u| u < u1);
+        let from = if j == 0 {
+            l(0)
+        } else {
+            l(j).min(l(j - 1) + (u1 - self.u[j - 1]) / self.rate)
+        };
+        // Leaving: the first node past the band, which t reached at most at the rate.
+        let k = self.u.partition_point(|&u| u <= u2);
+        let until = if k > TIME_NODES {
+            l(TIME_NODES)
+        } else {
+            l(k - 1).max(l(k) - (self.u[k] - u2) / self.rate)
+        };
+        Some((from - self.margin, until + self.margin))
     }
 }
 

@@ -82,6 +82,10 @@ pub struct Probes {
     /// (planes along a closed form: around the one λ where the ray's linear z reaches the
     /// plane, `crate::reject::set_ray`); None: all along.
     pub crossing: Vec<Option<(f64, f64)>>,
+    /// Per object, set by [`Probes::activate`]: the part of the current segment (λ from the
+    /// loop's start) that its window in the loop or its stretches can meet; the search of the
+    /// segment is cut to it.
+    clip: Vec<(f64, f64)>,
     /// The closed form's λ per loop of the current ray, where its λ is the closed form's (the
     /// exact tracer's rays and the shadow rays; NaN otherwise).
     pub loop_length: f64,
@@ -148,6 +152,21 @@ impl Probes {
             }
             self.active[i] = on;
             any |= on;
+            let len = self.loop_length;
+            let one_loop = !(self.by_loop[i] && len > 0.0 && l1 > len);
+            let mut clip = (l0, l1);
+            if on && self.by_loop[i] && one_loop {
+                let w = self.window(i, k);
+                clip = (clip.0.max(w.from), clip.1.min(w.until));
+            }
+            if let (true, Some(n)) = (on, self.near[i]) {
+                let (f, u) = n.span_in(dl + l0, dl + l1);
+                clip = (clip.0.max(f - dl), clip.1.min(u - dl));
+            }
+            if !(clip.0 <= clip.1) {
+                clip = (l0, l1);
+            }
+            self.clip[i] = clip;
         }
         any
     }
@@ -211,6 +230,7 @@ impl Intersector {
             loops: vec![Vec::new(); self.targets.len()],
             near: vec![None; self.targets.len()],
             crossing: vec![None; self.targets.len()],
+            clip: vec![(f64::NEG_INFINITY, f64::INFINITY); self.targets.len()],
             loop_length: f64::NAN,
             spans: Vec::with_capacity(SEARCH_DEPTH as usize + 2),
         }
@@ -248,16 +268,20 @@ impl Intersector {
         want: Want,
         probes: &mut Probes,
     ) -> Result<Option<Crossing>, OutOfWork> {
-        let (lo_abs, hi_abs) = (lo + shift.dl, hi + shift.dl);
+        let (seg_lo, seg_hi) = (lo, hi);
         let mut s_hi = None;
         let mut best: Option<Crossing> = None;
         for (i, t) in self.targets.iter().enumerate() {
             if !probes.active[i] {
                 continue;
             }
+            // Only the part of the segment that the object's window or stretches meet.
+            let (lo, hi) = (lo.max(probes.clip[i].0), hi.min(probes.clip[i].1));
+            let lo_abs = lo + shift.dl;
             let mut m = probes.start[i];
-            if m.at.is_nan() {
-                // Not searched just before lo: a fresh probe there.
+            if m.at.is_nan() || m.at < lo_abs && lo > seg_lo {
+                // Not searched just before lo (or the search starts within the segment): a
+                // fresh probe there.
                 m = Measured {
                     probe: t.probe(&self.metric, &shift.apply(d.state_at(lo)), f64::NAN),
                     at: lo_abs,
@@ -268,9 +292,14 @@ impl Intersector {
             let clear = p.f.abs();
             if t.vouches_for_spans()
                 && clear.is_finite()
-                && hi_abs < m.at + (clear / p.rate).min(MAX_SKIP)
+                && hi + shift.dl < m.at + (clear / p.rate).min(MAX_SKIP)
             {
-                probes.end[i] = m; // provably no crossing of this object within [lo, hi]
+                // Provably no crossing of this object within [lo, hi]: its end probe is this one,
+                // unless its part ends before the segment (see below).
+                probes.end[i] = Measured {
+                    at: if hi < seg_hi { f64::NAN } else { m.at },
+                    ..m
+                };
                 continue;
             }
             // A probe taken before lo still bounds |f| at lo from below (same side).
@@ -289,15 +318,22 @@ impl Intersector {
             // hi would bound nothing over the shorter span: a crossing in front could be
             // excluded.)
             let end = best.as_ref().map_or(hi, |b| b.lambda.min(hi));
-            let s_end = if end < hi {
+            let s_end = if end < seg_hi {
                 shift.apply(d.state_at(end))
             } else {
-                *s_hi.get_or_insert_with(|| shift.apply(d.state_at(hi)))
+                *s_hi.get_or_insert_with(|| shift.apply(d.state_at(seg_hi)))
             };
             let pb = t.probe(&self.metric, &s_end, pa.tau);
+            // Where the object's part ends before the segment does, the next segment's
+            // search of it (its next stretch) starts from a fresh probe: the bound that a probe
+            // at `end` gives there, further on, could have crossed zero.
             probes.end[i] = Measured {
                 probe: pb,
-                at: end + shift.dl,
+                at: if hi < seg_hi {
+                    f64::NAN
+                } else {
+                    end + shift.dl
+                },
             };
             // A plane's f is z − height, linear in λ along a closed form (z = z0 + p_z λ):
             // where its end values are the measured ones, no bisection is needed.

@@ -119,6 +119,16 @@ impl OriginGeodesic {
         (phi, dphi, cis)
     }
 
+    /// The coordinate time t = sgn(E)·2√2·a·Φ(θ) − Eλ alone at parameter `lambda` (as
+    /// [`OriginGeodesic::at`]'s event, without the position). Monotone in λ for light, with
+    /// |dt/dλ| ≤ |E| (dt/dλ = E(2Φ′/q − 1), Φ′/q between 1/q² and 1, q ≤ √2).
+    pub fn time(&self, lambda: f64) -> f64 {
+        let th = self.omega * lambda;
+        let (s, c) = th.sin_cos();
+        let (big, _, _) = self.big_phi(th, s, c);
+        self.energy.signum() * 2.0 * SQRT_2 * self.a * big - self.energy * lambda
+    }
+
     /// Event and tangent at parameter `lambda`.
     pub fn at(&self, lambda: f64) -> (Event, FourVector) {
         let (a, e, w) = (self.a, self.energy, self.omega);

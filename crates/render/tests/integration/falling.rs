@@ -85,8 +85,10 @@ proptest! {
         prop_assert!(RATIO < REACH_PER_GAMMA_RADIUS);
     }
 
-    /// Rays from random events near a falling ball's path: wherever the ray (sampled over
-    /// its loops) is inside the renderer's ball, its loop searches the ball there.
+    /// Rays from random events near a falling ball's path, past-directed from the test's
+    /// event (a pixel ray's) or from the same place earlier, either way (a shadow ray's, whose
+    /// test is made at the light's event): wherever the ray (sampled over its loops) is inside
+    /// the renderer's ball, its loop searches the ball there.
     #[test]
     fn no_stretch_inside_a_falling_ball_is_left_out(
         a in 0.5f64..2.0,
@@ -95,25 +97,29 @@ proptest! {
         s in prop::array::uniform3(-1.0f64..1.0),
         speed in 0.0f64..0.9, dir in prop::array::uniform3(-1.0f64..1.0),
         radius in 0.1f64..0.5,
+        earlier in prop::sample::select(vec![0.0, 0.0, 0.5, 3.0, 8.0]),
+        future in any::<bool>(),
     ) {
         prop_assume!(norm(n) > 1e-3 && norm(dir) > 1e-3);
         let metric = Metric::Godel(Godel::new(a));
         let obs = Event::new(t0, a * o[0], a * o[1], 0.2 * a * o[2]);
+        let from = Event::new(t0 - earlier * a, obs.x, obs.y, obs.z);
         let start = Event::new(0.0, a * s[0], a * s[1], 0.2 * a * s[2]);
         let target = falling(a, start, speed, dir, radius * a, (t0 - 12.0 * a, t0 + 2.0 * a));
-        let k = photon_tangent(&metric.static_frame(obs), unit(n), TimeDirection::Past);
-        let geo = ExactGeodesic::new(a, obs, k).unwrap();
+        let way = if future && earlier > 0.0 { TimeDirection::Future } else { TimeDirection::Past };
+        let k = photon_tangent(&metric.static_frame(from), unit(n), way);
+        let geo = ExactGeodesic::new(a, from, k).unwrap();
         let ball = FallingBall::new(a, &metric, obs, &target).unwrap();
         let circle = RayCircle::new(&geo.origin);
         let mut loops = Vec::new();
-        prop_assert!(ball.loops(&circle, 0.0, f64::INFINITY, false, &mut loops));
+        prop_assert!(ball.loops(&circle, from.t - obs.t, f64::INFINITY, false, &mut loops));
         let l_ret = geo.origin.return_parameter();
         let samples = 4000;
         let end = 4.0 * l_ret;
         for i in 0..=samples {
             let l = end * i as f64 / samples as f64;
             let (x, k) = geo.at(l);
-            if x.t < t0 - 10.0 * a {
+            if x.t < t0 - 10.0 * a || x.t > t0 + 1.5 * a {
                 break;
             }
             let st = GeodesicState { x, p: metric.lower(x, k) };

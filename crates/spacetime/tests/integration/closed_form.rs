@@ -141,3 +141,43 @@ fn the_closed_form_starts_where_it_should_and_refuses_spacelike_tangents() {
     let ex = ExactGeodesic::new(a, x, FourVector::new(1.0, 0.0, 0.0, 0.0)).unwrap();
     assert!(max_abs((ex.at(0.0).0 - x).to_array()) < 1e-14);
 }
+
+/// `OriginGeodesic::time` is the time of `at`'s event, and for light it is monotone in λ
+/// with |dt/dλ| ≤ |E| (the bound `render::falling` inverts it with), the slope reaching
+/// close to |E| somewhere on every ray.
+#[test]
+fn a_light_rays_time_is_monotone_with_its_slope_bounded_by_its_energy() {
+    let mut rng = Rng::new(307);
+    for a in [1.0, 0.4, 2.5] {
+        let m = Metric::Godel(Godel::new(a));
+        for i in 0..40 {
+            let time = if i % 2 == 0 {
+                TimeDirection::Future
+            } else {
+                TimeDirection::Past
+            };
+            let k = photon_tangent(&m.static_frame(Event::default()), rng.direction(), time);
+            let g = OriginGeodesic::new(a, rng.uniform(0.2, 3.0) * k).unwrap();
+            let e = g.energy.abs();
+            let n = 2000;
+            let dl = 2.5 * g.return_parameter() / n as f64;
+            let mut steepest = 0.0f64;
+            for j in 0..n {
+                let (l0, l1) = (j as f64 * dl, (j + 1) as f64 * dl);
+                let (t0, t1) = (g.time(l0), g.time(l1));
+                assert!((t0 - g.at(l0).0.t).abs() <= 1e-12 * (1.0 + t0.abs()));
+                let slope = (t1 - t0) / dl * g.energy.signum();
+                assert!(slope >= -1e-12 * e, "a={a} #{i}: t turns back ({slope})");
+                assert!(
+                    slope <= e * (1.0 + 1e-9),
+                    "a={a} #{i}: slope {slope} > |E| {e}"
+                );
+                steepest = steepest.max(slope);
+            }
+            assert!(
+                steepest > 0.99 * e,
+                "a={a} #{i}: steepest {steepest} of |E| {e}"
+            );
+        }
+    }
+}
