@@ -217,19 +217,6 @@ pub struct Stretches {
 }
 
 impl Stretches {
-    /// The least and the greatest λ of [l0, l1] on a stretch of the reach's arcs within the
-    /// height window ([l0, l1] itself when unsure; an empty pair when none).
-    pub fn span_in(&self, l0: f64, l1: f64) -> (f64, f64) {
-        let (lo, hi) = (l0.max(self.lo), l1.min(self.hi));
-        if lo.is_nan() || hi.is_nan() {
-            return (l0, l1);
-        }
-        match (self.arc.first_in(lo, hi), self.arc.last_in(lo, hi)) {
-            (Some(f), Some(u)) => (f, u),
-            _ => (f64::INFINITY, f64::NEG_INFINITY),
-        }
-    }
-
     /// Whether [l0, l1] (λ from the ray's start) meets a stretch (true when unsure: NaN).
     pub fn meets(&self, l0: f64, l1: f64) -> bool {
         if l1 < self.lo || l0 > self.hi {

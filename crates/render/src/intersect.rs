@@ -82,10 +82,8 @@ pub struct Probes {
     /// (planes along a closed form: around the one λ where the ray's linear z reaches the
     /// plane, `crate::reject::set_ray`); None: all along.
     pub crossing: Vec<Option<(f64, f64)>>,
-    /// Per object, set by [`Probes::activate`]: the part of the current segment (λ from the
-    /// loop's start) that its window in the loop or its stretches can meet; the search of the
-    /// segment is cut to it.
-    clip: Vec<(f64, f64)>,
+    /// The loop of the segment last activated ([`Probes::activate`]).
+    segment_loop: usize,
     /// The closed form's λ per loop of the current ray, where its λ is the closed form's (the
     /// exact tracer's rays and the shadow rays; NaN otherwise).
     pub loop_length: f64,
@@ -135,6 +133,22 @@ impl Probes {
         })
     }
 
+    /// The part of [l0, l1] (λ from the start of the segment's loop) that object `i`'s window
+    /// in the loop meets (balls in free fall, a segment within one loop; else [l0, l1]).
+    fn part(&self, i: usize, l0: f64, l1: f64) -> (f64, f64) {
+        let len = self.loop_length;
+        if !self.by_loop[i] || len > 0.0 && l1 > len {
+            return (l0, l1);
+        }
+        let w = self.window(i, self.segment_loop);
+        let (lo, hi) = (l0.max(w.from), l1.min(w.until));
+        if lo <= hi {
+            (lo, hi)
+        } else {
+            (l0, l1)
+        }
+    }
+
     /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
     /// l1 from the loop's start): an object is searched where the stretch meets its window
     /// in the loop (one stretch a loop; a later loop probes afresh), its `near` ones and its
@@ -142,6 +156,7 @@ impl Probes {
     /// object not searched just before starts from a fresh probe ([`Intersector::scan`]).
     /// Whether any is searched.
     pub fn activate(&mut self, k: usize, dl: f64, l0: f64, l1: f64) -> bool {
+        self.segment_loop = k;
         let mut any = false;
         for i in 0..self.active.len() {
             let on = self.in_loops(i, k, l0, l1)
@@ -152,21 +167,6 @@ impl Probes {
             }
             self.active[i] = on;
             any |= on;
-            let len = self.loop_length;
-            let one_loop = !(self.by_loop[i] && len > 0.0 && l1 > len);
-            let mut clip = (l0, l1);
-            if on && self.by_loop[i] && one_loop {
-                let w = self.window(i, k);
-                clip = (clip.0.max(w.from), clip.1.min(w.until));
-            }
-            if let (true, Some(n)) = (on, self.near[i]) {
-                let (f, u) = n.span_in(dl + l0, dl + l1);
-                clip = (clip.0.max(f - dl), clip.1.min(u - dl));
-            }
-            if !(clip.0 <= clip.1) {
-                clip = (l0, l1);
-            }
-            self.clip[i] = clip;
         }
         any
     }
@@ -230,7 +230,7 @@ impl Intersector {
             loops: vec![Vec::new(); self.targets.len()],
             near: vec![None; self.targets.len()],
             crossing: vec![None; self.targets.len()],
-            clip: vec![(f64::NEG_INFINITY, f64::INFINITY); self.targets.len()],
+            segment_loop: 0,
             loop_length: f64::NAN,
             spans: Vec::with_capacity(SEARCH_DEPTH as usize + 2),
         }
@@ -275,8 +275,8 @@ impl Intersector {
             if !probes.active[i] {
                 continue;
             }
-            // Only the part of the segment that the object's window or stretches meet.
-            let (lo, hi) = (lo.max(probes.clip[i].0), hi.min(probes.clip[i].1));
+            // Only the part of the segment that the object's window meets.
+            let (lo, hi) = probes.part(i, lo, hi);
             let lo_abs = lo + shift.dl;
             let mut m = probes.start[i];
             if m.at.is_nan() || m.at < lo_abs && lo > seg_lo {
