@@ -72,20 +72,29 @@ impl RayCircle {
     /// (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)), in λ from the ray's start: None
     /// only when it provably lies farther all round the circle; everywhere when unsure (NaN).
     pub fn arc(&self, w: Complex, nw: f64, cosh_m: f64) -> Option<Arc> {
+        self.arc_of(self.passes(w, nw, cosh_m)?, cosh_m)
+    }
+
+    /// The disc point `w` (given `nw` = 1 − |w|²) unless the ray's projection provably lies
+    /// farther than m (given `cosh_m` = cosh(m/a)) from it all round: the cheap half of
+    /// [`RayCircle::arc`], before the angles (most points are rejected here).
+    pub fn passes(&self, w: Complex, nw: f64, cosh_m: f64) -> Option<Passing> {
         let (nearest, spread) = self.law_of_cosines(w, nw);
-        if beyond_all_round(nearest, spread, cosh_m) {
-            return None; // before the angle: most points are
-        }
+        (!beyond_all_round(nearest, spread, cosh_m)).then_some(Passing { w, nearest, spread })
+    }
+
+    /// [`RayCircle::arc`] of a point that [`RayCircle::passes`] kept, for the same m.
+    pub fn arc_of(&self, p: Passing, cosh_m: f64) -> Option<Arc> {
         // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
         // is nearest w where ψ is a whole number of turns.
-        let beta = moved(self.h, w).arg();
+        let beta = moved(self.h, p.w).arg();
         let turns = (self.sg * beta - self.psi0) / TAU;
         let arc = Arc {
             centre: (turns - turns.floor()) * self.l_ret,
             half: f64::INFINITY,
             period: self.l_ret,
-            nearest,
-            spread,
+            nearest: p.nearest,
+            spread: p.spread,
         };
         arc.within(cosh_m)
     }
@@ -94,8 +103,7 @@ impl RayCircle {
     /// round (given `nw` = 1 − |w|² and `cosh_m` = cosh(m/a)): [`RayCircle::arc`]'s None,
     /// without the angle it finds otherwise.
     pub fn beyond(&self, w: Complex, nw: f64, cosh_m: f64) -> bool {
-        let (nearest, spread) = self.law_of_cosines(w, nw);
-        beyond_all_round(nearest, spread, cosh_m)
+        self.passes(w, nw, cosh_m).is_none()
     }
 
     /// cosh(d/a)·cosh(ρ/a) and sinh(d/a)·sinh(ρ/a), d the distance from h to `w`
@@ -105,6 +113,15 @@ impl RayCircle {
         let sh = (ch * ch - 1.0).max(0.0).sqrt();
         (ch * self.cosh_rho, sh * self.sinh_rho)
     }
+}
+
+/// A disc point near which a ray's circle may pass ([`RayCircle::passes`]), with its law of
+/// cosines' terms ([`Arc`]'s `nearest` and `spread`).
+#[derive(Clone, Copy, Debug)]
+pub struct Passing {
+    w: Complex,
+    nearest: f64,
+    spread: f64,
 }
 
 /// Whether a ray's circle lies beyond distance m (given cosh(m/a)) of a point all round, from

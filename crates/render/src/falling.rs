@@ -192,6 +192,9 @@ impl FallingBall {
             (p.min(q) - margin, p.max(q) + margin)
         };
         let mut needed = 0;
+        // The ray's times over its first loop, made for the first cell near its circle (most
+        // rays have none) and shifted to every other loop.
+        let mut times: Option<LoopTimes> = None;
         for k in 0..=scene::MAX_RAY_LOOPS {
             let kf = k as f64;
             let l0 = kf * ray.l_ret;
@@ -210,7 +213,12 @@ impl FallingBall {
             let near = if l1 < heights_from {
                 None // not yet within the heights
             } else {
-                self.near_in(ray, (ta.min(tb), ta.max(tb), t_start), l0, l1)
+                self.near_in(
+                    ray,
+                    (ta.min(tb), ta.max(tb), t_start),
+                    (kf, l0, l1),
+                    &mut times,
+                )
             };
             out.push(near.map_or(LoopWindow::NONE, |(f, u)| LoopWindow {
                 from: if whole_start { 0.0 } else { f - l0 },
@@ -223,14 +231,15 @@ impl FallingBall {
         false
     }
 
-    /// The first and the last λ in [l0, l1] (one loop, with times in [t_lo, t_hi] and
-    /// `t_start` at λ = 0) at which the ray may be within the ball.
+    /// The first and the last λ in [l0, l1] (loop k, with times in [t_lo, t_hi] and
+    /// `t_start` at λ = 0) at which the ray may be within the ball; `times` is the ray's
+    /// table of times, made here when first needed.
     fn near_in(
         &self,
         ray: &RayCircle,
         (t_lo, t_hi, t_start): (f64, f64, f64),
-        l0: f64,
-        l1: f64,
+        (k, l0, l1): (f64, f64, f64),
+        times: &mut Option<LoopTimes>,
     ) -> Option<(f64, f64)> {
         let m = self.near;
         let i0 = self.cells.partition_point(|c| c.t < t_lo - self.slack);
@@ -241,8 +250,6 @@ impl FallingBall {
         let margin = 1e-9 * (z0.abs().max(z1.abs()) + m);
         let (z_lo, z_hi) = (z0.min(z1) - m - margin, z0.max(z1) + m + margin);
         let mut near: Option<(f64, f64)> = None;
-        // Made for the first cell near the ray's circle (most loops have none).
-        let mut times: Option<LoopTimes> = None;
         for c in &self.cells[i0..] {
             if c.t > t_hi + self.slack {
                 break;
@@ -268,14 +275,14 @@ impl FallingBall {
             {
                 continue;
             }
-            let Some(arc) = ray.arc(c.w, c.nw, self.cosh_near) else {
-                continue;
+            let Some(passing) = ray.passes(c.w, c.nw, self.cosh_near) else {
+                continue; // most cells, before any angle
             };
             // Within that, where the ray's time is within S of the cell's (worth its table of
             // times only where a cell's band of times leaves out much of the loop's).
             let (lo, hi) = if ray.dt_loop.abs() > TIME_GATE * self.slack {
-                let times = times.get_or_insert_with(|| LoopTimes::new(ray, t_start, l0, l1));
-                let Some((ta, tb)) = times.within(c.t - self.slack, c.t + self.slack) else {
+                let times = times.get_or_insert_with(|| LoopTimes::new(ray, t_start));
+                let Some((ta, tb)) = times.within(k, c.t - self.slack, c.t + self.slack) else {
                     continue;
                 };
                 let (lo, hi) = (lo.max(ta), hi.min(tb));
@@ -285,6 +292,9 @@ impl FallingBall {
                 (lo, hi)
             } else {
                 (lo, hi)
+            };
+            let Some(arc) = ray.arc_of(passing, self.cosh_near) else {
+                continue;
             };
             if let (Some(f), Some(u)) = (arc.first_in(lo, hi), arc.last_in(lo, hi)) {
                 near = Some(near.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u))));
@@ -297,18 +307,21 @@ impl FallingBall {
     }
 }
 
-/// A loop's time table is made where its time spans more than TIME_GATE·S.
+/// A ray's time table is made where a loop's time spans more than TIME_GATE·S.
 const TIME_GATE: f64 = 4.0;
 
-/// Nodes of a loop's time table ([`LoopTimes`]), besides its start.
+/// Nodes of a ray's time table ([`LoopTimes`]), besides its start.
 const TIME_NODES: usize = 4;
 
-/// The ray's coordinate time (origin frame of the ball's test) at equally spaced λ of one loop,
-/// with the sign that makes it increase: where it lies within a band of times is bounded from
-/// the nodes and the largest rate |dt/dλ| ≤ |E| ([`spacetime::OriginGeodesic::time`]).
+/// The ray's coordinate time (origin frame of the ball's test) at equally spaced λ of its first
+/// loop, with the sign that makes it increase: where it lies within a band of times is bounded
+/// from the nodes and the largest rate |dt/dλ| ≤ |E| ([`spacetime::OriginGeodesic::time`]).
+/// Loop k repeats the first shifted by k·λ_ret in λ and k·Δt in time (`RayCircle::dt_loop`),
+/// so one table serves them all.
 struct LoopTimes {
-    l0: f64,
     step: f64,
+    l_ret: f64,
+    dt_loop: f64,
     /// sgn(Δt)·t at the nodes (non-decreasing).
     u: [f64; TIME_NODES + 1],
     sign: f64,
@@ -319,29 +332,33 @@ struct LoopTimes {
 
 impl LoopTimes {
     #[inline(never)]
-    fn new(ray: &RayCircle, t_start: f64, l0: f64, l1: f64) -> LoopTimes {
-        let step = (l1 - l0) / TIME_NODES as f64;
+    fn new(ray: &RayCircle, t_start: f64) -> LoopTimes {
+        let step = ray.l_ret / TIME_NODES as f64;
         let sign = if ray.dt_loop < 0.0 { -1.0 } else { 1.0 };
         LoopTimes {
-            l0,
             step,
-            u: std::array::from_fn(|j| sign * (t_start + ray.geo.time(l0 + j as f64 * step))),
+            l_ret: ray.l_ret,
+            dt_loop: ray.dt_loop,
+            u: std::array::from_fn(|j| sign * (t_start + ray.geo.time(j as f64 * step))),
             sign,
             rate: ray.geo.energy.abs() * (1.0 + 1e-9),
-            margin: 1e-9 * (l0.abs() + l1.abs()),
+            margin: 1e-9 * ray.l_ret,
         }
     }
 
-    /// A λ window of the loop holding every λ where the ray's time lies in [t_lo, t_hi]
+    /// A λ window of loop n holding every λ where the ray's time lies in [t_lo, t_hi]
     /// (None: nowhere; the whole loop when unsure).
-    fn within(&self, t_lo: f64, t_hi: f64) -> Option<(f64, f64)> {
+    fn within(&self, n: f64, t_lo: f64, t_hi: f64) -> Option<(f64, f64)> {
+        // The band moved to the first loop's times.
+        let (t_lo, t_hi) = (t_lo - n * self.dt_loop, t_hi - n * self.dt_loop);
         let (u1, u2) = if self.sign > 0.0 {
             (t_lo, t_hi)
         } else {
             (-t_hi, -t_lo)
         };
         let (first, last) = (self.u[0], self.u[TIME_NODES]);
-        let l = |j: usize| self.l0 + j as f64 * self.step;
+        let l0 = n * self.l_ret;
+        let l = |j: usize| l0 + j as f64 * self.step;
         if !(first.is_finite() && last.is_finite() && self.rate > 0.0) {
             return Some((l(0), l(TIME_NODES)));
         }
@@ -362,7 +379,8 @@ impl LoopTimes {
         } else {
             l(k - 1).max(l(k) - (self.u[k] - u2) / self.rate)
         };
-        Some((from - self.margin, until + self.margin))
+        let margin = self.margin * (1.0 + n);
+        Some((from - margin, until + margin))
     }
 }
 
