@@ -149,6 +149,53 @@ impl Probes {
         }
     }
 
+    /// The least and the greatest λ (from the ray's start, a ray whose segments activate from
+    /// loop 0: the shadow rays) at which [`Probes::activate`] may search any object: outside
+    /// [first, last] it searches none. From each object's own limits (its near stretches'
+    /// heights, its crossing stretch, its loops' windows), each widened far above the
+    /// rounding of `activate`'s own comparisons; (−∞, ∞) where an object has none.
+    pub fn reach(&self) -> (f64, f64) {
+        let len = self.loop_length;
+        let (mut first, mut last) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..self.on_ray.len() {
+            if !self.on_ray[i] {
+                continue;
+            }
+            let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+            if let Some(n) = &self.near[i] {
+                if n.lo <= n.hi {
+                    (lo, hi) = (lo.max(n.lo), hi.min(n.hi));
+                }
+            }
+            if let Some((c0, c1)) = self.crossing[i] {
+                if c0 <= c1 {
+                    (lo, hi) = (lo.max(c0), hi.min(c1));
+                }
+            }
+            if self.by_loop[i] && len > 0.0 {
+                // Loop j's window lies at j·len + [from, until].
+                let (w0, w1) = self.loops[i].iter().enumerate().fold(
+                    (f64::INFINITY, f64::NEG_INFINITY),
+                    |(w0, w1), (j, w)| {
+                        if w.from <= w.until {
+                            let shift = j as f64 * len;
+                            (w0.min(shift + w.from), w1.max(shift + w.until))
+                        } else {
+                            (w0, w1)
+                        }
+                    },
+                );
+                (lo, hi) = (lo.max(w0), hi.min(w1));
+            }
+            if !(lo <= hi) {
+                continue; // never searched
+            }
+            let margin = 1e-9 * (lo.abs().max(hi.abs()).min(1e300) + len.abs().min(1e300) + 1.0);
+            (first, last) = (first.min(lo - margin), last.max(hi + margin));
+        }
+        (first, last)
+    }
+
     /// Sets `active` for the stretch [l0, l1] of loop `k`, which starts at λ = `dl` (l0 and
     /// l1 from the loop's start): an object is searched where the stretch meets its window
     /// in the loop (one stretch a loop; a later loop probes afresh), its `near` ones and its

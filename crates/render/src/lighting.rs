@@ -271,8 +271,15 @@ fn occluded(
     objects.probe_all(&start, 0.0, probes);
     // The start of the next segment where the one before was made (None: skipped).
     let mut y0 = Some(s0);
+    // Outside [first, last] no object is searched: those segments need no activation each.
+    let (first, last) = probes.reach();
     for i in 0..n {
         let (l0, l1) = (end * i as f64 / n as f64, end * (i + 1) as f64 / n as f64);
+        if l1 < first || l0 > last {
+            probes.active.fill(false);
+            y0 = None;
+            continue;
+        }
         probes.activate(0, 0.0, l0, l1);
         if i + 1 == n {
             probes.active[lit] = false;
