@@ -176,6 +176,13 @@ fn rays_from_axis(a: f64, target: Event, max_winding: u32, max_travel: f64) -> V
         let (c, sigma) = point(i);
         (c, first_theta(a, rho, (c, sigma)), (1.0 + c * c).sqrt())
     });
+    // The inbound G at grid point i as a line in the winding n: G = n·slope + at0, slope =
+    // 2aπ·c/√(1 + c²) and at0 = 2a·c·(π − θ₀)/√(1 + c²) − |z_P| (θ = nπ + π − θ₀).
+    let lines: [(f64, f64); GRID + 1] = std::array::from_fn(|i| {
+        let (c, th0, root) = grid[i];
+        let k = 2.0 * a * c / root;
+        (k * PI, k * (PI - th0) - target.z.abs())
+    });
     let mut out = Vec::new();
     for n in 0..=max_winding {
         if travel_floor(a, n, 0.0) > max_travel {
@@ -242,11 +249,30 @@ fn rays_from_axis(a: f64, target: Event, max_winding: u32, max_travel: f64) -> V
                 root_in(hi, g_grid(hi - 1), g_grid(hi));
                 continue;
             }
-            let mut g0 = g_grid(0);
+            // On the way back G may rise and fall: every cell is looked at. G at a grid point
+            // is linear in the winding n (`lines`), so a cell whose ends lie clear of 0 on one
+            // side (by far more than G's rounding) holds no root and needs no G; the others
+            // get the same G as a scan of every cell, in the same order.
+            let nf = n as f64;
+            let clear = 1e-9 * (2.0 * a * PI * (nf + 1.0) + zp.abs());
+            let side = |i: usize| {
+                let (slope, at0) = lines[i];
+                let e = nf * slope + at0;
+                if e > clear {
+                    1
+                } else if e < -clear {
+                    -1
+                } else {
+                    0
+                }
+            };
+            let mut s0 = side(0);
             for i in 1..=last_cell {
-                let g1 = g_grid(i);
-                root_in(i, g0, g1);
-                g0 = g1;
+                let s1 = side(i);
+                if s0 == 0 || s1 != s0 {
+                    root_in(i, g_grid(i - 1), g_grid(i));
+                }
+                s0 = s1;
             }
         }
     }
