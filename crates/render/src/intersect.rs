@@ -119,6 +119,15 @@ impl Probes {
         if !(self.by_loop[i] && len > 0.0 && l1 > len) {
             return self.window(i, k).meets(l0, l1);
         }
+        self.across_loops(i, k, l0, l1)
+    }
+
+    /// [`Probes::in_loops`] for a stretch that runs on past its loop. Kept out of line: inlined,
+    /// its two `floor`s (a library call on baseline x86-64) were hoisted out of
+    /// [`Probes::activate`]'s loop over the objects and paid on every activation.
+    #[inline(never)]
+    fn across_loops(&self, i: usize, k: usize, l0: f64, l1: f64) -> bool {
+        let len = self.loop_length;
         let (first, last) = ((l0 / len).floor().max(0.0), (l1 / len).floor());
         if !(last.is_finite() && first <= last) {
             return true; // unsure
