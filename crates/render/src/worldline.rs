@@ -118,6 +118,12 @@ struct StepIndex {
 }
 
 impl StepIndex {
+    /// Whether step `i` is the one [`StepIndex::first_reaching`] finds for `s`: the first
+    /// whose end is ≥ s.
+    fn holds(&self, i: usize, s: f64) -> bool {
+        self.ends.get(i).is_some_and(|&e| e >= s) && (i == 0 || self.ends[i - 1] < s)
+    }
+
     fn new(steps: &[DenseStep<20>]) -> StepIndex {
         StepIndex::of_ends(steps.iter().map(|s| s.lambda1()).collect())
     }
@@ -443,7 +449,9 @@ impl Worldline {
                 // Start inside the integrated range: far points (whose rest-frame "now" may
                 // lie beyond it) still get a finite distance, so no step is skipped.
                 let mut tau = tau_guess.clamp(ff.tau_min, ff.tau_max);
-                let (xi0, distance) = ff.first_order(metric, tau, x)?;
+                // The step of the last τ asked: the secant's τ stay near it.
+                let mut near_step = usize::MAX;
+                let (xi0, distance) = ff.first_order(metric, tau, x, &mut near_step)?;
                 if distance > far {
                     // Far: an estimate only (the tracer never lets it vouch for more than
                     // one step: with the worldline looping, "now" is ambiguous far away).
@@ -457,7 +465,7 @@ impl Worldline {
                 // and a secant on it jumped between them from one ray point to the next.)
                 let (mut ta, mut fa) = (tau, xi0);
                 tau = (ta + fa).clamp(ff.tau_min, ff.tau_max);
-                let mut fb = ff.time_offset(metric, tau, x)?;
+                let mut fb = ff.time_offset(metric, tau, x, &mut near_step)?;
                 for _ in 0..SIMULTANEITY_STEPS {
                     if fb.abs() < 1e-12 || tau == ta {
                         break;
@@ -470,14 +478,14 @@ impl Worldline {
                     };
                     (ta, fa) = (tau, fb);
                     tau = (tau + step).clamp(ff.tau_min, ff.tau_max);
-                    fb = ff.time_offset(metric, tau, x)?;
+                    fb = ff.time_offset(metric, tau, x, &mut near_step)?;
                 }
                 // Second order near the object, taken at the origin (`origin_coords`): one
                 // more Newton step on its ξ⁰.
-                let (event, u) = ff.event_velocity(metric, tau)?;
+                let (event, u) = ff.event_velocity(metric, tau, &mut near_step)?;
                 tau = (tau + origin_time(metric, &ff.origin, event, u, x))
                     .clamp(ff.tau_min, ff.tau_max);
-                let pb = self.at(metric, tau)?;
+                let pb = point(metric, tau, &ff.state_near(tau, &mut near_step)?);
                 let xb = origin_coords(metric, &ff.origin, &pb, x);
                 Some(Located::Near(LocalPoint {
                     at: pb,
@@ -679,6 +687,13 @@ impl FreeFall {
     /// The first `M` components of the transported state at proper time τ (position and
     /// u_μ: 8; with the frame: 20); None outside the integrated range.
     fn state<const M: usize>(&self, tau: f64) -> Option<[f64; M]> {
+        let mut unknown = usize::MAX;
+        self.state_near(tau, &mut unknown)
+    }
+
+    /// [`FreeFall::state`] where `step` (updated) is the step of a nearby τ asked before: a
+    /// match's secant steps stay within a step or two, whose index is then not looked up.
+    fn state_near<const M: usize>(&self, tau: f64, step: &mut usize) -> Option<[f64; M]> {
         if !(tau >= self.tau_min && tau <= self.tau_max) {
             return None;
         }
@@ -690,26 +705,36 @@ impl FreeFall {
         } else {
             (&self.backward, &self.backward_index, -tau)
         };
-        let i = index.first_reaching(s).min(steps.len().checked_sub(1)?);
+        let i = if index.holds(*step, s) {
+            *step
+        } else {
+            index.first_reaching(s).min(steps.len().checked_sub(1)?)
+        };
+        *step = i;
         Some(steps[i].eval_head(s))
     }
 
     /// ξ⁰ of [`first_order`] at the worldline point of proper time τ: the time row alone,
     /// from the position and u (the body frame's other vectors not interpolated). What the
     /// simultaneity's secant steps need.
-    fn time_offset(&self, metric: &Metric, tau: f64, x: Event) -> Option<f64> {
+    fn time_offset(&self, metric: &Metric, tau: f64, x: Event, step: &mut usize) -> Option<f64> {
         if let LocalChart::Own(_) = LocalChart::of(metric) {
-            return self.own_time_offset(tau, x).map(|(_, _, xi0)| xi0);
+            return self.own_time_offset(tau, x, step).map(|(_, _, xi0)| xi0);
         }
-        let (p, u) = self.event_velocity(metric, tau)?;
+        let (p, u) = self.event_velocity(metric, tau, step)?;
         Some(first_order_time(metric, p, u, x))
     }
 
     /// In the metric's own chart: the worldline point at proper time τ, the displacement Δ
     /// from it to `x`, and ξ⁰ = −g(u, Δ) = −u_μΔ^μ, with u_μ read from the state (no raise,
     /// no metric).
-    fn own_time_offset(&self, tau: f64, x: Event) -> Option<(Event, FourVector, f64)> {
-        let s: [f64; 8] = self.state(tau)?;
+    fn own_time_offset(
+        &self,
+        tau: f64,
+        x: Event,
+        step: &mut usize,
+    ) -> Option<(Event, FourVector, f64)> {
+        let s: [f64; 8] = self.state_near(tau, step)?;
         let p = Event::new(s[0], s[1], s[2], s[3]);
         let d = (x - p).to_array();
         let xi0 = DualFrame::component(&[-s[4], -s[5], -s[6], -s[7]], d);
@@ -718,21 +743,32 @@ impl FreeFall {
 
     /// The event and four-velocity at proper time τ (the body frame's other vectors not
     /// interpolated).
-    fn event_velocity(&self, metric: &Metric, tau: f64) -> Option<(Event, FourVector)> {
-        let s: [f64; 8] = self.state(tau)?;
+    fn event_velocity(
+        &self,
+        metric: &Metric,
+        tau: f64,
+        step: &mut usize,
+    ) -> Option<(Event, FourVector)> {
+        let s: [f64; 8] = self.state_near(tau, step)?;
         Some(event_velocity(metric, &s))
     }
 
     /// ξ⁰ and the spatial length |ξ| of [`first_order`] at the worldline point of proper
     /// time τ. In the metric's own chart from the position and u alone: the frame is
     /// orthonormal, so |ξ|² = g(Δ, Δ) + (ξ⁰)².
-    fn first_order(&self, metric: &Metric, tau: f64, x: Event) -> Option<(f64, f64)> {
+    fn first_order(
+        &self,
+        metric: &Metric,
+        tau: f64,
+        x: Event,
+        step: &mut usize,
+    ) -> Option<(f64, f64)> {
         if let LocalChart::Own(_) = LocalChart::of(metric) {
-            let (p, d, xi0) = self.own_time_offset(tau, x)?;
+            let (p, d, xi0) = self.own_time_offset(tau, x, step)?;
             let dd = metric.dot(p, d, d);
             return Some((xi0, (dd + xi0 * xi0).max(0.0).sqrt()));
         }
-        let s: [f64; 20] = self.state(tau)?;
+        let s: [f64; 20] = self.state_near(tau, step)?;
         let first = first_order(metric, &point(metric, tau, &s), x);
         Some((first[0], norm3(&first)))
     }
@@ -755,8 +791,8 @@ mod tests {
         (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
     }
 
-    /// The index finds the step a binary search over all the ends finds, for steps of very
-    /// uneven lengths (as near a worldline's turning points), at the cells' edges, the ends
+    /// The index finds the step a binary search over all the ends finds (and knows that step
+    /// when given it), for steps of very uneven lengths (as near a worldline's turning points), at the cells' edges, the ends
     /// themselves and beyond the last.
     #[test]
     fn the_step_index_finds_what_a_binary_search_finds() {
@@ -777,6 +813,11 @@ mod tests {
             for s in queries {
                 let want = ends.partition_point(|&e| e < s);
                 assert_eq!(index.first_reaching(s), want, "n = {n}, s = {s}");
+                // A remembered step is taken for s exactly when it is that one.
+                for i in [want.wrapping_sub(1), want, want + 1, usize::MAX] {
+                    let holds = i == want && want < n;
+                    assert_eq!(index.holds(i, s), holds, "n = {n}, s = {s}, step {i}");
+                }
             }
         }
     }
@@ -845,7 +886,8 @@ mod tests {
                     c.y + draw(1.5),
                     c.z + draw(1.5),
                 );
-                let (xi0, distance) = ff.first_order(&metric, tau, x).unwrap();
+                let mut unknown = usize::MAX;
+                let (xi0, distance) = ff.first_order(&metric, tau, x, &mut unknown).unwrap();
                 let want = first_order(&metric, &point(&metric, tau, &ff.state(tau).unwrap()), x);
                 let scale = 1.0 + norm3(&want) + want[0].abs();
                 assert!(
