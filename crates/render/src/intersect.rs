@@ -199,8 +199,13 @@ impl Probes {
             if !(lo <= hi) {
                 continue; // never searched
             }
-            let margin = 1e-9 * (lo.abs().max(hi.abs()).min(1e300) + len.abs().min(1e300) + 1.0);
-            (first, last) = (first.min(lo - margin), last.max(hi + margin));
+            // Each end widened on its own (an open end stays open, and does not open the other).
+            let scale = if len > 0.0 { len } else { 0.0 } + 1.0;
+            let (lo, hi) = (
+                lo - 1e-9 * (lo.abs() + scale),
+                hi + 1e-9 * (hi.abs() + scale),
+            );
+            (first, last) = (first.min(lo), last.max(hi));
         }
         (first, last)
     }
