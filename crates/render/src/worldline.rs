@@ -19,9 +19,10 @@ use crate::bounds::Aabb;
 use crate::chart::LocalChart;
 use scene::Motion;
 use spacetime::measure::DualFrame;
+use spacetime::normal::Expansion;
 use spacetime::{
-    normal, Christoffel, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry,
-    Metric, MetricTensor, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances, TypeIsometry,
+    DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry, Metric, MetricTensor,
+    OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances, TypeIsometry,
 };
 
 /// A worldline point: event, four-velocity and body frame (e[0] = u).
@@ -78,7 +79,7 @@ pub enum Worldline {
         /// The position, Γ there and the frame's dual basis in the chart of local
         /// descriptions ([`LocalChart`]), constant for an object at rest.
         center: Event,
-        gamma: Christoffel,
+        gamma: Expansion,
         dual: DualFrame,
     },
     Free(FreeFall),
@@ -100,7 +101,7 @@ pub struct FreeFall {
     /// Position boxes on a grid in coordinate time (see [`TimeBoxes`]).
     boxes: TimeBoxes,
     /// The metric and Γ at the origin, where [`origin_coords`] expands (once, not per probe).
-    origin: (MetricTensor, Christoffel),
+    origin: (MetricTensor, Expansion),
 }
 
 /// The steps' ends (|τ| from the start, increasing) and, on a uniform grid of as many cells
@@ -279,7 +280,7 @@ impl Worldline {
                     position: p,
                     frame,
                     center,
-                    gamma: chart.christoffel(center),
+                    gamma: Expansion::new(&chart.christoffel(center)),
                     dual: DualFrame::new(&chart.metric(center), &chart.frame(p, &frame)),
                 })
             }
@@ -317,7 +318,10 @@ impl Worldline {
                     boxes,
                     origin: {
                         let chart = LocalChart::of(&metric);
-                        (chart.metric(ORIGIN), chart.christoffel(ORIGIN))
+                        (
+                            chart.metric(ORIGIN),
+                            Expansion::new(&chart.christoffel(ORIGIN)),
+                        )
                     },
                 }))
             }
@@ -535,10 +539,10 @@ fn norm3(xi: &[f64; 4]) -> f64 {
 /// Rest-frame components (ξ⁰, ξ¹, ξ², ξ³) of the displacement from `p` to `x`, in Riemann
 /// normal coordinates to second order when `gamma` (Γ at `p`) is given, else to first
 /// order, measured with the `dual` basis of the orthonormal frame at `p`.
-fn local_coords(dual: &DualFrame, gamma: Option<&Christoffel>, p: Event, x: Event) -> [f64; 4] {
+fn local_coords(dual: &DualFrame, gamma: Option<&Expansion>, p: Event, x: Event) -> [f64; 4] {
     let d = (x - p).to_array();
     dual.components(match gamma {
-        Some(gamma) => normal::displacement(gamma, d),
+        Some(gamma) => gamma.displacement(d),
         None => d,
     })
 }
@@ -570,7 +574,7 @@ fn first_order_time(metric: &Metric, event: Event, u: FourVector, x: Event) -> f
 /// 1.7 γ|ξ| away (static distance) inside the ball. Minkowski: the displacement itself.
 fn origin_coords(
     metric: &Metric,
-    origin: &(MetricTensor, Christoffel),
+    origin: &(MetricTensor, Expansion),
     p: &WorldPoint,
     x: Event,
 ) -> [f64; 4] {
@@ -590,7 +594,7 @@ fn origin_coords(
 /// vectors, not needed: the Newton step of the simultaneity).
 fn origin_time(
     metric: &Metric,
-    origin: &(MetricTensor, Christoffel),
+    origin: &(MetricTensor, Expansion),
     event: Event,
     u: FourVector,
     x: Event,
@@ -599,10 +603,7 @@ fn origin_time(
         return first_order_time(metric, event, u, x);
     };
     let row = DualFrame::row(&origin.0, 0, through(axes, u));
-    DualFrame::component(
-        &row,
-        normal::displacement(&origin.1, (there - ORIGIN).to_array()),
-    )
+    DualFrame::component(&row, origin.1.displacement((there - ORIGIN).to_array()))
 }
 
 /// The ray point `x` moved by the isometry that sends `event` to the origin, in the chart of
