@@ -365,8 +365,8 @@ impl DataFile {
 
         // RLE, chosen by measurement (BENCHMARKS.md, "Speed issue"): encoding is several
         // times faster than ZIP (which was ~35 % of a static scene's exact render after the
-        // speed-ups), files about twice ZIP's size (the missed pixels' runs compress well);
-        // uncompressed would be ~12 times larger.
+        // speed-ups). Its runs are those of the missed pixels' NaN (`planes::NO_VALUE`, whose
+        // bytes repeat in pairs): the peer scene's file is 3.4 times smaller than raw.
         let size = (self.width, self.height);
         let mut bytes = exr_bytes(size, attributes, Compression::RLE, channels)
             .map_err(DataFileErrorKind::Exr)?;

@@ -48,6 +48,12 @@ pub const POLARIZATION_CHANNELS: [(&str, Get, Set); 3] = [
     ("pol_z", |r| r.pol[2], |r, s| r.pol[2] = s),
 ];
 
+/// The NaN stored where there is no value: a quiet NaN whose bytes repeat in pairs
+/// (c0 7f c0 7f), so that OpenEXR's RLE, which splits a block's bytes into the even and the
+/// odd ones before looking for runs, finds runs in a stretch of them. (The usual NaN,
+/// 00 00 c0 7f, gives alternating halves and no runs: the data files did not shrink at all.)
+pub const NO_VALUE: f32 = f32::from_bits(0x7fc0_7fc0);
+
 /// Name of the channel holding light plane `k`.
 pub fn light_channel_name(k: usize) -> String {
     format!("light_{k}")
@@ -67,7 +73,7 @@ impl DataFile {
     /// order.
     pub fn planes(&self) -> Vec<(String, Plane)> {
         let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
-        let physical = |r: &PixelRecord, v: f32| if r.has_emission() { v } else { f32::NAN };
+        let physical = |r: &PixelRecord, v: f32| if r.has_emission() { v } else { NO_VALUE };
         let traced = |r: &PixelRecord| r.status != RayStatus::NotTraced;
         let mut out = vec![
             (
@@ -84,7 +90,7 @@ impl DataFile {
             out.push((name.to_string(), Plane::F32(values)));
         }
         for (name, get, _) in VIEW_CHANNELS {
-            let values = plane(&|r| if traced(r) { get(r) } else { f32::NAN });
+            let values = plane(&|r| if traced(r) { get(r) } else { NO_VALUE });
             out.push((name.to_string(), Plane::F32(values)));
         }
         if self.polarization {

@@ -531,6 +531,41 @@ fn records_without_a_hit_store_nan_in_the_physical_channels() {
     assert_eq!(DataFile::read(&path).unwrap(), file);
 }
 
+/// A stretch of records without a hit (most of a scene's sky) stores the same NaN in its
+/// physical channels: OpenEXR's RLE must find runs there. With a NaN whose bytes do not repeat
+/// in pairs (the usual 0x7fc00000), the split into even and odd bytes leaves no run and the
+/// file was as large as its raw channels.
+#[test]
+fn missed_pixels_compress() {
+    let (width, height) = (256, 32);
+    let mut file = random_file(width, height, 0, 5);
+    for (i, r) in file.records.iter_mut().enumerate() {
+        // One hit in sixteen, the rest escaped with a direction each.
+        *r = if i % 16 == 0 {
+            PixelRecord {
+                object: 0,
+                status: RayStatus::Hit,
+                ..*r
+            }
+        } else {
+            PixelRecord {
+                view: r.view,
+                ..PixelRecord::miss(RayStatus::Escaped)
+            }
+        };
+    }
+    let bytes = file.to_bytes().unwrap();
+    // object, status, 12 physical, 3 view and 3 polarization channels of 4 bytes; the
+    // physical and polarization ones (15 of the 20) are NaN in 15 pixels of 16.
+    let raw = width * height * 20 * 4;
+    assert!(
+        bytes.len() * 2 < raw,
+        "{} bytes for {raw} raw: the missed pixels' NaN did not compress",
+        bytes.len()
+    );
+    assert_eq!(DataFile::from_bytes(&bytes).unwrap(), file);
+}
+
 #[test]
 fn supersampled_files_name_their_factor_and_group_samples_into_pixels() {
     let mut file = random_file(6, 4, 1, 22);
