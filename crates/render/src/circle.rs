@@ -51,14 +51,17 @@ impl RayCircle {
         let (c, s) = geo.cis_chi();
         // The farthest point lies in the direction χ + sgn(E)·π/2.
         let dir = Complex::new(-sg * s, sg * c);
-        let big = (geo.r_max() / (2.0 * a)).asinh(); // ρ/a
-        let h = dir.scale((0.5 * big).tanh());
+        // ρ/a = asinh(r_max/2a), so sinh(ρ/a) = r_max/2a, cosh(ρ/a) = √(1 + sinh²) and
+        // tanh(ρ/2a) = sinh/(1 + cosh): one square root, not four hyperbolic functions.
+        let sinh_rho = geo.r_max() / (2.0 * a);
+        let cosh_rho = (1.0 + sinh_rho * sinh_rho).sqrt();
+        let h = dir.scale(sinh_rho / (1.0 + cosh_rho));
         let l_ret = geo.return_parameter();
         RayCircle {
             h,
             nh: 1.0 - h.norm_sqr(),
-            cosh_rho: big.cosh(),
-            sinh_rho: big.sinh(),
+            cosh_rho,
+            sinh_rho,
             psi0: sg * (Complex::new(0.0, 0.0) - h).arg(),
             sg,
             l_ret,

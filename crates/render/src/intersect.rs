@@ -727,6 +727,11 @@ mod tests {
             target, 1,
             "the small ball in front is the first crossing (λ {l})"
         );
-        assert_eq!(l, alone);
+        // The same root, up to the width at which `refine_root` stops (4 ε λ): searched up
+        // to the large ball's crossing, not to the segment's end, its bracket differs.
+        assert!(
+            (l - alone).abs() <= 4.0 * f64::EPSILON * alone,
+            "λ {l} against {alone} alone"
+        );
     }
 }

@@ -60,9 +60,10 @@ impl OriginGeodesic {
             energy: e,
             pz: k.z,
             kappa,
-            cis_chi: {
-                let (s, c) = k.y.atan2(k.x).sin_cos();
-                (c, s)
+            // (kˣ, kʸ)/k⊥, and χ = 0 along the axis (k⊥ = 0).
+            cis_chi: match kperp2.sqrt() {
+                kperp if kperp > 0.0 => (k.x / kperp, k.y / kperp),
+                _ => (1.0, 0.0),
             },
             omega,
             r_max: kperp2.sqrt() / omega,
