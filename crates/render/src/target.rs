@@ -21,7 +21,9 @@ use crate::worldline::{Located, WorldPoint, Worldline, WorldlineError};
 use scene::{Motion, Object, Shape};
 use spacetime::measure::{covector_components, vector_components};
 use spacetime::polarization::measured;
-use spacetime::{normal, Event, FourVector, GeodesicState, Metric, Spacetime};
+use spacetime::{
+    normal, Christoffel, Event, FourVector, GeodesicState, Metric, MetricTensor, Spacetime, Tetrad,
+};
 use std::f64::consts::PI;
 
 /// Safety factor on the rate bound: covers the variation of the local photon energy and
@@ -330,16 +332,16 @@ impl Target {
                 let lp = worldline
                     .localize(metric, s.x, seed, f64::INFINITY)?
                     .near()?;
-                let (u_emit, kl) = rest_frame_photon(metric, worldline, &lp.at, s.x, k);
+                let rest = RestFrame::new(metric, &lp.at, s.x);
+                let kl = rest.photon(k);
                 let (u, v) = lon_lat(lp.xi);
                 let dir = normalize3([-kl[1], -kl[2], -kl[3]]);
                 let n = normalize3(lp.xi);
-                let [fl, rl] =
-                    screen.map(|v| rest_frame_photon(metric, worldline, &lp.at, s.x, v).1);
+                let [fl, rl] = screen.map(|v| rest.photon(v));
                 Some(Surface {
                     u,
                     v,
-                    emitter_velocity: u_emit,
+                    emitter_velocity: rest.emitter_velocity(worldline),
                     dir,
                     // The normal on the side the photon leaves (inward for an inner surface).
                     cos_i: dot3(n, dir).abs(),
@@ -463,8 +465,8 @@ impl Target {
                     worldline.tau_guess(x.t)
                 };
                 let lp = worldline.localize(metric, x, seed, f64::INFINITY)?.near()?;
-                let (_, kl) = rest_frame_photon(metric, worldline, &lp.at, x, k_light);
-                let (_, kv) = rest_frame_photon(metric, worldline, &lp.at, x, view);
+                let rest = RestFrame::new(metric, &lp.at, x);
+                let (kl, kv) = (rest.photon(k_light), rest.photon(view));
                 let n = normalize3(lp.xi);
                 // The viewer's photon leaves along −view: outside when it moves outward.
                 let side = viewer_side(n, [-kv[1], -kv[2], -kv[3]]);
@@ -496,38 +498,58 @@ impl Target {
     }
 }
 
-/// The emitter velocity at the hit point and the photon's rest-frame components (k⁰, k¹, k², k³).
-/// For objects at rest the surface point is static (u = ∂t exactly); for free fall the
-/// centre's velocity and frame are carried to the hit point to first order with Γ at the centre.
-fn rest_frame_photon(
-    metric: &Metric,
-    wl: &Worldline,
-    at: &WorldPoint,
+/// A ball's rest frame at a surface point: what measures photons there. Made once per point,
+/// since a hit measures three vectors (the photon and the screen's two axes) and the direct
+/// light two (the light's photon and the viewer's).
+struct RestFrame {
+    chart: LocalChart,
+    /// The surface point.
     x: Event,
-    k: FourVector,
-) -> (FourVector, [f64; 4]) {
-    // In the chart of local descriptions ([`LocalChart`]), as the ball's coordinates are.
-    let chart = LocalChart::of(metric);
-    let (centre, here) = (chart.event(at.event), chart.event(x));
-    let gam = chart.christoffel(centre);
-    let g = chart.metric(centre);
-    let d = (here - centre).to_array();
-    // k carried from the hit point to the centre, then measured in the body frame.
-    let kn = normal::transport(
-        &gam,
-        (centre - here).to_array(),
-        chart.vector(x, k).to_array(),
-    );
-    let frame = chart.frame(at.event, &at.frame);
-    let kl = vector_components(&g, &frame, FourVector::from_array(kn));
-    let u_emit = match wl {
-        Worldline::Rest { .. } => FourVector::new(1.0, 0.0, 0.0, 0.0),
-        Worldline::Free(_) => {
-            let u = normal::transport(&gam, d, frame.e[0].to_array());
-            chart.vector_back(x, FourVector::from_array(u))
+    /// Γ and the metric at the centre, in the chart of local descriptions.
+    gam: Christoffel,
+    g: MetricTensor,
+    /// The body frame at the centre, in that chart.
+    frame: Tetrad,
+    /// The coordinate displacement from the centre to the point there.
+    d: [f64; 4],
+}
+
+impl RestFrame {
+    /// The rest frame of the worldline point `at` (the centre), for measurements at `x`.
+    fn new(metric: &Metric, at: &WorldPoint, x: Event) -> RestFrame {
+        // In the chart of local descriptions ([`LocalChart`]), as the ball's coordinates are.
+        let chart = LocalChart::of(metric);
+        let (centre, here) = (chart.event(at.event), chart.event(x));
+        RestFrame {
+            chart,
+            x,
+            gam: chart.christoffel(centre),
+            g: chart.metric(centre),
+            frame: chart.frame(at.event, &at.frame),
+            d: (here - centre).to_array(),
         }
-    };
-    (u_emit, kl)
+    }
+
+    /// The photon `k` at the point, carried to the centre to first order with Γ there, then
+    /// measured in the body frame: (k⁰, k¹, k², k³).
+    fn photon(&self, k: FourVector) -> [f64; 4] {
+        let back = self.d.map(|c| -c);
+        let kn = normal::transport(&self.gam, back, self.chart.vector(self.x, k).to_array());
+        vector_components(&self.g, &self.frame, FourVector::from_array(kn))
+    }
+
+    /// The emitter's velocity at the point. For objects at rest the surface point is static
+    /// (u = ∂t exactly); for free fall the centre's velocity is carried to the point to first
+    /// order with Γ at the centre.
+    fn emitter_velocity(&self, wl: &Worldline) -> FourVector {
+        match wl {
+            Worldline::Rest { .. } => FourVector::new(1.0, 0.0, 0.0, 0.0),
+            Worldline::Free(_) => {
+                let u = normal::transport(&self.gam, self.d, self.frame.e[0].to_array());
+                self.chart.vector_back(self.x, FourVector::from_array(u))
+            }
+        }
+    }
 }
 
 /// +1 when the viewer's photon, leaving the surface along `photon`, is on the side of the

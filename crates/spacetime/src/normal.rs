@@ -20,9 +20,9 @@ pub fn displacement(gamma: &Christoffel, d: [f64; 4]) -> [f64; 4] {
 #[derive(Clone, Debug)]
 pub struct Expansion {
     /// (α, β, Γ^μ_αβ) of the nonzero entries, those of μ = 0 first, then μ = 1, …
-    terms: [(u8, u8, f64); 64],
+    terms: [(usize, usize, f64); 64],
     /// terms[ends[μ − 1]..ends[μ]] are those of μ (ends[−1] = 0).
-    ends: [u8; 4],
+    ends: [usize; 4],
 }
 
 impl Expansion {
@@ -34,12 +34,12 @@ impl Expansion {
             for (a, row) in rows.iter().enumerate() {
                 for (b, &g) in row.iter().enumerate() {
                     if g != 0.0 {
-                        terms[n] = (a as u8, b as u8, g);
+                        terms[n] = (a, b, g);
                         n += 1;
                     }
                 }
             }
-            ends[mu] = n as u8;
+            ends[mu] = n;
         }
         Expansion { terms, ends }
     }
@@ -50,12 +50,12 @@ impl Expansion {
         let mut from = 0;
         for (out, &end) in xi.iter_mut().zip(&self.ends) {
             let mut c = 0.0;
-            for &(a, b, g) in &self.terms[from..end as usize] {
+            for &(a, b, g) in &self.terms[from..end] {
                 // (The masks let the compiler drop the bounds checks: a, b < 4.)
-                c += g * d[usize::from(a) & 3] * d[usize::from(b) & 3];
+                c += g * d[a & 3] * d[b & 3];
             }
             *out += 0.5 * c;
-            from = end as usize;
+            from = end;
         }
         xi
     }
