@@ -38,11 +38,21 @@ impl Tracer {
             }
             None => return FirstLoop::Ended(End::Miss(RayStatus::Failed)),
         };
+        // Past the last λ at which any object is searched (`Probes::reach`) the ray finds
+        // nothing: where it surely escapes, it ends there as a ray that searches no object
+        // does (its record is the same miss), without the rest of its segments.
+        let (_, mut last) = probes.reach();
         for i in 0..EXACT_SEGMENTS {
             let (l0, l1) = (
                 l_ret * i as f64 / EXACT_SEGMENTS as f64,
                 l_ret * (i + 1) as f64 / EXACT_SEGMENTS as f64,
             );
+            if l0 > last {
+                if let Some(status) = self.escape_unsearched(start, Some(geo)) {
+                    return FirstLoop::Ended(End::Miss(status));
+                }
+                last = f64::INFINITY; // it does not escape so: asked once
+            }
             let y0 = segments.last().map_or(s0, |d| d.y1);
             segments.push(Segment::exact(geo, sys, l0, y0, l1));
             let d = segments.last().expect("just pushed");
