@@ -469,7 +469,7 @@ impl Worldline {
                 // and a secant on it jumped between them from one ray point to the next.)
                 let (mut ta, mut fa) = (tau, xi0);
                 tau = (ta + fa).clamp(ff.tau_min, ff.tau_max);
-                let mut fb = ff.time_offset(metric, tau, x, &mut near_step)?;
+                let (mut fb, mut sb) = ff.time_offset(metric, tau, x, &mut near_step)?;
                 for _ in 0..SIMULTANEITY_STEPS {
                     if fb.abs() < 1e-12 || tau == ta {
                         break;
@@ -482,11 +482,11 @@ impl Worldline {
                     };
                     (ta, fa) = (tau, fb);
                     tau = (tau + step).clamp(ff.tau_min, ff.tau_max);
-                    fb = ff.time_offset(metric, tau, x, &mut near_step)?;
+                    (fb, sb) = ff.time_offset(metric, tau, x, &mut near_step)?;
                 }
                 // Second order near the object, taken at the origin (`origin_coords`): one
-                // more Newton step on its ξ⁰.
-                let (event, u) = ff.event_velocity(metric, tau, &mut near_step)?;
+                // more Newton step on its ξ⁰, from the state at the secant's last τ.
+                let (event, u) = event_velocity(metric, &sb);
                 tau = (tau + origin_time(metric, &ff.origin, event, u, x))
                     .clamp(ff.tau_min, ff.tau_max);
                 let pb = point(metric, tau, &ff.state_near(tau, &mut near_step)?);
@@ -507,6 +507,16 @@ fn event_velocity(metric: &Metric, s: &[f64]) -> (Event, FourVector) {
         x,
         metric.raise(x, spacetime::Covector::new(s[4], s[5], s[6], s[7])),
     )
+}
+
+/// In the metric's own chart, for a free fall's state `s` (position and u_μ): the worldline
+/// point, the displacement Δ from it to `x`, and ξ⁰ = −g(u, Δ) = −u_μΔ^μ, with u_μ read from
+/// the state (no raise, no metric).
+fn own_time_offset(s: &[f64; 8], x: Event) -> (Event, FourVector, f64) {
+    let p = Event::new(s[0], s[1], s[2], s[3]);
+    let d = (x - p).to_array();
+    let xi0 = DualFrame::component(&[-s[4], -s[5], -s[6], -s[7]], d);
+    (p, FourVector::from_array(d), xi0)
 }
 
 /// The worldline point of a free fall's transported state `s` at proper time τ.
@@ -717,41 +727,23 @@ impl FreeFall {
 
     /// ξ⁰ of [`first_order`] at the worldline point of proper time τ: the time row alone,
     /// from the position and u (the body frame's other vectors not interpolated). What the
-    /// simultaneity's secant steps need.
-    fn time_offset(&self, metric: &Metric, tau: f64, x: Event, step: &mut usize) -> Option<f64> {
-        if let LocalChart::Own(_) = LocalChart::of(metric) {
-            return self.own_time_offset(tau, x, step).map(|(_, _, xi0)| xi0);
-        }
-        let (p, u) = self.event_velocity(metric, tau, step)?;
-        Some(first_order_time(metric, p, u, x))
-    }
-
-    /// In the metric's own chart: the worldline point at proper time τ, the displacement Δ
-    /// from it to `x`, and ξ⁰ = −g(u, Δ) = −u_μΔ^μ, with u_μ read from the state (no raise,
-    /// no metric).
-    fn own_time_offset(
-        &self,
-        tau: f64,
-        x: Event,
-        step: &mut usize,
-    ) -> Option<(Event, FourVector, f64)> {
-        let s: [f64; 8] = self.state_near(tau, step)?;
-        let p = Event::new(s[0], s[1], s[2], s[3]);
-        let d = (x - p).to_array();
-        let xi0 = DualFrame::component(&[-s[4], -s[5], -s[6], -s[7]], d);
-        Some((p, FourVector::from_array(d), xi0))
-    }
-
-    /// The event and four-velocity at proper time τ (the body frame's other vectors not
-    /// interpolated).
-    fn event_velocity(
+    /// simultaneity's secant steps need; with the state (position and u_μ) it was taken from,
+    /// whose event and velocity the match's last step then reuses.
+    fn time_offset(
         &self,
         metric: &Metric,
         tau: f64,
+        x: Event,
         step: &mut usize,
-    ) -> Option<(Event, FourVector)> {
+    ) -> Option<(f64, [f64; 8])> {
         let s: [f64; 8] = self.state_near(tau, step)?;
-        Some(event_velocity(metric, &s))
+        let xi0 = if let LocalChart::Own(_) = LocalChart::of(metric) {
+            own_time_offset(&s, x).2
+        } else {
+            let (p, u) = event_velocity(metric, &s);
+            first_order_time(metric, p, u, x)
+        };
+        Some((xi0, s))
     }
 
     /// ξ⁰ and the spatial length |ξ| of [`first_order`] at the worldline point of proper
@@ -765,7 +757,7 @@ impl FreeFall {
         step: &mut usize,
     ) -> Option<(f64, f64)> {
         if let LocalChart::Own(_) = LocalChart::of(metric) {
-            let (p, d, xi0) = self.own_time_offset(tau, x, step)?;
+            let (p, d, xi0) = own_time_offset(&self.state_near(tau, step)?, x);
             let dd = metric.dot(p, d, d);
             return Some((xi0, (dd + xi0 * xi0).max(0.0).sqrt()));
         }
