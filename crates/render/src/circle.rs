@@ -51,11 +51,8 @@ impl RayCircle {
         let (c, s) = geo.cis_chi();
         // The farthest point lies in the direction χ + sgn(E)·π/2.
         let dir = Complex::new(-sg * s, sg * c);
-        // ρ/a = asinh(r_max/2a), so sinh(ρ/a) = r_max/2a, cosh(ρ/a) = √(1 + sinh²) and
-        // tanh(ρ/2a) = sinh/(1 + cosh): one square root, not four hyperbolic functions.
-        let sinh_rho = geo.r_max() / (2.0 * a);
-        let cosh_rho = (1.0 + sinh_rho * sinh_rho).sqrt();
-        let h = dir.scale(sinh_rho / (1.0 + cosh_rho));
+        let (sinh_rho, cosh_rho, h_abs) = geo.circle();
+        let h = dir.scale(h_abs);
         let l_ret = geo.return_parameter();
         RayCircle {
             h,

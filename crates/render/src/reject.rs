@@ -203,9 +203,9 @@ impl StaticBall {
         let sg = geo.energy.signum();
         let (c, s) = geo.cis_chi();
         let dir = Complex::new(-sg * s, sg * c);
-        let big = (geo.r_max() / (2.0 * a)).asinh(); // d(0, w_max)/2a
-        let rho = a * big;
-        let h = dir.scale((0.5 * big).tanh());
+        let (sinh_rho, cosh_rho, h_abs) = geo.circle();
+        let rho = a * sinh_rho.asinh(); // d(0, w_max)/2
+        let h = dir.scale(h_abs);
         let mc = moved(h, self.w);
         let d_hc = 2.0 * a * mc.norm_sqr().sqrt().atanh();
         let nearest = (d_hc - rho).abs();
@@ -226,8 +226,8 @@ impl StaticBall {
         }
         let cos = |d: f64| (d - TAU * (d / TAU).round()).clamp(-PI, PI).cos();
         let cos_d = cos(d1).max(cos(d2));
-        let (x, y) = (d_hc / a, rho / a);
-        let cosh_d = x.cosh() * y.cosh() - x.sinh() * y.sinh() * cos_d;
+        let x = d_hc / a;
+        let cosh_d = x.cosh() * cosh_rho - x.sinh() * sinh_rho * cos_d;
         a * cosh_d.max(1.0).acosh() > reach
     }
 }

@@ -785,8 +785,8 @@ mod tests {
     }
 
     /// The index finds the step a binary search over all the ends finds (and knows that step
-    /// when given it), for steps of very uneven lengths (as near a worldline's turning points), at the cells' edges, the ends
-    /// themselves and beyond the last.
+    /// when given it), for steps of very uneven lengths (as near a worldline's turning
+    /// points), at the cells' edges, the ends themselves and beyond the last.
     #[test]
     fn the_step_index_finds_what_a_binary_search_finds() {
         let mut rng = 33u64;

@@ -55,18 +55,20 @@ impl OriginGeodesic {
         }
         let kappa = kappa.max(0.0);
         let omega = (e * e + kappa + k.z * k.z).sqrt() / (2.0 * a);
+        let kperp = kperp2.sqrt();
         Some(OriginGeodesic {
             a,
             energy: e,
             pz: k.z,
             kappa,
             // (kˣ, kʸ)/k⊥, and χ = 0 along the axis (k⊥ = 0).
-            cis_chi: match kperp2.sqrt() {
-                kperp if kperp > 0.0 => (k.x / kperp, k.y / kperp),
-                _ => (1.0, 0.0),
+            cis_chi: if kperp > 0.0 {
+                (k.x / kperp, k.y / kperp)
+            } else {
+                (1.0, 0.0)
             },
             omega,
-            r_max: kperp2.sqrt() / omega,
+            r_max: kperp / omega,
             q: e.abs() / (SQRT_2 * a * omega),
             // ω r_max = k⊥ and q ≥ 1 for causal k.
         })
@@ -88,13 +90,23 @@ impl OriginGeodesic {
         (kperp * self.cis_chi.0, kperp * self.cis_chi.1)
     }
 
+    /// The spatial projection's hyperbolic circle (docs/physics.md, "Whole-ray rejection"):
+    /// radius ρ = a·asinh(r_max/2a), centre h halfway to the farthest point. Returns
+    /// (sinh(ρ/a), cosh(ρ/a), |h|) = (r_max/2a, √(1 + sinh²), sinh/(1 + cosh)), the last being
+    /// tanh(ρ/2a): one square root, no hyperbolic function.
+    pub fn circle(&self) -> (f64, f64, f64) {
+        let sinh_rho = self.r_max / (2.0 * self.a);
+        let cosh_rho = (1.0 + sinh_rho * sinh_rho).sqrt();
+        (sinh_rho, cosh_rho, sinh_rho / (1.0 + cosh_rho))
+    }
+
     /// The rotation about the axis, after the isometry back from the origin, of the flow
     /// that moves the origin to the point at parameter `lambda` along this geodesic
     /// (`crate::transport`): β = α − 2 arg(1 − |h|² e^{iα}), α = sgn(E)·2ωλ the angle turned
     /// about the centre h of the projection's circle.
     pub fn flow_rotation(&self, lambda: f64) -> f64 {
         let alpha = self.energy.signum() * 2.0 * self.omega * lambda;
-        let h = (0.5 * (self.r_max / (2.0 * self.a)).asinh()).tanh();
+        let (_, _, h) = self.circle();
         let h2 = h * h;
         let (s, c) = alpha.sin_cos();
         alpha - 2.0 * (-h2 * s).atan2(1.0 - h2 * c)
