@@ -18,8 +18,8 @@ use crate::tiles::{Assembler, Sink, TileData};
 use crate::tracer::{Scratch, TraceOptions, Tracer};
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, Member, FORMAT_VERSION};
-use rayon::prelude::*;
 use scene::{Camera, Scene, TraceMethod};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -284,20 +284,26 @@ impl<'a> Renderer<'a> {
         progress.start(indices.iter().map(tile_pixels).sum());
         let started = Instant::now();
         let shared = Mutex::new((sink, RenderStats::default()));
-        indices.par_iter().for_each_init(
-            || self.scratch(),
-            |scratch, &index| {
+        // Each thread of the pool takes the next tile not yet taken, one at a time, with its
+        // own scratch. (A parallel iterator over the tiles left one of two threads idle for
+        // the last 0.3 s of the reference scene's 1.8 s at 2200×250: rayon's adaptive
+        // splitting hands a thread runs of tiles it cannot share, and that scene's costly
+        // tiles lie in one band of rows.)
+        let next = AtomicUsize::new(0);
+        rayon::broadcast(|_| {
+            let mut scratch = self.scratch();
+            while let Some(&index) = indices.get(next.fetch_add(1, Ordering::Relaxed)) {
                 if progress.cancelled() {
                     return;
                 }
-                let tile = self.trace_tile(index, scratch);
+                let tile = self.trace_tile(index, &mut scratch);
                 let stats = RenderStats::count(&tile.records);
                 progress.advance(tile.records.len() as u64);
                 let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                 guard.1.add(&stats);
                 guard.0.accept(tile);
-            },
-        );
+            }
+        });
         let (_, mut stats) = shared.into_inner().unwrap_or_else(|e| e.into_inner());
         stats.wall = started.elapsed();
         stats
