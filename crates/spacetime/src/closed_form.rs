@@ -22,7 +22,7 @@
 //! closed form with initial tangent T_* k; the tangent is pushed back with (T⁻¹)_*.
 //! The parameter is the same affine parameter (proper time for particles).
 
-use crate::isometry::Isometry;
+use crate::isometry::{Complex, Isometry};
 use crate::vectors::{Event, FourVector};
 use std::f64::consts::{PI, SQRT_2};
 
@@ -109,7 +109,7 @@ impl OriginGeodesic {
         let (_, _, h) = self.circle();
         let h2 = h * h;
         let (s, c) = alpha.sin_cos();
-        alpha - 2.0 * (-h2 * s).atan2(1.0 - h2 * c)
+        alpha - 2.0 * Complex::new(1.0 - h2 * c, -h2 * s).arg_right()
     }
 
     /// The parameter after which the spatial projection is back on the axis: λ = π/ω.
@@ -120,12 +120,13 @@ impl OriginGeodesic {
     /// Φ(θ) = arctan(q tan θ), continued through θ = π/2 + nπ, Φ'(θ) and (cos Φ, sin Φ),
     /// given (sin θ, cos θ) (computed once by the caller: libm's sincos and atan2 are a
     /// large share of an evaluation). With A = cos²θ + q sin²θ > 0 and B = (q − 1) sin θ
-    /// cos θ, Φ = θ + atan2(B, A), so e^{iΦ} = e^{iθ} (A + iB)/|A + iB| without a sincos.
+    /// cos θ, Φ = θ + arg(A + iB) (an atan, A > 0), so e^{iΦ} = e^{iθ} (A + iB)/|A + iB|
+    /// without a sincos.
     fn big_phi(&self, th: f64, s: f64, c: f64) -> (f64, f64, (f64, f64)) {
         let q = self.q;
         let den = c * c + q * s * s;
         let b = (q - 1.0) * s * c;
-        let phi = th + b.atan2(den);
+        let phi = th + Complex::new(den, b).arg_right();
         let dphi = q / (c * c + q * q * s * s);
         let n = (den * den + b * b).sqrt();
         let cis = ((c * den - s * b) / n, (s * den + c * b) / n);

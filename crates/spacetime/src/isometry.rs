@@ -45,6 +45,14 @@ impl Complex {
     pub fn arg(self) -> f64 {
         self.im.atan2(self.re)
     }
+    /// [`Complex::arg`] of a number in the open right half-plane (re > 0): atan(im/re),
+    /// which glibc computes in less than half the instructions of atan2 (68 against 151,
+    /// callgrind) and which differs from it by the rounding of the quotient, an ulp or so.
+    /// The closed forms and the isometries take it for every ray point.
+    pub fn arg_right(self) -> f64 {
+        debug_assert!(!(self.re <= 0.0), "{self:?} is not in the right half-plane");
+        (self.im / self.re).atan()
+    }
     /// e^{iα}.
     pub fn cis(alpha: f64) -> Self {
         if alpha.to_bits() == 0 {
@@ -253,7 +261,8 @@ impl Isometry {
         let a = self.a;
         let (x, y) = from_disc(a, m.w1);
         Event::new(
-            at.t - self.t0 - 2.0 * SQRT_2 * a * m.den.arg(),
+            // |w̄0 w| < 1: 1 − w̄0 w lies in the right half-plane.
+            at.t - self.t0 - 2.0 * SQRT_2 * a * m.den.arg_right(),
             x,
             y,
             at.z - self.z0,
@@ -279,4 +288,34 @@ struct Moved {
     den: Complex,
     rot: Complex,
     w1: Complex,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Complex;
+
+    /// arg by an atan agrees with atan2 in the right half-plane, within the rounding of the
+    /// quotient: over real parts from 1e-12 to 1e3 and imaginary parts of both signs and
+    /// every size (angles up to ±π/2), at most 4 ulp of the angle. An atan of re/im, or of a
+    /// quotient with the wrong sign, fails.
+    #[test]
+    fn arg_in_the_right_half_plane_is_an_atan() {
+        let mut state = 99u64;
+        let mut uniform = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..20_000 {
+            let re = 10f64.powf(-12.0 + 15.0 * uniform());
+            let im = (2.0 * uniform() - 1.0) * 10f64.powf(-12.0 + 15.0 * uniform());
+            let z = Complex::new(re, im);
+            let (got, want) = (z.arg_right(), z.arg());
+            assert!(
+                (got - want).abs() <= 4.0 * f64::EPSILON * want.abs(),
+                "{z:?}: {got} against {want}"
+            );
+        }
+    }
 }
