@@ -157,7 +157,7 @@ const float FAR_SLACK = 1.3;
 // noise allowance here covers f32's rest-frame coordinates (~1e-6 a; the CPU's is 1e-9 a).
 const float CHORD_MAX_END = 0.4;
 const float CHORD_MAX_STRAY = 0.05;
-const float CHORD_BEND_AT_REST = 3.0;
+const float CHORD_BEND_AT_REST = 3.25;
 const float CHORD_NOISE = 1e-4;
 // render::lighting: the occlusion test stops this fraction of the ray short of the lit point.
 const float END_CUT = 1e-6;

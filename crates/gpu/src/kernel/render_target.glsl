@@ -47,7 +47,7 @@ bool excluded(float fa, float fb, float rate, float h) {
 }
 // The chord exclusion (render::chord, docs/physics.md "The intersection search"): a ball at
 // rest in Gödel's universe, both ends near it and on one side; the path strays from the
-// chord of its rest-frame coordinates by at most K·h²/8, K = (3 + ρ/a)·E²/a.
+// chord of its rest-frame coordinates by at most K·h²/8, K = (3.25 + ρ/a)·E²/a.
 bool chordExcludes(int i, Probe pa, Probe pb, float h) {
     if (!(godel() && pa.near && pb.near)) return false;
     float na = length(pa.xi), nb = length(pb.xi);

@@ -11,18 +11,22 @@ use render::worldline::Located;
 use scene::Scene;
 use spacetime::{ExactGeodesic, Spacetime};
 
-/// Balls at rest and falling at up to 0.8 c (the fastest the test is used for), of radii up
-/// to a/2, at up to 1.8a from the axis; rays through random points within 0.45a of a
-/// centre, in random directions. Wherever both ends of a span lie near the ball and
-/// `chord::stray` gives a bound, every sampled point of the path between them lies within
-/// that bound of the chord (at the same fraction of the span). Fails with the bend at rest
-/// cut from 3 to 1.5 (the Coriolis term is √2), or the boost term from s⁴ to s³.
+/// Balls at rest, falling slowly (up to 0.1 c) and falling at up to 0.8 c (the fastest the
+/// test is used for), of radii up to a/2, at up to 1.8a from the axis; rays through random
+/// points within 0.45a of a centre, in random directions. Wherever both ends of a span lie
+/// near the ball and `chord::stray` gives a bound, every sampled point of the path between
+/// them lies within half that bound of the chord (at the same fraction of the span): the
+/// bound's margin of two. Fails with the bend at rest cut from 3.25 to 3, the falling ball's
+/// constant term from 0.75 to 0 (slow balls: 0.77 of the bound), or the boost term from s⁴
+/// to s³.
 #[test]
 fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
     let mut rng = common::Cases(33);
     let (mut spans, mut worst) = (0usize, [0.0f64; 2]);
-    for case in 0..600 {
-        let (a, m, speed, radius, target) = common::random_ball(&mut rng, case % 4 == 0, 0.8, 20.0);
+    for case in 0..4000 {
+        let fastest = if case % 4 == 1 { 0.1 } else { 0.8 };
+        let (a, m, speed, radius, target) =
+            common::random_ball(&mut rng, case % 4 == 0, fastest, 20.0);
         let Target::LocalSphere { worldline, .. } = &target else {
             unreachable!()
         };
@@ -79,9 +83,10 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                     let w = &mut worst[usize::from(speed > 0.0)];
                     *w = w.max(dev / stray);
                     assert!(
-                        dev <= stray,
+                        dev <= 0.5 * stray,
                         "case {case} (v = {speed:.2}, R = {radius:.3}, a = {a:.2}): the path \
-                         strays {dev:e} from a chord of {len} steps, bound {stray:e}"
+                         strays {dev:e} from a chord of {len} steps, more than half its bound \
+                         {stray:e}"
                     );
                 }
                 spans += 1;
