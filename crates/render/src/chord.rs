@@ -15,11 +15,11 @@
 //! bend of 2ΩE² = √2·E²/a; a falling ball's frame does not turn, and its bend comes from the
 //! curvature and the second-order coordinates, which grow with the boost and the distance
 //! from the centre, and which do not vanish for a slow ball. Measured over random balls and
-//! rays (docs/physics.md; `examples/chord_bend.rs`), at most (1.87 at rest; 0.35 below
-//! 0.05 c, 3.7 at 0.7 c, 18 at 0.8 c, within 0.5a)·(E·s)²/a, where
-//! K = (3.25·[at rest] + 0.75·[falling] + s⁴·ρ/a)·(E·s)²/a allows at least twice that (ρ: the
-//! span's reach from the centre). Beyond 0.8 c the second-order match can jump between
-//! roots, and the test is not used.
+//! rays (docs/physics.md; the property test in tests/integration/chord.rs prints the table),
+//! at most (1.9 at rest; 0.35 below 0.05 c, 3.7 at 0.7 c, 18 at 0.8 c, within 0.5a)·(E·s)²/a,
+//! where K = (3.25·[at rest] + 0.75·[falling] + s⁴·ρ/a)·(E·s)²/a allows at least twice that
+//! (ρ: the span's reach from the centre). Beyond 0.8 c the second-order match can jump
+//! between roots, and the test is not used.
 
 /// The fastest ball the test is used for: speed factor γ(1 + v) = 3 (v = 0.8).
 const MAX_SPEED_FACTOR: f64 = 3.0;

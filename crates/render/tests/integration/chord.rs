@@ -18,11 +18,18 @@ use spacetime::{ExactGeodesic, Spacetime};
 /// them lies within half that bound of the chord (at the same fraction of the span): the
 /// bound's margin of two. Fails with the bend at rest cut from 3.25 to 3, the falling ball's
 /// constant term from 0.75 to 0 (slow balls: 0.77 of the bound), or the boost term from s⁴
-/// to s³.
+/// to s³. Prints (`--nocapture`) the table of docs/physics.md, "Chord exclusion": the bend
+/// K = 8·(largest distance from the chord over 4f(1 − f))/h² that spans need, in units of
+/// (E·s)²/a, by speed (bins of 0.05 c) and by ρ, the larger end's distance from the centre
+/// plus 0.05a (bins of 0.05a), with the largest share of the bound by speed.
 #[test]
 fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
+    // Bins: at rest, then falling at [0.05k, 0.05(k + 1)) c; ρ from 0.05a to 0.55a.
+    const SPEEDS: usize = 17;
+    const RHOS: usize = 10;
     let mut rng = common::Cases(33);
     let (mut spans, mut worst) = (0usize, [0.0f64; 2]);
+    let (mut need, mut share) = ([[0.0f64; RHOS]; SPEEDS], [0.0f64; SPEEDS]);
     for case in 0..4000 {
         let fastest = if case % 4 == 1 { 0.1 } else { 0.8 };
         let (a, m, speed, radius, target) =
@@ -64,14 +71,33 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
             })
             .collect();
         let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let bin = if speed == 0.0 {
+            0
+        } else {
+            (1 + (speed * 20.0) as usize).min(SPEEDS - 1)
+        };
+        let unit = (energy * s).powi(2) / a;
         for len in [2, 4, 8, 16, 32, 64, 128, 256] {
+            let span = len as f64 * h;
             for i in (0..xi.len().saturating_sub(len)).step_by(3) {
                 let (Some((xa, true)), Some((xb, true))) = (xi[i], xi[i + len]) else {
                     continue;
                 };
                 let ends = norm(xa).max(norm(xb));
-                let Some(stray) = chord::stray(a, speed == 0.0, s, energy, ends, len as f64 * h)
-                else {
+                let bend = (1..len).try_fold(0.0f64, |k, j| {
+                    let (x, _) = xi[i + j]?;
+                    let f = j as f64 / len as f64;
+                    let dev = norm([0, 1, 2].map(|c| x[c] - (xa[c] + f * (xb[c] - xa[c]))));
+                    Some(k.max(2.0 * dev / (f * (1.0 - f) * span * span)))
+                });
+                // Spans too long for any bound near these (stray ≤ 0.05a at K = 0.2) say
+                // nothing the search uses.
+                let rho = (ends / (0.05 * a)) as usize;
+                if let Some(k) = bend.filter(|_| rho < RHOS && 0.2 * unit * span * span <= 0.4 * a)
+                {
+                    need[bin][rho] = need[bin][rho].max(k / unit);
+                }
+                let Some(stray) = chord::stray(a, speed == 0.0, s, energy, ends, span) else {
                     continue;
                 };
                 for j in 1..len {
@@ -82,6 +108,7 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                     let dev = norm([0, 1, 2].map(|c| x[c] - (xa[c] + f * (xb[c] - xa[c]))));
                     let w = &mut worst[usize::from(speed > 0.0)];
                     *w = w.max(dev / stray);
+                    share[bin] = share[bin].max(dev / stray);
                     assert!(
                         dev <= 0.5 * stray,
                         "case {case} (v = {speed:.2}, R = {radius:.3}, a = {a:.2}): the path \
@@ -94,6 +121,24 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
         }
     }
     eprintln!("{spans} spans, largest stray (at rest, falling) {worst:.3?} of the bound");
+    eprint!("the bend spans need, in (E s)²/a; ρ/a <");
+    for r in 0..RHOS {
+        eprint!(" {:>5.2}", 0.05 * (r + 2) as f64);
+    }
+    eprintln!("  | largest share of the bound");
+    for (bin, row) in need.iter().enumerate() {
+        match bin {
+            0 => eprint!("{:>41}", "at rest"),
+            _ => eprint!(
+                "{:>41}",
+                format!("{:.2}–{:.2} c", 0.05 * (bin - 1) as f64, 0.05 * bin as f64)
+            ),
+        }
+        for k in row {
+            eprint!(" {k:>5.2}");
+        }
+        eprintln!("  | {:.2}", share[bin]);
+    }
     // Not vacuous: many spans checked, and the bound not loose by orders of magnitude.
     assert!(spans > 100_000, "only {spans} spans checked");
     for w in worst {
