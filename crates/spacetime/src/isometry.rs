@@ -47,9 +47,9 @@ impl Complex {
     }
     /// [`Complex::arg`] for a number meant to lie in the open right half-plane: there
     /// atan(im/re), which glibc computes in less than half the instructions of atan2 (68
-    /// against 151, callgrind) and which differs from it by the rounding of the quotient, an
-    /// ulp or so; elsewhere (rounding at the disc's rim) atan2. The closed forms and the
-    /// isometries take it for every ray point.
+    /// against 151, callgrind; 8.8 against 11.5 ns) and which differs from it by the rounding
+    /// of the quotient, an ulp or so; elsewhere (rounding at the disc's rim) atan2. The closed
+    /// forms and the isometries take it twice for every ray point.
     pub fn arg_right(self) -> f64 {
         if self.re > 0.0 {
             (self.im / self.re).atan()
