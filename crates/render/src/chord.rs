@@ -40,9 +40,10 @@ const BEND_AT_REST: f64 = 3.25;
 /// s⁴·ρ/a alone tends to ρ/a (a margin of 1.3 at 0.45a).
 const BEND_FALLING: f64 = 0.75;
 
-/// Added to the bound for the match's own noise (in units of a; measured ≤ 5e-13 a up to
-/// 0.8 c, the secant method stopping at slightly different points).
-const NOISE: f64 = 1e-9;
+/// Added to the bound for the match's own noise (in units of a): the secant method stops
+/// within 1e-9 a of the simultaneity, at points that differ from probe to probe, which moves
+/// ξ by up to ~3e-9 a at 0.8 c.
+const NOISE: f64 = 1e-8;
 
 /// How far, at most, the ray's rest-frame path strays from the chord of a span of length
 /// `h` whose ends lie within `end_distance` of the centre of a ball (`at_rest`, or falling

@@ -486,7 +486,14 @@ impl Intersector {
             }
             probes += 1;
             let m = 0.5 * (a + b);
-            let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), pa.tau);
+            // The match at the middle starts from the mean of the ends' (a secant step or
+            // two closer than either end's alone).
+            let seed = if pb.tau.is_finite() {
+                0.5 * (pa.tau + pb.tau)
+            } else {
+                pa.tau
+            };
+            let pm = t.probe(&self.metric, &shift.apply(d.state_at(m)), seed);
             open.push((m, b, pm, pb, depth + 1));
             open.push((a, m, pa, pm, depth + 1));
         }
