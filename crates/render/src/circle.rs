@@ -10,11 +10,13 @@
 //! distance d_H with cosh(d_H/a) = cosh(d/a)·cosh(ρ/a) − sinh(d/a)·sinh(ρ/a)·cos δ, so
 //! d_H ≤ m exactly on an arc |δ| ≤ A of every turn.
 
+use crate::angles;
 use spacetime::{Complex, OriginGeodesic};
 use std::f64::consts::{PI, SQRT_2, TAU};
 
-/// Added to the half-width of an arc (radians): rounding of the angles.
-const ARC_SLACK: f64 = 1e-9;
+/// Added to the half-width of an arc (radians): the error of its two angles, each within
+/// [`angles::ERROR`] (its centre's direction and its half-width), and their rounding.
+const ARC_SLACK: f64 = 2.0 * angles::ERROR + 1e-9;
 
 /// The Möbius image (w − c)/(1 − c̄ w) of w (c moved to the disc's centre).
 pub fn moved(c: Complex, w: Complex) -> Complex {
@@ -87,7 +89,8 @@ impl RayCircle {
     pub fn arc_of(&self, p: Passing, cosh_m: f64) -> Option<Arc> {
         // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
         // is nearest w where ψ is a whole number of turns.
-        let beta = moved(self.h, p.w).arg();
+        let m = moved(self.h, p.w);
+        let beta = angles::atan2(m.im, m.re);
         let turns = (self.sg * beta - self.psi0) / TAU;
         let arc = Arc {
             centre: (turns - turns.floor()) * self.l_ret,
@@ -164,7 +167,7 @@ impl Arc {
         if beyond_all_round(self.nearest, den, cosh_m) {
             return None;
         }
-        let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
+        let half = angles::acos((num / den).clamp(-1.0, 1.0)) + ARC_SLACK;
         let arc = Arc {
             half: half * self.period / TAU,
             ..*self

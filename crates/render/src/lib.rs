@@ -10,7 +10,8 @@
 //!   [`worldline`]: the objects' worldlines and body frames; [`chord`]: ruling out grazes
 //!   of a local ball by its rest-frame chord; [`bounds`]: boxes;
 //!   [`reject`]: whole-ray rejection of objects at rest, and loop by loop of balls in free
-//!   fall ([`falling`]), with the rays' circles ([`circle`]).
+//!   fall ([`falling`]), with the rays' circles ([`circle`]) and their fast angles
+//!   ([`angles`]).
 //! - [`lighting`]: direct light from point sources by shadow rays.
 //! - [`plan`]: tiles and plans of work; [`tiles`]: traced tiles and sinks; [`part`]:
 //!   `--part i/N` part files and their merge.
@@ -28,6 +29,7 @@
     clippy::large_enum_variant
 )]
 
+pub mod angles;
 pub mod bounds;
 pub mod chart;
 pub mod chord;
