@@ -14,9 +14,9 @@ use crate::angles;
 use spacetime::{Complex, OriginGeodesic};
 use std::f64::consts::{PI, SQRT_2, TAU};
 
-/// Added to the half-width of an arc (radians): the error of its two angles, each within
-/// [`angles::ERROR`] (its centre's direction and its half-width), and their rounding.
-const ARC_SLACK: f64 = 2.0 * angles::ERROR + 1e-9;
+/// Added to the half-width of an arc (radians): the error of its centre's direction (within
+/// [`angles::ERROR`]) and the rounding of the angles.
+const ARC_SLACK: f64 = angles::ERROR + 1e-9;
 
 /// The Möbius image (w − c)/(1 − c̄ w) of w (c moved to the disc's centre).
 pub fn moved(c: Complex, w: Complex) -> Complex {
@@ -167,7 +167,7 @@ impl Arc {
         if beyond_all_round(self.nearest, den, cosh_m) {
             return None;
         }
-        let half = angles::acos((num / den).clamp(-1.0, 1.0)) + ARC_SLACK;
+        let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
         let arc = Arc {
             half: half * self.period / TAU,
             ..*self
