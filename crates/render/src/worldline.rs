@@ -96,6 +96,8 @@ pub struct FreeFall {
     start: [f64; 20],
     /// (t, τ) at step ends, sorted by τ, to seed the matching.
     table: Vec<(f64, f64)>,
+    /// The table's times, indexed (None where they do not increase: a binary search then).
+    times: Option<StepIndex>,
     tau_min: f64,
     tau_max: f64,
     /// Position boxes on a grid in coordinate time (see [`TimeBoxes`]).
@@ -104,15 +106,18 @@ pub struct FreeFall {
     origin: (MetricTensor, Expansion),
 }
 
-/// The steps' ends (|τ| from the start, increasing) and, on a uniform grid of as many cells
-/// as steps, the first step whose end reaches each cell's start: the step of a τ is then
-/// found among the few steps of its cell's neighbourhood, reading a few bytes a step, not by
-/// a binary search over the steps' dense output (whose cache misses were a fifth of a
-/// falling ball's probe time).
+/// Increasing values (the steps' ends, |τ| from the start; or the coordinate times at them)
+/// and, on a uniform grid of as many cells as values from the first, the first value that
+/// reaches each cell's start: the step of a τ (or of a t) is then found among the few values
+/// of its cell's neighbourhood, reading a few bytes a step, not by a binary search over the
+/// steps' dense output (whose cache misses were a fifth of a falling ball's probe time) or
+/// over the table of times (whose unpredictable halvings were 3 % of the reference scene's).
 #[derive(Clone, Debug)]
 struct StepIndex {
     ends: Vec<f64>,
-    /// `first[c]`: the first step whose end is ≥ c·cell, for c = 0 ..= cells.
+    /// The grid's start: 0 for step ends, the first time for times.
+    origin: f64,
+    /// `first[c]`: the first value ≥ origin + c·cell, for c = 0 ..= cells.
     first: Vec<usize>,
     /// 1/cell: a product where a division would stand in every lookup.
     per_cell: f64,
@@ -126,30 +131,31 @@ impl StepIndex {
     }
 
     fn new(steps: &[DenseStep<20>]) -> StepIndex {
-        StepIndex::of_ends(steps.iter().map(|s| s.lambda1()).collect())
+        StepIndex::of_ends(steps.iter().map(|s| s.lambda1()).collect(), 0.0)
     }
 
-    /// The index of increasing step ends.
-    fn of_ends(ends: Vec<f64>) -> StepIndex {
+    /// The index of the increasing values `ends` on a grid from `origin` (at most the first).
+    fn of_ends(ends: Vec<f64>, origin: f64) -> StepIndex {
         let cells = ends.len().max(1);
-        let cell = ends.last().copied().unwrap_or(0.0) / cells as f64;
+        let cell = (ends.last().copied().unwrap_or(origin) - origin) / cells as f64;
         let first = (0..=cells)
-            .map(|c| ends.partition_point(|&e| e < c as f64 * cell))
+            .map(|c| ends.partition_point(|&e| e < origin + c as f64 * cell))
             .collect();
         StepIndex {
             ends,
+            origin,
             first,
             per_cell: 1.0 / cell,
         }
     }
 
-    /// The first step whose end is ≥ `s` (the steps' count if none): what a binary search
-    /// over all the ends gives, found among the few steps between the cells on either side
-    /// of `s`'s by walking from the first (measured faster than a binary search's branches,
-    /// and than counting them all).
+    /// The first value ≥ `s` (the values' count if none): what a binary search over all the
+    /// values gives, found among the few between the cells on either side of `s`'s by walking
+    /// from the first (measured faster than a binary search's branches, and than counting
+    /// them all).
     fn first_reaching(&self, s: f64) -> usize {
         let cells = self.first.len() - 1;
-        let c = s * self.per_cell;
+        let c = (s - self.origin) * self.per_cell;
         if !(c.is_finite() && c >= 0.0) {
             return self.ends.partition_point(|&e| e < s);
         }
@@ -312,6 +318,9 @@ impl Worldline {
                     forward: fwd,
                     backward: bwd,
                     start: s0,
+                    times: table.windows(2).all(|w| w[0].0 < w[1].0).then(|| {
+                        StepIndex::of_ends(table.iter().map(|e| e.0).collect(), table[0].0)
+                    }),
                     table,
                     tau_min,
                     tau_max,
@@ -385,7 +394,10 @@ impl Worldline {
         match self {
             Worldline::Rest { .. } => t,
             Worldline::Free(f) => {
-                let i = f.table.partition_point(|&(ti, _)| ti < t);
+                let i = match &f.times {
+                    Some(index) => index.first_reaching(t),
+                    None => f.table.partition_point(|&(ti, _)| ti < t),
+                };
                 if i == 0 {
                     f.table[0].1
                 } else if i >= f.table.len() {
@@ -793,23 +805,40 @@ mod tests {
 
     /// The index finds the step a binary search over all the ends finds (and knows that step
     /// when given it), for steps of very uneven lengths (as near a worldline's turning
-    /// points), at the cells' edges, the ends themselves and beyond the last.
+    /// points), at the cells' edges, the ends themselves and beyond the last; on a grid from
+    /// 0 (step ends) and from the first value (the times, here from −7.3, as a table's).
     #[test]
     fn the_step_index_finds_what_a_binary_search_finds() {
         let mut rng = 33u64;
-        for n in [1usize, 2, 3, 17, 400] {
+        for (n, shifted) in [1usize, 2, 3, 17, 400]
+            .into_iter()
+            .flat_map(|n| [(n, false), (n, true)])
+        {
             let mut end = 0.0;
+            let shift = if shifted { -7.3 } else { 0.0 };
             let ends: Vec<f64> = (0..n)
                 .map(|_| {
                     end += 10f64.powf(-4.0 * uniform(&mut rng));
-                    end
+                    end + shift
                 })
                 .collect();
-            let index = StepIndex::of_ends(ends.clone());
-            let mut queries: Vec<f64> = (0..2000).map(|_| 1.1 * end * uniform(&mut rng)).collect();
+            let origin = if shifted { ends[0] } else { 0.0 };
+            let index = StepIndex::of_ends(ends.clone(), origin);
+            let mut queries: Vec<f64> = (0..2000)
+                .map(|_| shift + 1.1 * end * uniform(&mut rng))
+                .collect();
             queries.extend(ends.iter().copied());
-            queries.extend((0..=n).map(|c| c as f64 / index.per_cell));
-            queries.extend([0.0, end, end * 2.0, f64::INFINITY]);
+            queries.extend((0..=n).map(|c| origin + c as f64 / index.per_cell));
+            queries.extend([
+                shift,
+                shift - 1.0,
+                origin,
+                end + shift,
+                2.0 * end,
+                f64::INFINITY,
+            ]);
+            queries.push(f64::NEG_INFINITY);
+            assert_eq!(index.first_reaching(f64::NAN), 0, "n = {n}");
             for s in queries {
                 let want = ends.partition_point(|&e| e < s);
                 assert_eq!(index.first_reaching(s), want, "n = {n}, s = {s}");
