@@ -104,12 +104,18 @@ pub fn data_and_preview(
     png: &Path,
     grid: bool,
 ) -> anyhow::Result<(Vec<u8>, Vec<u8>)> {
-    let png_bytes = shade::encode_png(&preview(scene, data, grid)?, png)?;
-    let exr_bytes = data.to_bytes().map_err(|kind| datafile::DataFileError {
-        path: exr.to_path_buf(),
-        kind,
-    })?;
-    Ok((exr_bytes, png_bytes))
+    // The two encodings are independent: side by side on the current pool (the command's
+    // --threads), the preview's texture and PNG take no time of their own after a render.
+    let (png_bytes, exr_bytes) = rayon::join(
+        || -> anyhow::Result<Vec<u8>> { Ok(shade::encode_png(&preview(scene, data, grid)?, png)?) },
+        || {
+            data.to_bytes().map_err(|kind| datafile::DataFileError {
+                path: exr.to_path_buf(),
+                kind,
+            })
+        },
+    );
+    Ok((exr_bytes?, png_bytes?))
 }
 
 /// The preview of `scene`'s data file `data`: its textures, lit where the scene has lights,

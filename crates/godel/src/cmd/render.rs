@@ -242,7 +242,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     match part {
         None => {
             let (exr, png) = target.files(&scene.name);
-            write_data_and_preview(&scene, &data, &exr, &png, args.grid)?
+            pool.install(|| write_data_and_preview(&scene, &data, &exr, &png, args.grid))?
         }
         Some(part) => {
             let path = target.folder().join(part.file_name(&scene.name));
