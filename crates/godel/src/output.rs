@@ -105,7 +105,7 @@ pub fn data_and_preview(
     grid: bool,
 ) -> anyhow::Result<(Vec<u8>, Vec<u8>)> {
     // The two encodings are independent: side by side on the current pool (the command's
-    // --threads), the preview's texture and PNG take no time of their own after a render.
+    // --threads), the preview (its texture, shading and PNG) beside the data file's.
     let (png_bytes, exr_bytes) = rayon::join(
         || -> anyhow::Result<Vec<u8>> { Ok(shade::encode_png(&preview(scene, data, grid)?, png)?) },
         || {

@@ -61,6 +61,7 @@ pub struct DenseStep<const N: usize> {
     pub y0: [f64; N],
     pub y1: [f64; N],
     f: [[f64; N]; 7],
+    /// 1/h: the step's fraction s = (λ − λ₀)/h by a product (the match waits on it).
     per_h: f64,
 }
 
