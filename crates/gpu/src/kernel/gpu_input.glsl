@@ -154,7 +154,7 @@ const float FAR_DISTANCE = 0.25;
 const float FAR_RADII = 1.0;
 const float FAR_SLACK = 1.3;
 // render::chord: the chord exclusion's domain and bend at rest (units of a, of E²/a); its
-// noise allowance here covers f32's rest-frame coordinates (~1e-6 a; the CPU's is 1e-9 a).
+// noise allowance here covers f32's rest-frame coordinates (~1e-6 a; the CPU's is 1e-8 a).
 const float CHORD_MAX_END = 0.4;
 const float CHORD_MAX_STRAY = 0.05;
 const float CHORD_BEND_AT_REST = 3.25;

@@ -84,10 +84,18 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                     continue;
                 };
                 let ends = norm(xa).max(norm(xb));
-                let bend = (1..len).try_fold(0.0f64, |k, j| {
-                    let (x, _) = xi[i + j]?;
+                // The fraction f of the span at step j, and the path's distance there from
+                // the chord at the same fraction (None where no match).
+                let at = |j: usize| {
                     let f = j as f64 / len as f64;
-                    let dev = norm([0, 1, 2].map(|c| x[c] - (xa[c] + f * (xb[c] - xa[c]))));
+                    let (x, _) = xi[i + j]?;
+                    Some((
+                        f,
+                        norm([0, 1, 2].map(|c| x[c] - (xa[c] + f * (xb[c] - xa[c])))),
+                    ))
+                };
+                let bend = (1..len).try_fold(0.0f64, |k, j| {
+                    let (f, dev) = at(j)?;
                     Some(k.max(2.0 * dev / (f * (1.0 - f) * span * span)))
                 });
                 // Spans too long for any bound near these (stray ≤ 0.05a at K = 0.2) say
@@ -101,11 +109,9 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                     continue;
                 };
                 for j in 1..len {
-                    let f = j as f64 / len as f64;
-                    let Some((x, _)) = xi[i + j] else {
+                    let Some((_, dev)) = at(j) else {
                         panic!("case {case}: no match between two near ends");
                     };
-                    let dev = norm([0, 1, 2].map(|c| x[c] - (xa[c] + f * (xb[c] - xa[c]))));
                     let w = &mut worst[usize::from(speed > 0.0)];
                     *w = w.max(dev / stray);
                     share[bin] = share[bin].max(dev / stray);
