@@ -21,8 +21,8 @@ use scene::Motion;
 use spacetime::measure::DualFrame;
 use spacetime::normal::Expansion;
 use spacetime::{
-    DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry, Metric, MetricTensor,
-    OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances, TypeIsometry,
+    origin_axes, DenseStep, Dop853, Event, FourVector, Geodesic, GeodesicState, Isometry, Metric,
+    MetricTensor, OdeSystem, Spacetime, StepOutcome, Tetrad, Tolerances, TypeIsometry,
 };
 
 /// A worldline point: event, four-velocity and body frame (e[0] = u).
@@ -641,8 +641,10 @@ fn origin_time(
 fn to_origin(metric: &Metric, event: Event, x: Event) -> Option<(Event, [FourVector; 2])> {
     let chart = LocalChart::of(metric);
     let (there, axes) = match *metric {
-        Metric::Godel(g) => Some(Isometry::to_origin(g.a, event))
-            .map(|to| (to.apply(x), to.push_all(event, [X_AXIS, Y_AXIS]))),
+        Metric::Godel(g) => Some((
+            Isometry::to_origin(g.a, event).apply(x),
+            origin_axes(g.a, event),
+        )),
         Metric::GodelType(member) => TypeIsometry::to_origin(member, event)
             .map(|to| (to.apply(x), to.push_all(event, [X_AXIS, Y_AXIS]))),
         Metric::Minkowski(_) => None,

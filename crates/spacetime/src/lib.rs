@@ -81,7 +81,7 @@ pub use godel_type_connect::{
 };
 pub use godel_type_geodesic::{GeodesicRegime, TypeExactGeodesic, TypeOriginGeodesic};
 pub use godel_type_symmetry::{killing_field, TypeIsometry};
-pub use isometry::{Complex, Isometry};
+pub use isometry::{origin_axes, Complex, Isometry};
 pub use killing::KillingField;
 pub use metric::{Metric, Spacetime};
 pub use minkowski::Minkowski;

@@ -215,6 +215,33 @@ fn apply_push_is_apply_and_push() {
     }
 }
 
+/// `origin_axes` (the closed form of the map to the origin's differential at its own event)
+/// is `push` of ∂x and ∂y there, for events inside and far beyond the horizon and several a;
+/// on the axis it is the identity.
+#[test]
+fn the_axes_at_the_mapped_event_are_the_pushed_coordinate_vectors() {
+    let mut rng = Rng::new(208);
+    let (ex, ey) = (
+        FourVector::new(0.0, 1.0, 0.0, 0.0),
+        FourVector::new(0.0, 0.0, 1.0, 0.0),
+    );
+    let mut worst: f64 = 0.0;
+    for a in [1.0, 0.7, 3.0] {
+        for i in 0..300 {
+            let at = rng.event(if i % 2 == 0 { 2.0 * a } else { 12.0 * a });
+            let pushed = Isometry::to_origin(a, at).push_all(at, [ex, ey]);
+            for (got, want) in origin_axes(a, at).into_iter().zip(pushed) {
+                let d = max_abs((got - want).to_array()) / max_abs(want.to_array());
+                worst = worst.max(d);
+                // (The general push rounds 1 − |w0|², which cancels far out: ~1e-14 at 12a.)
+                assert!(d < 1e-13, "a = {a}, at {at:?}: {got:?} vs {want:?}");
+            }
+        }
+        assert_eq!(origin_axes(a, Event::new(0.4, 0.0, 0.0, -1.0)), [ex, ey]);
+    }
+    eprintln!("axes at the mapped event: worst relative deviation {worst:e}");
+}
+
 #[test]
 fn the_differential_matches_finite_differences_and_keeps_static_observers_static() {
     let mut rng = Rng::new(202);
