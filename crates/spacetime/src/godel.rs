@@ -30,10 +30,11 @@ use std::f64::consts::SQRT_2;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Godel {
     pub a: f64,
-    /// k = 1/4a² and b = √2/a, precomputed: the integrator's right-hand side then needs
-    /// a single division.
+    /// k = 1/4a², b = √2/a and 1/(√2 a) (the factor of g_tx and g_ty), precomputed: the
+    /// integrator's right-hand side then needs a single division, the metric one.
     k: f64,
     b: f64,
+    turn: f64,
 }
 
 impl Godel {
@@ -44,6 +45,7 @@ impl Godel {
             a,
             k: 0.25 / (a * a),
             b: SQRT_2 / a,
+            turn: 1.0 / (SQRT_2 * a),
         }
     }
     /// Radius of the optical horizon, r_G = 2a.
@@ -62,11 +64,10 @@ impl Godel {
 
 impl Spacetime for Godel {
     fn metric(&self, e: Event) -> MetricTensor {
-        let (x, y, a) = (e.x, e.y, self.a);
-        let k = 0.25 / (a * a);
+        let (x, y, a, k) = (e.x, e.y, self.a, self.k);
         let m = 1.0 / (4.0 * a * a + x * x + y * y);
-        let gtx = y / (SQRT_2 * a);
-        let gty = -x / (SQRT_2 * a);
+        let gtx = y * self.turn;
+        let gty = -x * self.turn;
         let gxx = 1.0 - k * y * y - m * x * x;
         let gxy = (k - m) * x * y;
         let gyy = 1.0 - k * x * x - m * y * y;
@@ -79,12 +80,11 @@ impl Spacetime for Godel {
     }
 
     fn inverse_metric(&self, e: Event) -> MetricTensor {
-        let (x, y, a) = (e.x, e.y, self.a);
-        let k = 0.25 / (a * a);
+        let (x, y, k) = (e.x, e.y, self.k);
         let c = 1.0 / (1.0 + k * (x * x + y * y));
         let q = k * (1.0 + c);
-        let gtx = c * y / (SQRT_2 * a);
-        let gty = -c * x / (SQRT_2 * a);
+        let gtx = c * y * self.turn;
+        let gty = -c * x * self.turn;
         [
             [1.0 - 2.0 * c, gtx, gty, 0.0],
             [gtx, c + q * x * x, q * x * y, 0.0],
@@ -94,11 +94,10 @@ impl Spacetime for Godel {
     }
 
     fn metric_derivatives(&self, e: Event) -> [MetricTensor; 4] {
-        let (x, y, a) = (e.x, e.y, self.a);
-        let k = 0.25 / (a * a);
+        let (x, y, a, k) = (e.x, e.y, self.a, self.k);
         let m = 1.0 / (4.0 * a * a + x * x + y * y);
         // g_xx = 1 − k y² − m x², g_xy = (k − m) x y, g_yy = 1 − k x² − m y².
-        rotating_derivatives(1.0 / (SQRT_2 * a), k, m, x, y)
+        rotating_derivatives(self.turn, k, m, x, y)
     }
 
     #[inline]
