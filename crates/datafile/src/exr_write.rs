@@ -10,6 +10,9 @@ use exr::prelude::{
     LayerAttributes, LineOrder, WritableImage,
 };
 
+/// The most an encoding reserves for its bytes in advance (256 MiB).
+const MAX_RESERVE: usize = 1 << 28;
+
 /// The bytes of a single-layer, scan-line OpenEXR image of `size` (width, height) holding
 /// `channels` (stored sorted by name, as OpenEXR requires) and `attributes`, compressed with
 /// `compression`; on failure the exr crate's error as text.
@@ -19,6 +22,11 @@ pub fn exr_bytes(
     compression: Compression,
     channels: Vec<AnyChannel<FlatSamples>>,
 ) -> Result<Vec<u8>, String> {
+    // Room for the samples uncompressed (4 bytes each at most) and the header, so that the
+    // writer does not copy what it wrote into ever larger buffers (pages are touched only as
+    // written); at most MAX_RESERVE, beyond which the buffer grows as it needs.
+    let raw = 4 * size.0 * size.1 * channels.len() + (1 << 16);
+    let capacity = raw.min(MAX_RESERVE);
     let encoding = Encoding {
         compression,
         blocks: Blocks::ScanLines,
@@ -30,7 +38,7 @@ pub fn exr_bytes(
         encoding,
         AnyChannels::sort(channels.into()),
     );
-    let mut bytes = Vec::new();
+    let mut bytes = Vec::with_capacity(capacity);
     Image::from_layer(layer)
         .write()
         .to_buffered(Cursor::new(&mut bytes))

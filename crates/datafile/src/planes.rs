@@ -66,44 +66,73 @@ pub enum Plane {
     U32(Vec<u32>),
 }
 
+/// Records per block of [`DataFile::planes`]: a block's records (~84 bytes each) stay in the
+/// cache while each channel takes its values from them.
+const BLOCK: usize = 4096;
+
 impl DataFile {
     /// Every channel of the data file with its values as stored: `object` (f32, −1 for
     /// none), `status` (u32 codes), the physical channels, `view_*`, `pol_*` (where
-    /// [`DataFile::polarization`]) and `light_k`, in that
-    /// order.
+    /// [`DataFile::polarization`]) and `light_k`, in that order.
+    ///
+    /// Block by block of records, each block channel by channel: one pass over all the records
+    /// per channel read them from memory twenty times (24 ms of a 2200×250 render's files).
     pub fn planes(&self) -> Vec<(String, Plane)> {
-        let plane = |get: &dyn Fn(&PixelRecord) -> f32| self.records.iter().map(get).collect();
+        let n = self.records.len();
         let physical = |r: &PixelRecord, v: f32| if r.has_emission() { v } else { NO_VALUE };
         let traced = |r: &PixelRecord| r.status != RayStatus::NotTraced;
-        let mut out = vec![
-            (
-                "object".to_string(),
-                Plane::F32(plane(&|r| r.object as f32)),
-            ),
-            (
-                "status".to_string(),
-                Plane::U32(self.records.iter().map(|r| r.status.code()).collect()),
-            ),
-        ];
-        for (name, get, _) in PHYSICAL_CHANNELS {
-            let values = plane(&|r| physical(r, get(r)));
-            out.push((name.to_string(), Plane::F32(values)));
-        }
-        for (name, get, _) in VIEW_CHANNELS {
-            let values = plane(&|r| if traced(r) { get(r) } else { NO_VALUE });
-            out.push((name.to_string(), Plane::F32(values)));
-        }
-        if self.polarization {
-            for (name, get, _) in POLARIZATION_CHANNELS {
-                let values = plane(&|r| physical(r, get(r)));
-                out.push((name.to_string(), Plane::F32(values)));
+        let pol: &[(&str, Get, Set)] = if self.polarization {
+            &POLARIZATION_CHANNELS
+        } else {
+            &[]
+        };
+        let empty = || Vec::<f32>::with_capacity(n);
+        let mut object = empty();
+        let mut status = Vec::<u32>::with_capacity(n);
+        let mut phys: Vec<Vec<f32>> = PHYSICAL_CHANNELS.iter().map(|_| empty()).collect();
+        let mut view: Vec<Vec<f32>> = VIEW_CHANNELS.iter().map(|_| empty()).collect();
+        let mut pols: Vec<Vec<f32>> = pol.iter().map(|_| empty()).collect();
+        let mut lights: Vec<Vec<f32>> = self.lights.iter().map(|_| empty()).collect();
+        for (b, block) in self.records.chunks(BLOCK).enumerate() {
+            object.extend(block.iter().map(|r| r.object as f32));
+            status.extend(block.iter().map(|r| r.status.code()));
+            for ((_, get, _), plane) in PHYSICAL_CHANNELS.iter().zip(&mut phys) {
+                plane.extend(block.iter().map(|r| physical(r, get(r))));
+            }
+            for ((_, get, _), plane) in VIEW_CHANNELS.iter().zip(&mut view) {
+                plane.extend(
+                    block
+                        .iter()
+                        .map(|r| if traced(r) { get(r) } else { NO_VALUE }),
+                );
+            }
+            for ((_, get, _), plane) in pol.iter().zip(&mut pols) {
+                plane.extend(block.iter().map(|r| physical(r, get(r))));
+            }
+            for (values, plane) in self.lights.iter().zip(&mut lights) {
+                let values = block.iter().zip(values.iter().skip(b * BLOCK));
+                plane.extend(values.map(|(r, &v)| physical(r, v)));
             }
         }
-        for (k, values) in self.lights.iter().enumerate() {
-            let values = self.records.iter().zip(values);
-            let values = values.map(|(r, &v)| physical(r, v)).collect();
-            out.push((light_channel_name(k), Plane::F32(values)));
-        }
+        let named = |channels: &[(&str, Get, Set)], planes: Vec<Vec<f32>>| {
+            let names = channels.iter().map(|(name, _, _)| name.to_string());
+            names
+                .zip(planes.into_iter().map(Plane::F32))
+                .collect::<Vec<_>>()
+        };
+        let mut out = vec![
+            ("object".to_string(), Plane::F32(object)),
+            ("status".to_string(), Plane::U32(status)),
+        ];
+        out.extend(named(&PHYSICAL_CHANNELS, phys));
+        out.extend(named(&VIEW_CHANNELS, view));
+        out.extend(named(pol, pols));
+        out.extend(
+            lights
+                .into_iter()
+                .enumerate()
+                .map(|(k, values)| (light_channel_name(k), Plane::F32(values))),
+        );
         out
     }
 }
