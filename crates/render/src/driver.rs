@@ -18,6 +18,7 @@ use crate::tiles::{Assembler, Sink, TileData};
 use crate::tracer::{Scratch, TraceOptions, Tracer};
 use datafile::record::{PixelRecord, RayStatus};
 use datafile::{DataFile, DataHeader, Member, FORMAT_VERSION};
+use rayon::prelude::*;
 use scene::{Camera, Scene, TraceMethod};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -200,14 +201,20 @@ impl<'a> Renderer<'a> {
     }
 
     /// The scene's data file with no pixel traced yet (status "not traced", no light
-    /// planes): what an [`Assembler`] starts from.
+    /// planes): what an [`Assembler`] starts from. Its records are written on the current
+    /// pool's threads: at 2200×250 they are 46 MB of fresh pages, 25 ms on one thread before
+    /// any tile is traced.
     pub fn blank(&self) -> DataFile {
         let (w, h) = (self.camera.width() as usize, self.camera.height() as usize);
+        let records = (0..w * h)
+            .into_par_iter()
+            .map(|_| PixelRecord::miss(RayStatus::NotTraced))
+            .collect();
         DataFile {
             header: header(self.scene),
             width: w,
             height: h,
-            records: vec![PixelRecord::miss(RayStatus::NotTraced); w * h],
+            records,
             lights: vec![],
             polarization: true,
         }
