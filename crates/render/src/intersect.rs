@@ -459,15 +459,25 @@ impl Intersector {
                 if want == Want::Any && t.accepts_any() {
                     return Ok(Some((b, f64::NAN)));
                 }
+                // The refinement's last probe, which is usually the one at its root.
+                let last = std::cell::Cell::new((f64::NAN, f64::NAN));
                 let l = if linear {
                     a + (b - a) * (pa.f / (pa.f - pb.f)).clamp(0.0, 1.0)
                 } else {
-                    let f = |l: f64| t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau).f;
+                    let f = |l: f64| {
+                        let p = t.probe(&self.metric, &shift.apply(d.state_at(l)), pa.tau);
+                        last.set((l, p.tau));
+                        p.f
+                    };
                     refine_root(f, a, b, pa.f, pb.f)
                 };
                 let s = shift.apply(d.state_at(l));
                 if t.accepts(&s) {
-                    return Ok(Some((l, t.probe(&self.metric, &s, pa.tau).tau)));
+                    let tau = match last.get() {
+                        (at, tau) if at == l => tau,
+                        _ => t.probe(&self.metric, &s, pa.tau).tau,
+                    };
+                    return Ok(Some((l, tau)));
                 }
                 continue;
             }
