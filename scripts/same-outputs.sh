@@ -3,7 +3,8 @@
 #   scripts/same-outputs.sh OLD_GODEL NEW_GODEL [--scale K] [--mpi NEW_MPI_GODEL] [--records TOOL]
 # Each scene in scenes/*.toml is rendered with both methods (numeric and exact) by both
 # binaries, and the EXR and PNG compared with cmp; the new binary's parts 1/3..3/3, merged,
-# must equal the old single run too (and, with --mpi, `mpirun -n 2` of the MPI build).
+# must equal the old single run too (and, with --mpi, `mpirun -n 2` of the MPI build);
+# a stereo scene, which cannot be split, is compared file by file (both eyes, the picture).
 # --scale K divides every image's width and height by K (a quicker check). --records TOOL
 # (the `same_records` example of the datafile crate) accepts data files whose bytes differ
 # when their records, lights and header are the same bit for bit (a change of EXR
@@ -36,6 +37,18 @@ for scene in scenes/*.toml; do
             "$scene" > "$s"
         "$old" render "$s" -o "$work/old" -q 2>/dev/null
         "$new" render "$s" -o "$work/new" -q 2>/dev/null
+        if grep -q '^ *stereo *=' "$s"; then
+            # Both eyes in one process (no --part, no MPI ranks): every file the old build
+            # wrote (the eyes' data files and the picture) compared with the new one's.
+            for f in $(cd "$work/old" && ls "$base-$method".*); do
+                if cmp -s "$work/old/$f" "$work/new/$f"; then
+                    echo "same   $f"
+                else
+                    echo "DIFFER $f"; fail=1
+                fi
+            done
+            continue
+        fi
         for p in 1 2 3; do "$new" render "$s" --part "$p/3" -o "$work/parts" -q 2>/dev/null; done
         "$new" merge "$work"/parts/"$base-$method".part-*-of-3.exr -o "$work/merged" 2>/dev/null
         for ext in exr png; do
