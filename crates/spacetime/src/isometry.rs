@@ -267,8 +267,12 @@ impl Isometry {
     }
 
     /// [`Isometry::push`] of several vectors at one event (a tetrad): the Möbius map of
-    /// `at` made once.
+    /// `at` made once; a pure shift of t and z (every ray from an observer on the axis starts
+    /// with one) leaves them as they are.
     pub fn push_all<const N: usize>(&self, at: Event, vs: [FourVector; N]) -> [FourVector; N] {
+        if self.is_translation() {
+            return vs;
+        }
         let m = self.moved(at);
         vs.map(|v| self.image_vector(at, v, &m))
     }
