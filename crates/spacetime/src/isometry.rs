@@ -247,10 +247,18 @@ impl Isometry {
     /// The image of an event and the image there of the tangent vector `v` at it: the same
     /// as (`apply`, `push`) with the disc coordinate, denominator and rotation computed once
     /// (the exact tracer's inner loop).
+    #[inline]
     pub fn apply_push(&self, at: Event, v: FourVector) -> (Event, FourVector) {
         if self.is_translation() {
             return (Event::new(at.t - self.t0, at.x, at.y, at.z - self.z0), v);
         }
+        self.apply_push_moved(at, v)
+    }
+
+    /// [`Isometry::apply_push`] through the disc (kept out of line, so that the shift's
+    /// shortcut inlines into the closed form's every evaluation).
+    #[inline(never)]
+    fn apply_push_moved(&self, at: Event, v: FourVector) -> (Event, FourVector) {
         let m = self.moved(at);
         (self.image_event(at, &m), self.image_vector(at, v, &m))
     }
