@@ -643,7 +643,7 @@ fn to_origin(metric: &Metric, event: Event, x: Event) -> Option<(Event, [FourVec
     let (there, axes) = match *metric {
         Metric::Godel(g) => Some((
             Isometry::to_origin(g.a, event).apply(x),
-            origin_axes(g.a, event),
+            origin_axes(&g, event),
         )),
         Metric::GodelType(member) => TypeIsometry::to_origin(member, event)
             .map(|to| (to.apply(x), to.push_all(event, [X_AXIS, Y_AXIS]))),

@@ -48,6 +48,10 @@ impl Godel {
             turn: 1.0 / (SQRT_2 * a),
         }
     }
+    /// 1/(√2 a): g_tx = y/(√2 a), g_ty = −x/(√2 a).
+    pub(crate) fn turn(&self) -> f64 {
+        self.turn
+    }
     /// Radius of the optical horizon, r_G = 2a.
     pub fn horizon_radius(&self) -> f64 {
         2.0 * self.a

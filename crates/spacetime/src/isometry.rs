@@ -20,6 +20,7 @@
 //! arg is the principal branch: |w̄0 w| < 1 keeps 1 − w̄0 w in the right half-plane, so it
 //! is smooth everywhere.
 
+use crate::godel::Godel;
 use crate::killing::KillingField;
 use crate::vectors::{Event, FourVector};
 use std::f64::consts::SQRT_2;
@@ -133,22 +134,23 @@ fn from_disc_differential(a: f64, w: Complex, dw: Complex) -> (f64, f64) {
     (f * dw.re + g * w.re, f * dw.im + g * w.im)
 }
 
-/// The images of ∂x and ∂y at `at` under [`Isometry::to_origin`]`(a, at)`: there the Möbius
-/// map's image is w1 = 0 and its denominator the real 1 − |w0|² = 4a²/S², S² = x² + y² + 4a²,
-/// so the differential (`Isometry::push`) reduces to
+/// The images of ∂x and ∂y at `at` under [`Isometry::to_origin`]`(g.a, at)` in Gödel's
+/// universe `g`: there the Möbius map's image is w1 = 0 and its denominator the real
+/// 1 − |w0|² = 4a²/S², S² = x² + y² + 4a², so the differential (`Isometry::push`) reduces to
 ///
 ///   ∂x ↦ (−y/(√2 a), (y² + 4a²)/(2aS), −xy/(2aS), 0),
 ///   ∂y ↦ ( x/(√2 a), −xy/(2aS), (x² + 4a²)/(2aS), 0)
 ///
 /// (docs/physics.md, "Isometries"): one square root and one division where the general
-/// differential takes four and a dozen. With ∂t ↦ ∂t and ∂z ↦ ∂z they give the image of
-/// any vector at `at` (the tracers carry a ball's frame to the origin so).
-pub fn origin_axes(a: f64, at: Event) -> [FourVector; 2] {
-    let (x, y) = (at.x, at.y);
+/// differential takes four and a dozen (1/(√2 a) is the metric's, stored). With ∂t ↦ ∂t and
+/// ∂z ↦ ∂z they give the image of any vector at `at` (the tracers carry a ball's frame to the
+/// origin so).
+pub fn origin_axes(g: &Godel, at: Event) -> [FourVector; 2] {
+    let (x, y, a) = (at.x, at.y, g.a);
     let four_a2 = 4.0 * a * a;
     let s = (x * x + y * y + four_a2).sqrt();
     let k = 1.0 / (2.0 * a * s);
-    let turn = 1.0 / (SQRT_2 * a);
+    let turn = g.turn();
     [
         FourVector::new(-y * turn, (y * y + four_a2) * k, -x * y * k, 0.0),
         FourVector::new(x * turn, -x * y * k, (x * x + four_a2) * k, 0.0),
