@@ -89,9 +89,11 @@ impl RayCircle {
     pub fn arc_of(&self, p: Passing, cosh_m: f64) -> Option<Arc> {
         // ψ(λ) = sgn(E)·δ(λ) = ψ₀ − sgn(E)·β + 2πλ/λ_ret, β the angle of w about h: the ray
         // is nearest w where ψ is a whole number of turns.
-        let m = moved(self.h, p.w);
+        // arg((w − h)/(1 − h̄w)) = arg((w − h)·conj(1 − h̄w)): no division.
+        let d = Complex::new(1.0, 0.0) - self.h.conj() * p.w;
+        let m = (p.w - self.h) * d.conj();
         let beta = angles::atan2(m.im, m.re);
-        let turns = (self.sg * beta - self.psi0) / TAU;
+        let turns = (self.sg * beta - self.psi0) * (1.0 / TAU);
         let arc = Arc {
             centre: (turns - turns.floor()) * self.l_ret,
             half: f64::INFINITY,

@@ -18,6 +18,15 @@
 //! the first and the last λ of the loop where that may happen. Before the loops, one disc
 //! holding every cell (centre C, hyperbolic radius r): a ray whose circle passes farther than
 //! M + r from C all round passes farther than M from every cell, and no loop searches.
+//!
+//! Cells span R/2 of proper time and are tested three at a time, as a block: every point
+//! within M of a cell's middle lies within M + r_b of the block's point (r_b: its farthest
+//! cell's distance), so a block's λ window holds its cells'. A loop's first λ is then found
+//! from the blocks in the order of their windows' first λ, each searched cell by cell until
+//! the next block's window starts at or after the first λ found; the last λ likewise. That is
+//! the first and the last λ of all the cells, for the angles of a few cells more than cells
+//! of R alone would take, with M and S smaller by the half cell (docs/physics.md, "Balls in
+//! free fall", "Blocks of cells").
 
 use crate::circle::RayCircle;
 use crate::target::Target;
@@ -48,20 +57,56 @@ struct Cell {
     z: f64,
 }
 
+/// Consecutive cells of the worldline, tested as one before their cells are: every point
+/// within M of a cell's middle lies within M + r of the block's point w (r: the largest
+/// distance from w to its cells' middles), at a height within M of the cells' heights, and
+/// a cell's band of times lies within the block's.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    /// The least and the greatest time of its cells' middles.
+    t_min: f64,
+    t_max: f64,
+    /// Its point (the middle cell's), 1 − |w|², and the least and greatest height of its cells.
+    w: Complex,
+    nw: f64,
+    z_min: f64,
+    z_max: f64,
+    /// r, and cosh((M + r)/a).
+    radius: f64,
+    cosh_near: f64,
+    /// Its cells: `cells[first..end]`.
+    first: usize,
+    end: usize,
+}
+
+/// A block whose window of a loop may hold the loop's first or last λ near the ball, with
+/// that window.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    block: usize,
+    from: f64,
+    until: f64,
+}
+
 /// A ball in free fall, seen from the origin frame of the rays' start.
 #[derive(Clone, Debug)]
 pub struct FallingBall {
     a: f64,
-    /// Sorted by time.
+    /// In the order of proper time.
     cells: Vec<Cell>,
+    /// Sorted by their least time.
+    blocks: Vec<Block>,
+    /// The longest span of times a block's cells cover.
+    block_span: f64,
     /// Static distance M = reach + m within which a ray point may be in the ball, and
     /// cosh(M/a).
     near: f64,
     cosh_near: f64,
     /// Time slack S between a ray point and the cells that may hold its centre.
     slack: f64,
-    /// The least and the greatest height of the cells.
+    /// The least and the greatest height of the cells, and of their times.
     z_range: (f64, f64),
+    t_range: (f64, f64),
     /// A disc holding every cell's point: its centre C, 1 − |C|² and its hyperbolic radius r.
     disc: (Complex, f64, f64),
     /// cosh((M + r)/a): a ray's circle farther than M + r from C all round meets no cell.
@@ -84,7 +129,7 @@ impl FallingBall {
         let speed = (gamma * gamma - 1.0).max(0.0).sqrt(); // γv
         let v = speed / gamma;
         let span = tau_max - tau_min;
-        let dtau = radius.max(span / MAX_CELLS);
+        let dtau = (CELL_PER_RADIUS * radius).max(span / MAX_CELLS);
         let n = ((span / dtau).ceil() as usize).max(1);
         let to = Isometry::to_origin(a, from);
         let mut cells = Vec::with_capacity(n);
@@ -102,12 +147,14 @@ impl FallingBall {
         if !cells.iter().all(|c| c.t.is_finite() && c.nw > 0.0) {
             return None;
         }
-        cells.sort_by(|p, q| p.t.total_cmp(&q.t));
-        let z_range = cells
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
-                (lo.min(c.z), hi.max(c.z))
-            });
+        let range = |of: fn(&Cell) -> f64| {
+            cells
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                    (lo.min(of(c)), hi.max(of(c)))
+                })
+        };
+        let (z_range, t_range) = (range(|c| c.z), range(|c| c.t));
         let reach = REACH_PER_GAMMA_RADIUS * gamma * radius + SLACK_PER_A * a;
         let near = reach + 0.5 * speed * dtau;
         let u_t = gamma + SQRT_2 * speed;
@@ -124,15 +171,57 @@ impl FallingBall {
         if !(nc > 0.0 && r.is_finite()) {
             return None;
         }
+        let mut blocks: Vec<Block> = cells
+            .chunks(CELLS_PER_BLOCK)
+            .enumerate()
+            .map(|(j, chunk)| {
+                let mid = chunk[chunk.len() / 2];
+                let radius = chunk
+                    .iter()
+                    .map(|p| a * (1.0 + 2.0 * (p.w - mid.w).norm_sqr() / (mid.nw * p.nw)).acosh())
+                    .fold(0.0, f64::max);
+                let radius = radius * (1.0 + 1e-9) + 1e-9 * a;
+                let (t_min, t_max, z_min, z_max) = chunk.iter().fold(
+                    (
+                        f64::INFINITY,
+                        f64::NEG_INFINITY,
+                        f64::INFINITY,
+                        f64::NEG_INFINITY,
+                    ),
+                    |(t0, t1, z0, z1), p| (t0.min(p.t), t1.max(p.t), z0.min(p.z), z1.max(p.z)),
+                );
+                let first = j * CELLS_PER_BLOCK;
+                Block {
+                    t_min,
+                    t_max,
+                    w: mid.w,
+                    nw: mid.nw,
+                    z_min,
+                    z_max,
+                    radius,
+                    cosh_near: ((near + radius) / a).cosh(),
+                    first,
+                    end: first + chunk.len(),
+                }
+            })
+            .collect();
+        if !blocks.iter().all(|b| b.radius.is_finite()) {
+            return None;
+        }
+        blocks.sort_by(|p, q| p.t_min.total_cmp(&q.t_min));
+        let block_span = blocks.iter().map(|b| b.t_max - b.t_min).fold(0.0, f64::max);
         Some(FallingBall {
             a,
             cells,
+            blocks,
+            block_span,
             near,
             cosh_near: (near / a).cosh(),
             slack: REACH_PER_GAMMA_RADIUS * gamma * radius * (v + SQRT_2)
                 + 0.5 * u_t * dtau
                 + SLACK_PER_A * a,
             z_range,
+            t_range,
             disc: (c, nc, r),
             cosh_beyond: ((near + r) / a).cosh(),
         })
@@ -145,6 +234,9 @@ impl FallingBall {
         self.near *= factor;
         self.cosh_near = (self.near / self.a).cosh();
         self.cosh_beyond = ((self.near + self.disc.2) / self.a).cosh();
+        for b in &mut self.blocks {
+            b.cosh_near = ((self.near + b.radius) / self.a).cosh();
+        }
         self.slack *= factor;
         self
     }
@@ -164,10 +256,10 @@ impl FallingBall {
         out: &mut Vec<LoopWindow>,
     ) -> bool {
         out.clear();
-        let (first, last) = match (self.cells.first(), self.cells.last()) {
-            (Some(f), Some(l)) => (f.t - self.slack, l.t + self.slack),
-            _ => return true,
-        };
+        if self.cells.is_empty() {
+            return true;
+        }
+        let (first, last) = (self.t_range.0 - self.slack, self.t_range.1 + self.slack);
         let dt = ray.dt_loop;
         if !(dt != 0.0 && dt.is_finite() && ray.l_ret > 0.0 && t_start.is_finite()) {
             return false;
@@ -233,7 +325,9 @@ impl FallingBall {
 
     /// The first and the last λ in [l0, l1] (loop k, with times in [t_lo, t_hi] and
     /// `t_start` at λ = 0) at which the ray may be within the ball; `times` is the ray's
-    /// table of times, made here when first needed.
+    /// table of times, made here when first needed. Each block's window holds its cells'
+    /// (module documentation), so only the blocks whose windows reach below the first λ
+    /// found so far, or beyond the last, are searched cell by cell, from the outermost in.
     fn near_in(
         &self,
         ray: &RayCircle,
@@ -241,71 +335,187 @@ impl FallingBall {
         (k, l0, l1): (f64, f64, f64),
         times: &mut Option<LoopTimes>,
     ) -> Option<(f64, f64)> {
-        let m = self.near;
-        let i0 = self.cells.partition_point(|c| c.t < t_lo - self.slack);
-        // The heights the loop's stretch reaches, widened by M and by a margin far above
-        // rounding: a cell beyond them would get an empty λ window below, so it is dropped
-        // before the divisions (most cells of a loop's times are).
-        let (z0, z1) = (ray.pz * l0, ray.pz * l1);
-        let margin = 1e-9 * (z0.abs().max(z1.abs()) + m);
-        let (z_lo, z_hi) = (z0.min(z1) - m - margin, z0.max(z1) + m + margin);
-        let mut near: Option<(f64, f64)> = None;
-        for c in &self.cells[i0..] {
-            if c.t > t_hi + self.slack {
+        let (band_lo, band_hi) = (t_lo - self.slack, t_hi + self.slack);
+        let i0 = self
+            .blocks
+            .partition_point(|b| b.t_min < band_lo - self.block_span);
+        let loop_ = Loop::new(ray, self.near, (k, l0, l1), t_start);
+        let mut candidates = [Candidate {
+            block: 0,
+            from: 0.0,
+            until: 0.0,
+        }; MAX_CANDIDATES];
+        let (mut n, mut hull, mut overflow): (usize, Option<(f64, f64)>, bool) = (0, None, false);
+        for (j, b) in self.blocks[i0..].iter().enumerate() {
+            if b.t_min > band_hi {
                 break;
             }
-            if c.z < z_lo || c.z > z_hi {
+            if b.t_max < band_lo {
                 continue;
             }
-            // The λ window where |p_z λ − z| ≤ M.
-            let (lo, hi) = if ray.pz == 0.0 {
-                if c.z.abs() > m {
-                    continue;
-                }
-                (l0, l1)
-            } else {
-                let (p, q) = ((c.z - m) / ray.pz, (c.z + m) / ray.pz);
-                (p.min(q).max(l0), p.max(q).min(l1))
-            };
-            // A window within the stretch found so far cannot widen it.
-            if lo > hi
-                || lo.is_nan()
-                || hi.is_nan()
-                || near.is_some_and(|(f, u)| f <= lo && hi <= u)
-            {
-                continue;
-            }
-            let Some(passing) = ray.passes(c.w, c.nw, self.cosh_near) else {
-                continue; // most cells, before any angle
-            };
-            // Within that, where the ray's time is within S of the cell's (worth its table of
-            // times only where a cell's band of times leaves out much of the loop's).
-            let (lo, hi) = if ray.dt_loop.abs() > TIME_GATE * self.slack {
-                let times = times.get_or_insert_with(|| LoopTimes::new(ray, t_start));
-                let Some((ta, tb)) = times.within(k, c.t - self.slack, c.t + self.slack) else {
-                    continue;
-                };
-                let (lo, hi) = (lo.max(ta), hi.min(tb));
-                if lo > hi || near.is_some_and(|(f, u)| f <= lo && hi <= u) {
-                    continue;
-                }
-                (lo, hi)
-            } else {
-                (lo, hi)
-            };
-            let Some(arc) = ray.arc_of(passing, self.cosh_near) else {
+            let Some((from, until)) = self.window(
+                ray,
+                &loop_,
+                (b.z_min, b.z_max),
+                (b.w, b.nw, b.cosh_near),
+                (b.t_min, b.t_max),
+                None,
+                times,
+            ) else {
                 continue;
             };
-            if let (Some(f), Some(u)) = (arc.first_in(lo, hi), arc.last_in(lo, hi)) {
-                near = Some(near.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u))));
-                if near.is_some_and(|(f, u)| f <= l0 && u >= l1) {
-                    break;
+            hull = Some(hull.map_or((from, until), |(f, u)| (f.min(from), u.max(until))));
+            if n == MAX_CANDIDATES {
+                overflow = true;
+                continue;
+            }
+            candidates[n] = Candidate {
+                block: i0 + j,
+                from,
+                until,
+            };
+            n += 1;
+        }
+        if overflow {
+            return hull; // too many to search cell by cell: the blocks' own
+        }
+        let candidates = &mut candidates[..n];
+        let mut near: Option<(f64, f64)> = None;
+        // A block's cells, each unless its stretch could not widen `near` at the end
+        // `lower` (or the other).
+        let mut refine = |block: usize, lower: bool, near: &mut Option<(f64, f64)>| {
+            let b = &self.blocks[block];
+            for cell in &self.cells[b.first..b.end] {
+                if cell.t < band_lo || cell.t > band_hi {
+                    continue;
+                }
+                let inside = near.map(|(f, u)| {
+                    if lower {
+                        (f, f64::INFINITY)
+                    } else {
+                        (f64::NEG_INFINITY, u)
+                    }
+                });
+                if let Some((f, u)) = self.window(
+                    ray,
+                    &loop_,
+                    (cell.z, cell.z),
+                    (cell.w, cell.nw, self.cosh_near),
+                    (cell.t, cell.t),
+                    inside,
+                    times,
+                ) {
+                    *near = Some(near.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u))));
                 }
             }
+        };
+        // The first λ: blocks by their windows' first λ, until one starts at or after it.
+        candidates.sort_unstable_by(|p, q| p.from.total_cmp(&q.from));
+        for c in candidates.iter() {
+            if near.is_some_and(|(f, _)| c.from >= f) {
+                break;
+            }
+            refine(c.block, true, &mut near);
+        }
+        // The last λ likewise, from the latest end.
+        candidates.sort_unstable_by(|p, q| q.until.total_cmp(&p.until));
+        for c in candidates.iter() {
+            if near.is_some_and(|(_, u)| c.until <= u) {
+                break;
+            }
+            refine(c.block, false, &mut near);
         }
         near
     }
+
+    /// The first and the last λ of the loop `l` at which the ray may lie within the
+    /// distance whose cosh is `cosh_m` of the disc point w (1 − |w|² = `nw`), at a height
+    /// within M of [z0, z1] and a time within S of [t0, t1]; None if nowhere, or if the
+    /// stretch would lie within `inside` (it could not widen it).
+    #[allow(clippy::too_many_arguments)]
+    fn window(
+        &self,
+        ray: &RayCircle,
+        l: &Loop,
+        (z0, z1): (f64, f64),
+        (w, nw, cosh_m): (Complex, f64, f64),
+        (t0, t1): (f64, f64),
+        inside: Option<(f64, f64)>,
+        times: &mut Option<LoopTimes>,
+    ) -> Option<(f64, f64)> {
+        let m = self.near;
+        if z1 < l.z_lo || z0 > l.z_hi {
+            return None;
+        }
+        // The λ window where p_z λ is within M of [z0, z1].
+        let (lo, hi) = if ray.pz == 0.0 {
+            if z0 > m || z1 < -m {
+                return None;
+            }
+            (l.l0, l.l1)
+        } else {
+            let (p, q) = ((z0 - m) / ray.pz, (z1 + m) / ray.pz);
+            (p.min(q).max(l.l0), p.max(q).min(l.l1))
+        };
+        let within = |lo: f64, hi: f64| inside.is_some_and(|(f, u)| f <= lo && hi <= u);
+        if lo > hi || lo.is_nan() || hi.is_nan() || within(lo, hi) {
+            return None;
+        }
+        let passing = ray.passes(w, nw, cosh_m)?;
+        // Within that, where the ray's time is within S of [t0, t1] (worth its table of
+        // times only where the band of times leaves out much of the loop's).
+        let (lo, hi) = if ray.dt_loop.abs() > TIME_GATE * self.slack {
+            let times = times.get_or_insert_with(|| LoopTimes::new(ray, l.t_start));
+            let (ta, tb) = times.within(l.k, t0 - self.slack, t1 + self.slack)?;
+            let (lo, hi) = (lo.max(ta), hi.min(tb));
+            if lo > hi || within(lo, hi) {
+                return None;
+            }
+            (lo, hi)
+        } else {
+            (lo, hi)
+        };
+        let arc = ray.arc_of(passing, cosh_m)?;
+        Some((arc.first_in(lo, hi)?, arc.last_in(lo, hi)?))
+    }
 }
+
+/// One loop of a ray, for [`FallingBall::window`]: its number k, its λ range [l0, l1], the
+/// heights it reaches widened by M (and a margin far above rounding), and the time at λ = 0.
+struct Loop {
+    k: f64,
+    l0: f64,
+    l1: f64,
+    z_lo: f64,
+    z_hi: f64,
+    t_start: f64,
+}
+
+impl Loop {
+    fn new(ray: &RayCircle, m: f64, (k, l0, l1): (f64, f64, f64), t_start: f64) -> Loop {
+        let (z0, z1) = (ray.pz * l0, ray.pz * l1);
+        let margin = 1e-9 * (z0.abs().max(z1.abs()) + m);
+        Loop {
+            k,
+            l0,
+            l1,
+            z_lo: z0.min(z1) - m - margin,
+            z_hi: z0.max(z1) + m + margin,
+            t_start,
+        }
+    }
+}
+
+/// The proper time a cell spans, in radii of the ball (R and R/4 alone, or R/4 in blocks of
+/// eight, measured slower on the reference scene; module documentation).
+const CELL_PER_RADIUS: f64 = 0.5;
+
+/// Cells a block holds (four: more angles).
+const CELLS_PER_BLOCK: usize = 3;
+
+/// Blocks of one loop searched cell by cell at most; beyond, the loop takes the blocks' own
+/// window (wider, still holding every cell's).
+const MAX_CANDIDATES: usize = 16;
 
 /// A ray's time table is made where a loop's time spans more than TIME_GATE·S.
 const TIME_GATE: f64 = 4.0;
@@ -407,5 +617,115 @@ impl LoopWindow {
     /// Whether the stretch [l0, l1] (from the loop's start) meets the window.
     pub fn meets(&self, l0: f64, l1: f64) -> bool {
         l0 <= self.until && l1 >= self.from
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scene::Motion;
+    use spacetime::{
+        photon_tangent, ExactGeodesic, Godel, LocalVelocity, Spacetime, TimeDirection,
+    };
+
+    /// Blocks searched from the window's ends give the first and the last λ of every cell,
+    /// as a loop over all the cells does, on rays past balls falling at up to 0.8 c; and the
+    /// blocks' own windows are wider in many loops (the search by cells is not vacuous).
+    #[test]
+    fn blocks_give_the_first_and_last_lambda_of_all_their_cells() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut uniform = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let a = 1.0;
+        let metric = Metric::Godel(Godel::new(a));
+        let (mut loops, mut found, mut wider) = (0, 0, 0);
+        for _ in 0..12 {
+            let start = Event::new(
+                0.0,
+                2.0 * uniform() - 1.0,
+                2.0 * uniform() - 1.0,
+                0.2 * uniform() - 0.1,
+            );
+            let dir = [uniform() - 0.5, uniform() - 0.5, 0.2 * uniform() - 0.1];
+            let motion = Motion::Geodesic {
+                start,
+                velocity: LocalVelocity::new(0.8 * uniform(), dir).expect("a velocity"),
+            };
+            let radius = 0.1 + 0.2 * uniform();
+            let target = Target::LocalSphere {
+                radius,
+                worldline: Worldline::new(metric, &motion, -30.0, 2.0).expect("a worldline"),
+            };
+            let obs = Event::new(0.0, 0.0, 0.0, 0.0);
+            let ball = FallingBall::new(a, &metric, obs, &target).expect("a falling ball");
+            for _ in 0..300 {
+                let n = [uniform() - 0.5, uniform() - 0.5, 0.3 * (uniform() - 0.5)];
+                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                let n = n.map(|c| c / len);
+                let k = photon_tangent(&metric.static_frame(obs), n, TimeDirection::Past);
+                let geo = ExactGeodesic::new(a, obs, k).expect("a light ray");
+                let ray = RayCircle::new(&geo.origin);
+                let mut times = None;
+                for k in 0..8 {
+                    let kf = k as f64;
+                    let (l0, l1) = (kf * ray.l_ret, (kf + 1.0) * ray.l_ret);
+                    let (ta, tb) = (kf * ray.dt_loop, (kf + 1.0) * ray.dt_loop);
+                    let band = (ta.min(tb), ta.max(tb), 0.0);
+                    let got = ball.near_in(&ray, band, (kf, l0, l1), &mut times);
+                    // Every cell, one by one; and every block, by its own window.
+                    let (lo, hi) = (band.0 - ball.slack, band.1 + ball.slack);
+                    let l = Loop::new(&ray, ball.near, (kf, l0, l1), 0.0);
+                    let hull = |acc: Option<(f64, f64)>, w: Option<(f64, f64)>| match (acc, w) {
+                        (Some((f0, u0)), Some((f, u))) => Some((f0.min(f), u0.max(u))),
+                        (acc, w) => acc.or(w),
+                    };
+                    let by_cells = ball
+                        .cells
+                        .iter()
+                        .filter(|c| c.t >= lo && c.t <= hi)
+                        .map(|c| {
+                            let at = (c.w, c.nw, ball.cosh_near);
+                            ball.window(&ray, &l, (c.z, c.z), at, (c.t, c.t), None, &mut times)
+                        })
+                        .fold(None, hull);
+                    let by_blocks = ball
+                        .blocks
+                        .iter()
+                        .filter(|b| b.t_max >= lo && b.t_min <= hi)
+                        .map(|b| {
+                            let at = (b.w, b.nw, b.cosh_near);
+                            let (z, t) = ((b.z_min, b.z_max), (b.t_min, b.t_max));
+                            ball.window(&ray, &l, z, at, t, None, &mut times)
+                        })
+                        .fold(None, hull);
+                    loops += 1;
+                    match (got, by_cells) {
+                        (None, None) => {}
+                        (Some((f, u)), Some((f0, u0))) => {
+                            let tol = 1e-9 * ray.l_ret;
+                            assert!(
+                                (f - f0).abs() <= tol && (u - u0).abs() <= tol,
+                                "loop {k}: [{f}, {u}] against the cells' [{f0}, {u0}]"
+                            );
+                            found += 1;
+                            let (fb, ub) = by_blocks.expect("the blocks hold the cells");
+                            if fb < f0 - 1e-3 * ray.l_ret || ub > u0 + 1e-3 * ray.l_ret {
+                                wider += 1;
+                            }
+                        }
+                        (got, cells) => panic!("loop {k}: {got:?} against the cells' {cells:?}"),
+                    }
+                }
+            }
+        }
+        assert!(found * 20 >= loops, "{found} of {loops} loops near a ball");
+        assert!(
+            wider * 4 >= found,
+            "the blocks' own windows wider in {wider} of {found}"
+        );
     }
 }
