@@ -331,9 +331,22 @@ impl FallingBall {
     fn near_in(
         &self,
         ray: &RayCircle,
+        band: (f64, f64, f64),
+        stretch: (f64, f64, f64),
+        times: &mut Option<LoopTimes>,
+    ) -> Option<(f64, f64)> {
+        self.near_in_at_most(ray, band, stretch, times, MAX_CANDIDATES)
+    }
+
+    /// [`FallingBall::near_in`], with at most `max` blocks (and at most [`MAX_CANDIDATES`])
+    /// searched cell by cell: with more, the blocks' own first and last λ.
+    fn near_in_at_most(
+        &self,
+        ray: &RayCircle,
         (t_lo, t_hi, t_start): (f64, f64, f64),
         (k, l0, l1): (f64, f64, f64),
         times: &mut Option<LoopTimes>,
+        max: usize,
     ) -> Option<(f64, f64)> {
         let (band_lo, band_hi) = (t_lo - self.slack, t_hi + self.slack);
         let i0 = self
@@ -365,7 +378,7 @@ impl FallingBall {
                 continue;
             };
             hull = Some(hull.map_or((from, until), |(f, u)| (f.min(from), u.max(until))));
-            if n == MAX_CANDIDATES {
+            if n == max.min(MAX_CANDIDATES) {
                 overflow = true;
                 continue;
             }
@@ -630,7 +643,9 @@ mod tests {
 
     /// Blocks searched from the window's ends give the first and the last λ of every cell,
     /// as a loop over all the cells does, on rays past balls falling at up to 0.8 c; and the
-    /// blocks' own windows are wider in many loops (the search by cells is not vacuous).
+    /// blocks' own windows are wider in many loops (the search by cells is not vacuous). With
+    /// fewer blocks allowed than a loop needs searched, the window is the blocks' own, which
+    /// holds the cells'.
     #[test]
     fn blocks_give_the_first_and_last_lambda_of_all_their_cells() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
@@ -642,7 +657,7 @@ mod tests {
         };
         let a = 1.0;
         let metric = Metric::Godel(Godel::new(a));
-        let (mut loops, mut found, mut wider) = (0, 0, 0);
+        let (mut loops, mut found, mut wider, mut capped) = (0, 0, 0, 0);
         for _ in 0..12 {
             let start = Event::new(
                 0.0,
@@ -676,6 +691,7 @@ mod tests {
                     let (ta, tb) = (kf * ray.dt_loop, (kf + 1.0) * ray.dt_loop);
                     let band = (ta.min(tb), ta.max(tb), 0.0);
                     let got = ball.near_in(&ray, band, (kf, l0, l1), &mut times);
+                    let one = ball.near_in_at_most(&ray, band, (kf, l0, l1), &mut times, 1);
                     // Every cell, one by one; and every block, by its own window.
                     let (lo, hi) = (band.0 - ball.slack, band.1 + ball.slack);
                     let l = Loop::new(&ray, ball.near, (kf, l0, l1), 0.0);
@@ -716,6 +732,13 @@ mod tests {
                             if fb < f0 - 1e-3 * ray.l_ret || ub > u0 + 1e-3 * ray.l_ret {
                                 wider += 1;
                             }
+                            // One block searched cell by cell at most: where more than one
+                            // would be, the blocks' own window, which holds the cells'.
+                            let (f1, u1) = one.expect("a window");
+                            assert!(f1 <= f0 + tol && u1 >= u0 - tol, "loop {k}: one block");
+                            if (f1, u1) == (fb, ub) && (f1, u1) != (f, u) {
+                                capped += 1;
+                            }
                         }
                         (got, cells) => panic!("loop {k}: {got:?} against the cells' {cells:?}"),
                     }
@@ -726,6 +749,10 @@ mod tests {
         assert!(
             wider * 4 >= found,
             "the blocks' own windows wider in {wider} of {found}"
+        );
+        assert!(
+            capped * 10 >= found,
+            "one block at most: {capped} of {found}"
         );
     }
 }
