@@ -377,7 +377,7 @@ impl FallingBall {
             ) else {
                 continue;
             };
-            hull = Some(hull.map_or((from, until), |(f, u)| (f.min(from), u.max(until))));
+            hull = Some(widened(hull, (from, until)));
             if n == max.min(MAX_CANDIDATES) {
                 overflow = true;
                 continue;
@@ -418,7 +418,7 @@ impl FallingBall {
                     inside,
                     times,
                 ) {
-                    *near = Some(near.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u))));
+                    *near = Some(widened(*near, (f, u)));
                 }
             }
         };
@@ -491,6 +491,11 @@ impl FallingBall {
         let arc = ray.arc_of(passing, cosh_m)?;
         Some((arc.first_in(lo, hi)?, arc.last_in(lo, hi)?))
     }
+}
+
+/// The least stretch [first λ, last λ] holding `so_far` (if any) and [f, u].
+fn widened(so_far: Option<(f64, f64)>, (f, u): (f64, f64)) -> (f64, f64) {
+    so_far.map_or((f, u), |(f0, u0)| (f0.min(f), u0.max(u)))
 }
 
 /// One loop of a ray, for [`FallingBall::window`]: its number k, its λ range [l0, l1], the
@@ -695,9 +700,8 @@ mod tests {
                     // Every cell, one by one; and every block, by its own window.
                     let (lo, hi) = (band.0 - ball.slack, band.1 + ball.slack);
                     let l = Loop::new(&ray, ball.near, (kf, l0, l1), 0.0);
-                    let hull = |acc: Option<(f64, f64)>, w: Option<(f64, f64)>| match (acc, w) {
-                        (Some((f0, u0)), Some((f, u))) => Some((f0.min(f), u0.max(u))),
-                        (acc, w) => acc.or(w),
+                    let hull = |acc: Option<(f64, f64)>, w: Option<(f64, f64)>| {
+                        w.map(|w| widened(acc, w)).or(acc)
                     };
                     let by_cells = ball
                         .cells
