@@ -98,6 +98,7 @@ impl RayCircle {
             centre: (turns - turns.floor()) * self.l_ret,
             half: f64::INFINITY,
             period: self.l_ret,
+            per_turn: 1.0 / self.l_ret,
             nearest: p.nearest,
             spread: p.spread,
         };
@@ -143,6 +144,8 @@ pub struct Arc {
     centre: f64,
     half: f64,
     period: f64,
+    /// 1/period: the arcs' copies are counted by products.
+    per_turn: f64,
     /// cosh(d(h, w)/a)·cosh(ρ/a) and sinh(d(h, w)/a)·sinh(ρ/a): by the law of cosines
     /// cosh(d_H/a) = nearest − spread·cos δ ([`Arc::within`]).
     nearest: f64,
@@ -171,7 +174,7 @@ impl Arc {
         }
         let half = (num / den).clamp(-1.0, 1.0).acos() + ARC_SLACK;
         let arc = Arc {
-            half: half * self.period / TAU,
+            half: half * self.period * (1.0 / TAU),
             ..*self
         };
         if arc.centre.is_finite() && arc.half.is_finite() && arc.period > 0.0 {
@@ -187,7 +190,7 @@ impl Arc {
             return true;
         }
         // The first copy whose stretch ends at or after lo.
-        let n = ((lo - self.half - self.centre) / self.period).ceil();
+        let n = ((lo - self.half - self.centre) * self.per_turn).ceil();
         !(self.centre + n * self.period - self.half > hi)
     }
 
@@ -197,7 +200,7 @@ impl Arc {
             return Some(lo);
         }
         // The first copy whose stretch ends at or after lo.
-        let n = ((lo - self.half - self.centre) / self.period).ceil();
+        let n = ((lo - self.half - self.centre) * self.per_turn).ceil();
         let l = lo.max(self.centre + n * self.period - self.half);
         if l.is_nan() {
             Some(lo)
@@ -212,7 +215,7 @@ impl Arc {
             return Some(hi);
         }
         // The last copy whose stretch starts at or before hi.
-        let n = ((hi + self.half - self.centre) / self.period).floor();
+        let n = ((hi + self.half - self.centre) * self.per_turn).floor();
         let l = hi.min(self.centre + n * self.period + self.half);
         if l.is_nan() {
             Some(hi)
