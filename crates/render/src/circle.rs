@@ -37,6 +37,8 @@ pub struct RayCircle {
     sg: f64,
     /// Return parameter λ_ret: one turn.
     pub l_ret: f64,
+    /// 1/λ_ret: an arc's copies are counted by products.
+    per_turn: f64,
     /// dz/dλ.
     pub pz: f64,
     /// Coordinate time gained per turn in the origin frame:
@@ -64,6 +66,7 @@ impl RayCircle {
             psi0: sg * (Complex::new(0.0, 0.0) - h).arg(),
             sg,
             l_ret,
+            per_turn: 1.0 / l_ret,
             pz: geo.pz,
             dt_loop: sg * 2.0 * SQRT_2 * a * PI - geo.energy * l_ret,
             geo: *geo,
@@ -98,7 +101,7 @@ impl RayCircle {
             centre: (turns - turns.floor()) * self.l_ret,
             half: f64::INFINITY,
             period: self.l_ret,
-            per_turn: 1.0 / self.l_ret,
+            per_turn: self.per_turn,
             nearest: p.nearest,
             spread: p.spread,
         };
