@@ -40,13 +40,19 @@ for scene in scenes/*.toml; do
         if grep -q '^ *stereo *=' "$s"; then
             # Both eyes in one process (no --part, no MPI ranks): every file the old build
             # wrote (the eyes' data files and the picture) compared with the new one's.
-            for f in $(cd "$work/old" && ls "$base-$method".*); do
+            compared=0
+            for f in $(cd "$work/old" && ls "$base-$method".* 2>/dev/null); do
+                compared=$((compared + 1))
                 if cmp -s "$work/old/$f" "$work/new/$f"; then
                     echo "same   $f"
                 else
                     echo "DIFFER $f"; fail=1
                 fi
             done
+            # No file from the old build (it refused the scene) proves nothing.
+            if [ "$compared" -eq 0 ]; then
+                echo "NONE   $base-$method (the old build wrote nothing)"; fail=1
+            fi
             continue
         fi
         for p in 1 2 3; do "$new" render "$s" --part "$p/3" -o "$work/parts" -q 2>/dev/null; done

@@ -57,23 +57,42 @@ struct Cell {
     z: f64,
 }
 
+impl Cell {
+    /// The cell as [`FallingBall::window`] tests it, within the distance whose cosh is
+    /// `cosh_m` of its point.
+    fn region(&self, cosh_m: f64) -> Region {
+        Region {
+            w: self.w,
+            nw: self.nw,
+            cosh_m,
+            z: (self.z, self.z),
+            t: (self.t, self.t),
+        }
+    }
+}
+
+/// What a loop's window is found for ([`FallingBall::window`]): the ray within the distance
+/// whose cosh is `cosh_m` of the disc point w (`nw` = 1 − |w|²), at a height within M of
+/// [z.0, z.1] and a time within S of [t.0, t.1]. A cell's, or a block's.
+#[derive(Clone, Copy, Debug)]
+struct Region {
+    w: Complex,
+    nw: f64,
+    cosh_m: f64,
+    z: (f64, f64),
+    t: (f64, f64),
+}
+
 /// Consecutive cells of the worldline, tested as one before their cells are: every point
 /// within M of a cell's middle lies within M + r of the block's point w (r: the largest
 /// distance from w to its cells' middles), at a height within M of the cells' heights, and
 /// a cell's band of times lies within the block's.
 #[derive(Clone, Copy, Debug)]
 struct Block {
-    /// The least and the greatest time of its cells' middles.
-    t_min: f64,
-    t_max: f64,
-    /// Its point (the middle cell's), 1 − |w|², and the least and greatest height of its cells.
-    w: Complex,
-    nw: f64,
-    z_min: f64,
-    z_max: f64,
-    /// r, and cosh((M + r)/a).
+    /// The middle cell's point, within M + r; its cells' least and greatest height and time.
+    region: Region,
+    /// r.
     radius: f64,
-    cosh_near: f64,
     /// Its cells: `cells[first..end]`.
     first: usize,
     end: usize,
@@ -147,14 +166,7 @@ impl FallingBall {
         if !cells.iter().all(|c| c.t.is_finite() && c.nw > 0.0) {
             return None;
         }
-        let range = |of: fn(&Cell) -> f64| {
-            cells
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
-                    (lo.min(of(c)), hi.max(of(c)))
-                })
-        };
-        let (z_range, t_range) = (range(|c| c.z), range(|c| c.t));
+        let (z_range, t_range) = (extent(&cells, |c| c.z), extent(&cells, |c| c.t));
         let reach = REACH_PER_GAMMA_RADIUS * gamma * radius + SLACK_PER_A * a;
         let near = reach + 0.5 * speed * dtau;
         let u_t = gamma + SQRT_2 * speed;
@@ -162,12 +174,7 @@ impl FallingBall {
         let c = cells.iter().fold(Complex::new(0.0, 0.0), |s, p| s + p.w);
         let c = c.scale(1.0 / cells.len() as f64);
         let nc = 1.0 - c.norm_sqr();
-        // cosh(d/a) = 1 + 2|w − C|²/((1 − |w|²)(1 − |C|²)); widened far above rounding.
-        let r = cells
-            .iter()
-            .map(|p| a * (1.0 + 2.0 * (p.w - c).norm_sqr() / (nc * p.nw)).acosh())
-            .fold(0.0, f64::max);
-        let r = r * (1.0 + 1e-9) + 1e-9 * a;
+        let r = farthest(a, (c, nc), &cells);
         if !(nc > 0.0 && r.is_finite()) {
             return None;
         }
@@ -176,30 +183,17 @@ impl FallingBall {
             .enumerate()
             .map(|(j, chunk)| {
                 let mid = chunk[chunk.len() / 2];
-                let radius = chunk
-                    .iter()
-                    .map(|p| a * (1.0 + 2.0 * (p.w - mid.w).norm_sqr() / (mid.nw * p.nw)).acosh())
-                    .fold(0.0, f64::max);
-                let radius = radius * (1.0 + 1e-9) + 1e-9 * a;
-                let (t_min, t_max, z_min, z_max) = chunk.iter().fold(
-                    (
-                        f64::INFINITY,
-                        f64::NEG_INFINITY,
-                        f64::INFINITY,
-                        f64::NEG_INFINITY,
-                    ),
-                    |(t0, t1, z0, z1), p| (t0.min(p.t), t1.max(p.t), z0.min(p.z), z1.max(p.z)),
-                );
+                let radius = farthest(a, (mid.w, mid.nw), chunk);
                 let first = j * CELLS_PER_BLOCK;
                 Block {
-                    t_min,
-                    t_max,
-                    w: mid.w,
-                    nw: mid.nw,
-                    z_min,
-                    z_max,
+                    region: Region {
+                        w: mid.w,
+                        nw: mid.nw,
+                        cosh_m: ((near + radius) / a).cosh(),
+                        z: extent(chunk, |c| c.z),
+                        t: extent(chunk, |c| c.t),
+                    },
                     radius,
-                    cosh_near: ((near + radius) / a).cosh(),
                     first,
                     end: first + chunk.len(),
                 }
@@ -208,8 +202,11 @@ impl FallingBall {
         if !blocks.iter().all(|b| b.radius.is_finite()) {
             return None;
         }
-        blocks.sort_by(|p, q| p.t_min.total_cmp(&q.t_min));
-        let block_span = blocks.iter().map(|b| b.t_max - b.t_min).fold(0.0, f64::max);
+        blocks.sort_by(|p, q| p.region.t.0.total_cmp(&q.region.t.0));
+        let block_span = blocks
+            .iter()
+            .map(|b| b.region.t.1 - b.region.t.0)
+            .fold(0.0, f64::max);
         Some(FallingBall {
             a,
             cells,
@@ -235,7 +232,7 @@ impl FallingBall {
         self.cosh_near = (self.near / self.a).cosh();
         self.cosh_beyond = ((self.near + self.disc.2) / self.a).cosh();
         for b in &mut self.blocks {
-            b.cosh_near = ((self.near + b.radius) / self.a).cosh();
+            b.region.cosh_m = ((self.near + b.radius) / self.a).cosh();
         }
         self.slack *= factor;
         self
@@ -256,9 +253,6 @@ impl FallingBall {
         out: &mut Vec<LoopWindow>,
     ) -> bool {
         out.clear();
-        if self.cells.is_empty() {
-            return true;
-        }
         let (first, last) = (self.t_range.0 - self.slack, self.t_range.1 + self.slack);
         let dt = ray.dt_loop;
         if !(dt != 0.0 && dt.is_finite() && ray.l_ret > 0.0 && t_start.is_finite()) {
@@ -351,7 +345,7 @@ impl FallingBall {
         let (band_lo, band_hi) = (t_lo - self.slack, t_hi + self.slack);
         let i0 = self
             .blocks
-            .partition_point(|b| b.t_min < band_lo - self.block_span);
+            .partition_point(|b| b.region.t.0 < band_lo - self.block_span);
         let loop_ = Loop::new(ray, self.near, (k, l0, l1), t_start);
         let mut candidates = [Candidate {
             block: 0,
@@ -360,21 +354,13 @@ impl FallingBall {
         }; MAX_CANDIDATES];
         let (mut n, mut hull, mut overflow): (usize, Option<(f64, f64)>, bool) = (0, None, false);
         for (j, b) in self.blocks[i0..].iter().enumerate() {
-            if b.t_min > band_hi {
+            if b.region.t.0 > band_hi {
                 break;
             }
-            if b.t_max < band_lo {
+            if b.region.t.1 < band_lo {
                 continue;
             }
-            let Some((from, until)) = self.window(
-                ray,
-                &loop_,
-                (b.z_min, b.z_max),
-                (b.w, b.nw, b.cosh_near),
-                (b.t_min, b.t_max),
-                None,
-                times,
-            ) else {
+            let Some((from, until)) = self.window(ray, &loop_, &b.region, None, times) else {
                 continue;
             };
             hull = Some(widened(hull, (from, until)));
@@ -409,15 +395,8 @@ impl FallingBall {
                         (f64::NEG_INFINITY, u)
                     }
                 });
-                if let Some((f, u)) = self.window(
-                    ray,
-                    &loop_,
-                    (cell.z, cell.z),
-                    (cell.w, cell.nw, self.cosh_near),
-                    (cell.t, cell.t),
-                    inside,
-                    times,
-                ) {
+                let region = cell.region(self.cosh_near);
+                if let Some((f, u)) = self.window(ray, &loop_, &region, inside, times) {
                     *near = Some(widened(*near, (f, u)));
                 }
             }
@@ -441,21 +420,23 @@ impl FallingBall {
         near
     }
 
-    /// The first and the last λ of the loop `l` at which the ray may lie within the
-    /// distance whose cosh is `cosh_m` of the disc point w (1 − |w|² = `nw`), at a height
-    /// within M of [z0, z1] and a time within S of [t0, t1]; None if nowhere, or if the
-    /// stretch would lie within `inside` (it could not widen it).
-    #[allow(clippy::too_many_arguments)]
+    /// The first and the last λ of the loop `l` at which the ray may lie in `region`; None
+    /// if nowhere, or if the stretch would lie within `inside` (it could not widen it).
     fn window(
         &self,
         ray: &RayCircle,
         l: &Loop,
-        (z0, z1): (f64, f64),
-        (w, nw, cosh_m): (Complex, f64, f64),
-        (t0, t1): (f64, f64),
+        region: &Region,
         inside: Option<(f64, f64)>,
         times: &mut Option<LoopTimes>,
     ) -> Option<(f64, f64)> {
+        let Region {
+            w,
+            nw,
+            cosh_m,
+            z: (z0, z1),
+            t: (t0, t1),
+        } = *region;
         let m = self.near;
         if z1 < l.z_lo || z0 > l.z_hi {
             return None;
@@ -491,6 +472,25 @@ impl FallingBall {
         let arc = ray.arc_of(passing, cosh_m)?;
         Some((arc.first_in(lo, hi)?, arc.last_in(lo, hi)?))
     }
+}
+
+/// The farthest of `cells`' points from the disc point c (`nc` = 1 − |c|²), in hyperbolic
+/// distance, cosh(d/a) = 1 + 2|w − c|²/((1 − |w|²)(1 − |c|²)); widened far above rounding.
+fn farthest(a: f64, (c, nc): (Complex, f64), cells: &[Cell]) -> f64 {
+    let r = cells
+        .iter()
+        .map(|p| a * (1.0 + 2.0 * (p.w - c).norm_sqr() / (nc * p.nw)).acosh())
+        .fold(0.0, f64::max);
+    r * (1.0 + 1e-9) + 1e-9 * a
+}
+
+/// The least and the greatest of `of` over `cells`.
+fn extent(cells: &[Cell], of: fn(&Cell) -> f64) -> (f64, f64) {
+    cells
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+            (lo.min(of(c)), hi.max(of(c)))
+        })
 }
 
 /// The least stretch [first λ, last λ] holding `so_far` (if any) and [f, u].
@@ -653,13 +653,8 @@ mod tests {
     /// holds the cells'.
     #[test]
     fn blocks_give_the_first_and_last_lambda_of_all_their_cells() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut uniform = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut random = testkit::Uniform::new(0x9e37_79b9_7f4a_7c15u64);
+        let mut uniform = || random.draw();
         let a = 1.0;
         let metric = Metric::Godel(Godel::new(a));
         let (mut loops, mut found, mut wider, mut capped) = (0, 0, 0, 0);
@@ -708,19 +703,15 @@ mod tests {
                         .iter()
                         .filter(|c| c.t >= lo && c.t <= hi)
                         .map(|c| {
-                            let at = (c.w, c.nw, ball.cosh_near);
-                            ball.window(&ray, &l, (c.z, c.z), at, (c.t, c.t), None, &mut times)
+                            let region = c.region(ball.cosh_near);
+                            ball.window(&ray, &l, &region, None, &mut times)
                         })
                         .fold(None, hull);
                     let by_blocks = ball
                         .blocks
                         .iter()
-                        .filter(|b| b.t_max >= lo && b.t_min <= hi)
-                        .map(|b| {
-                            let at = (b.w, b.nw, b.cosh_near);
-                            let (z, t) = ((b.z_min, b.z_max), (b.t_min, b.t_max));
-                            ball.window(&ray, &l, z, at, t, None, &mut times)
-                        })
+                        .filter(|b| b.region.t.1 >= lo && b.region.t.0 <= hi)
+                        .map(|b| ball.window(&ray, &l, &b.region, None, &mut times))
                         .fold(None, hull);
                     loops += 1;
                     match (got, by_cells) {

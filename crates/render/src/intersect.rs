@@ -625,13 +625,8 @@ mod tests {
     /// alone must bisect (out of work with no probes to spend).
     #[test]
     fn a_plane_along_a_closed_form_is_crossed_at_its_linear_root() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut random = testkit::Uniform::new(0x2545_f491_4f6c_dd1du64);
+        let mut uniform = || random.draw();
         let metrics = [
             Metric::Godel(Godel::new(1.0)),
             Metric::GodelType(GodelType::new(3.0, 0.5f64.sqrt())),

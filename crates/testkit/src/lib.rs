@@ -1,8 +1,8 @@
 //! Fixtures shared by the tests, benches and examples of the workspace's crates: the pieces
 //! of scene text that every small test scene repeats, the header and the hit records of a
 //! synthetic data file, the example scenes and what a bad one expects,
-//! running a command-line binary, and the viewer's refusal of a texture from elsewhere. Only
-//! a dev-dependency; never published.
+//! running a command-line binary, the viewer's refusal of a texture from elsewhere, and a
+//! seeded stream of uniform numbers. Only a dev-dependency; never published.
 //!
 //! The binary to run is passed in (`env!("CARGO_BIN_EXE_godel")` is known only inside the
 //! `godel` package).
@@ -244,4 +244,24 @@ pub fn bad_scene_expectation(text: &str) -> (String, usize) {
         .expect("a `# <- error here` marker")
         + 1;
     (field, line)
+}
+
+/// Uniform numbers in [0, 1) from a seed, the same on every run and machine (xorshift64, the
+/// top 53 bits): for tests that sample many random cases and assert on their totals, where a
+/// property test's per-case shrinking does not fit.
+pub struct Uniform(u64);
+
+impl Uniform {
+    /// The stream of `seed` (not 0).
+    pub fn new(seed: u64) -> Uniform {
+        Uniform(seed)
+    }
+
+    /// The next number of the stream.
+    pub fn draw(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
 }
