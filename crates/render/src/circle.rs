@@ -245,6 +245,47 @@ pub struct Stretches {
 }
 
 impl Stretches {
+    /// The λ in [0, until] where the ray most likely passes deepest into a ball of static
+    /// radius `radius` about the point, one per copy of the arc (at most `most`, earliest
+    /// first), where the static distance there is less than `radius`: the least of
+    /// D² ≈ d₀² + a²·S·δ² + (p_z λ − z)² (d_H² to second order in the angle δ about h from
+    /// the point's direction, for a ray that passes near it: S is the law of cosines'
+    /// spread), then D at that λ from the law of cosines itself (docs/physics.md, "Aimed
+    /// occlusion"). A guess for a probe to verify, not a bound.
+    pub fn deepest(&self, until: f64, radius: f64, most: usize) -> impl Iterator<Item = f64> {
+        let arc = self.arc;
+        let (lo, hi) = (self.lo.max(0.0), self.hi.min(until));
+        let usable = arc.half < 0.5 * arc.period && lo <= hi && arc.spread > 0.0;
+        let omega = TAU * arc.per_turn;
+        let k = self.a * self.a * arc.spread * omega * omega;
+        let (a, pz, z) = (self.a, self.pz, self.z);
+        let pz2 = pz * pz;
+        let first = ((lo - arc.half - arc.centre) * arc.per_turn).ceil();
+        let copies = if usable {
+            let last = ((hi + arc.half - arc.centre) * arc.per_turn).floor();
+            ((last - first + 1.0).max(0.0) as usize).min(most)
+        } else {
+            0
+        };
+        (0..copies).filter_map(move |n| {
+            let centre = arc.centre + (first + n as f64) * arc.period;
+            // With p_z = 0 the height does not move the least distance off the arc's centre.
+            let l = if pz2 > 0.0 {
+                (k * centre + pz2 * (z / pz)) / (k + pz2)
+            } else {
+                centre
+            };
+            let l = l
+                .max(centre - arc.half)
+                .min(centre + arc.half)
+                .max(lo)
+                .min(hi);
+            let cosh_d = arc.nearest - arc.spread * (omega * (l - centre)).cos();
+            let dh = a * cosh_d.max(1.0).acosh();
+            (dh.hypot(pz * l - z) < radius).then_some(l)
+        })
+    }
+
     /// Whether [l0, l1] (λ from the ray's start) meets a stretch (true when unsure: NaN).
     pub fn meets(&self, l0: f64, l1: f64) -> bool {
         if l1 < self.lo || l0 > self.hi {

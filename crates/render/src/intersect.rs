@@ -100,6 +100,13 @@ impl Probes {
         std::mem::swap(&mut self.start, &mut self.end);
     }
 
+    /// Object `i`'s probe in the start buffer, if it was taken at ray parameter `at` (by
+    /// [`Intersector::probe_all`] for an active object).
+    pub fn start_at(&self, i: usize, at: f64) -> Option<Probe> {
+        let m = self.start[i];
+        (self.active[i] && m.at == at).then_some(m.probe)
+    }
+
     /// The stretch of loop `k`, λ from its start, that searches object `i`.
     pub fn window(&self, i: usize, k: usize) -> LoopWindow {
         if !self.on_ray[i] {

@@ -43,11 +43,14 @@
 //! objects at rest that a connecting ray provably never comes near (`crate::reject`) are
 //! left out of its search, and a ball in free fall from the ray's last λ within its reach on
 //! (docs/physics.md, "Occlusion"); a Gödel-type member has no such tests, and searches
-//! every object along the whole ray.
+//! every object along the whole ray. A ray that passes deep into a ball at rest is found
+//! blocked by one probe where it most likely passes deepest (docs/physics.md, "Aimed
+//! occlusion").
 
 use crate::intersect::{HitPoint, Intersector, OutOfWork, Probes, Want};
 use crate::reject::{set_ray, Rejection};
 use crate::segment::{ClosedForm, Segment, Shift};
+use crate::target::Target;
 use spacetime::{
     shadow_rays_within, source_area_distance_sq, type_shadow_rays_within,
     type_source_area_distance_sq, Event, GeodesicState, GeodesicSystem, Metric, ShadowRay,
@@ -211,6 +214,40 @@ impl Lighting {
     }
 }
 
+/// Most copies of a ball's arc at rest that [`aimed`] probes on one ray.
+const MAX_AIMS: usize = 4;
+
+/// Whether a ball at rest provably blocks the shadow ray `geo`, from one probe at each of
+/// its deepest points ([`crate::circle::Stretches::deepest`], up to the last λ where the ray
+/// searches it: `last` for the lit object, else `end`): a ray that starts outside the ball
+/// (its probe at λ = 0, just taken by [`Intersector::probe_all`]) and is inside it there
+/// has crossed its surface before, which the search would find too (docs/physics.md,
+/// "Aimed occlusion"). False leaves the answer to the search.
+fn aimed(
+    objects: &Intersector,
+    geo: ClosedForm,
+    (lit, last, end): (usize, f64, f64),
+    probes: &Probes,
+) -> bool {
+    let metric = objects.metric;
+    objects.targets.iter().enumerate().any(|(i, t)| {
+        let (Some(near), Target::LocalSphere { radius, .. }) = (&probes.near[i], t) else {
+            return false;
+        };
+        let outside = probes.start_at(i, 0.0).is_some_and(|p| p.f > 0.0);
+        let until = if i == lit { last } else { end };
+        outside
+            && near.deepest(until, *radius, MAX_AIMS).any(|l| {
+                let (x, k) = geo.at(l);
+                let s = GeodesicState {
+                    x,
+                    p: metric.lower(x, k),
+                };
+                t.probe(&metric, &s, f64::NAN).f <= 0.0
+            })
+    })
+}
+
 /// Most windings of the connecting rays searched per light and hit.
 const MAX_WINDINGS: u32 = 10_000;
 
@@ -269,6 +306,9 @@ fn occluded(
     };
     let (sys, s0) = GeodesicSystem::new(metric, &start);
     objects.probe_all(&start, 0.0, probes);
+    if aimed(objects, geo, (lit, last, end), probes) {
+        return Ok(true);
+    }
     // The start of the next segment where the one before was made (None: skipped).
     let mut y0 = Some(s0);
     // Outside [first, last] no object is searched: those segments need no activation each.

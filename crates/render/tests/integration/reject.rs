@@ -161,6 +161,97 @@ proptest! {
     }
 }
 
+/// The aim of a shadow ray's occlusion test (`Stretches::deepest`): for rays of panoramas
+/// from observers near balls at rest, every λ it gives lies within the ball's radius in
+/// static distance (its claim), and wherever the ray's path (sampled densely over the same
+/// λ) passes deeper than 0.8 radii within a copy of the arc, it gives a λ no more than 0.01
+/// radii above that copy's least distance (found within 10⁻⁵ radii while writing the test;
+/// 0.1 radii off with the height left out of the guess): where one probe tells whether the
+/// ray is inside.
+#[test]
+fn the_deepest_point_is_found_where_a_ray_passes_deep() {
+    let a = 1.0;
+    let (mut deep, mut found, mut given) = (0, 0, 0);
+    for (obs, centre, radius) in [
+        (ORIGIN, [1.0, 0.0, 0.0], 0.2),
+        (Event::new(0.0, 0.3, -0.2, 0.4), [0.2, 0.9, 0.1], 0.35),
+        (Event::new(0.0, -0.5, 0.1, -0.3), [-1.1, -0.4, -0.5], 0.1),
+    ] {
+        let frame = Metric::Godel(Godel::new(a)).static_frame(obs);
+        let b = StaticBall::new(a, obs, &ball(a, centre, radius)).unwrap();
+        for i in 0..240 {
+            for j in 0..120 {
+                let (az, el) = (
+                    (1.5 * i as f64).to_radians(),
+                    (1.5 * j as f64 - 89.25).to_radians(),
+                );
+                let n = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+                let k = photon_tangent(&frame, n, TimeDirection::Past);
+                let geo = ExactGeodesic::new(a, obs, k).unwrap();
+                let until = 3.0 * geo.origin.return_parameter();
+                let Some(near) = b.near(&RayCircle::new(&geo.origin), until) else {
+                    continue;
+                };
+                let dist = |l: f64| {
+                    let (x, _) = geo.at(l);
+                    static_distance(a, centre, [x.x, x.y, x.z])
+                };
+                let aims: Vec<f64> = near.deepest(until, radius, 8).collect();
+                for &l in &aims {
+                    given += 1;
+                    assert!(
+                        dist(l) < radius * (1.0 + 1e-9),
+                        "λ {l}: {} of radius {radius}",
+                        dist(l)
+                    );
+                }
+                // The least distance per copy of the arc, sampled every 1/4000 of a loop.
+                let l_ret = geo.origin.return_parameter();
+                let steps = 12_000;
+                let mut copies: Vec<(f64, f64)> = Vec::new(); // (λ, distance) at each copy's least
+                let mut in_copy = false;
+                for s in 0..=steps {
+                    let l = until * s as f64 / steps as f64;
+                    let on = near.meets(l, l);
+                    if on && !in_copy {
+                        copies.push((l, f64::INFINITY));
+                    }
+                    in_copy = on;
+                    if on {
+                        let d = dist(l);
+                        let last = copies.last_mut().unwrap();
+                        if d < last.1 {
+                            *last = (l, d);
+                        }
+                    }
+                }
+                for &(l_min, d_min) in &copies {
+                    if d_min >= 0.8 * radius {
+                        continue;
+                    }
+                    deep += 1;
+                    // The aim within this copy: the one nearest its least.
+                    let best = aims
+                        .iter()
+                        .filter(|&&l| (l - l_min).abs() < 0.25 * l_ret)
+                        .map(|&l| dist(l))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        best <= d_min + 0.01 * radius,
+                        "ray ({i}, {j}) from {obs:?}: least {d_min} at λ {l_min}, aimed {best}"
+                    );
+                    found += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        deep > 200 && found == deep,
+        "{found} of {deep} deep passes aimed"
+    );
+    assert!(given >= deep, "{given} aims for {deep} deep passes");
+}
+
 /// The stretches are not vacuous: for the rays of a panorama from the origin around a ball
 /// at (1, 0, 0) that `misses` keeps, the stretches leave out most of each ray's first
 /// three loops (each sampled at 64 points a loop).
