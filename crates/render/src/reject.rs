@@ -17,9 +17,9 @@
 //!   cosh(d_H/a) = cosh(d_hC/a)·cosh(ρ/a) − sinh(d_hC/a)·sinh(ρ/a)·cos δ,
 //!
 //! and Δz = p_z λ − z_C is linear in λ. The ray is rejected when, over the λ window where
-//! |Δz| ≤ reach, the least d_H exceeds reach = [`REACH_PER_RADIUS`]·R: the renderer's ball
-//! (second-order normal coordinates, `worldline.rs`) lies within that static distance of
-//! its centre (a property test measures the ratio).
+//! |Δz| ≤ reach, the least d_H exceeds the [`reach`] R·(1 + [`REACH_CURVATURE`]·(R/a)²):
+//! the renderer's ball (second-order normal coordinates, `worldline.rs`) lies within that
+//! static distance of its centre (a property test measures the ratio).
 //!
 //! A ball the test keeps is searched, by the exact tracer and the shadow rays, only on the
 //! stretches of the ray that may come within the reach ([`StaticBall::near`], docs/physics.md
@@ -38,13 +38,19 @@ use spacetime::isometry::disc;
 use spacetime::{Complex, Event, Godel, Isometry, Metric, OriginGeodesic};
 use std::f64::consts::{PI, TAU};
 
-/// Static distance D from the centre covered by a local ball at rest of radius R, per R.
-/// The renderer's ball |ξ| ≤ R (ξ in second-order normal coordinates, R ≤ a/2 by scene
-/// validation) lies within D ≤ 1.03·R of its centre (worst ratio found by the property
-/// test `a_static_ball_lies_within_its_reach`, which asserts D ≤ 1.05·|ξ|); the rest is
-/// margin for the numeric tracer's deviation from the closed form and for rounding, and
-/// keeps the rejected rays far from a graze, where the search could run out of work.
-pub const REACH_PER_RADIUS: f64 = 1.25;
+/// How much farther than |ξ| a point of the renderer's ball at rest lies in static distance
+/// D, per (|ξ|/a)²: the ball |ξ| ≤ R (ξ in second-order normal coordinates, R ≤ a/2 by scene
+/// validation) lies within D ≤ (1 + c·(R/a)²)·R of its centre, where c = 0.104 was the worst
+/// found (centres out to 40a; the property test `a_static_ball_lies_within_its_reach`
+/// asserts c = 0.15). The reach takes 0.25: a ray kept out by it stays outside the ball by
+/// at least 0.1·(R/a)²·R.
+pub const REACH_CURVATURE: f64 = 0.25;
+
+/// The reach of a ball at rest of radius `radius` in Gödel's universe with parameter `a`:
+/// the static distance from its centre beyond which no ray point is inside it.
+pub fn reach(radius: f64, a: f64) -> f64 {
+    radius * (1.0 + REACH_CURVATURE * (radius / a).powi(2)) + REACH_PER_A * a
+}
 
 /// Added to the reach, per a: covers the numeric tracer's deviation from the closed form
 /// (it rejects only at tolerances ≤ [`NUMERIC_TOLERANCE`]) for balls of any size.
@@ -142,8 +148,14 @@ impl StaticBall {
             a,
             w: disc(a, c.x, c.y),
             z: c.z,
-            reach: REACH_PER_RADIUS * radius + REACH_PER_A * a,
+            reach: reach(*radius, a),
         })
+    }
+
+    /// The same ball searched out to the static distance `reach` (the GPU kernel's, for
+    /// comparing their tests).
+    pub fn with_reach(self, reach: f64) -> StaticBall {
+        StaticBall { reach, ..self }
     }
 
     /// The stretches of the light ray of circle `ray` (through the origin), over

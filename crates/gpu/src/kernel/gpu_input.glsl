@@ -167,7 +167,8 @@ const int SHADOW_GRID = 256;
 const int FALL_CELLS = 16;
 const int CELLS_PER_PASS = 16;
 const int MAX_WINDINGS = 10000;
-// render::reject: reach of a ball at rest per radius and per a.
+// Reach of a ball at rest per radius and per a: wider than render::reject::reach (which
+// grows with (R/a)² above R), a margin for f32.
 const float REACH_PER_RADIUS = 1.25;
 const float REACH_PER_A = 1e-6;
 

@@ -1797,10 +1797,9 @@ fn rejections_are_safe_and_match_render_reject() {
             }
             // render::reject decides the same for rays searched from λ = 0 (its window).
             if c.from == 0.0 {
-                let radius =
-                    (c.reach - render::reject::REACH_PER_A * a) / render::reject::REACH_PER_RADIUS;
+                // A ball searched out to the kernel's reach (its radius is then immaterial).
                 let target = Target::LocalSphere {
-                    radius,
+                    radius: c.reach / 1.25,
                     worldline: Worldline::new(
                         Metric::Godel(Godel::new(a)),
                         &Motion::Rest {
@@ -1811,8 +1810,9 @@ fn rejections_are_safe_and_match_render_reject() {
                     )
                     .expect("a worldline at rest"),
                 };
-                let ball =
-                    StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target).expect("a ball");
+                let ball = StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target)
+                    .expect("a ball")
+                    .with_reach(c.reach);
                 ball_rust += 1;
                 ball_same += usize::from(ball.misses(&geo, until) == misses);
                 let plane = Rejection::Plane { z: c.plane }.misses(&geo, until);
