@@ -46,7 +46,7 @@ proptest! {
     #[test]
     fn a_falling_ball_lies_within_its_reach(
         a in 0.2f64..5.0,
-        s in prop::array::uniform3(-1.5f64..1.5),
+        s in prop::array::uniform3(-3.0f64..3.0),
         speed in 0.0f64..0.95, dir in prop::array::uniform3(-1.0f64..1.0),
         tau in -3.0f64..3.0,
         xi in prop::array::uniform3(-1.0f64..1.0), len in 0.0f64..0.55,
