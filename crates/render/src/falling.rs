@@ -38,8 +38,8 @@ use std::f64::consts::SQRT_2;
 /// A ball point lies within REACH_PER_GAMMA_RADIUS·γ·R (static distance) of its
 /// simultaneous centre, and within that times (v + √2) in coordinate time (checked by the
 /// property test `a_falling_ball_lies_within_its_reach`, which asserts a ratio of 1.05; the
-/// worst found were 1.017 in space and 0.89 in time, centres out to 3a). 1.25 until issue
-/// 33's twentieth session: the windows were wider than the ball needs.
+/// worst found were 1.017 in space and 0.89 in time, centres out to 3a). Every λ window
+/// grows with it, so it is no wider than that needs.
 pub const REACH_PER_GAMMA_RADIUS: f64 = 1.08;
 
 /// Added to the reach and to the time slack, per a: the numeric tracer's deviation from the
