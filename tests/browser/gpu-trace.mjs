@@ -13,7 +13,7 @@
 //   where WebGL2 cannot draw into float textures (EXT_color_buffer_float withheld).
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, idle, savePicture, traced } from './launch.mjs';
+import { launch, idle, savePicture, traced, waitFor } from './launch.mjs';
 
 const args = process.argv.slice(2);
 const shade = args.includes('--shade');
@@ -64,8 +64,9 @@ try {
     };
   });
   await bare.goto(`${first}?trace=gpu`);
-  await bare.waitForFunction(() => window.godelViewer && window.godelViewer.traced
-    && window.godelViewer.traced.error !== null, null, { timeout: 60000 });
+  await waitFor(bare, 'without float targets, the page did not say why it cannot trace',
+    () => window.godelViewer && window.godelViewer.traced
+      && window.godelViewer.traced.error !== null);
   await idle(bare);
   result.without_float_targets = await bare.evaluate(() => ({
     error: document.getElementById('trace-status').textContent,

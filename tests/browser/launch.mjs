@@ -53,7 +53,7 @@ export async function launch(dir, viewport = { width: 1400, height: 900 }) {
 export const idle = (page) => page.waitForFunction(() => {
   const v = window.godelViewer;
   return v && (v.error !== null || (v.frames > 0 && v.idle()));
-});
+}, null, { timeout: 120000 });
 
 // Opens the viewer and waits for its first picture; throws the page's error (e.g. no WebGL2)
 // if it shows one instead.
@@ -64,17 +64,40 @@ export async function open(page, url) {
   if (error !== null) throw new Error(`the viewer shows an error: ${error}`);
 }
 
+// How long a script waits for the page's trace on the GPU: SwiftShader compiles the kernel in
+// 20–80 s on the 2-core machine, twice that when the machine runs at half pace, and the page's
+// main thread waits for the compiled program. A bound against a hung page, not a timing.
+export const TRACE_TIMEOUT_MS = 600000;
+
+// Waits until `predicate` holds in the page, polled every 100 ms (whether or not the page
+// draws frames meanwhile), at most `timeout` ms; when it does not hold by then, throws with
+// `what` and the page's state: where it stopped.
+export async function waitFor(page, what, predicate, arg = null, timeout = TRACE_TIMEOUT_MS) {
+  try {
+    await page.waitForFunction(predicate, arg, { timeout, polling: 100 });
+  } catch (e) {
+    const state = await Promise.race([
+      page.evaluate(() => ({ url: window.location.href, ready: document.readyState,
+        viewer: window.godelViewer !== undefined, frames: window.godelViewer?.frames,
+        error: window.godelViewer?.error, traced: window.godelViewer?.traced !== undefined,
+        status: document.getElementById('trace-status')?.textContent })),
+      new Promise((resolve) => { setTimeout(() => resolve('the page does not answer'), 10000); }),
+    ]).catch((err) => `the page cannot be read: ${err}`);
+    throw new Error(`${what}: ${e.message}; the page: ${JSON.stringify(state)}`);
+  }
+}
+
 // Waits until the page has traced (or failed to trace) on the GPU (traced.js); throws its
 // error.
 export async function traced(page) {
-  await page.waitForFunction(() => window.godelViewer.error !== null
-    || window.godelViewer.traced !== undefined, null, { timeout: 60000 });
+  await waitFor(page, 'the page did not start its trace on the GPU', () => window.godelViewer
+    && (window.godelViewer.error !== null || window.godelViewer.traced !== undefined));
   const shown = await page.evaluate(() => window.godelViewer.error);
   if (shown !== null) throw new Error(`the viewer shows an error: ${shown}`);
-  await page.waitForFunction(() => {
+  await waitFor(page, 'the page did not finish its trace on the GPU', () => {
     const t = window.godelViewer.traced;
     return t && !t.tracing && (t.traced !== null || t.error !== null);
-  }, null, { timeout: 0 });
+  });
   await idle(page);
   const error = await page.evaluate(() => window.godelViewer.traced.error);
   if (error !== null) throw new Error(`the page could not trace on the GPU: ${error}`);
