@@ -65,8 +65,8 @@ export async function open(page, url) {
 }
 
 // How long a script waits for the page's trace on the GPU: SwiftShader compiles the kernel in
-// 20–80 s on the 2-core machine, twice that when the machine runs at half pace, and the page's
-// main thread waits for the compiled program. A bound against a hung page, not a timing.
+// 20–80 s on the 2-core machine, and the machine sometimes runs at half pace. A bound against
+// a hung page, not a timing.
 export const TRACE_TIMEOUT_MS = 600000;
 
 // Waits until `predicate` holds in the page, polled every 100 ms (whether or not the page
