@@ -187,24 +187,42 @@ impl Arc {
         }
     }
 
+    /// Whether the stretches lie apart, each shorter than half a loop (false when unsure:
+    /// NaN); else a stretch is taken to cover every λ.
+    fn apart(&self) -> bool {
+        self.half < 0.5 * self.period
+    }
+
+    /// The number n of the first copy (centred at centre + n·period) whose stretch ends at
+    /// or after lo.
+    fn first_copy(&self, lo: f64) -> f64 {
+        ((lo - self.half - self.centre) * self.per_turn).ceil()
+    }
+
+    /// The number n of the last copy whose stretch starts at or before hi.
+    fn last_copy(&self, hi: f64) -> f64 {
+        ((hi + self.half - self.centre) * self.per_turn).floor()
+    }
+
+    /// The centre of copy n.
+    fn copy_centre(&self, n: f64) -> f64 {
+        self.centre + n * self.period
+    }
+
     /// Whether [lo, hi] meets a stretch (true when unsure: NaN).
     pub fn meets(&self, lo: f64, hi: f64) -> bool {
-        if !(self.half < 0.5 * self.period) {
+        if !self.apart() {
             return true;
         }
-        // The first copy whose stretch ends at or after lo.
-        let n = ((lo - self.half - self.centre) * self.per_turn).ceil();
-        !(self.centre + n * self.period - self.half > hi)
+        !(self.copy_centre(self.first_copy(lo)) - self.half > hi)
     }
 
     /// The smallest λ in [lo, hi] on a stretch.
     pub fn first_in(&self, lo: f64, hi: f64) -> Option<f64> {
-        if !(self.half < 0.5 * self.period) {
+        if !self.apart() {
             return Some(lo);
         }
-        // The first copy whose stretch ends at or after lo.
-        let n = ((lo - self.half - self.centre) * self.per_turn).ceil();
-        let l = lo.max(self.centre + n * self.period - self.half);
+        let l = lo.max(self.copy_centre(self.first_copy(lo)) - self.half);
         if l.is_nan() {
             Some(lo)
         } else {
@@ -214,12 +232,10 @@ impl Arc {
 
     /// The largest λ in [lo, hi] on a stretch.
     pub fn last_in(&self, lo: f64, hi: f64) -> Option<f64> {
-        if !(self.half < 0.5 * self.period) {
+        if !self.apart() {
             return Some(hi);
         }
-        // The last copy whose stretch starts at or before hi.
-        let n = ((hi + self.half - self.centre) * self.per_turn).floor();
-        let l = hi.min(self.centre + n * self.period + self.half);
+        let l = hi.min(self.copy_centre(self.last_copy(hi)) + self.half);
         if l.is_nan() {
             Some(hi)
         } else {
@@ -255,20 +271,19 @@ impl Stretches {
     pub fn deepest(&self, until: f64, radius: f64, most: usize) -> impl Iterator<Item = f64> {
         let arc = self.arc;
         let (lo, hi) = (self.lo.max(0.0), self.hi.min(until));
-        let usable = arc.half < 0.5 * arc.period && lo <= hi && arc.spread > 0.0;
+        let usable = arc.apart() && lo <= hi && arc.spread > 0.0;
         let omega = TAU * arc.per_turn;
         let k = self.a * self.a * arc.spread * omega * omega;
         let (a, pz, z) = (self.a, self.pz, self.z);
         let pz2 = pz * pz;
-        let first = ((lo - arc.half - arc.centre) * arc.per_turn).ceil();
+        let first = arc.first_copy(lo);
         let copies = if usable {
-            let last = ((hi + arc.half - arc.centre) * arc.per_turn).floor();
-            ((last - first + 1.0).max(0.0) as usize).min(most)
+            ((arc.last_copy(hi) - first + 1.0).max(0.0) as usize).min(most)
         } else {
             0
         };
         (0..copies).filter_map(move |n| {
-            let centre = arc.centre + (first + n as f64) * arc.period;
+            let centre = arc.copy_centre(first + n as f64);
             // With p_z = 0 the height does not move the least distance off the arc's centre.
             let l = if pz2 > 0.0 {
                 (k * centre + pz2 * (z / pz)) / (k + pz2)
