@@ -286,6 +286,7 @@ impl Intersector {
                 rate: 0.0,
                 tau: f64::NAN,
                 xi: [f64::NAN; 3],
+                energy: f64::NAN,
             },
             at: 0.0,
         };

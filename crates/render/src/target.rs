@@ -77,6 +77,10 @@ pub struct Probe {
     pub tau: f64,
     /// The ray point's rest-frame coordinates (local objects, near them; NaN otherwise).
     pub xi: [f64; 3],
+    /// |p·u|, the ray's momentum against the four-velocity of the matched centre: the
+    /// photon's energy in the object's frame to first order in the distance (local objects,
+    /// near them; NaN otherwise). A falling ball's chord exclusion takes it ([`crate::chord`]).
+    pub energy: f64,
 }
 
 impl Probe {
@@ -85,6 +89,7 @@ impl Probe {
         rate: 0.0,
         tau: f64::NAN,
         xi: [f64::NAN; 3],
+        energy: f64::NAN,
     };
 }
 
@@ -216,6 +221,7 @@ impl Target {
                     rate: RATE_MARGIN * norm3([v.x, v.y, v.z]),
                     tau: f64::NAN,
                     xi: [f64::NAN; 3],
+                    energy: f64::NAN,
                 }
             }
             Target::Plane { height, .. } => {
@@ -225,6 +231,7 @@ impl Target {
                     rate: RATE_MARGIN * v.z.abs(),
                     tau: f64::NAN,
                     xi: [f64::NAN; 3],
+                    energy: f64::NAN,
                 }
             }
         }
@@ -264,7 +271,8 @@ impl Target {
         // |ξ| at the ends: the probes' own distances, f + R.
         let ends = pa.f.max(pb.f) + radius;
         let at_rest = matches!(worldline, Worldline::Rest { .. });
-        chord::stray(a, at_rest, s, energy, ends, h)
+        let e = chord::photon_energy(at_rest, s, energy, pa.energy.max(pb.energy));
+        chord::stray(a, at_rest, s, e, ends, h)
             .is_some_and(|e| chord::excludes(*radius, (pa.xi, pa.f), (pb.xi, pb.f), e))
     }
 
@@ -392,8 +400,14 @@ fn local_probe(
     s: &GeodesicState,
 ) -> Probe {
     let s_factor = worldline.speed_factor();
-    let (d, tau, xi, margin) = match *lp {
-        Located::Near(lp) => (norm3(lp.xi), lp.at.tau, lp.xi, GLOBAL_RATE_MARGIN),
+    let (d, tau, xi, energy, margin) = match *lp {
+        Located::Near(lp) => (
+            norm3(lp.xi),
+            lp.at.tau,
+            lp.xi,
+            lp.at.frame.e[0].contract(s.p).abs(),
+            GLOBAL_RATE_MARGIN,
+        ),
         Located::Far(d1) => {
             // Far estimates are shrunk to stay below the true distance: at the switch the
             // first-order distance exceeds the second-order one by ~5 %, further out by
@@ -417,7 +431,13 @@ fn local_probe(
             } else {
                 GLOBAL_RATE_MARGIN
             };
-            ((d1 / slack).max(floor), f64::NAN, [f64::NAN; 3], margin)
+            (
+                (d1 / slack).max(floor),
+                f64::NAN,
+                [f64::NAN; 3],
+                f64::NAN,
+                margin,
+            )
         }
     };
     // The ray's speed in the rest frame is its energy there, −p·u, which is at most
@@ -429,6 +449,7 @@ fn local_probe(
         rate: margin * eps_max,
         tau,
         xi,
+        energy,
     }
 }
 

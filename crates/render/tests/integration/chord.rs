@@ -16,9 +16,11 @@ use spacetime::{ExactGeodesic, Spacetime};
 /// points within 0.45a of a centre, in random directions. Wherever both ends of a span lie
 /// near the ball and `chord::stray` gives a bound, every sampled point of the path between
 /// them lies within half that bound of the chord (at the same fraction of the span): the
-/// bound's margin of two. Fails with the bend at rest cut from 3.25 to 3, the falling ball's
-/// constant term from 0.75 to 0 (slow balls: 0.77 of the bound), or the boost term from s⁴
-/// to s³. Prints (`--nocapture`) the table of docs/physics.md, "Chord exclusion": the bend
+/// bound's margin of two. The bound takes the photon energy the renderer takes
+/// (`chord::photon_energy`: a falling ball's from its ends' |p·u|, computed here as a probe
+/// does). Fails with the bend at rest cut from 3.25 to 3, the falling ball's constant term
+/// from 0.75 to 0 (slow balls: 0.77 of the bound), the boost term from s⁴ to s³, or
+/// `chord::LOCAL_ENERGY_MARGIN` from 2 to 1. Prints (`--nocapture`) the table of docs/physics.md, "Chord exclusion": the bend
 /// K = 8·(largest distance from the chord over 4f(1 − f))/h² that spans need, in units of
 /// (E·s)²/a, by speed (bins of 0.05 c) and by ρ, the larger end's distance from the centre
 /// plus 0.05a (bins of 0.05a), with the largest share of the bound by speed.
@@ -51,9 +53,9 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
         let h = 0.004 * a / (energy * s);
         let far = 0.25 * a + radius;
         let mut seed = f64::NAN;
-        let xi: Vec<Option<([f64; 3], bool)>> = (-300..=300)
+        let xi: Vec<Option<([f64; 3], bool, f64)>> = (-300..=300)
             .map(|i| {
-                let x = ray.at(i as f64 * h).0;
+                let (x, k) = ray.at(i as f64 * h);
                 let guess = if seed.is_finite() {
                     seed
                 } else {
@@ -67,7 +69,8 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                     .localize(&m, x, guess, f64::INFINITY)
                     .and_then(|l| l.near());
                 seed = lp.map_or(f64::NAN, |l| l.at.tau);
-                lp.map(|l| (l.xi, near))
+                // The probe's energy there: |p·u| (`Probe::energy`).
+                lp.map(|l| (l.xi, near, l.at.frame.e[0].contract(m.lower(x, k)).abs()))
             })
             .collect();
         let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -80,7 +83,7 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
         for len in [2, 4, 8, 16, 32, 64, 128, 256] {
             let span = len as f64 * h;
             for i in (0..xi.len().saturating_sub(len)).step_by(3) {
-                let (Some((xa, true)), Some((xb, true))) = (xi[i], xi[i + len]) else {
+                let (Some((xa, true, ea)), Some((xb, true, eb))) = (xi[i], xi[i + len]) else {
                     continue;
                 };
                 let ends = norm(xa).max(norm(xb));
@@ -88,7 +91,7 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                 // the chord at the same fraction (None where no match).
                 let at = |j: usize| {
                     let f = j as f64 / len as f64;
-                    let (x, _) = xi[i + j]?;
+                    let (x, _, _) = xi[i + j]?;
                     Some((
                         f,
                         norm([0, 1, 2].map(|c| x[c] - (xa[c] + f * (xb[c] - xa[c])))),
@@ -105,7 +108,8 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                 {
                     need[bin][rho] = need[bin][rho].max(k / unit);
                 }
-                let Some(stray) = chord::stray(a, speed == 0.0, s, energy, ends, span) else {
+                let e = chord::photon_energy(speed == 0.0, s, energy, ea.max(eb));
+                let Some(stray) = chord::stray(a, speed == 0.0, s, e, ends, span) else {
                     continue;
                 };
                 for j in 1..len {
