@@ -78,8 +78,8 @@ pub struct Probe {
     /// The ray point's rest-frame coordinates (local objects, near them; NaN otherwise).
     pub xi: [f64; 3],
     /// |p·u|, the ray's momentum against the four-velocity of the matched centre: the
-    /// photon's energy in the object's frame to first order in the distance (local objects,
-    /// near them; NaN otherwise). A falling ball's chord exclusion takes it ([`crate::chord`]).
+    /// photon's energy in the ball's frame to first order in the distance (balls in free
+    /// fall, near them; NaN otherwise). Their chord exclusion takes it ([`crate::chord`]).
     pub energy: f64,
 }
 
@@ -405,7 +405,10 @@ fn local_probe(
             norm3(lp.xi),
             lp.at.tau,
             lp.xi,
-            lp.at.frame.e[0].contract(s.p).abs(),
+            match worldline {
+                Worldline::Free(_) => lp.at.frame.e[0].contract(s.p).abs(),
+                Worldline::Rest { .. } => f64::NAN, // E itself, which the chord takes
+            },
             GLOBAL_RATE_MARGIN,
         ),
         Located::Far(d1) => {
