@@ -58,11 +58,16 @@ pub const LOCAL_ENERGY_MARGIN: f64 = 2.0;
 
 /// The photon's energy in the ball's frame that the bend takes, for a photon of static energy
 /// `energy` and a ball of speed factor `speed_factor`: E·s; for a falling ball at most
-/// [`LOCAL_ENERGY_MARGIN`] times `ends`, the larger of the span's ends' |p·u| (NaN where
-/// unknown: then E·s).
-pub fn photon_energy(at_rest: bool, speed_factor: f64, energy: f64, ends: f64) -> f64 {
+/// [`LOCAL_ENERGY_MARGIN`] times the larger of the span's ends' |p·u| (`ends`; where either
+/// is unknown, NaN: E·s).
+pub fn photon_energy(at_rest: bool, speed_factor: f64, energy: f64, ends: (f64, f64)) -> f64 {
     let global = energy * speed_factor;
-    let local = LOCAL_ENERGY_MARGIN * ends;
+    // Both ends, or neither: f64::max would drop a NaN.
+    let local = if ends.0.is_finite() && ends.1.is_finite() {
+        LOCAL_ENERGY_MARGIN * ends.0.max(ends.1)
+    } else {
+        f64::NAN
+    };
     if !at_rest && local < global {
         local
     } else {
@@ -160,12 +165,13 @@ mod tests {
     }
 
     /// A falling ball takes its ends' energy where that is the smaller bound; a ball at rest,
-    /// and ends without one (NaN), take E·s.
+    /// and a span with an end without one (NaN), take E·s.
     #[test]
     fn a_falling_ball_takes_the_smaller_energy() {
-        assert_eq!(photon_energy(false, 2.0, 1.0, 0.25), 0.5);
-        assert_eq!(photon_energy(false, 2.0, 1.0, 1.5), 2.0);
-        assert_eq!(photon_energy(false, 2.0, 1.0, f64::NAN), 2.0);
-        assert_eq!(photon_energy(true, 1.0, 1.0, 0.25), 1.0);
+        assert_eq!(photon_energy(false, 2.0, 1.0, (0.25, 0.1)), 0.5);
+        assert_eq!(photon_energy(false, 2.0, 1.0, (0.1, 1.5)), 2.0);
+        assert_eq!(photon_energy(false, 2.0, 1.0, (0.1, f64::NAN)), 2.0);
+        assert_eq!(photon_energy(false, 2.0, 1.0, (f64::NAN, 0.1)), 2.0);
+        assert_eq!(photon_energy(true, 1.0, 1.0, (0.25, 0.25)), 1.0);
     }
 }

@@ -271,7 +271,7 @@ impl Target {
         // |ξ| at the ends: the probes' own distances, f + R.
         let ends = pa.f.max(pb.f) + radius;
         let at_rest = matches!(worldline, Worldline::Rest { .. });
-        let e = chord::photon_energy(at_rest, s, energy, pa.energy.max(pb.energy));
+        let e = chord::photon_energy(at_rest, s, energy, (pa.energy, pb.energy));
         chord::stray(a, at_rest, s, e, ends, h)
             .is_some_and(|e| chord::excludes(*radius, (pa.xi, pa.f), (pb.xi, pb.f), e))
     }

@@ -108,7 +108,7 @@ fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
                 {
                     need[bin][rho] = need[bin][rho].max(k / unit);
                 }
-                let e = chord::photon_energy(speed == 0.0, s, energy, ea.max(eb));
+                let e = chord::photon_energy(speed == 0.0, s, energy, (ea, eb));
                 let Some(stray) = chord::stray(a, speed == 0.0, s, e, ends, span) else {
                     continue;
                 };
