@@ -20,10 +20,11 @@ use spacetime::{ExactGeodesic, Spacetime};
 /// (`chord::photon_energy`: a falling ball's from its ends' |p·u|, computed here as a probe
 /// does). Fails with the bend at rest cut from 3.25 to 3, the falling ball's constant term
 /// from 0.75 to 0 (slow balls: 0.77 of the bound), the boost term from s⁴ to s³, or
-/// `chord::LOCAL_ENERGY_MARGIN` from 2 to 1. Prints (`--nocapture`) the table of docs/physics.md, "Chord exclusion": the bend
-/// K = 8·(largest distance from the chord over 4f(1 − f))/h² that spans need, in units of
-/// (E·s)²/a, by speed (bins of 0.05 c) and by ρ, the larger end's distance from the centre
-/// plus 0.05a (bins of 0.05a), with the largest share of the bound by speed.
+/// `chord::LOCAL_ENERGY_MARGIN` from 2 to 1. Prints (`--nocapture`) the table of
+/// docs/physics.md, "Chord exclusion": the bend K = 8·(largest distance from the chord over
+/// 4f(1 − f))/h² that spans need, in units of (E·s)²/a, by speed (bins of 0.05 c) and by ρ,
+/// the larger end's distance from the centre plus 0.05a (bins of 0.05a), with the largest
+/// share of the bound by speed.
 #[test]
 fn a_rays_rest_frame_path_stays_within_its_chord_bound() {
     // Bins: at rest, then falling at [0.05k, 0.05(k + 1)) c; ρ from 0.05a to 0.55a.
