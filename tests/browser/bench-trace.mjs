@@ -3,24 +3,16 @@
 // (the first run also compiles the kernel) and prints one JSON object with each run's time.
 //
 // usage: node bench-trace.mjs URL OUT_DIR [RUNS]
-import { argsOr, launch, idle } from './launch.mjs';
+import { argsOr, launch, idle, traced } from './launch.mjs';
 
 const [url, outDir, runsText] = argsOr('node bench-trace.mjs URL OUT_DIR [RUNS]', 2);
 const runs = Number(runsText || 2);
 const { context, page } = await launch(outDir);
 
-// Waits for the trace under way to end; throws the page's error.
-async function traced() {
-  await page.waitForFunction(() => {
-    const v = window.godelViewer;
-    if (v.error !== null) return true;
-    const t = v.traced;
-    return t && !t.tracing && (t.traced !== null || t.error !== null);
-  }, null, { timeout: 0, polling: 200 });
-  await idle(page);
-  const error = await page.evaluate(() => window.godelViewer.traced?.error
-    ?? window.godelViewer.error);
-  if (error !== null) throw new Error(error);
+// Waits for the trace under way to end (launch.mjs: throws the page's error); its size and
+// times.
+async function run() {
+  await traced(page);
   return page.evaluate(() => {
     const t = window.godelViewer.traced.traced;
     return { width: t.width, height: t.height, compile_ms: t.compileMs, trace_ms: t.traceMs };
@@ -30,14 +22,12 @@ async function traced() {
 const result = { runs: [] };
 try {
   await page.goto(`${url}?trace=gpu`);
-  await page.waitForFunction(() => window.godelViewer && window.godelViewer.traced !== undefined,
-    null, { timeout: 60000 });
-  result.runs.push(await traced());
+  result.runs.push(await run());
   for (let k = 1; k < runs; k += 1) {
     await page.uncheck('#trace-gpu');
     await idle(page);
     await page.check('#trace-gpu');
-    result.runs.push(await traced());
+    result.runs.push(await run());
   }
   const last = result.runs[result.runs.length - 1];
   result.samples = last.width * last.height;
