@@ -7,7 +7,7 @@
 use crate::common::{self, norm, tracer, unit};
 use proptest::prelude::*;
 use render::circle::RayCircle;
-use render::falling::{FallingBall, LoopWindow, REACH_PER_GAMMA_RADIUS};
+use render::falling::{FallingBall, LoopWindow, REACH_PER_RADIUS};
 use render::reject::static_distance;
 use render::target::Target;
 use render::tracer::Tracer;
@@ -18,8 +18,8 @@ use spacetime::{
     TimeDirection,
 };
 
-/// Bound asserted below on (static distance)/(γ|ξ|) and on the time offset over
-/// γ|ξ|(v + √2), below [`REACH_PER_GAMMA_RADIUS`].
+/// Bound asserted below on (static distance)/|ξ| and on the time offset over √2·|ξ|, below
+/// [`REACH_PER_RADIUS`].
 const RATIO: f64 = 1.05;
 
 /// A ball of `radius` falling freely from `start` with `speed` along `dir`, its worldline
@@ -40,9 +40,11 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 2000, max_global_rejects: 100_000, ..ProptestConfig::default() })]
 
     /// The renderer's falling ball is |ξ| ≤ R at the simultaneous centre P (second-order
-    /// normal coordinates). For every point with |ξ| ≤ a/2 (the largest radius allowed) the
-    /// static distance from P is at most RATIO·γ|ξ| and the coordinate-time offset at most
-    /// RATIO·γ|ξ|(v + √2), within the reach and slack the rejection uses.
+    /// normal coordinates). For every point X with |ξ| ≤ a/2 (the largest radius allowed),
+    /// the centre's point Q that the static observer at X counts as simultaneous (X − Q
+    /// orthogonal to ∂t, found by bisection on the worldline) lies within static distance
+    /// RATIO·|ξ| of X and within coordinate time RATIO·√2·|ξ| of it, within the reach and slack
+    /// the rejection uses.
     #[test]
     fn a_falling_ball_lies_within_its_reach(
         a in 0.2f64..5.0,
@@ -68,21 +70,30 @@ proptest! {
         );
         let lp = worldline.localize(&metric, x, tau * a, f64::INFINITY).and_then(Located::near).unwrap();
         let r = norm(lp.xi);
-        prop_assume!(r <= 0.5 * a);
-        let (_, _, gamma) = worldline.free_fall_range().unwrap();
-        let v = (1.0 - 1.0 / (gamma * gamma)).sqrt();
-        let q = lp.at.event;
+        prop_assume!(r <= 0.5 * a && r > 1e-6 * a);
+        // g(Q − X, ∂t) = −Δt + g_ti Δx^i at X (g_tt = −1): it grows along the worldline at
+        // about γ ≥ 1 a unit of proper time, and changes sign within γ|ξ|(v + 2√2) of P.
+        let g = metric.metric(x);
+        let q_at = |t: f64| worldline.at(&metric, t).unwrap().event;
+        let tilt = |t: f64| {
+            let q = q_at(t);
+            (q.t - x.t) - g[0][1] * (q.x - x.x) - g[0][2] * (q.y - x.y)
+        };
+        let (mut lo, mut hi) = (lp.at.tau - 6.0 * r, lp.at.tau + 6.0 * r);
+        prop_assert!(tilt(lo) < 0.0 && tilt(hi) > 0.0, "no static-simultaneous point bracketed");
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if tilt(mid) < 0.0 { lo = mid } else { hi = mid }
+        }
+        let q = q_at(0.5 * (lo + hi));
         let dist = static_distance(a, [q.x, q.y, q.z], [x.x, x.y, x.z]);
-        prop_assert!(
-            dist <= RATIO * gamma * r + 1e-12 * a,
-            "static distance {dist} against γ|ξ| = {}", gamma * r
-        );
+        prop_assert!(dist <= RATIO * r + 1e-12 * a, "static distance {dist} against |ξ| = {r}");
         let dt = (x.t - q.t).abs();
         prop_assert!(
-            dt <= RATIO * gamma * r * (v + std::f64::consts::SQRT_2) + 1e-12 * a,
-            "time offset {dt} against γ|ξ| = {}, v = {v}", gamma * r
+            dt <= RATIO * std::f64::consts::SQRT_2 * r + 1e-12 * a,
+            "time offset {dt} against √2·|ξ| = {}", std::f64::consts::SQRT_2 * r
         );
-        prop_assert!(RATIO < REACH_PER_GAMMA_RADIUS);
+        prop_assert!(RATIO < REACH_PER_RADIUS);
     }
 
     /// Rays from random events near a falling ball's path, past-directed from the test's
