@@ -2,7 +2,8 @@
 // Loop by loop, balls in free fall (render::falling, render::circle; docs/physics.md "Balls
 // in free fall"). In the pixel ray's origin frame the ray's loop j runs along a circle of the
 // disc at times between (j + 1)Δt and jΔt; a ball point lies within static distance reach of
-// its simultaneous centre, and within the time slack S of it. The centre's worldline is cut
+// the centre's point that the static observer there counts as simultaneous, and within the
+// time slack S of it. The centre's worldline is cut
 // into cells of proper time (here per loop, at most FALL_CELLS, over the proper times whose
 // time may fall in the loop's window; the CPU cuts the whole worldline once per render):
 // each cell lies within m of its middle point. The last λ of the loop within M = reach + m of
@@ -64,8 +65,8 @@ float fallingLast(int i, int j, Ray ray) {
     float sv = sqrt(max(gam * gam - 1.0, 0.0));
     float r = objs[i].radius;
     // Reach and time slack (render::falling), widened for single precision.
-    float reach = 1.25 * gam * r + 1e-4 * a;
-    float slack = 1.25 * gam * r * (sv / gam + SQRT2) + 1e-4 * a;
+    float reach = 1.25 * r + 1e-4 * a;
+    float slack = 1.25 * SQRT2 * r + 1e-4 * a;
     float up = gam + SQRT2 * sv;
     Iso toO = inverseIso(ray.back);
     vec4 start = applyIso(toO, objs[i].start);
