@@ -3,12 +3,12 @@
 // in free fall"). In the pixel ray's origin frame the ray's loop j runs along a circle of the
 // disc at times between (j + 1)Δt and jΔt; a ball point lies within static distance reach of
 // the centre's point that the static observer there counts as simultaneous, and within the
-// time slack S of it. The centre's worldline is cut
-// into cells of proper time (here per loop, at most FALL_CELLS, over the proper times whose
-// time may fall in the loop's window; the CPU cuts the whole worldline once per render):
-// each cell lies within m of its middle point. The last λ of the loop within M = reach + m of
-// a cell whose time lies in the window (its z window and the arc of the ray's circle near the
-// cell, by the hyperbolic law of cosines) is the last λ where the loop must search the ball.
+// time slack S of it. The centre's worldline is cut into cells of proper time (here per
+// loop, at most FALL_CELLS, over the proper times whose time may fall in the loop's window;
+// the CPU cuts the whole worldline once per render): each cell lies within m of its middle
+// point. The last λ of the loop within M = reach + m of a cell whose time lies in the window
+// (its z window and the arc of the ray's circle near the cell, by the hyperbolic law of
+// cosines) is the last λ where the loop must search the ball.
 
 // The largest λ in [lo, hi] at which the closed-form ray g (from the origin) may lie within
 // hyperbolic distance m of the disc point w (cosh(m/a) given); NO_TAU when none; hi when

@@ -71,8 +71,9 @@ proptest! {
         let lp = worldline.localize(&metric, x, tau * a, f64::INFINITY).and_then(Located::near).unwrap();
         let r = norm(lp.xi);
         prop_assume!(r <= 0.5 * a && r > 1e-6 * a);
-        // g(Q − X, ∂t) = −Δt + g_ti Δx^i at X (g_tt = −1): it grows along the worldline at
-        // about γ ≥ 1 a unit of proper time, and changes sign within γ|ξ|(v + 2√2) of P.
+        // g(Q − X, ∂t) = −Δt + g_ti Δx^i at X (g_tt = −1): at P at most about
+        // γ|ξ|(v + 2√2) in size, growing along the worldline at about γ a unit of proper
+        // time, so it changes sign within about 4|ξ| of P's proper time (bracketed by 6|ξ|).
         let g = metric.metric(x);
         let q_at = |t: f64| worldline.at(&metric, t).unwrap().event;
         let tilt = |t: f64| {
