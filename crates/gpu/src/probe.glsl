@@ -80,12 +80,12 @@ void main() {
     slots[4] = vec4(inv.rot, 0.0, 0.0, 0.0);
     slots[5] = ie; slots[6] = ik;
 #elif PROBE == PROBE_CLOSED_FORM
-    // The closed form from the origin with tangent a0 at λ = a1.x: (ok, λ_ret, β(λ), 0), the
-    // event and the tangent.
+    // The closed form from the origin with tangent a0 at λ = a1.x: (ok, λ_ret, β(λ), the time's
+    // deviation), the event and the tangent.
     OGeo g = originGeodesic(a0);
     vec4 ev = vec4(0.0), tan_ = vec4(0.0);
     ogeoAt(g, a1.x, ev, tan_);
-    slots[0] = vec4(flag(g.ok), returnParameter(g), flowRotation(g, a1.x), 0.0);
+    slots[0] = vec4(flag(g.ok), returnParameter(g), flowRotation(g, a1.x), timeDeviation(g));
     slots[1] = ev; slots[2] = tan_;
 #elif PROBE == PROBE_TRANSPORT
     // The vector a2 at the origin transported along the closed form with tangent a0 to λ = a1.x.

@@ -44,7 +44,7 @@ pub enum Function {
     Camera,
     /// toOrigin, applyPush, inverseIso.
     Isometry,
-    /// originGeodesic, ogeoAt, returnParameter, flowRotation.
+    /// originGeodesic, ogeoAt, returnParameter, flowRotation, timeDeviation.
     ClosedForm,
     /// transportFromOrigin.
     Transport,

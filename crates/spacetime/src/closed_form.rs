@@ -143,6 +143,16 @@ impl OriginGeodesic {
         self.energy.signum() * 2.0 * SQRT_2 * self.a * big - self.energy * lambda
     }
 
+    /// How far the time strays from its mean rate: |t(λ) − Δt·λ/λ_ret| ≤ 2√2·a·δ, tan δ =
+    /// (q − 1)/(2√q) (docs/physics.md, "Closed forms"). t(λ) − (sgn(E)·2√2·a·ω − E)·λ is
+    /// sgn(E)·2√2·a·(Φ(θ) − θ), whose λ_ret-periodic part (Φ(π) = π) has tan(Φ − θ) =
+    /// (q − 1)·tan θ/(1 + q·tan² θ), largest at tan² θ = 1/q. The GPU kernel bounds the λ
+    /// where a ray's time lies in a band with it.
+    pub fn time_deviation(&self) -> f64 {
+        let q = self.q.max(1.0);
+        2.0 * SQRT_2 * self.a * ((q - 1.0) / (2.0 * q.sqrt())).atan()
+    }
+
     /// Event and tangent at parameter `lambda`.
     pub fn at(&self, lambda: f64) -> (Event, FourVector) {
         let (a, e, w) = (self.a, self.energy, self.omega);

@@ -153,24 +153,36 @@ const float FAR_RATE_MAX_SPEED_FACTOR = 3.5;
 const float FAR_DISTANCE = 0.25;
 const float FAR_RADII = 1.0;
 const float FAR_SLACK = 1.3;
-// render::chord: the chord exclusion's domain and bend at rest (units of a, of E²/a); its
-// noise allowance here covers f32's rest-frame coordinates (~1e-6 a; the CPU's is 1e-8 a).
+// render::chord: the chord exclusion's domain (speed factor, units of a), its bend at rest and
+// in free fall (units of e²/a) and a falling ball's energy margin; its noise allowance here
+// covers f32's rest-frame coordinates (~1e-6 a; the CPU's is 1e-8 a).
+const float CHORD_MAX_SPEED_FACTOR = 3.0;
 const float CHORD_MAX_END = 0.4;
 const float CHORD_MAX_STRAY = 0.05;
 const float CHORD_BEND_AT_REST = 3.25;
+const float CHORD_BEND_FALLING = 0.75;
+const float CHORD_ENERGY_MARGIN = 2.0;
 const float CHORD_NOISE = 1e-4;
 // render::lighting: the occlusion test stops this fraction of the ray short of the lit point.
 const float END_CUT = 1e-6;
 // spacetime::connect: grid cells per winding and branch bracketing the shadow-ray roots.
 const int SHADOW_GRID = 256;
-// Cells of a falling ball's worldline per loop of a pixel ray (fallingLast).
-const int FALL_CELLS = 16;
+// A falling ball's window per loop of a pixel ray (fallingWindow; render::falling): its reach
+// per radius (REACH_PER_RADIUS there, f32's rounding far below its margin), the proper time a
+// cell spans per radius, and at most FALL_CELLS cells a loop (longer cells beyond).
+const float FALL_REACH_PER_RADIUS = 1.08;
+const float FALL_CELL_PER_RADIUS = 0.5;
+const int FALL_CELLS = 64;
 const int CELLS_PER_PASS = 16;
 const int MAX_WINDINGS = 10000;
-// Reach of a ball at rest per radius and per a: wider than render::reject::reach (which
-// grows with (R/a)² above R), a margin for f32.
-const float REACH_PER_RADIUS = 1.25;
+// Copies of a ball's arc aimed at per shadow ray (render::lighting::MAX_AIMS).
+const int MAX_AIMS = 4;
+// Reach of a ball at rest (render::reject::reach): R·(1 + REST_REACH_CURVATURE·(R/a)²) +
+// REACH_PER_A·a, widened for f32 (reachOf). A Gödel-type member's escape test takes
+// REACH_PER_RADIUS radii.
+const float REST_REACH_CURVATURE = 0.25;
 const float REACH_PER_A = 1e-6;
+const float REACH_PER_RADIUS = 1.25;
 
 // GPU only: passes of one round of a sample (main): the first round's u_budget, halved
 // after a round that llvmpipe's loop limit cut short, doubled after one that reached no

@@ -19,7 +19,7 @@
 // bisection takes the probes of one that ran on.
 
 const int M_LOOP = 0;      // at the start of loop mach.loop_
-const int M_START = 1;     // the loop's start probes, object by object
+const int M_AIM = 1;       // aimed occlusion before a shadow ray's search (startAim)
 const int M_SEGMENT = 2;   // at the start of segment mach.seg
 const int M_SCAN = 3;      // the next object of the segment
 const int M_BISECT = 4;    // the span [bis.a, bis.b] of object mach.obj, both end probes known
@@ -28,12 +28,14 @@ const int M_DONE = 6;
 
 // What a requested probe is for.
 const int Q_NONE = 0;
-const int Q_START = 1;     // the loop's start probe of object mach.obj
+const int Q_AIM = 1;       // where a shadow ray most likely passes deepest into ball mach.obj
 const int Q_END = 2;       // the segment's end probe of object mach.obj
 const int Q_SPAN = 3;      // the end probe of the span [bis.a, bis.b]
 const int Q_REFINE = 4;    // a refinement step at req.lambda
 const int Q_ROOT = 5;      // the crossing's own probe (its τ; the plane's extent)
 const int Q_RESUME = 6;    // a resumed bisection's probe at its span's start (Resume)
+const int Q_FRESH = 7;     // object mach.obj's probe where its part of the segment starts,
+                           // where it has none there (objectPart; M_SCAN)
 
 // Probes of a bisection between two of its checkpoints.
 const int SPAN_CHECK = 256;
@@ -58,11 +60,16 @@ struct Plan {
 };
 Plan plan = Plan(NO_RAY, 0, 0, 0, false, 0.0, 0.0, 0.0, false, -1, 0, vec3(0.0), vec3(0.0), ESCAPED);
 
-// The machine's place: its mode, loop, segment [lo, hi] and object, the segment's earliest
-// crossing so far, and the search's result.
-// `check`: the pending request is a checkpoint's (nextSpan).
-struct Machine { int mode; int loop_; int seg; int obj; float lo; float hi; Found best; Found result; bool check; };
-Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, NO_FOUND, NO_FOUND, false);
+// The machine's place: its mode, loop, segment [lo, hi] and object, the part [plo, phi] of the
+// segment that searches the object (objectPart), the segment's earliest crossing so far, and
+// the search's result.
+// `check`: the pending request is a checkpoint's (nextSpan). `fresh`: the object's start probe
+// was just taken at plo (Q_FRESH).
+struct Machine {
+    int mode; int loop_; int seg; int obj; float lo; float hi; float plo; float phi;
+    Found best; Found result; bool check; bool fresh;
+};
+Machine mach = Machine(0, 0, 0, 0, 0.0, 0.0, 0.0, 0.0, NO_FOUND, NO_FOUND, false, false);
 // The probes at the start and the end of the segment, per object, and the λ where each was
 // taken. Two arrays, written only at constant indices (setEndProbe; the end probes become
 // the next segment's start probes by a copy): drivers that store at a runtime index into
@@ -97,14 +104,25 @@ Resume res = Resume(false, NO_SPAN, NO_FOUND, 0);
 // Refinement of a crossing: the bracket [lo, hi], f there, the Illinois side, the steps.
 struct Refinement { float lo; float hi; float flo; float fhi; int side; int iter; };
 Refinement ill = Refinement(0.0, 0.0, 0.0, 0.0, 0, 0);
+// Aimed occlusion (startAim): the ball at rest `obj`, its next copy, and its arc.
+struct Aim { int obj; int copy; AimBall ball; };
+Aim aim = Aim(-1, 0, NO_AIM_BALL);
 // The probe requested by a step (for what, of which object, where), and its answer.
 struct Request { int tag; int obj; int loop_; float lambda; float seed; Probe answer; vec4 x; };
 Request req = Request(Q_NONE, 0, 0, 0.0, 0.0, NO_PROBE, vec4(0.0));
 
-// Whether the current loop searches object i on a segment starting at λ0 (from the loop's
-// start): a ball in free fall of a pixel ray up to its last λ within reach (fbLast).
-bool loopSearches(int i, float lambda0) {
-    return !(isFree(i) && plan.pixel) || lambda0 <= fbLast[i];
+// Whether ball i in free fall is searched only within its windows (fbWindow): on a Gödel pixel
+// ray's loops, and on a shadow ray's stretches.
+bool windowed(int i) {
+    return isFree(i) && (plan.pixel ? !plan.cont : godel());
+}
+
+// The part of the segment [l0, l1] (from the loop's start) where the current loop searches
+// object i: a ball in free fall only between its first and last λ within reach (fbWindow);
+// none where x > y.
+vec2 objectPart(int i, float l0, float l1) {
+    if (!windowed(i)) return vec2(l0, l1);
+    return vec2(max(l0, fbWindow[i].x), min(l1, fbWindow[i].y));
 }
 
 // Object i's probe at the segment's start, or at its end, taken at λ = at: stored at the
@@ -242,6 +260,14 @@ void memberSearch(Ray r, int total, float pt, float tBound) {
 }
 #endif
 
+// A shadow ray's search (Gödel's closed forms) starts with aimed occlusion (render_reject's
+// aimBall): a ball at rest found inside where aimed at blocks the ray without the search.
+void startAim() {
+    if (!godel() || plan.pixel) return;
+    mach.mode = M_AIM;
+    aim = Aim(-1, 0, NO_AIM_BALL);
+}
+
 // The span after the finished span [bis.a, bis.b] of the current bisection: climb while it is a
 // right half, then take the right sibling, whose start probe is bis.b's and whose end probe is
 // the kept one (its parent's end), else probed again.
@@ -286,8 +312,14 @@ void machineStep() {
     int tag = req.tag;
     req.tag = Q_NONE;
     mach.check = false;
-    if (tag == Q_START) {
-        setStartProbe(mach.obj, req.answer, loopOffset());
+    if (tag == Q_AIM && req.answer.f <= 0.0) {
+        mach.result = Found(HIT, mach.obj, 0, req.lambda, NO_TAU);   // inside: blocked
+        mach.mode = M_DONE;
+        return;
+    } else if (tag == Q_FRESH) {
+        setStartProbe(mach.obj, req.answer, req.lambda + loopOffset());
+        mach.fresh = true;
+        mach.obj--;   // the scan takes up the same object again (M_SCAN)
     } else if (tag == Q_END) {
         setEndProbe(mach.obj, req.answer, req.lambda + loopOffset());
         if (beforeResume(mach.seg, mach.obj)) {
@@ -296,9 +328,9 @@ void machineStep() {
             if (res.on) mach.best = res.best;
             bis.pb = req.answer;
             bis.seedB = req.seed;
-            float limit = mach.best.status == HIT ? mach.best.lambda : mach.hi;
-            bis.start = mach.lo;
-            bis.len = min(limit, mach.hi) - mach.lo;
+            float limit = mach.best.status == HIT ? mach.best.lambda : mach.phi;
+            bis.start = mach.plo;
+            bis.len = min(limit, mach.phi) - mach.plo;
             bis.a = bis.start;
             bis.b = bis.start + bis.len;
             bis.depth = 0;
@@ -361,6 +393,33 @@ void machineStep() {
         }
     }
 
+    if (mach.mode == M_AIM) {
+        // Each searched ball at rest, each copy of its arc; one probe a pass.
+        float h = plan.span / float(plan.segs);
+        for (int it = 0; it < N_OBJECTS * (MAX_AIMS + 1) + 1; it++) {
+            if (aim.copy < aim.ball.copies) {
+                float l = aimAt(aim.ball, plan.ray.geo, oCz[aim.obj], objs[aim.obj].radius, aim.copy);
+                aim.copy++;
+                if (l >= 0.0) {
+                    mach.obj = aim.obj;
+                    request(Q_AIM, l, NO_TAU);
+                    return;
+                }
+                continue;
+            }
+            aim.obj++;
+            if (aim.obj >= N_OBJECTS) break;
+            aim.copy = 0;
+            aim.ball = NO_AIM_BALL;
+            if (searched[aim.obj] && isRest(aim.obj)) {
+                // The lit object only up to its last segment, as its search.
+                int segs = aim.obj == plan.skipObj ? min(plan.skipSeg, plan.total) : plan.total;
+                aim.ball = aimBall(aim.obj, plan.ray.geo, oCw[aim.obj], oCz[aim.obj], float(segs) * h);
+            }
+        }
+        mach.mode = M_LOOP;   // the search, from the next pass (a checkpoint)
+        return;
+    }
     if (mach.mode == M_LOOP) {
         // Skip a loop whose box meets no searched object's box, one loop a pass (each loop's
         // start is a checkpoint of the sample's rounds: main); stop at the time bound.
@@ -375,11 +434,14 @@ void machineStep() {
         for (int i = 0; i < N_OBJECTS; i++) {
             vec3 olo = vec3(0.0), ohi = vec3(0.0);
             if (!searched[i]) continue;
-            if (isFree(i) && plan.pixel) {
-                // Balls in free fall: searched up to the loop's last λ within their reach.
-                float last = fallingLast(i, mach.loop_, plan.ray);
-                storeFallingLast(i, last);
-                near = near || last > NO_TAU;
+            if (windowed(i)) {
+                // Balls in free fall: searched between the loop's (or the stretch's) first and
+                // last λ within their reach.
+                vec3 window = plan.cont
+                    ? stretchWindow(i, plan.ray, loopOffset(), loopOffset() + plan.span)
+                    : fallingWindow(i, mach.loop_, plan.ray);
+                storeFallingWindow(i, window);
+                near = near || window.y > NO_TAU;
             } else {
                 near = near || !objectBox(i, olo, ohi) || (all(lessThanEqual(olo, hi)) && all(lessThanEqual(lo, ohi)));
             }
@@ -388,13 +450,12 @@ void machineStep() {
             mach.loop_++;
             return;
         }
-        mach.obj = -1;
-        mach.mode = M_START;
-    }
-    if (mach.mode == M_START) {
-        mach.obj++;
-        while (mach.obj < N_OBJECTS && !(searched[mach.obj] && loopSearches(mach.obj, 0.0))) mach.obj++;
-        if (mach.obj < N_OBJECTS) { request(Q_START, 0.0, NO_TAU); return; }
+        // No probe of an earlier loop is taken on: each loop's start is a checkpoint of the
+        // rounds, which keep no probes (M_SCAN probes each object afresh where it needs one).
+        for (int i = 0; i < N_OBJECTS; i++) {
+            startProbe[i] = NO_PROBE;
+            startAt[i] = NO_TAU;
+        }
         mach.seg = 0;
         mach.mode = M_SEGMENT;
     }
@@ -474,40 +535,55 @@ void machineStep() {
             if (!searched[mach.obj]) continue;
             Probe p = startProbe[mach.obj];
             float at = startAt[mach.obj];
-            if (!loopSearches(mach.obj, mach.lo)) {
-                // Past the ball's last λ within reach in this loop (a later loop probes afresh).
+            bool fresh = mach.fresh;
+            mach.fresh = false;
+            vec2 part = objectPart(mach.obj, mach.lo, mach.hi);
+            if (!(part.x <= part.y)) {
+                // Outside the ball's window in this loop: its last probe kept, to be taken
+                // afresh where the window starts.
                 setEndProbe(mach.obj, p, at);
                 continue;
             }
+            mach.plo = part.x;
+            mach.phi = part.y;
             if (mach.obj == plan.skipObj && mach.loop_ * plan.segs + mach.seg >= plan.skipSeg) {
                 setEndProbe(mach.obj, p, at);
                 continue;
             }
             // GPU only: a segment that provably stays clear of a ball at rest or a plane is
-            // not searched ("Whole-ray rejection", applied per segment); its end probe is a
-            // lower bound of the distance there (the ball's |ξ| ≥ D/1.05 > reach/1.05; the
-            // plane's height, linear in λ), from which the next segment goes on.
+            // not searched ("Whole-ray rejection", applied per segment). A plane's end probe is
+            // its height there (linear in λ); a ball's none (a later segment probes afresh).
             if (objectMisses(mach.obj, plan.ray.geo, mach.lo + off, mach.hi + off)) {
-                float fEnd = isRest(mach.obj)
-                    ? REACH_PER_RADIUS * objs[mach.obj].radius / 1.05 - objs[mach.obj].radius
-                    : plan.ray.geo.pz * (mach.hi + off) - oCz[mach.obj];
-                setEndProbe(mach.obj, Probe(fEnd, p.rate, NO_TAU, vec3(0.0), false), mach.hi + off);
+                if (isRest(mach.obj)) {
+                    setEndProbe(mach.obj, NO_PROBE, NO_TAU);
+                } else {
+                    float fEnd = plan.ray.geo.pz * (mach.hi + off) - oCz[mach.obj];
+                    setEndProbe(mach.obj, Probe(fEnd, p.rate, NO_TAU, vec3(0.0), false, 0.0), mach.hi + off);
+                }
                 continue;
             }
+            bool known = at > NO_TAU;   // a probe of this loop
             float clear = abs(p.f);
-            if (isRest(mach.obj) && finite(clear) && p.rate > 0.0 && mach.hi + off < at + min(clear / p.rate, MAX_SKIP)) {
+            if (isRest(mach.obj) && known && finite(clear) && p.rate > 0.0 && mach.hi + off < at + min(clear / p.rate, MAX_SKIP)) {
                 setEndProbe(mach.obj, p, at);   // provably no crossing of this object within the segment
                 continue;
             }
-            // A probe taken before lo still bounds |f| at lo from below (same side); its
-            // rest-frame coordinates are its own place's.
-            bool here = at == mach.lo + off;
-            bis.pa = Probe(p.f - sign(p.f) * p.rate * (mach.lo + off - at), p.rate, p.tau, p.xi, p.near && here);
+            // A probe where the part starts: the last one if it was taken there; a ball at
+            // rest's taken before still bounds |f| there from below (same side; its rest-frame
+            // coordinates are its own place's); else one taken afresh, once (a ball in free
+            // fall whose window starts later: the bound a probe gives further on could have
+            // crossed zero; a plane's root needs its value there).
+            bool here = fresh || at == part.x + off;
+            if (!here && !(known && isRest(mach.obj))) {
+                request(Q_FRESH, part.x, windowed(mach.obj) ? fbWindow[mach.obj].z : NO_TAU);
+                return;
+            }
+            bis.pa = here ? p : Probe(p.f - sign(p.f) * p.rate * (part.x + off - at), p.rate, p.tau, p.xi, false, p.energy);
             // Searched only up to another object's earlier crossing in the segment (which ends
             // the search): the end probe there, where the span ends (its value at hi bounds
             // nothing over the shorter span). A resumed round's way back, whose segment has no
             // crossing yet, probes at hi; the bisection it resumes probes its spans afresh.
-            float end = mach.best.status == HIT ? min(mach.best.lambda, mach.hi) : mach.hi;
+            float end = mach.best.status == HIT ? min(mach.best.lambda, part.y) : part.y;
             request(Q_END, end, bis.pa.tau);
             return;
         }

@@ -397,7 +397,9 @@ int shadowRaySetUp() {
     r.back = shadow.back;
     r.back.t0 -= em.x;
     r.lret = returnParameter(r.geo);
-    r.shift = vec2(0.0);
+    // (Δt, Δz) a return, as makeRay's: the falling balls' windows take it (its search, from
+    // the ray's start, takes no loop copies).
+    r.shift = vec2(sign(r.geo.e) * 2.0 * SQRT2 * a * PI - r.geo.e * r.lret, r.geo.pz * r.lret);
     vec4 xe = vec4(0.0), kEnd = vec4(0.0);
     rayAt(r, 0, lambda, xe, kEnd);
     vec2 inc = incidence(kEnd);
@@ -419,6 +421,7 @@ int shadowRaySetUp() {
     startLongSearch(r, segs, end, -1.0, false, -INF);   // p_t = −1: E = 1, ∂t carried to ∂t
     plan.skipObj = hp.target;
     plan.skipSeg = segs - 1;
+    startAim();
     return 2;
 }
 

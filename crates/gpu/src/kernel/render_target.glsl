@@ -2,19 +2,20 @@
 // Probes: signed distance f (≤ 0 inside), rate bound |df/dλ| ≤ rate, matched proper time
 // (render::target::Target::probe, docs/physics.md "The intersection search").
 
-// `xi`: a ball at rest's rest-frame coordinates of the ray point, where `near` (for the chord
-// exclusion; the CPU's Probe::xi, which a falling ball's probe here does not compute).
-struct Probe { float f; float rate; float tau; vec3 xi; bool near; };
-const Probe NO_PROBE = Probe(0.0, 0.0, 0.0, vec3(0.0), false);
+// `xi`: a local ball's rest-frame coordinates of the ray point, where `near`, and for a ball in
+// free fall the photon's energy in its frame to first order, |k·u| (for the chord exclusion;
+// the CPU's Probe::xi and energy).
+struct Probe { float f; float rate; float tau; vec3 xi; bool near; float energy; };
+const Probe NO_PROBE = Probe(0.0, 0.0, 0.0, vec3(0.0), false, 0.0);
 // Nothing known of the object here (the CPU's infinite distance).
-const Probe FAR = Probe(INF, 0.0, NO_TAU, vec3(0.0), false);
+const Probe FAR = Probe(INF, 0.0, NO_TAU, vec3(0.0), false, 0.0);
 
 Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     probes_left--;
     if (isCoordSphere(i)) {
-        return Probe(length(x.yzw - objs[i].pos.yzw) - objs[i].radius, RATE_MARGIN * length(k.yzw), NO_TAU, vec3(0.0), false);
+        return Probe(length(x.yzw - objs[i].pos.yzw) - objs[i].radius, RATE_MARGIN * length(k.yzw), NO_TAU, vec3(0.0), false, 0.0);
     }
-    if (isPlane(i)) return Probe(x.w - objs[i].pos.w, RATE_MARGIN * abs(k.w), NO_TAU, vec3(0.0), false);
+    if (isPlane(i)) return Probe(x.w - objs[i].pos.w, RATE_MARGIN * abs(k.w), NO_TAU, vec3(0.0), false, 0.0);
     float scale = minkowski() ? 1.0 : u_a;
     float far = FAR_DISTANCE * scale + FAR_RADII * objs[i].radius;
     float floor_ = objs[i].radius + 0.5 * FAR_DISTANCE * scale;
@@ -28,14 +29,19 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     if (!lp.ok) return FAR;
     float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
     Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, lp.exact ? rate : farRate, lp.exact ? lp.at.tau : NO_TAU,
-                    lp.xi, lp.exact && isRest(i));
+                    lp.xi, lp.exact && isRest(i), 0.0);
+    if (lp.exact && isFree(i) && godel()) {
+        p.xi = restComponents(i, lp, bodyFrame(i, lp.at));
+        p.near = true;
+        p.energy = abs(dotg(metricAt(x), k, lp.at.u));
+    }
     // A stale seed may call a point inside a falling ball far: then the point of equal
     // coordinate time is tried too and the nearer kept.
     if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
         Local lq = localize(i, x, tauGuess(i, x.x), far);
         if (lq.ok) {
             float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
-            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, lq.exact ? rate : farRate, lq.exact ? lq.at.tau : NO_TAU, vec3(0.0), false);
+            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, lq.exact ? rate : farRate, lq.exact ? lq.at.tau : NO_TAU, vec3(0.0), false, 0.0);
         }
     }
     return p;
@@ -45,16 +51,21 @@ bool crossed(float fa, float fb) { return (fa > 0.0) != (fb > 0.0); }
 bool excluded(float fa, float fb, float rate, float h) {
     return !crossed(fa, fb) && (abs(fa) + abs(fb) > rate * h || rate == 0.0);
 }
-// The chord exclusion (render::chord, docs/physics.md "The intersection search"): a ball at
-// rest in Gödel's universe, both ends near it and on one side; the path strays from the
-// chord of its rest-frame coordinates by at most K·h²/8, K = (3.25 + ρ/a)·E²/a.
+// The chord exclusion (render::chord, docs/physics.md "The intersection search"): a local ball
+// in Gödel's universe, both ends near it and on one side; the path strays from the chord of
+// its rest-frame coordinates by at most K·h²/8, K = (3.25·[at rest] + 0.75·[falling] +
+// s⁴·ρ/a)·e²/a, e = E·s, a falling ball's at most twice its ends' larger k·u.
 bool chordExcludes(int i, Probe pa, Probe pb, float h) {
     if (!(godel() && pa.near && pb.near)) return false;
     float na = length(pa.xi), nb = length(pb.xi);
     float ends = max(na, nb);
-    if (!(ends <= CHORD_MAX_END * u_a)) return false;
-    float e = max(pa.rate, pb.rate) / GLOBAL_RATE_MARGIN;   // the speed factor is 1 at rest
-    float bend = (CHORD_BEND_AT_REST + (ends + CHORD_MAX_STRAY * u_a) / u_a) * e * e / u_a;
+    float s = objs[i].speed;
+    if (!(ends <= CHORD_MAX_END * u_a && s <= CHORD_MAX_SPEED_FACTOR)) return false;
+    bool rest = isRest(i);
+    float e = max(pa.rate, pb.rate) / GLOBAL_RATE_MARGIN;   // E·s, from the near probes' rate
+    if (!rest) e = min(e, CHORD_ENERGY_MARGIN * max(pa.energy, pb.energy));
+    float turn = rest ? CHORD_BEND_AT_REST : CHORD_BEND_FALLING;
+    float bend = (turn + s * s * s * s * (ends + CHORD_MAX_STRAY * u_a) / u_a) * e * e / u_a;
     float stray = bend * h * h / 8.0 + CHORD_NOISE * u_a;
     if (!(stray <= CHORD_MAX_STRAY * u_a)) return false;
     float r = objs[i].radius;

@@ -462,7 +462,10 @@ void main() {
                 if (use == 1) shadow.sum += shadow.weight;
                 if (use == 2) {
                     searching = true;
-                    if (resume >= 0) mach.loop_ = resume;   // the restored step's search, where it was
+                    if (resume >= 0) {   // the restored step's search, where it was (aimed before)
+                        mach.loop_ = resume;
+                        mach.mode = M_LOOP;
+                    }
                     resume = -1;
                 }
             }

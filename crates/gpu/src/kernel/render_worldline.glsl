@@ -88,13 +88,14 @@ bool isPlane(int i) { return HAS_PLANE != 0 && objs[i].kind == KIND_PLANE; }
 
 // Per object, for the ray being searched: whether it is searched at all (setSearched), a
 // ball's centre (disc coordinate, z) and a plane's height in the ray's origin frame, and a
-// falling ball's last λ within reach in the current loop, from the loop's start (fallingLast).
+// falling ball's first and last λ within reach in the current loop, from the loop's start, and
+// a seed of its proper time at the first (fallingWindow).
 bool searched[N_OBJECTS];
 vec2 oCw[N_OBJECTS];
 float oCz[N_OBJECTS];
 // A ball at rest's ballNear for the ray (render_reject).
 vec2 oNear[N_OBJECTS];
-float fbLast[N_OBJECTS];
+vec3 fbWindow[N_OBJECTS];
 
 // The stores into the per-object arrays, each at the constant indices of a loop whose body
 // is the store alone, which compilers unroll: never at the runtime index i (drivers have
@@ -114,9 +115,9 @@ void storeSearched(int i, bool s, vec2 cw, float cz, vec2 near) {
         }
     }
 }
-void storeFallingLast(int i, float last) {
+void storeFallingWindow(int i, vec3 window) {
     for (int j = 0; j < N_OBJECTS; j++) {
-        if (j == i) fbLast[j] = last;
+        if (j == i) fbWindow[j] = window;
     }
 }
 
@@ -187,7 +188,7 @@ void loadObjects() {
         oCw[i] = vec2(0.0);
         oCz[i] = 0.0;
         oNear[i] = vec2(0.0);
-        fbLast[i] = NO_TAU;
+        fbWindow[i] = vec3(NO_TAU);
     }
     for (int i = 0; i < N_OBJECTS; i++) storeObject(i, loadObject(i));
 }

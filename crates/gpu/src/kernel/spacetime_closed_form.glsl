@@ -26,6 +26,13 @@ OGeo originGeodesic(vec4 k) {
 
 float returnParameter(OGeo g) { return PI / g.omega; }
 
+// How far the time t(λ) strays from its mean rate, |t(λ) − Δt·λ/λ_ret| ≤ 2√2·a·δ with
+// tan δ = (q − 1)/(2√q): the largest of |Φ(θ) − θ| (spacetime::OriginGeodesic::time_deviation).
+float timeDeviation(OGeo g) {
+    float q = max(g.q, 1.0);
+    return 2.0 * SQRT2 * u_a * atan((q - 1.0) / (2.0 * sqrt(q)));
+}
+
 void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
     ev = vec4(0.0); tan_ = vec4(0.0);
     float a = u_a, e = g.e, w = g.omega, q = g.q;

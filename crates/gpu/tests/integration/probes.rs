@@ -1443,6 +1443,7 @@ fn closed_forms_match_spacetime_closed_form() {
     let mut at = Compare::new("ogeoAt");
     let mut ret = Compare::new("returnParameter");
     let mut flow = Compare::new("flowRotation");
+    let mut dev = Compare::new("timeDeviation");
     for ((a, k, l, _), r) in cases.iter().zip(&out) {
         let lambda = l[0];
         let geo = OriginGeodesic::new(*a, vector(*k));
@@ -1455,6 +1456,8 @@ fn closed_forms_match_spacetime_closed_form() {
         let theta = (lambda / lr * PI).abs();
         let beta = geo.flow_rotation(lambda);
         flow.value(r[0][2], beta, 4.0 * ULP * (1.0 + theta + beta.abs()), w);
+        // 2√2·a·atan((q − 1)/(2√q)), q within a few ULP: terms of size a.
+        dev.value(r[0][3], geo.time_deviation(), 8.0 * ULP * a, w);
         let (e, t) = geo.at(lambda);
         let (e, t) = (e.to_array(), t.to_array());
         // t = sgn(E) 2√2 a Φ − Eλ: terms of size a·θ and |E λ|; x, y: r_max (≤ 2a for
@@ -1474,6 +1477,7 @@ fn closed_forms_match_spacetime_closed_form() {
     at.assert();
     ret.assert();
     flow.assert();
+    dev.assert();
 }
 
 #[test]
