@@ -578,7 +578,8 @@ void machineStep() {
                 request(Q_FRESH, part.x, windowed(mach.obj) ? fbWindow[mach.obj].z : NO_TAU);
                 return;
             }
-            bis.pa = here ? p : Probe(p.f - sign(p.f) * p.rate * (part.x + off - at), p.rate, p.tau, p.xi, false, p.energy);
+            bis.pa = p;   // (no ?: of structures in WebGL)
+            if (!here) bis.pa = Probe(p.f - sign(p.f) * p.rate * (part.x + off - at), p.rate, p.tau, p.xi, false, p.energy);
             // Searched only up to another object's earlier crossing in the segment (which ends
             // the search): the end probe there, where the span ends (its value at hi bounds
             // nothing over the shorter span). A resumed round's way back, whose segment has no
