@@ -30,7 +30,7 @@ float returnParameter(OGeo g) { return PI / g.omega; }
 // tan δ = (q − 1)/(2√q): the largest of |Φ(θ) − θ| (spacetime::OriginGeodesic::time_deviation).
 float timeDeviation(OGeo g) {
     float q = max(g.q, 1.0);
-    return 2.0 * SQRT2 * u_a * atan((q - 1.0) / (2.0 * sqrt(q)));
+    return 2.0 * SQRT2 * u_a * atanA((q - 1.0) / (2.0 * sqrt(q)));
 }
 
 void ogeoAt(OGeo g, float lambda, out vec4 ev, out vec4 tan_) {
