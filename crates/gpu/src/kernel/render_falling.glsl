@@ -142,6 +142,8 @@ vec3 stretchWindow(int i, Ray ray, float l0, float l1) {
     vec3 w = vec3(INF, NO_TAU, NO_TAU);
     if (!godel()) return vec3(0.0, INF, NO_TAU);
     int k0 = toInt(floor(l0 / ray.lret), 0, 1 << 20);
+    // Beyond three loops (a stretch longer than two returns): searched whole.
+    if (float(k0 + 3) * ray.lret <= l1) return vec3(0.0, l1 - l0, NO_TAU);
     for (int k = 0; k < 3; k++) {
         float start = float(k0 + k) * ray.lret;
         if (start > l1) break;
@@ -153,7 +155,5 @@ vec3 stretchWindow(int i, Ray ray, float l0, float l1) {
         w.x = min(w.x, first);
         w.y = max(w.y, last);
     }
-    // Beyond three loops (a stretch longer than two returns): searched whole.
-    if (float(k0 + 3) * ray.lret <= l1) return vec3(0.0, l1 - l0, NO_TAU);
     return w.y > NO_TAU ? vec3(w.x - l0, w.y - l0, w.z) : vec3(NO_TAU);
 }

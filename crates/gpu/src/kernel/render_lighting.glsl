@@ -397,9 +397,9 @@ int shadowRaySetUp() {
     r.back = shadow.back;
     r.back.t0 -= em.x;
     r.lret = returnParameter(r.geo);
-    // (Δt, Δz) a return, as makeRay's: the falling balls' windows take it (its search, from
-    // the ray's start, takes no loop copies).
-    r.shift = vec2(sign(r.geo.e) * 2.0 * SQRT2 * a * PI - r.geo.e * r.lret, r.geo.pz * r.lret);
+    // The falling balls' windows take the shift a return (its search, from the ray's start,
+    // takes no loop copies).
+    r.shift = returnShift(r.geo);
     vec4 xe = vec4(0.0), kEnd = vec4(0.0);
     rayAt(r, 0, lambda, xe, kEnd);
     vec2 inc = incidence(kEnd);

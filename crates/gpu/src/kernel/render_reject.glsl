@@ -2,6 +2,9 @@
 // Whole-ray rejection of balls at rest and planes (render::reject, docs/physics.md
 // "Whole-ray rejection"): it only drops searches that could not find a crossing.
 
+// The hyperbolic distance of the disc point w from the disc's centre (|w| kept below 1).
+float discDistance(vec2 w) { return 2.0 * u_a * atanh_(min(length(w), 0.9999999)); }
+
 // The ray's circle about a ball at rest whose centre has the disc coordinate wc in the origin
 // frame of the closed-form ray g: the angle offset α₀ − arg(m_C) of δ(λ) (below), the distance
 // d_hC from the circle's centre to the ball's and the circle's radius ρ.
@@ -12,8 +15,7 @@ vec3 ballCircle(OGeo g, vec2 wc) {
     float big = asinh_(g.rmax / (2.0 * a));
     vec2 h = dir * halfTanh(g.rmax / (2.0 * a));
     vec2 mc = cdiv(wc - h, vec2(1.0, 0.0) - cmul(conj2(h), wc));
-    float dhc = 2.0 * a * atanh_(min(length(mc), 0.9999999));
-    return vec3(carg(-h) - carg(mc), dhc, a * big);
+    return vec3(carg(-h) - carg(mc), discDistance(mc), a * big);
 }
 
 // The part of a static ball's test that depends on the ray alone, made once per ray: x, the
@@ -139,7 +141,7 @@ AimBall aimBall(int i, OGeo g, vec2 wc, float zc, float until) {
     AimBall b = NO_AIM_BALL;
     float a = u_a, reach = reachOf(i, wc);
     // The ray starts outside: its start, the origin, lies beyond the reach.
-    float d0 = length(vec2(2.0 * a * atanh_(min(length(wc), 0.9999999)), zc));
+    float d0 = length(vec2(discDistance(wc), zc));
     if (!(d0 > reach)) return b;
     vec3 circle = ballCircle(g, wc);
     float x = circle.y / a, y = circle.z / a;

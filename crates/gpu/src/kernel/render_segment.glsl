@@ -105,8 +105,7 @@ Ray makeRay(vec4 at, vec4 k, Iso to) {
         r.geo = originGeodesic(pushIso(to, at, k));
         r.back = inverseIso(to);
         r.lret = returnParameter(r.geo);
-        float sg = sign(r.geo.e);
-        r.shift = vec2(sg * 2.0 * SQRT2 * u_a * PI - r.geo.e * r.lret, r.geo.pz * r.lret);
+        r.shift = returnShift(r.geo);
     }
     return r;
 }

@@ -30,7 +30,9 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
     Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, lp.exact ? rate : farRate, lp.exact ? lp.at.tau : NO_TAU,
                     lp.xi, lp.exact && isRest(i), 0.0);
-    if (lp.exact && isFree(i) && godel()) {
+    // The chord's inputs, where its test can apply (chordExcludes: s ≤ 3, ends within 0.4a):
+    // the body frame is the dearest part of a probe.
+    if (lp.exact && isFree(i) && godel() && objs[i].speed <= CHORD_MAX_SPEED_FACTOR && lp.len <= CHORD_MAX_END * u_a) {
         p.xi = restComponents(i, lp, bodyFrame(i, lp.at));
         p.near = true;
         p.energy = abs(dotg(metricAt(x), k, lp.at.u));

@@ -26,6 +26,12 @@ OGeo originGeodesic(vec4 k) {
 
 float returnParameter(OGeo g) { return PI / g.omega; }
 
+// (Δt, Δz) over one return: Φ(π) = π, so t(λ_ret) = sgn(E)·2√2·a·π − E·λ_ret.
+vec2 returnShift(OGeo g) {
+    float lret = returnParameter(g);
+    return vec2(sign(g.e) * 2.0 * SQRT2 * u_a * PI - g.e * lret, g.pz * lret);
+}
+
 // How far the time t(λ) strays from its mean rate, |t(λ) − Δt·λ/λ_ret| ≤ 2√2·a·δ with
 // tan δ = (q − 1)/(2√q): the largest of |Φ(θ) − θ| (spacetime::OriginGeodesic::time_deviation).
 float timeDeviation(OGeo g) {
