@@ -6,7 +6,7 @@
 //! draws into framebuffer objects.
 
 use khronos_egl as egl;
-use std::sync::{Mutex, MutexGuard};
+use std::sync::Mutex;
 
 /// The EGL library's file names tried in turn, unless the environment variable [`LIBRARY_VAR`]
 /// names one (a path, for an EGL installed out of the loader's way; empty is unset).
@@ -35,10 +35,13 @@ pub enum ContextError {
 
 type Egl = egl::DynamicInstance<egl::EGL1_4>;
 
-/// One context at a time in a process: EGL gives every caller the same display, and
-/// eglTerminate on it (when a context is dropped) takes the driver from under any other
-/// thread's context; Mesa crashed so when tests traced on several threads at once.
-static ONE_CONTEXT: Mutex<()> = Mutex::new(());
+/// The contexts alive in this process, counted under the lock that making or dropping one
+/// holds. EGL gives every caller the same display, and eglTerminate on it takes the driver
+/// from under any other thread's context (Mesa crashed so when tests traced on several
+/// threads at once): the display is terminated only when its last context goes. Contexts on
+/// several threads (each current on its own) run at once: llvmpipe compiles a kernel on one
+/// core for seconds, and a second thread's compiles or draws need not wait for it.
+static LIVE: Mutex<usize> = Mutex::new(0);
 
 /// A current offscreen OpenGL ES 3 context and its GL functions.
 pub struct Context {
@@ -50,20 +53,58 @@ pub struct Context {
     egl: Egl,
     display: egl::Display,
     context: egl::Context,
-    /// Held while the context lives; dropped after `Drop::drop` has terminated the display.
-    _turn: MutexGuard<'static, ()>,
 }
 
 impl Context {
     /// Loads libEGL, opens a display and makes an OpenGL ES 3.0 context current on this
-    /// thread. Waits while another context of this process lives ([`ONE_CONTEXT`]): a
-    /// thread that holds one must drop it before asking for another.
+    /// thread ([`LIVE`]: other threads may hold contexts of their own meanwhile). A thread
+    /// holds one context at a time: making a second one current leaves the first without a
+    /// thread.
     pub fn new() -> Result<Context, ContextError> {
-        use glow::HasContext;
-        // A panic elsewhere while holding it leaves no EGL state behind worth refusing.
-        let turn = ONE_CONTEXT.lock().unwrap_or_else(|e| e.into_inner());
+        // Poisoned (a panic while another thread held it), the count is still right: it
+        // changes only after the EGL calls it counts.
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
         let egl = load()?;
         let display = open_display(&egl)?;
+        let made = Context::make(&egl, display);
+        if made.is_err() && *live == 0 {
+            let _ = egl.terminate(display);
+        }
+        let (gl, context) = made?;
+        *live += 1;
+        drop(live);
+        use glow::HasContext;
+        // SAFETY: plain queries on the context current on this thread.
+        let (renderer, draw_buffers, float_targets) = unsafe {
+            let renderer = gl.get_parameter_string(glow::RENDERER);
+            let buffers = gl.get_parameter_i32(glow::MAX_DRAW_BUFFERS).clamp(1, 8) as usize;
+            let float = (0..gl.get_parameter_i32(glow::NUM_EXTENSIONS)).any(|i| {
+                gl.get_parameter_indexed_string(glow::EXTENSIONS, i as u32)
+                    == "GL_EXT_color_buffer_float"
+            });
+            (renderer, buffers, float)
+        };
+        // Dropped on refusal, it is counted out and its display terminated if it was the last.
+        let ctx = Context {
+            gl,
+            renderer,
+            draw_buffers,
+            egl,
+            display,
+            context,
+        };
+        if !float_targets {
+            return Err(ContextError::NoFloatTargets(ctx.renderer.clone()));
+        }
+        Ok(ctx)
+    }
+
+    /// Initializes `display` (a no-op where another context has) and makes a context on it
+    /// current on this thread, with its GL functions.
+    fn make(
+        egl: &Egl,
+        display: egl::Display,
+    ) -> Result<(glow::Context, egl::Context), ContextError> {
         let (major, minor) = egl
             .initialize(display)
             .map_err(|e| ContextError::NoDisplay(e.to_string()))?;
@@ -115,37 +156,19 @@ impl Context {
                     .map_or(std::ptr::null(), |p| p as *const _)
             })
         };
-        // SAFETY: plain queries on the current context.
-        let (renderer, draw_buffers, float_targets) = unsafe {
-            let renderer = gl.get_parameter_string(glow::RENDERER);
-            let buffers = gl.get_parameter_i32(glow::MAX_DRAW_BUFFERS).clamp(1, 8) as usize;
-            let float = (0..gl.get_parameter_i32(glow::NUM_EXTENSIONS)).any(|i| {
-                gl.get_parameter_indexed_string(glow::EXTENSIONS, i as u32)
-                    == "GL_EXT_color_buffer_float"
-            });
-            (renderer, buffers, float)
-        };
-        let ctx = Context {
-            gl,
-            renderer,
-            draw_buffers,
-            egl,
-            display,
-            context,
-            _turn: turn,
-        };
-        if !float_targets {
-            return Err(ContextError::NoFloatTargets(ctx.renderer.clone()));
-        }
-        Ok(ctx)
+        Ok((gl, context))
     }
 }
 
 impl Drop for Context {
     fn drop(&mut self) {
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
         let _ = self.egl.make_current(self.display, None, None, None);
         let _ = self.egl.destroy_context(self.display, self.context);
-        let _ = self.egl.terminate(self.display);
+        *live = live.saturating_sub(1);
+        if *live == 0 {
+            let _ = self.egl.terminate(self.display);
+        }
     }
 }
 

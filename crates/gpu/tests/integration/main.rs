@@ -16,3 +16,4 @@ mod probes;
 mod rounds;
 mod softpipe;
 mod table;
+mod threads;
