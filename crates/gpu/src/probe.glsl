@@ -88,11 +88,12 @@ void main() {
     slots[0] = vec4(flag(g.ok), returnParameter(g), flowRotation(g, a1.x), timeDeviation(g));
     slots[1] = ev; slots[2] = tan_;
 #elif PROBE == PROBE_TRANSPORT
-    // The vector a2 at the origin transported along the closed form with tangent a0 to λ = a1.x.
+    // The vector a2 at the origin transported along the closed form with tangent a0 to λ = a1.x
+    // (as the second of two legs: its column is chosen and written back as a host's are).
     OGeo g = originGeodesic(a0);
     vec4 ev = vec4(0.0), tan_ = vec4(0.0);
     ogeoAt(g, a1.x, ev, tan_);
-    slots[0] = transportFromOrigin(g, a1.x, ev, a2);
+    slots[0] = transportLegs(g, a1.x, ev, mat4(vec4(0.0), a2, vec4(0.0), vec4(0.0)), 2)[1];
 #elif PROBE == PROBE_SHADOW
     // For a target at ρ = a0.w = 2a·s (s = a1.x, the least angle reaching it ψ_min = a1.y, its
     // height z_P = a1.z; the light's set-up sets these): θ and G of the ray leaving at ψ = a0.x

@@ -46,7 +46,7 @@ pub enum Function {
     Isometry,
     /// originGeodesic, ogeoAt, returnParameter, flowRotation, timeDeviation.
     ClosedForm,
-    /// transportFromOrigin.
+    /// transportLegs.
     Transport,
     /// shadowTheta, shadowG, shadowG4, areaDistanceSq, bigPhi.
     Shadow,

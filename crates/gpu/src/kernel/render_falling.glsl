@@ -137,17 +137,23 @@ vec3 fallingWindow(int i, int j, Ray ray) {
 
 // The falling ball i's window over the stretch [l0, l1] (λ from the start) of a shadow ray
 // searched as one chain (startLongSearch): the hull of its loops' windows there, from l0
-// (NO_TAU: none); the loops of the closed form that the stretch meets, at most three.
-vec3 stretchWindow(int i, Ray ray, float l0, float l1) {
+// (NO_TAU: none); the loops of the closed form that the stretch meets, at most three. Where
+// `loop` ≥ 0, loop `loop`'s own window (fallingWindow) instead: both through one call of it
+// (the kernel is inlined whole: a second call site would compile the windows twice).
+vec3 stretchWindow(int i, Ray ray, float l0, float l1, int loop) {
     vec3 w = vec3(INF, NO_TAU, NO_TAU);
-    if (!godel()) return vec3(0.0, INF, NO_TAU);
-    int k0 = toInt(floor(l0 / ray.lret), 0, 1 << 20);
-    // Beyond three loops (a stretch longer than two returns): searched whole.
-    if (float(k0 + 3) * ray.lret <= l1) return vec3(0.0, l1 - l0, NO_TAU);
+    int k0 = loop;
+    if (loop < 0) {
+        if (!godel()) return vec3(0.0, INF, NO_TAU);
+        k0 = toInt(floor(l0 / ray.lret), 0, 1 << 20);
+        // Beyond three loops (a stretch longer than two returns): searched whole.
+        if (float(k0 + 3) * ray.lret <= l1) return vec3(0.0, l1 - l0, NO_TAU);
+    }
     for (int k = 0; k < 3; k++) {
         float start = float(k0 + k) * ray.lret;
-        if (start > l1) break;
+        if (loop < 0 && start > l1) break;
         vec3 lw = fallingWindow(i, k0 + k, ray);
+        if (loop >= 0) return lw;
         if (!(lw.y > NO_TAU)) continue;
         float first = max(lw.x + start, l0), last = min(lw.y + start, l1);
         if (!(first <= last)) continue;

@@ -437,9 +437,8 @@ void machineStep() {
             if (windowed(i)) {
                 // Balls in free fall: searched between the loop's (or the stretch's) first and
                 // last λ within their reach.
-                vec3 window = plan.cont
-                    ? stretchWindow(i, plan.ray, loopOffset(), loopOffset() + plan.span)
-                    : fallingWindow(i, mach.loop_, plan.ray);
+                vec3 window = stretchWindow(i, plan.ray, loopOffset(), loopOffset() + plan.span,
+                                            plan.cont ? -1 : mach.loop_);
                 storeFallingWindow(i, window);
                 near = near || window.y > NO_TAU;
             } else {

@@ -24,27 +24,33 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
     float rate = GLOBAL_RATE_MARGIN * abs(pt) * objs[i].speed;
     bool measured = godel() && objs[i].speed <= FAR_RATE_MAX_SPEED_FACTOR && objs[i].speed * objs[i].radius <= u_a;
     float farRate = measured ? FAR_RATE_MARGIN * abs(pt) * objs[i].speed : rate;
-    float seed = tauSeed > NO_TAU ? tauSeed : tauGuess(i, x.x);
-    Local lp = localize(i, x, seed, far);
-    if (!lp.ok) return FAR;
-    float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
-    Probe p = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, lp.exact ? rate : farRate, lp.exact ? lp.at.tau : NO_TAU,
-                    lp.xi, lp.exact && isRest(i), 0.0);
-    // The chord's inputs, where its test can apply (chordExcludes: s ≤ 3, ends within 0.4a):
-    // the body frame is the dearest part of a probe.
-    if (lp.exact && isFree(i) && godel() && objs[i].speed <= CHORD_MAX_SPEED_FACTOR && lp.len <= CHORD_MAX_END * u_a) {
-        p.xi = restComponents(i, lp, bodyFrame(i, lp.at));
-        p.near = true;
-        p.energy = abs(dotg(metricAt(x), k, lp.at.u));
-    }
-    // A stale seed may call a point inside a falling ball far: then the point of equal
-    // coordinate time is tried too and the nearer kept.
-    if (!lp.exact && tauSeed > NO_TAU && isFree(i)) {
-        Local lq = localize(i, x, tauGuess(i, x.x), far);
-        if (lq.ok) {
-            float dq = lq.exact ? lq.len : max(lq.len / FAR_SLACK, floor_);
-            if (dq - objs[i].radius < p.f) p = Probe(dq - objs[i].radius, lq.exact ? rate : farRate, lq.exact ? lq.at.tau : NO_TAU, vec3(0.0), false, 0.0);
+    // Two tries, one call of each closed form (the kernel is inlined whole: a second call
+    // site would compile the worldline's search twice). The first localizes from the seed;
+    // where a stale seed called a point inside a falling ball far, the second tries the point
+    // of equal coordinate time and the nearer is kept.
+    Probe p = FAR;
+    for (int attempt = 0; attempt < 2; attempt++) {
+        bool retry = attempt == 1;
+        float seed = tauSeed;
+        if (retry || !(tauSeed > NO_TAU)) seed = tauGuess(i, x.x);
+        Local lp = localize(i, x, seed, far);
+        if (!lp.ok) {
+            if (retry) break;
+            return FAR;
         }
+        float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
+        Probe q = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, lp.exact ? rate : farRate, lp.exact ? lp.at.tau : NO_TAU,
+                        retry ? vec3(0.0) : lp.xi, !retry && lp.exact && isRest(i), 0.0);
+        // The chord's inputs, where its test can apply (chordExcludes: s ≤ 3, ends within
+        // 0.4a): the body frame is the dearest part of a probe.
+        if (!retry && lp.exact && isFree(i) && godel() && objs[i].speed <= CHORD_MAX_SPEED_FACTOR && lp.len <= CHORD_MAX_END * u_a) {
+            q.xi = restComponents(i, lp, bodyFrame(i, lp.at));
+            q.near = true;
+            q.energy = abs(dotg(metricAt(x), k, lp.at.u));
+        }
+        if (!retry) p = q;
+        else if (q.f < p.f) p = q;
+        if (lp.exact || !(tauSeed > NO_TAU) || !isFree(i)) break;
     }
     return p;
 }

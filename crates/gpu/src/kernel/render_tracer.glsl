@@ -33,10 +33,10 @@ void transportScreen(Ray r, vec4 obs, int loop, float within, float lambda) {
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(r.geo, within, e0, k0);
     Iso to = observerToOrigin();
-    vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.up));
-    vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.right));
-    hp.up = pushIso(r.back, e0, up);
-    hp.right = pushIso(r.back, e0, right);
+    mat4 legs = pushLegs(to, obs, mat4(hp.up, hp.right, vec4(0.0), vec4(0.0)), 2);
+    legs = pushLegs(r.back, e0, transportLegs(r.geo, lambda, e0, legs, 2), 2);
+    hp.up = legs[0];
+    hp.right = legs[1];
 }
 
 // The outputs: slots [u_slot0, u_slot0 + DRAW_BUFFERS) of `slots`.

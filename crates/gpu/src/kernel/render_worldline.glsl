@@ -231,10 +231,9 @@ mat4 bodyFrame(int i, WPoint p) {
     if (!isFree(i) || !godel()) return f;
     vec4 e0 = vec4(0.0), k0 = vec4(0.0);
     ogeoAt(objs[i].geo, p.tau, e0, k0);
-    vec4 w1 = transportFromOrigin(objs[i].geo, p.tau, e0, f[1]);
-    vec4 w2 = transportFromOrigin(objs[i].geo, p.tau, e0, f[2]);
-    vec4 w3 = transportFromOrigin(objs[i].geo, p.tau, e0, f[3]);
-    return mat4(p.u, pushIso(objs[i].back, e0, w1), pushIso(objs[i].back, e0, w2), pushIso(objs[i].back, e0, w3));
+    mat4 legs = transportLegs(objs[i].geo, p.tau, e0, mat4(f[1], f[2], f[3], vec4(0.0)), 3);
+    legs = pushLegs(objs[i].back, e0, legs, 3);
+    return mat4(p.u, legs[0], legs[1], legs[2]);
 }
 
 // A first guess of the proper time at which the worldline has coordinate time t.
@@ -397,8 +396,7 @@ vec3 restComponents(int i, Local lp, mat4 frame) {
     if (godel()) {
         // The frame carried to the origin, where disp was taken.
         Iso to = toOrigin(lp.at.ev);
-        frame = mat4(pushIso(to, lp.at.ev, frame[0]), pushIso(to, lp.at.ev, frame[1]),
-                     pushIso(to, lp.at.ev, frame[2]), pushIso(to, lp.at.ev, frame[3]));
+        frame = pushLegs(to, lp.at.ev, frame, 4);
     }
     return components(dualFrame(metricAt(vec4(0.0)), frame), lp.disp).yzw;
 }

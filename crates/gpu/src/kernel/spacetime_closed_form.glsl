@@ -76,9 +76,9 @@ float flowRotation(OGeo g, float lambda) {
     return alpha - 2.0 * atan2s(-h2 * sinA(alpha), 1.0 - h2 * cosA(alpha));
 }
 
-vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
-    vec4 aw = nablaXi(g, w);
-    vec4 aaw = nablaXi(g, aw);
+// The first n columns of w (n ≤ 4; the others as they are) transported: the flow's
+// coefficients and the isometry once for all, one call site of the push (as pushLegs).
+mat4 transportLegs(OGeo g, float lambda, vec4 at, mat4 w, int n) {
     float om = sqrt(g.kappa + g.pz * g.pz) / (SQRT2 * u_a);
     float x = om * lambda;
     float c1 = 0.0, c2 = 0.0;
@@ -89,10 +89,22 @@ vec4 transportFromOrigin(OGeo g, float lambda, vec4 at, vec4 w) {
         c1 = sinA(x) / om;
         c2 = (1.0 - cosA(x)) / (om * om);
     }
-    vec4 v = w - c1 * aw + c2 * aaw;
     float beta = flowRotation(g, lambda);
     float cb = cosA(beta), sb = sinA(beta);
-    v = vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w);
-    return pushIso(inverseIso(toOrigin(at)), vec4(0.0), v);
+    Iso back = inverseIso(toOrigin(at));
+    mat4 out_ = w;
+    for (int c = 0; c < 4; c++) {
+        if (c >= n) break;
+        vec4 wc = c == 0 ? w[0] : (c == 1 ? w[1] : (c == 2 ? w[2] : w[3]));
+        vec4 aw = nablaXi(g, wc);
+        vec4 aaw = nablaXi(g, aw);
+        vec4 v = wc - c1 * aw + c2 * aaw;
+        v = pushIso(back, vec4(0.0), vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w));
+        if (c == 0) out_[0] = v;
+        else if (c == 1) out_[1] = v;
+        else if (c == 2) out_[2] = v;
+        else out_[3] = v;
+    }
+    return out_;
 }
 

@@ -45,4 +45,18 @@ void applyPush(Iso m, vec4 at, vec4 v, out vec4 e, out vec4 k) {
 
 vec4 applyIso(Iso m, vec4 at) { vec4 e = vec4(0.0), k = vec4(0.0); applyPush(m, at, vec4(0.0), e, k); return e; }
 vec4 pushIso(Iso m, vec4 at, vec4 v) { vec4 e = vec4(0.0), k = vec4(0.0); applyPush(m, at, v, e, k); return k; }
+// pushIso of the first n columns of v (n ≤ 4; the others as they are), in one loop: the kernel
+// is inlined whole, and one call site of the push compiles once where four would four times.
+mat4 pushLegs(Iso m, vec4 at, mat4 v, int n) {
+    mat4 out_ = v;
+    for (int c = 0; c < 4; c++) {
+        if (c >= n) break;
+        vec4 k = pushIso(m, at, c == 0 ? v[0] : (c == 1 ? v[1] : (c == 2 ? v[2] : v[3])));
+        if (c == 0) out_[0] = k;
+        else if (c == 1) out_[1] = k;
+        else if (c == 2) out_[2] = k;
+        else out_[3] = k;
+    }
+    return out_;
+}
 

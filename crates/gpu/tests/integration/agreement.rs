@@ -237,8 +237,7 @@ fn a_kernel_without_the_polarization_transport_is_caught() {
     // moving off-axis observer and its falling ball.
     caught(
         &off_axis_fast_observer(),
-        "    vec4 up = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.up));\n    \
-         vec4 right = transportFromOrigin(r.geo, lambda, e0, pushIso(to, obs, hp.right));",
-        "    vec4 up = pushIso(to, obs, hp.up);\n    vec4 right = pushIso(to, obs, hp.right);",
+        "    legs = pushLegs(r.back, e0, transportLegs(r.geo, lambda, e0, legs, 2), 2);",
+        "    legs = pushLegs(r.back, e0, legs, 2);",
     );
 }

@@ -1501,7 +1501,7 @@ fn transport_matches_spacetime_transport() {
     let out = run_per_a(&input, Function::Transport, &cases, |c| {
         [texel(c.1), texel(c.2), texel(c.3), [0.0; 4]]
     });
-    let mut tr = Compare::new("transportFromOrigin");
+    let mut tr = Compare::new("transportLegs");
     for ((a, k, l, v), r) in cases.iter().zip(&out) {
         let geo = OriginGeodesic::new(*a, vector(*k)).expect("a causal tangent");
         let (_, want) = transport_from_origin(&geo, l[0], vector(*v));

@@ -1,5 +1,5 @@
 //! Traces a scene with the GPU kernel and the CPU exact tracer and prints how they agree.
-//! `cargo run --release -p gpu --example compare -- SCENE.toml [WIDTH HEIGHT]`
+//! `cargo run --release -p gpu --example against_cpu -- SCENE.toml [WIDTH HEIGHT]`
 
 use datafile::record::RayStatus;
 use render::driver::{render, NoProgress};
