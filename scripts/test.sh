@@ -3,6 +3,9 @@
 # what the tests need beyond cargo. CI (.ci/run) calls exactly this script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each stage's end, with the minutes and seconds since the start, on stderr: where the time
+# of a run (CI's included) goes.
+stage() { echo "test.sh: $1 done at $((SECONDS / 60))m$((SECONDS % 60))s" >&2; }
 
 # The viewer's browser tests (crates/godel/tests/integration/viewer_browser.rs) drive Debian's
 # chromium through playwright-core; playwright's own browser download cannot work here, and is
@@ -17,6 +20,7 @@ command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninterac
 # contract.d.ts) is type-checked by TypeScript, pinned in the same package.json: strict, no
 # output; any type error fails the tests.
 tests/browser/node_modules/.bin/tsc -p crates/viewer/page
+stage "browser tools and the page's type check"
 # `godel render --gpu` (crates/gpu) loads libEGL at run time; without a GPU, Mesa's llvmpipe
 # renders its OpenGL ES 3 context in software (crates/gpu/tests,
 # crates/godel/tests/integration/gpu_cli.rs).
@@ -28,7 +32,9 @@ command -v glslangValidator >/dev/null || { apt-get update -qq \
 
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet
+stage "the workspace's build"
 cargo test --workspace --no-fail-fast
+stage "the Rust tests"
 
 # --- Python (issue 26): the package in python/ (docs/guide/src/python.md), installed with
 # `pip install ./python` into a virtual environment under target/ (made when missing, with
@@ -48,6 +54,7 @@ venv=target/python-venv
 PATH="$PWD/$venv/bin:$PATH" MATURIN_PEP517_ARGS="--profile dev" \
     "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 "$venv/bin/python" -m pytest -q python/tests
+stage "the Python package's build and tests"
 
 # --- MPI (issue 6): the `mpi` feature needs OpenMPI, and libclang for rsmpi's bindgen.
 # The default build above needs neither; this block installs them when missing and runs
@@ -61,15 +68,18 @@ fi
 # shared dependencies (tokio, axum, render, gpu, ...) got another feature set and compiled
 # again (about 40 crates); so only the MPI crates and godel compile here.
 cargo test --workspace --features godel/mpi --test mpi --no-fail-fast
+stage "the MPI build and tests"
 
 # --- The user guide (issue 35): docs/guide is an mdBook, built into docs/guide/book. mdBook
 # is not in Debian: it is installed from crates.io into target/tools when missing, without
 # its default features (file watcher, live-reload server, search index; the book reads
-# without them): about 1.5 minutes of compiling on 2 cores.
+# without them), unoptimized (--debug: it compiles in about half the time, and builds the
+# guide in seconds all the same).
 # mdBook exits 0 on a broken link, a missing picture or an include of a missing file, so
 # scripts/check-guide.py then checks every link and picture of the built book and of
 # README.md.
-[ -x target/tools/bin/mdbook ] || cargo install mdbook --no-default-features --locked \
+[ -x target/tools/bin/mdbook ] || cargo install mdbook --no-default-features --locked --debug \
     --version 0.5.4 --root target/tools --quiet
 MDBOOK_LOG=warn target/tools/bin/mdbook build docs/guide
 python3 scripts/check-guide.py
+stage "the guide's build and check"
