@@ -79,5 +79,17 @@ float halfTanh(float x) { return x / (1.0 + sqrt(1.0 + x * x)); }
 float acosh_(float x) { return log(x + sqrt(max(x * x - 1.0, 0.0))); }
 float atanh_(float x) { return 0.5 * log((1.0 + x) / (1.0 - x)); }
 
+// Column c of m, and m with column c set (c < 4): a matrix read and written at a runtime
+// index through constant ones, as the kernel stores (drivers have miscompiled stores at
+// runtime indices).
+vec4 column(mat4 m, int c) { return c == 0 ? m[0] : (c == 1 ? m[1] : (c == 2 ? m[2] : m[3])); }
+mat4 withColumn(mat4 m, int c, vec4 v) {
+    if (c == 0) m[0] = v;
+    else if (c == 1) m[1] = v;
+    else if (c == 2) m[2] = v;
+    else m[3] = v;
+    return m;
+}
+
 vec4 tableTexel(int i) { return texelFetch(u_table, ivec2(i % TABLE_WIDTH, i / TABLE_WIDTH), 0); }
 

@@ -60,8 +60,9 @@ vec2 ballTimeToTau(int i, float t) {
 }
 
 // The falling ball i's first and last λ within reach in loop j of the ray `ray` (a pixel ray,
-// to the past, or a shadow ray, to the future), from the loop's start (NO_TAU: the loop needs no search of the ball), or 0 and INF where the test does
-// not apply (Minkowski); and the proper time of the cell that set the first λ (NO_TAU: none),
+// to the past, or a shadow ray, to the future), from the loop's start (NO_TAU: the loop needs
+// no search of the ball), or 0 and INF where the test does not apply (Minkowski); and the
+// proper time of the cell that set the first λ (NO_TAU: none),
 // the seed of the ball's first probe there (tauGuess's Newton steps from t can stray for a
 // fast ball, whose dt/dτ may come near 0).
 vec3 fallingWindow(int i, int j, Ray ray) {

@@ -34,10 +34,7 @@ Probe probeObject(int i, vec4 x, vec4 k, float pt, float tauSeed) {
         float seed = tauSeed;
         if (retry || !(tauSeed > NO_TAU)) seed = tauGuess(i, x.x);
         Local lp = localize(i, x, seed, far);
-        if (!lp.ok) {
-            if (retry) break;
-            return FAR;
-        }
+        if (!lp.ok) break;   // (p is FAR still where the first try fails)
         float slack = isRest(i) ? 1.1 + (FAR_SLACK - 1.1) * min((lp.len - far) / far, 1.0) : FAR_SLACK;
         Probe q = Probe((lp.exact ? lp.len : max(lp.len / slack, floor_)) - objs[i].radius, lp.exact ? rate : farRate, lp.exact ? lp.at.tau : NO_TAU,
                         retry ? vec3(0.0) : lp.xi, !retry && lp.exact && isRest(i), 0.0);

@@ -95,15 +95,12 @@ mat4 transportLegs(OGeo g, float lambda, vec4 at, mat4 w, int n) {
     mat4 out_ = w;
     for (int c = 0; c < 4; c++) {
         if (c >= n) break;
-        vec4 wc = c == 0 ? w[0] : (c == 1 ? w[1] : (c == 2 ? w[2] : w[3]));
+        vec4 wc = column(w, c);
         vec4 aw = nablaXi(g, wc);
         vec4 aaw = nablaXi(g, aw);
         vec4 v = wc - c1 * aw + c2 * aaw;
-        v = pushIso(back, vec4(0.0), vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w));
-        if (c == 0) out_[0] = v;
-        else if (c == 1) out_[1] = v;
-        else if (c == 2) out_[2] = v;
-        else out_[3] = v;
+        v = vec4(v.x, cb * v.y - sb * v.z, sb * v.y + cb * v.z, v.w);
+        out_ = withColumn(out_, c, pushIso(back, vec4(0.0), v));
     }
     return out_;
 }

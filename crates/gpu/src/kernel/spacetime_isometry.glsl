@@ -51,11 +51,7 @@ mat4 pushLegs(Iso m, vec4 at, mat4 v, int n) {
     mat4 out_ = v;
     for (int c = 0; c < 4; c++) {
         if (c >= n) break;
-        vec4 k = pushIso(m, at, c == 0 ? v[0] : (c == 1 ? v[1] : (c == 2 ? v[2] : v[3])));
-        if (c == 0) out_[0] = k;
-        else if (c == 1) out_[1] = k;
-        else if (c == 2) out_[2] = k;
-        else out_[3] = k;
+        out_ = withColumn(out_, c, pushIso(m, at, column(v, c)));
     }
     return out_;
 }
