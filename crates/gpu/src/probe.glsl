@@ -110,10 +110,13 @@ void main() {
     slots[1] = shadowG4(a0.w, a1.z, a3, vec4(0.0, 1.0, 2.0, float(SHADOW_GRID)), n, inbound);
 #elif PROBE == PROBE_REJECT
     // For the closed form from the origin with tangent a0 over λ ∈ [a2.x, a2.y]: whether it
-    // misses the ball of centre (w, z) = (a1.xy, a1.z) and reach a1.w, and the plane z = a2.z.
+    // misses the ball of centre (w, z) = (a1.xy, a1.z) and reach a1.w, and the plane z = a2.z;
+    // and the ball's test without the height's part (the whole reach on the disc).
     OGeo g = originGeodesic(a0);
+    vec4 near = ballNear(g, a1.xy, a1.w);
     slots[0] = vec4(flag(ballMisses(g, a1.xy, a1.z, a1.w, a2.x, a2.y)),
-                    flag(planeMisses(g, a2.z, a2.x, a2.y)), flag(g.ok), 0.0);
+                    flag(planeMisses(g, a2.z, a2.x, a2.y)), flag(g.ok),
+                    flag(ballMissesNear(g, vec4(near.xy, 0.0, 0.0), a1.z, a1.w, a2.x, a2.y)));
 #elif PROBE == PROBE_SURFACE
     // The texture coordinates of the direction a0.xyz.
     slots[0] = vec4(lonLat(a0.xyz), 0.0, 0.0);

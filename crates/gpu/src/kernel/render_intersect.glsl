@@ -414,7 +414,7 @@ void machineStep() {
             if (searched[aim.obj] && isRest(aim.obj)) {
                 // The lit object only up to its last segment, as its search.
                 int segs = aim.obj == plan.skipObj ? min(plan.skipSeg, plan.total) : plan.total;
-                aim.ball = aimBall(aim.obj, plan.ray.geo, oCw[aim.obj], oCz[aim.obj], float(segs) * h);
+                aim.ball = aimBall(aim.obj, plan.ray.geo, oCw[aim.obj], oNear[aim.obj], oCz[aim.obj], float(segs) * h);
             }
         }
         mach.mode = M_LOOP;   // the search, from the next pass (a checkpoint)

@@ -21,24 +21,29 @@ vec3 ballCircle(OGeo g, vec2 wc) {
 // The part of a static ball's test that depends on the ray alone, made once per ray: x, the
 // angle offset α₀ − arg(m_C) of δ(λ) = α₀ + sgn(E)·2πλ/λ_ret − arg(m_C); y, the least cos δ at
 // which the ray's circle comes within the reach (above 1: it never does; below −1: all round),
-// from the law of cosines cosh(d_H/a) = cosh(d_hC/a)·cosh(ρ/a) − sinh(d_hC/a)·sinh(ρ/a)·cos δ.
-vec2 ballNear(OGeo g, vec2 wc, float reach) {
+// from the law of cosines cosh(d_H/a) = cosh(d_hC/a)·cosh(ρ/a) − sinh(d_hC/a)·sinh(ρ/a)·cos δ;
+// z and w, that law's two terms cosh(d_hC/a)·cosh(ρ/a) and sinh(d_hC/a)·sinh(ρ/a) (w = 0 where
+// the circle's far side is beyond the reach: unused).
+vec4 ballNear(OGeo g, vec2 wc, float reach) {
     float a = u_a;
     vec3 circle = ballCircle(g, wc);
     float offset = circle.x, dhc = circle.y, rho = circle.z;
-    if (abs(dhc - rho) > reach) return vec2(offset, 2.0);
+    if (abs(dhc - rho) > reach) return vec4(offset, 2.0, 0.0, 0.0);
     float x = dhc / a, y = rho / a;
     float ss = sinh(x) * sinh(y);
-    float c = cosh(x) * cosh(y) - cosh(reach / a);
+    float cc = cosh(x) * cosh(y);
+    float c = cc - cosh(reach / a);
     // ss = 0: d_H does not depend on δ (the centre on the circle's centre, or a ray along z).
     float cosMin = ss > 0.0 ? c / ss : (c > 0.0 ? 2.0 : -2.0);
-    return vec2(offset, cosMin);
+    return vec4(offset, cosMin, cc, ss);
 }
 
 // Whether the closed-form ray g from the origin, over λ ∈ [from, until], stays farther than
 // the reach from the static ball whose centre is at height zc in the origin frame, with `near`
-// = ballNear(g, its disc coordinate, reach).
-bool ballMissesNear(OGeo g, vec2 near, float zc, float reach, float from, float until) {
+// = ballNear(g, its disc coordinate, reach) (render::circle::Stretches::meets): where the
+// height differs by at least Δz over the window, the circle must come within √(reach² − Δz²)
+// on the disc (the static distance is √(d_H² + Δz²)).
+bool ballMissesNear(OGeo g, vec4 near, float zc, float reach, float from, float until) {
     float lo = 0.0, hi = 0.0;
     if (g.pz == 0.0) {
         if (abs(zc) > reach) return true;
@@ -52,6 +57,16 @@ bool ballMissesNear(OGeo g, vec2 near, float zc, float reach, float from, float 
     if (near.y > 1.0) return true;
     float lret = returnParameter(g);
     if (!finite(hi - lo) || !(hi - lo < lret)) return false;
+    // The least |Δz| over [lo, hi] (z is linear in λ), and the least cos δ for the disc
+    // distance √(reach² − Δz²) (f32: reach is widened far beyond Δz's rounding).
+    float z0 = g.pz * lo - zc, z1 = g.pz * hi - zc;
+    float dz = (z0 > 0.0) != (z1 > 0.0) ? 0.0 : min(abs(z0), abs(z1));
+    float cosMin = near.y;
+    if (dz > 0.0 && near.w > 0.0) {
+        float m = sqrt(max(reach * reach - dz * dz, 0.0));
+        cosMin = max(cosMin, (near.z - cosh(m / u_a)) / near.w);
+        if (cosMin > 1.0) return true;
+    }
     float sg = sign(g.e);
     float d1 = near.x + sg * 2.0 * PI * lo / lret;
     float d2 = near.x + sg * 2.0 * PI * hi / lret;
@@ -59,7 +74,7 @@ bool ballMissesNear(OGeo g, vec2 near, float zc, float reach, float from, float 
     if (ceil(dmin / (2.0 * PI)) * 2.0 * PI <= dmax) return false;
     float c1 = cosA(d1 - 2.0 * PI * floor(d1 / (2.0 * PI) + 0.5));
     float c2 = cosA(d2 - 2.0 * PI * floor(d2 / (2.0 * PI) + 0.5));
-    return max(c1, c2) < near.y;
+    return max(c1, c2) < cosMin;
 }
 
 // Whether the closed-form ray g from the origin, over λ ∈ [from, until], stays farther than
@@ -93,7 +108,7 @@ float reachOf(int i, vec2 cw) {
 // universe) over λ ∈ [from, until]; false when unsure or for other objects.
 // cw, cz: the ball's centre or the plane's height in the ray's origin frame (oCw, oCz);
 // near: a ball's ballNear for the ray (oNear).
-bool missesAt(int i, OGeo g, vec2 cw, float cz, vec2 near, float from, float until) {
+bool missesAt(int i, OGeo g, vec2 cw, float cz, vec4 near, float from, float until) {
     if (!godel()) return false;
     if (isRest(i)) return ballMissesNear(g, near, cz, reachOf(i, cw), from, until);
     if (isPlane(i)) return planeMisses(g, cz, from, until);
@@ -107,7 +122,8 @@ bool objectMisses(int i, OGeo g, float from, float until) { return missesAt(i, g
 bool setSearched(vec4 from, OGeo g, float until, int skip, float skipUntil) {
     bool any = false;
     for (int i = 0; i < N_OBJECTS; i++) {
-        vec2 cw = vec2(0.0), near = vec2(0.0);
+        vec2 cw = vec2(0.0);
+        vec4 near = vec4(0.0);
         float cz = 0.0;
         if (isRest(i)) {
             vec4 c = applyIso(toOrigin(vec4(0.0, from.yzw)), objs[i].pos);
@@ -136,18 +152,17 @@ bool setSearched(vec4 from, OGeo g, float until, int skip, float skipUntil) {
 struct AimBall { float c0; float halfWidth; float nearest; float spread; float lo; float hi; int copies; };
 const AimBall NO_AIM_BALL = AimBall(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0);
 
-// Ball i at rest (centre wc, zc in the origin frame of g), for the ray over λ ∈ [0, until].
-AimBall aimBall(int i, OGeo g, vec2 wc, float zc, float until) {
+// Ball i at rest (centre wc, zc in the origin frame of g, `near` its ballNear for g), for the
+// ray over λ ∈ [0, until].
+AimBall aimBall(int i, OGeo g, vec2 wc, vec4 near, float zc, float until) {
     AimBall b = NO_AIM_BALL;
     float a = u_a, reach = reachOf(i, wc);
     // The ray starts outside: its start, the origin, lies beyond the reach.
     float d0 = length(vec2(discDistance(wc), zc));
     if (!(d0 > reach)) return b;
-    vec3 circle = ballCircle(g, wc);
-    float x = circle.y / a, y = circle.z / a;
-    b.nearest = cosh(x) * cosh(y);
-    b.spread = sinh(x) * sinh(y);
-    float cosMin = (b.nearest - cosh(reach / a)) / b.spread;
+    b.nearest = near.z;
+    b.spread = near.w;
+    float cosMin = near.y;
     if (!(b.spread > 0.0 && cosMin > -1.0 && cosMin < 1.0)) return b;
     float lret = returnParameter(g), w = 2.0 * PI / lret;
     b.halfWidth = acosA(cosMin) / w;
@@ -161,7 +176,7 @@ AimBall aimBall(int i, OGeo g, vec2 wc, float zc, float until) {
         b.hi = min(max(l1, l2), until);
     }
     // δ(λ) = offset + sgn(E)·ωλ vanishes at the copies' centres base + kλ_ret.
-    float base = -sign(g.e) * circle.x / w;
+    float base = -sign(g.e) * near.x / w;
     float k0 = ceil((b.lo - b.halfWidth - base) / lret), k1 = floor((b.hi + b.halfWidth - base) / lret);
     if (!(b.lo <= b.hi && finite(k0) && finite(k1) && k1 >= k0)) return b;
     b.c0 = base + k0 * lret;

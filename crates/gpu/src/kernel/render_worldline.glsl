@@ -94,7 +94,7 @@ bool searched[N_OBJECTS];
 vec2 oCw[N_OBJECTS];
 float oCz[N_OBJECTS];
 // A ball at rest's ballNear for the ray (render_reject).
-vec2 oNear[N_OBJECTS];
+vec4 oNear[N_OBJECTS];
 vec3 fbWindow[N_OBJECTS];
 
 // The stores into the per-object arrays, each at the constant indices of a loop whose body
@@ -105,7 +105,7 @@ void storeObject(int i, Object o) {
         if (j == i) objs[j] = o;
     }
 }
-void storeSearched(int i, bool s, vec2 cw, float cz, vec2 near) {
+void storeSearched(int i, bool s, vec2 cw, float cz, vec4 near) {
     for (int j = 0; j < N_OBJECTS; j++) {
         if (j == i) {
             searched[j] = s;
@@ -187,7 +187,7 @@ void loadObjects() {
         searched[i] = false;
         oCw[i] = vec2(0.0);
         oCz[i] = 0.0;
-        oNear[i] = vec2(0.0);
+        oNear[i] = vec4(0.0);
         fbWindow[i] = vec3(NO_TAU);
     }
     for (int i = 0; i < N_OBJECTS; i++) storeObject(i, loadObject(i));

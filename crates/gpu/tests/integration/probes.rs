@@ -12,6 +12,7 @@
 use crate::common;
 use gpu::input::{KernelInput, Uniforms};
 use gpu::probe::{Args, Function, Prober, Results};
+use render::circle::RayCircle;
 use render::reject::{static_distance, Rejection, StaticBall};
 use render::target::Target;
 use render::worldline::Worldline;
@@ -1851,6 +1852,110 @@ fn rejections_are_safe_and_match_render_reject() {
     ball_safe.assert();
     plane_safe.assert();
     plane_same.assert();
+}
+
+/// A segment of a ray near a ball at rest (the kernel's per-segment test, `objectMisses`):
+/// where the height differs along the whole segment, the circle must come within
+/// √(reach² − Δz²) of the centre on the disc. Balls placed near a random point of each ray,
+/// segments of about a sixteenth of a loop around it: the kernel's rejection must be safe
+/// (the segment sampled densely stays beyond the reach) and decide as the CPU's
+/// `render::circle::Stretches::meets` does.
+#[test]
+fn segment_rejections_are_safe_and_match_render_stretches() {
+    let mut rng = Rng(fastrand::Rng::with_seed(12));
+    let input = input(true);
+    let prober = Prober::new(&input, Function::Reject).expect("compiles");
+    let mut safe = Compare::new("ballMisses over a segment: safe");
+    let (mut cases, mut misses, mut same, mut shrunk) = (0usize, 0usize, 0usize, 0usize);
+    for &a in &AS {
+        let mut batch = Vec::new();
+        for i in 0..200 {
+            let mut k = random_tangent(&mut rng, 5 * i + 2);
+            k[0] = -k[0].abs();
+            let geo = OriginGeodesic::new(a, vector(k)).expect("a light ray");
+            let ret = geo.return_parameter();
+            let seg = ret / 16.0;
+            let at = rng.range(0.0, 2.0) * ret;
+            let (e, _) = geo.at(at);
+            let reach = f(rng.range(0.05, 0.4) * a);
+            let d = rng.unit();
+            let off = rng.range(0.2, 2.0) * reach;
+            let centre = [
+                f(e.x + off * d[0]),
+                f(e.y + off * d[1]),
+                f(e.z + off * d[2]),
+            ];
+            let from = f((at + rng.range(-1.5, 0.5) * seg).max(0.0));
+            let until = f(from + rng.range(0.25, 1.0) * seg);
+            batch.push((k, centre, reach, from, until));
+        }
+        let args: Vec<Args> = batch
+            .iter()
+            .map(|&(k, c, reach, from, until)| {
+                let w = disc(a, c[0], c[1]);
+                [
+                    texel(k),
+                    texel([w.re, w.im, c[2], reach]),
+                    texel([from, until, 0.0, 0.0]),
+                    [0.0; 4],
+                ]
+            })
+            .collect();
+        let out = prober.eval(&with_a(&input, a), &args).expect("evaluates");
+        for (&(k, c, reach, from, until), r) in batch.iter().zip(&out) {
+            let geo = OriginGeodesic::new(a, vector(k)).expect("a light ray");
+            let w =
+                || format!("a = {a}, k {k:?}, centre {c:?}, reach {reach}, λ ∈ [{from}, {until}]");
+            let kernel = r[0][0] > 0.5;
+            cases += 1;
+            misses += usize::from(kernel);
+            if kernel {
+                let steps = ((until - from) / (1e-3 * a)).ceil().clamp(1.0, 1e5) as usize;
+                let nearest = (0..=steps)
+                    .map(|s| {
+                        let (e, _) = geo.at(from + (until - from) * s as f64 / steps as f64);
+                        static_distance(a, [e.x, e.y, e.z], c)
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                safe.value((reach - nearest).max(0.0) as f32, 0.0, 1e-3 * a, w);
+            }
+            // The CPU's stretches of the same ball (its reach the kernel's), over the segment.
+            let target = Target::LocalSphere {
+                radius: reach / 1.25,
+                worldline: Worldline::new(
+                    Metric::Godel(Godel::new(a)),
+                    &Motion::Rest {
+                        position: Event::new(0.0, c[0], c[1], c[2]),
+                    },
+                    0.0,
+                    0.0,
+                )
+                .expect("a worldline at rest"),
+            };
+            let ball = StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target)
+                .expect("a ball")
+                .with_reach(reach);
+            let near = ball.near(&RayCircle::new(&geo), until);
+            same += usize::from(near.is_none_or(|n| !n.meets(from, until)) == kernel);
+            // Rejected only for the height: the whole reach on the disc would not reject it.
+            let flat = r[0][3] > 0.5;
+            shrunk += usize::from(kernel && !flat);
+        }
+    }
+    eprintln!(
+        "segments: {misses} of {cases} rejected ({shrunk} only for their height); the same \
+         as render::circle::Stretches on {same}"
+    );
+    assert!(
+        misses * 4 >= cases && shrunk * 40 >= cases,
+        "too few segments rejected to test: {misses} of {cases}, {shrunk} for their height"
+    );
+    assert!(
+        same as f64 >= 0.98 * cases as f64,
+        "ballMisses decides unlike render::circle::Stretches on {} of {cases} segments",
+        cases - same
+    );
+    safe.assert();
 }
 
 #[test]
