@@ -18,6 +18,8 @@
 // dropped at every such checkpoint, whether or not a round ends there, so a resumed
 // bisection takes the probes of one that ran on.
 
+// The most loops without a search that one pass passes over.
+const int LOOPS_PER_PASS = 16;
 const int M_LOOP = 0;      // at the start of loop mach.loop_
 const int M_AIM = 1;       // aimed occlusion before a shadow ray's search (startAim)
 const int M_SEGMENT = 2;   // at the start of segment mach.seg
@@ -306,6 +308,17 @@ bool beforeResume(int seg, int obj) {
     return res.on && (seg < res.at.seg || (seg == res.at.seg && obj < res.at.obj));
 }
 
+// Segment mach.seg of the loop (or stretch) begins: scanned from its first object (M_SCAN), or
+// the long search ends.
+void startSegment() {
+    if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
+    mach.lo = plan.span * float(mach.seg) / float(plan.segs);
+    mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
+    mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+    mach.obj = -1;
+    mach.mode = M_SCAN;
+}
+
 // One step of the machine: takes the answer to its last request, then either requests a
 // probe or moves on.
 void machineStep() {
@@ -420,9 +433,11 @@ void machineStep() {
         mach.mode = M_LOOP;   // the search, from the next pass (a checkpoint)
         return;
     }
-    if (mach.mode == M_LOOP) {
-        // Skip a loop whose box meets no searched object's box, one loop a pass (each loop's
-        // start is a checkpoint of the sample's rounds: main); stop at the time bound.
+    // Skip a loop whose box meets no searched object's box, up to LOOPS_PER_PASS loops a pass
+    // (a pass that begins at a loop's start is a checkpoint of the sample's rounds: main; the
+    // loops passed over after it are taken again from it where a round is cut); stop at the
+    // time bound.
+    for (int pass = 0; pass < LOOPS_PER_PASS && mach.mode == M_LOOP; pass++) {
         if (mach.loop_ >= plan.loops) {
             finish(plan.ends);
             return;
@@ -447,7 +462,7 @@ void machineStep() {
         }
         if (!near) {
             mach.loop_++;
-            return;
+            continue;
         }
         // No probe of an earlier loop is taken on: each loop's start is a checkpoint of the
         // rounds, which keep no probes (M_SCAN probes each object afresh where it needs one).
@@ -458,14 +473,8 @@ void machineStep() {
         mach.seg = 0;
         mach.mode = M_SEGMENT;
     }
-    if (mach.mode == M_SEGMENT) {
-        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
-        mach.lo = plan.span * float(mach.seg) / float(plan.segs);
-        mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
-        mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
-        mach.obj = -1;
-        mach.mode = M_SCAN;
-    }
+    if (mach.mode == M_LOOP) return;   // on from the next loop in the next pass
+    if (mach.mode == M_SEGMENT) startSegment();
     // A span whose end probe was kept (nextSpan) is taken up in the same pass: the next span
     // after it is probed (the kept probe is used up), so two rounds of this loop suffice.
     for (int kept = 0; kept < 2 && mach.mode == M_BISECT; kept++) {
@@ -528,7 +537,9 @@ void machineStep() {
         request(Q_REFINE, m, bis.pa.tau);
         return;
     }
-    if (mach.mode == M_SCAN) {
+    // The segments of a loop that ask for no probe are passed over in one pass (a segment's
+    // start is no checkpoint; a loop's is, and begins a pass).
+    for (int sg = 0; sg < EXACT_SEGMENTS && mach.mode == M_SCAN; sg++) {
         float off = loopOffset();
         for (mach.obj++; mach.obj < N_OBJECTS; mach.obj++) {
             if (!searched[mach.obj]) continue;
@@ -627,7 +638,7 @@ void machineStep() {
         }
         mach.seg++;
         if (mach.seg < plan.segs) {
-            mach.mode = M_SEGMENT;
+            startSegment();
         } else {
             mach.loop_++;
             mach.mode = M_LOOP;

@@ -81,8 +81,9 @@ void writeSlots() {
 // Rounds (docs/physics.md, "The GPU kernel", "Rounds"). A sample is traced in rounds of draws
 // (crates/gpu/src/host.rs; the page's trace.js): each round goes on from where the previous
 // one left the sample, for at most its budget of passes, and keeps what it finished up to the
-// last checkpoint it reached: the start of each loop of the pixel's search, every SPAN_CHECK
-// probes of a bisection in it (render_intersect), the search's end, and each step of the
+// last checkpoint it reached: the start of a loop of the pixel's search where a pass begins
+// (a pass may go on over loops that need no search: render_intersect), every SPAN_CHECK
+// probes of a bisection in it, the search's end, and each step of the
 // shadow rays' enumeration. At a checkpoint the sample's state is a few numbers (Progress),
 // written into its state slots; the next round makes everything else again from them, and
 // the searches are memoryless there (a loop probes its objects afresh; a bisection's
