@@ -308,17 +308,6 @@ bool beforeResume(int seg, int obj) {
     return res.on && (seg < res.at.seg || (seg == res.at.seg && obj < res.at.obj));
 }
 
-// Segment mach.seg of the loop (or stretch) begins: scanned from its first object (M_SCAN), or
-// the long search ends.
-void startSegment() {
-    if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
-    mach.lo = plan.span * float(mach.seg) / float(plan.segs);
-    mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
-    mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
-    mach.obj = -1;
-    mach.mode = M_SCAN;
-}
-
 // One step of the machine: takes the answer to its last request, then either requests a
 // probe or moves on.
 void machineStep() {
@@ -474,7 +463,14 @@ void machineStep() {
         mach.mode = M_SEGMENT;
     }
     if (mach.mode == M_LOOP) return;   // on from the next loop in the next pass
-    if (mach.mode == M_SEGMENT) startSegment();
+    if (mach.mode == M_SEGMENT) {
+        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
+        mach.lo = plan.span * float(mach.seg) / float(plan.segs);
+        mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
+        mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+        mach.obj = -1;
+        mach.mode = M_SCAN;
+    }
     // A span whose end probe was kept (nextSpan) is taken up in the same pass: the next span
     // after it is probed (the kept probe is used up), so two rounds of this loop suffice.
     for (int kept = 0; kept < 2 && mach.mode == M_BISECT; kept++) {
@@ -537,9 +533,7 @@ void machineStep() {
         request(Q_REFINE, m, bis.pa.tau);
         return;
     }
-    // The segments of a loop that ask for no probe are passed over in one pass (a segment's
-    // start is no checkpoint; a loop's is, and begins a pass).
-    for (int sg = 0; sg < EXACT_SEGMENTS && mach.mode == M_SCAN; sg++) {
+    if (mach.mode == M_SCAN) {
         float off = loopOffset();
         for (mach.obj++; mach.obj < N_OBJECTS; mach.obj++) {
             if (!searched[mach.obj]) continue;
@@ -638,7 +632,7 @@ void machineStep() {
         }
         mach.seg++;
         if (mach.seg < plan.segs) {
-            startSegment();
+            mach.mode = M_SEGMENT;
         } else {
             mach.loop_++;
             mach.mode = M_LOOP;
