@@ -1678,6 +1678,26 @@ fn shadow_rays_match_spacetime_connect() {
     area.assert();
 }
 
+/// render::reject's ball at rest with centre `centre` (Cartesian x, y, z), searched out to
+/// `reach` (its radius is then immaterial), seen from the origin.
+fn ball_at_rest(a: f64, centre: [f64; 3], reach: f64) -> StaticBall {
+    let target = Target::LocalSphere {
+        radius: reach / 1.25,
+        worldline: Worldline::new(
+            Metric::Godel(Godel::new(a)),
+            &Motion::Rest {
+                position: Event::new(0.0, centre[0], centre[1], centre[2]),
+            },
+            0.0,
+            0.0,
+        )
+        .expect("a worldline at rest"),
+    };
+    StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target)
+        .expect("a ball")
+        .with_reach(reach)
+}
+
 #[test]
 fn rejections_are_safe_and_match_render_reject() {
     let mut rng = Rng(fastrand::Rng::with_seed(10));
@@ -1802,22 +1822,7 @@ fn rejections_are_safe_and_match_render_reject() {
             }
             // render::reject decides the same for rays searched from λ = 0 (its window).
             if c.from == 0.0 {
-                // A ball searched out to the kernel's reach (its radius is then immaterial).
-                let target = Target::LocalSphere {
-                    radius: c.reach / 1.25,
-                    worldline: Worldline::new(
-                        Metric::Godel(Godel::new(a)),
-                        &Motion::Rest {
-                            position: Event::new(0.0, c.centre[0], c.centre[1], c.centre[2]),
-                        },
-                        0.0,
-                        0.0,
-                    )
-                    .expect("a worldline at rest"),
-                };
-                let ball = StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target)
-                    .expect("a ball")
-                    .with_reach(c.reach);
+                let ball = ball_at_rest(a, c.centre, c.reach);
                 ball_rust += 1;
                 ball_same += usize::from(ball.misses(&geo, until) == misses);
                 let plane = Rejection::Plane { z: c.plane }.misses(&geo, until);
@@ -1920,22 +1925,7 @@ fn segment_rejections_are_safe_and_match_render_stretches() {
                 safe.value((reach - nearest).max(0.0) as f32, 0.0, 1e-3 * a, w);
             }
             // The CPU's stretches of the same ball (its reach the kernel's), over the segment.
-            let target = Target::LocalSphere {
-                radius: reach / 1.25,
-                worldline: Worldline::new(
-                    Metric::Godel(Godel::new(a)),
-                    &Motion::Rest {
-                        position: Event::new(0.0, c[0], c[1], c[2]),
-                    },
-                    0.0,
-                    0.0,
-                )
-                .expect("a worldline at rest"),
-            };
-            let ball = StaticBall::new(a, Event::new(0.0, 0.0, 0.0, 0.0), &target)
-                .expect("a ball")
-                .with_reach(reach);
-            let near = ball.near(&RayCircle::new(&geo), until);
+            let near = ball_at_rest(a, c, reach).near(&RayCircle::new(&geo), until);
             same += usize::from(near.is_none_or(|n| !n.meets(from, until)) == kernel);
             // Rejected only for the height: the whole reach on the disc would not reject it.
             let flat = r[0][3] > 0.5;
