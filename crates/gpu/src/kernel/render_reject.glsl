@@ -156,7 +156,7 @@ const AimBall NO_AIM_BALL = AimBall(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0);
 // ray over λ ∈ [0, until].
 AimBall aimBall(int i, OGeo g, vec2 wc, vec4 near, float zc, float until) {
     AimBall b = NO_AIM_BALL;
-    float a = u_a, reach = reachOf(i, wc);
+    float reach = reachOf(i, wc);
     // The ray starts outside: its start, the origin, lies beyond the reach.
     float d0 = length(vec2(discDistance(wc), zc));
     if (!(d0 > reach)) return b;
