@@ -42,6 +42,12 @@ const int Q_FRESH = 7;     // object mach.obj's probe where its part of the segm
 // Probes of a bisection between two of its checkpoints.
 const int SPAN_CHECK = 256;
 
+// The passes that the sample's round has spent (render_tracer's main holds them against the
+// round's budget). A pass that goes on over loops or segments without a probe counts one for
+// each, as the pass each took before: a round's budget then bounds its work, and with it the
+// loops' iterations that llvmpipe's limit counts, as it did.
+int spent = 0;
+
 struct Found { int status; int target; int loop_; float lambda; float tau; };
 const Found NO_FOUND = Found(0, -1, 0, 0.0, 0.0);
 
@@ -308,6 +314,17 @@ bool beforeResume(int seg, int obj) {
     return res.on && (seg < res.at.seg || (seg == res.at.seg && obj < res.at.obj));
 }
 
+// Segment mach.seg of the loop (or stretch) begins: scanned from its first object (M_SCAN), or
+// the long search ends.
+void startSegment() {
+    if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
+    mach.lo = plan.span * float(mach.seg) / float(plan.segs);
+    mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
+    mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
+    mach.obj = -1;
+    mach.mode = M_SCAN;
+}
+
 // One step of the machine: takes the answer to its last request, then either requests a
 // probe or moves on.
 void machineStep() {
@@ -427,6 +444,7 @@ void machineStep() {
     // loops passed over after it are taken again from it where a round is cut); stop at the
     // time bound.
     for (int pass = 0; pass < LOOPS_PER_PASS && mach.mode == M_LOOP; pass++) {
+        if (pass > 0) spent++;
         if (mach.loop_ >= plan.loops) {
             finish(plan.ends);
             return;
@@ -463,14 +481,7 @@ void machineStep() {
         mach.mode = M_SEGMENT;
     }
     if (mach.mode == M_LOOP) return;   // on from the next loop in the next pass
-    if (mach.mode == M_SEGMENT) {
-        if (mach.loop_ * plan.segs + mach.seg >= plan.total) { finish(plan.ends); return; }   // a long search's end
-        mach.lo = plan.span * float(mach.seg) / float(plan.segs);
-        mach.hi = plan.span * float(mach.seg + 1) / float(plan.segs);
-        mach.best = Found(ESCAPED, -1, 0, 0.0, NO_TAU);
-        mach.obj = -1;
-        mach.mode = M_SCAN;
-    }
+    if (mach.mode == M_SEGMENT) startSegment();
     // A span whose end probe was kept (nextSpan) is taken up in the same pass: the next span
     // after it is probed (the kept probe is used up), so two rounds of this loop suffice.
     for (int kept = 0; kept < 2 && mach.mode == M_BISECT; kept++) {
@@ -533,9 +544,16 @@ void machineStep() {
         request(Q_REFINE, m, bis.pa.tau);
         return;
     }
-    if (mach.mode == M_SCAN) {
+    // The segments of a loop that ask for no probe are passed over in one pass (a segment's
+    // start is no checkpoint; a loop's is, and begins a pass): each object of the segment, then
+    // its end, as steps of one loop. (llvmpipe counts every loop's passes, and each loop of a
+    // pass at least once, against its limit: a loop of segments around this one, nested, cost
+    // a sample in a long bisection one more each probe, which floor-grid's longest shadow ray,
+    // over 4,096 passes between two checkpoints, could not afford.)
+    for (int st = 0; st < EXACT_SEGMENTS * (N_OBJECTS + 1) && mach.mode == M_SCAN; st++) {
         float off = loopOffset();
-        for (mach.obj++; mach.obj < N_OBJECTS; mach.obj++) {
+        mach.obj++;
+        if (mach.obj < N_OBJECTS) {
             if (!searched[mach.obj]) continue;
             Probe p = startProbe[mach.obj];
             float at = startAt[mach.obj];
@@ -632,7 +650,8 @@ void machineStep() {
         }
         mach.seg++;
         if (mach.seg < plan.segs) {
-            mach.mode = M_SEGMENT;
+            spent++;   // (as a pass of its own)
+            startSegment();
         } else {
             mach.loop_++;
             mach.mode = M_LOOP;

@@ -370,7 +370,7 @@ void main() {
     // enumeration a checkpoint, the search of one ray's occlusion between two steps. A
     // search's passes run in a loop of their own: llvmpipe runs every statement of a loop's
     // body on each pass, masked, so the enumeration's code stays out of the search's loop.
-    int spent = 0;
+    spent = 0;
     for (int job = 0; job < MAX_BUDGET && (take || (u_finish == 0 && cp.phase != PH_DONE && spent < at.budget)); job++) {
         if (take) {
             take = false;
