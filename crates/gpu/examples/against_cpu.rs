@@ -1,5 +1,7 @@
 //! Traces a scene with the GPU kernel and the CPU exact tracer and prints how they agree.
 //! `cargo run --release -p gpu --example against_cpu -- SCENE.toml [WIDTH HEIGHT]`
+//! With `KERNEL=FILE` it traces with that kernel source instead of `gpu::KERNEL`; the digest
+//! it prints of the GPU's records and lights tells two kernels' traces apart bit for bit.
 
 use datafile::record::RayStatus;
 use render::driver::{render, NoProgress};
@@ -126,6 +128,10 @@ fn main() {
         g.rounds,
         tc.as_secs_f64()
     );
+    // Debug prints each f32 so that it reads back to the same bits.
+    let mut digest = std::collections::hash_map::DefaultHasher::new();
+    std::hash::Hash::hash(&format!("{:?} {:?}", g.records, g.lights), &mut digest);
+    println!("gpu digest {:016x}", std::hash::Hasher::finish(&digest));
     println!(
         "same object+status {:.4}% ; hits {hits}; statuses (gpu,cpu)->n {:?}",
         100.0 * same as f64 / n as f64,

@@ -576,6 +576,7 @@ pub(crate) unsafe fn set_uniforms(gl: &glow::Context, program: glow::Program, u:
     gl.uniform_1_f32(loc("max_past").as_ref(), u.max_past);
     gl.uniform_1_i32(loc("max_loops").as_ref(), u.max_loops);
     gl.uniform_1_i32(loc("lights").as_ref(), u.lights);
+    gl.uniform_4_f32_slice(loc("member").as_ref(), &u.member);
     gl.uniform_1_i32(loc("table").as_ref(), 0);
     gl.uniform_1_i32(loc("two").as_ref(), 2);
 }

@@ -121,6 +121,9 @@ pub struct Uniforms {
     pub max_past: f32,
     pub max_loops: i32,
     pub lights: i32,
+    /// A Gödel-type member's constants as the kernel's `u_member`
+    /// ([`MemberConstants::uniform`]); zeros outside the family.
+    pub member: [f32; 4],
 }
 
 /// What the kernel reads of an observer at a position (x, y, z): the same at every sample,
@@ -182,14 +185,15 @@ pub struct KernelInput {
     pub kinds: [bool; 4],
     /// Samples per side of a pixel.
     pub supersample: u32,
-    /// A Gödel-type member's defines (`None` for Gödel's universe and Minkowski's).
-    pub member: Option<MemberDefines>,
+    /// A Gödel-type member's constants (`None` for Gödel's universe and Minkowski's).
+    pub member: Option<MemberConstants>,
 }
 
-/// What the kernel of a Gödel-type member's scene is compiled with, made in f64 and rounded
-/// once (gpu_input.glsl lists the defines).
+/// A Gödel-type member's constants, made in f64 and rounded once (gpu_input.glsl): whether it
+/// is causal as a define (the escape stop's code is left out of the others), the rest as the
+/// uniform `u_member`, so that members of one scene share a compiled kernel.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct MemberDefines {
+pub struct MemberConstants {
     pub m2: f32,
     pub omega: f32,
     /// Ω² − m²/4: its sign decides which light rays escape (render::segment::family_return),
@@ -201,16 +205,21 @@ pub struct MemberDefines {
     pub step: f32,
 }
 
-impl MemberDefines {
-    fn new(member: GodelType, length_scale: f64) -> MemberDefines {
+impl MemberConstants {
+    fn new(member: GodelType, length_scale: f64) -> MemberConstants {
         let w2 = member.omega * member.omega;
-        MemberDefines {
+        MemberConstants {
             m2: member.m2 as f32,
             omega: member.omega as f32,
             delta: (w2 - 0.25 * member.m2) as f32,
             causal: member.m2 >= 4.0 * w2 * (1.0 - BOUNDARY_LAMBDA),
             step: (STEP_PER_SCALE * length_scale) as f32,
         }
+    }
+
+    /// `u_member`: (m², Ω, Ω² − m²/4, the longest segment).
+    pub fn uniform(&self) -> [f32; 4] {
+        [self.m2, self.omega, self.delta, self.step]
     }
 }
 
@@ -261,6 +270,8 @@ impl KernelInput {
         let sample = scene.sample_camera();
         let f = |v: [f64; 3]| v.map(|c| c as f32);
         let v = obs.velocity;
+        let member = (scene.metric.godel_type())
+            .map(|m| MemberConstants::new(m, scene.metric.length_scale()));
         let uniforms = Uniforms {
             metric: match scene.metric {
                 Metric::Minkowski(_) => 0,
@@ -285,6 +296,7 @@ impl KernelInput {
             max_past: scene.trace.max_past as f32,
             max_loops: scene::MAX_RAY_LOOPS as i32,
             lights: scene.lights.len() as i32,
+            member: member.as_ref().map_or([0.0; 4], MemberConstants::uniform),
         };
         let mut texels: Vec<[f32; 4]> = Vec::new();
         for o in &scene.objects {
@@ -344,8 +356,7 @@ impl KernelInput {
             light_count: scene.lights.len(),
             kinds,
             supersample: scene.supersample(),
-            member: (scene.metric.godel_type())
-                .map(|m| MemberDefines::new(m, scene.metric.length_scale())),
+            member,
         }
     }
 
@@ -369,14 +380,8 @@ impl KernelInput {
             flag(self.kinds[3]),
         ) + &self.member.as_ref().map_or(String::new(), |m| {
             format!(
-                "#define FAMILY 1\n#define MEMBER 1\n#define MEMBER_M2 ({:e})\n\
-                 #define MEMBER_OMEGA ({:e})\n#define MEMBER_DELTA ({:e})\n\
-                 #define MEMBER_CAUSAL {}\n#define MEMBER_STEP ({:e})\n",
-                m.m2,
-                m.omega,
-                m.delta,
-                flag(m.causal),
-                m.step
+                "#define FAMILY 1\n#define MEMBER 1\n#define MEMBER_CAUSAL {}\n",
+                flag(m.causal)
             )
         })
     }

@@ -270,8 +270,8 @@ export interface KernelInput {
   light_count: number;
   kinds: [boolean, boolean, boolean, boolean];
   supersample: number;
-  /** A Gödel-type member's constants (the defines say them to the kernel); null otherwise. */
-  member: MemberDefines | null;
+  /** A Gödel-type member's constants (the defines say whether it is causal); null otherwise. */
+  member: MemberConstants | null;
   slots: number;
   light_channels: [number, number][];
   draw_buffers: number;
@@ -282,8 +282,8 @@ export interface KernelInput {
   max_rounds: number;
 }
 
-/** gpu::input::MemberDefines. */
-export interface MemberDefines {
+/** gpu::input::MemberConstants. */
+export interface MemberConstants {
   m2: number;
   omega: number;
   delta: number;
@@ -309,6 +309,8 @@ export interface KernelUniforms {
   max_past: number;
   max_loops: number;
   lights: number;
+  /** u_member: m², Ω, Ω² − m²/4, the longest segment; zeros outside the family. */
+  member: [number, number, number, number];
 }
 
 /** What depends on the observer's position alone (gpu::input::ObserverUniforms). */

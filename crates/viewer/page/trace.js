@@ -227,6 +227,7 @@ export class KernelTracer {
     gl.uniform1f(at('max_past'), u.max_past);
     gl.uniform1i(at('max_loops'), u.max_loops);
     gl.uniform1i(at('lights'), u.lights);
+    gl.uniform4fv(at('member'), u.member);
     gl.uniform1i(at('table'), 0);
     gl.uniform1i(at('prev'), 1);
     // The bound of the loop that tells a round cut short by a loop limiter (render_tracer.glsl).

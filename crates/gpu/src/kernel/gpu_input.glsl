@@ -13,12 +13,11 @@
 // The host prepends `#version 300 es` and its defines (crates/gpu/src/input.rs,
 // `KernelInput::defines`): N_OBJECTS and N_LIGHTS (the scene's counts, at least 1 for the
 // array sizes), DRAW_BUFFERS (render targets per pass), GODEL (1 for Gödel's metric, 0 for
-// Minkowski's and the family's), for a Gödel-type member MEMBER with FAMILY and the member's
-// constants MEMBER_M2 (m²), MEMBER_OMEGA (Ω), MEMBER_DELTA (Ω² − m²/4, made in f64: its sign
-// decides which rays escape, and f32's Ω² − m²/4 would be rounding where m² = 4Ω²),
-// MEMBER_CAUSAL (1 where m² ≥ 4Ω² up to rounding: light may escape) and MEMBER_STEP (the
-// longest segment of a ray, render::segment::STEP_PER_SCALE length scales), HAS_LIGHTS and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the
-// scene has lights and objects of each kind); benchmarks may add COUNT_PROBES (each sample's
+// Minkowski's and the family's), for a Gödel-type member MEMBER with FAMILY and
+// MEMBER_CAUSAL (1 where m² ≥ 4Ω² up to rounding: light may escape; the member's other
+// constants are the uniform u_member, so that members share a compiled kernel), HAS_LIGHTS
+// and HAS_REST, HAS_FREE, HAS_COORD_SPHERE, HAS_PLANE (whether the scene has lights and
+// objects of each kind); benchmarks may add COUNT_PROBES (each sample's
 // probe count in place of view_x), and the family's probe FAMILY (the Gödel-type family's
 // functions, spacetime_godel_type.glsl).
 //
@@ -114,7 +113,15 @@ const float NO_TAU = -3.0e38;      // "no matched proper time" (the CPU's NaN)
 const float INF = 3.0e38;
 
 #ifdef MEMBER
-const vec2 MB = vec2(MEMBER_M2, MEMBER_OMEGA);   // the member as the family's functions take it
+// A Gödel-type member's constants (gpu::input::MemberConstants): m², Ω, Ω² − m²/4 (made in
+// f64: its sign decides which rays escape, and f32's Ω² − m²/4 would be rounding where
+// m² = 4Ω²) and the longest segment of a ray (render::segment::STEP_PER_SCALE length scales).
+uniform vec4 u_member;
+#define MEMBER_M2 u_member.x
+#define MEMBER_OMEGA u_member.y
+#define MEMBER_DELTA u_member.z
+#define MEMBER_STEP u_member.w
+#define MB u_member.xy   // the member as the family's functions take it
 // render::tracer::MAX_FAMILY_SEGMENTS: segments of an escaping ray at most.
 const int MAX_FAMILY_SEGMENTS = 16384;
 // render::segment::BOUNDARY_LAMBDA: below this fraction of Ω²E², Λ counts as 0 (escaping).

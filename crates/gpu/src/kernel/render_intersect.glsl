@@ -22,11 +22,10 @@
 const int LOOPS_PER_PASS = 16;
 const int M_LOOP = 0;      // at the start of loop mach.loop_
 const int M_AIM = 1;       // aimed occlusion before a shadow ray's search (startAim)
-const int M_SEGMENT = 2;   // at the start of segment mach.seg
-const int M_SCAN = 3;      // the next object of the segment
-const int M_BISECT = 4;    // the span [bis.a, bis.b] of object mach.obj, both end probes known
-const int M_REFINE = 5;    // Illinois steps on a crossing
-const int M_DONE = 6;
+const int M_SCAN = 2;      // the next object of the segment
+const int M_BISECT = 3;    // the span [bis.a, bis.b] of object mach.obj, both end probes known
+const int M_REFINE = 4;    // Illinois steps on a crossing
+const int M_DONE = 5;
 
 // What a requested probe is for.
 const int Q_NONE = 0;
@@ -478,10 +477,9 @@ void machineStep() {
             startAt[i] = NO_TAU;
         }
         mach.seg = 0;
-        mach.mode = M_SEGMENT;
+        startSegment();   // (leaves M_LOOP: the loop ends)
     }
     if (mach.mode == M_LOOP) return;   // on from the next loop in the next pass
-    if (mach.mode == M_SEGMENT) startSegment();
     // A span whose end probe was kept (nextSpan) is taken up in the same pass: the next span
     // after it is probed (the kept probe is used up), so two rounds of this loop suffice.
     for (int kept = 0; kept < 2 && mach.mode == M_BISECT; kept++) {
@@ -544,12 +542,9 @@ void machineStep() {
         request(Q_REFINE, m, bis.pa.tau);
         return;
     }
-    // The segments of a loop that ask for no probe are passed over in one pass (a segment's
-    // start is no checkpoint; a loop's is, and begins a pass): each object of the segment, then
-    // its end, as steps of one loop. (llvmpipe counts every loop's passes, and each loop of a
-    // pass at least once, against its limit: a loop of segments around this one, nested, cost
-    // a sample in a long bisection one more each probe, which floor-grid's longest shadow ray,
-    // over 4,096 passes between two checkpoints, could not afford.)
+    // The segments of a loop that ask for no probe are passed over in one pass: each object of
+    // the segment, then its end, as steps of one flat loop (not nested: docs/physics.md,
+    // "Rounds", on llvmpipe's loop limit).
     for (int st = 0; st < EXACT_SEGMENTS * (N_OBJECTS + 1) && mach.mode == M_SCAN; st++) {
         float off = loopOffset();
         mach.obj++;
