@@ -7,28 +7,54 @@ cd "$(dirname "$0")/.."
 # of a run (CI's included) goes.
 stage() { echo "test.sh: $1 done at $((SECONDS / 60))m$((SECONDS % 60))s" >&2; }
 
-# The viewer's browser tests (crates/godel/tests/integration/viewer_browser.rs) drive Debian's
-# chromium through playwright-core; playwright's own browser download cannot work here, and is
-# not used.
-# The page shades with WebGL2: headless chromium renders it in software on SwiftShader, which
-# Debian's chromium package ships (/usr/lib/chromium/libvk_swiftshader.so); no GPU is needed.
-command -v chromium >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
-command -v node >/dev/null || { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null; }
+# What the tests need from Debian, installed in one apt-get run where any is missing (each
+# apt-get update took seconds of a fresh machine's run):
+# - chromium: the viewer's browser tests (crates/godel/tests/integration/viewer_browser.rs)
+#   drive Debian's chromium through playwright-core (playwright's own browser download cannot
+#   work here, and is not used). The page shades with WebGL2: headless chromium renders it in
+#   software on SwiftShader, which Debian's chromium package ships
+#   (/usr/lib/chromium/libvk_swiftshader.so); no GPU is needed.
+# - Mesa's EGL: `godel render --gpu` (crates/gpu) loads libEGL at run time; without a GPU,
+#   Mesa's llvmpipe renders its OpenGL ES 3 context in software (crates/gpu/tests,
+#   crates/godel/tests/integration/gpu_cli.rs).
+# - glslang-tools: Khronos' reference GLSL compiler checks every kernel a host builds
+#   (crates/gpu/tests/integration/glslang.rs).
+# - Python's venv for the Python package's tests, OpenMPI and libclang (rsmpi's bindgen) for
+#   the `mpi` feature's (below).
+need=()
+command -v chromium >/dev/null || need+=(chromium)
+command -v node >/dev/null || need+=(nodejs npm)
+dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || need+=(libegl1 libegl-mesa0 libgl1-mesa-dri)
+command -v glslangValidator >/dev/null || need+=(glslang-tools)
+python3 -c 'import ensurepip, venv' 2>/dev/null || need+=(python3 python3-venv)
+{ command -v mpirun >/dev/null && dpkg -s openmpi-bin libopenmpi-dev libclang-dev >/dev/null 2>&1; } \
+    || need+=(openmpi-bin libopenmpi-dev libclang-dev)
+if ((${#need[@]})); then
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >/dev/null
+fi
 [ -d tests/browser/node_modules/playwright-core ] && [ -x tests/browser/node_modules/.bin/tsc ] \
     || (cd tests/browser && npm ci --silent --no-audit --no-fund)
 # The page (crates/viewer/page: ES modules with JSDoc types, the server's JSON typed in
 # contract.d.ts) is type-checked by TypeScript, pinned in the same package.json: strict, no
 # output; any type error fails the tests.
 tests/browser/node_modules/.bin/tsc -p crates/viewer/page
-stage "browser tools and the page's type check"
-# `godel render --gpu` (crates/gpu) loads libEGL at run time; without a GPU, Mesa's llvmpipe
-# renders its OpenGL ES 3 context in software (crates/gpu/tests,
-# crates/godel/tests/integration/gpu_cli.rs).
-dpkg -s libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null 2>&1 || { apt-get update -qq \
-    && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libegl1 libegl-mesa0 libgl1-mesa-dri >/dev/null; }
-# Khronos' reference GLSL compiler checks every kernel a host builds (crates/gpu/tests/integration/glslang.rs).
-command -v glslangValidator >/dev/null || { apt-get update -qq \
-    && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq glslang-tools >/dev/null; }
+stage "the tools the tests need and the page's type check"
+
+# The Python package's tests (below) run in a virtual environment under target/, made when
+# missing, with their tools installed when missing: fetched from PyPI while the workspace
+# builds (on a fresh machine a minute, mostly waiting on the network).
+venv=target/python-venv
+python_tools() {
+    [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+    "$venv/bin/python" -c 'import maturin, numpy, pytest, OpenEXR, matplotlib, nbclient, nbformat, ipykernel, tqdm' 2>/dev/null \
+        || "$venv/bin/pip" install -q --disable-pip-version-check \
+            'maturin>=1.9.4,<2' numpy pytest OpenEXR matplotlib nbclient nbformat ipykernel tqdm
+}
+python_log=$(mktemp)
+python_tools >"$python_log" 2>&1 &
+python_pid=$!
+trap 'kill "$python_pid" 2>/dev/null || true; rm -f "$python_log"' EXIT
 
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet
@@ -37,33 +63,23 @@ cargo test --workspace --no-fail-fast
 stage "the Rust tests"
 
 # --- Python (issue 26): the package in python/ (docs/guide/src/python.md), installed with
-# `pip install ./python` into a virtual environment under target/ (made when missing, with
-# the test tools installed when missing), then its pytest tests, which compare it with the
-# godel binary built above. maturin builds with the dev profile here, whose artifacts the
-# workspace build above already made (.cargo/config.toml, python/Cargo.toml): only pyo3 and
-# the module itself compile again.
-python3 -c 'import ensurepip, venv' 2>/dev/null || {
-    apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3 python3-venv >/dev/null
+# `pip install ./python` into the virtual environment made above, then its pytest tests,
+# which compare it with the godel binary built above. maturin builds with the dev profile
+# here, whose artifacts the workspace build above already made (.cargo/config.toml,
+# python/Cargo.toml): only pyo3 and the module itself compile again.
+wait "$python_pid" || {
+    cat "$python_log" >&2
+    echo "test.sh: the Python tests' virtual environment or tools could not be installed" >&2
+    exit 1
 }
-venv=target/python-venv
-[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/python" -c 'import maturin, numpy, pytest, OpenEXR, matplotlib, nbclient, nbformat, ipykernel, tqdm' 2>/dev/null \
-    || "$venv/bin/pip" install -q --disable-pip-version-check \
-        'maturin>=1.9.4,<2' numpy pytest OpenEXR matplotlib nbclient nbformat ipykernel tqdm
 PATH="$PWD/$venv/bin:$PATH" MATURIN_PEP517_ARGS="--profile dev" \
     "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 "$venv/bin/python" -m pytest -q python/tests
 stage "the Python package's build and tests"
 
-# --- MPI (issue 6): the `mpi` feature needs OpenMPI, and libclang for rsmpi's bindgen.
-# The default build above needs neither; this block installs them when missing and runs
-# the tests that start `mpirun -n 2` (crates/godel/tests/mpi.rs).
-if ! command -v mpirun >/dev/null \
-    || ! dpkg -s openmpi-bin libopenmpi-dev libclang-dev >/dev/null 2>&1; then
-    apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq openmpi-bin libopenmpi-dev libclang-dev >/dev/null
-fi
+# --- MPI (issue 6): the `mpi` feature needs OpenMPI, and libclang for rsmpi's bindgen
+# (installed above); the default build needs neither. The tests start `mpirun -n 2`
+# (crates/godel/tests/mpi.rs).
 # The workspace's feature set plus godel's `mpi`: built as `-p godel --features mpi`, the
 # shared dependencies (tokio, axum, render, gpu, ...) got another feature set and compiled
 # again (about 40 crates); so only the MPI crates and godel compile here.
