@@ -47,7 +47,7 @@ fn lit_member() -> scene::Scene {
 
 #[test]
 fn small_frames_agree_on_softpipe() {
-    let name = "softpipe::small_frames_agree_on_softpipe";
+    let name = "agreement_on_softpipe::small_frames_agree_on_softpipe";
     if std::env::var(DRIVER_VAR).as_deref() != Ok(DRIVER) {
         let exe = std::env::current_exe().expect("the test binary");
         let out = Command::new(exe)
