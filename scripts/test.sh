@@ -7,8 +7,9 @@ cd "$(dirname "$0")/.."
 # of a run (CI's included) goes.
 stage() { echo "test.sh: $1 done at $((SECONDS / 60))m$((SECONDS % 60))s" >&2; }
 
-# What the tests need from Debian, installed in one apt-get run where any is missing (each
-# apt-get update took seconds of a fresh machine's run):
+# What the tests need beyond cargo, installed where missing while the workspace builds (the
+# build needs none of it; on a fresh machine the downloads take a minute or two). From Debian,
+# in one apt-get run (each apt-get update took seconds of a fresh machine's run):
 # - chromium: the viewer's browser tests (crates/godel/tests/integration/viewer_browser.rs)
 #   drive Debian's chromium through playwright-core (playwright's own browser download cannot
 #   work here, and is not used). The page shades with WebGL2: headless chromium renders it in
@@ -29,36 +30,41 @@ command -v glslangValidator >/dev/null || need+=(glslang-tools)
 python3 -c 'import ensurepip, venv' 2>/dev/null || need+=(python3 python3-venv)
 { command -v mpirun >/dev/null && dpkg -s openmpi-bin libopenmpi-dev libclang-dev >/dev/null 2>&1; } \
     || need+=(openmpi-bin libopenmpi-dev libclang-dev)
-if ((${#need[@]})); then
-    apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >/dev/null
-fi
-[ -d tests/browser/node_modules/playwright-core ] && [ -x tests/browser/node_modules/.bin/tsc ] \
-    || (cd tests/browser && npm ci --silent --no-audit --no-fund)
-# The page (crates/viewer/page: ES modules with JSDoc types, the server's JSON typed in
-# contract.d.ts) is type-checked by TypeScript, pinned in the same package.json: strict, no
-# output; any type error fails the tests.
-tests/browser/node_modules/.bin/tsc -p crates/viewer/page
-stage "the tools the tests need and the page's type check"
-
-# The Python package's tests (below) run in a virtual environment under target/, made when
-# missing, with their tools installed when missing: fetched from PyPI while the workspace
-# builds (on a fresh machine a minute, mostly waiting on the network).
 venv=target/python-venv
-python_tools() {
+tools() {
+    if ((${#need[@]})); then
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >/dev/null
+    fi
+    # The Python package's tests (below) run in a virtual environment under target/, made
+    # when missing, with their tools installed when missing.
     [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
     "$venv/bin/python" -c 'import maturin, numpy, pytest, OpenEXR, matplotlib, nbclient, nbformat, ipykernel, tqdm' 2>/dev/null \
         || "$venv/bin/pip" install -q --disable-pip-version-check \
             'maturin>=1.9.4,<2' numpy pytest OpenEXR matplotlib nbclient nbformat ipykernel tqdm
+    # playwright-core and TypeScript, pinned in tests/browser/package.json.
+    [ -d tests/browser/node_modules/playwright-core ] && [ -x tests/browser/node_modules/.bin/tsc ] \
+        || (cd tests/browser && npm ci --silent --no-audit --no-fund)
 }
-python_log=$(mktemp)
-python_tools >"$python_log" 2>&1 &
-python_pid=$!
-trap 'kill "$python_pid" 2>/dev/null || true; rm -f "$python_log"' EXIT
+tools_log=$(mktemp)
+(set -e; tools) >"$tools_log" 2>&1 &
+tools_pid=$!
+# On an early exit the installs are left to end: an apt-get cut short can leave dpkg half done.
+trap 'wait "$tools_pid" 2>/dev/null || true; rm -f "$tools_log"' EXIT
 
 # The dev/test profile is optimized (Cargo.toml): physics tests are heavy.
 cargo build --workspace --all-targets --quiet
 stage "the workspace's build"
+wait "$tools_pid" || {
+    cat "$tools_log" >&2
+    echo "test.sh: what the tests need beyond cargo could not be installed" >&2
+    exit 1
+}
+# The page (crates/viewer/page: ES modules with JSDoc types, the server's JSON typed in
+# contract.d.ts) is type-checked by TypeScript: strict, no output; any type error fails the
+# tests.
+tests/browser/node_modules/.bin/tsc -p crates/viewer/page
+stage "the tools the tests need and the page's type check"
 cargo test --workspace --no-fail-fast
 stage "the Rust tests"
 
@@ -67,11 +73,6 @@ stage "the Rust tests"
 # which compare it with the godel binary built above. maturin builds with the dev profile
 # here, whose artifacts the workspace build above already made (.cargo/config.toml,
 # python/Cargo.toml): only pyo3 and the module itself compile again.
-wait "$python_pid" || {
-    cat "$python_log" >&2
-    echo "test.sh: the Python tests' virtual environment or tools could not be installed" >&2
-    exit 1
-}
 PATH="$PWD/$venv/bin:$PATH" MATURIN_PEP517_ARGS="--profile dev" \
     "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 "$venv/bin/python" -m pytest -q python/tests
