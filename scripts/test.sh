@@ -10,7 +10,7 @@ stage() { echo "test.sh: $1 done at $((SECONDS / 60))m$((SECONDS % 60))s" >&2; }
 # What the tests need beyond cargo, installed where missing while the workspace builds (the
 # build needs none of it; on a fresh machine the downloads take a minute or two). From Debian,
 # in one apt-get run (each apt-get update took seconds of a fresh machine's run):
-# - chromium: the viewer's browser tests (crates/godel/tests/integration/viewer_browser.rs)
+# - chromium: the viewer's browser tests (crates/godel/tests/integration/browser.rs)
 #   drive Debian's chromium through playwright-core (playwright's own browser download cannot
 #   work here, and is not used). The page shades with WebGL2: headless chromium renders it in
 #   software on SwiftShader, which Debian's chromium package ships

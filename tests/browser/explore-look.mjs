@@ -1,6 +1,6 @@
 // Explore mode with `--sphere`: the page looks around in the traced sphere as `godel view`
 // does (a drag turns the view without asking the server for anything), and a new event keeps
-// the view turned; for the Rust test crates/godel/tests/integration/viewer_browser/explore.rs.
+// the view turned; for the Rust test crates/godel/tests/integration/browser/explore.rs.
 //
 // usage: node explore-look.mjs URL OUT_DIR T
 // Prints {look, drag: {yaw, pixels_changed, requests}, after: {event, level, yaw, look},

@@ -1,7 +1,7 @@
 // Explore mode in the browser: waits for the full frame of the scene's own event, moves the
 // time slider to T, waits for the full frame of the new event, and saves both pictures; then
 // plays time for four frames and pauses, for the Rust test
-// crates/godel/tests/integration/viewer_browser/explore.rs.
+// crates/godel/tests/integration/browser/explore.rs.
 //
 // usage: node explore.mjs URL OUT_DIR T
 // Writes OUT_DIR/before.rgba and OUT_DIR/after.rgba (+ .json), and prints {before, after,

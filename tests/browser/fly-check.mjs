@@ -1,5 +1,5 @@
 // The page checks what it shows (fly.js, crates/viewer/src/page_check.rs), for the Rust test
-// crates/godel/tests/integration/viewer_browser/page_check.rs: explore serves a kernel with a fault; the
+// crates/godel/tests/integration/browser/page_check.rs: explore serves a kernel with a fault; the
 // page's first traced frame is checked against the server's CPU exact tracer, refused, and
 // the server's frames (coarse, then full) are shown from then on, the header saying why.
 //

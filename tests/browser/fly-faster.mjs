@@ -1,5 +1,5 @@
 // The faster tracer in explore mode (fly.js), for the Rust test
-// crates/godel/tests/integration/viewer_browser/faster.rs: opens the page as a user does (no
+// crates/godel/tests/integration/browser/faster.rs: opens the page as a user does (no
 // `?trace=`), waits for the full frame at rest (a quarter-size frame at rest, of at most 2,048 rays,
 // measures the kernel's speed, then each frame is traced by whichever tracer was faster), hovers pixel (COL, ROW)
 // of it and keeps its record and the map's light ray; then holds W (forward, at 0.1 c) until

@@ -1,4 +1,4 @@
-// At rest in explore mode (fly.js), for the Rust test crates/godel/tests/integration/viewer_browser/fly.rs,
+// At rest in explore mode (fly.js), for the Rust test crates/godel/tests/integration/browser/fly.rs,
 // on a scene of several samples a pixel: saves the first full frame (the scene's own view and
 // velocity), stops the observer (X), then after a wheel turn (zooming in), the page shows
 // the full size at one sample a pixel (after half the size, where the kernel's speed asks for

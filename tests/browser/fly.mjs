@@ -1,4 +1,4 @@
-// Flying in explore mode (fly.js), for the Rust test crates/godel/tests/integration/viewer_browser/fly.rs:
+// Flying in explore mode (fly.js), for the Rust test crates/godel/tests/integration/browser/fly.rs:
 // waits for the full frame at rest; compares the page's kernel uniforms with the server's for
 // the view (POST /api/explore/input); with "fall freely" on, holds R (up) until the observer has moved a while,
 // counting animation frames (its own requestAnimationFrame loop) and the pictures the page

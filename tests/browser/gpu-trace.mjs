@@ -1,6 +1,6 @@
 // Traces the frame of each served data file in the page, on the GPU (WebGL2 on SwiftShader,
 // page/trace.js running crates/gpu/src/kernel/), and saves what it traced, for the Rust
-// test crates/godel/tests/integration/viewer_browser/gpu_trace.rs to compare with the data file.
+// test crates/godel/tests/integration/browser/gpu_trace.rs to compare with the data file.
 //
 // usage: node gpu-trace.mjs URL OUT_DIR [URL…] [--shade]
 //   For the K-th URL (`godel view` of a data file) writes OUT_DIR/trace-K.json ({width,

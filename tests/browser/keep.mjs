@@ -1,5 +1,5 @@
 // Explore's "Render exactly" and "Record" in the browser, for the Rust test
-// crates/godel/tests/integration/viewer_browser/keep.rs.
+// crates/godel/tests/integration/browser/keep.rs.
 //
 // usage: node keep.mjs URL OUT_DIR X T
 // Waits for the full frame of the scene's own event, then moves the observer with the Explore

@@ -1,5 +1,5 @@
 // Shades a data file on the GPU with several settings and saves each picture, for the Rust
-// test crates/godel/tests/integration/viewer_browser.rs to compare with the `shade` crate's.
+// test crates/godel/tests/integration/browser.rs to compare with the `shade` crate's.
 //
 // usage: node layers.mjs URL OUT_DIR CASES.json
 //   CASES.json: a list of complete settings (ShadeSettings as JSON).

@@ -1,6 +1,6 @@
 // Looks around a full-sphere data file on the GPU, as a user does (drag, velocity), and saves
 // the pictures with the view the server would make them of, for the Rust test
-// crates/godel/tests/integration/viewer_browser.rs to compare with `godel look` then `godel shade`.
+// crates/godel/tests/integration/browser.rs to compare with `godel look` then `godel shade`.
 //
 // usage: node look.mjs URL OUT_DIR CASES.json
 //   CASES.json: a list of {look: {projection, fov, yaw, pitch, speed, preset}, settings}.

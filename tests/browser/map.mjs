@@ -1,4 +1,4 @@
-// The explore map in the browser, for crates/godel/tests/integration/viewer_browser/explore.rs: waits for
+// The explore map in the browser, for crates/godel/tests/integration/browser/explore.rs: waits for
 // the full frame of the scene's own event and its map, hovers the picture pixel COL ROW (the
 // map then shows its light ray; the script reads the map canvas back along the ray), leaves
 // the picture, drags the observer's marker on the map by (DX, DY) CSS pixels, waits for the

@@ -1,5 +1,5 @@
 // The page's polarization layer and its emitter-axis control (issue 25), for the Rust test
-// crates/godel/tests/integration/viewer_browser/polarization.rs: turns the layer on with its checkbox
+// crates/godel/tests/integration/browser/polarization.rs: turns the layer on with its checkbox
 // (texture and polarization) and saves the file's frame (file.rgba); traces the frame on the
 // GPU and saves its slots (trace-0-slot-S.f32, trace-0.json) and its picture (traced.rgba);
 // then turns the first object's polarization axis with the azimuth slider, as a user drags

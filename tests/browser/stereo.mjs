@@ -1,5 +1,5 @@
 // The page's Stereo panel (issue 37), for the Rust test
-// crates/godel/tests/integration/viewer_browser/stereo.rs: viewing one eye of a stereo pair,
+// crates/godel/tests/integration/browser/stereo.rs: viewing one eye of a stereo pair,
 // waits for the panel's picture of both eyes in the pair's layout and saves it
 // (pair.png, its size and the page's settings in pair.json); then chooses the anaglyph and
 // saves that picture (anaglyph.png, anaglyph.json).

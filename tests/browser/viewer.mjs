@@ -1,6 +1,6 @@
 // Drives a real browser (Debian's chromium, through playwright-core) against a running
 // `godel view`, and prints what it saw as one JSON object on stdout, for the Rust test
-// crates/godel/tests/integration/viewer_browser.rs to check.
+// crates/godel/tests/integration/browser.rs to check.
 //
 // usage: node viewer.mjs URL OUT_DIR COL ROW
 //   COL ROW: a pixel that the caller knows to be a hit; its record is read on hover.

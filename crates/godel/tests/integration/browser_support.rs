@@ -1,4 +1,4 @@
-//! Helpers of the browser tests (viewer_browser.rs): rendering a scene with `godel render`,
+//! Helpers of the browser tests (browser.rs): rendering a scene with `godel render`,
 //! serving it with `godel view --port 0` (or a scene with `godel explore --port 0`), running a playwright-core script of tests/browser
 //! against Debian's chromium, and reading the raw pictures the scripts save.
 

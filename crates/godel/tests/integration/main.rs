@@ -4,6 +4,10 @@
 mod browser_support;
 mod common;
 
+// First (libtest starts tests in the order of their names): the browser tests are the longest
+// (the page's kernels compile on one core, in SwiftShader), and the short ones after them keep
+// both cores busy to the end.
+mod browser;
 mod cli;
 mod connect_family_cli;
 mod consistency_cli;
@@ -23,5 +27,4 @@ mod shade_cli;
 mod stereo_cli;
 mod symmetry_cli;
 mod view_cli;
-mod viewer_browser;
 mod writes_cli;

@@ -314,7 +314,7 @@ fn with_sphere_the_page_looks_around_and_keeps_the_view_across_events() {
 }
 
 /// The page on the server's frames (`?trace=server`): what these tests check. The page's own
-/// GPU frames are tested in viewer_browser/fly.rs.
+/// GPU frames are tested in browser/fly.rs.
 fn server_frames(url: &str) -> String {
     format!("{url}?trace=server")
 }

@@ -86,7 +86,7 @@ fn render_exactly_and_a_recorded_flight_are_the_views_on_screen() {
     let seen = run_script(
         "keep.mjs",
         // On the server's frames (its script moves the event with the Explore panel's
-        // fields); flying is tested in viewer_browser/fly.rs.
+        // fields); flying is tested in browser/fly.rs.
         &format!("{url}?trace=server"),
         &out,
         &["0.3".to_string(), "1.5".to_string()],

@@ -23,7 +23,7 @@ use crate::browser_support::*;
 use datafile::DataFile;
 
 /// The page with every frame on its own kernel (`?trace=page`): what these tests check; the
-/// choice of the faster tracer is tested in viewer_browser/faster.rs.
+/// choice of the faster tracer is tested in browser/faster.rs.
 pub(super) fn page_frames(url: &str) -> String {
     format!("{url}?trace=page")
 }

@@ -19,7 +19,7 @@
 //!
 //! That the server's frame of a view holds `godel render`'s records bit for bit is
 //! `explore_cli::the_frame_of_a_flown_view_is_godel_render_of_that_view`; the kernel's frames,
-//! with `?trace=page`, are viewer_browser/fly.rs's.
+//! with `?trace=page`, are browser/fly.rs's.
 
 use super::explore::scene_text;
 use crate::browser_support::*;
